@@ -1,0 +1,1 @@
+"""The description layer: the URDF model, its parser, writer and validation, and ROS packages."""

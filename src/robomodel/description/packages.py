@@ -1,0 +1,227 @@
+"""ROS package discovery and resource URI resolution (``package://``, ``file://``, ``$(find)``).
+
+Packages are found the ways ROS finds them, in this priority order (the first match wins):
+
+1. explicit ``NAME=DIR`` mappings (``--package``), for install layouts that differ from the source;
+2. ``--package-path DIR`` entries, scanned recursively for ``package.xml`` as rospack does;
+3. ``ROS_PACKAGE_PATH`` entries, scanned the same way;
+4. ``AMENT_PREFIX_PATH`` entries, where a package lives in ``<prefix>/share/<name>``.
+
+A scanned directory that holds a ``package.xml`` is a package: its name is the manifest's
+``<name>`` and the scan does not descend further (rospack's rule). Directories holding
+``CATKIN_IGNORE``, ``COLCON_IGNORE`` or ``AMENT_IGNORE`` and hidden directories are skipped.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from urllib.parse import unquote, urlparse
+
+from robomodel.errors import PackageNotFoundError, PathEscapeError, RobomodelError
+
+__all__ = [
+    "Package",
+    "PackageIndex",
+    "index_from_options",
+    "parse_package_option",
+]
+
+_IGNORE_MARKERS = ("CATKIN_IGNORE", "COLCON_IGNORE", "AMENT_IGNORE")
+_NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_MAX_SCAN_DEPTH = 12
+
+
+@dataclass(frozen=True, slots=True)
+class Package:
+    """A ROS package: its name and the directory that ``$(find name)`` returns."""
+
+    name: str
+    path: Path
+    origin: str  # which search source found it: "explicit", "package-path", "ROS_PACKAGE_PATH", ...
+
+
+def parse_package_option(text: str) -> tuple[str, Path]:
+    """Parse a ``NAME=DIR`` command-line option into ``(name, path)``."""
+    name, sep, directory = text.partition("=")
+    if not sep or not name.strip() or not directory.strip():
+        raise RobomodelError(f"--package expects NAME=DIR, got '{text}'")
+    return name.strip(), Path(directory.strip()).expanduser()
+
+
+def _manifest_name(manifest: Path) -> str | None:
+    try:
+        head = manifest.read_bytes()[:65536]
+    except OSError:
+        return None
+    match = _NAME_RE.search(head)
+    return match.group(1).decode("utf-8", "replace") if match else None
+
+
+def _scan_tree(root: Path, found: dict[str, Path], depth: int = 0) -> None:
+    """Recursively collect packages below ``root`` (rospack's crawl)."""
+    if depth > _MAX_SCAN_DEPTH:
+        return
+    manifest = root / "package.xml"
+    if manifest.is_file():
+        name = _manifest_name(manifest) or root.name
+        found.setdefault(name, root)
+        return
+    try:
+        entries = sorted(os.scandir(root), key=lambda e: e.name)
+    except OSError:
+        return
+    if any(e.name in _IGNORE_MARKERS for e in entries):
+        return
+    for entry in entries:
+        if entry.name.startswith(".") or not entry.is_dir():
+            continue
+        _scan_tree(Path(entry.path), found, depth + 1)
+
+
+def _split_env_paths(value: str | None) -> list[Path]:
+    if not value:
+        return []
+    return [Path(p) for p in value.split(os.pathsep) if p]
+
+
+class PackageIndex:
+    """Finds ROS packages by name and resolves resource URIs against them.
+
+    Scanning is lazy: nothing touches the file system until the first lookup.
+
+    Args:
+        package_paths: Directories to scan recursively for ``package.xml``.
+        packages: Explicit ``name -> directory`` mappings; they take precedence.
+        use_environment: Also read ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``.
+        environ: The environment to read (defaults to ``os.environ``).
+    """
+
+    def __init__(
+        self,
+        *,
+        package_paths: Iterable[str | os.PathLike[str]] = (),
+        packages: Mapping[str, str | os.PathLike[str]] | None = None,
+        use_environment: bool = True,
+        environ: Mapping[str, str] | None = None,
+    ) -> None:
+        self._explicit = {name: Path(path) for name, path in (packages or {}).items()}
+        self._package_paths = tuple(Path(p) for p in package_paths)
+        env = os.environ if environ is None else environ
+        self._ros_package_path = (
+            _split_env_paths(env.get("ROS_PACKAGE_PATH")) if use_environment else []
+        )
+        self._ament_prefixes = (
+            _split_env_paths(env.get("AMENT_PREFIX_PATH")) if use_environment else []
+        )
+        self._index: dict[str, Package] | None = None
+
+    @property
+    def searched(self) -> tuple[str, ...]:
+        """Human-readable list of the places this index looks in."""
+        places = [f"{n}={p}" for n, p in self._explicit.items()]
+        places += [str(p) for p in self._package_paths]
+        places += [f"ROS_PACKAGE_PATH:{p}" for p in self._ros_package_path]
+        places += [f"AMENT_PREFIX_PATH:{p}" for p in self._ament_prefixes]
+        return tuple(places)
+
+    def _build(self) -> dict[str, Package]:
+        index: dict[str, Package] = {}
+        for name, path in self._explicit.items():
+            index[name] = Package(name, path, "explicit")
+        for origin, roots in (
+            ("package-path", self._package_paths),
+            ("ROS_PACKAGE_PATH", self._ros_package_path),
+        ):
+            for root in roots:
+                found: dict[str, Path] = {}
+                _scan_tree(root, found)
+                for name, path in found.items():
+                    index.setdefault(name, Package(name, path, origin))
+        for prefix in self._ament_prefixes:
+            share = prefix / "share"
+            try:
+                entries = sorted(os.scandir(share), key=lambda e: e.name)
+            except OSError:
+                continue
+            for entry in entries:
+                if entry.is_dir() and os.path.isfile(os.path.join(entry.path, "package.xml")):
+                    index.setdefault(
+                        entry.name, Package(entry.name, Path(entry.path), "AMENT_PREFIX_PATH")
+                    )
+        return index
+
+    def _packages(self) -> dict[str, Package]:
+        if self._index is None:
+            self._index = self._build()
+        return self._index
+
+    def names(self) -> tuple[str, ...]:
+        """All package names this index can find, sorted."""
+        return tuple(sorted(self._packages()))
+
+    def get(self, name: str) -> Package:
+        """Return the package called ``name`` or raise :class:`PackageNotFoundError`."""
+        packages = self._packages()
+        try:
+            return packages[name]
+        except KeyError:
+            raise PackageNotFoundError(name, sorted(packages), self.searched) from None
+
+    def find(self, name: str) -> Path:
+        """Return the directory of package ``name`` (what ``$(find name)`` expands to)."""
+        return self.get(name).path
+
+    def resolve(self, uri: str, *, base_dir: str | os.PathLike[str] | None = None) -> Path:
+        """Resolve a resource reference to a file path.
+
+        Accepts ``package://pkg/rel/path``, ``file:///abs/path``, absolute paths and paths
+        relative to ``base_dir`` (the directory of the file that mentions them).
+
+        Raises:
+            PackageNotFoundError: the package is unknown.
+            PathEscapeError: a ``package://`` path leaves its package directory.
+        """
+        if uri.startswith("package://"):
+            rest = uri[len("package://") :]
+            name, _, relative = rest.partition("/")
+            root = self.find(name)
+            return _join_inside(root, relative, uri, name)
+        if uri.startswith("file://"):
+            return Path(unquote(urlparse(uri).path))
+        path = Path(uri)
+        if path.is_absolute() or base_dir is None:
+            return path
+        return Path(os.path.normpath(Path(base_dir) / path))
+
+    def package_of(self, path: str | os.PathLike[str]) -> Package | None:
+        """Return the known package whose directory contains ``path``, if any."""
+        target = os.path.normpath(os.path.abspath(path))
+        best: Package | None = None
+        for package in self._packages().values():
+            root = os.path.normpath(os.path.abspath(package.path))
+            if (target == root or target.startswith(root + os.sep)) and (
+                best is None or len(str(package.path)) > len(str(best.path))
+            ):
+                best = package
+        return best
+
+
+def _join_inside(root: Path, relative: str, uri: str, package: str) -> Path:
+    root_norm = os.path.normpath(os.path.abspath(root))
+    joined = os.path.normpath(os.path.join(root_norm, unquote(relative)))
+    if joined != root_norm and not joined.startswith(root_norm + os.sep):
+        raise PathEscapeError(uri, package, str(root))
+    return Path(joined)
+
+
+def index_from_options(
+    package_paths: Sequence[str | os.PathLike[str]] = (),
+    package_options: Sequence[str] = (),
+) -> PackageIndex:
+    """Build an index from CLI-style ``--package-path`` and ``--package NAME=DIR`` values."""
+    explicit = dict(parse_package_option(opt) for opt in package_options)
+    return PackageIndex(package_paths=package_paths, packages=explicit)
