@@ -1,0 +1,1 @@
+"""The ``robomodel`` command line: one sub-module per verb, each with ``register(subparsers)``."""
