@@ -1,0 +1,1 @@
+"""URDF XML reading and writing."""
