@@ -1,0 +1,67 @@
+"""Arguments shared by the verbs that read a robot description."""
+
+from __future__ import annotations
+
+import argparse
+
+from robomodel.description.packages import PackageIndex, index_from_options
+from robomodel.description.urdf.reader import ParseResult
+from robomodel.errors import RobomodelError
+from robomodel.loading import LoadedDescription, read_description
+
+__all__ = [
+    "add_description_arguments",
+    "load_from_args",
+    "package_index_from_args",
+    "split_mappings",
+]
+
+
+def add_description_arguments(parser: argparse.ArgumentParser) -> None:
+    """``FILE [name:=value ...] [--package-path DIR] [--package NAME=DIR]``."""
+    parser.add_argument("file", metavar="FILE", help="a .urdf or .xacro file")
+    parser.add_argument(
+        "mappings", nargs="*", metavar="name:=value", help="xacro arguments (for .xacro files)"
+    )
+    parser.add_argument(
+        "--package-path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="directory to search recursively for ROS packages (repeatable)",
+    )
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="where package NAME lives (repeatable; overrides search)",
+    )
+
+
+def split_mappings(items: list[str]) -> dict[str, str]:
+    """Turn ``name:=value`` arguments into a dict (as xacro and ros2 launch do)."""
+    mappings: dict[str, str] = {}
+    for item in items:
+        name, sep, value = item.partition(":=")
+        if not sep or not name:
+            raise RobomodelError(
+                f"unexpected argument '{item}'; xacro arguments are written name:=value"
+            )
+        mappings[name] = value
+    return mappings
+
+
+def package_index_from_args(args: argparse.Namespace) -> PackageIndex:
+    return index_from_options(args.package_path, args.package)
+
+
+def load_from_args(
+    args: argparse.Namespace,
+) -> tuple[ParseResult, LoadedDescription, PackageIndex]:
+    """Expand and parse the description named on the command line."""
+    index = package_index_from_args(args)
+    result, loaded = read_description(
+        args.file, args=split_mappings(args.mappings), package_index=index
+    )
+    return result, loaded, index
