@@ -6,6 +6,7 @@ declares the xacro namespace) is expanded first, then parsed as URDF.
 
 from __future__ import annotations
 
+import importlib
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -57,10 +58,7 @@ def expand_description(
         except OSError as exc:
             raise RobomodelError(f"cannot read '{text}': {exc.strerror}") from None
         return LoadedDescription(data, text, path.resolve().parent, False, ())
-    try:
-        from robomodel import xacro
-    except ImportError as exc:  # pragma: no cover - the xacro layer ships with the package
-        raise RobomodelError(f"xacro support is unavailable: {exc}") from None
+    xacro = importlib.import_module("robomodel.xacro")
     if inline:
         result = xacro.expand_text(text, mappings=dict(args or {}), package_index=index)
         return LoadedDescription(result.text.encode(), None, Path.cwd(), True, result.includes)
