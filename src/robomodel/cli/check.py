@@ -47,7 +47,8 @@ def run(args: argparse.Namespace) -> int:
         return EXIT_INVALID
     diagnostics = list(result.diagnostics)
     diagnostics += validate_resources(result.robot, index, loaded.base_dir)
-    valid = not (args.strict and diagnostics)
+    errors = any(d.severity is Severity.ERROR for d in diagnostics)
+    valid = not errors and not (args.strict and diagnostics)
     if args.json:
         if args.strict:
             diagnostics = [_as_error(d) for d in diagnostics]
@@ -59,7 +60,8 @@ def run(args: argparse.Namespace) -> int:
             print(_as_error(diagnostic).format(), file=sys.stderr)
     else:
         for diagnostic in diagnostics:
-            print(diagnostic.format())
+            stream = sys.stderr if diagnostic.severity is Severity.ERROR else sys.stdout
+            print(diagnostic.format(), file=stream)
     return EXIT_OK if valid else EXIT_INVALID
 
 

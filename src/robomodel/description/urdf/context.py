@@ -87,6 +87,10 @@ class ParseContext:
     def warn(self, message: str, element: etree._Element | None, code: str = "") -> None:
         self.diagnostics.append(Diagnostic(Severity.WARNING, message, self.location(element), code))
 
+    def error(self, message: str, element: etree._Element | None, code: str = "") -> None:
+        """A non-fatal error: urdfdom logs ``Error:`` and goes on without the element."""
+        self.diagnostics.append(Diagnostic(Severity.ERROR, message, self.location(element), code))
+
     def at_least(self, major: int, minor: int) -> bool:
         return self.version >= (major, minor)
 

@@ -57,7 +57,7 @@ def read_material(
             rgba = _read_rgba(ctx, child, name)
     if rgba is None and texture is None and not has_color:
         if not only_name_is_ok:
-            ctx.warn(
+            ctx.error(
                 f"Material [{name}] color has no rgba and no texture; give "
                 '<color rgba="r g b a"/> with values in [0, 1], or <texture filename="..."/>',
                 element,
@@ -80,7 +80,7 @@ def _read_rgba(
         except ElementError:
             value = -1.0
         if not 0.0 <= value <= 1.0:
-            ctx.warn(
+            ctx.error(
                 f"Material [{name}] has malformed color rgba values: component [{piece}] is "
                 "not a number in [0, 1]; the colour is ignored",
                 element,
@@ -242,7 +242,7 @@ def read_link(ctx: ParseContext, element: etree._Element) -> Link:
     """Parse a ``<link>``; broken sub-elements are dropped with a warning."""
     name = element.get("name")
     if name is None:
-        ctx.warn("No name given for the link; urdfdom names it ''", element, "link-name")
+        ctx.error("No name given for the link; urdfdom names it ''", element, "link-name")
         name = ""
     inertial = None
     visuals: list[Visual] = []
@@ -263,8 +263,8 @@ def read_link(ctx: ParseContext, element: etree._Element) -> Link:
             else:
                 extra.append(raw(ctx, child))
         except ElementError as exc:
-            ctx.warn(
-                f"{exc.message} (in {tag} of link [{name}]; the {tag} is ignored)",
+            ctx.error(
+                f"{exc.message} (in {tag} of link [{name}]; the {tag} is ignored, as urdfdom does)",
                 exc.element if exc.element is not None else child,
                 f"link-{tag}",
             )

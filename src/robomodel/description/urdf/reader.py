@@ -120,6 +120,7 @@ def _parse_xml(data: bytes, path: str | None) -> etree._Element:
             1,
             code="xml",
         )
+    _refuse_entities(data, path)
     parser = etree.XMLParser(
         resolve_entities=False,
         no_network=True,
@@ -134,24 +135,27 @@ def _parse_xml(data: bytes, path: str | None) -> etree._Element:
         line, column = exc.position if exc.position else (1, 1)
         message = exc.msg.rsplit(", line ", 1)[0] if exc.msg else "malformed XML"
         raise InputError.at(f"malformed XML: {message}", path, line, column, code="xml") from None
-    docinfo = root.getroottree().docinfo
-    dtd = docinfo.internalDTD
-    if dtd is not None:
-        for entity in dtd.iterentities():
-            raise InputError.at(
-                f"entity declarations are not allowed (found <!ENTITY {entity.name} ...>); "
-                "they enable entity-expansion bombs and reading local files",
-                path,
-                _line_of(data, b"<!ENTITY"),
-                1,
-                code="xml-entity",
-            )
     return root
 
 
-def _line_of(data: bytes, needle: bytes) -> int:
-    pos = data.find(needle)
-    return 1 if pos < 0 else data.count(b"\n", 0, pos) + 1
+def _refuse_entities(data: bytes, path: str | None) -> None:
+    """Refuse DTD entity declarations before libxml2 sees them (bombs, file disclosure)."""
+    doctype = data.find(b"<!DOCTYPE")
+    entity = data.find(b"<!ENTITY")
+    if doctype < 0 or entity < doctype:
+        return
+    end = data.find(b">", entity)
+    declaration = data[entity : end + 1 if end >= 0 else entity + 60].decode("utf-8", "replace")
+    line = data.count(b"\n", 0, entity) + 1
+    column = entity - data.rfind(b"\n", 0, entity)
+    raise InputError.at(
+        f"entity declarations are not allowed ({declaration[:60]}); they enable "
+        "entity-expansion bombs and reading local files",
+        path,
+        line,
+        column,
+        code="xml-entity",
+    )
 
 
 def _version(ctx: ParseContext, root: etree._Element) -> Version:
@@ -323,7 +327,7 @@ def _read_materials(ctx: ParseContext, elements: list[etree._Element]) -> list[M
         try:
             material = read_material(ctx, element, only_name_is_ok=False)
         except ElementError as exc:
-            ctx.warn(exc.message, exc.element or element, "material")
+            ctx.error(exc.message, exc.element or element, "material")
             continue
         if material is None:
             continue

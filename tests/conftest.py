@@ -1,0 +1,87 @@
+"""Shared fixtures: reference tools (urdfdom's check_urdf), corpora and a CLI runner."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sysconfig
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+from robomodel.cli.main import main
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+
+
+def example_robot_data_dir() -> Path:
+    """The robots of the example-robot-data wheel (installed by the test extra)."""
+    prefix = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix"
+    return prefix / "share" / "example-robot-data" / "robots"
+
+
+def example_robot_data_urdfs() -> list[Path]:
+    return sorted(example_robot_data_dir().rglob("*.urdf"))
+
+
+def example_urdfs() -> list[Path]:
+    return sorted(EXAMPLES.rglob("*.urdf"))
+
+
+@dataclass(frozen=True)
+class ToolResult:
+    code: int
+    out: str
+    err: str
+
+
+def _run(cmd: list[str], env: dict[str, str] | None = None, timeout: float = 60) -> ToolResult:
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+    return ToolResult(proc.returncode, proc.stdout, proc.stderr)
+
+
+def debian_check_urdf() -> str:
+    """Debian's check_urdf (urdfdom 3.0.1, package liburdfdom-tools); required in CI."""
+    path = shutil.which("check_urdf")
+    if path is None:
+        pytest.fail("check_urdf is not installed: apt-get install liburdfdom-tools (.ci/run does)")
+    return path
+
+
+def urdfdom6_check_urdf() -> tuple[str, dict[str, str]]:
+    """urdfdom 6.0's check_urdf, shipped inside the pin wheel (URDF 1.1 and 1.2 support)."""
+    prefix = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix"
+    exe = prefix / "bin" / "check_urdf"
+    if not exe.exists():
+        pytest.fail("urdfdom 6 check_urdf missing from the pin wheel (test extra)")
+    env = dict(os.environ, LD_LIBRARY_PATH=str(prefix / "lib"))
+    return str(exe), env
+
+
+@pytest.fixture
+def check_urdf() -> Callable[..., ToolResult]:
+    """Run a reference check_urdf: Debian's for URDF 1.0, urdfdom 6 for versions 1.1/1.2."""
+
+    def run(path: Path | str, *, urdfdom6: bool = False, timeout: float = 60) -> ToolResult:
+        if urdfdom6:
+            exe, env = urdfdom6_check_urdf()
+            return _run([exe, str(path)], env=env, timeout=timeout)
+        return _run([debian_check_urdf(), str(path)], timeout=timeout)
+
+    return run
+
+
+@pytest.fixture
+def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., ToolResult]:
+    """Run the robomodel CLI in-process and capture its exit code and output."""
+
+    def run(*args: str) -> ToolResult:
+        code = main(list(args))
+        captured = capsys.readouterr()
+        return ToolResult(code, captured.out, captured.err)
+
+    return run
