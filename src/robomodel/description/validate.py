@@ -71,6 +71,7 @@ def _inertial_checks(robot: Robot) -> Iterator[Diagnostic]:
                 "positive mass (remove <inertial> for a massless frame)",
                 "mass",
             )
+            continue  # one warning per inertial: a massless inertia is not checked further
         moments = principal_moments(inertial.inertia)
         tol = 1e-12 * max(1.0, max(abs(m) for m in moments))
         if moments[0] <= 0.0:

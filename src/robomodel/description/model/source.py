@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import itertools
 from typing import NamedTuple
+
+import numpy as np
 
 from robomodel.errors import SourceLocation
 
@@ -22,8 +23,8 @@ class SourceText:
 
     def _starts(self) -> list[int]:
         if self._line_starts is None:
-            lengths = [len(line) + 1 for line in self.data.split(b"\n")]
-            self._line_starts = [0, *itertools.accumulate(lengths)][:-1]
+            newlines = np.flatnonzero(np.frombuffer(self.data, dtype=np.uint8) == 10)
+            self._line_starts = [0, *(newlines + 1).tolist()]
         return self._line_starts
 
     def column_of(self, tag: str, line: int, ordinal: int = 0) -> int | None:

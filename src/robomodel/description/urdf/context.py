@@ -25,6 +25,7 @@ _NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 _VEC3_RE = re.compile(f" *({_NUM}) +({_NUM}) +({_NUM}) *\\Z")
 
 Version = tuple[int, int]
+_IDENTITY = Origin()
 
 
 class ElementError(Exception):
@@ -58,6 +59,7 @@ class ParseContext:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     _ordinals: dict[tuple[int, str], int] = field(default_factory=dict)
     _vectors: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    _origins: dict[tuple[str | None, str | None], Origin] = field(default_factory=dict)
 
     # -- locations --------------------------------------------------------------------
     def span(self, element: etree._Element) -> SourceSpan:
@@ -161,10 +163,19 @@ class ParseContext:
     def origin(self, element: etree._Element | None) -> Origin:
         """Parse an ``<origin>`` (``parsePose``); raises ElementError when malformed."""
         if element is None:
-            return Origin()
+            return _IDENTITY
         xyz_text = element.get("xyz")
         rpy_text = element.get("rpy")
         quat_text = element.get("quat_xyzw")
+        if quat_text is None:
+            # Origins repeat a lot ("0 0 0"); equal frozen values can be shared.
+            key = (xyz_text, rpy_text)
+            cached = self._origins.get(key)
+            if cached is None:
+                xyz = (0.0, 0.0, 0.0) if xyz_text is None else self.vector(xyz_text, element)
+                rpy = (0.0, 0.0, 0.0) if rpy_text is None else self.vector(rpy_text, element)
+                cached = self._origins[key] = Origin(xyz, rpy)  # type: ignore[arg-type]
+            return cached
         xyz = (0.0, 0.0, 0.0) if xyz_text is None else self.vector(xyz_text, element)
         rpy = (0.0, 0.0, 0.0) if rpy_text is None else self.vector(rpy_text, element)
         quat: tuple[float, ...] | None = None
