@@ -136,3 +136,16 @@ def test_console_script_runs() -> None:
     exe = Path(sys.executable).parent / "robomodel"
     proc = subprocess.run([str(exe), "check", str(PLANAR)], capture_output=True, text=True)
     assert proc.returncode == 0 and proc.stdout.startswith("robot name is: planar_3dof")
+
+
+def test_unknown_package_reported_once(cli: Callable[..., ToolResult], tmp_path: Path) -> None:
+    visuals = "".join(
+        f'<visual><geometry><mesh filename="package://ghost/m{i}.stl"/></geometry></visual>'
+        for i in range(3)
+    )
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(f'<robot name="r">\n<link name="a">\n{visuals}\n</link>\n</robot>')
+    result = cli("check", str(urdf))
+    assert result.code == 0
+    assert result.out.count("package 'ghost' not found") == 1
+    assert "2 more meshes use the unknown package 'ghost'" in result.out

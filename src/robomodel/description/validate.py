@@ -24,7 +24,13 @@ from robomodel.description.model import (
     Visual,
 )
 from robomodel.description.packages import PackageIndex
-from robomodel.errors import Diagnostic, RobomodelError, Severity, SourceLocation
+from robomodel.errors import (
+    Diagnostic,
+    PackageNotFoundError,
+    RobomodelError,
+    Severity,
+    SourceLocation,
+)
 
 __all__ = ["principal_moments", "validate", "validate_resources"]
 
@@ -235,8 +241,12 @@ def validate(robot: Robot) -> list[Diagnostic]:
 def validate_resources(
     robot: Robot, packages: PackageIndex, base_dir: str | os.PathLike[str] | None
 ) -> list[Diagnostic]:
-    """Warn about mesh files that do not exist and ``package://`` URIs that do not resolve."""
+    """Warn about mesh files that do not exist and ``package://`` URIs that do not resolve.
+
+    An unknown package is reported once, at its first mention, with how many meshes use it.
+    """
     found: list[Diagnostic] = []
+    missing_packages: dict[str, list[SourceSpan | None]] = {}
     checked: dict[str, str | None] = {}
     for link in robot.links:
         elements: tuple[Visual | Collision, ...] = (*link.visuals, *link.collisions)
@@ -244,21 +254,49 @@ def validate_resources(
             mesh = element.geometry
             if not isinstance(mesh, Mesh):
                 continue
+            try:
+                path = packages.resolve(mesh.filename, base_dir=base_dir)
+            except PackageNotFoundError as exc:
+                missing_packages.setdefault(exc.name, []).append(element.span)
+                if len(missing_packages[exc.name]) == 1:
+                    found.append(
+                        _warn(
+                            robot,
+                            element.span,
+                            f"link '{link.name}': mesh '{mesh.filename}' does not resolve: {exc}",
+                            "mesh",
+                        )
+                    )
+                continue
+            except RobomodelError as exc:
+                found.append(
+                    _warn(
+                        robot,
+                        element.span,
+                        f"link '{link.name}': mesh '{mesh.filename}': {exc}",
+                        "mesh",
+                    )
+                )
+                continue
             if mesh.filename not in checked:
-                checked[mesh.filename] = _resource_problem(mesh.filename, packages, base_dir)
-            problem = checked[mesh.filename]
-            if problem:
-                found.append(_warn(robot, element.span, f"link '{link.name}': {problem}", "mesh"))
+                checked[mesh.filename] = None if path.is_file() else str(path)
+            if checked[mesh.filename] is not None:
+                found.append(
+                    _warn(
+                        robot,
+                        element.span,
+                        f"link '{link.name}': mesh file '{mesh.filename}' does not exist ({path})",
+                        "mesh",
+                    )
+                )
+    for name, spans in missing_packages.items():
+        if len(spans) > 1:
+            found.append(
+                _warn(
+                    robot,
+                    spans[1],
+                    f"{len(spans) - 1} more meshes use the unknown package '{name}'",
+                    "mesh",
+                )
+            )
     return found
-
-
-def _resource_problem(
-    uri: str, packages: PackageIndex, base_dir: str | os.PathLike[str] | None
-) -> str | None:
-    try:
-        path = packages.resolve(uri, base_dir=base_dir)
-    except RobomodelError as exc:
-        return f"mesh '{uri}' does not resolve: {exc}"
-    if not path.is_file():
-        return f"mesh file '{uri}' does not exist ({path})"
-    return None
