@@ -14,7 +14,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import example_robot_data, time_call  # noqa: E402
+from _common import example_robot_data, time_call
 
 ROBOTS = {
     "panda": "panda_description/urdf/panda.urdf",
@@ -29,7 +29,9 @@ def main() -> None:
 
     from robomodel.description import read_urdf
 
-    print(f"{'robot':<15}{'robomodel':>12}{'pinocchio':>12}{'yourdfpy':>12}{'ours/pin':>10}{'yourdfpy/ours':>15}")
+    print(
+        f"{'robot':<15}{'robomodel':>12}{'pinocchio':>12}{'yourdfpy':>12}{'ours/pin':>10}{'yourdfpy/ours':>15}"
+    )
     for name, relative in ROBOTS.items():
         path = str(example_robot_data(relative))
         ours = time_call(lambda p=path: read_urdf(p))
