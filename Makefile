@@ -18,7 +18,6 @@ $(STAMP): $(BIN)/python pyproject.toml
 demo: $(STAMP)
 	$(BIN)/robomodel check examples/gripper_description/urdf/planar_3dof.urdf
 	$(BIN)/robomodel graph examples/gripper_description/urdf/planar_3dof.urdf -o build/planar_3dof.svg
-	@echo "graph written to build/planar_3dof.svg"
 
 test: $(STAMP)
 	$(BIN)/ruff check src tests bench

@@ -149,3 +149,13 @@ def test_unknown_package_reported_once(cli: Callable[..., ToolResult], tmp_path:
     assert result.code == 0
     assert result.out.count("package 'ghost' not found") == 1
     assert "2 more meshes use the unknown package 'ghost'" in result.out
+
+
+def test_outputs_get_normal_permissions(cli: Callable[..., ToolResult], tmp_path: Path) -> None:
+    import os
+
+    for name in ("g.svg", "g.gv"):
+        cli("graph", str(PLANAR), "-o", str(tmp_path / name))
+        mask = os.umask(0)
+        os.umask(mask)
+        assert (tmp_path / name).stat().st_mode & 0o777 == 0o666 & ~mask

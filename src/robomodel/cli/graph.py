@@ -11,7 +11,7 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-from robomodel._atomic import atomic_write_text
+from robomodel._atomic import atomic_write_text, default_file_mode
 from robomodel.cli._common import add_description_arguments, load_from_args
 from robomodel.description.report import graphviz_text
 from robomodel.errors import RobomodelError
@@ -58,6 +58,7 @@ def render_dot(dot_text: str, output: str | os.PathLike[str]) -> None:
         )
         if proc.returncode != 0:
             raise RobomodelError(f"dot failed: {proc.stderr.strip()}")
+        os.chmod(tmp, default_file_mode())
         os.replace(tmp, target)
     finally:
         Path(tmp).unlink(missing_ok=True)
