@@ -28,7 +28,9 @@ from robomodel.description.urdf.context import ElementError, ParseContext, local
 
 __all__ = ["read_link", "read_material"]
 
-_INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_INERTIA_KEYS = tuple(
+    (key, f"Inertial: inertia element {key}") for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+)
 _LINK_CHILDREN = frozenset({"inertial", "visual", "collision"})
 
 
@@ -226,15 +228,17 @@ def _read_inertial(ctx: ParseContext, element: etree._Element) -> Inertial:
     if inertia_el is None:
         raise ElementError("Inertial element must have inertia element", element)
     values = []
-    for key in _INERTIA_KEYS:
-        text = inertia_el.get(key)
+    number = ctx.number
+    get = inertia_el.get
+    for key, what in _INERTIA_KEYS:
+        text = get(key)
         if text is None:
             raise ElementError(
                 f"Inertial: inertia element missing {key} attribute; <inertia> needs ixx ixy "
                 "ixz iyy iyz izz",
                 inertia_el,
             )
-        values.append(ctx.number(text, f"Inertial: inertia element {key}", inertia_el))
+        values.append(number(text, what, inertia_el))
     return Inertial(mass, Inertia(*values), origin, ctx.span(element))
 
 

@@ -1,0 +1,88 @@
+"""ROS 2 message types as Python dataclasses, their CDR encoding and YAML conversion."""
+
+from robomodel.runtime.msg._schema import (
+    Array,
+    Message,
+    MessageTypeError,
+    Seq,
+    canonical_type_name,
+    get_message_type,
+    message_type_names,
+)
+from robomodel.runtime.msg.builtin_interfaces import Duration, Time
+from robomodel.runtime.msg.cdr import CDRError, deserialize, serialize
+from robomodel.runtime.msg.geometry_msgs import (
+    Point,
+    Pose,
+    PoseWithCovariance,
+    Quaternion,
+    Transform,
+    TransformStamped,
+    Twist,
+    TwistStamped,
+    TwistWithCovariance,
+    Vector3,
+)
+from robomodel.runtime.msg.nav_msgs import Clock, Odometry, TFMessage
+from robomodel.runtime.msg.sensor_msgs import Imu, JointState, LaserScan
+from robomodel.runtime.msg.std_msgs import (
+    Bool,
+    Empty,
+    Float64,
+    Float64MultiArray,
+    Header,
+    Int32,
+    MultiArrayDimension,
+    MultiArrayLayout,
+    String,
+)
+from robomodel.runtime.msg.yaml_io import (
+    message_from_dict,
+    message_from_yaml,
+    message_to_dict,
+    message_to_yaml,
+)
+
+__all__ = [
+    "Array",
+    "Bool",
+    "CDRError",
+    "Clock",
+    "Duration",
+    "Empty",
+    "Float64",
+    "Float64MultiArray",
+    "Header",
+    "Imu",
+    "Int32",
+    "JointState",
+    "LaserScan",
+    "Message",
+    "MessageTypeError",
+    "MultiArrayDimension",
+    "MultiArrayLayout",
+    "Odometry",
+    "Point",
+    "Pose",
+    "PoseWithCovariance",
+    "Quaternion",
+    "Seq",
+    "String",
+    "TFMessage",
+    "Time",
+    "Transform",
+    "TransformStamped",
+    "Twist",
+    "TwistStamped",
+    "TwistWithCovariance",
+    "Vector3",
+    "canonical_type_name",
+    "deserialize",
+    "get_message_type",
+    "message_from_dict",
+    "message_from_yaml",
+    "message_to_dict",
+    "message_to_yaml",
+    "message_type_names",
+    "serialize",
+]

@@ -1,0 +1,127 @@
+"""Message type machinery: field specifications, the message base class and the registry.
+
+A message class declares ``__fields__`` as ``(name, spec)`` pairs, where a spec is a primitive
+name (``"float64"``, ``"string"``, ...), another message class, ``Seq(spec)`` for an unbounded
+sequence or ``Array(spec, n)`` for a fixed-size array, exactly as the ``.msg`` file does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, TypeAlias
+
+from robomodel.errors import RobomodelError, close_matches
+
+__all__ = [
+    "PRIMITIVES",
+    "Array",
+    "Message",
+    "MessageTypeError",
+    "Seq",
+    "Spec",
+    "canonical_type_name",
+    "default_for",
+    "get_message_type",
+    "message_type_names",
+]
+
+# name -> (struct code, size in bytes, Python default)
+PRIMITIVES: dict[str, tuple[str, int, Any]] = {
+    "bool": ("?", 1, False),
+    "byte": ("B", 1, 0),
+    "char": ("B", 1, 0),
+    "int8": ("b", 1, 0),
+    "uint8": ("B", 1, 0),
+    "int16": ("h", 2, 0),
+    "uint16": ("H", 2, 0),
+    "int32": ("i", 4, 0),
+    "uint32": ("I", 4, 0),
+    "int64": ("q", 8, 0),
+    "uint64": ("Q", 8, 0),
+    "float32": ("f", 4, 0.0),
+    "float64": ("d", 8, 0.0),
+    "string": ("", 0, ""),
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Seq:
+    """An unbounded sequence ``T[]``."""
+
+    item: Spec
+
+
+@dataclass(frozen=True, slots=True)
+class Array:
+    """A fixed-size array ``T[n]``."""
+
+    item: Spec
+    size: int
+
+
+Spec: TypeAlias = "str | type[Message] | Seq | Array"
+
+
+class MessageTypeError(RobomodelError):
+    """An unknown message type name, or a value that does not fit a message type."""
+
+
+class Message:
+    """Base class of all message types.
+
+    Subclasses are ``@dataclass(slots=True)`` classes whose fields mirror the ``.msg`` file,
+    with ``__typename__`` (``pkg/msg/Name``) and ``__fields__`` (``(name, spec)`` pairs in
+    declaration order, which is also the wire order). Defining one registers it.
+    """
+
+    __slots__ = ()
+    __fields__: ClassVar[tuple[tuple[str, Spec], ...]] = ()
+    __typename__: ClassVar[str] = ""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.__typename__ and "__typename__" in cls.__dict__:
+            _REGISTRY[cls.__typename__] = cls
+
+    @classmethod
+    def field_names(cls) -> tuple[str, ...]:
+        return tuple(name for name, _ in cls.__fields__)
+
+
+_REGISTRY: dict[str, type[Message]] = {}
+
+
+def default_for(spec: Spec) -> Any:
+    """A fresh default value for a field (a new list or message each time)."""
+    if isinstance(spec, str):
+        return PRIMITIVES[spec][2]
+    if isinstance(spec, Seq):
+        return []
+    if isinstance(spec, Array):
+        return [default_for(spec.item) for _ in range(spec.size)]
+    return spec()
+
+
+def canonical_type_name(name: str) -> str:
+    """``std_msgs/Float64`` and ``std_msgs/msg/Float64`` both become ``std_msgs/msg/Float64``."""
+    parts = name.strip().strip("/").split("/")
+    if len(parts) == 2:
+        return f"{parts[0]}/msg/{parts[1]}"
+    return "/".join(parts)
+
+
+def get_message_type(name: str) -> type[Message]:
+    """Look up a message class by ROS name (``pkg/msg/Name`` or ``pkg/Name``)."""
+    key = canonical_type_name(name)
+    try:
+        return _REGISTRY[key]
+    except KeyError:
+        hint = close_matches(key, _REGISTRY)
+        extra = f"; did you mean {', '.join(hint)}?" if hint else ""
+        raise MessageTypeError(
+            f"unknown message type '{name}'{extra} Known types: {', '.join(sorted(_REGISTRY))}"
+        ) from None
+
+
+def message_type_names() -> tuple[str, ...]:
+    return tuple(sorted(_REGISTRY))

@@ -1,0 +1,157 @@
+"""Conversion between messages and dicts/YAML, in the syntax of ``ros2 topic pub`` / ``echo``.
+
+``message_from_yaml(Twist, "{linear: {x: 0.2}, angular: {z: 0.5}}")`` fills the named fields
+and leaves the rest at their defaults, as rosidl_runtime_py's ``set_message_fields`` does.
+``message_to_yaml`` renders what ``ros2 topic echo`` prints for one message (block style).
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import Any, TypeVar
+
+import yaml
+
+from robomodel.runtime.msg._schema import Array, Message, MessageTypeError, Seq, Spec
+
+__all__ = ["message_from_dict", "message_from_yaml", "message_to_dict", "message_to_yaml"]
+
+_M = TypeVar("_M", bound=Message)
+_INT_RANGES = {
+    "int8": (-(2**7), 2**7 - 1),
+    "uint8": (0, 2**8 - 1),
+    "byte": (0, 2**8 - 1),
+    "char": (0, 2**8 - 1),
+    "int16": (-(2**15), 2**15 - 1),
+    "uint16": (0, 2**16 - 1),
+    "int32": (-(2**31), 2**31 - 1),
+    "uint32": (0, 2**32 - 1),
+    "int64": (-(2**63), 2**63 - 1),
+    "uint64": (0, 2**64 - 1),
+}
+
+
+def _spec_name(spec: Spec) -> str:
+    if isinstance(spec, str):
+        return spec
+    if isinstance(spec, Seq):
+        return f"{_spec_name(spec.item)}[]"
+    if isinstance(spec, Array):
+        return f"{_spec_name(spec.item)}[{spec.size}]"
+    return spec.__typename__
+
+
+def _convert(spec: Spec, value: Any, where: str) -> Any:
+    if isinstance(spec, str):
+        return _primitive(spec, value, where)
+    if isinstance(spec, (Seq, Array)):
+        if not isinstance(value, (list, tuple)):
+            raise MessageTypeError(f"{where}: expected a list ({_spec_name(spec)}), got {value!r}")
+        if isinstance(spec, Array) and len(value) != spec.size:
+            raise MessageTypeError(f"{where}: expected {spec.size} values, got {len(value)}")
+        return [_convert(spec.item, v, f"{where}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, spec):
+        return value
+    if not isinstance(value, dict):
+        raise MessageTypeError(
+            f"{where}: expected a mapping for {spec.__typename__}, got {value!r}"
+        )
+    return _fill(spec, value, where)
+
+
+def _primitive(name: str, value: Any, where: str) -> Any:
+    if name == "string":
+        if not isinstance(value, str):
+            raise MessageTypeError(f"{where}: expected a string, got {value!r}")
+        return value
+    if name == "bool":
+        if not isinstance(value, bool):
+            raise MessageTypeError(f"{where}: expected true or false, got {value!r}")
+        return value
+    if name in ("float32", "float64"):
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise MessageTypeError(f"{where}: expected a number ({name}), got {value!r}")
+        return float(value)
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise MessageTypeError(f"{where}: expected an integer ({name}), got {value!r}")
+    low, high = _INT_RANGES[name]
+    if not low <= value <= high:
+        raise MessageTypeError(f"{where}: {value} is out of range for {name} [{low}, {high}]")
+    return value
+
+
+def _fill(cls: type[_M], data: dict[str, Any], where: str) -> _M:
+    specs = dict(cls.__fields__)
+    values: dict[str, Any] = {}
+    for key, value in data.items():
+        if key not in specs:
+            fields = ", ".join(f"{n} ({_spec_name(s)})" for n, s in cls.__fields__) or "(none)"
+            raise MessageTypeError(
+                f"{where}: {cls.__typename__} has no field '{key}'; its fields are: {fields}"
+            )
+        values[key] = _convert(specs[key], value, f"{where}.{key}" if where else key)
+    return cls(**values)
+
+
+def message_from_dict(cls: type[_M], data: dict[str, Any] | None) -> _M:
+    """Build a ``cls`` message from a (possibly partial) dict; MessageTypeError if it does not fit."""
+    if data is None:
+        return cls()
+    if not isinstance(data, dict):
+        raise MessageTypeError(
+            f"{cls.__typename__} needs a mapping such as 'field: value', got {data!r}"
+        )
+    return _fill(cls, data, "")
+
+
+def message_from_yaml(cls: type[_M], text: str) -> _M:
+    """Parse ``ros2 topic pub``-style YAML (``"data: 1.5"``, ``"{linear: {x: 0.2}}"``)."""
+    try:
+        data = yaml.safe_load(text) if text.strip() else None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        raise MessageTypeError(f"invalid YAML{where}: {getattr(exc, 'problem', exc)}") from None
+    return message_from_dict(cls, data)
+
+
+def message_to_dict(msg: Message) -> dict[str, Any]:
+    """The message as nested dicts and lists (field order kept)."""
+    out: dict[str, Any] = {}
+    for name, spec in msg.__fields__:
+        out[name] = _to_plain(spec, getattr(msg, name))
+    return out
+
+
+def _to_plain(spec: Spec, value: Any) -> Any:
+    if isinstance(spec, str):
+        return value
+    if isinstance(spec, (Seq, Array)):
+        return [_to_plain(spec.item, v) for v in value]
+    return message_to_dict(value)
+
+
+class _EchoDumper(yaml.SafeDumper):
+    """PyYAML's dumper with insertion-ordered mappings, as rosidl_runtime_py registers."""
+
+
+def _represent_float(dumper: yaml.SafeDumper, value: float) -> yaml.ScalarNode:
+    if math.isnan(value):
+        return dumper.represent_scalar("tag:yaml.org,2002:float", ".nan")
+    return dumper.represent_float(value)
+
+
+_EchoDumper.add_representer(float, _represent_float)
+
+
+def message_to_yaml(msg: Message) -> str:
+    """What ``ros2 topic echo`` prints for one message (without the ``---`` separator)."""
+    return yaml.dump(
+        message_to_dict(msg),
+        Dumper=_EchoDumper,
+        sort_keys=False,
+        default_flow_style=False,
+        allow_unicode=True,
+        width=sys.maxsize,
+    )

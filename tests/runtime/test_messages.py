@@ -1,0 +1,242 @@
+"""Messages: CDR bytes checked against pycdr2 (an independent implementation), YAML, registry.
+
+No ``from __future__ import annotations`` here: pycdr2 reads the real annotation objects.
+"""
+
+import dataclasses
+import math
+
+import pycdr2
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from pycdr2.types import array, float32, float64, int32, sequence, uint32
+
+from robomodel.runtime import msg as m
+
+# --- independent definitions of the same types with pycdr2 (cyclonedds' Python CDR) --------
+
+
+@dataclasses.dataclass
+class RefTime(pycdr2.IdlStruct, typename="builtin_interfaces/msg/Time"):
+    sec: int32
+    nanosec: uint32
+
+
+@dataclasses.dataclass
+class RefHeader(pycdr2.IdlStruct, typename="std_msgs/msg/Header"):
+    stamp: RefTime
+    frame_id: str
+
+
+@dataclasses.dataclass
+class RefJointState(pycdr2.IdlStruct, typename="sensor_msgs/msg/JointState"):
+    header: RefHeader
+    name: sequence[str]
+    position: sequence[float64]
+    velocity: sequence[float64]
+    effort: sequence[float64]
+
+
+@dataclasses.dataclass
+class RefVector3(pycdr2.IdlStruct, typename="geometry_msgs/msg/Vector3"):
+    x: float64
+    y: float64
+    z: float64
+
+
+@dataclasses.dataclass
+class RefQuaternion(pycdr2.IdlStruct, typename="geometry_msgs/msg/Quaternion"):
+    x: float64
+    y: float64
+    z: float64
+    w: float64
+
+
+@dataclasses.dataclass
+class RefTransformStamped(pycdr2.IdlStruct, typename="geometry_msgs/msg/TransformStamped"):
+    header: RefHeader
+    child_frame_id: str
+    translation: RefVector3
+    rotation: RefQuaternion
+
+
+@dataclasses.dataclass
+class RefTFMessage(pycdr2.IdlStruct, typename="tf2_msgs/msg/TFMessage"):
+    transforms: sequence[RefTransformStamped]
+
+
+@dataclasses.dataclass
+class RefLaserScan(pycdr2.IdlStruct, typename="sensor_msgs/msg/LaserScan"):
+    header: RefHeader
+    angle_min: float32
+    angle_max: float32
+    angle_increment: float32
+    time_increment: float32
+    scan_time: float32
+    range_min: float32
+    range_max: float32
+    ranges: sequence[float32]
+    intensities: sequence[float32]
+
+
+@dataclasses.dataclass
+class RefPoseCov(pycdr2.IdlStruct, typename="geometry_msgs/msg/PoseWithCovariance"):
+    position: RefVector3
+    orientation: RefQuaternion
+    covariance: array[float64, 36]
+
+
+@dataclasses.dataclass
+class RefTwistCov(pycdr2.IdlStruct, typename="geometry_msgs/msg/TwistWithCovariance"):
+    linear: RefVector3
+    angular: RefVector3
+    covariance: array[float64, 36]
+
+
+@dataclasses.dataclass
+class RefOdometry(pycdr2.IdlStruct, typename="nav_msgs/msg/Odometry"):
+    header: RefHeader
+    child_frame_id: str
+    pose: RefPoseCov
+    twist: RefTwistCov
+
+
+names = st.text(alphabet=st.characters(min_codepoint=32, max_codepoint=0x2FF), max_size=12)
+floats = st.floats(allow_nan=False, width=64)
+stamps = st.tuples(st.integers(-(2**31), 2**31 - 1), st.integers(0, 2**32 - 1))
+
+
+@given(
+    stamps,
+    names,
+    st.lists(names, max_size=5),
+    st.lists(floats, max_size=5),
+    st.lists(floats, max_size=3),
+)
+def test_joint_state_bytes_match_pycdr2(stamp, frame, joint_names, positions, efforts) -> None:  # type: ignore[no-untyped-def]
+    ours = m.JointState(m.Header(m.Time(*stamp), frame), joint_names, positions, [], efforts)
+    ref = RefJointState(RefHeader(RefTime(*stamp), frame), joint_names, positions, [], efforts)
+    assert m.serialize(ours) == ref.serialize()
+    assert m.deserialize(ref.serialize(), m.JointState) == ours
+
+
+@given(st.lists(st.tuples(names, names, st.lists(floats, min_size=7, max_size=7)), max_size=4))
+def test_tf_message_bytes_match_pycdr2(items) -> None:  # type: ignore[no-untyped-def]
+    ours = m.TFMessage(
+        [
+            m.TransformStamped(
+                m.Header(m.Time(1, 2), parent),
+                child,
+                m.Transform(m.Vector3(*v[:3]), m.Quaternion(*v[3:])),
+            )
+            for parent, child, v in items
+        ]
+    )
+    ref = RefTFMessage(
+        [
+            RefTransformStamped(
+                RefHeader(RefTime(1, 2), parent), child, RefVector3(*v[:3]), RefQuaternion(*v[3:])
+            )
+            for parent, child, v in items
+        ]
+    )
+    assert m.serialize(ours) == ref.serialize()
+
+
+def test_laser_scan_and_odometry_bytes_match_pycdr2() -> None:
+    scan = m.LaserScan(
+        m.Header(m.Time(3, 4), "laser"),
+        -1.5,
+        1.5,
+        0.25,
+        0.0,
+        0.1,
+        0.05,
+        10.0,
+        [1.0, 2.5, math.inf],
+        [],
+    )
+    ref = RefLaserScan(
+        RefHeader(RefTime(3, 4), "laser"),
+        -1.5,
+        1.5,
+        0.25,
+        0.0,
+        0.1,
+        0.05,
+        10.0,
+        [1.0, 2.5, math.inf],
+        [],
+    )
+    assert m.serialize(scan) == ref.serialize()
+    cov = [float(i) for i in range(36)]
+    odom = m.Odometry(
+        m.Header(m.Time(7, 8), "odom"),
+        "base_link",
+        m.PoseWithCovariance(m.Pose(m.Point(1, 2, 3), m.Quaternion(0, 0, 0, 1)), cov),
+        m.TwistWithCovariance(m.Twist(m.Vector3(0.2, 0, 0), m.Vector3(0, 0, 0.5)), cov),
+    )
+    ref_odom = RefOdometry(
+        RefHeader(RefTime(7, 8), "odom"),
+        "base_link",
+        RefPoseCov(RefVector3(1, 2, 3), RefQuaternion(0, 0, 0, 1), cov),
+        RefTwistCov(RefVector3(0.2, 0, 0), RefVector3(0, 0, 0.5), cov),
+    )
+    assert m.serialize(odom) == ref_odom.serialize()
+    assert m.deserialize(ref_odom.serialize(), m.Odometry) == odom
+
+
+def test_known_byte_vector() -> None:
+    # std_msgs/Float64 1.5 as a ROS 2 node sends it: header, 4 bytes padding to 8, the double.
+    assert m.serialize(m.Float64(1.5)) == bytes.fromhex("00010000" + "000000000000f83f")
+    assert m.serialize(m.String("hi")) == bytes.fromhex("00010000" + "03000000" + "686900")
+
+
+@pytest.mark.parametrize(
+    "payload",
+    [
+        b"",
+        b"\x00\x01",
+        b"\x00\x01\x00\x00\x05",
+        b"\x01\x00\x00\x00" + b"\x00" * 8,
+        b"\x00\x01\x00\x00\xff\xff\xff\xff",
+    ],
+)
+def test_malformed_payloads_raise_cdr_error(payload: bytes) -> None:
+    with pytest.raises(m.CDRError):
+        m.deserialize(payload, m.JointState)
+
+
+def test_yaml_round_trip_and_errors() -> None:
+    twist = m.message_from_yaml(m.Twist, "{linear: {x: 0.2}, angular: {z: 0.5}}")
+    assert twist.linear.x == 0.2 and twist.angular.z == 0.5 and twist.linear.y == 0.0
+    assert m.message_from_yaml(m.Float64, "data: 1").data == 1.0
+    assert m.message_from_yaml(m.Float64MultiArray, "data: [1.0, 2]").data == [1.0, 2.0]
+    assert m.message_from_yaml(m.Float64, "") == m.Float64()
+    with pytest.raises(m.MessageTypeError, match="has no field 'dat'; its fields are: data"):
+        m.message_from_yaml(m.Float64, "dat: 1.5")
+    with pytest.raises(m.MessageTypeError, match="expected a number"):
+        m.message_from_yaml(m.Float64, "data: abc")
+    with pytest.raises(m.MessageTypeError, match="out of range for int32"):
+        m.message_from_yaml(m.Int32, "data: 4294967296")
+    with pytest.raises(m.MessageTypeError, match="invalid YAML"):
+        m.message_from_yaml(m.Float64, "data: [1,")
+
+
+def test_echo_yaml_matches_ros2_topic_echo() -> None:
+    text = m.message_to_yaml(m.JointState(m.Header(m.Time(1, 2), ""), ["j1"], [0.5]))
+    assert text == (
+        "header:\n  stamp:\n    sec: 1\n    nanosec: 2\n  frame_id: ''\nname:\n- j1\n"
+        "position:\n- 0.5\nvelocity: []\neffort: []\n"
+    )
+
+
+def test_registry_and_field_order() -> None:
+    assert m.get_message_type("std_msgs/Float64") is m.Float64
+    assert m.get_message_type("geometry_msgs/msg/Twist") is m.Twist
+    with pytest.raises(m.MessageTypeError, match="did you mean"):
+        m.get_message_type("std_msgs/msg/Float46")
+    for name in m.message_type_names():
+        cls = m.get_message_type(name)
+        assert [f.name for f in dataclasses.fields(cls)] == list(cls.field_names()), name
