@@ -1,0 +1,162 @@
+"""A single-threaded executor: queued callbacks and timers, run by spin calls.
+
+Transports post callbacks from any thread; the executor runs them one at a time on the thread
+that spins, in the order they were posted, as rclpy's SingleThreadedExecutor does. A callback
+that raises is logged and the executor goes on: a bad message never kills a node.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import logging
+import queue
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from robomodel.runtime.clock import Clock, ManualClock
+
+__all__ = ["Executor", "Timer"]
+
+log = logging.getLogger("robomodel.runtime")
+
+
+@dataclass(eq=False)
+class Timer:
+    """A periodic callback on a clock (the node's clock: wall or sim time)."""
+
+    period_s: float
+    callback: Callable[[], None]
+    clock: Clock
+    start_s: float
+    ticks: int = 1
+    cancelled: bool = False
+
+    @property
+    def next_s(self) -> float:
+        # start + k * period, never accumulated, so the 1000th tick is still exact.
+        return self.start_s + self.ticks * self.period_s
+
+    def cancel(self) -> None:
+        self.cancelled = True
+
+    def reset(self) -> None:
+        self.start_s = self.clock.now_s()
+        self.ticks = 1
+
+    def consume(self, now_s: float) -> None:
+        """Mark the current tick done; if far behind, skip missed ticks (as rclpy does)."""
+        self.ticks += 1
+        if self.next_s <= now_s:
+            self.ticks = int((now_s - self.start_s) // self.period_s) + 1
+
+
+class Executor:
+    """Runs posted callbacks and due timers."""
+
+    def __init__(self) -> None:
+        self._queue: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
+        self._timers: list[Timer] = []
+        self._wake = threading.Event()
+        self._stopped = False
+
+    # -- producers (any thread) ----------------------------------------------------------
+    def post(self, callback: Callable[[], None]) -> None:
+        self._queue.put(callback)
+        self._wake.set()
+
+    def add_timer(self, period_s: float, callback: Callable[[], None], clock: Clock) -> Timer:
+        if not period_s > 0:
+            raise ValueError(f"timer period must be > 0 s, got {period_s}")
+        timer = Timer(period_s, callback, clock, clock.now_s())
+        self._timers.append(timer)
+        self._wake.set()
+        return timer
+
+    def stop(self) -> None:
+        self._stopped = True
+        self._wake.set()
+
+    @property
+    def stopped(self) -> bool:
+        return self._stopped
+
+    # -- consumers (the spinning thread) ---------------------------------------------------
+    def _run(self, callback: Callable[[], None]) -> None:
+        try:
+            callback()
+        except Exception:
+            log.exception("callback failed; the node keeps running")
+
+    def run_pending(self) -> int:
+        """Run every queued callback (including ones queued meanwhile); return the count."""
+        count = 0
+        while True:
+            try:
+                callback = self._queue.get_nowait()
+            except queue.Empty:
+                return count
+            self._run(callback)
+            count += 1
+
+    def run_due_timers(self) -> int:
+        count = 0
+        self._timers = [t for t in self._timers if not t.cancelled]
+        for timer in list(self._timers):
+            now = timer.clock.now_s()
+            if timer.cancelled or timer.next_s > now + 1e-12:
+                continue
+            timer.consume(now)
+            self._run(timer.callback)
+            count += 1
+        return count
+
+    def spin_once(self, timeout_s: float = 0.0) -> int:
+        """Run what is ready; if nothing is, wait up to ``timeout_s`` for work."""
+        done = self.run_pending() + self.run_due_timers()
+        if done or timeout_s <= 0:
+            return done
+        wait = timeout_s
+        live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
+        if live:
+            wait = min(wait, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
+        self._wake.clear()
+        self._wake.wait(wait)
+        return self.run_pending() + self.run_due_timers()
+
+    def spin(
+        self, *, duration_s: float | None = None, until: Callable[[], bool] | None = None
+    ) -> None:
+        """Spin until stopped, ``until()`` is true, or ``duration_s`` of wall time passed."""
+        end = None if duration_s is None else time.monotonic() + duration_s
+        while not self._stopped:
+            if until is not None and until():
+                return
+            remaining = 0.05 if end is None else end - time.monotonic()
+            if remaining <= 0:
+                return
+            self.spin_once(min(remaining, 0.05))
+
+    def advance(self, clock: ManualClock, dt_s: float) -> None:
+        """Move a manual clock forward by ``dt_s``, firing timers at their exact times in order."""
+        target = clock.now_s() + dt_s
+        self.run_pending()
+        counter = itertools.count()
+        while True:
+            due = [
+                (t.next_s, next(counter), t)
+                for t in self._timers
+                if not t.cancelled and t.clock is clock and t.next_s <= target + 1e-12
+            ]
+            if not due:
+                break
+            heapq.heapify(due)
+            next_s, _, timer = due[0]
+            clock.set(max(next_s, clock.now_s()))
+            timer.ticks += 1
+            self._run(timer.callback)
+            self.run_pending()
+        clock.set(target)
+        self.run_pending()

@@ -1,0 +1,217 @@
+"""Nodes: publishers, subscriptions, timers, a clock and parameters, as in rclpy."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
+
+from robomodel.runtime.clock import Clock, SimClock
+from robomodel.runtime.executor import Timer
+from robomodel.runtime.msg import Clock as ClockMsg
+from robomodel.runtime.msg import Message, Time
+from robomodel.runtime.names import (
+    apply_remappings,
+    expand_topic_name,
+    fully_qualified_node_name,
+    validate_namespace,
+    validate_node_name,
+)
+from robomodel.runtime.params import ParameterStore, SetResult
+from robomodel.runtime.qos import QoSProfile, as_qos
+from robomodel.runtime.transport.base import PublisherHandle, SubscriptionHandle
+
+if TYPE_CHECKING:
+    from robomodel.runtime.context import Context
+
+__all__ = ["Node", "Publisher", "Subscription"]
+
+M = TypeVar("M", bound=Message)
+
+
+@dataclass(eq=False)
+class Publisher(Generic[M]):
+    """Publishes messages of one type on one (fully expanded) topic."""
+
+    topic: str
+    msg_type: type[M]
+    qos: QoSProfile
+    _handle: PublisherHandle
+
+    def publish(self, msg: M) -> None:
+        self._handle.publish(msg)
+
+    def destroy(self) -> None:
+        self._handle.destroy()
+
+
+@dataclass(eq=False)
+class Subscription(Generic[M]):
+    topic: str
+    msg_type: type[M]
+    qos: QoSProfile
+    _handle: SubscriptionHandle
+
+    def destroy(self) -> None:
+        self._handle.destroy()
+
+
+class Node:
+    """A ROS-style node living in a :class:`~robomodel.runtime.context.Context`.
+
+    Create it with ``context.create_node(name, ...)``. Every node declares ``use_sim_time``
+    (default False); when true its clock follows /clock, as in ROS 2.
+    """
+
+    def __init__(
+        self,
+        context: Context,
+        name: str,
+        namespace: str = "/",
+        *,
+        parameter_overrides: Mapping[str, Any] | None = None,
+        remappings: Mapping[str, str] | None = None,
+        allow_undeclared_parameters: bool = False,
+    ) -> None:
+        self.context = context
+        self.name = validate_node_name(name)
+        self.namespace = validate_namespace(namespace)
+        self.fully_qualified_name = fully_qualified_node_name(self.name, self.namespace)
+        self._remappings = dict(remappings or {})
+        self.parameters = ParameterStore(
+            self.fully_qualified_name,
+            parameter_overrides,
+            allow_undeclared=allow_undeclared_parameters,
+        )
+        self._publishers: list[Publisher[Any]] = []
+        self._subscriptions: list[Subscription[Any]] = []
+        self._timers: list[Timer] = []
+        self._sim_clock: SimClock | None = None
+        self._clock_sub: Subscription[ClockMsg] | None = None
+        self.logger = logging.getLogger(
+            f"robomodel.node{self.fully_qualified_name.replace('/', '.')}"
+        )
+        self._unregister = context.transport.register_node(
+            self.fully_qualified_name, self._parameter_service
+        )
+        use_sim_time = self.declare_parameter("use_sim_time", False)
+        self._set_sim_time(bool(use_sim_time))
+        self.parameters.add_post_set_callback(self._on_parameters)
+
+    # -- names --------------------------------------------------------------------------
+    def resolve_topic_name(self, topic: str) -> str:
+        """Expand and remap a topic name for this node."""
+        expanded = expand_topic_name(topic, self.name, self.namespace)
+        return apply_remappings(expanded, self._remappings, self.name, self.namespace)
+
+    # -- communication ------------------------------------------------------------------
+    def create_publisher(
+        self, msg_type: type[M], topic: str, qos: QoSProfile | int = 10
+    ) -> Publisher[M]:
+        profile = as_qos(qos)
+        name = self.resolve_topic_name(topic)
+        handle = self.context.transport.create_publisher(
+            self.fully_qualified_name, name, msg_type, profile
+        )
+        publisher = Publisher(name, msg_type, profile, handle)
+        self._publishers.append(publisher)
+        return publisher
+
+    def create_subscription(
+        self,
+        msg_type: type[M],
+        topic: str,
+        callback: Callable[[M], None],
+        qos: QoSProfile | int = 10,
+    ) -> Subscription[M]:
+        profile = as_qos(qos)
+        name = self.resolve_topic_name(topic)
+        handle = self.context.transport.create_subscription(
+            self.fully_qualified_name,
+            name,
+            msg_type,
+            profile,
+            callback,  # type: ignore[arg-type]
+        )
+        subscription = Subscription(name, msg_type, profile, handle)
+        self._subscriptions.append(subscription)
+        return subscription
+
+    def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
+        """Call ``callback`` every ``period_s`` seconds of this node's clock."""
+        timer = self.context.executor.add_timer(period_s, callback, self.get_clock())
+        self._timers.append(timer)
+        return timer
+
+    # -- time ---------------------------------------------------------------------------
+    def get_clock(self) -> Clock:
+        return self._sim_clock if self._sim_clock is not None else self.context.clock
+
+    def now(self) -> Time:
+        """The node's current time as a ``builtin_interfaces/Time`` message."""
+        ns = self.get_clock().now_ns()
+        return Time(ns // 1_000_000_000, ns % 1_000_000_000)
+
+    def _set_sim_time(self, enabled: bool) -> None:
+        if enabled and self._sim_clock is None:
+            clock = SimClock()
+            self._sim_clock = clock
+            for timer in self._timers:
+                timer.clock = clock
+                timer.reset()
+            self._clock_sub = self.create_subscription(
+                ClockMsg, "/clock", lambda msg: clock.update(msg.clock.to_seconds()), 10
+            )
+        elif not enabled and self._sim_clock is not None:
+            self._sim_clock = None
+            if self._clock_sub is not None:
+                self._clock_sub.destroy()
+                self._clock_sub = None
+            for timer in self._timers:
+                timer.clock = self.context.clock
+                timer.reset()
+
+    # -- parameters ---------------------------------------------------------------------
+    def declare_parameter(
+        self, name: str, default: Any, *, description: str = "", read_only: bool = False
+    ) -> Any:
+        return self.parameters.declare(name, default, description=description, read_only=read_only)
+
+    def get_parameter(self, name: str) -> Any:
+        return self.parameters.get(name)
+
+    def set_parameters(self, values: Mapping[str, Any]) -> SetResult:
+        return self.parameters.set(values)
+
+    def _on_parameters(self, changed: Mapping[str, Any]) -> None:
+        if "use_sim_time" in changed:
+            self._set_sim_time(bool(changed["use_sim_time"]))
+
+    def _parameter_service(self, request: dict[str, Any]) -> dict[str, Any]:
+        op = request.get("op")
+        store = self.parameters
+        if op == "list":
+            return {"names": store.names(str(request.get("prefix", "")))}
+        if op in ("get", "dump"):
+            names = request.get("names") or store.names()
+            missing = [n for n in names if not store.has(n)]
+            if missing:
+                return {"error": f"parameter(s) not set: {', '.join(missing)}"}
+            return {"values": {n: store.get(n) for n in names}}
+        if op == "set":
+            result = store.set(dict(request.get("values", {})))
+            return {"successful": result.successful, "reason": result.reason}
+        return {"error": f"unknown parameter operation {op!r}"}
+
+    # -- lifetime -------------------------------------------------------------------------
+    def destroy(self) -> None:
+        for timer in self._timers:
+            timer.cancel()
+        for publisher in self._publishers:
+            publisher.destroy()
+        for subscription in self._subscriptions:
+            subscription.destroy()
+        self._publishers.clear()
+        self._subscriptions.clear()
+        self._unregister()

@@ -1,0 +1,1 @@
+"""Transports that carry topics, graph information and parameter calls between nodes."""

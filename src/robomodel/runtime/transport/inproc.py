@@ -1,0 +1,153 @@
+"""The in-process transport: deterministic, no serialization, no threads."""
+
+from __future__ import annotations
+
+import collections
+import functools
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.runtime.executor import Executor
+from robomodel.runtime.msg import Message
+from robomodel.runtime.qos import Durability, QoSProfile
+from robomodel.runtime.transport.base import (
+    Endpoint,
+    Graph,
+    ParameterHandler,
+    PublisherHandle,
+    SubscriptionHandle,
+    Transport,
+)
+
+__all__ = ["InprocTransport"]
+
+log = logging.getLogger("robomodel.runtime")
+
+
+@dataclass(eq=False)
+class _Sub(SubscriptionHandle):
+    transport: InprocTransport
+    endpoint: Endpoint
+    msg_type: type[Message]
+    deliver: Callable[[Message], None]
+
+    def destroy(self) -> None:
+        subs = self.transport._subs.get(self.endpoint.topic, [])
+        if self in subs:
+            subs.remove(self)
+
+
+@dataclass(eq=False)
+class _Pub(PublisherHandle):
+    transport: InprocTransport
+    endpoint: Endpoint
+    msg_type: type[Message]
+    history: collections.deque[Message] = field(default_factory=collections.deque)
+
+    def publish(self, msg: Message) -> None:
+        if not isinstance(msg, self.msg_type):
+            raise RobomodelError(
+                f"publisher on {self.endpoint.topic} has type {self.msg_type.__typename__}, "
+                f"got {type(msg).__typename__ or type(msg).__name__}"
+            )
+        if self.endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
+            self.history.append(msg)
+            while len(self.history) > max(1, self.endpoint.qos.depth):
+                self.history.popleft()
+        self.transport._dispatch(self, msg)
+
+    def destroy(self) -> None:
+        pubs = self.transport._pubs.get(self.endpoint.topic, [])
+        if self in pubs:
+            pubs.remove(self)
+
+
+class InprocTransport(Transport):
+    """Delivers the published object itself to every matching subscription (treat as read-only)."""
+
+    name = "inproc"
+
+    def __init__(self, executor: Executor) -> None:
+        self._executor = executor
+        self._subs: dict[str, list[_Sub]] = {}
+        self._pubs: dict[str, list[_Pub]] = {}
+        self._nodes: dict[str, ParameterHandler] = {}
+        self._warned: set[tuple[str, str, str]] = set()
+
+    def _compatible(self, pub_type: type[Message], sub: _Sub, topic: str) -> bool:
+        if pub_type is sub.msg_type:
+            return True
+        key = (topic, pub_type.__typename__, sub.msg_type.__typename__)
+        if key not in self._warned:
+            self._warned.add(key)
+            log.warning(
+                "topic %s is published as %s but subscribed as %s by %s; messages are not delivered",
+                topic,
+                pub_type.__typename__,
+                sub.msg_type.__typename__,
+                sub.endpoint.node,
+            )
+        return False
+
+    def _dispatch(self, pub: _Pub, msg: Message) -> None:
+        for sub in list(self._subs.get(pub.endpoint.topic, ())):
+            if self._compatible(pub.msg_type, sub, pub.endpoint.topic):
+                self._executor.post(functools.partial(sub.deliver, msg))
+
+    def create_publisher(
+        self, node: str, topic: str, msg_type: type[Message], qos: QoSProfile
+    ) -> PublisherHandle:
+        pub = _Pub(self, Endpoint(node, topic, msg_type.__typename__, qos), msg_type)
+        self._pubs.setdefault(topic, []).append(pub)
+        return pub
+
+    def create_subscription(
+        self,
+        node: str,
+        topic: str,
+        msg_type: type[Message],
+        qos: QoSProfile,
+        deliver: Callable[[Message], None],
+    ) -> SubscriptionHandle:
+        sub = _Sub(self, Endpoint(node, topic, msg_type.__typename__, qos), msg_type, deliver)
+        self._subs.setdefault(topic, []).append(sub)
+        if qos.durability is Durability.TRANSIENT_LOCAL:
+            for pub in self._pubs.get(topic, ()):
+                if pub.history and self._compatible(pub.msg_type, sub, topic):
+                    for msg in list(pub.history):
+                        self._executor.post(functools.partial(deliver, msg))
+        return sub
+
+    def register_node(self, node: str, handler: ParameterHandler) -> Callable[[], None]:
+        if node in self._nodes:
+            log.warning("a node named %s already exists; names should be unique", node)
+        self._nodes[node] = handler
+        return lambda: self._nodes.pop(node, None)  # type: ignore[return-value]
+
+    def graph(self, timeout_s: float = 1.0) -> Graph:
+        graph = Graph(nodes=set(self._nodes))
+        for pubs in self._pubs.values():
+            for pub in pubs:
+                graph.add("pub", pub.endpoint)
+        for subs in self._subs.values():
+            for sub in subs:
+                graph.add("sub", sub.endpoint)
+        return graph
+
+    def call_parameters(
+        self, node: str, request: dict[str, Any], timeout_s: float = 2.0
+    ) -> dict[str, Any]:
+        handler = self._nodes.get(node)
+        if handler is None:
+            raise RobomodelError(
+                f"node '{node}' not found; nodes: {', '.join(sorted(self._nodes))}"
+            )
+        return handler(request)
+
+    def close(self) -> None:
+        self._subs.clear()
+        self._pubs.clear()
+        self._nodes.clear()
