@@ -26,6 +26,8 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.graph",
     "robomodel.cli.new",
     "robomodel.cli.xacro",
+    "robomodel.cli.topic",
+    "robomodel.cli.param",
 )
 
 

@@ -1,0 +1,126 @@
+"""``robomodel param``: list, get, set, dump and load node parameters (ros2 param)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+import yaml
+
+from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.errors import RobomodelError
+from robomodel.runtime import Context
+from robomodel.runtime.params import (
+    dump_parameters_yaml,
+    load_parameters_file,
+    parameter_type_name,
+    parse_parameter_value,
+)
+
+__all__ = ["register"]
+
+_LABELS = {
+    "bool": "Boolean value is",
+    "integer": "Integer value is",
+    "double": "Double value is",
+    "string": "String value is",
+}
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("param", help="inspect and change node parameters (ros2 param)")
+    verbs = parser.add_subparsers(dest="param_verb", metavar="VERB")
+    verbs.required = True
+    specs = {
+        "list": (["node?"], "parameter names of one node or of every node"),
+        "get": (["node", "name"], "print one parameter"),
+        "set": (["node", "name", "value"], "set one parameter"),
+        "dump": (["node"], "print a node's parameters as a ros__parameters YAML file"),
+        "load": (["node", "file"], "set parameters from a ros__parameters YAML file"),
+    }
+    for verb, (positionals, help_text) in specs.items():
+        p = verbs.add_parser(verb, help=help_text)
+        for positional in positionals:
+            if positional.endswith("?"):
+                p.add_argument(positional[:-1], nargs="?")
+            else:
+                p.add_argument(positional)
+        add_bus_arguments(p)
+        p.set_defaults(func=globals()[f"run_{verb}"])
+
+
+def _call(context: Context, node: str, request: dict[str, Any]) -> dict[str, Any]:
+    node = node if node.startswith("/") else f"/{node}"
+    reply = context.call_parameters(node, request)
+    if "error" in reply:
+        raise RobomodelError(str(reply["error"]))
+    return reply
+
+
+def run_list(args: argparse.Namespace) -> int:
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        nodes = [args.node] if args.node else sorted(context.graph().nodes)
+        for node in nodes:
+            names = _call(context, node, {"op": "list"})["names"]
+            print(f"{node if node.startswith('/') else '/' + node}:")
+            for name in names:
+                print(f"  {name}")
+    return 0
+
+
+def run_get(args: argparse.Namespace) -> int:
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        node = args.node if args.node.startswith("/") else f"/{args.node}"
+        reply = context.call_parameters(node, {"op": "get", "names": [args.name]})
+        if "error" in reply:
+            print("Parameter not set.")
+            return 1
+        value = reply["values"][args.name]
+        kind = parameter_type_name(value)
+        label = _LABELS.get(kind, f"{kind.replace('_', ' ').capitalize()} value is")
+        print(f"{label}: {value}")
+    return 0
+
+
+def run_set(args: argparse.Namespace) -> int:
+    value = parse_parameter_value(args.value)
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        reply = _call(context, args.node, {"op": "set", "values": {args.name: value}})
+        if reply["successful"]:
+            print("Set parameter successful")
+            return 0
+        print(f"Setting parameter failed: {reply['reason']}")
+        return 1
+
+
+def run_dump(args: argparse.Namespace) -> int:
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        values = _call(context, args.node, {"op": "dump"})["values"]
+        node = args.node if args.node.startswith("/") else f"/{args.node}"
+        print(dump_parameters_yaml(node, values), end="")
+    return 0
+
+
+def run_load(args: argparse.Namespace) -> int:
+    node = args.node if args.node.startswith("/") else f"/{args.node}"
+    try:
+        values = load_parameters_file(args.file, node)
+    except OSError as exc:
+        raise RobomodelError(f"cannot read '{args.file}': {exc.strerror}") from None
+    except yaml.YAMLError as exc:  # pragma: no cover - load_parameters_file wraps these
+        raise RobomodelError(str(exc)) from None
+    failed = 0
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        for name, value in values.items():
+            reply = _call(context, node, {"op": "set", "values": {name: value}})
+            if reply["successful"]:
+                print(f"Set parameter {name} successful")
+            else:
+                failed += 1
+                print(f"Set parameter {name} failed: {reply['reason']}")
+    return 1 if failed else 0

@@ -1,0 +1,243 @@
+"""``robomodel topic``: list, echo, pub, hz and info, with ``ros2 topic``'s output."""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import math
+import statistics
+import sys
+import time
+from typing import Any
+
+from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.errors import RobomodelError
+from robomodel.runtime import Context
+from robomodel.runtime.msg import Message, get_message_type, message_from_yaml, message_to_yaml
+from robomodel.runtime.msg._schema import canonical_type_name
+from robomodel.runtime.qos import Durability, QoSProfile
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser(
+        "topic", help="list, echo, publish and measure topics (ros2 topic)"
+    )
+    verbs = parser.add_subparsers(dest="topic_verb", metavar="VERB")
+    verbs.required = True
+
+    p = verbs.add_parser("list", help="the topics that exist")
+    p.add_argument("-t", "--show-types", action="store_true", help="also print each topic's type")
+    add_bus_arguments(p)
+    p.set_defaults(func=run_list)
+
+    p = verbs.add_parser("echo", help="print messages as YAML documents")
+    p.add_argument("topic")
+    p.add_argument("type", nargs="?", help="message type (default: the publisher's type)")
+    p.add_argument("--once", action="store_true", help="print one message and exit")
+    p.add_argument("--count", type=int, default=None, metavar="N", help="exit after N messages")
+    p.add_argument(
+        "--timeout", type=float, default=None, metavar="S", help="give up after S seconds"
+    )
+    add_bus_arguments(p)
+    p.set_defaults(func=run_echo)
+
+    p = verbs.add_parser("pub", help="publish a message given as YAML")
+    p.add_argument("topic")
+    p.add_argument("type", help="e.g. std_msgs/msg/Float64 or std_msgs/Float64")
+    p.add_argument("values", nargs="?", default="{}", help="YAML, e.g. 'data: 1.5'")
+    p.add_argument("-r", "--rate", type=float, default=1.0, help="publishing rate [Hz] (default 1)")
+    p.add_argument("-1", "--once", action="store_true", help="publish one message and exit")
+    p.add_argument("-t", "--times", type=int, default=None, help="publish N messages and exit")
+    p.add_argument(
+        "-w",
+        "--wait-matching-subscriptions",
+        type=int,
+        default=None,
+        metavar="N",
+        help="wait for N matching subscriptions before publishing (default 1 with --once/--times)",
+    )
+    add_bus_arguments(p)
+    p.set_defaults(func=run_pub)
+
+    p = verbs.add_parser("hz", help="print the average publishing rate")
+    p.add_argument("topic")
+    p.add_argument("-w", "--window", type=int, default=10000, help="samples in the window")
+    p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S seconds")
+    add_bus_arguments(p)
+    p.set_defaults(func=run_hz)
+
+    p = verbs.add_parser("info", help="type and publisher/subscription counts of a topic")
+    p.add_argument("topic")
+    p.add_argument("-v", "--verbose", action="store_true", help="list every endpoint")
+    add_bus_arguments(p)
+    p.set_defaults(func=run_info)
+
+
+def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) -> type[Message]:
+    if given:
+        return get_message_type(given)
+    deadline = time.monotonic() + wait_s
+    while True:
+        info = context.graph(timeout_s=0.3).topics.get(topic)
+        if info and info.types:
+            if len(info.types) > 1:
+                raise RobomodelError(
+                    f"topic {topic} has several types ({', '.join(sorted(info.types))}); give one"
+                )
+            return get_message_type(next(iter(info.types)))
+        if time.monotonic() >= deadline:
+            raise RobomodelError(
+                f"could not determine the type of {topic}: no publisher found; pass the type, "
+                "e.g. robomodel topic echo /x std_msgs/msg/Float64"
+            )
+        time.sleep(0.1)
+
+
+def run_list(args: argparse.Namespace) -> int:
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        graph = context.graph()
+        for name in sorted(graph.topics):
+            info = graph.topics[name]
+            suffix = f" [{', '.join(sorted(info.types))}]" if args.show_types else ""
+            print(f"{name}{suffix}")
+    return 0
+
+
+def run_echo(args: argparse.Namespace) -> int:
+    limit = 1 if args.once else args.count
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        node = context.create_node("robomodel_topic_echo")
+        msg_type = _topic_type(context, node.resolve_topic_name(args.topic), args.type, 5.0)
+        printed = [0]
+
+        def show(msg: Message) -> None:
+            if limit is not None and printed[0] >= limit:
+                return
+            sys.stdout.write(message_to_yaml(msg) + "---\n")
+            sys.stdout.flush()
+            printed[0] += 1
+
+        # Subscribing transient-local also gets latched topics (/robot_description, /tf_static).
+        qos = QoSProfile(10, Durability.TRANSIENT_LOCAL)
+        node.create_subscription(msg_type, args.topic, show, qos)
+        try:
+            context.spin(
+                duration_s=args.timeout,
+                until=lambda: limit is not None and printed[0] >= limit,
+            )
+        except KeyboardInterrupt:
+            return 0
+    return 0 if limit is None or printed[0] >= limit else 1
+
+
+def _wait_subscribers(context: Context, topic: str, count: int, timeout_s: float = 5.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        info = context.graph(timeout_s=0.2).topics.get(topic)
+        if info and sum(e.node != "/robomodel_topic_pub" for e in info.subscribers) >= count:
+            time.sleep(0.05)
+            return
+        time.sleep(0.05)
+
+
+def run_pub(args: argparse.Namespace) -> int:
+    msg_type = get_message_type(args.type)
+    message = message_from_yaml(msg_type, args.values)
+    times = 1 if args.once else args.times
+    if not args.rate > 0 or not math.isfinite(args.rate):
+        raise RobomodelError(f"--rate must be a positive number of Hz, got {args.rate}")
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        node = context.create_node("robomodel_topic_pub")
+        publisher = node.create_publisher(msg_type, args.topic)
+        wait = args.wait_matching_subscriptions
+        if wait is None:
+            wait = 1 if times is not None else 0
+        if wait:
+            _wait_subscribers(context, publisher.topic, wait)
+        print("publisher: beginning loop")
+        type_label = canonical_type_name(args.type).replace("/", ".")
+        count = 0
+        try:
+            while times is None or count < times:
+                count += 1
+                publisher.publish(message)
+                print(f"publishing #{count}: {type_label}({_fields(message)})\n")
+                sys.stdout.flush()
+                if times is not None and count >= times:
+                    break
+                context.spin(duration_s=1.0 / args.rate)
+            context.spin(duration_s=0.2)  # let the last message leave before closing
+        except KeyboardInterrupt:
+            return 0
+    return 0
+
+
+def _fields(msg: Message) -> str:
+    return ", ".join(f"{name}={getattr(msg, name)!r}" for name in msg.field_names())
+
+
+def run_hz(args: argparse.Namespace) -> int:
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        node = context.create_node("robomodel_topic_hz")
+        msg_type = _topic_type(context, node.resolve_topic_name(args.topic), None, 10.0)
+        stamps: list[float] = []
+
+        def on_msg(_: Message) -> None:
+            stamps.append(time.monotonic())
+            del stamps[: -args.window - 1]
+
+        node.create_subscription(msg_type, args.topic, on_msg, 100)
+        start = time.monotonic()
+        next_report = start + 1.0
+        try:
+            while args.duration is None or time.monotonic() - start < args.duration:
+                context.spin(duration_s=max(0.0, next_report - time.monotonic()))
+                next_report += 1.0
+                print(_hz_report(stamps))
+                sys.stdout.flush()
+        except KeyboardInterrupt:
+            return 0
+    return 0
+
+
+def _hz_report(stamps: list[float]) -> str:
+    """``ros2 topic hz``'s block: average rate, min/max/std dev of the periods, window size."""
+    if len(stamps) < 2:
+        return "no new messages"
+    periods = [b - a for a, b in itertools.pairwise(stamps)]
+    mean = statistics.fmean(periods)
+    std = statistics.pstdev(periods)
+    return (
+        f"average rate: {1.0 / mean:.3f}\n\tmin: {min(periods):.3f}s max: {max(periods):.3f}s "
+        f"std dev: {std:.5f}s window: {len(stamps)}"
+    )
+
+
+def run_info(args: argparse.Namespace) -> int:
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        graph = context.graph()
+        info = graph.topics.get(args.topic)
+        if info is None:
+            known = ", ".join(sorted(graph.topics)) or "(none)"
+            raise RobomodelError(f"Unknown topic '{args.topic}'; topics: {known}")
+        print(f"Type: {', '.join(sorted(info.types))}")
+        print(f"Publisher count: {len(info.publishers)}")
+        if args.verbose:
+            for endpoint in info.publishers:
+                print(
+                    f"  Node name: {endpoint.node}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
+                )
+        print(f"Subscription count: {len(info.subscribers)}")
+        if args.verbose:
+            for endpoint in info.subscribers:
+                print(
+                    f"  Node name: {endpoint.node}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
+                )
+    return 0

@@ -1,0 +1,124 @@
+"""The in-process bus: deterministic delivery, timers, latching, sim time, robustness."""
+
+from __future__ import annotations
+
+import logging
+
+import pytest
+
+from robomodel.runtime import Context, ManualClock, latched
+from robomodel.runtime.msg import Clock, Float64, String, Time
+
+
+def _run(seed_order: list[str]) -> list[tuple[float, str, float]]:
+    ctx = Context(clock=ManualClock())
+    log: list[tuple[float, str, float]] = []
+    talker = ctx.create_node("talker")
+    pub = talker.create_publisher(Float64, "chatter")
+    for name in seed_order:
+        node = ctx.create_node(name)
+        node.create_subscription(
+            Float64, "/chatter", lambda m, n=name: log.append((ctx.clock.now_s(), n, m.data))
+        )
+    talker.create_timer(0.1, lambda: pub.publish(Float64(round(ctx.clock.now_s(), 9))))
+    ctx.advance(1.0)
+    return log
+
+
+def test_deterministic_and_exact_timer_times() -> None:
+    first, second = _run(["a", "b"]), _run(["a", "b"])
+    assert first == second
+    assert [t for t, n, _ in first if n == "a"] == [
+        pytest.approx(0.1 * k, abs=1e-12) for k in range(1, 11)
+    ]
+    assert first[-1][0] == 1.0  # the 10th tick lands exactly on 1.0 (no accumulated drift)
+
+
+def test_transient_local_reaches_late_subscribers() -> None:
+    ctx = Context(clock=ManualClock())
+    node = ctx.create_node("rsp")
+    pub = node.create_publisher(String, "robot_description", latched())
+    pub.publish(String("first"))
+    pub.publish(String("second"))
+    late: list[str] = []
+    volatile: list[str] = []
+    other = ctx.create_node("viewer")
+    other.create_subscription(
+        String, "/robot_description", lambda m: late.append(m.data), latched()
+    )
+    other.create_subscription(String, "/robot_description", lambda m: volatile.append(m.data))
+    ctx.spin_once()
+    assert late == ["second"] and volatile == []
+
+
+def test_type_clash_warned_and_not_delivered(caplog: pytest.LogCaptureFixture) -> None:
+    ctx = Context(clock=ManualClock())
+    node = ctx.create_node("n")
+    got: list[object] = []
+    node.create_subscription(String, "/x", got.append)
+    pub = node.create_publisher(Float64, "/x")
+    with caplog.at_level(logging.WARNING):
+        pub.publish(Float64(1.0))
+        pub.publish(Float64(2.0))
+        ctx.spin_once()
+    assert got == []
+    assert (
+        sum(
+            "published as std_msgs/msg/Float64 but subscribed as" in r.message
+            for r in caplog.records
+        )
+        == 1
+    )
+
+
+def test_failing_callback_does_not_kill_the_node(caplog: pytest.LogCaptureFixture) -> None:
+    ctx = Context(clock=ManualClock())
+    node = ctx.create_node("n")
+    got: list[float] = []
+
+    def bad(msg: Float64) -> None:
+        if msg.data < 0:
+            raise ValueError("negative")
+        got.append(msg.data)
+
+    node.create_subscription(Float64, "/x", bad)
+    pub = node.create_publisher(Float64, "/x")
+    with caplog.at_level(logging.ERROR):
+        for value in (1.0, -1.0, 2.0):
+            pub.publish(Float64(value))
+        ctx.spin_once()
+    assert got == [1.0, 2.0]
+    assert any("callback failed" in r.message for r in caplog.records)
+
+
+def test_use_sim_time_follows_clock_topic() -> None:
+    ctx = Context(clock=ManualClock(100.0))
+    sim = ctx.create_node("sim")
+    clock_pub = sim.create_publisher(Clock, "/clock")
+    node = ctx.create_node("ctrl", parameters={"use_sim_time": True})
+    ticks: list[float] = []
+    node.create_timer(0.5, lambda: ticks.append(node.get_clock().now_s()))
+    assert node.get_clock().now_s() == 0.0
+    for k in range(1, 6):
+        clock_pub.publish(Clock(Time.from_seconds(0.4 * k)))
+        ctx.spin_once()
+    assert node.now() == Time.from_seconds(2.0)
+    assert ticks == [0.8, 1.2, 1.6, 2.0]  # fires whenever sim time has passed a period
+    assert ctx.create_node("wall").get_clock().now_s() == 100.0
+    assert node.set_parameters({"use_sim_time": False}).successful
+    assert node.get_clock().now_s() == 100.0
+
+
+def test_graph_and_parameter_service() -> None:
+    ctx = Context(clock=ManualClock())
+    node = ctx.create_node("jsp", "/arm")
+    node.declare_parameter("rate", 10)
+    node.create_publisher(Float64, "joint_states")
+    graph = ctx.graph()
+    assert "/arm/jsp" in graph.nodes
+    assert graph.topics["/arm/joint_states"].types == {"std_msgs/msg/Float64"}
+    assert ctx.call_parameters("/arm/jsp", {"op": "get", "names": ["rate"]}) == {
+        "values": {"rate": 10}
+    }
+    assert ctx.call_parameters("/arm/jsp", {"op": "set", "values": {"rate": 20}})["successful"]
+    assert node.get_parameter("rate") == 20

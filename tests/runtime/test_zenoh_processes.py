@@ -1,0 +1,200 @@
+"""Several processes over Zenoh on loopback: topics, latching, graph, parameters, SIGINT.
+
+Each test uses its own domain id so tests can run in parallel.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
+
+TALKER = textwrap.dedent(
+    """
+    import sys
+    from robomodel.runtime import Context, latched
+    from robomodel.runtime.msg import Float64, String
+    ctx = Context("zenoh", domain_id=int(sys.argv[1]))
+    node = ctx.create_node("talker")
+    node.declare_parameter("gain", 1.5)
+    pub = node.create_publisher(Float64, "/chatter")
+    node.create_publisher(String, "/robot_description", latched()).publish(String("<robot/>"))
+    count = [0]
+    def tick():
+        count[0] += 1
+        pub.publish(Float64(count[0] * node.get_parameter("gain")))
+    node.create_timer(0.05, tick)
+    print("ready", flush=True)
+    try:
+        ctx.spin()
+    except KeyboardInterrupt:
+        pass
+    ctx.shutdown()
+    print("clean exit", flush=True)
+    """
+)
+
+
+def _domain(offset: int) -> str:
+    return str(100 + (os.getpid() + offset) % 100)
+
+
+@pytest.fixture
+def talker(tmp_path: Path) -> Iterator[tuple[subprocess.Popen[str], str]]:
+    script = tmp_path / "talker.py"
+    script.write_text(TALKER)
+    domain = _domain(1)
+    proc = subprocess.Popen(
+        [sys.executable, str(script), domain],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
+    yield proc, domain
+    if proc.poll() is None:
+        proc.kill()
+        proc.wait()
+
+
+def _cli(*args: str, timeout: float = 20) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=timeout)
+
+
+def test_echo_info_list_across_processes(talker: tuple[subprocess.Popen[str], str]) -> None:
+    _, domain = talker
+    echo = _cli("topic", "echo", "/chatter", "--count", "3", "--domain-id", domain)
+    assert echo.returncode == 0, echo.stderr
+    docs = [d for d in echo.stdout.split("---\n") if d.strip()]
+    assert len(docs) == 3 and all(d.startswith("data: ") for d in docs)
+    values = [float(d.split()[1]) for d in docs]
+    assert values == sorted(values) and values[1] - values[0] == pytest.approx(1.5)
+    latched = _cli("topic", "echo", "/robot_description", "--once", "--domain-id", domain)
+    assert latched.stdout == "data: <robot/>\n---\n"
+    listing = _cli("topic", "list", "-t", "--domain-id", domain)
+    assert "/chatter [std_msgs/msg/Float64]" in listing.stdout.splitlines()
+    info = _cli("topic", "info", "/chatter", "--domain-id", domain)
+    assert info.stdout.startswith("Type: std_msgs/msg/Float64\nPublisher count: 1\n")
+
+
+def test_parameters_across_processes(
+    talker: tuple[subprocess.Popen[str], str], tmp_path: Path
+) -> None:
+    _, domain = talker
+    assert (
+        _cli("param", "get", "/talker", "gain", "--domain-id", domain).stdout
+        == "Double value is: 1.5\n"
+    )
+    assert (
+        _cli("param", "set", "talker", "gain", "2", "--domain-id", domain).stdout
+        == "Set parameter successful\n"
+    )
+    dumped = _cli("param", "dump", "/talker", "--domain-id", domain).stdout
+    assert "gain: 2.0" in dumped and dumped.startswith("/talker:\n  ros__parameters:\n")
+    refused = _cli("param", "set", "talker", "gain", "fast", "--domain-id", domain)
+    assert refused.returncode == 1 and "Setting parameter failed" in refused.stdout
+    params = tmp_path / "p.yaml"
+    params.write_text("talker:\n  ros__parameters:\n    gain: 3.0\n")
+    loaded = _cli("param", "load", "/talker", str(params), "--domain-id", domain)
+    assert loaded.stdout == "Set parameter gain successful\n"
+    echo = _cli("topic", "echo", "/chatter", "--count", "2", "--domain-id", domain)
+    values = [float(d.split()[1]) for d in echo.stdout.split("---\n") if d.strip()]
+    assert values[1] - values[0] == pytest.approx(3.0)
+    missing = _cli("param", "get", "/nobody", "x", "--domain-id", domain)
+    assert missing.returncode == 2 and "did not answer" in missing.stderr
+
+
+def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
+    domain = _domain(2)
+    echo = subprocess.Popen(
+        [
+            *ROBOMODEL,
+            "topic",
+            "echo",
+            "/cmd",
+            "geometry_msgs/msg/Twist",
+            "--once",
+            "--domain-id",
+            domain,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(1.0)
+    pub = _cli(
+        "topic",
+        "pub",
+        "/cmd",
+        "geometry_msgs/Twist",
+        "{linear: {x: 0.2}, angular: {z: 0.5}}",
+        "--once",
+        "--domain-id",
+        domain,
+    )
+    assert pub.returncode == 0, pub.stderr
+    assert pub.stdout.startswith(
+        "publisher: beginning loop\npublishing #1: geometry_msgs.msg.Twist("
+    )
+    out, _ = echo.communicate(timeout=20)
+    assert "linear:\n  x: 0.2\n" in out and "angular:\n  x: 0.0\n  y: 0.0\n  z: 0.5\n" in out
+
+
+def test_domains_are_isolated(talker: tuple[subprocess.Popen[str], str]) -> None:
+    _, domain = talker
+    other = str(int(domain) + 50)
+    echo = _cli(
+        "topic",
+        "echo",
+        "/chatter",
+        "std_msgs/msg/Float64",
+        "--once",
+        "--timeout",
+        "1.5",
+        "--domain-id",
+        other,
+    )
+    assert echo.returncode == 1 and echo.stdout == ""
+
+
+def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None:
+    proc, domain = talker
+    echo = subprocess.Popen(
+        [*ROBOMODEL, "topic", "echo", "/chatter", "--domain-id", domain],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(2.0)
+    for p in (echo, proc):
+        p.send_signal(signal.SIGINT)
+    out, err = echo.communicate(timeout=10)
+    assert echo.returncode == 0 and "Traceback" not in err and "data:" in out
+    t_out, t_err = proc.communicate(timeout=10)
+    assert proc.returncode == 0 and "clean exit" in t_out and "Traceback" not in t_err
+
+
+def test_bad_type_and_yaml_are_clear_errors() -> None:
+    bad_type = _cli(
+        "topic", "pub", "/x", "std_msgs/msg/Float46", "data: 1", "--once", "--bus", "inproc"
+    )
+    assert (
+        bad_type.returncode == 2
+        and "unknown message type" in bad_type.stderr
+        and "Traceback" not in bad_type.stderr
+    )
+    bad_yaml = _cli(
+        "topic", "pub", "/x", "std_msgs/msg/Float64", "data: [", "--once", "--bus", "inproc"
+    )
+    assert bad_yaml.returncode == 2 and "invalid YAML" in bad_yaml.stderr
+    misfit = _cli("topic", "pub", "/x", "std_msgs/Float64", "value: 1", "--once", "--bus", "inproc")
+    assert misfit.returncode == 2 and "has no field 'value'" in misfit.stderr
