@@ -1,0 +1,1 @@
+"""The standard nodes of the description workflow: joint and robot state publishers."""
