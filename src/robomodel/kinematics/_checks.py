@@ -52,7 +52,7 @@ def check_limits(model: CompiledModel, q: NDArray[np.float64], tol: float = 0.0)
         value = float(q[tuple(bad[0])])
         raise ConfigurationError(
             f"joint '{q_labels(model)[k]}' = {value!r} is outside its limits "
-            f"[{model.lower[k]!r}, {model.upper[k]!r}]"
+            f"[{float(model.lower[k])!r}, {float(model.upper[k])!r}]"
         )
 
 

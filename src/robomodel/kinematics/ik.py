@@ -3,7 +3,7 @@
 Each iteration computes the target link's pose and the geometric Jacobian on the path to it
 (:mod:`robomodel.kinematics._chain`), the error ``e = [p_target - p; log(R_target R^T)]``
 (root-frame axes), and the damped step ``dq = J^T (J J^T + lambda I)^-1 e`` with
-``lambda = 0.5 |e|^2 + 1e-9`` (Sugihara's error-dependent damping: large steps are damped
+``lambda = 0.1 |e|^2 + 1e-9`` (Sugihara's error-dependent damping: large steps are damped
 far from the target, Gauss-Newton's quadratic convergence is kept near it). Every iterate is
 clamped to the limits, so a returned ``q`` never leaves them. An attempt that has not
 converged after ``_MAX_ITERATIONS`` or stalls restarts from a random configuration.
@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from robomodel.kinematics._chain import Chain, make_chain
 from robomodel.kinematics._checks import check_q
+from robomodel.kinematics._compile import CompiledModel
 from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import fk_batch, fk_single
 from robomodel.kinematics.se3 import log_rotation
@@ -28,12 +29,13 @@ from robomodel.kinematics.se3 import log_rotation
 if TYPE_CHECKING:
     from robomodel.kinematics.kinematics import Kinematics
 
-__all__ = ["IKBatchResult", "IKResult", "solve_ik", "solve_ik_batch"]
+__all__ = ["IKBatchResult", "IKResult", "Solver", "solve_ik", "solve_ik_batch"]
 
 F64 = NDArray[np.float64]
 
 _MAX_ITERATIONS = 60
-_MAX_STEP_RAD = 0.5  # per joint per iteration; keeps early steps inside the linear region
+_MAX_STEP_RAD = 1.0  # per joint per iteration; keeps early steps inside the linear region
+_DAMPING = 0.1  # lambda = _DAMPING * |e|^2 + 1e-9 (tuned on Panda and UR5)
 
 
 @dataclass(frozen=True, slots=True)
@@ -90,11 +92,10 @@ def _log3(R: F64) -> tuple[float, float, float]:
     return k * vx, k * vy, k * vz
 
 
-class _Solver:
+class Solver:
     """Per-(model, link) constants for single-target solves."""
 
-    def __init__(self, kin: Kinematics, link: str, position_only: bool) -> None:
-        model = kin.compiled
+    def __init__(self, model: CompiledModel, link: str, position_only: bool) -> None:
         self.chain: Chain = make_chain(model, model.link(link))
         c = self.chain
         self.lower = np.where(np.isfinite(model.lower), model.lower, -np.inf)[c.active]
@@ -148,7 +149,7 @@ def solve_ik(
     T_t = _target(T_root_target)
     if T_t.shape != (4, 4):
         raise KinematicsError("ik takes one 4x4 target; use ik_batch for many")
-    solver = _Solver(kin, link, position_only)
+    solver = kin._ik_solver(link, position_only)
     gen = np.random.default_rng(rng)
     model = kin.compiled
     if seed is None:
@@ -179,7 +180,7 @@ def solve_ik(
             if stall >= 5:
                 break
             last_cost = cost
-            damping = 0.5 * float(e @ e) + 1e-9
+            damping = _DAMPING * float(e @ e) + 1e-9
             y = np.linalg.solve(J @ J.T + damping * solver.eye, e)
             dq = J.T @ y
             biggest = float(np.max(np.abs(dq)))
@@ -223,7 +224,7 @@ def solve_ik_batch(
     n = T_t.shape[0]
     model = kin.compiled
     chain = make_chain(model, model.link(link))
-    solver = _Solver(kin, link, position_only)
+    solver = kin._ik_solver(link, position_only)
     gen = np.random.default_rng(rng)
     if seed is None:
         q = np.tile(np.clip(kin.neutral(), model.lower, model.upper), (n, 1))
@@ -235,17 +236,24 @@ def solve_ik_batch(
     iterations = np.zeros(n, dtype=np.int64)
     pos_err = np.full(n, np.inf)
     rot_err = np.full(n, np.inf)
+    last_cost = np.full(n, np.inf)
+    stall = np.zeros(n, dtype=np.int64)
+    attempt_iterations = np.zeros(n, dtype=np.int64)
     rows = 3 if position_only else 6
     rev = chain.revolute[None, :, None]
     sub = chain.model
-    for it in range(max_iterations):
+    for _ in range(max_iterations):
         todo = np.flatnonzero(~done)
         if len(todo) == 0:
             break
-        if it and it % _MAX_ITERATIONS == 0:
-            q[np.ix_(todo, chain.active)] = gen.uniform(
-                solver.sample_lo, solver.sample_hi, size=(len(todo), len(chain.active))
+        restart = todo[(stall[todo] >= 5) | (attempt_iterations[todo] >= _MAX_ITERATIONS)]
+        if len(restart):
+            q[np.ix_(restart, chain.active)] = gen.uniform(
+                solver.sample_lo, solver.sample_hi, size=(len(restart), len(chain.active))
             )
+            stall[restart] = 0
+            attempt_iterations[restart] = 0
+            last_cost[restart] = np.inf
         qs = q[todo]
         Ts = fk_batch(sub, qs, [*chain.movable.tolist(), sub.n_links - 1])
         T = Ts[:, -1]
@@ -256,6 +264,10 @@ def solve_ik_batch(
         re = np.zeros(len(todo)) if position_only else np.linalg.norm(er, axis=1)
         pos_err[todo], rot_err[todo] = pe, re
         iterations[todo] += 1
+        attempt_iterations[todo] += 1
+        cost = pe + re
+        stall[todo] = np.where(cost > 0.999 * last_cost[todo], stall[todo] + 1, 0)
+        last_cost[todo] = cost
         ok = (pe <= tol_m) & (re <= tol_rad)
         done[todo[ok]] = True
         keep = ~ok
@@ -269,7 +281,7 @@ def solve_ik_batch(
         J = np.concatenate([lin, np.where(rev, z, 0.0)], axis=2)[..., :rows]
         J = np.swapaxes(J, 1, 2) @ chain.S
         e = ep if position_only else np.concatenate([ep, er], axis=1)
-        damping = 0.5 * np.einsum("bi,bi->b", e, e) + 1e-9
+        damping = _DAMPING * np.einsum("bi,bi->b", e, e) + 1e-9
         A = J @ np.swapaxes(J, 1, 2) + damping[:, None, None] * np.eye(rows)
         y = np.linalg.solve(A, e[:, :, None])
         dq = (np.swapaxes(J, 1, 2) @ y)[:, :, 0]

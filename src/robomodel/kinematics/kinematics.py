@@ -17,7 +17,7 @@ from robomodel.kinematics.fk import fk_batch, fk_single, make_single_plan
 from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch
 
 if TYPE_CHECKING:
-    from robomodel.kinematics.ik import IKBatchResult, IKResult
+    from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
 
 __all__ = ["Kinematics"]
 
@@ -49,6 +49,7 @@ class Kinematics:
         self._robot = robot
         self._model = compile_robot(robot)
         self._plan = make_single_plan(self._model)
+        self._solvers: dict[tuple[str, bool], Solver] = {}
 
     @classmethod
     def load(cls, path_or_text: str | os.PathLike[str], **options: object) -> Kinematics:
@@ -287,7 +288,7 @@ class Kinematics:
         position_only: bool = False,
         tol_m: float = 1e-6,
         tol_rad: float = 1e-6,
-        max_iterations: int = 300,
+        max_iterations: int = 1000,
         rng: int | np.random.Generator | None = None,
     ) -> IKBatchResult:
         """IK for many targets ``(n, 4, 4)`` at once, vectorised over the targets.
@@ -309,6 +310,17 @@ class Kinematics:
             max_iterations=max_iterations,
             rng=rng,
         )
+
+    def _ik_solver(self, link: str, position_only: bool) -> Solver:
+        """The per-link IK constants, built on first use and kept."""
+        key = (link, position_only)
+        solver = self._solvers.get(key)
+        if solver is None:
+            from robomodel.kinematics.ik import Solver
+
+            solver = Solver(self._model, link, position_only)
+            self._solvers[key] = solver
+        return solver
 
     def __repr__(self) -> str:
         return (
