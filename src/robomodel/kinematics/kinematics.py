@@ -13,11 +13,13 @@ from numpy.typing import ArrayLike, NDArray
 from robomodel.description.model import Robot, UnknownNameError
 from robomodel.kinematics._checks import check_limits, check_q, link_indices, q_labels
 from robomodel.kinematics._compile import FLOATING, CompiledModel, compile_robot
+from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import fk_batch, fk_single, make_single_plan
 from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch
 
 if TYPE_CHECKING:
     from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
+    from robomodel.kinematics.ur import NotAnalyticError, URGeometry
 
 __all__ = ["Kinematics"]
 
@@ -50,6 +52,7 @@ class Kinematics:
         self._model = compile_robot(robot)
         self._plan = make_single_plan(self._model)
         self._solvers: dict[tuple[str, bool], Solver] = {}
+        self._analytic: dict[str, URGeometry | NotAnalyticError] = {}
 
     @classmethod
     def load(cls, path_or_text: str | os.PathLike[str], **options: object) -> Kinematics:
@@ -310,6 +313,44 @@ class Kinematics:
             max_iterations=max_iterations,
             rng=rng,
         )
+
+    def ur_geometry(self, link: str) -> URGeometry:
+        """The UR parameters measured on the chain to ``link``.
+
+        Raises:
+            NotAnalyticError: the chain is not a UR-type arm (the reason is in the message).
+        """
+        from robomodel.kinematics.ur import NotAnalyticError, ur_geometry
+
+        found = self._analytic.get(link)
+        if found is None:
+            try:
+                found = ur_geometry(self._model, self._model.link(link))
+            except NotAnalyticError as exc:
+                found = exc
+            self._analytic[link] = found
+        if isinstance(found, NotAnalyticError):
+            raise NotAnalyticError(str(found))
+        return found
+
+    def analytic_ik(self, T_root_target: ArrayLike, link: str, *, tol: float = 1e-6) -> F64:
+        """All analytic IK solutions ``(n_solutions, n_q)`` (UR-type arms: up to 8).
+
+        Solutions outside the limits are dropped; for joints with a 2 pi range (UR's +-2 pi)
+        the representative nearest 0 is returned. Every solution is checked by FK to
+        ``tol`` [m and rad]. Other joints (off the chain) are 0, or their lower limit when 0
+        is outside the limits. An empty result means the target is unreachable.
+
+        Raises:
+            NotAnalyticError: no analytic solver applies to the chain.
+        """
+        from robomodel.kinematics.ur import solve_ur
+
+        geometry = self.ur_geometry(link)
+        T = np.asarray(T_root_target, dtype=np.float64)
+        if T.shape != (4, 4) or not np.isfinite(T).all():
+            raise KinematicsError(f"the target must be a finite 4x4 pose, got shape {T.shape}")
+        return solve_ur(self._model, self._model.link(link), geometry, T, tol=tol)
 
     def _ik_solver(self, link: str, position_only: bool) -> Solver:
         """The per-link IK constants, built on first use and kept."""
