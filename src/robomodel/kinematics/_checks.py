@@ -23,6 +23,13 @@ def q_labels(model: CompiledModel) -> list[str]:
 
 def check_q(model: CompiledModel, q: ArrayLike) -> NDArray[np.float64]:
     """``q`` as float64 with shape ``(n_q,)`` or ``(*batch, n_q)``, all values finite."""
+    if (
+        type(q) is np.ndarray
+        and q.dtype == np.float64
+        and q.shape == (model.n_q,)
+        and np.isfinite(q).all()
+    ):
+        return q  # the common single-configuration case, checked cheaply
     try:
         arr = np.asarray(q, dtype=np.float64)
     except (TypeError, ValueError) as exc:

@@ -31,6 +31,8 @@ from robomodel.kinematics.se3 import axis_angle_matrix, matrix_from_quat_xyzw
 __all__ = ["SinglePlan", "fk_batch", "fk_single", "local_transforms_batch", "make_single_plan"]
 
 F64 = NDArray[np.float64]
+_EYE4 = np.eye(4)
+_EYE4.setflags(write=False)
 
 
 def ancestors_closure(model: CompiledModel, links: Sequence[int]) -> list[int]:
@@ -215,7 +217,7 @@ def fk_single(model: CompiledModel, plan: SinglePlan, q: F64) -> F64:
             local.append(model.K[i] @ local_transforms_batch(model, i, qT)[0])
     out = np.empty((model.n_links, 4, 4))
     rows = list(out)
-    rows[0][...] = np.eye(4)
+    rows[0][...] = _EYE4
     for p, k, i in plan.steps:
         rows[p].dot(local[k], out=rows[i])
     out.setflags(write=False)
