@@ -62,19 +62,22 @@ def test_jacobian_matches_pinocchio(relative: str, link: str) -> None:
     fid = model.getFrameId(link, pinocchio.BODY)
     for q in kin.random_q(3, seed=5):
         qp = pin_q(kin, model, q)
-        J_pin = pinocchio.computeFrameJacobian(model, data, qp, fid, pinocchio.LOCAL_WORLD_ALIGNED)
-        # pinocchio's columns follow its velocity vector; ours follow q (mimic joints folded in).
-        J_ours = kin.jacobian(q, link)
-        expected = np.zeros_like(J_ours)
-        for jid in range(1, model.njoints):
-            name = model.names[jid]
-            col = J_pin[:, model.joints[jid].idx_v]
-            if name in kin.mimic:
-                source, factor, _ = kin.mimic[name]
-                expected[:, kin.q_slice(source).start] += factor * col
-            else:
-                expected[:, kin.q_slice(name).start] += col
-        np.testing.assert_allclose(J_ours, expected, atol=1e-10)
+        for ref, ours in (("LOCAL_WORLD_ALIGNED", "world"), ("LOCAL", "local")):
+            J_pin = pinocchio.computeFrameJacobian(
+                model, data, qp, fid, getattr(pinocchio.ReferenceFrame, ref)
+            )
+            # pinocchio's columns follow its velocity vector; ours follow q (mimic folded in).
+            J_ours = kin.jacobian(q, link, frame=ours)
+            expected = np.zeros_like(J_ours)
+            for jid in range(1, model.njoints):
+                name = model.names[jid]
+                col = J_pin[:, model.joints[jid].idx_v]
+                if name in kin.mimic:
+                    source, factor, _ = kin.mimic[name]
+                    expected[:, kin.q_slice(source).start] += factor * col
+                else:
+                    expected[:, kin.q_slice(name).start] += col
+            np.testing.assert_allclose(J_ours, expected, atol=1e-10)
 
 
 def test_jacobian_is_batched_and_read_only(panda: Kinematics) -> None:
