@@ -3,10 +3,12 @@
 from robomodel._version import __version__
 from robomodel.description import PackageIndex, Robot, parse_urdf, read_urdf
 from robomodel.errors import InputError, RobomodelError
+from robomodel.kinematics import Kinematics
 from robomodel.loading import load
 
 __all__ = [
     "InputError",
+    "Kinematics",
     "PackageIndex",
     "RobomodelError",
     "Robot",

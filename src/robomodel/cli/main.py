@@ -26,6 +26,10 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.graph",
     "robomodel.cli.new",
     "robomodel.cli.xacro",
+    "robomodel.cli.tf",
+    "robomodel.cli.frames",
+    "robomodel.cli.fk",
+    "robomodel.cli.ik",
     "robomodel.cli.topic",
     "robomodel.cli.param",
 )

@@ -1,0 +1,26 @@
+"""Kinematics: batched forward kinematics, Jacobians and inverse kinematics.
+
+``Kinematics(robot)`` compiles a :class:`~robomodel.description.Robot` once; ``fk``,
+``jacobian`` and ``ik`` then take joint configurations ``q`` of shape ``(n_q,)`` or
+``(*batch, n_q)``.
+"""
+
+from robomodel.kinematics.exceptions import (
+    ConfigurationError,
+    KinematicsError,
+    KinematicsWarning,
+    MimicCycleError,
+    UnreachableError,
+    ZeroAxisError,
+)
+from robomodel.kinematics.kinematics import Kinematics
+
+__all__ = [
+    "ConfigurationError",
+    "Kinematics",
+    "KinematicsError",
+    "KinematicsWarning",
+    "MimicCycleError",
+    "UnreachableError",
+    "ZeroAxisError",
+]

@@ -1,0 +1,370 @@
+"""The :class:`Kinematics` object: a robot compiled for FK, Jacobians and IK."""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from robomodel.description.model import Robot, UnknownNameError
+from robomodel.kinematics._checks import check_limits, check_q, link_indices, q_labels
+from robomodel.kinematics._compile import FLOATING, CompiledModel, compile_robot
+from robomodel.kinematics.exceptions import KinematicsError
+from robomodel.kinematics.fk import fk_batch, fk_single, make_single_plan
+from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch
+
+if TYPE_CHECKING:
+    from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
+    from robomodel.kinematics.ur import NotAnalyticError, URGeometry
+
+__all__ = ["Kinematics"]
+
+F64 = NDArray[np.float64]
+
+
+class Kinematics:
+    """Forward kinematics, Jacobians and inverse kinematics of a robot model.
+
+    ``q`` holds the actuated joints in :attr:`joint_names` order: depth-first from the root
+    link, children in urdfdom's order (by joint name); this is also pinocchio's order. Mimic
+    joints are not in ``q``: their value is ``multiplier * source + offset``, chains resolved.
+    Revolute, continuous and prismatic joints take one value [rad or m]; a floating joint
+    takes 7 (``x y z qx qy qz qw``, the quaternion normalised); a planar joint takes 3 (``x y``
+    along the plane's basis vectors, then the angle about the axis). The plane basis is the
+    image of the x and y axes under the smallest rotation taking z onto the joint axis (so it
+    is x and y for a z axis, as in pinocchio).
+
+    Args:
+        robot: The model; its joint axes are normalised as KDL does.
+
+    Raises:
+        TreeError: the joints do not form a tree.
+        ZeroAxisError: a movable joint has a zero axis.
+        MimicCycleError: mimic joints follow each other in a loop.
+    """
+
+    def __init__(self, robot: Robot) -> None:
+        self._robot = robot
+        self._model = compile_robot(robot)
+        self._plan = make_single_plan(self._model)
+        self._solvers: dict[tuple[str, bool], Solver] = {}
+        self._analytic: dict[str, URGeometry | NotAnalyticError] = {}
+
+    @classmethod
+    def load(cls, path_or_text: str | os.PathLike[str], **options: object) -> Kinematics:
+        """Load a description with :func:`robomodel.load` (same options) and compile it."""
+        from robomodel.loading import load
+
+        return cls(load(path_or_text, **options))  # type: ignore[arg-type]
+
+    @property
+    def robot(self) -> Robot:
+        return self._robot
+
+    @property
+    def compiled(self) -> CompiledModel:
+        """The flat tables the algorithms use (read-only)."""
+        return self._model
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """Actuated joints, in ``q`` order."""
+        return self._model.joint_names
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        """Links in output order (depth-first from the root)."""
+        return self._model.link_names
+
+    @property
+    def root_link(self) -> str:
+        return self._model.link_names[0]
+
+    @property
+    def n_q(self) -> int:
+        """Length of ``q`` (a floating joint counts 7, a planar joint 3)."""
+        return self._model.n_q
+
+    @property
+    def q_names(self) -> tuple[str, ...]:
+        """A label per entry of ``q`` (``joint`` or ``joint[k]``)."""
+        return tuple(q_labels(self._model))
+
+    @property
+    def lower(self) -> F64:
+        """``(n_q,)`` lower position limits [rad or m] (-inf where unlimited)."""
+        return self._model.lower
+
+    @property
+    def upper(self) -> F64:
+        """``(n_q,)`` upper position limits [rad or m] (+inf where unlimited)."""
+        return self._model.upper
+
+    @property
+    def mimic(self) -> Mapping[str, tuple[str, float, float]]:
+        """Mimic joints: name -> (actuated source, multiplier, offset), chains resolved."""
+        return self._model.mimic
+
+    def q_slice(self, joint: str) -> slice:
+        """Where ``joint``'s values sit in ``q`` (``UnknownNameError`` for unknown names)."""
+        try:
+            k = self._model.joint_index[joint]
+        except KeyError:
+            raise UnknownNameError("actuated joint", joint, self.joint_names) from None
+        start = self._model.q_start[k]
+        return slice(start, start + self._model.q_size[k])
+
+    def neutral(self) -> F64:
+        """The zero configuration (identity quaternion for floating joints)."""
+        q = np.zeros(self.n_q)
+        for k, start in enumerate(self._model.q_start):
+            if self._model.kind[self._link_of_joint(k)] == FLOATING:
+                q[start + 6] = 1.0
+        return q
+
+    def _link_of_joint(self, k: int) -> int:
+        return self._model.link_joint.index(self._model.joint_names[k])
+
+    def q_from_dict(self, values: Mapping[str, float], *, base: ArrayLike | None = None) -> F64:
+        """``q`` from ``{joint: value}`` (others from ``base``, default :meth:`neutral`).
+
+        Mimic joints may not be given (they follow their source).
+        """
+        q = self.neutral() if base is None else np.array(check_q(self._model, base), copy=True)
+        for name, value in values.items():
+            if name in self._model.mimic:
+                source = self._model.mimic[name][0]
+                raise UnknownNameError(
+                    f"actuated joint (mimic joints follow their source '{source}')",
+                    name,
+                    self.joint_names,
+                )
+            q[self.q_slice(name)] = value
+        return q
+
+    def random_q(
+        self, n: int | None = None, *, seed: int | np.random.Generator | None = None
+    ) -> F64:
+        """Uniform random configurations within the limits (unlimited joints in [-pi, pi])."""
+        rng = np.random.default_rng(seed)
+        lo = np.where(np.isfinite(self.lower), self.lower, -math.pi)
+        hi = np.where(np.isfinite(self.upper), self.upper, math.pi)
+        shape = (self.n_q,) if n is None else (n, self.n_q)
+        q: F64 = rng.uniform(lo, hi, size=shape)
+        return q
+
+    def within_limits(self, q: ArrayLike, *, tol: float = 0.0) -> NDArray[np.bool_]:
+        """True where every value of a configuration is inside its limits (± ``tol``)."""
+        arr = check_q(self._model, q)
+        ok: NDArray[np.bool_] = np.all(
+            (arr >= self.lower - tol) & (arr <= self.upper + tol), axis=-1
+        )
+        return ok
+
+    def link_index(self, link: str) -> int:
+        return self._model.link(link)
+
+    def fk(
+        self,
+        q: ArrayLike,
+        *,
+        links: Sequence[str] | None = None,
+        check_limits: bool = False,
+    ) -> F64:
+        """Poses of links in the root frame: ``Ts_root_link``.
+
+        Args:
+            q: Shape ``(n_q,)`` or ``(*batch, n_q)``.
+            links: Names of the links wanted (default: all, in :attr:`link_names` order).
+            check_limits: Raise :class:`ConfigurationError` if a value is outside its limits
+                (by default values outside the limits are accepted silently).
+
+        Returns:
+            Read-only float64 array ``(*batch, n_links, 4, 4)``. A batched result is a
+            transposed view of a batch-last buffer (not C-contiguous).
+        """
+        arr = check_q(self._model, q)
+        if check_limits:
+            self._check_limits(arr)
+        idx = None if links is None else link_indices(self._model, links)
+        if arr.ndim == 1:
+            Ts = fk_single(self._model, self._plan, arr)
+            if idx is not None:
+                Ts = Ts[idx]
+                Ts.setflags(write=False)
+            return Ts
+        batch = arr.shape[:-1]
+        flat = arr.reshape(math.prod(batch), self.n_q)
+        out = fk_batch(self._model, flat, idx)
+        return out.reshape(*batch, *out.shape[1:])
+
+    def _check_limits(self, arr: F64) -> None:
+        check_limits(self._model, arr)
+
+    def fk_link(self, q: ArrayLike, link: str) -> F64:
+        """``T_root_link`` of one link: ``(*batch, 4, 4)``."""
+        Ts = self.fk(q, links=[link])
+        return Ts[..., 0, :, :]
+
+    def jacobian(
+        self,
+        q: ArrayLike,
+        link: str,
+        *,
+        point: ArrayLike = (0.0, 0.0, 0.0),
+        frame: JacobianFrame = "world",
+    ) -> F64:
+        """Geometric Jacobian ``(*batch, 6, n_q)`` of a point fixed on ``link``.
+
+        Args:
+            q: Shape ``(n_q,)`` or ``(*batch, n_q)``.
+            link: The link.
+            point: The point in the link frame [m] (default: the link origin).
+            frame: ``"world"``: linear velocity of the point and angular velocity in root-frame
+                axes; ``"local"``: both in the link's axes.
+        """
+        arr = check_q(self._model, q)
+        i = self._model.link(link)
+        p = np.asarray(point, dtype=np.float64).reshape(3)
+        flat = arr.reshape(math.prod(arr.shape[:-1]), self.n_q)
+        J = jacobian_batch(self._model, flat, i, p, frame)
+        J = J.reshape(*arr.shape[:-1], 6, self.n_q)
+        J.setflags(write=False)
+        return J
+
+    def ik(
+        self,
+        T_root_target: ArrayLike,
+        link: str,
+        *,
+        seed: ArrayLike | None = None,
+        position_only: bool = False,
+        tol_m: float = 1e-6,
+        tol_rad: float = 1e-6,
+        max_time_s: float = 0.2,
+        restarts: int = 50,
+        rng: int | np.random.Generator | None = None,
+    ) -> IKResult:
+        """Numerical IK: a configuration inside the limits that puts ``link`` at the target.
+
+        Levenberg-Marquardt on the geometric Jacobian, every step clamped to the limits, from
+        ``seed`` (default: the middle of the limits) and then from random configurations
+        until ``restarts`` attempts or ``max_time_s`` are used up. The result's ``q`` is
+        always inside the limits; check ``success``.
+
+        Args:
+            T_root_target: 4x4 pose of the target in the root frame.
+            link: The link to place.
+            seed: Starting configuration ``(n_q,)``.
+            position_only: Only reach the position (orientation free).
+            tol_m: Position tolerance [m].
+            tol_rad: Rotation tolerance [rad].
+            max_time_s: Time budget over all attempts [s].
+            restarts: Maximum number of random restarts after the first attempt.
+            rng: Seed or generator for the restarts (reproducible results).
+        """
+        from robomodel.kinematics.ik import solve_ik
+
+        return solve_ik(
+            self,
+            T_root_target,
+            link,
+            seed=seed,
+            position_only=position_only,
+            tol_m=tol_m,
+            tol_rad=tol_rad,
+            max_time_s=max_time_s,
+            restarts=restarts,
+            rng=rng,
+        )
+
+    def ik_batch(
+        self,
+        Ts_root_target: ArrayLike,
+        link: str,
+        *,
+        seed: ArrayLike | None = None,
+        position_only: bool = False,
+        tol_m: float = 1e-6,
+        tol_rad: float = 1e-6,
+        max_iterations: int = 1000,
+        rng: int | np.random.Generator | None = None,
+    ) -> IKBatchResult:
+        """IK for many targets ``(n, 4, 4)`` at once, vectorised over the targets.
+
+        Same method as :meth:`ik`; targets not solved after an attempt's iterations restart from
+        random configurations, until ``max_iterations`` in total. Returns an
+        :class:`~robomodel.kinematics.ik.IKBatchResult` with one row per target.
+        """
+        from robomodel.kinematics.ik import solve_ik_batch
+
+        return solve_ik_batch(
+            self,
+            Ts_root_target,
+            link,
+            seed=seed,
+            position_only=position_only,
+            tol_m=tol_m,
+            tol_rad=tol_rad,
+            max_iterations=max_iterations,
+            rng=rng,
+        )
+
+    def ur_geometry(self, link: str) -> URGeometry:
+        """The UR parameters measured on the chain to ``link``.
+
+        Raises:
+            NotAnalyticError: the chain is not a UR-type arm (the reason is in the message).
+        """
+        from robomodel.kinematics.ur import NotAnalyticError, ur_geometry
+
+        found = self._analytic.get(link)
+        if found is None:
+            try:
+                found = ur_geometry(self._model, self._model.link(link))
+            except NotAnalyticError as exc:
+                found = exc
+            self._analytic[link] = found
+        if isinstance(found, NotAnalyticError):
+            raise NotAnalyticError(str(found))
+        return found
+
+    def analytic_ik(self, T_root_target: ArrayLike, link: str, *, tol: float = 1e-6) -> F64:
+        """All analytic IK solutions ``(n_solutions, n_q)`` (UR-type arms: up to 8).
+
+        Solutions outside the limits are dropped; for joints with a 2 pi range (UR's +-2 pi)
+        the representative nearest 0 is returned. Every solution is checked by FK to
+        ``tol`` [m and rad]. Other joints (off the chain) are 0, or their lower limit when 0
+        is outside the limits. An empty result means the target is unreachable.
+
+        Raises:
+            NotAnalyticError: no analytic solver applies to the chain.
+        """
+        from robomodel.kinematics.ur import solve_ur
+
+        geometry = self.ur_geometry(link)
+        T = np.asarray(T_root_target, dtype=np.float64)
+        if T.shape != (4, 4) or not np.isfinite(T).all():
+            raise KinematicsError(f"the target must be a finite 4x4 pose, got shape {T.shape}")
+        return solve_ur(self._model, self._model.link(link), geometry, T, tol=tol)
+
+    def _ik_solver(self, link: str, position_only: bool) -> Solver:
+        """The per-link IK constants, built on first use and kept."""
+        key = (link, position_only)
+        solver = self._solvers.get(key)
+        if solver is None:
+            from robomodel.kinematics.ik import Solver
+
+            solver = Solver(self._model, link, position_only)
+            self._solvers[key] = solver
+        return solver
+
+    def __repr__(self) -> str:
+        return (
+            f"Kinematics(robot={self._robot.name!r}, n_q={self.n_q}, "
+            f"n_links={len(self.link_names)}, root={self.root_link!r})"
+        )
