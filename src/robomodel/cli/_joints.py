@@ -21,11 +21,12 @@ __all__ = [
 ]
 
 
-def add_package_options(parser: argparse.ArgumentParser) -> None:
+def add_package_options(parser: argparse.ArgumentParser, *, mappings: bool = True) -> None:
     """``[name:=value ...] --package-path DIR --package NAME=DIR`` (after the positionals)."""
-    parser.add_argument(
-        "mappings", nargs="*", metavar="name:=value", help="xacro arguments (for .xacro files)"
-    )
+    if mappings:
+        parser.add_argument(
+            "mappings", nargs="*", metavar="name:=value", help="xacro arguments (for .xacro files)"
+        )
     parser.add_argument(
         "--package-path",
         action="append",

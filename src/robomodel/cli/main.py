@@ -32,6 +32,7 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.ik",
     "robomodel.cli.topic",
     "robomodel.cli.param",
+    "robomodel.cli.publish_state",
 )
 
 

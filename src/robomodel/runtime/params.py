@@ -127,7 +127,10 @@ class ParameterStore:
             raise ParameterError(f"parameter '{name}' has already been declared")
         value = default
         if name in self._overrides:
-            value = _coerce(name, default, self._overrides[name])
+            override = self._overrides[name]
+            # Nodes that accept undeclared parameters declare them from the overrides
+            # (rclpy's automatically_declare_parameters_from_overrides): the override's type wins.
+            value = override if self._allow_undeclared else _coerce(name, default, override)
         parameter_type_name(value)
         self._values[name] = value
         self._descriptions[name] = description

@@ -1,0 +1,56 @@
+"""tf2_ros's TransformListener: fills a TF buffer from /tf and /tf_static."""
+
+from __future__ import annotations
+
+from robomodel.runtime.msg import TFMessage
+from robomodel.runtime.msg import TransformStamped as TransformStampedMsg
+from robomodel.runtime.node import Node
+from robomodel.runtime.qos import Durability, QoSProfile
+from robomodel.tf import BufferCore, TransformStamped
+
+__all__ = ["TransformListener", "from_msg", "to_msg"]
+
+AUTHORITY = "default_authority"  # what rclpy's listener records
+
+
+def from_msg(msg: TransformStampedMsg) -> TransformStamped:
+    """A ``geometry_msgs/TransformStamped`` message as the TF layer's frozen value."""
+    t, r = msg.transform.translation, msg.transform.rotation
+    return TransformStamped(
+        msg.header.frame_id,
+        msg.child_frame_id,
+        (t.x, t.y, t.z),
+        (r.x, r.y, r.z, r.w),
+        msg.header.stamp.to_nanoseconds(),
+    )
+
+
+def to_msg(transform: TransformStamped) -> TransformStampedMsg:
+    from robomodel.runtime.msg import Header, Quaternion, Time, Transform, Vector3
+
+    x, y, z = transform.translation_m
+    qx, qy, qz, qw = transform.rotation_xyzw
+    return TransformStampedMsg(
+        Header(Time(transform.sec, transform.nanosec), transform.frame_id),
+        transform.child_frame_id,
+        Transform(Vector3(x, y, z), Quaternion(qx, qy, qz, qw)),
+    )
+
+
+class TransformListener:
+    """Subscribes /tf (depth 100) and /tf_static (transient local, depth 100), as tf2_ros does."""
+
+    def __init__(self, node: Node, buffer: BufferCore | None = None) -> None:
+        self.buffer = buffer if buffer is not None else BufferCore()
+        node.create_subscription(TFMessage, "/tf", self._dynamic, 100)
+        node.create_subscription(
+            TFMessage, "/tf_static", self._static, QoSProfile(100, Durability.TRANSIENT_LOCAL)
+        )
+
+    def _dynamic(self, msg: TFMessage) -> None:
+        for transform in msg.transforms:
+            self.buffer.set_transform(from_msg(transform), AUTHORITY, False)
+
+    def _static(self, msg: TFMessage) -> None:
+        for transform in msg.transforms:
+            self.buffer.set_transform(from_msg(transform), AUTHORITY, True)
