@@ -1,0 +1,162 @@
+"""The state of one processing run, and how it turns problems into located diagnostics.
+
+The reference keeps this state in module globals (``filestack``, ``macrostack``,
+``all_includes``, ``substitution_args_context``), so it is not re-entrant and leaks arg defaults
+between calls. Here everything lives in one :class:`Context` per run.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from robomodel.description.packages import PackageIndex
+from robomodel.errors import Diagnostic, InputError, PackageNotFoundError, Severity, SourceLocation
+from robomodel.xacro._dom import Document, Node, Text
+from robomodel.xacro._safe_eval import Guards, Limits
+
+__all__ = ["Context", "Frame"]
+
+
+@dataclass(frozen=True, slots=True)
+class Frame:
+    """One level of the include/macro stack, for error notes.
+
+    Attributes:
+        kind: ``"macro"`` or ``"include"``.
+        name: The macro name or the included file.
+        defined: Where the macro is defined (None for includes).
+        called: Where the macro is called or the file is included from.
+    """
+
+    kind: str
+    name: str
+    defined: SourceLocation | None
+    called: SourceLocation
+
+    def describe(self) -> str:
+        """``in macro 'wheel' (robot.xacro:41), called from robot.xacro:88``."""
+        if self.kind == "macro":
+            where = f" ({_short(self.defined)})" if self.defined else ""
+            return f"in macro '{self.name}'{where}, called from {_short(self.called)}"
+        return f"in file {self.name}, included from {_short(self.called)}"
+
+
+def _short(location: SourceLocation | None) -> str:
+    if location is None:
+        return "?"
+    path = os.path.basename(location.path) if location.path else "<string>"
+    return f"{path}:{location.line}" if location.line else path
+
+
+@dataclass
+class Context:
+    """Everything one expansion needs and produces.
+
+    Attributes:
+        args: Values of ``xacro:arg`` and ``name:=value`` (a private copy of the mappings).
+        package_index: Resolves ``$(find pkg)``.
+        root_dir: Base for relative paths of string input, the input file and ``$(cwd)``.
+        limits: Evaluation and expansion bounds.
+        environ: Environment for ``$(env)`` and ``$(optenv)``.
+    """
+
+    args: dict[str, str]
+    package_index: PackageIndex
+    root_dir: str = os.curdir
+    limits: Limits = field(default_factory=Limits)
+    environ: Mapping[str, str] = field(default_factory=lambda: dict(os.environ))
+    filestack: list[str | None] = field(default_factory=list)
+    stack: list[Frame] = field(default_factory=list)
+    includes: list[str] = field(default_factory=list)
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    sources: dict[str | None, bytes] = field(default_factory=dict)
+    parsed: dict[str, Document] = field(default_factory=dict)
+    node: Node | None = None
+    attr: str | None = None
+    nodes_left: int = 0
+    guards: Guards = field(init=False)
+    base: dict[str, object] = field(init=False)
+    globals: dict[str, object] = field(default_factory=dict)
+    empty_text: Text = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.guards = Guards(self.limits)
+        self.base = self.guards.functions()
+        # The reference moves one shared '\n\n' text node around to stop comment removal
+        # (remove_previous_comments); its position changes the layout, so it is mirrored.
+        self.empty_text = Text("\n\n")
+        self.nodes_left = self.limits.max_nodes
+
+    @property
+    def current_file(self) -> str | None:
+        """The file being processed."""
+        return self.filestack[-1] if self.filestack else None
+
+    def find_package(self, name: str) -> str:
+        """``$(find name)``."""
+        try:
+            return str(self.package_index.find(name))
+        except PackageNotFoundError as exc:
+            raise self.error(str(exc)) from None
+
+    def record_include(self, path: str) -> None:
+        """Remember a dependency for ``--deps`` (in first-seen order)."""
+        if path not in self.includes:
+            self.includes.append(path)
+
+    def location(self, node: Node | None = None, attr: str | None = None) -> SourceLocation:
+        """The position of ``node`` (or of its attribute ``attr``)."""
+        node = node if node is not None else self.node
+        if node is None:
+            return SourceLocation(self.current_file)
+        if attr is not None and getattr(node, "offset", -1) >= 0:
+            found = self._attribute_position(node, attr)
+            if found is not None:
+                return found
+        return SourceLocation(node.file, node.line or None, node.column or None)
+
+    def _attribute_position(self, node: Node, attr: str) -> SourceLocation | None:
+        source = self.sources.get(node.file)
+        if source is None:
+            return None
+        offset: int = getattr(node, "offset", 0)
+        pattern = re.compile(rb"\s(" + re.escape(attr.encode()) + rb")\s*=")
+        match = pattern.search(source, offset)
+        if match is None:
+            return None
+        pos = match.start(1)
+        line = source.count(b"\n", 0, pos) + 1
+        column = pos - (source.rfind(b"\n", 0, pos) + 1) + 1
+        return SourceLocation(node.file, line, column)
+
+    def notes(self) -> list[Diagnostic]:
+        """The stack as notes, innermost first."""
+        return [
+            Diagnostic(Severity.NOTE, frame.describe(), frame.called)
+            for frame in reversed(self.stack)
+        ]
+
+    def error(self, message: str, node: Node | None = None, attr: str | None = None) -> InputError:
+        """Build an error at ``node``/``attr`` (default: the node being evaluated)."""
+        if node is None and attr is None:
+            attr = self.attr
+        location = self.location(node, attr)
+        return InputError(Diagnostic(Severity.ERROR, message, location), notes=self.notes())
+
+    def warn(
+        self, message: str, node: Node | None = None, severity: Severity = Severity.WARNING
+    ) -> None:
+        """Record a warning (printed by the CLI, returned by the API)."""
+        self.diagnostics.append(Diagnostic(severity, message, self.location(node)))
+
+    def charge_nodes(self, count: int) -> None:
+        """Account for ``count`` nodes created by an expansion; refuse runaway growth."""
+        self.nodes_left -= count
+        if self.nodes_left < 0:
+            raise self.error(
+                f"expansion creates more than {self.limits.max_nodes} nodes; "
+                "is a macro or block recursing without end?"
+            )
