@@ -35,9 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="URDF and xacro tools without ROS: check, graph, xacro, new, ...",
     )
     parser.add_argument("--version", action="version", version=f"robomodel {__version__}")
-    parser.add_argument(
-        "--debug", action="store_true", help="show Python tracebacks for errors"
-    )
+    parser.add_argument("--debug", action="store_true", help="show Python tracebacks for errors")
     subparsers = parser.add_subparsers(dest="verb", metavar="COMMAND")
     subparsers.required = True
     for module_name in _VERBS:

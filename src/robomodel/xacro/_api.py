@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import os
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 
 from robomodel.description.packages import PackageIndex
@@ -79,9 +81,28 @@ def _context(
     return ctx
 
 
+@contextlib.contextmanager
+def _no_gc() -> Iterator[None]:
+    """Pause the cyclic garbage collector: the tree is one big cycle-rich structure that
+    the collector would otherwise traverse again and again while it grows."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            if gc.get_freeze_count() == 0:
+                # Move the survivors to the oldest generation in O(1) instead of having the
+                # next young collection traverse all of them (only when nobody else froze).
+                gc.freeze()
+                gc.unfreeze()
+            gc.enable()
+
+
 def _run(ctx: Context, document: Document, banner_for: str | None) -> XacroDocument:
     try:
-        process_document(ctx, document)
+        with _no_gc():
+            process_document(ctx, document)
     except RecursionError:
         raise ctx.error("expansion nested too deeply (recursion limit)") from None
     return XacroDocument(document, banner_for, tuple(ctx.includes), tuple(ctx.diagnostics))
@@ -116,11 +137,12 @@ def process_file(
     name = os.fspath(path)
     ctx = _context(mappings, package_index, root_dir, limits)
     ctx.filestack.append(name)
-    try:
-        document = read_document(ctx, name)
-    except OSError as exc:
-        raise InputError.at(f"cannot read '{name}': {exc.strerror}", name) from None
-    return _run(ctx, document, name)
+    with _no_gc():
+        try:
+            document = read_document(ctx, name)
+        except OSError as exc:
+            raise InputError.at(f"cannot read '{name}': {exc.strerror}", name) from None
+        return _run(ctx, document, name)
 
 
 def process(

@@ -170,17 +170,11 @@ def import_xml_namespaces(ctx: Context, parent: Element, attributes: dict[str, s
 
 
 def read_document(ctx: Context, filename: str) -> Document:
-    """Read and parse ``filename`` (relative to the root directory), caching the parse."""
-    path = os.path.join(ctx.root_dir, filename)
-    cached = ctx.parsed.get(path)
-    if cached is not None:
-        return cached.clone()
-    with open(path, "rb") as handle:
+    """Read and parse ``filename`` (relative to the root directory)."""
+    with open(os.path.join(ctx.root_dir, filename), "rb") as handle:
         data = handle.read()
     ctx.sources[filename] = data
-    document = parse_xml(data, filename)
-    ctx.parsed[path] = document.clone()
-    return document
+    return parse_xml(data, filename)
 
 
 def _include_files(ctx: Context, spec: str) -> list[str]:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import Diagnostic, InputError, PackageNotFoundError, Severity, SourceLocation
-from robomodel.xacro._dom import Document, Node, Text
+from robomodel.xacro._dom import Node, Text
 from robomodel.xacro._safe_eval import Guards, Limits
 
 __all__ = ["Context", "Frame"]
@@ -73,7 +73,6 @@ class Context:
     includes: list[str] = field(default_factory=list)
     diagnostics: list[Diagnostic] = field(default_factory=list)
     sources: dict[str | None, bytes] = field(default_factory=dict)
-    parsed: dict[str, Document] = field(default_factory=dict)
     node: Node | None = None
     attr: str | None = None
     nodes_left: int = 0

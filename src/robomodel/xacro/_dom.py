@@ -3,7 +3,8 @@
 The reference xacro works on ``xml.dom.minidom`` trees; its output depends on details such as
 adjacent text nodes staying separate after a macro expansion. These classes keep exactly those
 semantics (a doubly linked list of children per parent) with ``__slots__`` and a cheap deep copy.
-Every node remembers where it came from (file, line, column) for error messages.
+Every node remembers where it came from, as one shared tuple ``loc = (file, line, column,
+byte_offset)``, for error messages.
 """
 
 from __future__ import annotations
@@ -15,24 +16,46 @@ __all__ = [
     "Comment",
     "Document",
     "Element",
+    "Location",
     "Node",
     "ProcessingInstruction",
     "Text",
+    "next_element",
 ]
+
+Location = tuple[str | None, int, int, int]
+NOWHERE: Location = (None, 0, 0, -1)
 
 
 class Node:
     """Base of every node: parent and sibling links plus the source position."""
 
-    __slots__ = ("column", "file", "line", "next", "parent", "prev")
+    __slots__ = ("loc", "next", "parent", "prev")
 
-    def __init__(self, file: str | None = None, line: int = 0, column: int = 0) -> None:
-        self.parent: Element | Document | None = None
-        self.prev: Node | None = None
-        self.next: Node | None = None
-        self.file = file
-        self.line = line
-        self.column = column
+    parent: Element | Document | None
+    prev: Node | None
+    next: Node | None
+    loc: Location
+
+    @property
+    def file(self) -> str | None:
+        """The file this node was read from."""
+        return self.loc[0]
+
+    @property
+    def line(self) -> int:
+        """1-based line of the node's start (0 when unknown)."""
+        return self.loc[1]
+
+    @property
+    def column(self) -> int:
+        """1-based column of the node's start (0 when unknown)."""
+        return self.loc[2]
+
+    @property
+    def offset(self) -> int:
+        """Byte offset of the node's start in its file (-1 when unknown)."""
+        return self.loc[3]
 
     def clone(self) -> Node:
         """Return a deep copy without parent links (minidom's ``cloneNode(deep=True)``)."""
@@ -42,13 +65,20 @@ class Node:
 class _CharacterData(Node):
     __slots__ = ("data",)
 
-    def __init__(self, data: str, file: str | None = None, line: int = 0, column: int = 0) -> None:
-        Node.__init__(self, file, line, column)
+    def __init__(self, data: str, loc: Location = NOWHERE) -> None:
+        self.parent = self.prev = self.next = None
+        self.loc = loc
         self.data = data
 
     def clone(self) -> Node:
-        copy = type(self)(self.data, self.file, self.line, self.column)
+        copy = _new(type(self))
+        copy.parent = copy.prev = copy.next = None
+        copy.loc = self.loc
+        copy.data = self.data
         return copy
+
+
+_new = object.__new__
 
 
 class Text(_CharacterData):
@@ -74,22 +104,21 @@ class ProcessingInstruction(Node):
 
     __slots__ = ("data", "target")
 
-    def __init__(self, target: str, data: str, file: str | None = None, line: int = 0) -> None:
-        Node.__init__(self, file, line, 0)
+    def __init__(self, target: str, data: str, loc: Location = NOWHERE) -> None:
+        self.parent = self.prev = self.next = None
+        self.loc = loc
         self.target = target
         self.data = data
 
     def clone(self) -> Node:
-        return ProcessingInstruction(self.target, self.data, self.file, self.line)
+        return ProcessingInstruction(self.target, self.data, self.loc)
 
 
 class _Container(Node):
     __slots__ = ("first", "last")
 
-    def __init__(self, file: str | None = None, line: int = 0, column: int = 0) -> None:
-        Node.__init__(self, file, line, column)
-        self.first: Node | None = None
-        self.last: Node | None = None
+    first: Node | None
+    last: Node | None
 
     def children(self) -> Iterator[Node]:
         """Iterate over the children (safe against removal of the current child)."""
@@ -104,12 +133,12 @@ class _Container(Node):
         if node.parent is not None:
             node.parent.remove(node)
         node.parent = self  # type: ignore[assignment]
-        node.prev = self.last
+        node.prev = last = self.last
         node.next = None
-        if self.last is None:
+        if last is None:
             self.first = node
         else:
-            self.last.next = node
+            last.next = node
         self.last = node
 
     def insert_before(self, node: Node, ref: Node | None) -> None:
@@ -121,29 +150,30 @@ class _Container(Node):
             node.parent.remove(node)
         node.parent = self  # type: ignore[assignment]
         node.next = ref
-        node.prev = ref.prev
-        if ref.prev is None:
+        node.prev = prev = ref.prev
+        if prev is None:
             self.first = node
         else:
-            ref.prev.next = node
+            prev.next = node
         ref.prev = node
 
     def remove(self, node: Node) -> None:
         """Detach the child ``node``."""
-        if node.prev is None:
-            self.first = node.next
+        prev, following = node.prev, node.next
+        if prev is None:
+            self.first = following
         else:
-            node.prev.next = node.next
-        if node.next is None:
-            self.last = node.prev
+            prev.next = following
+        if following is None:
+            self.last = prev
         else:
-            node.next.prev = node.prev
+            following.prev = prev
         node.parent = node.prev = node.next = None
 
     def first_element(self) -> Element | None:
         """Return the first child element, if any."""
         node = self.first
-        while node is not None and not isinstance(node, Element):
+        while node is not None and type(node) is not Element:
             node = node.next
         return node
 
@@ -151,29 +181,34 @@ class _Container(Node):
 class Element(_Container):
     """An element with its qualified tag name and its attributes in document order."""
 
-    __slots__ = ("attrs", "offset", "tag")
+    __slots__ = ("attrs", "tag")
 
     def __init__(
-        self,
-        tag: str,
-        attrs: dict[str, str] | None = None,
-        file: str | None = None,
-        line: int = 0,
-        column: int = 0,
-        offset: int = -1,
+        self, tag: str, attrs: dict[str, str] | None = None, loc: Location = NOWHERE
     ) -> None:
-        _Container.__init__(self, file, line, column)
+        self.parent = self.prev = self.next = self.first = self.last = None
+        self.loc = loc
         self.tag = tag
-        self.attrs: dict[str, str] = dict(attrs) if attrs else {}
-        self.offset = offset
+        self.attrs: dict[str, str] = attrs if attrs is not None else {}
 
     def clone(self) -> Element:
-        copy = Element(self.tag, None, self.file, self.line, self.column, self.offset)
+        copy: Element = _new(Element)
+        copy.parent = copy.prev = copy.next = None
+        copy.loc = self.loc
+        copy.tag = self.tag
         copy.attrs = self.attrs.copy()
-        node = self.first
         prev: Node | None = None
+        node = self.first
         while node is not None:
-            child = node.clone()
+            kind = type(node)
+            if kind is Element:
+                child: Node = node.clone()
+            elif kind is ProcessingInstruction:
+                child = node.clone()
+            else:
+                child = _new(kind)
+                child.loc = node.loc
+                child.data = node.data  # type: ignore[attr-defined]
             child.parent = copy
             child.prev = prev
             if prev is None:
@@ -182,6 +217,10 @@ class Element(_Container):
                 prev.next = child
             prev = child
             node = node.next
+        if prev is None:
+            copy.first = None
+        else:
+            prev.next = None
         copy.last = prev
         return copy
 
@@ -190,6 +229,10 @@ class Document(_Container):
     """The document: leading comments and PIs, the root element, trailing nodes."""
 
     __slots__ = ()
+
+    def __init__(self, file: str | None = None) -> None:
+        self.parent = self.prev = self.next = self.first = self.last = None
+        self.loc = (file, 0, 0, -1)
 
     @property
     def root(self) -> Element:
@@ -209,6 +252,6 @@ class Document(_Container):
 def next_element(node: Node) -> Element | None:
     """Return the next sibling element of ``node``, if any."""
     sibling = node.next
-    while sibling is not None and not isinstance(sibling, Element):
+    while sibling is not None and type(sibling) is not Element:
         sibling = sibling.next
     return sibling

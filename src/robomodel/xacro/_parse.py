@@ -8,6 +8,7 @@ out entity-expansion bombs; external entities are never fetched.
 
 from __future__ import annotations
 
+import functools
 from xml.parsers import expat
 
 from robomodel.errors import Diagnostic, InputError, Severity, SourceLocation
@@ -21,6 +22,7 @@ XML_HINT = (
 )
 
 
+@functools.lru_cache(maxsize=4096)
 def _qname(name: str) -> str:
     """Turn expat's ``uri local prefix`` triple back into the qualified name minidom uses."""
     if " " not in name:
@@ -54,14 +56,8 @@ class _Builder:
         for i in range(0, len(attributes), 2):
             attrs[_qname(attributes[i])] = attributes[i + 1]
         p = self.parser
-        element = Element(
-            _qname(name),
-            attrs,
-            self.file,
-            p.CurrentLineNumber,
-            p.CurrentColumnNumber + 1,
-            p.CurrentByteIndex,
-        )
+        loc = (self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, p.CurrentByteIndex)
+        element = Element(_qname(name), attrs, loc)
         self.current.append(element)
         self.current = element
 
@@ -75,15 +71,18 @@ class _Builder:
             if self.cdata_continue and isinstance(last, CData):
                 last.data += data
                 return
-            node: Text | CData = CData(data, self.file, self.parser.CurrentLineNumber)
+            node: Text | CData = CData(data, self._here())
             self.cdata_continue = True
         elif type(last) is Text:
             last.data += data
             return
         else:
-            p = self.parser
-            node = Text(data, self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1)
+            node = Text(data, self._here())
         self.current.append(node)
+
+    def _here(self) -> tuple[str | None, int, int, int]:
+        p = self.parser
+        return (self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, -1)
 
     def start_cdata(self) -> None:
         self.in_cdata = True
@@ -94,15 +93,10 @@ class _Builder:
         self.cdata_continue = False
 
     def comment(self, data: str) -> None:
-        p = self.parser
-        self.current.append(
-            Comment(data, self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1)
-        )
+        self.current.append(Comment(data, self._here()))
 
     def pi(self, target: str, data: str) -> None:
-        self.current.append(
-            ProcessingInstruction(target, data, self.file, self.parser.CurrentLineNumber)
-        )
+        self.current.append(ProcessingInstruction(target, data, self._here()))
 
     def doctype(self, *args: object) -> None:
         raise _Refused("DOCTYPE declarations are not supported in xacro files")
@@ -136,7 +130,7 @@ def parse_xml(data: bytes | str, file: str | None = None) -> Document:
     parser.namespace_prefixes = True
     parser.ordered_attributes = True
     parser.specified_attributes = True
-    parser.buffer_text = False
+    parser.buffer_text = True
     builder = _Builder(parser, file)
     parser.StartNamespaceDeclHandler = builder.start_ns
     parser.StartElementHandler = builder.start_element
