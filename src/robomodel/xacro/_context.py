@@ -19,6 +19,8 @@ from robomodel.xacro._safe_eval import Guards, Limits
 
 __all__ = ["Context", "Frame"]
 
+_MAX_NOTES = 12
+
 
 @dataclass(frozen=True, slots=True)
 class Frame:
@@ -132,11 +134,15 @@ class Context:
         return SourceLocation(node.file, line, column)
 
     def notes(self) -> list[Diagnostic]:
-        """The stack as notes, innermost first."""
-        return [
-            Diagnostic(Severity.NOTE, frame.describe(), frame.called)
-            for frame in reversed(self.stack)
-        ]
+        """The stack as notes, innermost first; deep recursion is elided in the middle."""
+        frames = list(reversed(self.stack))
+        notes = [Diagnostic(Severity.NOTE, f.describe(), f.called) for f in frames]
+        if len(notes) > _MAX_NOTES:
+            head, tail = notes[: _MAX_NOTES // 2], notes[-(_MAX_NOTES // 2) :]
+            skipped = len(notes) - len(head) - len(tail)
+            elided = Diagnostic(Severity.NOTE, f"... {skipped} more frames ...", head[-1].location)
+            notes = [*head, elided, *tail]
+        return notes
 
     def error(self, message: str, node: Node | None = None, attr: str | None = None) -> InputError:
         """Build an error at ``node``/``attr`` (default: the node being evaluated)."""

@@ -17,7 +17,12 @@ from typing import Any
 from robomodel.errors import InputError, Severity, close_matches
 from robomodel.xacro._context import Context
 from robomodel.xacro._lexer import LexError, Token, TokenKind, tokenize_text
-from robomodel.xacro._safe_eval import ExpressionError, compile_expression, evaluate
+from robomodel.xacro._safe_eval import (
+    ExpressionError,
+    UnsafeExpressionError,
+    compile_expression,
+    evaluate,
+)
 from robomodel.xacro._subst import SubstitutionError, SubstitutionHooks, resolve_args
 from robomodel.xacro._symbols import CircularDefinitionError, ReadOnlyNamespace, Scope
 from robomodel.xacro._yaml import YamlDictWrapper, load_yaml_text
@@ -247,4 +252,6 @@ def _safe_vars(obj: object) -> dict[str, object]:
         return obj.as_dict()
     if isinstance(obj, Scope):
         return {k: obj.lookup(k) for k in obj.values if not k.startswith("*")}
-    raise ExpressionError("python.vars() is only available for namespaces")
+    raise UnsafeExpressionError(
+        f"python.vars() on a {type(obj).__name__} value is not allowed (only on namespaces)"
+    )
