@@ -26,7 +26,7 @@ def example_index() -> PackageIndex:
 def _reference(index: PackageIndex | None) -> Iterator[object]:
     """Import the reference, reset its global state and point ``$(find)`` at ``index``."""
     xacro = pytest.importorskip("xacro")
-    import xacro.substitution_args as sa
+    import xacro.substitution_args as sa  # type: ignore[import-untyped]
 
     old_find = sa._eval_find
     sa._eval_find = (lambda pkg: str(index.find(pkg))) if index else old_find
@@ -47,8 +47,7 @@ def reference_text(text: str, mappings: Mapping[str, str] | None = None) -> str:
     with _reference(None) as xacro:
         doc = xacro.parse(text)  # type: ignore[attr-defined]
         xacro.process_doc(doc, mappings=dict(mappings or {}))  # type: ignore[attr-defined]
-        result: str = doc.toprettyxml(indent="  ")
-        return result
+        return str(doc.toprettyxml(indent="  "))
 
 
 def reference_file(
@@ -59,8 +58,7 @@ def reference_file(
     """What the reference CLI prints for ``path``."""
     with _reference(index) as xacro:
         doc = xacro.process_file(str(path), mappings=dict(mappings or {}))  # type: ignore[attr-defined]
-        result: str = doc.toprettyxml(indent="  ")
-        return result
+        return str(doc.toprettyxml(indent="  "))
 
 
 def reference_deps(path: str | Path, index: PackageIndex | None = None) -> list[str]:

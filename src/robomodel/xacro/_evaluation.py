@@ -12,6 +12,7 @@ import math
 import os
 import re
 from collections.abc import Callable
+from types import CodeType
 from typing import Any
 
 from robomodel.errors import InputError, Severity, close_matches
@@ -61,19 +62,27 @@ def _undefined(ctx: Context, name: str, scope: Scope, expr: str) -> InputError:
     return ctx.error(f"undefined name '{name}' in expression '${{{expr}}}'{suggestion}")
 
 
+@functools.lru_cache(maxsize=16384)
+def _plan(expr: str) -> str | CodeType:
+    """A bare name (looked up directly) or the checked, compiled code of ``expr``."""
+    stripped = expr.strip()
+    if stripped.isidentifier() and not keyword.iskeyword(stripped):
+        return stripped
+    return compile_expression(stripped)
+
+
 def eval_expression(ctx: Context, expr: object, scope: Scope, source: str) -> object:
     """Evaluate the inside of one ``${...}`` (already substituted) in ``scope``."""
-    if not isinstance(expr, str):
+    if type(expr) is not str:
         raise ctx.error(f"expression '${{{source}}}' does not evaluate to text: {expr!r}")
-    stripped = expr.strip()
     try:
-        if stripped.isidentifier() and not keyword.iskeyword(stripped):
+        plan = _plan(expr)
+        if type(plan) is str:
             try:
-                return scope.lookup(stripped)
+                return scope.lookup(plan)
             except KeyError:
-                raise ExpressionError("undefined", name=stripped) from None
-        code = compile_expression(stripped)
-        return evaluate(code, scope.lookup, ctx.guards, ctx.base)
+                raise ExpressionError("undefined", name=plan) from None
+        return evaluate(plan, scope.lookup, ctx.guards, ctx.base)  # type: ignore[arg-type]
     except InputError:
         raise
     except ExpressionError as exc:
@@ -120,6 +129,10 @@ def eval_text(ctx: Context, text: str, scope: Scope) -> object:
         tokens = _tokens(text)
     except LexError as exc:
         raise ctx.error(f"{exc}; write '$$' before '{{' or '(' for a literal '$'") from None
+    if len(tokens) == 1:
+        kind, value = tokens[0]
+        if kind is TokenKind.EXPR and "$" not in value:
+            return eval_expression(ctx, value, scope, value)
     results: list[object] = []
     for kind, value in tokens:
         if kind is TokenKind.TEXT:

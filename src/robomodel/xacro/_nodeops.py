@@ -11,14 +11,14 @@ __all__ = ["check_attrs", "count_nodes", "remove_previous_comments", "replace_no
 
 
 def replace_node(
-    node: Node, by: Sequence[Element] | Element | None, content_only: bool = False
+    node: Node, by: list[Element] | Element | None, content_only: bool = False
 ) -> None:
     """Insert ``by`` (or its children when ``content_only``) before ``node``; drop ``node``."""
     parent = node.parent
     if parent is None:
         return
     if by is not None:
-        for doc in by if isinstance(by, Sequence) else (by,):
+        for doc in by if isinstance(by, list) else (by,):
             if content_only:
                 child = doc.first
                 while child is not None:
