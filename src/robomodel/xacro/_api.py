@@ -6,6 +6,7 @@ import contextlib
 import gc
 import os
 from collections.abc import Iterator, Mapping
+from typing import IO
 from dataclasses import dataclass
 
 from robomodel.description.packages import PackageIndex
@@ -146,7 +147,7 @@ def process_file(
 
 
 def process(
-    source: str | os.PathLike[str],
+    source: str | os.PathLike[str] | IO[str],
     mappings: Mapping[str, str] | None = None,
     *,
     package_index: PackageIndex | None = None,
@@ -156,10 +157,12 @@ def process(
 ) -> str:
     """Expand a file path or XML text and return the pretty-printed output.
 
-    A ``source`` starting with ``<`` (after whitespace) is XML text: it is processed like the
+    A ``source`` starting with ``<`` (after whitespace), or an open file, is XML text: it is processed like the
     reference's ``process_doc`` (includes relative to ``root_dir``) and printed without banner.
     Anything else is a path, processed as :func:`process_file` and printed as the CLI does.
     """
+    if hasattr(source, "read"):
+        source = str(source.read())  # a file object, as the reference's parse() accepts
     text = os.fspath(source)
     if text.lstrip().startswith("<"):
         ctx = _context(mappings, package_index, root_dir, limits)
