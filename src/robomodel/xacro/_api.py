@@ -6,8 +6,8 @@ import contextlib
 import gc
 import os
 from collections.abc import Iterator, Mapping
-from typing import IO
 from dataclasses import dataclass
+from typing import IO
 
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import Diagnostic, InputError, RobomodelError

@@ -344,9 +344,9 @@ class _Globals(dict[str, object]):
     lookup: Callable[[str], object]
 
     def __missing__(self, key: str) -> object:
-        value = self.lookup(key)
-        self[key] = value
-        return value
+        # Not cached: a lambda keeps this mapping as its globals and, as in the reference,
+        # must see a property's current value at every call.
+        return self.lookup(key)
 
 
 def evaluate(
