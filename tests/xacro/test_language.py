@@ -3,8 +3,11 @@ that feature must produce (so that a shared mistake cannot pass)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
+from robomodel import xacro as rx
 from tests.xacro.conftest import assert_same, doc
 
 # (feature, document body, mappings, text the output must contain)
@@ -287,6 +290,18 @@ def test_feature_matches_reference(body: str, mappings: dict[str, str], expected
     assert expected in output
 
 
+def test_call_does_not_warn_about_its_arguments(tmp_path: Path) -> None:
+    path = tmp_path / "c.xacro"
+    path.write_text(
+        doc(
+            '<xacro:macro name="m" params="a"><x v="${a}"/></xacro:macro><xacro:call macro="m" a="1"/>'
+        )
+    )
+    result = rx.process_file(path)
+    assert result.warnings == ()
+    assert '<x v="1"/>' in result.toprettyxml()
+
+
 def test_target_namespace_becomes_xmlns() -> None:
     text = '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" xacro:targetNamespace="urn:t"><a/></robot>'
     assert '<robot xmlns="urn:t">' in assert_same(text)
@@ -298,11 +313,9 @@ def test_root_attributes_are_evaluated_before_args() -> None:
     assert 'name="given"' in assert_same(text, {"n": "given"})
 
 
-def test_namespaced_include(
-    tmp_path: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.chdir(tmp_path)  # type: ignore[arg-type]
-    (tmp_path / "inc.xacro").write_text(  # type: ignore[operator]
+def test_namespaced_include(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "inc.xacro").write_text(
         '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" xmlns:foo="urn:foo">'
         '<xacro:property name="p" value="4"/><xacro:macro name="m"><m v="${p}"/></xacro:macro>'
         "<included/></robot>"
@@ -312,12 +325,10 @@ def test_namespaced_include(
     assert 'v="4"' in output and "<included/>" in output and 'xmlns:foo="urn:foo"' in output
 
 
-def test_include_glob_and_optional(
-    tmp_path: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.chdir(tmp_path)  # type: ignore[arg-type]
+def test_include_glob_and_optional(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
     for name in ("b", "a"):
-        (tmp_path / f"{name}.xacro").write_text(f"<r><{name}/></r>")  # type: ignore[operator]
+        (tmp_path / f"{name}.xacro").write_text(f"<r><{name}/></r>")
     body = '<xacro:include filename="*.xacro"/><xacro:include filename="missing.xacro" optional="true"/>'
     output = assert_same(doc(body))
     assert output.index("<a/>") < output.index("<b/>")

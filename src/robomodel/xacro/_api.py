@@ -73,7 +73,7 @@ def _context(
     limits: Limits | None,
 ) -> Context:
     ctx = Context(
-        args=dict(mappings or {}),
+        args={str(k): str(v) for k, v in (mappings or {}).items()},
         package_index=package_index if package_index is not None else PackageIndex(),
         root_dir=os.fspath(root_dir) if root_dir else os.curdir,
         limits=limits or Limits(),

@@ -119,9 +119,11 @@ def handle_macro_call(
 ) -> None:
     """Expand the macro call ``node`` in place."""
     if node.tag == "xacro:call":
-        (spec,) = check_attrs(ctx, node, ["macro"], [])
+        spec = node.attrs.get("macro")
+        if spec is None:
+            raise ctx.error("xacro:call: missing attribute 'macro'", node)
         ctx.node, ctx.attr = node, "macro"
-        name = str(eval_text(ctx, spec or "", symbols))
+        name = str(eval_text(ctx, spec, symbols))
         if not name:
             raise ctx.error("xacro:call is missing the 'macro' attribute", node)
         del node.attrs["macro"]
