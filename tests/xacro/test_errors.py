@@ -25,7 +25,7 @@ def test_undefined_name_has_line_column_and_close_matches(tmp_path: Path) -> Non
         HEAD + '<xacro:property name="width" value="1"/>\n  <box size="${widht}"/>\n</robot>',
         tmp_path,
     )
-    assert (err.line, err.column) == (3, 8)
+    assert (err.line, err.column) == (3, 14)  # the "${" of the expression
     assert err.path is not None and err.path.endswith("robot.xacro")
     assert "undefined name 'widht'" in err.message and "did you mean 'width'" in err.message
 
@@ -43,7 +43,7 @@ def test_macro_stack_frames(tmp_path: Path) -> None:
         + "</robot>\n"
     )
     err = _error(text, tmp_path, "simplebot.urdf.xacro")
-    assert (err.line, err.column) == (3, 9)
+    assert (err.line, err.column) == (3, 15)
     assert [n.severity for n in err.notes] == [Severity.NOTE, Severity.NOTE]
     assert err.notes[0].message == (
         "in macro 'wheel' (simplebot.urdf.xacro:2), called from simplebot.urdf.xacro:6"

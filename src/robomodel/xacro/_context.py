@@ -108,30 +108,51 @@ class Context:
         if path not in self.includes:
             self.includes.append(path)
 
-    def location(self, node: Node | None = None, attr: str | None = None) -> SourceLocation:
-        """The position of ``node`` (or of its attribute ``attr``)."""
+    def location(
+        self, node: Node | None = None, attr: str | None = None, needle: str | None = None
+    ) -> SourceLocation:
+        """The position of ``node``, of its attribute ``attr``, or of ``needle`` inside them."""
         node = node if node is not None else self.node
         if node is None:
             return SourceLocation(self.current_file)
-        if attr is not None and getattr(node, "offset", -1) >= 0:
-            found = self._attribute_position(node, attr)
-            if found is not None:
-                return found
+        source = self.sources.get(node.file)
+        if source is not None and node.offset >= 0:
+            pos = self._source_position(node, source, attr, needle)
+            if pos is not None:
+                line = source.count(b"\n", 0, pos) + 1
+                column = pos - (source.rfind(b"\n", 0, pos) + 1) + 1
+                return SourceLocation(node.file, line, column)
         return SourceLocation(node.file, node.line or None, node.column or None)
 
-    def _attribute_position(self, node: Node, attr: str) -> SourceLocation | None:
-        source = self.sources.get(node.file)
-        if source is None:
+    @staticmethod
+    def _source_position(
+        node: Node, source: bytes, attr: str | None, needle: str | None
+    ) -> int | None:
+        """Byte offset of the attribute or text (and of ``needle`` in it) in ``source``."""
+        wanted = needle.encode() if needle else b""
+        if type(node) is Text:
+            # A text node's offset is where it ends; it cannot contain '<'.
+            end = node.offset
+            start = source.rfind(b"<", 0, end)
+            start = source.find(b">", start) + 1 if start >= 0 else 0
+            found = source.find(wanted, start, end) if wanted else -1
+            if found >= 0:
+                return found
+            while start < end and source[start : start + 1].isspace():
+                start += 1
+            return start
+        if attr is None:
             return None
-        offset: int = getattr(node, "offset", 0)
         pattern = re.compile(rb"\s(" + re.escape(attr.encode()) + rb")\s*=")
-        match = pattern.search(source, offset)
+        match = pattern.search(source, node.offset)
         if match is None:
             return None
         pos = match.start(1)
-        line = source.count(b"\n", 0, pos) + 1
-        column = pos - (source.rfind(b"\n", 0, pos) + 1) + 1
-        return SourceLocation(node.file, line, column)
+        if wanted:
+            found = source.find(wanted, pos, pos + 4096)
+            if found >= 0:
+                return found
+        return pos
 
     def notes(self) -> list[Diagnostic]:
         """The stack as notes, innermost first; deep recursion is elided in the middle."""
@@ -144,11 +165,19 @@ class Context:
             notes = [*head, elided, *tail]
         return notes
 
-    def error(self, message: str, node: Node | None = None, attr: str | None = None) -> InputError:
-        """Build an error at ``node``/``attr`` (default: the node being evaluated)."""
+    def error(
+        self,
+        message: str,
+        node: Node | None = None,
+        attr: str | None = None,
+        *,
+        needle: str | None = None,
+    ) -> InputError:
+        """Build an error at ``node``/``attr`` (default: the node being evaluated), pointing at
+        ``needle`` (the offending ``${...}``) when it can be found in the source."""
         if node is None and attr is None:
             attr = self.attr
-        location = self.location(node, attr)
+        location = self.location(node, attr, needle)
         return InputError(Diagnostic(Severity.ERROR, message, location), notes=self.notes())
 
     def warn(

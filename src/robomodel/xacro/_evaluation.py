@@ -59,7 +59,9 @@ def abs_filename_spec(ctx: Context, spec: str) -> str:
 def _undefined(ctx: Context, name: str, scope: Scope, expr: str) -> InputError:
     hint = close_matches(name, scope.names())
     suggestion = f"; did you mean {', '.join(repr(h) for h in hint)}?" if hint else ""
-    return ctx.error(f"undefined name '{name}' in expression '${{{expr}}}'{suggestion}")
+    return ctx.error(
+        f"undefined name '{name}' in expression '${{{expr}}}'{suggestion}", needle="${" + expr
+    )
 
 
 @functools.lru_cache(maxsize=16384)
@@ -88,11 +90,12 @@ def eval_expression(ctx: Context, expr: object, scope: Scope, source: str) -> ob
     except ExpressionError as exc:
         if exc.name is not None:
             raise _undefined(ctx, exc.name, scope, source) from None
-        raise ctx.error(f"{exc} (in expression '${{{source}}}')") from None
+        raise ctx.error(f"{exc} (in expression '${{{source}}}')", needle="${" + source) from None
     except CircularDefinitionError as exc:
         raise ctx.error(str(exc)) from None
     except Exception as exc:
-        raise ctx.error(f"{type(exc).__name__}: {exc} (in expression '${{{source}}}')") from None
+        message = f"{type(exc).__name__}: {exc} (in expression '${{{source}}}')"
+        raise ctx.error(message, needle="${" + source) from None
 
 
 def _hooks(ctx: Context) -> SubstitutionHooks:
@@ -114,7 +117,7 @@ def eval_extension(ctx: Context, text: str) -> str:
     except InputError:
         raise
     except SubstitutionError as exc:
-        raise ctx.error(str(exc)) from None
+        raise ctx.error(str(exc), needle=text[:-1]) from None
     except ExpressionError as exc:
         raise ctx.error(f"{exc} (in '{text}')") from None
     except Exception as exc:

@@ -77,7 +77,10 @@ class _Builder:
             last.data += data
             return
         else:
-            node = Text(data, self._here())
+            p = self.parser
+            # buffer_text reports text when it ends: keep that offset to locate it later.
+            loc = (self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, p.CurrentByteIndex)
+            node = Text(data, loc)
         self.current.append(node)
 
     def _here(self) -> tuple[str | None, int, int, int]:
