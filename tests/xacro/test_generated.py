@@ -3,13 +3,16 @@ and where the reference fails we fail too (with an InputError, never a crash).""
 
 from __future__ import annotations
 
+import tempfile
+from pathlib import Path
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from robomodel import xacro as rx
 from robomodel.errors import InputError
-from tests.xacro.conftest import reference_text
+from tests.xacro.conftest import reference_file, reference_text
 
 PROPS = ("p0", "p1", "p2")
 NUMBERS = st.sampled_from(["0", "1", "2", "3", "0.5", "1.25", "-2", "1e-3", "10"])
@@ -133,3 +136,56 @@ def test_generated_documents_are_byte_identical(text: str) -> None:
             rx.process(text)
         return
     assert rx.process(text) == expected
+
+
+@st.composite
+def include_trees(draw: st.DrawFn) -> tuple[str, str, str]:
+    """A main file and two included files, with and without namespaces."""
+    inner_ns, main_ns = draw(st.booleans()), draw(st.booleans())
+    q = "In.q" if inner_ns else "q"
+    leaf = "In.leaf" if inner_ns else "leaf"
+    inner = (
+        f'<xacro:property name="q" value="{draw(NUMBERS)}"/>'
+        '<xacro:macro name="leaf" params="a b:=1"><leaf v="${a}" w="${b}"/></xacro:macro>'
+        f"{draw(_content(('q',), ('leaf',), 2, False))}"
+    )
+    middle = (
+        '<xacro:include filename="inner.xacro"'
+        + (' ns="In"' if inner_ns else "")
+        + "/>"
+        + draw(st.sampled_from(["", f'<mid v="${{{q}}}"/>', f'<xacro:{leaf} a="${{{q}*2}}"/>']))
+        + '<xacro:macro name="mid" params="a"><m v="${a}"/></xacro:macro>'
+    )
+    prefix = "M." if main_ns else ""
+    main = (
+        '<xacro:include filename="sub/middle.xacro"'
+        + (' ns="M"' if main_ns else "")
+        + "/>"
+        + draw(_text())
+        + f'<xacro:{prefix}mid a="{draw(_value(()))}"/>'
+        + draw(
+            st.sampled_from(["", f'<x v="${{{prefix}{q}}}"/>', f'<xacro:{prefix}{leaf} a="3"/>'])
+        )
+        + draw(st.sampled_from(["", "<!-- c -->", "\n  <!-- c -->\n  <y/>"]))
+    )
+    wrap = '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{}</robot>'.format
+    return wrap(main), wrap(middle), wrap(inner)
+
+
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(include_trees())
+def test_generated_include_trees_are_byte_identical(files: tuple[str, str, str]) -> None:
+    main, middle, inner = files
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        (root / "sub").mkdir()
+        (root / "main.xacro").write_text(main)
+        (root / "sub" / "middle.xacro").write_text(middle)
+        (root / "sub" / "inner.xacro").write_text(inner)
+        try:
+            expected = reference_file(root / "main.xacro")
+        except Exception:  # the reference fails: so must we, cleanly
+            with pytest.raises(InputError):
+                rx.process_file(root / "main.xacro")
+            return
+        assert rx.process_file(root / "main.xacro").toprettyxml(indent="  ") == expected
