@@ -7,7 +7,7 @@ import time
 import pytest
 
 from robomodel import xacro as rx
-from robomodel.errors import InputError
+from robomodel.errors import InputError, RobomodelError
 from tests.xacro.conftest import doc, reference_text
 
 ESCAPES = [
@@ -139,3 +139,10 @@ def test_whitelist_keeps_what_real_files_use() -> None:
     for expected in ('a="[0, 2]"', 'b="1"', 'c="6"', 'd="ba"', 'e="1"', 'f="[1, 3]"', 'g="0.50"',
                      'h="002"', 'i="1-2"', 'j="1"', 'k="1"', 'l="False"', 'm="-4"'):  # fmt: skip
         assert expected in out
+
+
+def test_output_size_is_bounded() -> None:
+    body = '<xacro:property name="s" value="${\'x\' * 5000}"/>' + '<a v="${s}"/>' * 50
+    with pytest.raises(RobomodelError, match="output larger than"):
+        rx.process(doc(body), limits=rx.Limits(max_output_chars=100_000))
+    assert len(rx.process(doc(body))) > 250_000

@@ -32,17 +32,25 @@ class XacroDocument:
         banner_for: The input name shown in the banner (None: no banner, as for text input).
         includes: Included and loaded files in first-use order.
         warnings: Warnings and messages produced while expanding.
+        max_output_chars: Printing a larger document raises :class:`RobomodelError`.
     """
 
     document: Document
     banner_for: str | None
     includes: tuple[str, ...]
     warnings: tuple[Diagnostic, ...]
+    max_output_chars: int = Limits().max_output_chars
 
     def toprettyxml(self, indent: str = "\t", newl: str = "\n") -> str:
         """The text ``minidom.Document.toprettyxml`` gives with xacro's writer."""
         try:
-            return serialize(self.document, indent=indent, newl=newl, banner_for=self.banner_for)
+            return serialize(
+                self.document,
+                indent=indent,
+                newl=newl,
+                banner_for=self.banner_for,
+                max_chars=self.max_output_chars,
+            )
         except SerializationError as exc:
             raise RobomodelError(str(exc)) from None
 
@@ -106,7 +114,13 @@ def _run(ctx: Context, document: Document, banner_for: str | None) -> XacroDocum
             process_document(ctx, document)
     except RecursionError:
         raise ctx.error("expansion nested too deeply (recursion limit)") from None
-    return XacroDocument(document, banner_for, tuple(ctx.includes), tuple(ctx.diagnostics))
+    return XacroDocument(
+        document,
+        banner_for,
+        tuple(ctx.includes),
+        tuple(ctx.diagnostics),
+        ctx.limits.max_output_chars,
+    )
 
 
 def process_file(

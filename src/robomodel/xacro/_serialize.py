@@ -69,12 +69,19 @@ def _other(node: Node, indent: str, newl: str) -> str:
     return ""
 
 
-def _element(el: Element, indent: str, addindent: str, newl: str, out: list[str]) -> None:
+def _element(
+    el: Element, indent: str, addindent: str, newl: str, out: list[str], budget: list[int]
+) -> None:
+    budget[0] -= len(indent) + len(el.tag)
+    if budget[0] < 0:
+        raise SerializationError(f"output larger than {budget[1]} characters")
     tag = el.tag
     parts = [indent, "<", tag]
     attrs = el.attrs
     for name in sorted(attrs):
-        parts.append(f' {name}="{_escape(attrs[name])}"')
+        value = _escape(attrs[name])
+        budget[0] -= len(value)
+        parts.append(f' {name}="{value}"')
     first = el.first
     if first is None:
         parts.append("/>" + newl)
@@ -91,10 +98,11 @@ def _element(el: Element, indent: str, addindent: str, newl: str, out: list[str]
     while node is not None:
         kind = type(node)
         if kind is Element:
-            _element(node, inner, addindent, newl, out)  # type: ignore[arg-type]
+            _element(node, inner, addindent, newl, out, budget)  # type: ignore[arg-type]
         elif kind is Text:
             data: str = node.data  # type: ignore[attr-defined]
             if data and not data.isspace():
+                budget[0] -= len(data)
                 out.append(_escape(inner + data + newl))
         else:
             out.append(_other(node, inner, newl))
@@ -108,6 +116,7 @@ def serialize(
     indent: str = "  ",
     newl: str = "\n",
     banner_for: str | None = None,
+    max_chars: int = 256 * 1024 * 1024,
 ) -> str:
     """Render ``document`` as ``toprettyxml`` (or ``toxml`` with ``indent=newl=''``).
 
@@ -116,13 +125,15 @@ def serialize(
         indent: Indentation per level.
         newl: Line separator.
         banner_for: The input name to put in the xacro banner, or None for no banner.
+        max_chars: Refuse (roughly) larger outputs with :class:`SerializationError`.
     """
+    budget = [max_chars, max_chars]
     out = ['<?xml version="1.0" ?>' + newl]
     if banner_for is not None:
         out.extend(_comment(line, "", newl) for line in banner(banner_for))
     for node in document.children():
         if isinstance(node, Element):
-            _element(node, "", indent, newl, out)
+            _element(node, "", indent, newl, out, budget)
         elif isinstance(node, Text):
             out.append(_escape(node.data + newl))
         else:
