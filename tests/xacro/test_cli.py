@@ -94,3 +94,12 @@ def test_two_inputs_are_refused(tmp_path: Path, capsys: pytest.CaptureFixture[st
 def test_missing_input(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["xacro", str(tmp_path / "nope.xacro")]) == 2
     assert "No such file" in capsys.readouterr().err
+
+
+def test_unwritable_output_is_a_clean_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    src = _write(tmp_path, "<x/>")
+    (tmp_path / "file").write_text("")
+    assert main(["xacro", str(src), "-o", str(tmp_path / "file" / "out.urdf")]) == 2
+    assert "cannot write" in capsys.readouterr().err

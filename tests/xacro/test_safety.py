@@ -146,3 +146,9 @@ def test_output_size_is_bounded() -> None:
     with pytest.raises(RobomodelError, match="output larger than"):
         rx.process(doc(body), limits=rx.Limits(max_output_chars=100_000))
     assert len(rx.process(doc(body))) > 250_000
+
+
+def test_deep_nesting_is_a_clean_error() -> None:
+    text = doc("<a>" * 5000 + "</a>" * 5000)
+    with pytest.raises(InputError, match="nested too deeply"):
+        rx.process(text)

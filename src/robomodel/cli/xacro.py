@@ -99,7 +99,10 @@ def run(args: argparse.Namespace) -> int:
     _print_diagnostics(result.warnings, args.verbosity or 0)
     text = " ".join(result.includes) if args.deps else result.text
     if args.output:
-        atomic_write_text(args.output, text)
+        try:
+            atomic_write_text(args.output, text)
+        except OSError as exc:
+            raise RobomodelError(f"cannot write '{args.output}': {exc.strerror or exc}") from None
     else:
         sys.stdout.write(text)
         sys.stdout.flush()

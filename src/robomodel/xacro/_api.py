@@ -53,6 +53,8 @@ class XacroDocument:
             )
         except SerializationError as exc:
             raise RobomodelError(str(exc)) from None
+        except RecursionError:
+            raise RobomodelError("document nested too deeply to print") from None
 
     def toxml(self) -> str:
         """The compact text (``minidom.Document.toxml``)."""
