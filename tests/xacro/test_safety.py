@@ -33,6 +33,7 @@ ESCAPES = [
     "(x for x in []).gi_frame",
     "(lambda: 0).__code__",
     "xacro.arg.something",
+    "dict(a=1).items().mapping",
     "python.isinstance.__self__",
     "lambda __x: 0",
     "[__x for __x in [1]]",

@@ -216,7 +216,7 @@ class Guards:
                 return obj.lookup(name)
             except KeyError:
                 raise NameError(f"name '{name}' is not defined") from None
-        if isinstance(obj, _DATA_TYPES) or obj in _TYPE_OBJECTS:
+        if isinstance(obj, _DATA_TYPES) or (type(obj) is type and obj in _TYPE_OBJECTS):
             if name in _REFUSED_ATTRS:
                 raise _refuse(f"'.{name}'")
             if name == "format" and isinstance(obj, str):
