@@ -27,6 +27,7 @@ ESCAPES = [
     "python.vars(python.type(1))",
     "python.type('X', (), {})",
     "python.type(1).mro()",
+    "python.type(python.type(1))('X', (), {})",
     "str.format('{0.__class__}', 1)",
     "xacro.load_yaml.__globals__",
     "math.__dict__",

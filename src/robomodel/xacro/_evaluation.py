@@ -243,7 +243,7 @@ def build_globals(ctx: Context) -> dict[str, object]:
             "True": True,
             "False": False,
             "range": ctx.guards.bounded_range,
-            "type": lambda obj: type(obj),
+            "type": _safe_type,
             "vars": _safe_vars,
         }
     )
@@ -260,6 +260,14 @@ def build_globals(ctx: Context) -> dict[str, object]:
     for name in ("load_yaml", "abs_filename", "dotify"):
         result[name] = _deprecated(ctx, name, "xacro", xacro[name])  # type: ignore[arg-type]
     result["xacro"] = ReadOnlyNamespace("xacro", xacro)
+    return result
+
+
+def _safe_type(obj: object) -> type:
+    """``type(obj)``; the metaclass (which builds new classes) is not handed out."""
+    result = type(obj)
+    if issubclass(result, type):
+        raise UnsafeExpressionError("python.type() of a type is not allowed")
     return result
 
 
