@@ -96,6 +96,11 @@ def test_reference_is_escapable_but_we_are_not() -> None:
         rx.process(doc(body))
 
 
+def test_eval_extension_is_bounded_too() -> None:
+    with pytest.raises(InputError, match="larger than"):
+        rx.process(doc('<x v="$(eval factorial(10**7))"/>'))
+
+
 def test_infinite_macro_recursion_is_bounded() -> None:
     with pytest.raises(InputError, match="nested deeper"):
         rx.process(doc('<xacro:macro name="r"><xacro:r/></xacro:macro><xacro:r/>'))

@@ -103,8 +103,10 @@ def _hooks(ctx: Context) -> SubstitutionHooks:
         code = compile_expression(expr.strip())
         return evaluate(code, lookup, ctx.guards, ctx.base)
 
+    maths = ctx.globals.get("math")
+    math_names = maths.as_dict() if isinstance(maths, ReadOnlyNamespace) else {}
     return SubstitutionHooks(
-        ctx.args, ctx.find_package, ctx.current_file, ctx.environ, evaluate_eval
+        ctx.args, ctx.find_package, ctx.current_file, ctx.environ, evaluate_eval, math_names
     )
 
 

@@ -8,7 +8,6 @@ machine and the same two passes (``find`` last, so that ``$(arg x)`` may expand 
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -34,6 +33,7 @@ class SubstitutionHooks:
         current_file: The file being processed (None for string input).
         environ: The environment for ``env``/``optenv``.
         evaluate: Evaluates a ``$(eval ...)`` expression with a name lookup.
+        math_names: The ``math`` names available in ``$(eval ...)`` (bounded versions).
     """
 
     args: Mapping[str, str]
@@ -41,6 +41,7 @@ class SubstitutionHooks:
     current_file: str | None
     environ: Mapping[str, str]
     evaluate: Callable[[str, Callable[[str], object]], object]
+    math_names: Mapping[str, object]
 
 
 def collect_args(arg_str: str) -> list[str]:
@@ -167,7 +168,7 @@ def _eval_lookup(hooks: SubstitutionHooks) -> Callable[[str], object]:
         "float": float,
         "int": int,
     }
-    functions.update((k, v) for k, v in vars(math).items() if not k.startswith("_"))
+    functions.update(hooks.math_names)
 
     def lookup(name: str) -> object:
         if name in functions:
