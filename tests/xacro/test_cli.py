@@ -25,6 +25,8 @@ def test_stdout_matches_reference(
     out = capsys.readouterr().out
     assert out == reference_file("r.xacro", {"n": "given"})
     assert 'v="given"' in out
+    assert main(["xacro", "n:=first", "r.xacro"]) == 0
+    assert 'v="first"' in capsys.readouterr().out
 
 
 def test_package_options_resolve_find(capsys: pytest.CaptureFixture[str]) -> None:

@@ -78,11 +78,12 @@ def run(args: argparse.Namespace) -> int:
     """Expand ``args.input``; errors propagate as :class:`RobomodelError` (exit code 2)."""
     from robomodel.xacro import expand
 
-    extra = [m for m in args.mappings if _REMAP not in m]
-    if extra:
+    positional = [args.input, *args.mappings]  # name:=value may come before the file too
+    inputs = [p for p in positional if _REMAP not in p]
+    if len(inputs) != 1:
+        found = " ".join(inputs) or "none"
         raise RobomodelError(
-            f"expected exactly one input file, got also: {' '.join(extra)} "
-            "(arguments are name:=value)"
+            f"expected exactly one input file, got: {found} (other arguments are name:=value)"
         )
     if args.inorder:
         print(
@@ -91,8 +92,8 @@ def run(args: argparse.Namespace) -> int:
         )
     index = index_from_options(args.package_path, args.package)
     result = expand(
-        args.input,
-        mappings=load_mappings(args.mappings),
+        inputs[0],
+        mappings=load_mappings(positional),
         package_index=index,
         root_dir=args.root_dir,
     )
