@@ -143,7 +143,7 @@ def handle_macro_call(
         )
     ctx.charge_nodes(macro.size)
     body = macro.body.clone()
-    ctx.stack.append(Frame("macro", macro.name, macro.defined, ctx.location(node)))
+    ctx.stack.append(Frame("macro", macro.name, macro.defined, node))
     local = Scope(s_scope, s_scope.root)
     local_macros = Scope(m_scope, m_scope.root)
     params = _bind_params(ctx, node, macro, symbols, local)
@@ -224,7 +224,7 @@ def process_include(
                 f"cannot include '{filename}': {exc.strerror}", elt, "filename"
             ) from None
         root = document.root
-        ctx.stack.append(Frame("include", filename, None, ctx.location(elt)))
+        ctx.stack.append(Frame("include", filename, None, elt))
         ctx.filestack.append(filename)
         ctx.charge_nodes(count_nodes(root))
         eval_all(ctx, root, ns_macros, ns_symbols)

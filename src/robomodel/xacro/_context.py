@@ -30,13 +30,19 @@ class Frame:
         kind: ``"macro"`` or ``"include"``.
         name: The macro name or the included file.
         defined: Where the macro is defined (None for includes).
-        called: Where the macro is called or the file is included from.
+        site: The calling element or the ``<xacro:include>`` element.
     """
 
     kind: str
     name: str
     defined: SourceLocation | None
-    called: SourceLocation
+    site: Node
+
+    @property
+    def called(self) -> SourceLocation:
+        """Where the macro is called or the file is included from."""
+        loc = self.site.loc
+        return SourceLocation(loc[0], loc[1] or None, loc[2] or None)
 
     def describe(self) -> str:
         """``in macro 'wheel' (robot.xacro:41), called from robot.xacro:88``."""
