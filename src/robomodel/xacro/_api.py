@@ -102,11 +102,6 @@ def _no_gc() -> Iterator[None]:
         yield
     finally:
         if enabled:
-            if gc.get_freeze_count() == 0:
-                # Move the survivors to the oldest generation in O(1) instead of having the
-                # next young collection traverse all of them (only when nobody else froze).
-                gc.freeze()
-                gc.unfreeze()
             gc.enable()
 
 

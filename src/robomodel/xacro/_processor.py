@@ -137,10 +137,11 @@ _HANDLERS: dict[str, Handler] = {
 
 def _eval_attributes(ctx: Context, node: Element, symbols: Scope) -> None:
     attrs = node.attrs
-    for name, value in list(attrs.items()):
-        if name.startswith("xacro:"):
-            del attrs[name]
-        elif "$" in value:
+    doomed = [name for name in attrs if name.startswith("xacro:")]
+    for name in doomed:
+        del attrs[name]
+    for name, value in attrs.items():  # replacing values while iterating is safe
+        if "$" in value:
             ctx.node, ctx.attr = node, name
             attrs[name] = str(eval_text(ctx, value, symbols))
     attrs.pop("xmlns:xacro", None)

@@ -166,8 +166,11 @@ class Scope:
         """Return the value of ``key`` visible from here, or raise ``KeyError``."""
         scope: Scope | None = self
         while scope is not None:
-            if key in scope.values:
-                return scope._resolve(key)
+            values = scope.values
+            if key in values:
+                if key in scope.unevaluated:
+                    return scope._resolve(key)
+                return values[key]
             scope = scope.parent
         return self.root[key]
 
