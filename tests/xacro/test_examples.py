@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import importlib.util
 import shutil
 import subprocess
 from pathlib import Path
+from types import ModuleType
 
 import pytest
 
 from robomodel import xacro as rx
-from tests.xacro.conftest import EXAMPLES, example_index, reference_deps, reference_file
+from robomodel.description.packages import PackageIndex
+from tests.xacro.conftest import EXAMPLES, REPO, example_index, reference_deps, reference_file
 
 # (xacro file relative to examples/, mappings)
 EXAMPLE_RUNS: list[tuple[str, dict[str, str]]] = [
@@ -72,3 +75,20 @@ def test_example_description_uses_yaml_units_and_prefix() -> None:
     assert 'lower="-3.141592653589793"' in text  # !degrees -180
     assert 'radius="0.02"' in text  # !millimeters 20
     assert '<link name="r1/base_link">' in text
+
+
+def _bench_module() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("bench_xacro", REPO / "bench" / "bench_xacro.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_synthetic_pr2_size_robot(tmp_path: Path) -> None:
+    top = _bench_module().write_synthetic_robot(tmp_path)
+    index = PackageIndex(package_paths=[tmp_path], use_environment=False)
+    result = rx.expand(top, package_index=index)
+    assert result.text == reference_file(top, index=index)
+    assert len(result.text) >= 130_000 and result.text.count("<link ") >= 80
+    assert len(result.includes) >= 5
