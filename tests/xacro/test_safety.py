@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import pytest
 
@@ -159,3 +160,10 @@ def test_deep_nesting_is_a_clean_error() -> None:
     text = doc("<a>" * 5000 + "</a>" * 5000)
     with pytest.raises(InputError, match="nested too deeply"):
         rx.process(text)
+
+
+def test_self_including_file_is_bounded(tmp_path: Path) -> None:
+    path = tmp_path / "self.xacro"
+    path.write_text(doc('<xacro:include filename="self.xacro"/>'))
+    with pytest.raises(InputError, match="does a file include itself"):
+        rx.process_file(path)

@@ -14,7 +14,6 @@ from robomodel.xacro._dom import Document, Element, next_element
 from robomodel.xacro._evaluation import abs_filename_spec, eval_text
 from robomodel.xacro._nodeops import (
     check_attrs,
-    count_nodes,
     remove_previous_comments,
     replace_node,
 )
@@ -224,9 +223,15 @@ def process_include(
                 f"cannot include '{filename}': {exc.strerror}", elt, "filename"
             ) from None
         root = document.root
+        if len(ctx.stack) >= ctx.limits.max_macro_depth:
+            raise ctx.error(
+                f"includes and macro calls nested deeper than {ctx.limits.max_macro_depth} "
+                "levels; does a file include itself?",
+                elt,
+            )
         ctx.stack.append(Frame("include", filename, None, elt))
         ctx.filestack.append(filename)
-        ctx.charge_nodes(count_nodes(root))
+        ctx.charge_nodes(document.size)
         eval_all(ctx, root, ns_macros, ns_symbols)
         included.append(root)
         if isinstance(elt.parent, Element):

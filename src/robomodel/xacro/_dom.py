@@ -191,7 +191,8 @@ class Element(_Container):
         self.tag = tag
         self.attrs: dict[str, str] = attrs if attrs is not None else {}
 
-    def clone(self) -> Element:
+    def clone(self, counter: list[int] | None = None) -> Element:
+        """Deep copy; when given, ``counter[0]`` is increased by the number of nodes copied."""
         copy: Element = _new(Element)
         copy.parent = copy.prev = copy.next = None
         copy.loc = self.loc
@@ -202,7 +203,7 @@ class Element(_Container):
         while node is not None:
             kind = type(node)
             if kind is Element:
-                child: Node = node.clone()
+                child: Node = node.clone(counter)  # type: ignore[call-arg]
             elif kind is ProcessingInstruction:
                 child = node.clone()
             else:
@@ -222,17 +223,20 @@ class Element(_Container):
         else:
             prev.next = None
         copy.last = prev
+        if counter is not None:
+            counter[0] += 1
         return copy
 
 
 class Document(_Container):
     """The document: leading comments and PIs, the root element, trailing nodes."""
 
-    __slots__ = ()
+    __slots__ = ("size",)
 
     def __init__(self, file: str | None = None) -> None:
         self.parent = self.prev = self.next = self.first = self.last = None
         self.loc = (file, 0, 0, -1)
+        self.size = 0  # elements, as counted by the parser
 
     @property
     def root(self) -> Element:

@@ -58,6 +58,7 @@ class _Builder:
         p = self.parser
         loc = (self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, p.CurrentByteIndex)
         element = Element(_qname(name), attrs, loc)
+        self.document.size += 1
         self.current.append(element)
         self.current = element
 

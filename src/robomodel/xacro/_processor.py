@@ -16,7 +16,6 @@ from robomodel.xacro._dom import Comment, Document, Element, Text
 from robomodel.xacro._evaluation import eval_text
 from robomodel.xacro._nodeops import (
     check_attrs,
-    count_nodes,
     remove_previous_comments,
     replace_node,
 )
@@ -37,8 +36,9 @@ def _insert_block(ctx: Context, node: Element, macros: Scope, symbols: Scope) ->
         raise ctx.error(f'Undefined block "{name}"', node, "name")
     if not isinstance(block, Element):
         raise ctx.error(f'"{name}" is not a block', node, "name")
-    ctx.charge_nodes(count_nodes(block))
-    copy = block.clone()
+    counter = [0]
+    copy = block.clone(counter)
+    ctx.charge_nodes(counter[0])
     eval_all(ctx, copy, macros, symbols)
     replace_node(node, copy, content_only=content_only)
     return False
