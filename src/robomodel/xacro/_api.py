@@ -94,14 +94,22 @@ def _context(
 
 @contextlib.contextmanager
 def _no_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector: the tree is one big cycle-rich structure that
-    the collector would otherwise traverse again and again while it grows."""
+    """Pause the cyclic garbage collector while the tree grows (it would traverse it again and
+    again), then hand the survivors to the oldest generation."""
     enabled = gc.isenabled()
     gc.disable()
     try:
         yield
     finally:
         if enabled:
+            if gc.get_freeze_count() == 0:
+                # The objects allocated meanwhile would make the next young collection
+                # traverse the whole new tree (~8 ms on a PR2). Moving every tracked object
+                # to the oldest generation instead is O(1); it only delays collecting cyclic
+                # garbage to the next full collection. Skipped if the application uses
+                # gc.freeze() itself.
+                gc.freeze()
+                gc.unfreeze()
             gc.enable()
 
 
