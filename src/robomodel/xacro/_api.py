@@ -44,13 +44,14 @@ class XacroDocument:
     def toprettyxml(self, indent: str = "\t", newl: str = "\n") -> str:
         """The text ``minidom.Document.toprettyxml`` gives with xacro's writer."""
         try:
-            return serialize(
-                self.document,
-                indent=indent,
-                newl=newl,
-                banner_for=self.banner_for,
-                max_chars=self.max_output_chars,
-            )
+            with _no_gc():
+                return serialize(
+                    self.document,
+                    indent=indent,
+                    newl=newl,
+                    banner_for=self.banner_for,
+                    max_chars=self.max_output_chars,
+                )
         except SerializationError as exc:
             raise RobomodelError(str(exc)) from None
         except RecursionError:

@@ -143,7 +143,8 @@ def eval_text(ctx: Context, text: str, scope: Scope) -> object:
         if kind is TokenKind.TEXT:
             results.append(value)
         elif kind is TokenKind.EXPR:
-            results.append(eval_expression(ctx, eval_text(ctx, value, scope), scope, value))
+            inner = eval_text(ctx, value, scope) if "$" in value else value
+            results.append(eval_expression(ctx, inner, scope, value))
         else:
             results.append(eval_extension(ctx, f"$({eval_text(ctx, value, scope)})"))
     if len(results) == 1:

@@ -14,6 +14,8 @@ from xml.parsers import expat
 from robomodel.errors import Diagnostic, InputError, Severity, SourceLocation
 from robomodel.xacro._dom import CData, Comment, Document, Element, ProcessingInstruction, Text
 
+_new = object.__new__
+
 __all__ = ["XML_HINT", "parse_xml"]
 
 XML_HINT = (
@@ -48,26 +50,46 @@ class _Builder:
     def start_ns(self, prefix: str | None, uri: str | None) -> None:
         self.pending_ns.append((prefix or "", uri or ""))
 
-    def start_element(self, name: str, attributes: list[str]) -> None:
-        attrs: dict[str, str] = {}
-        for prefix, uri in self.pending_ns:
-            attrs["xmlns:" + prefix if prefix else "xmlns"] = uri
-        self.pending_ns.clear()
-        for i in range(0, len(attributes), 2):
-            attrs[_qname(attributes[i])] = attributes[i + 1]
-        p = self.parser
-        loc = (self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, p.CurrentByteIndex)
-        element = Element(_qname(name), attrs, loc)
-        self.document.size += 1
-        self.current.append(element)
+    def start_element(self, name: str, attrs: dict[str, str]) -> None:
+        # The hot path of parsing: no helper calls for the common un-namespaced names.
+        # Expat builds ``attrs`` in document order; namespaced names come as "uri local prefix".
+        if attrs and " " in "".join(attrs):
+            attrs = {_qname(key): value for key, value in attrs.items()}
+        if self.pending_ns:
+            declared = {("xmlns:" + p if p else "xmlns"): uri for p, uri in self.pending_ns}
+            declared.update(attrs)
+            attrs = declared
+            self.pending_ns.clear()
+        parser = self.parser
+        element: Element = _new(Element)
+        element.loc = (
+            self.file,
+            parser.CurrentLineNumber,
+            parser.CurrentColumnNumber + 1,
+            parser.CurrentByteIndex,
+        )
+        element.tag = _qname(name) if " " in name else name
+        element.attrs = attrs
+        element.first = element.last = element.next = None
+        parent = self.current
+        element.parent = parent
+        last = parent.last
+        element.prev = last
+        if last is None:
+            parent.first = element
+        else:
+            last.next = element
+        parent.last = element
         self.current = element
+        self.document.size += 1
 
     def end_element(self, name: str) -> None:
         parent = self.current.parent
         self.current = parent if parent is not None else self.document
 
     def characters(self, data: str) -> None:
-        last = self.current.last
+        parent = self.current
+        last = parent.last
         if self.in_cdata:
             if self.cdata_continue and isinstance(last, CData):
                 last.data += data
@@ -78,11 +100,24 @@ class _Builder:
             last.data += data
             return
         else:
-            p = self.parser
+            parser = self.parser
+            node = _new(Text)
+            node.data = data
             # buffer_text reports text when it ends: keep that offset to locate it later.
-            loc = (self.file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, p.CurrentByteIndex)
-            node = Text(data, loc)
-        self.current.append(node)
+            node.loc = (
+                self.file,
+                parser.CurrentLineNumber,
+                parser.CurrentColumnNumber + 1,
+                parser.CurrentByteIndex,
+            )
+        node.parent = parent
+        node.prev = last
+        node.next = None
+        if last is None:
+            parent.first = node
+        else:
+            last.next = node
+        parent.last = node
 
     def _here(self) -> tuple[str | None, int, int, int]:
         p = self.parser
@@ -132,7 +167,7 @@ def parse_xml(data: bytes | str, file: str | None = None) -> Document:
     """
     parser = expat.ParserCreate(namespace_separator=" ")
     parser.namespace_prefixes = True
-    parser.ordered_attributes = True
+    parser.ordered_attributes = False
     parser.specified_attributes = True
     parser.buffer_text = True
     builder = _Builder(parser, file)

@@ -137,9 +137,9 @@ _HANDLERS: dict[str, Handler] = {
 
 def _eval_attributes(ctx: Context, node: Element, symbols: Scope) -> None:
     attrs = node.attrs
-    doomed = [name for name in attrs if name.startswith("xacro:")]
-    for name in doomed:
-        del attrs[name]
+    if "xacro:" in " ".join(attrs):  # rare: xacro:* attributes are dropped
+        for name in [name for name in attrs if name.startswith("xacro:")]:
+            del attrs[name]
     for name, value in attrs.items():  # replacing values while iterating is safe
         if "$" in value:
             ctx.node, ctx.attr = node, name
