@@ -140,8 +140,9 @@ def handle_macro_call(
             "does a recursive macro lack a stopping xacro:if?",
             node,
         )
-    ctx.charge_nodes(macro.size)
-    body = macro.body.clone()
+    counter = [0]
+    body = macro.body.clone(counter)
+    ctx.charge_nodes(counter[0])
     ctx.stack.append(Frame("macro", macro.name, macro.defined, node))
     local = Scope(s_scope, s_scope.root)
     local_macros = Scope(m_scope, m_scope.root)

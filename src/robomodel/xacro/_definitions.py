@@ -11,7 +11,6 @@ from robomodel.xacro._dom import Element
 from robomodel.xacro._evaluation import eval_text
 from robomodel.xacro._nodeops import (
     check_attrs,
-    count_nodes,
     remove_previous_comments,
     replace_node,
 )
@@ -33,7 +32,6 @@ class Macro:
         params: Parameter names in order, ``*blk``/``**blk`` for block parameters.
         defaults: ``param -> (forwarded name or None, default text or None)``.
         defined: Where the macro is defined.
-        size: Nodes in the body (charged against the expansion bound at every call).
     """
 
     name: str
@@ -41,7 +39,6 @@ class Macro:
     params: tuple[str, ...]
     defaults: dict[str, tuple[str | None, str | None]]
     defined: SourceLocation
-    size: int
 
 
 def parse_macro_arg(s: str) -> tuple[str, tuple[str | None, str | None] | None, str]:
@@ -85,7 +82,7 @@ def grab_macro(ctx: Context, elt: Element, macros: Scope) -> None:
         ctx.warn(f"macro names must not contain prefix 'xacro:': {name}", elt)
         name = name[6:]
     names, defaults = parse_params(params or "")
-    macro = Macro(name, elt, tuple(names), defaults, ctx.location(elt), count_nodes(elt))
+    macro = Macro(name, elt, tuple(names), defaults, ctx.location(elt))
     macros.define(name, macro, unevaluated=False)
     replace_node(elt, None)
 

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from robomodel.xacro._context import Context
 from robomodel.xacro._dom import Comment, Element, Node, Text
 
-__all__ = ["check_attrs", "count_nodes", "remove_previous_comments", "replace_node"]
+__all__ = ["check_attrs", "remove_previous_comments", "replace_node"]
 
 
 def replace_node(
@@ -70,15 +70,3 @@ def check_attrs(
         valid = ", ".join(allowed)
         ctx.warn(f"{tag.tag}: unknown attribute(s): {', '.join(extra)} (valid: {valid})", tag)
     return result
-
-
-def count_nodes(node: Node) -> int:
-    """The number of nodes in the subtree of ``node``."""
-    if not isinstance(node, Element):
-        return 1
-    total = 1
-    child = node.first
-    while child is not None:
-        total += count_nodes(child) if isinstance(child, Element) else 1
-        child = child.next
-    return total
