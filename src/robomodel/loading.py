@@ -6,12 +6,12 @@ declares the xacro namespace) is expanded first, then parsed as URDF.
 
 from __future__ import annotations
 
-import importlib
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from robomodel import xacro
 from robomodel.description.model import Robot
 from robomodel.description.packages import PackageIndex
 from robomodel.description.urdf.reader import ParseResult, read_urdf
@@ -58,10 +58,10 @@ def expand_description(
         except OSError as exc:
             raise RobomodelError(f"cannot read '{text}': {exc.strerror}") from None
         return LoadedDescription(data, text, path.resolve().parent, False, ())
-    xacro = importlib.import_module("robomodel.xacro")
     if inline:
-        result = xacro.expand_text(text, mappings=dict(args or {}), package_index=index)
-        return LoadedDescription(result.text.encode(), None, Path.cwd(), True, result.includes)
+        expanded = xacro.process(text, dict(args or {}), package_index=index)
+        return LoadedDescription(expanded.encode(), None, Path.cwd(), True, ())
+    index = index.with_workspace_of(text)
     result = xacro.expand(text, mappings=dict(args or {}), package_index=index)
     return LoadedDescription(
         result.text.encode(), text, Path(text).resolve().parent, True, result.includes

@@ -84,3 +84,20 @@ def test_options(tmp_path: Path) -> None:
         parse_package_option("nodir")
     index = index_from_options([], [f"custom={tmp_path}"])
     assert index.find("custom") == tmp_path
+
+
+def test_workspace_of_the_input_is_searched_last(tmp_path: Path) -> None:
+    ws = tmp_path / "ws" / "src"
+    own = _package(ws, "robot_description")
+    sibling = _package(ws, "robot_meshes")
+    (own / "urdf").mkdir()
+    urdf = own / "urdf" / "robot.urdf.xacro"
+    urdf.write_text("<robot/>")
+    elsewhere = _package(tmp_path / "other", "robot_meshes")
+    index = PackageIndex(use_environment=False).with_workspace_of(urdf)
+    assert index.find("robot_description") == own
+    assert index.find("robot_meshes") == sibling
+    # Explicit paths still win over the input's workspace.
+    explicit = PackageIndex(package_paths=[tmp_path / "other"], use_environment=False)
+    assert explicit.with_workspace_of(urdf).find("robot_meshes") == elsewhere
+    assert PackageIndex(use_environment=False).with_workspace_of(tmp_path / "x.urdf").names() == ()

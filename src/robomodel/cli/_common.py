@@ -60,7 +60,7 @@ def load_from_args(
     args: argparse.Namespace,
 ) -> tuple[ParseResult, LoadedDescription, PackageIndex]:
     """Expand and parse the description named on the command line."""
-    index = package_index_from_args(args)
+    index = package_index_from_args(args).with_workspace_of(args.file)
     result, loaded = read_description(
         args.file, args=split_mappings(args.mappings), package_index=index
     )

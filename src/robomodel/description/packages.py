@@ -14,6 +14,7 @@ A scanned directory that holds a ``package.xml`` is a package: its name is the m
 
 from __future__ import annotations
 
+import copy
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
@@ -26,6 +27,7 @@ from robomodel.errors import PackageNotFoundError, PathEscapeError, RobomodelErr
 __all__ = [
     "Package",
     "PackageIndex",
+    "find_enclosing_package",
     "index_from_options",
     "parse_package_option",
 ]
@@ -107,9 +109,11 @@ class PackageIndex:
         packages: Mapping[str, str | os.PathLike[str]] | None = None,
         use_environment: bool = True,
         environ: Mapping[str, str] | None = None,
+        fallback_paths: Iterable[str | os.PathLike[str]] = (),
     ) -> None:
         self._explicit = {name: Path(path) for name, path in (packages or {}).items()}
         self._package_paths = tuple(Path(p) for p in package_paths)
+        self._fallback_paths = tuple(Path(p) for p in fallback_paths)
         env = os.environ if environ is None else environ
         self._ros_package_path = (
             _split_env_paths(env.get("ROS_PACKAGE_PATH")) if use_environment else []
@@ -126,6 +130,7 @@ class PackageIndex:
         places += [str(p) for p in self._package_paths]
         places += [f"ROS_PACKAGE_PATH:{p}" for p in self._ros_package_path]
         places += [f"AMENT_PREFIX_PATH:{p}" for p in self._ament_prefixes]
+        places += [f"workspace of the input:{p}" for p in self._fallback_paths]
         return tuple(places)
 
     def _build(self) -> dict[str, Package]:
@@ -152,7 +157,27 @@ class PackageIndex:
                     index.setdefault(
                         entry.name, Package(entry.name, Path(entry.path), "AMENT_PREFIX_PATH")
                     )
+        for root in self._fallback_paths:
+            found = {}
+            _scan_tree(root, found)
+            for name, path in found.items():
+                index.setdefault(name, Package(name, path, "workspace"))
         return index
+
+    def with_workspace_of(self, path: str | os.PathLike[str]) -> PackageIndex:
+        """This index, also searching (last) the workspace around ``path``.
+
+        The package enclosing ``path`` and its sibling packages are found without any setup,
+        as they would be in a sourced ROS workspace: ``robomodel check urdf/robot.xacro`` run
+        inside a package resolves ``$(find that_package)``.
+        """
+        enclosing = find_enclosing_package(path)
+        if enclosing is None:
+            return self
+        clone = copy.copy(self)
+        clone._fallback_paths = (*self._fallback_paths, enclosing.parent)
+        clone._index = None
+        return clone
 
     def _packages(self) -> dict[str, Package]:
         if self._index is None:
@@ -216,6 +241,17 @@ def _join_inside(root: Path, relative: str, uri: str, package: str) -> Path:
     if joined != root_norm and not joined.startswith(root_norm + os.sep):
         raise PathEscapeError(uri, package, str(root))
     return Path(joined)
+
+
+def find_enclosing_package(path: str | os.PathLike[str]) -> Path | None:
+    """The nearest directory at or above ``path`` holding a ``package.xml``."""
+    current = Path(path).resolve()
+    if current.is_file() or not current.exists():
+        current = current.parent
+    for directory in (current, *current.parents):
+        if (directory / "package.xml").is_file():
+            return directory
+    return None
 
 
 def index_from_options(
