@@ -198,3 +198,35 @@ def test_bad_type_and_yaml_are_clear_errors() -> None:
     assert bad_yaml.returncode == 2 and "invalid YAML" in bad_yaml.stderr
     misfit = _cli("topic", "pub", "/x", "std_msgs/Float64", "value: 1", "--once", "--bus", "inproc")
     assert misfit.returncode == 2 and "has no field 'value'" in misfit.stderr
+
+
+def test_seed_workflow_three_processes() -> None:
+    """publish-state in one process, topic echo and live tf in others; live tf == static tf."""
+    from tests.conftest import EXAMPLES
+
+    urdf = str(EXAMPLES / "gripper_description" / "urdf" / "planar_3dof.urdf")
+    domain = _domain(3)
+    state = subprocess.Popen(
+        [*ROBOMODEL, "publish-state", urdf, "--domain-id", domain, "--duration", "30"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        echo = _cli("topic", "echo", "/joint_states", "--once", "--domain-id", domain)
+        assert echo.returncode == 0, echo.stderr
+        assert (
+            "name:\n- joint_1\n- joint_2\n- joint_3\nposition:\n- 0.0\n- 0.0\n- 0.0\n"
+            in echo.stdout
+        )
+        live = _cli("tf", "base_link", "gripper", "--once", "--domain-id", domain)
+        assert live.returncode == 0, live.stderr
+        static = _cli("tf", urdf, "base_link", "gripper")
+        assert live.stdout.split("\n", 1)[1] == static.stdout.split("\n", 1)[1]  # all but the time
+        assert live.stdout.startswith("At time ") and static.stdout.startswith("At time 0.0\n")
+        description = _cli("topic", "echo", "/robot_description", "--once", "--domain-id", domain)
+        assert "planar_3dof" in description.stdout
+    finally:
+        state.send_signal(signal.SIGINT)
+        _, err = state.communicate(timeout=10)
+    assert state.returncode == 0 and "Traceback" not in err
