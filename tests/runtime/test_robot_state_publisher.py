@@ -81,7 +81,7 @@ def test_change_fixed_joint_republishes_static() -> None:
 
 def test_change_mimic_joint_regression() -> None:
     mimic = FIXED.replace("</joint>", '<mimic joint="joint1"/></joint>')
-    ctx, rsp, _ = _setup(mimic)
+    _, rsp, _ = _setup(mimic)
     assert rsp.node.set_parameters(
         {"robot_description": "<robot name='test'><link name='base_link'/></robot>"}
     ).successful
