@@ -18,13 +18,11 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from robomodel.description import read_urdf
 from robomodel.description.model import Joint, JointType, Robot
 from robomodel.description.urdf.writer import urdf_to_string
 from robomodel.errors import RobomodelError
-from robomodel.kinematics.se3 import quat_xyzw_from_matrix
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import (
     Header,
@@ -41,68 +39,87 @@ from robomodel.runtime.node import Node
 from robomodel.runtime.params import SetResult
 from robomodel.runtime.qos import latched, sensor_data
 
-__all__ = ["RobotStatePublisher", "joint_transform"]
+__all__ = ["RobotStatePublisher"]
 
 _MOVABLE = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 _STATIC = (JointType.FIXED, JointType.PLANAR)
 
-
-def _unit_axis(joint: Joint) -> NDArray[np.float64]:
-    axis = np.asarray(joint.axis, dtype=np.float64)
-    norm = float(np.linalg.norm(axis))
-    if norm == 0.0:
-        raise RobomodelError(
-            f"joint '{joint.name}' has a zero axis; robot_state_publisher needs a direction"
-        )
-    return axis / norm  # KDL normalises the axis
+Quat = tuple[float, float, float, float]
+Vec3 = tuple[float, float, float]
 
 
-def joint_transform(joint: Joint, value: float = 0.0) -> NDArray[np.float64]:
-    """T_parent_child of one joint at ``value`` [rad or m] (``segment.pose(q)`` in KDL)."""
-    T = joint.origin.matrix()
-    if joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS):
-        x, y, z = _unit_axis(joint)
-        c, s = math.cos(value), math.sin(value)
-        C = 1.0 - c
-        R = np.array(
-            [
-                [c + x * x * C, x * y * C - z * s, x * z * C + y * s],
-                [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
-                [z * x * C - y * s, z * y * C + x * s, c + z * z * C],
-            ]
-        )
-        T[:3, :3] = T[:3, :3] @ R
-    elif joint.type is JointType.PRISMATIC:
-        T[:3, 3] += T[:3, :3] @ (_unit_axis(joint) * value)
-    return T
-
-
-def _transform_msg(
-    T: NDArray[np.float64], parent: str, child: str, stamp: Time
-) -> TransformStamped:
-    qx, qy, qz, qw = (float(v) for v in quat_xyzw_from_matrix(T[:3, :3]))
-    return TransformStamped(
-        Header(stamp, parent),
-        child,
-        Transform(
-            Vector3(float(T[0, 3]), float(T[1, 3]), float(T[2, 3])), Quaternion(qx, qy, qz, qw)
-        ),
+def _qmul(a: Quat, b: Quat) -> Quat:
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+        aw * bw - ax * bx - ay * by - az * bz,
     )
+
+
+@dataclass(frozen=True, slots=True)
+class _Segment:
+    """One joint, precomputed so that a pose costs a few float operations (KDL's Segment)."""
+
+    joint: Joint
+    xyz: Vec3
+    rotation: Quat  # of the origin, xyzw
+    axis: Vec3  # unit axis in the joint frame (KDL normalises it)
+    axis_in_parent: Vec3  # origin rotation applied to the axis (for prismatic travel)
+
+    @classmethod
+    def of(cls, joint: Joint) -> _Segment:
+        axis = np.asarray(joint.axis, dtype=np.float64)
+        norm = float(np.linalg.norm(axis))
+        if joint.type in _MOVABLE and norm == 0.0:
+            raise RobomodelError(
+                f"joint '{joint.name}' has a zero axis; robot_state_publisher needs a direction"
+            )
+        unit = axis / norm if norm else axis
+        R = joint.origin.matrix()[:3, :3]
+        ux, uy, uz = (float(v) for v in unit)
+        px, py, pz = (float(v) for v in R @ unit)
+        return cls(
+            joint, joint.origin.xyz_m, joint.origin.quaternion_xyzw(), (ux, uy, uz), (px, py, pz)
+        )
+
+    def pose(self, value: float = 0.0) -> tuple[Vec3, Quat]:
+        """Translation and rotation of the child in the parent at ``value`` [rad or m]."""
+        kind = self.joint.type
+        if kind in (JointType.REVOLUTE, JointType.CONTINUOUS):
+            half = 0.5 * value
+            s = math.sin(half)
+            ux, uy, uz = self.axis
+            return self.xyz, _qmul(self.rotation, (ux * s, uy * s, uz * s, math.cos(half)))
+        if kind is JointType.PRISMATIC:
+            x, y, z = self.xyz
+            px, py, pz = self.axis_in_parent
+            return (x + px * value, y + py * value, z + pz * value), self.rotation
+        return self.xyz, self.rotation
+
+    def message(self, value: float, prefix: str, stamp: Time) -> TransformStamped:
+        (x, y, z), (qx, qy, qz, qw) = self.pose(value)
+        joint = self.joint
+        return TransformStamped(
+            Header(stamp, prefix + joint.parent),
+            prefix + joint.child,
+            Transform(Vector3(x, y, z), Quaternion(qx, qy, qz, qw)),
+        )
 
 
 @dataclass(frozen=True, slots=True)
 class _Segments:
     robot: Robot
-    movable: dict[str, Joint]
-    fixed: tuple[Joint, ...]
+    movable: dict[str, _Segment]
+    fixed: tuple[_Segment, ...]
     mimic: tuple[tuple[str, str, float, float], ...]  # (joint, source, multiplier, offset)
 
 
 def _segments(robot: Robot) -> _Segments:
-    movable = {j.name: j for j in robot.joints if j.type in _MOVABLE}
-    for joint in movable.values():
-        _unit_axis(joint)
-    fixed = tuple(j for j in robot.joints if j.type in _STATIC)
+    movable = {j.name: _Segment.of(j) for j in robot.joints if j.type in _MOVABLE}
+    fixed = tuple(_Segment.of(j) for j in robot.joints if j.type in _STATIC)
     mimic = tuple(
         (j.name, j.mimic.joint, j.mimic.multiplier_or_default, j.mimic.offset_or_default)
         for j in sorted(robot.joints, key=lambda j: j.name)
@@ -202,10 +219,7 @@ class RobotStatePublisher:
     def publish_fixed_transforms(self) -> None:
         """All fixed (and planar) joints, stamped now, as one latched /tf_static message."""
         stamp, prefix = self.node.now(), self._prefix()
-        transforms = [
-            _transform_msg(joint_transform(j), prefix + j.parent, prefix + j.child, stamp)
-            for j in self._segments.fixed
-        ]
+        transforms = [segment.message(0.0, prefix, stamp) for segment in self._segments.fixed]
         self.tf_static_pub.publish(TFMessage(transforms))
 
     def on_joint_state(self, msg: JointState) -> None:
@@ -243,18 +257,12 @@ class RobotStatePublisher:
 
     def publish_transforms(self, positions: Mapping[str, float], stamp: Time) -> None:
         prefix = self._prefix()
+        movable = self._segments.movable
         transforms = []
         for name, value in positions.items():
-            joint = self._segments.movable.get(name)
-            if joint is None or not math.isfinite(value):
+            segment = movable.get(name)
+            if segment is None or not math.isfinite(value):
                 continue
-            transforms.append(
-                _transform_msg(
-                    joint_transform(joint, value),
-                    prefix + joint.parent,
-                    prefix + joint.child,
-                    stamp,
-                )
-            )
+            transforms.append(segment.message(value, prefix, stamp))
         if transforms:
             self.tf_pub.publish(TFMessage(transforms))
