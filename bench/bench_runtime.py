@@ -12,6 +12,7 @@ produces /tf (its default publish_frequency of 20 Hz would rate-limit to 20 Hz).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import statistics
@@ -40,10 +41,8 @@ def role_rsp(domain: int) -> None:
         text = example_robot_data(ROBOT).read_text()
         RobotStatePublisher(ctx, text, parameters={"ignore_timestamp": True})
         print("ready", flush=True)
-        try:
+        with contextlib.suppress(KeyboardInterrupt):
             ctx.spin()
-        except KeyboardInterrupt:
-            pass
 
 
 def role_sink(domain: int, seconds: float) -> None:

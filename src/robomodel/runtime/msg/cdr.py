@@ -73,10 +73,10 @@ def _count(data: bytes, o: int) -> tuple[int, int]:
 
 
 def _fixed(values: Any, size: int) -> list[Any]:
-    values = list(values)
-    if len(values) != size:
-        raise CDRError(f"fixed array needs {size} values, got {len(values)}")
-    return values
+    items: list[Any] = list(values)
+    if len(items) != size:
+        raise CDRError(f"fixed array needs {size} values, got {len(items)}")
+    return items
 
 
 # -- code generation -------------------------------------------------------------------------
