@@ -115,6 +115,9 @@ class Executor:
 
     def spin_once(self, timeout_s: float = 0.0) -> int:
         """Run what is ready; if nothing is, wait up to ``timeout_s`` for work."""
+        # Clear before draining: a post that lands after the drain sets the event again, so
+        # the wait below returns at once instead of sleeping on a queued message.
+        self._wake.clear()
         done = self.run_pending() + self.run_due_timers()
         if done or timeout_s <= 0:
             return done
@@ -122,7 +125,6 @@ class Executor:
         live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
         if live:
             wait = min(wait, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
-        self._wake.clear()
         self._wake.wait(wait)
         return self.run_pending() + self.run_due_timers()
 
