@@ -20,8 +20,8 @@ demo: $(STAMP)
 	$(BIN)/robomodel graph examples/gripper_description/urdf/planar_3dof.urdf -o build/planar_3dof.svg
 
 test: $(STAMP)
-	$(BIN)/ruff check src tests bench
-	$(BIN)/ruff format --check src tests bench
+	$(BIN)/ruff check --no-cache src tests bench
+	$(BIN)/ruff format --no-cache --check src tests bench
 	$(BIN)/mypy
 	$(BIN)/python -m pytest -q -n 2 tests
 
