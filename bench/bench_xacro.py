@@ -281,9 +281,8 @@ def write_synthetic_robot(root: Path) -> Path:
 
 
 def _reference_runner(path: Path, index: PackageIndex) -> Callable[[], str]:
-    import xacro.substitution_args as substitution_args  # type: ignore[import-untyped]
-
     import xacro
+    import xacro.substitution_args as substitution_args  # type: ignore[import-untyped]
 
     substitution_args._eval_find = lambda pkg: str(index.find(pkg))
 
