@@ -226,7 +226,50 @@ def test_seed_workflow_three_processes() -> None:
         assert live.stdout.startswith("At time ") and static.stdout.startswith("At time 0.0\n")
         description = _cli("topic", "echo", "/robot_description", "--once", "--domain-id", domain)
         assert "planar_3dof" in description.stdout
+        frames = _cli("frames", "--live", "-t", "1.5", "--domain-id", domain)
+        assert frames.returncode == 0, frames.stderr
+        for edge in ('"base_link" -> "link_1"', '"link_1" -> "link_2"', '"link_2" -> "gripper"'):
+            assert edge in frames.stdout
+        assert "Broadcaster: default_authority" in frames.stdout
     finally:
         state.send_signal(signal.SIGINT)
         _, err = state.communicate(timeout=10)
     assert state.returncode == 0 and "Traceback" not in err
+
+
+def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
+    """A peer that is not robomodel sends garbage on a topic: warned about, node keeps going."""
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import Float64
+
+    domain = _domain(4)
+    echo = subprocess.Popen(
+        [
+            *ROBOMODEL,
+            "topic",
+            "echo",
+            "/chatter",
+            "std_msgs/msg/Float64",
+            "--once",
+            "--domain-id",
+            domain,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(1.0)
+    with Context("zenoh", domain_id=int(domain)) as ctx:
+        session = ctx.transport.session  # type: ignore[attr-defined]
+        time.sleep(0.5)
+        key = f"rm/{domain}/t/chatter"
+        session.put(key, b"\x00\x01\x00\x00\x01", attachment=b"std_msgs/msg/Float64|foreign|1")
+        session.put(key, b"not cdr at all", attachment=b"std_msgs/msg/Float64|foreign|2")
+        time.sleep(0.3)
+        pub = ctx.create_node("good").create_publisher(Float64, "/chatter")
+        time.sleep(0.3)
+        pub.publish(Float64(2.5))
+        out, err = echo.communicate(timeout=20)
+    assert echo.returncode == 0 and out == "data: 2.5\n---\n"
+    assert "dropping a malformed std_msgs/msg/Float64 payload on /chatter" in err
+    assert "Traceback" not in err
