@@ -11,6 +11,7 @@ from robomodel.loading import LoadedDescription, read_description
 
 __all__ = [
     "add_description_arguments",
+    "add_package_options",
     "load_from_args",
     "package_index_from_args",
     "split_mappings",
@@ -20,9 +21,15 @@ __all__ = [
 def add_description_arguments(parser: argparse.ArgumentParser) -> None:
     """``FILE [name:=value ...] [--package-path DIR] [--package NAME=DIR]``."""
     parser.add_argument("file", metavar="FILE", help="a .urdf or .xacro file")
-    parser.add_argument(
-        "mappings", nargs="*", metavar="name:=value", help="xacro arguments (for .xacro files)"
-    )
+    add_package_options(parser)
+
+
+def add_package_options(parser: argparse.ArgumentParser, *, mappings: bool = True) -> None:
+    """``[name:=value ...] --package-path DIR --package NAME=DIR`` (after the positionals)."""
+    if mappings:
+        parser.add_argument(
+            "mappings", nargs="*", metavar="name:=value", help="xacro arguments (for .xacro files)"
+        )
     parser.add_argument(
         "--package-path",
         action="append",

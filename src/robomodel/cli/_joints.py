@@ -15,32 +15,9 @@ from robomodel.tf.robot_state import joint_state_defaults
 
 __all__ = [
     "add_joint_arguments",
-    "add_package_options",
     "configuration_from_args",
     "kinematics_from_args",
 ]
-
-
-def add_package_options(parser: argparse.ArgumentParser, *, mappings: bool = True) -> None:
-    """``[name:=value ...] --package-path DIR --package NAME=DIR`` (after the positionals)."""
-    if mappings:
-        parser.add_argument(
-            "mappings", nargs="*", metavar="name:=value", help="xacro arguments (for .xacro files)"
-        )
-    parser.add_argument(
-        "--package-path",
-        action="append",
-        default=[],
-        metavar="DIR",
-        help="directory to search recursively for ROS packages (repeatable)",
-    )
-    parser.add_argument(
-        "--package",
-        action="append",
-        default=[],
-        metavar="NAME=DIR",
-        help="where package NAME lives (repeatable; overrides search)",
-    )
 
 
 def add_joint_arguments(parser: argparse.ArgumentParser) -> None:

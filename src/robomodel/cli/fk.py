@@ -7,9 +7,9 @@ import json
 import sys
 from typing import Any
 
+from robomodel.cli._common import add_package_options
 from robomodel.cli._joints import (
     add_joint_arguments,
-    add_package_options,
     configuration_from_args,
     kinematics_from_args,
 )

@@ -10,9 +10,9 @@ from typing import Any
 
 from robomodel._atomic import atomic_write_text
 from robomodel.cli._bus import add_bus_arguments, context_from_args
+from robomodel.cli._common import add_package_options
 from robomodel.cli._joints import (
     add_joint_arguments,
-    add_package_options,
     configuration_from_args,
     kinematics_from_args,
 )

@@ -9,7 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from robomodel.cli._joints import add_package_options, kinematics_from_args
+from robomodel.cli._common import add_package_options
+from robomodel.cli._joints import kinematics_from_args
 from robomodel.errors import RobomodelError
 from robomodel.kinematics.se3 import transform_from_xyz_rpy
 

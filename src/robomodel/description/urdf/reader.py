@@ -14,12 +14,11 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TypeVar
+from typing import Protocol, TypeVar
 
 from lxml import etree
 
 from robomodel.description.model import (
-    Joint,
     Link,
     Material,
     RawElement,
@@ -263,8 +262,8 @@ def _read_robot(ctx: ParseContext, root: etree._Element, name: str) -> Robot:
             extra.append(raw(ctx, child))
         else:
             group.append(child)
-    materials = _read_materials(ctx, groups["material"])
-    links = _read_links(ctx, groups["link"])
+    materials = _read_unique(ctx, groups["material"], _robot_material, "material")
+    links = _read_unique(ctx, groups["link"], read_link, "link")
     _check_link_materials(ctx, links, materials)
     if not links:
         ctx.fatal(
@@ -272,7 +271,7 @@ def _read_robot(ctx: ParseContext, root: etree._Element, name: str) -> Robot:
             root,
             "no-links",
         )
-    joints = _read_joints(ctx, groups["joint"])
+    joints = _read_unique(ctx, groups["joint"], read_joint, "joint")
     transmissions = _read_optional(ctx, read_transmission, groups["transmission"], extra)
     gazebo = _read_optional(ctx, read_gazebo, groups["gazebo"], extra)
     ros2 = _read_optional(ctx, read_ros2_control, groups["ros2_control"], extra)
@@ -320,46 +319,40 @@ def _read_optional(
     return out
 
 
-def _read_materials(ctx: ParseContext, elements: list[etree._Element]) -> list[Material]:
-    materials: list[Material] = []
+class _Named(Protocol):
+    @property
+    def name(self) -> str: ...
+
+
+_N = TypeVar("_N", bound=_Named)
+
+
+def _read_unique(
+    ctx: ParseContext,
+    elements: list[etree._Element],
+    reader: Callable[[ParseContext, etree._Element], _N | None],
+    kind: str,
+) -> list[_N]:
+    """Read elements in file order; a repeated name is fatal, as in urdfdom's model.cpp."""
+    items: list[_N] = []
     seen: set[str] = set()
     for element in elements:
-        try:
-            material = read_material(ctx, element, only_name_is_ok=False)
-        except ElementError as exc:
-            ctx.error(exc.message, exc.element or element, "material")
+        item = reader(ctx, element)
+        if item is None:
             continue
-        if material is None:
-            continue
-        if material.name in seen:
-            ctx.fatal(f"material '{material.name}' is not unique.", element, "duplicate-material")
-        seen.add(material.name)
-        materials.append(material)
-    return materials
+        if item.name in seen:
+            ctx.fatal(f"{kind} '{item.name}' is not unique.", element, f"duplicate-{kind}")
+        seen.add(item.name)
+        items.append(item)
+    return items
 
 
-def _read_links(ctx: ParseContext, elements: list[etree._Element]) -> list[Link]:
-    links: list[Link] = []
-    seen: set[str] = set()
-    for element in elements:
-        link = read_link(ctx, element)
-        if link.name in seen:
-            ctx.fatal(f"link '{link.name}' is not unique.", element, "duplicate-link")
-        seen.add(link.name)
-        links.append(link)
-    return links
-
-
-def _read_joints(ctx: ParseContext, elements: list[etree._Element]) -> list[Joint]:
-    joints: list[Joint] = []
-    seen: set[str] = set()
-    for element in elements:
-        joint = read_joint(ctx, element)
-        if joint.name in seen:
-            ctx.fatal(f"joint '{joint.name}' is not unique.", element, "duplicate-joint")
-        seen.add(joint.name)
-        joints.append(joint)
-    return joints
+def _robot_material(ctx: ParseContext, element: etree._Element) -> Material | None:
+    try:
+        return read_material(ctx, element, only_name_is_ok=False)
+    except ElementError as exc:
+        ctx.error(exc.message, exc.element or element, "material")
+        return None
 
 
 def _check_link_materials(ctx: ParseContext, links: list[Link], materials: list[Material]) -> None:
