@@ -255,7 +255,7 @@ class Dynamics:
     def forward_dynamics(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike) -> F64:
         """Accelerations ``M(q)⁻¹ (tau − C(q, v) v − g(q))``."""
         rhs = self._check(tau, "tau") - self.nonlinear_effects(q, v)
-        result: F64 = np.linalg.solve(self.mass_matrix(q), rhs)
+        result: F64 = np.asarray(np.linalg.solve(self.mass_matrix(q), rhs), dtype=np.float64)
         return result
 
     def _fixed_to_root(self) -> list[bool]:
