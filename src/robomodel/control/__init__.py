@@ -1,0 +1,1 @@
+"""Control: a ros2_control-compatible controller framework without ROS."""
