@@ -36,6 +36,7 @@ from robomodel.runtime.msg.std_msgs import (
     MultiArrayLayout,
     String,
 )
+from robomodel.runtime.msg.trajectory_msgs import JointTrajectory, JointTrajectoryPoint
 from robomodel.runtime.msg.yaml_io import (
     message_from_dict,
     message_from_yaml,
@@ -56,6 +57,8 @@ __all__ = [
     "Imu",
     "Int32",
     "JointState",
+    "JointTrajectory",
+    "JointTrajectoryPoint",
     "LaserScan",
     "Message",
     "MessageTypeError",
