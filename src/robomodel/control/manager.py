@@ -1,0 +1,530 @@
+"""The controller manager: controller lifecycle, switching, and the read -> update -> write loop.
+
+Follows ros2_control controller_manager.cpp (see ``docs/control.md``): load -> unconfigured,
+configure -> inactive, switch (activate claims command interfaces exclusively), deactivate,
+cleanup, unload -> finalized. Switches are applied between cycles (the loop is single-threaded
+here, so a switch never races an update). A controller whose ``update`` returns ERROR is
+deactivated and its ``fallback_controllers`` are activated STRICTly. Per-controller rates use
+humble's rule: a controller at ``rate`` runs when ``counter % (cm_rate / rate) == 0`` with
+``period = 1 / rate``.
+"""
+
+from __future__ import annotations
+
+import enum
+import logging
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from robomodel.control.config import ControllerConfig, ControllerSpec
+from robomodel.control.controllers.base import (
+    ControllerInterface,
+    ControllerState,
+    InterfaceSelection,
+)
+from robomodel.control.controllers.registry import create_controller
+from robomodel.control.exceptions import ControlError, ControllerStateError, UnknownControllerError
+from robomodel.control.hardware.base import ReturnType
+from robomodel.control.hardware.interfaces import LoanedInterface
+from robomodel.control.hardware.resource_manager import ResourceManager
+from robomodel.errors import RobomodelError
+
+if TYPE_CHECKING:
+    from robomodel.description.model import Robot
+    from robomodel.runtime.context import Context
+    from robomodel.runtime.executor import Timer
+    from robomodel.runtime.node import Node
+
+__all__ = ["ControllerManager", "Strictness"]
+
+log = logging.getLogger("robomodel.control")
+
+_OK = ReturnType.OK
+
+
+class Strictness(enum.IntEnum):
+    """controller_manager_msgs/SwitchController strictness."""
+
+    BEST_EFFORT = 1
+    STRICT = 2
+
+
+@dataclass(eq=False)
+class _Entry:
+    name: str
+    type_name: str
+    controller: ControllerInterface
+    params: dict[str, Any]
+    fallback: tuple[str, ...] = ()
+    update_rate_hz: int = 0
+    factor: int = 1
+    claimed: tuple[str, ...] = ()
+    state_names: tuple[str, ...] = ()
+    node: Node | None = None
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+class ControllerManager:
+    """Runs controllers on the hardware of a :class:`ResourceManager`.
+
+    Args:
+        resources: The hardware and its interfaces.
+        context: Where controller nodes (topics) and the manager's services live; ``None`` runs
+            without any bus (pure stepping, e.g. the benchmark).
+        robot: The description, given to controllers (joint limits, dynamics).
+        update_rate_hz: The loop rate (ros2_control ``update_rate``, default 100).
+        name: The manager's node name; services are ``/<namespace>/<name>/list_controllers``...
+        namespace: The namespace of the manager and its controllers.
+    """
+
+    def __init__(
+        self,
+        resources: ResourceManager,
+        *,
+        context: Context | None = None,
+        robot: Robot | None = None,
+        update_rate_hz: int = 100,
+        name: str = "controller_manager",
+        namespace: str = "/",
+    ) -> None:
+        if update_rate_hz <= 0:
+            raise ControlError(f"update_rate must be positive, got {update_rate_hz}")
+        self.resources = resources
+        self.context = context
+        self.robot = robot
+        self.update_rate_hz = int(update_rate_hz)
+        self.name = name
+        self.namespace = namespace
+        self.entries: dict[str, _Entry] = {}
+        self.specs: dict[str, ControllerSpec] = {}
+        self._active: list[_Entry] = []
+        self._run: list[tuple[Callable[[float, float], ReturnType], int, _Entry]] = []
+        self._counter = 0
+        self.time_s = 0.0
+        self._timer: Timer | None = None
+        self._unregister: list[Callable[[], None]] = []
+        self.node: Node | None = None
+        if context is not None:
+            self.node = context.create_node(name, namespace)
+            self._register_services()
+
+    # -- configuration ------------------------------------------------------------------------
+    def set_config(self, config: ControllerConfig) -> None:
+        """Make the controllers of ``config`` loadable by name (its ``type`` and parameters)."""
+        for spec in config.controllers:
+            self.specs[spec.name] = spec
+
+    @property
+    def service_prefix(self) -> str:
+        ns = self.namespace.rstrip("/")
+        return f"{ns}/{self.name}"
+
+    # -- lifecycle ------------------------------------------------------------------------------
+    def _entry(self, name: str) -> _Entry:
+        try:
+            return self.entries[name]
+        except KeyError:
+            raise UnknownControllerError(name, tuple(self.entries)) from None
+
+    def load_controller(
+        self, name: str, type_name: str | None = None, params: Mapping[str, Any] | None = None
+    ) -> ControllerInterface:
+        """Create controller ``name`` (state unconfigured); type and parameters default to
+        those of the configuration (:meth:`set_config`)."""
+        if name in self.entries:
+            raise ControlError(f"a controller named '{name}' is already loaded")
+        spec = self.specs.get(name)
+        if type_name is None:
+            if spec is None:
+                raise ControlError(
+                    f"controller '{name}' has no type: it is not in the controller configuration "
+                    f"({', '.join(self.specs) or 'none loaded'}) and no type was given"
+                )
+            type_name = spec.type
+        merged: dict[str, Any] = dict(spec.params) if spec is not None else {}
+        merged.update(params or {})
+        controller = create_controller(type_name)
+        rate = int(merged.get("update_rate", self.update_rate_hz))
+        if rate <= 0 or rate > self.update_rate_hz:
+            rate = self.update_rate_hz
+        elif self.update_rate_hz % rate != 0:  # controller_interface_base.cpp configure()
+            rate = self.update_rate_hz // round(self.update_rate_hz / rate)
+            log.warning(
+                "%s: update rate adjusted to %d Hz (a divisor of the manager's)", name, rate
+            )
+        node = None
+        if self.context is not None:
+            node = self.context.create_node(
+                name, self.namespace, parameters=merged, allow_undeclared_parameters=True
+            )
+        try:
+            controller.init(name, merged, node=node, robot=self.robot, update_rate_hz=rate)
+        except RobomodelError:
+            if node is not None:
+                node.destroy()
+            raise
+        fallback = merged.get("fallback_controllers", ())
+        self.entries[name] = _Entry(
+            name,
+            type_name,
+            controller,
+            merged,
+            tuple([fallback] if isinstance(fallback, str) else fallback),
+            rate,
+            max(1, self.update_rate_hz // rate),
+            node=node,
+        )
+        return controller
+
+    def configure_controller(self, name: str) -> None:
+        entry = self._entry(name)
+        c = entry.controller
+        if c.state is ControllerState.ACTIVE or c.state is ControllerState.FINALIZED:
+            raise ControllerStateError(
+                f"controller '{name}' is {c.state.value}; only unconfigured or inactive "
+                "controllers can be configured (deactivate it first)"
+            )
+        if c.state is ControllerState.INACTIVE:
+            self.cleanup_controller(name)
+        c.on_configure()
+        c.state = ControllerState.INACTIVE
+
+    def cleanup_controller(self, name: str) -> None:
+        c = self._entry(name).controller
+        if c.state is ControllerState.UNCONFIGURED:
+            return
+        if c.state is not ControllerState.INACTIVE:
+            raise ControllerStateError(
+                f"controller '{name}' is {c.state.value}; only inactive controllers can be cleaned up"
+            )
+        c.on_cleanup()
+        c.state = ControllerState.UNCONFIGURED
+
+    def unload_controller(self, name: str) -> None:
+        entry = self._entry(name)
+        c = entry.controller
+        if c.state is ControllerState.ACTIVE:
+            raise ControllerStateError(
+                f"controller '{name}' is active; deactivate it before unloading"
+            )
+        self.cleanup_controller(name)
+        c.state = ControllerState.FINALIZED
+        if entry.node is not None:
+            entry.node.destroy()
+        del self.entries[name]
+
+    # -- switching ----------------------------------------------------------------------------
+    def _interfaces(self, entry: _Entry) -> tuple[list[str], list[str]]:
+        c = entry.controller
+        cmd_cfg = c.command_interface_configuration()
+        st_cfg = c.state_interface_configuration()
+        rm = self.resources
+        if cmd_cfg.selection is InterfaceSelection.ALL:
+            commands = list(rm.commands.names)
+        elif cmd_cfg.selection is InterfaceSelection.NONE:
+            commands = []
+        else:
+            commands = list(cmd_cfg.names)
+        if st_cfg.selection is InterfaceSelection.ALL:
+            states = list(rm.states.names)
+        elif st_cfg.selection is InterfaceSelection.NONE:
+            states = []
+        else:
+            states = list(st_cfg.names)
+        return commands, states
+
+    def switch_controllers(
+        self,
+        activate: Sequence[str] = (),
+        deactivate: Sequence[str] = (),
+        strictness: Strictness | int = Strictness.STRICT,
+    ) -> None:
+        """Deactivate then activate controllers (controller_manager ``switch_controller``).
+
+        STRICT: any unknown name, wrong state or unavailable/claimed interface fails the whole
+        request (nothing changes). BEST_EFFORT: such entries are dropped.
+
+        Raises:
+            ControlError: the request fails (STRICT).
+        """
+        strict = int(strictness) != int(Strictness.BEST_EFFORT)
+        to_activate: list[str] = []
+        to_deactivate: list[str] = []
+
+        def refuse(message: str) -> None:
+            if strict:
+                raise ControlError(f"switch refused: {message}")
+            log.warning("switch: %s; ignored (best effort)", message)
+
+        for name in deactivate:
+            if name not in self.entries:
+                refuse(str(UnknownControllerError(name, tuple(self.entries))))
+            elif self.entries[name].controller.state is not ControllerState.ACTIVE:
+                refuse(f"controller '{name}' is not active")
+            else:
+                to_deactivate.append(name)
+        for name in activate:
+            if name not in self.entries:
+                refuse(str(UnknownControllerError(name, tuple(self.entries))))
+                continue
+            state = self.entries[name].controller.state
+            if state is ControllerState.ACTIVE and name not in to_deactivate:
+                refuse(f"controller '{name}' is already active")
+            elif state is ControllerState.UNCONFIGURED:
+                refuse(f"controller '{name}' is unconfigured; configure it first")
+            elif state is ControllerState.FINALIZED:
+                refuse(f"controller '{name}' is finalized")
+            else:
+                to_activate.append(name)
+        # interface availability, counting what the deactivations release
+        releasing = {i for n in to_deactivate for i in self.entries[n].claimed}
+        taken: dict[str, str] = {}
+        for name in list(to_activate):
+            commands, states = self._interfaces(self.entries[name])
+            try:
+                self.resources.check_states(states)
+                for iface in commands:
+                    holder = self.resources.claimed.get(iface)
+                    if holder is not None and iface not in releasing:
+                        self.resources.check_commands([iface], name)
+                    if iface in taken:
+                        raise ControlError(
+                            f"controllers '{taken[iface]}' and '{name}' both claim '{iface}'"
+                        )
+                    taken[iface] = name
+                self.resources.check_commands(
+                    [i for i in commands if i not in self.resources.claimed], name
+                )
+            except RobomodelError as exc:
+                refuse(f"cannot activate '{name}': {exc}")
+                to_activate.remove(name)
+        start = [i for n in to_activate for i in self._interfaces(self.entries[n])[0]]
+        stop = [i for n in to_deactivate for i in self.entries[n].claimed]
+        if not self.resources.prepare_switch(start, stop):
+            raise ControlError("switch refused by the hardware (prepare_command_mode_switch)")
+        self.resources.perform_switch(start, stop)
+        for name in to_deactivate:
+            self._deactivate(self.entries[name])
+        activated: list[str] = []
+        for name in to_activate:
+            try:
+                self._activate(self.entries[name])
+                activated.append(name)
+            except RobomodelError as exc:
+                if strict:
+                    for done in activated:
+                        self._deactivate(self.entries[done])
+                    raise ControlError(f"activating '{name}' failed: {exc}") from exc
+                log.warning("activating '%s' failed: %s", name, exc)
+        self._rebuild()
+
+    def _activate(self, entry: _Entry) -> None:
+        commands, states = self._interfaces(entry)
+        rm = self.resources
+        rm.claim(commands, entry.name)
+        try:
+            loaned_cmd = [LoanedInterface(rm.commands, n, "command") for n in commands]
+            loaned_st = [LoanedInterface(rm.states, n, "state") for n in states]
+            entry.controller.assign_interfaces(loaned_cmd, loaned_st)
+            entry.controller.on_activate()
+        except Exception:
+            rm.release(commands, entry.name)
+            entry.controller.release_interfaces()
+            raise
+        entry.claimed = tuple(commands)
+        entry.state_names = tuple(states)
+        entry.controller.state = ControllerState.ACTIVE
+
+    def _deactivate(self, entry: _Entry) -> None:
+        try:
+            entry.controller.on_deactivate()
+        finally:
+            self.resources.release(entry.claimed, entry.name)
+            entry.claimed = ()
+            entry.controller.release_interfaces()
+            entry.controller.state = ControllerState.INACTIVE
+
+    def _rebuild(self) -> None:
+        self._active = [
+            e for e in self.entries.values() if e.controller.state is ControllerState.ACTIVE
+        ]
+        self._run = [(e.controller.update, e.factor, e) for e in self._active]
+
+    # -- spawner --------------------------------------------------------------------------------
+    def spawn(self, names: Sequence[str], *, activate: bool = True) -> None:
+        """spawner.py: load (if needed), configure and activate each controller (STRICT)."""
+        for name in names:
+            if name not in self.entries:
+                self.load_controller(name)
+            if self.entries[name].controller.state is ControllerState.UNCONFIGURED:
+                self.configure_controller(name)
+            if activate and self.entries[name].controller.state is not ControllerState.ACTIVE:
+                self.switch_controllers(activate=[name], strictness=Strictness.STRICT)
+
+    # -- the loop -------------------------------------------------------------------------------
+    def read(self, time_s: float, period_s: float) -> None:
+        failed = self.resources.read(time_s, period_s)
+        if failed:
+            self._hardware_failed(failed, "read")
+
+    def update(self, time_s: float, period_s: float) -> None:
+        self._counter += 1
+        counter = self._counter
+        errors: list[_Entry] | None = None
+        for fn, factor, entry in self._run:
+            if factor == 1:
+                result = fn(time_s, period_s)
+            elif counter % factor == 0:
+                result = fn(time_s, factor * period_s)
+            else:
+                continue
+            if result is not _OK:
+                if errors is None:
+                    errors = []
+                errors.append(entry)
+        if errors:
+            self._controllers_failed(errors)
+
+    def write(self, time_s: float, period_s: float) -> None:
+        failed = self.resources.write(time_s, period_s)
+        if failed:
+            self._hardware_failed(failed, "write")
+
+    def step(self, period_s: float | None = None) -> None:
+        """One read -> update -> write cycle, advancing the manager's own time by ``period_s``
+        (default ``1 / update_rate``)."""
+        dt = 1.0 / self.update_rate_hz if period_s is None else period_s
+        self.time_s += dt
+        t = self.time_s
+        self.read(t, dt)
+        self.update(t, dt)
+        self.write(t, dt)
+
+    def _controllers_failed(self, errors: list[_Entry]) -> None:
+        fallbacks: list[str] = []
+        for entry in errors:
+            log.error("controller '%s' returned ERROR from update(); deactivating it", entry.name)
+            self._deactivate(entry)
+            fallbacks.extend(f for f in entry.fallback if f not in fallbacks)
+        self._rebuild()
+        if fallbacks:
+            try:
+                self.switch_controllers(activate=fallbacks, strictness=Strictness.STRICT)
+            except RobomodelError as exc:
+                log.error("fallback controllers %s could not be activated: %s", fallbacks, exc)
+
+    def _hardware_failed(self, components: list[Any], what: str) -> None:
+        names = {c.name for c in components}
+        for entry in list(self._active):
+            if self.resources.components_of(entry.claimed) & names:
+                log.error("hardware %s failed in %s(); deactivating '%s'", names, what, entry.name)
+                self._deactivate(entry)
+        self._rebuild()
+
+    # -- real time ------------------------------------------------------------------------------
+    def start(self) -> None:
+        """Run the loop on a timer of the context at ``update_rate`` (wall or sim clock)."""
+        if self.node is None:
+            raise ControlError("start() needs a controller manager created with a context")
+        clock = self.node.get_clock()
+        period = 1.0 / self.update_rate_hz
+        last = [clock.now_ns() * 1e-9]
+
+        def cycle() -> None:
+            now = clock.now_ns() * 1e-9
+            measured = now - last[0]
+            last[0] = now
+            self.time_s = now
+            self.read(now, measured)
+            self.update(now, measured)
+            self.write(now, measured)
+
+        self._timer = self.node.create_timer(period, cycle)
+
+    def stop(self) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
+
+    # -- introspection and services -----------------------------------------------------------
+    def list_controllers(self) -> list[dict[str, Any]]:
+        """``list_controllers``: name, type, state, update rate and interfaces of each."""
+        out = []
+        for e in self.entries.values():
+            commands, states = self._interfaces(e)
+            out.append(
+                {
+                    "name": e.name,
+                    "type": e.type_name,
+                    "state": e.controller.state.value,
+                    "update_rate": e.update_rate_hz,
+                    "claimed_interfaces": list(e.claimed),
+                    "required_command_interfaces": commands,
+                    "required_state_interfaces": states,
+                }
+            )
+        return out
+
+    def _register_services(self) -> None:
+        assert self.context is not None
+        prefix = self.service_prefix
+        handlers: dict[str, Callable[[dict[str, Any]], dict[str, Any]]] = {
+            "list_controllers": lambda r: {"controllers": self.list_controllers()},
+            "list_hardware_interfaces": lambda r: self.resources.list_interfaces(),
+            "list_hardware_components": lambda r: {
+                "components": [
+                    {
+                        "name": c.name,
+                        "type": c.info.type,
+                        "plugin": c.info.plugin,
+                        "state": c.state.value,
+                    }
+                    for c in self.resources.components
+                ]
+            },
+            "load_controller": self._srv_load,
+            "configure_controller": lambda r: self._srv(
+                lambda: self.configure_controller(r["name"])
+            ),
+            "switch_controller": lambda r: self._srv(
+                lambda: self.switch_controllers(
+                    r.get("activate", []), r.get("deactivate", []), int(r.get("strictness", 2))
+                )
+            ),
+            "unload_controller": lambda r: self._srv(lambda: self.unload_controller(r["name"])),
+            "cleanup_controller": lambda r: self._srv(lambda: self.cleanup_controller(r["name"])),
+        }
+        for service, handler in handlers.items():
+            self._unregister.append(self.context.create_service(f"{prefix}/{service}", handler))
+
+    @staticmethod
+    def _srv(action: Callable[[], None]) -> dict[str, Any]:
+        try:
+            action()
+        except (RobomodelError, KeyError) as exc:
+            return {"ok": False, "error": str(exc)}
+        return {"ok": True}
+
+    def _srv_load(self, request: dict[str, Any]) -> dict[str, Any]:
+        name = str(request["name"])
+
+        def run() -> None:
+            self.load_controller(name, request.get("type"))
+            target = request.get("set_state")
+            if target in ("inactive", "active", "start"):
+                self.configure_controller(name)
+            if target in ("active", "start"):
+                self.switch_controllers(activate=[name])
+
+        return self._srv(run)
+
+    def shutdown(self) -> None:
+        self.stop()
+        for unregister in self._unregister:
+            unregister()
+        self._unregister.clear()
+        for entry in list(self.entries.values()):
+            if entry.controller.state is ControllerState.ACTIVE:
+                self._deactivate(entry)
+        self._rebuild()
