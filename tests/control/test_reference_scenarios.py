@@ -54,9 +54,14 @@ def test_diff_drive_circle_and_rolling_mean() -> None:
 
 def test_speed_limiter_reaches_one_metre_per_second_at_update_500() -> None:
     cm, ctrl, wheels = diff_drive_system(
-        {"linear.x.has_acceleration_limits": True, "linear.x.max_acceleration": 2.0,
-         "linear.x.min_acceleration": -4.0, "wheel_radius": 0.1, "wheel_separation": 1.0,
-         "open_loop": True}
+        {
+            "linear.x.has_acceleration_limits": True,
+            "linear.x.max_acceleration": 2.0,
+            "linear.x.min_acceleration": -4.0,
+            "wheel_radius": 0.1,
+            "wheel_separation": 1.0,
+            "open_loop": True,
+        }
     )
     commands = []
     for _ in range(500):

@@ -171,7 +171,7 @@ class ResourceManager:
     def _reject(self, slot: int, value: float) -> None:
         n = self._bad_count.get(slot, 0)
         self._bad_count[slot] = n + 1
-        if n & (n - 1) == 0:  # 1st, 2nd, 4th, 8th, ... time: throttled
+        if n & (n - 1) == 0:  # throttled: the 1st, 2nd, 3rd, 5th, 9th, ... time
             log.warning(
                 "command %s = %s is not finite; the last good command %g is held (%d times)",
                 self.commands.names[slot],
