@@ -1,0 +1,258 @@
+"""Controller behaviour: JSB, diff drive (timeout, skid steer, odometry topic), JTC, PID on mock."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from robomodel.control import ControlSystem, load_controller_config
+from robomodel.control.controllers import GoalStatus, JointTrajectoryController
+from robomodel.runtime import Context
+from robomodel.runtime.clock import ManualClock
+from robomodel.runtime.msg import (
+    Duration,
+    Float64,
+    Float64MultiArray,
+    JointState,
+    JointTrajectory,
+    JointTrajectoryPoint,
+    Odometry,
+    TFMessage,
+    TwistStamped,
+)
+from tests.conftest import EXAMPLES
+from tests.control.helpers import arm, arm_manager, diff_drive_system
+
+JTC = "joint_trajectory_controller/JointTrajectoryController"
+
+
+def test_cmd_vel_timeout_stops_the_robot() -> None:
+    cm, ctrl, wheels = diff_drive_system({"wheel_radius": 0.1, "wheel_separation": 0.5})
+    ctrl.set_command(1.0, 0.0, 0.001)
+    for _ in range(400):
+        cm.step(0.001)
+    assert wheels[0].get() == pytest.approx(10.0)
+    for _ in range(200):  # the command is 0.5 s old after ~500 updates
+        cm.step(0.001)
+    assert wheels[0].get() == 0.0 and wheels[1].get() == 0.0
+
+
+def test_zero_cmd_vel_timeout_disables_it_and_skid_steer_drives_all_wheels() -> None:
+    cm, ctrl, wheels = diff_drive_system(
+        {"wheel_radius": 0.1, "wheel_separation": 0.5, "cmd_vel_timeout": 0.0}, wheels_per_side=2
+    )
+    ctrl.set_command(0.5, 1.0, 0.001)
+    for _ in range(2000):
+        cm.step(0.001)
+    left, right = (0.5 - 1.0 * 0.25) / 0.1, (0.5 + 1.0 * 0.25) / 0.1
+    assert [w.get() for w in wheels] == pytest.approx([left, right, left, right])
+
+
+def test_diff_drive_odometry_topics_covariances_and_tf() -> None:
+    ctx = Context("inproc", clock=ManualClock())
+    robot_text = (EXAMPLES / "simplebot_description" / "urdf").as_posix()
+    assert robot_text
+    from robomodel.loading import load
+    from tests.control.helpers import WHEEL, WHEELS
+
+    robot = load(
+        WHEELS.format(joints=WHEEL.format(name="left_wheel") + WHEEL.format(name="right_wheel"))
+    )
+    cfg = load_controller_config(
+        "dd.yaml",
+        text="""
+controller_manager:
+  ros__parameters:
+    update_rate: 100
+    dd:
+      type: diff_drive_controller/DiffDriveController
+dd:
+  ros__parameters:
+    left_wheel_names: [left_wheel]
+    right_wheel_names: [right_wheel]
+    wheel_separation: 0.5
+    wheel_radius: 0.1
+    pose_covariance_diagonal: [0.001, 0.001, 1000000.0, 1000000.0, 1000000.0, 1000.0]
+    twist_covariance_diagonal: [0.001, 0.001, 1000000.0, 1000000.0, 1000000.0, 1000.0]
+""",
+    )
+    system = ControlSystem.build(robot, cfg, context=ctx)  # type: ignore[arg-type]
+    node = ctx.create_node("probe")
+    odoms: list[Odometry] = []
+    tfs: list[TFMessage] = []
+    node.create_subscription(Odometry, "/dd/odom", odoms.append)
+    node.create_subscription(TFMessage, "/tf", tfs.append)
+    pub = node.create_publisher(TwistStamped, "/dd/cmd_vel")
+    for _ in range(100):
+        msg = TwistStamped()
+        msg.twist.linear.x = 0.2  # zero stamp: replaced by "now"
+        pub.publish(msg)
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    ctx.spin_once()
+    last = odoms[-1]
+    assert last.header.frame_id == "odom" and last.child_frame_id == "base_link"
+    assert last.pose.covariance[0] == 0.001 and last.pose.covariance[35] == 1000.0
+    assert last.twist.covariance[14] == 1000000.0
+    # the mock integrates the wheel velocity commands, so the odometry sees ~0.2 m/s
+    assert last.pose.pose.position.x == pytest.approx(0.2 * 0.98, abs=0.01)
+    assert last.twist.twist.linear.x == pytest.approx(0.2, abs=1e-6)
+    assert tfs[-1].transforms[0].child_frame_id == "base_link"
+    ctx.shutdown()
+
+
+def _trajectory(points: list[tuple[float, list[float]]], names: list[str]) -> JointTrajectory:
+    msg = JointTrajectory(joint_names=names)
+    for t, pos in points:
+        sec = int(t)
+        msg.points.append(
+            JointTrajectoryPoint(positions=pos, time_from_start=Duration(sec, int((t - sec) * 1e9)))
+        )
+    return msg
+
+
+def _jtc(params: dict[str, object]) -> tuple[object, JointTrajectoryController]:
+    cm = arm_manager()
+    cm.load_controller(
+        "jtc",
+        JTC,
+        {
+            "joints": ["joint1", "joint2"],
+            "command_interfaces": ["position"],
+            "state_interfaces": ["position", "velocity"],
+            **params,
+        },
+    )
+    cm.spawn(["jtc"])
+    ctrl = cm.entries["jtc"].controller
+    assert isinstance(ctrl, JointTrajectoryController)
+    return cm, ctrl
+
+
+def test_jtc_follows_and_succeeds() -> None:
+    cm, ctrl = _jtc({"constraints.joint1.goal": 0.01, "constraints.joint2.goal": 0.01})
+    goal = ctrl.send_goal(_trajectory([(1.0, [0.5, -0.5])], ["joint1", "joint2"]))
+    for _ in range(50):
+        cm.step()  # type: ignore[attr-defined]
+    # from the initial 0.25 (initial_value) linearly to 0.5 over 1 s
+    assert cm.resources.commands.values[0] == pytest.approx(0.25 + 0.25 * 0.5, abs=0.01)  # type: ignore[attr-defined]
+    assert goal.status is GoalStatus.ACTIVE
+    for _ in range(60):
+        cm.step()  # type: ignore[attr-defined]
+    assert goal.status is GoalStatus.SUCCEEDED
+
+
+def test_jtc_path_tolerance_aborts_and_holds() -> None:
+    cm, ctrl = _jtc({"constraints.joint1.trajectory": 0.05})
+    # mock hardware follows position commands, so force a tracking error via the offset hardware
+    goal = ctrl.send_goal(
+        _trajectory([(1.0, [1.0, 0.0])], ["joint1", "joint2"]),
+        path_tolerance={"joint1": 0.001},
+    )
+    cm.step()  # type: ignore[attr-defined]
+    cm.step()  # type: ignore[attr-defined]
+    # mock state lags one cycle behind the command: error ~0.0075 rad > 0.001
+    assert goal.status is GoalStatus.ABORTED and goal.error_code == -4
+
+
+def test_jtc_goal_tolerance_aborts_after_goal_time() -> None:
+    cm, ctrl = _jtc({"constraints.goal_time": 0.2, "constraints.joint2.goal": 0.001})
+    rm = cm.resources  # type: ignore[attr-defined]
+    goal = ctrl.send_goal(_trajectory([(0.5, [0.3, 0.4])], ["joint1", "joint2"]))
+    slot = rm.commands.slot("joint2/position")
+    for _ in range(100):
+        cm.step()  # type: ignore[attr-defined]
+        rm.commands.values[slot] = 0.0  # a stuck joint: the hardware never gets there
+    assert goal.status is GoalStatus.ABORTED and goal.error_code == -5
+
+
+def test_jtc_new_trajectory_replaces_and_cancels_goal() -> None:
+    cm, ctrl = _jtc({})
+    first = ctrl.send_goal(_trajectory([(2.0, [1.0, 1.0])], ["joint1", "joint2"]))
+    cm.step()  # type: ignore[attr-defined]
+    second = ctrl.send_goal(_trajectory([(1.0, [-1.0, -1.0])], ["joint1", "joint2"]))
+    cm.step()  # type: ignore[attr-defined]
+    assert first.status is GoalStatus.CANCELED
+    for _ in range(150):
+        cm.step()  # type: ignore[attr-defined]
+    assert second.status is GoalStatus.SUCCEEDED
+    assert cm.resources.commands.values[0] == pytest.approx(-1.0)  # type: ignore[attr-defined]
+
+
+def test_jtc_rejects_invalid_trajectories() -> None:
+    _, ctrl = _jtc({"allow_nonzero_velocity_at_trajectory_end": False})
+    bad = _trajectory([(1.0, [0.0, 0.0]), (0.5, [0.0, 0.0])], ["joint1", "joint2"])
+    assert ctrl.send_goal(bad).status is GoalStatus.ABORTED
+    assert not ctrl.send_trajectory(_trajectory([(1.0, [0.0])], ["joint1"]))  # partial
+    assert not ctrl.send_trajectory(_trajectory([(1.0, [0.0, 0.0])], ["joint1", "nope"]))
+    end_vel = _trajectory([(1.0, [0.0, 0.0])], ["joint1", "joint2"])
+    end_vel.points[0].velocities = [1.0, 0.0]
+    assert not ctrl.send_trajectory(end_vel)
+
+
+def test_rrbot_ros1_pid_over_topics_moves_joint1() -> None:
+    """Seed 000: ROS 1 YAML + ROS 1 transmissions; publish 1.5 on .../command."""
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    system = ControlSystem.build(
+        robot,  # type: ignore[arg-type]
+        EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
+        context=ctx,
+    )
+    node = ctx.create_node("probe")
+    states: list[JointState] = []
+    node.create_subscription(JointState, "/joint_states", states.append)
+    node.create_publisher(Float64, "/joint1_position_controller/command").publish(Float64(1.5))
+    for _ in range(500):
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    ctx.spin_once()
+    assert states and states[-1].name == ["joint1", "joint2"]
+    assert states[-1].position[0] == pytest.approx(1.5, abs=0.3)  # PD with gravity: offset
+    ctx.shutdown()
+
+
+def test_group_position_controller_two_link_arm() -> None:
+    """Seed 003: joint1_position_controller of type JointGroupPositionController."""
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / "two_link_arm" / "urdf" / "two_link_arm.urdf.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    system = ControlSystem.build(
+        robot,  # type: ignore[arg-type]
+        EXAMPLES / "two_link_arm" / "config" / "position_controllers.yaml",
+        context=ctx,
+    )
+    node = ctx.create_node("probe")
+    node.create_publisher(Float64MultiArray, "/joint1_position_controller/commands").publish(
+        Float64MultiArray(data=[1.0])
+    )
+    for _ in range(3):
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    rm = system.resources
+    assert rm.states.values[rm.states.slot("joint1/position")] == 1.0
+    ctx.shutdown()
+
+
+def test_gravity_compensation_holds_the_arm() -> None:
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
+    cfg = load_controller_config(
+        "g.yaml",
+        text="gc: {type: robomodel_controllers/GravityCompensationController, kd: 2.0}\n",
+    )
+    system = ControlSystem.build(robot, cfg)  # type: ignore[arg-type]
+    rm = system.resources
+    rm.states.values[rm.states.slot("joint1/position")] = 0.7  # tilt it, then let go
+    for _ in range(300):
+        system.manager.step(0.01)
+    # only the first cycle (no command yet) lets it sag; then g(q) holds it still
+    assert rm.states.values[rm.states.slot("joint1/position")] == pytest.approx(0.7, abs=0.05)
+    assert rm.states.values[rm.states.slot("joint1/velocity")] == pytest.approx(0.0, abs=0.01)
+    assert not math.isnan(rm.commands.values[0])
+    assert arm().name == "arm"
