@@ -95,6 +95,7 @@ def _ros1_diff(p: dict[str, Any]) -> tuple[str, dict[str, Any]]:
         m = p.pop("wheel_radius_multiplier")
         p.setdefault("left_wheel_radius_multiplier", m)
         p.setdefault("right_wheel_radius_multiplier", m)
+    p.setdefault("derive_wheel_params_from_urdf", True)
     p.setdefault("use_stamped_vel", False)
     p.setdefault("cmd_vel_unstamped_topic", "~/cmd_vel")
     return "diff_drive_controller/DiffDriveController", p

@@ -69,6 +69,8 @@ class DiffDriveController(ControllerInterface):
             )
         self.wheel_separation = self.param_float("wheel_separation", 0.0)
         self.wheel_radius = self.param_float("wheel_radius", 0.0)
+        if bool(self.param("derive_wheel_params_from_urdf", False)):
+            self._derive_wheel_params()
         if self.wheel_separation <= 0.0 or self.wheel_radius <= 0.0:
             raise ControllerError(
                 f"controller '{self.name}': wheel_separation and wheel_radius must be > 0"
@@ -106,6 +108,28 @@ class DiffDriveController(ControllerInterface):
         self._tf_pub: Publisher[TFMessage] | None = None
         self._limited_pub: Publisher[TwistStamped] | None = None
         self._subs: list[Any] = []
+
+    def _derive_wheel_params(self) -> None:
+        """ROS 1 (RCS1 diff_drive_controller.cpp ``getWheelParams``): when not given, the
+        separation is the x-y distance between the first left and right wheel joint origins and
+        the radius that of the left wheel link's collision cylinder or sphere."""
+        robot = self.robot
+        if robot is None:
+            return
+        left, right = self.left_wheel_names[0], self.right_wheel_names[0]
+        if not (robot.has_joint(left) and robot.has_joint(right)):
+            return
+        if self.wheel_separation <= 0.0:
+            a = robot.joint(left).origin.matrix()[:3, 3]
+            b = robot.joint(right).origin.matrix()[:3, 3]
+            self.wheel_separation = math.hypot(a[0] - b[0], a[1] - b[1])
+        if self.wheel_radius <= 0.0:
+            link = robot.link(robot.joint(left).child)
+            for collision in link.collisions:
+                radius = getattr(collision.geometry, "radius_m", None)
+                if radius is not None:
+                    self.wheel_radius = float(radius)
+                    break
 
     def _limiter(self, axis: str) -> SpeedLimiter:
         def num(key: str) -> float:
