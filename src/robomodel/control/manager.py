@@ -424,7 +424,13 @@ class ControllerManager:
 
     # -- real time ------------------------------------------------------------------------------
     def start(self) -> None:
-        """Run the loop on a timer of the context at ``update_rate`` (wall or sim clock)."""
+        """Run the loop on a timer of the context at ``update_rate`` (wall or sim clock).
+
+        ``time`` is the clock's time; ``period`` is the nominal ``1 / update_rate``, or a whole
+        number of periods after a missed tick. (ros2_control passes the measured period; a
+        Python timer jitters by a millisecond, which would make derivative terms and the mock's
+        integration noisy.)
+        """
         if self.node is None:
             raise ControlError("start() needs a controller manager created with a context")
         clock = self.node.get_clock()
@@ -433,12 +439,13 @@ class ControllerManager:
 
         def cycle() -> None:
             now = clock.now_ns() * 1e-9
-            measured = now - last[0]
+            ticks = max(1, round((now - last[0]) / period))
             last[0] = now
+            dt = ticks * period
             self.time_s = now
-            self.read(now, measured)
-            self.update(now, measured)
-            self.write(now, measured)
+            self.read(now, dt)
+            self.update(now, dt)
+            self.write(now, dt)
 
         self._timer = self.node.create_timer(period, cycle)
 
