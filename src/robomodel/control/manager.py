@@ -426,26 +426,23 @@ class ControllerManager:
     def start(self) -> None:
         """Run the loop on a timer of the context at ``update_rate`` (wall or sim clock).
 
-        ``time`` is the clock's time; ``period`` is the nominal ``1 / update_rate``, or a whole
-        number of periods after a missed tick. (ros2_control passes the measured period; a
-        Python timer jitters by a millisecond, which would make derivative terms and the mock's
-        integration noisy.)
+        ``time`` is the clock's time; ``period`` is always the nominal ``1 / update_rate``, even
+        after a missed tick (ros2_control passes the measured period; a Python timer jitters and
+        misses ticks when the machine is busy, and a long period would make PID loops and the
+        mock's effort integration unstable: an overloaded loop runs slower than real time
+        instead, like a simulator with a real-time factor below 1).
         """
         if self.node is None:
             raise ControlError("start() needs a controller manager created with a context")
         clock = self.node.get_clock()
         period = 1.0 / self.update_rate_hz
-        last = [clock.now_ns() * 1e-9]
 
         def cycle() -> None:
             now = clock.now_ns() * 1e-9
-            ticks = max(1, round((now - last[0]) / period))
-            last[0] = now
-            dt = ticks * period
             self.time_s = now
-            self.read(now, dt)
-            self.update(now, dt)
-            self.write(now, dt)
+            self.read(now, period)
+            self.update(now, period)
+            self.write(now, period)
 
         self._timer = self.node.create_timer(period, cycle)
 
