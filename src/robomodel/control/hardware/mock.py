@@ -10,7 +10,8 @@ robomodel extension, for effort-commanded joints (no upstream equivalent: upstre
 them with ``calculate_dynamics``): when the component is given the robot's
 :class:`~robomodel.kinematics.Dynamics` and ``calculate_dynamics`` is true, joints whose only
 command interface is ``effort`` are integrated as a rigid body (``M q̈ = τ − C q̇ − g − b q̇``,
-semi-implicit Euler with sub-steps of at most ``effort_substep_s``, default 1 ms), so an effort
+semi-implicit Euler with sub-steps of at most ``effort_substep_s``, default 1 ms, the
+mass matrix evaluated once per period), so an effort
 PID moves the arm without a simulator. The simulator replaces this with MuJoCo.
 """
 
@@ -271,8 +272,8 @@ class GenericSystem(HardwareComponent):
         steps = max(1, math.ceil(dt / self.effort_substep_s - 1e-9))
         h = dt / steps
         acc = np.zeros(len(idx))
+        M = dyn.mass_matrix(q)[np.ix_(idx, idx)]  # once per period: it changes slowly
         for _ in range(steps):
-            M = dyn.mass_matrix(q)[np.ix_(idx, idx)]
             rhs = tau - dyn.nonlinear_effects(q, v)[idx] - damping * v[idx]
             acc = np.asarray(np.linalg.solve(M, rhs), dtype=np.float64)
             v[idx] += acc * h
