@@ -137,3 +137,36 @@ def test_transmissions_both_directions() -> None:
         (d.actuator_to_joint_position, d.joint_to_actuator_position),
     ):
         assert g(f([0.3, -1.2])) == pytest.approx([0.3, -1.2])
+
+
+def test_transmissions_from_urdf_both_directions() -> None:
+    from robomodel.control.transmissions import TransmissionError, TransmissionSet
+    from robomodel.loading import load
+
+    urdf = """<robot name="t"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
+    <joint name="k" type="continuous"><parent link="b"/><child link="c"/></joint>
+    <transmission name="t1"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="j"><offset>1.0</offset>
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+      <actuator name="m"><mechanicalReduction>10</mechanicalReduction></actuator></transmission>
+    <ros2_control name="S" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+      <joint name="k"><command_interface name="effort"/><state_interface name="position"/></joint>
+      <transmission name="t2"><plugin>transmission_interface/DifferentialTransmission</plugin>
+        <actuator name="m2" role="actuator2"><mechanical_reduction>10</mechanical_reduction></actuator>
+        <actuator name="m1" role="actuator1"><mechanical_reduction>10</mechanical_reduction></actuator>
+        <joint name="k" role="joint1"><mechanical_reduction>2</mechanical_reduction></joint>
+        <joint name="j" role="joint2"><mechanical_reduction>2</mechanical_reduction></joint>
+      </transmission></ros2_control></robot>"""
+    robot = load(urdf)
+    ts = TransmissionSet.from_robot(robot)  # type: ignore[arg-type]
+    assert ts.actuator_names == ("m", "m1", "m2") and ts.joint_names == ("j", "k", "j")
+    assert ts.actuator_to_joint("position", {"m": 1.0}) == {"j": 1.1}
+    assert ts.joint_to_actuator("effort", {"j": 10.0}) == {"m": 1.0}
+    assert ts.actuator_to_joint("effort", {"m1": 10.0, "m2": -10.0}) == {"k": 0.0, "j": 400.0}
+    back = ts.joint_to_actuator(
+        "velocity", ts.actuator_to_joint("velocity", {"m1": 3.0, "m2": 1.0})
+    )
+    assert (back["m1"], back["m2"]) == pytest.approx((3.0, 1.0))
+    with pytest.raises(TransmissionError, match="must not be 0"):
+        SimpleTransmission(0.0)

@@ -156,7 +156,16 @@ class GenericSystem(HardwareComponent):
             for name, (src, mult, off) in self._mimic_spec.items()
             if name in by_name and src in by_name
         ]
-        position_handled = {POSITION}
+        self._custom: list[tuple[int, int]] = []
+        if self.custom_offset_interface:
+            for j, comp in zip(self._joints, self.info.joints, strict=True):
+                name = f"{comp.name}/{self.custom_offset_interface}"
+                if j.cp >= 0 and self.has_state(name):
+                    self._custom.append((self.state_slot(name), j.cp))
+        # loopback starts after position (index 1) or, with dynamics, after acceleration (3)
+        position_handled = (
+            {POSITION, VELOCITY, ACCELERATION} if self.calculate_dynamics else {POSITION}
+        )
         self._mirror = []
         groups = list(self.info.joints)
         if self.mock_sensor_commands:
@@ -201,12 +210,16 @@ class GenericSystem(HardwareComponent):
         s, c = self.states, self.commands
         isfinite = math.isfinite
         if not self.calculate_dynamics:
-            off = self.offset
+            # with a custom following interface the offset goes there, not to the position
+            off = 0.0 if self._custom else self.offset
             for j in self._joints:
                 if j.cp >= 0 and j.sp >= 0:
                     v = c[j.cp]
                     if isfinite(v):
                         s[j.sp] = v + off
+            for state_slot, command_slot in self._custom:
+                if isfinite(c[command_slot]):
+                    s[state_slot] = c[command_slot] + self.offset
         else:
             self._integrate(period_s)
         for state_slot, command_slot in self._mirror:
