@@ -191,3 +191,56 @@ def test_seed_000_workflow_over_zenoh(rrbot_run: str) -> None:
     assert bad.returncode == 2 and "unknown controller 'nope'" in bad.stderr
     listed = _cli("control", "list-controllers", "--domain-id", domain)
     assert listed.stdout.count("active") == 3
+
+
+def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
+    domain = str(100 + (os.getpid() + 7) % 50)
+    urdf, config = RUNS[3]
+    proc = subprocess.Popen(
+        [
+            *ROBOMODEL,
+            "control",
+            "run",
+            str(EXAMPLES / urdf),
+            "--controllers",
+            str(EXAMPLES / config),
+            "--no-view",
+            "--no-spawn",
+            "--domain-id",
+            domain,
+            "--duration",
+            "60",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert proc.stderr is not None and "controller manager" in proc.stderr.readline()
+        for name in ("joint_state_broadcaster", "joint1_position_controller"):
+            load = _cli("control", "load", "--set-state", "start", name, "--domain-id", domain)
+            assert load.returncode == 0, load.stderr
+        listed = _cli("control", "list-controllers", "--domain-id", domain)
+        assert listed.stdout.count(" active") == 2, listed.stdout
+        pub = _cli(
+            "topic",
+            "pub",
+            "/joint1_position_controller/commands",
+            "std_msgs/msg/Float64MultiArray",
+            "data: [1.0]",
+            "--once",
+            "--domain-id",
+            domain,
+        )
+        assert pub.returncode == 0, pub.stderr
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and abs(_joint1(domain) - 1.0) > 1e-9:
+            time.sleep(0.3)
+        assert _joint1(domain) == 1.0
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()

@@ -51,8 +51,6 @@ def test_zero_cmd_vel_timeout_disables_it_and_skid_steer_drives_all_wheels() -> 
 
 def test_diff_drive_odometry_topics_covariances_and_tf() -> None:
     ctx = Context("inproc", clock=ManualClock())
-    robot_text = (EXAMPLES / "simplebot_description" / "urdf").as_posix()
-    assert robot_text
     from robomodel.loading import load
     from tests.control.helpers import WHEEL, WHEELS
 

@@ -49,6 +49,11 @@ def register(subparsers: Any) -> None:
     run_p.add_argument(
         "--inactive", action="store_true", help="load and configure only (spawner --inactive)"
     )
+    run_p.add_argument(
+        "--no-spawn",
+        action="store_true",
+        help="load nothing (ros2_control_node alone); then `robomodel control load NAME`",
+    )
     run_p.add_argument("--duration", type=float, default=None, help="stop after S seconds")
     run_p.add_argument("--update-rate", type=int, default=None, help="override update_rate [Hz]")
     add_bus_arguments(run_p)
@@ -65,7 +70,12 @@ def register(subparsers: Any) -> None:
 
     load = verbs.add_parser("load", help="load a controller of the manager's configuration")
     load.add_argument("name")
-    load.add_argument("--set-state", choices=("inactive", "active"), default=None)
+    load.add_argument(
+        "--set-state",
+        choices=("inactive", "active", "configure", "start"),
+        default=None,
+        help="also configure (inactive) or activate it; 'configure'/'start' are the old names",
+    )
     _cm_argument(load)
     load.set_defaults(func=_load)
 
@@ -135,7 +145,8 @@ def _list_interfaces(args: argparse.Namespace) -> int:
 
 
 def _load(args: argparse.Namespace) -> int:
-    _call(args, "load_controller", {"name": args.name, "set_state": args.set_state})
+    state = {"configure": "inactive", "start": "active"}.get(args.set_state, args.set_state)
+    _call(args, "load_controller", {"name": args.name, "set_state": state})
     print(
         f"Successfully loaded controller {args.name}"
         + (f" into state {args.set_state}" if args.set_state else "")
@@ -179,9 +190,9 @@ def _run(args: argparse.Namespace) -> int:
             config,
             context=context,
             update_rate_hz=args.update_rate,
-            spawn=[] if args.inactive else None,
+            spawn=[] if args.inactive or args.no_spawn else None,
         )
-        if args.inactive:
+        if args.inactive and not args.no_spawn:
             for spec in config.controllers:
                 system.manager.load_controller(spec.name)
                 system.manager.configure_controller(spec.name)
