@@ -254,3 +254,94 @@ def test_gravity_compensation_holds_the_arm() -> None:
     assert rm.states.values[rm.states.slot("joint1/velocity")] == pytest.approx(0.0, abs=0.01)
     assert not math.isnan(rm.commands.values[0])
     assert arm().name == "arm"
+
+
+def test_jtc_effort_pid_mode_moves_rrbot_on_mock_dynamics() -> None:
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
+    cfg = load_controller_config(
+        "j.yaml",
+        text="""
+arm:
+  type: effort_controllers/JointTrajectoryController
+  joints: [joint1, joint2]
+  gains:
+    joint1: {p: 200.0, d: 20.0, i: 0.0}
+    joint2: {p: 100.0, d: 10.0, i: 0.0}
+  constraints: {goal_time: 2.0, joint1: {goal: 0.1}, joint2: {goal: 0.1}}
+""",
+    )
+    system = ControlSystem.build(robot, cfg)  # type: ignore[arg-type]
+    ctrl = system.manager.entries["arm"].controller
+    assert isinstance(ctrl, JointTrajectoryController)
+    assert ctrl.use_pid and ctrl.command_kinds == ("effort",)
+    goal = ctrl.send_goal(_trajectory([(1.0, [0.5, -0.3])], ["joint1", "joint2"]))
+    for _ in range(250):
+        system.manager.step(0.01)
+    rm = system.resources
+    assert goal.status is GoalStatus.SUCCEEDED, goal.error_string
+    assert rm.states.values[rm.states.slot("joint1/position")] == pytest.approx(0.5, abs=0.1)
+
+
+def test_jtc_angle_wraparound_and_cmd_timeout() -> None:
+    cm, ctrl = _jtc({"gains.joint1.angle_wraparound": True, "cmd_timeout": 0.1})
+    assert ctrl.wraparound == [True, False]
+    ctrl.send_trajectory(_trajectory([(0.2, [0.4, 0.4])], ["joint1", "joint2"]))
+    for _ in range(40):
+        cm.step()  # type: ignore[attr-defined]
+    assert ctrl._holding  # held after end + cmd_timeout
+
+
+@pytest.mark.parametrize(
+    ("enable", "prefix", "namespace", "odom"),
+    [
+        (True, "", "/", "odom"),
+        (True, "robot", "/", "robot/odom"),
+        (True, "", "/ns", "ns/odom"),
+        (False, "robot", "/ns", "odom"),
+    ],
+)
+def test_diff_drive_tf_frame_prefix(enable: bool, prefix: str, namespace: str, odom: str) -> None:
+    from robomodel.control.controllers import DiffDriveController
+
+    ctx = Context("inproc", clock=ManualClock())
+    node = ctx.create_node("dd", namespace)
+    c = DiffDriveController()
+    c.init(
+        "dd",
+        {
+            "left_wheel_names": ["l"],
+            "right_wheel_names": ["r"],
+            "wheel_separation": 1.0,
+            "wheel_radius": 0.1,
+            "tf_frame_prefix_enable": enable,
+            "tf_frame_prefix": prefix,
+        },
+        node=node,
+    )
+    assert c.frame_prefix + c.odom_frame_id == odom
+    ctx.shutdown()
+
+
+def test_diff_drive_rejects_bad_parameters() -> None:
+    from robomodel.control.controllers import ControllerError, DiffDriveController
+
+    for params in (
+        {},
+        {"left_wheel_names": ["l"]},
+        {
+            "left_wheel_names": ["l"],
+            "right_wheel_names": ["r", "r2"],
+            "wheel_separation": 1,
+            "wheel_radius": 1,
+        },
+        {
+            "left_wheel_names": ["l"],
+            "right_wheel_names": ["r"],
+            "wheel_separation": 0,
+            "wheel_radius": 1,
+        },
+    ):
+        with pytest.raises(ControllerError):
+            DiffDriveController().init("dd", params)

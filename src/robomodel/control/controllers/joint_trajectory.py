@@ -24,6 +24,7 @@ from robomodel.control.controllers.base import (
     ReturnType,
 )
 from robomodel.control.controllers.exceptions import ControllerError
+from robomodel.control.controllers.joint_position import shortest_angular_distance
 from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
 from robomodel.control.pid import Gains, Pid
 from robomodel.runtime.msg import JointTrajectory
@@ -103,6 +104,12 @@ class JointTrajectoryController(ControllerInterface):
         self.ff_velocity_scale = [
             float(self.params.get(f"gains.{j}.ff_velocity_scale", 0.0)) for j in self.joints
         ]
+        self.wraparound = [
+            bool(self.params.get(f"gains.{j}.angle_wraparound", False))
+            or bool(self.params.get(f"gains.{j}.normalize_error", False))  # humble, deprecated
+            for j in self.joints
+        ]
+        self.cmd_timeout_s = self.param_float("cmd_timeout", 0.0)
         self.trajectory: Trajectory | None = None
         self.goal: GoalHandle | None = None
         self._pending: tuple[JointTrajectory, GoalHandle | None] | None = None
@@ -300,7 +307,19 @@ class JointTrajectoryController(ControllerInterface):
         pos = self._measured("position")
         vel = self._measured("velocity")
         n = len(self.joints)
-        errors = [sample.positions[i] - pos[i] for i in range(n)]
+        errors = [
+            shortest_angular_distance(pos[i], sample.positions[i])
+            if self.wraparound[i]
+            else sample.positions[i] - pos[i]
+            for i in range(n)
+        ]
+        if (
+            self.cmd_timeout_s > 0.0
+            and not self._holding
+            and time_s - traj.end_s > self.cmd_timeout_s
+        ):
+            self._hold(time_s)  # humble: after the end + cmd_timeout, hold position
+            return self.update(time_s, period_s)
         before_end = sample.segment < len(traj.points)
         if not self._holding:
             goal = self.goal
