@@ -345,3 +345,31 @@ def test_diff_drive_rejects_bad_parameters() -> None:
     ):
         with pytest.raises(ControllerError):
             DiffDriveController().init("dd", params)
+
+
+def test_jsb_dynamic_joint_states_and_pid_state_topic() -> None:
+    from robomodel.loading import load
+    from robomodel.runtime.msg import DynamicJointState, JointControllerState
+
+    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    system = ControlSystem.build(
+        robot,  # type: ignore[arg-type]
+        EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
+        context=ctx,
+    )
+    node = ctx.create_node("probe")
+    dyn: list[DynamicJointState] = []
+    pid_state: list[JointControllerState] = []
+    node.create_subscription(DynamicJointState, "/dynamic_joint_states", dyn.append)
+    node.create_subscription(
+        JointControllerState, "/joint1_position_controller/state", pid_state.append
+    )
+    for _ in range(20):
+        system.manager.step(0.01)
+    ctx.spin_once()
+    assert dyn[-1].joint_names == ["joint1", "joint2"]
+    assert dyn[-1].interface_values[0].interface_names == ["position", "velocity", "effort"]
+    assert len(pid_state) == 2  # every 10th update, as ROS 1
+    assert pid_state[-1].p == 100.0 and pid_state[-1].time_step == 0.01
+    ctx.shutdown()

@@ -22,7 +22,8 @@ from robomodel.control.controllers.base import (
 from robomodel.control.controllers.exceptions import ControllerError
 from robomodel.control.pid import Gains, Pid
 from robomodel.description.model import JointType
-from robomodel.runtime.msg import Float64
+from robomodel.runtime.msg import Float64, Header, JointControllerState, Time
+from robomodel.runtime.node import Publisher
 
 __all__ = ["JointPositionController", "shortest_angular_distance"]
 
@@ -66,15 +67,21 @@ class JointPositionController(ControllerInterface):
             self.prismatic = False
         self.command = math.nan
         self._rejected = 0
+        self._state_pub: Publisher[JointControllerState] | None = None
+        self._loop_count = 0
 
     def on_configure(self) -> None:
         if self.node is not None:
             self._sub = self.node.create_subscription(Float64, "~/command", self._on_command, 10)
+            self._state_pub = self.node.create_publisher(JointControllerState, "~/state", 1)
 
     def on_cleanup(self) -> None:
         sub = getattr(self, "_sub", None)
         if sub is not None:
             sub.destroy()
+        if self._state_pub is not None:
+            self._state_pub.destroy()
+            self._state_pub = None
 
     def _on_command(self, msg: Any) -> None:
         self.set_command(float(msg.data))
@@ -101,6 +108,7 @@ class JointPositionController(ControllerInterface):
         self._state_values, self._state_slot = self._position._values, self._position.slot
         pos = self._position.get()
         self.command = min(max(pos, self.lower), self.upper)  # starting(): hold where it is
+        self._last_pos = pos
         self.pid.reset()
 
     def update(self, time_s: float, period_s: float) -> ReturnType:
@@ -116,5 +124,33 @@ class JointPositionController(ControllerInterface):
             error = cmd - pos
         else:  # revolute: shortest_angular_distance_with_large_limits ~ plain difference
             error = cmd - pos
-        self._cmd_values[self._cmd_slot] = self.pid.compute(error, period_s)
+        effort = self.pid.compute(error, period_s)
+        self._cmd_values[self._cmd_slot] = effort
+        self._loop_count += 1
+        if self._state_pub is not None and self._loop_count % 10 == 0:  # ROS 1: every 10th
+            self._publish_state(time_s, period_s, cmd, pos, error, effort)
+        self._last_pos = pos
         return ReturnType.OK
+
+    def _publish_state(
+        self, time_s: float, period_s: float, cmd: float, pos: float, error: float, effort: float
+    ) -> None:
+        assert self._state_pub is not None
+        g = self.pid.gains
+        sec = math.floor(time_s)
+        self._state_pub.publish(
+            JointControllerState(
+                Header(Time(int(sec), int((time_s - sec) * 1e9))),
+                set_point=cmd,
+                process_value=pos,
+                process_value_dot=(pos - self._last_pos) / period_s if period_s > 0 else 0.0,
+                error=error,
+                time_step=period_s,
+                command=effort,
+                p=g.p,
+                i=g.i,
+                d=g.d,
+                i_clamp=g.i_max,
+                antiwindup=g.antiwindup,
+            )
+        )

@@ -17,7 +17,7 @@ from robomodel.control.controllers.base import (
     InterfaceConfiguration,
     ReturnType,
 )
-from robomodel.runtime.msg import Header, JointState, Time
+from robomodel.runtime.msg import DynamicJointState, Header, InterfaceValue, JointState, Time
 from robomodel.runtime.node import Publisher
 
 __all__ = ["JointStateBroadcaster"]
@@ -38,7 +38,11 @@ class JointStateBroadcaster(ControllerInterface):
             str(self.param(f"map_interface_to_joint_state.{k}", k)): k
             for k in ("position", "velocity", "effort")
         }
+        self.publish_dynamic_joint_states = bool(
+            self.param("publish_dynamic_joint_states", True)  # humble default (master: false)
+        )
         self._pub: Publisher[JointState] | None = None
+        self._dyn_pub: Publisher[DynamicJointState] | None = None
         self.msg = JointState()
         self._copies: list[tuple[int, list[float], int]] = []
 
@@ -56,11 +60,16 @@ class JointStateBroadcaster(ControllerInterface):
         if self.node is not None:
             topic = "~/joint_states" if self.use_local_topics else "/joint_states"
             self._pub = self.node.create_publisher(JointState, topic, 10)
+            if self.publish_dynamic_joint_states:
+                dyn = "~/dynamic_joint_states" if self.use_local_topics else "/dynamic_joint_states"
+                self._dyn_pub = self.node.create_publisher(DynamicJointState, dyn, 10)
 
     def on_cleanup(self) -> None:
-        if self._pub is not None:
-            self._pub.destroy()
-            self._pub = None
+        for pub in (self._pub, self._dyn_pub):
+            if pub is not None:
+                pub.destroy()
+        self._pub = None
+        self._dyn_pub = None
 
     def on_activate(self) -> None:
         names: list[str] = []
@@ -86,6 +95,14 @@ class JointStateBroadcaster(ControllerInterface):
             if si.interface in self.mapping
         ]
         self._values = self.state_interfaces[0]._values if self.state_interfaces else []
+        # /dynamic_joint_states: every state interface, grouped by prefix in claim order
+        groups: dict[str, list[tuple[str, int]]] = {}
+        for si in self.state_interfaces:
+            groups.setdefault(si.prefix, []).append((si.interface, si.slot))
+        self._dyn_names = list(groups)
+        self._dyn_groups = [
+            ([name for name, _ in items], [slot for _, slot in items]) for items in groups.values()
+        ]
 
     def update(self, time_s: float, period_s: float) -> ReturnType:
         values = self._values
@@ -101,6 +118,18 @@ class JointStateBroadcaster(ControllerInterface):
                     m.position[:],
                     m.velocity[:],
                     m.effort[:],
+                )
+            )
+        if self._dyn_pub is not None:
+            sec = math.floor(time_s)
+            self._dyn_pub.publish(
+                DynamicJointState(
+                    Header(Time(int(sec), int((time_s - sec) * 1e9)), self.frame_id),
+                    self._dyn_names,
+                    [
+                        InterfaceValue(names, [values[s] for s in slots])
+                        for names, slots in self._dyn_groups
+                    ],
                 )
             )
         return ReturnType.OK

@@ -11,6 +11,11 @@ from robomodel.runtime.msg._schema import (
 )
 from robomodel.runtime.msg.builtin_interfaces import Duration, Time
 from robomodel.runtime.msg.cdr import CDRError, deserialize, serialize
+from robomodel.runtime.msg.control_msgs import (
+    DynamicJointState,
+    InterfaceValue,
+    JointControllerState,
+)
 from robomodel.runtime.msg.geometry_msgs import (
     Point,
     Pose,
@@ -50,12 +55,15 @@ __all__ = [
     "CDRError",
     "Clock",
     "Duration",
+    "DynamicJointState",
     "Empty",
     "Float64",
     "Float64MultiArray",
     "Header",
     "Imu",
     "Int32",
+    "InterfaceValue",
+    "JointControllerState",
     "JointState",
     "JointTrajectory",
     "JointTrajectoryPoint",
