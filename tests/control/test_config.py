@@ -58,7 +58,11 @@ def test_ros1_format_with_namespace_and_type_mapping() -> None:
     assert cfg.format == "ros1" and cfg.namespace == "/rrbot"
     jsc = cfg.controller("joint_state_controller")
     assert jsc.type == "joint_state_broadcaster/JointStateBroadcaster"
-    assert jsc.params == {"update_rate": 50}
+    assert jsc.params == {
+        "update_rate": 50,
+        "topic": "joint_states",  # ROS 1: relative to the namespace
+        "publish_dynamic_joint_states": False,
+    }
     pid = cfg.controller("joint1_position_controller")
     assert pid.params["pid.p"] == 100.0
     cmd = cfg.controller("cmd")
@@ -98,3 +102,23 @@ def test_errors_have_file_line_column(text: str, where: str, what: str) -> None:
 def test_missing_file(tmp_path: Path) -> None:
     with pytest.raises(ConfigError, match="cannot read"):
         load_controller_config(tmp_path / "none.yaml")
+
+
+def test_params_file_relative_to_the_config(tmp_path: Path) -> None:
+    (tmp_path / "arm.yaml").write_text(
+        "/**:\n  ros__parameters: {command_interfaces: [velocity]}\n"
+        "arm:\n  ros__parameters:\n    joints: [a, b]\n    command_interfaces: [position]\n"
+    )
+    main = tmp_path / "controllers.yaml"
+    main.write_text(
+        "controller_manager:\n  ros__parameters:\n    arm:\n"
+        "      type: joint_trajectory_controller/JointTrajectoryController\n"
+        "      params_file: arm.yaml\n"
+        "    other:\n      type: joint_state_broadcaster/JointStateBroadcaster\n"
+        "      params_file: [missing.yaml]\n"
+    )
+    with pytest.raises(ConfigError, match=r"controllers.yaml:8:7: params_file 'missing.yaml'"):
+        load_controller_config(main)
+    main.write_text(main.read_text().replace("      params_file: [missing.yaml]\n", ""))
+    arm = load_controller_config(main).controller("arm")
+    assert arm.params["joints"] == ["a", "b"] and arm.params["command_interfaces"] == ["position"]

@@ -358,6 +358,8 @@ def test_jsb_dynamic_joint_states_and_pid_state_topic() -> None:
         EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
         context=ctx,
     )
+    system.manager.load_controller("jsb", "joint_state_broadcaster/JointStateBroadcaster")
+    system.manager.spawn(["jsb"])  # ROS 2's broadcaster: also /dynamic_joint_states (Humble)
     node = ctx.create_node("probe")
     dyn: list[DynamicJointState] = []
     pid_state: list[JointControllerState] = []
@@ -372,4 +374,48 @@ def test_jsb_dynamic_joint_states_and_pid_state_topic() -> None:
     assert dyn[-1].interface_values[0].interface_names == ["position", "velocity", "effort"]
     assert len(pid_state) == 2  # every 10th update, as ROS 1
     assert pid_state[-1].p == 100.0 and pid_state[-1].time_step == 0.01
+    ctx.shutdown()
+
+
+SEED_000 = """\
+rrbot:
+  # Publish all joint states
+  joint_state_controller:
+    type: joint_state_controller/JointStateController
+    publish_rate: 50
+  # Position controllers
+  joint1_position_controller:
+    type: effort_controllers/JointPositionController
+    joint: joint1
+    pid: {p: 100.0, I: 0.01, d: 10.0}
+"""
+
+
+def test_seed_000_namespaced_file(caplog: pytest.LogCaptureFixture) -> None:
+    """The seed's file nests everything under rrbot: topics live in /rrbot, as in ROS 1."""
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    with caplog.at_level("WARNING", logger="robomodel.control"):
+        system = ControlSystem.build(
+            robot,  # type: ignore[arg-type]
+            load_controller_config("rrbot_control.yaml", text=SEED_000),
+            context=ctx,
+        )
+    assert any("'pid.I' is ignored" in r.message and "pid.i" in r.message for r in caplog.records)
+    assert system.manager.service_prefix == "/rrbot/controller_manager"
+    node = ctx.create_node("probe")
+    states: list[JointState] = []
+    node.create_subscription(JointState, "/rrbot/joint_states", states.append)
+    node.create_publisher(Float64, "/rrbot/joint1_position_controller/command").publish(
+        Float64(1.5)
+    )
+    for _ in range(300):
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    ctx.spin_once()
+    assert states[-1].position[0] == pytest.approx(1.6, abs=0.2)
+    answer = ctx.call_service("/rrbot/controller_manager/list_controllers", {})
+    assert [c["state"] for c in answer["controllers"]] == ["active", "active"]
     ctx.shutdown()

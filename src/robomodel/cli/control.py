@@ -196,7 +196,7 @@ def _run(args: argparse.Namespace) -> int:
             for spec in config.controllers:
                 system.manager.load_controller(spec.name)
                 system.manager.configure_controller(spec.name)
-        RobotStatePublisher(context, urdf_to_string(robot))
+        RobotStatePublisher(context, urdf_to_string(robot), namespace=config.namespace)
         system.manager.start()
         cm = system.manager.service_prefix
         print(

@@ -84,6 +84,8 @@ def _ros1_jtc(kind: str) -> Callable[[dict[str, Any]], tuple[str, dict[str, Any]
 def _ros1_jsc(p: dict[str, Any]) -> tuple[str, dict[str, Any]]:
     if "publish_rate" in p:
         p["update_rate"] = p.pop("publish_rate")
+    p.setdefault("topic", "joint_states")  # relative: /<ns>/joint_states
+    p.setdefault("publish_dynamic_joint_states", False)  # not in ROS 1
     return "joint_state_broadcaster/JointStateBroadcaster", p
 
 
@@ -226,9 +228,13 @@ def _ros2(data: dict[str, Any], doc: _Located) -> ControllerConfig:
             continue  # other manager parameters (use_sim_time, ...)
         loc = doc.loc((cm_key, "ros__parameters", name, "type"))
         params = {**wildcard, **per_node.get(name, {})}
-        for extra in ("params_file", "fallback_controllers"):
-            if extra in entry:
-                params.setdefault(extra, entry[extra])
+        if "params_file" in entry:
+            files = entry["params_file"]
+            for file in [files] if isinstance(files, str) else list(files):
+                where = doc.loc((cm_key, "ros__parameters", name, "params_file"))
+                params.update(_params_file(str(file), name, doc.path, where))
+        if "fallback_controllers" in entry:
+            params.setdefault("fallback_controllers", entry["fallback_controllers"])
         our_type, params = _resolve_type(name, entry["type"], params, loc, ros1=False)
         specs.append(ControllerSpec(name, our_type, params, loc, entry["type"]))
     unused = sorted(set(per_node) - {s.name for s in specs})
@@ -239,6 +245,36 @@ def _ros2(data: dict[str, Any], doc: _Located) -> ControllerConfig:
             doc.loc((next(k for k in data if _node_name(k) == name),)),
         )
     return ControllerConfig(int(rate), tuple(specs), "/", "ros2", doc.path)
+
+
+def _params_file(
+    file: str, name: str, config_path: str | None, where: SourceLocation
+) -> dict[str, Any]:
+    """The parameters for controller ``name`` in a ``<name>.params_file`` (``/**`` first)."""
+    path = Path(file)
+    if not path.is_absolute() and config_path is not None:
+        path = Path(config_path).parent / path
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ConfigError(f"params_file '{file}' of '{name}': {exc.strerror}", where) from None
+    doc = _Located(str(path))
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark
+        loc = SourceLocation(str(path), mark.line + 1, mark.column + 1) if mark else where
+        raise ConfigError(f"YAML syntax error: {exc.problem}", loc) from None
+    data = doc.convert(node, ()) if node is not None else {}
+    out: dict[str, Any] = {}
+    if isinstance(data, dict):
+        for key in sorted(data, key=lambda k: k != "/**"):  # wildcard first, then the node
+            value = data[key]
+            if (key == "/**" or _node_name(key) == name) and isinstance(value, dict):
+                inner = value.get("ros__parameters")
+                if isinstance(inner, dict):
+                    out.update(_flatten(inner))
+    return out
 
 
 def _ros1(data: dict[str, Any], doc: _Located) -> ControllerConfig:

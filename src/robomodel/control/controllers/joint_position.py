@@ -56,6 +56,26 @@ class JointPositionController(ControllerInterface):
                 f"controller '{self.name}': PID gains missing; give pid: {{p: ..., i: ..., d: ...}}"
             )
         self.pid = Pid(Gains.from_params(self.params, prefix))
+        known = (
+            "p",
+            "i",
+            "d",
+            "i_clamp",
+            "i_clamp_min",
+            "i_clamp_max",
+            "antiwindup",
+            "publish_state",
+        )
+        for key in self.params:
+            if prefix and key.startswith(prefix) and key[len(prefix) :] not in known:
+                sub = key[len(prefix) :]
+                hint = [k for k in known if k.lower() == sub.lower()]
+                log.warning(
+                    "%s: unknown PID parameter '%s' is ignored, as ROS 1 does%s",
+                    self.name,
+                    key,
+                    f" (did you mean '{prefix}{hint[0]}'?)" if hint else "",
+                )
         self.lower, self.upper, self.continuous = -math.inf, math.inf, False
         if self.robot is not None and self.robot.has_joint(self.joint):
             j = self.robot.joint(self.joint)

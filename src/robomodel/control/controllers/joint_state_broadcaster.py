@@ -34,6 +34,8 @@ class JointStateBroadcaster(ControllerInterface):
         self.extra_joints = self.param_list("extra_joints", [])
         self.frame_id = str(self.param("frame_id", "base_link"))
         self.use_local_topics = bool(self.param("use_local_topics", False))
+        # robomodel: ROS 1's JointStateController publishes the namespace-relative joint_states
+        self.topic = str(self.param("topic", "/joint_states"))
         self.mapping = {
             str(self.param(f"map_interface_to_joint_state.{k}", k)): k
             for k in ("position", "velocity", "effort")
@@ -58,7 +60,7 @@ class JointStateBroadcaster(ControllerInterface):
 
     def on_configure(self) -> None:
         if self.node is not None:
-            topic = "~/joint_states" if self.use_local_topics else "/joint_states"
+            topic = "~/joint_states" if self.use_local_topics else self.topic
             self._pub = self.node.create_publisher(JointState, topic, 10)
             if self.publish_dynamic_joint_states:
                 dyn = "~/dynamic_joint_states" if self.use_local_topics else "/dynamic_joint_states"
