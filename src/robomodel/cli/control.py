@@ -206,30 +206,56 @@ def _run(args: argparse.Namespace) -> int:
             + f"; bus {context.transport.name}; Ctrl-C stops",
             file=sys.stderr,
         )
-        if not args.no_view:
-            _start_viewer(context, robot)
-        with contextlib.suppress(KeyboardInterrupt):
-            context.spin(duration_s=args.duration)
-        system.manager.shutdown()
+        viewer = None if args.no_view else _start_viewer(args)
+        try:
+            with contextlib.suppress(KeyboardInterrupt):
+                context.spin(duration_s=args.duration)
+        finally:
+            system.manager.shutdown()
+            if viewer is not None:
+                viewer.close()
     return 0
 
 
-def _start_viewer(context: Any, robot: Any) -> None:
-    """Start the browser viewer if this installation has it (imported lazily)."""
+def _start_viewer(args: argparse.Namespace) -> Any:
+    """Start the browser viewer on the bus if this installation has it (imported lazily).
+
+    The viewer reads /joint_states and /tf from the bus (``external`` joint states), so it needs
+    Zenoh. Returns the viewer (to close) or ``None`` when running headless.
+    """
     try:
-        viewer = importlib.import_module("robomodel.viewer")
-    except ModuleNotFoundError:
+        viewer_module = importlib.import_module("robomodel.viewer")
+        Viewer = viewer_module.Viewer
+        ViewerOptions = viewer_module.ViewerOptions
+        RobotSource = viewer_module.RobotSource
+    except (ImportError, AttributeError) as exc:
+        reason = "" if isinstance(exc, ModuleNotFoundError) else f" ({exc})"
         print(
-            "robomodel: the viewer is not available in this installation; running headless "
-            "(use --no-view to silence this)",
+            f"robomodel: the viewer is not available in this installation{reason}; running "
+            "headless (use --no-view to silence this)",
             file=sys.stderr,
         )
-        return
-    start = getattr(viewer, "start_viewer", None)
-    if start is None:
-        print(
-            "robomodel: this viewer cannot be started from `control run`; running headless",
-            file=sys.stderr,
+        return None
+    if args.bus != "zenoh":
+        print("robomodel: the viewer needs --bus zenoh; running headless", file=sys.stderr)
+        return None
+    from robomodel.cli._common import package_index_from_args, split_mappings
+
+    try:
+        viewer = Viewer(
+            ViewerOptions(
+                sources=(RobotSource(args.file, split_mappings(args.mappings)),),
+                bus="zenoh",
+                domain_id=args.domain_id,
+                connect=tuple(args.connect),
+                listen=tuple(args.listen),
+                external=True,
+                package_index=package_index_from_args(args),
+            )
         )
-        return
-    start(context, robot)
+        viewer.start()
+    except (TypeError, RobomodelError) as exc:
+        print(f"robomodel: the viewer could not start ({exc}); running headless", file=sys.stderr)
+        return None
+    print(f"robomodel control: viewer at {viewer.url}", file=sys.stderr)
+    return viewer
