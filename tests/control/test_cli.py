@@ -244,3 +244,28 @@ def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
         except subprocess.TimeoutExpired:
             proc.kill()
             proc.wait()
+
+
+def test_controller_parameter_error_points_at_the_yaml(
+    tmp_path: Path, cli: Callable[..., object]
+) -> None:
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(
+        "controller_manager:\n  ros__parameters:\n    fwd:\n"
+        "      type: forward_command_controller/ForwardCommandController\n"
+        "fwd:\n  ros__parameters:\n    joints: [joint1]\n"
+    )
+    result = cli(
+        "control",
+        "run",
+        str(EXAMPLES / RUNS[3][0]),
+        "--controllers",
+        str(bad),
+        "--no-view",
+        "--bus",
+        "inproc",
+        "--duration",
+        "0.1",
+    )
+    assert result.code == 2  # type: ignore[attr-defined]
+    assert f"{bad}:4:7: controller 'fwd': 'interface_name' is required" in result.err  # type: ignore[attr-defined]

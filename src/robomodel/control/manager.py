@@ -24,7 +24,12 @@ from robomodel.control.controllers.base import (
     InterfaceSelection,
 )
 from robomodel.control.controllers.registry import create_controller
-from robomodel.control.exceptions import ControlError, ControllerStateError, UnknownControllerError
+from robomodel.control.exceptions import (
+    ConfigError,
+    ControlError,
+    ControllerStateError,
+    UnknownControllerError,
+)
 from robomodel.control.hardware.base import ReturnType
 from robomodel.control.hardware.interfaces import LoanedInterface
 from robomodel.control.hardware.resource_manager import ResourceManager
@@ -144,7 +149,10 @@ class ControllerManager:
             type_name = spec.type
         merged: dict[str, Any] = dict(spec.params) if spec is not None else {}
         merged.update(params or {})
-        controller = create_controller(type_name)
+        try:
+            controller = create_controller(type_name)
+        except RobomodelError as exc:
+            raise self._located(name, exc) from None
         rate = int(merged.get("update_rate", self.update_rate_hz))
         if rate <= 0 or rate > self.update_rate_hz:
             rate = self.update_rate_hz
@@ -160,10 +168,10 @@ class ControllerManager:
             )
         try:
             controller.init(name, merged, node=node, robot=self.robot, update_rate_hz=rate)
-        except RobomodelError:
+        except RobomodelError as exc:
             if node is not None:
                 node.destroy()
-            raise
+            raise self._located(name, exc) from None
         fallback = merged.get("fallback_controllers", ())
         self.entries[name] = _Entry(
             name,
@@ -176,6 +184,13 @@ class ControllerManager:
             node=node,
         )
         return controller
+
+    def _located(self, name: str, exc: RobomodelError) -> RobomodelError:
+        """``exc`` with the file:line of the controller's entry in the YAML, when known."""
+        spec = self.specs.get(name)
+        if spec is None or spec.location is None or isinstance(exc, ConfigError):
+            return exc
+        return ConfigError(str(exc), spec.location)
 
     def configure_controller(self, name: str) -> None:
         entry = self._entry(name)

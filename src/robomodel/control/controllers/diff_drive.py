@@ -273,7 +273,7 @@ class DiffDriveController(ControllerInterface):
                     right * odom.right_wheel_radius * period_s,
                     time_s,
                 )
-        self._maybe_publish(time_s, period_s)
+        self._maybe_publish(time_s)
         (v1, w1), (v0, w0) = self.previous_commands  # front = one before, back = previous
         v = self.limiter_linear.limit(v, v0, v1, period_s)
         w = self.limiter_angular.limit(w, w0, w1, period_s)
@@ -293,11 +293,11 @@ class DiffDriveController(ControllerInterface):
             ci.set(right_cmd)
         return ReturnType.OK
 
-    def _maybe_publish(self, time_s: float, period_s: float) -> None:
+    def _maybe_publish(self, time_s: float) -> None:
         assert self._previous_publish_s is not None  # set on the first update
         if self._previous_publish_s + self._publish_period_s >= time_s:
             return
-        self._previous_publish_s += period_s  # humble: advances by the update period
+        self._previous_publish_s += self._publish_period_s  # humble: by the publish period
         if self._odom_pub is None and self._tf_pub is None:
             return
         odom = self.odometry
