@@ -191,6 +191,11 @@ def test_seed_000_workflow_over_zenoh(rrbot_run: str) -> None:
     assert bad.returncode == 2 and "unknown controller 'nope'" in bad.stderr
     listed = _cli("control", "list-controllers", "--domain-id", domain)
     assert listed.stdout.count("active") == 3
+    comps = _cli("control", "list-hardware-components", "--domain-id", domain)
+    assert "\tname: rrbot_transmissions" in comps.stdout
+    assert "plugin name: mock_components/GenericSystem" in comps.stdout
+    types = _cli("control", "list-controller-types", "--domain-id", domain)
+    assert "diff_drive_controller/DiffDriveController" in types.stdout.splitlines()
 
 
 def test_seed_003_load_with_set_state_start_over_zenoh() -> None:

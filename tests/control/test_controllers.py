@@ -420,3 +420,55 @@ def test_seed_000_namespaced_file(caplog: pytest.LogCaptureFixture) -> None:
     answer = ctx.call_service("/rrbot/controller_manager/list_controllers", {})
     assert [c["state"] for c in answer["controllers"]] == ["active", "active"]
     ctx.shutdown()
+
+
+def test_seed_001_ur5_position_controllers() -> None:
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / "ur5_description" / "urdf" / "ur5.urdf.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    system = ControlSystem.build(
+        robot,  # type: ignore[arg-type]
+        EXAMPLES / "ur5_description" / "config" / "ur5_controllers.yaml",
+        context=ctx,
+    )
+    node = ctx.create_node("probe")
+    node.create_publisher(Float64, "/joint2_position_controller/command").publish(Float64(-1.2))
+    for _ in range(3):
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    rm = system.resources
+    assert rm.states.values[rm.states.slot("shoulder_lift_joint/position")] == -1.2
+    assert rm.states.values[rm.states.slot("shoulder_pan_joint/position")] == 0.0
+    ctx.shutdown()
+
+
+def test_seed_002_simplebot_drives_in_a_circle() -> None:
+    from robomodel.loading import load
+    from robomodel.runtime.msg import Twist
+
+    robot = load(EXAMPLES / "simplebot_description" / "urdf" / "simplebot.urdf.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    system = ControlSystem.build(
+        robot,  # type: ignore[arg-type]
+        EXAMPLES / "simplebot_description" / "config" / "simplebot_controllers.yaml",
+        context=ctx,
+    )
+    node = ctx.create_node("probe")
+    odoms: list[Odometry] = []
+    node.create_subscription(Odometry, "/simplebot_controller/odom", odoms.append)
+    pub = node.create_publisher(Twist, "/simplebot_controller/cmd_vel")  # ROS 1: unstamped
+    for _ in range(int(math.pi / 0.5 / 0.01)):  # half a turn at 0.5 rad/s
+        msg = Twist()
+        msg.linear.x = 0.3
+        msg.angular.z = 0.5
+        pub.publish(msg)
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    ctx.spin_once()
+    pose = odoms[-1].pose.pose
+    # a half circle of radius v/ω = 0.6 m: x back near 0, y near 1.2 m
+    assert pose.position.x == pytest.approx(0.0, abs=0.03)
+    assert pose.position.y == pytest.approx(1.2, abs=0.03)
+    assert odoms[-1].pose.covariance[35] == 1000.0
+    ctx.shutdown()

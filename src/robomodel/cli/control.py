@@ -64,6 +64,14 @@ def register(subparsers: Any) -> None:
     _cm_argument(lc)
     lc.set_defaults(func=_list_controllers)
 
+    lt = verbs.add_parser("list-controller-types", help="the controller types available")
+    _cm_argument(lt)
+    lt.set_defaults(func=_list_types)
+
+    lcomp = verbs.add_parser("list-hardware-components", help="hardware components and states")
+    _cm_argument(lcomp)
+    lcomp.set_defaults(func=_list_components)
+
     lh = verbs.add_parser("list-hardware-interfaces", help="command and state interfaces")
     _cm_argument(lh)
     lh.set_defaults(func=_list_interfaces)
@@ -128,6 +136,19 @@ def _list_controllers(args: argparse.Namespace) -> int:
             print("\trequired state interfaces:")
             for i in c["required_state_interfaces"]:
                 print(f"\t\t{i}")
+    return 0
+
+
+def _list_types(args: argparse.Namespace) -> int:
+    for name in _call(args, "list_controller_types", {})["types"]:
+        print(name)
+    return 0
+
+
+def _list_components(args: argparse.Namespace) -> int:
+    for k, c in enumerate(_call(args, "list_hardware_components", {})["components"]):
+        print(f"Hardware Component {k + 1}\n\tname: {c['name']}\n\ttype: {c['type']}")
+        print(f"\tplugin name: {c['plugin']}\n\tstate: {c['state']}")
     return 0
 
 

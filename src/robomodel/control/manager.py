@@ -486,57 +486,10 @@ class ControllerManager:
         return out
 
     def _register_services(self) -> None:
+        from robomodel.control.services import register_services
+
         assert self.context is not None
-        prefix = self.service_prefix
-        handlers: dict[str, Callable[[dict[str, Any]], dict[str, Any]]] = {
-            "list_controllers": lambda r: {"controllers": self.list_controllers()},
-            "list_hardware_interfaces": lambda r: self.resources.list_interfaces(),
-            "list_hardware_components": lambda r: {
-                "components": [
-                    {
-                        "name": c.name,
-                        "type": c.info.type,
-                        "plugin": c.info.plugin,
-                        "state": c.state.value,
-                    }
-                    for c in self.resources.components
-                ]
-            },
-            "load_controller": self._srv_load,
-            "configure_controller": lambda r: self._srv(
-                lambda: self.configure_controller(r["name"])
-            ),
-            "switch_controller": lambda r: self._srv(
-                lambda: self.switch_controllers(
-                    r.get("activate", []), r.get("deactivate", []), int(r.get("strictness", 2))
-                )
-            ),
-            "unload_controller": lambda r: self._srv(lambda: self.unload_controller(r["name"])),
-            "cleanup_controller": lambda r: self._srv(lambda: self.cleanup_controller(r["name"])),
-        }
-        for service, handler in handlers.items():
-            self._unregister.append(self.context.create_service(f"{prefix}/{service}", handler))
-
-    @staticmethod
-    def _srv(action: Callable[[], None]) -> dict[str, Any]:
-        try:
-            action()
-        except (RobomodelError, KeyError) as exc:
-            return {"ok": False, "error": str(exc)}
-        return {"ok": True}
-
-    def _srv_load(self, request: dict[str, Any]) -> dict[str, Any]:
-        name = str(request["name"])
-
-        def run() -> None:
-            self.load_controller(name, request.get("type"))
-            target = request.get("set_state")
-            if target in ("inactive", "active", "start"):
-                self.configure_controller(name)
-            if target in ("active", "start"):
-                self.switch_controllers(activate=[name])
-
-        return self._srv(run)
+        self._unregister.extend(register_services(self, self.context))
 
     def shutdown(self) -> None:
         self.stop()
