@@ -92,7 +92,7 @@ class ForwardCommandController(ControllerInterface):
 
     def on_activate(self) -> None:
         self._slots = [ci.slot for ci in self.command_interfaces]
-        self._values = self.command_interfaces[0]._values if self.command_interfaces else []
+        self._values = self.command_interfaces[0].table if self.command_interfaces else []
         self._command = None  # as upstream: the command buffer is reset on activation
 
     def update(self, time_s: float, period_s: float) -> ReturnType:

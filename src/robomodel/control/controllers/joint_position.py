@@ -124,8 +124,8 @@ class JointPositionController(ControllerInterface):
     def on_activate(self) -> None:
         self._effort = self.command_interfaces[0]
         self._position = self.state_interfaces[0]
-        self._cmd_values, self._cmd_slot = self._effort._values, self._effort.slot
-        self._state_values, self._state_slot = self._position._values, self._position.slot
+        self._cmd_values, self._cmd_slot = self._effort.table, self._effort.slot
+        self._state_values, self._state_slot = self._position.table, self._position.slot
         pos = self._position.get()
         self.command = min(max(pos, self.lower), self.upper)  # starting(): hold where it is
         self._last_pos = pos

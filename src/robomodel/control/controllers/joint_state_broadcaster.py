@@ -96,7 +96,7 @@ class JointStateBroadcaster(ControllerInterface):
             for si in self.state_interfaces
             if si.interface in self.mapping
         ]
-        self._values = self.state_interfaces[0]._values if self.state_interfaces else []
+        self._values = self.state_interfaces[0].table if self.state_interfaces else []
         # /dynamic_joint_states: every state interface, grouped by prefix in claim order
         groups: dict[str, list[tuple[str, int]]] = {}
         for si in self.state_interfaces:

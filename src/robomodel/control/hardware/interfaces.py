@@ -116,6 +116,11 @@ class LoanedInterface:
         self._values = table.values
 
     @property
+    def table(self) -> list[float]:
+        """The whole value table this interface lives in (index it with :attr:`slot`)."""
+        return self._values
+
+    @property
     def prefix(self) -> str:
         return self.name.rpartition("/")[0]
 

@@ -26,7 +26,13 @@ import numpy as np
 
 from robomodel.control.hardware.base import HardwareComponent, HardwareInfo, ReturnType
 from robomodel.control.hardware.exceptions import HardwareError
-from robomodel.control.hardware.interfaces import ACCELERATION, EFFORT, POSITION, VELOCITY
+from robomodel.control.hardware.interfaces import (
+    ACCELERATION,
+    EFFORT,
+    POSITION,
+    VELOCITY,
+    InterfaceDescription,
+)
 
 if TYPE_CHECKING:
     from robomodel.kinematics.dynamics import Dynamics
@@ -111,7 +117,7 @@ class GenericSystem(HardwareComponent):
                     "command interfaces (ros2_control component_parser)"
                 )
 
-    def export_command_interfaces(self) -> list:  # type: ignore[type-arg]
+    def export_command_interfaces(self) -> list[InterfaceDescription]:
         exported = super().export_command_interfaces()
         names = {d.name for d in exported}
         extra = []
