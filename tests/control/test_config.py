@@ -122,3 +122,24 @@ def test_params_file_relative_to_the_config(tmp_path: Path) -> None:
     main.write_text(main.read_text().replace("      params_file: [missing.yaml]\n", ""))
     arm = load_controller_config(main).controller("arm")
     assert arm.params["joints"] == ["a", "b"] and arm.params["command_interfaces"] == ["position"]
+
+
+def test_manager_parameters_reach_the_manager_node() -> None:
+    from robomodel.control import ControlSystem
+    from robomodel.runtime import Context
+    from robomodel.runtime.clock import ManualClock
+    from tests.control.helpers import arm
+
+    text = ROS2.replace("    update_rate: 250\n", "    update_rate: 250\n    use_sim_time: true\n")
+    text = text.replace(
+        "    arm_controller:\n      type: joint_trajectory_controller/JointTrajectoryController\n",
+        "",
+    )
+    text = text[: text.index("/**/arm_controller")]
+    cfg = load_controller_config("c.yaml", text=text)
+    assert cfg.manager_params == {"update_rate": 250, "use_sim_time": True}
+    with Context("inproc", clock=ManualClock()) as ctx:
+        system = ControlSystem.build(arm(), cfg, context=ctx)
+        node = system.manager.node
+        assert node is not None and node.get_parameter("use_sim_time") is True
+        assert node.get_parameter("update_rate") == 250

@@ -45,6 +45,7 @@ class ControllerConfig:
     namespace: str = "/"
     format: str = "ros2"
     path: str | None = None
+    manager_params: Mapping[str, Any] = field(default_factory=dict)
 
     def controller(self, name: str) -> ControllerSpec:
         for spec in self.controllers:
@@ -244,7 +245,10 @@ def _ros2(data: dict[str, Any], doc: _Located) -> ControllerConfig:
             f"controllers: {', '.join(s.name for s in specs) or '(none)'}",
             doc.loc((next(k for k in data if _node_name(k) == name),)),
         )
-    return ControllerConfig(int(rate), tuple(specs), "/", "ros2", doc.path)
+    manager_params = _flatten(
+        {k: v for k, v in cm_params.items() if not (isinstance(v, dict) and "type" in v)}
+    )
+    return ControllerConfig(int(rate), tuple(specs), "/", "ros2", doc.path, manager_params)
 
 
 def _params_file(

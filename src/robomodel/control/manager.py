@@ -81,6 +81,7 @@ class ControllerManager:
         update_rate_hz: The loop rate (ros2_control ``update_rate``, default 100).
         name: The manager's node name; services are ``/<namespace>/<name>/list_controllers``...
         namespace: The namespace of the manager and its controllers.
+        parameters: The manager node's parameters (``use_sim_time``, ...) from the YAML.
     """
 
     def __init__(
@@ -92,6 +93,7 @@ class ControllerManager:
         update_rate_hz: int = 100,
         name: str = "controller_manager",
         namespace: str = "/",
+        parameters: Mapping[str, Any] | None = None,
     ) -> None:
         if update_rate_hz <= 0:
             raise ControlError(f"update_rate must be positive, got {update_rate_hz}")
@@ -111,7 +113,11 @@ class ControllerManager:
         self._unregister: list[Callable[[], None]] = []
         self.node: Node | None = None
         if context is not None:
-            self.node = context.create_node(name, namespace)
+            params = dict(parameters or {})
+            params["update_rate"] = self.update_rate_hz
+            self.node = context.create_node(
+                name, namespace, parameters=params, allow_undeclared_parameters=True
+            )
             self._register_services()
 
     # -- configuration ------------------------------------------------------------------------

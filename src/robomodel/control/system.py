@@ -65,6 +65,7 @@ class ControlSystem:
             robot=robot,
             update_rate_hz=update_rate_hz or config.update_rate_hz,
             namespace=config.namespace,
+            parameters=config.manager_params,
         )
         manager.set_config(config)
         names = [s.name for s in config.controllers] if spawn is None else list(spawn)
