@@ -472,3 +472,49 @@ def test_seed_002_simplebot_drives_in_a_circle() -> None:
     assert pose.position.y == pytest.approx(1.2, abs=0.03)
     assert odoms[-1].pose.covariance[35] == 1000.0
     ctx.shutdown()
+
+
+def test_jtc_follow_joint_trajectory_services() -> None:
+    from robomodel.control import ControllerManager
+    from robomodel.control.hardware import ResourceManager, hardware_from_robot
+
+    ctx = Context("inproc", clock=ManualClock())
+    robot = arm()
+    cm = ControllerManager(ResourceManager(hardware_from_robot(robot)), context=ctx, robot=robot)
+    cm.load_controller(
+        "jtc",
+        JTC,
+        {
+            "joints": ["joint1", "joint2"],
+            "command_interfaces": ["position"],
+            "state_interfaces": ["position", "velocity"],
+            "constraints.joint1.goal": 0.01,
+        },
+    )
+    cm.spawn(["jtc"])
+    trajectory = {
+        "joint_names": ["joint1", "joint2"],
+        "points": [{"positions": [0.6, 0.1], "time_from_start": {"sec": 1}}],
+    }
+    answer = ctx.call_service("/jtc/follow_joint_trajectory", {"trajectory": trajectory})
+    assert answer["status"] == "active"
+    for _ in range(120):
+        cm.step()
+    status = ctx.call_service("/jtc/goal_status", {"goal_id": answer["goal_id"]})
+    assert status["status"] == "succeeded"
+    second = ctx.call_service(
+        "/jtc/follow_joint_trajectory",
+        {
+            "trajectory": trajectory
+            | {"points": [{"positions": [0.0, 0.0], "time_from_start": {"sec": 2}}]}
+        },
+    )
+    cm.step()
+    canceled = ctx.call_service("/jtc/goal_status", {"goal_id": second["goal_id"], "cancel": True})
+    assert canceled["status"] == "canceled"
+    bad = ctx.call_service(
+        "/jtc/follow_joint_trajectory",
+        {"trajectory": {"joint_names": ["x"], "points": [{"positions": [1.0]}]}},
+    )
+    assert bad["status"] == "aborted" and "unknown joints" in bad["error_string"]
+    ctx.shutdown()

@@ -27,6 +27,7 @@ from robomodel.control.controllers.exceptions import ControllerError
 from robomodel.control.controllers.joint_position import shortest_angular_distance
 from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
 from robomodel.control.pid import Gains, Pid
+from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import JointTrajectory
 
 __all__ = ["GoalHandle", "GoalStatus", "JointTrajectoryController"]
@@ -130,15 +131,71 @@ class JointTrajectoryController(ControllerInterface):
         )
 
     def on_configure(self) -> None:
+        self._goals: dict[int, GoalHandle] = {}
+        self._unregister: list[Any] = []
         if self.node is not None:
             self._sub = self.node.create_subscription(
                 JointTrajectory, self.topic, self._on_trajectory, 10
             )
+            # FollowJointTrajectory as two services (goal, then status polling/cancel)
+            base = self.node.fully_qualified_name
+            ctx = self.node.context
+            self._unregister = [
+                ctx.create_service(f"{base}/follow_joint_trajectory", self._srv_goal),
+                ctx.create_service(f"{base}/goal_status", self._srv_status),
+            ]
 
     def on_cleanup(self) -> None:
         sub = getattr(self, "_sub", None)
         if sub is not None:
             sub.destroy()
+        for unregister in getattr(self, "_unregister", []):
+            unregister()
+        self._unregister = []
+
+    def _srv_goal(self, request: dict[str, Any]) -> dict[str, Any]:
+        """``{"trajectory": {...}, "path_tolerance": {joint: tol}, "goal_tolerance": {...},
+        "goal_time_tolerance": s}`` -> ``{"goal_id": n, "status": ..., "error_string": ...}``."""
+        from robomodel.runtime.msg import message_from_dict
+
+        try:
+            msg = message_from_dict(JointTrajectory, request.get("trajectory"))
+        except RobomodelError as exc:
+            return {"error": str(exc)}
+        handle = self.send_goal(
+            msg,
+            path_tolerance=dict(request.get("path_tolerance") or {}),
+            goal_tolerance=dict(request.get("goal_tolerance") or {}),
+            goal_time_tolerance_s=request.get("goal_time_tolerance"),
+        )
+        goal_id = len(self._goals) + 1
+        self._goals[goal_id] = handle
+        return {"goal_id": goal_id, **self._describe(handle)}
+
+    def _srv_status(self, request: dict[str, Any]) -> dict[str, Any]:
+        handle = self._goals.get(int(request.get("goal_id", 0)))
+        if handle is None:
+            return {"error": f"unknown goal id {request.get('goal_id')!r}"}
+        if request.get("cancel") and handle.status is GoalStatus.ACTIVE:
+            self.cancel_goal(handle)
+        return self._describe(handle)
+
+    @staticmethod
+    def _describe(handle: GoalHandle) -> dict[str, Any]:
+        return {
+            "status": handle.status.value,
+            "error_code": handle.error_code,
+            "error_string": handle.error_string,
+        }
+
+    def cancel_goal(self, handle: GoalHandle) -> None:
+        """Cancel a running goal: the controller holds the measured position."""
+        if handle is self.goal and handle.status is GoalStatus.ACTIVE:
+            self._finish(GoalStatus.CANCELED, 0, "canceled")
+            self._hold(self._now_s)
+        elif self._pending is not None and self._pending[1] is handle:
+            self._pending = None
+            handle.status = GoalStatus.CANCELED
 
     def on_activate(self) -> None:
         n = len(self.joints)
