@@ -17,6 +17,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from robomodel.control._switch import plan_switch
 from robomodel.control.config import ControllerConfig, ControllerSpec
 from robomodel.control.controllers.base import (
     ControllerInterface,
@@ -236,6 +237,10 @@ class ControllerManager:
         del self.entries[name]
 
     # -- switching ----------------------------------------------------------------------------
+    def required_interfaces(self, name: str) -> tuple[list[str], list[str]]:
+        """The full names of the command and state interfaces controller ``name`` needs."""
+        return self._interfaces(self._entry(name))
+
     def _interfaces(self, entry: _Entry) -> tuple[list[str], list[str]]:
         c = entry.controller
         cmd_cfg = c.command_interface_configuration()
@@ -270,56 +275,7 @@ class ControllerManager:
             ControlError: the request fails (STRICT).
         """
         strict = int(strictness) != int(Strictness.BEST_EFFORT)
-        to_activate: list[str] = []
-        to_deactivate: list[str] = []
-
-        def refuse(message: str) -> None:
-            if strict:
-                raise ControlError(f"switch refused: {message}")
-            log.warning("switch: %s; ignored (best effort)", message)
-
-        for name in deactivate:
-            if name not in self.entries:
-                refuse(str(UnknownControllerError(name, tuple(self.entries))))
-            elif self.entries[name].controller.state is not ControllerState.ACTIVE:
-                refuse(f"controller '{name}' is not active")
-            else:
-                to_deactivate.append(name)
-        for name in activate:
-            if name not in self.entries:
-                refuse(str(UnknownControllerError(name, tuple(self.entries))))
-                continue
-            state = self.entries[name].controller.state
-            if state is ControllerState.ACTIVE and name not in to_deactivate:
-                refuse(f"controller '{name}' is already active")
-            elif state is ControllerState.UNCONFIGURED:
-                refuse(f"controller '{name}' is unconfigured; configure it first")
-            elif state is ControllerState.FINALIZED:
-                refuse(f"controller '{name}' is finalized")
-            else:
-                to_activate.append(name)
-        # interface availability, counting what the deactivations release
-        releasing = {i for n in to_deactivate for i in self.entries[n].claimed}
-        taken: dict[str, str] = {}
-        for name in list(to_activate):
-            commands, states = self._interfaces(self.entries[name])
-            try:
-                self.resources.check_states(states)
-                for iface in commands:
-                    holder = self.resources.claimed.get(iface)
-                    if holder is not None and iface not in releasing:
-                        self.resources.check_commands([iface], name)
-                    if iface in taken:
-                        raise ControlError(
-                            f"controllers '{taken[iface]}' and '{name}' both claim '{iface}'"
-                        )
-                    taken[iface] = name
-                self.resources.check_commands(
-                    [i for i in commands if i not in self.resources.claimed], name
-                )
-            except RobomodelError as exc:
-                refuse(f"cannot activate '{name}': {exc}")
-                to_activate.remove(name)
+        to_activate, to_deactivate = plan_switch(self, activate, deactivate, strict=strict)
         start = [i for n in to_activate for i in self._interfaces(self.entries[n])[0]]
         stop = [i for n in to_deactivate for i in self.entries[n].claimed]
         if not self.resources.prepare_switch(start, stop):
