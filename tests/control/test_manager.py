@@ -148,6 +148,12 @@ def test_error_deactivates_and_activates_fallback() -> None:
     assert cm.entries["hold"].controller.state is ControllerState.ACTIVE
 
 
+def _ok() -> object:
+    from robomodel.control.hardware import ReturnType
+
+    return ReturnType.OK
+
+
 def test_per_controller_rate() -> None:
     cm = arm_manager(update_rate_hz=100)
     c = cm.load_controller("fwd", FCC, {**POS, "update_rate": 25})
@@ -162,4 +168,11 @@ def test_per_controller_rate() -> None:
         "odd", FCC, {"joints": ["joint1"], "interface_name": "velocity", "update_rate": 30}
     )
     assert c3.update_rate_hz == 33  # 100 // round(100 / 30)
+    runs: list[int] = []
+    c3.update = lambda t, p: (runs.append(cm._counter), _ok())[1]  # type: ignore[method-assign]
+    cm.spawn(["odd"])
+    for _ in range(100):
+        cm.step()
+    # humble: run when (counter % 100) % 3 == 0 -> 99, 100 (wraps to 0), 102, ...
+    assert runs[:3] == [9, 12, 15] and 100 in runs and 99 in runs
     assert cm.load_controller("fast", FCC, {**POS, "update_rate": 500}).update_rate_hz == 100

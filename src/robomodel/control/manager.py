@@ -348,11 +348,12 @@ class ControllerManager:
     def update(self, time_s: float, period_s: float) -> None:
         self._counter += 1
         counter = self._counter
+        cm_rate = self.update_rate_hz
         errors: list[_Entry] | None = None
         for fn, factor, entry in self._run:
             if factor == 1:
                 result = fn(time_s, period_s)
-            elif counter % factor == 0:
+            elif (counter % cm_rate) % factor == 0:  # humble controller_manager.cpp update()
                 result = fn(time_s, factor * period_s)
             else:
                 continue
