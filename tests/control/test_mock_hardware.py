@@ -163,3 +163,32 @@ def test_hardware_failure_deactivates_its_controllers() -> None:
     rm._last_good[rm.commands.slot("j1/velocity")] = math.inf
     cm.read(0.0, 0.01)
     assert fwd.state is ControllerState.INACTIVE
+
+
+PENDULUM = """<robot name="p"><link name="base"/>
+<link name="bob"><inertial><origin xyz="0 0 -1"/><mass value="1"/>
+<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+<joint name="j" type="continuous"><parent link="base"/><child link="bob"/><axis xyz="0 1 0"/></joint>
+<ros2_control name="P" type="system"><hardware><plugin>mock_components/GenericSystem</plugin>
+<param name="calculate_dynamics">true</param></hardware>
+<joint name="j"><command_interface name="effort"/>
+<state_interface name="position"><param name="initial_value">0.05</param></state_interface>
+<state_interface name="velocity"/><state_interface name="effort"/></joint>
+</ros2_control></robot>"""
+
+
+def test_effort_integration_swings_a_pendulum_with_the_right_period() -> None:
+    robot = load(PENDULUM)
+    rm = ResourceManager(hardware_from_robot(robot))  # type: ignore[arg-type]
+    hw = rm.components[0]
+    _c(rm, "j/effort", 0.0)
+    crossings: list[float] = []
+    last = _s(rm, "j/position")
+    for k in range(1, 4001):  # 4 s at 1 ms
+        hw.read(k * 0.001, 0.001)
+        now = _s(rm, "j/position")
+        if last > 0.0 >= now or last < 0.0 <= now:
+            crossings.append(k * 0.001)
+        last = now
+    period = 2 * (crossings[2] - crossings[1])
+    assert period == pytest.approx(2 * math.pi * math.sqrt(1.0 / 9.81), rel=0.01)

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from robomodel.kinematics import Kinematics
 from robomodel.kinematics.exceptions import ConfigurationError
@@ -82,3 +85,28 @@ def test_single_pendulum_gravity_by_hand() -> None:
     # horizontal arm of 1 m with 2 kg: torque about +y to hold it is -m g l (gravity pulls -z)
     assert dyn.gravity([0.0])[0] == pytest.approx(-2 * 9.81)
     assert dyn.mass_matrix([0.3])[0, 0] == pytest.approx(2.0)
+
+
+@functools.cache
+def _ur5() -> Kinematics:
+    return Kinematics.load(example_robot_data_dir() / ARMS[0])
+
+
+vec6 = st.lists(st.floats(-3.0, 3.0), min_size=6, max_size=6)
+
+
+@settings(max_examples=40, deadline=None)
+@given(vec6, vec6, vec6)
+def test_forward_and_inverse_dynamics_round_trip(
+    q: list[float], v: list[float], tau: list[float]
+) -> None:
+    dyn = _ur5().dynamics()
+    a = dyn.forward_dynamics(q, v, tau)
+    np.testing.assert_allclose(dyn.rnea(q, v, a), tau, atol=1e-8)
+    M = dyn.mass_matrix(q)
+    np.testing.assert_allclose(M, M.T, atol=1e-12)
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+    # power balance: d/dt(T + V) = v·tau, i.e. v·(M a + C v + g) = v·tau
+    np.testing.assert_allclose(
+        float(np.dot(v, M @ a + dyn.nonlinear_effects(q, v))), float(np.dot(v, tau)), atol=1e-7
+    )
