@@ -518,3 +518,18 @@ def test_jtc_follow_joint_trajectory_services() -> None:
     )
     assert bad["status"] == "aborted" and "unknown joints" in bad["error_string"]
     ctx.shutdown()
+
+
+def test_jtc_goal_waits_for_the_joint_to_stop() -> None:
+    cm, ctrl = _jtc({"constraints.stopped_velocity_tolerance": 0.01})
+    rm = cm.resources  # type: ignore[attr-defined]
+    goal = ctrl.send_goal(_trajectory([(0.2, [0.3, 0.3])], ["joint1", "joint2"]))
+    vel = rm.states.slot("joint1/velocity")
+    for _ in range(40):
+        cm.step()  # type: ignore[attr-defined]
+        rm.states.values[vel] = 0.5  # still moving after the end
+    assert goal.status is GoalStatus.ACTIVE
+    rm.states.values[vel] = 0.0
+    rm.commands.values[rm.commands.slot("joint1/velocity")] = 0.0  # the mock mirrors it
+    cm.step()  # type: ignore[attr-defined]
+    assert goal.status is GoalStatus.SUCCEEDED

@@ -398,11 +398,12 @@ class JointTrajectoryController(ControllerInterface):
                     )
                     if tol > 0.0 and abs(errors[i]) > tol:
                         ok = False
+                    # goal velocity tolerance = stopped_velocity_tolerance (tolerances.hpp),
+                    # on the velocity error, whatever the position tolerance
                     if (
                         vel
                         and self.stopped_velocity_tolerance > 0.0
-                        and abs(vel[i]) > self.stopped_velocity_tolerance
-                        and tol > 0.0
+                        and abs(sample.velocities[i] - vel[i]) > self.stopped_velocity_tolerance
                     ):
                         ok = False
                 goal_time = self.goal_time_s
