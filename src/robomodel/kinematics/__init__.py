@@ -5,6 +5,7 @@
 ``(*batch, n_q)``.
 """
 
+from robomodel.kinematics.dynamics import Dynamics
 from robomodel.kinematics.exceptions import (
     ConfigurationError,
     KinematicsError,
@@ -17,6 +18,7 @@ from robomodel.kinematics.kinematics import Kinematics
 
 __all__ = [
     "ConfigurationError",
+    "Dynamics",
     "Kinematics",
     "KinematicsError",
     "KinematicsWarning",

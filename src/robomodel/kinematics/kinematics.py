@@ -18,6 +18,7 @@ from robomodel.kinematics.fk import fk_batch, fk_single, make_single_plan
 from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch
 
 if TYPE_CHECKING:
+    from robomodel.kinematics.dynamics import Dynamics
     from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
     from robomodel.kinematics.ur import NotAnalyticError, URGeometry
 
@@ -53,6 +54,7 @@ class Kinematics:
         self._plan = make_single_plan(self._model)
         self._solvers: dict[tuple[str, bool], Solver] = {}
         self._analytic: dict[str, URGeometry | NotAnalyticError] = {}
+        self._dynamics: Dynamics | None = None
 
     @classmethod
     def load(cls, path_or_text: str | os.PathLike[str], **options: object) -> Kinematics:
@@ -108,6 +110,14 @@ class Kinematics:
     def mimic(self) -> Mapping[str, tuple[str, float, float]]:
         """Mimic joints: name -> (actuated source, multiplier, offset), chains resolved."""
         return self._model.mimic
+
+    def dynamics(self) -> Dynamics:
+        """Rigid-body dynamics (RNEA, CRBA, gravity, CoM) of this model; built once."""
+        if self._dynamics is None:
+            from robomodel.kinematics.dynamics import Dynamics
+
+            self._dynamics = Dynamics(self._robot, self._model)
+        return self._dynamics
 
     def q_slice(self, joint: str) -> slice:
         """Where ``joint``'s values sit in ``q`` (``UnknownNameError`` for unknown names)."""

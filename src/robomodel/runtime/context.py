@@ -109,6 +109,18 @@ class Context:
     ) -> dict[str, Any]:
         return self.transport.call_parameters(node, request, timeout_s)
 
+    def create_service(
+        self, name: str, handler: Callable[[dict[str, Any]], dict[str, Any]]
+    ) -> Callable[[], None]:
+        """Offer service ``name`` (JSON-like dict in, dict out); returns an unregister function."""
+        return self.transport.register_service(name, handler)
+
+    def call_service(
+        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
+    ) -> dict[str, Any]:
+        """Call a service offered by any process on the bus (or this one)."""
+        return self.transport.call_service(name, request, timeout_s)
+
     def shutdown(self) -> None:
         if self._closed:
             return

@@ -11,6 +11,11 @@ from robomodel.runtime.msg._schema import (
 )
 from robomodel.runtime.msg.builtin_interfaces import Duration, Time
 from robomodel.runtime.msg.cdr import CDRError, deserialize, serialize
+from robomodel.runtime.msg.control_msgs import (
+    DynamicJointState,
+    InterfaceValue,
+    JointControllerState,
+)
 from robomodel.runtime.msg.geometry_msgs import (
     Point,
     Pose,
@@ -36,6 +41,7 @@ from robomodel.runtime.msg.std_msgs import (
     MultiArrayLayout,
     String,
 )
+from robomodel.runtime.msg.trajectory_msgs import JointTrajectory, JointTrajectoryPoint
 from robomodel.runtime.msg.yaml_io import (
     message_from_dict,
     message_from_yaml,
@@ -49,13 +55,18 @@ __all__ = [
     "CDRError",
     "Clock",
     "Duration",
+    "DynamicJointState",
     "Empty",
     "Float64",
     "Float64MultiArray",
     "Header",
     "Imu",
     "Int32",
+    "InterfaceValue",
+    "JointControllerState",
     "JointState",
+    "JointTrajectory",
+    "JointTrajectoryPoint",
     "LaserScan",
     "Message",
     "MessageTypeError",

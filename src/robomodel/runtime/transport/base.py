@@ -105,5 +105,18 @@ class Transport(ABC):
         self, node: str, request: dict[str, Any], timeout_s: float = 2.0
     ) -> dict[str, Any]: ...
 
+    def register_service(self, name: str, handler: ParameterHandler) -> Callable[[], None]:
+        """Answer JSON-like requests to service ``name``; returns an unregister function.
+
+        The handler runs on the executor's thread, like a subscription callback.
+        """
+        raise NotImplementedError(f"the {self.name} transport has no services")
+
+    def call_service(
+        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
+    ) -> dict[str, Any]:
+        """Call service ``name`` with ``request`` and return its response."""
+        raise NotImplementedError(f"the {self.name} transport has no services")
+
     @abstractmethod
     def close(self) -> None: ...

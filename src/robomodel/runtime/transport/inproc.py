@@ -76,6 +76,7 @@ class InprocTransport(Transport):
         self._pubs: dict[str, list[_Pub]] = {}
         self._nodes: dict[str, ParameterHandler] = {}
         self._warned: set[tuple[str, str, str]] = set()
+        self._services: dict[str, ParameterHandler] = {}
 
     def _compatible(self, pub_type: type[Message], sub: _Sub, topic: str) -> bool:
         if pub_type is sub.msg_type:
@@ -147,7 +148,24 @@ class InprocTransport(Transport):
             )
         return handler(request)
 
+    def register_service(self, name: str, handler: ParameterHandler) -> Callable[[], None]:
+        if name in self._services:
+            raise RobomodelError(f"service '{name}' is already offered in this process")
+        self._services[name] = handler
+        return lambda: self._services.pop(name, None)  # type: ignore[return-value]
+
+    def call_service(
+        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
+    ) -> dict[str, Any]:
+        handler = self._services.get(name)
+        if handler is None:
+            raise RobomodelError(
+                f"service '{name}' not found; services: {', '.join(sorted(self._services)) or '(none)'}"
+            )
+        return handler(request)
+
     def close(self) -> None:
+        self._services.clear()
         self._subs.clear()
         self._pubs.clear()
         self._nodes.clear()

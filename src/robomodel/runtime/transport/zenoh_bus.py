@@ -232,7 +232,7 @@ class ZenohTransport(Transport):
             self.session = zenoh.open(_config(zenoh, listen, [*connect, anchor]))
             self.is_anchor = False
         self._warned: set[tuple[str, ...]] = set()
-        self._node_handles: dict[str, tuple[Any, Any]] = {}
+        self._node_handles: dict[str, tuple[Any, ...]] = {}
 
     def warn_once(self, key: tuple[str, ...], fmt: str, *args: object) -> None:
         if key not in self._warned:
@@ -261,8 +261,8 @@ class ZenohTransport(Transport):
     ) -> SubscriptionHandle:
         return _ZSub(self, Endpoint(node, topic, msg_type.__typename__, qos), msg_type, deliver)
 
-    def register_node(self, node: str, handler: ParameterHandler) -> Callable[[], None]:
-        token = self.session.liveliness().declare_token(f"{self.prefix}/@g/node/{_mangle(node)}")
+    def _answer_on_executor(self, handler: ParameterHandler, who: str) -> Callable[[Any], None]:
+        """A queryable callback that runs ``handler`` on the executor and replies with JSON."""
 
         def on_query(query: Any) -> None:  # a Zenoh thread: hand over to the executor
             try:
@@ -284,9 +284,14 @@ class ZenohTransport(Transport):
 
             self.executor.post(run)
             if not done.wait(5.0):
-                box["reply"] = {"error": f"node {node} did not answer (is it spinning?)"}
+                box["reply"] = {"error": f"{who} did not answer (is it spinning?)"}
             query.reply(query.key_expr, json.dumps(box["reply"]))
 
+        return on_query
+
+    def register_node(self, node: str, handler: ParameterHandler) -> Callable[[], None]:
+        token = self.session.liveliness().declare_token(f"{self.prefix}/@g/node/{_mangle(node)}")
+        on_query = self._answer_on_executor(handler, f"node {node}")
         queryable = self.session.declare_queryable(f"{self.prefix}/@p/{_mangle(node)}", on_query)
         self._node_handles[node] = (token, queryable)
 
@@ -337,6 +342,34 @@ class ZenohTransport(Transport):
         raise RobomodelError(
             f"node '{node}' did not answer; running nodes: {', '.join(nodes) or '(none found)'}"
         )
+
+    def register_service(self, name: str, handler: ParameterHandler) -> Callable[[], None]:
+        key = f"{self.prefix}/@s/{_mangle(name)}"
+        queryable = self.session.declare_queryable(
+            key, self._answer_on_executor(handler, f"service {name}")
+        )
+        self._node_handles[f"@s{name}"] = (queryable,)
+
+        def unregister() -> None:
+            for handle in self._node_handles.pop(f"@s{name}", ()):
+                try:
+                    handle.undeclare()
+                except Exception:
+                    log.debug("undeclare failed", exc_info=True)
+
+        return unregister
+
+    def call_service(
+        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
+    ) -> dict[str, Any]:
+        replies = self.session.get(
+            f"{self.prefix}/@s/{_mangle(name)}", payload=json.dumps(request), timeout=timeout_s
+        )
+        for reply in replies:
+            if reply.ok is not None:
+                answer: dict[str, Any] = json.loads(reply.ok.payload.to_bytes())
+                return answer
+        raise RobomodelError(f"service '{name}' did not answer (is its process running?)")
 
     def close(self) -> None:
         for node in list(self._node_handles):

@@ -1,0 +1,282 @@
+"""``robomodel control``: the controller manager over the bus, like ``ros2 control``.
+
+``run FILE --controllers CONFIG.yaml`` is the seeds' ``ros2_control_node`` + spawner +
+robot_state_publisher (+ RViz) launch: mock hardware from the description, the controller
+manager at ``update_rate`` on the wall clock, every controller of the file loaded, configured
+and activated, and robot_state_publisher fed by the joint_state_broadcaster. The other verbs
+call the manager's services from another process.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import sys
+from typing import Any
+
+from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.errors import RobomodelError
+
+__all__ = ["register"]
+
+
+def _cm_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "-c",
+        "--controller-manager",
+        default="/controller_manager",
+        help="the controller manager's node name (default: /controller_manager)",
+    )
+    add_bus_arguments(parser)
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("control", help="controller manager: run, list, load, switch")
+    verbs = parser.add_subparsers(dest="control_verb", metavar="VERB")
+    verbs.required = True
+
+    run_p = verbs.add_parser("run", help="mock hardware + controller manager + controllers")
+    add_description_arguments(run_p)
+    run_p.add_argument(
+        "--controllers",
+        required=True,
+        metavar="CONFIG.yaml",
+        help="controller YAML (ROS 2 or ROS 1)",
+    )
+    run_p.add_argument("--no-view", action="store_true", help="do not start the viewer")
+    run_p.add_argument(
+        "--inactive", action="store_true", help="load and configure only (spawner --inactive)"
+    )
+    run_p.add_argument(
+        "--no-spawn",
+        action="store_true",
+        help="load nothing (ros2_control_node alone); then `robomodel control load NAME`",
+    )
+    run_p.add_argument("--duration", type=float, default=None, help="stop after S seconds")
+    run_p.add_argument("--update-rate", type=int, default=None, help="override update_rate [Hz]")
+    add_bus_arguments(run_p)
+    run_p.set_defaults(func=_run)
+
+    lc = verbs.add_parser("list-controllers", help="controllers, types and states")
+    lc.add_argument("-v", "--verbose", action="store_true", help="also rates and interfaces")
+    _cm_argument(lc)
+    lc.set_defaults(func=_list_controllers)
+
+    lt = verbs.add_parser("list-controller-types", help="the controller types available")
+    _cm_argument(lt)
+    lt.set_defaults(func=_list_types)
+
+    lcomp = verbs.add_parser("list-hardware-components", help="hardware components and states")
+    _cm_argument(lcomp)
+    lcomp.set_defaults(func=_list_components)
+
+    lh = verbs.add_parser("list-hardware-interfaces", help="command and state interfaces")
+    _cm_argument(lh)
+    lh.set_defaults(func=_list_interfaces)
+
+    load = verbs.add_parser("load", help="load a controller of the manager's configuration")
+    load.add_argument("name")
+    load.add_argument(
+        "--set-state",
+        choices=("inactive", "active", "configure", "start"),
+        default=None,
+        help="also configure (inactive) or activate it; 'configure'/'start' are the old names",
+    )
+    _cm_argument(load)
+    load.set_defaults(func=_load)
+
+    sw = verbs.add_parser("switch", help="activate and deactivate controllers")
+    sw.add_argument("--activate", nargs="*", default=[], metavar="NAME")
+    sw.add_argument("--deactivate", nargs="*", default=[], metavar="NAME")
+    sw.add_argument("--strict", action="store_true", help="fail the whole request on any error")
+    _cm_argument(sw)
+    sw.set_defaults(func=_switch)
+
+    for verb, helptext in (
+        ("unload", "unload an inactive controller"),
+        ("configure", "configure a loaded controller"),
+        ("cleanup", "clean up an inactive controller"),
+    ):
+        p = verbs.add_parser(verb, help=helptext)
+        p.add_argument("name")
+        _cm_argument(p)
+        p.set_defaults(func=_simple, service=f"{verb}_controller")
+
+
+def _call(args: argparse.Namespace, service: str, request: dict[str, Any]) -> dict[str, Any]:
+    cm = "/" + args.controller_manager.strip("/")
+    with context_from_args(args) as context:
+        wait_for_peers(context)
+        try:
+            answer = context.call_service(f"{cm}/{service}", request, timeout_s=3.0)
+        except RobomodelError as exc:
+            raise RobomodelError(
+                f"{exc}; is `robomodel control run` running (controller manager {cm})?"
+            ) from None
+    if "error" in answer and not answer.get("ok", True):
+        raise RobomodelError(str(answer["error"]))
+    if "error" in answer and "ok" not in answer:
+        raise RobomodelError(str(answer["error"]))
+    return answer
+
+
+def _list_controllers(args: argparse.Namespace) -> int:
+    controllers = _call(args, "list_controllers", {})["controllers"]
+    wn = max((len(c["name"]) for c in controllers), default=0)
+    wt = max((len(c["type"]) for c in controllers), default=0)
+    for c in controllers:  # ros2controlcli list_controllers format
+        print(f"{c['name']:<{wn}} {c['type']:<{wt}}  {c['state']}")
+        if args.verbose:
+            print(f"\tupdate_rate: {c['update_rate']} Hz")
+            print("\tclaimed interfaces:")
+            for i in c["claimed_interfaces"]:
+                print(f"\t\t{i}")
+            print("\trequired state interfaces:")
+            for i in c["required_state_interfaces"]:
+                print(f"\t\t{i}")
+    return 0
+
+
+def _list_types(args: argparse.Namespace) -> int:
+    for name in _call(args, "list_controller_types", {})["types"]:
+        print(name)
+    return 0
+
+
+def _list_components(args: argparse.Namespace) -> int:
+    for k, c in enumerate(_call(args, "list_hardware_components", {})["components"]):
+        print(f"Hardware Component {k + 1}\n\tname: {c['name']}\n\ttype: {c['type']}")
+        print(f"\tplugin name: {c['plugin']}\n\tstate: {c['state']}")
+    return 0
+
+
+def _list_interfaces(args: argparse.Namespace) -> int:
+    answer = _call(args, "list_hardware_interfaces", {})
+    print("command interfaces")
+    for i in answer["command"]:
+        available = "available" if i["available"] else "unavailable"
+        claimed = "claimed" if i["claimed"] else "unclaimed"
+        print(f"\t{i['name']} [{available}] [{claimed}]")
+    print("state interfaces")
+    for i in answer["state"]:
+        print(f"\t{i['name']}")
+    return 0
+
+
+def _load(args: argparse.Namespace) -> int:
+    state = {"configure": "inactive", "start": "active"}.get(args.set_state, args.set_state)
+    _call(args, "load_controller", {"name": args.name, "set_state": state})
+    print(
+        f"Successfully loaded controller {args.name}"
+        + (f" into state {args.set_state}" if args.set_state else "")
+    )
+    return 0
+
+
+def _switch(args: argparse.Namespace) -> int:
+    _call(
+        args,
+        "switch_controller",
+        {
+            "activate": args.activate,
+            "deactivate": args.deactivate,
+            "strictness": 2 if args.strict else 1,
+        },
+    )
+    print("Successfully switched controllers")
+    return 0
+
+
+def _simple(args: argparse.Namespace) -> int:
+    _call(args, args.service, {"name": args.name})
+    print(
+        f"Successfully {args.service.split('_')[0]}ed controller {args.name}".replace("eed ", "ed ")
+    )
+    return 0
+
+
+def _run(args: argparse.Namespace) -> int:
+    from robomodel.control import ControlSystem, load_controller_config
+    from robomodel.description.urdf.writer import urdf_to_string
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+
+    result, _, _ = load_from_args(args)
+    robot = result.robot
+    config = load_controller_config(args.controllers)
+    with context_from_args(args) as context:
+        system = ControlSystem.build(
+            robot,
+            config,
+            context=context,
+            update_rate_hz=args.update_rate,
+            spawn=[] if args.inactive or args.no_spawn else None,
+        )
+        if args.inactive and not args.no_spawn:
+            for spec in config.controllers:
+                system.manager.load_controller(spec.name)
+                system.manager.configure_controller(spec.name)
+        RobotStatePublisher(context, urdf_to_string(robot), namespace=config.namespace)
+        system.manager.start()
+        cm = system.manager.service_prefix
+        print(
+            f"controller manager {cm} at {system.manager.update_rate_hz} Hz on "
+            f"{len(system.resources.components)} hardware component(s); controllers: "
+            + ", ".join(f"{c['name']} ({c['state']})" for c in system.manager.list_controllers())
+            + f"; bus {context.transport.name}; Ctrl-C stops",
+            file=sys.stderr,
+        )
+        viewer = None if args.no_view else _start_viewer(args)
+        try:
+            with contextlib.suppress(KeyboardInterrupt):
+                context.spin(duration_s=args.duration)
+        finally:
+            system.manager.shutdown()
+            if viewer is not None:
+                viewer.close()
+    return 0
+
+
+def _start_viewer(args: argparse.Namespace) -> Any:
+    """Start the browser viewer on the bus if this installation has it (imported lazily).
+
+    The viewer reads /joint_states and /tf from the bus (``external`` joint states), so it needs
+    Zenoh. Returns the viewer (to close) or ``None`` when running headless.
+    """
+    try:
+        viewer_module = importlib.import_module("robomodel.viewer")
+        Viewer = viewer_module.Viewer
+        ViewerOptions = viewer_module.ViewerOptions
+        RobotSource = viewer_module.RobotSource
+    except (ImportError, AttributeError) as exc:
+        reason = "" if isinstance(exc, ModuleNotFoundError) else f" ({exc})"
+        print(
+            f"robomodel: the viewer is not available in this installation{reason}; running "
+            "headless (use --no-view to silence this)",
+            file=sys.stderr,
+        )
+        return None
+    if args.bus != "zenoh":
+        print("robomodel: the viewer needs --bus zenoh; running headless", file=sys.stderr)
+        return None
+    from robomodel.cli._common import package_index_from_args, split_mappings
+
+    try:
+        viewer = Viewer(
+            ViewerOptions(
+                sources=(RobotSource(args.file, split_mappings(args.mappings)),),
+                bus="zenoh",
+                domain_id=args.domain_id,
+                connect=tuple(args.connect),
+                listen=tuple(args.listen),
+                external=True,
+                package_index=package_index_from_args(args),
+            )
+        )
+        viewer.start()
+    except (TypeError, RobomodelError) as exc:
+        print(f"robomodel: the viewer could not start ({exc}); running headless", file=sys.stderr)
+        return None
+    print(f"robomodel control: viewer at {viewer.url}", file=sys.stderr)
+    return viewer

@@ -1,0 +1,86 @@
+"""Checking a switch request (controller_manager.cpp ``switch_controller_cb``) before applying it."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+from robomodel.control.controllers.base import ControllerState
+from robomodel.control.exceptions import ControlError, UnknownControllerError
+from robomodel.errors import RobomodelError
+
+if TYPE_CHECKING:
+    from robomodel.control.manager import ControllerManager
+
+__all__ = ["plan_switch"]
+
+log = logging.getLogger("robomodel.control")
+
+
+def plan_switch(
+    cm: ControllerManager,
+    activate: Sequence[str],
+    deactivate: Sequence[str],
+    *,
+    strict: bool,
+) -> tuple[list[str], list[str]]:
+    """The controllers to activate and to deactivate after checking the request.
+
+    STRICT raises :class:`ControlError` on the first problem (nothing has changed yet);
+    BEST_EFFORT drops the offending entry with a warning. Problems: unknown names, a controller
+    in the wrong state (activating one that is active, unconfigured or finalized; deactivating
+    one that is not active), a missing state or command interface, a command interface claimed
+    by a controller that stays active, or two controllers of the request claiming one interface.
+    """
+    entries = cm.entries
+    to_activate: list[str] = []
+    to_deactivate: list[str] = []
+
+    def refuse(message: str) -> None:
+        if strict:
+            raise ControlError(f"switch refused: {message}")
+        log.warning("switch: %s; ignored (best effort)", message)
+
+    for name in deactivate:
+        if name not in entries:
+            refuse(str(UnknownControllerError(name, tuple(entries))))
+        elif entries[name].controller.state is not ControllerState.ACTIVE:
+            refuse(f"controller '{name}' is not active")
+        else:
+            to_deactivate.append(name)
+    for name in activate:
+        if name not in entries:
+            refuse(str(UnknownControllerError(name, tuple(entries))))
+            continue
+        state = entries[name].controller.state
+        if state is ControllerState.ACTIVE and name not in to_deactivate:
+            refuse(f"controller '{name}' is already active")
+        elif state is ControllerState.UNCONFIGURED:
+            refuse(f"controller '{name}' is unconfigured; configure it first")
+        elif state is ControllerState.FINALIZED:
+            refuse(f"controller '{name}' is finalized")
+        else:
+            to_activate.append(name)
+    # interface availability, counting what the deactivations release
+    resources = cm.resources
+    releasing = {i for n in to_deactivate for i in entries[n].claimed}
+    taken: dict[str, str] = {}
+    for name in list(to_activate):
+        commands, states = cm.required_interfaces(name)
+        try:
+            resources.check_states(states)
+            for iface in commands:
+                holder = resources.claimed.get(iface)
+                if holder is not None and iface not in releasing:
+                    resources.check_commands([iface], name)
+                if iface in taken:
+                    raise ControlError(
+                        f"controllers '{taken[iface]}' and '{name}' both claim '{iface}'"
+                    )
+                taken[iface] = name
+            resources.check_commands([i for i in commands if i not in resources.claimed], name)
+        except RobomodelError as exc:
+            refuse(f"cannot activate '{name}': {exc}")
+            to_activate.remove(name)
+    return to_activate, to_deactivate

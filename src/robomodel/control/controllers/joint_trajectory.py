@@ -1,0 +1,455 @@
+"""joint_trajectory_controller (ros2_controllers, humble behaviour).
+
+Trajectories arrive on ``~/joint_trajectory`` (ROS 1 mapping: ``~/command``) or through
+:meth:`JointTrajectoryController.send_goal` (the FollowJointTrajectory action's semantics,
+in-process). A new trajectory replaces the running one (humble: "just forgets the old
+trajectory"); a running goal is then canceled. Tolerances (``constraints``) abort with
+``PATH_TOLERANCE_VIOLATED`` or ``GOAL_TOLERANCE_VIOLATED`` and hold the measured position.
+Position commands forward the desired position; velocity/effort-only commands run a PID per
+joint on the position error with the velocity error as its derivative (``gains.<joint>``).
+"""
+
+from __future__ import annotations
+
+import enum
+import logging
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from robomodel.control.controllers.base import (
+    ControllerInterface,
+    InterfaceConfiguration,
+    ReturnType,
+)
+from robomodel.control.controllers.exceptions import ControllerError
+from robomodel.control.controllers.joint_position import shortest_angular_distance
+from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
+from robomodel.control.pid import Gains, Pid
+from robomodel.errors import RobomodelError
+from robomodel.runtime.msg import JointTrajectory
+
+__all__ = ["GoalHandle", "GoalStatus", "JointTrajectoryController"]
+
+log = logging.getLogger("robomodel.control")
+
+_ALLOWED_COMMANDS = (
+    ("position",),
+    ("position", "velocity"),
+    ("position", "velocity", "acceleration"),
+    ("velocity",),
+    ("effort",),
+    ("position", "effort"),
+)
+
+
+class GoalStatus(enum.Enum):
+    ACTIVE = "active"
+    SUCCEEDED = "succeeded"
+    ABORTED = "aborted"
+    CANCELED = "canceled"
+
+
+@dataclass
+class GoalHandle:
+    """A FollowJointTrajectory goal: its status and ``error_code`` / ``error_string``."""
+
+    status: GoalStatus = GoalStatus.ACTIVE
+    error_code: int = 0  # control_msgs: SUCCESSFUL 0, INVALID_GOAL -1, PATH_TOLERANCE_VIOLATED -4, GOAL_TOLERANCE_VIOLATED -5
+    error_string: str = ""
+    path_tolerance: dict[str, float] = field(default_factory=dict)
+    goal_tolerance: dict[str, float] = field(default_factory=dict)
+    goal_time_tolerance_s: float | None = None
+
+
+class JointTrajectoryController(ControllerInterface):
+    """``joint_trajectory_controller/JointTrajectoryController`` (see the module docstring)."""
+
+    type_name = "joint_trajectory_controller/JointTrajectoryController"
+
+    def on_init(self) -> None:
+        self.joints = self.param_list("joints", [])
+        if not self.joints:
+            raise ControllerError(f"controller '{self.name}': 'joints' parameter is empty")
+        self.command_kinds = tuple(self.param_list("command_interfaces", []))
+        self.state_kinds = tuple(self.param_list("state_interfaces", []))
+        if self.command_kinds not in _ALLOWED_COMMANDS:
+            raise ControllerError(
+                f"controller '{self.name}': command_interfaces {list(self.command_kinds)} are "
+                f"not a supported combination; use one of {[list(c) for c in _ALLOWED_COMMANDS]}"
+            )
+        if "position" not in self.state_kinds:
+            raise ControllerError(f"controller '{self.name}': state_interfaces need 'position'")
+        self.use_pid = "position" not in self.command_kinds
+        if self.use_pid and "velocity" not in self.state_kinds:
+            raise ControllerError(
+                f"controller '{self.name}': velocity/effort commands need position and velocity states"
+            )
+        self.allow_partial_joints_goal = bool(self.param("allow_partial_joints_goal", False))
+        self.allow_nonzero_velocity_at_trajectory_end = bool(
+            self.param("allow_nonzero_velocity_at_trajectory_end", True)  # humble default
+        )
+        self.stopped_velocity_tolerance = self.param_float(
+            "constraints.stopped_velocity_tolerance", 0.01
+        )
+        self.goal_time_s = self.param_float("constraints.goal_time", 0.0)
+        self.path_tolerance = {
+            j: self.param_float(f"constraints.{j}.trajectory", 0.0) for j in self.joints
+        }
+        self.goal_tolerance = {
+            j: self.param_float(f"constraints.{j}.goal", 0.0) for j in self.joints
+        }
+        self.topic = str(self.param("topic", "~/joint_trajectory"))
+        self.pids = [Pid(Gains.from_params({"p": 0.0, **self._gains(j)})) for j in self.joints]
+        self.ff_velocity_scale = [
+            float(self.params.get(f"gains.{j}.ff_velocity_scale", 0.0)) for j in self.joints
+        ]
+        self.wraparound = [
+            bool(self.params.get(f"gains.{j}.angle_wraparound", False))
+            or bool(self.params.get(f"gains.{j}.normalize_error", False))  # humble, deprecated
+            for j in self.joints
+        ]
+        self.cmd_timeout_s = self.param_float("cmd_timeout", 0.0)
+        self.trajectory: Trajectory | None = None
+        self.goal: GoalHandle | None = None
+        self._pending: tuple[JointTrajectory, GoalHandle | None] | None = None
+        self._holding = True
+
+    def _gains(self, joint: str) -> dict[str, Any]:
+        prefix = f"gains.{joint}."
+        return {k[len(prefix) :]: v for k, v in self.params.items() if k.startswith(prefix)}
+
+    def command_interface_configuration(self) -> InterfaceConfiguration:
+        return InterfaceConfiguration.individual(
+            [f"{j}/{k}" for k in self.command_kinds for j in self.joints]
+        )
+
+    def state_interface_configuration(self) -> InterfaceConfiguration:
+        return InterfaceConfiguration.individual(
+            [f"{j}/{k}" for k in self.state_kinds for j in self.joints]
+        )
+
+    def on_configure(self) -> None:
+        self._goals: dict[int, GoalHandle] = {}
+        self._unregister: list[Any] = []
+        if self.node is not None:
+            self._sub = self.node.create_subscription(
+                JointTrajectory, self.topic, self._on_trajectory, 10
+            )
+            # FollowJointTrajectory as two services (goal, then status polling/cancel)
+            base = self.node.fully_qualified_name
+            ctx = self.node.context
+            self._unregister = [
+                ctx.create_service(f"{base}/follow_joint_trajectory", self._srv_goal),
+                ctx.create_service(f"{base}/goal_status", self._srv_status),
+            ]
+
+    def on_cleanup(self) -> None:
+        sub = getattr(self, "_sub", None)
+        if sub is not None:
+            sub.destroy()
+        for unregister in getattr(self, "_unregister", []):
+            unregister()
+        self._unregister = []
+
+    def _srv_goal(self, request: dict[str, Any]) -> dict[str, Any]:
+        """``{"trajectory": {...}, "path_tolerance": {joint: tol}, "goal_tolerance": {...},
+        "goal_time_tolerance": s}`` -> ``{"goal_id": n, "status": ..., "error_string": ...}``."""
+        from robomodel.runtime.msg import message_from_dict
+
+        try:
+            msg = message_from_dict(JointTrajectory, request.get("trajectory"))
+        except RobomodelError as exc:
+            return {"error": str(exc)}
+        handle = self.send_goal(
+            msg,
+            path_tolerance=dict(request.get("path_tolerance") or {}),
+            goal_tolerance=dict(request.get("goal_tolerance") or {}),
+            goal_time_tolerance_s=request.get("goal_time_tolerance"),
+        )
+        goal_id = len(self._goals) + 1
+        self._goals[goal_id] = handle
+        return {"goal_id": goal_id, **self._describe(handle)}
+
+    def _srv_status(self, request: dict[str, Any]) -> dict[str, Any]:
+        handle = self._goals.get(int(request.get("goal_id", 0)))
+        if handle is None:
+            return {"error": f"unknown goal id {request.get('goal_id')!r}"}
+        if request.get("cancel") and handle.status is GoalStatus.ACTIVE:
+            self.cancel_goal(handle)
+        return self._describe(handle)
+
+    @staticmethod
+    def _describe(handle: GoalHandle) -> dict[str, Any]:
+        return {
+            "status": handle.status.value,
+            "error_code": handle.error_code,
+            "error_string": handle.error_string,
+        }
+
+    def cancel_goal(self, handle: GoalHandle) -> None:
+        """Cancel a running goal: the controller holds the measured position."""
+        if handle is self.goal and handle.status is GoalStatus.ACTIVE:
+            self._finish(GoalStatus.CANCELED, 0, "canceled")
+            self._hold(self._now_s)
+        elif self._pending is not None and self._pending[1] is handle:
+            self._pending = None
+            handle.status = GoalStatus.CANCELED
+
+    def on_activate(self) -> None:
+        n = len(self.joints)
+        self._cmd = {
+            k: self.command_interfaces[i * n : (i + 1) * n]
+            for i, k in enumerate(self.command_kinds)
+        }
+        self._state = {
+            k: self.state_interfaces[i * n : (i + 1) * n] for i, k in enumerate(self.state_kinds)
+        }
+        for pid in self.pids:
+            pid.reset()
+        self._now_s = 0.0
+        self._hold(0.0)
+
+    def on_deactivate(self) -> None:
+        if self.goal is not None and self.goal.status is GoalStatus.ACTIVE:
+            self._finish(GoalStatus.ABORTED, -1, "controller deactivated")
+        self.trajectory = None
+
+    # -- inputs ---------------------------------------------------------------------------------
+    def _measured(self, kind: str) -> tuple[float, ...]:
+        return tuple(si.get() for si in self._state.get(kind, ()))
+
+    def validate(self, msg: JointTrajectory) -> str:
+        """Why ``msg`` is rejected (humble ``validate_trajectory_msg``), or ``""``."""
+        if not msg.joint_names or not msg.points:
+            return "empty joint names or points"
+        unknown = [j for j in msg.joint_names if j not in self.joints]
+        if unknown:
+            return f"unknown joints {unknown}"
+        if len(msg.joint_names) != len(self.joints) and not self.allow_partial_joints_goal:
+            return "the trajectory must name every joint (allow_partial_joints_goal is false)"
+        previous = -math.inf
+        for point in msg.points:
+            t = point.time_from_start.sec + point.time_from_start.nanosec * 1e-9
+            if t <= previous:
+                return "time_from_start must be strictly increasing"
+            previous = t
+            n = len(msg.joint_names)
+            if len(point.positions) != n:
+                return "every point needs one position per joint"
+            for arr in (point.velocities, point.accelerations):
+                if arr and len(arr) != n:
+                    return "velocities/accelerations must be empty or one per joint"
+            if point.effort:
+                return "effort in trajectory points is not supported (humble)"
+            if not all(
+                math.isfinite(v)
+                for v in (*point.positions, *point.velocities, *point.accelerations)
+            ):
+                return "non-finite values"
+        last = msg.points[-1]
+        if (
+            not self.allow_nonzero_velocity_at_trajectory_end
+            and last.velocities
+            and any(v != 0.0 for v in last.velocities)
+        ):
+            return (
+                "non-zero velocity at the end (allow_nonzero_velocity_at_trajectory_end is false)"
+            )
+        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        if stamp != 0.0 and stamp + t < self._now_s:
+            return "the trajectory ends in the past"
+        return ""
+
+    def _on_trajectory(self, msg: JointTrajectory) -> None:
+        self.send_trajectory(msg)
+
+    def send_trajectory(self, msg: JointTrajectory) -> bool:
+        """Take a trajectory as the topic does; False (and a warning) when rejected."""
+        reason = self.validate(msg)
+        if reason:
+            log.warning("%s: trajectory rejected: %s", self.name, reason)
+            return False
+        self._pending = (msg, None)
+        return True
+
+    def send_goal(
+        self,
+        msg: JointTrajectory,
+        *,
+        path_tolerance: dict[str, float] | None = None,
+        goal_tolerance: dict[str, float] | None = None,
+        goal_time_tolerance_s: float | None = None,
+    ) -> GoalHandle:
+        """A FollowJointTrajectory goal; tolerances override per joint (>0 use, -1 erase)."""
+        handle = GoalHandle(
+            path_tolerance=dict(path_tolerance or {}),
+            goal_tolerance=dict(goal_tolerance or {}),
+            goal_time_tolerance_s=goal_time_tolerance_s,
+        )
+        reason = self.validate(msg)
+        if reason:
+            handle.status, handle.error_code, handle.error_string = GoalStatus.ABORTED, -1, reason
+            return handle
+        self._pending = (msg, handle)
+        return handle
+
+    def _start(self, msg: JointTrajectory, handle: GoalHandle | None, now: float) -> None:
+        if self.goal is not None and self.goal.status is GoalStatus.ACTIVE:
+            # humble preempt_active_goal: canceled with INVALID_GOAL
+            self._finish(
+                GoalStatus.CANCELED, -1, "Current goal cancelled due to new incoming action."
+            )
+        index = [self.joints.index(j) for j in msg.joint_names]
+        pos_now = list(self._measured("position"))
+        full_points = []
+        for point in msg.points:
+            positions = list(pos_now)
+            for k, i in enumerate(index):
+                positions[i] = point.positions[k]
+            vel: tuple[float, ...] = ()
+            acc: tuple[float, ...] = ()
+            if point.velocities:
+                v = [0.0] * len(self.joints)
+                for k, i in enumerate(index):
+                    v[i] = point.velocities[k]
+                vel = tuple(v)
+            if point.accelerations:
+                a = [0.0] * len(self.joints)
+                for k, i in enumerate(index):
+                    a[i] = point.accelerations[k]
+                acc = tuple(a)
+            t = point.time_from_start.sec + point.time_from_start.nanosec * 1e-9
+            full_points.append(TrajectoryPoint(t, tuple(positions), vel, acc))
+        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        velocities = self._measured("velocity")
+        before = TrajectoryPoint(0.0, tuple(pos_now), velocities)
+        self.trajectory = Trajectory(stamp if stamp != 0.0 else now, full_points, now, before)
+        self.goal = handle
+        self._holding = False
+
+    def _finish(self, status: GoalStatus, code: int, text: str) -> None:
+        if self.goal is not None:
+            self.goal.status, self.goal.error_code, self.goal.error_string = status, code, text
+            self.goal = None
+
+    def _hold(self, now: float) -> None:
+        """set_hold_position: a one-point trajectory at the measured position."""
+        pos = self._measured("position")
+        self.trajectory = Trajectory(
+            now, [TrajectoryPoint(0.0, pos)], now, TrajectoryPoint(0.0, pos)
+        )
+        self._holding = True
+
+    def _tolerance(self, joint: str, default: float, overrides: dict[str, float]) -> float:
+        value = overrides.get(joint, 0.0)
+        if value > 0.0:
+            return value
+        return 0.0 if value == -1.0 else default
+
+    # -- the cycle ------------------------------------------------------------------------------
+    def update(self, time_s: float, period_s: float) -> ReturnType:
+        self._now_s = time_s
+        if self._pending is not None:
+            msg, handle = self._pending
+            self._pending = None
+            self._start(msg, handle, time_s)
+        traj = self.trajectory
+        if traj is None:
+            return ReturnType.OK
+        sample = traj.sample(time_s)
+        if sample is None:
+            return ReturnType.OK
+        pos = self._measured("position")
+        vel = self._measured("velocity")
+        n = len(self.joints)
+        errors = [
+            shortest_angular_distance(pos[i], sample.positions[i])
+            if self.wraparound[i]
+            else sample.positions[i] - pos[i]
+            for i in range(n)
+        ]
+        if (
+            self.cmd_timeout_s > 0.0
+            and not self._holding
+            and time_s - traj.end_s > self.cmd_timeout_s
+        ):
+            self._hold(time_s)  # humble: after the end + cmd_timeout, hold position
+            return self.update(time_s, period_s)
+        before_end = sample.segment < len(traj.points)
+        if not self._holding:
+            goal = self.goal
+            if before_end:
+                for i, j in enumerate(self.joints):
+                    tol = self._tolerance(
+                        j, self.path_tolerance[j], goal.path_tolerance if goal else {}
+                    )
+                    if tol > 0.0 and abs(errors[i]) > tol:
+                        log.warning("%s: path tolerance violated on %s", self.name, j)
+                        self._finish(GoalStatus.ABORTED, -4, f"path tolerance violated on {j}")
+                        self._hold(time_s)
+                        return self.update(time_s, period_s)
+            else:
+                ok = True
+                for i, j in enumerate(self.joints):
+                    tol = self._tolerance(
+                        j, self.goal_tolerance[j], goal.goal_tolerance if goal else {}
+                    )
+                    if tol > 0.0 and abs(errors[i]) > tol:
+                        ok = False
+                    # goal velocity tolerance = stopped_velocity_tolerance (tolerances.hpp),
+                    # on the velocity error, whatever the position tolerance
+                    if (
+                        vel
+                        and self.stopped_velocity_tolerance > 0.0
+                        and abs(sample.velocities[i] - vel[i]) > self.stopped_velocity_tolerance
+                    ):
+                        ok = False
+                goal_time = self.goal_time_s
+                if (
+                    goal is not None
+                    and goal.goal_time_tolerance_s is not None
+                    and goal.goal_time_tolerance_s != 0.0
+                ):
+                    goal_time = max(goal.goal_time_tolerance_s, 0.0)
+                if ok:
+                    self._finish(GoalStatus.SUCCEEDED, 0, "")
+                    self._holding = True  # set_success_trajectory_point: keep the last waypoint
+                elif goal_time > 0.0 and time_s - traj.end_s > goal_time:
+                    log.warning("%s: goal tolerance violated", self.name)
+                    self._finish(GoalStatus.ABORTED, -5, "goal tolerance violated")
+                    self._hold(time_s)
+                    return self.update(time_s, period_s)
+        self._write(
+            sample.positions, sample.velocities, sample.accelerations, errors, vel, period_s
+        )
+        return ReturnType.OK
+
+    def _write(
+        self,
+        p: Sequence[float],
+        v: Sequence[float],
+        a: Sequence[float],
+        errors: Sequence[float],
+        vel: Sequence[float],
+        period_s: float,
+    ) -> None:
+        cmd = self._cmd
+        if "position" in cmd:
+            for ci, x in zip(cmd["position"], p, strict=True):
+                ci.set(x)
+            if "velocity" in cmd:
+                for ci, x in zip(cmd["velocity"], v, strict=True):
+                    ci.set(x)
+            if "acceleration" in cmd:
+                for ci, x in zip(cmd["acceleration"], a, strict=True):
+                    ci.set(x)
+            return
+        kind = "velocity" if "velocity" in cmd else "effort"
+        for i, ci in enumerate(cmd[kind]):
+            vel_error = v[i] - (vel[i] if vel else 0.0)
+            u = self.ff_velocity_scale[i] * v[i] + self.pids[i].compute_with_rate(
+                errors[i], vel_error, period_s
+            )
+            ci.set(u)

@@ -1,0 +1,45 @@
+"""trajectory_msgs: JointTrajectory and JointTrajectoryPoint."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from robomodel.runtime.msg._schema import Message, Seq
+from robomodel.runtime.msg.builtin_interfaces import Duration
+from robomodel.runtime.msg.std_msgs import Header
+
+__all__ = ["JointTrajectory", "JointTrajectoryPoint"]
+
+
+@dataclass(slots=True)
+class JointTrajectoryPoint(Message):
+    """One waypoint; any of the arrays may be empty."""
+
+    positions: list[float] = field(default_factory=list)
+    velocities: list[float] = field(default_factory=list)
+    accelerations: list[float] = field(default_factory=list)
+    effort: list[float] = field(default_factory=list)
+    time_from_start: Duration = field(default_factory=Duration)
+    __typename__ = "trajectory_msgs/msg/JointTrajectoryPoint"
+    __fields__ = (
+        ("positions", Seq("float64")),
+        ("velocities", Seq("float64")),
+        ("accelerations", Seq("float64")),
+        ("effort", Seq("float64")),
+        ("time_from_start", Duration),
+    )
+
+
+@dataclass(slots=True)
+class JointTrajectory(Message):
+    """Waypoints for ``joint_names``; a zero ``header.stamp`` means "start on reception"."""
+
+    header: Header = field(default_factory=Header)
+    joint_names: list[str] = field(default_factory=list)
+    points: list[JointTrajectoryPoint] = field(default_factory=list)
+    __typename__ = "trajectory_msgs/msg/JointTrajectory"
+    __fields__ = (
+        ("header", Header),
+        ("joint_names", Seq("string")),
+        ("points", Seq(JointTrajectoryPoint)),
+    )

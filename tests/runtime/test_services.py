@@ -1,0 +1,63 @@
+"""Request/response services: in-process and across processes over Zenoh."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from robomodel.errors import RobomodelError
+from robomodel.runtime import Context
+
+SERVER = textwrap.dedent(
+    """
+    import sys
+    from robomodel.runtime import Context
+    ctx = Context("zenoh", domain_id=int(sys.argv[1]))
+    def add(request):
+        if "a" not in request:
+            raise ValueError("missing 'a'")
+        return {"sum": request["a"] + request["b"]}
+    ctx.create_service("/calc/add", add)
+    print("ready", flush=True)
+    ctx.spin(duration_s=30)
+    """
+)
+
+
+def test_inproc_service_call_and_errors() -> None:
+    with Context("inproc") as ctx:
+        unregister = ctx.create_service("/calc/add", lambda r: {"sum": r["a"] + r["b"]})
+        assert ctx.call_service("/calc/add", {"a": 1, "b": 2}) == {"sum": 3}
+        with pytest.raises(RobomodelError, match="already offered"):
+            ctx.create_service("/calc/add", lambda r: r)
+        unregister()
+        with pytest.raises(RobomodelError, match="not found"):
+            ctx.call_service("/calc/add", {})
+
+
+def test_zenoh_service_across_processes(tmp_path: Path) -> None:
+    script = tmp_path / "server.py"
+    script.write_text(SERVER)
+    domain = str(200 + os.getpid() % 40)
+    proc = subprocess.Popen(
+        [sys.executable, str(script), domain], stdout=subprocess.PIPE, text=True
+    )
+    try:
+        assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
+        with Context("zenoh", domain_id=int(domain)) as ctx:
+            from robomodel.cli._bus import wait_for_peers
+
+            wait_for_peers(ctx)
+            assert ctx.call_service("/calc/add", {"a": 2, "b": 40}) == {"sum": 42}
+            # a handler's exception comes back as an error answer, not a dead server
+            assert "missing 'a'" in ctx.call_service("/calc/add", {"b": 1})["error"]
+            with pytest.raises(RobomodelError, match="did not answer"):
+                ctx.call_service("/calc/nothing", {}, timeout_s=0.5)
+    finally:
+        proc.kill()
+        proc.wait()
