@@ -27,6 +27,10 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python bench/bench_parse.py
+	$(BIN)/python bench/bench_xacro.py
+	$(BIN)/python bench/bench_kinematics.py
+	$(BIN)/python bench/bench_runtime.py
+	$(BIN)/python bench/bench_control.py
 
 clean:
 	rm -rf $(VENV) build .pytest_cache .mypy_cache .ruff_cache
