@@ -11,7 +11,6 @@ import heapq
 import itertools
 import logging
 import queue
-import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -21,6 +20,10 @@ from robomodel.runtime.clock import Clock, ManualClock
 __all__ = ["Executor", "Timer"]
 
 log = logging.getLogger("robomodel.runtime")
+
+
+def _noop() -> None:
+    """Posted to wake the spinning thread (a new timer, a stop request)."""
 
 
 @dataclass(eq=False)
@@ -57,27 +60,30 @@ class Executor:
     """Runs posted callbacks and due timers."""
 
     def __init__(self) -> None:
+        # A C-implemented queue: producers never take a Python-level lock, and the spinning
+        # thread blocks in get() with the GIL released until work (or a wake-up) arrives.
         self._queue: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
         self._timers: list[Timer] = []
-        self._wake = threading.Event()
         self._stopped = False
 
     # -- producers (any thread) ----------------------------------------------------------
     def post(self, callback: Callable[[], None]) -> None:
         self._queue.put(callback)
-        self._wake.set()
+
+    def _wake(self) -> None:
+        self._queue.put(_noop)
 
     def add_timer(self, period_s: float, callback: Callable[[], None], clock: Clock) -> Timer:
         if not period_s > 0:
             raise ValueError(f"timer period must be > 0 s, got {period_s}")
         timer = Timer(period_s, callback, clock, clock.now_s())
         self._timers.append(timer)
-        self._wake.set()
+        self._wake()
         return timer
 
     def stop(self) -> None:
         self._stopped = True
-        self._wake.set()
+        self._wake()
 
     @property
     def stopped(self) -> bool:
@@ -115,9 +121,6 @@ class Executor:
 
     def spin_once(self, timeout_s: float = 0.0) -> int:
         """Run what is ready; if nothing is, wait up to ``timeout_s`` for work."""
-        # Clear before draining: a post that lands after the drain sets the event again, so
-        # the wait below returns at once instead of sleeping on a queued message.
-        self._wake.clear()
         done = self.run_pending() + self.run_due_timers()
         if done or timeout_s <= 0:
             return done
@@ -125,8 +128,12 @@ class Executor:
         live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
         if live:
             wait = min(wait, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
-        self._wake.wait(wait)
-        return self.run_pending() + self.run_due_timers()
+        try:
+            callback = self._queue.get(timeout=wait) if wait > 0 else self._queue.get_nowait()
+        except queue.Empty:
+            return self.run_due_timers()
+        self._run(callback)
+        return 1 + self.run_pending() + self.run_due_timers()
 
     def spin(
         self, *, duration_s: float | None = None, until: Callable[[], bool] | None = None
