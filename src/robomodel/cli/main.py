@@ -33,6 +33,7 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.topic",
     "robomodel.cli.param",
     "robomodel.cli.publish_state",
+    "robomodel.cli.view",
 )
 
 
