@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import math
 import os
 import threading
 import time
@@ -21,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from robomodel.description.model import Robot
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.runtime.context import Context
@@ -61,6 +63,18 @@ class ViewerOptions:
     external: bool = False
     package_index: PackageIndex = field(default_factory=PackageIndex)
     reload_period_s: float = 0.25
+
+
+def zero_pose_extent_m(robot: Robot) -> float:
+    """Largest distance of a link frame from the root with every joint at zero [m]."""
+    tree = robot.tree()
+    positions = {tree.root: np.eye(4)}
+    extent = 0.0
+    for _depth, joint in tree.walk():
+        T = positions.get(joint.parent, np.eye(4)) @ joint.origin.matrix()
+        positions[joint.child] = T
+        extent = max(extent, float(np.linalg.norm(T[:3, 3])))
+    return extent
 
 
 def _namespace(source: RobotSource, number: int, count: int) -> str:
@@ -146,6 +160,7 @@ class Viewer:
                 host=opts.host, port=opts.port, label="robomodel view", verbose=False
             )
         self._build_gui()
+        self._place_camera()
         for session in self.sessions:
             session.build_display(
                 self.server.scene, self.meshes, self.display_options, load_meshes=False
@@ -154,6 +169,20 @@ class Viewer:
             session.publish_bodies()
         self._spawn(self._loop, "robomodel-view-loop")
         self._spawn(self._load_meshes, "robomodel-view-meshes")
+
+    def _place_camera(self) -> None:
+        """RViz's orbit view (yaw 5.5, pitch 0.33 rad), far enough to see the first robot."""
+        robot = next((s.robot for s in self.sessions if s.robot is not None), None)
+        extent = zero_pose_extent_m(robot) if robot is not None else 0.5
+        distance = max(1.0, 3.0 * extent + 0.5) * max(1.0, len(self.sessions) ** 0.5)
+        yaw, pitch = 5.5, 0.33
+        camera = self.server.initial_camera
+        camera.look_at = (0.0, 0.0, 0.0)
+        camera.position = (
+            distance * math.cos(pitch) * math.cos(yaw),
+            distance * math.cos(pitch) * math.sin(yaw),
+            distance * math.sin(pitch),
+        )
 
     def _spawn(self, target: Callable[[], None], name: str) -> None:
         thread = threading.Thread(target=target, name=name, daemon=True)

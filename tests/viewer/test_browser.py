@@ -1,0 +1,218 @@
+"""`robomodel view` in headless Chromium: drawn, sliders, /tf, reload, errors, several robots.
+
+Each test starts the real command, loads the page in Debian's Chromium (software WebGL) and
+looks at pixels: the robot is where the background would otherwise be, a slider moved in the
+page moves the drawing and the published /tf. Screenshots are kept in build/viewer-screenshots/.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from tests.conftest import EXAMPLES, example_robot_data_dir
+from tests.viewer.conftest import (
+    ViewerProcess,
+    changed_fraction,
+    domain_id,
+    open_viewer,
+    save_shot,
+    settle,
+    slider_input,
+    wait_for,
+)
+from tests.viewer.robots import write_arm
+
+pytestmark = pytest.mark.browser
+
+
+def _toggle(page: Any, label: str) -> None:
+    page.locator(f"label:text-is('{label}')").click()
+
+
+def test_simplebot_is_drawn_with_sliders_and_frames(
+    viewer: Callable[..., ViewerProcess], page: Any
+) -> None:
+    view = viewer(EXAMPLES / "simplebot_description/urdf/simplebot.urdf.xacro")
+    open_viewer(page, view.url)
+    page.get_by_text("left_wheel_joint").wait_for()
+    page.get_by_text("right_wheel_joint").wait_for()
+    with_robot = settle(page)
+    save_shot(page, "simplebot")
+    _toggle(page, "Visual Enabled")
+    without = settle(page)
+    # The robot covers pixels that are background (or grid) when its visuals are hidden.
+    assert changed_fraction(with_robot, without) > 0.002
+
+
+class TfProbe:
+    """Listens to /tf over Zenoh in the test process (as another ROS process would)."""
+
+    def __init__(self, domain: str) -> None:
+        from robomodel.runtime import Context
+        from robomodel.runtime.tf_listener import TransformListener
+
+        self.context = Context("zenoh", domain_id=int(domain))
+        self.buffer = TransformListener(self.context.create_node("probe")).buffer
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        while not self._stop.is_set():
+            self.context.spin_once(0.05)
+
+    def rotation(self, target: str, source: str) -> np.ndarray | None:
+        try:
+            return np.asarray(self.buffer.lookup_transform(target, source).rotation_xyzw)
+        except Exception:
+            return None
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(timeout=5)
+        self.context.shutdown()
+
+
+@pytest.fixture
+def tf_probe() -> Iterator[Callable[[str], TfProbe]]:
+    probes: list[TfProbe] = []
+
+    def make(domain: str) -> TfProbe:
+        probes.append(TfProbe(domain))
+        return probes[-1]
+
+    yield make
+    for probe in probes:
+        probe.close()
+
+
+def test_slider_moves_drawing_and_published_tf(
+    viewer: Callable[..., ViewerProcess],
+    page: Any,
+    tmp_path: Path,
+    tf_probe: Callable[[str], TfProbe],
+) -> None:
+    domain = domain_id(1)
+    probe = tf_probe(domain)
+    view = viewer(write_arm(tmp_path), "--bus", "zenoh", "--domain-id", domain)
+    open_viewer(page, view.url)
+    before = settle(page)
+    q0 = wait_for(lambda: probe.rotation("base_link", "link1"), what="/tf of joint1")
+    box = slider_input(page, "joint1")
+    box.fill("1.2")
+    box.press("Enter")
+    q1 = wait_for(
+        lambda: (q := probe.rotation("base_link", "link1")) is not None
+        and abs(q[0] - np.sin(0.6)) < 1e-3
+        and q,
+        what="/tf of joint1 at 1.2 rad",
+    )
+    assert not np.allclose(q0, q1)
+    after = settle(page)
+    save_shot(page, "arm_joint1_1.2")
+    assert changed_fraction(before, after) > 0.002
+    # The slider's thumb moved too: keyboard End takes it to the upper limit (2 rad).
+    page.locator("[role=slider]").first.focus()
+    page.keyboard.press("End")
+    wait_for(
+        lambda: (q := probe.rotation("base_link", "link1")) is not None
+        and abs(q[0] - np.sin(1.0)) < 1e-3,
+        what="/tf of joint1 at the upper limit",
+    )
+    assert float(box.input_value()) == pytest.approx(2.0)
+
+
+def test_reload_keeps_slider_values_and_errors_keep_last_model(
+    viewer: Callable[..., ViewerProcess], page: Any, tmp_path: Path
+) -> None:
+    path = write_arm(tmp_path)
+    view = viewer(path)
+    open_viewer(page, view.url)
+    box = slider_input(page, "joint1")
+    box.fill("0.8")
+    box.press("Enter")
+    thin = settle(page)
+    write_arm(tmp_path, width=0.6)  # a much wider link1
+    wait_for(
+        lambda: changed_fraction(thin, settle(page, 5)) > 0.002,
+        what="the reloaded (wider) arm to be drawn",
+    )
+    save_shot(page, "arm_reloaded_wide")
+    assert float(slider_input(page, "joint1").input_value()) == pytest.approx(0.8)
+    wide = settle(page)
+    path.write_text(path.read_text().replace("</robot>", "<link name='broken'>"))
+    error = page.get_by_text("showing the last good model")
+    error.wait_for(timeout=15000)
+    status = page.locator("text=arm.urdf:").first.inner_text()
+    assert "arm.urdf:" in status and "error" in status
+    save_shot(page, "arm_broken")
+    assert changed_fraction(wide, settle(page)) < 0.002  # the last good model stays
+    write_arm(tmp_path, width=0.15)
+    wait_for(
+        lambda: page.get_by_text("showing the last good model").count() == 0,
+        what="the error to clear",
+    )
+
+
+def test_missing_mesh_is_listed_and_the_rest_drawn(
+    viewer: Callable[..., ViewerProcess], page: Any, tmp_path: Path
+) -> None:
+    extra = """<link name="escape"><visual><geometry>
+      <mesh filename="package://simplebot_description/../../etc/passwd"/></geometry></visual></link>
+      <joint name="escape_joint" type="fixed"><parent link="base_link"/><child link="escape"/></joint>"""
+    path = write_arm(tmp_path, mesh="meshes/nothere.stl", extra=extra)
+    view = viewer(path, "--package", f"simplebot_description={EXAMPLES / 'simplebot_description'}")
+    open_viewer(page, view.url)
+    page.get_by_text("2 mesh(es) not drawn").wait_for(timeout=15000)
+    text = page.locator("text=nothere.stl").first.inner_text()
+    assert "file not found" in text
+    assert "escapes package" in text
+    drawn = settle(page)
+    save_shot(page, "arm_missing_mesh")
+    _toggle(page, "Visual Enabled")
+    assert changed_fraction(drawn, settle(page)) > 0.002
+
+
+def test_two_prefixed_robots_in_one_scene(
+    viewer: Callable[..., ViewerProcess], page: Any
+) -> None:
+    xacro = EXAMPLES / "example_description/urdf/example.urdf.xacro"
+    view = viewer(xacro, xacro, "--prefix", "robot1/", "--prefix", "robot2/")
+    open_viewer(page, view.url)
+    page.get_by_text("drawn beside it").wait_for(timeout=15000)
+    dropdown = page.locator("input[value='robot1/base_footprint']")
+    assert dropdown.count() == 1
+    page.get_by_text("robot2/example").wait_for()
+    both = settle(page)
+    save_shot(page, "two_robots")
+    _toggle(page, "Visual Enabled")
+    assert changed_fraction(both, settle(page)) > 0.004
+
+
+def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any) -> None:
+    share = example_robot_data_dir().parents[1]
+    urdf = example_robot_data_dir() / "talos_data/robots/talos_full_v2.urdf"
+    view = viewer(urdf, "--package", f"example-robot-data={share / 'example-robot-data'}")
+    open_viewer(page, view.url)
+    wait_for(
+        lambda: page.locator("text=loading").count() == 0 and page.get_by_text("OK").count(),
+        timeout_s=60,
+        what="every mesh to load",
+    )
+    drawn = settle(page)
+    save_shot(page, "talos")
+    _toggle(page, "Visual Enabled")
+    assert changed_fraction(drawn, settle(page)) > 0.01
+    _toggle(page, "Visual Enabled")
+    drawn = settle(page)
+    started = time.monotonic()
+    page.get_by_text("Randomize").click()
+    wait_for(lambda: changed_fraction(drawn, settle(page, 5)) > 0.0, what="a new pose")
+    assert time.monotonic() - started < 30
