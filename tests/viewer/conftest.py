@@ -31,7 +31,7 @@ CHROMIUM_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
-VIEWPORT = {"width": 1000, "height": 700}
+VIEWPORT = {"width": 1280, "height": 720}
 
 
 def chromium_path() -> str:
@@ -123,7 +123,7 @@ def page(browser: Any) -> Iterator[Any]:
 def open_viewer(page: Any, url: str) -> None:
     """Load the page and wait until the GUI arrived over the websocket."""
     page.goto(url)
-    page.get_by_text("Fixed Frame").wait_for(timeout=30000)
+    page.get_by_text("Fixed Frame", exact=True).wait_for(timeout=30000)
 
 
 def screenshot(page: Any) -> np.ndarray:
@@ -137,7 +137,7 @@ def screenshot(page: Any) -> np.ndarray:
 def scene_region(image: np.ndarray) -> np.ndarray:
     """The 3D view without the GUI panel (right) and the notification corner (top left)."""
     h, w, _ = image.shape
-    return image[int(0.25 * h) : int(0.95 * h), int(0.05 * w) : int(0.78 * w)]
+    return image[int(0.25 * h) : int(0.95 * h), int(0.05 * w) : int(0.70 * w)]
 
 
 def changed_fraction(a: np.ndarray, b: np.ndarray, threshold: int = 30) -> float:
@@ -159,12 +159,20 @@ def settle(page: Any, timeout_s: float = 15.0) -> np.ndarray:
     return last
 
 
-def slider_input(page: Any, label: str) -> Any:
-    """The editable value box next to the slider labelled ``label``."""
-    row = page.locator(f"label:text-is('{label}')").locator(
+def _row(page: Any, label: str) -> Any:
+    return page.locator(f"label:text-is('{label}')").locator(
         "xpath=ancestor::div[contains(@class, 'mantine-Flex-root')][1]"
     )
-    return row.locator("input:not([type=hidden])").first
+
+
+def slider_input(page: Any, label: str) -> Any:
+    """The editable value box next to the slider labelled ``label``."""
+    return _row(page, label).locator("input:not([type=hidden])").first
+
+
+def slider_thumb(page: Any, label: str) -> Any:
+    """The thumb of the slider labelled ``label`` (takes arrow keys, Home and End)."""
+    return _row(page, label).locator("[role=slider]").first
 
 
 def save_shot(page: Any, name: str) -> Path:

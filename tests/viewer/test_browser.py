@@ -25,6 +25,7 @@ from tests.viewer.conftest import (
     save_shot,
     settle,
     slider_input,
+    slider_thumb,
     wait_for,
 )
 from tests.viewer.robots import write_arm
@@ -68,11 +69,20 @@ class TfProbe:
         while not self._stop.is_set():
             self.context.spin_once(0.05)
 
-    def rotation(self, target: str, source: str) -> np.ndarray | None:
+    def angle_x(self, target: str, source: str) -> float | None:
+        """Rotation angle about x of ``source`` in ``target`` [rad], None before any /tf."""
         try:
-            return np.asarray(self.buffer.lookup_transform(target, source).rotation_xyzw)
+            qx, _, _, qw = self.buffer.lookup_transform(target, source).rotation_xyzw
         except Exception:
             return None
+        return float(2 * np.arctan2(qx, qw))
+
+    def wait_angle(self, value: float) -> None:
+        def reached() -> bool:
+            angle = self.angle_x("base_link", "link1")
+            return angle is not None and abs(angle - value) < 1e-3
+
+        wait_for(reached, what=f"/tf of joint1 at {value} rad")
 
     def close(self) -> None:
         self._stop.set()
@@ -104,28 +114,18 @@ def test_slider_moves_drawing_and_published_tf(
     view = viewer(write_arm(tmp_path), "--bus", "zenoh", "--domain-id", domain)
     open_viewer(page, view.url)
     before = settle(page)
-    q0 = wait_for(lambda: probe.rotation("base_link", "link1"), what="/tf of joint1")
+    probe.wait_angle(0.0)
     box = slider_input(page, "joint1")
     box.fill("1.2")
     box.press("Enter")
-    q1 = wait_for(
-        lambda: (q := probe.rotation("base_link", "link1")) is not None
-        and abs(q[0] - np.sin(0.6)) < 1e-3
-        and q,
-        what="/tf of joint1 at 1.2 rad",
-    )
-    assert not np.allclose(q0, q1)
+    probe.wait_angle(1.2)
     after = settle(page)
     save_shot(page, "arm_joint1_1.2")
     assert changed_fraction(before, after) > 0.002
     # The slider's thumb moved too: keyboard End takes it to the upper limit (2 rad).
-    page.locator("[role=slider]").first.focus()
+    slider_thumb(page, "joint1").focus()
     page.keyboard.press("End")
-    wait_for(
-        lambda: (q := probe.rotation("base_link", "link1")) is not None
-        and abs(q[0] - np.sin(1.0)) < 1e-3,
-        what="/tf of joint1 at the upper limit",
-    )
+    probe.wait_angle(2.0)
     assert float(box.input_value()) == pytest.approx(2.0)
 
 
@@ -180,16 +180,14 @@ def test_missing_mesh_is_listed_and_the_rest_drawn(
     assert changed_fraction(drawn, settle(page)) > 0.002
 
 
-def test_two_prefixed_robots_in_one_scene(
-    viewer: Callable[..., ViewerProcess], page: Any
-) -> None:
+def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], page: Any) -> None:
     xacro = EXAMPLES / "example_description/urdf/example.urdf.xacro"
     view = viewer(xacro, xacro, "--prefix", "robot1/", "--prefix", "robot2/")
     open_viewer(page, view.url)
     page.get_by_text("drawn beside it").wait_for(timeout=15000)
     dropdown = page.locator("input[value='robot1/base_footprint']")
-    assert dropdown.count() == 1
-    page.get_by_text("robot2/example").wait_for()
+    assert dropdown.count() >= 1
+    page.get_by_text("robot2/example", exact=True).last.wait_for()
     both = settle(page)
     save_shot(page, "two_robots")
     _toggle(page, "Visual Enabled")
