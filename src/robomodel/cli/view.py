@@ -10,6 +10,8 @@ from __future__ import annotations
 import argparse
 import contextlib
 import sys
+import threading
+import time
 import webbrowser
 from typing import Any
 
@@ -77,6 +79,23 @@ def register(subparsers: Any) -> None:
     parser.set_defaults(func=run)
 
 
+def _report_meshes(viewer: Any) -> None:
+    """Say on stderr when every mesh is in the scene (the page is served before that)."""
+    started = time.monotonic()
+
+    def report() -> None:
+        viewer.meshes_ready.wait()
+        count = viewer.meshes.loads
+        elapsed = time.monotonic() - started
+        print(
+            f"robomodel view: scene ready ({count} mesh files loaded in {elapsed:.2f} s)",
+            file=sys.stderr,
+            flush=True,
+        )
+
+    threading.Thread(target=report, daemon=True).start()
+
+
 def run(args: argparse.Namespace) -> int:
     from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 
@@ -113,6 +132,7 @@ def run(args: argparse.Namespace) -> int:
         for session in viewer.sessions:
             if session.failure is not None:
                 print(f"robomodel view: {session.failure.message}", file=sys.stderr, flush=True)
+        _report_meshes(viewer)
         if not args.no_browser:
             webbrowser.open(viewer.url)
         with contextlib.suppress(KeyboardInterrupt):

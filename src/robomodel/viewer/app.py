@@ -293,7 +293,10 @@ class Viewer:
         assert self.context is not None
         next_reload = next_status = 0.0
         while not self._stop.is_set():
-            self.context.spin_once(0.01)
+            self.context.spin_once(0.005)
+            for session in self.sessions:
+                if session.apply_queued():
+                    self.context.spin_once(0.0)  # robot_state_publisher -> /tf -> buffer
             now = time.monotonic()
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s

@@ -9,6 +9,7 @@ A description that fails to load leaves the last good model in place and records
 from __future__ import annotations
 
 import random
+import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +30,7 @@ from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
 from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher, _transform_msg
 from robomodel.tf import BufferCore
 from robomodel.tf.exceptions import TransformError
+from robomodel.viewer._poses import QuatXyzw, Vec3, compose
 from robomodel.viewer.bodies import body_transform
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
 from robomodel.viewer.meshes import MeshCache
@@ -142,6 +144,8 @@ class RobotSession:
         self._context: Context | None = None
         self._node: Node | None = None
         self._tf_pub: Any = None
+        self._pending: dict[str, float] = {}
+        self._pending_lock = threading.Lock()
 
     # -- loading ------------------------------------------------------------------------------
     @property
@@ -277,13 +281,27 @@ class RobotSession:
             tuple(jsp.free_joints.values()),
             mimic=mimic,
             bodies=bodies,
-            on_change=lambda values: post(lambda: self.set_positions(values)),
+            on_change=self.queue_positions,
             on_randomize=lambda: post(lambda: self.randomize()),
             on_center=lambda: post(lambda: self.center()),
             on_body=lambda name, pose: post(lambda: self.set_body(name, pose)),
         )
 
     # -- controls (run on the executor thread) --------------------------------------------------
+    def queue_positions(self, values: Mapping[str, float]) -> None:
+        """From any thread: joint values to apply at the loop's next turn (merged, so a fast
+        slider drag costs one joint_state_publisher message per turn, not one per event)."""
+        with self._pending_lock:
+            self._pending.update(values)
+
+    def apply_queued(self) -> bool:
+        """Apply queued joint values (loop thread); True if there were any."""
+        with self._pending_lock:
+            pending, self._pending = self._pending, {}
+        if pending:
+            self.set_positions(pending)
+        return bool(pending)
+
     def set_positions(self, values: Mapping[str, float]) -> None:
         if self.jsp is None:
             return
@@ -348,25 +366,41 @@ class RobotSession:
         """
         if self.robot is None or self.display is None:
             return None
-        root = self.prefix + self.robot.tree().root
+        tree = self.robot.tree()
+        root = self.prefix + tree.root
         names = self.display.link_names
         n = len(names)
         t = np.zeros((n, 3))
         q = np.zeros((n, 4))
         q[:, 3] = 1.0
         visible = np.zeros(n, dtype=bool)
+        index = {name: i for i, name in enumerate(names)}
+        visible[index[tree.root]] = True
+        poses: dict[str, tuple[Vec3, QuatXyzw]] = {
+            tree.root: ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+        }
         missing = []
-        for i, name in enumerate(names):
-            frame = self.prefix + name
-            if frame == root:
-                visible[i] = True
-                continue
+        # One hop per joint (parent -> child), composed down the tree: O(links), not
+        # O(links x depth) as looking every link up from the root would be.
+        for _depth, joint in tree.walk():
+            i, p = index[joint.child], index[joint.parent]
+            frame = self.prefix + joint.child
             try:
-                tf = buffer.lookup_transform(root, frame)
+                if not visible[p]:
+                    raise TransformError("parent not connected")
+                tf = buffer.lookup_transform(self.prefix + joint.parent, frame)
+                t_p, q_p = poses[joint.parent]
+                poses[joint.child] = compose(t_p, q_p, tf.translation_m, tf.rotation_xyzw)
+                t[i], q[i] = poses[joint.child]
+                visible[i] = True
             except TransformError:
-                missing.append(frame)
-                continue
-            t[i], q[i], visible[i] = tf.translation_m, tf.rotation_xyzw, True
+                try:  # another process may publish a different tree: ask the root directly
+                    tf = buffer.lookup_transform(root, frame)
+                except TransformError:
+                    missing.append(frame)
+                    continue
+                poses[joint.child] = (tf.translation_m, tf.rotation_xyzw)
+                t[i], q[i], visible[i] = tf.translation_m, tf.rotation_xyzw, True
         connected = True
         try:
             base = buffer.lookup_transform(fixed_frame, root)
