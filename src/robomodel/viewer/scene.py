@@ -9,6 +9,7 @@ RobotModel display does. Meshes that cannot be found or read are skipped and rep
 
 from __future__ import annotations
 
+import functools
 import threading
 from dataclasses import dataclass
 from pathlib import Path
@@ -30,6 +31,19 @@ __all__ = ["GeometryProblem", "RobotModelDisplay"]
 Kind = Literal["visual", "collision"]
 Rgba = tuple[float, float, float, float]
 _POSITION_TOL_M = 1e-6
+
+
+@functools.cache
+def _viser_messages() -> Any:
+    """viser's message classes if they are the ones 1.1 has, else None (use the setters)."""
+    try:
+        from viser import _messages
+    except ImportError:
+        return None
+    ok = hasattr(_messages, "SetOrientationMessage") and hasattr(_messages, "SetPositionMessage")
+    return _messages if ok else None
+
+
 _ROTATION_TOL = 1e-7
 
 
@@ -271,15 +285,35 @@ class RobotModelDisplay:
         moved &= visible
         shown = visible != self._last_visible
         for i in np.flatnonzero(moved):
-            handle = self._links[i]
-            handle.wxyz = wxyz[i]
-            handle.position = xyz[i]
+            self._write_pose(self._links[i], wxyz[i], xyz[i])
         self._last_wxyz[moved] = wxyz[moved]
         self._last_xyz[moved] = xyz[moved]
         for i in np.flatnonzero(shown):
             self._links[i].visible = bool(visible[i])
         self._last_visible = visible.copy()
         return int(moved.sum())
+
+    def _write_pose(self, handle: Any, wxyz: NDArray[np.float64], xyz: NDArray[np.float64]) -> None:
+        """Set a node's pose; we already know it changed, so skip viser's per-setter checks.
+
+        viser's ``wxyz``/``position`` setters cast, compare (``np.allclose``) and copy on every
+        call, which is most of the cost of a 60-link update. When this viser has the same
+        internals as 1.1 (``_queue_scene_message``, ``SetOrientationMessage``), the messages are
+        queued directly and the handle's state updated in place; otherwise the public setters.
+        """
+        queue = getattr(self.scene, "_queue_scene_message", None)
+        impl = getattr(handle, "_impl", None)
+        messages = _viser_messages()
+        if queue is None or impl is None or messages is None:
+            handle.wxyz = wxyz
+            handle.position = xyz
+            return
+        w, x, y, z = (float(v) for v in wxyz)
+        px, py, pz = (float(v) for v in xyz)
+        impl.wxyz[:] = (w, x, y, z)
+        impl.position[:] = (px, py, pz)
+        queue(messages.SetOrientationMessage(impl.name, (w, x, y, z)))
+        queue(messages.SetPositionMessage(impl.name, (px, py, pz)))
 
     def remove(self) -> None:
         """Take the robot out of the scene."""
