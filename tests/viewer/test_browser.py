@@ -150,8 +150,8 @@ def test_reload_keeps_slider_values_and_errors_keep_last_model(
     path.write_text(path.read_text().replace("</robot>", "<link name='broken'>"))
     error = page.get_by_text("showing the last good model")
     error.wait_for(timeout=15000)
-    status = page.locator("text=arm.urdf:").first.inner_text()
-    assert "arm.urdf:" in status and "error" in status
+    status = page.get_by_text("arm.urdf:").first.locator("xpath=..").inner_text()
+    assert "error:" in status and "arm.urdf:" in status
     save_shot(page, "arm_broken")
     assert changed_fraction(wide, settle(page)) < 0.002  # the last good model stays
     write_arm(tmp_path, width=0.15)
@@ -171,7 +171,7 @@ def test_missing_mesh_is_listed_and_the_rest_drawn(
     view = viewer(path, "--package", f"simplebot_description={EXAMPLES / 'simplebot_description'}")
     open_viewer(page, view.url)
     page.get_by_text("2 mesh(es) not drawn").wait_for(timeout=15000)
-    text = page.locator("text=nothere.stl").first.inner_text()
+    text = page.get_by_text("2 mesh(es) not drawn").locator("xpath=..").inner_text()
     assert "file not found" in text
     assert "escapes package" in text
     drawn = settle(page)
@@ -214,3 +214,33 @@ def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any
     page.get_by_text("Randomize").click()
     wait_for(lambda: changed_fraction(drawn, settle(page, 5)) > 0.0, what="a new pose")
     assert time.monotonic() - started < 30
+
+
+def test_bus_mode_draws_joint_states_from_another_process(
+    viewer: Callable[..., ViewerProcess], page: Any, tmp_path: Path
+) -> None:
+    import subprocess
+    import sys
+
+    domain = domain_id(2)
+    path = write_arm(tmp_path)
+    command = [sys.executable, "-m", "robomodel.cli.main", "publish-state", str(path)]
+    publisher = subprocess.Popen(
+        [*command, "--bus", "zenoh", "--domain-id", domain, "--rate", "20", "--delta", "0.05"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    try:
+        view = viewer(path, "--bus", "zenoh", "--domain-id", domain, "--joint-states", "external")
+        open_viewer(page, view.url)
+        page.get_by_text("joint states come from the bus").wait_for()
+        assert page.locator("label:text-is('joint1')").count() == 0  # no sliders
+        first = settle(page, 1)
+        wait_for(
+            lambda: changed_fraction(first, settle(page, 1)) > 0.002,
+            what="the arm to move with the other process's /joint_states",
+        )
+        save_shot(page, "arm_external_joint_states")
+    finally:
+        publisher.terminate()
+        publisher.wait(timeout=10)

@@ -131,7 +131,10 @@ def run(args: argparse.Namespace) -> int:
         print(f"robomodel view: serving {viewer.url} (Ctrl-C stops)", flush=True)
         for session in viewer.sessions:
             if session.failure is not None:
-                print(f"robomodel view: {session.failure.message}", file=sys.stderr, flush=True)
+                for line in session.failure.message.splitlines() + [
+                    d.format() for d in session.failure.diagnostics[1:]
+                ]:
+                    print(f"robomodel view: {line}", file=sys.stderr, flush=True)
         _report_meshes(viewer)
         if not args.no_browser:
             webbrowser.open(viewer.url)

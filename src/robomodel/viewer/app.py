@@ -223,6 +223,7 @@ class Viewer:
 
     def _build_gui(self) -> None:
         gui = self.server.gui
+        gui.configure_theme(control_width="large")  # room for file:line errors and mesh paths
         self.server.scene.set_up_direction("+z")
         self.grid = self.server.scene.add_grid(
             "/grid", width=10.0, height=10.0, cell_size=1.0, section_size=1.0

@@ -45,6 +45,7 @@ class JointPanel:
         on_change: Called with ``{joint: value}`` when the user moves a slider or types a value.
         on_randomize / on_center: The buttons.
         on_body: Called with ``(joint, BodyPose)`` when a floating/planar control changes.
+        note: Text shown instead of the controls' absence (e.g. joint states from the bus).
     """
 
     def __init__(
@@ -59,6 +60,7 @@ class JointPanel:
         on_randomize: Callable[[], None],
         on_center: Callable[[], None],
         on_body: Callable[[str, BodyPose], None],
+        note: str | None = None,
     ) -> None:
         self.gui = gui
         self.sliders: dict[str, Any] = {}
@@ -78,7 +80,9 @@ class JointPanel:
                 gui.add_markdown(f"`{name}` mimics `{source}`")
             for body in bodies:
                 self._add_body(body)
-            if not free_joints and not bodies:
+            if note is not None:
+                gui.add_markdown(note)
+            elif not free_joints and not bodies:
                 gui.add_markdown("*no movable joints*")
 
     def _add_slider(self, joint: FreeJoint) -> None:

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from robomodel.description.model import JointType, Robot
 from robomodel.description.packages import PackageIndex
 from robomodel.description.urdf.writer import urdf_to_string
-from robomodel.errors import InputError, RobomodelError
+from robomodel.errors import Diagnostic, InputError, RobomodelError
 from robomodel.loading import LoadedDescription, read_description
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage
@@ -51,16 +51,23 @@ class RobotSource:
 
 @dataclass(frozen=True, slots=True)
 class LoadFailure:
-    """Why the last load failed: the error line and the include/macro stack notes."""
+    """Why the last load failed: the error and the include/macro stack notes.
+
+    ``diagnostics`` holds the located error first, then its notes (empty for errors without a
+    location, whose text is ``message``).
+    """
 
     message: str
-    notes: tuple[str, ...] = ()
-    path: str | None = None
+    diagnostics: tuple[Diagnostic, ...] = ()
+
+    @property
+    def path(self) -> str | None:
+        return self.diagnostics[0].location.path if self.diagnostics else None
 
     @classmethod
     def from_error(cls, exc: RobomodelError) -> LoadFailure:
         if isinstance(exc, InputError):
-            return cls(exc.diagnostic.format(), tuple(n.format() for n in exc.notes), exc.path)
+            return cls(exc.diagnostic.format(), (exc.diagnostic, *exc.notes))
         return cls(str(exc))
 
 
@@ -266,9 +273,8 @@ class RobotSession:
                 on_randomize=lambda: None,
                 on_center=lambda: None,
                 on_body=lambda _n, _p: None,
+                note="joint states come from the bus (`--joint-states external`)",
             )
-            with self.panel.folder:
-                gui.add_markdown("joint states come from the bus (`--joint-states external`)")
             return
         jsp = self.jsp
         bodies = tuple(
