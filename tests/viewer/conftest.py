@@ -159,20 +159,21 @@ def settle(page: Any, timeout_s: float = 15.0) -> np.ndarray:
     return last
 
 
-def _row(page: Any, label: str) -> Any:
+def gui_row(page: Any, label: str) -> Any:
+    """The GUI row of the control labelled ``label`` (its inputs, slider, ...)."""
     return page.locator(f"label:text-is('{label}')").locator(
-        "xpath=ancestor::div[contains(@class, 'mantine-Flex-root')][1]"
+        "xpath=ancestor::div[.//input[not(@type='hidden')]][1]"
     )
 
 
 def slider_input(page: Any, label: str) -> Any:
     """The editable value box next to the slider labelled ``label``."""
-    return _row(page, label).locator("input:not([type=hidden])").first
+    return gui_row(page, label).locator("input:not([type=hidden])").first
 
 
 def slider_thumb(page: Any, label: str) -> Any:
     """The thumb of the slider labelled ``label`` (takes arrow keys, Home and End)."""
-    return _row(page, label).locator("[role=slider]").first
+    return gui_row(page, label).locator("[role=slider]").first
 
 
 def save_shot(page: Any, name: str) -> Path:

@@ -16,7 +16,7 @@ ARM = """<?xml version="1.0"?>
       <geometry><box size="{width} 0.15 1.0"/></geometry>
       <material name="blue"><color rgba="0.1 0.2 0.9 1"/></material>
     </visual>
-    <collision><origin xyz="0 0 0.5"/><geometry><cylinder radius="0.1" length="1.0"/></geometry></collision>
+    <collision><origin xyz="0 0 0.5"/><geometry><cylinder radius="0.25" length="1.0"/></geometry></collision>
   </link>
   <joint name="joint1" type="revolute">
     <parent link="base_link"/><child link="link1"/>

@@ -244,3 +244,65 @@ def test_bus_mode_draws_joint_states_from_another_process(
     finally:
         publisher.terminate()
         publisher.wait(timeout=10)
+
+
+MIMIC_AND_FLOATING = """
+  <link name="link2">
+    <visual><origin xyz="0 0 0.2"/><geometry><box size="0.1 0.1 0.4"/></geometry></visual>
+  </link>
+  <joint name="joint2" type="revolute">
+    <parent link="link1"/><child link="link2"/><origin xyz="0 0.3 1.0"/><axis xyz="1 0 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/><mimic joint="joint1" multiplier="-1"/>
+  </joint>
+  <link name="ball">
+    <visual><geometry><sphere radius="0.15"/></geometry>
+      <material name="green"><color rgba="0.1 0.8 0.1 1"/></material></visual>
+  </link>
+  <joint name="ball_joint" type="floating">
+    <parent link="base_link"/><child link="ball"/><origin xyz="0 -0.6 0.2"/>
+  </joint>
+"""
+
+
+def test_display_options_mimic_and_floating_controls(
+    viewer: Callable[..., ViewerProcess], page: Any, tmp_path: Path
+) -> None:
+    view = viewer(write_arm(tmp_path, extra=MIMIC_AND_FLOATING))
+    open_viewer(page, view.url)
+    page.get_by_text("mimics").wait_for()
+    assert page.locator("label:text-is('joint2')").count() == 0  # a mimic has no slider
+    start = settle(page)
+    # The floating joint has pose inputs; moving it moves the ball.
+    # viser breaks labels after "_" with <wbr>; the label's "for" is the first input's id.
+    for_id = page.locator("label", has_text="ball_joint xyz").get_attribute("for")
+    x_box = page.locator(f"[id='{for_id}']")
+    x_box.fill("0.8")
+    x_box.press("Tab")
+    moved = settle(page)
+    save_shot(page, "arm_floating_moved")
+    assert changed_fraction(start, moved) > 0.001
+    # Collision geometry appears; Alpha fades everything.
+    _toggle(page, "Collision Enabled")
+    with_collision = settle(page)
+    assert changed_fraction(moved, with_collision) > 0.001
+    _toggle(page, "Collision Enabled")
+    alpha = slider_input(page, "Alpha")
+    alpha.fill("0.2")
+    alpha.press("Enter")
+    faded = settle(page)
+    save_shot(page, "arm_alpha_0.2")
+    assert changed_fraction(moved, faded) > 0.002
+    # Names of the TF frames, and another Fixed Frame: the drawing moves with it.
+    alpha.fill("1")
+    alpha.press("Enter")
+    page.get_by_text("TF", exact=True).click()
+    no_names = settle(page)
+    _toggle(page, "Show Names")  # labels are drawn in the 3D view (not page text)
+    before = settle(page)
+    save_shot(page, "arm_names")
+    assert changed_fraction(no_names, before) > 0.0005
+    page.locator("input[value='base_link']:not([type=hidden])").click()
+    page.get_by_role("option", name="ball", exact=True).click()
+    after = settle(page)
+    save_shot(page, "arm_fixed_frame_ball")
+    assert changed_fraction(before, after) > 0.002
