@@ -46,6 +46,7 @@ class JointPanel:
         on_randomize / on_center: The buttons.
         on_body: Called with ``(joint, BodyPose)`` when a floating/planar control changes.
         note: Text shown instead of the controls' absence (e.g. joint states from the bus).
+        units: Unit of each joint's value ("rad" unless given, "m" for prismatic joints).
     """
 
     def __init__(
@@ -61,12 +62,14 @@ class JointPanel:
         on_center: Callable[[], None],
         on_body: Callable[[str, BodyPose], None],
         note: str | None = None,
+        units: Mapping[str, str] | None = None,
     ) -> None:
         self.gui = gui
         self.sliders: dict[str, Any] = {}
         self._body_inputs: dict[str, tuple[Any, Any]] = {}
         self._on_change = on_change
         self._on_body = on_body
+        self._units = dict(units or {})
         self.folder = gui.add_folder(title)
         with self.folder:
             if free_joints:
@@ -97,7 +100,8 @@ class JointPanel:
             max=high,
             step=step,
             initial_value=min(max(value, low), high),
-            hint=f"[{low:.3f}, {high:.3f}]" + (" continuous" if joint.continuous else ""),
+            hint=f"[{low:.3f}, {high:.3f}] {self._units.get(joint.name, 'rad')}"
+            + (" (continuous)" if joint.continuous else ""),
         )
         name = joint.name
 

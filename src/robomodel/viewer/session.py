@@ -291,6 +291,7 @@ class RobotSession:
             on_randomize=lambda: post(lambda: self.randomize()),
             on_center=lambda: post(lambda: self.center()),
             on_body=lambda name, pose: post(lambda: self.set_body(name, pose)),
+            units={j.name: "m" for j in self.robot.joints if j.type is JointType.PRISMATIC},
         )
 
     # -- controls (run on the executor thread) --------------------------------------------------
