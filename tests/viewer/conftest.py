@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -161,8 +162,12 @@ def settle(page: Any, timeout_s: float = 15.0) -> np.ndarray:
 
 def gui_row(page: Any, label: str) -> Any:
     """The GUI row of the control labelled ``label`` (its inputs, slider, ...)."""
-    return page.locator(f"label:text-is('{label}')").locator(
-        "xpath=ancestor::div[.//input[not(@type='hidden')]][1]"
+    # Not text-is: viser breaks labels after "_" with <wbr>, which text-is does not see through.
+    exact = re.compile(f"^{re.escape(label)}$")
+    return (
+        page.locator("label")
+        .filter(has_text=exact)
+        .locator("xpath=ancestor::div[.//input[not(@type='hidden')]][1]")
     )
 
 

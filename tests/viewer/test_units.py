@@ -160,3 +160,16 @@ def test_examples_parse_for_the_viewer() -> None:
     # The robots the README and the tests view exist and parse.
     text = (EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf").read_text()
     assert read_urdf(text).robot.links
+
+
+def test_missing_viser_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sys
+
+    from robomodel.errors import MissingDependencyError
+    from robomodel.viewer._deps import import_trimesh, import_viser
+
+    monkeypatch.setitem(sys.modules, "viser", None)
+    monkeypatch.setitem(sys.modules, "trimesh", None)
+    for load in (import_viser, import_trimesh):
+        with pytest.raises(MissingDependencyError, match=r"robomodel\[viewer\]"):
+            load()

@@ -31,6 +31,8 @@ __all__ = ["GeometryProblem", "RobotModelDisplay"]
 Kind = Literal["visual", "collision"]
 Rgba = tuple[float, float, float, float]
 _POSITION_TOL_M = 1e-6
+# RViz draws no shadows, and software WebGL renders much faster without them.
+_NO_SHADOWS: dict[str, Any] = {"cast_shadow": False, "receive_shadow": False}
 
 
 @functools.cache
@@ -116,6 +118,7 @@ class RobotModelDisplay:
         self._groups: dict[Kind, list[Any]] = {"visual": [], "collision": []}
         self._leaves: list[_Leaf] = []
         self._pending: list[_PendingMesh] = []
+        self._deferred: list[_PendingMesh] = []
         self._lock = threading.Lock()
         self._last_wxyz = np.full((len(self.link_names), 4), np.nan)
         self._last_xyz = np.full((len(self.link_names), 3), np.nan)
@@ -165,7 +168,7 @@ class RobotModelDisplay:
             self._pending.append(_PendingMesh(node, link, kind, geometry, rgba, visible))
             return
         color = rgba or DEFAULT_RGBA
-        common = {"color": rgb255(color), "opacity": self._opacity(color)}
+        common = {"color": rgb255(color), "opacity": self._opacity(color), **_NO_SHADOWS}
         if isinstance(geometry, Box):
             handle = self.scene.add_box(f"{node}/g", dimensions=geometry.size_m, **common)
             self._leaves.append(_Leaf(handle, color))
@@ -204,12 +207,19 @@ class RobotModelDisplay:
             self._leaves.append(_Leaf(cap, color))
 
     def load_meshes(self) -> None:
-        """Resolve, read (through the cache) and add every mesh; record what fails."""
+        """Resolve, read (through the cache) and add every mesh; record what fails.
+
+        Collision meshes wait until Collision Enabled is first switched on: most of the time
+        nobody looks at them, and they would double what a big robot sends to the browser.
+        """
         while True:
             with self._lock:
                 if self._removed or not self._pending:
                     return
                 item = self._pending.pop(0)
+                if item.kind == "collision" and not self.show_collision:
+                    self._deferred.append(item)
+                    continue
             self._add_mesh(item)
 
     def _add_mesh(self, item: _PendingMesh) -> None:
@@ -237,6 +247,7 @@ class RobotModelDisplay:
                     opacity=self._opacity(color),
                     scale=tuple(float(s) for s in scale),
                     side="double",
+                    **_NO_SHADOWS,
                 )
                 self._leaves.append(_Leaf(handle, color))
 
@@ -266,6 +277,11 @@ class RobotModelDisplay:
         self.show_collision = enabled
         for group in self._groups["collision"]:
             group.visible = enabled
+        if enabled:
+            with self._lock:
+                self._pending.extend(self._deferred)
+                self._deferred.clear()
+            self.load_meshes()
 
     # -- poses --------------------------------------------------------------------------------
     def set_poses(
