@@ -95,3 +95,34 @@ def test_link_poses_in_the_fixed_frame(started: list[Viewer], tmp_path: Path) ->
         lambda: (p := tool_position()) is not None and np.allclose(p, (0.0, -1.1, 0.1), atol=1e-9),
         what="the tool at (0, -1.1, 0.1)",
     )
+
+
+BROKEN_MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="bad">
+  <xacro:macro name="leg" params="n">
+    <link name="leg_${n + undefined_length}"/>
+    <joint name="hip_${n}" type="fixed"><parent link="base_link"/><child link="leg_${n}"/></joint>
+  </xacro:macro>
+  <link name="base_link"/>
+  <xacro:leg n="1"/>
+</robot>
+"""
+
+
+def test_xacro_error_carries_file_line_and_macro_stack_to_the_page(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    good = tmp_path / "robot.urdf.xacro"
+    good.write_text(BROKEN_MACRO.replace("n + undefined_length", "n"))
+    viewer = _start(started, RobotSource(str(good)))
+    session = viewer.sessions[0]
+    assert session.robot is not None and session.failure is None
+    time.sleep(0.01)
+    good.write_text(BROKEN_MACRO)
+    wait_for(lambda: session.failure is not None, what="the broken edit to be seen")
+    assert session.failure is not None
+    assert "robot.urdf.xacro:4:" in session.failure.message
+    assert "undefined_length" in session.failure.message
+    wait_for(lambda: "in macro 'leg'" in viewer.status.content, what="the macro stack")
+    assert "`robot.urdf.xacro:4:" in viewer.status.content
+    assert session.robot is not None and session.robot.has_link("leg_1")  # last good model

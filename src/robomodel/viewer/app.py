@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import logging
 import math
 import os
 import threading
@@ -32,11 +33,13 @@ from robomodel.tf.exceptions import TransformError
 from robomodel.viewer._deps import import_viser
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.ports import ensure_port_free
-from robomodel.viewer.session import DisplayOptions, RobotSession, RobotSource
+from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession, RobotSource
 from robomodel.viewer.status import RobotStatus, render_status
 from robomodel.viewer.tf_display import TFDisplay
 
 __all__ = ["Viewer", "ViewerOptions"]
+
+log = logging.getLogger("robomodel.viewer")
 
 
 @dataclass(frozen=True, slots=True)
@@ -291,6 +294,14 @@ class Viewer:
         self._dirty = True
 
     def _loop(self) -> None:
+        while not self._stop.is_set():
+            try:
+                self._run_loop()
+            except Exception:  # the page must outlive any one bad update
+                log.exception("viewer update failed; going on")
+                time.sleep(0.1)
+
+    def _run_loop(self) -> None:
         assert self.context is not None
         next_reload = next_status = 0.0
         while not self._stop.is_set():
@@ -315,7 +326,11 @@ class Viewer:
             if not session.watcher.changed():
                 continue
             if session.try_load():
-                session.apply_reload()
+                try:
+                    session.apply_reload()
+                except RobomodelError as exc:
+                    session.failure = LoadFailure.from_error(exc)
+                    continue
                 session.build_display(
                     self.server.scene, self.meshes, self.display_options, load_meshes=True
                 )

@@ -200,7 +200,10 @@ class RobotSession:
         self._tf_pub = node.create_publisher(TFMessage, "/tf", 100)
         if self.robot is None:
             return
-        self._create_publishers()
+        try:
+            self._create_publishers()
+        except RobomodelError as exc:  # e.g. a joint without limits: show it, keep serving
+            self.failure = LoadFailure.from_error(exc)
 
     def _create_publishers(self) -> None:
         assert self._context is not None and self.robot is not None
@@ -221,6 +224,7 @@ class RobotSession:
             return
         if self.rsp is None:
             self._create_publishers()
+            self.publish_bodies()
             return
         result = self.rsp.node.set_parameters({"robot_description": urdf_to_string(self.robot)})
         if not result.successful:
