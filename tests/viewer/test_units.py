@@ -173,3 +173,36 @@ def test_missing_viser_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
     for load in (import_viser, import_trimesh):
         with pytest.raises(MissingDependencyError, match=r"robomodel\[viewer\]"):
             load()
+
+
+@pytest.mark.parametrize(
+    "module_name",
+    [
+        "robomodel.viewer",
+        "robomodel.viewer.app",
+        "robomodel.viewer.scene",
+        "robomodel.viewer.session",
+        "robomodel.viewer.link_poses",
+        "robomodel.viewer.meshes",
+        "robomodel.viewer.joint_panel",
+        "robomodel.viewer.tf_display",
+        "robomodel.viewer.options_panel",
+        "robomodel.viewer.status",
+    ],
+)
+def test_viewer_public_names_resolve(module_name: str) -> None:
+    import importlib
+
+    module = importlib.import_module(module_name)
+    for name in module.__all__:
+        assert getattr(module, name) is not None, name
+
+
+def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
+    import subprocess
+    import sys
+
+    code = "import sys, robomodel.viewer, robomodel.cli.main as m; m.build_parser(); "
+    code += "print('viser' in sys.modules, 'trimesh' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "False"]

@@ -28,14 +28,15 @@ from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage
+from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.tf_listener import TransformListener
 from robomodel.tf.exceptions import TransformError
 from robomodel.viewer._deps import import_viser
 from robomodel.viewer.meshes import MeshCache
+from robomodel.viewer.options_panel import OptionsPanel
 from robomodel.viewer.ports import ensure_port_free
 from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession, RobotSource
 from robomodel.viewer.status import RobotStatus, render_status
-from robomodel.viewer.tf_display import TFDisplay
 
 __all__ = ["Viewer", "ViewerOptions"]
 
@@ -151,8 +152,6 @@ class Viewer:
         node = self.context.create_node("robomodel_viewer")
         self.buffer = TransformListener(node).buffer
         node.create_subscription(TFMessage, "/tf", self._on_tf, 100)
-        from robomodel.runtime.qos import Durability, QoSProfile
-
         node.create_subscription(
             TFMessage, "/tf_static", self._on_tf, QoSProfile(100, Durability.TRANSIENT_LOCAL)
         )
@@ -225,62 +224,17 @@ class Viewer:
         self.context.executor.post(run)
 
     def _build_gui(self) -> None:
-        gui = self.server.gui
-        gui.configure_theme(control_width="large")  # room for file:line errors and mesh paths
-        self.server.scene.set_up_direction("+z")
-        self.grid = self.server.scene.add_grid(
-            "/grid", width=10.0, height=10.0, cell_size=1.0, section_size=1.0
+        panel = OptionsPanel(
+            self.server,
+            fixed_frame=self.fixed_frame,
+            options=self.display_options,
+            post=self._post,
+            displays=lambda: [s.display for s in self.sessions if s.display is not None],
+            on_fixed_frame=lambda frame: setattr(self, "fixed_frame", frame),
         )
-        with gui.add_folder("Status"):
-            self.status = gui.add_markdown("loading...")
-        with gui.add_folder("Global Options"):
-            self.fixed_dropdown = gui.add_dropdown(
-                "Fixed Frame", (self.fixed_frame,), initial_value=self.fixed_frame
-            )
-        self.tf_display = TFDisplay(self.server.scene)
-        with gui.add_folder("RobotModel"):
-            visual = gui.add_checkbox("Visual Enabled", True)
-            collision = gui.add_checkbox("Collision Enabled", False)
-            alpha = gui.add_slider("Alpha", min=0.0, max=1.0, step=0.01, initial_value=1.0)
-        with gui.add_folder("TF", expand_by_default=False):
-            axes = gui.add_checkbox("Show Axes", True)
-            names = gui.add_checkbox("Show Names", False)
-            scale = gui.add_number("Marker Scale", 1.0, min=0.01, max=100.0, step=0.1)
-            grid = gui.add_checkbox("Grid", True)
-
-        def each_display(action: Callable[[Any], None]) -> None:
-            for session in self.sessions:
-                if session.display is not None:
-                    action(session.display)
-
-        def on_fixed(_event: Any) -> None:
-            value = str(self.fixed_dropdown.value)
-            self._post(lambda: setattr(self, "fixed_frame", value))
-
-        def on_visual(_event: Any) -> None:
-            self.display_options.show_visual = bool(visual.value)
-            self._post(lambda: each_display(lambda d: d.set_visual_enabled(bool(visual.value))))
-
-        def on_collision(_event: Any) -> None:
-            self.display_options.show_collision = bool(collision.value)
-            self._post(
-                lambda: each_display(lambda d: d.set_collision_enabled(bool(collision.value)))
-            )
-
-        def on_alpha(_event: Any) -> None:
-            self.display_options.alpha = float(alpha.value)
-            self._post(lambda: each_display(lambda d: d.set_alpha(float(alpha.value))))
-
-        self.fixed_dropdown.on_update(on_fixed)
-        visual.on_update(on_visual)
-        collision.on_update(on_collision)
-        alpha.on_update(on_alpha)
-        axes.on_update(lambda _e: self._post(lambda: self.tf_display.set_show_axes(axes.value)))
-        names.on_update(lambda _e: self._post(lambda: self.tf_display.set_show_names(names.value)))
-        scale.on_update(
-            lambda _e: self._post(lambda: self.tf_display.set_marker_scale(float(scale.value)))
-        )
-        grid.on_update(lambda _e: setattr(self.grid, "visible", bool(grid.value)))
+        self.status = panel.status
+        self.fixed_dropdown = panel.fixed_dropdown
+        self.tf_display = panel.tf_display
 
     # -- the loop -------------------------------------------------------------------------------
     def _on_tf(self, _msg: TFMessage) -> None:

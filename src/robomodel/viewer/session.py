@@ -29,15 +29,14 @@ from robomodel.runtime.node import Node
 from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
 from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher, _transform_msg
 from robomodel.tf import BufferCore
-from robomodel.tf.exceptions import TransformError
-from robomodel.viewer._poses import QuatXyzw, Vec3, compose
 from robomodel.viewer.bodies import body_transform
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
+from robomodel.viewer.link_poses import LinkPoses, robot_link_poses
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.reload import FileWatcher
 from robomodel.viewer.scene import RobotModelDisplay
 
-__all__ = ["DisplayOptions", "LinkPoses", "LoadFailure", "RobotSession", "RobotSource"]
+__all__ = ["DisplayOptions", "LoadFailure", "RobotSession", "RobotSource"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,37 +77,6 @@ class DisplayOptions:
     alpha: float = 1.0
     show_visual: bool = True
     show_collision: bool = False
-
-
-@dataclass(frozen=True, slots=True)
-class LinkPoses:
-    """Every link of a robot in the fixed frame (``link_names`` order)."""
-
-    wxyz: NDArray[np.float64]
-    xyz: NDArray[np.float64]
-    visible: NDArray[np.bool_]
-    connected: bool
-    missing: tuple[str, ...]
-
-
-def _qmul_xyzw(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    ax, ay, az, aw = a[..., 0], a[..., 1], a[..., 2], a[..., 3]
-    bx, by, bz, bw = b[..., 0], b[..., 1], b[..., 2], b[..., 3]
-    return np.stack(
-        [
-            aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw,
-            aw * bw - ax * bx - ay * by - az * bz,
-        ],
-        axis=-1,
-    )
-
-
-def _rotate_xyzw(q: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
-    u, w = q[..., :3], q[..., 3:4]
-    t = 2.0 * np.cross(u, v)
-    return v + w * t + np.cross(u, t)
 
 
 class RobotSession:
@@ -370,62 +338,17 @@ class RobotSession:
     def link_poses(
         self, buffer: BufferCore, fixed_frame: str, T_fixed_root_default: NDArray[np.float64]
     ) -> LinkPoses | None:
-        """Every link in the fixed frame, through this robot's root.
-
-        When the root has no transform to the fixed frame (another robot's tree), the robot is
-        placed at ``T_fixed_root_default`` so that unconnected robots still appear side by side.
-        """
+        """Every link in the fixed frame (see :func:`robot_link_poses`); None before a model."""
         if self.robot is None or self.display is None:
             return None
-        tree = self.robot.tree()
-        root = self.prefix + tree.root
-        names = self.display.link_names
-        n = len(names)
-        t = np.zeros((n, 3))
-        q = np.zeros((n, 4))
-        q[:, 3] = 1.0
-        visible = np.zeros(n, dtype=bool)
-        index = {name: i for i, name in enumerate(names)}
-        visible[index[tree.root]] = True
-        poses: dict[str, tuple[Vec3, QuatXyzw]] = {
-            tree.root: ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-        }
-        missing = []
-        # One hop per joint (parent -> child), composed down the tree: O(links), not
-        # O(links x depth) as looking every link up from the root would be.
-        for _depth, joint in tree.walk():
-            i, p = index[joint.child], index[joint.parent]
-            frame = self.prefix + joint.child
-            try:
-                if not visible[p]:
-                    raise TransformError("parent not connected")
-                tf = buffer.lookup_transform(self.prefix + joint.parent, frame)
-                t_p, q_p = poses[joint.parent]
-                poses[joint.child] = compose(t_p, q_p, tf.translation_m, tf.rotation_xyzw)
-                t[i], q[i] = poses[joint.child]
-                visible[i] = True
-            except TransformError:
-                try:  # another process may publish a different tree: ask the root directly
-                    tf = buffer.lookup_transform(root, frame)
-                except TransformError:
-                    missing.append(frame)
-                    continue
-                poses[joint.child] = (tf.translation_m, tf.rotation_xyzw)
-                t[i], q[i], visible[i] = tf.translation_m, tf.rotation_xyzw, True
-        connected = True
-        try:
-            base = buffer.lookup_transform(fixed_frame, root)
-            t0 = np.asarray(base.translation_m)
-            q0 = np.asarray(base.rotation_xyzw)
-        except TransformError:
-            connected = fixed_frame == root
-            t0 = T_fixed_root_default[:3, 3].copy()
-            q0 = np.array([0.0, 0.0, 0.0, 1.0])
-        xyz = t0 + _rotate_xyzw(np.broadcast_to(q0, q.shape), t)
-        q_fixed = _qmul_xyzw(np.broadcast_to(q0, q.shape), q)
-        wxyz = np.concatenate([q_fixed[:, 3:4], q_fixed[:, :3]], axis=1)
-        wxyz *= np.where(wxyz[:, :1] < 0, -1.0, 1.0)
-        return LinkPoses(wxyz, xyz, visible, connected, tuple(missing))
+        return robot_link_poses(
+            self.robot,
+            self.prefix,
+            self.display.link_names,
+            buffer,
+            fixed_frame,
+            T_fixed_root_default,
+        )
 
     def close(self) -> None:
         if self.display is not None:
