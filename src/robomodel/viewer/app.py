@@ -257,7 +257,7 @@ class Viewer:
 
     def _run_loop(self) -> None:
         assert self.context is not None
-        next_reload = next_status = 0.0
+        next_reload = next_status = next_bodies = 0.0
         while not self._stop.is_set():
             self.context.spin_once(0.005)
             for session in self.sessions:
@@ -274,6 +274,12 @@ class Viewer:
                 next_status = now + 0.25
                 self._refresh_frames()
                 self._refresh_status()
+            if now >= next_bodies:
+                # Republished like joint_state_publisher's joint states (10 Hz), so that lookups
+                # through a floating joint never need data older than the TF cache holds.
+                next_bodies = now + 0.1
+                for session in self.sessions:
+                    session.publish_bodies()
 
     def _check_reload(self) -> None:
         for session in self.sessions:

@@ -120,6 +120,7 @@ class RobotSession:
         self._node: Node | None = None
         self._tf_pub: Any = None
         self._pending: dict[str, float] = {}
+        self._has_bodies = False
         self._pending_lock = threading.Lock()
 
     # -- loading ------------------------------------------------------------------------------
@@ -159,6 +160,9 @@ class RobotSession:
             self.stale_frames |= {self.prefix + n for n in old.link_names} - set(self.link_frames())
         self.stale_frames -= set(self.link_frames())
         self.generation += 1
+        self._has_bodies = any(
+            j.type in (JointType.FLOATING, JointType.PLANAR) for j in self.robot.joints
+        )
         return True
 
     # -- running ------------------------------------------------------------------------------
@@ -320,7 +324,7 @@ class RobotSession:
 
     def publish_bodies(self) -> None:
         """Publish floating and planar joints on /tf (robot_state_publisher does not)."""
-        if self.robot is None or self._node is None or self.external:
+        if self.robot is None or self._node is None or self.external or not self._has_bodies:
             return
         stamp = self._node.now()
         transforms = []
