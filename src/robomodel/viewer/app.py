@@ -201,7 +201,8 @@ class Viewer:
             if thread is not threading.current_thread():
                 thread.join(timeout=5)
         if self.server is not None:
-            self.server.stop()
+            with contextlib.redirect_stdout(io.StringIO()):  # viser's "Server stopped"
+                self.server.stop()
         if self.context is not None:
             self.context.shutdown()
 
