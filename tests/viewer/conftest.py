@@ -32,7 +32,7 @@ CHROMIUM_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
-VIEWPORT = {"width": 1280, "height": 720}
+VIEWPORT = {"width": 1024, "height": 576}
 
 
 def chromium_path() -> str:
@@ -138,7 +138,7 @@ def screenshot(page: Any) -> np.ndarray:
 def scene_region(image: np.ndarray) -> np.ndarray:
     """The 3D view without the GUI panel (right) and the notification corner (top left)."""
     h, w, _ = image.shape
-    return image[int(0.25 * h) : int(0.95 * h), int(0.05 * w) : int(0.70 * w)]
+    return image[int(0.25 * h) : int(0.95 * h), int(0.05 * w) : int(0.58 * w)]
 
 
 def changed_fraction(a: np.ndarray, b: np.ndarray, threshold: int = 30) -> float:

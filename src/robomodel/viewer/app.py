@@ -302,11 +302,12 @@ class Viewer:
             self._refresh_status()
 
     def _default_root_pose(self, session: RobotSession) -> np.ndarray:
-        """Where an unconnected robot goes: side by side along +y, ordered as given."""
+        """Where an unconnected robot goes: side by side along -y (to the left in the default
+        view, away from the panel), ordered as given."""
         anchor = next((s.number for s in self.sessions if s.root_frame == self.fixed_frame), 0)
         spacing = max([1.0, *(2.0 * e + 0.5 for e in self._extent_m.values())])
         T = np.eye(4)
-        T[1, 3] = (session.number - anchor) * spacing
+        T[1, 3] = -(session.number - anchor) * spacing
         return T
 
     def _push(self) -> None:
