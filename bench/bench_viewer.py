@@ -1,4 +1,4 @@
-"""`robomodel view` benchmarks on talos_full_v2 (60 links, 95 STL meshes).
+"""`robomodel view` benchmarks on talos_full_v2 (60 links, 48 visual + 47 collision STL meshes).
 
 Run: ``.venv/bin/python bench/bench_viewer.py`` (needs Debian's chromium for the second part).
 
@@ -133,7 +133,7 @@ def updates_per_second(duration_s: float = 5.0) -> tuple[float, float]:
 
 def main() -> None:
     os.environ.setdefault("PYTHONUNBUFFERED", "1")
-    print(f"robot: {URDF.name} (60 links, 95 meshes)")
+    print(f"robot: {URDF.name} (60 links, 48 visual + 47 collision meshes)")
     served, ready = [], []
     for i in range(RUNS):
         s, r = cold_start(18700 + i)
@@ -143,7 +143,7 @@ def main() -> None:
         f"cold start to page served: median {statistics.median(served):.2f} s "
         f"(min {min(served):.2f}, max {max(served):.2f}; target <= 1.5 s)"
     )
-    print(f"cold start to every mesh in the scene: median {statistics.median(ready):.2f} s")
+    print(f"cold start to every visual mesh in the scene: median {statistics.median(ready):.2f} s")
     rates = [updates_per_second() for _ in range(3)]
     received = statistics.median(r[0] for r in rates)
     pushed = statistics.median(r[1] for r in rates)
