@@ -16,8 +16,7 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/robomodel check examples/gripper_description/urdf/planar_3dof.urdf
-	$(BIN)/robomodel graph examples/gripper_description/urdf/planar_3dof.urdf -o build/planar_3dof.svg
+	$(BIN)/robomodel view examples/simplebot_description/urdf/simplebot.urdf.xacro
 
 test: $(STAMP)
 	$(BIN)/ruff check --no-cache src tests bench

@@ -34,6 +34,7 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.param",
     "robomodel.cli.publish_state",
     "robomodel.cli.control",
+    "robomodel.cli.view",
 )
 
 

@@ -1,0 +1,157 @@
+"""`robomodel view` benchmarks on talos_full_v2 (60 links, 48 visual + 47 collision STL meshes).
+
+Run: ``.venv/bin/python bench/bench_viewer.py`` (needs Debian's chromium for the second part).
+
+1. Cold start: a fresh ``robomodel view`` process until ``GET /`` answers 200 (the page is
+   served), median of several runs; also until the process reports every mesh loaded.
+   Target: page served <= 1.5 s (excluding the browser).
+2. State updates reaching a connected browser: the viewer runs in this process, headless
+   Chromium loads the page, a driver thread moves every joint at 240 Hz through
+   joint_state_publisher (the sliders' path: /joint_states -> robot_state_publisher -> /tf ->
+   the viewer's TF buffer -> poses in the fixed frame -> viser), and the websocket frames that
+   carry link poses are counted as Chromium receives them (playwright ``framereceived``).
+   Target: >= 60 updates/s.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import statistics
+import subprocess
+import sys
+import threading
+import time
+import urllib.request
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _common import example_robot_data
+
+URDF = example_robot_data("talos_data/robots/talos_full_v2.urdf")
+PACKAGE = f"example-robot-data={example_robot_data('').parent}"
+RUNS = 7
+
+
+def cold_start(port: int) -> tuple[float, float]:
+    """(seconds to HTTP 200 on the page, seconds to 'scene ready') for one fresh process."""
+    cmd = [sys.executable, "-m", "robomodel.cli.main", "view", str(URDF), "--package", PACKAGE]
+    cmd += ["--no-browser", "--port", str(port)]
+    start = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    served = math.nan
+    while time.perf_counter() - start < 30:
+        try:
+            with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=1) as answer:
+                if answer.status == 200:
+                    served = time.perf_counter() - start
+                    break
+        except OSError:
+            time.sleep(0.005)
+    ready = math.nan
+    assert proc.stderr is not None
+    for line in proc.stderr:
+        if "scene ready" in line:
+            ready = time.perf_counter() - start
+            break
+    proc.terminate()
+    proc.wait()
+    return served, ready
+
+
+def updates_per_second(duration_s: float = 5.0) -> tuple[float, float]:
+    """(pose frames/s received by Chromium, pushes/s sent by the viewer)."""
+    from playwright.sync_api import sync_playwright
+
+    from robomodel.description.packages import index_from_options
+    from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+
+    options = ViewerOptions(
+        sources=(RobotSource(str(URDF)),),
+        port=0,
+        package_index=index_from_options((), (PACKAGE,)),
+    )
+    viewer = Viewer(options)
+    viewer.start()
+    viewer.meshes_ready.wait(60)
+    session = viewer.sessions[0]
+    assert session.jsp is not None and viewer.context is not None
+    joints = list(session.jsp.free_joints.values())
+    frames: list[float] = []
+
+    import zstandard
+
+    def on_frame(payload: bytes | str) -> None:
+        # viser's wire format: [u64 raw size][u64 zstd size][zstd msgpack][binary buffers]
+        if not isinstance(payload, bytes) or len(payload) < 16:
+            return
+        size = int.from_bytes(payload[8:16], "little")
+        meta = zstandard.ZstdDecompressor().decompress(payload[16 : 16 + size])
+        if b"SetOrientationMessage" in meta:
+            frames.append(time.perf_counter())
+
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(
+            executable_path="/usr/bin/chromium",
+            headless=True,
+            args=["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run"],
+        )
+        page = browser.new_page(viewport={"width": 1280, "height": 720})
+        page.on("websocket", lambda ws: ws.on("framereceived", on_frame))
+        page.goto(viewer.url)
+        page.get_by_text("Fixed Frame", exact=True).wait_for(timeout=60000)
+        page.wait_for_timeout(2000)
+        stop = threading.Event()
+
+        def drive() -> None:
+            t0 = time.perf_counter()
+            while not stop.is_set():
+                t = time.perf_counter() - t0
+                values = {
+                    j.name: j.min + (j.max - j.min) * (0.5 + 0.4 * math.sin(2 * t + k))
+                    for k, j in enumerate(joints)
+                }
+                session.queue_positions(values)  # what a slider drag does
+                time.sleep(1 / 240)
+
+        sent0 = viewer.updates_sent
+        frames.clear()
+        driver = threading.Thread(target=drive, daemon=True)
+        started = time.perf_counter()
+        driver.start()
+        page.wait_for_timeout(duration_s * 1000)
+        elapsed = time.perf_counter() - started
+        stop.set()
+        driver.join()
+        sent = viewer.updates_sent - sent0
+        received = len([f for f in frames if f - started <= elapsed])
+        browser.close()
+    viewer.close()
+    return received / elapsed, sent / elapsed
+
+
+def main() -> None:
+    os.environ.setdefault("PYTHONUNBUFFERED", "1")
+    print(f"robot: {URDF.name} (60 links, 48 visual + 47 collision meshes)")
+    served, ready = [], []
+    for i in range(RUNS):
+        s, r = cold_start(18700 + i)
+        served.append(s)
+        ready.append(r)
+    print(
+        f"cold start to page served: median {statistics.median(served):.2f} s "
+        f"(min {min(served):.2f}, max {max(served):.2f}; target <= 1.5 s)"
+    )
+    print(f"cold start to every visual mesh in the scene: median {statistics.median(ready):.2f} s")
+    rates = [updates_per_second() for _ in range(3)]
+    received = statistics.median(r[0] for r in rates)
+    pushed = statistics.median(r[1] for r in rates)
+    print(
+        f"pose updates received by Chromium: median {received:.0f}/s "
+        f"(viewer pushed {pushed:.0f}/s; target >= 60/s)"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,132 @@
+"""``robomodel view``: RViz (RobotModel + TF) and joint_state_publisher_gui in the browser.
+
+``robomodel view FILE [FILE ...] [name:=value ...] [--prefix P ...]`` expands each
+description, runs robot_state_publisher and joint_state_publisher for it, serves the page on
+loopback, prints the URL and opens a browser; saving a file reloads it in the page.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import sys
+import threading
+import time
+import webbrowser
+from typing import Any
+
+from robomodel.cli._bus import add_bus_arguments
+from robomodel.cli._common import add_package_options, package_index_from_args, split_mappings
+from robomodel.errors import RobomodelError
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser(
+        "view",
+        help="view descriptions in the browser: robot model, TF frames and joint sliders",
+        description=(
+            "Serve a web page showing the robots (RViz's RobotModel and TF displays) with "
+            "joint sliders (joint_state_publisher_gui); reloads when a file is saved."
+        ),
+    )
+    parser.add_argument(
+        "inputs",
+        nargs="+",
+        metavar="FILE|name:=value",
+        help=".urdf or .xacro files, and xacro arguments name:=value (for every file)",
+    )
+    parser.add_argument(
+        "--prefix",
+        action="append",
+        default=[],
+        metavar="P",
+        help="frame_prefix of each FILE, in order (repeatable; verbatim, e.g. robot1/)",
+    )
+    parser.add_argument("--port", type=int, default=8080, help="HTTP port (default: 8080)")
+    parser.add_argument(
+        "--host", default="127.0.0.1", help="address to serve on (default: 127.0.0.1)"
+    )
+    parser.add_argument("--no-browser", action="store_true", help="do not open a browser")
+    parser.add_argument(
+        "--fixed-frame", default=None, metavar="LINK", help="fixed frame (default: root link)"
+    )
+    parser.add_argument(
+        "--joint-states",
+        choices=("sliders", "external"),
+        default="sliders",
+        help="sliders (joint_state_publisher_gui) or external (/joint_states, /tf from the bus)",
+    )
+    add_package_options(parser, mappings=False)
+    parser.add_argument(
+        "--duration", type=float, default=None, help=argparse.SUPPRESS
+    )  # stop after S seconds (tests, benchmarks)
+    add_bus_arguments(parser, default="inproc")
+    parser.set_defaults(func=run)
+
+
+def _report_meshes(viewer: Any) -> None:
+    """Say on stderr when every mesh is in the scene (the page is served before that)."""
+    started = time.monotonic()
+
+    def report() -> None:
+        viewer.meshes_ready.wait()
+        count = viewer.meshes.loads
+        elapsed = time.monotonic() - started
+        print(
+            f"robomodel view: scene ready ({count} mesh files loaded in {elapsed:.2f} s)",
+            file=sys.stderr,
+            flush=True,
+        )
+
+    threading.Thread(target=report, daemon=True).start()
+
+
+def run(args: argparse.Namespace) -> int:
+    from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+
+    files = [item for item in args.inputs if ":=" not in item]
+    mappings = split_mappings([item for item in args.inputs if ":=" in item])
+    if not files:
+        raise RobomodelError("robomodel view needs at least one .urdf or .xacro FILE")
+    if len(args.prefix) > len(files):
+        raise RobomodelError(
+            f"{len(args.prefix)} --prefix options for {len(files)} file(s); give one per FILE"
+        )
+    if args.joint_states == "external" and args.bus != "zenoh":
+        raise RobomodelError(
+            "--joint-states external reads /joint_states and /tf from other processes: "
+            "add --bus zenoh"
+        )
+    prefixes = [*args.prefix, *([""] * (len(files) - len(args.prefix)))]
+    options = ViewerOptions(
+        sources=tuple(RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=True)),
+        host=args.host,
+        port=args.port,
+        fixed_frame=args.fixed_frame,
+        bus=args.bus,
+        domain_id=args.domain_id,
+        connect=tuple(args.connect),
+        listen=tuple(args.listen),
+        external=args.joint_states == "external",
+        package_index=package_index_from_args(args),
+    )
+    viewer = Viewer(options)
+    try:
+        viewer.start()
+        print(f"robomodel view: serving {viewer.url} (Ctrl-C stops)", flush=True)
+        for session in viewer.sessions:
+            if session.failure is not None:
+                for line in session.failure.message.splitlines() + [
+                    d.format() for d in session.failure.diagnostics[1:]
+                ]:
+                    print(f"robomodel view: {line}", file=sys.stderr, flush=True)
+        _report_meshes(viewer)
+        if not args.no_browser:
+            webbrowser.open(viewer.url)
+        with contextlib.suppress(KeyboardInterrupt):
+            viewer.wait(args.duration)
+    finally:
+        viewer.close()
+    return 0

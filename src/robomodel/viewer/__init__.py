@@ -1,0 +1,19 @@
+"""``robomodel view``: RViz's RobotModel and TF displays and joint_state_publisher_gui in a browser.
+
+Importing this package is cheap: viser and trimesh are imported when a viewer starts (a
+missing one raises :class:`~robomodel.errors.MissingDependencyError` naming the ``viewer``
+extra).
+"""
+
+from robomodel.viewer.app import Viewer, ViewerOptions
+from robomodel.viewer.errors import MeshLoadError, PortInUseError, ViewerError
+from robomodel.viewer.session import RobotSource
+
+__all__ = [
+    "MeshLoadError",
+    "PortInUseError",
+    "RobotSource",
+    "Viewer",
+    "ViewerError",
+    "ViewerOptions",
+]

@@ -1,0 +1,409 @@
+"""The viewer: a viser server, the robots' sessions, and the loop that keeps the page current.
+
+One thread spins the runtime context (robot_state_publisher, joint_state_publisher, the TF
+listener) and, whenever /tf or /tf_static brought something new or a display option changed,
+looks every link up in the fixed frame and sends the poses that changed to the browsers in one
+atomic, immediately flushed batch. The same thread polls the description files for changes.
+GUI callbacks (viser's threads) only post work to that thread, so the nodes are never touched
+from two threads.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import logging
+import math
+import os
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from robomodel.description.model import Robot
+from robomodel.description.packages import PackageIndex
+from robomodel.errors import RobomodelError
+from robomodel.runtime.context import Context
+from robomodel.runtime.msg import TFMessage
+from robomodel.runtime.qos import Durability, QoSProfile
+from robomodel.runtime.tf_listener import TransformListener
+from robomodel.tf.exceptions import TransformError
+from robomodel.viewer._deps import import_viser
+from robomodel.viewer.meshes import MeshCache
+from robomodel.viewer.options_panel import OptionsPanel
+from robomodel.viewer.ports import ensure_port_free
+from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession, RobotSource
+from robomodel.viewer.status import RobotStatus, render_status
+
+__all__ = ["Viewer", "ViewerOptions"]
+
+log = logging.getLogger("robomodel.viewer")
+
+
+@dataclass(frozen=True, slots=True)
+class ViewerOptions:
+    """Everything ``robomodel view`` takes from its command line.
+
+    Args:
+        sources: The robots, in command-line order.
+        host, port: Where to serve the page (loopback by default).
+        fixed_frame: RViz's Fixed Frame; default the first robot's root link.
+        bus: ``"inproc"`` or ``"zenoh"``.
+        external: Joint states (or /tf) come from another process on the bus.
+        reload_period_s: How often the description files are polled for changes.
+    """
+
+    sources: tuple[RobotSource, ...]
+    host: str = "127.0.0.1"
+    port: int = 8080
+    fixed_frame: str | None = None
+    bus: str = "inproc"
+    domain_id: int | None = None
+    connect: tuple[str, ...] = ()
+    listen: tuple[str, ...] = ()
+    external: bool = False
+    package_index: PackageIndex = field(default_factory=PackageIndex)
+    reload_period_s: float = 0.25
+
+
+def zero_pose_extent_m(robot: Robot) -> float:
+    """Largest distance of a link frame from the root with every joint at zero [m]."""
+    tree = robot.tree()
+    positions = {tree.root: np.eye(4)}
+    extent = 0.0
+    for _depth, joint in tree.walk():
+        T = positions.get(joint.parent, np.eye(4)) @ joint.origin.matrix()
+        positions[joint.child] = T
+        extent = max(extent, float(np.linalg.norm(T[:3, 3])))
+    return extent
+
+
+def _namespace(source: RobotSource, number: int, count: int) -> str:
+    if count == 1:
+        return "/"
+    cleaned = "".join(c if c.isalnum() or c == "_" else "_" for c in source.prefix.strip("/"))
+    if not cleaned or not cleaned[0].isalpha():
+        cleaned = f"robot{number + 1}" if not cleaned else f"r{cleaned}"
+    return "/" + cleaned
+
+
+class Viewer:
+    """``robomodel view``: serve the robots on a web page until :meth:`close`."""
+
+    def __init__(self, options: ViewerOptions) -> None:
+        if not options.sources:
+            raise RobomodelError("nothing to view: give at least one description file")
+        for source in options.sources:
+            if not os.path.isfile(source.path):
+                raise RobomodelError(f"cannot read '{source.path}': no such file")
+        self.options = options
+        count = len(options.sources)
+        self.sessions = [
+            RobotSession(
+                i,
+                source,
+                index=options.package_index,
+                namespace=_namespace(source, i, count),
+                external=options.external,
+            )
+            for i, source in enumerate(options.sources)
+        ]
+        self.display_options = DisplayOptions()
+        self.meshes = MeshCache()
+        self.updates_sent = 0
+        self.reloads = 0
+        self.server: Any = None
+        self.context: Context | None = None
+        self.buffer: Any = None
+        self._stop = threading.Event()
+        self._dirty = True
+        self._threads: list[threading.Thread] = []
+        self._extent_m: dict[int, float] = {}
+        self._status_text = ""
+        self._frame_options: tuple[str, ...] = ()
+        self.fixed_frame = options.fixed_frame or ""
+        self.meshes_ready = threading.Event()
+        self._missing: dict[int, tuple[str, ...]] = {}
+        self._beside: set[int] = set()
+
+    # -- lifecycle ----------------------------------------------------------------------------
+    @property
+    def url(self) -> str:
+        port = self.server.get_port() if self.server is not None else self.options.port
+        host = self.options.host
+        return f"http://{'[' + host + ']' if ':' in host else host}:{port}"
+
+    def start(self) -> None:
+        """Load the robots, start the nodes and the server; return once the page is served."""
+        ensure_port_free(self.options.host, self.options.port)
+        viser = import_viser()
+        for session in self.sessions:
+            session.try_load()
+        if not self.fixed_frame:
+            roots = [s.root_frame for s in self.sessions if s.root_frame]
+            self.fixed_frame = roots[0] if roots else "base_link"
+        opts = self.options
+        self.context = Context(
+            opts.bus, domain_id=opts.domain_id, connect=opts.connect, listen=opts.listen
+        )
+        node = self.context.create_node("robomodel_viewer")
+        self.buffer = TransformListener(node).buffer
+        node.create_subscription(TFMessage, "/tf", self._on_tf, 100)
+        node.create_subscription(
+            TFMessage, "/tf_static", self._on_tf, QoSProfile(100, Durability.TRANSIENT_LOCAL)
+        )
+        for session in self.sessions:
+            session.start_nodes(self.context, node)
+        with contextlib.redirect_stdout(io.StringIO()):  # viser prints its own banner
+            self.server = viser.ViserServer(
+                host=opts.host, port=opts.port, label="robomodel view", verbose=False
+            )
+        self._build_gui()
+        self._place_camera()
+        for session in self.sessions:
+            session.build_display(
+                self.server.scene, self.meshes, self.display_options, load_meshes=False
+            )
+            session.build_panel(self.server.gui, self._post)
+            session.publish_bodies()
+        self._spawn(self._loop, "robomodel-view-loop")
+        self._spawn(self._load_meshes, "robomodel-view-meshes")
+
+    def _place_camera(self) -> None:
+        """RViz's orbit view (yaw 5.5, pitch 0.33 rad), far enough to see the first robot."""
+        robot = next((s.robot for s in self.sessions if s.robot is not None), None)
+        extent = zero_pose_extent_m(robot) if robot is not None else 0.5
+        distance = max(1.0, 3.0 * extent + 0.5) * max(1.0, len(self.sessions) ** 0.5)
+        yaw, pitch = 5.5, 0.33
+        camera = self.server.initial_camera
+        camera.look_at = (0.0, 0.0, 0.0)
+        camera.position = (
+            distance * math.cos(pitch) * math.cos(yaw),
+            distance * math.cos(pitch) * math.sin(yaw),
+            distance * math.sin(pitch),
+        )
+
+    def _spawn(self, target: Callable[[], None], name: str) -> None:
+        thread = threading.Thread(target=target, name=name, daemon=True)
+        self._threads.append(thread)
+        thread.start()
+
+    def wait(self, timeout_s: float | None = None) -> None:
+        """Block until :meth:`close` (or ``timeout_s``)."""
+        self._stop.wait(timeout_s)
+
+    def close(self) -> None:
+        self._stop.set()
+        for thread in self._threads:
+            if thread is not threading.current_thread():
+                thread.join(timeout=5)
+        if self.server is not None:
+            with contextlib.redirect_stdout(io.StringIO()):  # viser's "Server stopped"
+                self.server.stop()
+        if self.context is not None:
+            self.context.shutdown()
+
+    def __enter__(self) -> Viewer:
+        self.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # -- GUI ------------------------------------------------------------------------------------
+    def _post(self, work: Callable[[], None]) -> None:
+        """Run ``work`` on the loop thread (the only one that touches the nodes)."""
+        assert self.context is not None
+
+        def run() -> None:
+            work()
+            self._dirty = True
+
+        self.context.executor.post(run)
+
+    def _build_gui(self) -> None:
+        panel = OptionsPanel(
+            self.server,
+            fixed_frame=self.fixed_frame,
+            options=self.display_options,
+            post=self._post,
+            displays=lambda: [s.display for s in self.sessions if s.display is not None],
+            on_fixed_frame=lambda frame: setattr(self, "fixed_frame", frame),
+        )
+        self.status = panel.status
+        self.fixed_dropdown = panel.fixed_dropdown
+        self.tf_display = panel.tf_display
+
+    # -- the loop -------------------------------------------------------------------------------
+    def _on_tf(self, _msg: TFMessage) -> None:
+        self._dirty = True
+
+    def _load_meshes(self) -> None:
+        for session in self.sessions:
+            if session.display is not None:
+                session.display.load_meshes()
+        self.meshes_ready.set()
+        self._dirty = True
+
+    def _loop(self) -> None:
+        while not self._stop.is_set():
+            try:
+                self._run_loop()
+            except Exception:  # the page must outlive any one bad update
+                log.exception("viewer update failed; going on")
+                time.sleep(0.1)
+
+    def _run_loop(self) -> None:
+        assert self.context is not None
+        next_reload = next_status = next_bodies = 0.0
+        while not self._stop.is_set():
+            self.context.spin_once(0.005)
+            for session in self.sessions:
+                if session.apply_queued():
+                    self.context.spin_once(0.0)  # robot_state_publisher -> /tf -> buffer
+            now = time.monotonic()
+            if now >= next_reload:
+                next_reload = now + self.options.reload_period_s
+                self._check_reload()
+            if self._dirty:
+                self._dirty = False
+                self._push()
+            if now >= next_status:
+                next_status = now + 0.25
+                self._refresh_frames()
+                self._refresh_status()
+            if now >= next_bodies:
+                # Republished like joint_state_publisher's joint states (10 Hz), so that lookups
+                # through a floating joint never need data older than the TF cache holds.
+                next_bodies = now + 0.1
+                for session in self.sessions:
+                    session.publish_bodies()
+
+    def _check_reload(self) -> None:
+        for session in self.sessions:
+            if not session.watcher.changed():
+                continue
+            if session.try_load():
+                try:
+                    session.apply_reload()
+                except RobomodelError as exc:
+                    session.failure = LoadFailure.from_error(exc)
+                    continue
+                session.build_display(
+                    self.server.scene, self.meshes, self.display_options, load_meshes=True
+                )
+                session.build_panel(self.server.gui, self._post)
+                self._extent_m.pop(session.number, None)
+                self.reloads += 1
+            self._dirty = True
+            self._refresh_status()
+
+    def _default_root_pose(self, session: RobotSession) -> np.ndarray:
+        """Where an unconnected robot goes: side by side along -y (to the left in the default
+        view, away from the panel), ordered as given."""
+        anchor = next((s.number for s in self.sessions if s.root_frame == self.fixed_frame), 0)
+        spacing = max([1.0, *(2.0 * e + 0.5 for e in self._extent_m.values())])
+        T = np.eye(4)
+        T[1, 3] = -(session.number - anchor) * spacing
+        return T
+
+    def _push(self) -> None:
+        """Send the poses that changed, as one atomic batch, flushed immediately."""
+        frames: list[str] = []
+        wxyzs: list[np.ndarray] = []
+        xyzs: list[np.ndarray] = []
+        shown: list[np.ndarray] = []
+        self._missing = {}
+        self._beside = set()
+        with self.server.atomic():
+            for session in self.sessions:
+                poses = session.link_poses(
+                    self.buffer, self.fixed_frame, self._default_root_pose(session)
+                )
+                if poses is None or session.display is None:
+                    continue
+                session.display.set_poses(poses.wxyz, poses.xyz, poses.visible)
+                if session.number not in self._extent_m and poses.visible.all():
+                    self._extent_m[session.number] = float(
+                        np.linalg.norm(poses.xyz - poses.xyz[0], axis=1).max(initial=0.0)
+                    )
+                self._missing[session.number] = poses.missing
+                if not poses.connected:
+                    self._beside.add(session.number)
+                frames.extend(session.link_frames())
+                wxyzs.append(poses.wxyz)
+                xyzs.append(poses.xyz)
+                shown.append(poses.visible)
+            self._push_other_frames(frames, wxyzs, xyzs, shown)
+            if frames:
+                self.tf_display.update(
+                    tuple(frames),
+                    np.concatenate(wxyzs),
+                    np.concatenate(xyzs),
+                    np.concatenate(shown),
+                )
+        self.server.flush()
+        self.updates_sent += 1
+
+    def _push_other_frames(
+        self,
+        frames: list[str],
+        wxyzs: list[np.ndarray],
+        xyzs: list[np.ndarray],
+        shown: list[np.ndarray],
+    ) -> None:
+        """TF frames that belong to no robot (from other processes): looked up directly."""
+        known = set(frames)
+        stale = set().union(*(s.stale_frames for s in self.sessions))
+        for frame in self.buffer.frames:
+            if frame in known or frame in stale:
+                continue
+            try:
+                tf = self.buffer.lookup_transform(self.fixed_frame, frame)
+            except TransformError:
+                continue
+            x, y, z, w = tf.rotation_xyzw
+            frames.append(frame)
+            wxyzs.append(np.array([[w, x, y, z]]))
+            xyzs.append(np.array([tf.translation_m]))
+            shown.append(np.array([True]))
+
+    def _refresh_frames(self) -> None:
+        stale = set().union(*(s.stale_frames for s in self.sessions))
+        frames = {f for f in self.buffer.frames if f not in stale}
+        for session in self.sessions:
+            frames.update(session.link_frames())
+        frames.add(self.fixed_frame)
+        options = tuple(sorted(frames))
+        if options != self._frame_options:
+            self._frame_options = options
+            self.fixed_dropdown.options = options
+            self.fixed_dropdown.value = self.fixed_frame
+
+    def _refresh_status(self) -> None:
+        statuses = []
+        missing, beside = self._missing, self._beside
+        for session in self.sessions:
+            display = session.display
+            statuses.append(
+                RobotStatus(
+                    label=session.label,
+                    path=session.source.path,
+                    failure=session.failure,
+                    problems=tuple(display.problems) if display is not None else (),
+                    missing_frames=missing.get(session.number, ()),
+                    fixed_frame=self.fixed_frame,
+                    placed_beside=session.number in beside and len(self.sessions) > 1,
+                    pending_meshes=display.pending_meshes if display is not None else 0,
+                )
+            )
+        known = self.fixed_frame in self.buffer.frames or any(
+            self.fixed_frame == s.root_frame for s in self.sessions
+        )
+        text = render_status(statuses, known, self.fixed_frame)
+        if text != self._status_text:
+            self._status_text = text
+            self.status.content = text

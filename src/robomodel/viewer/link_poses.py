@@ -1,0 +1,110 @@
+"""Where a robot's links are in the fixed frame, from the TF buffer."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from robomodel.description.model import Robot
+from robomodel.tf import BufferCore
+from robomodel.tf.exceptions import TransformError
+from robomodel.viewer._poses import QuatXyzw, Vec3, compose
+
+__all__ = ["LinkPoses", "robot_link_poses"]
+
+
+@dataclass(frozen=True, slots=True)
+class LinkPoses:
+    """Every link of a robot in the fixed frame (``link_names`` order)."""
+
+    wxyz: NDArray[np.float64]
+    xyz: NDArray[np.float64]
+    visible: NDArray[np.bool_]
+    connected: bool
+    missing: tuple[str, ...]
+
+
+def _qmul_xyzw(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    ax, ay, az, aw = a[..., 0], a[..., 1], a[..., 2], a[..., 3]
+    bx, by, bz, bw = b[..., 0], b[..., 1], b[..., 2], b[..., 3]
+    return np.stack(
+        [
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz,
+        ],
+        axis=-1,
+    )
+
+
+def _rotate_xyzw(q: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
+    u, w = q[..., :3], q[..., 3:4]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
+
+
+def robot_link_poses(
+    robot: Robot,
+    prefix: str,
+    link_names: tuple[str, ...],
+    buffer: BufferCore,
+    fixed_frame: str,
+    T_fixed_root_default: NDArray[np.float64],
+) -> LinkPoses:
+    """Every link of ``robot`` in the fixed frame, in ``link_names`` order, from TF.
+
+    Each joint is looked up one hop (parent to child, with ``prefix``) and composed down the
+    tree from the root, then the root is placed in the fixed frame. When the root has no
+    transform to the fixed frame (another robot's tree), the robot is placed at
+    ``T_fixed_root_default`` so that unconnected robots still appear side by side.
+    """
+    tree = robot.tree()
+    root = prefix + tree.root
+    names = link_names
+    n = len(names)
+    t = np.zeros((n, 3))
+    q = np.zeros((n, 4))
+    q[:, 3] = 1.0
+    visible = np.zeros(n, dtype=bool)
+    index = {name: i for i, name in enumerate(names)}
+    visible[index[tree.root]] = True
+    poses: dict[str, tuple[Vec3, QuatXyzw]] = {tree.root: ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))}
+    missing = []
+    # One hop per joint (parent -> child), composed down the tree: O(links), not
+    # O(links x depth) as looking every link up from the root would be.
+    for _depth, joint in tree.walk():
+        i, p = index[joint.child], index[joint.parent]
+        frame = prefix + joint.child
+        try:
+            if not visible[p]:
+                raise TransformError("parent not connected")
+            tf = buffer.lookup_transform(prefix + joint.parent, frame)
+            t_p, q_p = poses[joint.parent]
+            poses[joint.child] = compose(t_p, q_p, tf.translation_m, tf.rotation_xyzw)
+            t[i], q[i] = poses[joint.child]
+            visible[i] = True
+        except TransformError:
+            try:  # another process may publish a different tree: ask the root directly
+                tf = buffer.lookup_transform(root, frame)
+            except TransformError:
+                missing.append(frame)
+                continue
+            poses[joint.child] = (tf.translation_m, tf.rotation_xyzw)
+            t[i], q[i], visible[i] = tf.translation_m, tf.rotation_xyzw, True
+    connected = True
+    try:
+        base = buffer.lookup_transform(fixed_frame, root)
+        t0 = np.asarray(base.translation_m)
+        q0 = np.asarray(base.rotation_xyzw)
+    except TransformError:
+        connected = fixed_frame == root
+        t0 = T_fixed_root_default[:3, 3].copy()
+        q0 = np.array([0.0, 0.0, 0.0, 1.0])
+    xyz = t0 + _rotate_xyzw(np.broadcast_to(q0, q.shape), t)
+    q_fixed = _qmul_xyzw(np.broadcast_to(q0, q.shape), q)
+    wxyz = np.concatenate([q_fixed[:, 3:4], q_fixed[:, :3]], axis=1)
+    wxyz *= np.where(wxyz[:, :1] < 0, -1.0, 1.0)
+    return LinkPoses(wxyz, xyz, visible, connected, tuple(missing))

@@ -1,0 +1,369 @@
+"""One robot in the viewer: its description, its publishers, its display and its controls.
+
+A session loads (and on change reloads) one description file, runs robot_state_publisher and,
+unless joint states come from the bus, joint_state_publisher for it, and keeps the
+RobotModel display and the joint panel in step with the last description that loaded.
+A description that fails to load leaves the last good model in place and records the error.
+"""
+
+from __future__ import annotations
+
+import random
+import threading
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from robomodel.description.model import JointType, Robot
+from robomodel.description.packages import PackageIndex
+from robomodel.description.urdf.writer import urdf_to_string
+from robomodel.errors import Diagnostic, InputError, RobomodelError
+from robomodel.loading import LoadedDescription, read_description
+from robomodel.runtime.context import Context
+from robomodel.runtime.msg import TFMessage
+from robomodel.runtime.node import Node
+from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
+from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+from robomodel.runtime.tf_listener import to_msg
+from robomodel.tf import BufferCore, TransformStamped
+from robomodel.viewer.bodies import body_transform
+from robomodel.viewer.joint_panel import BodyPose, JointPanel
+from robomodel.viewer.link_poses import LinkPoses, robot_link_poses
+from robomodel.viewer.meshes import MeshCache
+from robomodel.viewer.reload import FileWatcher
+from robomodel.viewer.scene import RobotModelDisplay
+
+__all__ = ["DisplayOptions", "LoadFailure", "RobotSession", "RobotSource"]
+
+
+@dataclass(frozen=True, slots=True)
+class RobotSource:
+    """A description file to view, its xacro arguments and its frame prefix."""
+
+    path: str
+    mappings: Mapping[str, str] = field(default_factory=dict)
+    prefix: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class LoadFailure:
+    """Why the last load failed: the error and the include/macro stack notes.
+
+    ``diagnostics`` holds the located error first, then its notes (empty for errors without a
+    location, whose text is ``message``).
+    """
+
+    message: str
+    diagnostics: tuple[Diagnostic, ...] = ()
+
+    @property
+    def path(self) -> str | None:
+        return self.diagnostics[0].location.path if self.diagnostics else None
+
+    @classmethod
+    def from_error(cls, exc: RobomodelError) -> LoadFailure:
+        if isinstance(exc, InputError):
+            return cls(exc.diagnostic.format(), (exc.diagnostic, *exc.notes))
+        return cls(str(exc))
+
+
+@dataclass(slots=True)
+class DisplayOptions:
+    """RViz's RobotModel properties, shared by every robot."""
+
+    alpha: float = 1.0
+    show_visual: bool = True
+    show_collision: bool = False
+
+
+class RobotSession:
+    """Loads, publishes, draws and controls one robot.
+
+    Args:
+        number: Position on the command line (0-based); names scene nodes and namespaces.
+        source: The file, xacro arguments and frame prefix.
+        index: Package index for ``$(find)`` and ``package://``.
+        namespace: Namespace of this robot's nodes ("/" for a single robot).
+        external: Joint states come from the bus (no joint_state_publisher, no sliders).
+    """
+
+    def __init__(
+        self,
+        number: int,
+        source: RobotSource,
+        *,
+        index: PackageIndex,
+        namespace: str = "/",
+        external: bool = False,
+    ) -> None:
+        self.number = number
+        self.source = source
+        self.prefix = source.prefix
+        self.index = index.with_workspace_of(source.path)
+        self.namespace = namespace
+        self.external = external
+        self.robot: Robot | None = None
+        self.loaded: LoadedDescription | None = None
+        self.failure: LoadFailure | None = None
+        self.watcher = FileWatcher([source.path])
+        self.rsp: RobotStatePublisher | None = None
+        self.jsp: JointStatePublisher | None = None
+        self.display: RobotModelDisplay | None = None
+        self.panel: JointPanel | None = None
+        self.bodies: dict[str, BodyPose] = {}
+        self.stale_frames: set[str] = set()
+        self.generation = 0
+        self._context: Context | None = None
+        self._node: Node | None = None
+        self._tf_pub: Any = None
+        self._pending: dict[str, float] = {}
+        self._has_bodies = False
+        self._pending_lock = threading.Lock()
+
+    # -- loading ------------------------------------------------------------------------------
+    @property
+    def label(self) -> str:
+        name = self.robot.name if self.robot is not None else Path(self.source.path).name
+        return f"{self.prefix}{name}" if self.prefix else name
+
+    @property
+    def root_frame(self) -> str | None:
+        if self.robot is None:
+            return None
+        return self.prefix + self.robot.tree().root
+
+    def link_frames(self) -> tuple[str, ...]:
+        if self.robot is None:
+            return ()
+        return tuple(self.prefix + name for name in self.robot.link_names)
+
+    def try_load(self) -> bool:
+        """Expand and parse the description; on failure keep the last model and the error."""
+        try:
+            result, loaded = read_description(
+                self.source.path, args=dict(self.source.mappings), package_index=self.index
+            )
+            result.robot.tree()  # a loop or several roots cannot be drawn
+        except RobomodelError as exc:
+            self.failure = LoadFailure.from_error(exc)
+            if self.failure.path is not None:
+                self.watcher.add([self.failure.path])
+            return False
+        self.failure = None
+        old = self.robot
+        self.robot, self.loaded = result.robot, loaded
+        self.watcher.watch([self.source.path, *loaded.dependencies])
+        if old is not None:
+            self.stale_frames |= {self.prefix + n for n in old.link_names} - set(self.link_frames())
+        self.stale_frames -= set(self.link_frames())
+        self.generation += 1
+        self._has_bodies = any(
+            j.type in (JointType.FLOATING, JointType.PLANAR) for j in self.robot.joints
+        )
+        return True
+
+    # -- running ------------------------------------------------------------------------------
+    def start_nodes(self, context: Context, node: Node) -> None:
+        """Create robot_state_publisher (and joint_state_publisher) for the loaded model."""
+        self._context, self._node = context, node
+        self._tf_pub = node.create_publisher(TFMessage, "/tf", 100)
+        if self.robot is None:
+            return
+        try:
+            self._create_publishers()
+        except RobomodelError as exc:  # e.g. a joint without limits: show it, keep serving
+            self.failure = LoadFailure.from_error(exc)
+
+    def _create_publishers(self) -> None:
+        assert self._context is not None and self.robot is not None
+        self.rsp = RobotStatePublisher(
+            self._context,
+            self.robot,
+            namespace=self.namespace,
+            # A viewer must not drop slider moves: limit to 1000 Hz, not RSP's 20 Hz default.
+            parameters={"frame_prefix": self.prefix, "publish_frequency": 1000.0},
+        )
+        if not self.external:
+            self.jsp = JointStatePublisher(self._context, self.robot, namespace=self.namespace)
+            self.jsp.publish()
+
+    def apply_reload(self) -> None:
+        """Hand the newly loaded model to the nodes (keeping joint values that still exist)."""
+        if self.robot is None:
+            return
+        if self.rsp is None:
+            self._create_publishers()
+            self.publish_bodies()
+            return
+        result = self.rsp.node.set_parameters({"robot_description": urdf_to_string(self.robot)})
+        if not result.successful:
+            self.failure = LoadFailure(f"robot_state_publisher refused it: {result.reason}")
+            return
+        if self.jsp is not None:
+            self.jsp.configure(self.robot)
+            self.jsp.publish()
+        self.bodies = {k: v for k, v in self.bodies.items() if self._body_joint(k) is not None}
+        self.publish_bodies()
+
+    def build_display(
+        self, scene: Any, meshes: MeshCache, options: DisplayOptions, *, load_meshes: bool
+    ) -> None:
+        if self.display is not None:
+            self.display.remove()
+            self.display = None
+        if self.robot is None or self.loaded is None:
+            return
+        self.display = RobotModelDisplay(
+            scene,
+            f"/robots/r{self.number}g{self.generation}",
+            self.robot,
+            index=self.index,
+            base_dir=self.loaded.base_dir,
+            meshes=meshes,
+            alpha=options.alpha,
+            show_visual=options.show_visual,
+            show_collision=options.show_collision,
+        )
+        self.display.build()
+        if load_meshes:
+            self.display.load_meshes()
+
+    def build_panel(self, gui: Any, post: Any) -> None:
+        """(Re)create the joint panel; ``post`` runs a callable on the executor thread."""
+        if self.panel is not None:
+            self.panel.remove()
+            self.panel = None
+        if self.robot is None:
+            return
+        if self.jsp is None:
+            self.panel = JointPanel(
+                gui,
+                self.label,
+                (),
+                mimic={},
+                bodies=(),
+                on_change=lambda _p: None,
+                on_randomize=lambda: None,
+                on_center=lambda: None,
+                on_body=lambda _n, _p: None,
+                note="joint states come from the bus (`--joint-states external`)",
+            )
+            return
+        jsp = self.jsp
+        bodies = tuple(
+            j for j in self.robot.joints if j.type in (JointType.FLOATING, JointType.PLANAR)
+        )
+        mimic = {n: d.parent for n, d in jsp.dependent_joints.items()}
+        self.panel = JointPanel(
+            gui,
+            self.label,
+            tuple(jsp.free_joints.values()),
+            mimic=mimic,
+            bodies=bodies,
+            on_change=self.queue_positions,
+            on_randomize=lambda: post(lambda: self.randomize()),
+            on_center=lambda: post(lambda: self.center()),
+            on_body=lambda name, pose: post(lambda: self.set_body(name, pose)),
+            units={j.name: "m" for j in self.robot.joints if j.type is JointType.PRISMATIC},
+        )
+
+    # -- controls (run on the executor thread) --------------------------------------------------
+    def queue_positions(self, values: Mapping[str, float]) -> None:
+        """From any thread: joint values to apply at the loop's next turn (merged, so a fast
+        slider drag costs one joint_state_publisher message per turn, not one per event)."""
+        with self._pending_lock:
+            self._pending.update(values)
+
+    def apply_queued(self) -> bool:
+        """Apply queued joint values (loop thread); True if there were any."""
+        with self._pending_lock:
+            pending, self._pending = self._pending, {}
+        if pending:
+            self.set_positions(pending)
+        return bool(pending)
+
+    def set_positions(self, values: Mapping[str, float]) -> None:
+        if self.jsp is None:
+            return
+        known = {k: v for k, v in values.items() if k in self.jsp.free_joints}
+        self.jsp.set_positions(known)
+        self.jsp.publish()
+
+    def randomize(self, rng: random.Random | None = None) -> None:
+        if self.jsp is None:
+            return
+        self.jsp.randomize(rng)
+        self.jsp.publish()
+        self._sync_sliders()
+
+    def center(self) -> None:
+        if self.jsp is None:
+            return
+        self.jsp.center()
+        self.jsp.publish()
+        self._sync_sliders()
+
+    def _sync_sliders(self) -> None:
+        if self.panel is not None and self.jsp is not None:
+            self.panel.set_values(
+                {n: j.position for n, j in self.jsp.free_joints.items() if j.position is not None}
+            )
+
+    def _body_joint(self, name: str) -> Any:
+        if self.robot is None or not self.robot.has_joint(name):
+            return None
+        joint = self.robot.joint(name)
+        return joint if joint.type in (JointType.FLOATING, JointType.PLANAR) else None
+
+    def set_body(self, name: str, pose: BodyPose) -> None:
+        self.bodies[name] = pose
+        self.publish_bodies()
+
+    def publish_bodies(self) -> None:
+        """Publish floating and planar joints on /tf (robot_state_publisher does not)."""
+        if self.robot is None or self._node is None or self.external or not self._has_bodies:
+            return
+        stamp = self._node.now()
+        transforms = []
+        for joint in self.robot.joints:
+            if joint.type not in (JointType.FLOATING, JointType.PLANAR):
+                continue
+            T = body_transform(joint, self.bodies.get(joint.name, BodyPose()))
+            transforms.append(
+                to_msg(
+                    TransformStamped.from_matrix(
+                        self.prefix + joint.parent,
+                        self.prefix + joint.child,
+                        T,
+                        stamp.to_nanoseconds(),
+                    )
+                )
+            )
+        if transforms:
+            self._tf_pub.publish(TFMessage(transforms))
+
+    # -- poses --------------------------------------------------------------------------------
+    def link_poses(
+        self, buffer: BufferCore, fixed_frame: str, T_fixed_root_default: NDArray[np.float64]
+    ) -> LinkPoses | None:
+        """Every link in the fixed frame (see :func:`robot_link_poses`); None before a model."""
+        if self.robot is None or self.display is None:
+            return None
+        return robot_link_poses(
+            self.robot,
+            self.prefix,
+            self.display.link_names,
+            buffer,
+            fixed_frame,
+            T_fixed_root_default,
+        )
+
+    def close(self) -> None:
+        if self.display is not None:
+            self.display.remove()
+        if self.panel is not None:
+            self.panel.remove()

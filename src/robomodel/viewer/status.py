@@ -1,0 +1,92 @@
+"""The status panel's text: load errors, missing meshes, frames without transforms."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from robomodel.viewer.scene import GeometryProblem
+from robomodel.viewer.session import LoadFailure
+
+__all__ = ["RobotStatus", "render_status"]
+
+_MAX_LISTED = 8
+
+
+@dataclass(frozen=True, slots=True)
+class RobotStatus:
+    """What the status panel says about one robot."""
+
+    label: str
+    path: str
+    failure: LoadFailure | None
+    problems: tuple[GeometryProblem, ...]
+    missing_frames: tuple[str, ...]
+    fixed_frame: str
+    placed_beside: bool
+    pending_meshes: int
+
+
+def _escape(text: str) -> str:
+    """Markdown-escape free text so that file names and messages show as written."""
+    return "".join("\\" + c if c in "\\`*_[]<>|#" else c for c in text)
+
+
+def _short(path: str | None, base_dir: str) -> str:
+    if path is None:
+        return "<string>"
+    relative = os.path.relpath(path, base_dir)
+    return path if relative.startswith("..") else relative
+
+
+def _failure(failure: LoadFailure, base_dir: str) -> str:
+    if not failure.diagnostics:
+        return _escape(failure.message)
+    lines = []
+    for diagnostic in failure.diagnostics:
+        loc = diagnostic.location
+        where = ":".join(
+            [_short(loc.path, base_dir)] + [str(v) for v in (loc.line, loc.column) if v is not None]
+        )
+        lines.append(f"`{where}`: {diagnostic.severity.value}: {_escape(diagnostic.message)}")
+    return "\n\n".join(lines)
+
+
+def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed: str) -> str:
+    """Markdown for the status panel ("OK" when there is nothing to report)."""
+    parts: list[str] = []
+    if not fixed_frame_known:
+        parts.append(f"**Fixed Frame** `{fixed}` does not exist (yet).")
+    for robot in robots:
+        base_dir = os.path.dirname(os.path.abspath(robot.path))
+        head = f"**{_escape(robot.label)}** (`{os.path.basename(robot.path)}`)"
+        if robot.failure is not None:
+            parts.append(
+                f"{head}: **error**, showing the last good model:\n\n"
+                + _failure(robot.failure, base_dir)
+            )
+        if robot.problems:
+            lines = [
+                f"- {_escape(p.link)} ({p.kind}): `{p.uri}`: {_escape(p.reason)}"
+                for p in robot.problems
+            ]
+            parts.append(f"{head}: {len(lines)} mesh(es) not drawn:\n\n" + "\n".join(lines))
+        if robot.pending_meshes:
+            parts.append(f"{head}: loading {robot.pending_meshes} mesh(es)...")
+        if robot.missing_frames:
+            shown = robot.missing_frames[:_MAX_LISTED]
+            more = len(robot.missing_frames) - len(shown)
+            lines = [
+                f"- No transform from \\[{_escape(f)}\\] to \\[{_escape(robot.fixed_frame)}\\]"
+                for f in shown
+            ]
+            if more > 0:
+                lines.append(f"- ... and {more} more")
+            parts.append(f"{head}:\n\n" + "\n".join(lines))
+        if robot.placed_beside:
+            parts.append(
+                f"{head}: its tree is not connected to the Fixed Frame `{robot.fixed_frame}`; "
+                "drawn beside it"
+            )
+    return "\n\n".join(parts) if parts else "OK"

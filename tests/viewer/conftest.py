@@ -1,0 +1,195 @@
+"""Fixtures for the viewer tests: a `robomodel view` process, headless Chromium, screenshots.
+
+The browser is Debian's Chromium (``apt-get install chromium``; `.ci/run` installs it), driven
+by playwright's Python package through ``executable_path`` (``playwright install`` is never
+needed). WebGL renders in software.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
+CHROMIUM_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+VIEWPORT = {"width": 1024, "height": 576}
+
+
+def chromium_path() -> str:
+    path = shutil.which("chromium") or shutil.which("chromium-browser")
+    if path is None:
+        pytest.fail("Chromium is not installed: apt-get install chromium (.ci/run does)")
+    return path
+
+
+def wait_for(condition: Callable[[], Any], timeout_s: float = 20.0, what: str = "") -> Any:
+    """Poll ``condition`` until it returns something truthy; fail after ``timeout_s``."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        value = condition()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            pytest.fail(f"timed out after {timeout_s} s waiting for {what or condition}")
+        time.sleep(0.1)
+
+
+class ViewerProcess:
+    """A ``robomodel view`` subprocess on an ephemeral port."""
+
+    def __init__(self, args: list[str], cwd: Path | None = None) -> None:
+        env = dict(os.environ, PYTHONUNBUFFERED="1")
+        self.proc = subprocess.Popen(
+            [*ROBOMODEL, "view", *args, "--no-browser", "--port", "0"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env=env,
+            cwd=cwd,
+        )
+        assert self.proc.stdout is not None
+        line = self.proc.stdout.readline()
+        if "serving" not in line:
+            self.stop()
+            pytest.fail(f"robomodel view did not start: {line}{self.stderr}")
+        self.url = line.split("serving ")[1].split()[0]
+        self.stderr = ""
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+            try:
+                self.proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        assert self.proc.stderr is not None
+        self.stderr = self.proc.stderr.read()
+
+
+@pytest.fixture
+def viewer() -> Iterator[Callable[..., ViewerProcess]]:
+    started: list[ViewerProcess] = []
+
+    def start(*args: str, cwd: Path | None = None) -> ViewerProcess:
+        process = ViewerProcess([str(a) for a in args], cwd=cwd)
+        started.append(process)
+        return process
+
+    yield start
+    for process in started:
+        process.stop()
+
+
+@pytest.fixture(scope="session")
+def browser() -> Iterator[Any]:
+    from playwright.sync_api import sync_playwright
+
+    # launch() gives every browser a fresh temporary profile (it refuses --user-data-dir).
+    with sync_playwright() as pw:
+        instance = pw.chromium.launch(
+            executable_path=chromium_path(), headless=True, args=CHROMIUM_ARGS
+        )
+        yield instance
+        instance.close()
+
+
+@pytest.fixture
+def page(browser: Any) -> Iterator[Any]:
+    context = browser.new_context(viewport=VIEWPORT)
+    yield context.new_page()
+    context.close()
+
+
+def open_viewer(page: Any, url: str) -> None:
+    """Load the page and wait until the GUI arrived over the websocket."""
+    page.goto(url)
+    page.get_by_text("Fixed Frame", exact=True).wait_for(timeout=30000)
+
+
+def screenshot(page: Any) -> np.ndarray:
+    """The page as an (H, W, 3) uint8 array."""
+    from PIL import Image
+
+    data = page.screenshot()
+    return np.asarray(Image.open(io.BytesIO(data)).convert("RGB"))
+
+
+def scene_region(image: np.ndarray) -> np.ndarray:
+    """The 3D view without the GUI panel (right) and the notification corner (top left)."""
+    h, w, _ = image.shape
+    return image[int(0.25 * h) : int(0.95 * h), int(0.05 * w) : int(0.58 * w)]
+
+
+def changed_fraction(a: np.ndarray, b: np.ndarray, threshold: int = 30) -> float:
+    """Fraction of pixels whose colour differs by more than ``threshold`` in some channel."""
+    diff = np.abs(a.astype(np.int16) - b.astype(np.int16)).max(axis=2)
+    return float((diff > threshold).mean())
+
+
+def settle(page: Any, timeout_s: float = 15.0) -> np.ndarray:
+    """Screenshot once two consecutive shots of the scene agree (rendering has caught up)."""
+    deadline = time.monotonic() + timeout_s
+    last = scene_region(screenshot(page))
+    while time.monotonic() < deadline:
+        time.sleep(0.3)
+        current = scene_region(screenshot(page))
+        if changed_fraction(last, current) < 0.0005:
+            return current
+        last = current
+    return last
+
+
+def gui_row(page: Any, label: str) -> Any:
+    """The GUI row of the control labelled ``label`` (its inputs, slider, ...)."""
+    # Not text-is: viser breaks labels after "_" with <wbr>, which text-is does not see through.
+    exact = re.compile(f"^{re.escape(label)}$")
+    return (
+        page.locator("label")
+        .filter(has_text=exact)
+        .locator("xpath=ancestor::div[.//input[not(@type='hidden')]][1]")
+    )
+
+
+def slider_input(page: Any, label: str) -> Any:
+    """The editable value box next to the slider labelled ``label``."""
+    return gui_row(page, label).locator("input:not([type=hidden])").first
+
+
+def slider_thumb(page: Any, label: str) -> Any:
+    """The thumb of the slider labelled ``label`` (takes arrow keys, Home and End)."""
+    return gui_row(page, label).locator("[role=slider]").first
+
+
+def save_shot(page: Any, name: str) -> Path:
+    """Keep a screenshot for people to look at (build/viewer-screenshots/)."""
+    out = Path(__file__).resolve().parents[2] / "build" / "viewer-screenshots"
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / f"{name}.png"
+    page.screenshot(path=str(path))
+    return path
+
+
+def domain_id(offset: int) -> str:
+    """A Zenoh domain of its own per test (the runtime tests use 100-199)."""
+    return str(200 + (os.getpid() * 7 + offset) % 50)

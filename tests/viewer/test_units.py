@@ -1,0 +1,208 @@
+"""The viewer's pieces without a browser: ports, file watching, poses, meshes, materials, CLI."""
+
+from __future__ import annotations
+
+import math
+import socket
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from robomodel.description import read_urdf
+from robomodel.description.model import Joint, JointType, Material, Origin, Robot
+from robomodel.description.packages import PackageIndex
+from robomodel.errors import PathEscapeError
+from robomodel.kinematics.se3 import quat_xyzw_from_matrix
+from robomodel.viewer._poses import wxyz_from_matrices
+from robomodel.viewer.bodies import body_transform
+from robomodel.viewer.errors import PortInUseError
+from robomodel.viewer.joint_panel import BodyPose
+from robomodel.viewer.materials import material_rgba
+from robomodel.viewer.meshes import MeshCache, load_mesh_file, resolve_mesh_uri
+from robomodel.viewer.ports import ensure_port_free
+from robomodel.viewer.reload import FileWatcher
+from tests.conftest import EXAMPLES, ToolResult, example_robot_data_dir
+
+
+def test_port_in_use_names_a_free_one() -> None:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        sock.listen()
+        port = sock.getsockname()[1]
+        with pytest.raises(PortInUseError) as info:
+            ensure_port_free("127.0.0.1", port)
+    assert f"port {port} on 127.0.0.1 is already in use" in str(info.value)
+    assert info.value.free_port is not None and info.value.free_port > port
+    assert f"--port {info.value.free_port}" in str(info.value)
+
+
+def test_cli_port_in_use_exits_2_with_one_line(cli: Callable[..., ToolResult]) -> None:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        sock.listen()
+        port = sock.getsockname()[1]
+        result = cli(
+            "view",
+            str(EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf"),
+            "--no-browser",
+            "--port",
+            str(port),
+        )
+    assert result.code == 2
+    assert (
+        result.err.count("\n") == 1
+        and "already in use" in result.err
+        and "try --port" in result.err
+    )
+
+
+def test_cli_rejects_bad_arguments(cli: Callable[..., ToolResult]) -> None:
+    urdf = str(EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf")
+    result = cli("view", urdf, "--prefix", "a/", "--prefix", "b/", "--no-browser")
+    assert result.code == 2 and "one per FILE" in result.err
+    result = cli("view", urdf, "--joint-states", "external", "--no-browser")
+    assert result.code == 2 and "--bus zenoh" in result.err
+    result = cli("view", "nothere.urdf", "--no-browser", "--port", "0")
+    assert result.code == 2 and "no such file" in result.err
+
+
+def test_file_watcher_sees_edits_new_and_removed_files(tmp_path: Path) -> None:
+    a, b = tmp_path / "a.xacro", tmp_path / "b.yaml"
+    a.write_text("1")
+    watcher = FileWatcher([str(a), str(b)])
+    assert watcher.changed() == ()
+    time.sleep(0.01)
+    a.write_text("22")
+    b.write_text("x")
+    assert set(watcher.changed()) == {str(a), str(b)}
+    assert watcher.changed() == ()
+    a.unlink()
+    assert watcher.changed() == (str(a),)
+
+
+def test_wxyz_from_matrices_matches_the_kinematics_layer() -> None:
+    rng = np.random.default_rng(3)
+    q = rng.normal(size=(200, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    w, x, y, z = q.T
+    R = np.stack(
+        [
+            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+            np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+            np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
+        ],
+        axis=1,
+    )
+    got = wxyz_from_matrices(R)
+    for i in range(len(R)):
+        ref = np.asarray(quat_xyzw_from_matrix(R[i]))
+        ref_wxyz = np.array([ref[3], ref[0], ref[1], ref[2]])
+        assert min(np.abs(got[i] - ref_wxyz).max(), np.abs(got[i] + ref_wxyz).max()) < 1e-9
+
+
+def test_material_colours_inline_reference_and_unknown() -> None:
+    robot = Robot("r", materials=(Material("red", (1.0, 0.0, 0.0, 1.0)),))
+    assert material_rgba(Material("red"), robot) == (1.0, 0.0, 0.0, 1.0)
+    assert material_rgba(Material("x", (0.0, 1.0, 0.0, 0.5)), robot) == (0.0, 1.0, 0.0, 0.5)
+    assert material_rgba(Material("nope"), robot) is None
+    assert material_rgba(None, robot) is None
+
+
+def test_meshes_stl_dae_obj_load_and_are_cached(tmp_path: Path) -> None:
+    robots = example_robot_data_dir()
+    stl = robots / "talos_data/meshes/v2/knee_lo_res.stl"
+    dae = robots / "a1_description/meshes/trunk.dae"
+    objs = sorted(robots.rglob("*.obj"))
+    assert objs, "example-robot-data ships OBJ meshes"
+    for path in (stl, dae, objs[0]):
+        parts = load_mesh_file(path)
+        assert parts and all(p.faces.shape[1] == 3 and p.vertices.shape[1] == 3 for p in parts)
+        assert not parts[0].vertices.flags.writeable
+    assert load_mesh_file(dae)[0].rgba is not None  # the DAE's own material colour
+    cache = MeshCache()
+    copy = tmp_path / "knee.stl"
+    copy.write_bytes(stl.read_bytes())
+    first = cache.get(copy)
+    assert cache.get(copy) is first and cache.loads == 1
+    copy.write_bytes(stl.read_bytes() + b"")  # same bytes: new mtime only if the clock moved
+    time.sleep(0.01)
+    copy.touch()
+    cache.get(copy)
+    assert cache.loads == 2
+
+
+def test_mesh_uris_resolve_and_escapes_are_refused() -> None:
+    share = example_robot_data_dir().parents[1]
+    index = PackageIndex(packages={"example-robot-data": share / "example-robot-data"})
+    triple = "package:///example-robot-data/robots/talos_data/meshes/v2/knee_lo_res.stl"
+    assert resolve_mesh_uri(index, triple, Path("/")).is_file()
+    with pytest.raises(PathEscapeError):
+        resolve_mesh_uri(index, "package://example-robot-data/../../../etc/passwd", Path("/"))
+    assert resolve_mesh_uri(index, "m/a.stl", Path("/base")) == Path("/base/m/a.stl")
+
+
+def test_floating_and_planar_joint_transforms() -> None:
+    origin = Origin(xyz_m=(1.0, 0.0, 0.0))
+    floating = Joint("f", JointType.FLOATING, "a", "b", origin=origin)
+    T = body_transform(floating, BodyPose((0.0, 2.0, 0.0), (0.0, 0.0, math.pi / 2)))
+    np.testing.assert_allclose(T[:3, 3], (1.0, 2.0, 0.0), atol=1e-12)
+    np.testing.assert_allclose(T[:3, 0], (0.0, 1.0, 0.0), atol=1e-12)
+    planar = Joint("p", JointType.PLANAR, "a", "b", axis=(0.0, 0.0, 1.0))
+    T = body_transform(planar, BodyPose((0.3, 0.4, 0.0), (0.0, 0.0, 0.5)))
+    assert T[2, 3] == pytest.approx(0.0) and np.hypot(T[0, 3], T[1, 3]) == pytest.approx(0.5)
+    np.testing.assert_allclose(T[:3, 2], (0.0, 0.0, 1.0), atol=1e-12)
+
+
+def test_examples_parse_for_the_viewer() -> None:
+    # The robots the README and the tests view exist and parse.
+    text = (EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf").read_text()
+    assert read_urdf(text).robot.links
+
+
+def test_missing_viser_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sys
+
+    from robomodel.errors import MissingDependencyError
+    from robomodel.viewer._deps import import_trimesh, import_viser
+
+    monkeypatch.setitem(sys.modules, "viser", None)
+    monkeypatch.setitem(sys.modules, "trimesh", None)
+    for load in (import_viser, import_trimesh):
+        with pytest.raises(MissingDependencyError, match=r"robomodel\[viewer\]"):
+            load()
+
+
+@pytest.mark.parametrize(
+    "module_name",
+    [
+        "robomodel.viewer",
+        "robomodel.viewer.app",
+        "robomodel.viewer.scene",
+        "robomodel.viewer.session",
+        "robomodel.viewer.link_poses",
+        "robomodel.viewer.meshes",
+        "robomodel.viewer.joint_panel",
+        "robomodel.viewer.tf_display",
+        "robomodel.viewer.options_panel",
+        "robomodel.viewer.status",
+    ],
+)
+def test_viewer_public_names_resolve(module_name: str) -> None:
+    import importlib
+
+    module = importlib.import_module(module_name)
+    for name in module.__all__:
+        assert getattr(module, name) is not None, name
+
+
+def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
+    import subprocess
+    import sys
+
+    code = "import sys, robomodel.viewer, robomodel.cli.main as m; m.build_parser(); "
+    code += "print('viser' in sys.modules, 'trimesh' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "False"]

@@ -1,0 +1,128 @@
+"""The viewer in this process (no browser): loading, reload from dependencies, bad files."""
+
+from __future__ import annotations
+
+import shutil
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from robomodel.description.packages import PackageIndex
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.conftest import EXAMPLES
+from tests.viewer.conftest import wait_for
+from tests.viewer.robots import write_arm
+
+
+@pytest.fixture
+def started() -> Iterator[list[Viewer]]:
+    viewers: list[Viewer] = []
+    yield viewers
+    for viewer in viewers:
+        viewer.close()
+
+
+def _start(viewers: list[Viewer], *sources: RobotSource, **options: object) -> Viewer:
+    viewer = Viewer(
+        ViewerOptions(sources=sources, port=0, reload_period_s=0.05, **options)  # type: ignore[arg-type]
+    )
+    viewer.start()
+    viewers.append(viewer)
+    return viewer
+
+
+def test_yaml_dependency_change_reloads_and_keeps_joint_values(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    package = tmp_path / "example_description"
+    shutil.copytree(EXAMPLES / "example_description", package)
+    viewer = _start(
+        started,
+        RobotSource(str(package / "urdf/example.urdf.xacro")),
+        package_index=PackageIndex(packages={"example_description": package}),
+    )
+    session = viewer.sessions[0]
+    assert session.loaded is not None
+    assert any(d.endswith("parameters.yaml") for d in session.loaded.dependencies)
+    session.queue_positions({"arm_joint_1": 0.5})
+    wait_for(lambda: session.jsp and session.jsp.free_joints["arm_joint_1"].position == 0.5)
+    old_size = session.robot.link("base_link").visuals[0].geometry.size_m  # type: ignore[union-attr]
+    params = package / "config/parameters.yaml"
+    time.sleep(0.01)
+    params.write_text(params.read_text().replace('base_length: "0.65"', 'base_length: "0.9"'))
+    wait_for(lambda: viewer.reloads == 1, what="a reload after the YAML changed")
+    new_size = session.robot.link("base_link").visuals[0].geometry.size_m  # type: ignore[union-attr]
+    assert old_size[0] == pytest.approx(0.65) and new_size[0] == pytest.approx(0.9)
+    assert session.jsp is not None
+    assert session.jsp.free_joints["arm_joint_1"].position == pytest.approx(0.5)
+
+
+def test_a_file_that_does_not_parse_at_start_is_served_and_loads_when_fixed(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    path = write_arm(tmp_path)
+    good = path.read_text()
+    path.write_text(good.replace("</robot>", ""))
+    viewer = _start(started, RobotSource(str(path)))
+    session = viewer.sessions[0]
+    assert session.robot is None and session.failure is not None
+    assert "arm.urdf:" in session.failure.message
+    wait_for(lambda: "showing the last good model" in viewer.status.content)
+    time.sleep(0.01)
+    path.write_text(good)
+    wait_for(lambda: session.robot is not None and session.display is not None)
+    wait_for(lambda: viewer.status.content == "OK", what="the status to clear")
+
+
+def test_link_poses_in_the_fixed_frame(started: list[Viewer], tmp_path: Path) -> None:
+    viewer = _start(started, RobotSource(str(write_arm(tmp_path))))
+    session = viewer.sessions[0]
+    session.queue_positions({"joint1": np.pi / 2})
+    assert session.display is not None
+    names = session.display.link_names
+
+    def tool_position() -> np.ndarray | None:
+        poses = session.link_poses(viewer.buffer, "base_link", np.eye(4))
+        if poses is None or not poses.visible.all():
+            return None
+        return poses.xyz[names.index("tool")]
+
+    # joint1 turns about x by 90 degrees: the tool (1.1 m up link1) points along -y.
+    wait_for(
+        lambda: (p := tool_position()) is not None and np.allclose(p, (0.0, -1.1, 0.1), atol=1e-9),
+        what="the tool at (0, -1.1, 0.1)",
+    )
+
+
+BROKEN_MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="bad">
+  <xacro:macro name="leg" params="n">
+    <link name="leg_${n + undefined_length}"/>
+    <joint name="hip_${n}" type="fixed"><parent link="base_link"/><child link="leg_${n}"/></joint>
+  </xacro:macro>
+  <link name="base_link"/>
+  <xacro:leg n="1"/>
+</robot>
+"""
+
+
+def test_xacro_error_carries_file_line_and_macro_stack_to_the_page(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    good = tmp_path / "robot.urdf.xacro"
+    good.write_text(BROKEN_MACRO.replace("n + undefined_length", "n"))
+    viewer = _start(started, RobotSource(str(good)))
+    session = viewer.sessions[0]
+    assert session.robot is not None and session.failure is None
+    time.sleep(0.01)
+    good.write_text(BROKEN_MACRO)
+    wait_for(lambda: session.failure is not None, what="the broken edit to be seen")
+    assert session.failure is not None
+    assert "robot.urdf.xacro:4:" in session.failure.message
+    assert "undefined_length" in session.failure.message
+    wait_for(lambda: "in macro 'leg'" in viewer.status.content, what="the macro stack")
+    assert "`robot.urdf.xacro:4:" in viewer.status.content
+    assert session.robot is not None and session.robot.has_link("leg_1")  # last good model
