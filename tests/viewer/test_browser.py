@@ -22,6 +22,7 @@ from tests.viewer.conftest import (
     domain_id,
     open_viewer,
     save_shot,
+    scene_region,
     settle,
     slider_input,
     slider_thumb,
@@ -315,3 +316,74 @@ def test_display_options_mimic_and_floating_controls(
     after = settle(page)
     save_shot(page, "arm_fixed_frame_ball")
     assert changed_fraction(before, after) > 0.002
+
+
+def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
+    """Issue 7's done-when: the seed's topic pub moves rrbot's joint1 in the viewer."""
+    import subprocess
+    import sys
+
+    domain = domain_id(40)
+    control = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "robomodel.cli.main",
+            "control",
+            "run",
+            str(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro"),
+            "--controllers",
+            str(EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml"),
+            "--domain-id",
+            domain,
+            "--port",
+            "0",
+            "--duration",
+            "90",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert control.stderr is not None
+        url = None
+        for _ in range(20):
+            line = control.stderr.readline()
+            if "viewer at" in line:
+                url = line.rsplit(" ", 1)[1].strip()
+                break
+        assert url, "control run did not start its viewer"
+        open_viewer(page, url)
+        before = settle(page)
+        pub = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "robomodel.cli.main",
+                "topic",
+                "pub",
+                "/joint1_position_controller/command",
+                "std_msgs/msg/Float64",
+                "data: 1.5",
+                "--once",
+                "--domain-id",
+                domain,
+            ],
+            capture_output=True,
+            text=True,
+            timeout=30,
+        )
+        assert pub.returncode == 0, pub.stderr
+
+        def moved() -> Any:
+            image = settle(page)
+            changed = changed_fraction(scene_region(before), scene_region(image))
+            return (image,) if changed > 0.005 else None  # a tuple: wait_for tests truthiness
+
+        (after,) = wait_for(moved, timeout_s=30, what="rrbot to move in the page")
+        save_shot(page, "rrbot_joint1_1.5")
+        assert changed_fraction(scene_region(before), scene_region(after)) > 0.005
+    finally:
+        control.terminate()
+        control.wait(timeout=15)

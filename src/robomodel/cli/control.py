@@ -47,6 +47,9 @@ def register(subparsers: Any) -> None:
     )
     run_p.add_argument("--no-view", action="store_true", help="do not start the viewer")
     run_p.add_argument(
+        "--port", type=int, default=8080, help="the viewer's HTTP port (0: any free port)"
+    )
+    run_p.add_argument(
         "--inactive", action="store_true", help="load and configure only (spawner --inactive)"
     )
     run_p.add_argument(
@@ -271,6 +274,7 @@ def _start_viewer(args: argparse.Namespace) -> Any:
                 connect=tuple(args.connect),
                 listen=tuple(args.listen),
                 external=True,
+                port=args.port,
                 package_index=package_index_from_args(args),
             )
         )
