@@ -30,6 +30,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_kinematics.py
 	$(BIN)/python bench/bench_runtime.py
 	$(BIN)/python bench/bench_control.py
+	$(BIN)/python bench/bench_viewer.py
 
 clean:
 	rm -rf $(VENV) build .pytest_cache .mypy_cache .ruff_cache
