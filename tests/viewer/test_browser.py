@@ -366,7 +366,10 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
                 "/joint1_position_controller/command",
                 "std_msgs/msg/Float64",
                 "data: 1.5",
-                "--once",
+                "--times",
+                "5",
+                "--rate",
+                "2",
                 "--domain-id",
                 domain,
             ],
@@ -379,11 +382,13 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
         def moved() -> Any:
             image = settle(page)
             changed = changed_fraction(scene_region(before), scene_region(image))
-            return (image,) if changed > 0.005 else None  # a tuple: wait_for tests truthiness
+            return (image,) if changed > 0.002 else None  # a tuple: wait_for tests truthiness
 
-        (after,) = wait_for(moved, timeout_s=30, what="rrbot to move in the page")
+        (after,) = wait_for(moved, timeout_s=60, what="rrbot to move in the page")
         save_shot(page, "rrbot_joint1_1.5")
-        assert changed_fraction(scene_region(before), scene_region(after)) > 0.005
+        # rrbot is small in the default view: a quarter turn of joint1 changes ~0.5 % of the
+        # scene; a page that does not move changes none.
+        assert changed_fraction(scene_region(before), scene_region(after)) > 0.002
     finally:
         control.terminate()
         control.wait(timeout=15)
