@@ -21,6 +21,7 @@ __all__ = [
     "Severity",
     "SourceLocation",
     "close_matches",
+    "describe_unknown",
 ]
 
 
@@ -120,6 +121,15 @@ class InputError(RobomodelError):
 def close_matches(word: str, candidates: Iterable[str], n: int = 3) -> list[str]:
     """Return up to ``n`` candidates that look like ``word`` (for "did you mean" hints)."""
     return difflib.get_close_matches(word, list(candidates), n=n, cutoff=0.6)
+
+
+def describe_unknown(what: str, name: str, available: Sequence[str], listing: str) -> str:
+    """``"<what> 'name' (did you mean 'x'?); <listing>: a, b"`` for an unknown name."""
+    message = f"{what} '{name}'"
+    hint = close_matches(name, available)
+    if hint:
+        message += f" (did you mean {', '.join(repr(h) for h in hint)}?)"
+    return message + f"; {listing}: {', '.join(available) or '(none)'}"
 
 
 class PackageNotFoundError(RobomodelError):

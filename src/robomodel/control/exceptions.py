@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from robomodel.errors import RobomodelError, SourceLocation, close_matches
+from robomodel.errors import RobomodelError, SourceLocation, describe_unknown
 
 __all__ = ["ConfigError", "ControlError", "ControllerStateError", "UnknownControllerError"]
 
@@ -26,12 +26,9 @@ class UnknownControllerError(ControlError, KeyError):
     def __init__(self, name: str, available: tuple[str, ...]) -> None:
         self.name = name
         self.available = available
-        hint = close_matches(name, available)
-        msg = f"unknown controller '{name}'"
-        if hint:
-            msg += f" (did you mean {', '.join(repr(h) for h in hint)}?)"
-        msg += f"; loaded controllers: {', '.join(available) or '(none)'}"
-        super().__init__(msg)
+        super().__init__(
+            describe_unknown("unknown controller", name, available, "loaded controllers")
+        )
 
     def __str__(self) -> str:
         return str(self.args[0])

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from robomodel.control.exceptions import ControlError
-from robomodel.errors import close_matches
+from robomodel.errors import describe_unknown
 
 __all__ = ["HardwareError", "InterfaceClaimedError", "UnknownInterfaceError"]
 
@@ -19,12 +19,9 @@ class UnknownInterfaceError(HardwareError, KeyError):
         self.kind = kind
         self.name = name
         self.available = available
-        hint = close_matches(name, available)
-        msg = f"no {kind} interface '{name}'"
-        if hint:
-            msg += f" (did you mean {', '.join(repr(h) for h in hint)}?)"
-        msg += f"; {kind} interfaces are: {', '.join(available) or '(none)'}"
-        super().__init__(msg)
+        super().__init__(
+            describe_unknown(f"no {kind} interface", name, available, f"{kind} interfaces are")
+        )
 
     def __str__(self) -> str:
         return str(self.args[0])

@@ -10,7 +10,7 @@ from robomodel.description.model.geometry import Material
 from robomodel.description.model.joint import Joint
 from robomodel.description.model.link import Link
 from robomodel.description.model.raw import RawElement
-from robomodel.errors import RobomodelError, close_matches
+from robomodel.errors import RobomodelError, describe_unknown
 
 if TYPE_CHECKING:
     from robomodel.description.model.tree import KinematicTree
@@ -25,12 +25,7 @@ class UnknownNameError(RobomodelError, KeyError):
         self.kind = kind
         self.name = name
         self.available = available
-        hint = close_matches(name, available)
-        msg = f"unknown {kind} '{name}'"
-        if hint:
-            msg += f" (did you mean {', '.join(repr(h) for h in hint)}?)"
-        msg += f"; {kind}s are: {', '.join(available) if available else '(none)'}"
-        super().__init__(msg)
+        super().__init__(describe_unknown(f"unknown {kind}", name, available, f"{kind}s are"))
 
     def __str__(self) -> str:
         return str(self.args[0])
