@@ -35,6 +35,7 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.publish_state",
     "robomodel.cli.control",
     "robomodel.cli.view",
+    "robomodel.cli.sim",
 )
 
 

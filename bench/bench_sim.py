@@ -1,0 +1,165 @@
+"""Simulation benchmark: real-time factor (sim seconds per wall second), headless.
+
+Run: ``.venv/bin/python bench/bench_sim.py [--seconds 5] [--rounds 5]``.
+
+1. UR5 (examples/ur5_description, transmissions switched to EffortJointInterface) with six
+   effort_controllers/JointPositionController (PID) + joint_state_broadcaster (50 Hz) +
+   robot_state_publisher on the in-process bus, physics and controller manager at 1 kHz,
+   /clock at 100 Hz, following a sine trajectory. Target >= 50x real time.
+2. simplebot with its 360-ray lidar at 10 Hz in the wall world, diff_drive_controller at
+   100 Hz driven by a constant /cmd_vel, JSB + robot_state_publisher, ground truth at 50 Hz,
+   physics at 1 kHz. Target >= 20x real time.
+3. For reference: raw ``mj_step`` on the UR5 model (no Python per step) and the per-step Python
+   loop of the engine with no controllers.
+
+Each round builds the scene anew and runs ``--seconds`` of sim time as fast as possible;
+the median over the rounds is printed (the machine is shared; take medians).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import statistics
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+HOME = (0.0, -1.2, 1.0, -1.4, -1.57, 0.0)  # arm up, clear of the ground
+JOINTS = ("shoulder_pan", "shoulder_lift", "elbow", "wrist_1", "wrist_2", "wrist_3")
+# Gains per joint size (the URDF has no rotor inertia, so the wrists are light).
+GAINS = ("{p: 2000.0, i: 0.0, d: 50.0}",) * 3 + ("{p: 10.0, i: 0.0, d: 0.05}",) * 3
+UR5_PID_YAML = (
+    "joint_state_controller:\n  type: joint_state_controller/JointStateController\n"
+    "  publish_rate: 50\n"
+) + "".join(
+    f"joint{i}_position_controller:\n  type: effort_controllers/JointPositionController\n"
+    f"  joint: {j}_joint\n  pid: {g}\n"
+    for i, (j, g) in enumerate(zip(JOINTS, GAINS, strict=True), 1)
+)
+
+
+def _ur5_effort():  # type: ignore[no-untyped-def]
+    from robomodel.loading import load
+
+    robot = load(str(EXAMPLES / "ur5_description/urdf/ur5.urdf.xacro"))
+    effort = ("hardware_interface/EffortJointInterface",)
+    transmissions = tuple(
+        dataclasses.replace(
+            t, joints=tuple(dataclasses.replace(j, hardware_interfaces=effort) for j in t.joints)
+        )
+        for t in robot.transmissions
+    )
+    return dataclasses.replace(robot, transmissions=transmissions)
+
+
+def ur5_round(seconds: float) -> tuple[float, float]:
+    """(real-time factor, max tracking error [rad] over the last second)."""
+    from robomodel.control.config import load_controller_config
+    from robomodel.description.urdf.writer import urdf_to_string
+    from robomodel.runtime import Context, ManualClock
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+    from robomodel.sim import Simulation
+    from robomodel.sim.bus import SimBridge
+
+    robot = _ur5_effort()
+    context = Context(clock=ManualClock())
+    sim = Simulation()
+    sim.add_robot(robot)
+    config = load_controller_config("ur5_pid.yaml", text=UR5_PID_YAML)
+    manager = sim.control(config, context=context, update_rate_hz=1000).manager
+    SimBridge(sim, context)
+    RobotStatePublisher(context, urdf_to_string(robot))
+    controllers = [manager.entries[f"joint{i}_position_controller"].controller for i in range(1, 7)]
+    targets = list(HOME)
+    for j, q in zip(JOINTS, HOME, strict=True):
+        sim.data.joint(f"{j}_joint").qpos = q
+
+    def command(t: float) -> None:
+        for i, c in enumerate(controllers):
+            targets[i] = HOME[i] + 0.3 * (math.sin(0.5 * t + i) - math.sin(i))
+            c.set_command(targets[i])  # type: ignore[attr-defined]
+
+    sim.every(50.0, command, order=-2)
+    wall = sim.run(seconds)
+    q = [sim.data.joint(f"{j}_joint").qpos[0] for j in JOINTS]
+    error = max(abs(a - b) for a, b in zip(q, targets, strict=True))
+    context.shutdown()
+    return seconds / wall, error
+
+
+def simplebot_round(seconds: float) -> tuple[float, int]:
+    """(real-time factor, scans received)."""
+    from robomodel.description.urdf.writer import urdf_to_string
+    from robomodel.loading import load
+    from robomodel.runtime import Context, ManualClock
+    from robomodel.runtime.msg.sensor_msgs import LaserScan
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+    from robomodel.sim import Placement, Simulation, read_world
+    from robomodel.sim.bus import SimBridge
+    from robomodel.sim.scripted import CmdVelDriver
+
+    robot = load(str(EXAMPLES / "simplebot_description/urdf/simplebot_lidar.urdf.xacro"))
+    context = Context(clock=ManualClock())
+    sim = Simulation(read_world(EXAMPLES / "simplebot_description/worlds/wall.world"))
+    sim.add_robot(robot, placement=Placement(xyz_m=(0.0, 0.0, 0.076)))
+    system = sim.control(
+        EXAMPLES / "simplebot_description/config/simplebot_controllers.yaml", context=context
+    )
+    SimBridge(sim, context)
+    RobotStatePublisher(context, urdf_to_string(robot))
+    CmdVelDriver.attach(sim, system, context, (0.1, 0.0, 0.2))
+    scans: list[LaserScan] = []
+    context.create_node("listener").create_subscription(LaserScan, "/scan", scans.append)
+    wall = sim.run(seconds)
+    context.shutdown()
+    return seconds / wall, len(scans)
+
+
+def raw_round(seconds: float) -> tuple[float, float]:
+    """(raw mj_step real-time factor, engine loop without controllers)."""
+    import mujoco
+
+    from robomodel.sim import Simulation
+
+    sim = Simulation()
+    sim.add_robot(_ur5_effort())
+    n = round(seconds / sim.timestep_s)
+    start = time.perf_counter()
+    mujoco.mj_step(sim.model, sim.data, nstep=n)
+    raw = seconds / (time.perf_counter() - start)
+    sim.reset()
+    start = time.perf_counter()
+    sim.step(n)
+    return raw, seconds / (time.perf_counter() - start)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--seconds", type=float, default=5.0, help="sim time per round [s]")
+    parser.add_argument("--rounds", type=int, default=5)
+    args = parser.parse_args()
+    print(f"simulation benchmark: {args.seconds:g} s of sim time x {args.rounds} rounds (median)")
+    ur5 = [ur5_round(args.seconds) for _ in range(args.rounds)]
+    rtf = statistics.median(r for r, _ in ur5)
+    print(
+        f"UR5 + 6 PID + JSB + RSP, 1 kHz       median {rtf:6.1f}x real time "
+        f"(best {max(r for r, _ in ur5):.1f}x; target >= 50x; tracking error {ur5[-1][1]:.4f} rad)"
+    )
+    bot = [simplebot_round(args.seconds) for _ in range(args.rounds)]
+    rtf = statistics.median(r for r, _ in bot)
+    print(
+        f"simplebot + 360-ray lidar 10 Hz       median {rtf:6.1f}x real time "
+        f"(best {max(r for r, _ in bot):.1f}x; target >= 20x; {bot[-1][1]} scans)"
+    )
+    raw = [raw_round(args.seconds) for _ in range(args.rounds)]
+    print(
+        f"UR5 raw mj_step (nstep)               median {statistics.median(r for r, _ in raw):6.1f}x"
+        f"; engine loop, no controllers {statistics.median(e for _, e in raw):6.1f}x"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,188 @@
+"""``robomodel sim``: the seeds' Gazebo launch (world + spawn + gazebo_ros_control + RSP + RViz).
+
+Physics on MuJoCo, the description's hardware on the simulator, the controllers of
+``--controllers`` spawned, robot_state_publisher, sensors and ground truth on the bus, and the
+browser viewer unless ``--headless``. Time on the bus is sim time (every node's clock follows
+the physics, as ``use_sim_time`` with /clock). ``--cmd-vel`` and ``--report json`` make
+scripted runs::
+
+    robomodel sim simplebot.urdf.xacro --controllers ctrl.yaml --headless --duration 5 \\
+        --rate max --cmd-vel "0.2 0 0" --report json
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import math
+import sys
+import time
+from typing import Any
+
+from robomodel.cli._bus import add_bus_arguments
+from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.errors import RobomodelError
+
+__all__ = ["parse_rate", "register"]
+
+
+def register(subparsers: Any) -> None:
+    p = subparsers.add_parser(
+        "sim", help="simulate a robot (Gazebo's role, on MuJoCo) with its controllers"
+    )
+    add_description_arguments(p)
+    p.add_argument("--world", metavar="W.world", help="SDF world file (default: ground + sun)")
+    p.add_argument("--controllers", metavar="C.yaml", help="controller YAML (ROS 2 or ROS 1)")
+    p.add_argument(
+        "--spawn",
+        nargs="+",
+        type=float,
+        default=[],
+        metavar="V",
+        help="spawn pose x y z R P Y [m, rad] (as spawn_entity -x -y -z -R -P -Y; missing = 0)",
+    )
+    p.add_argument("--prefix", default="", help="frame prefix of the robot")
+    p.add_argument(
+        "--rate",
+        default="realtime",
+        help="realtime (the world's real_time_factor), max (as fast as possible) or a factor",
+    )
+    p.add_argument("--headless", action="store_true", help="no viewer")
+    p.add_argument("--paused", action="store_true", help="start paused (gazebo -u)")
+    p.add_argument("--duration", type=float, default=None, help="stop after S s of sim time")
+    p.add_argument(
+        "--cmd-vel",
+        metavar='"VX VY WZ"',
+        help="publish this constant Twist [m/s, rad/s] to the diff-drive controller at 10 Hz",
+    )
+    p.add_argument("--cmd-vel-topic", default=None, help="topic for --cmd-vel (default: found)")
+    p.add_argument("--report", choices=("json",), help="print a JSON summary at the end")
+    p.add_argument("--port", type=int, default=8080, help="the viewer's HTTP port (0: any)")
+    add_bus_arguments(p)
+    p.set_defaults(func=_run)
+
+
+def parse_rate(text: str, world_factor: float) -> float | None:
+    """``realtime`` -> the world's factor, ``max`` -> None (unpaced), else a positive factor."""
+    if text == "realtime":
+        return world_factor
+    if text == "max":
+        return None
+    try:
+        factor = float(text)
+    except ValueError:
+        raise RobomodelError(f"--rate must be realtime, max or a number, got '{text}'") from None
+    if not (factor > 0 and math.isfinite(factor)):
+        raise RobomodelError(f"--rate factor must be positive, got {factor}")
+    return factor
+
+
+def _spawn(values: list[float]) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    if len(values) > 6:
+        raise RobomodelError(f"--spawn takes up to 6 numbers (x y z R P Y), got {len(values)}")
+    v = [*values, *([0.0] * (6 - len(values)))]
+    return (v[0], v[1], v[2]), (v[3], v[4], v[5])
+
+
+def _cmd_vel(text: str) -> tuple[float, float, float]:
+    try:
+        values = [float(v) for v in text.replace(",", " ").split()]
+    except ValueError:
+        values = []
+    if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        raise RobomodelError(f'--cmd-vel takes "VX VY WZ" (3 numbers), got {text!r}')
+    return values[0], values[1], values[2]
+
+
+def _run(args: argparse.Namespace) -> int:
+    from robomodel.cli.control import _start_viewer
+    from robomodel.description.urdf.writer import urdf_to_string
+    from robomodel.runtime import Context, ManualClock
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+    from robomodel.sim import Placement, Simulation, default_world, read_world
+    from robomodel.sim.bus import SimBridge
+    from robomodel.sim.scripted import CmdVelDriver, OdomWatcher
+
+    world = read_world(args.world) if args.world else default_world()
+    factor = parse_rate(args.rate, world.real_time_factor)
+    xyz, rpy = _spawn(args.spawn)
+    cmd = _cmd_vel(args.cmd_vel) if args.cmd_vel else None
+    result, loaded, index = load_from_args(args)
+    robot = result.robot
+    sim = Simulation(world, package_index=index)
+    built = sim.add_robot(
+        robot, placement=Placement(args.prefix, xyz, rpy), base_dir=loaded.base_dir
+    )
+    with Context(args.bus, clock=ManualClock(), domain_id=args.domain_id, connect=args.connect, listen=args.listen) as context:  # fmt: skip
+        system = None
+        namespace = "/"
+        if args.controllers:
+            system = sim.control(args.controllers, prefix=args.prefix, context=context)
+            namespace = system.manager.namespace
+        bridge = SimBridge(sim, context)
+        RobotStatePublisher(context, urdf_to_string(robot), namespace=namespace)
+        odom = OdomWatcher.attach(system, context) if system is not None else None
+        if cmd is not None:
+            CmdVelDriver.attach(sim, system, context, cmd, topic=args.cmd_vel_topic)
+        bridge.paused = args.paused
+        viewer = None if args.headless else _start_viewer(args)
+        print(
+            f"robomodel sim: world '{world.name}' at {sim.timestep_s * 1e3:g} ms steps, "
+            f"robot '{robot.name}'"
+            + (f", controllers: {', '.join(c['name'] for c in system.manager.list_controllers())}" if system else "")
+            + f"; rate {args.rate}; bus {context.transport.name}"
+            + ("" if args.duration else "; Ctrl-C stops"),
+            file=sys.stderr,
+        )  # fmt: skip
+        wall_s = 0.0
+        try:
+            with contextlib.suppress(KeyboardInterrupt):
+                wall_s = _loop(sim, bridge, args.duration, factor)
+        finally:
+            if system is not None:
+                system.manager.shutdown()
+            bridge.close()
+            if viewer is not None:
+                viewer.close()
+        if args.report == "json":
+            print(json.dumps(_report(sim, built.root_body, odom, wall_s)))
+    return 0
+
+
+def _loop(sim: Any, bridge: Any, duration_s: float | None, factor: float | None) -> float:
+    """Step until ``duration_s`` (or forever); returns the wall time spent stepping [s]."""
+    chunk_s = 0.05
+    wall = 0.0
+    while duration_s is None or sim.time_s < duration_s - 1e-9:
+        if bridge.paused:
+            bridge.poll()
+            time.sleep(0.02)
+            continue
+        step_s = chunk_s if duration_s is None else min(chunk_s, duration_s - sim.time_s)
+        wall += sim.run(step_s, real_time_factor=factor)
+    return wall
+
+
+def _report(sim: Any, root_body: str, odom: Any, wall_s: float) -> dict[str, Any]:
+    from robomodel.sim.sensors.ground_truth import yaw_of
+
+    body = sim.data.body(root_body)
+    x, y = float(body.xpos[0]), float(body.xpos[1])
+    report: dict[str, Any] = {
+        "ground_truth_xy": [x, y],
+        "ground_truth_yaw": yaw_of(body.xquat),
+        "odom_xy": None,
+        "odom_yaw": None,
+        "sim_time_s": sim.time_s,
+        "wall_time_s": wall_s,
+        "real_time_factor": sim.time_s / wall_s if wall_s > 0 else None,
+    }
+    if odom is not None and odom.last is not None:
+        pose = odom.last.pose.pose
+        q = pose.orientation
+        report["odom_xy"] = [pose.position.x, pose.position.y]
+        report["odom_yaw"] = math.atan2(
+            2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z)
+        )
+    return report

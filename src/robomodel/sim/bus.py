@@ -1,0 +1,189 @@
+"""The simulator on the bus: /clock, sensors, ground truth and the gazebo-style services.
+
+:class:`SimBridge` attaches a :class:`~robomodel.sim.engine.Simulation` to a runtime
+:class:`~robomodel.runtime.Context`. Every ``1 / clock_rate_hz`` of sim time (before the
+controller managers run) it publishes ``/clock``, moves a :class:`ManualClock` context to the
+sim time (so timers and queued messages run deterministically, in order), and applies the
+service requests received since the last tick. Sensors publish at their ``update_rate``
+(every physics step for 0, as SDF), ground truth (``/<ns>/ground_truth/odom``, Odometry in
+the ``world`` frame) at ``ground_truth_rate_hz``.
+
+Services (JSON-like dicts, as the runtime's services): ``/gazebo/apply_body_wrench``
+``{link, prefix?, force: [3], torque: [3]}``, ``/gazebo/set_model_state``
+``{prefix?, pose: [x, y, z, R, P, Y]}``, ``/gazebo/reset_world`` and
+``/gazebo/reset_simulation``, ``/gazebo/pause_physics``, ``/gazebo/unpause_physics``.
+"""
+
+from __future__ import annotations
+
+import logging
+import queue
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from robomodel.runtime.clock import ManualClock
+from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.nav_msgs import Clock
+from robomodel.sim.build.robot import BuiltRobot
+from robomodel.sim.sensors.base import SimSensor
+from robomodel.sim.sensors.contact import ContactSensor
+from robomodel.sim.sensors.ground_truth import GroundTruth
+from robomodel.sim.sensors.imu import ImuSensor
+from robomodel.sim.sensors.lidar import Lidar
+from robomodel.sim.sensors.spec import SensorKind
+
+if TYPE_CHECKING:
+    from robomodel.runtime.context import Context
+    from robomodel.sim.engine import Simulation
+
+__all__ = ["SimBridge", "robot_namespace"]
+
+log = logging.getLogger("robomodel.sim")
+
+_SENSORS: dict[SensorKind, type[SimSensor]] = {
+    SensorKind.RAY: Lidar,
+    SensorKind.SONAR: Lidar,
+    SensorKind.IMU: ImuSensor,
+    SensorKind.CONTACT: ContactSensor,
+}
+
+
+def robot_namespace(built: BuiltRobot) -> str:
+    """``/`` for an unprefixed robot, ``/r1`` for prefix ``r1_`` or ``r1/``."""
+    name = built.prefix.strip("/_")
+    return f"/{name}" if name else "/"
+
+
+class SimBridge:
+    """Publishes the simulation on ``context`` (see the module docstring).
+
+    Args:
+        sim: The simulation (robots added; controllers may be added before or after).
+        context: The bus.
+        clock_rate_hz: /clock and bus-tick rate (Gazebo classic publishes /clock at 100 Hz
+            by default, ROS 1 ``pub_clock_frequency``).
+        ground_truth_rate_hz: Rate of the ground-truth odometry (0 disables it).
+    """
+
+    def __init__(
+        self,
+        sim: Simulation,
+        context: Context,
+        *,
+        clock_rate_hz: float = 100.0,
+        ground_truth_rate_hz: float = 50.0,
+    ) -> None:
+        self.sim = sim
+        self.context = context
+        self.paused = False
+        self._requests: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
+        self.node = context.create_node("gazebo")
+        self._clock_pub = self.node.create_publisher(Clock, "/clock", 10)
+        self._manual = isinstance(context.clock, ManualClock)
+        sim.every(clock_rate_hz, self._tick, order=-1)
+        self.sensors: list[SimSensor] = []
+        self.ground_truth: list[GroundTruth] = []
+        for built in sim.robots:
+            self._add_robot(built, ground_truth_rate_hz)
+        self._unregister = [
+            context.create_service(name, handler)
+            for name, handler in (
+                ("/gazebo/apply_body_wrench", self._apply_wrench),
+                ("/gazebo/set_model_state", self._set_model_state),
+                ("/gazebo/reset_world", self._reset),
+                ("/gazebo/reset_simulation", self._reset),
+                ("/gazebo/pause_physics", self._pause),
+                ("/gazebo/unpause_physics", self._unpause),
+            )
+        ]
+
+    def _add_robot(self, built: BuiltRobot, ground_truth_rate_hz: float) -> None:
+        sim = self.sim
+        ns = robot_namespace(built)
+        prefix_topic = "" if ns == "/" else ns
+        for i, spec in enumerate(built.extensions.sensors):
+            sensor = _SENSORS[spec.kind](spec, sim.model, sim.data, prefix=built.prefix, seed=i)
+            publisher = self.node.create_publisher(
+                sensor.message_type, prefix_topic + spec.topic, 10
+            )
+            sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
+            self.sensors.append(sensor)
+        if ground_truth_rate_hz > 0:
+            truth = GroundTruth(
+                sim.model, sim.data, built.root_body, built.prefix + built.robot.tree().root
+            )
+            publisher = self.node.create_publisher(
+                type(truth.measure(0.0)), f"{prefix_topic}/ground_truth/odom", 10
+            )
+            sim.every(ground_truth_rate_hz, _publishing(truth, publisher), order=1)
+            self.ground_truth.append(truth)
+
+    # -- the tick ------------------------------------------------------------------------------
+    def poll(self) -> None:
+        """Apply queued service requests and run pending callbacks (also while paused)."""
+        while True:
+            try:
+                request = self._requests.get_nowait()
+            except queue.Empty:
+                break
+            request()
+        self.context.spin_once(0.0)
+
+    def _tick(self, time_s: float) -> None:
+        while True:
+            try:
+                request = self._requests.get_nowait()
+            except queue.Empty:
+                break
+            request()
+        self._clock_pub.publish(Clock(clock=Time.from_seconds(time_s)))
+        if self._manual:
+            dt = time_s - self.context.clock.now_s()
+            if dt > 0:
+                self.context.advance(dt)
+            else:
+                self.context.spin_once(0.0)
+
+    # -- services ------------------------------------------------------------------------------
+    def _queue(self, action: Callable[[], None]) -> dict[str, Any]:
+        self._requests.put(action)
+        return {"success": True, "status_message": "queued for the next tick"}
+
+    def _apply_wrench(self, request: dict[str, Any]) -> dict[str, Any]:
+        link = str(request.get("link", request.get("body_name", "")))
+        prefix = str(request.get("prefix", ""))
+        force = [float(v) for v in request.get("force", (0.0, 0.0, 0.0))]
+        torque = [float(v) for v in request.get("torque", (0.0, 0.0, 0.0))]
+        self.sim.body_id(link, prefix=prefix)  # unknown link: error now, to the caller
+        return self._queue(
+            lambda: self.sim.apply_wrench(link, force_n=force, torque_nm=torque, prefix=prefix)
+        )
+
+    def _set_model_state(self, request: dict[str, Any]) -> dict[str, Any]:
+        prefix = str(request.get("prefix", ""))
+        pose = [float(v) for v in request.get("pose", (0.0,) * 6)]
+        self.sim.robot(prefix)
+        return self._queue(lambda: self.sim.teleport(pose[:3], pose[3:], prefix=prefix))
+
+    def _reset(self, request: dict[str, Any]) -> dict[str, Any]:
+        return self._queue(self.sim.reset)
+
+    def _pause(self, request: dict[str, Any]) -> dict[str, Any]:
+        self.paused = True
+        return {"success": True}
+
+    def _unpause(self, request: dict[str, Any]) -> dict[str, Any]:
+        self.paused = False
+        return {"success": True}
+
+    def close(self) -> None:
+        for unregister in self._unregister:
+            unregister()
+        self._unregister = []
+
+
+def _publishing(source: Any, publisher: Any) -> Callable[[float], None]:
+    def publish(time_s: float) -> None:
+        publisher.publish(source.measure(time_s))
+
+    return publish

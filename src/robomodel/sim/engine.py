@@ -1,0 +1,437 @@
+"""The simulation: physics stepping, the controller managers in the loop, divergence checks.
+
+One :class:`Simulation` holds a world and its robots, compiled into one MuJoCo model. Each
+physics step runs, in Gazebo's order (gazebo_ros2_control ``Update`` on WorldUpdateBegin):
+the callbacks due at this step (controller managers at their ``update_rate``: read, update,
+write; sensors, /clock and ground truth at theirs), then every simulated hardware component
+writes its kinematic commands, then ``mj_step``. NaN or infinite states (or MuJoCo's own
+"bad qacc" reset) stop the run with a :class:`DivergenceError` naming the joint and body.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from robomodel.sim._mujoco import mujoco
+from robomodel.sim.build.geoms import MeshLoader
+from robomodel.sim.build.robot import BuiltRobot, Placement, add_robot
+from robomodel.sim.build.scene import add_world, apply_min_friction, new_spec
+from robomodel.sim.exceptions import DivergenceError, SimulationError
+from robomodel.sim.world import World, default_world
+
+if TYPE_CHECKING:
+    from robomodel.control import ControlSystem
+    from robomodel.control.config import ControllerConfig
+    from robomodel.description.model import Robot
+    from robomodel.description.packages import PackageIndex
+    from robomodel.runtime.context import Context
+    from robomodel.sim.hardware import SimSystem
+
+__all__ = ["Simulation", "StepCallback"]
+
+StepCallback = Callable[[float], None]
+_CHECK_EVERY_STEPS = 100
+
+
+@dataclass(eq=False)
+class _Scheduled:
+    every_steps: int
+    callback: StepCallback
+    order: int = 0
+
+
+class Simulation:
+    """A world with robots on MuJoCo (see the module docstring).
+
+    Add robots with :meth:`add_robot`, then controllers with :meth:`control`; the model is
+    compiled on first use of :attr:`model` (or by :meth:`build`).
+
+    Args:
+        world: The world; :func:`~robomodel.sim.world.default_world` (ground and sun) by default.
+        package_index: Resolves ``package://`` mesh paths.
+        include_visuals: Also add visual geoms (for MuJoCo rendering; collision-free).
+    """
+
+    def __init__(
+        self,
+        world: World | None = None,
+        *,
+        package_index: PackageIndex | None = None,
+        include_visuals: bool = False,
+    ) -> None:
+        from robomodel.description.packages import PackageIndex
+
+        self.world = world or default_world()
+        self._index = package_index or PackageIndex()
+        self._include_visuals = include_visuals
+        self._spec = new_spec(self.world)
+        add_world(self._spec, self.world)
+        self.robots: list[BuiltRobot] = []
+        self._model: Any = None
+        self._data: Any = None
+        self._schedule: list[_Scheduled] = []
+        self._hardware: list[SimSystem] = []
+        self._controls: list[ControlSystem] = []
+        self._steps = 0
+        self._initial_qpos: np.ndarray | None = None
+
+    # -- building ---------------------------------------------------------------------------
+    def add_robot(
+        self,
+        robot: Robot,
+        *,
+        placement: Placement | None = None,
+        base_dir: str | os.PathLike[str] | None = None,
+    ) -> BuiltRobot:
+        """Spawn ``robot`` (``spawn_entity``); prefixes must differ between robots.
+
+        Raises:
+            SimulationError: after :meth:`build`, a repeated prefix, or a robot that cannot be
+                simulated (bad inertia with its file:line, missing meshes, ...).
+        """
+        if self._model is not None:
+            raise SimulationError("robots must be added before the simulation is built")
+        placement = placement or Placement()
+        if any(r.prefix == placement.prefix for r in self.robots):
+            raise SimulationError(
+                f"a robot with prefix '{placement.prefix}' is already in the world; give each "
+                "robot its own prefix"
+            )
+        if len(self.robots) >= 29:
+            raise SimulationError("at most 29 robots per world (one collision bit each)")
+        if base_dir is None and robot.source_path:
+            base_dir = os.path.dirname(os.path.abspath(robot.source_path.split(" ")[0]))
+        loader = MeshLoader(self._index, os.fspath(base_dir) if base_dir is not None else None)
+        built = add_robot(
+            self._spec,
+            robot,
+            placement=placement,
+            bit=1 << (len(self.robots) + 1),
+            loader=loader,
+            include_visuals=self._include_visuals,
+        )
+        self.robots.append(built)
+        return built
+
+    def build(self) -> None:
+        """Compile the model (idempotent)."""
+        if self._model is not None:
+            return
+        mj = mujoco()
+        apply_min_friction(self._spec, self.robots)
+        try:
+            self._model = self._spec.compile()
+        except Exception as exc:  # MuJoCo raises ValueError with its compiler message
+            raise SimulationError(f"MuJoCo cannot compile the scene: {exc}") from None
+        self._data = mj.MjData(self._model)
+        mj.mj_forward(self._model, self._data)
+        self._initial_qpos = self._data.qpos.copy()
+
+    @property
+    def model(self) -> Any:
+        """The compiled ``mujoco.MjModel``."""
+        self.build()
+        return self._model
+
+    @property
+    def data(self) -> Any:
+        """The ``mujoco.MjData``."""
+        self.build()
+        return self._data
+
+    @property
+    def timestep_s(self) -> float:
+        return float(self.world.timestep_s)
+
+    @property
+    def time_s(self) -> float:
+        """Simulation time [s]."""
+        return float(self.data.time)
+
+    def robot(self, prefix: str = "") -> BuiltRobot:
+        for built in self.robots:
+            if built.prefix == prefix:
+                return built
+        from robomodel.errors import describe_unknown
+
+        raise SimulationError(
+            describe_unknown(
+                "robot prefix", prefix, [r.prefix for r in self.robots], "prefixes are"
+            )
+        )
+
+    # -- controllers --------------------------------------------------------------------------
+    def control(
+        self,
+        controllers: str | os.PathLike[str] | ControllerConfig,
+        *,
+        prefix: str = "",
+        context: Context | None = None,
+        spawn: Sequence[str] | None = None,
+        update_rate_hz: int | None = None,
+        namespace: str | None = None,
+    ) -> ControlSystem:
+        """Hardware + controller manager for the robot with ``prefix``, stepped with the physics.
+
+        Simulator plugins (``gazebo_ros2_control/GazeboSystem``, ``gz_ros2_control/GazeboSimSystem``,
+        or ROS 1 ``<transmission>`` tags, as the ``gazebo_ros_control`` plugin reads them) get
+        a :class:`~robomodel.sim.hardware.SimSystem`; other plugins (mock hardware) are built as
+        usual and do not touch the physics.
+        """
+        from robomodel.control import ControlSystem
+        from robomodel.control.config import ControllerConfig, load_controller_config
+        from robomodel.control.hardware import ResourceManager
+        from robomodel.control.manager import ControllerManager
+
+        built = self.robot(prefix)
+        config = (
+            controllers
+            if isinstance(controllers, ControllerConfig)
+            else load_controller_config(controllers)
+        )
+        components = self._components(built)
+        resources = ResourceManager(components)
+        rate = int(update_rate_hz or config.update_rate_hz)
+        steps = max(1, round(1.0 / (rate * self.timestep_s)))
+        manager = ControllerManager(
+            resources,
+            context=context,
+            robot=built.robot,
+            update_rate_hz=rate,
+            namespace=namespace if namespace is not None else config.namespace,
+            parameters={**config.manager_params, "use_sim_time": True},
+        )
+        manager.set_config(config)
+        manager.spawn([s.name for s in config.controllers] if spawn is None else list(spawn))
+        system = ControlSystem(resources, manager, config)
+        self._controls.append(system)
+        period = steps * self.timestep_s
+
+        def cycle(time_s: float) -> None:
+            manager.time_s = time_s
+            manager.read(time_s, period)
+            manager.update(time_s, period)
+            manager.write(time_s, period)
+
+        self._add(_Scheduled(steps, cycle, 0))
+        return system
+
+    def _components(self, built: BuiltRobot) -> list[Any]:
+        from robomodel.control.exceptions import ControlError
+        from robomodel.control.hardware import HARDWARE_PLUGINS, hardware_infos_from_robot
+        from robomodel.sim.hardware import SIMULATOR_PLUGINS, SimSystem
+
+        model, data = self.model, self.data
+        components: list[Any] = []
+        for info in hardware_infos_from_robot(built.robot):
+            derived = info.source == "<transmission> tags"
+            if info.plugin in SIMULATOR_PLUGINS or derived:
+                component = SimSystem(info, model, data, prefix=built.prefix)
+                self._hardware.append(component)
+                components.append(component)
+            else:
+                components.append(HARDWARE_PLUGINS[info.plugin](info, built.robot))
+        if not components:
+            raise ControlError(
+                f"robot '{built.robot.name}' has no <ros2_control> block and no <transmission> "
+                "tags, so the controllers have no hardware; add a <ros2_control> block with "
+                "<plugin>gazebo_ros2_control/GazeboSystem</plugin>"
+            )
+        return components
+
+    def every(self, rate_hz: float, callback: StepCallback, *, order: int = 0) -> None:
+        """Call ``callback(time_s)`` every ``1 / rate_hz`` of sim time (0: every step).
+
+        Within a step, callbacks run by ``order`` (the bus tick -1, controller managers 0,
+        sensors 1), then by registration.
+        """
+        steps = 1 if rate_hz <= 0 else max(1, round(1.0 / (rate_hz * self.timestep_s)))
+        self._add(_Scheduled(steps, callback, order))
+
+    def _add(self, item: _Scheduled) -> None:
+        self._schedule.append(item)
+        self._schedule.sort(key=lambda s: s.order)
+
+    # -- stepping -------------------------------------------------------------------------------
+    def step(self, n: int = 1) -> None:
+        """Advance ``n`` physics steps.
+
+        Raises:
+            DivergenceError: the state became NaN/infinite (checked every 100 steps and at the end).
+        """
+        mj = mujoco()
+        model, data = self.model, self.data
+        schedule = self._schedule
+        hardware = self._hardware
+        kinematic = [hw for hw in hardware if hw.has_position_joints]
+        mj_step = mj.mj_step
+        steps = self._steps
+        for _ in range(n):
+            t = data.time
+            for item in schedule:
+                if steps % item.every_steps == 0:
+                    item.callback(t)
+            for hw in hardware:
+                hw.apply()
+            mj_step(model, data)
+            for hw in kinematic:  # position joints are kinematic: no drift within a step
+                hw.apply()
+            steps += 1
+            if steps % _CHECK_EVERY_STEPS == 0:
+                self._steps = steps
+                self.check_finite()
+        self._steps = steps
+        self.check_finite()
+
+    def run(
+        self,
+        duration_s: float,
+        *,
+        real_time_factor: float | None = None,
+        until: Callable[[], bool] | None = None,
+    ) -> float:
+        """Run for ``duration_s`` of sim time; returns the wall time it took [s].
+
+        Args:
+            real_time_factor: ``None`` runs as fast as possible; 1.0 is real time, 2.0 twice
+                as fast (the loop sleeps to keep pace, checked every 10 ms of sim time).
+            until: Stop early when this returns True (checked every 10 ms of sim time).
+        """
+        total = max(0, round(duration_s / self.timestep_s))
+        chunk = max(1, round(0.01 / self.timestep_s))
+        start_wall = time.perf_counter()
+        start_sim = self.time_s
+        done = 0
+        while done < total:
+            n = min(chunk, total - done)
+            self.step(n)
+            done += n
+            if until is not None and until():
+                break
+            if real_time_factor is not None and real_time_factor > 0:
+                target = start_wall + (self.time_s - start_sim) / real_time_factor
+                delay = target - time.perf_counter()
+                if delay > 0:
+                    time.sleep(delay)
+        return time.perf_counter() - start_wall
+
+    def check_finite(self) -> None:
+        """Raise :class:`DivergenceError` if the physics state is not finite."""
+        mj = mujoco()
+        data = self._data
+        if data is None:
+            return
+        warn = data.warning
+        bad = [
+            w
+            for w in (
+                mj.mjtWarning.mjWARN_BADQACC,
+                mj.mjtWarning.mjWARN_BADQVEL,
+                mj.mjtWarning.mjWARN_BADQPOS,
+            )
+            if warn[int(w)].number > 0
+        ]
+        if bad:
+            dof = int(warn[int(bad[0])].lastinfo)
+            self._diverged(f"MuJoCo reported {bad[0].name} (it would reset the state)", dof=dof)
+        if np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all():
+            return
+        bad_q = np.flatnonzero(~np.isfinite(data.qvel))
+        dof = int(bad_q[0]) if len(bad_q) else -1
+        if dof < 0:
+            qbad = int(np.flatnonzero(~np.isfinite(data.qpos))[0])
+            jid = int(np.searchsorted(self._model.jnt_qposadr, qbad, side="right") - 1)
+            dof = int(self._model.jnt_dofadr[jid])
+        self._diverged("the state became NaN/infinite", dof=dof)
+
+    def _diverged(self, what: str, *, dof: int) -> None:
+        mj = mujoco()
+        model = self._model
+        joint = body = "?"
+        if 0 <= dof < model.nv:
+            jid = int(model.dof_jntid[dof])
+            joint = mj.mj_id2name(model, mj.mjtObj.mjOBJ_JOINT, jid) or f"joint {jid}"
+            bid = int(model.jnt_bodyid[jid])
+            body = mj.mj_id2name(model, mj.mjtObj.mjOBJ_BODY, bid) or f"body {bid}"
+        raise DivergenceError(
+            f"simulation diverged at t = {self.time_s:.4f} s: {what}; body '{body}' "
+            f"(joint '{joint}') diverged first. Check its inertia, joint damping, controller "
+            "gains and commands, or use a smaller physics step",
+            name=body,
+        )
+
+    # -- interaction ----------------------------------------------------------------------------
+    def body_id(self, link: str, *, prefix: str = "") -> int:
+        mj = mujoco()
+        name = "world_link" if prefix + link == "world" else prefix + link
+        bid = int(mj.mj_name2id(self.model, mj.mjtObj.mjOBJ_BODY, name))
+        if bid < 0:
+            from robomodel.errors import describe_unknown
+
+            names = [self.model.body(i).name for i in range(self.model.nbody)]
+            raise SimulationError(describe_unknown("unknown link", name, names, "bodies are"))
+        return bid
+
+    def apply_wrench(
+        self,
+        link: str,
+        *,
+        force_n: Sequence[float] = (0.0, 0.0, 0.0),
+        torque_nm: Sequence[float] = (0.0, 0.0, 0.0),
+        prefix: str = "",
+    ) -> None:
+        """Apply a force and torque (world frame, at the link's centre of mass) until changed.
+
+        Like gazebo's ``apply_body_wrench`` without a duration; call again with zeros to stop.
+        """
+        values = np.asarray([*force_n, *torque_nm], dtype=float)
+        if values.shape != (6,) or not np.isfinite(values).all():
+            raise SimulationError(f"wrench must be 6 finite numbers, got {values.tolist()}")
+        self.data.xfrc_applied[self.body_id(link, prefix=prefix)] = values
+
+    def teleport(
+        self,
+        xyz_m: Sequence[float],
+        rpy_rad: Sequence[float] = (0.0, 0.0, 0.0),
+        *,
+        prefix: str = "",
+    ) -> None:
+        """Move a robot's root to a pose, zeroing its velocity (``set_model_state``)."""
+        from robomodel.sim.build.robot import quat_wxyz_from_rpy
+
+        mj = mujoco()
+        built = self.robot(prefix)
+        pose = [float(v) for v in (*xyz_m, *rpy_rad)]
+        if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
+            raise SimulationError(f"pose must be 6 finite numbers, got {pose}")
+        bid = int(mj.mj_name2id(self.model, mj.mjtObj.mjOBJ_BODY, built.root_body))
+        quat = quat_wxyz_from_rpy(*pose[3:])
+        if built.floating:
+            jid = int(self.model.body_jntadr[bid])
+            qa, da = int(self.model.jnt_qposadr[jid]), int(self.model.jnt_dofadr[jid])
+            self.data.qpos[qa : qa + 3] = pose[:3]
+            self.data.qpos[qa + 3 : qa + 7] = quat
+            self.data.qvel[da : da + 6] = 0.0
+        else:
+            self.model.body_pos[bid] = pose[:3]
+            self.model.body_quat[bid] = quat
+        mj.mj_forward(self.model, self.data)
+
+    def reset(self) -> None:
+        """Reset the world: initial state, time 0, no applied forces (``reset_world``)."""
+        mj = mujoco()
+        model, data = self.model, self.data
+        mj.mj_resetData(model, data)
+        if self._initial_qpos is not None:
+            data.qpos[:] = self._initial_qpos
+        mj.mj_forward(model, data)
+        self._steps = 0
+        for hw in self._hardware:
+            hw.reset()

@@ -1,0 +1,1 @@
+"""Simulated sensors declared by ``<gazebo reference=...><sensor>``: lidar, sonar, IMU, contact."""

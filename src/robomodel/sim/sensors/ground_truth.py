@@ -1,0 +1,71 @@
+"""Ground truth of a robot's root link as ``nav_msgs/Odometry`` in the ``world`` frame
+(what Gazebo's ``libgazebo_ros_p3d.so`` publishes): pose and twist (linear in the world,
+angular in the world) of the root body."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.geometry_msgs import (
+    Point,
+    Pose,
+    PoseWithCovariance,
+    Quaternion,
+    Twist,
+    TwistWithCovariance,
+    Vector3,
+)
+from robomodel.runtime.msg.nav_msgs import Odometry
+from robomodel.runtime.msg.std_msgs import Header
+from robomodel.sim._mujoco import mujoco
+
+__all__ = ["GroundTruth", "yaw_of"]
+
+
+def yaw_of(quat_wxyz: np.ndarray) -> float:
+    """Heading [rad] of a ``wxyz`` quaternion (rotation about world z)."""
+    w, x, y, z = (float(v) for v in quat_wxyz)
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+class GroundTruth:
+    """The true pose of body ``body_name`` (child frame ``child_frame``)."""
+
+    def __init__(self, model: Any, data: Any, body_name: str, child_frame: str) -> None:
+        self.model = model
+        self.data = data
+        self.body = int(model.body(body_name).id)
+        self.child_frame = child_frame
+
+    def xy_yaw(self) -> tuple[float, float, float]:
+        p = self.data.xpos[self.body]
+        return float(p[0]), float(p[1]), yaw_of(self.data.xquat[self.body])
+
+    def measure(self, time_s: float) -> Odometry:
+        mj = mujoco()
+        d = self.data
+        p, q = d.xpos[self.body], d.xquat[self.body]
+        vel = np.zeros(6)
+        mj.mj_objectVelocity(self.model, d, mj.mjtObj.mjOBJ_BODY, self.body, vel, 0)
+        return Odometry(
+            header=Header(stamp=Time.from_seconds(time_s), frame_id="world"),
+            child_frame_id=self.child_frame,
+            pose=PoseWithCovariance(
+                pose=Pose(
+                    position=Point(float(p[0]), float(p[1]), float(p[2])),
+                    orientation=Quaternion(
+                        x=float(q[1]), y=float(q[2]), z=float(q[3]), w=float(q[0])
+                    ),
+                )
+            ),
+            twist=TwistWithCovariance(
+                twist=Twist(
+                    linear=Vector3(*(float(v) for v in vel[3:])),
+                    angular=Vector3(*(float(v) for v in vel[:3])),
+                )
+            ),
+        )

@@ -1,0 +1,261 @@
+"""Worlds: the default empty world and the common subset of SDF world files.
+
+Understood (sdformat world.sdf / model.sdf / physics.sdf): ``<include><uri>model://ground_plane``
+and ``model://sun``; ``<gravity>``; ``<physics><max_step_size>``, ``<real_time_factor>``;
+``<model>`` with ``<static>``, ``<pose>`` and links whose ``<collision>`` geometry is a
+``<box><size>``, ``<cylinder><radius><length>``, ``<sphere><radius>`` or ``<plane>`` (walls,
+obstacles, floors). Models that are not static become free bodies with their ``<inertial>``
+mass (1 kg by default). Anything else is warned about and skipped.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+import os
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from lxml import etree
+
+from robomodel.sim.exceptions import WorldError
+
+__all__ = ["Shape", "ShapeKind", "World", "default_world", "parse_world", "read_world"]
+
+
+class ShapeKind(enum.Enum):
+    BOX = "box"
+    CYLINDER = "cylinder"
+    SPHERE = "sphere"
+    PLANE = "plane"
+
+
+@dataclass(frozen=True, slots=True)
+class Shape:
+    """A world object: one collision shape of a model, posed in the world.
+
+    Attributes:
+        size: box full size (x, y, z) [m]; cylinder (radius, length, 0); sphere (radius, 0, 0);
+            plane (half x, half y, 0), 0 meaning infinite.
+        pose: (x, y, z, roll, pitch, yaw) [m, rad] in the world.
+        mass_kg: 0 for static objects.
+    """
+
+    model: str
+    kind: ShapeKind
+    size: tuple[float, float, float]
+    pose: tuple[float, float, float, float, float, float]
+    mass_kg: float = 0.0
+    friction: float = 1.0
+    rgba: tuple[float, float, float, float] = (0.6, 0.6, 0.6, 1.0)
+
+
+@dataclass(frozen=True, slots=True)
+class World:
+    """A world: physics settings, a ground plane, a light and static shapes.
+
+    Attributes:
+        timestep_s: The physics step (SDF ``max_step_size``, default 1 ms).
+        real_time_factor: Target speed in ``realtime`` mode (SDF ``real_time_factor``).
+        ground_friction: Gazebo's ground_plane has ``mu`` 100 (so the robot's value decides).
+    """
+
+    name: str = "default"
+    timestep_s: float = 0.001
+    real_time_factor: float = 1.0
+    gravity: tuple[float, float, float] = (0.0, 0.0, -9.81)
+    ground_plane: bool = True
+    ground_friction: float = 100.0
+    sun: bool = True
+    shapes: tuple[Shape, ...] = ()
+    source: str = ""
+
+
+def default_world() -> World:
+    """Gazebo's ``empty.world``: ground plane and sun, 1 ms steps, real time."""
+    return World()
+
+
+def read_world(path: str | os.PathLike[str]) -> World:
+    """Parse an SDF world file (see the module docstring).
+
+    Raises:
+        WorldError: the file cannot be read or does not parse (with file:line).
+    """
+    name = os.fspath(path)
+    try:
+        with open(name, "rb") as handle:
+            data = handle.read()
+    except OSError as exc:
+        raise WorldError(f"cannot read world file '{name}': {exc.strerror}") from None
+    return parse_world(data, path=name)
+
+
+def parse_world(data: bytes | str, *, path: str = "<string>") -> World:
+    """Parse SDF world text; ``path`` names it in messages."""
+    raw = data.encode() if isinstance(data, str) else data
+    try:
+        root = etree.fromstring(raw)
+    except etree.XMLSyntaxError as exc:
+        line = exc.lineno if exc.lineno else 1
+        raise WorldError(f"world file does not parse: {exc.msg}", where=f"{path}:{line}") from None
+    world = root if root.tag == "world" else root.find("world")
+    if world is None:
+        raise WorldError(
+            f"no <world> element (root is <{root.tag}>)", where=f"{path}:{root.sourceline}"
+        )
+    return _read(world, path)
+
+
+def _at(path: str, el: etree._Element) -> str:
+    return f"{path}:{el.sourceline}"
+
+
+def _floats(
+    el: etree._Element | None, n: int, path: str, default: tuple[float, ...]
+) -> tuple[float, ...]:
+    if el is None or not (el.text or "").strip():
+        return default
+    try:
+        values = tuple(float(v) for v in (el.text or "").split())
+    except ValueError:
+        raise WorldError(
+            f"<{el.tag}> must be {n} numbers, got {el.text!r}", where=_at(path, el)
+        ) from None
+    if len(values) != n:
+        raise WorldError(f"<{el.tag}> must be {n} numbers, got {el.text!r}", where=_at(path, el))
+    return values
+
+
+def _read(world: etree._Element, path: str) -> World:
+    timestep, rtf = 0.001, 1.0
+    physics = world.find("physics")
+    if physics is not None:
+        (timestep,) = _floats(physics.find("max_step_size"), 1, path, (timestep,))
+        (rtf,) = _floats(physics.find("real_time_factor"), 1, path, (rtf,))
+        if not (timestep > 0 and math.isfinite(timestep)):
+            raise WorldError(
+                f"max_step_size must be positive, got {timestep}", where=_at(path, physics)
+            )
+    gravity = _floats(world.find("gravity"), 3, path, (0.0, 0.0, -9.81))
+    ground = sun = False
+    shapes: list[Shape] = []
+    for el in world:
+        if not isinstance(el.tag, str):
+            continue
+        if el.tag == "include":
+            uri = (el.findtext("uri") or "").strip()
+            if uri.endswith("ground_plane"):
+                ground = True
+            elif uri.endswith("sun"):
+                sun = True
+            else:
+                warnings.warn(
+                    f"{_at(path, el)}: <include> of '{uri}' is not supported; skipped", stacklevel=3
+                )
+        elif el.tag == "model":
+            shapes.extend(_model(el, path))
+        elif el.tag == "light":
+            sun = True
+        elif el.tag not in (
+            "physics",
+            "gravity",
+            "scene",
+            "plugin",
+            "gui",
+            "magnetic_field",
+            "atmosphere",
+            "spherical_coordinates",
+            "wind",
+            "state",
+        ):
+            warnings.warn(
+                f"{_at(path, el)}: <{el.tag}> in a world is not supported; skipped", stacklevel=3
+            )
+    if any(s.kind is ShapeKind.PLANE for s in shapes):
+        ground = ground or False
+    return World(
+        name=world.get("name", "default"),
+        timestep_s=timestep,
+        real_time_factor=rtf,
+        gravity=gravity,  # type: ignore[arg-type]
+        ground_plane=ground,
+        sun=sun,
+        shapes=tuple(shapes),
+        source=path,
+    )
+
+
+def _compose(
+    a: tuple[float, ...], b: tuple[float, ...]
+) -> tuple[float, float, float, float, float, float]:
+    """Pose b given in the frame of pose a, in the world (x y z roll pitch yaw)."""
+    T = _matrix(a) @ _matrix(b)
+    R = T[:3, :3]
+    pitch = math.asin(max(-1.0, min(1.0, -float(R[2, 0]))))
+    roll = math.atan2(float(R[2, 1]), float(R[2, 2]))
+    yaw = math.atan2(float(R[1, 0]), float(R[0, 0]))
+    return (float(T[0, 3]), float(T[1, 3]), float(T[2, 3]), roll, pitch, yaw)
+
+
+def _matrix(pose: tuple[float, ...]) -> np.ndarray:
+    from robomodel.description.model.pose import matrix_from_xyz_rpy
+
+    x, y, z, r, p, yaw = pose
+    return np.asarray(matrix_from_xyz_rpy((x, y, z), (r, p, yaw)), dtype=float)
+
+
+def _model(model: etree._Element, path: str) -> list[Shape]:
+    name = model.get("name", "model")
+    static = (model.findtext("static") or "false").strip().lower() in ("1", "true")
+    if model.find("include") is not None:
+        warnings.warn(
+            f"{_at(path, model)}: nested includes are not supported; skipped", stacklevel=4
+        )
+    model_pose = _floats(model.find("pose"), 6, path, (0.0,) * 6)
+    shapes: list[Shape] = []
+    for link in model.iterfind("link"):
+        link_pose = _compose(model_pose, _floats(link.find("pose"), 6, path, (0.0,) * 6))
+        (mass,) = _floats(link.find("inertial/mass"), 1, path, (1.0,))
+        for collision in link.iterfind("collision"):
+            pose = _compose(link_pose, _floats(collision.find("pose"), 6, path, (0.0,) * 6))
+            geometry = collision.find("geometry")
+            if geometry is None or len(geometry) == 0:
+                raise WorldError(
+                    f"model '{name}': <collision> without <geometry>", where=_at(path, collision)
+                )
+            shape = geometry[0]
+            kind, size = _geometry(shape, path, name)
+            if kind is None:
+                continue
+            mu = _floats(collision.find("surface/friction/ode/mu"), 1, path, (1.0,))[0]
+            shapes.append(
+                Shape(
+                    name, kind, size, pose, 0.0 if static or kind is ShapeKind.PLANE else mass, mu
+                )
+            )
+    return shapes
+
+
+def _geometry(
+    shape: etree._Element, path: str, model: str
+) -> tuple[ShapeKind | None, tuple[float, float, float]]:
+    if shape.tag == "box":
+        x, y, z = _floats(shape.find("size"), 3, path, (1.0, 1.0, 1.0))
+        return ShapeKind.BOX, (x, y, z)
+    if shape.tag == "cylinder":
+        (r,) = _floats(shape.find("radius"), 1, path, (0.5,))
+        (h,) = _floats(shape.find("length"), 1, path, (1.0,))
+        return ShapeKind.CYLINDER, (r, h, 0.0)
+    if shape.tag == "sphere":
+        (r,) = _floats(shape.find("radius"), 1, path, (0.5,))
+        return ShapeKind.SPHERE, (r, 0.0, 0.0)
+    if shape.tag == "plane":
+        sx, sy = _floats(shape.find("size"), 2, path, (0.0, 0.0))
+        return ShapeKind.PLANE, (sx / 2, sy / 2, 0.0)
+    warnings.warn(
+        f"{_at(path, shape)}: model '{model}': <{shape.tag}> geometry is not supported; skipped",
+        stacklevel=5,
+    )
+    return None, (0.0, 0.0, 0.0)

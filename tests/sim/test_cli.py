@@ -1,0 +1,71 @@
+"""``robomodel sim``: scripted headless runs with --cmd-vel and --report json, and bad input."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from robomodel.cli.main import main
+from robomodel.cli.sim import parse_rate
+
+from .conftest import SIMPLEBOT_LIDAR, SIMPLEBOT_YAML, WALL_WORLD
+
+
+def test_scripted_run_reports_ground_truth_and_odometry(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(
+        [
+            "sim", str(SIMPLEBOT_LIDAR), "--controllers", str(SIMPLEBOT_YAML),
+            "--world", str(WALL_WORLD), "--spawn", "0", "0", "0.076", "--headless",
+            "--duration", "5", "--rate", "max", "--cmd-vel", "0.2 0 0", "--report", "json",
+            "--bus", "inproc",
+        ]
+    )  # fmt: skip
+    assert code == 0
+    report = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert set(report) >= {
+        "ground_truth_xy", "ground_truth_yaw", "odom_xy", "odom_yaw",
+        "sim_time_s", "wall_time_s", "real_time_factor",
+    }  # fmt: skip
+    assert report["sim_time_s"] == pytest.approx(5.0)
+    assert report["ground_truth_xy"][0] == pytest.approx(1.0, rel=0.05)
+    assert report["odom_xy"][0] == pytest.approx(report["ground_truth_xy"][0], rel=0.02)
+    assert abs(report["ground_truth_yaw"]) < 0.01
+    assert report["real_time_factor"] > 1.0
+
+
+def test_spawn_pose_and_rotation(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(
+        [
+            "sim", str(SIMPLEBOT_LIDAR), "--headless", "--duration", "0.5", "--rate", "max",
+            "--spawn", "1", "2", "0.076", "0", "0", "1.0", "--report", "json", "--bus", "inproc",
+        ]
+    )  # fmt: skip
+    assert code == 0
+    report = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert report["ground_truth_xy"] == pytest.approx([1.0, 2.0], abs=0.01)
+    assert report["ground_truth_yaw"] == pytest.approx(1.0, abs=0.01)
+    assert report["odom_xy"] is None  # no controllers
+
+
+def test_broken_world_is_a_clear_error(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:  # type: ignore[no-untyped-def]
+    world = tmp_path / "bad.world"
+    world.write_text("<sdf>\n<world>\n<model>\n</world></sdf>\n")
+    code = main(
+        ["sim", str(SIMPLEBOT_LIDAR), "--world", str(world), "--headless", "--bus", "inproc"]
+    )
+    assert code == 2
+    err = capsys.readouterr().err
+    assert f"{world}:4" in err and "does not parse" in err
+
+
+def test_rate_parsing() -> None:
+    assert parse_rate("realtime", 1.0) == 1.0
+    assert parse_rate("max", 1.0) is None
+    assert parse_rate("20", 1.0) == 20.0
+    from robomodel.errors import RobomodelError
+
+    with pytest.raises(RobomodelError, match="--rate"):
+        parse_rate("fast", 1.0)
+    with pytest.raises(RobomodelError, match="positive"):
+        parse_rate("-1", 1.0)
