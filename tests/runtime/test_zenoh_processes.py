@@ -258,16 +258,20 @@ def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(1.0)
     with Context("zenoh", domain_id=int(domain)) as ctx:
         session = ctx.transport.session  # type: ignore[attr-defined]
-        time.sleep(0.5)
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline:  # until the echo process's subscription is visible
+            info = ctx.graph(timeout_s=0.3).topics.get("/chatter")
+            if info is not None and info.subscribers:
+                break
+            time.sleep(0.1)
         key = f"rm/{domain}/t/chatter"
         session.put(key, b"\x00\x01\x00\x00\x01", attachment=b"std_msgs/msg/Float64|foreign|1")
         session.put(key, b"not cdr at all", attachment=b"std_msgs/msg/Float64|foreign|2")
         time.sleep(0.3)
         pub = ctx.create_node("good").create_publisher(Float64, "/chatter")
-        time.sleep(0.3)
+        time.sleep(0.5)
         pub.publish(Float64(2.5))
         out, err = echo.communicate(timeout=20)
     assert echo.returncode == 0 and out == "data: 2.5\n---\n"
