@@ -533,3 +533,44 @@ def test_jtc_goal_waits_for_the_joint_to_stop() -> None:
     rm.commands.values[rm.commands.slot("joint1/velocity")] = 0.0  # the mock mirrors it
     cm.step()  # type: ignore[attr-defined]
     assert goal.status is GoalStatus.SUCCEEDED
+
+
+def test_pid_gains_set_through_the_parameter_service_apply_live() -> None:
+    """dynamic_reconfigure for the PID: a set of pid.p changes the running controller."""
+    from robomodel.loading import load
+    from robomodel.runtime.msg import JointControllerState
+
+    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
+    ctx = Context("inproc", clock=ManualClock())
+    system = ControlSystem.build(
+        robot,  # type: ignore[arg-type]
+        EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
+        context=ctx,
+    )
+    controller = system.manager.entries["joint1_position_controller"].controller
+    node = ctx.create_node("probe")
+    pid_state: list[JointControllerState] = []
+    node.create_subscription(
+        JointControllerState, "/joint1_position_controller/state", pid_state.append
+    )
+    name = "/joint1_position_controller"
+    reply = ctx.call_parameters(name, {"op": "set", "values": {"pid.p": 12.5, "pid.d": 0.5}})
+    assert reply == {"successful": True, "reason": ""}
+    assert controller.pid.gains.p == 12.5 and controller.pid.gains.d == 0.5  # type: ignore[attr-defined]
+    for _ in range(10):
+        system.manager.step(0.01)
+    ctx.spin_once()
+    assert pid_state[-1].p == 12.5 and pid_state[-1].d == 0.5
+    refused = ctx.call_parameters(name, {"op": "set", "values": {"pid.i": "fast"}})
+    assert refused["successful"] is False and "pid.i" in refused["reason"]  # a double stays one
+    # A gain not in the file yet is new to the node; the controller refuses a non-number.
+    refused = ctx.call_parameters(name, {"op": "set", "values": {"pid.i_clamp": "wide"}})
+    assert refused["successful"] is False
+    assert "'pid.i_clamp' must be a number" in refused["reason"]
+    clamp = ctx.call_parameters(name, {"op": "set", "values": {"pid.i_clamp": 2.0}})
+    assert clamp["successful"] is True
+    assert controller.pid.gains.i_max == 2.0 and controller.pid.gains.i_min == -2.0  # type: ignore[attr-defined]
+    assert controller.pid.gains.i == pytest.approx(0.01)  # type: ignore[attr-defined]
+    other = ctx.call_parameters(name, {"op": "set", "values": {"joint": "joint1"}})
+    assert other["successful"] is True  # not a gain: no PID change, no refusal
+    ctx.shutdown()

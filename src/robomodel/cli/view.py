@@ -58,6 +58,11 @@ def register(subparsers: Any) -> None:
         default="sliders",
         help="sliders (joint_state_publisher_gui) or external (/joint_states, /tf from the bus)",
     )
+    parser.add_argument(
+        "--no-tools",
+        action="store_true",
+        help="hide the rqt tools (robot steering, plot, topic publisher, parameters, overlays)",
+    )
     add_package_options(parser, mappings=False)
     parser.add_argument(
         "--duration", type=float, default=None, help=argparse.SUPPRESS
@@ -111,6 +116,7 @@ def run(args: argparse.Namespace) -> int:
         listen=tuple(args.listen),
         external=args.joint_states == "external",
         package_index=package_index_from_args(args),
+        tools=not args.no_tools,
     )
     viewer = Viewer(options)
     try:

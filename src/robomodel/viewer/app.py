@@ -28,6 +28,7 @@ from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage
+from robomodel.runtime.node import Node
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.tf_listener import TransformListener
 from robomodel.tf.exceptions import TransformError
@@ -54,6 +55,7 @@ class ViewerOptions:
         bus: ``"inproc"`` or ``"zenoh"``.
         external: Joint states (or /tf) come from another process on the bus.
         reload_period_s: How often the description files are polled for changes.
+        tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
     """
 
     sources: tuple[RobotSource, ...]
@@ -67,6 +69,7 @@ class ViewerOptions:
     external: bool = False
     package_index: PackageIndex = field(default_factory=PackageIndex)
     reload_period_s: float = 0.25
+    tools: bool = True
 
 
 def zero_pose_extent_m(robot: Robot) -> float:
@@ -128,6 +131,7 @@ class Viewer:
         self.meshes_ready = threading.Event()
         self._missing: dict[int, tuple[str, ...]] = {}
         self._beside: set[int] = set()
+        self.tools: Any = None
 
     # -- lifecycle ----------------------------------------------------------------------------
     @property
@@ -169,6 +173,8 @@ class Viewer:
             )
             session.build_panel(self.server.gui, self._post)
             session.publish_bodies()
+        if opts.tools:
+            self._build_tools(node)
         self._spawn(self._loop, "robomodel-view-loop")
         self._spawn(self._load_meshes, "robomodel-view-meshes")
 
@@ -196,6 +202,8 @@ class Viewer:
         self._stop.wait(timeout_s)
 
     def close(self) -> None:
+        if self.tools is not None:
+            self.tools.close()
         self._stop.set()
         for thread in self._threads:
             if thread is not threading.current_thread():
@@ -214,7 +222,7 @@ class Viewer:
         self.close()
 
     # -- GUI ------------------------------------------------------------------------------------
-    def _post(self, work: Callable[[], None]) -> None:
+    def _post(self, work: Callable[[], object]) -> None:
         """Run ``work`` on the loop thread (the only one that touches the nodes)."""
         assert self.context is not None
 
@@ -236,6 +244,21 @@ class Viewer:
         self.status = panel.status
         self.fixed_dropdown = panel.fixed_dropdown
         self.tf_display = panel.tf_display
+
+    def _build_tools(self, node: Node) -> None:
+        from robomodel.viewer.tools import BusWorker, ToolContext, ToolsPanel
+
+        assert self.context is not None
+        self.tools = ToolsPanel(
+            ToolContext(
+                server=self.server,
+                node=node,
+                post=self._post,
+                bus=BusWorker(self.context),
+                buffer=self.buffer,
+                fixed_frame=lambda: self.fixed_frame,
+            )
+        )
 
     # -- the loop -------------------------------------------------------------------------------
     def _on_tf(self, _msg: TFMessage) -> None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Mapping
 from typing import Any
 
 from robomodel.control.controllers.base import (
@@ -20,16 +21,19 @@ from robomodel.control.controllers.base import (
     ReturnType,
 )
 from robomodel.control.controllers.exceptions import ControllerError
+from robomodel.control.exceptions import ConfigError
 from robomodel.control.pid import Gains, Pid
 from robomodel.description.model import JointType
 from robomodel.runtime.msg import Float64, Header, JointControllerState, Time
 from robomodel.runtime.node import Publisher
+from robomodel.runtime.params import SetResult
 
 __all__ = ["JointPositionController", "shortest_angular_distance"]
 
 log = logging.getLogger("robomodel.control")
 
 _TWO_PI = 2.0 * math.pi
+_GAIN_NAMES = ("p", "i", "d", "i_clamp", "i_clamp_min", "i_clamp_max", "antiwindup")
 
 
 def _normalize_angle(a: float) -> float:
@@ -56,6 +60,10 @@ class JointPositionController(ControllerInterface):
                 f"controller '{self.name}': PID gains missing; give pid: {{p: ..., i: ..., d: ...}}"
             )
         self.pid = Pid(Gains.from_params(self.params, prefix))
+        self._gain_prefix = prefix
+        if self.node is not None:  # dynamic_reconfigure: gains set on the node apply live
+            self.node.parameters.add_set_callback(self._check_gains)
+            self.node.parameters.add_post_set_callback(self._apply_gains)
         known = (
             "p",
             "i",
@@ -89,6 +97,27 @@ class JointPositionController(ControllerInterface):
         self._rejected = 0
         self._state_pub: Publisher[JointControllerState] | None = None
         self._loop_count = 0
+
+    def _gain_keys(self, changes: Mapping[str, Any]) -> bool:
+        prefix = self._gain_prefix
+        return any(k.startswith(prefix) and k[len(prefix) :] in _GAIN_NAMES for k in changes)
+
+    def _check_gains(self, changes: Mapping[str, Any]) -> SetResult:
+        """Refuse gains that are not numbers before they are stored."""
+        if not self._gain_keys(changes):
+            return SetResult(True)
+        assert self.node is not None
+        try:
+            Gains.from_params({**self.node.parameters.items(), **changes}, self._gain_prefix)
+        except ConfigError as exc:
+            return SetResult(False, str(exc))
+        return SetResult(True)
+
+    def _apply_gains(self, changes: Mapping[str, Any]) -> None:
+        """New gains take effect at the next update; the integral is kept (setGains)."""
+        if self._gain_keys(changes):
+            assert self.node is not None
+            self.pid.set_gains(Gains.from_params(self.node.parameters.items(), self._gain_prefix))
 
     def on_configure(self) -> None:
         if self.node is not None:

@@ -1,0 +1,165 @@
+"""Plot (rqt_plot): numeric fields of any topics against time, in a moving window.
+
+Series are added by field path as in rqt_plot (``/joint_states/position[0]``,
+``/joint1_position_controller/state/process_value``); each sample is stamped with the time it
+arrived. The chart is viser's uPlot, redrawn at 10 Hz with every series on one time axis: the
+union of the samples' times, each series interpolated linearly between its own samples, from
+the moment every series has a sample (uPlot needs one x array for all series).
+"""
+
+from __future__ import annotations
+
+import collections
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from robomodel.errors import RobomodelError
+from robomodel.runtime.msg import Message
+from robomodel.runtime.node import Subscription
+from robomodel.viewer.tools.base import ToolContext
+from robomodel.viewer.tools.field_path import FieldPath, field_value, resolve_field_path
+
+__all__ = ["PlotData", "PlotTool", "Series"]
+
+_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2")
+_MAX_POINTS = 600  # per redraw: plenty for a panel a few hundred pixels wide
+_MAX_SAMPLES = 20000  # per series (about 3 min at 100 Hz)
+
+
+@dataclass
+class Series:
+    """One plotted field and its samples (times [s] from the plot's start, values)."""
+
+    path: FieldPath
+    times_s: collections.deque[float] = field(
+        default_factory=lambda: collections.deque(maxlen=_MAX_SAMPLES)
+    )
+    values: collections.deque[float] = field(
+        default_factory=lambda: collections.deque(maxlen=_MAX_SAMPLES)
+    )
+
+
+class PlotData:
+    """The series and the windowed arrays for the chart."""
+
+    def __init__(self) -> None:
+        self.series: list[Series] = []
+        self.start_s = time.monotonic()
+
+    def add(self, path: FieldPath) -> Series:
+        series = Series(path)
+        self.series.append(series)
+        return series
+
+    def record(self, series: Series, msg: Message, now_s: float | None = None) -> None:
+        value = field_value(msg, series.path.steps)
+        if value is None:
+            return
+        t = (time.monotonic() if now_s is None else now_s) - self.start_s
+        series.times_s.append(t)
+        series.values.append(value)
+
+    def window(
+        self, window_s: float, now_s: float | None = None
+    ) -> tuple[NDArray[np.float64], ...]:
+        """``(x, y_1, ..., y_n)`` over the last ``window_s`` seconds (empty before data)."""
+        now = (time.monotonic() if now_s is None else now_s) - self.start_s
+        empty = tuple(np.zeros(0) for _ in range(len(self.series) + 1))
+        if not self.series or any(not s.times_s for s in self.series):
+            return empty
+        start = max([now - window_s, *(s.times_s[0] for s in self.series)])
+        arrays = [(np.asarray(s.times_s), np.asarray(s.values)) for s in self.series]
+        x = np.unique(np.concatenate([t[t >= start] for t, _ in arrays]))
+        if x.size == 0:
+            return empty
+        if x.size > _MAX_POINTS:
+            x = np.linspace(x[0], x[-1], _MAX_POINTS)
+        return (x, *(np.interp(x, t, v) for t, v in arrays))
+
+
+class PlotTool:
+    """The "Plot" folder: a path box, Add, Clear, the window length, Pause, and the chart."""
+
+    def __init__(self, tools: ToolContext) -> None:
+        self.tools = tools
+        gui = tools.server.gui
+        self.data = PlotData()
+        self._subscriptions: dict[str, Subscription[Any]] = {}
+        self.path = gui.add_text("Field", "/joint_states/position[0]", hint="/topic/field[i]")
+        add = gui.add_button("Add series")
+        clear = gui.add_button("Clear")
+        self.window_s = gui.add_number("Window [s]", 10.0, min=1.0, max=300.0, step=1.0)
+        self.paused = gui.add_checkbox("Pause", False)
+        self.status = gui.add_markdown("*no series*")
+        self.chart: Any = None
+        self._gui = gui
+        self._folder = gui.add_folder("Chart")
+        add.on_click(lambda _e: self.add(str(self.path.value)))
+        clear.on_click(lambda _e: tools.post(self.clear))
+        tools.post(lambda: tools.node.create_timer(0.1, self.redraw))
+
+    def add(self, text: str) -> None:
+        """Resolve ``text`` against the known topics and subscribe (from a GUI thread)."""
+        try:
+            path = resolve_field_path(text, self.tools.topic_types())
+        except RobomodelError as exc:
+            self.status.content = f"**refused:** {exc}"
+            return
+        self.tools.post(lambda: self._add(path))
+
+    def _add(self, path: FieldPath) -> None:
+        self.data.add(path)
+        self._subscribe(path)
+        self._rebuild_chart()
+
+    def _subscribe(self, path: FieldPath) -> None:
+        if path.topic in self._subscriptions:
+            return
+
+        def on_msg(msg: Message) -> None:
+            now = time.monotonic()
+            for series in self.data.series:
+                if series.path.topic == path.topic:
+                    self.data.record(series, msg, now)
+
+        self._subscriptions[path.topic] = self.tools.node.create_subscription(
+            path.msg_type, path.topic, on_msg, 100
+        )
+
+    def clear(self) -> None:
+        for subscription in self._subscriptions.values():
+            subscription.destroy()
+        self._subscriptions = {}
+        self.data = PlotData()
+        self._rebuild_chart()
+
+    def _rebuild_chart(self) -> None:
+        if self.chart is not None:
+            self.chart.remove()
+            self.chart = None
+        names = [s.path.text for s in self.data.series]
+        self.status.content = "\n".join(f"- `{n}`" for n in names) if names else "*no series*"
+        if not names:
+            return
+        series: list[dict[str, Any]] = [{"label": "t [s]"}]
+        series += [
+            {"label": n, "stroke": _COLOURS[k % len(_COLOURS)], "width": 2}
+            for k, n in enumerate(names)
+        ]
+        with self._folder:
+            self.chart = self._gui.add_uplot(
+                data=tuple(np.zeros(0) for _ in range(len(names) + 1)),
+                series=tuple(series),
+                scales={"x": {"time": False}},
+                legend={"show": True},
+                aspect=1.4,
+            )
+
+    def redraw(self) -> None:
+        if self.chart is None or self.paused.value:
+            return
+        self.chart.data = self.data.window(float(self.window_s.value))

@@ -1,0 +1,107 @@
+"""Robot Steering (rqt_robot_steering): two sliders and a stop button publishing Twist.
+
+As rqt_robot_steering (robot_steering.py ``_on_parameter_changed`` / ``_send_twist``): the
+command is re-sent every 100 ms while it is non-zero, and a zero command is sent once, so that
+other sources (a joystick, a planner) can take over when the sliders are at rest. The topic is
+typed in (default ``/cmd_vel``); TwistStamped is published instead when chosen.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.runtime.msg import Header, Twist, TwistStamped, Vector3
+from robomodel.runtime.node import Publisher
+from robomodel.viewer.tools.base import ToolContext
+
+__all__ = ["SteeringCommand", "SteeringTool"]
+
+_PERIOD_S = 0.1  # rqt_robot_steering's QTimer: 100 ms
+
+
+class SteeringCommand:
+    """The zero-once rule: what to publish for a slider state (None: nothing)."""
+
+    def __init__(self) -> None:
+        self.zero_sent = False
+
+    def twist(self, linear_mps: float, angular_radps: float) -> Twist | None:
+        if linear_mps == 0.0 and angular_radps == 0.0:
+            if self.zero_sent:
+                return None
+            self.zero_sent = True
+        else:
+            self.zero_sent = False
+        return Twist(Vector3(x=linear_mps), Vector3(z=angular_radps))
+
+
+class SteeringTool:
+    """The "Robot Steering" folder (built inside the caller's container)."""
+
+    def __init__(self, tools: ToolContext) -> None:
+        self.tools = tools
+        gui = tools.server.gui
+        self.command = SteeringCommand()
+        self.published = 0
+        self._publisher: Publisher[Any] | None = None
+        self._key: tuple[str, bool] = ("", False)
+        self.topic = gui.add_text("Steering topic", "/cmd_vel", hint="geometry_msgs/Twist topic")
+        self.stamped = gui.add_checkbox("TwistStamped", False)
+        self.linear_max = gui.add_number("Max linear [m/s]", 1.0, min=0.01, max=100.0, step=0.01)
+        self.angular_max = gui.add_number(
+            "Max angular [rad/s]", 3.0, min=0.01, max=100.0, step=0.01
+        )
+        self.linear = gui.add_slider(
+            "Linear x [m/s]", min=-1.0, max=1.0, step=0.01, initial_value=0.0
+        )
+        self.angular = gui.add_slider(
+            "Angular z [rad/s]", min=-3.0, max=3.0, step=0.01, initial_value=0.0
+        )
+        self.stop = gui.add_button("Stop", hint="both velocities to zero")
+        self.stop.on_click(lambda _e: self.halt())
+        self.linear_max.on_update(lambda _e: self._set_range(self.linear, self.linear_max))
+        self.angular_max.on_update(lambda _e: self._set_range(self.angular, self.angular_max))
+        tools.post(lambda: tools.node.create_timer(_PERIOD_S, self.tick))
+
+    @staticmethod
+    def _set_range(slider: Any, limit: Any) -> None:
+        high = abs(float(limit.value)) or 1.0
+        slider.min, slider.max = -high, high
+        slider.value = min(max(float(slider.value), -high), high)
+
+    def halt(self) -> None:
+        self.linear.value = 0.0
+        self.angular.value = 0.0
+
+    def tick(self) -> None:
+        """Every 100 ms on the loop thread: publish the sliders' command (zero once)."""
+        twist = self.command.twist(float(self.linear.value), float(self.angular.value))
+        if twist is None:
+            return
+        publisher = self._ensure_publisher()
+        if publisher is None:
+            return
+        if self._key[1]:
+            publisher.publish(TwistStamped(Header(self.tools.node.now(), ""), twist))
+        else:
+            publisher.publish(twist)
+        self.published += 1
+
+    def _ensure_publisher(self) -> Publisher[Any] | None:
+        key = (str(self.topic.value).strip(), bool(self.stamped.value))
+        if key == self._key and self._publisher is not None:
+            return self._publisher
+        if self._publisher is not None:
+            self._publisher.destroy()
+            self._publisher = None
+        self._key = key
+        if not key[0]:
+            return None
+        try:
+            self._publisher = self.tools.node.create_publisher(
+                TwistStamped if key[1] else Twist, key[0], 10
+            )
+        except RobomodelError:  # an invalid topic name: nothing is published
+            return None
+        return self._publisher

@@ -1,0 +1,200 @@
+"""The rqt tools' logic: field paths, expressions, the publishers' messages, plot data, scans."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from robomodel.runtime.msg import (
+    Float64,
+    Float64MultiArray,
+    Int32,
+    JointControllerState,
+    JointState,
+    LaserScan,
+    Odometry,
+    Twist,
+)
+from robomodel.viewer.tools import (
+    Expression,
+    ExpressionError,
+    ExpressionPublisher,
+    FieldPathError,
+    PlotData,
+    SteeringCommand,
+    field_value,
+    parse_variables,
+    resolve_field_path,
+    set_field,
+)
+from robomodel.viewer.tools.overlays import path_segments, scan_points
+
+TOPICS = {
+    "/joint_states": JointState,
+    "/joint1_position_controller/state": JointControllerState,
+    "/joint1_position_controller/command": Float64,
+    "/odom": Odometry,
+}
+
+
+def test_field_paths_resolve_to_the_longest_topic_as_rqt_plot() -> None:
+    path = resolve_field_path("/joint1_position_controller/state/process_value", TOPICS)
+    assert path.topic == "/joint1_position_controller/state"
+    assert path.steps == ("process_value",)
+    path = resolve_field_path("/joint_states/position[1]", TOPICS)
+    assert (path.topic, path.steps, path.text) == (
+        "/joint_states",
+        ("position", 1),
+        "/joint_states/position[1]",
+    )
+    path = resolve_field_path("odom/pose/pose/position/x", TOPICS)
+    assert path.steps == ("pose", "pose", "position", "x") and path.msg_type is Odometry
+    assert resolve_field_path("/joint1_position_controller/command/data", TOPICS).msg_type is (
+        Float64
+    )
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("/nothere/data", "no known topic is a prefix"),
+        ("/odom/pose/pose/positon/x", "did you mean position"),
+        ("/joint_states/position", "add an index, e.g. /joint_states/position[0]"),
+        ("/joint_states/name[0]", "is a string"),
+        ("/odom/pose/pose", "add one of its fields: position, orientation"),
+        ("/odom/pose/covariance[36]", "past the array's 36"),
+        ("/joint_states", "add a field of sensor_msgs/msg/JointState"),
+        ("/odom/child_frame_id[0]", "not an array"),
+    ],
+)
+def test_field_path_errors_say_what_is_valid(text: str, message: str) -> None:
+    with pytest.raises(FieldPathError, match=re.escape(message)):
+        resolve_field_path(text, TOPICS)
+
+
+def test_field_values_from_messages() -> None:
+    states = JointState(name=["a", "b"], position=[0.5, -1.25])
+    assert field_value(states, ("position", 1)) == -1.25
+    assert field_value(states, ("position", 2)) is None  # shorter in this message: no sample
+    odom = Odometry()
+    odom.pose.pose.position.x = 3.0
+    assert field_value(odom, ("pose", "pose", "position", "x")) == 3.0
+
+
+def test_set_field_builds_messages_with_defaults_elsewhere() -> None:
+    twist = set_field(Twist, ("angular", "z"), 0.7)
+    assert isinstance(twist, Twist) and twist.angular.z == 0.7 and twist.linear.x == 0.0
+    array = set_field(Float64MultiArray, ("data", 2), 4.0)
+    assert isinstance(array, Float64MultiArray) and array.data == [0.0, 0.0, 4.0]
+    integer = set_field(Int32, ("data",), 2.6)
+    assert isinstance(integer, Int32) and integer.data == 3
+    with pytest.raises(FieldPathError):
+        set_field(Twist, ("linear",), 1.0)
+
+
+def test_seed_expression_as_rqt_publisher() -> None:
+    variables = parse_variables("speed=1, diff=(pi - -pi)/2; offset=pi - diff")
+    assert variables == {"speed": 1.0, "diff": pytest.approx(math.pi), "offset": 0.0}
+    expr = Expression("sin(i/rate*speed)*diff + offset", ("i", "rate", "t", *variables))
+    for i in (0, 7, 50, 123):
+        value = expr.evaluate({"i": i, "rate": 50.0, "t": i / 50.0, **variables})
+        assert value == pytest.approx(math.sin(i / 50.0) * math.pi)
+    assert Expression("1 if sin(t) > 0 else -1").evaluate({"i": 0, "rate": 1, "t": 4}) == -1.0
+    assert Expression("max(0, min(1, t)) + abs(-2)").evaluate({"t": 0.5}) == 2.5
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "__import__('os').system('true')",
+        "().__class__.__bases__",
+        "open('/etc/passwd')",
+        "sin.__self__",
+        "'text'",
+        "lambda: 1",
+        "[1, 2][0]",
+        "sin(x=1)",
+        "(lambda: 0)()",
+        "eval('1')",
+        "i.real",
+        "speed",
+        "True + 1",
+    ],
+)
+def test_expressions_refuse_anything_but_arithmetic(text: str) -> None:
+    with pytest.raises(ExpressionError):
+        Expression(text)
+
+
+def test_expression_errors_at_evaluation_are_expression_errors() -> None:
+    with pytest.raises(ExpressionError, match=r"range|overflow|large"):
+        Expression("10**10**10").evaluate({})
+    with pytest.raises(ExpressionError):
+        Expression("log(i)").evaluate({"i": 0.0})
+    with pytest.raises(ExpressionError, match="did you mean sin"):
+        Expression("sine(t)")
+    with pytest.raises(ExpressionError, match="name=value"):
+        parse_variables("speed 1")
+
+
+def test_expression_publisher_messages_follow_the_counter() -> None:
+    pub = ExpressionPublisher("std_msgs/Float64", "data", "sin(i/50)*3.1415", 50.0)
+    values = [pub.next_message() for _ in range(3)]
+    assert all(isinstance(m, Float64) for m in values)
+    assert [m.data for m in values] == pytest.approx(  # type: ignore[attr-defined]
+        [math.sin(i / 50) * 3.1415 for i in range(3)]
+    )
+    twist = ExpressionPublisher("geometry_msgs/msg/Twist", "linear/x", "t", 10.0)
+    twist.next_message()
+    msg = twist.next_message()
+    assert isinstance(msg, Twist) and msg.linear.x == pytest.approx(0.1)
+    with pytest.raises(FieldPathError):
+        ExpressionPublisher("std_msgs/msg/Float64", "value", "1", 10.0)
+    with pytest.raises(ExpressionError):
+        ExpressionPublisher("std_msgs/msg/Float64", "data", "x + 1", 10.0)
+
+
+def test_steering_sends_zero_once_as_rqt_robot_steering() -> None:
+    command = SteeringCommand()
+    first = command.twist(0.0, 0.0)
+    assert first is not None and first.linear.x == 0.0
+    assert command.twist(0.0, 0.0) is None  # other sources may take over
+    moving = command.twist(0.5, -1.0)
+    assert moving is not None and (moving.linear.x, moving.angular.z) == (0.5, -1.0)
+    assert command.twist(0.5, -1.0) is not None  # re-sent every tick while non-zero
+    assert command.twist(0.0, 0.0) is not None
+    assert command.twist(0.0, 0.0) is None
+
+
+def test_plot_window_interpolates_series_on_one_time_axis() -> None:
+    data = PlotData()
+    t0 = data.start_s
+    command = data.add(resolve_field_path("/joint1_position_controller/command/data", TOPICS))
+    state = data.add(resolve_field_path("/joint_states/position[0]", TOPICS))
+    assert [a.size for a in data.window(10.0, t0 + 1.0)] == [0, 0, 0]  # no samples yet
+    data.record(command, Float64(1.0), t0 + 1.0)
+    for k in range(5):
+        data.record(state, JointState(position=[0.1 * k]), t0 + 1.0 + 0.5 * k)
+    x, cmd, pos = data.window(10.0, t0 + 3.0)
+    assert x.tolist() == [1.0, 1.5, 2.0, 2.5, 3.0]
+    assert cmd.tolist() == [1.0] * 5  # held after its one sample
+    assert pos.tolist() == pytest.approx([0.0, 0.1, 0.2, 0.3, 0.4])
+    x, _, pos = data.window(1.0, t0 + 3.0)  # the moving window: the last second only
+    assert x.tolist() == [2.0, 2.5, 3.0]
+
+
+def test_scan_points_drop_invalid_ranges_and_path_segments() -> None:
+    scan = LaserScan(
+        angle_min=0.0,
+        angle_increment=math.pi / 2,
+        range_min=0.1,
+        range_max=5.0,
+        ranges=[1.0, float("inf"), 2.0, 0.05, 9.0],
+    )
+    points = scan_points(scan)
+    assert points == pytest.approx(np.array([[1.0, 0.0, 0.0], [-2.0, 0.0, 0.0]]), abs=1e-12)
+    segments = path_segments(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0]]))
+    assert segments.shape == (2, 2, 3) and segments[1].tolist() == [[1, 0, 0], [1, 1, 0]]

@@ -1,0 +1,118 @@
+"""The rqt tools in a viewer in this process (in-process bus, no browser)."""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from robomodel.runtime.msg import Float64, Twist
+from robomodel.runtime.node import Node
+from robomodel.runtime.params import SetResult
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.viewer.conftest import wait_for
+from tests.viewer.robots import write_arm
+
+
+@pytest.fixture
+def viewer(tmp_path: Path) -> Iterator[Viewer]:
+    viewer = Viewer(ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), port=0))
+    viewer.start()
+    yield viewer
+    viewer.close()
+
+
+def on_loop(viewer: Viewer, work: Callable[[], Any]) -> Any:
+    """Run ``work`` on the viewer's loop thread (which owns the nodes) and return its result."""
+    done = threading.Event()
+    box: list[Any] = []
+
+    def run() -> None:
+        box.append(work())
+        done.set()
+
+    viewer._post(run)
+    assert done.wait(10)
+    return box[0]
+
+
+def test_steering_publishes_twist_at_10_hz_and_zero_once(viewer: Viewer) -> None:
+    assert viewer.context is not None
+    context = viewer.context
+    twists: list[Twist] = []
+    on_loop(
+        viewer,
+        lambda: context.create_node("probe").create_subscription(
+            Twist, "/my/cmd_vel", twists.append
+        ),
+    )
+    steering = viewer.tools.steering
+    steering.topic.value = "/my/cmd_vel"
+    steering.linear.value = 0.4
+    steering.angular.value = -0.8
+    wait_for(lambda: len(twists) >= 3, what="three Twists")
+    assert (twists[-1].linear.x, twists[-1].angular.z) == (0.4, -0.8)
+    steering.halt()
+    wait_for(lambda: twists[-1].linear.x == 0.0, what="the zero command")
+    count = len(twists)
+    wait_for(lambda: steering.command.zero_sent, what="zero sent")
+    threading.Event().wait(0.35)
+    assert len(twists) <= count + 1  # zero is sent once, not every tick
+
+
+def test_publisher_plot_and_parameters_on_the_bus(viewer: Viewer) -> None:
+    assert viewer.context is not None
+    context = viewer.context
+    tools = viewer.tools
+    received: list[Float64] = []
+
+    def make_node() -> Node:
+        node = context.create_node("tuned")
+        node.declare_parameter("gain", 1.5)
+        node.declare_parameter("enabled", True)
+        node.parameters.add_set_callback(
+            lambda c: (
+                SetResult(False, "gain must be positive")
+                if c.get("gain", 1.0) <= 0
+                else SetResult(True)
+            )
+        )
+        node.create_subscription(Float64, "/cmd", received.append)
+        return node
+
+    node: Node = on_loop(viewer, make_node)
+    pub = tools.publisher
+    pub.topic.value = "/cmd"
+    pub.expression.value = "offset + i"
+    pub.variables.value = "offset=10"
+    pub.rate.value = 20.0
+    pub.enabled.value = True
+    wait_for(lambda: len(received) >= 3, what="published expressions")
+    assert [m.data for m in received[:3]] == [10.0, 11.0, 12.0]
+    # The plot sees the topic once the graph shows it, and records samples.
+    wait_for(lambda: "/cmd" in tools.tools.topics, what="/cmd in the graph")
+    tools.plot.add("/cmd/data")
+    wait_for(lambda: tools.plot.data.series and len(tools.plot.data.series[0].values) >= 3)
+    assert tools.plot.chart is not None
+    x, y = tools.plot.data.window(10.0)
+    assert x.size >= 2 and y[-1] >= 12.0
+    tools.plot.add("/cmd/nothing")
+    assert "has no field 'nothing'" in tools.plot.status.content
+    pub.enabled.value = False
+    # Parameters: another node's parameters, set and refused.
+    wait_for(lambda: "/tuned" in tools.parameters.node_dropdown.options, what="node in graph")
+    tools.parameters.node_dropdown.value = "/tuned"
+    wait_for(lambda: "gain" in tools.parameters.controls, what="parameter controls")
+    assert tools.parameters.controls["gain"].value == 1.5
+    result: list[bool] = []
+    tools.tools.bus.submit(lambda: result.append(tools.parameters.set("/tuned", "gain", 4.0)))
+    wait_for(lambda: result, what="a set")
+    assert result == [True] and node.get_parameter("gain") == 4.0
+    tools.tools.bus.submit(lambda: result.append(tools.parameters.set("/tuned", "gain", -1.0)))
+    wait_for(lambda: len(result) == 2, what="a refused set")
+    assert result[1] is False and node.get_parameter("gain") == 4.0
+    assert "gain must be positive" in tools.parameters.result.content
+    assert tools.parameters.controls["gain"].value == 4.0  # the old value is back
