@@ -11,8 +11,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
 
 from robomodel.cli.main import main
+
+# No per-example deadline: timing belongs in bench/, and a loaded CI machine must not fail tests.
+settings.register_profile("robomodel", deadline=None)
+settings.load_profile("robomodel")
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
