@@ -81,7 +81,7 @@ class OverlayTool:
         self.scene = tools.server.scene
         gui = tools.server.gui
         self.scan = _Follower(tools, "LaserScan", LaserScan.__typename__, True)
-        self.point_size = gui.add_number("Scan point size [m]", 0.03, min=0.001, step=0.005)
+        self.point_size = gui.add_number("Scan point size [m]", 0.02, min=0.001, step=0.005)
         self.odom = _Follower(tools, "Odometry", Odometry.__typename__, True)
         clear = gui.add_button("Clear path")
         self.last_scan: LaserScan | None = None

@@ -20,10 +20,11 @@ _NONE = "(choose a node)"
 
 
 class ParameterTool:
-    """The "Parameters" folder."""
+    """The "Parameters" folder's controls, built inside ``parent``."""
 
-    def __init__(self, tools: ToolContext) -> None:
+    def __init__(self, tools: ToolContext, parent: Any) -> None:
         self.tools = tools
+        self._parent = parent  # the folder the node's controls go in (built on another thread)
         self.gui = tools.server.gui
         self.node_dropdown = self.gui.add_dropdown("Node", (_NONE,), initial_value=_NONE)
         refresh = self.gui.add_button("Reload parameters")
@@ -73,7 +74,8 @@ class ParameterTool:
             self._folder.remove()
         self.controls = {}
         self.node_name, self.values = node, dict(values)
-        self._folder = self.gui.add_folder(node)
+        with self._parent:
+            self._folder = self.gui.add_folder(node)
         with self._folder:
             for name, value in sorted(values.items()):
                 self.controls[name] = self._control(name, value)
