@@ -185,3 +185,39 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
     assert np.asarray(overlays._scan_node.points) == pytest.approx(
         np.array([[3.0, 0.0, 0.0]]), abs=1e-3
     )
+
+
+def test_stamped_steering_refused_expression_and_no_tools(viewer: Viewer, tmp_path: Path) -> None:
+    from robomodel.runtime.msg import TwistStamped
+
+    assert viewer.context is not None
+    context = viewer.context
+    stamped: list[TwistStamped] = []
+    on_loop(
+        viewer,
+        lambda: context.create_node("probe").create_subscription(
+            TwistStamped, "/stamped", stamped.append
+        ),
+    )
+    steering = viewer.tools.steering
+    steering.stamped.value = True
+    steering.topic.value = "/stamped"
+    steering.angular.value = 1.5
+    wait_for(lambda: stamped and stamped[-1].twist.angular.z == 1.5, what="a TwistStamped")
+    assert stamped[-1].header.stamp.sec > 0
+    # A slider's range follows its maximum.
+    steering.angular_max.value = 1.0
+    wait_for(lambda: steering.angular.max == 1.0 and steering.angular.value == 1.0)
+    pub = viewer.tools.publisher
+    pub.expression.value = "__import__('os').getcwd()"
+    pub.enabled.value = True
+    wait_for(lambda: "refused" in pub.status.content, what="the refusal shown")
+    assert "cannot call" in pub.status.content and pub.enabled.value is False
+    quiet = Viewer(
+        ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), port=0, tools=False)
+    )
+    quiet.start()
+    try:
+        assert quiet.tools is None
+    finally:
+        quiet.close()

@@ -12,7 +12,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.params import parameter_type_name, parse_parameter_value
-from robomodel.viewer.tools.base import ToolContext
+from robomodel.viewer.tools.base import ToolContext, escape_markdown
 
 __all__ = ["ParameterTool"]
 
@@ -55,7 +55,7 @@ class ParameterTool:
                 names = self._call(node, {"op": "list"})["names"]
                 values = self._call(node, {"op": "get", "names": names})["values"] if names else {}
             except RobomodelError as exc:
-                self.result.content = f"**{node}:** {exc}"
+                self.result.content = f"**{node}:** {escape_markdown(str(exc))}"
                 return
             self._build(node, values)
 
@@ -113,7 +113,9 @@ class ParameterTool:
             self.values[name] = value
             self.result.content = f"`{name}` set to `{value}`"
             return True
-        self.result.content = f"**refused:** `{name}`: {reply.get('reason', '')}"
+        self.result.content = (
+            f"**refused:** `{name}`: {escape_markdown(str(reply.get('reason', '')))}"
+        )
         control = self.controls.get(name)
         old = self.values.get(name)
         if control is not None and node == self.node_name:

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
 from robomodel.runtime.node import Subscription
-from robomodel.viewer.tools.base import ToolContext
+from robomodel.viewer.tools.base import ToolContext, escape_markdown
 from robomodel.viewer.tools.field_path import FieldPath, field_value, resolve_field_path
 
 __all__ = ["PlotData", "PlotTool", "Series"]
@@ -107,7 +107,7 @@ class PlotTool:
         try:
             path = resolve_field_path(text, self.tools.topic_types())
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {exc}"
+            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
             return
         self.tools.post(lambda: self._add(path))
 
