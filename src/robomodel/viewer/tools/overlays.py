@@ -62,7 +62,8 @@ class _Follower:
         choice = str(self.dropdown.value)
         if choice != _AUTO:
             return choice
-        found = self.tools.topics_of_type(self.type_name)
+        # A simulator's ground truth (in a world frame TF may not have) only when alone.
+        found = sorted(self.tools.topics_of_type(self.type_name), key=lambda t: "ground_truth" in t)
         return found[0] if found else ""
 
     def update_options(self) -> None:
