@@ -198,3 +198,11 @@ def test_scan_points_drop_invalid_ranges_and_path_segments() -> None:
     assert points == pytest.approx(np.array([[1.0, 0.0, 0.0], [-2.0, 0.0, 0.0]]), abs=1e-12)
     segments = path_segments(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0]]))
     assert segments.shape == (2, 2, 3) and segments[1].tolist() == [[1, 0, 0], [1, 1, 0]]
+
+
+def test_messages_are_shown_literally_in_markdown() -> None:
+    from robomodel.viewer.tools.base import escape_markdown
+
+    assert escape_markdown("sin(i/rate*speed)*diff [pid_p]") == (
+        r"sin(i/rate\*speed)\*diff \[pid\_p\]"
+    )

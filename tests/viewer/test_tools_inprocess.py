@@ -96,7 +96,7 @@ def test_publisher_plot_and_parameters_on_the_bus(viewer: Viewer) -> None:
     wait_for(lambda: "/cmd" in tools.tools.topics, what="/cmd in the graph")
     tools.plot.add("/cmd/data")
     wait_for(lambda: tools.plot.data.series and len(tools.plot.data.series[0].values) >= 3)
-    assert tools.plot.chart is not None
+    wait_for(lambda: tools.plot.chart is not None, what="the chart")
     x, y = tools.plot.data.window(10.0)
     assert x.size >= 2 and y[-1] >= 12.0
     tools.plot.add("/cmd/nothing")
@@ -116,3 +116,108 @@ def test_publisher_plot_and_parameters_on_the_bus(viewer: Viewer) -> None:
     assert result[1] is False and node.get_parameter("gain") == 4.0
     assert "gain must be positive" in tools.parameters.result.content
     assert tools.parameters.controls["gain"].value == 4.0  # the old value is back
+
+
+def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> None:
+    """Poses in odom and a scan in laser go through TF into the fixed frame (base_link)."""
+    import numpy as np
+
+    from robomodel.runtime.msg import (
+        Header,
+        LaserScan,
+        Odometry,
+        TFMessage,
+        Transform,
+        TransformStamped,
+        Vector3,
+    )
+    from robomodel.runtime.qos import Durability, QoSProfile
+
+    assert viewer.context is not None
+    context = viewer.context
+    overlays = viewer.tools.overlays
+
+    def create() -> tuple[Any, Any, Any]:
+        node = context.create_node("odometry")
+        static = node.create_publisher(
+            TFMessage, "/tf_static", QoSProfile(10, Durability.TRANSIENT_LOCAL)
+        )
+        static.publish(
+            TFMessage(
+                [
+                    TransformStamped(
+                        Header(frame_id="base_link"), "odom", Transform(Vector3(z=1.0))
+                    ),
+                    TransformStamped(
+                        Header(frame_id="base_link"), "laser", Transform(Vector3(x=2.0))
+                    ),
+                ]
+            )
+        )
+        return (
+            node,
+            node.create_publisher(Odometry, "/odom", 10),
+            node.create_publisher(LaserScan, "/scan", 10),
+        )
+
+    _node, odom, scan = on_loop(viewer, create)
+    wait_for(
+        lambda: overlays.odom.subscription is not None and overlays.scan.subscription is not None,
+        what="the overlays to follow /odom and /scan from the graph",
+    )
+
+    def publish() -> None:
+        for x, y in ((0.0, 0.0), (1.0, 0.0), (1.0, 0.005), (1.0, 1.0)):
+            msg = Odometry(Header(frame_id="odom"), "base_link")
+            msg.pose.pose.position.x, msg.pose.pose.position.y = x, y
+            odom.publish(msg)
+        scan.publish(
+            LaserScan(Header(frame_id="laser"), range_min=0.1, range_max=5.0, ranges=[1.0])
+        )
+
+    on_loop(viewer, publish)
+    wait_for(lambda: overlays._path_node is not None, what="the odometry path drawn")
+    assert list(overlays.path) == [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0)]  # 1 cm rule
+    segments = np.asarray(overlays._path_node.points)
+    assert segments.shape == (2, 2, 3)
+    assert segments[:, :, 2] == pytest.approx(1.0)  # odom is 1 m above base_link
+    wait_for(lambda: overlays.scans_drawn > 0, what="the scan drawn")
+    assert np.asarray(overlays._scan_node.points) == pytest.approx(
+        np.array([[3.0, 0.0, 0.0]]), abs=1e-3
+    )
+
+
+def test_stamped_steering_refused_expression_and_no_tools(viewer: Viewer, tmp_path: Path) -> None:
+    from robomodel.runtime.msg import TwistStamped
+
+    assert viewer.context is not None
+    context = viewer.context
+    stamped: list[TwistStamped] = []
+    on_loop(
+        viewer,
+        lambda: context.create_node("probe").create_subscription(
+            TwistStamped, "/stamped", stamped.append
+        ),
+    )
+    steering = viewer.tools.steering
+    steering.stamped.value = True
+    steering.topic.value = "/stamped"
+    steering.angular.value = 1.5
+    wait_for(lambda: stamped and stamped[-1].twist.angular.z == 1.5, what="a TwistStamped")
+    assert stamped[-1].header.stamp.sec > 0
+    # A slider's range follows its maximum.
+    steering.angular_max.value = 1.0
+    wait_for(lambda: steering.angular.max == 1.0 and steering.angular.value == 1.0)
+    pub = viewer.tools.publisher
+    pub.expression.value = "__import__('os').getcwd()"
+    pub.enabled.value = True
+    wait_for(lambda: "refused" in pub.status.content, what="the refusal shown")
+    assert "cannot call" in pub.status.content and pub.enabled.value is False
+    quiet = Viewer(
+        ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), port=0, tools=False)
+    )
+    quiet.start()
+    try:
+        assert quiet.tools is None
+    finally:
+        quiet.close()

@@ -188,6 +188,16 @@ def test_missing_viser_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
         "robomodel.viewer.tf_display",
         "robomodel.viewer.options_panel",
         "robomodel.viewer.status",
+        "robomodel.viewer.tools",
+        "robomodel.viewer.tools.base",
+        "robomodel.viewer.tools.expression",
+        "robomodel.viewer.tools.field_path",
+        "robomodel.viewer.tools.overlays",
+        "robomodel.viewer.tools.panel",
+        "robomodel.viewer.tools.params",
+        "robomodel.viewer.tools.plot",
+        "robomodel.viewer.tools.publisher",
+        "robomodel.viewer.tools.steering",
     ],
 )
 def test_viewer_public_names_resolve(module_name: str) -> None:
@@ -202,7 +212,8 @@ def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
     import subprocess
     import sys
 
-    code = "import sys, robomodel.viewer, robomodel.cli.main as m; m.build_parser(); "
+    code = "import sys, robomodel.viewer, robomodel.viewer.tools, robomodel.cli.main as m; "
+    code += "m.build_parser(); "
     code += "print('viser' in sys.modules, 'trimesh' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import logging
 import queue
+import re
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -20,7 +21,13 @@ from robomodel.runtime.context import Context
 from robomodel.runtime.msg import Message, MessageTypeError, get_message_type
 from robomodel.runtime.node import Node
 
-__all__ = ["BusWorker", "ToolContext"]
+__all__ = ["BusWorker", "ToolContext", "escape_markdown"]
+
+
+def escape_markdown(text: str) -> str:
+    """``text`` shown literally in a markdown element (error messages quote ``*``, ``_``)."""
+    return re.sub(r"([\\`*_\[\]<>#|~])", r"\\\1", text)
+
 
 log = logging.getLogger("robomodel.viewer")
 

@@ -62,7 +62,8 @@ class _Follower:
         choice = str(self.dropdown.value)
         if choice != _AUTO:
             return choice
-        found = self.tools.topics_of_type(self.type_name)
+        # A simulator's ground truth (in a world frame TF may not have) only when alone.
+        found = sorted(self.tools.topics_of_type(self.type_name), key=lambda t: "ground_truth" in t)
         return found[0] if found else ""
 
     def update_options(self) -> None:
@@ -81,7 +82,7 @@ class OverlayTool:
         self.scene = tools.server.scene
         gui = tools.server.gui
         self.scan = _Follower(tools, "LaserScan", LaserScan.__typename__, True)
-        self.point_size = gui.add_number("Scan point size [m]", 0.03, min=0.001, step=0.005)
+        self.point_size = gui.add_number("Scan point size [m]", 0.02, min=0.001, step=0.005)
         self.odom = _Follower(tools, "Odometry", Odometry.__typename__, True)
         clear = gui.add_button("Clear path")
         self.last_scan: LaserScan | None = None

@@ -28,8 +28,8 @@ class ToolsPanel:
             self.plot = PlotTool(tools)
         with gui.add_folder("Topic Publisher", expand_by_default=False):
             self.publisher = PublisherTool(tools)
-        with gui.add_folder("Parameters", expand_by_default=False):
-            self.parameters = ParameterTool(tools)
+        with gui.add_folder("Parameters", expand_by_default=False) as folder:
+            self.parameters = ParameterTool(tools, folder)
         with gui.add_folder("Overlays", expand_by_default=False):
             self.overlays = OverlayTool(tools)
         self.graph_updates = 0

@@ -12,7 +12,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.params import parameter_type_name, parse_parameter_value
-from robomodel.viewer.tools.base import ToolContext
+from robomodel.viewer.tools.base import ToolContext, escape_markdown
 
 __all__ = ["ParameterTool"]
 
@@ -20,10 +20,11 @@ _NONE = "(choose a node)"
 
 
 class ParameterTool:
-    """The "Parameters" folder."""
+    """The "Parameters" folder's controls, built inside ``parent``."""
 
-    def __init__(self, tools: ToolContext) -> None:
+    def __init__(self, tools: ToolContext, parent: Any) -> None:
         self.tools = tools
+        self._parent = parent  # the folder the node's controls go in (built on another thread)
         self.gui = tools.server.gui
         self.node_dropdown = self.gui.add_dropdown("Node", (_NONE,), initial_value=_NONE)
         refresh = self.gui.add_button("Reload parameters")
@@ -54,7 +55,7 @@ class ParameterTool:
                 names = self._call(node, {"op": "list"})["names"]
                 values = self._call(node, {"op": "get", "names": names})["values"] if names else {}
             except RobomodelError as exc:
-                self.result.content = f"**{node}:** {exc}"
+                self.result.content = f"**{node}:** {escape_markdown(str(exc))}"
                 return
             self._build(node, values)
 
@@ -73,7 +74,8 @@ class ParameterTool:
             self._folder.remove()
         self.controls = {}
         self.node_name, self.values = node, dict(values)
-        self._folder = self.gui.add_folder(node)
+        with self._parent:
+            self._folder = self.gui.add_folder(node)
         with self._folder:
             for name, value in sorted(values.items()):
                 self.controls[name] = self._control(name, value)
@@ -111,7 +113,9 @@ class ParameterTool:
             self.values[name] = value
             self.result.content = f"`{name}` set to `{value}`"
             return True
-        self.result.content = f"**refused:** `{name}`: {reply.get('reason', '')}"
+        self.result.content = (
+            f"**refused:** `{name}`: {escape_markdown(str(reply.get('reason', '')))}"
+        )
         control = self.controls.get(name)
         old = self.values.get(name)
         if control is not None and node == self.node_name:

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
 from robomodel.runtime.node import Subscription
-from robomodel.viewer.tools.base import ToolContext
+from robomodel.viewer.tools.base import ToolContext, escape_markdown
 from robomodel.viewer.tools.field_path import FieldPath, field_value, resolve_field_path
 
 __all__ = ["PlotData", "PlotTool", "Series"]
@@ -107,7 +107,7 @@ class PlotTool:
         try:
             path = resolve_field_path(text, self.tools.topic_types())
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {exc}"
+            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
             return
         self.tools.post(lambda: self._add(path))
 
@@ -138,21 +138,23 @@ class PlotTool:
         self._rebuild_chart()
 
     def _rebuild_chart(self) -> None:
+        """Drop the chart; :meth:`redraw` makes a new one once every series has data (a uPlot
+        created without data never scales its x axis)."""
         if self.chart is not None:
             self.chart.remove()
             self.chart = None
         names = [s.path.text for s in self.data.series]
         self.status.content = "\n".join(f"- `{n}`" for n in names) if names else "*no series*"
-        if not names:
-            return
+
+    def _make_chart(self, data: tuple[NDArray[np.float64], ...]) -> None:
         series: list[dict[str, Any]] = [{"label": "t [s]"}]
         series += [
-            {"label": n, "stroke": _COLOURS[k % len(_COLOURS)], "width": 2}
-            for k, n in enumerate(names)
+            {"label": s.path.text, "stroke": _COLOURS[k % len(_COLOURS)], "width": 2}
+            for k, s in enumerate(self.data.series)
         ]
         with self._folder:
             self.chart = self._gui.add_uplot(
-                data=tuple(np.zeros(0) for _ in range(len(names) + 1)),
+                data=data,
                 series=tuple(series),
                 scales={"x": {"time": False}},
                 legend={"show": True},
@@ -160,6 +162,12 @@ class PlotTool:
             )
 
     def redraw(self) -> None:
-        if self.chart is None or self.paused.value:
+        if self.paused.value or not self.data.series:
             return
-        self.chart.data = self.data.window(float(self.window_s.value))
+        data = self.data.window(float(self.window_s.value))
+        if data[0].size == 0:
+            return
+        if self.chart is None:
+            self._make_chart(data)
+        else:
+            self.chart.data = data

@@ -16,7 +16,7 @@ from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Timer
 from robomodel.runtime.msg import Message, get_message_type
 from robomodel.runtime.node import Publisher
-from robomodel.viewer.tools.base import ToolContext
+from robomodel.viewer.tools.base import ToolContext, escape_markdown
 from robomodel.viewer.tools.expression import Expression, parse_variables
 from robomodel.viewer.tools.field_path import parse_steps, set_field
 
@@ -69,6 +69,7 @@ class PublisherTool:
         self.published = 0
         self._publisher: Publisher[Any] | None = None
         self._timer: Timer | None = None
+        self._running = False
         self.topic = gui.add_text("Pub topic", "/joint1_position_controller/command")
         self.type = gui.add_text("Pub type", "std_msgs/msg/Float64")
         self.field = gui.add_text("Pub field", "data", hint="e.g. data, linear/x, data[0]")
@@ -84,7 +85,9 @@ class PublisherTool:
     def _toggle(self) -> None:
         if not self.enabled.value:
             self.tools.post(self._stop)
-            self.status.content = "*stopped*"
+            if self._running:  # keep a refusal's reason on screen
+                self.status.content = "*stopped*"
+            self._running = False
             return
         try:
             state = ExpressionPublisher(
@@ -95,10 +98,11 @@ class PublisherTool:
                 str(self.variables.value),
             )
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {exc}"
+            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
             self.enabled.value = False
             return
         topic = str(self.topic.value).strip()
+        self._running = True
         self.status.content = f"publishing {state.msg_type.__typename__} on `{topic}`"
         self.tools.post(lambda: self._start(topic, state))
 
@@ -107,7 +111,7 @@ class PublisherTool:
         try:
             self._publisher = self.tools.node.create_publisher(state.msg_type, topic, 10)
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {exc}"
+            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
             return
         self.state = state
         self._timer = self.tools.node.create_timer(1.0 / state.rate_hz, self.tick)
@@ -128,7 +132,8 @@ class PublisherTool:
             msg = self.state.next_message()
         except RobomodelError as exc:  # e.g. log(0) at some i: stop, say why
             self._stop()
-            self.status.content = f"**stopped:** {exc}"
+            self._running = False
+            self.status.content = f"**stopped:** {escape_markdown(str(exc))}"
             self.enabled.value = False
             return
         self._publisher.publish(msg)

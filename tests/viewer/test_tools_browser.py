@@ -1,0 +1,129 @@
+"""The rqt tools through the page (headless Chromium) on a viewer in this process.
+
+The steering pad publishes a Twist, the plot draws a series, the parameter editor changes a
+parameter of another node, and a LaserScan published here is drawn in the scene.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from robomodel.runtime.msg import Header, LaserScan, Twist
+from robomodel.runtime.node import Node
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.conftest import EXAMPLES
+from tests.viewer.conftest import (
+    changed_fraction,
+    gui_row,
+    open_viewer,
+    save_shot,
+    settle,
+    slider_input,
+    wait_for,
+)
+from tests.viewer.test_tools_inprocess import on_loop
+
+pytestmark = pytest.mark.browser
+
+
+@pytest.fixture
+def simplebot() -> Iterator[Viewer]:
+    source = RobotSource(str(EXAMPLES / "simplebot_description/urdf/simplebot.urdf.xacro"))
+    viewer = Viewer(ViewerOptions(sources=(source,), port=0))
+    viewer.start()
+    yield viewer
+    viewer.close()
+
+
+def _open(page: Any, folder: str) -> None:
+    page.get_by_text(folder, exact=True).click()
+
+
+def _type(page: Any, label: str, text: str) -> None:
+    box = gui_row(page, label).locator("input:not([type=hidden])").first
+    box.fill(text)
+    box.press("Enter")
+
+
+def test_steering_pad_publishes_and_plot_draws_the_series(simplebot: Viewer, page: Any) -> None:
+    assert simplebot.context is not None
+    context = simplebot.context
+    twists: list[Twist] = []
+    on_loop(
+        simplebot,
+        lambda: context.create_node("base").create_subscription(
+            Twist, "/diff_drive_controller/cmd_vel_unstamped", twists.append
+        ),
+    )
+    open_viewer(page, simplebot.url)
+    _open(page, "Robot Steering")
+    _type(page, "Steering topic", "/diff_drive_controller/cmd_vel_unstamped")
+    box = slider_input(page, "Linear x [m/s]")
+    box.fill("0.5")
+    box.press("Enter")
+    wait_for(lambda: twists and twists[-1].linear.x == 0.5, what="a Twist from the page")
+    _open(page, "Plot")
+    wait_for(
+        lambda: "/diff_drive_controller/cmd_vel_unstamped" in simplebot.tools.tools.topics,
+        what="the topic in the graph",
+    )
+    _type(page, "Field", "/diff_drive_controller/cmd_vel_unstamped/linear/x")
+    page.get_by_text("Add series", exact=True).click()
+    chart = page.locator(".uplot canvas").first
+    chart.wait_for()
+    page.get_by_text("/diff_drive_controller/cmd_vel_unstamped/linear/x").first.wait_for()
+    wait_for(lambda: len(simplebot.tools.plot.data.series[0].values) > 10, what="samples")
+    page.get_by_text("Stop", exact=True).click()
+    wait_for(lambda: twists[-1].linear.x == 0.0, what="Stop to send zero")
+    chart.scroll_into_view_if_needed()
+    save_shot(page, "tools_steering_plot")
+    # The chart's canvas has the series' colour (#1f77b4) where the line is drawn.
+    image = np.asarray(Image.open(io.BytesIO(chart.screenshot())).convert("RGB")).astype(int)
+    blue = np.abs(image - np.array([0x1F, 0x77, 0xB4])).max(axis=2) < 40
+    assert blue.sum() > 50
+
+
+def test_parameter_editor_and_laser_scan_in_the_scene(simplebot: Viewer, page: Any) -> None:
+    assert simplebot.context is not None
+    context = simplebot.context
+
+    def make_node() -> tuple[Node, Any]:
+        node = context.create_node("tuned")
+        node.declare_parameter("pid.p", 100.0)
+        return node, node.create_publisher(LaserScan, "/scan", 10)
+
+    node, scan_pub = on_loop(simplebot, make_node)
+    open_viewer(page, simplebot.url)
+    _open(page, "Parameters")
+    wait_for(lambda: "/tuned" in simplebot.tools.parameters.node_dropdown.options)
+    page.locator("input[value='(choose a node)']:not([type=hidden])").click()
+    page.get_by_role("option", name="/tuned", exact=True).click()
+    page.get_by_text("pid.p", exact=True).wait_for()
+    _type(page, "pid.p", "42.5")
+    wait_for(lambda: node.get_parameter("pid.p") == 42.5, what="pid.p set from the page")
+    page.get_by_text("set to").wait_for()
+    save_shot(page, "tools_parameters")
+    # A ring of returns 1 m around base_link: drawn where the grid and background were.
+    before = settle(page)
+    ranges = [1.0] * 360
+    scan = LaserScan(
+        Header(frame_id="base_link"),
+        angle_min=-math.pi,
+        angle_max=math.pi,
+        angle_increment=2 * math.pi / 360,
+        range_min=0.05,
+        range_max=10.0,
+        ranges=ranges,
+    )
+    on_loop(simplebot, lambda: scan_pub.publish(scan))
+    wait_for(lambda: simplebot.tools.overlays.scans_drawn > 0, what="the scan drawn")
+    after = settle(page)
+    save_shot(page, "tools_laser_scan")
+    assert changed_fraction(before, after) > 0.002
