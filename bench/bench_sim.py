@@ -30,7 +30,7 @@ EXAMPLES = ROOT / "examples"
 HOME = (0.0, -1.2, 1.0, -1.4, -1.57, 0.0)  # arm up, clear of the ground
 JOINTS = ("shoulder_pan", "shoulder_lift", "elbow", "wrist_1", "wrist_2", "wrist_3")
 # Gains per joint size (the URDF has no rotor inertia, so the wrists are light).
-GAINS = ("{p: 2000.0, i: 0.0, d: 50.0}",) * 3 + ("{p: 10.0, i: 0.0, d: 0.05}",) * 3
+GAINS = ("{p: 2000.0, i: 0.0, d: 50.0}",) * 3 + ("{p: 50.0, i: 0.0, d: 0.1}",) * 3
 UR5_PID_YAML = (
     "joint_state_controller:\n  type: joint_state_controller/JointStateController\n"
     "  publish_rate: 50\n"
@@ -68,14 +68,14 @@ def ur5_round(seconds: float) -> tuple[float, float]:
     context = Context(clock=ManualClock())
     sim = Simulation()
     sim.add_robot(robot)
+    for j, q in zip(JOINTS, HOME, strict=True):
+        sim.data.joint(f"{j}_joint").qpos = q
     config = load_controller_config("ur5_pid.yaml", text=UR5_PID_YAML)
     manager = sim.control(config, context=context, update_rate_hz=1000).manager
     SimBridge(sim, context)
     RobotStatePublisher(context, urdf_to_string(robot))
     controllers = [manager.entries[f"joint{i}_position_controller"].controller for i in range(1, 7)]
     targets = list(HOME)
-    for j, q in zip(JOINTS, HOME, strict=True):
-        sim.data.joint(f"{j}_joint").qpos = q
 
     def command(t: float) -> None:
         for i, c in enumerate(controllers):
