@@ -157,7 +157,13 @@ def _loop(sim: Any, bridge: Any, duration_s: float | None, factor: float | None)
     while duration_s is None or sim.time_s < duration_s - 1e-9:
         if bridge.paused:
             bridge.poll()
-            time.sleep(0.02)
+            if bridge.pending_steps:  # /gazebo/step while paused
+                steps, bridge.pending_steps = bridge.pending_steps, 0
+                start = time.perf_counter()
+                sim.step(steps)
+                wall += time.perf_counter() - start
+            else:
+                time.sleep(0.02)
             continue
         step_s = chunk_s if duration_s is None else min(chunk_s, duration_s - sim.time_s)
         wall += sim.run(step_s, real_time_factor=factor)

@@ -113,7 +113,9 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
         try:
             root = etree.fromstring(block.xml.encode())
         except etree.XMLSyntaxError as exc:
-            raise SimulationError(f"<gazebo> block does not parse: {exc}", where=where(block))
+            raise SimulationError(
+                f"<gazebo> block does not parse: {exc}", where=where(block)
+            ) from None
         ref = block.reference
         if ref is None:
             for el in root:

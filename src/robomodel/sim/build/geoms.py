@@ -78,9 +78,7 @@ def _load(path: str, where: str) -> tuple[np.ndarray, np.ndarray]:
     return vertices, faces
 
 
-def geom_kwargs(
-    spec: Any, geometry: Geometry, loader: MeshLoader, where: str
-) -> dict[str, Any]:
+def geom_kwargs(spec: Any, geometry: Geometry, loader: MeshLoader, where: str) -> dict[str, Any]:
     """``type``/``size`` (or ``meshname``) arguments of ``body.add_geom`` for ``geometry``."""
     mj = importlib.import_module("mujoco")
     g = mj.mjtGeom

@@ -50,7 +50,7 @@ def check_inertial(link: Link, *, moving: bool) -> None:
     if not math.isfinite(mass) or mass <= _MIN_VALUE:
         raise SimulationError(
             f"link '{link.name}' has mass {mass} kg; a moving link needs a positive mass "
-            "(e.g. <mass value=\"0.1\"/>)",
+            '(e.g. <mass value="0.1"/>)',
             where=at,
             name=link.name,
         )

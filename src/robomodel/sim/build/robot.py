@@ -136,10 +136,12 @@ def _set_inertial(body: Any, link: Link) -> None:
         body.inertia = [0.0, 0.0, 0.0]
         return
     R = inertial.origin.matrix()[:3, :3]
-    I = R @ np.asarray(inertial.inertia.matrix()) @ R.T
+    I_link = R @ np.asarray(inertial.inertia.matrix()) @ R.T
     body.mass = inertial.mass_kg
     body.ipos = list(inertial.origin.xyz_m)
-    body.fullinertia = [I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]]
+    body.fullinertia = [
+        I_link[0, 0], I_link[1, 1], I_link[2, 2], I_link[0, 1], I_link[0, 2], I_link[1, 2]
+    ]  # fmt: skip
 
 
 def _add_joint(body: Any, joint: Joint, name: str) -> None:
@@ -232,9 +234,17 @@ def add_robot(
         joint = robot.joint(joint_name)
         if joint.mimic is not None and joint.mimic.joint in joints:
             eq = spec.add_equality(
-                type=mj.mjtEq.mjEQ_JOINT, name1=prefix + joint_name, name2=prefix + joint.mimic.joint
+                type=mj.mjtEq.mjEQ_JOINT,
+                name1=prefix + joint_name,
+                name2=prefix + joint.mimic.joint,
             )
-            eq.data[0:5] = [joint.mimic.offset_or_default, joint.mimic.multiplier_or_default, 0, 0, 0]
+            eq.data[0:5] = [
+                joint.mimic.offset_or_default,
+                joint.mimic.multiplier_or_default,
+                0,
+                0,
+                0,
+            ]
     for sensor in ext.sensors:
         x, y, z, r, p, yaw = sensor.pose
         bodies[sensor.link].add_site(
