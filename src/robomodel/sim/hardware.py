@@ -6,7 +6,10 @@ gazebo_system.cpp ``write``; ROS 1 default_robot_hw_sim.cpp ``writeSim``):
 * ``position``: the joint is set to the command and its velocity to 0 before every physics
   step (Gazebo's ``SetPosition(0, cmd, true)``: kinematic, it ignores effort limits), clamped
   to the URDF limits as the joint-limits interface does;
-* ``velocity``: the joint velocity is set before every physics step (``SetVelocity``);
+* ``velocity``: a stiff MuJoCo velocity servo (force = kv (cmd - qdot), kv = 1e4 x the joint's
+  inertia in 1/s, clamped to the URDF effort limit), as gazebo_ros_control's ODE joint motor
+  with ``fmax`` = effort (a plain write of ``qvel`` before each step, like classic
+  ``SetVelocity``, lets the light wheel absorb the contact impulse and the robot slips);
 * ``effort``: the command, clamped to the URDF effort limit, is a generalised force
   (``SetForce``) held until the next write.
 
@@ -36,6 +39,7 @@ from robomodel.control.hardware import (
     ReturnType,
 )
 from robomodel.sim._mujoco import mujoco
+from robomodel.sim.build.robot import velocity_actuator_name
 from robomodel.sim.exceptions import SimulationError
 
 __all__ = ["SIMULATOR_PLUGINS", "SimSystem"]
@@ -47,6 +51,9 @@ SIMULATOR_PLUGINS = (
 )
 _MODES = (POSITION, VELOCITY, EFFORT)
 _OK = ReturnType.OK
+# Velocity servo gain per unit of joint inertia [1/s]: a 0.1 ms time constant, stiff like ODE's
+# joint motor; stable because implicitfast integrates the servo's damping implicitly.
+_SERVO_GAIN = 1e4
 
 
 class SimSystem(HardwareComponent):
@@ -70,14 +77,21 @@ class SimSystem(HardwareComponent):
         self._dadr: list[int] = []
         ranges: list[tuple[float, float]] = []
         limits: list[float] = []
+        servos: list[int] = []
+        gains: list[float] = []
         for name in self._joints:
             jid = _joint_id(model, prefix + name, info.source)
+            servos.append(_actuator_id(model, velocity_actuator_name(prefix + name)))
+            dof = int(model.jnt_dofadr[jid])
+            gains.append(_SERVO_GAIN * max(float(model.dof_M0[dof]), 1e-6))
             self._qadr.append(int(model.jnt_qposadr[jid]))
             self._dadr.append(int(model.jnt_dofadr[jid]))
             lo, hi = model.jnt_range[jid]
             ranges.append((lo, hi) if model.jnt_limited[jid] else (-math.inf, math.inf))
             effort = model.jnt_actfrcrange[jid][1] if model.jnt_actfrclimited[jid] else math.inf
             limits.append(float(effort))
+        self._servo = servos
+        self._servo_gain = gains
         self._range = np.array(ranges, dtype=float).reshape(-1, 2)
         self._effort_limit = np.array(limits, dtype=float)
         self._mode = [_first_mode(j.command_interfaces) for j in info.joints]
@@ -135,12 +149,24 @@ class SimSystem(HardwareComponent):
         self._vel_slots = [slots[i] for i in self._vel_i]
         self._eff_slots = [slots[i] for i in self._eff_i]
         self._pos_q, self._pos_d = q[self._pos_i], d[self._pos_i]
-        self._vel_d, self._eff_d = d[self._vel_i], d[self._eff_i]
+        self._eff_d = d[self._eff_i]
         self._pos_range = [tuple(self._range[i]) for i in self._pos_i]
         self._eff_limit = [float(self._effort_limit[i]) for i in self._eff_i]
         self._hold = [float(self._hold_q[i]) for i in self._pos_i]
         self._pos_cmd = np.array(self._hold, dtype=float)
-        self._vel_cmd = np.zeros(len(self._vel_i))
+        self._vel_act = np.array([self._servo[i] for i in self._vel_i], dtype=int)
+        for i, actuator in enumerate(self._servo):
+            if actuator >= 0:  # servo on for velocity-mode joints only
+                kv = self._servo_gain[i] if i in self._vel_i else 0.0
+                self.model.actuator_gainprm[actuator, 0] = kv
+                self.model.actuator_biasprm[actuator, 2] = -kv
+        if len(self._vel_act) and (self._vel_act < 0).any():
+            raise SimulationError(
+                f"hardware '{self.name}': a velocity-commanded joint has no velocity servo "
+                "(mimic or planar joints cannot be commanded by velocity)",
+                where=self.info.source,
+            )
+        self.data.ctrl[self._vel_act] = 0.0
         self._finite = [False] * len(self._joints)  # last command was finite (for warnings)
         self._ok = dict.fromkeys(_MODES, False)  # every command of the mode was finite
         # state reads: (slots, MuJoCo addresses) per kind
@@ -188,7 +214,7 @@ class SimSystem(HardwareComponent):
                 values = self._sanitize(values, self._vel_i, [0.0] * len(values), VELOCITY)
             else:
                 self._ok[VELOCITY] = True
-            self._vel_cmd[:] = values
+            self.data.ctrl[self._vel_act] = values
         if self._pos_slots:
             values = [commands[s] for s in self._pos_slots]
             if not math.isfinite(sum(values)):
@@ -232,20 +258,18 @@ class SimSystem(HardwareComponent):
 
     @property
     def has_kinematic_joints(self) -> bool:
-        """Position or velocity joints (written into the state every physics step)."""
-        return bool(self._pos_i or self._vel_i)
+        """Position joints (written into the state every physics step)."""
+        return bool(self._pos_i)
 
     @property
     def has_position_joints(self) -> bool:
         return bool(self._pos_i)
 
     def apply(self) -> None:
-        """Write the kinematic (position/velocity) commands into the state; every physics step."""
+        """Write the kinematic (position) commands into the state; every physics step."""
         if self._pos_i:
             self.data.qpos[self._pos_q] = self._pos_cmd
             self.data.qvel[self._pos_d] = 0.0
-        if self._vel_i:
-            self.data.qvel[self._vel_d] = self._vel_cmd
 
     def reset(self) -> None:
         """Hold the current positions and forget the commands (start, world reset)."""
@@ -259,6 +283,11 @@ def _first_mode(interfaces: Sequence[Any]) -> str:
         if d.interface in _MODES:
             return str(d.interface)
     return ""
+
+
+def _actuator_id(model: Any, name: str) -> int:
+    mj = mujoco()
+    return int(mj.mj_name2id(model, mj.mjtObj.mjOBJ_ACTUATOR, name))
 
 
 def _joint_id(model: Any, name: str, where: str) -> int:
