@@ -5,10 +5,10 @@
 controller managers run) it publishes ``/clock``, moves a :class:`ManualClock` context to the
 sim time (so timers and queued messages run deterministically, in order), and applies the
 service requests received since the last tick. Sensors publish at their ``update_rate``
-(every physics step for 0, as SDF), ground truth (``/<ns>/ground_truth/odom``, Odometry in
-the ``world`` frame) at ``ground_truth_rate_hz``.
+(every physics step for 0, as SDF), ground truth of floating robots
+(``/<ns>/ground_truth/odom``, Odometry in the ``world`` frame) at ``ground_truth_rate_hz``.
 
-For a floating robot it also publishes TF ``world -> <prefix>ground_truth`` (the true pose of
+It also publishes TF ``world -> <prefix>ground_truth`` (the true pose of
 the root link) with the ground truth, and a latched ``/tf_static`` ``world -> <prefix>odom``
 at the spawn pose, so a viewer with fixed frame ``world`` draws the robot where its odometry
 says and the ground-truth frame where it really is (Gazebo's model vs. the odometry in RViz).
@@ -121,7 +121,7 @@ class SimBridge:
             )
             sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
             self.sensors.append(sensor)
-        if ground_truth_rate_hz > 0:
+        if ground_truth_rate_hz > 0 and built.floating:  # a welded base has no pose to report
             truth = GroundTruth(
                 sim.model, sim.data, built.root_body, built.prefix + built.robot.tree().root
             )
@@ -130,8 +130,7 @@ class SimBridge:
             )
             sim.every(ground_truth_rate_hz, _publishing(truth, publisher), order=1)
             self.ground_truth.append(truth)
-            if built.floating:
-                self._add_truth_tf(built, truth, ground_truth_rate_hz)
+            self._add_truth_tf(built, truth, ground_truth_rate_hz)
 
     def _add_truth_tf(self, built: BuiltRobot, truth: GroundTruth, rate_hz: float) -> None:
         from robomodel.runtime.qos import latched
