@@ -72,6 +72,10 @@ class SimSystem(HardwareComponent):
         super().__init__(info)
         self.model = model
         self.data = data
+        # MjData's array properties build a new view on every access (about 1 us each): the
+        # buffers never move, so keep the views.
+        self._qpos, self._qvel = data.qpos, data.qvel
+        self._qfrc, self._ctrl = data.qfrc_applied, data.ctrl
         self._joints = [j.name for j in info.joints]
         self._qadr: list[int] = []
         self._dadr: list[int] = []
@@ -182,16 +186,15 @@ class SimSystem(HardwareComponent):
 
     # -- the loop -------------------------------------------------------------------------------
     def read(self, time_s: float, period_s: float) -> ReturnType:
-        data = self.data
         states = self.states
-        q = data.qpos.tolist()  # whole-array tolist: cheaper than per-element numpy scalars
+        q = self._qpos.tolist()  # whole-array tolist: cheaper than per-element numpy scalars
         for slot, a in self._read_p:
             states[slot] = q[a]
-        v = data.qvel.tolist()
+        v = self._qvel.tolist()
         for slot, a in self._read_v:
             states[slot] = v[a]
         if self._read_e:
-            f = data.qfrc_applied.tolist()
+            f = self._qfrc.tolist()
             for slot, a in self._read_e:
                 states[slot] = f[a]
         return _OK
@@ -204,7 +207,7 @@ class SimSystem(HardwareComponent):
                 values = self._sanitize(values, self._eff_i, [0.0] * len(values), EFFORT)
             else:
                 self._ok[EFFORT] = True
-            self.data.qfrc_applied[self._eff_d] = [
+            self._qfrc[self._eff_d] = [
                 -lim if v < -lim else lim if v > lim else v
                 for v, lim in zip(values, self._eff_limit, strict=True)
             ]
@@ -214,7 +217,7 @@ class SimSystem(HardwareComponent):
                 values = self._sanitize(values, self._vel_i, [0.0] * len(values), VELOCITY)
             else:
                 self._ok[VELOCITY] = True
-            self.data.ctrl[self._vel_act] = values
+            self._ctrl[self._vel_act] = values
         if self._pos_slots:
             values = [commands[s] for s in self._pos_slots]
             if not math.isfinite(sum(values)):
@@ -268,8 +271,8 @@ class SimSystem(HardwareComponent):
     def apply(self) -> None:
         """Write the kinematic (position) commands into the state; every physics step."""
         if self._pos_i:
-            self.data.qpos[self._pos_q] = self._pos_cmd
-            self.data.qvel[self._pos_d] = 0.0
+            self._qpos[self._pos_q] = self._pos_cmd
+            self._qvel[self._pos_d] = 0.0
 
     def reset(self) -> None:
         """Hold the current positions and forget the commands (start, world reset)."""
