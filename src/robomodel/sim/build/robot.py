@@ -140,12 +140,14 @@ def _set_inertial(body: Any, link: Link) -> None:
     body.explicitinertial = True
     if inertial is None or inertial.mass_kg == 0.0:
         body.mass = 0.0
+        body.ipos = [0.0, 0.0, 0.0]
         body.inertia = [0.0, 0.0, 0.0]
         return
     R = inertial.origin.matrix()[:3, :3]
     I_link = R @ np.asarray(inertial.inertia.matrix()) @ R.T
     body.mass = inertial.mass_kg
     body.ipos = list(inertial.origin.xyz_m)
+    body.iquat = [1.0, 0.0, 0.0, 0.0]  # the tensor is already rotated into the link frame
     body.fullinertia = [
         I_link[0, 0], I_link[1, 1], I_link[2, 2], I_link[0, 1], I_link[0, 2], I_link[1, 2]
     ]  # fmt: skip
