@@ -170,3 +170,22 @@ def test_dae_mesh_collision_loads_through_trimesh(tmp_path) -> None:  # type: ig
     sim.add_robot(_robot(text), placement=Placement(xyz_m=(0, 0, 1)))
     sim.step(1500)
     assert sim.data.body("base").xpos[2] == pytest.approx(0.2, abs=0.01)  # half of 0.4 m
+
+
+def test_visuals_are_optional_collision_free_and_coloured_by_gazebo_materials() -> None:
+    from robomodel.sim.build.gazebo import GAZEBO_MATERIALS
+
+    assert Simulation().model.ngeom == 1  # the ground only
+    plain = Simulation()
+    plain.add_robot(load(str(RRBOT)))
+    sim = Simulation(include_visuals=True)
+    sim.add_robot(load(str(RRBOT)))
+    m = sim.model
+    visuals = [g for g in range(m.ngeom) if m.geom_group[g] == 1]
+    assert len(visuals) == m.ngeom - plain.model.ngeom > 0
+    assert all(m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0 for g in visuals)
+    link1 = m.body("link1").id
+    colours = [m.geom_rgba[g] for g in visuals if m.geom_bodyid[g] == link1]
+    assert colours
+    for rgba in colours:  # <gazebo reference="link1"><material>Gazebo/Orange
+        np.testing.assert_allclose(rgba, GAZEBO_MATERIALS["Gazebo/Orange"], rtol=1e-6)

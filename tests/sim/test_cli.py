@@ -69,3 +69,15 @@ def test_rate_parsing() -> None:
         parse_rate("fast", 1.0)
     with pytest.raises(RobomodelError, match="positive"):
         parse_rate("-1", 1.0)
+
+
+def test_rate_factor_paces_the_run(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(
+        [
+            "sim", str(SIMPLEBOT_LIDAR), "--headless", "--duration", "0.6", "--rate", "4",
+            "--spawn", "0", "0", "0.076", "--report", "json", "--bus", "inproc",
+        ]
+    )  # fmt: skip
+    assert code == 0
+    report = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert 2.5 < report["real_time_factor"] < 4.4  # paced to 4x (the sim alone runs >20x)

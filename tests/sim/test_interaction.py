@@ -164,3 +164,30 @@ def test_two_robots_collide_with_each_other() -> None:
     sim.add_robot(load(str(SIMPLEBOT)), placement=Placement("b_", (0.0, 0.0, 0.4)))
     sim.step(1000)
     assert sim.data.body("b_base_link").xpos[2] > 0.12  # resting on top of a_, not through it
+
+
+def test_ground_truth_tf_and_static_odom_frame() -> None:
+    from robomodel.runtime.msg.nav_msgs import TFMessage
+
+    context = Context(clock=ManualClock())
+    sim = Simulation()
+    sim.add_robot(load(str(SIMPLEBOT)), placement=Placement("", (1.0, 2.0, 0.076), (0, 0, 0.5)))
+    bridge = SimBridge(sim, context)
+    frames: dict[str, object] = {}
+    node = context.create_node("test")
+
+    def keep(msg: TFMessage) -> None:
+        for t in msg.transforms:
+            frames[t.child_frame_id] = t
+
+    node.create_subscription(TFMessage, "/tf", keep)
+    from robomodel.runtime.qos import latched
+
+    node.create_subscription(TFMessage, "/tf_static", keep, latched())
+    sim.step(200)
+    truth, odom = frames["ground_truth"], frames["odom"]
+    assert truth.header.frame_id == "world"  # type: ignore[attr-defined]
+    assert truth.transform.translation.x == pytest.approx(1.0, abs=0.01)  # type: ignore[attr-defined]
+    assert odom.transform.translation.y == pytest.approx(2.0)  # type: ignore[attr-defined]
+    assert context.call_service("/gazebo/step", {"steps": 3})["success"]
+    assert bridge.pending_steps == 3

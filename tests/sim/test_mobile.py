@@ -78,3 +78,22 @@ def test_wall_two_metres_ahead_appears_in_the_laser_scan() -> None:
     behind = scan.ranges[0]
     assert behind == math.inf  # nothing within 3.5 m behind (REP-117)
     assert bridge.sensors[0].spec.topic == "/scan"
+
+
+def test_simplebot_turns_at_the_commanded_rate() -> None:
+    """Velocity joints are stiff servos: turning in place scrubs the wide wheels only a little."""
+    from robomodel.sim.sensors.ground_truth import yaw_of
+
+    context = Context(clock=ManualClock())
+    sim = Simulation()
+    sim.add_robot(load(str(SIMPLEBOT)), placement=ON_GROUND)
+    sim.control(SIMPLEBOT_YAML, context=context)
+    SimBridge(sim, context)
+    pub = context.create_node("test").create_publisher(Twist, "/simplebot_controller/cmd_vel")
+    sim.step(300)
+    start = yaw_of(sim.data.body("base_link").xquat)
+    for _ in range(20):
+        pub.publish(Twist(angular=Vector3(0.0, 0.0, 0.5)))
+        sim.step(100)
+    turned = yaw_of(sim.data.body("base_link").xquat) - start
+    assert turned == pytest.approx(1.0, rel=0.1)

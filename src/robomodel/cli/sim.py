@@ -151,16 +151,36 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _loop(sim: Any, bridge: Any, duration_s: float | None, factor: float | None) -> float:
-    """Step until ``duration_s`` (or forever); returns the wall time spent stepping [s]."""
-    chunk_s = 0.05
+    """Step until ``duration_s`` (or forever); returns the wall time spent running [s].
+
+    Pacing is against the start of the run (re-anchored after a pause), so sleeping per chunk
+    does not accumulate error.
+    """
+    chunk_s = 0.01
     wall = 0.0
+    anchor: tuple[float, float] | None = None  # (wall, sim) when pacing started
     while duration_s is None or sim.time_s < duration_s - 1e-9:
         if bridge.paused:
+            anchor = None
             bridge.poll()
-            time.sleep(0.02)
+            if bridge.pending_steps:  # /gazebo/step while paused
+                steps, bridge.pending_steps = bridge.pending_steps, 0
+                start = time.perf_counter()
+                sim.step(steps)
+                wall += time.perf_counter() - start
+            else:
+                time.sleep(0.02)
             continue
+        start = time.perf_counter()
+        if anchor is None:
+            anchor = (start, sim.time_s)
         step_s = chunk_s if duration_s is None else min(chunk_s, duration_s - sim.time_s)
-        wall += sim.run(step_s, real_time_factor=factor)
+        sim.run(step_s)
+        if factor is not None:
+            delay = anchor[0] + (sim.time_s - anchor[1]) / factor - time.perf_counter()
+            if delay > 0:
+                time.sleep(delay)
+        wall += time.perf_counter() - start
     return wall
 
 

@@ -5,13 +5,20 @@
 controller managers run) it publishes ``/clock``, moves a :class:`ManualClock` context to the
 sim time (so timers and queued messages run deterministically, in order), and applies the
 service requests received since the last tick. Sensors publish at their ``update_rate``
-(every physics step for 0, as SDF), ground truth (``/<ns>/ground_truth/odom``, Odometry in
-the ``world`` frame) at ``ground_truth_rate_hz``.
+(every physics step for 0, as SDF), ground truth of floating robots
+(``/<ns>/ground_truth/odom``, Odometry in the ``world`` frame) at ``ground_truth_rate_hz``.
+
+It also publishes TF ``world -> <prefix>ground_truth`` (the true pose of
+the root link) with the ground truth, and a latched ``/tf_static`` ``world -> <prefix>odom``
+at the spawn pose, so a viewer with fixed frame ``world`` draws the robot where its odometry
+says and the ground-truth frame where it really is (Gazebo's model vs. the odometry in RViz).
 
 Services (JSON-like dicts, as the runtime's services): ``/gazebo/apply_body_wrench``
 ``{link, prefix?, force: [3], torque: [3]}``, ``/gazebo/set_model_state``
 ``{prefix?, pose: [x, y, z, R, P, Y]}``, ``/gazebo/reset_world`` and
-``/gazebo/reset_simulation``, ``/gazebo/pause_physics``, ``/gazebo/unpause_physics``.
+``/gazebo/reset_simulation``, ``/gazebo/pause_physics``, ``/gazebo/unpause_physics``,
+``/gazebo/step`` ``{steps: n}`` (single-stepping while paused, run by the owner's loop via
+:attr:`SimBridge.pending_steps`).
 """
 
 from __future__ import annotations
@@ -21,9 +28,11 @@ import queue
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from robomodel.description.model.pose import quat_xyzw_from_rpy
 from robomodel.runtime.clock import ManualClock
 from robomodel.runtime.msg.builtin_interfaces import Time
-from robomodel.runtime.msg.nav_msgs import Clock
+from robomodel.runtime.msg.geometry_msgs import Quaternion, Vector3
+from robomodel.runtime.msg.nav_msgs import Clock, TFMessage
 from robomodel.sim.build.robot import BuiltRobot
 from robomodel.sim.sensors.base import SimSensor
 from robomodel.sim.sensors.contact import ContactSensor
@@ -76,11 +85,14 @@ class SimBridge:
         self.sim = sim
         self.context = context
         self.paused = False
+        self.pending_steps = 0
         self._requests: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
         self.node = context.create_node("gazebo")
         self._clock_pub = self.node.create_publisher(Clock, "/clock", 10)
         self._manual = isinstance(context.clock, ManualClock)
         sim.every(clock_rate_hz, self._tick, order=-1)
+        self._static_pub: Any = None
+        self._static: list[Any] = []
         self.sensors: list[SimSensor] = []
         self.ground_truth: list[GroundTruth] = []
         for built in sim.robots:
@@ -94,6 +106,7 @@ class SimBridge:
                 ("/gazebo/reset_simulation", self._reset),
                 ("/gazebo/pause_physics", self._pause),
                 ("/gazebo/unpause_physics", self._unpause),
+                ("/gazebo/step", self._step),
             )
         ]
 
@@ -108,7 +121,7 @@ class SimBridge:
             )
             sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
             self.sensors.append(sensor)
-        if ground_truth_rate_hz > 0:
+        if ground_truth_rate_hz > 0 and built.floating:  # a welded base has no pose to report
             truth = GroundTruth(
                 sim.model, sim.data, built.root_body, built.prefix + built.robot.tree().root
             )
@@ -117,6 +130,24 @@ class SimBridge:
             )
             sim.every(ground_truth_rate_hz, _publishing(truth, publisher), order=1)
             self.ground_truth.append(truth)
+            self._add_truth_tf(built, truth, ground_truth_rate_hz)
+
+    def _add_truth_tf(self, built: BuiltRobot, truth: GroundTruth, rate_hz: float) -> None:
+        from robomodel.runtime.qos import latched
+
+        tf_pub = self.node.create_publisher(TFMessage, "/tf", 100)
+        frame = f"{built.prefix}ground_truth"
+        self.sim.every(rate_hz, lambda t: tf_pub.publish(truth.transform(t, frame)), order=1)
+        odom = truth.transform(0.0, f"{built.prefix}odom")
+        origin = odom.transforms[0].transform
+        x, y, z = built.placement.xyz_m
+        origin.translation = Vector3(x, y, z)
+        qx, qy, qz, qw = quat_xyzw_from_rpy(*built.placement.rpy_rad)
+        origin.rotation = Quaternion(x=qx, y=qy, z=qz, w=qw)
+        if self._static_pub is None:
+            self._static_pub = self.node.create_publisher(TFMessage, "/tf_static", latched())
+        self._static.extend(odom.transforms)
+        self._static_pub.publish(TFMessage(list(self._static)))
 
     # -- the tick ------------------------------------------------------------------------------
     def poll(self) -> None:
@@ -174,6 +205,14 @@ class SimBridge:
 
     def _unpause(self, request: dict[str, Any]) -> dict[str, Any]:
         self.paused = False
+        self.pending_steps = 0
+        return {"success": True}
+
+    def _step(self, request: dict[str, Any]) -> dict[str, Any]:
+        steps = int(request.get("steps", 1))
+        if steps < 1:
+            return {"success": False, "status_message": f"steps must be >= 1, got {steps}"}
+        self.pending_steps += steps
         return {"success": True}
 
     def close(self) -> None:

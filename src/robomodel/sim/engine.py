@@ -268,16 +268,16 @@ class Simulation:
         """
         mj = mujoco()
         model, data = self.model, self.data
-        schedule = self._schedule
-        hardware = self._hardware
+        schedule = [(item.every_steps, item.callback) for item in self._schedule]
+        hardware = [hw for hw in self._hardware if hw.has_kinematic_joints]
         kinematic = [hw for hw in hardware if hw.has_position_joints]
         mj_step = mj.mj_step
         steps = self._steps
         for _ in range(n):
             t = data.time
-            for item in schedule:
-                if steps % item.every_steps == 0:
-                    item.callback(t)
+            for every, callback in schedule:
+                if steps % every == 0:
+                    callback(t)
             for hw in hardware:
                 hw.apply()
             mj_step(model, data)

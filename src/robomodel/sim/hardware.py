@@ -6,7 +6,10 @@ gazebo_system.cpp ``write``; ROS 1 default_robot_hw_sim.cpp ``writeSim``):
 * ``position``: the joint is set to the command and its velocity to 0 before every physics
   step (Gazebo's ``SetPosition(0, cmd, true)``: kinematic, it ignores effort limits), clamped
   to the URDF limits as the joint-limits interface does;
-* ``velocity``: the joint velocity is set before every physics step (``SetVelocity``);
+* ``velocity``: a stiff MuJoCo velocity servo (force = kv (cmd - qdot), kv = 1e4 x the joint's
+  inertia in 1/s, clamped to the URDF effort limit), as gazebo_ros_control's ODE joint motor
+  with ``fmax`` = effort (a plain write of ``qvel`` before each step, like classic
+  ``SetVelocity``, lets the light wheel absorb the contact impulse and the robot slips);
 * ``effort``: the command, clamped to the URDF effort limit, is a generalised force
   (``SetForce``) held until the next write.
 
@@ -36,6 +39,7 @@ from robomodel.control.hardware import (
     ReturnType,
 )
 from robomodel.sim._mujoco import mujoco
+from robomodel.sim.build.robot import velocity_actuator_name
 from robomodel.sim.exceptions import SimulationError
 
 __all__ = ["SIMULATOR_PLUGINS", "SimSystem"]
@@ -47,6 +51,9 @@ SIMULATOR_PLUGINS = (
 )
 _MODES = (POSITION, VELOCITY, EFFORT)
 _OK = ReturnType.OK
+# Velocity servo gain per unit of joint inertia [1/s]: a 0.1 ms time constant, stiff like ODE's
+# joint motor; stable because implicitfast integrates the servo's damping implicitly.
+_SERVO_GAIN = 1e4
 
 
 class SimSystem(HardwareComponent):
@@ -65,19 +72,30 @@ class SimSystem(HardwareComponent):
         super().__init__(info)
         self.model = model
         self.data = data
+        # MjData's array properties build a new view on every access (about 1 us each): the
+        # buffers never move, so keep the views.
+        self._qpos, self._qvel = data.qpos, data.qvel
+        self._qfrc, self._ctrl = data.qfrc_applied, data.ctrl
         self._joints = [j.name for j in info.joints]
         self._qadr: list[int] = []
         self._dadr: list[int] = []
         ranges: list[tuple[float, float]] = []
         limits: list[float] = []
+        servos: list[int] = []
+        gains: list[float] = []
         for name in self._joints:
             jid = _joint_id(model, prefix + name, info.source)
+            servos.append(_actuator_id(model, velocity_actuator_name(prefix + name)))
+            dof = int(model.jnt_dofadr[jid])
+            gains.append(_SERVO_GAIN * max(float(model.dof_M0[dof]), 1e-6))
             self._qadr.append(int(model.jnt_qposadr[jid]))
             self._dadr.append(int(model.jnt_dofadr[jid]))
             lo, hi = model.jnt_range[jid]
             ranges.append((lo, hi) if model.jnt_limited[jid] else (-math.inf, math.inf))
             effort = model.jnt_actfrcrange[jid][1] if model.jnt_actfrclimited[jid] else math.inf
             limits.append(float(effort))
+        self._servo = servos
+        self._servo_gain = gains
         self._range = np.array(ranges, dtype=float).reshape(-1, 2)
         self._effort_limit = np.array(limits, dtype=float)
         self._mode = [_first_mode(j.command_interfaces) for j in info.joints]
@@ -125,60 +143,113 @@ class SimSystem(HardwareComponent):
             self._select()
 
     def _select(self) -> None:
-        idx = {m: [i for i, mode in enumerate(self._mode) if mode == m] for m in _MODES}
-        self._pos_i = np.array(idx[POSITION], dtype=int)
-        self._vel_i = np.array(idx[VELOCITY], dtype=int)
-        self._eff_i = np.array(idx[EFFORT], dtype=int)
+        """Per-mode index lists (plain lists and small int arrays: the loop runs at 1 kHz)."""
         q = np.array(self._qadr, dtype=int)
         d = np.array(self._dadr, dtype=int)
+        groups = {m: [i for i, mode in enumerate(self._mode) if mode == m] for m in _MODES}
+        self._pos_i, self._vel_i, self._eff_i = groups[POSITION], groups[VELOCITY], groups[EFFORT]
+        slots = [s[0] for s in self._slots] if self._slots else [-1] * len(self._joints)
+        self._pos_slots = [slots[i] for i in self._pos_i]
+        self._vel_slots = [slots[i] for i in self._vel_i]
+        self._eff_slots = [slots[i] for i in self._eff_i]
         self._pos_q, self._pos_d = q[self._pos_i], d[self._pos_i]
-        self._vel_d, self._eff_d = d[self._vel_i], d[self._eff_i]
-        self._cmd = np.full(len(self._joints), math.nan)
-        self._pos_cmd = self._hold_q[self._pos_i].copy()
-        self._vel_cmd = np.zeros(len(self._vel_i))
+        self._eff_d = d[self._eff_i]
+        self._pos_range = [tuple(self._range[i]) for i in self._pos_i]
+        self._eff_limit = [float(self._effort_limit[i]) for i in self._eff_i]
+        self._hold = [float(self._hold_q[i]) for i in self._pos_i]
+        self._pos_cmd = np.array(self._hold, dtype=float)
+        self._vel_act = np.array([self._servo[i] for i in self._vel_i], dtype=int)
+        for i, actuator in enumerate(self._servo):
+            if actuator >= 0:  # servo on for velocity-mode joints only
+                kv = self._servo_gain[i] if i in self._vel_i else 0.0
+                self.model.actuator_gainprm[actuator, 0] = kv
+                self.model.actuator_biasprm[actuator, 2] = -kv
+        if len(self._vel_act) and (self._vel_act < 0).any():
+            raise SimulationError(
+                f"hardware '{self.name}': a velocity-commanded joint has no velocity servo "
+                "(mimic or planar joints cannot be commanded by velocity)",
+                where=self.info.source,
+            )
+        self.data.ctrl[self._vel_act] = 0.0
+        self._finite = [False] * len(self._joints)  # last command was finite (for warnings)
+        self._ok = dict.fromkeys(_MODES, False)  # every command of the mode was finite
+        # state reads: (slots, MuJoCo addresses) per kind
+        self._read_p = [
+            (s[1], a) for s, a in zip(self._slots, self._qadr, strict=False) if s[1] >= 0
+        ]
+        self._read_v = [
+            (s[2], a) for s, a in zip(self._slots, self._dadr, strict=False) if s[2] >= 0
+        ]
+        self._read_e = [
+            (s[3], a) for s, a in zip(self._slots, self._dadr, strict=False) if s[3] >= 0
+        ]
 
     # -- the loop -------------------------------------------------------------------------------
     def read(self, time_s: float, period_s: float) -> ReturnType:
-        qpos, qvel = self.data.qpos, self.data.qvel
-        force = self.data.qfrc_applied
         states = self.states
-        for (_, sp, sv, se), qa, da in zip(self._slots, self._qadr, self._dadr, strict=True):
-            if sp >= 0:
-                states[sp] = float(qpos[qa])
-            if sv >= 0:
-                states[sv] = float(qvel[da])
-            if se >= 0:
-                states[se] = float(force[da])
+        q = self._qpos.tolist()  # whole-array tolist: cheaper than per-element numpy scalars
+        for slot, a in self._read_p:
+            states[slot] = q[a]
+        v = self._qvel.tolist()
+        for slot, a in self._read_v:
+            states[slot] = v[a]
+        if self._read_e:
+            f = self._qfrc.tolist()
+            for slot, a in self._read_e:
+                states[slot] = f[a]
         return _OK
 
     def write(self, time_s: float, period_s: float) -> ReturnType:
         commands = self.commands
-        cmd = self._cmd
-        for i, (slot, *_) in enumerate(self._slots):
-            value = commands[slot] if slot >= 0 else math.nan
-            if not math.isfinite(value):
-                if slot >= 0 and not math.isnan(cmd[i]) and self._joints[i] not in self._warned:
-                    self._warn_bad(i, value)
-                value = math.nan
-            cmd[i] = value
-        for i in self._pos_i:
-            if math.isnan(cmd[i]):
-                cmd[i] = self._hold_q[i]
+        if self._eff_slots:
+            values = [commands[s] for s in self._eff_slots]
+            if not math.isfinite(sum(values)):
+                values = self._sanitize(values, self._eff_i, [0.0] * len(values), EFFORT)
             else:
-                lo, hi = self._range[i]
-                cmd[i] = min(max(cmd[i], lo), hi)
-                self._hold_q[i] = cmd[i]
-        for i in self._vel_i:
-            if math.isnan(cmd[i]):
-                cmd[i] = 0.0
-        force = self.data.qfrc_applied
-        for i, d in zip(self._eff_i, self._eff_d, strict=True):
-            value = 0.0 if math.isnan(cmd[i]) else cmd[i]
-            limit = self._effort_limit[i]
-            force[d] = min(max(value, -limit), limit)
-        self._pos_cmd = cmd[self._pos_i]
-        self._vel_cmd = cmd[self._vel_i]
+                self._ok[EFFORT] = True
+            self._qfrc[self._eff_d] = [
+                -lim if v < -lim else lim if v > lim else v
+                for v, lim in zip(values, self._eff_limit, strict=True)
+            ]
+        if self._vel_slots:
+            values = [commands[s] for s in self._vel_slots]
+            if not math.isfinite(sum(values)):
+                values = self._sanitize(values, self._vel_i, [0.0] * len(values), VELOCITY)
+            else:
+                self._ok[VELOCITY] = True
+            self._ctrl[self._vel_act] = values
+        if self._pos_slots:
+            values = [commands[s] for s in self._pos_slots]
+            if not math.isfinite(sum(values)):
+                values = self._sanitize(values, self._pos_i, self._hold, POSITION)
+            else:
+                self._ok[POSITION] = True
+            values = [
+                lo if v < lo else hi if v > hi else v
+                for v, (lo, hi) in zip(values, self._pos_range, strict=True)
+            ]
+            self._hold = values
+            self._pos_cmd[:] = values
         return _OK
+
+    def _sanitize(
+        self, values: list[float], joints: list[int], fallback: list[float], mode: str
+    ) -> list[float]:
+        """Replace non-finite commands by ``fallback``, warning once per joint whose command
+        was finite before (unclaimed interfaces are NaN from the start: no warning)."""
+        all_were_finite = self._ok[mode]
+        self._ok[mode] = False
+        out = []
+        for k, (value, i) in enumerate(zip(values, joints, strict=True)):
+            if math.isfinite(value):
+                self._finite[i] = True
+                out.append(value)
+                continue
+            if (self._finite[i] or all_were_finite) and self._joints[i] not in self._warned:
+                self._warn_bad(i, value)
+            self._finite[i] = False
+            out.append(fallback[k])
+        return out
 
     def _warn_bad(self, i: int, value: float) -> None:
         self._warned.add(self._joints[i])
@@ -189,16 +260,19 @@ class SimSystem(HardwareComponent):
         )
 
     @property
+    def has_kinematic_joints(self) -> bool:
+        """Position joints (written into the state every physics step)."""
+        return bool(self._pos_i)
+
+    @property
     def has_position_joints(self) -> bool:
-        return len(self._pos_q) > 0
+        return bool(self._pos_i)
 
     def apply(self) -> None:
-        """Write the kinematic (position/velocity) commands into the state; every physics step."""
-        if len(self._pos_q):
-            self.data.qpos[self._pos_q] = self._pos_cmd
-            self.data.qvel[self._pos_d] = 0.0
-        if len(self._vel_d):
-            self.data.qvel[self._vel_d] = self._vel_cmd
+        """Write the kinematic (position) commands into the state; every physics step."""
+        if self._pos_i:
+            self._qpos[self._pos_q] = self._pos_cmd
+            self._qvel[self._pos_d] = 0.0
 
     def reset(self) -> None:
         """Hold the current positions and forget the commands (start, world reset)."""
@@ -212,6 +286,11 @@ def _first_mode(interfaces: Sequence[Any]) -> str:
         if d.interface in _MODES:
             return str(d.interface)
     return ""
+
+
+def _actuator_id(model: Any, name: str) -> int:
+    mj = mujoco()
+    return int(mj.mj_name2id(model, mj.mjtObj.mjOBJ_ACTUATOR, name))
 
 
 def _joint_id(model: Any, name: str, where: str) -> int:

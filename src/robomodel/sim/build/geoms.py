@@ -66,7 +66,7 @@ def _load(path: str, where: str) -> tuple[np.ndarray, np.ndarray]:
     try:
         trimesh = importlib.import_module("trimesh")
     except ImportError:
-        raise MissingDependencyError("trimesh", "viewer", "loading mesh files") from None
+        raise MissingDependencyError("trimesh", "sim", "loading mesh files") from None
     try:
         loaded = trimesh.load(path, force="mesh")
     except Exception as exc:

@@ -27,7 +27,14 @@ from robomodel.sim.build.geoms import MeshLoader, geom_kwargs
 from robomodel.sim.build.inertia import check_inertial, where
 from robomodel.sim.exceptions import SimulationError
 
-__all__ = ["SELF_COLLIDE_BIT", "BuiltRobot", "Placement", "add_robot", "quat_wxyz_from_rpy"]
+__all__ = [
+    "SELF_COLLIDE_BIT",
+    "BuiltRobot",
+    "Placement",
+    "add_robot",
+    "quat_wxyz_from_rpy",
+    "velocity_actuator_name",
+]
 
 SELF_COLLIDE_BIT = 1 << 30
 _ALL_BITS = (1 << 31) - 1
@@ -133,20 +140,17 @@ def _set_inertial(body: Any, link: Link) -> None:
     body.explicitinertial = True
     if inertial is None or inertial.mass_kg == 0.0:
         body.mass = 0.0
+        body.ipos = [0.0, 0.0, 0.0]
         body.inertia = [0.0, 0.0, 0.0]
         return
     R = inertial.origin.matrix()[:3, :3]
-    inertia = R @ np.asarray(inertial.inertia.matrix()) @ R.T  # in the body frame [kg m^2]
+    I_link = R @ np.asarray(inertial.inertia.matrix()) @ R.T
     body.mass = inertial.mass_kg
     body.ipos = list(inertial.origin.xyz_m)
+    body.iquat = [1.0, 0.0, 0.0, 0.0]  # the tensor is already rotated into the link frame
     body.fullinertia = [
-        inertia[0, 0],
-        inertia[1, 1],
-        inertia[2, 2],
-        inertia[0, 1],
-        inertia[0, 2],
-        inertia[1, 2],
-    ]
+        I_link[0, 0], I_link[1, 1], I_link[2, 2], I_link[0, 1], I_link[0, 2], I_link[1, 2]
+    ]  # fmt: skip
 
 
 def _add_joint(body: Any, joint: Joint, name: str) -> None:
@@ -237,6 +241,8 @@ def add_robot(
             _add_visuals(spec, body, link, built, loader)
     for joint_name in joints:
         joint = robot.joint(joint_name)
+        if joint.mimic is None and joint.type is not JointType.PLANAR:
+            _add_velocity_servo(spec, joint, prefix)
         if joint.mimic is not None and joint.mimic.joint in joints:
             eq = spec.add_equality(
                 type=mj.mjtEq.mjEQ_JOINT,
@@ -257,6 +263,30 @@ def add_robot(
         )
     built.joints = tuple(joints)
     return built
+
+
+def velocity_actuator_name(joint: str) -> str:
+    """The (prefixed) MuJoCo name of a joint's velocity servo."""
+    return f"{joint}__velocity"
+
+
+def _add_velocity_servo(spec: Any, joint: Joint, prefix: str) -> None:
+    """A velocity servo, off (gain 0) until simulated hardware commands the joint's velocity.
+
+    ``set_to_velocity``: force = kv (ctrl - qdot), clamped to the URDF effort limit as the ODE
+    joint motor of gazebo_ros_control (``fmax`` = effort). The implicitfast integrator treats
+    kv implicitly, so a stiff servo stays stable.
+    """
+    mj = mujoco()
+    name = prefix + joint.name
+    actuator = spec.add_actuator(
+        name=velocity_actuator_name(name), target=name, trntype=mj.mjtTrn.mjTRN_JOINT
+    )
+    actuator.set_to_velocity(kv=0.0)
+    limit = joint.limit
+    if limit is not None and limit.effort is not None and limit.effort > 0:
+        actuator.forcelimited = mj.mjtLimited.mjLIMITED_TRUE
+        actuator.forcerange = [-limit.effort, limit.effort]
 
 
 def _add_collisions(

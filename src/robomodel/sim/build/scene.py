@@ -73,6 +73,8 @@ def _add_shape(spec: Any, shape: Shape, index: int) -> None:
     geom.friction = [shape.friction, 0.005, 0.0001]
     if shape.mass_kg > 0:
         parent.explicitinertial = True
+        parent.ipos = [0.0, 0.0, 0.0]  # the centre of the shape (else it is not initialised)
+        parent.iquat = [1.0, 0.0, 0.0, 0.0]
         parent.mass = shape.mass_kg
         parent.fullinertia = [*_moments(shape), 0.0, 0.0, 0.0]
     _world_bits(geom)

@@ -15,11 +15,13 @@ from robomodel.runtime.msg.geometry_msgs import (
     Pose,
     PoseWithCovariance,
     Quaternion,
+    Transform,
+    TransformStamped,
     Twist,
     TwistWithCovariance,
     Vector3,
 )
-from robomodel.runtime.msg.nav_msgs import Odometry
+from robomodel.runtime.msg.nav_msgs import Odometry, TFMessage
 from robomodel.runtime.msg.std_msgs import Header
 from robomodel.sim._mujoco import mujoco
 
@@ -44,6 +46,24 @@ class GroundTruth:
     def xy_yaw(self) -> tuple[float, float, float]:
         p = self.data.xpos[self.body]
         return float(p[0]), float(p[1]), yaw_of(self.data.xquat[self.body])
+
+    def transform(self, time_s: float, child_frame: str) -> TFMessage:
+        """The same pose as TF ``world -> child_frame`` (for drawing the true pose)."""
+        p, q = self.data.xpos[self.body], self.data.xquat[self.body]
+        return TFMessage(
+            [
+                TransformStamped(
+                    header=Header(stamp=Time.from_seconds(time_s), frame_id="world"),
+                    child_frame_id=child_frame,
+                    transform=Transform(
+                        translation=Vector3(float(p[0]), float(p[1]), float(p[2])),
+                        rotation=Quaternion(
+                            x=float(q[1]), y=float(q[2]), z=float(q[3]), w=float(q[0])
+                        ),
+                    ),
+                )
+            ]
+        )
 
     def measure(self, time_s: float) -> Odometry:
         mj = mujoco()
