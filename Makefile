@@ -16,7 +16,9 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/robomodel view examples/simplebot_description/urdf/simplebot.urdf.xacro
+	$(BIN)/robomodel sim examples/simplebot_description/urdf/simplebot_lidar.urdf.xacro \
+		--controllers examples/simplebot_description/config/simplebot_controllers.yaml \
+		--world examples/simplebot_description/worlds/wall.world
 
 test: $(STAMP)
 	$(BIN)/ruff check --no-cache src tests bench
@@ -31,6 +33,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_runtime.py
 	$(BIN)/python bench/bench_control.py
 	$(BIN)/python bench/bench_viewer.py
+	$(BIN)/python bench/bench_sim.py
 
 clean:
 	rm -rf $(VENV) build .pytest_cache .mypy_cache .ruff_cache

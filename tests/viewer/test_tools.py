@@ -206,3 +206,22 @@ def test_messages_are_shown_literally_in_markdown() -> None:
     assert escape_markdown("sin(i/rate*speed)*diff [pid_p]") == (
         r"sin(i/rate\*speed)\*diff \[pid\_p\]"
     )
+
+
+def test_steering_follows_a_diff_drive_topic_until_edited() -> None:
+    from types import SimpleNamespace
+
+    from robomodel.viewer.tools.steering import SteeringTool
+
+    tool = SteeringTool.__new__(SteeringTool)
+    tool.topic = SimpleNamespace(value="/cmd_vel")
+    twist = {"geometry_msgs/msg/Twist"}
+    tool.follow_graph({"/odom": {"nav_msgs/msg/Odometry"}, "/simplebot_controller/cmd_vel": twist})
+    assert tool.topic.value == "/simplebot_controller/cmd_vel"
+    tool.topic.value = "/my_robot/cmd_vel"  # edited by the user: kept
+    tool.follow_graph({"/other/cmd_vel": twist})
+    assert tool.topic.value == "/my_robot/cmd_vel"
+    fresh = SteeringTool.__new__(SteeringTool)
+    fresh.topic = SimpleNamespace(value="/cmd_vel")
+    fresh.follow_graph({"/cmd_vel": twist, "/x/cmd_vel": twist})  # /cmd_vel is in use: kept
+    assert fresh.topic.value == "/cmd_vel"

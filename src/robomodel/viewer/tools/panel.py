@@ -55,6 +55,7 @@ class ToolsPanel:
             self.tools.topics = {name: set(info.types) for name, info in graph.topics.items()}
             self.tools.nodes = set(graph.nodes)
             self.parameters.update_nodes(self.tools.nodes)
+            self.steering.follow_graph(self.tools.topics)
             self.graph_updates += 1
         finally:
             self._pending.clear()

@@ -18,6 +18,8 @@ from robomodel.viewer.tools.base import ToolContext
 __all__ = ["SteeringCommand", "SteeringTool"]
 
 _PERIOD_S = 0.1  # rqt_robot_steering's QTimer: 100 ms
+_DEFAULT_TOPIC = "/cmd_vel"
+_TWIST = "geometry_msgs/msg/Twist"
 
 
 class SteeringCommand:
@@ -46,7 +48,9 @@ class SteeringTool:
         self.published = 0
         self._publisher: Publisher[Any] | None = None
         self._key: tuple[str, bool] = ("", False)
-        self.topic = gui.add_text("Steering topic", "/cmd_vel", hint="geometry_msgs/Twist topic")
+        self.topic = gui.add_text(
+            "Steering topic", _DEFAULT_TOPIC, hint="geometry_msgs/Twist topic"
+        )
         self.stamped = gui.add_checkbox("TwistStamped", False)
         self.linear_max = gui.add_number("Max linear [m/s]", 1.0, min=0.01, max=100.0, step=0.01)
         self.angular_max = gui.add_number(
@@ -63,6 +67,20 @@ class SteeringTool:
         self.linear_max.on_update(lambda _e: self._set_range(self.linear, self.linear_max))
         self.angular_max.on_update(lambda _e: self._set_range(self.angular, self.angular_max))
         tools.post(lambda: tools.node.create_timer(_PERIOD_S, self.tick))
+
+    def follow_graph(self, topics: dict[str, set[str]]) -> None:
+        """While the topic box still shows the default, follow the robot's velocity topic.
+
+        rqt_robot_steering starts on ``/cmd_vel``; a ros2_control diff-drive robot listens on
+        ``/<controller>/cmd_vel`` (or ``cmd_vel_unstamped``) instead, so when nothing uses
+        ``/cmd_vel`` the first such Twist topic in the graph is chosen. An edited box is kept.
+        """
+        if self.topic.value != _DEFAULT_TOPIC or _DEFAULT_TOPIC in topics:
+            return
+        for name in sorted(topics):
+            if name.endswith(("/cmd_vel", "/cmd_vel_unstamped")) and _TWIST in topics[name]:
+                self.topic.value = name
+                return
 
     @staticmethod
     def _set_range(slider: Any, limit: Any) -> None:
