@@ -338,6 +338,7 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
             domain,
             "--port",
             "0",
+            "--no-browser",
             "--duration",
             "90",
         ],

@@ -144,7 +144,8 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
          str(desc / "urdf" / "simplebot_lidar.urdf.xacro"),
          "--controllers", str(desc / "config" / "simplebot_controllers.yaml"),
          "--world", str(desc / "worlds" / "wall.world"),
-         "--domain-id", domain, "--port", "0", "--duration", "60", "--report", "json"],
+         "--domain-id", domain, "--port", "0", "--no-browser", "--duration", "60",
+         "--report", "json"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
     )  # fmt: skip
     try:

@@ -13,6 +13,7 @@ import argparse
 import contextlib
 import importlib
 import sys
+import webbrowser
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
@@ -46,6 +47,9 @@ def register(subparsers: Any) -> None:
         help="controller YAML (ROS 2 or ROS 1)",
     )
     run_p.add_argument("--no-view", action="store_true", help="do not start the viewer")
+    run_p.add_argument(
+        "--no-browser", action="store_true", help="start the viewer but do not open a browser"
+    )
     run_p.add_argument(
         "--port", type=int, default=8080, help="the viewer's HTTP port (0: any free port)"
     )
@@ -282,5 +286,7 @@ def _start_viewer(args: argparse.Namespace) -> Any:
     except (TypeError, RobomodelError) as exc:
         print(f"robomodel: the viewer could not start ({exc}); running headless", file=sys.stderr)
         return None
-    print(f"robomodel control: viewer at {viewer.url}", file=sys.stderr)
+    print(f"robomodel {args.verb}: viewer at {viewer.url}", file=sys.stderr)
+    if not getattr(args, "no_browser", True):
+        webbrowser.open(viewer.url)
     return viewer

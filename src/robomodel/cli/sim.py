@@ -49,6 +49,9 @@ def register(subparsers: Any) -> None:
         help="realtime (the world's real_time_factor), max (as fast as possible) or a factor",
     )
     p.add_argument("--headless", action="store_true", help="no viewer")
+    p.add_argument(
+        "--no-browser", action="store_true", help="start the viewer but do not open a browser"
+    )
     p.add_argument("--paused", action="store_true", help="start paused (gazebo -u)")
     p.add_argument("--duration", type=float, default=None, help="stop after S s of sim time")
     p.add_argument(
