@@ -35,6 +35,7 @@ def test_inproc_service_call_and_errors() -> None:
         assert ctx.call_service("/calc/add", {"a": 1, "b": 2}) == {"sum": 3}
         with pytest.raises(RobomodelError, match="already offered"):
             ctx.create_service("/calc/add", lambda r: r)
+        assert ctx.graph().services == {"/calc/add"}
         unregister()
         with pytest.raises(RobomodelError, match="not found"):
             ctx.call_service("/calc/add", {})
@@ -58,6 +59,29 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
             assert "missing 'a'" in ctx.call_service("/calc/add", {"b": 1})["error"]
             with pytest.raises(RobomodelError, match="did not answer"):
                 ctx.call_service("/calc/nothing", {}, timeout_s=0.5)
+            assert "/calc/add" in ctx.graph().services
+        cli = [sys.executable, "-m", "robomodel.cli.main", "service"]
+        listed = subprocess.run([*cli, "list", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert listed.returncode == 0 and "/calc/add" in listed.stdout.split()
+        called = subprocess.run([*cli, "call", "calc/add", "{a: 2, b: 3.5}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert called.returncode == 0, called.stderr
+        assert "sum: 5.5" in called.stdout and '{"a": 2, "b": 3.5}' in called.stdout
+        failed = subprocess.run([*cli, "call", "/calc/add", "{b: 1}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert failed.returncode == 2 and "missing 'a'" in failed.stdout
+        missing = subprocess.run([*cli, "call", "/calc/sub", "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert missing.returncode == 2
+        assert "did not answer" in missing.stderr and "/calc/add" in missing.stderr
     finally:
         proc.kill()
         proc.wait()
+
+
+def test_service_request_yaml_is_checked() -> None:
+    from robomodel.cli.service import parse_request
+
+    assert parse_request("") == {} and parse_request("{}") == {}
+    assert parse_request("{steps: 10}") == {"steps": 10}
+    with pytest.raises(RobomodelError, match="mapping"):
+        parse_request("[1, 2]")
+    with pytest.raises(RobomodelError, match="not valid YAML at line 1"):
+        parse_request("{steps: [}")

@@ -32,6 +32,7 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.ik",
     "robomodel.cli.topic",
     "robomodel.cli.param",
+    "robomodel.cli.service",
     "robomodel.cli.publish_state",
     "robomodel.cli.control",
     "robomodel.cli.view",

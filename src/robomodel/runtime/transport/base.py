@@ -52,6 +52,7 @@ class Graph:
 
     nodes: set[str] = field(default_factory=set)
     topics: dict[str, TopicInfo] = field(default_factory=dict)
+    services: set[str] = field(default_factory=set)
 
     def add(self, kind: str, endpoint: Endpoint) -> None:
         self.nodes.add(endpoint.node)

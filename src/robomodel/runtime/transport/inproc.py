@@ -129,7 +129,7 @@ class InprocTransport(Transport):
         return lambda: self._nodes.pop(node, None)  # type: ignore[return-value]
 
     def graph(self, timeout_s: float = 1.0) -> Graph:
-        graph = Graph(nodes=set(self._nodes))
+        graph = Graph(nodes=set(self._nodes), services=set(self._services))
         for pubs in self._pubs.values():
             for pub in pubs:
                 graph.add("pub", pub.endpoint)

@@ -317,6 +317,8 @@ class ZenohTransport(Transport):
             kind = parts[3]
             if kind == "node":
                 graph.nodes.add(_unmangle(parts[4]))
+            elif kind == "srv":
+                graph.services.add(_unmangle(parts[4]))
             elif kind in ("pub", "sub") and len(parts) >= 8:
                 depth, _, durability = _unmangle(parts[7]).partition(":")
                 qos = QoSProfile(
@@ -348,7 +350,8 @@ class ZenohTransport(Transport):
         queryable = self.session.declare_queryable(
             key, self._answer_on_executor(handler, f"service {name}")
         )
-        self._node_handles[f"@s{name}"] = (queryable,)
+        token = self.session.liveliness().declare_token(f"{self.prefix}/@g/srv/{_mangle(name)}")
+        self._node_handles[f"@s{name}"] = (queryable, token)
 
         def unregister() -> None:
             for handle in self._node_handles.pop(f"@s{name}", ()):
