@@ -81,3 +81,60 @@ def test_rate_factor_paces_the_run(capsys: pytest.CaptureFixture[str]) -> None:
     assert code == 0
     report = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert 2.5 < report["real_time_factor"] < 4.4  # paced to 4x (the sim alone runs >20x)
+
+
+def test_paused_single_step_and_services_from_another_process() -> None:
+    """gazebo -u, then /gazebo/step, /gazebo/unpause_physics and /gazebo/reset_world from the
+    `service` verb of another process; /clock follows; xacro arguments reach the description."""
+    import os
+    import subprocess
+    import sys
+    import time
+
+    from .conftest import UR5
+
+    domain = str(240 + os.getpid() % 40)
+    cli = [sys.executable, "-m", "robomodel.cli.main"]
+    bus = ["--domain-id", domain]
+    sim = subprocess.Popen(
+        [*cli, "sim", str(UR5), "prefix:=left_", "--headless", "--paused", "--rate", "1", *bus],
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+
+    def run(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run([*cli, *args, *bus], capture_output=True, text=True, timeout=30)
+
+    def clock_s() -> float:
+        echo = run("topic", "echo", "/clock", "--once", "--timeout", "10")
+        assert echo.returncode == 0, echo.stderr
+        sec = int(echo.stdout.split("sec: ")[1].split()[0])
+        nanosec = int(echo.stdout.split("nanosec: ")[1].split()[0])
+        return sec + nanosec * 1e-9
+
+    try:
+        assert sim.stderr is not None and "robomodel sim: world" in sim.stderr.readline()
+        for _ in range(50):  # the simulator's services appear in the graph
+            listed = run("service", "list")
+            if "/gazebo/step" in listed.stdout:
+                break
+            time.sleep(0.2)
+        assert {"/gazebo/pause_physics", "/gazebo/reset_world"} <= set(listed.stdout.split())
+        assert run("service", "call", "/gazebo/step", "{steps: 250}").returncode == 0
+        assert clock_s() == pytest.approx(0.25, abs=1e-6)  # exactly 250 steps of 1 ms
+        assert clock_s() == pytest.approx(0.25, abs=1e-6)  # and still paused
+        tf = run("topic", "echo", "/tf_static", "--once", "--timeout", "10")
+        assert "left_base_link" in tf.stdout  # prefix:=left_ reached the xacro
+        assert run("service", "call", "/gazebo/unpause_physics").returncode == 0
+        time.sleep(0.5)
+        running = clock_s()
+        assert running > 0.5
+        assert run("service", "call", "/gazebo/pause_physics").returncode == 0
+        assert run("service", "call", "/gazebo/reset_world").returncode == 0
+        assert run("service", "call", "/gazebo/step", "{steps: 3}").returncode == 0
+        assert clock_s() == pytest.approx(0.003, abs=1e-6)
+        bad = run("service", "call", "/gazebo/step", "{steps: 0}")
+        assert bad.returncode == 0 and "steps must be >= 1" in bad.stdout
+    finally:
+        sim.terminate()
+        sim.wait(timeout=10)

@@ -173,16 +173,45 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
             image = settle(page)
             return (
                 (image,)
-                if changed_fraction(scene_region(before), scene_region(image)) > 0.01
+                if changed_fraction(scene_region(before), scene_region(image)) > 0.002
                 else None
             )
 
         wait_for(moved, timeout_s=40, what="the simplebot to drive in the page")
         save_shot(page, "demo_simplebot_driving")
         page.get_by_text("Stop", exact=True).click()
+        _pause_and_step_from_the_simulation_folder(page)
     finally:
         sim.terminate()
         out, _ = sim.communicate(timeout=30)
     report = json.loads(out.strip().splitlines()[-1]) if out.strip() else None
     if report is not None:  # terminated early: the report may be missing; the pixels decided
         assert report["ground_truth_xy"][0] > 0.05
+
+
+def _pause_and_step_from_the_simulation_folder(page: Any) -> None:
+    """Gazebo's bar: the status shows sim time and RTF; Pause holds it; Step adds N steps."""
+    import re
+
+    _open(page, "Simulation")
+    status = page.get_by_text(re.compile("real-time factor"))
+
+    def sim_time() -> float | None:
+        text = status.first.inner_text() if status.count() else ""
+        found = re.search(r"Sim time ([0-9.]+) s", text)
+        return float(found.group(1)) if found else None
+
+    wait_for(sim_time, what="the sim time in the Simulation folder")
+    page.get_by_role("button", name="Pause").click()
+    wait_for(lambda: "paused" in status.first.inner_text(), what="the paused status")
+    held = sim_time()
+    assert held is not None
+    _type(page, "Steps", "500")
+    page.get_by_role("button", name="Step").click()
+    wait_for(
+        lambda: (t := sim_time()) is not None and abs(t - (held + 0.5)) < 1e-6,
+        what="500 steps of 1 ms",
+    )
+    save_shot(page, "demo_simulation_paused")
+    page.get_by_role("button", name="Play").click()
+    wait_for(lambda: "paused" not in status.first.inner_text(), what="the physics running again")

@@ -25,15 +25,23 @@ from __future__ import annotations
 
 import logging
 import queue
+import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.description.model.pose import quat_xyzw_from_rpy
 from robomodel.runtime.clock import ManualClock
 from robomodel.runtime.msg.builtin_interfaces import Time
-from robomodel.runtime.msg.geometry_msgs import Quaternion, Vector3
+from robomodel.runtime.msg.geometry_msgs import (
+    Quaternion,
+    Transform,
+    TransformStamped,
+    Vector3,
+)
 from robomodel.runtime.msg.nav_msgs import Clock, TFMessage
+from robomodel.runtime.msg.std_msgs import Header
 from robomodel.sim.build.robot import BuiltRobot
+from robomodel.sim.build.scene import shape_body_name
 from robomodel.sim.sensors.base import SimSensor
 from robomodel.sim.sensors.contact import ContactSensor
 from robomodel.sim.sensors.ground_truth import GroundTruth
@@ -48,6 +56,8 @@ if TYPE_CHECKING:
 __all__ = ["SimBridge", "robot_namespace"]
 
 log = logging.getLogger("robomodel.sim")
+
+_IDLE_CLOCK_PERIOD_S = 0.1  # /clock while paused [s of wall time]
 
 _SENSORS: dict[SensorKind, type[SimSensor]] = {
     SensorKind.RAY: Lidar,
@@ -86,6 +96,7 @@ class SimBridge:
         self.context = context
         self.paused = False
         self.pending_steps = 0
+        self._last_idle_clock = 0.0
         self._requests: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
         self.node = context.create_node("gazebo")
         self._clock_pub = self.node.create_publisher(Clock, "/clock", 10)
@@ -97,6 +108,8 @@ class SimBridge:
         self.ground_truth: list[GroundTruth] = []
         for built in sim.robots:
             self._add_robot(built, ground_truth_rate_hz)
+        if ground_truth_rate_hz > 0:
+            self._add_moving_shapes(ground_truth_rate_hz)
         self._unregister = [
             context.create_service(name, handler)
             for name, handler in (
@@ -131,10 +144,53 @@ class SimBridge:
             sim.every(ground_truth_rate_hz, _publishing(truth, publisher), order=1)
             self.ground_truth.append(truth)
             self._add_truth_tf(built, truth, ground_truth_rate_hz)
+        elif not built.floating:
+            self._add_weld_tf(built)
 
-    def _add_truth_tf(self, built: BuiltRobot, truth: GroundTruth, rate_hz: float) -> None:
+    def _add_moving_shapes(self, rate_hz: float) -> None:
+        """TF ``world -> <model>_<i>`` for the world's objects that move (mass > 0), so that
+        the viewer can draw them where the physics has them (static ones are in ``world``)."""
+        frames = [
+            shape_body_name(shape, i)
+            for i, shape in enumerate(self.sim.world.shapes)
+            if shape.mass_kg > 0
+        ]
+        if not frames:
+            return
+        truths = [(GroundTruth(self.sim.model, self.sim.data, f, f), f) for f in frames]
+        tf_pub = self.node.create_publisher(TFMessage, "/tf", 100)
+
+        def publish(time_s: float) -> None:
+            tf_pub.publish(
+                TFMessage([t for truth, f in truths for t in truth.transform(time_s, f).transforms])
+            )
+
+        self.sim.every(rate_hz, publish, order=1)
+
+    def _add_weld_tf(self, built: BuiltRobot) -> None:
+        """A robot welded where it was spawned: static ``world -> <root>`` at the spawn pose
+        (none when its root link is ``world`` itself), so every robot hangs off ``world``."""
+        root = built.prefix + built.robot.tree().root
+        if root == "world":
+            return
+        x, y, z = built.placement.xyz_m
+        qx, qy, qz, qw = quat_xyzw_from_rpy(*built.placement.rpy_rad)
+        weld = TransformStamped(
+            header=Header(frame_id="world"),
+            child_frame_id=root,
+            transform=Transform(Vector3(x, y, z), Quaternion(x=qx, y=qy, z=qz, w=qw)),
+        )
+        self._publish_static([weld])
+
+    def _publish_static(self, transforms: list[Any]) -> None:
         from robomodel.runtime.qos import latched
 
+        if self._static_pub is None:
+            self._static_pub = self.node.create_publisher(TFMessage, "/tf_static", latched())
+        self._static.extend(transforms)
+        self._static_pub.publish(TFMessage(list(self._static)))
+
+    def _add_truth_tf(self, built: BuiltRobot, truth: GroundTruth, rate_hz: float) -> None:
         tf_pub = self.node.create_publisher(TFMessage, "/tf", 100)
         frame = f"{built.prefix}ground_truth"
         self.sim.every(rate_hz, lambda t: tf_pub.publish(truth.transform(t, frame)), order=1)
@@ -144,20 +200,23 @@ class SimBridge:
         origin.translation = Vector3(x, y, z)
         qx, qy, qz, qw = quat_xyzw_from_rpy(*built.placement.rpy_rad)
         origin.rotation = Quaternion(x=qx, y=qy, z=qz, w=qw)
-        if self._static_pub is None:
-            self._static_pub = self.node.create_publisher(TFMessage, "/tf_static", latched())
-        self._static.extend(odom.transforms)
-        self._static_pub.publish(TFMessage(list(self._static)))
+        self._publish_static(list(odom.transforms))
 
     # -- the tick ------------------------------------------------------------------------------
     def poll(self) -> None:
-        """Apply queued service requests and run pending callbacks (also while paused)."""
+        """While paused: apply queued service requests, run pending callbacks and keep
+        publishing /clock (at most every 0.1 s of wall time) so that late subscribers
+        (``topic echo /clock``, the viewer's status line) see the paused time."""
         while True:
             try:
                 request = self._requests.get_nowait()
             except queue.Empty:
                 break
             request()
+        now = time.monotonic()
+        if now - self._last_idle_clock >= _IDLE_CLOCK_PERIOD_S:
+            self._last_idle_clock = now
+            self._clock_pub.publish(Clock(clock=Time.from_seconds(self.sim.time_s)))
         self.context.spin_once(0.0)
 
     def _tick(self, time_s: float) -> None:

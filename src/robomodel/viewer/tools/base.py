@@ -94,6 +94,7 @@ class ToolContext:
         fixed_frame: Returns the current fixed frame.
         topics: Topic name to type names, as last seen in the graph (updated by the viewer).
         nodes: Node names, as last seen in the graph.
+        services: Service names, as last seen in the graph.
     """
 
     server: Any
@@ -104,6 +105,7 @@ class ToolContext:
     fixed_frame: Callable[[], str]
     topics: dict[str, set[str]] = field(default_factory=dict)
     nodes: set[str] = field(default_factory=set)
+    services: set[str] = field(default_factory=set)
 
     def topic_types(self) -> dict[str, type[Message]]:
         """Topics with one known message type, as classes."""

@@ -9,6 +9,7 @@ from robomodel.viewer.tools.overlays import OverlayTool
 from robomodel.viewer.tools.params import ParameterTool
 from robomodel.viewer.tools.plot import PlotTool
 from robomodel.viewer.tools.publisher import PublisherTool
+from robomodel.viewer.tools.simulation import SimulationTool
 from robomodel.viewer.tools.steering import SteeringTool
 
 __all__ = ["ToolsPanel"]
@@ -22,6 +23,8 @@ class ToolsPanel:
     def __init__(self, tools: ToolContext) -> None:
         self.tools = tools
         gui = tools.server.gui
+        with gui.add_folder("Simulation", expand_by_default=False):
+            self.simulation = SimulationTool(tools)
         with gui.add_folder("Robot Steering", expand_by_default=False):
             self.steering = SteeringTool(tools)
         with gui.add_folder("Plot", expand_by_default=False):
@@ -54,6 +57,7 @@ class ToolsPanel:
             graph = self.tools.bus.query(lambda: context.graph(timeout_s=0.5))
             self.tools.topics = {name: set(info.types) for name, info in graph.topics.items()}
             self.tools.nodes = set(graph.nodes)
+            self.tools.services = set(graph.services)
             self.parameters.update_nodes(self.tools.nodes)
             self.steering.follow_graph(self.tools.topics)
             self.graph_updates += 1
