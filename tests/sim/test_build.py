@@ -189,3 +189,49 @@ def test_visuals_are_optional_collision_free_and_coloured_by_gazebo_materials() 
     assert colours
     for rgba in colours:  # <gazebo reference="link1"><material>Gazebo/Orange
         np.testing.assert_allclose(rgba, GAZEBO_MATERIALS["Gazebo/Orange"], rtol=1e-6)
+
+
+ARMATURE = """<robot name="r" xmlns:drake="http://drake.mit.edu">
+  <link name="world"/>
+  <link name="arm"><inertial><origin xyz="0 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="world"/><child link="arm"/>
+    <axis xyz="0 0 1"/></joint>
+  <transmission name="t"><type>transmission_interface/SimpleTransmission</type>
+    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>50</mechanicalReduction>
+      <drake:rotor_inertia value="{rotor}"/>{gear}</actuator>
+  </transmission>
+  <gazebo reference="j"><springStiffness>2.0</springStiffness><springReference>0.3</springReference></gazebo>
+</robot>"""
+
+
+def test_armature_from_drake_rotor_inertia_and_springs_from_gazebo_joint_tags() -> None:
+    from robomodel.description.urdf.writer import urdf_to_string
+
+    robot = _robot(ARMATURE.format(rotor="4e-5", gear='\n      <drake:gear_ratio value="100"/>'))
+    assert read_urdf(urdf_to_string(robot).encode()).robot == robot  # kept on a round trip
+    sim = Simulation()
+    sim.add_robot(robot)
+    joint = sim.model.joint("j")
+    assert joint.armature[0] == pytest.approx(4e-5 * 100**2)  # reflected: I_rotor N^2 = 0.4
+    assert joint.stiffness[0] == 2.0
+    assert sim.model.qpos_spring[joint.qposadr[0]] == 0.3  # springref
+    # undamped spring from q = 0 about 0.3: the first maximum (0.6) after half a period,
+    # pi sqrt(I / k) with I = 0.01 (link) + 0.4 (armature) = 1.422 s (0.222 s without armature)
+    trace = []
+    for _ in range(2500):
+        sim.step(1)
+        trace.append(float(sim.data.joint("j").qpos[0]))
+    assert max(trace) == pytest.approx(0.6, abs=1e-3)
+    assert (1 + int(np.argmax(trace))) * 1e-3 == pytest.approx(np.pi * np.sqrt(0.41 / 2), abs=2e-3)
+    # without drake:gear_ratio the actuator's mechanicalReduction is the gear ratio
+    sim = Simulation()
+    sim.add_robot(_robot(ARMATURE.format(rotor="4e-5", gear="")))
+    assert sim.model.joint("j").armature[0] == pytest.approx(4e-5 * 50**2)
+
+
+def test_bad_rotor_inertia_is_refused_with_its_line() -> None:
+    sim = Simulation()
+    with pytest.raises(SimulationError, match=r"bad\.urdf:10:7: <drake:rotor_inertia.*>= 0"):
+        sim.add_robot(_robot(ARMATURE.format(rotor="-1", gear="")))

@@ -93,3 +93,48 @@ def test_missing_world_file() -> None:
     with pytest.raises(WorldError, match="cannot read world file"):
         read_world("/nonexistent/x.world")
     assert math.isfinite(default_world().real_time_factor)
+
+
+def test_world_in_the_viewer_and_on_tf() -> None:
+    """Static shapes drawn in ``world``; a moving crate follows the TF frame the simulator
+    publishes for it; a welded prefixed robot hangs off ``world`` through a static transform."""
+    pytest.importorskip("viser")
+    from robomodel.cli.sim import scenery_of
+    from robomodel.loading import load
+    from robomodel.runtime import Context, ManualClock
+    from robomodel.runtime.msg import TFMessage
+    from robomodel.runtime.qos import latched
+    from robomodel.sim import Placement
+    from robomodel.sim.bus import SimBridge
+
+    from .conftest import RRBOT
+
+    with pytest.warns(UserWarning):
+        world = parse_world(WORLD)
+    post, crate = scenery_of(world)
+    assert (post.frame, post.kind, post.size_m[:2]) == ("world", "cylinder", (0.1, 1.0))
+    assert post.xyz_m == pytest.approx((1.0, 2.5, 0.5), abs=1e-6)
+    assert (crate.frame, crate.kind, crate.xyz_m) == ("crate_1", "box", (0.0, 0.0, 0.0))
+
+    sim = Simulation(world)
+    sim.add_robot(load(str(RRBOT)), placement=Placement("left_", (0.0, 3.0, 0.0)))
+    context = Context(clock=ManualClock())
+    SimBridge(sim, context)
+    node = context.create_node("listener")
+    static: list[TFMessage] = []
+    moving: dict[str, tuple[float, float, float]] = {}
+    node.create_subscription(TFMessage, "/tf_static", static.append, latched())
+
+    def on_tf(msg: TFMessage) -> None:
+        for t in msg.transforms:
+            v = t.transform.translation
+            moving[t.child_frame_id] = (v.x, v.y, v.z)
+
+    node.create_subscription(TFMessage, "/tf", on_tf, 100)
+    sim.run(1.0)
+    context.spin_once(0.0)
+    assert moving["crate_1"][2] == pytest.approx(0.2, abs=0.01)  # fell from z 1 onto the ground
+    welds = {t.child_frame_id: t for m in static for t in m.transforms}
+    weld = welds["left_world"]  # rrbot's root link "world", prefixed
+    assert weld.header.frame_id == "world"
+    assert (weld.transform.translation.x, weld.transform.translation.y) == (0.0, 3.0)

@@ -126,3 +126,45 @@ def test_xacro_error_carries_file_line_and_macro_stack_to_the_page(
     wait_for(lambda: "in macro 'leg'" in viewer.status.content, what="the macro stack")
     assert "`robot.urdf.xacro:4:" in viewer.status.content
     assert session.robot is not None and session.robot.has_link("leg_1")  # last good model
+
+
+def test_scenery_is_posed_in_its_frame_and_hidden_while_unconnected(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    from robomodel.runtime.msg import TFMessage
+    from robomodel.runtime.msg.geometry_msgs import Quaternion, Transform, TransformStamped, Vector3
+    from robomodel.runtime.msg.std_msgs import Header
+    from robomodel.runtime.qos import latched
+    from robomodel.viewer import SceneryShape
+
+    wall = SceneryShape("wall_0", "world", "box", (0.1, 4.0, 1.0), (2.25, 0.0, 0.5))
+    ball = SceneryShape("ball_1", "ball_1", "sphere", (0.2, 0.0, 0.0), rgba=(1, 0, 0, 1))
+    viewer = _start(
+        started, RobotSource(str(write_arm(tmp_path))), fixed_frame="world", scenery=(wall, ball)
+    )
+    assert viewer.scenery is not None and viewer.context is not None
+    wall_node, ball_node = viewer.scenery.nodes
+    assert viewer.scenery.shown == 0  # no "world" frame on the bus yet
+    node = viewer.context.create_node("scenery_test")
+
+    def tf(parent: str, child: str, x: float, yaw: float = 0.0) -> TransformStamped:
+        q = Quaternion(z=float(np.sin(yaw / 2)), w=float(np.cos(yaw / 2)))
+        return TransformStamped(Header(frame_id=parent), child, Transform(Vector3(x, 0, 0), q))
+
+    static = node.create_publisher(TFMessage, "/tf_static", latched())
+    static.publish(TFMessage([tf("world", "base_link", 0.0)]))
+    wait_for(lambda: viewer.scenery.shown == 1, what="the wall drawn in world")  # type: ignore[union-attr]
+    assert wall_node.visible and not ball_node.visible
+    assert np.allclose(wall_node.position, (2.25, 0.0, 0.5))
+    moving = node.create_publisher(TFMessage, "/tf")
+    moving.publish(TFMessage([tf("world", "ball_1", 1.0, yaw=np.pi / 2)]))
+    wait_for(lambda: viewer.scenery.shown == 2, what="the ball in its own frame")  # type: ignore[union-attr]
+    assert np.allclose(ball_node.position, (1.0, 0.0, 0.0))
+    viewer.fixed_frame = "base_link"  # another fixed frame: the same world, seen from there
+    static.publish(TFMessage([tf("world", "base_link", 1.0, yaw=np.pi / 2)]))
+    wait_for(
+        lambda: np.allclose(wall_node.position, (0.0, -1.25, 0.5), atol=1e-9),
+        what="the wall re-posed in base_link",
+    )
+    with pytest.raises(ValueError, match="box, cylinder, sphere"):
+        SceneryShape("x", "world", "cone", (1, 1, 1))

@@ -245,11 +245,14 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _start_viewer(args: argparse.Namespace) -> Any:
+def _start_viewer(
+    args: argparse.Namespace, *, fixed_frame: str | None = None, scenery: tuple[Any, ...] = ()
+) -> Any:
     """Start the browser viewer on the bus if this installation has it (imported lazily).
 
     The viewer reads /joint_states and /tf from the bus (``external`` joint states), so it needs
-    Zenoh. Returns the viewer (to close) or ``None`` when running headless.
+    Zenoh. ``fixed_frame`` and ``scenery`` (``SceneryShape``s) are passed on to it. Returns the
+    viewer (to close) or ``None`` when running headless.
     """
     try:
         viewer_module = importlib.import_module("robomodel.viewer")
@@ -280,6 +283,8 @@ def _start_viewer(args: argparse.Namespace) -> Any:
                 external=True,
                 port=args.port,
                 package_index=package_index_from_args(args),
+                fixed_frame=fixed_frame,
+                scenery=scenery,
             )
         )
         viewer.start()

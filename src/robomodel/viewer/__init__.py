@@ -7,12 +7,14 @@ extra).
 
 from robomodel.viewer.app import Viewer, ViewerOptions
 from robomodel.viewer.errors import MeshLoadError, PortInUseError, ViewerError
+from robomodel.viewer.scenery import SceneryShape
 from robomodel.viewer.session import RobotSource
 
 __all__ = [
     "MeshLoadError",
     "PortInUseError",
     "RobotSource",
+    "SceneryShape",
     "Viewer",
     "ViewerError",
     "ViewerOptions",

@@ -36,6 +36,7 @@ from robomodel.viewer._deps import import_viser
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.options_panel import OptionsPanel
 from robomodel.viewer.ports import ensure_port_free
+from robomodel.viewer.scenery import SceneryDisplay, SceneryShape
 from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession, RobotSource
 from robomodel.viewer.status import RobotStatus, render_status
 
@@ -56,6 +57,7 @@ class ViewerOptions:
         external: Joint states (or /tf) come from another process on the bus.
         reload_period_s: How often the description files are polled for changes.
         tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
+        scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
     """
 
     sources: tuple[RobotSource, ...]
@@ -70,6 +72,7 @@ class ViewerOptions:
     package_index: PackageIndex = field(default_factory=PackageIndex)
     reload_period_s: float = 0.25
     tools: bool = True
+    scenery: tuple[SceneryShape, ...] = ()
 
 
 def zero_pose_extent_m(robot: Robot) -> float:
@@ -132,6 +135,7 @@ class Viewer:
         self._missing: dict[int, tuple[str, ...]] = {}
         self._beside: set[int] = set()
         self.tools: Any = None
+        self.scenery: SceneryDisplay | None = None
 
     # -- lifecycle ----------------------------------------------------------------------------
     @property
@@ -167,6 +171,8 @@ class Viewer:
             )
         self._build_gui()
         self._place_camera()
+        if opts.scenery:
+            self.scenery = SceneryDisplay(self.server.scene, opts.scenery)
         for session in self.sessions:
             session.build_display(
                 self.server.scene, self.meshes, self.display_options, load_meshes=False
@@ -183,7 +189,11 @@ class Viewer:
         robot = next((s.robot for s in self.sessions if s.robot is not None), None)
         extent = zero_pose_extent_m(robot) if robot is not None else 0.5
         distance = max(1.0, 3.0 * extent + 0.5) * max(1.0, len(self.sessions) ** 0.5)
+        near = [float(np.linalg.norm(s.xyz_m)) for s in self.options.scenery if s.frame == "world"]
         yaw, pitch = 5.5, 0.33
+        if near:  # a simulated world: from behind the spawn pose, its nearest objects in view
+            distance = max(distance, min(1.5 * min(near), 12.0))
+            yaw, pitch = 3.7, 0.5
         camera = self.server.initial_camera
         camera.look_at = (0.0, 0.0, 0.0)
         camera.position = (
@@ -361,6 +371,8 @@ class Viewer:
                 xyzs.append(poses.xyz)
                 shown.append(poses.visible)
             self._push_other_frames(frames, wxyzs, xyzs, shown)
+            if self.scenery is not None:
+                self.scenery.update(self.buffer, self.fixed_frame)
             if frames:
                 self.tf_display.update(
                     tuple(frames),

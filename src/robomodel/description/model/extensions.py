@@ -39,6 +39,7 @@ class TransmissionJoint:
     hardware_interfaces: tuple[str, ...] = ()
     mechanical_reduction: float | None = None
     offset: float | None = None
+    extra: tuple[RawElement, ...] = ()  # other children (e.g. drake:rotor_inertia), verbatim
 
 
 @dataclass(frozen=True, slots=True)
@@ -50,6 +51,7 @@ class TransmissionActuator:
     hardware_interfaces: tuple[str, ...] = ()
     mechanical_reduction: float | None = None
     offset: float | None = None
+    extra: tuple[RawElement, ...] = ()  # other children (e.g. drake:rotor_inertia), verbatim
 
 
 @dataclass(frozen=True, slots=True)

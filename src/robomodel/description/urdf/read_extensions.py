@@ -39,9 +39,15 @@ def _reduction(ctx: ParseContext, element: etree._Element, *tags: str) -> float 
     return None
 
 
+_SIDE_TAGS = frozenset(
+    ("role", "hardwareInterface", "hardware_interface", "mechanicalReduction",
+     "mechanical_reduction", "offset")
+)  # fmt: skip
+
+
 def _side(
     ctx: ParseContext, element: etree._Element
-) -> tuple[str, str | None, tuple[str, ...], float | None, float | None]:
+) -> tuple[str, str | None, tuple[str, ...], float | None, float | None, tuple[RawElement, ...]]:
     name = element.get("name")
     if name is None:
         raise ElementError("transmission joint/actuator needs a name attribute", element)
@@ -53,7 +59,12 @@ def _side(
     )
     reduction = _reduction(ctx, element, "mechanicalReduction", "mechanical_reduction")
     offset = _reduction(ctx, element, "offset")
-    return name, role, interfaces, reduction, offset
+    extra = tuple(
+        raw(ctx, child)
+        for child in element
+        if isinstance(child.tag, str) and child.tag not in _SIDE_TAGS
+    )
+    return name, role, interfaces, reduction, offset, extra
 
 
 def read_transmission(ctx: ParseContext, element: etree._Element) -> Transmission:

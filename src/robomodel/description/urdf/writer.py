@@ -221,6 +221,8 @@ def _transmission(out: _Out, depth: int, tr: Transmission) -> None:
                 _text_element(out, depth + 2, reduction_tag, _num(side.mechanical_reduction))
             if side.offset is not None:
                 _text_element(out, depth + 2, "offset", _num(side.offset))
+            for raw in side.extra:
+                out.raw(depth + 2, raw.xml)
             out.add(depth + 1, f"</{tag}>")
     if tr.mechanical_reduction is not None:
         _text_element(out, depth + 1, reduction_tag, _num(tr.mechanical_reduction))

@@ -3,7 +3,8 @@
 ``<gazebo reference="LINK">`` applies to a link, ``reference="JOINT"`` to a joint, no
 reference to the model. Understood here: ``mu1``/``mu2``, ``kp``/``kd``, ``material``,
 ``selfCollide``, ``turnGravityOff``, ``static``, ``<sensor>`` (see :mod:`robomodel.sim.sensors.spec`)
-and the ``gazebo_ros_control`` / ``gazebo_ros2_control`` model plugins.
+and the ``gazebo_ros_control`` / ``gazebo_ros2_control`` model plugins. Joint references
+(``springStiffness``, ``springReference``) are read by :mod:`robomodel.sim.build.joint_extras`.
 """
 
 from __future__ import annotations

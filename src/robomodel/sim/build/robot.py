@@ -25,6 +25,7 @@ from robomodel.sim._mujoco import mujoco
 from robomodel.sim.build.gazebo import GazeboExtensions, read_gazebo
 from robomodel.sim.build.geoms import MeshLoader, geom_kwargs
 from robomodel.sim.build.inertia import check_inertial, where
+from robomodel.sim.build.joint_extras import JointExtras, read_joint_extras
 from robomodel.sim.exceptions import SimulationError
 
 __all__ = [
@@ -153,7 +154,7 @@ def _set_inertial(body: Any, link: Link) -> None:
     ]  # fmt: skip
 
 
-def _add_joint(body: Any, joint: Joint, name: str) -> None:
+def _add_joint(body: Any, joint: Joint, name: str, extras: JointExtras | None = None) -> None:
     mj = mujoco()
     t = joint.type
     at = where(joint)
@@ -188,6 +189,10 @@ def _add_joint(body: Any, joint: Joint, name: str) -> None:
     if joint.dynamics is not None:
         j.damping = [joint.dynamics.damping or 0.0, 0.0, 0.0]
         j.frictionloss = joint.dynamics.friction or 0.0
+    if extras is not None:
+        j.armature = extras.armature
+        j.stiffness = [extras.spring_stiffness, 0.0, 0.0]
+        j.springref = extras.spring_reference
 
 
 def add_robot(
@@ -208,6 +213,7 @@ def add_robot(
     ext = read_gazebo(robot)
     moving = _moving_groups(robot, ext.static)
     _check_inertials(robot, moving)
+    extras = read_joint_extras(robot)
     tree = robot.tree()
     prefix = placement.prefix
     built = BuiltRobot(robot, placement, ext, "", moving[tree.root], ())
@@ -228,7 +234,7 @@ def add_robot(
         )
         bodies[joint.child] = body
         if joint.type is not JointType.FIXED:
-            _add_joint(body, joint, prefix + joint.name)
+            _add_joint(body, joint, prefix + joint.name, extras.get(joint.name))
             joints.append(joint.name)
     for link in robot.links:
         body = bodies[link.name]

@@ -8,7 +8,7 @@ from robomodel.sim._mujoco import mujoco
 from robomodel.sim.build.robot import BuiltRobot, quat_wxyz_from_rpy
 from robomodel.sim.world import Shape, ShapeKind, World
 
-__all__ = ["WORLD_BIT", "add_world", "apply_min_friction", "new_spec"]
+__all__ = ["WORLD_BIT", "add_world", "apply_min_friction", "new_spec", "shape_body_name"]
 
 WORLD_BIT = 1
 _ALL_BITS = (1 << 31) - 1
@@ -45,6 +45,11 @@ def add_world(spec: Any, world: World) -> None:
         _add_shape(spec, shape, i)
 
 
+def shape_body_name(shape: Shape, index: int) -> str:
+    """The MuJoCo body (and TF frame) name of the world's shape number ``index``."""
+    return f"{shape.model}_{index}"
+
+
 def _world_bits(geom: Any) -> None:
     geom.contype, geom.conaffinity = WORLD_BIT, _ALL_BITS
 
@@ -54,7 +59,7 @@ def _add_shape(spec: Any, shape: Shape, index: int) -> None:
     g = mj.mjtGeom
     x, y, z, r, p, yaw = shape.pose
     parent = spec.worldbody
-    name = f"{shape.model}_{index}"
+    name = shape_body_name(shape, index)
     pos, quat = [x, y, z], quat_wxyz_from_rpy(r, p, yaw)
     if shape.mass_kg > 0:
         parent = spec.worldbody.add_body(name=name, pos=pos, quat=quat)
