@@ -158,13 +158,17 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
             node,
             node.create_publisher(Odometry, "/odom", 10),
             node.create_publisher(LaserScan, "/scan", 10),
+            node.create_publisher(Odometry, "/ground_truth/odom", 10),
         )
 
-    _node, odom, scan = on_loop(viewer, create)
+    _node, odom, scan, truth = on_loop(viewer, create)
     wait_for(
-        lambda: overlays.odom.subscription is not None and overlays.scan.subscription is not None,
-        what="the overlays to follow /odom and /scan from the graph",
+        lambda: overlays.odom.subscription is not None
+        and overlays.scan.subscription is not None
+        and overlays.truth.subscription is not None,
+        what="the overlays to follow /odom, /scan and /ground_truth/odom from the graph",
     )
+    assert (overlays.odom.topic, overlays.truth.topic) == ("/odom", "/ground_truth/odom")
 
     def publish() -> None:
         for x, y in ((0.0, 0.0), (1.0, 0.0), (1.0, 0.005), (1.0, 1.0)):
@@ -174,13 +178,20 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
         scan.publish(
             LaserScan(Header(frame_id="laser"), range_min=0.1, range_max=5.0, ranges=[1.0])
         )
+        for x in (0.0, 0.5):  # the ground truth, in odom too here
+            msg = Odometry(Header(frame_id="odom"), "base_link")
+            msg.pose.pose.position.x = x
+            truth.publish(msg)
 
     on_loop(viewer, publish)
-    wait_for(lambda: overlays._path_node is not None, what="the odometry path drawn")
-    assert list(overlays.path) == [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0)]  # 1 cm rule
-    segments = np.asarray(overlays._path_node.points)
+    path = overlays.odom_path
+    wait_for(lambda: path.node is not None, what="the odometry path drawn")
+    assert list(path.points) == [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0)]  # 1 cm rule
+    segments = np.asarray(path.node.points)
     assert segments.shape == (2, 2, 3)
     assert segments[:, :, 2] == pytest.approx(1.0)  # odom is 1 m above base_link
+    wait_for(lambda: overlays.truth_path.node is not None, what="the ground-truth path drawn")
+    assert list(overlays.truth_path.points) == [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0)]
     wait_for(lambda: overlays.scans_drawn > 0, what="the scan drawn")
     assert np.asarray(overlays._scan_node.points) == pytest.approx(
         np.array([[3.0, 0.0, 0.0]]), abs=1e-3

@@ -3,8 +3,10 @@
 A LaserScan is turned into points in its ``header.frame_id`` (ranges outside
 ``[range_min, range_max]`` or not finite are dropped, as RViz's laser_geometry projection does)
 and drawn where that frame is in the fixed frame. Odometry poses are kept as a path in their
-``header.frame_id`` (a point every 1 cm, at most 5000, oldest dropped), drawn as a polyline.
-Both follow the first topic of their type the graph shows unless another is chosen.
+``header.frame_id`` (a point every 1 cm, at most 5000, oldest dropped), drawn as a polyline:
+the robot's odometry in blue and, under ``robomodel sim``, the simulator's ground truth
+(Gazebo's p3d, ``.../ground_truth/odom``) in orange, so that odometry drift is visible.
+Each follows the first topic of its kind the graph shows unless another is chosen.
 """
 
 from __future__ import annotations
@@ -62,9 +64,14 @@ class _Follower:
         choice = str(self.dropdown.value)
         if choice != _AUTO:
             return choice
+        found = [t for t in self.tools.topics_of_type(self.type_name) if self.accepts(t)]
         # A simulator's ground truth (in a world frame TF may not have) only when alone.
-        found = sorted(self.tools.topics_of_type(self.type_name), key=lambda t: "ground_truth" in t)
+        found.sort(key=lambda t: "ground_truth" in t)
         return found[0] if found else ""
+
+    def accepts(self, topic: str) -> bool:
+        """Whether "first found" may pick ``topic``."""
+        return True
 
     def update_options(self) -> None:
         options = (_AUTO, *self.tools.topics_of_type(self.type_name))
@@ -72,6 +79,58 @@ class _Follower:
             current = self.dropdown.value
             self.dropdown.options = options
             self.dropdown.value = current if current in options else _AUTO
+
+
+class _GroundTruthFollower(_Follower):
+    def accepts(self, topic: str) -> bool:
+        return "ground_truth" in topic
+
+
+class _PathOverlay:
+    """A path of Odometry positions in their frame, drawn as a polyline in the fixed frame."""
+
+    def __init__(self, scene: Any, follower: _Follower, node_name: str, rgb: tuple[int, int, int]) -> None:  # fmt: skip
+        self.scene = scene
+        self.follower = follower
+        self.node_name = node_name
+        self.rgb = rgb
+        self.points: collections.deque[tuple[float, float, float]] = collections.deque(
+            maxlen=_PATH_MAX
+        )
+        self.frame = ""
+        self.node: Any = None
+        self._key: tuple[Any, ...] = ()
+
+    def on_odometry(self, msg: Odometry) -> None:
+        p = msg.pose.pose.position
+        if msg.header.frame_id != self.frame:
+            self.points.clear()
+            self.frame = msg.header.frame_id
+        if self.points and math.dist(self.points[-1], (p.x, p.y, p.z)) < _PATH_STEP_M:
+            return
+        self.points.append((p.x, p.y, p.z))
+
+    def draw(self, lookup: Any) -> None:
+        T = lookup(self.frame) if self.points else None
+        if T is None or len(self.points) < 2 or not self.follower.enabled.value:
+            if self.node is not None:
+                self.node.remove()
+                self.node = None
+            return
+        key = (len(self.points), self.points[-1], self.points[0], T.tobytes())
+        if key == self._key and self.node is not None:
+            return
+        self._key = key
+        points = _transform(T, np.asarray(self.points, dtype=np.float64))
+        if self.node is not None:
+            self.node.remove()
+        self.node = self.scene.add_line_segments(
+            self.node_name,
+            points=path_segments(points),
+            colors=self.rgb,
+            thickness=3.0,
+            thickness_units="screen",
+        )
 
 
 class OverlayTool:
@@ -84,18 +143,20 @@ class OverlayTool:
         self.scan = _Follower(tools, "LaserScan", LaserScan.__typename__, True)
         self.point_size = gui.add_number("Scan point size [m]", 0.02, min=0.001, step=0.005)
         self.odom = _Follower(tools, "Odometry", Odometry.__typename__, True)
-        clear = gui.add_button("Clear path")
+        self.truth = _GroundTruthFollower(tools, "Ground truth", Odometry.__typename__, True)
+        clear = gui.add_button("Clear paths")
         self.last_scan: LaserScan | None = None
-        self.path: collections.deque[tuple[float, float, float]] = collections.deque(
-            maxlen=_PATH_MAX
-        )
-        self.path_frame = ""
+        self.odom_path = _PathOverlay(self.scene, self.odom, "/overlays/odometry_path", (40, 200, 255))  # fmt: skip
+        self.truth_path = _PathOverlay(self.scene, self.truth, "/overlays/ground_truth_path", (255, 150, 0))  # fmt: skip
         self.scans_drawn = 0
         self._scan_node: Any = None
-        self._path_node: Any = None
         self._scan_key: tuple[Any, ...] = ()
-        self._path_key: tuple[Any, ...] = ()
-        clear.on_click(lambda _e: tools.post(self.path.clear))
+
+        def clear_paths() -> None:
+            self.odom_path.points.clear()
+            self.truth_path.points.clear()
+
+        clear.on_click(lambda _e: tools.post(clear_paths))
         tools.post(lambda: tools.node.create_timer(0.1, self.refresh))
 
     # -- subscriptions (loop thread) ----------------------------------------------------------
@@ -115,25 +176,17 @@ class OverlayTool:
     def _on_scan(self, msg: LaserScan) -> None:
         self.last_scan = msg
 
-    def _on_odom(self, msg: Odometry) -> None:
-        p = msg.pose.pose.position
-        if msg.header.frame_id != self.path_frame:
-            self.path.clear()
-            self.path_frame = msg.header.frame_id
-        if self.path:
-            last = self.path[-1]
-            if math.dist(last, (p.x, p.y, p.z)) < _PATH_STEP_M:
-                return
-        self.path.append((p.x, p.y, p.z))
-
     # -- drawing (loop thread, 10 Hz) ---------------------------------------------------------
     def refresh(self) -> None:
         self.scan.update_options()
         self.odom.update_options()
+        self.truth.update_options()
         self._follow(self.scan, LaserScan, self._on_scan)
-        self._follow(self.odom, Odometry, self._on_odom)
+        self._follow(self.odom, Odometry, self.odom_path.on_odometry)
+        self._follow(self.truth, Odometry, self.truth_path.on_odometry)
         self._draw_scan()
-        self._draw_path()
+        self.odom_path.draw(self._lookup)
+        self.truth_path.draw(self._lookup)
 
     def _lookup(self, frame: str) -> NDArray[np.float64] | None:
         fixed = self.tools.fixed_frame()
@@ -171,25 +224,3 @@ class OverlayTool:
             point_shading="flat",
         )
         self.scans_drawn += 1
-
-    def _draw_path(self) -> None:
-        T = self._lookup(self.path_frame) if self.path else None
-        if T is None or len(self.path) < 2 or not self.odom.enabled.value:
-            if self._path_node is not None:
-                self._path_node.remove()
-                self._path_node = None
-            return
-        key = (len(self.path), self.path[-1], self.path[0], T.tobytes())
-        if key == self._path_key and self._path_node is not None:
-            return
-        self._path_key = key
-        points = _transform(T, np.asarray(self.path, dtype=np.float64))
-        if self._path_node is not None:
-            self._path_node.remove()
-        self._path_node = self.scene.add_line_segments(
-            "/overlays/odometry_path",
-            points=path_segments(points),
-            colors=(40, 200, 255),
-            thickness=3.0,
-            thickness_units="screen",
-        )
