@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from robomodel.control import ControlSystem, load_controller_config
@@ -573,4 +574,56 @@ def test_pid_gains_set_through_the_parameter_service_apply_live() -> None:
     assert controller.pid.gains.i == pytest.approx(0.01)  # type: ignore[attr-defined]
     other = ctx.call_parameters(name, {"op": "set", "values": {"joint": "joint1"}})
     assert other["successful"] is True  # not a gain: no PID change, no refusal
+    ctx.shutdown()
+
+
+def test_jtc_publishes_controller_state_and_legacy_state_at_the_state_rate() -> None:
+    from robomodel.control import ControllerManager
+    from robomodel.control.hardware import ResourceManager, hardware_from_robot
+    from robomodel.runtime.msg import JointTrajectoryControllerState
+
+    ctx = Context("inproc", clock=ManualClock())
+    robot = arm()
+    cm = ControllerManager(ResourceManager(hardware_from_robot(robot)), context=ctx, robot=robot)
+    cm.load_controller(
+        "jtc",
+        JTC,
+        {
+            "joints": ["joint1", "joint2"],
+            "command_interfaces": ["position"],
+            "state_interfaces": ["position", "velocity"],
+            "state_publish_rate": 25.0,
+        },
+    )
+    cm.spawn(["jtc"])
+    probe = ctx.create_node("probe")
+    states: list[JointTrajectoryControllerState] = []
+    legacy: list[JointTrajectoryControllerState] = []
+    probe.create_subscription(
+        JointTrajectoryControllerState, "/jtc/controller_state", states.append
+    )
+    probe.create_subscription(JointTrajectoryControllerState, "/jtc/state", legacy.append)
+    ctrl = cm.entries["jtc"].controller
+    assert isinstance(ctrl, JointTrajectoryController)
+    ctrl.send_trajectory(_trajectory([(1.0, [0.5, -0.5])], ["joint1", "joint2"]))
+    period = 1.0 / cm.update_rate_hz
+    for _ in range(round(0.5 / period)):
+        cm.step()
+        ctx.spin_once(0.0)
+    stamps = [m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in states]
+    assert len(states) == len(legacy) == 13  # 25 Hz over 0.5 s of 100 Hz updates
+    assert np.diff(stamps) == pytest.approx([0.04] * 12)
+    last = states[-1]
+    assert last.joint_names == ["joint1", "joint2"]
+    # reference: the linear ramp from 0.25 (initial_value) to the waypoint, sampled
+    assert last.reference.positions[0] == pytest.approx(0.25 + 0.25 * stamps[-1], abs=0.02)
+    assert last.output.positions == last.reference.positions  # position commands forward it
+    measured = [rm.get() for rm in ctrl.state_interfaces[:2]]  # positions after the last write
+    assert len(last.feedback.positions) == 2 and len(last.feedback.velocities) == 2
+    assert last.error.positions == pytest.approx(
+        [r - f for r, f in zip(last.reference.positions, last.feedback.positions, strict=True)]
+    )
+    assert measured[0] == pytest.approx(last.reference.positions[0], abs=0.02)
+    assert legacy[-1].desired == last.reference and legacy[-1].actual == last.feedback
+    assert legacy[-1].error == last.error and legacy[-1].reference.positions == []
     ctx.shutdown()

@@ -102,6 +102,60 @@ class RefOdometry(pycdr2.IdlStruct, typename="nav_msgs/msg/Odometry"):
     twist: RefTwistCov
 
 
+@dataclasses.dataclass
+class RefDuration(pycdr2.IdlStruct, typename="builtin_interfaces/msg/Duration"):
+    sec: int32
+    nanosec: uint32
+
+
+@dataclasses.dataclass
+class RefPoint(pycdr2.IdlStruct, typename="trajectory_msgs/msg/JointTrajectoryPoint"):
+    positions: sequence[float64]
+    velocities: sequence[float64]
+    accelerations: sequence[float64]
+    effort: sequence[float64]
+    time_from_start: RefDuration
+
+
+@dataclasses.dataclass
+class RefTransform(pycdr2.IdlStruct, typename="geometry_msgs/msg/Transform"):
+    translation: RefVector3
+    rotation: RefQuaternion
+
+
+@dataclasses.dataclass
+class RefTwist(pycdr2.IdlStruct, typename="geometry_msgs/msg/Twist"):
+    linear: RefVector3
+    angular: RefVector3
+
+
+@dataclasses.dataclass
+class RefMultiPoint(pycdr2.IdlStruct, typename="trajectory_msgs/msg/MultiDOFJointTrajectoryPoint"):
+    transforms: sequence[RefTransform]
+    velocities: sequence[RefTwist]
+    accelerations: sequence[RefTwist]
+    time_from_start: RefDuration
+
+
+@dataclasses.dataclass
+class RefJTCState(pycdr2.IdlStruct, typename="control_msgs/msg/JointTrajectoryControllerState"):
+    header: RefHeader
+    joint_names: sequence[str]
+    reference: RefPoint
+    feedback: RefPoint
+    error: RefPoint
+    output: RefPoint
+    desired: RefPoint
+    actual: RefPoint
+    multi_dof_joint_names: sequence[str]
+    multi_dof_reference: RefMultiPoint
+    multi_dof_feedback: RefMultiPoint
+    multi_dof_error: RefMultiPoint
+    multi_dof_output: RefMultiPoint
+    multi_dof_desired: RefMultiPoint
+    multi_dof_actual: RefMultiPoint
+
+
 names = st.text(alphabet=st.characters(min_codepoint=32, max_codepoint=0x2FF), max_size=12)
 floats = st.floats(allow_nan=False, width=64)
 stamps = st.tuples(st.integers(-(2**31), 2**31 - 1), st.integers(0, 2**32 - 1))
@@ -185,6 +239,36 @@ def test_laser_scan_and_odometry_bytes_match_pycdr2() -> None:
     )
     assert m.serialize(odom) == ref_odom.serialize()
     assert m.deserialize(ref_odom.serialize(), m.Odometry) == odom
+
+
+def test_joint_trajectory_controller_state_bytes_match_pycdr2() -> None:
+    point = m.JointTrajectoryPoint([0.5, -1.0], [0.1], [], [2.0], m.Duration(1, 5))
+    empty = m.MultiDOFJointTrajectoryPoint()
+    base = m.MultiDOFJointTrajectoryPoint(
+        [m.Transform(m.Vector3(1, 2, 3), m.Quaternion(0, 0, 0, 1))],
+        [m.Twist(m.Vector3(0.5, 0, 0), m.Vector3(0, 0, 1))],
+        [],
+        m.Duration(0, 7),
+    )
+    ours = m.JointTrajectoryControllerState(
+        m.Header(m.Time(9, 10), "arm"), ["j1", "j2"], point, point, m.JointTrajectoryPoint(),
+        point, point, m.JointTrajectoryPoint(), ["base"], base, empty, empty, empty, empty, base,
+    )  # fmt: skip
+    ref_point = RefPoint([0.5, -1.0], [0.1], [], [2.0], RefDuration(1, 5))
+    none = RefPoint([], [], [], [], RefDuration(0, 0))
+    ref_empty = RefMultiPoint([], [], [], RefDuration(0, 0))
+    ref_base = RefMultiPoint(
+        [RefTransform(RefVector3(1, 2, 3), RefQuaternion(0, 0, 0, 1))],
+        [RefTwist(RefVector3(0.5, 0, 0), RefVector3(0, 0, 1))],
+        [],
+        RefDuration(0, 7),
+    )
+    ref = RefJTCState(
+        RefHeader(RefTime(9, 10), "arm"), ["j1", "j2"], ref_point, ref_point, none, ref_point,
+        ref_point, none, ["base"], ref_base, ref_empty, ref_empty, ref_empty, ref_empty, ref_base,
+    )  # fmt: skip
+    assert m.serialize(ours) == ref.serialize()
+    assert m.deserialize(ref.serialize(), m.JointTrajectoryControllerState) == ours
 
 
 def test_known_byte_vector() -> None:

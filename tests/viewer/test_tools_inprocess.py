@@ -163,9 +163,11 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
 
     _node, odom, scan, truth = on_loop(viewer, create)
     wait_for(
-        lambda: overlays.odom.subscription is not None
-        and overlays.scan.subscription is not None
-        and overlays.truth.subscription is not None,
+        lambda: (
+            overlays.odom.subscription is not None
+            and overlays.scan.subscription is not None
+            and overlays.truth.subscription is not None
+        ),
         what="the overlays to follow /odom, /scan and /ground_truth/odom from the graph",
     )
     assert (overlays.odom.topic, overlays.truth.topic) == ("/odom", "/ground_truth/odom")

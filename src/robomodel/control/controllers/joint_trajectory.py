@@ -25,10 +25,16 @@ from robomodel.control.controllers.base import (
 )
 from robomodel.control.controllers.exceptions import ControllerError
 from robomodel.control.controllers.joint_position import shortest_angular_distance
-from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
+from robomodel.control.controllers.trajectory import Sample, Trajectory, TrajectoryPoint
 from robomodel.control.pid import Gains, Pid
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import JointTrajectory
+from robomodel.runtime.msg import (
+    Header,
+    JointTrajectory,
+    JointTrajectoryControllerState,
+    JointTrajectoryPoint,
+    Time,
+)
 
 __all__ = ["GoalHandle", "GoalStatus", "JointTrajectoryController"]
 
@@ -111,6 +117,9 @@ class JointTrajectoryController(ControllerInterface):
             for j in self.joints
         ]
         self.cmd_timeout_s = self.param_float("cmd_timeout", 0.0)
+        self.state_publish_rate_hz = self.param_float("state_publish_rate", 50.0)  # humble
+        self._state_pubs: list[Any] = []
+        self._next_state_s = -math.inf
         self.trajectory: Trajectory | None = None
         self.goal: GoalHandle | None = None
         self._pending: tuple[JointTrajectory, GoalHandle | None] | None = None
@@ -144,6 +153,11 @@ class JointTrajectoryController(ControllerInterface):
                 ctx.create_service(f"{base}/follow_joint_trajectory", self._srv_goal),
                 ctx.create_service(f"{base}/goal_status", self._srv_status),
             ]
+            if self.state_publish_rate_hz > 0.0:  # humble: ~/controller_state and legacy ~/state
+                self._state_pubs = [
+                    self.node.create_publisher(JointTrajectoryControllerState, topic, 1)
+                    for topic in ("~/controller_state", "~/state")
+                ]
 
     def on_cleanup(self) -> None:
         sub = getattr(self, "_sub", None)
@@ -152,6 +166,9 @@ class JointTrajectoryController(ControllerInterface):
         for unregister in getattr(self, "_unregister", []):
             unregister()
         self._unregister = []
+        for pub in self._state_pubs:
+            pub.destroy()
+        self._state_pubs = []
 
     def _srv_goal(self, request: dict[str, Any]) -> dict[str, Any]:
         """``{"trajectory": {...}, "path_tolerance": {joint: tol}, "goal_tolerance": {...},
@@ -424,7 +441,53 @@ class JointTrajectoryController(ControllerInterface):
         self._write(
             sample.positions, sample.velocities, sample.accelerations, errors, vel, period_s
         )
+        if self._state_pubs and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
+            self._next_state_s = time_s + 1.0 / self.state_publish_rate_hz
+            self._publish_state(time_s, sample, pos, vel, errors)
         return ReturnType.OK
+
+    def _publish_state(
+        self,
+        time_s: float,
+        sample: Sample,
+        pos: Sequence[float],
+        vel: Sequence[float],
+        errors: Sequence[float],
+    ) -> None:
+        """humble ``publish_state``: the sampled reference, the measured feedback, their
+        difference and what was written; ``~/state`` carries the same as desired/actual."""
+        reference = JointTrajectoryPoint(
+            positions=list(sample.positions),
+            velocities=list(sample.velocities),
+            accelerations=list(sample.accelerations),
+        )
+        feedback = JointTrajectoryPoint(positions=list(pos), velocities=list(vel))
+        error = JointTrajectoryPoint(positions=list(errors))
+        if vel and len(sample.velocities) == len(vel):
+            error.velocities = [d - m for d, m in zip(sample.velocities, vel, strict=True)]
+        output = JointTrajectoryPoint()
+        for kind, interfaces in self._cmd.items():
+            values = [ci.get() for ci in interfaces]
+            if kind == "position":
+                output.positions = values
+            elif kind == "velocity":
+                output.velocities = values
+            elif kind == "acceleration":
+                output.accelerations = values
+            elif kind == "effort":
+                output.effort = values
+        header = Header(stamp=Time.from_seconds(time_s))
+        controller_state, legacy = self._state_pubs
+        controller_state.publish(
+            JointTrajectoryControllerState(
+                header, list(self.joints), reference, feedback, error, output
+            )
+        )
+        legacy.publish(
+            JointTrajectoryControllerState(
+                header, list(self.joints), error=error, desired=reference, actual=feedback
+            )
+        )
 
     def _write(
         self,

@@ -15,6 +15,7 @@ from robomodel.runtime.msg.control_msgs import (
     DynamicJointState,
     InterfaceValue,
     JointControllerState,
+    JointTrajectoryControllerState,
 )
 from robomodel.runtime.msg.geometry_msgs import (
     Point,
@@ -41,7 +42,11 @@ from robomodel.runtime.msg.std_msgs import (
     MultiArrayLayout,
     String,
 )
-from robomodel.runtime.msg.trajectory_msgs import JointTrajectory, JointTrajectoryPoint
+from robomodel.runtime.msg.trajectory_msgs import (
+    JointTrajectory,
+    JointTrajectoryPoint,
+    MultiDOFJointTrajectoryPoint,
+)
 from robomodel.runtime.msg.yaml_io import (
     message_from_dict,
     message_from_yaml,
@@ -66,12 +71,14 @@ __all__ = [
     "JointControllerState",
     "JointState",
     "JointTrajectory",
+    "JointTrajectoryControllerState",
     "JointTrajectoryPoint",
     "LaserScan",
     "Message",
     "MessageTypeError",
     "MultiArrayDimension",
     "MultiArrayLayout",
+    "MultiDOFJointTrajectoryPoint",
     "Odometry",
     "Point",
     "Pose",

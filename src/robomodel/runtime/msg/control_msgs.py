@@ -1,4 +1,5 @@
-"""control_msgs (Humble): DynamicJointState, InterfaceValue, JointControllerState."""
+"""control_msgs (Humble): DynamicJointState, InterfaceValue, JointControllerState and
+JointTrajectoryControllerState."""
 
 from __future__ import annotations
 
@@ -6,8 +7,17 @@ from dataclasses import dataclass, field
 
 from robomodel.runtime.msg._schema import Message, Seq
 from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.trajectory_msgs import (
+    JointTrajectoryPoint,
+    MultiDOFJointTrajectoryPoint,
+)
 
-__all__ = ["DynamicJointState", "InterfaceValue", "JointControllerState"]
+__all__ = [
+    "DynamicJointState",
+    "InterfaceValue",
+    "JointControllerState",
+    "JointTrajectoryControllerState",
+]
 
 
 @dataclass(slots=True)
@@ -63,4 +73,52 @@ class JointControllerState(Message):
         ("d", "float64"),
         ("i_clamp", "float64"),
         ("antiwindup", "bool"),
+    )
+
+
+def _point() -> JointTrajectoryPoint:
+    return JointTrajectoryPoint()
+
+
+def _multi() -> MultiDOFJointTrajectoryPoint:
+    return MultiDOFJointTrajectoryPoint()
+
+
+@dataclass(slots=True)
+class JointTrajectoryControllerState(Message):
+    """joint_trajectory_controller's state (Humble's field layout: ``reference``/``feedback``/
+    ``error``/``output`` and the deprecated ``desired``/``actual``, plus the multi-DOF ones)."""
+
+    header: Header = field(default_factory=Header)
+    joint_names: list[str] = field(default_factory=list)
+    reference: JointTrajectoryPoint = field(default_factory=_point)
+    feedback: JointTrajectoryPoint = field(default_factory=_point)
+    error: JointTrajectoryPoint = field(default_factory=_point)
+    output: JointTrajectoryPoint = field(default_factory=_point)
+    desired: JointTrajectoryPoint = field(default_factory=_point)
+    actual: JointTrajectoryPoint = field(default_factory=_point)
+    multi_dof_joint_names: list[str] = field(default_factory=list)
+    multi_dof_reference: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    multi_dof_feedback: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    multi_dof_error: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    multi_dof_output: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    multi_dof_desired: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    multi_dof_actual: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    __typename__ = "control_msgs/msg/JointTrajectoryControllerState"
+    __fields__ = (
+        ("header", Header),
+        ("joint_names", Seq("string")),
+        ("reference", JointTrajectoryPoint),
+        ("feedback", JointTrajectoryPoint),
+        ("error", JointTrajectoryPoint),
+        ("output", JointTrajectoryPoint),
+        ("desired", JointTrajectoryPoint),
+        ("actual", JointTrajectoryPoint),
+        ("multi_dof_joint_names", Seq("string")),
+        ("multi_dof_reference", MultiDOFJointTrajectoryPoint),
+        ("multi_dof_feedback", MultiDOFJointTrajectoryPoint),
+        ("multi_dof_error", MultiDOFJointTrajectoryPoint),
+        ("multi_dof_output", MultiDOFJointTrajectoryPoint),
+        ("multi_dof_desired", MultiDOFJointTrajectoryPoint),
+        ("multi_dof_actual", MultiDOFJointTrajectoryPoint),
     )

@@ -1,4 +1,4 @@
-"""trajectory_msgs: JointTrajectory and JointTrajectoryPoint."""
+"""trajectory_msgs: JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectoryPoint."""
 
 from __future__ import annotations
 
@@ -6,9 +6,10 @@ from dataclasses import dataclass, field
 
 from robomodel.runtime.msg._schema import Message, Seq
 from robomodel.runtime.msg.builtin_interfaces import Duration
+from robomodel.runtime.msg.geometry_msgs import Transform, Twist
 from robomodel.runtime.msg.std_msgs import Header
 
-__all__ = ["JointTrajectory", "JointTrajectoryPoint"]
+__all__ = ["JointTrajectory", "JointTrajectoryPoint", "MultiDOFJointTrajectoryPoint"]
 
 
 @dataclass(slots=True)
@@ -42,4 +43,21 @@ class JointTrajectory(Message):
         ("header", Header),
         ("joint_names", Seq("string")),
         ("points", Seq(JointTrajectoryPoint)),
+    )
+
+
+@dataclass(slots=True)
+class MultiDOFJointTrajectoryPoint(Message):
+    """A waypoint of multi-DOF joints (floating, planar): poses and twists."""
+
+    transforms: list[Transform] = field(default_factory=list)
+    velocities: list[Twist] = field(default_factory=list)
+    accelerations: list[Twist] = field(default_factory=list)
+    time_from_start: Duration = field(default_factory=Duration)
+    __typename__ = "trajectory_msgs/msg/MultiDOFJointTrajectoryPoint"
+    __fields__ = (
+        ("transforms", Seq(Transform)),
+        ("velocities", Seq(Twist)),
+        ("accelerations", Seq(Twist)),
+        ("time_from_start", Duration),
     )
