@@ -277,3 +277,40 @@ def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
     assert echo.returncode == 0 and out == "data: 2.5\n---\n"
     assert "dropping a malformed std_msgs/msg/Float64 payload on /chatter" in err
     assert "Traceback" not in err
+
+
+def test_a_slow_subscriber_keeps_the_latest_depth_messages() -> None:
+    """KEEP_LAST over Zenoh: a callback slower than the publisher drops the oldest samples
+    (as DDS does) instead of building an ever-growing backlog; the newest one always arrives."""
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import Int32
+    from robomodel.runtime.qos import QoSProfile
+
+    domain = int(_domain(7))
+    with (
+        Context("zenoh", domain_id=domain) as sub_ctx,
+        Context("zenoh", domain_id=domain) as pub_ctx,
+    ):
+        got: list[int] = []
+
+        def slow(msg: Int32) -> None:
+            time.sleep(0.02)
+            got.append(msg.data)
+
+        sub_ctx.create_node("slow").create_subscription(Int32, "/count", slow, QoSProfile(5))
+        pub = pub_ctx.create_node("fast").create_publisher(Int32, "/count", 10)
+        deadline = time.monotonic() + 10
+        while (
+            not pub_ctx.graph().topics.get("/count", None)
+            or not pub_ctx.graph().topics["/count"].subscribers
+        ):
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        time.sleep(0.3)
+        for i in range(1, 201):  # 200 messages in well under the 4 s the callback would need
+            pub.publish(Int32(i))
+        deadline = time.monotonic() + 10
+        while (not got or got[-1] != 200) and time.monotonic() < deadline:
+            sub_ctx.spin_once(0.05)
+        assert got and got[-1] == 200
+        assert len(got) < 100 and got == sorted(got)

@@ -147,6 +147,14 @@ class _ZSub(SubscriptionHandle):
         self._deliver = deliver
         self._last_seq: dict[str, int] = {}
         self._alive = True
+        # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
+        # the oldest (as DDS does) instead of falling further and further behind.
+        self._pending: collections.deque[tuple[bytes, bytes]] = collections.deque(
+            maxlen=max(1, endpoint.qos.depth)
+        )
+        self._pending_lock = threading.Lock()
+        self._scheduled = False
+        self.dropped = 0
         session, prefix = bus.session, bus.prefix
         self._sub = session.declare_subscriber(f"{prefix}/t{endpoint.topic}", self._on_sample)
         self._token = session.liveliness().declare_token(bus.graph_key("sub", endpoint))
@@ -156,7 +164,23 @@ class _ZSub(SubscriptionHandle):
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
         payload = sample.payload.to_bytes()
         attachment = sample.attachment.to_bytes() if sample.attachment is not None else b""
-        self._bus.executor.post(lambda: self._handle(payload, attachment))
+        with self._pending_lock:
+            if len(self._pending) == self._pending.maxlen:
+                self.dropped += 1
+            self._pending.append((payload, attachment))
+            if self._scheduled:
+                return
+            self._scheduled = True
+        self._bus.executor.post(self._drain)
+
+    def _drain(self) -> None:
+        """On the executor: handle what is pending now; later arrivals get their own turn."""
+        with self._pending_lock:
+            batch = list(self._pending)
+            self._pending.clear()
+            self._scheduled = False
+        for payload, attachment in batch:
+            self._handle(payload, attachment)
 
     def _on_reply(self, reply: Any) -> None:  # a Zenoh thread
         sample = reply.ok
