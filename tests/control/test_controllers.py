@@ -112,8 +112,10 @@ def _trajectory(points: list[tuple[float, list[float]]], names: list[str]) -> Jo
     return msg
 
 
-def _jtc(params: dict[str, object]) -> tuple[object, JointTrajectoryController]:
-    cm = arm_manager()
+def _jtc(
+    params: dict[str, object], context: Context | None = None
+) -> tuple[object, JointTrajectoryController]:
+    cm = arm_manager(context=context)
     cm.load_controller(
         "jtc",
         JTC,
@@ -476,23 +478,8 @@ def test_seed_002_simplebot_drives_in_a_circle() -> None:
 
 
 def test_jtc_follow_joint_trajectory_services() -> None:
-    from robomodel.control import ControllerManager
-    from robomodel.control.hardware import ResourceManager, hardware_from_robot
-
     ctx = Context("inproc", clock=ManualClock())
-    robot = arm()
-    cm = ControllerManager(ResourceManager(hardware_from_robot(robot)), context=ctx, robot=robot)
-    cm.load_controller(
-        "jtc",
-        JTC,
-        {
-            "joints": ["joint1", "joint2"],
-            "command_interfaces": ["position"],
-            "state_interfaces": ["position", "velocity"],
-            "constraints.joint1.goal": 0.01,
-        },
-    )
-    cm.spawn(["jtc"])
+    cm, _ = _jtc({"constraints.joint1.goal": 0.01}, context=ctx)
     trajectory = {
         "joint_names": ["joint1", "joint2"],
         "points": [{"positions": [0.6, 0.1], "time_from_start": {"sec": 1}}],
@@ -578,24 +565,10 @@ def test_pid_gains_set_through_the_parameter_service_apply_live() -> None:
 
 
 def test_jtc_publishes_controller_state_and_legacy_state_at_the_state_rate() -> None:
-    from robomodel.control import ControllerManager
-    from robomodel.control.hardware import ResourceManager, hardware_from_robot
     from robomodel.runtime.msg import JointTrajectoryControllerState
 
     ctx = Context("inproc", clock=ManualClock())
-    robot = arm()
-    cm = ControllerManager(ResourceManager(hardware_from_robot(robot)), context=ctx, robot=robot)
-    cm.load_controller(
-        "jtc",
-        JTC,
-        {
-            "joints": ["joint1", "joint2"],
-            "command_interfaces": ["position"],
-            "state_interfaces": ["position", "velocity"],
-            "state_publish_rate": 25.0,
-        },
-    )
-    cm.spawn(["jtc"])
+    cm, ctrl = _jtc({"state_publish_rate": 25.0}, context=ctx)
     probe = ctx.create_node("probe")
     states: list[JointTrajectoryControllerState] = []
     legacy: list[JointTrajectoryControllerState] = []
@@ -603,8 +576,6 @@ def test_jtc_publishes_controller_state_and_legacy_state_at_the_state_rate() -> 
         JointTrajectoryControllerState, "/jtc/controller_state", states.append
     )
     probe.create_subscription(JointTrajectoryControllerState, "/jtc/state", legacy.append)
-    ctrl = cm.entries["jtc"].controller
-    assert isinstance(ctrl, JointTrajectoryController)
     ctrl.send_trajectory(_trajectory([(1.0, [0.5, -0.5])], ["joint1", "joint2"]))
     period = 1.0 / cm.update_rate_hz
     for _ in range(round(0.5 / period)):
