@@ -135,7 +135,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
     import subprocess
     import sys
 
-    from tests.viewer.conftest import changed_fraction, domain_id, scene_region, settle
+    from tests.viewer.conftest import changed_fraction, domain_id, settle
 
     domain = domain_id(41)
     desc = EXAMPLES / "simplebot_description"
@@ -170,12 +170,8 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         box.press("Enter")
 
         def moved() -> Any:
-            image = settle(page)
-            return (
-                (image,)
-                if changed_fraction(scene_region(before), scene_region(image)) > 0.002
-                else None
-            )
+            image = settle(page)  # settle() returns the scene region already
+            return (image,) if changed_fraction(before, image) > 0.004 else None
 
         wait_for(moved, timeout_s=40, what="the simplebot to drive in the page")
         save_shot(page, "demo_simplebot_driving")
