@@ -479,13 +479,27 @@ def test_seed_002_simplebot_drives_in_a_circle() -> None:
 
 def test_jtc_follow_joint_trajectory_services() -> None:
     ctx = Context("inproc", clock=ManualClock())
-    cm, _ = _jtc({"constraints.joint1.goal": 0.01}, context=ctx)
+    cm, ctrl = _jtc({"constraints.joint1.goal": 0.01}, context=ctx)
     trajectory = {
         "joint_names": ["joint1", "joint2"],
         "points": [{"positions": [0.6, 0.1], "time_from_start": {"sec": 1}}],
     }
     answer = ctx.call_service("/jtc/follow_joint_trajectory", {"trajectory": trajectory})
     assert answer["status"] == "active"
+    cm.step()  # type: ignore[attr-defined]
+    start = ctrl.trajectory.start_s  # type: ignore[union-attr]
+    mid = ctx.call_service("/jtc/query_state", {"time": start + 0.5})
+    assert mid["success"] and mid["name"] == ["joint1", "joint2"]
+    # linear from the measured (0.25, 0) at reception to (0.6, 0.1) at 1 s
+    assert mid["position"] == pytest.approx([0.25 + 0.35 * 0.5, 0.05], abs=0.02)
+    stamped = ctx.call_service("/jtc/query_state", {"time": {"sec": 0, "nanosec": int((start + 0.5) * 1e9)}})  # fmt: skip
+    assert stamped["position"] == pytest.approx(mid["position"])
+    late = ctx.call_service("/jtc/query_state", {"time": start + 5.0})
+    assert not late["success"] and "after the current trajectory end" in late["message"]
+    assert late["position"] == pytest.approx([0.6, 0.1])
+    early = ctx.call_service("/jtc/query_state", {"time": -1.0})
+    assert not early["success"] and "earlier than the current trajectory start" in early["message"]
+    assert "seconds" in ctx.call_service("/jtc/query_state", {"time": "soon"})["message"]
     for _ in range(120):
         cm.step()
     status = ctx.call_service("/jtc/goal_status", {"goal_id": answer["goal_id"]})
@@ -505,6 +519,8 @@ def test_jtc_follow_joint_trajectory_services() -> None:
         {"trajectory": {"joint_names": ["x"], "points": [{"positions": [1.0]}]}},
     )
     assert bad["status"] == "aborted" and "unknown joints" in bad["error_string"]
+    cm.switch_controllers(deactivate=["jtc"])  # type: ignore[attr-defined]
+    assert ctx.call_service("/jtc/query_state", {"time": 0.0})["message"].endswith("not active.")
     ctx.shutdown()
 
 

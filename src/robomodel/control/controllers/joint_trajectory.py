@@ -120,6 +120,7 @@ class JointTrajectoryController(ControllerInterface):
         self.state_publish_rate_hz = self.param_float("state_publish_rate", 50.0)  # humble
         self._state_pubs: list[Any] = []
         self._next_state_s = -math.inf
+        self._active = False
         self.trajectory: Trajectory | None = None
         self.goal: GoalHandle | None = None
         self._pending: tuple[JointTrajectory, GoalHandle | None] | None = None
@@ -152,6 +153,7 @@ class JointTrajectoryController(ControllerInterface):
             self._unregister = [
                 ctx.create_service(f"{base}/follow_joint_trajectory", self._srv_goal),
                 ctx.create_service(f"{base}/goal_status", self._srv_status),
+                ctx.create_service(f"{base}/query_state", self._srv_query_state),
             ]
             if self.state_publish_rate_hz > 0.0:  # humble: ~/controller_state and legacy ~/state
                 self._state_pubs = [
@@ -188,6 +190,45 @@ class JointTrajectoryController(ControllerInterface):
         goal_id = len(self._goals) + 1
         self._goals[goal_id] = handle
         return {"goal_id": goal_id, **self._describe(handle)}
+
+    def _srv_query_state(self, request: dict[str, Any]) -> dict[str, Any]:
+        """humble ``query_state_service`` (control_msgs/QueryTrajectoryState): the running
+        trajectory sampled at ``time`` (seconds, or ``{sec, nanosec}``); ``success`` only while
+        the controller is active and the time lies within the trajectory; otherwise the
+        measured state is returned with ``success: false`` and the reason in ``message``."""
+        if not self._active:
+            return {"success": False, "message": "Can't sample trajectory. Controller is not active."}  # fmt: skip
+        stamp = request.get("time", self._now_s)
+        try:
+            if isinstance(stamp, dict):
+                time_s = int(stamp.get("sec", 0)) + int(stamp.get("nanosec", 0)) * 1e-9
+            else:
+                time_s = float(stamp)
+        except (TypeError, ValueError):
+            return {"success": False, "message": f"time must be seconds or {{sec, nanosec}}, got {stamp!r}"}  # fmt: skip
+        reply: dict[str, Any] = {
+            "success": False,
+            "message": "",
+            "name": list(self.joints),
+            "position": list(self._measured("position")),
+            "velocity": list(self._measured("velocity")),
+            "acceleration": [],
+        }
+        traj = self.trajectory
+        sample = traj.sample(time_s) if traj is not None else None
+        if traj is None:
+            reply["message"] = "Currently there is no valid trajectory instance."
+        elif sample is None:
+            reply["message"] = "Requested sample time is earlier than the current trajectory start time."  # fmt: skip
+        else:
+            reply["position"] = list(sample.positions)
+            reply["velocity"] = list(sample.velocities)
+            reply["acceleration"] = list(sample.accelerations)
+            if sample.segment >= len(traj.points):
+                reply["message"] = "Requested sample time is after the current trajectory end time."  # fmt: skip
+            else:
+                reply["success"] = True
+        return reply
 
     def _srv_status(self, request: dict[str, Any]) -> dict[str, Any]:
         handle = self._goals.get(int(request.get("goal_id", 0)))
@@ -227,8 +268,10 @@ class JointTrajectoryController(ControllerInterface):
             pid.reset()
         self._now_s = 0.0
         self._hold(0.0)
+        self._active = True
 
     def on_deactivate(self) -> None:
+        self._active = False
         if self.goal is not None and self.goal.status is GoalStatus.ACTIVE:
             self._finish(GoalStatus.ABORTED, -1, "controller deactivated")
         self.trajectory = None
