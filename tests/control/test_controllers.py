@@ -28,6 +28,15 @@ from tests.control.helpers import arm, arm_manager, diff_drive_system
 JTC = "joint_trajectory_controller/JointTrajectoryController"
 
 
+def _example_system(package: str, urdf: str, config: str) -> tuple[Context, ControlSystem]:
+    """An example robot's ``urdf/<urdf>`` with ``config/<config>`` on a fresh in-process bus."""
+    from robomodel.loading import load
+
+    robot = load(EXAMPLES / package / "urdf" / urdf)
+    ctx = Context("inproc", clock=ManualClock())
+    return ctx, ControlSystem.build(robot, EXAMPLES / package / "config" / config, context=ctx)  # type: ignore[arg-type]
+
+
 def test_cmd_vel_timeout_stops_the_robot() -> None:
     cm, ctrl, wheels = diff_drive_system({"wheel_radius": 0.1, "wheel_separation": 0.5})
     ctrl.set_command(1.0, 0.0, 0.001)
@@ -195,15 +204,8 @@ def test_jtc_rejects_invalid_trajectories() -> None:
 
 def test_rrbot_ros1_pid_over_topics_moves_joint1() -> None:
     """Seed 000: ROS 1 YAML + ROS 1 transmissions; publish 1.5 on .../command."""
-    from robomodel.loading import load
 
-    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
-    ctx = Context("inproc", clock=ManualClock())
-    system = ControlSystem.build(
-        robot,  # type: ignore[arg-type]
-        EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
-        context=ctx,
-    )
+    ctx, system = _example_system("rrbot_description", "rrbot.xacro", "rrbot_control.yaml")
     node = ctx.create_node("probe")
     states: list[JointState] = []
     node.create_subscription(JointState, "/joint_states", states.append)
@@ -219,14 +221,9 @@ def test_rrbot_ros1_pid_over_topics_moves_joint1() -> None:
 
 def test_group_position_controller_two_link_arm() -> None:
     """Seed 003: joint1_position_controller of type JointGroupPositionController."""
-    from robomodel.loading import load
 
-    robot = load(EXAMPLES / "two_link_arm" / "urdf" / "two_link_arm.urdf.xacro")
-    ctx = Context("inproc", clock=ManualClock())
-    system = ControlSystem.build(
-        robot,  # type: ignore[arg-type]
-        EXAMPLES / "two_link_arm" / "config" / "position_controllers.yaml",
-        context=ctx,
+    ctx, system = _example_system(
+        "two_link_arm", "two_link_arm.urdf.xacro", "position_controllers.yaml"
     )
     node = ctx.create_node("probe")
     node.create_publisher(Float64MultiArray, "/joint1_position_controller/commands").publish(
@@ -352,16 +349,9 @@ def test_diff_drive_rejects_bad_parameters() -> None:
 
 
 def test_jsb_dynamic_joint_states_and_pid_state_topic() -> None:
-    from robomodel.loading import load
     from robomodel.runtime.msg import DynamicJointState, JointControllerState
 
-    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
-    ctx = Context("inproc", clock=ManualClock())
-    system = ControlSystem.build(
-        robot,  # type: ignore[arg-type]
-        EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
-        context=ctx,
-    )
+    ctx, system = _example_system("rrbot_description", "rrbot.xacro", "rrbot_control.yaml")
     system.manager.load_controller("jsb", "joint_state_broadcaster/JointStateBroadcaster")
     system.manager.spawn(["jsb"])  # ROS 2's broadcaster: also /dynamic_joint_states (Humble)
     node = ctx.create_node("probe")
@@ -426,15 +416,8 @@ def test_seed_000_namespaced_file(caplog: pytest.LogCaptureFixture) -> None:
 
 
 def test_seed_001_ur5_position_controllers() -> None:
-    from robomodel.loading import load
 
-    robot = load(EXAMPLES / "ur5_description" / "urdf" / "ur5.urdf.xacro")
-    ctx = Context("inproc", clock=ManualClock())
-    system = ControlSystem.build(
-        robot,  # type: ignore[arg-type]
-        EXAMPLES / "ur5_description" / "config" / "ur5_controllers.yaml",
-        context=ctx,
-    )
+    ctx, system = _example_system("ur5_description", "ur5.urdf.xacro", "ur5_controllers.yaml")
     node = ctx.create_node("probe")
     node.create_publisher(Float64, "/joint2_position_controller/command").publish(Float64(-1.2))
     for _ in range(3):
@@ -447,15 +430,10 @@ def test_seed_001_ur5_position_controllers() -> None:
 
 
 def test_seed_002_simplebot_drives_in_a_circle() -> None:
-    from robomodel.loading import load
     from robomodel.runtime.msg import Twist
 
-    robot = load(EXAMPLES / "simplebot_description" / "urdf" / "simplebot.urdf.xacro")
-    ctx = Context("inproc", clock=ManualClock())
-    system = ControlSystem.build(
-        robot,  # type: ignore[arg-type]
-        EXAMPLES / "simplebot_description" / "config" / "simplebot_controllers.yaml",
-        context=ctx,
+    ctx, system = _example_system(
+        "simplebot_description", "simplebot.urdf.xacro", "simplebot_controllers.yaml"
     )
     node = ctx.create_node("probe")
     odoms: list[Odometry] = []
@@ -541,16 +519,9 @@ def test_jtc_goal_waits_for_the_joint_to_stop() -> None:
 
 def test_pid_gains_set_through_the_parameter_service_apply_live() -> None:
     """dynamic_reconfigure for the PID: a set of pid.p changes the running controller."""
-    from robomodel.loading import load
     from robomodel.runtime.msg import JointControllerState
 
-    robot = load(EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro")
-    ctx = Context("inproc", clock=ManualClock())
-    system = ControlSystem.build(
-        robot,  # type: ignore[arg-type]
-        EXAMPLES / "rrbot_description" / "config" / "rrbot_control.yaml",
-        context=ctx,
-    )
+    ctx, system = _example_system("rrbot_description", "rrbot.xacro", "rrbot_control.yaml")
     controller = system.manager.entries["joint1_position_controller"].controller
     node = ctx.create_node("probe")
     pid_state: list[JointControllerState] = []
