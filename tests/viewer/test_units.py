@@ -59,7 +59,9 @@ def test_cli_port_in_use_exits_2_with_one_line(cli: Callable[..., ToolResult]) -
     )
 
 
-def test_cli_rejects_bad_arguments(cli: Callable[..., ToolResult]) -> None:
+def test_cli_rejects_bad_arguments(
+    cli: Callable[..., ToolResult], capsys: pytest.CaptureFixture[str]
+) -> None:
     urdf = str(EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf")
     result = cli("view", urdf, "--prefix", "a/", "--prefix", "b/", "--no-browser")
     assert result.code == 2 and "one per FILE" in result.err
@@ -67,6 +69,11 @@ def test_cli_rejects_bad_arguments(cli: Callable[..., ToolResult]) -> None:
     assert result.code == 2 and "--bus zenoh" in result.err
     result = cli("view", "nothere.urdf", "--no-browser", "--port", "0")
     assert result.code == 2 and "no such file" in result.err
+    for verb in ("view", "sim"):  # argparse's own usage error: exit 2
+        with pytest.raises(SystemExit) as stopped:
+            cli(verb, urdf, "--frame-rate", "0", "--no-browser")
+        assert stopped.value.code == 2
+        assert "--frame-rate: must be > 0 Hz, got 0" in capsys.readouterr().err
 
 
 def test_file_watcher_sees_edits_new_and_removed_files(tmp_path: Path) -> None:

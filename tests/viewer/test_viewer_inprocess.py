@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from robomodel.description.packages import PackageIndex
+from robomodel.errors import RobomodelError
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES
 from tests.viewer.conftest import wait_for
@@ -95,6 +96,39 @@ def test_link_poses_in_the_fixed_frame(started: list[Viewer], tmp_path: Path) ->
         lambda: (p := tool_position()) is not None and np.allclose(p, (0.0, -1.1, 0.1), atol=1e-9),
         what="the tool at (0, -1.1, 0.1)",
     )
+
+
+def test_scene_updates_are_capped_at_the_frame_rate(started: list[Viewer], tmp_path: Path) -> None:
+    """TF at 200 Hz (a simulation) reaches the page at most Frame Rate times a second."""
+    from robomodel.runtime.msg import TFMessage
+    from robomodel.runtime.msg.geometry_msgs import Transform, TransformStamped, Vector3
+    from robomodel.runtime.msg.std_msgs import Header
+
+    with pytest.raises(RobomodelError, match="frame rate must be > 0"):
+        Viewer(ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), frame_rate_hz=0))
+    viewer = _start(started, RobotSource(str(write_arm(tmp_path))), frame_rate_hz=10.0)
+    assert viewer.context is not None
+    publisher = viewer.context.create_node("flood").create_publisher(TFMessage, "/tf")
+
+    def flood(duration_s: float) -> int:
+        wait_for(lambda: not viewer._dirty, what="a quiet viewer")
+        before = viewer.updates_sent
+        end = time.monotonic() + duration_s
+        x = 0.0
+        while time.monotonic() < end:
+            x += 1e-3
+            tf = TransformStamped(
+                Header(frame_id="world"), "base_link", Transform(Vector3(x, 0, 0))
+            )
+            publisher.publish(TFMessage([tf]))
+            time.sleep(0.005)
+        return viewer.updates_sent - before
+
+    sent = flood(1.0)
+    assert 1 <= sent <= 10 + 2  # ~200 TF messages merged into at most 10 updates a second
+    viewer.frame_rate_number.value = 2.0  # Global Options > Frame Rate, as a user types it
+    wait_for(lambda: viewer.frame_rate_hz == 2.0, what="the new frame rate")
+    assert 1 <= flood(1.0) <= 2 + 2
 
 
 BROKEN_MACRO = """<?xml version="1.0"?>

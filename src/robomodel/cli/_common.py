@@ -46,6 +46,24 @@ def add_package_options(parser: argparse.ArgumentParser, *, mappings: bool = Tru
     )
 
 
+def add_frame_rate_argument(parser: argparse.ArgumentParser) -> None:
+    """``--frame-rate HZ``: the viewer's scene updates per second at most (RViz's Frame Rate)."""
+
+    def positive(text: str) -> float:
+        value = float(text)
+        if not value > 0:
+            raise argparse.ArgumentTypeError(f"must be > 0 Hz, got {text}")
+        return value
+
+    parser.add_argument(
+        "--frame-rate",
+        type=positive,
+        default=30.0,
+        metavar="HZ",
+        help="the viewer's scene updates per second at most (RViz's Frame Rate, default 30)",
+    )
+
+
 def split_mappings(items: list[str]) -> dict[str, str]:
     """Turn ``name:=value`` arguments into a dict (as xacro and ros2 launch do)."""
     mappings: dict[str, str] = {}

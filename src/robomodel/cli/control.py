@@ -17,7 +17,11 @@ import webbrowser
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
-from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.cli._common import (
+    add_description_arguments,
+    add_frame_rate_argument,
+    load_from_args,
+)
 from robomodel.errors import RobomodelError
 
 __all__ = ["register"]
@@ -53,6 +57,7 @@ def register(subparsers: Any) -> None:
     run_p.add_argument(
         "--port", type=int, default=8080, help="the viewer's HTTP port (0: any free port)"
     )
+    add_frame_rate_argument(run_p)
     run_p.add_argument(
         "--inactive", action="store_true", help="load and configure only (spawner --inactive)"
     )
@@ -285,6 +290,7 @@ def _start_viewer(
                 package_index=package_index_from_args(args),
                 fixed_frame=fixed_frame,
                 scenery=scenery,
+                frame_rate_hz=args.frame_rate,
             )
         )
         viewer.start()

@@ -21,7 +21,11 @@ import time
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments
-from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.cli._common import (
+    add_description_arguments,
+    add_frame_rate_argument,
+    load_from_args,
+)
 from robomodel.errors import RobomodelError
 
 __all__ = ["parse_rate", "register", "scenery_of"]
@@ -62,6 +66,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--cmd-vel-topic", default=None, help="topic for --cmd-vel (default: found)")
     p.add_argument("--report", choices=("json",), help="print a JSON summary at the end")
     p.add_argument("--port", type=int, default=8080, help="the viewer's HTTP port (0: any)")
+    add_frame_rate_argument(p)
     add_bus_arguments(p)
     p.set_defaults(func=_run)
 

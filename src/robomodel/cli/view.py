@@ -16,7 +16,12 @@ import webbrowser
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments
-from robomodel.cli._common import add_package_options, package_index_from_args, split_mappings
+from robomodel.cli._common import (
+    add_frame_rate_argument,
+    add_package_options,
+    package_index_from_args,
+    split_mappings,
+)
 from robomodel.errors import RobomodelError
 
 __all__ = ["register"]
@@ -58,6 +63,7 @@ def register(subparsers: Any) -> None:
         default="sliders",
         help="sliders (joint_state_publisher_gui) or external (/joint_states, /tf from the bus)",
     )
+    add_frame_rate_argument(parser)
     parser.add_argument(
         "--no-tools",
         action="store_true",
@@ -117,6 +123,7 @@ def run(args: argparse.Namespace) -> int:
         external=args.joint_states == "external",
         package_index=package_index_from_args(args),
         tools=not args.no_tools,
+        frame_rate_hz=args.frame_rate,
     )
     viewer = Viewer(options)
     try:

@@ -58,6 +58,9 @@ class ViewerOptions:
         reload_period_s: How often the description files are polled for changes.
         tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
         scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
+        frame_rate_hz: At most this many scene updates per second (RViz's Global Options >
+            Frame Rate, 30 by default). TF arriving faster (a simulation publishes at 100 Hz and
+            more) is merged into the next update, so a slow browser is never flooded.
     """
 
     sources: tuple[RobotSource, ...]
@@ -73,6 +76,7 @@ class ViewerOptions:
     reload_period_s: float = 0.25
     tools: bool = True
     scenery: tuple[SceneryShape, ...] = ()
+    frame_rate_hz: float = 30.0
 
 
 def zero_pose_extent_m(robot: Robot) -> float:
@@ -105,7 +109,10 @@ class Viewer:
         for source in options.sources:
             if not os.path.isfile(source.path):
                 raise RobomodelError(f"cannot read '{source.path}': no such file")
+        if not options.frame_rate_hz > 0:
+            raise RobomodelError(f"frame rate must be > 0 Hz, got {options.frame_rate_hz}")
         self.options = options
+        self.frame_rate_hz = options.frame_rate_hz  # Global Options > Frame Rate changes it
         count = len(options.sources)
         self.sessions = [
             RobotSession(
@@ -250,9 +257,12 @@ class Viewer:
             post=self._post,
             displays=lambda: [s.display for s in self.sessions if s.display is not None],
             on_fixed_frame=lambda frame: setattr(self, "fixed_frame", frame),
+            frame_rate_hz=self.frame_rate_hz,
+            on_frame_rate=lambda hz: setattr(self, "frame_rate_hz", hz),
         )
         self.status = panel.status
         self.fixed_dropdown = panel.fixed_dropdown
+        self.frame_rate_number = panel.frame_rate
         self.tf_display = panel.tf_display
 
     def _build_tools(self, node: Node) -> None:
@@ -291,7 +301,7 @@ class Viewer:
 
     def _run_loop(self) -> None:
         assert self.context is not None
-        next_reload = next_status = next_bodies = 0.0
+        next_reload = next_status = next_bodies = next_push = 0.0
         while not self._stop.is_set():
             self.context.spin_once(0.005)
             for session in self.sessions:
@@ -301,7 +311,8 @@ class Viewer:
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()
-            if self._dirty:
+            if self._dirty and now >= next_push:
+                next_push = now + 1.0 / self.frame_rate_hz
                 self._dirty = False
                 self._push()
             if now >= next_status:

@@ -1,4 +1,4 @@
-"""The page's option folders: Status, Global Options (Fixed Frame), RobotModel and TF.
+"""The page's option folders: Status, Global Options (Fixed Frame, Frame Rate), RobotModel, TF.
 
 Property names are RViz's (Visual Enabled, Collision Enabled, Alpha, Show Axes, Show Names,
 Marker Scale), so that a user of RViz finds them where expected. Changes are posted to the
@@ -38,6 +38,8 @@ class OptionsPanel:
         post: Callable[[Callable[[], None]], None],
         displays: Callable[[], Sequence[RobotModelDisplay]],
         on_fixed_frame: Callable[[str], None],
+        frame_rate_hz: float = 30.0,
+        on_frame_rate: Callable[[float], None] = lambda _hz: None,
     ) -> None:
         gui = server.gui
         gui.configure_theme(control_width="large")  # room for file:line errors and mesh paths
@@ -51,6 +53,9 @@ class OptionsPanel:
         with gui.add_folder("Global Options"):
             self.fixed_dropdown = gui.add_dropdown(
                 "Fixed Frame", (fixed_frame,), initial_value=fixed_frame
+            )
+            self.frame_rate = frame_rate = gui.add_number(
+                "Frame Rate", frame_rate_hz, min=1.0, max=120.0, step=1.0
             )
         self.tf_display = TFDisplay(server.scene)
         with gui.add_folder("RobotModel"):
@@ -88,8 +93,14 @@ class OptionsPanel:
             options.alpha = float(alpha.value)
             post(each(lambda d: d.set_alpha(options.alpha)))
 
+        def on_frame_rate_changed(_event: Any) -> None:
+            hz = float(frame_rate.value)
+            if hz > 0:
+                post(lambda: on_frame_rate(hz))
+
         tf = self.tf_display
         self.fixed_dropdown.on_update(on_fixed)
+        frame_rate.on_update(on_frame_rate_changed)
         visual.on_update(on_visual)
         collision.on_update(on_collision)
         alpha.on_update(on_alpha)
