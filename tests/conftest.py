@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import os
 import shutil
 import subprocess
@@ -21,6 +22,22 @@ settings.load_profile("robomodel")
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
+
+
+_DOMAINS = itertools.count()
+
+
+def unique_domain() -> str:
+    """A Zenoh domain id (1..230) no other test running at the same time uses.
+
+    Tests that start processes on the Zenoh bus must not hear each other: a /gazebo/pause or a
+    cmd_vel from a test on the other xdist worker would reach this test's simulator. Each worker
+    gets its own block of ids and walks through it, so consecutive tests of one worker differ too.
+    """
+    workers = max(1, int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1")))
+    worker = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw") or 0)
+    span = 230 // workers
+    return str(1 + worker * span + next(_DOMAINS) % span)
 
 
 def example_robot_data_dir() -> Path:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import signal
 import subprocess
 import sys
@@ -14,7 +13,7 @@ import pytest
 import yaml
 
 from robomodel.runtime import Context
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, unique_domain
 
 ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
 
@@ -92,7 +91,7 @@ def test_services_inproc() -> None:
 
 
 def _domain() -> str:
-    return str(150 + os.getpid() % 50)
+    return unique_domain()
 
 
 def _cli(*args: str, timeout: float = 20) -> subprocess.CompletedProcess[str]:
@@ -199,7 +198,7 @@ def test_seed_000_workflow_over_zenoh(rrbot_run: str) -> None:
 
 
 def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
-    domain = str(100 + (os.getpid() + 7) % 50)
+    domain = unique_domain()
     urdf, config = RUNS[3]
     proc = subprocess.Popen(
         [

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 import textwrap
@@ -12,6 +11,7 @@ import pytest
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
+from tests.conftest import unique_domain
 
 SERVER = textwrap.dedent(
     """
@@ -44,7 +44,7 @@ def test_inproc_service_call_and_errors() -> None:
 def test_zenoh_service_across_processes(tmp_path: Path) -> None:
     script = tmp_path / "server.py"
     script.write_text(SERVER)
-    domain = str(200 + os.getpid() % 40)
+    domain = unique_domain()
     proc = subprocess.Popen(
         [sys.executable, str(script), domain], stdout=subprocess.PIPE, text=True
     )

@@ -5,7 +5,6 @@ Each test uses its own domain id so tests can run in parallel.
 
 from __future__ import annotations
 
-import os
 import signal
 import subprocess
 import sys
@@ -15,6 +14,8 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+
+from tests.conftest import unique_domain
 
 ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
 
@@ -44,8 +45,8 @@ TALKER = textwrap.dedent(
 )
 
 
-def _domain(offset: int) -> str:
-    return str(100 + (os.getpid() + offset) % 100)
+def _domain(_offset: int = 0) -> str:
+    return unique_domain()
 
 
 @pytest.fixture

@@ -8,6 +8,7 @@ import pytest
 
 from robomodel.cli.main import main
 from robomodel.cli.sim import parse_rate
+from tests.conftest import unique_domain
 
 from .conftest import SIMPLEBOT_LIDAR, SIMPLEBOT_YAML, WALL_WORLD
 
@@ -86,14 +87,13 @@ def test_rate_factor_paces_the_run(capsys: pytest.CaptureFixture[str]) -> None:
 def test_paused_single_step_and_services_from_another_process() -> None:
     """gazebo -u, then /gazebo/step, /gazebo/unpause_physics and /gazebo/reset_world from the
     `service` verb of another process; /clock follows; xacro arguments reach the description."""
-    import os
     import subprocess
     import sys
     import time
 
     from .conftest import UR5
 
-    domain = str(240 + os.getpid() % 40)
+    domain = unique_domain()
     cli = [sys.executable, "-m", "robomodel.cli.main"]
     bus = ["--domain-id", domain]
     sim = subprocess.Popen(

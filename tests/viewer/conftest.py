@@ -190,6 +190,8 @@ def save_shot(page: Any, name: str) -> Path:
     return path
 
 
-def domain_id(offset: int) -> str:
-    """A Zenoh domain of its own per test (the runtime tests use 100-199)."""
-    return str(200 + (os.getpid() * 7 + offset) % 50)
+def domain_id(_offset: int = 0) -> str:
+    """A Zenoh domain of its own per test (see tests.conftest.unique_domain)."""
+    from tests.conftest import unique_domain
+
+    return unique_domain()

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import io
 import math
+import threading
 from collections.abc import Iterator
 from typing import Any
 
@@ -139,24 +140,34 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
 
     domain = domain_id(41)
     desc = EXAMPLES / "simplebot_description"
+    # --duration is sim time, which runs at wall speed here: long enough for a loaded machine
+    # (the test terminates the simulator when done).
     sim = subprocess.Popen(
         [sys.executable, "-m", "robomodel.cli.main", "sim",
          str(desc / "urdf" / "simplebot_lidar.urdf.xacro"),
          "--controllers", str(desc / "config" / "simplebot_controllers.yaml"),
          "--world", str(desc / "worlds" / "wall.world"),
-         "--domain-id", domain, "--port", "0", "--no-browser", "--duration", "60",
+         "--domain-id", domain, "--port", "0", "--no-browser", "--duration", "600",
          "--report", "json"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
     )  # fmt: skip
-    try:
+    assert sim.stderr is not None
+    errors: list[str] = []
+    started = threading.Event()
+
+    def drain() -> None:  # a full stderr pipe would block the simulator
         assert sim.stderr is not None
-        url = None
-        for _ in range(30):
-            line = sim.stderr.readline()
+        for line in sim.stderr:
+            errors.append(line)
             if "viewer at" in line:
-                url = line.rsplit(" ", 1)[1].strip()
-                break
-        assert url, "robomodel sim did not start its viewer"
+                started.set()
+        started.set()
+
+    threading.Thread(target=drain, daemon=True).start()
+    try:
+        started.wait(60)
+        url = next((x.rsplit(" ", 1)[1].strip() for x in errors if "viewer at" in x), None)
+        assert url, f"robomodel sim did not start its viewer: {''.join(errors)}"
         open_viewer(page, url)
         _open(page, "Robot Steering")
         topic = gui_row(page, "Steering topic").locator("input:not([type=hidden])").first
@@ -173,13 +184,22 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
             image = settle(page)  # settle() returns the scene region already
             return (image,) if changed_fraction(before, image) > 0.004 else None
 
-        wait_for(moved, timeout_s=40, what="the simplebot to drive in the page")
+        try:
+            wait_for(moved, timeout_s=40, what="the simplebot to drive in the page")
+        except BaseException:
+            save_shot(page, "demo_simplebot_not_driving")
+            raise AssertionError(
+                f"the simplebot did not drive in the page (simulator running: "
+                f"{sim.poll() is None}); its stderr:\n{''.join(errors[-40:])}"
+            ) from None
         save_shot(page, "demo_simplebot_driving")
         page.get_by_text("Stop", exact=True).click()
         _pause_and_step_from_the_simulation_folder(page)
     finally:
         sim.terminate()
-        out, _ = sim.communicate(timeout=30)
+        sim.wait(timeout=30)
+        assert sim.stdout is not None
+        out = sim.stdout.read()
     report = json.loads(out.strip().splitlines()[-1]) if out.strip() else None
     if report is not None:  # terminated early: the report may be missing; the pixels decided
         assert report["ground_truth_xy"][0] > 0.05
