@@ -73,7 +73,7 @@ def test_cli_rejects_bad_arguments(
         with pytest.raises(SystemExit) as stopped:
             cli(verb, urdf, "--frame-rate", "0", "--no-browser")
         assert stopped.value.code == 2
-        assert "--frame-rate: must be > 0 Hz, got 0" in capsys.readouterr().err
+        assert "--frame-rate: must be 1..1000 Hz, got 0" in capsys.readouterr().err
 
 
 def test_file_watcher_sees_edits_new_and_removed_files(tmp_path: Path) -> None:

@@ -104,7 +104,7 @@ def test_scene_updates_are_capped_at_the_frame_rate(started: list[Viewer], tmp_p
     from robomodel.runtime.msg.geometry_msgs import Transform, TransformStamped, Vector3
     from robomodel.runtime.msg.std_msgs import Header
 
-    with pytest.raises(RobomodelError, match="frame rate must be > 0"):
+    with pytest.raises(RobomodelError, match=r"frame rate must be 1\.\.1000 Hz"):
         Viewer(ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), frame_rate_hz=0))
     viewer = _start(started, RobotSource(str(write_arm(tmp_path))), frame_rate_hz=10.0)
     assert viewer.context is not None

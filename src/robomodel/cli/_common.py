@@ -49,18 +49,18 @@ def add_package_options(parser: argparse.ArgumentParser, *, mappings: bool = Tru
 def add_frame_rate_argument(parser: argparse.ArgumentParser) -> None:
     """``--frame-rate HZ``: the viewer's scene updates per second at most (RViz's Frame Rate)."""
 
-    def positive(text: str) -> float:
+    def hertz(text: str) -> float:
         value = float(text)
-        if not value > 0:
-            raise argparse.ArgumentTypeError(f"must be > 0 Hz, got {text}")
+        if not 1.0 <= value <= 1000.0:
+            raise argparse.ArgumentTypeError(f"must be 1..1000 Hz, got {text}")
         return value
 
     parser.add_argument(
         "--frame-rate",
-        type=positive,
-        default=30.0,
+        type=hertz,
+        default=60.0,
         metavar="HZ",
-        help="the viewer's scene updates per second at most (RViz's Frame Rate, default 30)",
+        help="the viewer's scene updates per second at most (RViz's Frame Rate, default 60)",
     )
 
 

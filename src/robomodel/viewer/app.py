@@ -59,8 +59,10 @@ class ViewerOptions:
         tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
         scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
         frame_rate_hz: At most this many scene updates per second (RViz's Global Options >
-            Frame Rate, 30 by default). TF arriving faster (a simulation publishes at 100 Hz and
-            more) is merged into the next update, so a slow browser is never flooded.
+            Frame Rate). Default 60: a browser draws 60 frames a second, more updates are never
+            seen. TF arriving faster (a simulation publishes at 100 Hz and more, a dragged slider
+            at the GUI's event rate) is merged into the next update, so a slow browser is never
+            flooded.
     """
 
     sources: tuple[RobotSource, ...]
@@ -76,7 +78,7 @@ class ViewerOptions:
     reload_period_s: float = 0.25
     tools: bool = True
     scenery: tuple[SceneryShape, ...] = ()
-    frame_rate_hz: float = 30.0
+    frame_rate_hz: float = 60.0
 
 
 def zero_pose_extent_m(robot: Robot) -> float:
@@ -109,8 +111,8 @@ class Viewer:
         for source in options.sources:
             if not os.path.isfile(source.path):
                 raise RobomodelError(f"cannot read '{source.path}': no such file")
-        if not options.frame_rate_hz > 0:
-            raise RobomodelError(f"frame rate must be > 0 Hz, got {options.frame_rate_hz}")
+        if not 1.0 <= options.frame_rate_hz <= 1000.0:
+            raise RobomodelError(f"frame rate must be 1..1000 Hz, got {options.frame_rate_hz}")
         self.options = options
         self.frame_rate_hz = options.frame_rate_hz  # Global Options > Frame Rate changes it
         count = len(options.sources)
@@ -312,7 +314,8 @@ class Viewer:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()
             if self._dirty and now >= next_push:
-                next_push = now + 1.0 / self.frame_rate_hz
+                # On the schedule, not from now: the loop's own latency does not lower the rate.
+                next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
                 self._dirty = False
                 self._push()
             if now >= next_status:

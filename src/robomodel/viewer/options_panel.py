@@ -38,7 +38,7 @@ class OptionsPanel:
         post: Callable[[Callable[[], None]], None],
         displays: Callable[[], Sequence[RobotModelDisplay]],
         on_fixed_frame: Callable[[str], None],
-        frame_rate_hz: float = 30.0,
+        frame_rate_hz: float = 60.0,
         on_frame_rate: Callable[[float], None] = lambda _hz: None,
     ) -> None:
         gui = server.gui
@@ -55,7 +55,7 @@ class OptionsPanel:
                 "Fixed Frame", (fixed_frame,), initial_value=fixed_frame
             )
             self.frame_rate = frame_rate = gui.add_number(
-                "Frame Rate", frame_rate_hz, min=1.0, max=120.0, step=1.0
+                "Frame Rate", frame_rate_hz, min=1.0, max=1000.0, step=1.0
             )
         self.tf_display = TFDisplay(server.scene)
         with gui.add_folder("RobotModel"):
