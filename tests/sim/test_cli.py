@@ -138,3 +138,36 @@ def test_paused_single_step_and_services_from_another_process() -> None:
     finally:
         sim.terminate()
         sim.wait(timeout=10)
+
+
+def test_prefix_runs_through_the_simulator_state_publisher_and_tf() -> None:
+    """``--prefix r1_``: bodies, robot_state_publisher's frame_prefix and the weld all agree,
+    so ``world -> r1_link3`` is one connected tree on the bus (tf2_echo answers it)."""
+    import subprocess
+    import sys
+
+    from .conftest import RRBOT, RRBOT_YAML
+
+    domain = unique_domain()
+    cli = [sys.executable, "-m", "robomodel.cli.main"]
+    bus = ["--domain-id", domain]
+    sim = subprocess.Popen(
+        [*cli, "sim", str(RRBOT), "--controllers", str(RRBOT_YAML), "--prefix", "r1_",
+         "--headless", *bus],
+        stderr=subprocess.DEVNULL,
+    )  # fmt: skip
+    try:
+        echo = subprocess.run(
+            [*cli, "tf", "world", "r1_link3", "--once", "--timeout", "20", *bus],
+            capture_output=True, text=True, timeout=60,
+        )  # fmt: skip
+        assert echo.returncode == 0, echo.stderr
+        assert "Translation: [" in echo.stdout
+        unprefixed = subprocess.run(
+            [*cli, "tf", "world", "link3", "--once", "--timeout", "2", *bus],
+            capture_output=True, text=True, timeout=60,
+        )  # fmt: skip
+        assert unprefixed.returncode != 0  # every frame of the robot carries the prefix
+    finally:
+        sim.terminate()
+        sim.wait(timeout=10)

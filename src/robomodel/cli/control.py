@@ -280,7 +280,11 @@ def _start_viewer(
     try:
         viewer = Viewer(
             ViewerOptions(
-                sources=(RobotSource(args.file, split_mappings(args.mappings)),),
+                sources=(
+                    RobotSource(
+                        args.file, split_mappings(args.mappings), getattr(args, "prefix", "")
+                    ),
+                ),
                 bus="zenoh",
                 domain_id=args.domain_id,
                 connect=tuple(args.connect),

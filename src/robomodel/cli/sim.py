@@ -46,7 +46,12 @@ def register(subparsers: Any) -> None:
         metavar="V",
         help="spawn pose x y z R P Y [m, rad] (as spawn_entity -x -y -z -R -P -Y; missing = 0)",
     )
-    p.add_argument("--prefix", default="", help="frame prefix of the robot")
+    p.add_argument(
+        "--prefix",
+        default="",
+        help="frame prefix of the robot (its bodies, robot_state_publisher's frame_prefix, the "
+        "viewer; verbatim, e.g. r1_)",
+    )
     p.add_argument(
         "--rate",
         default="realtime",
@@ -160,7 +165,12 @@ def _run(args: argparse.Namespace) -> int:
             system = sim.control(args.controllers, prefix=args.prefix, context=context)
             namespace = system.manager.namespace
         bridge = SimBridge(sim, context)
-        RobotStatePublisher(context, urdf_to_string(robot), namespace=namespace)
+        RobotStatePublisher(
+            context,
+            urdf_to_string(robot),
+            namespace=namespace,
+            parameters={"frame_prefix": args.prefix},  # ROS 2 multi-robot: frames P<link>
+        )
         odom = OdomWatcher.attach(system, context) if system is not None else None
         if cmd is not None:
             CmdVelDriver.attach(sim, system, context, cmd, topic=args.cmd_vel_topic)
