@@ -315,3 +315,33 @@ def test_a_slow_subscriber_keeps_the_latest_depth_messages() -> None:
             sub_ctx.spin_once(0.05)
         assert got and got[-1] == 200
         assert len(got) < 100 and got == sorted(got)
+
+
+def test_a_late_subscriber_gets_every_latched_publishers_history() -> None:
+    """/tf_static from two static broadcasters (robot_state_publisher and a simulator), and a
+    depth-3 history: a subscriber that joins later receives all of it, as from DDS."""
+    from robomodel.runtime import Context, latched
+    from robomodel.runtime.msg import String
+
+    domain = int(_domain())
+    with (
+        Context("zenoh", domain_id=domain) as pub_ctx,
+        Context("zenoh", domain_id=domain) as sub_ctx,
+    ):
+        node = pub_ctx.create_node("broadcasters")
+        first = node.create_publisher(String, "/statics", latched())
+        second = node.create_publisher(String, "/statics", latched(depth=3))
+        first.publish(String("rsp: old"))
+        first.publish(String("rsp"))
+        for text in ("sim 1", "sim 2", "sim 3"):
+            second.publish(String(text))
+        got: list[str] = []
+        sub_ctx.create_node("late").create_subscription(
+            String, "/statics", lambda m: got.append(m.data), latched(depth=100)
+        )
+        deadline = time.monotonic() + 10
+        while len(got) < 4 and time.monotonic() < deadline:
+            sub_ctx.spin_once(0.05)
+        sub_ctx.spin_once(0.3)
+        assert sorted(got) == ["rsp", "sim 1", "sim 2", "sim 3"]
+        assert [g for g in got if g.startswith("sim")] == ["sim 1", "sim 2", "sim 3"]

@@ -193,6 +193,14 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
                 f"{sim.poll() is None}); its stderr:\n{''.join(errors[-40:])}"
             ) from None
         save_shot(page, "demo_simplebot_driving")
+        # The robot is drawn where its odometry says only if world -> odom (the simulator's
+        # /tf_static) and odom -> base_link connect for a late joiner, as for the viewer.
+        tf = subprocess.run(
+            [sys.executable, "-m", "robomodel.cli.main", "tf", "world", "base_link", "--once",
+             "--timeout", "20", "--domain-id", domain],
+            capture_output=True, text=True, timeout=60,
+        )  # fmt: skip
+        assert tf.returncode == 0, tf.stderr[-2000:]
         page.get_by_text("Stop", exact=True).click()
         _pause_and_step_from_the_simulation_folder(page)
     finally:

@@ -100,15 +100,17 @@ class _ZPub(PublisherHandle):
         self._queryable = None
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
             self._history = collections.deque(maxlen=max(1, endpoint.qos.depth))
-            key = f"{prefix}/@l{endpoint.topic}/{self._id}"
-            self._queryable = session.declare_queryable(key, self._serve_history)
+            self._history_key = f"{prefix}/@l{endpoint.topic}/{self._id}"
+            self._queryable = session.declare_queryable(self._history_key, self._serve_history)
         self._endpoint = endpoint
 
     def _serve_history(self, query: Any) -> None:
         with self._lock:
             history = list(self._history or ())
+        # Each publisher answers on its own key: replies on the query's wildcard key would be
+        # consolidated into one, and a late subscriber would get one broadcaster's /tf_static.
         for payload, attachment in history:
-            query.reply(query.key_expr, payload, attachment=attachment)
+            query.reply(self._history_key, payload, attachment=attachment)
 
     def publish(self, msg: Message) -> None:
         if not isinstance(msg, self._type):
@@ -159,7 +161,13 @@ class _ZSub(SubscriptionHandle):
         self._sub = session.declare_subscriber(f"{prefix}/t{endpoint.topic}", self._on_sample)
         self._token = session.liveliness().declare_token(bus.graph_key("sub", endpoint))
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
-            session.get(f"{prefix}/@l{endpoint.topic}/*", self._on_reply, timeout=2.0)
+            # No consolidation: every publisher's whole history (depth samples on one key).
+            session.get(
+                f"{prefix}/@l{endpoint.topic}/*",
+                self._on_reply,
+                consolidation=_import_zenoh().ConsolidationMode.NONE,
+                timeout=2.0,
+            )
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
         payload = sample.payload.to_bytes()
