@@ -345,3 +345,27 @@ def test_a_late_subscriber_gets_every_latched_publishers_history() -> None:
         sub_ctx.spin_once(0.3)
         assert sorted(got) == ["rsp", "sim 1", "sim 2", "sim 3"]
         assert [g for g in got if g.startswith("sim")] == ["sim 1", "sim 2", "sim 3"]
+
+
+def test_latched_history_reaches_a_subscriber_after_the_first_process_left() -> None:
+    """The first process on a domain links the others; when it exits (a short `robomodel tf`
+    started before the simulator), a later subscriber still gets /tf_static once the
+    publisher is reachable again, not only what is published after that."""
+    from robomodel.runtime import Context, latched
+    from robomodel.runtime.msg import String
+
+    domain = int(_domain())
+    first = Context("zenoh", domain_id=domain)  # takes the domain's anchor port
+    with Context("zenoh", domain_id=domain) as pub_ctx:
+        pub = pub_ctx.create_node("broadcaster").create_publisher(String, "/statics", latched())
+        pub.publish(String("world -> odom"))
+        first.shutdown()
+        with Context("zenoh", domain_id=domain) as sub_ctx:
+            got: list[str] = []
+            sub_ctx.create_node("late").create_subscription(
+                String, "/statics", lambda m: got.append(m.data), latched(depth=100)
+            )
+            deadline = time.monotonic() + 20
+            while not got and time.monotonic() < deadline:
+                sub_ctx.spin_once(0.05)
+            assert got == ["world -> odom"]

@@ -98,10 +98,13 @@ class _ZPub(PublisherHandle):
         self._token = session.liveliness().declare_token(bus.graph_key("pub", endpoint))
         self._history: collections.deque[tuple[bytes, bytes]] | None = None
         self._queryable = None
+        self._history_token = None
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
             self._history = collections.deque(maxlen=max(1, endpoint.qos.depth))
             self._history_key = f"{prefix}/@l{endpoint.topic}/{self._id}"
             self._queryable = session.declare_queryable(self._history_key, self._serve_history)
+            # Announces the history: subscribers query it whenever it becomes reachable.
+            self._history_token = session.liveliness().declare_token(self._history_key)
         self._endpoint = endpoint
 
     def _serve_history(self, query: Any) -> None:
@@ -127,7 +130,7 @@ class _ZPub(PublisherHandle):
         self._pub.put(payload, attachment=attachment)
 
     def destroy(self) -> None:
-        for handle in (self._queryable, self._token, self._pub):
+        for handle in (self._history_token, self._queryable, self._token, self._pub):
             if handle is not None:
                 try:
                     handle.undeclare()
@@ -160,13 +163,13 @@ class _ZSub(SubscriptionHandle):
         session, prefix = bus.session, bus.prefix
         self._sub = session.declare_subscriber(f"{prefix}/t{endpoint.topic}", self._on_sample)
         self._token = session.liveliness().declare_token(bus.graph_key("sub", endpoint))
+        self._history_sub = None
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
-            # No consolidation: every publisher's whole history (depth samples on one key).
-            session.get(
-                f"{prefix}/@l{endpoint.topic}/*",
-                self._on_reply,
-                consolidation=_import_zenoh().ConsolidationMode.NONE,
-                timeout=2.0,
+            # As DDS on matching a writer: every latched publisher's history is queried when its
+            # token becomes visible, now (history=True) or later (a publisher that starts
+            # later, or a peer reached again after the process that linked us exited).
+            self._history_sub = session.liveliness().declare_subscriber(
+                f"{prefix}/@l{endpoint.topic}/*", self._on_history_token, history=True
             )
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
@@ -189,6 +192,18 @@ class _ZSub(SubscriptionHandle):
             self._scheduled = False
         for payload, attachment in batch:
             self._handle(payload, attachment)
+
+    def _on_history_token(self, sample: Any) -> None:  # a Zenoh thread
+        zenoh = _import_zenoh()
+        if not self._alive or sample.kind != zenoh.SampleKind.PUT:
+            return
+        # No consolidation: the publisher's whole history (depth samples on its one key).
+        self._bus.session.get(
+            str(sample.key_expr),
+            self._on_reply,
+            consolidation=zenoh.ConsolidationMode.NONE,
+            timeout=2.0,
+        )
 
     def _on_reply(self, reply: Any) -> None:  # a Zenoh thread
         sample = reply.ok
@@ -230,7 +245,9 @@ class _ZSub(SubscriptionHandle):
 
     def destroy(self) -> None:
         self._alive = False
-        for handle in (self._token, self._sub):
+        for handle in (self._history_sub, self._token, self._sub):
+            if handle is None:
+                continue
             try:
                 handle.undeclare()
             except Exception:
