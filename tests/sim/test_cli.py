@@ -171,3 +171,114 @@ def test_prefix_runs_through_the_simulator_state_publisher_and_tf() -> None:
     finally:
         sim.terminate()
         sim.wait(timeout=10)
+
+
+def test_two_robots_from_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
+    """Two spawn_entity calls in one command: one --prefix and --spawn each, one shared
+    controller file (each robot's controllers in its own namespace, /r1 and /r2)."""
+    from .conftest import SIMPLEBOT
+
+    code = main(
+        [
+            "sim", str(SIMPLEBOT), str(SIMPLEBOT), "--controllers", str(SIMPLEBOT_YAML),
+            "--prefix", "r1_", "--prefix", "r2_", "--spawn", "0", "0", "0.076",
+            "--spawn", "0", "2", "0.076", "0", "0", "1.5707963", "--headless", "--duration", "5",
+            "--rate", "max", "--cmd-vel", "0.2 0 0", "--report", "json", "--bus", "inproc",
+        ]
+    )  # fmt: skip
+    assert code == 0
+    captured = capsys.readouterr()
+    assert "robots 'simplebot' (r1_), 'simplebot' (r2_)" in captured.err
+    report = json.loads(captured.out.strip().splitlines()[-1])
+    r1, r2 = report["robots"]
+    assert (r1["prefix"], r2["prefix"]) == ("r1_", "r2_")
+    assert report["ground_truth_xy"] == r1["ground_truth_xy"]  # the first robot at top level
+    assert r1["ground_truth_xy"] == pytest.approx([1.0, 0.0], abs=0.05)
+    assert r2["ground_truth_xy"] == pytest.approx([0.0, 3.0], abs=0.05)  # drove along +y
+    for robot in (r1, r2):  # each odometry in its own odom frame, started at its spawn
+        assert robot["odom_xy"][0] == pytest.approx(1.0, rel=0.05)
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        ([], "2 robots need 2 distinct --prefix options"),
+        (["--prefix", "a_", "--prefix", "a_"], "2 robots need 2 distinct --prefix options"),
+        (["--prefix", "a_", "--prefix", "b_", "--spawn", "0"], "2 robots need 2 --spawn poses"),
+        (
+            ["--prefix", "a_", "--prefix", "b_", "--spawn", "0", "--spawn", "1", "--prefix", "c_"],
+            "3 --prefix options for 2 robot(s)",
+        ),
+        (
+            ["--prefix", "a_", "--prefix", "b_", "--spawn", "0", "--spawn", "1"]
+            + ["--controllers", str(SIMPLEBOT_YAML)] * 3,
+            "3 --controllers files for 2 robot(s)",
+        ),
+    ],
+)
+def test_several_robots_need_a_prefix_and_a_pose_each(
+    extra: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    code = main(["sim", str(SIMPLEBOT_LIDAR), str(SIMPLEBOT_LIDAR), *extra, "--headless"])
+    assert code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_a_prefixed_diff_drive_names_its_frames_with_the_prefix(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from robomodel.cli.sim import prefixed_controllers
+
+    config = prefixed_controllers(str(SIMPLEBOT_YAML), "r1_")
+    drive = next(s for s in config.controllers if s.type.endswith("DiffDriveController"))
+    assert drive.params["odom_frame_id"] == "r1_odom"
+    assert drive.params["base_frame_id"] == "r1_base_link"
+    assert drive.params["tf_frame_prefix_enable"] is False
+    plain = prefixed_controllers(str(SIMPLEBOT_YAML), "")  # no prefix: the file as written
+    drive = next(s for s in plain.controllers if s.type.endswith("DiffDriveController"))
+    assert "odom_frame_id" not in drive.params
+    own = tmp_path / "own.yaml"  # a file that chose its own frame prefix keeps it
+    own.write_text(
+        SIMPLEBOT_YAML.read_text().replace(
+            "  type: diff_drive_controller/DiffDriveController\n",
+            "  type: diff_drive_controller/DiffDriveController\n  tf_frame_prefix: robot1\n",
+        )
+    )
+    kept = prefixed_controllers(str(own), "r1_")
+    drive = next(s for s in kept.controllers if s.type.endswith("DiffDriveController"))
+    assert "tf_frame_prefix_enable" not in drive.params
+
+
+def test_two_mobile_robots_are_one_connected_tf_tree() -> None:
+    """world -> r2_odom (simulator) -> r2_base_link (diff drive) -> r2_left_wheel (RSP)."""
+    import subprocess
+    import sys
+
+    from .conftest import SIMPLEBOT
+
+    domain = unique_domain()
+    cli = [sys.executable, "-m", "robomodel.cli.main"]
+    bus = ["--domain-id", domain]
+    sim = subprocess.Popen(
+        [*cli, "sim", str(SIMPLEBOT), str(SIMPLEBOT), "--controllers", str(SIMPLEBOT_YAML),
+         "--prefix", "r1_", "--prefix", "r2_", "--spawn", "0", "0", "0.076",
+         "--spawn", "0", "2", "0.076", "--headless", *bus],
+        stderr=subprocess.DEVNULL,
+    )  # fmt: skip
+    try:
+        for frame, y in (("r1_left_wheel", 0.0), ("r2_left_wheel", 2.0)):
+            echo = subprocess.run(
+                [*cli, "tf", "world", frame, "--once", "--timeout", "20", *bus],
+                capture_output=True, text=True, timeout=60,
+            )  # fmt: skip
+            assert echo.returncode == 0, echo.stderr[-2000:]
+            translation = echo.stdout.split("Translation: [")[1].split("]")[0]
+            _x_m, y_m, _z = (float(v) for v in translation.split(","))
+            assert y_m == pytest.approx(y + 0.125, abs=0.05)  # the left wheel, 0.125 m to the left
+        topics = subprocess.run(
+            [*cli, "topic", "list", *bus], capture_output=True, text=True, timeout=30
+        ).stdout.split()
+        assert {"/r1/simplebot_controller/cmd_vel", "/r2/simplebot_controller/cmd_vel"} <= set(
+            topics
+        )
+    finally:
+        sim.terminate()
+        sim.wait(timeout=10)

@@ -251,13 +251,18 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _start_viewer(
-    args: argparse.Namespace, *, fixed_frame: str | None = None, scenery: tuple[Any, ...] = ()
+    args: argparse.Namespace,
+    *,
+    fixed_frame: str | None = None,
+    scenery: tuple[Any, ...] = (),
+    sources: list[tuple[str, dict[str, str], str]] | None = None,
 ) -> Any:
     """Start the browser viewer on the bus if this installation has it (imported lazily).
 
     The viewer reads /joint_states and /tf from the bus (``external`` joint states), so it needs
-    Zenoh. ``fixed_frame`` and ``scenery`` (``SceneryShape``s) are passed on to it. Returns the
-    viewer (to close) or ``None`` when running headless.
+    Zenoh. ``fixed_frame`` and ``scenery`` (``SceneryShape``s) are passed on to it; ``sources``
+    are the robots as (file, xacro arguments, frame prefix), default the command line's FILE.
+    Returns the viewer (to close) or ``None`` when running headless.
     """
     try:
         viewer_module = importlib.import_module("robomodel.viewer")
@@ -277,14 +282,11 @@ def _start_viewer(
         return None
     from robomodel.cli._common import package_index_from_args, split_mappings
 
+    robots = sources or [(args.file, split_mappings(args.mappings), "")]
     try:
         viewer = Viewer(
             ViewerOptions(
-                sources=(
-                    RobotSource(
-                        args.file, split_mappings(args.mappings), getattr(args, "prefix", "")
-                    ),
-                ),
+                sources=tuple(RobotSource(*source) for source in robots),
                 bus="zenoh",
                 domain_id=args.domain_id,
                 connect=tuple(args.connect),

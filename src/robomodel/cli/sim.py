@@ -18,13 +18,15 @@ import json
 import math
 import sys
 import time
+from dataclasses import dataclass
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments
 from robomodel.cli._common import (
-    add_description_arguments,
     add_frame_rate_argument,
-    load_from_args,
+    add_package_options,
+    package_index_from_args,
+    split_mappings,
 )
 from robomodel.errors import RobomodelError
 
@@ -35,22 +37,39 @@ def register(subparsers: Any) -> None:
     p = subparsers.add_parser(
         "sim", help="simulate a robot (Gazebo's role, on MuJoCo) with its controllers"
     )
-    add_description_arguments(p)
+    p.add_argument(
+        "inputs",
+        nargs="+",
+        metavar="FILE|name:=value",
+        help=".urdf or .xacro files (one robot each) and xacro arguments name:=value (for every "
+        "file)",
+    )
+    add_package_options(p, mappings=False)
     p.add_argument("--world", metavar="W.world", help="SDF world file (default: ground + sun)")
-    p.add_argument("--controllers", metavar="C.yaml", help="controller YAML (ROS 2 or ROS 1)")
+    p.add_argument(
+        "--controllers",
+        action="append",
+        default=[],
+        metavar="C.yaml",
+        help="controller YAML (ROS 2 or ROS 1): one for every robot, or one per FILE in order",
+    )
     p.add_argument(
         "--spawn",
         nargs="+",
         type=float,
+        action="append",
         default=[],
         metavar="V",
-        help="spawn pose x y z R P Y [m, rad] (as spawn_entity -x -y -z -R -P -Y; missing = 0)",
+        help="spawn pose x y z R P Y [m, rad] (as spawn_entity -x -y -z -R -P -Y; missing = 0); "
+        "one per FILE, in order",
     )
     p.add_argument(
         "--prefix",
-        default="",
-        help="frame prefix of the robot (its bodies, robot_state_publisher's frame_prefix, the "
-        "viewer; verbatim, e.g. r1_)",
+        action="append",
+        default=[],
+        metavar="P",
+        help="frame prefix of each FILE, in order (its bodies, robot_state_publisher's "
+        "frame_prefix, the viewer; verbatim, e.g. r1_); required with several robots",
     )
     p.add_argument(
         "--rate",
@@ -66,7 +85,8 @@ def register(subparsers: Any) -> None:
     p.add_argument(
         "--cmd-vel",
         metavar='"VX VY WZ"',
-        help="publish this constant Twist [m/s, rad/s] to the diff-drive controller at 10 Hz",
+        help="publish this constant Twist [m/s, rad/s] to the diff-drive controller (of every "
+        "robot that has one) at 10 Hz",
     )
     p.add_argument("--cmd-vel-topic", default=None, help="topic for --cmd-vel (default: found)")
     p.add_argument("--report", choices=("json",), help="print a JSON summary at the end")
@@ -96,6 +116,95 @@ def _spawn(values: list[float]) -> tuple[tuple[float, float, float], tuple[float
         raise RobomodelError(f"--spawn takes up to 6 numbers (x y z R P Y), got {len(values)}")
     v = [*values, *([0.0] * (6 - len(values)))]
     return (v[0], v[1], v[2]), (v[3], v[4], v[5])
+
+
+@dataclass(frozen=True, slots=True)
+class RobotRequest:
+    """One robot of the command line: its file, frame prefix, spawn pose and controllers."""
+
+    path: str
+    prefix: str
+    xyz_m: tuple[float, float, float]
+    rpy_rad: tuple[float, float, float]
+    controllers: str | None
+
+    @property
+    def namespace(self) -> str:
+        """ROS 2 multi-robot: each robot's nodes in a namespace named after its prefix."""
+        cleaned = "".join(c if c.isalnum() else "_" for c in self.prefix).strip("_")
+        return "/" + cleaned if cleaned and cleaned[0].isalpha() else "/"
+
+
+def robot_requests(args: argparse.Namespace) -> tuple[list[RobotRequest], dict[str, str]]:
+    """The robots named on the command line and the xacro arguments shared by all of them.
+
+    One robot: ``--prefix``, ``--spawn`` and ``--controllers`` as before. Several robots (as
+    several ``spawn_entity`` calls): one ``--prefix`` each (distinct), one ``--spawn`` each (two
+    robots at one pose would start inside each other) and one ``--controllers`` for all or one
+    each.
+    """
+    files = [item for item in args.inputs if ":=" not in item]
+    mappings = split_mappings([item for item in args.inputs if ":=" in item])
+    if not files:
+        raise RobomodelError("robomodel sim needs a .urdf or .xacro FILE")
+    n = len(files)
+    prefixes, spawns, configs = list(args.prefix), list(args.spawn), list(args.controllers)
+    for option, given in (("--prefix", prefixes), ("--spawn", spawns)):
+        if len(given) > n:
+            raise RobomodelError(
+                f"{len(given)} {option} options for {n} robot(s); give one per FILE"
+            )
+    if n > 1:
+        if len(prefixes) != n or len(set(prefixes)) != n:
+            raise RobomodelError(
+                f"{n} robots need {n} distinct --prefix options (frame prefixes, e.g. "
+                "--prefix r1_ --prefix r2_), one per FILE in order"
+            )
+        if len(spawns) != n:
+            raise RobomodelError(
+                f"{n} robots need {n} --spawn poses, one per FILE in order (at one pose they "
+                "would start inside each other)"
+            )
+    if len(configs) not in (0, 1, n):
+        raise RobomodelError(
+            f"{len(configs)} --controllers files for {n} robot(s): give one for all or one per FILE"
+        )
+    prefixes += [""] * (n - len(prefixes))
+    spawns += [[]] * (n - len(spawns))
+    configs = configs * n if len(configs) == 1 else configs or [None] * n
+    requests = []
+    for path, prefix, spawn, config in zip(files, prefixes, spawns, configs, strict=True):
+        xyz, rpy = _spawn(spawn)
+        requests.append(RobotRequest(path, prefix, xyz, rpy, config))
+    return requests, mappings
+
+
+def prefixed_controllers(path: str, prefix: str) -> Any:
+    """The controller file for a robot with frame prefix ``prefix``.
+
+    A diff drive names its odometry frames itself (``odom_frame_id``, ``base_frame_id``); with a
+    prefix they become ``<prefix>odom`` and ``<prefix>base_link``, so that they meet the
+    simulator's ``world -> <prefix>odom`` and robot_state_publisher's ``<prefix><link>`` in one
+    tree. A file that sets ``tf_frame_prefix`` or ``tf_frame_prefix_enable`` itself is kept.
+    """
+    import dataclasses
+
+    from robomodel.control.config import load_controller_config
+
+    config = load_controller_config(path)
+    if not prefix:
+        return config
+    specs = []
+    for spec in config.controllers:
+        params = dict(spec.params)
+        own = {"tf_frame_prefix", "tf_frame_prefix_enable"} & params.keys()
+        if spec.type.endswith("DiffDriveController") and not own:
+            params["tf_frame_prefix_enable"] = False
+            for key, default in (("odom_frame_id", "odom"), ("base_frame_id", "base_link")):
+                params[key] = prefix + str(params.get(key, default))
+            spec = dataclasses.replace(spec, params=params)
+        specs.append(spec)
+    return dataclasses.replace(config, controllers=tuple(specs))
 
 
 def _cmd_vel(text: str) -> tuple[float, float, float]:
@@ -142,38 +251,55 @@ def scenery_of(world: Any) -> tuple[Any, ...]:
 def _run(args: argparse.Namespace) -> int:
     from robomodel.cli.control import _start_viewer
     from robomodel.description.urdf.writer import urdf_to_string
+    from robomodel.loading import read_description
     from robomodel.runtime import Context, ManualClock
     from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
     from robomodel.sim import Placement, Simulation, default_world, read_world
     from robomodel.sim.bus import SimBridge
-    from robomodel.sim.scripted import CmdVelDriver, OdomWatcher
+    from robomodel.sim.scripted import CmdVelDriver, OdomWatcher, diff_drive_controller
 
     world = read_world(args.world) if args.world else default_world()
     factor = parse_rate(args.rate, world.real_time_factor)
-    xyz, rpy = _spawn(args.spawn)
+    requests, mappings = robot_requests(args)
     cmd = _cmd_vel(args.cmd_vel) if args.cmd_vel else None
-    result, loaded, index = load_from_args(args)
-    robot = result.robot
+    index = package_index_from_args(args)
+    for request in requests:  # every robot's workspace, as colcon's install space would
+        index = index.with_workspace_of(request.path)
     sim = Simulation(world, package_index=index)
-    built = sim.add_robot(
-        robot, placement=Placement(args.prefix, xyz, rpy), base_dir=loaded.base_dir
-    )
+    robots = []
+    for request in requests:
+        result, loaded = read_description(request.path, args=mappings, package_index=index)
+        placement = Placement(request.prefix, request.xyz_m, request.rpy_rad)
+        built = sim.add_robot(result.robot, placement=placement, base_dir=loaded.base_dir)
+        robots.append((request, result.robot, built))
+    several = len(robots) > 1
     with Context(args.bus, clock=ManualClock(), domain_id=args.domain_id, connect=args.connect, listen=args.listen) as context:  # fmt: skip
-        system = None
-        namespace = "/"
-        if args.controllers:
-            system = sim.control(args.controllers, prefix=args.prefix, context=context)
-            namespace = system.manager.namespace
+        systems = []
+        watchers: list[Any] = []
+        for request, robot, _built in robots:
+            system = None
+            namespace = request.namespace if several else "/"
+            if request.controllers:
+                system = sim.control(
+                    prefixed_controllers(request.controllers, request.prefix),
+                    prefix=request.prefix,
+                    context=context,
+                    namespace=namespace if several else None,
+                )
+                namespace = system.manager.namespace
+            systems.append(system)
+            RobotStatePublisher(
+                context,
+                urdf_to_string(robot),
+                namespace=namespace,
+                parameters={"frame_prefix": request.prefix},  # ROS 2 multi-robot: P<link>
+            )
+            watchers.append(OdomWatcher.attach(system, context) if system is not None else None)
+            if cmd is not None and (not several or diff_drive_controller(system) is not None):
+                CmdVelDriver.attach(sim, system, context, cmd, topic=args.cmd_vel_topic)
+                if args.cmd_vel_topic:  # one publisher for the one topic given
+                    cmd = None
         bridge = SimBridge(sim, context)
-        RobotStatePublisher(
-            context,
-            urdf_to_string(robot),
-            namespace=namespace,
-            parameters={"frame_prefix": args.prefix},  # ROS 2 multi-robot: frames P<link>
-        )
-        odom = OdomWatcher.attach(system, context) if system is not None else None
-        if cmd is not None:
-            CmdVelDriver.attach(sim, system, context, cmd, topic=args.cmd_vel_topic)
         bridge.paused = args.paused
         viewer = None
         if not args.headless:  # RViz's Fixed Frame "world", the world's objects drawn
@@ -181,27 +307,45 @@ def _run(args: argparse.Namespace) -> int:
                 scenery = scenery_of(world)
             except ImportError:  # no viewer extra: _start_viewer says so
                 scenery = ()
-            viewer = _start_viewer(args, fixed_frame="world", scenery=scenery)
+            viewer = _start_viewer(
+                args,
+                fixed_frame="world",
+                scenery=scenery,
+                sources=[(r.path, mappings, r.prefix) for r in requests],
+            )
+        names = ", ".join(
+            f"'{robot.name}'" + (f" ({request.prefix})" if request.prefix else "")
+            for request, robot, _ in robots
+        )
+        controllers = [
+            c["name"] for system in systems if system for c in system.manager.list_controllers()
+        ]
         print(
             f"robomodel sim: world '{world.name}' at {sim.timestep_s * 1e3:g} ms steps, "
-            f"robot '{robot.name}'"
-            + (f", controllers: {', '.join(c['name'] for c in system.manager.list_controllers())}" if system else "")
+            f"robot{'s' if several else ''} {names}"
+            + (f", controllers: {', '.join(controllers)}" if controllers else "")
             + f"; rate {args.rate}; bus {context.transport.name}"
             + ("" if args.duration else "; Ctrl-C stops"),
             file=sys.stderr,
-        )  # fmt: skip
+        )
         wall_s = 0.0
         try:
             with contextlib.suppress(KeyboardInterrupt):
                 wall_s = _loop(sim, bridge, args.duration, factor)
         finally:
-            if system is not None:
-                system.manager.shutdown()
+            for system in systems:
+                if system is not None:
+                    system.manager.shutdown()
             bridge.close()
             if viewer is not None:
                 viewer.close()
         if args.report == "json":
-            print(json.dumps(_report(sim, built.root_body, odom, wall_s)))
+            reports = [
+                {"prefix": request.prefix, **_report(sim, built.root_body, odom, wall_s)}
+                for (request, _robot, built), odom in zip(robots, watchers, strict=True)
+            ]
+            first = {k: v for k, v in reports[0].items() if k != "prefix"}
+            print(json.dumps({**first, "robots": reports} if several else first))
     return 0
 
 
