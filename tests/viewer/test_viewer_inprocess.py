@@ -204,3 +204,38 @@ def test_scenery_is_posed_in_its_frame_and_hidden_while_unconnected(
     )
     with pytest.raises(ValueError, match="box, cylinder, sphere"):
         SceneryShape("x", "world", "cone", (1, 1, 1))
+
+
+def test_external_without_a_state_publisher_draws_from_the_other_ones_tf(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    """Under `robomodel sim`/`control run` the process runs robot_state_publisher itself: the
+    viewer adds none (no duplicate /tf) and draws the robot from that one's transforms."""
+    from robomodel.runtime.msg import Header, JointState, Time
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+
+    path = write_arm(tmp_path)
+    viewer = _start(started, RobotSource(str(path)), external=True, state_publisher=False)
+    session = viewer.sessions[0]
+    assert session.rsp is None and session.jsp is None
+    assert viewer.context is not None
+    RobotStatePublisher(viewer.context, path.read_text())  # the simulator's own
+    node = viewer.context.create_node("driver")
+    states = node.create_publisher(JointState, "/joint_states")
+    publishers = [e.node for e in viewer.context.graph().topics["/tf"].publishers]
+    assert publishers.count("/robot_state_publisher") == 1  # the simulator's, not a second one
+    assert session.display is not None
+    names = session.display.link_names
+
+    sent = [0]
+
+    def tool() -> np.ndarray | None:
+        sent[0] += 1  # newer stamps: robot_state_publisher skips repeated ones
+        states.publish(JointState(Header(Time(sent[0], 0)), ["joint1"], [np.pi / 2]))
+        poses = session.link_poses(viewer.buffer, "base_link", np.eye(4))
+        return None if poses is None or not poses.visible.all() else poses.xyz[names.index("tool")]
+
+    wait_for(
+        lambda: (p := tool()) is not None and np.allclose(p, (0.0, -1.1, 0.1), atol=1e-9),
+        what="the tool posed from the other robot_state_publisher's /tf",
+    )

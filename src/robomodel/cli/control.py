@@ -292,6 +292,7 @@ def _start_viewer(
                 connect=tuple(args.connect),
                 listen=tuple(args.listen),
                 external=True,
+                state_publisher=False,  # this process runs robot_state_publisher itself
                 port=args.port,
                 package_index=package_index_from_args(args),
                 fixed_frame=fixed_frame,

@@ -55,6 +55,8 @@ class ViewerOptions:
         fixed_frame: RViz's Fixed Frame; default the first robot's root link.
         bus: ``"inproc"`` or ``"zenoh"``.
         external: Joint states (or /tf) come from another process on the bus.
+        state_publisher: With ``external``, run a robot_state_publisher per robot (turning
+            /joint_states from the bus into /tf); off when that process runs its own.
         reload_period_s: How often the description files are polled for changes.
         tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
         scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
@@ -74,6 +76,7 @@ class ViewerOptions:
     connect: tuple[str, ...] = ()
     listen: tuple[str, ...] = ()
     external: bool = False
+    state_publisher: bool = True
     package_index: PackageIndex = field(default_factory=PackageIndex)
     reload_period_s: float = 0.25
     tools: bool = True
@@ -123,6 +126,7 @@ class Viewer:
                 index=options.package_index,
                 namespace=_namespace(source, i, count),
                 external=options.external,
+                state_publisher=options.state_publisher,
             )
             for i, source in enumerate(options.sources)
         ]

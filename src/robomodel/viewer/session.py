@@ -89,6 +89,8 @@ class RobotSession:
         index: Package index for ``$(find)`` and ``package://``.
         namespace: Namespace of this robot's nodes ("/" for a single robot).
         external: Joint states come from the bus (no joint_state_publisher, no sliders).
+        state_publisher: Run a robot_state_publisher for the robot (off when the process that
+            publishes the joint states runs its own, as ``robomodel sim`` and ``control run``).
     """
 
     def __init__(
@@ -99,6 +101,7 @@ class RobotSession:
         index: PackageIndex,
         namespace: str = "/",
         external: bool = False,
+        state_publisher: bool = True,
     ) -> None:
         self.number = number
         self.source = source
@@ -106,6 +109,8 @@ class RobotSession:
         self.index = index.with_workspace_of(source.path)
         self.namespace = namespace
         self.external = external
+        self.state_publisher = state_publisher or not external  # sliders need their RSP
+        self._publishers_created = False
         self.robot: Robot | None = None
         self.loaded: LoadedDescription | None = None
         self.failure: LoadFailure | None = None
@@ -180,13 +185,15 @@ class RobotSession:
 
     def _create_publishers(self) -> None:
         assert self._context is not None and self.robot is not None
-        self.rsp = RobotStatePublisher(
-            self._context,
-            self.robot,
-            namespace=self.namespace,
-            # A viewer must not drop slider moves: limit to 1000 Hz, not RSP's 20 Hz default.
-            parameters={"frame_prefix": self.prefix, "publish_frequency": 1000.0},
-        )
+        if self.state_publisher:
+            self.rsp = RobotStatePublisher(
+                self._context,
+                self.robot,
+                namespace=self.namespace,
+                # A viewer must not drop slider moves: limit to 1000 Hz, not RSP's 20 Hz default.
+                parameters={"frame_prefix": self.prefix, "publish_frequency": 1000.0},
+            )
+        self._publishers_created = True
         if not self.external:
             self.jsp = JointStatePublisher(self._context, self.robot, namespace=self.namespace)
             self.jsp.publish()
@@ -195,14 +202,16 @@ class RobotSession:
         """Hand the newly loaded model to the nodes (keeping joint values that still exist)."""
         if self.robot is None:
             return
-        if self.rsp is None:
+        if not self._publishers_created:
             self._create_publishers()
             self.publish_bodies()
             return
-        result = self.rsp.node.set_parameters({"robot_description": urdf_to_string(self.robot)})
-        if not result.successful:
-            self.failure = LoadFailure(f"robot_state_publisher refused it: {result.reason}")
-            return
+        if self.rsp is not None:
+            description = urdf_to_string(self.robot)
+            result = self.rsp.node.set_parameters({"robot_description": description})
+            if not result.successful:
+                self.failure = LoadFailure(f"robot_state_publisher refused it: {result.reason}")
+                return
         if self.jsp is not None:
             self.jsp.configure(self.robot)
             self.jsp.publish()
