@@ -282,3 +282,21 @@ def test_two_mobile_robots_are_one_connected_tf_tree() -> None:
     finally:
         sim.terminate()
         sim.wait(timeout=10)
+
+
+def test_each_robot_gets_its_own_namespace() -> None:
+    import argparse
+
+    from robomodel.cli.sim import robot_requests
+
+    args = argparse.Namespace(
+        inputs=["a.urdf", "b.urdf", "c.urdf", "x:=1"],
+        prefix=["r1_", "2_", "left/"],
+        spawn=[[0.0], [1.0], [2.0]],
+        controllers=[],
+    )
+    requests, mappings = robot_requests(args)
+    assert [r.namespace for r in requests] == ["/r1", "/robot2", "/left"]
+    assert mappings == {"x": "1"} and [r.xyz_m[0] for r in requests] == [0.0, 1.0, 2.0]
+    one, _ = robot_requests(argparse.Namespace(inputs=["a.urdf"], prefix=["r1_"], spawn=[], controllers=[]))  # fmt: skip
+    assert one[0].namespace == "/"  # one robot: the controller file's own namespace

@@ -127,12 +127,14 @@ class RobotRequest:
     xyz_m: tuple[float, float, float]
     rpy_rad: tuple[float, float, float]
     controllers: str | None
+    namespace: str = "/"
 
-    @property
-    def namespace(self) -> str:
-        """ROS 2 multi-robot: each robot's nodes in a namespace named after its prefix."""
-        cleaned = "".join(c if c.isalnum() else "_" for c in self.prefix).strip("_")
-        return "/" + cleaned if cleaned and cleaned[0].isalpha() else "/"
+
+def _namespace(prefix: str, number: int) -> str:
+    """ROS 2 multi-robot: a robot's nodes in a namespace named after its prefix (``r1_`` ->
+    ``/r1``), ``/robot<N>`` when the prefix makes no valid name (``1_``)."""
+    cleaned = "".join(c if c.isalnum() else "_" for c in prefix).strip("_")
+    return "/" + cleaned if cleaned and cleaned[0].isalpha() else f"/robot{number + 1}"
 
 
 def robot_requests(args: argparse.Namespace) -> tuple[list[RobotRequest], dict[str, str]]:
@@ -173,9 +175,12 @@ def robot_requests(args: argparse.Namespace) -> tuple[list[RobotRequest], dict[s
     spawns += [[]] * (n - len(spawns))
     configs = configs * n if len(configs) == 1 else configs or [None] * n
     requests = []
-    for path, prefix, spawn, config in zip(files, prefixes, spawns, configs, strict=True):
+    for k, (path, prefix, spawn, config) in enumerate(
+        zip(files, prefixes, spawns, configs, strict=True)
+    ):
         xyz, rpy = _spawn(spawn)
-        requests.append(RobotRequest(path, prefix, xyz, rpy, config))
+        namespace = _namespace(prefix, k) if n > 1 else "/"
+        requests.append(RobotRequest(path, prefix, xyz, rpy, config, namespace))
     return requests, mappings
 
 
@@ -278,13 +283,13 @@ def _run(args: argparse.Namespace) -> int:
         watchers: list[Any] = []
         for request, robot, _built in robots:
             system = None
-            namespace = request.namespace if several else "/"
+            namespace = request.namespace
             if request.controllers:
                 system = sim.control(
                     prefixed_controllers(request.controllers, request.prefix),
                     prefix=request.prefix,
                     context=context,
-                    namespace=namespace if several else None,
+                    namespace=namespace if several else None,  # one robot: the file's own
                 )
                 namespace = system.manager.namespace
             systems.append(system)
