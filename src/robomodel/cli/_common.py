@@ -64,6 +64,14 @@ def add_frame_rate_argument(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def split_inputs(items: list[str], verb: str) -> tuple[list[str], dict[str, str]]:
+    """``FILE ... name:=value ...`` (in any order) as the files and the xacro arguments."""
+    files = [item for item in items if ":=" not in item]
+    if not files:
+        raise RobomodelError(f"robomodel {verb} needs at least one .urdf or .xacro FILE")
+    return files, split_mappings([item for item in items if ":=" in item])
+
+
 def split_mappings(items: list[str]) -> dict[str, str]:
     """Turn ``name:=value`` arguments into a dict (as xacro and ros2 launch do)."""
     mappings: dict[str, str] = {}

@@ -26,7 +26,7 @@ from robomodel.cli._common import (
     add_frame_rate_argument,
     add_package_options,
     package_index_from_args,
-    split_mappings,
+    split_inputs,
 )
 from robomodel.errors import RobomodelError
 
@@ -145,10 +145,7 @@ def robot_requests(args: argparse.Namespace) -> tuple[list[RobotRequest], dict[s
     robots at one pose would start inside each other) and one ``--controllers`` for all or one
     each.
     """
-    files = [item for item in args.inputs if ":=" not in item]
-    mappings = split_mappings([item for item in args.inputs if ":=" in item])
-    if not files:
-        raise RobomodelError("robomodel sim needs a .urdf or .xacro FILE")
+    files, mappings = split_inputs(args.inputs, "sim")
     n = len(files)
     prefixes, spawns, configs = list(args.prefix), list(args.spawn), list(args.controllers)
     for option, given in (("--prefix", prefixes), ("--spawn", spawns)):

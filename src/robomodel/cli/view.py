@@ -20,7 +20,7 @@ from robomodel.cli._common import (
     add_frame_rate_argument,
     add_package_options,
     package_index_from_args,
-    split_mappings,
+    split_inputs,
 )
 from robomodel.errors import RobomodelError
 
@@ -97,10 +97,7 @@ def _report_meshes(viewer: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 
-    files = [item for item in args.inputs if ":=" not in item]
-    mappings = split_mappings([item for item in args.inputs if ":=" in item])
-    if not files:
-        raise RobomodelError("robomodel view needs at least one .urdf or .xacro FILE")
+    files, mappings = split_inputs(args.inputs, "view")
     if len(args.prefix) > len(files):
         raise RobomodelError(
             f"{len(args.prefix)} --prefix options for {len(files)} file(s); give one per FILE"
