@@ -6,6 +6,7 @@ import itertools
 import os
 import shutil
 import subprocess
+import sys
 import sysconfig
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -21,6 +22,7 @@ settings.register_profile("robomodel", deadline=None)
 settings.load_profile("robomodel")
 
 ROOT = Path(__file__).resolve().parents[1]
+ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]  # the CLI in a process of its own
 EXAMPLES = ROOT / "examples"
 
 

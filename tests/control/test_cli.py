@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import signal
 import subprocess
-import sys
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -13,9 +12,7 @@ import pytest
 import yaml
 
 from robomodel.runtime import Context
-from tests.conftest import EXAMPLES, unique_domain
-
-ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
+from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 
 RUNS = [
     ("rrbot_description/urdf/rrbot.xacro", "rrbot_description/config/rrbot_control.yaml"),

@@ -11,7 +11,7 @@ import pytest
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
-from tests.conftest import unique_domain
+from tests.conftest import ROBOMODEL, unique_domain
 
 SERVER = textwrap.dedent(
     """
@@ -60,7 +60,7 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
             with pytest.raises(RobomodelError, match="did not answer"):
                 ctx.call_service("/calc/nothing", {}, timeout_s=0.5)
             assert "/calc/add" in ctx.graph().services
-        cli = [sys.executable, "-m", "robomodel.cli.main", "service"]
+        cli = [*ROBOMODEL, "service"]
         listed = subprocess.run([*cli, "list", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
         assert listed.returncode == 0 and "/calc/add" in listed.stdout.split()
         called = subprocess.run([*cli, "call", "calc/add", "{a: 2, b: 3.5}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip

@@ -15,9 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import unique_domain
-
-ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
+from tests.conftest import ROBOMODEL, unique_domain
 
 TALKER = textwrap.dedent(
     """

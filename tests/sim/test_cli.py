@@ -8,7 +8,7 @@ import pytest
 
 from robomodel.cli.main import main
 from robomodel.cli.sim import parse_rate
-from tests.conftest import unique_domain
+from tests.conftest import ROBOMODEL, unique_domain
 
 from .conftest import SIMPLEBOT_LIDAR, SIMPLEBOT_YAML, WALL_WORLD
 
@@ -88,13 +88,12 @@ def test_paused_single_step_and_services_from_another_process() -> None:
     """gazebo -u, then /gazebo/step, /gazebo/unpause_physics and /gazebo/reset_world from the
     `service` verb of another process; /clock follows; xacro arguments reach the description."""
     import subprocess
-    import sys
     import time
 
     from .conftest import UR5
 
     domain = unique_domain()
-    cli = [sys.executable, "-m", "robomodel.cli.main"]
+    cli = ROBOMODEL
     bus = ["--domain-id", domain]
     sim = subprocess.Popen(
         [*cli, "sim", str(UR5), "prefix:=left_", "--headless", "--paused", "--rate", "1", *bus],
@@ -144,12 +143,11 @@ def test_prefix_runs_through_the_simulator_state_publisher_and_tf() -> None:
     """``--prefix r1_``: bodies, robot_state_publisher's frame_prefix and the weld all agree,
     so ``world -> r1_link3`` is one connected tree on the bus (tf2_echo answers it)."""
     import subprocess
-    import sys
 
     from .conftest import RRBOT, RRBOT_YAML
 
     domain = unique_domain()
-    cli = [sys.executable, "-m", "robomodel.cli.main"]
+    cli = ROBOMODEL
     bus = ["--domain-id", domain]
     sim = subprocess.Popen(
         [*cli, "sim", str(RRBOT), "--controllers", str(RRBOT_YAML), "--prefix", "r1_",
@@ -250,12 +248,11 @@ def test_a_prefixed_diff_drive_names_its_frames_with_the_prefix(tmp_path) -> Non
 def test_two_mobile_robots_are_one_connected_tf_tree() -> None:
     """world -> r2_odom (simulator) -> r2_base_link (diff drive) -> r2_left_wheel (RSP)."""
     import subprocess
-    import sys
 
     from .conftest import SIMPLEBOT
 
     domain = unique_domain()
-    cli = [sys.executable, "-m", "robomodel.cli.main"]
+    cli = ROBOMODEL
     bus = ["--domain-id", domain]
     sim = subprocess.Popen(
         [*cli, "sim", str(SIMPLEBOT), str(SIMPLEBOT), "--controllers", str(SIMPLEBOT_YAML),

@@ -13,7 +13,6 @@ import re
 import shutil
 import signal
 import subprocess
-import sys
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -22,7 +21,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-ROBOMODEL = [sys.executable, "-m", "robomodel.cli.main"]
+from tests.conftest import ROBOMODEL, unique_domain
+
 CHROMIUM_ARGS = [
     "--no-sandbox",
     "--disable-gpu",
@@ -192,6 +192,4 @@ def save_shot(page: Any, name: str) -> Path:
 
 def domain_id(_offset: int = 0) -> str:
     """A Zenoh domain of its own per test (see tests.conftest.unique_domain)."""
-    from tests.conftest import unique_domain
-
     return unique_domain()
