@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.conftest import EXAMPLES, example_robot_data_dir
+from tests.conftest import EXAMPLES, ROBOMODEL, example_robot_data_dir
 from tests.viewer.conftest import (
     ViewerProcess,
     changed_fraction,
@@ -229,11 +229,10 @@ def test_bus_mode_draws_joint_states_from_another_process(
     viewer: Callable[..., ViewerProcess], page: Any, tmp_path: Path
 ) -> None:
     import subprocess
-    import sys
 
     domain = domain_id(2)
     path = write_arm(tmp_path)
-    command = [sys.executable, "-m", "robomodel.cli.main", "publish-state", str(path)]
+    command = [*ROBOMODEL, "publish-state", str(path)]
     publisher = subprocess.Popen(
         [*command, "--bus", "zenoh", "--domain-id", domain, "--rate", "20", "--delta", "0.05"],
         stdout=subprocess.DEVNULL,

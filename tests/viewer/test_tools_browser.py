@@ -134,8 +134,8 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
     """The make demo job: robomodel sim on the simplebot with lidar, steered from the page."""
     import json
     import subprocess
-    import sys
 
+    from tests.conftest import ROBOMODEL
     from tests.viewer.conftest import changed_fraction, domain_id, settle
 
     domain = domain_id(41)
@@ -143,7 +143,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
     # --duration is sim time, which runs at wall speed here: long enough for a loaded machine
     # (the test terminates the simulator when done).
     sim = subprocess.Popen(
-        [sys.executable, "-m", "robomodel.cli.main", "sim",
+        [*ROBOMODEL, "sim",
          str(desc / "urdf" / "simplebot_lidar.urdf.xacro"),
          "--controllers", str(desc / "config" / "simplebot_controllers.yaml"),
          "--world", str(desc / "worlds" / "wall.world"),
@@ -196,7 +196,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         # The robot is drawn where its odometry says only if world -> odom (the simulator's
         # /tf_static) and odom -> base_link connect for a late joiner, as for the viewer.
         tf = subprocess.run(
-            [sys.executable, "-m", "robomodel.cli.main", "tf", "world", "base_link", "--once",
+            [*ROBOMODEL, "tf", "world", "base_link", "--once",
              "--timeout", "20", "--domain-id", domain],
             capture_output=True, text=True, timeout=60,
         )  # fmt: skip
