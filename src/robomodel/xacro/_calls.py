@@ -154,7 +154,7 @@ def handle_macro_call(
     remove_previous_comments(ctx, node)
     if node.parent is not None and isinstance(node.parent, Element):
         import_xml_namespaces(ctx, node.parent, body.attrs)
-    replace_node(node, body, content_only=True)
+    ctx.charge_work(replace_node(node, body, content_only=True))
     ctx.stack.pop()
 
 
@@ -240,4 +240,4 @@ def process_include(
         ctx.filestack.pop()
         ctx.stack.pop()
     remove_previous_comments(ctx, elt)
-    replace_node(elt, included, content_only=True)
+    ctx.charge_work(replace_node(elt, included, content_only=True))

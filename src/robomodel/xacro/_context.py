@@ -84,6 +84,7 @@ class Context:
     node: Node | None = None
     attr: str | None = None
     nodes_left: int = 0
+    work_left: int = 0
     guards: Guards = field(init=False)
     base: dict[str, object] = field(init=False)
     globals: dict[str, object] = field(default_factory=dict)
@@ -96,6 +97,7 @@ class Context:
         # (remove_previous_comments); its position changes the layout, so it is mirrored.
         self.empty_text = Text("\n\n")
         self.nodes_left = self.limits.max_nodes
+        self.work_left = self.limits.max_work
 
     @property
     def current_file(self) -> str | None:
@@ -192,8 +194,21 @@ class Context:
         """Record a warning (printed by the CLI, returned by the API)."""
         self.diagnostics.append(Diagnostic(severity, message, self.location(node)))
 
+    def charge_work(self, units: int) -> None:
+        """Account for ``units`` of expansion work (see ``Limits.max_work``); refuse runaway
+        expansions (exponential macro fan-out, strings doubling per property) early, at the
+        node being expanded and with the macro stack, instead of after minutes."""
+        self.work_left -= units
+        if self.work_left < 0:
+            raise self.error(
+                f"expansion does more than {self.limits.max_work} units of work (macro calls, "
+                "created nodes, evaluated text); does a macro call itself more than once per "
+                "level, or a property double in length at each step?"
+            )
+
     def charge_nodes(self, count: int) -> None:
         """Account for ``count`` nodes created by an expansion; refuse runaway growth."""
+        self.charge_work(count + 1)
         self.nodes_left -= count
         if self.nodes_left < 0:
             raise self.error(

@@ -134,10 +134,14 @@ def eval_text(ctx: Context, text: str, scope: Scope) -> object:
         tokens = _tokens(text)
     except LexError as exc:
         raise ctx.error(f"{exc}; write '$$' before '{{' or '(' for a literal '$'") from None
+    ctx.charge_work(1)
     if len(tokens) == 1:
         kind, value = tokens[0]
         if kind is TokenKind.EXPR and "$" not in value:
-            return eval_expression(ctx, value, scope, value)
+            result = eval_expression(ctx, value, scope, value)
+            if type(result) is str:
+                ctx.charge_work(len(result) >> 6)
+            return result
     results: list[object] = []
     for kind, value in tokens:
         if kind is TokenKind.TEXT:
@@ -149,7 +153,11 @@ def eval_text(ctx: Context, text: str, scope: Scope) -> object:
             results.append(eval_extension(ctx, f"$({eval_text(ctx, value, scope)})"))
     if len(results) == 1:
         return results[0]
-    return "".join(map(str, results))
+    joined = "".join(map(str, results))
+    ctx.charge_work(len(joined) >> 6)
+    if len(joined) > ctx.limits.max_length:
+        raise ctx.error(f"text longer than {ctx.limits.max_length} characters")
+    return joined
 
 
 def _tokenize(s: str, sep: str = ",; ", skip_empty: bool = True) -> list[str]:

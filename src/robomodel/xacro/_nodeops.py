@@ -12,11 +12,14 @@ __all__ = ["check_attrs", "remove_previous_comments", "replace_node"]
 
 def replace_node(
     node: Node, by: list[Element] | Element | None, content_only: bool = False
-) -> None:
-    """Insert ``by`` (or its children when ``content_only``) before ``node``; drop ``node``."""
+) -> int:
+    """Insert ``by`` (or its children when ``content_only``) before ``node``; drop ``node``.
+
+    Returns how many nodes were moved (the work an expansion is charged for)."""
     parent = node.parent
     if parent is None:
-        return
+        return 0
+    moved = 0
     if by is not None:
         for doc in by if isinstance(by, list) else (by,):
             if content_only:
@@ -25,9 +28,12 @@ def replace_node(
                     following = child.next
                     parent.insert_before(child, node)
                     child = following
+                    moved += 1
             else:
                 parent.insert_before(doc, node)
+                moved += 1
     parent.remove(node)
+    return moved
 
 
 def remove_previous_comments(ctx: Context, node: Node) -> None:

@@ -40,7 +40,7 @@ def _insert_block(ctx: Context, node: Element, macros: Scope, symbols: Scope) ->
     copy = block.clone(counter)
     ctx.charge_nodes(counter[0])
     eval_all(ctx, copy, macros, symbols)
-    replace_node(node, copy, content_only=content_only)
+    ctx.charge_work(replace_node(node, copy, content_only=content_only))
     return False
 
 
@@ -111,7 +111,7 @@ def _conditional(ctx: Context, node: Element, macros: Scope, symbols: Scope) -> 
         keep = not keep
     if keep:
         eval_all(ctx, node, macros, symbols)
-        replace_node(node, node, content_only=True)
+        ctx.charge_work(replace_node(node, node, content_only=True))
     else:
         replace_node(node, None)
     return False
