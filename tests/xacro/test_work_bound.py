@@ -67,7 +67,7 @@ def test_string_doubling_through_text_is_bounded() -> None:
     props = '<xacro:property name="p0" value="ab"/>' + "".join(
         f'<xacro:property name="p{i}" value="${{p{i - 1}}}${{p{i - 1}}}"/>' for i in range(1, 40)
     )
-    with pytest.raises(InputError, match="longer than|units of work"):
+    with pytest.raises(InputError, match=r"longer than|units of work"):
         rx.process(doc(props + '<x v="${p39}"/>'))
 
 
@@ -76,7 +76,7 @@ def test_eval_string_doubling_is_bounded() -> None:
     args = '<xacro:arg name="a0" default="ab"/>' + "".join(
         f'<xacro:arg name="a{i}" default="$(eval a{i - 1} + a{i - 1})"/>' for i in range(1, 40)
     )
-    with pytest.raises(InputError, match="longer than|units of work"):
+    with pytest.raises(InputError, match=r"longer than|units of work"):
         rx.process(doc(args + '<x v="$(arg a39)"/>'))
 
 

@@ -10,9 +10,7 @@ from robomodel.xacro._dom import Comment, Element, Node, Text
 __all__ = ["check_attrs", "remove_previous_comments", "replace_node"]
 
 
-def replace_node(
-    node: Node, by: list[Element] | Element | None, content_only: bool = False
-) -> int:
+def replace_node(node: Node, by: list[Element] | Element | None, content_only: bool = False) -> int:
     """Insert ``by`` (or its children when ``content_only``) before ``node``; drop ``node``.
 
     Returns how many nodes were moved (the work an expansion is charged for)."""
