@@ -311,6 +311,31 @@ def _ros1(data: dict[str, Any], doc: _Located) -> ControllerConfig:
     return ControllerConfig(100, tuple(specs), namespace, "ros1", doc.path)
 
 
+_BOUND_KEYS = (
+    ("i", "i_clamp_min", "i_clamp_max"),
+    ("u", "u_clamp_min", "u_clamp_max"),
+)
+
+
+def _check_pid_bounds(data: Any, key: tuple[str, ...], doc: _Located) -> None:
+    """Refuse PID gains whose clamps have min > max, at the min's line (control_toolbox's Pid
+    throws ``invalid_argument`` on them; the controller would never be configured)."""
+    if isinstance(data, dict):
+        for kind, low_key, high_key in _BOUND_KEYS:
+            low, high = data.get(low_key), data.get(high_key)
+            if isinstance(low, int | float) and isinstance(high, int | float) and low > high:
+                raise ConfigError(
+                    f"received {kind}_min > {kind}_max ({low_key}={low:g} > {high_key}="
+                    f"{high:g}); control_toolbox's Pid needs {low_key} <= {high_key}",
+                    doc.loc((*key, low_key)),
+                )
+        for name, value in data.items():
+            _check_pid_bounds(value, (*key, name), doc)
+    elif isinstance(data, list):
+        for index, value in enumerate(data):
+            _check_pid_bounds(value, (*key, str(index)), doc)
+
+
 def load_controller_config(
     source: str | os.PathLike[str], *, text: str | None = None
 ) -> ControllerConfig:
@@ -340,6 +365,7 @@ def load_controller_config(
     data = doc.convert(node, ())
     if not isinstance(data, dict):
         raise ConfigError("the controller file must be a mapping", doc.loc(()))
+    _check_pid_bounds(data, (), doc)
     if any(_node_name(k) == "controller_manager" for k in data):
         return _ros2(data, doc)
     return _ros1(data, doc)

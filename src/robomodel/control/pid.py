@@ -10,13 +10,31 @@ from __future__ import annotations
 
 import enum
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from robomodel.control.exceptions import ConfigError
 
-__all__ = ["AntiWindup", "Gains", "Pid", "PidKilted"]
+__all__ = ["AntiWindup", "Gains", "Pid", "PidBoundsError", "PidKilted", "check_bounds"]
+
+
+class PidBoundsError(ConfigError, ValueError):
+    """Bounds with min > max, which control_toolbox's Pid refuses (``std::invalid_argument``)."""
+
+
+def check_bounds(kind: str, low: float, high: float) -> None:
+    """Raise :class:`PidBoundsError` when ``low > high`` (``kind`` is ``i`` or ``u``).
+
+    Matches control_toolbox: ``Pid(...)`` throws ``invalid_argument("received i_min >
+    i_max")`` (Humble and master) and ``"received u_min > u_max"`` (master).
+    """
+    if low > high:
+        raise PidBoundsError(
+            f"received {kind}_min > {kind}_max ({kind}_min={low:g}, {kind}_max={high:g}); "
+            f"control_toolbox's Pid needs {kind}_min <= {kind}_max"
+        )
 
 
 @dataclass(frozen=True, slots=True)
@@ -65,6 +83,7 @@ class Pid:
     __slots__ = ("_i_hi", "_i_lo", "d_error", "error_last", "gains", "i_error", "p_error")
 
     def __init__(self, gains: Gains) -> None:
+        check_bounds("i", gains.i_min, gains.i_max)
         self.gains = gains
         self._set_bounds()
         self.reset()
@@ -77,9 +96,23 @@ class Pid:
         else:
             self._i_lo, self._i_hi = g.i_min, g.i_max
 
-    def set_gains(self, gains: Gains) -> None:
+    def set_gains(self, gains: Gains) -> bool:
+        """Use ``gains`` from the next update on; the integral is kept.
+
+        As Humble's ``Pid::setGains``, gains with ``i_min > i_max`` are not taken: the old
+        gains stay and a warning says why. Returns whether the gains were taken.
+        """
+        if gains.i_min > gains.i_max:
+            warnings.warn(
+                f"received i_min > i_max (i_min={gains.i_min:g}, i_max={gains.i_max:g}), "
+                "skip new gains",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+            return False
         self.gains = gains
         self._set_bounds()
+        return True
 
     def reset(self) -> None:
         """Zero the integral and the last error (the next derivative kicks, as upstream)."""
@@ -138,6 +171,8 @@ class PidKilted:
         tracking_time_constant: float = 0.0,
         error_deadband: float = 2.220446049250313e-16,
     ) -> None:
+        check_bounds("i", i_clamp_min, i_clamp_max)
+        check_bounds("u", u_clamp_min, u_clamp_max)
         self.p, self.i, self.d = p, i, d
         self.u_min, self.u_max = u_clamp_min, u_clamp_max
         self.i_min, self.i_max = i_clamp_min, i_clamp_max
