@@ -90,7 +90,8 @@ def run(args: argparse.Namespace) -> int:
             "xacro: in-order processing became default in ROS Melodic. You can drop the option.",
             file=sys.stderr,
         )
-    index = index_from_options(args.package_path, args.package)
+    # The input's own package and its workspace siblings resolve without any setup (issue 15.9).
+    index = index_from_options(args.package_path, args.package).with_workspace_of(inputs[0])
     result = expand(
         inputs[0],
         mappings=load_mappings(positional),

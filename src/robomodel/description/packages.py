@@ -5,7 +5,10 @@ Packages are found the ways ROS finds them, in this priority order (the first ma
 1. explicit ``NAME=DIR`` mappings (``--package``), for install layouts that differ from the source;
 2. ``--package-path DIR`` entries, scanned recursively for ``package.xml`` as rospack does;
 3. ``ROS_PACKAGE_PATH`` entries, scanned the same way;
-4. ``AMENT_PREFIX_PATH`` entries, where a package lives in ``<prefix>/share/<name>``.
+4. ``AMENT_PREFIX_PATH`` entries, where a package lives in ``<prefix>/share/<name>`` and is
+   known by ament's resource-index marker ``share/ament_index/resource_index/packages/<name>``
+   (or, without a marker, by ``share/<name>/package.xml``);
+5. the workspace of the input file (its own package and the sibling folders of it), last.
 
 A scanned directory that holds a ``package.xml`` is a package: its name is the manifest's
 ``<name>`` and the scan does not descend further (rospack's rule). Directories holding
@@ -90,6 +93,38 @@ def _split_env_paths(value: str | None) -> list[Path]:
     return [Path(p) for p in value.split(os.pathsep) if p]
 
 
+_AMENT_MARKERS = Path("share", "ament_index", "resource_index", "packages")
+
+
+def _ament_packages(prefix: Path) -> list[str]:
+    """Packages installed in an ament prefix, as ament_index_python finds them.
+
+    ament_index_python (``get_packages_with_prefixes``, ``get_package_prefix``) knows a package
+    by its marker file ``<prefix>/share/ament_index/resource_index/packages/<name>`` (hidden
+    names skipped) and returns ``<prefix>/share/<name>`` as its share directory, whether or not
+    a package.xml is installed there. A ``share/<name>/package.xml`` without a marker (a
+    hand-made prefix) is accepted too, after the marked ones.
+    """
+    names: list[str] = []
+    try:
+        markers = sorted(os.scandir(prefix / _AMENT_MARKERS), key=lambda e: e.name)
+    except OSError:
+        markers = []
+    names += [e.name for e in markers if not e.name.startswith(".") and e.is_file()]
+    try:
+        entries = sorted(os.scandir(prefix / "share"), key=lambda e: e.name)
+    except OSError:
+        entries = []
+    names += [
+        e.name
+        for e in entries
+        if e.is_dir()
+        and e.name not in names
+        and os.path.isfile(os.path.join(e.path, "package.xml"))
+    ]
+    return names
+
+
 class PackageIndex:
     """Finds ROS packages by name and resolves resource URIs against them.
 
@@ -147,16 +182,8 @@ class PackageIndex:
                 for name, path in found.items():
                     index.setdefault(name, Package(name, path, origin))
         for prefix in self._ament_prefixes:
-            share = prefix / "share"
-            try:
-                entries = sorted(os.scandir(share), key=lambda e: e.name)
-            except OSError:
-                continue
-            for entry in entries:
-                if entry.is_dir() and os.path.isfile(os.path.join(entry.path, "package.xml")):
-                    index.setdefault(
-                        entry.name, Package(entry.name, Path(entry.path), "AMENT_PREFIX_PATH")
-                    )
+            for name in _ament_packages(prefix):
+                index.setdefault(name, Package(name, prefix / "share" / name, "AMENT_PREFIX_PATH"))
         for root in self._fallback_paths:
             found = {}
             _scan_tree(root, found)

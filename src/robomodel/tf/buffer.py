@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 import warnings
 
+from robomodel.errors import close_matches
 from robomodel.tf.cache import StaticCache, Storage, TimeCache
 from robomodel.tf.exceptions import (
     ConnectivityError,
@@ -170,7 +171,9 @@ class BufferCore:
                 "start with a '/'"
             )
         if frame not in self._frames:
-            raise LookupError(f'"{frame}" passed to {argument} does not exist. ')
+            hint = close_matches(frame, self._frames)
+            suggestion = f"Did you mean {', '.join(repr(h) for h in hint)}?" if hint else ""
+            raise LookupError(f'"{frame}" passed to {argument} does not exist. {suggestion}')
 
     def _parent(self, frame: str) -> tuple[int, str | None]:
         cache = self._caches.get(frame)
