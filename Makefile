@@ -1,5 +1,6 @@
-# The two commands of the README. Both create .venv when it is missing and install
-# the package with every extra, so they work on a fresh clone.
+# The two commands of the README. Both create .venv when it is missing, install the package
+# with every extra and the system packages they need (tools/system-deps: apt on Debian/Ubuntu,
+# else one line saying what to install), so they work on a fresh clone.
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -16,11 +17,13 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
+	tools/system-deps demo
 	$(BIN)/robomodel sim examples/simplebot_description/urdf/simplebot_lidar.urdf.xacro \
 		--controllers examples/simplebot_description/config/simplebot_controllers.yaml \
 		--world examples/simplebot_description/worlds/wall.world
 
 test: $(STAMP)
+	tools/system-deps test
 	$(BIN)/ruff check --no-cache src tests bench
 	$(BIN)/ruff format --no-cache --check src tests bench
 	$(BIN)/mypy

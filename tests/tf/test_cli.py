@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
 from collections.abc import Callable
 from pathlib import Path
 
@@ -95,7 +94,6 @@ def test_frames_gv(cli: Cli, two_links: str, tmp_path: Path) -> None:
     assert 'label ="view_frames Result";' in text and text.endswith('}->"link1";\n}')
 
 
-@pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz's dot renders the svg")
 def test_frames_svg(cli: Cli, two_links: str, tmp_path: Path) -> None:
     out = tmp_path / "frames.svg"
     assert cli("frames", two_links, "-o", str(out)).code == 0

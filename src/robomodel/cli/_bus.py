@@ -6,8 +6,9 @@ import argparse
 import time
 
 from robomodel.runtime import BUSES, Context
+from robomodel.runtime.transport.base import Graph
 
-__all__ = ["add_bus_arguments", "context_from_args", "wait_for_peers"]
+__all__ = ["add_bus_arguments", "context_from_args", "settled_graph", "wait_for_peers"]
 
 
 def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str = "zenoh") -> None:
@@ -41,14 +42,48 @@ def context_from_args(args: argparse.Namespace) -> Context:
     return Context(args.bus, domain_id=args.domain_id, connect=args.connect, listen=args.listen)
 
 
-def wait_for_peers(context: Context, timeout_s: float = 1.0) -> None:
-    """Give a fresh Zenoh session a moment to link up with the others before querying."""
+def wait_for_peers(context: Context, timeout_s: float = 1.0) -> bool:
+    """Give a fresh Zenoh session a moment to link up with the others before querying.
+
+    Returns whether another process was found (always True off Zenoh)."""
     if context.transport.name != "zenoh":
-        return
+        return True
     session = getattr(context.transport, "session", None)
     deadline = time.monotonic() + timeout_s
     while session is not None and time.monotonic() < deadline:
         if list(session.info.peers_zid()):
             time.sleep(0.1)  # let liveliness tokens propagate over the new link
-            return
+            return True
         time.sleep(0.02)
+    return False
+
+
+def _shape(graph: Graph) -> tuple[object, ...]:
+    topics = tuple(
+        (name, tuple(sorted(info.types)), len(info.publishers), len(info.subscribers))
+        for name, info in sorted(graph.topics.items())
+    )
+    return (tuple(sorted(graph.nodes)), topics, tuple(sorted(graph.services)))
+
+
+def settled_graph(context: Context, timeout_s: float = 3.0) -> Graph:
+    """The bus graph once discovery has settled, as ``ros2 topic list`` spins before answering.
+
+    A fresh session first links up with its peers (``wait_for_peers``), then the graph is
+    queried until two answers in a row agree and are not empty, or ``timeout_s`` passes: a
+    loaded machine can take a second to deliver every liveliness token, and printing the
+    first, partial (or empty) answer made ``topic list`` miss a running simulator.
+    """
+    if not wait_for_peers(context, timeout_s):
+        return context.graph(timeout_s=0.5)  # nobody else on this domain
+    deadline = time.monotonic() + timeout_s
+    previous: tuple[object, ...] | None = None
+    while True:
+        graph = context.graph(timeout_s=0.5)
+        shape = _shape(graph)
+        if shape == previous and (graph.topics or graph.nodes):
+            return graph
+        if time.monotonic() >= deadline:
+            return graph
+        previous = shape
+        time.sleep(0.15)

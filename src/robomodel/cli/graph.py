@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import shutil
+import signal
 import subprocess
 import sys
-import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from robomodel._atomic import atomic_write_text, default_file_mode
+from robomodel._atomic import atomic_write_bytes, atomic_write_text
 from robomodel.cli._common import add_description_arguments, load_from_args
 from robomodel.description.report import graphviz_text
 from robomodel.errors import RobomodelError
@@ -49,19 +51,47 @@ def render_dot(dot_text: str, output: str | os.PathLike[str]) -> None:
             "rendering needs Graphviz's 'dot', which is not installed: apt-get install graphviz "
             "(Debian/Ubuntu), brew install graphviz (macOS); or write .gv text with -o FILE.gv"
         )
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=target.parent)
-    os.close(fd)
-    try:
+    with _terminate_as_exit():
         proc = subprocess.run(
-            [dot, f"-T{fmt}", "-o", tmp], input=dot_text, text=True, capture_output=True
+            [dot, f"-T{fmt}"],
+            input=dot_text.encode(),
+            capture_output=True,
+            preexec_fn=_die_with_parent,
         )
         if proc.returncode != 0:
-            raise RobomodelError(f"dot failed: {proc.stderr.strip()}")
-        os.chmod(tmp, default_file_mode())
-        os.replace(tmp, target)
+            raise RobomodelError(f"dot failed: {proc.stderr.decode(errors='replace').strip()}")
+        # dot's output comes through a pipe: the only file ever created beside the target is
+        # atomic_write_bytes' temporary, which lives for one write and is removed on any error.
+        atomic_write_bytes(target, proc.stdout)
+
+
+def _die_with_parent() -> None:  # pragma: no cover - runs in the child between fork and exec
+    """Have the kernel send dot SIGKILL when robomodel dies (Linux PR_SET_PDEATHSIG), so a
+    killed ``robomodel graph`` never leaves dot running (it used to finish and write a file)."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG = 1
+
+
+@contextlib.contextmanager
+def _terminate_as_exit() -> Iterator[None]:
+    """Turn SIGTERM into SystemExit while rendering, so the cleanup of a half-written
+    temporary file runs (Python's default SIGTERM action exits without any)."""
+
+    def exit_on_term(signum: int, frame: object) -> None:
+        raise SystemExit(128 + signum)
+
+    try:
+        previous = signal.signal(signal.SIGTERM, exit_on_term)
+    except ValueError:  # not the main thread: leave signals alone
+        yield
+        return
+    try:
+        yield
     finally:
-        Path(tmp).unlink(missing_ok=True)
+        signal.signal(signal.SIGTERM, previous)
 
 
 def run(args: argparse.Namespace) -> int:

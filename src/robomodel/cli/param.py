@@ -7,7 +7,12 @@ from typing import Any
 
 import yaml
 
-from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._bus import (
+    add_bus_arguments,
+    context_from_args,
+    settled_graph,
+    wait_for_peers,
+)
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
 from robomodel.runtime.params import (
@@ -59,8 +64,11 @@ def _call(context: Context, node: str, request: dict[str, Any]) -> dict[str, Any
 
 def run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        wait_for_peers(context)
-        nodes = [args.node] if args.node else sorted(context.graph().nodes)
+        if args.node:
+            wait_for_peers(context)
+            nodes = [args.node]
+        else:
+            nodes = sorted(settled_graph(context).nodes)
         for node in nodes:
             names = _call(context, node, {"op": "list"})["names"]
             print(f"{node if node.startswith('/') else '/' + node}:")

@@ -18,7 +18,12 @@ from typing import Any
 
 import yaml
 
-from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._bus import (
+    add_bus_arguments,
+    context_from_args,
+    settled_graph,
+    wait_for_peers,
+)
 from robomodel.errors import RobomodelError
 
 __all__ = ["parse_request", "register"]
@@ -65,8 +70,7 @@ def parse_request(text: str) -> dict[str, Any]:
 
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        wait_for_peers(context)
-        for name in sorted(context.graph().services):
+        for name in sorted(settled_graph(context).services):
             print(name)
     return 0
 

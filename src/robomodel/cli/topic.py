@@ -10,7 +10,12 @@ import sys
 import time
 from typing import Any
 
-from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._bus import (
+    add_bus_arguments,
+    context_from_args,
+    settled_graph,
+    wait_for_peers,
+)
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
 from robomodel.runtime.msg import Message, get_message_type, message_from_yaml, message_to_yaml
@@ -97,8 +102,7 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
 
 def run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        wait_for_peers(context)
-        graph = context.graph()
+        graph = settled_graph(context)
         for name in sorted(graph.topics):
             info = graph.topics[name]
             suffix = f" [{', '.join(sorted(info.types))}]" if args.show_types else ""
@@ -221,8 +225,7 @@ def _hz_report(stamps: list[float]) -> str:
 
 def run_info(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        wait_for_peers(context)
-        graph = context.graph()
+        graph = settled_graph(context)
         info = graph.topics.get(args.topic)
         if info is None:
             known = ", ".join(sorted(graph.topics)) or "(none)"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -37,6 +38,12 @@ class Robot:
 
     ``links`` and ``joints`` keep file order. ``version`` is the ``version`` attribute as
     written (``None`` when absent, meaning 1.0). ``source_path`` is informative only.
+
+    Equality is that of the robot, not of the document: links, joints, materials and
+    transmissions are compared as collections whatever their order (yourdfpy's
+    ``test_equality_different_link_order``; a URDF's meaning does not depend on it), while
+    ``<gazebo>``, ``<ros2_control>`` and unknown top-level elements keep their order (a later
+    ``<gazebo>`` block can override an earlier one). The writer still writes file order.
     """
 
     name: str
@@ -51,6 +58,39 @@ class Robot:
     attributes: tuple[tuple[str, str], ...] = ()
     source_path: str | None = field(default=None, compare=False)
     _cache: dict[str, Any] = field(default_factory=dict, init=False, compare=False, repr=False)
+
+    def _unordered_key(self) -> tuple[Any, ...]:
+        def bag(items: tuple[Any, ...]) -> Counter[Any]:
+            return Counter(items)
+
+        return (
+            self.name,
+            bag(self.links),
+            bag(self.joints),
+            bag(self.materials),
+            bag(self.transmissions),
+            self.gazebo,
+            self.ros2_control,
+            self.extra,
+            self.version,
+            frozenset(self.attributes),
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Robot):
+            return NotImplemented
+        return self._unordered_key() == other._unordered_key()
+
+    def __hash__(self) -> int:
+        return hash(
+            (
+                self.name,
+                frozenset(self.link_names),
+                frozenset(self.joint_names),
+                len(self.links),
+                len(self.joints),
+            )
+        )
 
     def _by_name(self, key: str, items: tuple[Any, ...]) -> dict[str, Any]:
         table = self._cache.get(key)
