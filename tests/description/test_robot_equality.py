@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
+from pathlib import Path
 
-from robomodel.description import Link, Robot, parse_urdf
+from robomodel.description import Link, Robot, parse_urdf, read_urdf
 from robomodel.description.urdf.writer import urdf_to_string
 
 
@@ -55,3 +57,20 @@ def test_gazebo_blocks_keep_their_order() -> None:
     # A later <gazebo> block for the same reference overrides an earlier one: order is meaning.
     robot = parse_urdf(URDF)
     assert dataclasses.replace(robot, gazebo=robot.gazebo[::-1]) != robot
+
+
+def test_diagnostic_of_a_childless_element_points_at_it(tmp_path: Path) -> None:
+    # Issue 15.7: `exc.element or element` took a childless lxml element as false (and lxml
+    # warned with a FutureWarning), so the warning pointed at the parent <transmission>.
+    path = tmp_path / "t.urdf"
+    path.write_text(
+        '<robot name="r">\n  <link name="a"/>\n  <transmission name="t">\n'
+        "    <type>transmission_interface/SimpleTransmission</type>\n    <joint/>\n"
+        "  </transmission>\n</robot>\n"
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FutureWarning)
+        result = read_urdf(str(path))
+    (diagnostic,) = result.diagnostics
+    assert "needs a name attribute" in diagnostic.message
+    assert (diagnostic.location.line, diagnostic.location.column) == (5, 5)

@@ -314,7 +314,10 @@ def _read_optional(
         try:
             out.append(reader(ctx, element))
         except ElementError as exc:
-            ctx.warn(f"{exc.message}; the element is kept verbatim", exc.element or element)
+            ctx.warn(
+                f"{exc.message}; the element is kept verbatim",
+                exc.element if exc.element is not None else element,
+            )
             extra.append(raw(ctx, element))
     return out
 
@@ -351,7 +354,7 @@ def _robot_material(ctx: ParseContext, element: etree._Element) -> Material | No
     try:
         return read_material(ctx, element, only_name_is_ok=False)
     except ElementError as exc:
-        ctx.error(exc.message, exc.element or element, "material")
+        ctx.error(exc.message, exc.element if exc.element is not None else element, "material")
         return None
 
 
