@@ -42,7 +42,14 @@ from robomodel.sim._mujoco import mujoco
 from robomodel.sim.build.robot import velocity_actuator_name
 from robomodel.sim.exceptions import SimulationError
 
-__all__ = ["SIMULATOR_PLUGINS", "SimSystem"]
+__all__ = ["MAX_POSITION_COMMAND", "MAX_VELOCITY_COMMAND", "SIMULATOR_PLUGINS", "SimSystem"]
+
+# Largest commands passed to MuJoCo. It treats |value| > 1e10 (mjMAXVAL) in ctrl, qpos, qvel or
+# qacc as a divergence ("Nan, Inf or huge value in CTRL") and resets; the velocity servo
+# accelerates at 1e4 x the velocity error, so 1e4 rad/s (m/s) keeps even a step from rest
+# below that. No motor comes near either bound.
+MAX_VELOCITY_COMMAND = 1e4
+MAX_POSITION_COMMAND = 1e9
 
 SIMULATOR_PLUGINS = (
     "gazebo_ros2_control/GazeboSystem",
@@ -217,6 +224,8 @@ class SimSystem(HardwareComponent):
                 values = self._sanitize(values, self._vel_i, [0.0] * len(values), VELOCITY)
             else:
                 self._ok[VELOCITY] = True
+            if max(map(abs, values)) > MAX_VELOCITY_COMMAND:
+                values = self._bounded(values, self._vel_i, VELOCITY, MAX_VELOCITY_COMMAND)
             self._ctrl[self._vel_act] = values
         if self._pos_slots:
             values = [commands[s] for s in self._pos_slots]
@@ -228,9 +237,31 @@ class SimSystem(HardwareComponent):
                 lo if v < lo else hi if v > hi else v
                 for v, (lo, hi) in zip(values, self._pos_range, strict=True)
             ]
+            if values and max(map(abs, values)) > MAX_POSITION_COMMAND:
+                values = self._bounded(values, self._pos_i, POSITION, MAX_POSITION_COMMAND)
             self._hold = values
             self._pos_cmd[:] = values
         return _OK
+
+    def _bounded(
+        self, values: list[float], joints: list[int], mode: str, bound: float
+    ) -> list[float]:
+        """Clamp finite but huge commands to ``bound``, warning once per joint: MuJoCo would
+        warn "Nan, Inf or huge value in CTRL/QPOS" and reset the simulation."""
+        out = []
+        for v, i in zip(values, joints, strict=True):
+            if abs(v) > bound:
+                key = f"huge:{self._joints[i]}"
+                if key not in self._warned:
+                    self._warned.add(key)
+                    warnings.warn(
+                        f"hardware '{self.name}': {mode} command {v:g} for joint "
+                        f"'{self._joints[i]}' clamped to +-{bound:g}",
+                        stacklevel=3,
+                    )
+                v = math.copysign(bound, v)
+            out.append(v)
+        return out
 
     def _sanitize(
         self, values: list[float], joints: list[int], fallback: list[float], mode: str

@@ -9,6 +9,7 @@ velocity commands ``(v ∓ ω·ws/2) / r`` on every wheel of each side.
 
 from __future__ import annotations
 
+import logging
 import math
 from typing import Any
 
@@ -37,7 +38,10 @@ from robomodel.runtime.msg import (
 )
 from robomodel.runtime.node import Publisher
 
-__all__ = ["DiffDriveController"]
+__all__ = ["MAX_TWIST", "DiffDriveController"]
+
+log = logging.getLogger("robomodel.control")
+MAX_TWIST = 1e6  # [m/s] or [rad/s]: a bigger command is refused (see set_command)
 
 
 def _time(t: float) -> Time:
@@ -55,6 +59,7 @@ class DiffDriveController(ControllerInterface):
     type_name = "diff_drive_controller/DiffDriveController"
 
     def on_init(self) -> None:
+        self._rejected = 0
         self.left_wheel_names = self.param_list("left_wheel_names", [])
         self.right_wheel_names = self.param_list("right_wheel_names", [])
         if not self.left_wheel_names or not self.right_wheel_names:
@@ -211,6 +216,7 @@ class DiffDriveController(ControllerInterface):
         self._odom_pub = self._tf_pub = self._limited_pub = None
 
     def reset_commands(self) -> None:
+        self._rejected = 0
         self.command = (0.0, 0.0, -math.inf)  # (v [m/s], ω [rad/s], stamp [s])
         self.previous_commands = [(0.0, 0.0), (0.0, 0.0)]  # front (older), back (newer)
         self._now_s = 0.0
@@ -232,9 +238,26 @@ class DiffDriveController(ControllerInterface):
     def set_command(
         self, linear_m_s: float, angular_rad_s: float, stamp_s: float | None = None
     ) -> None:
-        """A twist command; ``stamp_s`` None or 0 means "now" (zero stamps are accepted)."""
-        if not (math.isfinite(linear_m_s) and math.isfinite(angular_rad_s)):
-            return  # rejected: the last good command is held
+        """A twist command; ``stamp_s`` None or 0 means "now" (zero stamps are accepted).
+
+        A non-finite command, or one beyond ``MAX_TWIST`` (1e6 m/s or rad/s: no robot drives
+        that fast, and such a value makes the simulator's actuators overflow), is refused with
+        a warning (at the 1st, 2nd, 4th, 8th ... refusal) and the last good command is held,
+        as the position controllers do.
+        """
+        if not (abs(linear_m_s) <= MAX_TWIST and abs(angular_rad_s) <= MAX_TWIST):
+            self._rejected += 1
+            if self._rejected & (self._rejected - 1) == 0:
+                log.warning(
+                    "%s: cmd_vel (linear.x %r, angular.z %r) is not finite or beyond %g; the "
+                    "last good command is held (%d times)",
+                    self.name,
+                    linear_m_s,
+                    angular_rad_s,
+                    MAX_TWIST,
+                    self._rejected,
+                )
+            return
         stamp = stamp_s if stamp_s else self._now_s
         self.command = (linear_m_s, angular_rad_s, stamp)
 
