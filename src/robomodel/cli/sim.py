@@ -399,11 +399,8 @@ def _report(sim: Any, root_body: str, odom: Any, wall_s: float) -> dict[str, Any
         "wall_time_s": wall_s,
         "real_time_factor": sim.time_s / wall_s if wall_s > 0 else None,
     }
-    if odom is not None and odom.last is not None:
-        pose = odom.last.pose.pose
-        q = pose.orientation
-        report["odom_xy"] = [pose.position.x, pose.position.y]
-        report["odom_yaw"] = math.atan2(
-            2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z)
-        )
+    pose = odom.pose() if odom is not None else None
+    if pose is not None:
+        report["odom_xy"] = [pose[0], pose[1]]
+        report["odom_yaw"] = pose[2]
     return report

@@ -1,5 +1,5 @@
 """Helpers for scripted runs (``robomodel sim --cmd-vel ... --report json``): a constant
-Twist publisher for the diff-drive controller and a watcher of its odometry."""
+command for the diff-drive controller, applied at fixed sim times, and its odometry."""
 
 from __future__ import annotations
 
@@ -7,7 +7,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg.geometry_msgs import Twist, TwistStamped, Vector3
-from robomodel.runtime.msg.nav_msgs import Odometry
 from robomodel.runtime.msg.std_msgs import Header
 from robomodel.sim.exceptions import SimulationError
 
@@ -31,23 +30,28 @@ def diff_drive_controller(system: ControlSystem | None) -> Any:
 
 @dataclass
 class OdomWatcher:
-    """Keeps the last message of the diff-drive controller's ``~/odom``."""
+    """The diff-drive controller's odometry, read in-process at the sim time of the report.
 
-    last: Odometry | None = None
+    Reading the controller (not the last ``~/odom`` message off the bus) makes a report
+    depend on the simulation alone: a bus message arrives at a wall-clock time, so under load
+    the "last" one was from an earlier sim time and the numbers changed from run to run.
+    """
+
+    controller: Any
 
     @classmethod
     def attach(cls, system: ControlSystem, context: Context) -> OdomWatcher | None:
         controller = diff_drive_controller(system)
-        if controller is None or controller.node is None:
+        if controller is None:
             return None
-        watcher = cls()
-        topic = controller.node.resolve_topic_name("~/odom")
-        node = context.create_node("sim_odom_watcher")
-        node.create_subscription(Odometry, topic, watcher._on_odom, 10)
-        return watcher
+        return cls(controller)
 
-    def _on_odom(self, msg: Odometry) -> None:
-        self.last = msg
+    def pose(self) -> tuple[float, float, float] | None:
+        """``(x [m], y [m], yaw [rad])`` in the odom frame, None before the first update."""
+        odometry = getattr(self.controller, "odometry", None)
+        if odometry is None:
+            return None
+        return float(odometry.x), float(odometry.y), float(odometry.heading)
 
 
 class CmdVelDriver:
@@ -73,6 +77,25 @@ class CmdVelDriver:
             topic = controller.node.resolve_topic_name(name)
         node = context.create_node("sim_cmd_vel")
         twist = Twist(linear=Vector3(cmd[0], cmd[1], 0.0), angular=Vector3(0.0, 0.0, cmd[2]))
+        if (
+            controller is not None
+            and controller.node is not None
+            and topic
+            == (
+                controller.node.resolve_topic_name(
+                    "~/cmd_vel" if stamped else controller.unstamped_topic
+                )
+            )
+        ):
+            # The command line's input is applied in-process at fixed sim times (every 0.1 s of
+            # sim time, before the controllers update), so the same command gives the same run
+            # to the last digit. It still goes out on the topic for anyone watching; arriving
+            # later over the bus it sets the same values again.
+            sim.every(
+                10.0,
+                lambda t: controller.set_command(cmd[0], cmd[2], t if t > 0.0 else None),
+                order=-3,
+            )
         if stamped:
             pub_s = node.create_publisher(TwistStamped, topic, 10)
             sim.every(
