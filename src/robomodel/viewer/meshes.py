@@ -32,12 +32,15 @@ class MeshPart:
     """One drawable piece of a mesh file.
 
     ``vertices`` has shape (V, 3) [m, before the URDF scale], ``faces`` shape (F, 3); both
-    read-only. ``rgba`` is the geometry's own colour in [0, 1], or ``None``.
+    read-only. ``rgba`` is the geometry's own colour in [0, 1], or ``None``. ``glb`` is the
+    part as binary glTF with its texture image and UVs when the file gives it a texture (a
+    textured DAE or OBJ), so the viewer draws the texture as RViz does.
     """
 
     vertices: NDArray[np.float32]
     faces: NDArray[np.uint32]
     rgba: Rgba | None
+    glb: bytes | None = None  # the part with its texture (binary glTF), if it has one
 
 
 def resolve_mesh_uri(index: PackageIndex, uri: str, base_dir: Path) -> Path:
@@ -71,12 +74,27 @@ def _color_of(mesh: Any) -> Rgba | None:
     return (r, g, b, a)
 
 
+def _texture_of(mesh: Any) -> Any:
+    """The texture image of a trimesh mesh (PBR base colour or simple image), or None."""
+    visual = getattr(mesh, "visual", None)
+    if getattr(visual, "kind", None) != "texture" or getattr(visual, "uv", None) is None:
+        return None
+    material = getattr(visual, "material", None)
+    return getattr(material, "baseColorTexture", None) or getattr(material, "image", None)
+
+
 def _part(mesh: Any) -> MeshPart:
     vertices = np.ascontiguousarray(mesh.vertices, dtype=np.float32)
     faces = np.ascontiguousarray(mesh.faces, dtype=np.uint32)
     vertices.setflags(write=False)
     faces.setflags(write=False)
-    return MeshPart(vertices, faces, _color_of(mesh))
+    glb = None
+    if _texture_of(mesh) is not None:
+        try:
+            glb = bytes(mesh.export(file_type="glb"))
+        except Exception:  # an image trimesh cannot encode: drawn in its colour instead
+            glb = None
+    return MeshPart(vertices, faces, _color_of(mesh), glb)
 
 
 def load_mesh_file(path: Path) -> tuple[MeshPart, ...]:

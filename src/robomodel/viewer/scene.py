@@ -113,6 +113,7 @@ class RobotModelDisplay:
         self.show_visual = show_visual
         self.show_collision = show_collision
         self.problems: list[GeometryProblem] = []
+        self.mesh_nodes: list[str] = []  # scene names of the mesh parts drawn so far
         self.link_names = robot.link_names
         self._links: list[Any] = []
         self._groups: dict[Kind, list[Any]] = {"visual": [], "collision": []}
@@ -233,19 +234,31 @@ class RobotModelDisplay:
         except RobomodelError as exc:
             self.problems.append(GeometryProblem(item.link, item.kind, uri, str(exc)))
             return
-        scale = item.geometry.scale or (1.0, 1.0, 1.0)
+        except Exception as exc:  # one unreadable mesh never stops the ones after it
+            message = f"{type(exc).__name__}: {exc}"
+            self.problems.append(GeometryProblem(item.link, item.kind, uri, message))
+            return
+        scale = tuple(float(s) for s in item.geometry.scale or (1.0, 1.0, 1.0))
         with self._lock:
             if self._removed:
                 return
             for j, part in enumerate(parts):
-                color = item.rgba or part.rgba or DEFAULT_RGBA
+                name = f"{item.node}/m{j}"
+                self.mesh_nodes.append(name)
+                if part.glb is not None:
+                    # A textured part is drawn with its texture, as RViz keeps a mesh's own
+                    # materials; Alpha does not apply to it (no leaf).
+                    self.scene.add_glb(name, part.glb, scale=scale, **_NO_SHADOWS)
+                    continue
+                # RViz: a mesh's own material wins; the URDF colour fills meshes without one.
+                color = part.rgba or item.rgba or DEFAULT_RGBA
                 handle = self.scene.add_mesh_simple(
-                    f"{item.node}/m{j}",
+                    name,
                     part.vertices,
                     part.faces,
                     color=rgb255(color),
                     opacity=self._opacity(color),
-                    scale=tuple(float(s) for s in scale),
+                    scale=scale,
                     side="double",
                     **_NO_SHADOWS,
                 )
