@@ -206,6 +206,13 @@ class PackageIndex:
         clone._index = None
         return clone
 
+    def with_fallback(self, directory: str | os.PathLike[str]) -> PackageIndex:
+        """This index, also scanning ``directory`` for packages, after every other source."""
+        clone = copy.copy(self)
+        clone._fallback_paths = (*self._fallback_paths, Path(directory))
+        clone._index = None
+        return clone
+
     def _packages(self) -> dict[str, Package]:
         if self._index is None:
             self._index = self._build()
