@@ -25,6 +25,7 @@ from robomodel.launch.packages import launch_package_index
 from robomodel.launch.ros1.config import MachineSpec, ParamDump, Ros1Launch
 from robomodel.launch.ros1.context import ContextError, LoaderContext
 from robomodel.launch.ros1.names import (
+    canonicalize_name,
     is_legal_name,
     is_private,
     make_global_ns,
@@ -307,6 +308,7 @@ class _Loader:
         return child
 
     def add_param(self, key: str, value: Any, element: Any, ctx: LoaderContext) -> None:
+        key = canonicalize_name(key)  # roslaunch's Param() does this: "/n//x" -> "/n/x"
         for parent in namespaces_of(key):
             if parent in self.params:
                 self.warnings.append(

@@ -94,6 +94,12 @@ def find_node_executable(spec: NodeSpec, packages: PackageIndex) -> str:
     except PackageNotFoundError as exc:
         raise LaunchError(str(exc), location=spec.location) from None
     matches: list[str] = []
+    # An installed package (<prefix>/share/<pkg>) keeps its nodes in <prefix>/lib/<pkg>, which
+    # catkin's find_in_workspaces(['libexec']) searches first (roslib.packages.find_node).
+    if root.parent.name == "share":
+        libexec = root.parent.parent / "lib" / spec.package / spec.executable
+        if libexec.is_file() and os.access(libexec, os.X_OK):
+            return str(libexec)
     for directory, subdirs, files in os.walk(root):
         subdirs[:] = sorted(d for d in subdirs if not d.startswith("."))
         if spec.executable in files:

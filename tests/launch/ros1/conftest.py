@@ -1,0 +1,59 @@
+"""Shared set-up of the ROS 1 launch tests: the corpus in a temporary workspace, Debian's
+roslaunch as the reference, and the fake ``xacro`` package that runs the PyPI xacro 2.1.1."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+CORPUS = Path(__file__).resolve().parent / "corpus"
+ROSLAUNCH = "/usr/bin/roslaunch"
+
+
+def reference_env(package_path: list[Path], home: Path) -> dict[str, str]:
+    """The environment Debian's roslaunch runs in: its own Python, our package path."""
+    env = {
+        "PATH": "/usr/bin:/bin",
+        "HOME": str(home),
+        "ROS_PACKAGE_PATH": ":".join(str(p) for p in package_path),
+        "ROS_MASTER_URI": "http://localhost:11311",
+        "ROS_HOME": str(home / ".ros"),
+        "LANG": "C.UTF-8",
+    }
+    return env
+
+
+def roslaunch(args: list[str], env: dict[str, str], cwd: Path) -> subprocess.CompletedProcess[str]:
+    if not Path(ROSLAUNCH).exists():
+        pytest.fail(
+            "Debian's roslaunch is missing: apt-get install python3-roslaunch (make test does)"
+        )
+    return subprocess.run(
+        [ROSLAUNCH, *args], capture_output=True, text=True, env=env, cwd=cwd, timeout=120
+    )
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    """The corpus copied to a temporary workspace, plus a ``xacro`` package whose scripts run
+    the reference xacro 2.1.1 (PyPI), for Debian's roslaunch to call."""
+    ws = tmp_path / "ws"
+    shutil.copytree(CORPUS, ws)
+    xacro = ws / "xacro"
+    xacro.mkdir()
+    (xacro / "package.xml").write_text("<package format='2'><name>xacro</name></package>")
+    for name in ("xacro", "xacro.py"):
+        script = xacro / name
+        script.write_text(
+            f"#!{sys.executable} -I\n"  # -I: the script's folder (with xacro.py) is not on sys.path
+            "import sys\nimport xacro\nsys.exit(xacro.main())\n"
+        )
+        script.chmod(0o755)
+    (tmp_path / "home").mkdir()
+    os.environ.setdefault("ROS_MASTER_URI", "http://localhost:11311")
+    return ws
