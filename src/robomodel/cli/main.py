@@ -37,6 +37,7 @@ _VERBS: tuple[str, ...] = (
     "robomodel.cli.control",
     "robomodel.cli.view",
     "robomodel.cli.sim",
+    "robomodel.cli.launch",
 )
 
 

@@ -1,4 +1,6 @@
-"""``robomodel param``: list, get, set, dump and load node parameters (ros2 param)."""
+"""``robomodel param``: list, get, set, dump and load node parameters (ros2 param), and the
+ROS 1 parameter server of ``robomodel launch`` (rosparam): ``param get /name``, ``param set
+/name VALUE``, ``param delete /name``, ``param list /``."""
 
 from __future__ import annotations
 
@@ -38,8 +40,9 @@ def register(subparsers: Any) -> None:
     verbs.required = True
     specs = {
         "list": (["node?"], "parameter names of one node or of every node"),
-        "get": (["node", "name"], "print one parameter"),
-        "set": (["node", "name", "value"], "set one parameter"),
+        "get": (["node", "name?"], "print one parameter (NODE NAME, or /NAME: ROS 1 server)"),
+        "set": (["node", "name", "value?"], "set one parameter (NODE NAME VALUE, or /NAME VALUE)"),
+        "delete": (["node"], "delete a parameter of the ROS 1 parameter server (/NAME)"),
         "dump": (["node"], "print a node's parameters as a ros__parameters YAML file"),
         "load": (["node", "file"], "set parameters from a ros__parameters YAML file"),
     }
@@ -63,6 +66,16 @@ def _call(context: Context, node: str, request: dict[str, Any]) -> dict[str, Any
 
 
 def run_list(args: argparse.Namespace) -> int:
+    if args.node is not None and args.node.endswith("/"):  # rosparam list [NAMESPACE/]
+        namespace = args.node
+
+        def show_names(server: Any) -> int:
+            for name in server.names():
+                if name.startswith(namespace) or namespace == "/":
+                    print(name)
+            return 0
+
+        return _server_call(args, show_names)
     with context_from_args(args) as context:
         if args.node:
             wait_for_peers(context)
@@ -77,7 +90,41 @@ def run_list(args: argparse.Namespace) -> int:
     return 0
 
 
+def _server(context: Context) -> Any:
+    from robomodel.launch.param_server import RemoteParamServer
+
+    return RemoteParamServer(context)
+
+
+def _server_call(args: argparse.Namespace, action: Any) -> int:
+    from robomodel.launch.param_server import ParamServerError
+
+    with context_from_args(args) as context:
+        wait_for_peers(context, 3.0)
+        try:
+            return int(action(_server(context)))
+        except ParamServerError as exc:
+            raise RobomodelError(
+                f"{exc} (the ROS 1 parameter server of `robomodel launch`, domain "
+                f"{args.domain_id if args.domain_id is not None else 'default'})"
+            ) from None
+
+
+def _print_value(value: Any) -> int:
+    if isinstance(value, dict | list):
+        print(yaml.safe_dump(value, default_flow_style=False), end="")
+    else:
+        print(value)
+    return 0
+
+
+def run_delete(args: argparse.Namespace) -> int:
+    return _server_call(args, lambda server: server.delete(args.node) or 0)
+
+
 def run_get(args: argparse.Namespace) -> int:
+    if args.name is None:  # rosparam get /name
+        return _server_call(args, lambda server: _print_value(server.get(args.node)))
     with context_from_args(args) as context:
         wait_for_peers(context)
         node = args.node if args.node.startswith("/") else f"/{args.node}"
@@ -93,6 +140,9 @@ def run_get(args: argparse.Namespace) -> int:
 
 
 def run_set(args: argparse.Namespace) -> int:
+    if args.value is None:  # rosparam set /name VALUE (YAML)
+        ros1_value = yaml.safe_load(args.name)
+        return _server_call(args, lambda server: server.set(args.node, ros1_value) or 0)
     value = parse_parameter_value(args.value)
     with context_from_args(args) as context:
         wait_for_peers(context)

@@ -36,6 +36,8 @@ from robomodel.viewer._deps import import_viser
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.options_panel import OptionsPanel
 from robomodel.viewer.ports import ensure_port_free
+from robomodel.viewer.rviz_apply import apply_rviz_settings
+from robomodel.viewer.rviz_config import RvizSettings
 from robomodel.viewer.scenery import SceneryDisplay, SceneryShape
 from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession, RobotSource
 from robomodel.viewer.status import RobotStatus, render_status
@@ -65,6 +67,7 @@ class ViewerOptions:
             seen. TF arriving faster (a simulation publishes at 100 Hz and more, a dragged slider
             at the GUI's event rate) is merged into the next update, so a slow browser is never
             flooded.
+        rviz: Settings read from an RViz config (``-d file.rviz``): applied after start.
     """
 
     sources: tuple[RobotSource, ...]
@@ -82,6 +85,7 @@ class ViewerOptions:
     tools: bool = True
     scenery: tuple[SceneryShape, ...] = ()
     frame_rate_hz: float = 60.0
+    rviz: RvizSettings | None = None
 
 
 def zero_pose_extent_m(robot: Robot) -> float:
@@ -142,6 +146,7 @@ class Viewer:
         self._threads: list[threading.Thread] = []
         self._extent_m: dict[int, float] = {}
         self._status_text = ""
+        self.status_note = ""  # appended to the Status (e.g. RViz displays not supported)
         self._frame_options: tuple[str, ...] = ()
         self.fixed_frame = options.fixed_frame or ""
         self.meshes_ready = threading.Event()
@@ -270,6 +275,8 @@ class Viewer:
         self.fixed_dropdown = panel.fixed_dropdown
         self.frame_rate_number = panel.frame_rate
         self.tf_display = panel.tf_display
+        if self.options.rviz is not None:
+            apply_rviz_settings(self, panel, self.options.rviz)
 
     def _build_tools(self, node: Node) -> None:
         from robomodel.viewer.tools import BusWorker, ToolContext, ToolsPanel
@@ -456,7 +463,7 @@ class Viewer:
         known = self.fixed_frame in self.buffer.frames or any(
             self.fixed_frame == s.root_frame for s in self.sessions
         )
-        text = render_status(statuses, known, self.fixed_frame)
+        text = render_status(statuses, known, self.fixed_frame) + self.status_note
         if text != self._status_text:
             self._status_text = text
             self.status.content = text

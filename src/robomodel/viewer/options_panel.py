@@ -69,6 +69,14 @@ class OptionsPanel:
             names = gui.add_checkbox("Show Names", False)
             scale = gui.add_number("Marker Scale", 1.0, min=0.01, max=100.0, step=0.1)
             grid = gui.add_checkbox("Grid", True)
+        # Kept so that an RViz config (-d file.rviz) can set them after start.
+        self.visual, self.collision, self.alpha = visual, collision, alpha
+        self.show_axes, self.show_names, self.marker_scale, self.show_grid = (
+            axes,
+            names,
+            scale,
+            grid,
+        )
 
         def each(action: Callable[[RobotModelDisplay], None]) -> Callable[[], None]:
             def run() -> None:

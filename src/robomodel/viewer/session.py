@@ -109,7 +109,9 @@ class RobotSession:
         self.index = index.with_workspace_of(source.path)
         self.namespace = namespace
         self.external = external
-        self.state_publisher = state_publisher or not external  # sliders need their RSP
+        # Sliders without a robot_state_publisher: another node of the process (a launch file's
+        # robot_state_publisher) turns their /joint_states into /tf.
+        self.state_publisher = state_publisher
         self._publishers_created = False
         self.robot: Robot | None = None
         self.loaded: LoadedDescription | None = None

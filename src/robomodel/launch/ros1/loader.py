@@ -338,8 +338,8 @@ class _Loader:
             if binfile is not None:
                 return read_binary_file(binfile)
             assert command is not None
-            cwd = os.path.dirname(ctx.filename) if ctx.filename else None
-            return convert_value(run_command(name, command, self.packages, cwd), ptype)
+            # roslaunch runs the command in its own working directory.
+            return convert_value(run_command(name, command, self.packages), ptype)
         except ParamValueError as exc:
             error = self.error(f"Invalid <param> tag: {exc}", element, ctx)
             error.notes = exc.notes  # type: ignore[attr-defined]

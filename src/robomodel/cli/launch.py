@@ -1,0 +1,174 @@
+"""``robomodel launch``: run a ROS 1 launch file (roslaunch) with robomodel's components.
+
+``robomodel launch PKG FILE [name:=value ...]`` finds FILE inside package PKG, as roslaunch
+does; ``robomodel launch PATH [name:=value ...]`` takes the file itself. ``--dump-params``,
+``--nodes``, ``--args NODE``, ``--files`` and ``--ros-args`` print what roslaunch's flags of
+the same names print, and start nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+from typing import Any
+
+from robomodel.errors import RobomodelError
+
+__all__ = ["register", "run"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser(
+        "launch",
+        help="run a ROS 1 launch file (roslaunch) with robomodel's nodes",
+        description=(
+            "Run a ROS 1 launch file as roslaunch does, each node mapped onto a robomodel "
+            "component (robot_state_publisher, joint_state_publisher(_gui), rviz -> the browser "
+            "viewer, static_transform_publisher, rqt tools). Arguments: PKG FILE or PATH, then "
+            "name:=value launch args."
+        ),
+    )
+    parser.add_argument("inputs", nargs="+", metavar="PKG FILE | PATH [name:=value ...]")
+    parser.add_argument(
+        "--package-path", action="append", default=[], metavar="DIR",
+        help="directory scanned for package.xml, for PKG and $(find pkg) (repeatable)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--package", action="append", default=[], metavar="NAME=DIR",
+        help="explicit package location (repeatable)",
+    )  # fmt: skip
+    show = parser.add_mutually_exclusive_group()
+    show.add_argument("--dump-params", action="store_true", help="print the parameters (YAML)")
+    show.add_argument("--nodes", action="store_true", help="print the node names")
+    show.add_argument("--args", metavar="NODE", help="print the command line of NODE")
+    show.add_argument("--files", action="store_true", help="print the launch files loaded")
+    show.add_argument("--ros-args", action="store_true", help="print the launch file's args")
+    parser.add_argument("--headless", action="store_true", help="run no viewer")
+    parser.add_argument(
+        "--no-browser", action="store_true", help="serve the viewer, open no browser"
+    )
+    parser.add_argument("--port", type=int, default=8080, help="the viewer's HTTP port")
+    parser.add_argument(
+        "--bus", choices=("zenoh", "inproc"), default="zenoh",
+        help="zenoh (default: other robomodel commands see the nodes) or inproc",
+    )  # fmt: skip
+    parser.add_argument("--domain-id", type=int, default=None, help="ROS_DOMAIN_ID for zenoh")
+    parser.add_argument(
+        "--duration", type=float, default=None, metavar="S",
+        help="stop after S seconds (for scripts; roslaunch runs until Ctrl-C)",
+    )  # fmt: skip
+    parser.set_defaults(func=run)
+
+
+def _split(inputs: list[str]) -> tuple[list[str], dict[str, str]]:
+    files: list[str] = []
+    args: dict[str, str] = {}
+    for item in inputs:
+        if ":=" in item:
+            name, _, value = item.partition(":=")
+            if not name:
+                raise RobomodelError(f"launch argument '{item}' has no name; write name:=value")
+            args[name] = value
+        else:
+            files.append(item)
+    return files, args
+
+
+def _resolve_file(files: list[str], index: Any) -> Path:
+    """PATH, or PKG FILE found anywhere in the package (roslaunch's resolve_launch_arguments)."""
+    if len(files) == 1:
+        path = Path(files[0])
+        if not path.exists():
+            raise RobomodelError(f"The following input files do not exist: {files[0]}")
+        return path
+    if len(files) != 2:
+        raise RobomodelError(
+            f"expected PKG FILE or PATH (then name:=value args), got: {' '.join(files)}"
+        )
+    package, name = files
+    root = index.find(package)
+    matches = sorted(Path(d) / name for d, _subdirs, names in os.walk(root) if name in names)
+    if not matches:
+        raise RobomodelError(
+            f"[{name}] is neither a launch file in package [{package}] nor is [{package}] a launch file name"
+        )
+    if len(matches) > 1:
+        listing = ", ".join(str(m) for m in matches)
+        raise RobomodelError(f"multiple files named [{name}] in package [{package}]: {listing}")
+    return matches[0]
+
+
+def run(args: argparse.Namespace) -> int:
+    from robomodel.description.packages import index_from_options
+    from robomodel.launch.packages import launch_package_index
+    from robomodel.launch.ros1 import (
+        format_dump_params,
+        format_files,
+        format_node_args,
+        format_nodes,
+        format_ros_args,
+        load_launch,
+    )
+
+    files, launch_args = _split(args.inputs)
+    user_index = index_from_options(args.package_path, args.package)
+    if len(files) == 1 and Path(files[0]).exists():
+        user_index = user_index.with_workspace_of(files[0])
+    path = _resolve_file(files, launch_package_index(user_index))
+    if path.name.endswith((".launch.py", ".launch.yaml", ".launch.yml")) or (
+        path.name.endswith(".launch.xml") and b"<let" in path.read_bytes()
+    ):
+        raise RobomodelError(
+            f"{path}: ROS 2 launch files are not supported yet; robomodel runs ROS 1 XML launch "
+            "files (roslaunch)"
+        )
+    launch = load_launch(path, args=launch_args, packages=user_index)
+    for warning in launch.warnings:
+        print(warning, file=sys.stderr)
+    printed = {
+        "dump_params": format_dump_params,
+        "nodes": format_nodes,
+        "files": format_files,
+        "ros_args": format_ros_args,
+    }
+    for flag, formatter in printed.items():
+        if getattr(args, flag):
+            sys.stdout.write(formatter(launch))
+            return 0
+    if args.args:
+        sys.stdout.write(format_node_args(launch, args.args, packages=user_index))
+        return 0
+    return _run(launch, args, user_index)
+
+
+def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+
+    runner = LaunchRunner(
+        launch.nodes,
+        RunOptions(
+            bus=args.bus,
+            domain_id=args.domain_id,
+            headless=args.headless,
+            open_browser=not args.no_browser,
+            port=args.port,
+            duration_s=args.duration,
+            package_index=index,
+        ),
+    )
+    runner.check()
+    runner.open_bus()
+    try:
+        runner.set_params(
+            dict(launch.params),
+            clear=launch.clear_params,
+            deletes=launch.param_deletes,
+            dumps=launch.param_dumps,
+        )
+        runner.start_nodes()
+        print(f"[launch] {launch.path}: {len(runner.started)} nodes running", file=sys.stderr)
+        return runner.spin()
+    finally:
+        runner.shutdown()

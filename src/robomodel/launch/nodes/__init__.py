@@ -1,0 +1,23 @@
+"""Node mappings: which robomodel component runs for each ROS node of a launch file."""
+
+from robomodel.launch.nodes import state, tf_static, viewer
+from robomodel.launch.nodes.base import (
+    NodeContext,
+    RunningNode,
+    ViewerRequest,
+    factory_for,
+    register,
+    supported,
+)
+
+__all__ = [
+    "NodeContext",
+    "RunningNode",
+    "ViewerRequest",
+    "factory_for",
+    "register",
+    "state",
+    "supported",
+    "tf_static",
+    "viewer",
+]

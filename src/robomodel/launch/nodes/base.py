@@ -1,0 +1,118 @@
+"""How a launch file's node becomes a robomodel component: a registry of factories.
+
+A factory takes a :class:`NodeContext` (the node's spec, its parameters as the real node would
+see them, the launch's bus and viewer) and returns a :class:`RunningNode`. A node robomodel does
+not provide has no factory: the runner reports it once and goes on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from robomodel.launch.model import NodeSpec
+
+__all__ = [
+    "NodeContext",
+    "RunningNode",
+    "ViewerRequest",
+    "factory_for",
+    "register",
+    "supported",
+]
+
+
+class RunningNode(Protocol):
+    """A started node."""
+
+    def stop(self) -> None:
+        """End it (idempotent)."""
+
+    def exit_code(self) -> int | None:
+        """None while it runs; its exit code once it ended."""
+
+
+@dataclass
+class ViewerRequest:
+    """What the launch's viewer must show (RViz's and the GUIs' roles, merged)."""
+
+    robot_description_param: str | None = None
+    sliders: bool = False
+    tools: bool = False
+    fixed_frame: str | None = None
+    frame_rate_hz: float | None = None
+    background: tuple[int, int, int] | None = None
+    show_robot: bool = True
+    show_tf: bool = True
+    unsupported_displays: list[str] = field(default_factory=list)
+    namespace: str = "/"
+    joint_states_topic: str = "/joint_states"
+    requested_by: list[str] = field(default_factory=list)
+
+
+@dataclass
+class NodeContext:
+    """Everything a factory needs for one node."""
+
+    spec: NodeSpec
+    runtime: Any  # robomodel.runtime.Context: the launch's bus
+    params: Any  # the ROS 1 parameter server (ParamServer or RemoteParamServer)
+    viewer: ViewerRequest
+    log: Callable[[str], None]
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def namespace(self) -> str:
+        """The node's namespace in the runtime's form (``/`` or ``/a/b``, no trailing slash)."""
+        ns = self.spec.namespace.rstrip("/")
+        return ns or "/"
+
+    def resolve(self, name: str) -> str:
+        """A ROS 1 parameter name for this node: ``~x`` private, ``x`` relative, ``/x``."""
+        if name.startswith("/"):
+            return name
+        if name.startswith("~"):
+            return self.spec.fqn + "/" + name[1:]
+        return self.spec.namespace.rstrip("/") + "/" + name
+
+    def param(self, name: str, default: Any = None) -> Any:
+        key = self.resolve(name)
+        return self.params.get(key) if self.params.has(key) else default
+
+    def search(self, name: str) -> str | None:
+        """roscpp's searchParam from the node's namespace (robot_description lookups)."""
+        found: str | None = self.params.search(self.spec.fqn, name)
+        return found
+
+    @property
+    def remappings(self) -> dict[str, str]:
+        return dict(self.spec.remaps)
+
+
+Factory = Callable[[NodeContext], RunningNode]
+_REGISTRY: dict[tuple[str, str, str], Factory] = {}
+_PURPOSE: dict[tuple[str, str, str], str] = {}
+
+
+def register(
+    dialect: str, package: str, *executables: str, purpose: str = ""
+) -> Callable[[Factory], Factory]:
+    """Register a factory for ``package``/``executable`` nodes of a dialect (``ros1``/``ros2``)."""
+
+    def decorate(factory: Factory) -> Factory:
+        for executable in executables:
+            _REGISTRY[(dialect, package, executable)] = factory
+            _PURPOSE[(dialect, package, executable)] = purpose
+        return factory
+
+    return decorate
+
+
+def factory_for(spec: NodeSpec) -> Factory | None:
+    return _REGISTRY.get((spec.dialect, spec.package, spec.executable))
+
+
+def supported(dialect: str) -> list[tuple[str, str, str]]:
+    """``(package, executable, what robomodel runs for it)`` for the README's table and errors."""
+    return sorted((p, e, _PURPOSE[(d, p, e)]) for d, p, e in _REGISTRY if d == dialect)

@@ -1,0 +1,62 @@
+"""rviz, the rqt GUIs: their role is the launch's browser viewer.
+
+``rviz -d file.rviz`` reads the config (Fixed Frame, Frame Rate, Background Color, RobotModel
+and TF display options; other displays are named in the Status); ``rqt_robot_steering``,
+``rqt_plot`` (topics from its arguments), ``rqt_gui`` and ``rqt_reconfigure`` open the viewer's
+tool folders. One viewer serves every such node of the launch, as one screen would.
+"""
+
+from __future__ import annotations
+
+from robomodel.launch.nodes.base import NodeContext, RunningNode, register
+from robomodel.launch.nodes.state import ViewerPart
+
+__all__ = ["rviz_config_argument"]
+
+
+def rviz_config_argument(args: tuple[str, ...]) -> str | None:
+    """The file of ``-d FILE`` / ``--display-config FILE`` / ``-dFILE``."""
+    for i, arg in enumerate(args):
+        if arg in ("-d", "--display-config") and i + 1 < len(args):
+            return args[i + 1]
+        if arg.startswith("-d") and len(arg) > 2:
+            return arg[2:]
+        if arg.startswith("--display-config="):
+            return arg.split("=", 1)[1]
+    return None
+
+
+@register("ros1", "rviz", "rviz", purpose="the browser viewer (RViz's RobotModel, TF, Grid)")
+def rviz(ctx: NodeContext) -> RunningNode:
+    from robomodel.viewer.rviz_config import read_rviz_config
+
+    request = ctx.viewer
+    request.requested_by.append(ctx.spec.fqn)
+    config = rviz_config_argument(ctx.spec.args)
+    description = "robot_description"
+    if config is not None:
+        settings = read_rviz_config(config)
+        ctx.extra["rviz"] = settings
+        description = settings.robot_description
+    found = ctx.search(description)
+    if found:
+        request.robot_description_param = found
+    return ViewerPart()
+
+
+def _tools(ctx: NodeContext) -> RunningNode:
+    ctx.viewer.tools = True
+    ctx.viewer.requested_by.append(ctx.spec.fqn)
+    found = ctx.search("robot_description")
+    if found and ctx.viewer.robot_description_param is None:
+        ctx.viewer.robot_description_param = found
+    return ViewerPart()
+
+
+for _package, _executable, _purpose in (
+    ("rqt_robot_steering", "rqt_robot_steering", "the viewer's Robot Steering folder"),
+    ("rqt_plot", "rqt_plot", "the viewer's Plot folder (topics from the arguments)"),
+    ("rqt_gui", "rqt_gui", "the viewer's tool folders"),
+    ("rqt_reconfigure", "rqt_reconfigure", "the viewer's Parameters folder"),
+):
+    register("ros1", _package, _executable, purpose=_purpose)(_tools)

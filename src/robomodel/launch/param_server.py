@@ -1,0 +1,236 @@
+"""A ROS 1 parameter server (rosmaster's), shared by every robomodel process of a domain.
+
+The first ``robomodel launch`` of a domain hosts it, as ``roscore`` does, and offers it over the
+bus as the services ``/rosmaster/<call>`` (``getParam``, ``setParam``, ``deleteParam``,
+``hasParam``, ``searchParam``, ``getParamNames``); later processes of the domain find it there
+and use it. ``robomodel param get /name`` / ``set`` / ``list /`` / ``delete`` reach it too.
+
+Values are stored as rosmaster stores them: a tree, so getting a namespace returns a dict and
+setting a dict replaces the whole namespace.
+"""
+
+from __future__ import annotations
+
+import base64
+import copy
+import threading
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.ros1.params import Binary
+
+__all__ = [
+    "SERVICE_PREFIX",
+    "ParamServer",
+    "ParamServerError",
+    "RemoteParamServer",
+    "connect_or_host",
+    "decode_value",
+    "encode_value",
+]
+
+SERVICE_PREFIX = "/rosmaster/"
+_CALLS = ("getParam", "setParam", "deleteParam", "hasParam", "searchParam", "getParamNames")
+
+
+class ParamServerError(RobomodelError):
+    """A parameter that is not set, or a server that cannot be reached."""
+
+
+def _split(name: str) -> list[str]:
+    return [p for p in name.split("/") if p]
+
+
+def encode_value(value: Any) -> Any:
+    """A value as it travels over the bus (JSON-like; bytes as {"__binary__": base64})."""
+    if isinstance(value, Binary):
+        return {"__binary__": base64.b64encode(value.data).decode("ascii")}
+    if isinstance(value, Mapping):
+        return {str(k): encode_value(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [encode_value(v) for v in value]
+    return value
+
+
+def decode_value(value: Any) -> Any:
+    if isinstance(value, Mapping):
+        if set(value) == {"__binary__"}:
+            return Binary(base64.b64decode(value["__binary__"]))
+        return {k: decode_value(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [decode_value(v) for v in value]
+    return value
+
+
+class ParamServer:
+    """rosmaster's parameter tree, thread-safe."""
+
+    def __init__(self) -> None:
+        self._tree: dict[str, Any] = {}
+        self._lock = threading.Lock()
+
+    def set(self, name: str, value: Any) -> None:
+        parts = _split(name)
+        with self._lock:
+            if not parts:
+                if not isinstance(value, Mapping):
+                    raise ParamServerError("cannot set root of parameter tree to non-dictionary")
+                self._tree = copy.deepcopy(dict(value))
+                return
+            node = self._tree
+            for part in parts[:-1]:
+                child = node.get(part)
+                if not isinstance(child, dict):
+                    child = node[part] = {}
+                node = child
+            node[parts[-1]] = copy.deepcopy(dict(value)) if isinstance(value, Mapping) else value
+
+    def get(self, name: str) -> Any:
+        node: Any = self._tree
+        with self._lock:
+            for part in _split(name):
+                if not isinstance(node, dict) or part not in node:
+                    raise ParamServerError(f"Parameter [{name}] is not set")
+                node = node[part]
+            return copy.deepcopy(node)
+
+    def has(self, name: str) -> bool:
+        try:
+            self.get(name)
+        except ParamServerError:
+            return False
+        return True
+
+    def delete(self, name: str) -> None:
+        parts = _split(name)
+        with self._lock:
+            if not parts:
+                self._tree = {}
+                return
+            node = self._tree
+            for part in parts[:-1]:
+                node = node.get(part) if isinstance(node, dict) else None  # type: ignore[assignment]
+                if not isinstance(node, dict):
+                    raise ParamServerError(f"Parameter [{name}] is not set")
+            if parts[-1] not in node:
+                raise ParamServerError(f"Parameter [{name}] is not set")
+            del node[parts[-1]]
+
+    def names(self) -> list[str]:
+        """Every leaf parameter's full name, sorted (rosparam list)."""
+        out: list[str] = []
+
+        def walk(prefix: str, node: Any) -> None:
+            if isinstance(node, dict) and node:
+                for key in node:
+                    walk(f"{prefix}/{key}", node[key])
+            else:
+                out.append(prefix)
+
+        with self._lock:
+            for key, value in self._tree.items():
+                walk("/" + key, value)
+        return sorted(out)
+
+    def search(self, namespace: str, key: str) -> str | None:
+        """rosmaster's searchParam: ``key`` in ``namespace``, then in each parent."""
+        first = _split(key)[0] if _split(key) else key
+        parts = _split(namespace)
+        for depth in range(len(parts), -1, -1):
+            base = "/" + "/".join(parts[:depth]) if depth else ""
+            if self.has(f"{base}/{first}"):
+                rest = "/".join(_split(key)[1:])
+                return f"{base}/{first}" + (f"/{rest}" if rest else "")
+        return None
+
+    # -- over the bus -----------------------------------------------------------------------
+    def handle(self, call: str, request: Mapping[str, Any]) -> dict[str, Any]:
+        try:
+            if call == "getParam":
+                return {"value": encode_value(self.get(str(request["key"])))}
+            if call == "setParam":
+                self.set(str(request["key"]), decode_value(request.get("value")))
+                return {"ok": True}
+            if call == "deleteParam":
+                self.delete(str(request["key"]))
+                return {"ok": True}
+            if call == "hasParam":
+                return {"value": self.has(str(request["key"]))}
+            if call == "searchParam":
+                return {"value": self.search(str(request.get("ns", "/")), str(request["key"]))}
+            if call == "getParamNames":
+                return {"value": self.names()}
+        except ParamServerError as exc:
+            return {"error": str(exc)}
+        except (KeyError, TypeError) as exc:
+            return {"error": f"bad {call} request: {exc}"}
+        return {"error": f"unknown call {call}"}
+
+    def serve(self, context: Any) -> Callable[[], None]:
+        """Offer this server as ``/rosmaster/*`` services on ``context``'s bus."""
+        stops = [
+            context.create_service(SERVICE_PREFIX + call, self._handler(call)) for call in _CALLS
+        ]
+
+        def stop() -> None:
+            for unregister in stops:
+                unregister()
+
+        return stop
+
+    def _handler(self, call: str) -> Callable[[dict[str, Any]], dict[str, Any]]:
+        return lambda request: self.handle(call, request)
+
+
+class RemoteParamServer:
+    """The parameter server of another process of the domain, through its services."""
+
+    def __init__(self, context: Any, timeout_s: float = 3.0) -> None:
+        self._context = context
+        self._timeout_s = timeout_s
+
+    def _call(self, call: str, **request: Any) -> Any:
+        try:
+            reply = self._context.call_service(
+                SERVICE_PREFIX + call, request, timeout_s=self._timeout_s
+            )
+        except RobomodelError as exc:
+            raise ParamServerError(f"the parameter server does not answer: {exc}") from None
+        if "error" in reply:
+            raise ParamServerError(str(reply["error"]))
+        return decode_value(reply.get("value"))
+
+    def get(self, name: str) -> Any:
+        return self._call("getParam", key=name)
+
+    def set(self, name: str, value: Any) -> None:
+        self._call("setParam", key=name, value=encode_value(value))
+
+    def delete(self, name: str) -> None:
+        self._call("deleteParam", key=name)
+
+    def has(self, name: str) -> bool:
+        return bool(self._call("hasParam", key=name))
+
+    def names(self) -> list[str]:
+        return list(self._call("getParamNames"))
+
+    def search(self, namespace: str, key: str) -> str | None:
+        value = self._call("searchParam", ns=namespace, key=key)
+        return None if value is None else str(value)
+
+
+def connect_or_host(context: Any, probe_timeout_s: float = 1.0) -> tuple[Any, bool]:
+    """The domain's parameter server: a remote one if a process already hosts it, else a new
+    one hosted (and served) here. Returns ``(server, hosted_here)``."""
+    if context.transport.name != "inproc":
+        remote = RemoteParamServer(context, timeout_s=probe_timeout_s)
+        try:
+            remote.names()
+            return RemoteParamServer(context), False
+        except ParamServerError:
+            pass
+    server = ParamServer()
+    server.serve(context)
+    return server, True

@@ -1,0 +1,286 @@
+"""Run a launch file's nodes in this process, as ``roslaunch`` runs them as processes.
+
+Order (roslaunch's): parameters are cleared (``clear_params``, ``<rosparam command="delete">``),
+set on the domain's parameter server (hosted here if no other robomodel process hosts it),
+dumped (``command="dump"``), then the nodes start in file order. A node robomodel provides runs
+in-process (``robomodel.launch.nodes``); one it does not provide is reported once (package,
+type, what robomodel would need) and the others go on; ``required="true"`` on such a node is an
+error before anything starts. A required node that ends ends the launch; ``respawn`` restarts
+a node after ``respawn_delay``. Ctrl-C stops every node in reverse start order.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import tempfile
+import threading
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.model import LaunchError, NodeSpec
+from robomodel.launch.nodes.base import (
+    NodeContext,
+    RunningNode,
+    ViewerRequest,
+    factory_for,
+    supported,
+)
+
+__all__ = ["LaunchRunner", "RunOptions", "unsupported_message"]
+
+
+@dataclass(frozen=True, slots=True)
+class RunOptions:
+    """How to run: the bus, the viewer, and (for scripts and tests) how long."""
+
+    bus: str = "zenoh"
+    domain_id: int | None = None
+    headless: bool = False
+    open_browser: bool = True
+    port: int = 8080
+    duration_s: float | None = None
+    package_index: Any = None
+
+
+def unsupported_message(spec: NodeSpec) -> str:
+    """One clear line for a node robomodel does not provide."""
+    same_package = [e for p, e, _ in supported(spec.dialect) if p == spec.package]
+    hint = (
+        f"; robomodel provides {spec.package}'s {', '.join(same_package)}" if same_package else ""
+    )
+    return (
+        f"{spec.location}: node {spec.fqn} ({spec.package}/{spec.executable}) is not provided "
+        f"by robomodel{hint}: it is not started (robomodel would need a mapping of "
+        f"{spec.package}/{spec.executable} onto one of its components; see `robomodel launch "
+        f"--help` for the supported nodes)"
+    )
+
+
+@dataclass
+class _Started:
+    spec: NodeSpec
+    handle: RunningNode
+    restarts: int = 0
+    ended_at: float | None = None
+
+
+@dataclass
+class LaunchRunner:
+    """Runs the nodes of a loaded launch (see the module docstring)."""
+
+    nodes: Sequence[NodeSpec]
+    options: RunOptions
+    log: Callable[[str], None] = field(default=lambda text: print(text, file=sys.stderr))
+    params: Any = None
+    context: Any = None
+    viewer: Any = None
+    started: list[_Started] = field(default_factory=list)
+    skipped: list[NodeSpec] = field(default_factory=list)
+    request: ViewerRequest = field(default_factory=ViewerRequest)
+    hosted_params: bool = False
+    _stop: threading.Event = field(default_factory=threading.Event)
+    _extra: dict[str, Any] = field(default_factory=dict)
+
+    # -- set-up ---------------------------------------------------------------------------
+    def check(self) -> None:
+        """Refuse, before anything starts, a required node robomodel cannot run."""
+        for spec in self.nodes:
+            if factory_for(spec) is None and spec.required:
+                raise LaunchError(
+                    f"required node {spec.fqn} ({spec.package}/{spec.executable}) is not provided "
+                    "by robomodel, so the launch cannot run (roslaunch would end when it ends); "
+                    'remove required="true" to run the rest',
+                    location=spec.location,
+                )
+
+    def open_bus(self) -> None:
+        from robomodel.launch.param_server import connect_or_host
+        from robomodel.runtime import Context
+
+        kwargs: dict[str, Any] = {}
+        if self.options.bus == "zenoh" and self.options.domain_id is not None:
+            kwargs["domain_id"] = self.options.domain_id
+        self.context = Context(self.options.bus, **kwargs)
+        self.params, self.hosted_params = connect_or_host(self.context)
+        where = "hosted by this process" if self.hosted_params else "of another robomodel process"
+        self.log(f"[launch] parameter server {where}")
+
+    def set_params(
+        self,
+        params: dict[str, Any],
+        *,
+        clear: Sequence[str] = (),
+        deletes: Sequence[str] = (),
+        dumps: Sequence[Any] = (),
+    ) -> None:
+        """roslaunch's order: clear, delete, set, dump."""
+        for name in (*clear, *deletes):
+            if self.params.has(name):
+                self.params.delete(name)
+        for name, value in params.items():
+            self.params.set(name, value)
+        for dump in dumps:
+            self._dump(dump.file, dump.param)
+
+    def _dump(self, file: str, param: str) -> None:
+        import yaml
+
+        from robomodel._atomic import atomic_write_text
+
+        value = self.params.get(param) if self.params.has(param) else {}
+        atomic_write_text(file, yaml.safe_dump(value))
+
+    # -- running --------------------------------------------------------------------------
+    def start_nodes(self) -> None:
+        for spec in self.nodes:
+            factory = factory_for(spec)
+            if factory is None:
+                self.skipped.append(spec)
+                self.log(unsupported_message(spec))
+                continue
+            self._start(spec)
+        if self.request.requested_by and not self.options.headless:
+            self._start_viewer()
+
+    def _start(self, spec: NodeSpec, restarts: int = 0) -> None:
+        factory = factory_for(spec)
+        assert factory is not None
+        ctx = NodeContext(
+            spec, self.context, self.params, self.request, self._prefixed(spec), self._extra
+        )
+        try:
+            handle = factory(ctx)
+        except (RobomodelError, ValueError) as exc:
+            self.log(f"[{spec.fqn}] failed to start: {exc}")
+            handle = _Failed()
+        self.started.append(_Started(spec, handle, restarts))
+        self.log(f"[launch] started {spec.fqn} ({spec.package}/{spec.executable})")
+
+    def _prefixed(self, spec: NodeSpec) -> Callable[[str], None]:
+        return lambda text: self.log(f"[{spec.fqn}] {text}")
+
+    def _start_viewer(self) -> None:
+        try:
+            from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+        except ImportError as exc:
+            self.log(f"[launch] no viewer: {exc}")
+            return
+        param = self.request.robot_description_param or "/robot_description"
+        if not self.params.has(param):
+            self.log(f"[launch] the viewer has no robot to show: {param} is not set")
+            return
+        text = self.params.get(param)
+        handle, path = tempfile.mkstemp(prefix="robomodel_launch_", suffix=".urdf")
+        with os.fdopen(handle, "w", encoding="utf-8") as out:
+            out.write(str(text))
+        self._extra["viewer_file"] = path
+        settings = self._extra.get("rviz")
+        options = ViewerOptions(
+            sources=(RobotSource(path),),
+            port=self.options.port,
+            bus=self.options.bus,
+            domain_id=self.options.domain_id,
+            external=not self.request.sliders,
+            state_publisher=False,  # the launch's robot_state_publisher publishes /tf
+            package_index=self.options.package_index or _default_index(),
+            tools=self.request.tools or True,
+            fixed_frame=settings.fixed_frame if settings is not None else None,
+            frame_rate_hz=(settings.frame_rate_hz or 60.0) if settings is not None else 60.0,
+            rviz=settings,
+        )
+        self.viewer = Viewer(options)
+        self.viewer.start()
+        self.log(f"[launch] viewer: serving {self.viewer.url}")
+        if self.options.open_browser:
+            import webbrowser
+
+            webbrowser.open(self.viewer.url)
+
+    def spin(self) -> int:
+        """Run until Ctrl-C, ``duration_s``, or a required node ending; the exit code."""
+        deadline = (
+            time.monotonic() + self.options.duration_s
+            if self.options.duration_s is not None
+            else None
+        )
+        previous = signal.getsignal(signal.SIGTERM)
+        try:
+            signal.signal(signal.SIGTERM, lambda *_: self._stop.set())
+        except ValueError:  # not the main thread
+            previous = None
+        code = 0
+        try:
+            while not self._stop.is_set():
+                if deadline is not None and time.monotonic() >= deadline:
+                    break
+                self.context.spin(duration_s=0.05)
+                ended = self._supervise()
+                if ended is not None:
+                    code = ended
+                    break
+        except KeyboardInterrupt:
+            code = 0
+        finally:
+            if previous is not None:
+                signal.signal(signal.SIGTERM, previous)
+        return code
+
+    def _supervise(self) -> int | None:
+        now = time.monotonic()
+        for entry in list(self.started):
+            code = entry.handle.exit_code()
+            if code is None:
+                continue
+            if entry.spec.required:
+                self.log(
+                    f"[launch] required node {entry.spec.fqn} ended (code {code}): shutting down"
+                )
+                return 0
+            if entry.spec.respawn:
+                if entry.ended_at is None:
+                    entry.ended_at = now
+                    self.log(
+                        f"[launch] {entry.spec.fqn} ended (code {code}); respawning in "
+                        f"{entry.spec.respawn_delay_s:g} s"
+                    )
+                elif now - entry.ended_at >= entry.spec.respawn_delay_s:
+                    self.started.remove(entry)
+                    self._start(entry.spec, entry.restarts + 1)
+        return None
+
+    def shutdown(self) -> None:
+        """Stop every node in reverse start order, then the viewer and the bus."""
+        for entry in reversed(self.started):
+            try:
+                entry.handle.stop()
+            except Exception as exc:  # a node failing to stop never keeps the others running
+                self.log(f"[launch] {entry.spec.fqn} did not stop cleanly: {exc}")
+        if self.viewer is not None:
+            self.viewer.close()
+        if self.context is not None:
+            self.context.shutdown()
+        path = self._extra.get("viewer_file")
+        if path:
+            Path(path).unlink(missing_ok=True)
+
+
+class _Failed:
+    """A node whose start failed: it counts as ended with code 1 (as a crashed process)."""
+
+    def stop(self) -> None:
+        pass
+
+    def exit_code(self) -> int | None:
+        return 1
+
+
+def _default_index() -> Any:
+    from robomodel.description.packages import PackageIndex
+
+    return PackageIndex()
