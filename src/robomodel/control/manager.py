@@ -11,12 +11,12 @@ humble's rule: a controller at ``rate`` runs when ``counter % (cm_rate / rate) =
 
 from __future__ import annotations
 
-import enum
 import logging
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from robomodel.control._entry import ControllerEntry as _Entry
+from robomodel.control._entry import Strictness, create_entry
 from robomodel.control._switch import plan_switch
 from robomodel.control.config import ControllerConfig, ControllerSpec
 from robomodel.control.controllers.base import (
@@ -24,7 +24,6 @@ from robomodel.control.controllers.base import (
     ControllerState,
     InterfaceSelection,
 )
-from robomodel.control.controllers.registry import create_controller
 from robomodel.control.exceptions import (
     ConfigError,
     ControlError,
@@ -47,28 +46,6 @@ __all__ = ["ControllerManager", "Strictness"]
 log = logging.getLogger("robomodel.control")
 
 _OK = ReturnType.OK
-
-
-class Strictness(enum.IntEnum):
-    """controller_manager_msgs/SwitchController strictness."""
-
-    BEST_EFFORT = 1
-    STRICT = 2
-
-
-@dataclass(eq=False)
-class _Entry:
-    name: str
-    type_name: str
-    controller: ControllerInterface
-    params: dict[str, Any]
-    fallback: tuple[str, ...] = ()
-    update_rate_hz: int = 0
-    factor: int = 1
-    claimed: tuple[str, ...] = ()
-    state_names: tuple[str, ...] = ()
-    node: Node | None = None
-    extra: dict[str, Any] = field(default_factory=dict)
 
 
 class ControllerManager:
@@ -106,6 +83,7 @@ class ControllerManager:
         self.namespace = namespace
         self.entries: dict[str, _Entry] = {}
         self.specs: dict[str, ControllerSpec] = {}
+        self.spec_source: Callable[[str], ControllerSpec | None] | None = None
         self._active: list[_Entry] = []
         self._run: list[tuple[Callable[[float, float], ReturnType], int, _Entry]] = []
         self._counter = 0
@@ -143,10 +121,15 @@ class ControllerManager:
         self, name: str, type_name: str | None = None, params: Mapping[str, Any] | None = None
     ) -> ControllerInterface:
         """Create controller ``name`` (state unconfigured); type and parameters default to
-        those of the configuration (:meth:`set_config`)."""
+        those of the configuration (:meth:`set_config`), else to what :attr:`spec_source` finds
+        (a ROS 1 launch: the parameter server's ``<namespace>/<name>``)."""
         if name in self.entries:
             raise ControlError(f"a controller named '{name}' is already loaded")
         spec = self.specs.get(name)
+        if spec is None and type_name is None and self.spec_source is not None:
+            spec = self.spec_source(name)
+            if spec is not None:
+                self.specs[name] = spec
         if type_name is None:
             if spec is None:
                 raise ControlError(
@@ -157,40 +140,19 @@ class ControllerManager:
         merged: dict[str, Any] = dict(spec.params) if spec is not None else {}
         merged.update(params or {})
         try:
-            controller = create_controller(type_name)
+            entry = create_entry(
+                name,
+                type_name,
+                merged,
+                context=self.context,
+                namespace=self.namespace,
+                robot=self.robot,
+                manager_rate_hz=self.update_rate_hz,
+            )
         except RobomodelError as exc:
             raise self._located(name, exc) from None
-        rate = int(merged.get("update_rate", self.update_rate_hz))
-        if rate <= 0 or rate > self.update_rate_hz:
-            rate = self.update_rate_hz
-        elif self.update_rate_hz % rate != 0:  # controller_interface_base.cpp configure()
-            rate = self.update_rate_hz // round(self.update_rate_hz / rate)
-            log.warning(
-                "%s: update rate adjusted to %d Hz (a divisor of the manager's)", name, rate
-            )
-        node = None
-        if self.context is not None:
-            node = self.context.create_node(
-                name, self.namespace, parameters=merged, allow_undeclared_parameters=True
-            )
-        try:
-            controller.init(name, merged, node=node, robot=self.robot, update_rate_hz=rate)
-        except RobomodelError as exc:
-            if node is not None:
-                node.destroy()
-            raise self._located(name, exc) from None
-        fallback = merged.get("fallback_controllers", ())
-        self.entries[name] = _Entry(
-            name,
-            type_name,
-            controller,
-            merged,
-            tuple([fallback] if isinstance(fallback, str) else fallback),
-            rate,
-            max(1, self.update_rate_hz // rate),
-            node=node,
-        )
-        return controller
+        self.entries[name] = entry
+        return entry.controller
 
     def _located(self, name: str, exc: RobomodelError) -> RobomodelError:
         """``exc`` with the file:line of the controller's entry in the YAML, when known."""
@@ -463,3 +425,16 @@ class ControllerManager:
             if entry.controller.state is ControllerState.ACTIVE:
                 self._deactivate(entry)
         self._rebuild()
+
+    def close(self) -> None:
+        """:meth:`shutdown`, then remove every controller's node and the manager's own (the
+        manager's process ending; a new manager of the same name can then start)."""
+        self.shutdown()
+        for entry in self.entries.values():
+            if entry.node is not None:
+                entry.node.destroy()
+        self.entries.clear()
+        self._rebuild()
+        if self.node is not None:
+            self.node.destroy()
+            self.node = None

@@ -76,7 +76,7 @@ class LaunchRunner:
 
     nodes: Sequence[NodeSpec]
     options: RunOptions
-    log: Callable[[str], None] = field(default=lambda text: print(text, file=sys.stderr))
+    log: Callable[[str], None] = field(default=lambda text: _write_line(text))
     params: Any = None
     context: Any = None
     viewer: Any = None
@@ -138,6 +138,7 @@ class LaunchRunner:
 
     # -- running --------------------------------------------------------------------------
     def start_nodes(self) -> None:
+        self._extra.setdefault("package_index", self.options.package_index or _default_index())
         for spec in self.nodes:
             factory = factory_for(spec)
             if factory is None:
@@ -219,7 +220,11 @@ class LaunchRunner:
             while not self._stop.is_set():
                 if deadline is not None and time.monotonic() >= deadline:
                     break
-                self.context.spin(duration_s=0.05)
+                driver = self._driver()
+                if driver is not None:  # a simulator: physics, controllers and callbacks
+                    driver.drive(0.05)
+                else:
+                    self.context.spin(duration_s=0.05)
                 ended = self._supervise()
                 if ended is not None:
                     code = ended
@@ -230,6 +235,12 @@ class LaunchRunner:
             if previous is not None:
                 signal.signal(signal.SIGTERM, previous)
         return code
+
+    def _driver(self) -> Any:
+        for entry in self.started:
+            if hasattr(entry.handle, "drive") and entry.handle.exit_code() is None:
+                return entry.handle
+        return None
 
     def _supervise(self) -> int | None:
         now = time.monotonic()
@@ -261,6 +272,12 @@ class LaunchRunner:
                 entry.handle.stop()
             except Exception as exc:  # a node failing to stop never keeps the others running
                 self.log(f"[launch] {entry.spec.fqn} did not stop cleanly: {exc}")
+                continue
+            # A node with its own thread (a spawner unloading its controllers) may still need
+            # the bus, whose callbacks run here: spin until it ends, as roslaunch waits.
+            end = time.monotonic() + _STOP_TIMEOUT_S
+            while entry.handle.exit_code() is None and time.monotonic() < end:
+                self.context.spin_once(0.02)
         if self.viewer is not None:
             self.viewer.close()
         if self.context is not None:
@@ -268,6 +285,17 @@ class LaunchRunner:
         path = self._extra.get("viewer_file")
         if path:
             Path(path).unlink(missing_ok=True)
+
+
+_STOP_TIMEOUT_S = 5.0
+_OUTPUT_LOCK = threading.Lock()
+
+
+def _write_line(text: str) -> None:
+    """One whole line on stderr: nodes log from their own threads too."""
+    with _OUTPUT_LOCK:
+        sys.stderr.write(text + "\n")
+        sys.stderr.flush()
 
 
 class _Failed:

@@ -11,6 +11,7 @@ import heapq
 import itertools
 import logging
 import queue
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -65,6 +66,7 @@ class Executor:
         self._queue: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
         self._timers: list[Timer] = []
         self._stopped = False
+        self.spinner: int | None = None  # the ident of the thread that spins, once one did
 
     # -- producers (any thread) ----------------------------------------------------------
     def post(self, callback: Callable[[], None]) -> None:
@@ -121,6 +123,7 @@ class Executor:
 
     def spin_once(self, timeout_s: float = 0.0) -> int:
         """Run what is ready; if nothing is, wait up to ``timeout_s`` for work."""
+        self.spinner = threading.get_ident()
         done = self.run_pending() + self.run_due_timers()
         if done or timeout_s <= 0:
             return done

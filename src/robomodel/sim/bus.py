@@ -278,6 +278,7 @@ class SimBridge:
         for unregister in self._unregister:
             unregister()
         self._unregister = []
+        self.node.destroy()
 
 
 def _publishing(source: Any, publisher: Any) -> Callable[[float], None]:

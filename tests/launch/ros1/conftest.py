@@ -38,6 +38,39 @@ def roslaunch(args: list[str], env: dict[str, str], cwd: Path) -> subprocess.Com
     )
 
 
+# xacro 2.1.1 resolves $(find pkg) with ament_index_python, which ROS 1 does not have: the
+# reference script gets a minimal one that finds packages on ROS_PACKAGE_PATH as rospack does
+# (the directory of the first package.xml with that <name>), so that roslaunch's xacro commands
+# of the examples ($(find rrbot_description)) run under Debian's roslaunch.
+_AMENT_INDEX_FROM_ROS_PACKAGE_PATH = """
+import os, re, sys, types
+
+def _share(name):
+    for root in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep):
+        for folder, dirs, files in os.walk(root):
+            if "package.xml" in files:
+                dirs[:] = []
+                text = open(os.path.join(folder, "package.xml"), encoding="utf-8").read()
+                found = re.search(r"<name>\\s*([^<\\s]+)\\s*</name>", text)
+                if found and found.group(1) == name:
+                    return folder
+    raise _NotFound(name)
+
+class _NotFound(KeyError):
+    pass
+
+_packages = types.ModuleType("ament_index_python.packages")
+_packages.get_package_share_directory = _share
+_packages.PackageNotFoundError = _NotFound
+_root = types.ModuleType("ament_index_python")
+_root.packages = _packages
+_root.get_package_share_directory = _share
+_root.PackageNotFoundError = _NotFound
+sys.modules["ament_index_python"] = _root
+sys.modules["ament_index_python.packages"] = _packages
+"""
+
+
 @pytest.fixture
 def workspace(tmp_path: Path) -> Path:
     """The corpus copied to a temporary workspace, plus a ``xacro`` package whose scripts run
@@ -51,7 +84,8 @@ def workspace(tmp_path: Path) -> Path:
         script = xacro / name
         script.write_text(
             f"#!{sys.executable} -I\n"  # -I: the script's folder (with xacro.py) is not on sys.path
-            "import sys\nimport xacro\nsys.exit(xacro.main())\n"
+            + _AMENT_INDEX_FROM_ROS_PACKAGE_PATH
+            + "import xacro\nsys.exit(xacro.main())\n"
         )
         script.chmod(0o755)
     (tmp_path / "home").mkdir()

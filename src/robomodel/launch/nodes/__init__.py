@@ -1,6 +1,6 @@
 """Node mappings: which robomodel component runs for each ROS node of a launch file."""
 
-from robomodel.launch.nodes import state, tf_static, viewer
+from robomodel.launch.nodes import controllers, gazebo, state, tf_static, viewer
 from robomodel.launch.nodes.base import (
     NodeContext,
     RunningNode,
@@ -14,7 +14,9 @@ __all__ = [
     "NodeContext",
     "RunningNode",
     "ViewerRequest",
+    "controllers",
     "factory_for",
+    "gazebo",
     "register",
     "state",
     "supported",

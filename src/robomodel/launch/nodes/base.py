@@ -7,6 +7,7 @@ not provide has no factory: the runner reports it once and goes on.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -16,6 +17,7 @@ from robomodel.launch.model import NodeSpec
 __all__ = [
     "NodeContext",
     "RunningNode",
+    "ThreadNode",
     "ViewerRequest",
     "factory_for",
     "register",
@@ -31,6 +33,34 @@ class RunningNode(Protocol):
 
     def exit_code(self) -> int | None:
         """None while it runs; its exit code once it ended."""
+
+
+class ThreadNode:
+    """A node that does its work in a thread, as its own process would, then ends."""
+
+    def __init__(
+        self, name: str, work: Callable[[ThreadNode], int], log: Callable[[str], None]
+    ) -> None:
+        self._code: int | None = None
+        self.error = ""
+        self.log = log
+        self.stopping = threading.Event()
+        self._thread = threading.Thread(target=self._run, args=(work,), name=name, daemon=True)
+        self._thread.start()
+
+    def _run(self, work: Callable[[ThreadNode], int]) -> None:
+        try:
+            self._code = int(work(self))
+        except Exception as exc:  # what a crashing process would print
+            self._code = 1
+            self.error = str(exc)
+            self.log(f"ended with an error: {exc}")
+
+    def stop(self) -> None:
+        self.stopping.set()
+
+    def exit_code(self) -> int | None:
+        return self._code
 
 
 @dataclass
@@ -67,6 +97,13 @@ class NodeContext:
         """The node's namespace in the runtime's form (``/`` or ``/a/b``, no trailing slash)."""
         ns = self.spec.namespace.rstrip("/")
         return ns or "/"
+
+    @property
+    def use_sim_time(self) -> bool:
+        """ROS 1's global ``/use_sim_time`` (set by gazebo_ros's launch files): the node's
+        clock is /clock."""
+        value = self.params.get("/use_sim_time") if self.params.has("/use_sim_time") else False
+        return value is True or str(value).lower() == "true"
 
     def resolve(self, name: str) -> str:
         """A ROS 1 parameter name for this node: ``~x`` private, ``x`` relative, ``/x``."""

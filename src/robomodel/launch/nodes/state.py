@@ -73,6 +73,7 @@ def robot_state_publisher(ctx: NodeContext) -> RunningNode:
         "publish_frequency": float(ctx.param("~publish_frequency", 50.0)),
         "ignore_timestamp": bool(ctx.param("~ignore_timestamp", False)),
         "frame_prefix": _prefix(ctx),
+        "use_sim_time": ctx.use_sim_time,
     }
     rsp = RobotStatePublisher(
         ctx.runtime,
@@ -98,7 +99,10 @@ def joint_state_publisher(ctx: NodeContext) -> RunningNode:
     from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
 
     robot = read_urdf(description_of(ctx).encode()).robot
-    parameters: dict[str, Any] = {"rate": float(ctx.param("~rate", 10.0))}
+    parameters: dict[str, Any] = {
+        "rate": float(ctx.param("~rate", 10.0)),
+        "use_sim_time": ctx.use_sim_time,
+    }
     sources = ctx.param("~source_list")
     if sources:
         parameters["source_list"] = [str(s) for s in sources]

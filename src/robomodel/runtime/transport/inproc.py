@@ -5,6 +5,7 @@ from __future__ import annotations
 import collections
 import functools
 import logging
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -162,7 +163,26 @@ class InprocTransport(Transport):
             raise RobomodelError(
                 f"service '{name}' not found; services: {', '.join(sorted(self._services)) or '(none)'}"
             )
-        return handler(request)
+        spinner = self._executor.spinner
+        if spinner is None or spinner == threading.get_ident():
+            return handler(request)
+        # Another thread (a spawner, as a separate process would be): the handler runs on the
+        # spinning thread, as every other callback does, and this thread waits for it.
+        done = threading.Event()
+        box: dict[str, Any] = {}
+
+        def run() -> None:
+            try:
+                box["reply"] = handler(request)
+            except Exception as exc:
+                box["reply"] = {"error": str(exc)}
+            done.set()
+
+        self._executor.post(run)
+        if not done.wait(timeout_s):
+            raise RobomodelError(f"service '{name}' did not answer in {timeout_s:g} s")
+        reply: dict[str, Any] = box["reply"]
+        return reply
 
     def close(self) -> None:
         self._services.clear()

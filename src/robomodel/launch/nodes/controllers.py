@@ -1,0 +1,273 @@
+"""controller_manager nodes of a ROS 1 launch file: ``spawner``, ``controller_manager`` and
+``unspawner`` (controller_manager 0.19's scripts), talking to a controller manager over the
+bus as the scripts do over ROS services, each from its own thread as from its own process.
+
+The controller manager is the one robomodel's simulator runs for a robot (``gazebo_ros_control``,
+``<namespace>/controller_manager``), in this launch or in another robomodel process of the
+domain. It takes a controller's type and parameters from the parameter server at
+``<namespace>/<controller>`` (what ``<rosparam file=... command="load"/>`` put there), as
+ROS 1's controller_manager does.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
+
+if TYPE_CHECKING:
+    from robomodel.control.config import ControllerSpec
+
+__all__ = ["SpawnerArgs", "parse_spawner_args", "ros1_spec_source"]
+
+
+def ros1_spec_source(params: Any) -> Callable[[str, str], ControllerSpec | None]:
+    """Controller specs read from the ROS 1 parameter server, as controller_manager's
+    ``loadController`` reads ``<namespace>/<name>/type`` and the controller its parameters."""
+
+    def source(namespace: str, name: str) -> ControllerSpec | None:
+        import yaml
+
+        from robomodel.control.config import load_controller_config
+        from robomodel.control.exceptions import ConfigError
+
+        key = f"{namespace.rstrip('/')}/{name}"
+        value = params.get(key) if params.has(key) else None
+        if not isinstance(value, dict) or "type" not in value:
+            raise ConfigError(
+                f"Could not load controller '{name}' because controller type is not specified. "
+                "Did you load the controller configuration on the parameter server (namespace: "
+                f"'{key}')?"
+            )
+        text = yaml.safe_dump({name: value})
+        return load_controller_config(f"<parameter server {key}>", text=text).controllers[0]
+
+    return source
+
+
+@dataclass(frozen=True, slots=True)
+class SpawnerArgs:
+    """The ROS 1 spawner's command line."""
+
+    controllers: tuple[str, ...]
+    stopped: bool = False
+    namespace: str | None = None
+    timeout_s: float = 30.0
+    shutdown_timeout_s: float = 30.0
+    wait_for: str | None = None
+
+
+def parse_spawner_args(args: tuple[str, ...]) -> SpawnerArgs:
+    """controller_manager/spawner's options (argparse, ``--opt=value`` or ``--opt value``)."""
+    names: list[str] = []
+    values: dict[str, str] = {}
+    stopped = False
+    i = 0
+    while i < len(args):
+        token = args[i]
+        option, eq, inline = token.partition("=")
+        if option == "--stopped":
+            stopped = True
+        elif option in ("--namespace", "--timeout", "--shutdown-timeout", "--wait-for"):
+            if eq:
+                values[option] = inline
+            elif i + 1 < len(args):
+                values[option] = args[i + 1]
+                i += 1
+            else:
+                raise RobomodelError(f"spawner: {option} needs a value")
+        elif token.startswith("__"):  # __name:=, __log:= added by roslaunch
+            pass
+        elif token.startswith("-"):
+            raise RobomodelError(
+                f"spawner: unrecognized argument '{token}'; options are --stopped, --namespace, "
+                "--timeout, --shutdown-timeout, --wait-for"
+            )
+        else:
+            names.append(token)
+        i += 1
+    if not names:
+        raise RobomodelError("spawner: give at least one controller name")
+    return SpawnerArgs(
+        tuple(names),
+        stopped,
+        values.get("--namespace"),
+        _seconds(values, "--timeout", 30.0),
+        _seconds(values, "--shutdown-timeout", 30.0),
+        values.get("--wait-for"),
+    )
+
+
+def _seconds(values: dict[str, str], option: str, default: float) -> float:
+    if option not in values:
+        return default
+    try:
+        return float(values[option])
+    except ValueError:
+        raise RobomodelError(f"spawner: {option} needs a number of seconds") from None
+
+
+class _Manager:
+    """Calls to one controller manager's services."""
+
+    def __init__(self, ctx: NodeContext, namespace: str | None) -> None:
+        base = ctx.resolve(namespace) if namespace else ctx.spec.namespace
+        self.prefix = base.rstrip("/") + "/controller_manager"
+        self.ctx = ctx
+
+    def call(
+        self, service: str, request: dict[str, Any], timeout_s: float = 10.0
+    ) -> dict[str, Any]:
+        reply: dict[str, Any] = self.ctx.runtime.call_service(
+            f"{self.prefix}/{service}", request, timeout_s
+        )
+        return reply
+
+    def wait(self, node: ThreadNode, timeout_s: float) -> bool:
+        deadline = time.monotonic() + timeout_s
+        self.ctx.log(f"Controller Spawner: Waiting for service {self.prefix}/load_controller")
+        while not node.stopping.is_set():
+            try:
+                self.call("list_controllers", {}, timeout_s=2.0)
+                return True
+            except RobomodelError:
+                if time.monotonic() > deadline:
+                    self.ctx.log(
+                        f"Controller Spawner couldn't find the expected controller_manager ROS "
+                        f"interface ({self.prefix}: no robomodel process runs it; start the "
+                        "simulation first, e.g. the launch file with gazebo_ros)"
+                    )
+                    return False
+                time.sleep(0.2)
+        return False
+
+    def load(self, name: str) -> bool:
+        reply = self.call("load_controller", {"name": name, "set_state": "inactive"})
+        if not reply.get("ok"):
+            self.ctx.log(f"Failed to load {name}: {reply.get('error', 'unknown error')}")
+        return bool(reply.get("ok"))
+
+    def switch(self, start: list[str], stop: list[str], strictness: int = 2) -> bool:
+        request = {"activate": start, "deactivate": stop, "strictness": strictness}
+        reply = self.call("switch_controller", request)
+        if not reply.get("ok"):
+            self.ctx.log(f"switch_controller failed: {reply.get('error', 'unknown error')}")
+        return bool(reply.get("ok"))
+
+    def unload(self, name: str) -> bool:
+        reply = self.call("unload_controller", {"name": name})
+        return bool(reply.get("ok"))
+
+
+@register(
+    "ros1",
+    "controller_manager",
+    "spawner",
+    purpose="loads and starts controllers in robomodel's controller manager; stops and unloads "
+    "them when the launch ends",
+)
+def spawner(ctx: NodeContext) -> RunningNode:
+    options = parse_spawner_args(ctx.spec.args)
+    manager = _Manager(ctx, options.namespace)
+
+    def work(node: ThreadNode) -> int:
+        if not manager.wait(node, options.timeout_s):
+            return 1 if not node.stopping.is_set() else 0
+        loaded = []
+        for name in options.controllers:
+            ctx.log(f"Loading controller: {name}")
+            if manager.load(name):
+                loaded.append(name)
+        ctx.log(f"Controller Spawner: Loaded controllers: {', '.join(loaded)}")
+        if loaded and not options.stopped:
+            if manager.switch(loaded, []):
+                ctx.log(f"Started controllers: {', '.join(loaded)}")
+            else:
+                ctx.log(f"Failed to start controllers: {', '.join(loaded)}")
+        node.stopping.wait()
+        _shutdown(manager, loaded)  # the spawner's shutdown hook
+        return 0
+
+    return ThreadNode(f"spawner {ctx.spec.fqn}", work, ctx.log)
+
+
+def _shutdown(manager: _Manager, loaded: list[str]) -> None:
+    try:
+        manager.switch([], loaded, strictness=1)
+        for name in reversed(loaded):
+            manager.unload(name)
+    except RobomodelError:
+        pass  # the manager's process has ended already
+
+
+_COMMANDS = ("load", "unload", "start", "stop", "spawn", "kill", "list", "list-types")
+
+
+@register(
+    "ros1",
+    "controller_manager",
+    "controller_manager",
+    purpose="controller_manager load|unload|start|stop|spawn|kill|list NAME... on robomodel's "
+    "controller manager",
+)
+def controller_manager(ctx: NodeContext) -> RunningNode:
+    args = [a for a in ctx.spec.args if not a.startswith("__")]
+    if not args or args[0] not in _COMMANDS:
+        raise RobomodelError(
+            f"controller_manager: the command must be one of {', '.join(_COMMANDS)}"
+        )
+    command, names = args[0], args[1:]
+    manager = _Manager(ctx, None)
+
+    def work(node: ThreadNode) -> int:
+        if not manager.wait(node, 30.0):
+            return 1
+        ok = True
+        if command == "list":
+            for entry in manager.call("list_controllers", {}).get("controllers", []):
+                ctx.log(f"{entry['name']} - {entry['type']} ( {entry['state']} )")
+        elif command == "list-types":
+            for name in manager.call("list_controller_types", {}).get("types", []):
+                ctx.log(name)
+        if command in ("load", "spawn"):
+            ok = all(manager.load(n) for n in names)
+        if command in ("start", "spawn"):
+            ok = manager.switch(list(names), []) and ok
+        if command in ("stop", "kill"):
+            ok = manager.switch([], list(names))
+        if command in ("unload", "kill"):
+            ok = all(manager.unload(n) for n in names) and ok
+        return 0 if ok else 1
+
+    return ThreadNode(f"controller_manager {ctx.spec.fqn}", work, ctx.log)
+
+
+@register(
+    "ros1",
+    "controller_manager",
+    "unspawner",
+    purpose="stops and unloads controllers while it runs; loads and starts them again at the end",
+)
+def unspawner(ctx: NodeContext) -> RunningNode:
+    names = [a for a in ctx.spec.args if not a.startswith("-") and not a.startswith("__")]
+    if not names:
+        raise RobomodelError("unspawner: give at least one controller name")
+    manager = _Manager(ctx, None)
+
+    def work(node: ThreadNode) -> int:
+        if not manager.wait(node, 30.0):
+            return 1
+        manager.switch([], names, strictness=1)
+        for name in names:
+            manager.unload(name)
+        node.stopping.wait()
+        for name in names:
+            manager.load(name)
+        manager.switch(names, [])
+        return 0
+
+    return ThreadNode(f"unspawner {ctx.spec.fqn}", work, ctx.log)

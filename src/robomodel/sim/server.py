@@ -1,0 +1,363 @@
+"""A simulation server that robots are spawned into while it runs: ``gzserver`` + the
+``/gazebo/spawn_urdf_model`` service, for launch files.
+
+``robomodel sim`` knows its robots before it starts; a launch file starts the world first
+(``gazebo_ros`` ``empty_world.launch``) and spawns robots into it afterwards (``spawn_model``),
+possibly from another process. :class:`SimServer` owns the world, the robots spawned so far and
+their controller managers (one per robot, as ``gazebo_ros_control`` runs one in the robot's
+``robotNamespace``), and is driven by its owner's loop (:meth:`SimServer.drive`), which also
+runs the bus callbacks, so that physics, controllers and service handlers share one thread.
+
+MuJoCo compiles a whole scene at once, so a spawn recompiles it: the robots already there keep
+their joint positions and velocities, the time goes on, and their controllers are loaded again
+in the state they had.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from robomodel.errors import RobomodelError
+from robomodel.sim.build.robot import Placement
+from robomodel.sim.exceptions import SimulationError
+
+if TYPE_CHECKING:
+    from robomodel.control import ControlSystem
+    from robomodel.control.config import ControllerSpec
+    from robomodel.description.model import Robot
+    from robomodel.description.packages import PackageIndex
+    from robomodel.runtime.context import Context
+    from robomodel.sim.bus import SimBridge
+    from robomodel.sim.engine import Simulation
+    from robomodel.sim.world import World
+
+__all__ = ["SimServer", "SpawnedRobot"]
+
+SpecSource = Callable[[str, str], "ControllerSpec | None"]  # (manager namespace, name)
+_CHUNK_S = 0.01  # physics between two bus spins [s of sim time]
+
+
+@dataclass(frozen=True, slots=True)
+class _Controllers:
+    """What a robot's controller manager held before a recompile."""
+
+    specs: dict[str, ControllerSpec]
+    states: dict[str, str]
+
+
+@dataclass
+class SpawnedRobot:
+    """A robot in the server's world: its model name, description and placement."""
+
+    model_name: str
+    robot: Robot
+    placement: Placement
+    robot_namespace: str = "/"
+    control: ControlSystem | None = None
+
+
+class SimServer:
+    """Gazebo's server role for launch files (see the module docstring).
+
+    Args:
+        world: The world (``worlds/empty.world`` is :func:`~robomodel.sim.default_world`).
+        context: The bus (wall clock; nodes with ``use_sim_time`` follow ``/clock``).
+        package_index: Where ``package://`` meshes of spawned robots are found.
+        paused: Start paused (``gzserver -u``); ``/gazebo/unpause_physics`` starts it.
+        real_time_factor: Pace (``None``: as fast as possible).
+        spec_source: Controller parameters by (manager namespace, controller name), for
+            spawners that name controllers the manager was not configured with (a ROS 1
+            launch's parameter server).
+    """
+
+    def __init__(
+        self,
+        world: World,
+        *,
+        context: Context,
+        package_index: PackageIndex,
+        paused: bool = False,
+        real_time_factor: float | None = 1.0,
+        spec_source: SpecSource | None = None,
+    ) -> None:
+        self.world = world
+        self.context = context
+        self.index = package_index
+        self.real_time_factor = real_time_factor
+        self.spec_source = spec_source
+        self.robots: list[SpawnedRobot] = []
+        self.sim: Simulation | None = None
+        self.bridge: SimBridge | None = None
+        self._paused = paused
+        self._anchor: tuple[float, float] | None = None
+        self._rebuild()
+        self._unregister = [
+            context.create_service("/gazebo/spawn_urdf_model", self._spawn_urdf),
+            context.create_service("/gazebo/spawn_sdf_model", self._spawn_sdf),
+            context.create_service("/gazebo/delete_model", self._delete),
+            context.create_service("/gazebo/get_world_properties", self._properties),
+        ]
+
+    # -- spawning -------------------------------------------------------------------------------
+    def spawn(
+        self,
+        model_name: str,
+        urdf_xml: str,
+        *,
+        xyz_m: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        rpy_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        joint_positions: dict[str, float] | None = None,
+        robot_namespace: str = "/",
+    ) -> SpawnedRobot:
+        """Add a robot (``spawn_model -urdf``) and recompile the scene.
+
+        ``robot_namespace`` is where its controller manager runs when its control plugin names
+        no ``robotNamespace`` (``spawn_model -robot_namespace``, default the spawner's
+        namespace: gazebo_ros adds it to every plugin of the model).
+
+        Raises:
+            SimulationError: a model of that name exists, or the robot cannot be simulated.
+            RobomodelError: the URDF is invalid.
+        """
+        from robomodel.description import read_urdf
+
+        if any(r.model_name == model_name for r in self.robots):
+            raise SimulationError(
+                f"a model named '{model_name}' is already in the world (models are: "
+                f"{', '.join(r.model_name for r in self.robots)}); give -model another name"
+            )
+        robot = read_urdf(urdf_xml, path=f"<spawned model {model_name}>").robot
+        # The first robot keeps its link names (Gazebo's frames are the URDF's); later ones are
+        # told apart inside MuJoCo by their model name.
+        prefix = "" if not self.robots else f"{model_name}/"
+        entry = SpawnedRobot(
+            model_name, robot, Placement(prefix, xyz_m, rpy_rad), "/" + robot_namespace.strip("/")
+        )
+        self._check_namespace(entry)
+        self.robots.append(entry)
+        try:
+            self._rebuild()
+        except RobomodelError:
+            self.robots.remove(entry)
+            self._rebuild()
+            raise
+        if joint_positions:
+            self._set_joints(entry, joint_positions)
+        return entry
+
+    def _check_namespace(self, entry: SpawnedRobot) -> None:
+        from robomodel.sim.build.gazebo import read_gazebo
+
+        mine = read_gazebo(entry.robot)
+        if not mine.ros_control_plugin:
+            return
+        namespace = _namespace(mine.plugin_namespace, entry.robot_namespace)
+        for other in self.robots:
+            theirs = read_gazebo(other.robot)
+            if theirs.ros_control_plugin and (
+                _namespace(theirs.plugin_namespace, other.robot_namespace) == namespace
+            ):
+                raise SimulationError(
+                    f"model '{entry.model_name}' would run its controller manager in "
+                    f"{namespace}, where model '{other.model_name}' runs one; give it another "
+                    "namespace (spawn_model -robot_namespace, or the plugin's <robotNamespace>)"
+                )
+
+    def delete(self, model_name: str) -> None:
+        """Remove a model (``/gazebo/delete_model``)."""
+        names = [r.model_name for r in self.robots]
+        if model_name not in names:
+            from robomodel.errors import describe_unknown
+
+            raise SimulationError(describe_unknown("model", model_name, names, "models are"))
+        self.robots = [r for r in self.robots if r.model_name != model_name]
+        self._rebuild()
+
+    def _set_joints(self, entry: SpawnedRobot, positions: dict[str, float]) -> None:
+        from robomodel.sim._mujoco import mujoco
+
+        mj = mujoco()
+        assert self.sim is not None
+        model, data = self.sim.model, self.sim.data
+        for joint, value in positions.items():
+            jid = mj.mj_name2id(model, mj.mjtObj.mjOBJ_JOINT, entry.placement.prefix + joint)
+            if jid < 0:
+                raise SimulationError(
+                    f"-J {joint}: model '{entry.model_name}' has no joint '{joint}'"
+                )
+            data.qpos[model.jnt_qposadr[jid]] = value
+        mj.mj_forward(model, data)
+
+    # -- the scene -------------------------------------------------------------------------------
+    def _rebuild(self) -> None:
+        from robomodel.sim.bus import SimBridge
+        from robomodel.sim.engine import Simulation
+
+        old = self.sim
+        sim = Simulation(self.world, package_index=self.index)
+        for entry in self.robots:
+            sim.add_robot(entry.robot, placement=entry.placement)
+        sim.build()
+        if old is not None:
+            _carry_state(old, sim)
+        previous: dict[str, _Controllers] = {}
+        for entry in self.robots:
+            if entry.control is not None:
+                manager = entry.control.manager
+                states = {c["name"]: c["state"] for c in manager.list_controllers()}
+                previous[entry.model_name] = _Controllers(dict(manager.specs), states)
+                manager.close()
+                entry.control = None
+        if self.bridge is not None:
+            self.bridge.close()
+        self.sim = sim
+        for entry in self.robots:
+            entry.control = self._control(sim, entry, previous.get(entry.model_name))
+        self.bridge = SimBridge(sim, self.context)
+        self.bridge.paused = self._paused
+
+    def _control(
+        self, sim: Simulation, entry: SpawnedRobot, previous: _Controllers | None
+    ) -> ControlSystem | None:
+        """The robot's controller manager, as ``gazebo_ros_control`` (ROS 1) or
+        ``gazebo_ros2_control`` starts one: only for a robot with the plugin or hardware."""
+        from robomodel.control.config import ControllerConfig
+
+        built = sim.robot(entry.placement.prefix)
+        if not built.extensions.ros_control_plugin:
+            return None
+        namespace = _namespace(built.extensions.plugin_namespace, entry.robot_namespace)
+        config = ControllerConfig(namespace=namespace, format="ros1")
+        system = sim.control(config, prefix=entry.placement.prefix, context=self.context, spawn=[])
+        manager = system.manager
+        if self.spec_source is not None:
+            source = self.spec_source
+            manager.spec_source = lambda name: source(manager.namespace, name)
+        if previous is not None:
+            manager.specs.update(previous.specs)
+            states = previous.states
+            active = [n for n, s in states.items() if s == "active"]
+            for name, state in states.items():
+                if name not in active:
+                    manager.load_controller(name)
+                    if state == "inactive":
+                        manager.configure_controller(name)
+            manager.spawn(active)
+        return system
+
+    # -- running --------------------------------------------------------------------------------
+    @property
+    def paused(self) -> bool:
+        return self.bridge.paused if self.bridge is not None else self._paused
+
+    def drive(self, duration_s: float) -> None:
+        """Run physics (paced) and the bus callbacks for ``duration_s`` of wall time."""
+        assert self.sim is not None and self.bridge is not None
+        end = time.perf_counter() + duration_s
+        while time.perf_counter() < end:
+            sim, bridge = self.sim, self.bridge
+            self._paused = bridge.paused
+            if bridge.paused:
+                self._anchor = None
+                bridge.poll()
+                if bridge.pending_steps:
+                    steps, bridge.pending_steps = bridge.pending_steps, 0
+                    sim.step(steps)
+                else:
+                    time.sleep(0.01)
+                continue
+            start = time.perf_counter()
+            if self._anchor is None:
+                self._anchor = (start, sim.time_s)
+            sim.run(_CHUNK_S)
+            self.context.spin_once(0.0)  # service handlers may rebuild: re-read sim next turn
+            factor = self.real_time_factor
+            if factor is not None and factor > 0 and self.sim is sim:
+                delay = self._anchor[0] + (sim.time_s - self._anchor[1]) / factor
+                delay -= time.perf_counter()
+                if delay > 0:
+                    time.sleep(min(delay, max(0.0, end - time.perf_counter())))
+            elif self.sim is not sim:
+                self._anchor = None
+
+    def close(self) -> None:
+        for unregister in self._unregister:
+            unregister()
+        self._unregister = []
+        for entry in self.robots:
+            if entry.control is not None:
+                entry.control.manager.close()
+        if self.bridge is not None:
+            self.bridge.close()
+
+    # -- services (gazebo_msgs, as dicts) ---------------------------------------------------------
+    def _spawn_urdf(self, request: dict[str, Any]) -> dict[str, Any]:
+        try:
+            pose = [float(v) for v in request.get("initial_pose", (0.0,) * 6)]
+            if len(pose) != 6:
+                raise SimulationError(f"initial_pose needs 6 numbers, got {len(pose)}")
+            joints = {str(k): float(v) for k, v in dict(request.get("joints", {})).items()}
+            self.spawn(
+                str(request.get("model_name", "")) or "robot",
+                str(request["model_xml"]),
+                xyz_m=(pose[0], pose[1], pose[2]),
+                rpy_rad=(pose[3], pose[4], pose[5]),
+                joint_positions=joints,
+                robot_namespace=str(request.get("robot_namespace", "/")),
+            )
+        except (RobomodelError, KeyError, TypeError, ValueError) as exc:
+            return {"success": False, "status_message": f"SpawnModel: {exc}"}
+        if request.get("unpause") and self.bridge is not None:
+            self.bridge.paused = False
+        return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
+
+    def _spawn_sdf(self, request: dict[str, Any]) -> dict[str, Any]:
+        return {
+            "success": False,
+            "status_message": "SpawnModel: robomodel spawns URDF models (-urdf); an SDF model "
+            "goes into the world file (gzserver's world_name)",
+        }
+
+    def _delete(self, request: dict[str, Any]) -> dict[str, Any]:
+        try:
+            self.delete(str(request.get("model_name", "")))
+        except RobomodelError as exc:
+            return {"success": False, "status_message": f"DeleteModel: {exc}"}
+        return {"success": True, "status_message": "DeleteModel: successfully deleted model"}
+
+    def _properties(self, request: dict[str, Any]) -> dict[str, Any]:
+        assert self.sim is not None
+        return {
+            "sim_time": self.sim.time_s,
+            "model_names": [r.model_name for r in self.robots],
+            "rendering_enabled": False,
+            "success": True,
+        }
+
+
+def _namespace(plugin_namespace: str, robot_namespace: str) -> str:
+    return "/" + (plugin_namespace or robot_namespace).strip("/")
+
+
+def _carry_state(old: Simulation, new: Simulation) -> None:
+    """Joint positions and velocities (by name) and the time from ``old`` into ``new``."""
+    from robomodel.sim._mujoco import mujoco
+
+    mj = mujoco()
+    om, od, nm, nd = old.model, old.data, new.model, new.data
+    widths = {0: (7, 6), 1: (4, 3), 2: (1, 1), 3: (1, 1)}  # free, ball, slide, hinge
+    for jid in range(om.njnt):
+        name = mj.mj_id2name(om, mj.mjtObj.mjOBJ_JOINT, jid)
+        new_id = mj.mj_name2id(nm, mj.mjtObj.mjOBJ_JOINT, name) if name else -1
+        if new_id < 0 or nm.jnt_type[new_id] != om.jnt_type[jid]:
+            continue
+        nq, nv = widths[int(om.jnt_type[jid])]
+        qa, na = om.jnt_qposadr[jid], nm.jnt_qposadr[new_id]
+        nd.qpos[na : na + nq] = od.qpos[qa : qa + nq]
+        va, nva = om.jnt_dofadr[jid], nm.jnt_dofadr[new_id]
+        nd.qvel[nva : nva + nv] = od.qvel[va : va + nv]
+    nd.time = od.time
+    mj.mj_forward(nm, nd)
