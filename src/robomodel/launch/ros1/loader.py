@@ -236,9 +236,14 @@ class _Loader:
                     f"{self.where(element, ctx.filename)}: unrecognized tag <{element.tag}>"
                 )
                 continue
-            if element.tag not in ("group",) and not self.enabled(element, ctx):
-                continue
-            handler(element, ctx)
+            try:
+                if element.tag not in ("group",) and not self.enabled(element, ctx):
+                    continue
+                handler(element, ctx)
+            except ArgNotSet as exc:  # the innermost element that used the arg
+                if exc.location is None:
+                    exc.location = self.where(element, ctx.filename)
+                raise
 
     def tag_master(self, element: Any, ctx: LoaderContext) -> None:
         self.warnings.append("WARNING: ignoring defunct <master /> tag")
@@ -602,7 +607,7 @@ class _Loader:
         except ArgNotSet as exc:
             raise LaunchError(
                 f"[{filename}] requires the '{exc.name}' arg to be set: pass {exc.name}:=VALUE",
-                location=SourceLocation(filename),
+                location=exc.location or SourceLocation(filename),
             ) from None
         except (SubstitutionError, ContextError) as exc:
             raise LaunchError(str(exc), location=SourceLocation(filename)) from None

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, MutableMapping
 from dataclasses import dataclass, field
+from typing import Any
 
 from robomodel.errors import close_matches
 from robomodel.launch.ros1.names import anonymous_name
@@ -39,6 +40,7 @@ class ArgNotSet(SubstitutionError):
 
     def __init__(self, name: str, known: list[str]) -> None:
         self.name = name
+        self.location: Any = None  # the element that used it (SourceLocation), once known
         hint = close_matches(name, known)
         suggestion = f"; did you mean {', '.join(repr(h) for h in hint)}?" if hint else ""
         super().__init__(

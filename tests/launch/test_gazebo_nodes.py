@@ -1,0 +1,161 @@
+"""gazebo_ros and controller_manager nodes of ROS 1 launch files: their command lines, and the
+simulation server that spawn_model spawns into."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import pytest
+import yaml
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.nodes.controllers import parse_spawner_args, ros1_spec_source
+from robomodel.launch.nodes.gazebo import parse_spawn_args, resolve_world
+from robomodel.launch.param_server import ParamServer
+from tests.conftest import EXAMPLES
+
+pytest.importorskip("mujoco")
+
+
+def test_spawn_model_options() -> None:
+    args = parse_spawn_args(
+        ("-urdf", "-param", "robot_description", "-model", "rrbot", "-x", "1", "-z", "0.1",
+         "-Y", "1.57", "-J", "joint1", "0.5", "-J", "joint2", "-0.25", "-unpause",
+         "-robot_namespace", "/r1", "__name:=spawner", "__log:=/tmp/x.log")
+    )  # fmt: skip
+    assert args.model == "rrbot" and args.format == "urdf" and args.param == "robot_description"
+    assert args.xyz_m == (1.0, 0.0, 0.1) and args.rpy_rad == (0.0, 0.0, 1.57)
+    assert args.joints == {"joint1": 0.5, "joint2": -0.25}
+    assert args.unpause and args.robot_namespace == "/r1"
+    assert args.gazebo_namespace == "/gazebo"
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (("-urdf", "-param", "robot_description"), "you must specify model name"),
+        (("-param", "p", "-model", "m"), "exactly one of -urdf and -sdf"),
+        (("-urdf", "-model", "m"), "exactly one of -param NAME and -file PATH"),
+        (("-urdf", "-param", "p", "-model", "m", "-x", "one"), "-x needs a number, got 'one'"),
+        (("-urdf", "-param", "p", "-model", "m", "-q"), "unknown option '-q'"),
+        (("-urdf", "-param", "p", "-model"), "-model needs a value"),
+    ],
+)
+def test_spawn_model_errors(argv: tuple[str, ...], message: str) -> None:
+    with pytest.raises(RobomodelError, match=re.escape(message)):
+        parse_spawn_args(argv)
+
+
+def test_spawner_options() -> None:
+    args = parse_spawner_args(
+        ("--stopped", "--timeout=5", "--namespace", "/rrbot", "jsc", "j1", "__name:=s")
+    )
+    assert args.controllers == ("jsc", "j1")
+    assert args.stopped and args.timeout_s == 5.0 and args.namespace == "/rrbot"
+    with pytest.raises(RobomodelError, match="at least one controller"):
+        parse_spawner_args(("--stopped",))
+    with pytest.raises(RobomodelError, match="unrecognized argument '--bogus'"):
+        parse_spawner_args(("--bogus", "a"))
+
+
+def test_worlds_resolve_as_gzserver_finds_them(tmp_path: Path, monkeypatch: Any) -> None:
+    assert resolve_world("") is None
+    bundled = resolve_world("worlds/empty.world")
+    assert bundled is not None and bundled.endswith("gazebo_ros/worlds/empty.world")
+    mine = tmp_path / "worlds" / "mine.world"
+    mine.parent.mkdir()
+    mine.write_text("<sdf version='1.6'><world name='w'/></sdf>")
+    monkeypatch.setenv("GAZEBO_RESOURCE_PATH", str(tmp_path))
+    assert resolve_world("worlds/mine.world") == str(mine)
+    with pytest.raises(RobomodelError, match=r"cannot find world 'worlds/willowgarage\.world'"):
+        resolve_world("worlds/willowgarage.world")
+
+
+def _rrbot_xml() -> str:
+    from robomodel.description.packages import PackageIndex
+    from robomodel.xacro import process_file
+
+    path = EXAMPLES / "rrbot_description" / "urdf" / "rrbot.xacro"
+    index = PackageIndex(package_paths=[EXAMPLES], use_environment=False)
+    return str(process_file(str(path), package_index=index).toxml())
+
+
+def _server(params: ParamServer) -> Any:
+    from robomodel.description.packages import PackageIndex
+    from robomodel.runtime import Context
+    from robomodel.sim import default_world
+    from robomodel.sim.server import SimServer
+
+    context = Context("inproc")
+    index = PackageIndex(package_paths=[EXAMPLES], use_environment=False)
+    server = SimServer(
+        default_world(),
+        context=context,
+        package_index=index,
+        spec_source=ros1_spec_source(params),
+        real_time_factor=None,
+    )
+    return server, context
+
+
+def _loaded_params() -> ParamServer:
+    params = ParamServer()
+    data = yaml.safe_load((EXAMPLES / "rrbot_control/config/rrbot_control.yaml").read_text())
+    for name, value in data["rrbot"].items():
+        params.set(f"/rrbot/{name}", value)
+    return params
+
+
+def test_spawned_robot_gets_a_controller_manager_with_parameter_server_controllers() -> None:
+    server, context = _server(_loaded_params())
+    try:
+        server.drive(0.05)
+        entry = server.spawn("rrbot", _rrbot_xml(), joint_positions={"joint2": 0.3})
+        manager = entry.control.manager
+        assert manager.service_prefix == "/rrbot/controller_manager"  # the plugin's namespace
+        reply = context.call_service(
+            "/rrbot/controller_manager/load_controller",
+            {"name": "joint1_position_controller", "set_state": "active"},
+        )
+        assert reply == {"ok": True}
+        spec = manager.specs["joint1_position_controller"]
+        assert spec.params["joint"] == "joint1" and spec.params["pid.p"] == 100.0
+        joint2 = server.sim.model.joint("joint2").qposadr[0]
+        assert server.sim.data.qpos[joint2] == pytest.approx(0.3)  # -J
+        unknown = context.call_service("/rrbot/controller_manager/load_controller", {"name": "x"})
+        assert unknown["ok"] is False
+        assert "namespace: '/rrbot/x'" in unknown["error"]  # ROS 1's message
+    finally:
+        server.close()
+        context.shutdown()
+
+
+def test_a_second_spawn_keeps_time_joint_states_and_controllers() -> None:
+    server, context = _server(_loaded_params())
+    try:
+        first = server.spawn("rrbot", _rrbot_xml())
+        first.control.manager.spawn(["joint_state_controller", "joint1_position_controller"])
+        server.drive(0.2)
+        t_before = server.sim.time_s
+        joint1 = server.sim.model.joint("joint1").qposadr[0]
+        q_before = float(server.sim.data.qpos[joint1])
+        assert t_before > 0.0
+        with pytest.raises(RobomodelError, match=r"controller manager in /rrbot"):
+            server.spawn("rrbot2", _rrbot_xml(), xyz_m=(1.0, 0.0, 0.0))
+        other = _rrbot_xml().replace("<robotNamespace>/rrbot<", "<robotNamespace>/r2<")
+        server.spawn("rrbot2", other, xyz_m=(1.0, 0.0, 0.0))
+        assert server.sim.time_s == pytest.approx(t_before)
+        assert float(server.sim.data.qpos[joint1]) == pytest.approx(q_before)
+        states = {c["name"]: c["state"] for c in first.control.manager.list_controllers()}
+        assert states == {
+            "joint_state_controller": "active",
+            "joint1_position_controller": "active",
+        }
+        assert [r.model_name for r in server.robots] == ["rrbot", "rrbot2"]
+        server.delete("rrbot2")
+        assert [r.model_name for r in server.robots] == ["rrbot"]
+    finally:
+        server.close()
+        context.shutdown()
