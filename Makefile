@@ -18,9 +18,7 @@ $(STAMP): $(BIN)/python pyproject.toml
 
 demo: $(STAMP)
 	tools/system-deps demo
-	$(BIN)/robomodel sim examples/simplebot_description/urdf/simplebot_lidar.urdf.xacro \
-		--controllers examples/simplebot_description/config/simplebot_controllers.yaml \
-		--world examples/simplebot_description/worlds/wall.world
+	ROS_PACKAGE_PATH=$(CURDIR)/examples $(BIN)/robomodel launch simplebot_control simplebot_demo.launch
 
 test: $(STAMP)
 	tools/system-deps test

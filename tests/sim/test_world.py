@@ -99,13 +99,13 @@ def test_world_in_the_viewer_and_on_tf() -> None:
     """Static shapes drawn in ``world``; a moving crate follows the TF frame the simulator
     publishes for it; a welded prefixed robot hangs off ``world`` through a static transform."""
     pytest.importorskip("viser")
-    from robomodel.cli.sim import scenery_of
     from robomodel.loading import load
     from robomodel.runtime import Context, ManualClock
     from robomodel.runtime.msg import TFMessage
     from robomodel.runtime.qos import latched
     from robomodel.sim import Placement
     from robomodel.sim.bus import SimBridge
+    from robomodel.sim.scenery import scenery_of
 
     from .conftest import RRBOT
 

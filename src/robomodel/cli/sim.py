@@ -30,7 +30,7 @@ from robomodel.cli._common import (
 )
 from robomodel.errors import RobomodelError
 
-__all__ = ["parse_rate", "register", "scenery_of"]
+__all__ = ["parse_rate", "register"]
 
 
 def register(subparsers: Any) -> None:
@@ -219,37 +219,6 @@ def _cmd_vel(text: str) -> tuple[float, float, float]:
     return values[0], values[1], values[2]
 
 
-def scenery_of(world: Any) -> tuple[Any, ...]:
-    """The world's boxes, cylinders and spheres as the viewer's scenery.
-
-    Static shapes are posed in ``world``; moving ones (mass > 0) in the TF frame the simulator
-    publishes for them. Planes are left out: the viewer's grid is the ground.
-    """
-    from robomodel.sim.build.scene import shape_body_name
-    from robomodel.sim.world import ShapeKind
-    from robomodel.viewer.scenery import SceneryShape
-
-    shapes = []
-    for i, shape in enumerate(world.shapes):
-        if shape.kind is ShapeKind.PLANE:
-            continue
-        name = shape_body_name(shape, i)
-        moving = shape.mass_kg > 0
-        x, y, z, roll, pitch, yaw = shape.pose
-        shapes.append(
-            SceneryShape(
-                name=name,
-                frame=name if moving else "world",
-                kind=shape.kind.value,
-                size_m=shape.size,
-                xyz_m=(0.0, 0.0, 0.0) if moving else (x, y, z),
-                rpy_rad=(0.0, 0.0, 0.0) if moving else (roll, pitch, yaw),
-                rgba=shape.rgba,
-            )
-        )
-    return tuple(shapes)
-
-
 def _run(args: argparse.Namespace) -> int:
     from robomodel.cli.control import _start_viewer
     from robomodel.description.urdf.writer import urdf_to_string
@@ -306,6 +275,8 @@ def _run(args: argparse.Namespace) -> int:
         viewer = None
         if not args.headless:  # RViz's Fixed Frame "world", the world's objects drawn
             try:
+                from robomodel.sim.scenery import scenery_of
+
                 scenery = scenery_of(world)
             except ImportError:  # no viewer extra: _start_viewer says so
                 scenery = ()

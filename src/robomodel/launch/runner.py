@@ -182,6 +182,13 @@ class LaunchRunner:
             out.write(str(text))
         self._extra["viewer_file"] = path
         settings = self._extra.get("rviz")
+        server = self._extra.get("sim_server")
+        scenery: tuple[Any, ...] = ()
+        if server is not None:  # gzclient draws the world's objects too
+            from robomodel.sim.scenery import scenery_of
+
+            scenery = scenery_of(server.world)
+        fixed_frame = settings.fixed_frame if settings is not None else None
         options = ViewerOptions(
             sources=(RobotSource(path),),
             port=self.options.port,
@@ -191,12 +198,16 @@ class LaunchRunner:
             state_publisher=False,  # the launch's robot_state_publisher publishes /tf
             package_index=self.options.package_index or _default_index(),
             tools=self.request.tools or True,
-            fixed_frame=settings.fixed_frame if settings is not None else None,
+            fixed_frame=fixed_frame or self.request.fixed_frame,
+            scenery=scenery,
             frame_rate_hz=(settings.frame_rate_hz or 60.0) if settings is not None else 60.0,
             rviz=settings,
         )
         self.viewer = Viewer(options)
         self.viewer.start()
+        panel = getattr(self.viewer, "tools", None)
+        if self.request.steering_topic and panel is not None:
+            panel.steering.topic.value = self.request.steering_topic
         self.log(f"[launch] viewer: serving {self.viewer.url}")
         if self.options.open_browser:
             import webbrowser

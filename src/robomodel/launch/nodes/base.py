@@ -78,6 +78,7 @@ class ViewerRequest:
     unsupported_displays: list[str] = field(default_factory=list)
     namespace: str = "/"
     joint_states_topic: str = "/joint_states"
+    steering_topic: str | None = None  # rqt_robot_steering's ~default_topic
     requested_by: list[str] = field(default_factory=list)
 
 

@@ -46,6 +46,10 @@ def rviz(ctx: NodeContext) -> RunningNode:
 
 def _tools(ctx: NodeContext) -> RunningNode:
     ctx.viewer.tools = True
+    if ctx.spec.executable == "rqt_robot_steering":
+        topic = ctx.param("~default_topic")
+        if topic:
+            ctx.viewer.steering_topic = str(topic)
     ctx.viewer.requested_by.append(ctx.spec.fqn)
     found = ctx.search("robot_description")
     if found and ctx.viewer.robot_description_param is None:

@@ -94,7 +94,10 @@ class SteeringTool:
 
     def tick(self) -> None:
         """Every 100 ms on the loop thread: publish the sliders' command (zero once)."""
-        twist = self.command.twist(float(self.linear.value), float(self.angular.value))
+        linear, angular = float(self.linear.value), float(self.angular.value)
+        if self._publisher is None and linear == 0.0 and angular == 0.0:
+            return  # nothing moved yet: no publisher in the graph, so the topic can still follow
+        twist = self.command.twist(linear, angular)
         if twist is None:
             return
         publisher = self._ensure_publisher()
