@@ -96,6 +96,7 @@ def test_new_package_passes_check(cli: Callable[..., ToolResult], tmp_path: Path
         "urdf/arm.urdf.xacro",
         "urdf/arm.urdf",
         "launch/display.launch.py",
+        "launch/display.launch",
         "config/joint_limits.yaml",
         "README.md",
         "meshes",

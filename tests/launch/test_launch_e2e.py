@@ -164,3 +164,23 @@ def test_a_launch_error_starts_nothing(tmp_path: Path) -> None:
     assert result.returncode == 2
     assert f"{broken}:2:" in result.stderr and "missing" in result.stderr
     assert "Traceback" not in result.stderr and "started" not in result.stderr
+
+
+def test_robomodel_new_writes_a_launch_file_robomodel_launch_runs(tmp_path: Path) -> None:
+    """``robomodel new`` then ``robomodel launch PKG display.launch`` (gui:=false: the
+    joint_state_publisher branch): robot_state_publisher's frames are seen from another
+    process."""
+    from robomodel.description.scaffold import create_description_package
+
+    create_description_package("arm_description", tmp_path / "ws")
+    domain = unique_domain()
+    log = tmp_path / "arm.log"
+    argv = ("arm_description", "display.launch", "gui:=false", "--package-path", str(tmp_path))
+    with _launch(domain, *argv, log=log) as proc:
+        _wait_for_line(log, "nodes running", proc, 60)
+        frames = _cli(domain, "tf", "base_link", "link_2", "--once", "--timeout", "20")
+        assert frames.returncode == 0 and "Translation" in frames.stdout, frames.stderr
+    text = log.read_text()
+    assert "started /joint_state_publisher (joint_state_publisher/joint_state_publisher)" in text
+    assert "started /robot_state_publisher (robot_state_publisher" in text
+    assert "joint_state_publisher_gui" not in text  # if="$(arg gui)" was false

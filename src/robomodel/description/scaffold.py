@@ -29,6 +29,7 @@ _FILES = (
     ("robot.urdf.xacro.in", "urdf/${robot}.urdf.xacro"),
     ("robot.urdf.in", "urdf/${robot}.urdf"),
     ("display.launch.py.in", "launch/display.launch.py"),
+    ("display.launch.in", "launch/display.launch"),
     ("joint_limits.yaml.in", "config/joint_limits.yaml"),
     ("README.md.in", "README.md"),
 )
