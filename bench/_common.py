@@ -33,3 +33,68 @@ def time_call(func: Callable[[], object], *, repeat: int = 7, min_time_s: float 
             func()
         rounds.append((time.perf_counter() - start) / number)
     return statistics.median(rounds)
+
+
+def time_interleaved(
+    ours: Callable[[], object],
+    reference: Callable[[], object],
+    *,
+    rounds: int = 21,
+    min_time_s: float = 0.02,
+) -> tuple[float, float, float]:
+    """Median time per call [s] of ``ours`` and ``reference`` and the median per-round ratio.
+
+    The two run alternately (ours, reference, ours, ...), each round long enough to time, so
+    that load from other jobs on the machine affects both alike.
+    """
+    numbers = []
+    for func in (ours, reference):
+        func()
+        number = 1
+        while True:
+            start = time.perf_counter()
+            for _ in range(number):
+                func()
+            if time.perf_counter() - start >= min_time_s:
+                break
+            number *= 2
+        numbers.append(number)
+    t_ours, t_ref, ratios = [], [], []
+    for _ in range(rounds):
+        times = []
+        for func, number in zip((ours, reference), numbers, strict=True):
+            start = time.perf_counter()
+            for _ in range(number):
+                func()
+            times.append((time.perf_counter() - start) / number)
+        t_ours.append(times[0])
+        t_ref.append(times[1])
+        ratios.append(times[0] / times[1])
+    return statistics.median(t_ours), statistics.median(t_ref), statistics.median(ratios)
+
+
+def synthetic_chain_urdf(n_links: int) -> str:
+    """A serial chain of ``n_links`` links (revolute joints about z, y, x in turn), each with
+    an inertial, a box visual and a cylinder collision: the scaling benchmarks' robot."""
+    parts = ['<?xml version="1.0"?>', f'<robot name="chain{n_links}">']
+    for i in range(n_links):
+        parts.append(
+            f'  <link name="link_{i}">\n'
+            '    <inertial><origin xyz="0 0 0.05"/><mass value="1.0"/>'
+            '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>\n'
+            '    <visual><origin xyz="0 0 0.05" rpy="0 0 0"/>'
+            '<geometry><box size="0.04 0.04 0.1"/></geometry></visual>\n'
+            '    <collision><origin xyz="0 0 0.05"/>'
+            '<geometry><cylinder radius="0.02" length="0.1"/></geometry></collision>\n'
+            "  </link>"
+        )
+        if i:
+            axis = ("0 0 1", "0 1 0", "1 0 0")[i % 3]
+            parts.append(
+                f'  <joint name="joint_{i}" type="revolute">'
+                f'<parent link="link_{i - 1}"/><child link="link_{i}"/>'
+                f'<origin xyz="0 0 0.1" rpy="0.01 0 0.02"/><axis xyz="{axis}"/>'
+                '<limit lower="-3.14" upper="3.14" effort="10" velocity="1"/></joint>'
+            )
+    parts.append("</robot>\n")
+    return "\n".join(parts)

@@ -35,7 +35,9 @@ def add_joint_arguments(parser: argparse.ArgumentParser) -> None:
 
 def kinematics_from_args(args: argparse.Namespace) -> Kinematics:
     result, _, _ = load_from_args(args)
-    return Kinematics(result.robot)
+    # A command computes a handful of poses: importing MuJoCo (~0.1 s) would cost more than
+    # it saves.
+    return Kinematics(result.robot, backend="numpy")
 
 
 def configuration_from_args(kin: Kinematics, items: list[str]) -> NDArray[np.float64]:

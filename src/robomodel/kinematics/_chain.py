@@ -15,7 +15,7 @@ from robomodel.kinematics._compile import PRISMATIC, REVOLUTE, CompiledModel
 from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import SinglePlan, ancestors_closure, make_single_plan
 
-__all__ = ["Chain", "make_chain"]
+__all__ = ["Chain", "make_chain", "restrict"]
 
 F64 = NDArray[np.float64]
 
@@ -44,27 +44,8 @@ class Chain:
 
 
 def make_chain(model: CompiledModel, link: int) -> Chain:
-    """Restrict ``model`` to the path from the root to ``link``."""
-    path = ancestors_closure(model, [link])
-    new_index = {old: new for new, old in enumerate(path)}
-    sub = replace(
-        model,
-        link_names=tuple(model.link_names[i] for i in path),
-        link_index={model.link_names[i]: k for k, i in enumerate(path)},
-        parent=tuple(-1 if model.parent[i] < 0 else new_index[model.parent[i]] for i in path),
-        link_joint=tuple(model.link_joint[i] for i in path),
-        kind=tuple(model.kind[i] for i in path),
-        T_parent_joint=model.T_parent_joint[path],
-        K=model.K[path],
-        Pt=model.Pt[path],
-        tilted=tuple(model.tilted[i] for i in path),
-        axis=model.axis[path],
-        Ka=model.Ka[path],
-        q_index=model.q_index[path],
-        scale=model.scale[path],
-        offset=model.offset[path],
-        plane_basis=model.plane_basis[path],
-    )
+    """Restrict ``model`` to the path from the root to ``link`` (1-dof joints only)."""
+    sub, path = restrict(model, link)
     movable = [k for k, i in enumerate(path) if model.q_index[i] >= 0]
     for k in movable:
         if sub.kind[k] not in (REVOLUTE, PRISMATIC):
@@ -88,3 +69,29 @@ def make_chain(model: CompiledModel, link: int) -> Chain:
         active=np.array(active, dtype=np.int64),
         S=S,
     )
+
+
+def restrict(model: CompiledModel, link: int) -> tuple[CompiledModel, list[int]]:
+    """The path from the root to ``link`` as a model of its own (``link`` last), and the
+    indices of its links in ``model``. Any joint kind; ``q`` keeps ``model``'s layout."""
+    path = ancestors_closure(model, [link])
+    new_index = {old: new for new, old in enumerate(path)}
+    sub = replace(
+        model,
+        link_names=tuple(model.link_names[i] for i in path),
+        link_index={model.link_names[i]: k for k, i in enumerate(path)},
+        parent=tuple(-1 if model.parent[i] < 0 else new_index[model.parent[i]] for i in path),
+        link_joint=tuple(model.link_joint[i] for i in path),
+        kind=tuple(model.kind[i] for i in path),
+        T_parent_joint=model.T_parent_joint[path],
+        K=model.K[path],
+        Pt=model.Pt[path],
+        tilted=tuple(model.tilted[i] for i in path),
+        axis=model.axis[path],
+        Ka=model.Ka[path],
+        q_index=model.q_index[path],
+        scale=model.scale[path],
+        offset=model.offset[path],
+        plane_basis=model.plane_basis[path],
+    )
+    return sub, path

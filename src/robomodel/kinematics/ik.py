@@ -6,7 +6,9 @@ Each iteration computes the target link's pose and the geometric Jacobian on the
 ``lambda = 0.1 |e|^2 + 1e-9`` (Sugihara's error-dependent damping: large steps are damped
 far from the target, Gauss-Newton's quadratic convergence is kept near it). Every iterate is
 clamped to the limits, so a returned ``q`` never leaves them. An attempt that has not
-converged after ``_MAX_ITERATIONS`` or stalls restarts from a random configuration.
+converged after ``_MAX_ITERATIONS`` or stalls restarts from a random configuration. The budget
+is a number of iterations (the result depends on the inputs and ``rng`` only, not on the
+machine's load); a time limit is optional.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,6 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 from robomodel.kinematics._chain import Chain, make_chain
 from robomodel.kinematics._checks import check_q
 from robomodel.kinematics._compile import CompiledModel
+from robomodel.kinematics._mujoco import MujocoKinematics
 from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import fk_batch, fk_single
 from robomodel.kinematics.se3 import log_rotation
@@ -77,15 +80,17 @@ def _target(T_root_target: ArrayLike) -> F64:
     return T
 
 
-def _log3(R: F64) -> tuple[float, float, float]:
-    """Rotation vector of a 3x3 rotation (scalar fast path; near pi via quaternions)."""
-    cos_angle = 0.5 * (R[0, 0] + R[1, 1] + R[2, 2] - 1.0)
-    vx, vy, vz = R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]
+def _log3(R: list[list[float]]) -> tuple[float, float, float]:
+    """Rotation vector of a 3x3 rotation given as nested lists (scalar code; near pi via
+    quaternions)."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R
+    cos_angle = 0.5 * (r00 + r11 + r22 - 1.0)
+    vx, vy, vz = r21 - r12, r02 - r20, r10 - r01
     if cos_angle > 0.999999:
         # sin(angle) ~ angle: rotation vector = v / 2 to third order.
         return 0.5 * vx, 0.5 * vy, 0.5 * vz
     if cos_angle < -0.99:
-        w = log_rotation(R)
+        w = log_rotation(np.array(R))
         return float(w[0]), float(w[1]), float(w[2])
     angle = math.acos(cos_angle)
     k = angle / (2.0 * math.sin(angle))
@@ -93,9 +98,20 @@ def _log3(R: F64) -> tuple[float, float, float]:
 
 
 class Solver:
-    """Per-(model, link) constants for single-target solves."""
+    """Per-(model, link) constants for single-target solves.
 
-    def __init__(self, model: CompiledModel, link: str, position_only: bool) -> None:
+    ``error_and_jacobian`` evaluates the path to the link with MuJoCo when ``mujoco`` is given
+    (see :mod:`robomodel.kinematics._mujoco`), else with the numpy reference.
+    """
+
+    def __init__(
+        self,
+        model: CompiledModel,
+        link: str,
+        position_only: bool,
+        neutral: F64,
+        mujoco: Any = None,
+    ) -> None:
         self.chain: Chain = make_chain(model, model.link(link))
         c = self.chain
         self.lower = np.where(np.isfinite(model.lower), model.lower, -np.inf)[c.active]
@@ -106,12 +122,63 @@ class Solver:
         self.position_only = position_only
         self.rows = 3 if position_only else 6
         self.eye = np.eye(self.rows)
+        #: The default first configuration: the middle of the limits on the path.
+        self.start = np.clip(neutral, model.lower, model.upper)
+        self.start[c.active] = 0.5 * (self.sample_lo + self.sample_hi)
+        self.start.setflags(write=False)
+        fast = None
+        if mujoco is not None:
+            try:
+                fast = MujocoKinematics(c.model, mujoco)
+            except ValueError:
+                fast = None
+        self.backend = "numpy" if fast is None else "mujoco"
+        self.error_and_jacobian = self._numpy_error_and_jacobian
+        self.step = self._numpy_step
+        if fast is not None:
+            S = fast.S[:, c.active]
+            self._S_fast = None if np.array_equal(S, np.eye(*S.shape)) else S
+            self._pose_and_jacobian = fast.pose_and_jacobian
+            self.error_and_jacobian = self._mujoco_error_and_jacobian
+            self._mujoco = mujoco
+            self._y = np.empty(self.rows)
+            self.step = self._mujoco_step
 
-    def error_and_jacobian(self, q: F64, T_t: F64) -> tuple[F64, F64, float, float]:
+    def _numpy_step(self, J: F64, e: F64, damping: float) -> F64:
+        """The damped least-squares step ``J^T (J J^T + damping I)^-1 e``."""
+        dq: F64 = J.T @ np.linalg.solve(J @ J.T + damping * self.eye, e)
+        return dq
+
+    def _mujoco_step(self, J: F64, e: F64, damping: float) -> F64:
+        """The same step with MuJoCo's dense Cholesky (the matrix is symmetric positive
+        definite: damping > 0), a third of ``np.linalg.solve``'s call overhead."""
+        A = J @ J.T
+        A.flat[:: self.rows + 1] += damping
+        self._mujoco.mju_cholFactor(A, 1e-15)
+        self._mujoco.mju_cholSolve(self._y, A, e)
+        dq: F64 = J.T @ self._y
+        return dq
+
+    def _mujoco_error_and_jacobian(
+        self, q: F64, R_t: F64, p_t: F64
+    ) -> tuple[F64, F64, float, float]:
+        R, p, J_mj = self._pose_and_jacobian(q, self.chain.model.n_links - 1, None)
+        J = J_mj if self._S_fast is None else J_mj @ self._S_fast
+        ex, ey, ez = (p_t - p).tolist()
+        pos_err = math.sqrt(ex * ex + ey * ey + ez * ez)
+        if self.position_only:
+            return np.array((ex, ey, ez)), J[:3], pos_err, 0.0
+        rx, ry, rz = _log3((R_t @ R.T).tolist())
+        rot_err = math.sqrt(rx * rx + ry * ry + rz * rz)
+        return np.array((ex, ey, ez, rx, ry, rz)), J, pos_err, rot_err
+
+    def _numpy_error_and_jacobian(
+        self, q: F64, R_t: F64, p_t: F64
+    ) -> tuple[F64, F64, float, float]:
         c = self.chain
         Ts = fk_single(c.model, c.plan, q)
         T = Ts[-1]
-        ep = T_t[:3, 3] - T[:3, 3]
+        ep = p_t - T[:3, 3]
         pos_err = math.sqrt(float(ep @ ep))
         Tm = Ts[c.movable]
         z = (Tm[:, :3, :3] @ c.axis[:, :, None])[:, :, 0]
@@ -123,7 +190,7 @@ class Solver:
         lin = self.rev * lin + (1.0 - self.rev) * z
         if self.position_only:
             return ep, (lin.T @ c.S), pos_err, 0.0
-        er = _log3(T_t[:3, :3] @ T[:3, :3].T)
+        er = _log3((R_t @ T[:3, :3].T).tolist())
         e = np.array([ep[0], ep[1], ep[2], er[0], er[1], er[2]])
         J = np.empty((6, c.S.shape[1]))
         J[:3] = lin.T @ c.S
@@ -141,7 +208,8 @@ def solve_ik(
     position_only: bool,
     tol_m: float,
     tol_rad: float,
-    max_time_s: float,
+    max_iterations: int,
+    max_time_s: float | None,
     restarts: int,
     rng: int | np.random.Generator | None,
 ) -> IKResult:
@@ -149,54 +217,70 @@ def solve_ik(
     T_t = _target(T_root_target)
     if T_t.shape != (4, 4):
         raise KinematicsError("ik takes one 4x4 target; use ik_batch for many")
+    if max_iterations < 1:
+        raise KinematicsError(f"max_iterations must be at least 1, not {max_iterations}")
     solver = kin._ik_solver(link, position_only)
-    gen = np.random.default_rng(rng)
     model = kin.compiled
     if seed is None:
-        q = np.clip(kin.neutral(), model.lower, model.upper)
-        mid = 0.5 * (solver.sample_lo + solver.sample_hi)
-        q[solver.chain.active] = mid
+        q = solver.start.copy()
     else:
         q = np.clip(np.array(check_q(model, seed), dtype=np.float64), model.lower, model.upper)
     active = solver.chain.active
-    deadline = time.perf_counter() + max_time_s
-    best_q, best = q.copy(), (math.inf, math.inf)
+    lower, upper = solver.lower, solver.upper
+    evaluate, step = solver.error_and_jacobian, solver.step
+    R_t, p_t = np.ascontiguousarray(T_t[:3, :3]), T_t[:3, 3].copy()
+    deadline = None if max_time_s is None else time.perf_counter() + max_time_s
+    gen = None  # made on the first restart: most targets need none
+    # Only q[active] changes; each iterate qa is a new array, so the best is kept by reference.
+    best_qa, best, best_cost = q[active], (math.inf, math.inf), math.inf
     total_iterations = 0
     attempts = 0
-    while attempts <= restarts:
+    while attempts <= restarts and total_iterations < max_iterations:
         attempts += 1
         qa = q[active]
         stall = 0
         last_cost = math.inf
-        for _ in range(_MAX_ITERATIONS):
+        for _ in range(min(_MAX_ITERATIONS, max_iterations - total_iterations)):
             total_iterations += 1
-            e, J, pe, re = solver.error_and_jacobian(q, T_t)
+            e, J, pe, re = evaluate(q, R_t, p_t)
             cost = pe + re
-            if cost < best[0] + best[1]:
-                best_q, best = q.copy(), (pe, re)
+            if cost < best_cost:
+                best_qa, best, best_cost = qa, (pe, re), cost
             if pe <= tol_m and re <= tol_rad:
-                return _result(best_q, True, pe, re, total_iterations, attempts)
+                return _result(q, active, qa, True, pe, re, total_iterations, attempts)
             stall = stall + 1 if cost > 0.999 * last_cost else 0
             if stall >= 5:
                 break
             last_cost = cost
-            damping = _DAMPING * float(e @ e) + 1e-9
-            y = np.linalg.solve(J @ J.T + damping * solver.eye, e)
-            dq = J.T @ y
-            biggest = float(np.max(np.abs(dq)))
+            dq = step(J, e, _DAMPING * float(e @ e) + 1e-9)
+            biggest = float(abs(dq).max())
             if biggest > _MAX_STEP_RAD:
                 dq *= _MAX_STEP_RAD / biggest
-            qa = np.clip(qa + dq, solver.lower, solver.upper)
+            qa = qa + dq
+            np.maximum(qa, lower, out=qa)
+            np.minimum(qa, upper, out=qa)
             q[active] = qa
-        if time.perf_counter() > deadline:
+        if deadline is not None and time.perf_counter() > deadline:
             break
+        if gen is None:
+            gen = np.random.default_rng(rng)
         q[active] = gen.uniform(solver.sample_lo, solver.sample_hi)
     pe, re = best
-    return _result(best_q, False, pe, re, total_iterations, attempts)
+    return _result(q, active, best_qa, False, pe, re, total_iterations, attempts)
 
 
-def _result(q: F64, ok: bool, pe: float, re: float, iterations: int, attempts: int) -> IKResult:
+def _result(
+    q: F64,
+    active: NDArray[np.int64],
+    qa: F64,
+    ok: bool,
+    pe: float,
+    re: float,
+    iterations: int,
+    attempts: int,
+) -> IKResult:
     q = q.copy()
+    q[active] = qa
     q.setflags(write=False)
     return IKResult(q, ok, pe, re, iterations, attempts)
 

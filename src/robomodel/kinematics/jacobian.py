@@ -13,11 +13,12 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel.kinematics._chain import Chain
 from robomodel.kinematics._compile import PRISMATIC, REVOLUTE, CompiledModel
 from robomodel.kinematics.exceptions import KinematicsError
-from robomodel.kinematics.fk import ancestors_closure, fk_batch
+from robomodel.kinematics.fk import ancestors_closure, fk_batch, fk_single
 
-__all__ = ["JacobianFrame", "chain_columns", "jacobian_batch"]
+__all__ = ["JacobianFrame", "chain_columns", "jacobian_batch", "jacobian_single", "to_frame"]
 
 F64 = NDArray[np.float64]
 JacobianFrame = Literal["world", "local"]
@@ -69,3 +70,44 @@ def jacobian_batch(
     elif frame != "world":
         raise ValueError(f"frame must be 'world' or 'local', not {frame!r}")
     return J
+
+
+def jacobian_single(chain: Chain, q: F64, point: F64 | None, frame: JacobianFrame) -> F64:
+    """``(6, n_q)`` Jacobian for one validated ``q`` of shape ``(n_q,)``.
+
+    The same formulas as :func:`jacobian_batch`, on the path to the link only (``chain``) and
+    without the batch axis: one FK of the path and a few small products.
+    """
+    Ts = fk_single(chain.model, chain.plan, q)
+    T = Ts[-1]
+    R = T[:3, :3]
+    p = T[:3, 3] if point is None else R @ point + T[:3, 3]
+    J = np.zeros((6, q.shape[0]))
+    if len(chain.movable):
+        Tm = Ts[chain.movable]
+        z = (Tm[:, :3, :3] @ chain.axis[:, :, None])[:, :, 0]
+        r = p - Tm[:, :3, 3]
+        rev = chain.revolute
+        J_path = np.empty((6, len(z)))
+        J_path[0] = z[:, 1] * r[:, 2] - z[:, 2] * r[:, 1]
+        J_path[1] = z[:, 2] * r[:, 0] - z[:, 0] * r[:, 2]
+        J_path[2] = z[:, 0] * r[:, 1] - z[:, 1] * r[:, 0]
+        J_path[3:] = z.T
+        if not rev.all():
+            J_path[:3, ~rev] = z[~rev].T
+            J_path[3:, ~rev] = 0.0
+        J[:, chain.active] = J_path @ chain.S
+    return to_frame(J, R, frame)
+
+
+def to_frame(J: F64, R_root_link: F64, frame: JacobianFrame) -> F64:
+    """A world-aligned ``(6, n)`` Jacobian expressed in ``frame`` (a new array for "local")."""
+    if frame == "world":
+        return J
+    if frame != "local":
+        raise ValueError(f"frame must be 'world' or 'local', not {frame!r}")
+    Rt = R_root_link.T
+    out = np.empty_like(J)
+    np.matmul(Rt, J[:3], out=out[:3])
+    np.matmul(Rt, J[3:], out=out[3:])
+    return out

@@ -5,26 +5,30 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from robomodel.description.model import Robot, UnknownNameError
+from robomodel.kinematics._chain import Chain, make_chain, restrict
 from robomodel.kinematics._checks import check_limits, check_q, link_indices, q_labels
 from robomodel.kinematics._compile import FLOATING, CompiledModel, compile_robot
+from robomodel.kinematics._mujoco import MujocoKinematics, load_mujoco
 from robomodel.kinematics.exceptions import KinematicsError
-from robomodel.kinematics.fk import fk_batch, fk_single, make_single_plan
-from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch
+from robomodel.kinematics.fk import SinglePlan, fk_batch, fk_single, make_single_plan
+from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch, jacobian_single, to_frame
 
 if TYPE_CHECKING:
     from robomodel.kinematics.dynamics import Dynamics
     from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
     from robomodel.kinematics.ur import NotAnalyticError, URGeometry
 
-__all__ = ["Kinematics"]
+__all__ = ["Backend", "Kinematics"]
 
+_ORIGIN = (0.0, 0.0, 0.0)
 F64 = NDArray[np.float64]
+Backend = Literal["auto", "numpy", "mujoco"]
 
 
 class Kinematics:
@@ -39,19 +43,38 @@ class Kinematics:
     image of the x and y axes under the smallest rotation taking z onto the joint axis (so it
     is x and y for a z axis, as in pinocchio).
 
+    One configuration (``q`` of shape ``(n_q,)``) is computed by MuJoCo's compiled
+    kinematics when the ``sim`` extra is installed (``backend="auto"``); batches, and models
+    with floating or planar joints, always use the numpy implementation. Both give the same
+    numbers to about 1e-15 m (the tests check 1e-12).
+
     Args:
         robot: The model; its joint axes are normalised as KDL does.
+        backend: ``"auto"`` (MuJoCo for one configuration when it can be imported, imported on
+            first use), ``"numpy"`` (no compiled code: the reference, and the cheapest start-up
+            for a process that computes a handful of poses) or ``"mujoco"`` (an error if it
+            cannot be used).
 
     Raises:
         TreeError: the joints do not form a tree.
         ZeroAxisError: a movable joint has a zero axis.
         MimicCycleError: mimic joints follow each other in a loop.
+        KinematicsError: ``backend="mujoco"`` and MuJoCo is missing or cannot model a joint.
     """
 
-    def __init__(self, robot: Robot) -> None:
+    def __init__(self, robot: Robot, *, backend: Backend = "auto") -> None:
+        if backend not in ("auto", "numpy", "mujoco"):
+            raise ValueError(f"backend must be 'auto', 'numpy' or 'mujoco', not {backend!r}")
         self._robot = robot
         self._model = compile_robot(robot)
         self._plan = make_single_plan(self._model)
+        self._backend: Backend = backend
+        self._fast: MujocoKinematics | None = None
+        self._fast_ready = False
+        self._chains: dict[int, Chain] = {}
+        self._paths: dict[int, tuple[CompiledModel, SinglePlan]] = {}
+        if backend == "mujoco":
+            self._fast_path()
         self._solvers: dict[tuple[str, bool], Solver] = {}
         self._analytic: dict[str, URGeometry | NotAnalyticError] = {}
         self._dynamics: Dynamics | None = None
@@ -66,6 +89,44 @@ class Kinematics:
     @property
     def robot(self) -> Robot:
         return self._robot
+
+    @property
+    def backend(self) -> Literal["numpy", "mujoco"]:
+        """What computes one configuration (``"auto"`` resolved, which may import MuJoCo)."""
+        return "numpy" if self._fast_path() is None else "mujoco"
+
+    def _fast_path(self) -> MujocoKinematics | None:
+        """The MuJoCo model for one configuration, built on first use (None: numpy)."""
+        fast = self._fast
+        if not self._fast_ready:
+            if self._backend != "numpy" and self._model.n_q > 0:
+                mujoco = load_mujoco()
+                try:
+                    fast = None if mujoco is None else MujocoKinematics(self._model, mujoco)
+                except ValueError:
+                    fast = None
+            if fast is None and self._backend == "mujoco":
+                raise KinematicsError(
+                    "backend='mujoco' needs the mujoco package (pip install 'robomodel[sim]') "
+                    "and a model with only fixed, revolute, continuous and prismatic joints"
+                )
+            self._fast, self._fast_ready = fast, True
+        return fast
+
+    def _path(self, link: int) -> tuple[CompiledModel, SinglePlan]:
+        """The path to ``link`` (any joint kinds) and its FK plan, built once per link."""
+        found = self._paths.get(link)
+        if found is None:
+            sub, _ = restrict(self._model, link)
+            found = self._paths[link] = (sub, make_single_plan(sub))
+        return found
+
+    def _chain(self, link: int) -> Chain:
+        """The path to ``link`` as its own small model (built once per link)."""
+        chain = self._chains.get(link)
+        if chain is None:
+            chain = self._chains[link] = make_chain(self._model, link)
+        return chain
 
     @property
     def compiled(self) -> CompiledModel:
@@ -202,6 +263,9 @@ class Kinematics:
             self._check_limits(arr)
         idx = None if links is None else link_indices(self._model, links)
         if arr.ndim == 1:
+            fast = self._fast if self._fast_ready else self._fast_path()
+            if fast is not None:
+                return fast.fk(arr, idx)
             Ts = fk_single(self._model, self._plan, arr)
             if idx is not None:
                 Ts = Ts[idx]
@@ -217,7 +281,16 @@ class Kinematics:
 
     def fk_link(self, q: ArrayLike, link: str) -> F64:
         """``T_root_link`` of one link: ``(*batch, 4, 4)``."""
-        Ts = self.fk(q, links=[link])
+        arr = check_q(self._model, q)
+        if arr.ndim == 1:
+            i = self._model.link(link)
+            fast = self._fast if self._fast_ready else self._fast_path()
+            if fast is not None:
+                return fast.fk_link(arr, i)
+            sub, plan = self._path(i)
+            T: F64 = fk_single(sub, plan, arr)[-1]
+            return T
+        Ts = self.fk(arr, links=[link])
         return Ts[..., 0, :, :]
 
     def jacobian(
@@ -225,7 +298,7 @@ class Kinematics:
         q: ArrayLike,
         link: str,
         *,
-        point: ArrayLike = (0.0, 0.0, 0.0),
+        point: ArrayLike = _ORIGIN,
         frame: JacobianFrame = "world",
     ) -> F64:
         """Geometric Jacobian ``(*batch, 6, n_q)`` of a point fixed on ``link``.
@@ -239,10 +312,26 @@ class Kinematics:
         """
         arr = check_q(self._model, q)
         i = self._model.link(link)
+        if arr.ndim == 1 and point is _ORIGIN:
+            return self._jacobian_single(arr, i, None, frame)
         p = np.asarray(point, dtype=np.float64).reshape(3)
+        if arr.ndim == 1:
+            return self._jacobian_single(arr, i, p, frame)
         flat = arr.reshape(math.prod(arr.shape[:-1]), self.n_q)
         J = jacobian_batch(self._model, flat, i, p, frame)
         J = J.reshape(*arr.shape[:-1], 6, self.n_q)
+        J.setflags(write=False)
+        return J
+
+    def _jacobian_single(self, q: F64, link: int, p: F64 | None, frame: JacobianFrame) -> F64:
+        chain = self._chain(link)  # also refuses floating and planar joints on the path
+        fast = self._fast if self._fast_ready else self._fast_path()
+        if fast is None:
+            J = jacobian_single(chain, q, p, frame)
+        else:
+            R, _, J_mj = fast.pose_and_jacobian(q, link, p)
+            J = J_mj.copy() if fast.identity_columns else J_mj @ fast.S
+            J = to_frame(J, R, frame)
         J.setflags(write=False)
         return J
 
@@ -255,7 +344,8 @@ class Kinematics:
         position_only: bool = False,
         tol_m: float = 1e-6,
         tol_rad: float = 1e-6,
-        max_time_s: float = 0.2,
+        max_iterations: int = 3000,
+        max_time_s: float | None = None,
         restarts: int = 50,
         rng: int | np.random.Generator | None = None,
     ) -> IKResult:
@@ -263,7 +353,9 @@ class Kinematics:
 
         Levenberg-Marquardt on the geometric Jacobian, every step clamped to the limits, from
         ``seed`` (default: the middle of the limits) and then from random configurations
-        until ``restarts`` attempts or ``max_time_s`` are used up. The result's ``q`` is
+        until ``restarts`` attempts or ``max_iterations`` iterations are used up (at most 60
+        per attempt). The result depends only on the arguments (``rng`` seeds the restarts),
+        not on the machine's speed, unless ``max_time_s`` is given. The result's ``q`` is
         always inside the limits; check ``success``.
 
         Args:
@@ -273,7 +365,9 @@ class Kinematics:
             position_only: Only reach the position (orientation free).
             tol_m: Position tolerance [m].
             tol_rad: Rotation tolerance [rad].
-            max_time_s: Time budget over all attempts [s].
+            max_iterations: Iteration budget over all attempts.
+            max_time_s: Optional time budget over all attempts [s], checked between attempts
+                (None: no time limit, the default).
             restarts: Maximum number of random restarts after the first attempt.
             rng: Seed or generator for the restarts (reproducible results).
         """
@@ -287,6 +381,7 @@ class Kinematics:
             position_only=position_only,
             tol_m=tol_m,
             tol_rad=tol_rad,
+            max_iterations=max_iterations,
             max_time_s=max_time_s,
             restarts=restarts,
             rng=rng,
@@ -369,7 +464,8 @@ class Kinematics:
         if solver is None:
             from robomodel.kinematics.ik import Solver
 
-            solver = Solver(self._model, link, position_only)
+            mujoco = None if self._backend == "numpy" else load_mujoco()
+            solver = Solver(self._model, link, position_only, self.neutral(), mujoco)
             self._solvers[key] = solver
         return solver
 

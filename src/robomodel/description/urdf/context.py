@@ -25,6 +25,7 @@ _NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 _VEC3_RE = re.compile(f" *({_NUM}) +({_NUM}) +({_NUM}) *\\Z")
 
 Version = tuple[int, int]
+_new_tuple = tuple.__new__
 _IDENTITY = Origin()
 
 
@@ -68,9 +69,11 @@ class ParseContext:
         if tag[0] == "{":
             tag = local_tag(element)
         key = (line, tag)
-        ordinal = self._ordinals.get(key, 0)
-        self._ordinals[key] = ordinal + 1
-        return SourceSpan(self.path, line, tag, ordinal, self.text)
+        ordinals = self._ordinals
+        ordinal = ordinals.get(key, 0)
+        ordinals[key] = ordinal + 1
+        # tuple.__new__ skips NamedTuple's Python-level __new__ (one span per element).
+        return _new_tuple(SourceSpan, (self.path, line, tag, ordinal, self.text))
 
     def location(self, element: etree._Element | None) -> SourceLocation:
         if element is None or element.sourceline is None:

@@ -31,18 +31,12 @@ def _text(element: etree._Element | None) -> str | None:
     return (element.text or "").strip()
 
 
-def _reduction(ctx: ParseContext, element: etree._Element, *tags: str) -> float | None:
-    for tag in tags:
-        child = element.find(tag)
-        if child is not None:
-            return ctx.number(_text(child) or "", tag, child)
-    return None
-
-
 _SIDE_TAGS = frozenset(
     ("role", "hardwareInterface", "hardware_interface", "mechanicalReduction",
      "mechanical_reduction", "offset")
 )  # fmt: skip
+_INTERFACE_TAGS = ("hardwareInterface", "hardware_interface")
+_REDUCTION_TAGS = ("mechanicalReduction", "mechanical_reduction")
 
 
 def _side(
@@ -51,20 +45,34 @@ def _side(
     name = element.get("name")
     if name is None:
         raise ElementError("transmission joint/actuator needs a name attribute", element)
+    # One pass over the children (``find`` compiles a path per call): the first <role>, the
+    # first <mechanicalReduction> (else <mechanical_reduction>), the first <offset>.
+    first: dict[str, etree._Element] = {}
+    interfaces: list[str] = []
+    extra: list[RawElement] = []
+    for child in element:
+        tag = child.tag
+        if not isinstance(tag, str):
+            continue
+        if tag in _SIDE_TAGS:
+            if tag in _INTERFACE_TAGS:
+                interfaces.append(_text(child) or "")
+            elif tag not in first:
+                first[tag] = child
+        else:
+            extra.append(raw(ctx, child))
     role = element.get("role")
     if role is None:
-        role = _text(element.find("role"))
-    interfaces = tuple(
-        _text(hw) or "" for hw in element if hw.tag in ("hardwareInterface", "hardware_interface")
-    )
-    reduction = _reduction(ctx, element, "mechanicalReduction", "mechanical_reduction")
-    offset = _reduction(ctx, element, "offset")
-    extra = tuple(
-        raw(ctx, child)
-        for child in element
-        if isinstance(child.tag, str) and child.tag not in _SIDE_TAGS
-    )
-    return name, role, interfaces, reduction, offset, extra
+        role = _text(first.get("role"))
+    reduction = None
+    for tag in _REDUCTION_TAGS:
+        child = first.get(tag)
+        if child is not None:
+            reduction = ctx.number(_text(child) or "", tag, child)
+            break
+    offset_el = first.get("offset")
+    offset = None if offset_el is None else ctx.number(_text(offset_el) or "", "offset", offset_el)
+    return name, role, tuple(interfaces), reduction, offset, tuple(extra)
 
 
 def read_transmission(ctx: ParseContext, element: etree._Element) -> Transmission:
@@ -72,8 +80,13 @@ def read_transmission(ctx: ParseContext, element: etree._Element) -> Transmissio
     name = element.get("name")
     if name is None:
         raise ElementError("transmission needs a name attribute", element)
-    type_el = element.find("type")
-    plugin_el = element.find("plugin")
+    type_el = plugin_el = None
+    for child in element:
+        tag = child.tag
+        if tag == "type" and type_el is None:
+            type_el = child
+        elif tag == "plugin" and plugin_el is None:
+            plugin_el = child
     if plugin_el is not None:
         style, kind = TransmissionStyle.ROS2, _text(plugin_el)
     elif type_el is not None:

@@ -18,6 +18,7 @@ from typing import Protocol, TypeVar
 
 from lxml import etree
 
+from robomodel._gc import paused_gc
 from robomodel.description.model import (
     Link,
     Material,
@@ -213,6 +214,11 @@ def read_urdf(
         InputError: where urdfdom is fatal, with ``file:line:column``.
     """
     data, path = _load(source, path, max_bytes)
+    with paused_gc():
+        return _read(data, path)
+
+
+def _read(data: bytes, path: str | None) -> ParseResult:
     root = _parse_xml(data, path)
     ctx = ParseContext(path, SourceText(data, path))
     if local_tag(root) != "robot":
