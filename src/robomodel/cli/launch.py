@@ -26,7 +26,8 @@ def register(subparsers: Any) -> None:
         description=(
             "Run a ROS 1 launch file as roslaunch does, each node mapped onto a robomodel "
             "component (robot_state_publisher, joint_state_publisher(_gui), rviz -> the browser "
-            "viewer, static_transform_publisher, rqt tools). Arguments: PKG FILE or PATH, then "
+            "viewer, gazebo_ros gzserver/spawn_model -> the simulator, controller_manager "
+            "spawner, static_transform_publisher, rqt tools). Arguments: PKG FILE or PATH, then "
             "name:=value launch args."
         ),
     )
