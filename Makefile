@@ -35,6 +35,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_control.py
 	$(BIN)/python bench/bench_viewer.py
 	$(BIN)/python bench/bench_sim.py
+	$(BIN)/python bench/bench_launch.py
 
 clean:
 	rm -rf $(VENV) build .pytest_cache .mypy_cache .ruff_cache
