@@ -46,7 +46,10 @@ def _handlers(cm: ControllerManager) -> dict[str, Handler]:
         name = str(request["name"])
 
         def run() -> None:
-            cm.load_controller(name, request.get("type"))
+            params = request.get("params")
+            cm.load_controller(
+                name, request.get("type"), params if isinstance(params, dict) else None
+            )
             target = request.get("set_state")
             if target in ("inactive", "active"):
                 cm.configure_controller(name)

@@ -39,6 +39,8 @@ class ControlSystem:
         context: Context | None = None,
         spawn: Sequence[str] | None = None,
         update_rate_hz: int | None = None,
+        name: str = "controller_manager",
+        unknown_hardware_as_mock: bool = False,
     ) -> ControlSystem:
         """Build the hardware of ``robot``, load ``controllers`` and spawn them (all by default).
 
@@ -51,7 +53,7 @@ class ControlSystem:
             if isinstance(controllers, ControllerConfig)
             else load_controller_config(controllers)
         )
-        components = hardware_from_robot(robot)
+        components = hardware_from_robot(robot, unknown_as_mock=unknown_hardware_as_mock)
         if not components:
             raise ControlError(
                 f"robot '{robot.name}' has no <ros2_control> block and no <transmission> tags, "
@@ -64,6 +66,7 @@ class ControlSystem:
             context=context,
             robot=robot,
             update_rate_hz=update_rate_hz or config.update_rate_hz,
+            name=name,
             namespace=config.namespace,
             parameters=config.manager_params,
         )

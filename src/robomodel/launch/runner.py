@@ -76,6 +76,7 @@ class LaunchRunner:
 
     nodes: Sequence[NodeSpec]
     options: RunOptions
+    steps: Sequence[Any] = ()  # ROS 2: LaunchStep values (then ``nodes`` are their nodes)
     log: Callable[[str], None] = field(default=lambda text: _write_line(text))
     params: Any = None
     context: Any = None
@@ -85,6 +86,7 @@ class LaunchRunner:
     request: ViewerRequest = field(default_factory=ViewerRequest)
     hosted_params: bool = False
     _stop: threading.Event = field(default_factory=threading.Event)
+    _scheduler: Any = None
     _extra: dict[str, Any] = field(default_factory=dict)
 
     # -- set-up ---------------------------------------------------------------------------
@@ -139,6 +141,15 @@ class LaunchRunner:
     # -- running --------------------------------------------------------------------------
     def start_nodes(self) -> None:
         self._extra.setdefault("package_index", self.options.package_index or _default_index())
+        self._extra["launch_nodes"] = tuple(self.nodes)
+        if self.steps:
+            from robomodel.launch.steps import StepScheduler
+
+            self._scheduler = StepScheduler(self.steps, self._start_step)
+            self._scheduler.begin()
+            if self.request.requested_by and not self.options.headless:
+                self._start_viewer()
+            return
         for spec in self.nodes:
             factory = factory_for(spec)
             if factory is None:
@@ -148,6 +159,35 @@ class LaunchRunner:
             self._start(spec)
         if self.request.requested_by and not self.options.headless:
             self._start_viewer()
+
+    def _start_step(self, index: int, step: Any) -> Any:
+        """Start one ROS 2 launch step; its handle (for OnProcessExit / OnProcessStart)."""
+        from robomodel.launch.steps import ProcessNode, node_of_command
+
+        if step.kind == "log":
+            self.log(f"[INFO] [launch.user]: {step.message}")
+            return _Done()
+        if step.kind == "shutdown":
+            self.log(f"[launch] shutdown requested: {step.message or 'Shutdown'}")
+            self._stop.set()
+            return _Done()
+        spec = step.node if step.kind == "node" else node_of_command(step.command)
+        if spec is None:
+            name = " ".join(step.command[:1]) or "process"
+            self.log(f"[launch] running {' '.join(step.command)}")
+            try:
+                handle: Any = ProcessNode(step.command, lambda text: self.log(f"[{name}] {text}"))
+            except OSError as exc:
+                self.log(f"[{name}] failed to start: {exc}")
+                return _Failed()
+            self.started.append(_Started(_process_spec(step), handle))
+            return handle
+        if factory_for(spec) is None:
+            self.skipped.append(spec)
+            self.log(unsupported_message(spec))
+            return _Failed()
+        self._start(spec)
+        return self.started[-1].handle
 
     def _start(self, spec: NodeSpec, restarts: int = 0) -> None:
         factory = factory_for(spec)
@@ -172,11 +212,13 @@ class LaunchRunner:
         except ImportError as exc:
             self.log(f"[launch] no viewer: {exc}")
             return
-        param = self.request.robot_description_param or "/robot_description"
-        if not self.params.has(param):
-            self.log(f"[launch] the viewer has no robot to show: {param} is not set")
-            return
-        text = self.params.get(param)
+        text = self.request.robot_description_text
+        if text is None:
+            param = self.request.robot_description_param or "/robot_description"
+            if self.params is None or not self.params.has(param):
+                self.log(f"[launch] the viewer has no robot to show: {param} is not set")
+                return
+            text = self.params.get(param)
         handle, path = tempfile.mkstemp(prefix="robomodel_launch_", suffix=".urdf")
         with os.fdopen(handle, "w", encoding="utf-8") as out:
             out.write(str(text))
@@ -236,6 +278,8 @@ class LaunchRunner:
                     driver.drive(0.05)
                 else:
                     self.context.spin(duration_s=0.05)
+                if self._scheduler is not None:
+                    self._scheduler.poll()
                 ended = self._supervise()
                 if ended is not None:
                     code = ended
@@ -307,6 +351,23 @@ def _write_line(text: str) -> None:
     with _OUTPUT_LOCK:
         sys.stderr.write(text + "\n")
         sys.stderr.flush()
+
+
+class _Done:
+    """A step that has nothing to run (a log line): done at once, with code 0."""
+
+    def stop(self) -> None:
+        pass
+
+    def exit_code(self) -> int | None:
+        return 0
+
+
+def _process_spec(step: Any) -> NodeSpec:
+    executable = step.command[0].rsplit("/", 1)[-1] if step.command else "process"
+    return NodeSpec(
+        "ros2", "", executable, executable, args=tuple(step.command[1:]), location=step.location
+    )
 
 
 class _Failed:

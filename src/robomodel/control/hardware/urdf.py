@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import logging
 import math
+import warnings
 from collections.abc import Callable
 
 from robomodel.control.hardware.base import ComponentInfo, HardwareComponent, HardwareInfo
@@ -238,8 +239,12 @@ def hardware_infos_from_robot(robot: Robot) -> list[HardwareInfo]:
     return infos
 
 
-def hardware_from_robot(robot: Robot) -> list[HardwareComponent]:
+def hardware_from_robot(robot: Robot, *, unknown_as_mock: bool = False) -> list[HardwareComponent]:
     """Build the hardware components of ``robot`` (see the module docstring).
+
+    ``unknown_as_mock``: a plugin robomodel does not have (a package's own C++ system, as in
+    ros2_control's demos) runs as ``mock_components/GenericSystem`` over the interfaces its tag
+    declares, with one warning naming it, instead of being an error.
 
     Raises:
         HardwareError: unknown plugin, joints missing from the URDF, bad numbers.
@@ -247,6 +252,14 @@ def hardware_from_robot(robot: Robot) -> list[HardwareComponent]:
     components: list[HardwareComponent] = []
     for info in hardware_infos_from_robot(robot):
         factory = HARDWARE_PLUGINS.get(info.plugin)
+        if factory is None and unknown_as_mock:
+            warnings.warn(
+                f"{info.source}: hardware plugin '{info.plugin}' is not available in robomodel; "
+                f"'{info.name}' runs as mock_components/GenericSystem over the interfaces its "
+                "<ros2_control> tag declares",
+                stacklevel=2,
+            )
+            factory = HARDWARE_PLUGINS["mock_components/GenericSystem"]
         if factory is None:
             hint = close_matches(info.plugin, HARDWARE_PLUGINS)
             raise HardwareError(

@@ -1,6 +1,14 @@
 """Node mappings: which robomodel component runs for each ROS node of a launch file."""
 
-from robomodel.launch.nodes import controllers, gazebo, state, tf_static, viewer
+from robomodel.launch.nodes import (
+    controllers,
+    gazebo,
+    ros2_control,
+    ros2_nodes,
+    state,
+    tf_static,
+    viewer,
+)
 from robomodel.launch.nodes.base import (
     NodeContext,
     RunningNode,
@@ -18,6 +26,8 @@ __all__ = [
     "factory_for",
     "gazebo",
     "register",
+    "ros2_control",
+    "ros2_nodes",
     "state",
     "supported",
     "tf_static",

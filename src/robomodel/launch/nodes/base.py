@@ -79,6 +79,7 @@ class ViewerRequest:
     namespace: str = "/"
     joint_states_topic: str = "/joint_states"
     steering_topic: str | None = None  # rqt_robot_steering's ~default_topic
+    robot_description_text: str | None = None  # ROS 2: no parameter server to read it from
     requested_by: list[str] = field(default_factory=list)
 
 
@@ -98,6 +99,13 @@ class NodeContext:
         """The node's namespace in the runtime's form (``/`` or ``/a/b``, no trailing slash)."""
         ns = self.spec.namespace.rstrip("/")
         return ns or "/"
+
+    def ros2_parameters(self, default_name: str) -> dict[str, Any]:
+        """A ROS 2 node's parameters from its launch sources (``default_name``: its name when
+        the launch file gives none)."""
+        from robomodel.launch.nodes.ros2_params import node_parameters
+
+        return node_parameters(self.spec, name=default_name)
 
     @property
     def use_sim_time(self) -> bool:

@@ -1,0 +1,297 @@
+"""ros2_control nodes of a ROS 2 launch file: ``ros2_control_node`` (the controller manager on
+the robot's ``<ros2_control>`` hardware), ``spawner`` and ``unspawner``.
+
+``ros2_control_node`` takes ``robot_description`` from its parameter (Humble) or, without one,
+from the launch's robot_state_publisher (Jazzy's ``robot_description`` topic), its
+``update_rate`` and controller types from its parameters (YAML files with node-name keys), and
+each controller's parameters from the same files under the controller's name, as controller
+nodes get them. A hardware plugin robomodel does not have (a demo's own C++ system) runs as
+``mock_components/GenericSystem`` over the interfaces its tag declares, with one warning. The
+manager is named as the launch file names the node (``name="my_ctrl_mgr"``), so spawners'
+``-c my_ctrl_mgr`` find it.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.model import NodeSpec
+from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
+
+__all__ = ["Ros2SpawnerArgs", "parse_ros2_spawner_args"]
+
+
+def _nest(flat: dict[str, Any]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in flat.items():
+        parts = key.split(".")
+        here = out
+        for part in parts[:-1]:
+            here = here.setdefault(part, {})
+        here[parts[-1]] = value
+    return out
+
+
+def controller_config_text(spec: NodeSpec, manager_name: str) -> str:
+    """The manager's and its controllers' parameters as one ros2_control YAML document."""
+    import dataclasses
+
+    import yaml
+
+    from robomodel.launch.nodes.ros2_params import node_parameters
+
+    params = node_parameters(spec, name=manager_name)
+    params.pop("robot_description", None)
+    doc: dict[str, Any] = {"controller_manager": {"ros__parameters": _nest(params)}}
+    names = sorted({k.rsplit(".", 1)[0] for k in params if k.endswith(".type")})
+    for name in names:
+        pseudo = dataclasses.replace(spec, name=name)
+        own = node_parameters(pseudo, name=name)
+        own.pop("robot_description", None)
+        if own:
+            doc[name] = {"ros__parameters": _nest(own)}
+    return yaml.safe_dump(doc, sort_keys=False)
+
+
+class ManagerNode:
+    """A running ros2_control_node."""
+
+    def __init__(self, system: Any) -> None:
+        self.system = system
+        self._code: int | None = None
+
+    def stop(self) -> None:
+        if self._code is None:
+            self._code = 0
+            self.system.manager.close()
+
+    def exit_code(self) -> int | None:
+        return self._code
+
+
+@register(
+    "ros2",
+    "controller_manager",
+    "ros2_control_node",
+    purpose="robomodel's controller manager on the description's <ros2_control> hardware",
+)
+def ros2_control_node(ctx: NodeContext) -> RunningNode:
+    from robomodel.control import ControlSystem
+    from robomodel.control.config import load_controller_config
+    from robomodel.description import read_urdf
+    from robomodel.launch.nodes.ros2_nodes import robot_description_of
+
+    name = ctx.spec.name or "controller_manager"
+    params = ctx.ros2_parameters(name)
+    robot = read_urdf(robot_description_of(ctx, params)).robot
+    source = next((str(p.file) for p in ctx.spec.parameters if p.file is not None), ctx.spec.fqn)
+    config = load_controller_config(source, text=controller_config_text(ctx.spec, name))
+    import dataclasses
+
+    config = dataclasses.replace(config, namespace=ctx.namespace)
+    system = ControlSystem.build(
+        robot,
+        config,
+        context=ctx.runtime,
+        spawn=[],
+        name=name,
+        unknown_hardware_as_mock=True,
+    )
+    system.manager.start()
+    ctx.log(
+        f"controller manager {system.manager.service_prefix} at {system.manager.update_rate_hz} "
+        f"Hz on {', '.join(c.name for c in system.resources.components)}"
+    )
+    return ManagerNode(system)
+
+
+@dataclass(frozen=True, slots=True)
+class Ros2SpawnerArgs:
+    """controller_manager's ``spawner`` command line (Humble and Jazzy)."""
+
+    controllers: tuple[str, ...]
+    controller_manager: str = "controller_manager"
+    param_file: str | None = None
+    inactive: bool = False
+    load_only: bool = False
+    activate_as_group: bool = False
+    unload_on_kill: bool = False
+    controller_type: str | None = None
+    timeout_s: float = 10.0
+
+
+_VALUED = {
+    "-c": "controller_manager", "--controller-manager": "controller_manager",
+    "-p": "param_file", "--param-file": "param_file",
+    "-t": "controller_type", "--controller-type": "controller_type",
+    "--controller-manager-timeout": "timeout", "--switch-timeout": None,
+    "--service-call-timeout": None, "-n": None, "--namespace": None,
+    "--controller-ros-args": None,
+}  # fmt: skip
+_FLAGS = {
+    "--inactive": "inactive", "--stopped": "inactive", "--load-only": "load_only",
+    "--activate-as-group": "activate_as_group", "-u": "unload_on_kill",
+    "--unload-on-kill": "unload_on_kill",
+}  # fmt: skip
+
+
+def parse_ros2_spawner_args(args: tuple[str, ...]) -> Ros2SpawnerArgs:
+    """The spawner's options; RobomodelError names an unknown one."""
+    names: list[str] = []
+    values: dict[str, Any] = {}
+    words = list(args)
+    if "--ros-args" in words:
+        words = words[: words.index("--ros-args")]
+    i = 0
+    while i < len(words):
+        word = words[i]
+        option, eq, inline = word.partition("=")
+        if option in _VALUED:
+            if not eq:
+                if i + 1 >= len(words):
+                    raise RobomodelError(f"spawner: {option} needs a value")
+                inline = words[i + 1]
+                i += 1
+            key = _VALUED[option]
+            if key is not None:
+                values[key] = inline
+        elif word in _FLAGS:
+            values[_FLAGS[word]] = True
+        elif word.startswith("-"):
+            raise RobomodelError(
+                f"spawner: unrecognized arguments: {word} (options: -c/--controller-manager, "
+                "-p/--param-file, --inactive, --load-only, --activate-as-group, "
+                "-u/--unload-on-kill, --controller-manager-timeout, --controller-ros-args)"
+            )
+        else:
+            names.append(word)
+        i += 1
+    if not names:
+        raise RobomodelError("spawner: the following arguments are required: controller_names")
+    timeout = values.pop("timeout", None)
+    return Ros2SpawnerArgs(tuple(names), **values, timeout_s=float(timeout) if timeout else 10.0)
+
+
+def _manager_path(ctx: NodeContext, name: str) -> str:
+    if name.startswith("/"):
+        return name.rstrip("/")
+    return ctx.spec.namespace.rstrip("/") + "/" + name
+
+
+def _call(ctx: NodeContext, path: str, service: str, request: dict[str, Any]) -> dict[str, Any]:
+    reply: dict[str, Any] = ctx.runtime.call_service(f"{path}/{service}", request, 10.0)
+    return reply
+
+
+def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bool:
+    deadline = time.monotonic() + timeout_s
+    while not node.stopping.is_set():
+        try:
+            _call(ctx, path, "list_controllers", {})
+            return True
+        except RobomodelError:
+            if timeout_s > 0 and time.monotonic() > deadline:
+                ctx.log(f"Controller manager not available: {path} (after {timeout_s:g} s)")
+                return False
+            time.sleep(0.2)
+    return False
+
+
+def _file_params(path: str, name: str, namespace: str) -> dict[str, Any]:
+    from robomodel.launch.nodes.ros2_params import parameters_from_file
+
+    return parameters_from_file(Path(path), namespace.rstrip("/") + "/" + name)
+
+
+@register(
+    "ros2",
+    "controller_manager",
+    "spawner",
+    purpose="loads, configures and activates controllers (-c, -p, --inactive, --load-only, "
+    "--activate-as-group, -u)",
+)
+def spawner(ctx: NodeContext) -> RunningNode:
+    options = parse_ros2_spawner_args(ctx.spec.args)
+    path = _manager_path(ctx, options.controller_manager)
+
+    def work(node: ThreadNode) -> int:
+        if not _wait(ctx, node, path, options.timeout_s):
+            return 1
+        listed = {c["name"] for c in _call(ctx, path, "list_controllers", {})["controllers"]}
+        loaded: list[str] = []
+        code = 0
+        for name in options.controllers:
+            if name in listed:
+                ctx.log(f"Controller already loaded, skipping load_controller: {name}")
+                loaded.append(name)
+                continue
+            request: dict[str, Any] = {"name": name, "set_state": "unconfigured"}
+            if options.param_file:
+                params = _file_params(options.param_file, name, ctx.spec.namespace)
+                if "type" in params:
+                    request["type"] = params.pop("type")
+                request["params"] = params
+            if options.controller_type:
+                request["type"] = options.controller_type
+            reply = _call(ctx, path, "load_controller", request)
+            if not reply.get("ok"):
+                ctx.log(f"{reply.get('error', '')}\nFailed loading controller {name}")
+                code = 1
+                continue
+            ctx.log(f"Loaded {name}")
+            loaded.append(name)
+        if options.load_only:
+            return code
+        for name in loaded:
+            if not _call(ctx, path, "configure_controller", {"name": name}).get("ok"):
+                ctx.log(f"Failed to configure controller {name}")
+                code = 1
+        if not options.inactive:
+            groups = [loaded] if options.activate_as_group else [[n] for n in loaded]
+            for group in groups:
+                reply = _call(ctx, path, "switch_controller", {"activate": group, "strictness": 2})
+                if reply.get("ok"):
+                    ctx.log(f"Configured and activated {', '.join(group)}")
+                else:
+                    ctx.log(
+                        f"Failed to activate controller {', '.join(group)}: {reply.get('error')}"
+                    )
+                    code = 1
+        if options.unload_on_kill:
+            node.stopping.wait()
+            _call(ctx, path, "switch_controller", {"deactivate": loaded, "strictness": 1})
+            for name in reversed(loaded):
+                _call(ctx, path, "unload_controller", {"name": name})
+        return code
+
+    return ThreadNode(f"spawner {ctx.spec.fqn}", work, ctx.log)
+
+
+@register(
+    "ros2",
+    "controller_manager",
+    "unspawner",
+    purpose="deactivates and unloads controllers",
+)
+def unspawner(ctx: NodeContext) -> RunningNode:
+    options = parse_ros2_spawner_args(ctx.spec.args)
+    path = _manager_path(ctx, options.controller_manager)
+
+    def work(node: ThreadNode) -> int:
+        if not _wait(ctx, node, path, options.timeout_s):
+            return 1
+        names = list(options.controllers)
+        _call(ctx, path, "switch_controller", {"deactivate": names, "strictness": 1})
+        code = 0
+        for name in names:
+            if _call(ctx, path, "unload_controller", {"name": name}).get("ok"):
+                ctx.log(f"Unloaded {name}")
+            else:
+                code = 1
+        return code
+
+    return ThreadNode(f"unspawner {ctx.spec.fqn}", work, ctx.log)

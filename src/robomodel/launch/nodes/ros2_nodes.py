@@ -1,0 +1,243 @@
+"""ROS 2 nodes of a launch file: robot_state_publisher, joint_state_publisher(_gui), rviz2,
+tf2_ros static_transform_publisher and the rqt tools.
+
+Parameters come from the launch file's ``parameters=[...]`` (:mod:`.ros2_params`), remaps and
+namespaces as the real nodes would take them. joint_state_publisher (Humble and Jazzy) and the
+viewer read ``robot_description`` from their parameter or, without one, from the
+``robot_description`` topic that robot_state_publisher publishes: here, from the launch's
+robot_state_publisher in the same namespace.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.nodes.base import NodeContext, RunningNode, register
+from robomodel.launch.nodes.state import InProcessNode, ViewerPart
+from robomodel.launch.nodes.tf_static import parse_static_transform_args
+from robomodel.launch.nodes.viewer import rviz_config_argument
+
+__all__ = ["parse_ros2_static_transform_args", "robot_description_of"]
+
+
+def robot_description_of(ctx: NodeContext, own: dict[str, Any]) -> str:
+    """The URDF of a node: its ``robot_description`` parameter, else the one of the launch's
+    robot_state_publisher in the same namespace (what the ``robot_description`` topic carries).
+    """
+    text = own.get("robot_description")
+    if text:
+        return str(text)
+    from robomodel.launch.nodes.ros2_params import node_parameters
+
+    for spec in ctx.extra.get("launch_nodes", ()):
+        if (spec.dialect, spec.package, spec.executable) != (
+            "ros2",
+            "robot_state_publisher",
+            "robot_state_publisher",
+        ):
+            continue
+        if spec.namespace.rstrip("/") != ctx.spec.namespace.rstrip("/"):
+            continue
+        found = node_parameters(spec, name="robot_state_publisher").get("robot_description")
+        if found:
+            return str(found)
+    raise RobomodelError(
+        f"{ctx.spec.fqn}: no robot_description parameter, and no robot_state_publisher in "
+        f"{ctx.namespace} publishes one on the robot_description topic; give the node "
+        "parameters=[{'robot_description': ...}]"
+    )
+
+
+@register(
+    "ros2",
+    "robot_state_publisher",
+    "robot_state_publisher",
+    purpose="robomodel's robot_state_publisher (robot_description, publish_frequency, "
+    "frame_prefix, ignore_timestamp)",
+)
+def robot_state_publisher(ctx: NodeContext) -> RunningNode:
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+
+    name = ctx.spec.name or "robot_state_publisher"
+    params = ctx.ros2_parameters(name)
+    if not params.get("robot_description"):
+        raise RobomodelError(
+            f"{ctx.spec.fqn}: robot_description parameter must not be empty (give "
+            "parameters=[{'robot_description': ...}])"
+        )
+    rsp = RobotStatePublisher(
+        ctx.runtime,
+        None,
+        name=name,
+        namespace=ctx.namespace,
+        parameters=params,
+        remappings=ctx.remappings,
+    )
+    request = ctx.viewer
+    if request.robot_description_text is None:
+        request.robot_description_text = str(params["robot_description"])
+    return InProcessNode(rsp)
+
+
+@register(
+    "ros2",
+    "joint_state_publisher",
+    "joint_state_publisher",
+    purpose="robomodel's joint_state_publisher",
+)
+def joint_state_publisher(ctx: NodeContext) -> RunningNode:
+    from robomodel.description import read_urdf
+    from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
+
+    name = ctx.spec.name or "joint_state_publisher"
+    params = ctx.ros2_parameters(name)
+    robot = read_urdf(robot_description_of(ctx, params)).robot
+    params.pop("robot_description", None)
+    jsp = JointStatePublisher(
+        ctx.runtime,
+        robot,
+        name=name,
+        namespace=ctx.namespace,
+        parameters=params,
+        remappings=ctx.remappings,
+    )
+    return InProcessNode(jsp)
+
+
+@register(
+    "ros2",
+    "joint_state_publisher_gui",
+    "joint_state_publisher_gui",
+    purpose="the viewer's joint sliders",
+)
+def joint_state_publisher_gui(ctx: NodeContext) -> RunningNode:
+    request = ctx.viewer
+    request.sliders = True
+    request.requested_by.append(ctx.spec.fqn)
+    request.namespace = ctx.namespace
+    topic = ctx.remappings.get("joint_states", ctx.remappings.get("/joint_states"))
+    if topic:
+        request.joint_states_topic = topic
+    params = ctx.ros2_parameters(ctx.spec.name or "joint_state_publisher_gui")
+    if request.robot_description_text is None:
+        request.robot_description_text = robot_description_of(ctx, params)
+    return ViewerPart()
+
+
+@register("ros2", "rviz2", "rviz2", purpose="the browser viewer; -d FILE.rviz read")
+def rviz2(ctx: NodeContext) -> RunningNode:
+    from robomodel.viewer.rviz_config import read_rviz_config
+
+    request = ctx.viewer
+    request.requested_by.append(ctx.spec.fqn)
+    config = rviz_config_argument(ctx.spec.args)
+    if config is not None:
+        ctx.extra["rviz"] = read_rviz_config(config)
+    if request.robot_description_text is None:
+        # without one, RViz shows no robot until one is published; the runner says so
+        with contextlib.suppress(RobomodelError):
+            request.robot_description_text = robot_description_of(ctx, {})
+    return ViewerPart()
+
+
+def _tools(ctx: NodeContext) -> RunningNode:
+    ctx.viewer.tools = True
+    ctx.viewer.requested_by.append(ctx.spec.fqn)
+    if ctx.spec.executable == "rqt_robot_steering":
+        topic = ctx.ros2_parameters("rqt_robot_steering").get("default_topic")
+        if topic:
+            ctx.viewer.steering_topic = str(topic)
+    return ViewerPart()
+
+
+for _package, _executable, _purpose in (
+    ("rqt_robot_steering", "rqt_robot_steering", "the viewer's Robot Steering folder"),
+    ("rqt_plot", "rqt_plot", "the viewer's Plot folder"),
+    ("rqt_gui", "rqt_gui", "the viewer's tool folders"),
+    ("rqt_reconfigure", "rqt_reconfigure", "the viewer's Parameters folder"),
+):
+    register("ros2", _package, _executable, purpose=_purpose)(_tools)
+
+
+_FLAGS = {
+    "--x": 0, "--y": 1, "--z": 2, "--qx": 3, "--qy": 4, "--qz": 5, "--qw": 6,
+    "--roll": 7, "--pitch": 8, "--yaw": 9,
+}  # fmt: skip
+
+
+def parse_ros2_static_transform_args(
+    args: tuple[str, ...],
+) -> tuple[tuple[float, float, float], tuple[float, float, float, float], str, str]:
+    """tf2_ros (Humble/Jazzy) ``static_transform_publisher``: the ``--x 1 --frame-id a
+    --child-frame-id b`` form (``--qx..--qw`` or ``--roll --pitch --yaw``), or the old
+    positional one; ValueError with the usage."""
+    words = [a for a in args if a != "--ros-args" and ":=" not in a]
+    if not any(w.startswith("--") for w in words):
+        xyz, quat, parent, child, _ = parse_static_transform_args(words, with_period=False)
+        return xyz, quat, parent, child
+    import math
+
+    from robomodel.launch.nodes.tf_static import _quat_from_ypr
+
+    values = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
+    frames: dict[str, str] = {}
+    given: set[int] = set()
+    i = 0
+    while i < len(words):
+        flag = words[i]
+        if i + 1 >= len(words):
+            raise ValueError(f"{flag} needs a value")
+        if flag in _FLAGS:
+            values[_FLAGS[flag]] = float(words[i + 1])
+            given.add(_FLAGS[flag])
+        elif flag in ("--frame-id", "--child-frame-id"):
+            frames[flag] = words[i + 1]
+        else:
+            raise ValueError(f"unknown argument '{flag}'")
+        i += 2
+    if "--frame-id" not in frames or "--child-frame-id" not in frames:
+        raise ValueError("--frame-id and --child-frame-id are required")
+    if given & {7, 8, 9}:
+        quat = _quat_from_ypr(values[9], values[8], values[7])
+    else:
+        qx, qy, qz, qw = values[3:7]
+        norm = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw)
+        if norm == 0.0:
+            raise ValueError("the quaternion is zero")
+        quat = (qx / norm, qy / norm, qz / norm, qw / norm)
+    return (values[0], values[1], values[2]), quat, frames["--frame-id"], frames["--child-frame-id"]
+
+
+@register(
+    "ros2",
+    "tf2_ros",
+    "static_transform_publisher",
+    purpose="a static transform on /tf_static (both argument forms)",
+)
+def static_transform_publisher(ctx: NodeContext) -> RunningNode:
+    from robomodel.launch.nodes.tf_static import _Holder
+    from robomodel.runtime.msg import (
+        Header,
+        Quaternion,
+        TFMessage,
+        Transform,
+        TransformStamped,
+        Vector3,
+    )
+    from robomodel.runtime.qos import latched
+
+    try:
+        xyz, quat, parent, child = parse_ros2_static_transform_args(ctx.spec.args)
+    except ValueError as exc:
+        raise RobomodelError(f"static_transform_publisher: {exc}") from None
+    node = ctx.runtime.create_node(
+        ctx.spec.name or "static_transform_publisher", ctx.namespace, remappings=ctx.remappings
+    )
+    stamped = TransformStamped(
+        Header(node.now(), parent), child, Transform(Vector3(*xyz), Quaternion(*quat))
+    )
+    pub = node.create_publisher(TFMessage, "/tf_static", latched())
+    pub.publish(TFMessage([stamped]))
+    return InProcessNode(_Holder(node))

@@ -1,0 +1,163 @@
+"""ROS 2 nodes of launch files mapped onto robomodel: parameters as rcl resolves them, the
+command lines of spawner and static_transform_publisher, and a control launch run in-process
+(ros2_control_node + robot_state_publisher + spawners chained by OnProcessExit)."""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from robomodel.errors import RobomodelError
+from robomodel.launch.model import NodeSpec, ParamSource
+from robomodel.launch.nodes.ros2_control import controller_config_text, parse_ros2_spawner_args
+from robomodel.launch.nodes.ros2_nodes import parse_ros2_static_transform_args
+from robomodel.launch.nodes.ros2_params import node_parameters, parameters_from_file
+from tests.conftest import EXAMPLES
+
+ARM = EXAMPLES / "two_link_arm"
+
+
+def test_parameter_files_match_node_names_as_rcl(tmp_path: Path) -> None:
+    """rcl_yaml_param_parser: /** for every node, * one token, ** any, names relative to /."""
+    path = tmp_path / "p.yaml"
+    path.write_text(
+        "/**:\n  ros__parameters:\n    use_sim_time: true\n    shared: 1\n"
+        "rsp:\n  ros__parameters:\n    shared: 2\n    frame_prefix: a/\n"
+        "/robots/*:\n  ros__parameters:\n    wild: one\n"
+        "/**/deep:\n  ros__parameters:\n    nested: {x: 1.5, y: [1, 2]}\n"
+    )
+    assert parameters_from_file(path, "/rsp") == {
+        "use_sim_time": True, "shared": 2, "frame_prefix": "a/",
+    }  # fmt: skip
+    assert parameters_from_file(path, "/robots/r1") == {
+        "use_sim_time": True, "shared": 1, "wild": "one",
+    }  # fmt: skip
+    assert parameters_from_file(path, "/robots/r1/x")["shared"] == 1  # * is one token
+    assert "wild" not in parameters_from_file(path, "/robots/r1/x")
+    deep = parameters_from_file(path, "/a/b/deep")
+    assert deep["nested.x"] == 1.5 and deep["nested.y"] == [1, 2]
+    spec = NodeSpec(
+        "ros2", "robot_state_publisher", "robot_state_publisher", "rsp",
+        parameters=(ParamSource(values={"shared": 0, "a": {"b": 3}}), ParamSource(file=path)),
+    )  # fmt: skip
+    params = node_parameters(spec)
+    assert params["shared"] == 2 and params["a.b"] == 3  # later sources win; dicts dotted
+
+
+def test_static_transform_publisher_both_argument_forms() -> None:
+    xyz, quat, parent, child = parse_ros2_static_transform_args(
+        ("--x", "1", "--y", "2", "--yaw", str(math.pi / 2), "--frame-id", "world",
+         "--child-frame-id", "base")
+    )  # fmt: skip
+    assert xyz == (1.0, 2.0, 0.0) and (parent, child) == ("world", "base")
+    assert quat == pytest.approx((0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5)))
+    xyz, quat, parent, child = parse_ros2_static_transform_args(
+        ("0", "0", "1", "0", "0", "0", "1", "a", "b")
+    )
+    assert xyz == (0.0, 0.0, 1.0) and quat == (0.0, 0.0, 0.0, 1.0) and child == "b"
+    with pytest.raises(ValueError, match="--frame-id and --child-frame-id are required"):
+        parse_ros2_static_transform_args(("--x", "1"))
+
+
+def test_spawner_command_line() -> None:
+    args = parse_ros2_spawner_args(
+        ("jsb", "arm", "-c", "/my_ctrl_mgr", "--param-file", "/p.yaml", "--inactive",
+         "--activate-as-group", "-u", "--controller-manager-timeout=30",
+         "--controller-ros-args", "-r /a:=/b", "--ros-args", "-r", "__node:=sp")
+    )  # fmt: skip
+    assert args.controllers == ("jsb", "arm") and args.controller_manager == "/my_ctrl_mgr"
+    assert args.param_file == "/p.yaml" and args.inactive and args.activate_as_group
+    assert args.unload_on_kill and args.timeout_s == 30.0
+    with pytest.raises(RobomodelError, match="unrecognized arguments: --bogus"):
+        parse_ros2_spawner_args(("jsb", "--bogus"))
+    with pytest.raises(RobomodelError, match=re.escape("required: controller_names")):
+        parse_ros2_spawner_args(("-c", "cm"))
+
+
+def test_controller_parameters_come_from_the_manager_and_controller_keys() -> None:
+    from robomodel.control.config import load_controller_config
+
+    spec = NodeSpec(
+        "ros2", "controller_manager", "ros2_control_node", "my_ctrl_mgr",
+        parameters=(ParamSource(file=ARM / "config" / "position_controllers.yaml"),),
+    )  # fmt: skip
+    # the file says controller_manager:, so a manager named my_ctrl_mgr gets only /** params
+    assert "update_rate" not in node_parameters(spec)
+    spec = NodeSpec(
+        "ros2", "controller_manager", "ros2_control_node", None,
+        parameters=(ParamSource(file=ARM / "config" / "position_controllers.yaml"),),
+    )  # fmt: skip
+    config = load_controller_config("x", text=controller_config_text(spec, "controller_manager"))
+    assert config.update_rate_hz == 100
+    spec_of = {s.name: s for s in config.controllers}
+    assert spec_of["joint1_position_controller"].params["joints"] == ["joint1"]
+
+
+@dataclass(frozen=True)
+class Step:
+    """A launch step as the ROS 2 front-end gives them (duck-typed by the runner)."""
+
+    kind: str
+    node: NodeSpec | None = None
+    command: tuple[str, ...] = ()
+    message: str = ""
+    delay_s: float = 0.0
+    after_exit_of: int | None = None
+    after_start_of: int | None = None
+    location: Any = None
+
+
+def test_control_launch_runs_with_spawners_chained_by_on_process_exit() -> None:
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+    from robomodel.xacro import process_file
+
+    urdf = process_file(str(ARM / "urdf" / "two_link_arm.urdf.xacro")).toxml()
+    controllers = ParamSource(file=ARM / "config" / "position_controllers.yaml")
+    rsp = NodeSpec(
+        "ros2", "robot_state_publisher", "robot_state_publisher", None,
+        parameters=(ParamSource(values={"robot_description": urdf}),),
+    )  # fmt: skip
+    cm = NodeSpec(
+        "ros2", "controller_manager", "ros2_control_node", None, parameters=(controllers,)
+    )
+    jsb = NodeSpec("ros2", "controller_manager", "spawner", None, args=("joint_state_broadcaster",))
+    arm = NodeSpec(
+        "ros2", "controller_manager", "spawner", None,
+        args=("joint1_position_controller", "-c", "/controller_manager"),
+    )  # fmt: skip
+    steps = (
+        Step("node", cm),  # Jazzy: robot_description from robot_state_publisher
+        Step("node", rsp),
+        Step("node", jsb),
+        Step("node", arm, after_exit_of=2),
+        Step("log", message="all spawned", after_exit_of=3),
+    )
+    lines: list[str] = []
+    runner = LaunchRunner(
+        [s.node for s in steps if s.node is not None],
+        RunOptions(bus="inproc", headless=True, duration_s=4.0),
+        steps=steps,
+        log=lines.append,
+    )
+    runner.open_bus()
+    try:
+        runner.start_nodes()
+        runner.spin()
+        manager = runner.started[0].handle.system.manager
+        states = {c["name"]: c["state"] for c in manager.list_controllers()}
+        assert states == {
+            "joint_state_broadcaster": "active",
+            "joint1_position_controller": "active",
+        }
+    finally:
+        runner.shutdown()
+    text = "\n".join(lines)
+    assert text.index("Configured and activated joint_state_broadcaster") < text.index(
+        "started /spawner (controller_manager/spawner)", text.index("Configured and activated")
+    )
+    assert "[INFO] [launch.user]: all spawned" in text
