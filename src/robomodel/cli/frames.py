@@ -9,7 +9,7 @@ import time
 from typing import Any
 
 from robomodel._atomic import atomic_write_text
-from robomodel.cli._bus import add_bus_arguments, context_from_args
+from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
 from robomodel.cli._common import add_package_options
 from robomodel.cli._joints import (
     add_joint_arguments,
@@ -63,6 +63,9 @@ def _live_buffer(args: argparse.Namespace) -> BufferCore:
     print(f"Listening to tf data for {args.wait_time} seconds...", file=sys.stderr)
     with context_from_args(args) as context:
         listener = TransformListener(context.create_node("view_frames"))
+        # the listening time counts once this session has linked up with the others (a
+        # loaded machine can take seconds), as view_frames' node is up before it listens
+        wait_for_peers(context, timeout_s=5.0)
         with contextlib.suppress(KeyboardInterrupt):
             context.spin(duration_s=args.wait_time)
     return listener.buffer
