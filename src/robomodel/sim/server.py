@@ -15,6 +15,7 @@ in the state they had.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -96,6 +97,7 @@ class SimServer:
         self._rebuild()
         self._unregister = [
             context.create_service("/gazebo/spawn_urdf_model", self._spawn_urdf),
+            context.create_service("/spawn_entity", self._spawn_entity),
             context.create_service("/gazebo/spawn_sdf_model", self._spawn_sdf),
             context.create_service("/gazebo/delete_model", self._delete),
             context.create_service("/gazebo/get_world_properties", self._properties),
@@ -231,6 +233,16 @@ class SimServer:
             return None
         namespace = _namespace(built.extensions.plugin_namespace, entry.robot_namespace)
         config = ControllerConfig(namespace=namespace, format="ros1")
+        files = built.extensions.plugin_parameters
+        if files:  # gazebo_ros2_control: the manager's update_rate and controller types
+            from robomodel.control.config import load_controller_config
+
+            loaded = [load_controller_config(f) for f in files]
+            config = dataclasses.replace(
+                loaded[-1],
+                namespace=namespace,
+                controllers=tuple(c for part in loaded for c in part.controllers),
+            )
         system = sim.control(config, prefix=entry.placement.prefix, context=self.context, spawn=[])
         manager = system.manager
         if self.spec_source is not None:
@@ -313,6 +325,20 @@ class SimServer:
         if request.get("unpause") and self.bridge is not None:
             self.bridge.paused = False
         return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
+
+    def _spawn_entity(self, request: dict[str, Any]) -> dict[str, Any]:
+        """gazebo_ros (ROS 2) ``/spawn_entity``: ``name``, ``xml``, ``robot_namespace``,
+        ``initial_pose`` [x, y, z, R, P, Y]."""
+        renamed = {
+            "model_name": request.get("name", ""),
+            "model_xml": request.get("xml", ""),
+            "robot_namespace": request.get("robot_namespace", "/"),
+            "initial_pose": request.get("initial_pose", (0.0,) * 6),
+            "unpause": request.get("unpause", False),
+        }
+        reply = self._spawn_urdf(renamed)
+        message = str(reply["status_message"]).replace("SpawnModel: ", "SpawnEntity: ")
+        return {"success": reply["success"], "status_message": message}
 
     def _spawn_sdf(self, request: dict[str, Any]) -> dict[str, Any]:
         return {

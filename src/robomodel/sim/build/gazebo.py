@@ -69,6 +69,7 @@ class GazeboExtensions:
     static: bool = False
     ros_control_plugin: bool = False
     plugin_namespace: str = ""
+    plugin_parameters: tuple[str, ...] = ()  # gazebo_ros2_control's <parameters> YAML files
 
     def surface(self, link: str) -> LinkSurface:
         return self.links.get(link, _DEFAULT_SURFACE)
@@ -110,6 +111,7 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
     static = False
     plugin = False
     namespace = ""
+    parameters: list[str] = []
     for block in robot.gazebo:
         try:
             root = etree.fromstring(block.xml.encode())
@@ -125,8 +127,13 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
                 elif el.tag == "plugin" and (el.get("filename") or "") in _CONTROL_PLUGINS:
                     plugin = True
                     ns = el.find("robotNamespace")
+                    if ns is None:
+                        ns = el.find("ros/namespace")  # gazebo_ros2_control
                     if ns is not None and ns.text:
                         namespace = ns.text.strip()
+                    parameters += [
+                        (p.text or "").strip() for p in el.findall("parameters") if p.text
+                    ]
             continue
         if not robot.has_link(ref):
             if not robot.has_joint(ref):
@@ -157,4 +164,4 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
                 if spec is not None:
                     sensors.append(spec)
         links[ref] = surface
-    return GazeboExtensions(links, tuple(sensors), static, plugin, namespace)
+    return GazeboExtensions(links, tuple(sensors), static, plugin, namespace, tuple(parameters))
