@@ -2,12 +2,11 @@
 each with gazebo_ros's arguments (gzserver.launch.py, gzclient.launch.py); with robomodel the
 server is its simulator and the client its browser viewer."""
 
+from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
 from launch.conditions import IfCondition
 from launch.launch_description_sources import PythonLaunchDescriptionSource
 from launch.substitutions import LaunchConfiguration, ThisLaunchFileDir
-
-from launch import LaunchDescription
 
 
 def generate_launch_description():

@@ -1,9 +1,8 @@
 """gazebo_ros (ROS 2) gzclient.launch.py as robomodel provides it: the browser viewer."""
 
+from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
 from launch_ros.actions import Node
-
-from launch import LaunchDescription
 
 
 def generate_launch_description():

@@ -1,12 +1,11 @@
 """gazebo_ros (ROS 2) gzserver.launch.py as robomodel provides it: gazebo_ros's arguments; the
 node is robomodel's simulator (MuJoCo) on the world file."""
 
+from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
 from launch.conditions import IfCondition, UnlessCondition
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
-
-from launch import LaunchDescription
 
 
 def generate_launch_description():

@@ -2,11 +2,10 @@
 (-r to run, -s server only, -v N, the world file); with robomodel the simulator is MuJoCo and
 the GUI the browser viewer."""
 
+from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
-
-from launch import LaunchDescription
 
 
 def generate_launch_description():
