@@ -11,18 +11,16 @@ a node after ``respawn_delay``. Ctrl-C stops every node in reverse start order.
 
 from __future__ import annotations
 
-import os
 import signal
 import sys
-import tempfile
 import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
+from robomodel.launch.gui import LaunchGui
 from robomodel.launch.model import LaunchError, NodeSpec
 from robomodel.launch.nodes.base import (
     NodeContext,
@@ -80,13 +78,17 @@ class LaunchRunner:
     log: Callable[[str], None] = field(default=lambda text: _write_line(text))
     params: Any = None
     context: Any = None
-    viewer: Any = None
     started: list[_Started] = field(default_factory=list)
     skipped: list[NodeSpec] = field(default_factory=list)
     request: ViewerRequest = field(default_factory=ViewerRequest)
     hosted_params: bool = False
     _stop: threading.Event = field(default_factory=threading.Event)
     _scheduler: Any = None
+    gui: LaunchGui = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.gui = LaunchGui(self)
+
     _extra: dict[str, Any] = field(default_factory=dict)
 
     # -- set-up ---------------------------------------------------------------------------
@@ -147,8 +149,7 @@ class LaunchRunner:
 
             self._scheduler = StepScheduler(self.steps, self._start_step)
             self._scheduler.begin()
-            if self.request.requested_by and not self.options.headless:
-                self._start_viewer()
+            self.gui.start()
             return
         for spec in self.nodes:
             factory = factory_for(spec)
@@ -157,8 +158,7 @@ class LaunchRunner:
                 self.log(unsupported_message(spec))
                 continue
             self._start(spec)
-        if self.request.requested_by and not self.options.headless:
-            self._start_viewer()
+        self.gui.start()
 
     def _start_step(self, index: int, step: Any) -> Any:
         """Start one ROS 2 launch step; its handle (for OnProcessExit / OnProcessStart)."""
@@ -205,56 +205,6 @@ class LaunchRunner:
 
     def _prefixed(self, spec: NodeSpec) -> Callable[[str], None]:
         return lambda text: self.log(f"[{spec.fqn}] {text}")
-
-    def _start_viewer(self) -> None:
-        try:
-            from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-        except ImportError as exc:
-            self.log(f"[launch] no viewer: {exc}")
-            return
-        text = self.request.robot_description_text
-        if text is None:
-            param = self.request.robot_description_param or "/robot_description"
-            if self.params is None or not self.params.has(param):
-                self.log(f"[launch] the viewer has no robot to show: {param} is not set")
-                return
-            text = self.params.get(param)
-        handle, path = tempfile.mkstemp(prefix="robomodel_launch_", suffix=".urdf")
-        with os.fdopen(handle, "w", encoding="utf-8") as out:
-            out.write(str(text))
-        self._extra["viewer_file"] = path
-        settings = self._extra.get("rviz")
-        server = self._extra.get("sim_server")
-        scenery: tuple[Any, ...] = ()
-        if server is not None:  # gzclient draws the world's objects too
-            from robomodel.sim.scenery import scenery_of
-
-            scenery = scenery_of(server.world)
-        fixed_frame = settings.fixed_frame if settings is not None else None
-        options = ViewerOptions(
-            sources=(RobotSource(path),),
-            port=self.options.port,
-            bus=self.options.bus,
-            domain_id=self.options.domain_id,
-            external=not self.request.sliders,
-            state_publisher=False,  # the launch's robot_state_publisher publishes /tf
-            package_index=self.options.package_index or _default_index(),
-            tools=self.request.tools or True,
-            fixed_frame=fixed_frame or self.request.fixed_frame,
-            scenery=scenery,
-            frame_rate_hz=(settings.frame_rate_hz or 60.0) if settings is not None else 60.0,
-            rviz=settings,
-        )
-        self.viewer = Viewer(options)
-        self.viewer.start()
-        panel = getattr(self.viewer, "tools", None)
-        if self.request.steering_topic and panel is not None:
-            panel.steering.topic.value = self.request.steering_topic
-        self.log(f"[launch] viewer: serving {self.viewer.url}")
-        if self.options.open_browser:
-            import webbrowser
-
-            webbrowser.open(self.viewer.url)
 
     def spin(self) -> int:
         """Run until Ctrl-C, ``duration_s``, or a required node ending; the exit code."""
@@ -333,13 +283,9 @@ class LaunchRunner:
             end = time.monotonic() + _STOP_TIMEOUT_S
             while entry.handle.exit_code() is None and time.monotonic() < end:
                 self.context.spin_once(0.02)
-        if self.viewer is not None:
-            self.viewer.close()
+        self.gui.close()
         if self.context is not None:
             self.context.shutdown()
-        path = self._extra.get("viewer_file")
-        if path:
-            Path(path).unlink(missing_ok=True)
 
 
 _STOP_TIMEOUT_S = 5.0

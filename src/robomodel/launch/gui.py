@@ -1,0 +1,121 @@
+"""The launch's GUI: one browser viewer for every node whose role it plays (rviz, the
+joint_state_publisher GUIs, gzclient, the rqt tools), or, headless, a joint_state_publisher
+standing in for the sliders so that /tf stays complete."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+__all__ = ["LaunchGui"]
+
+
+class LaunchGui:
+    """Started by the runner after its nodes (see the module docstring)."""
+
+    def __init__(self, runner: Any) -> None:
+        self.runner = runner
+        self.viewer: Any = None
+
+    def start(self) -> None:
+        """The viewer; headless, the sliders' joint states come from a joint_state_publisher
+        (what the sliders publish before anyone moves them), so /tf is complete."""
+        if not self.runner.request.requested_by:
+            return
+        if not self.runner.options.headless:
+            self._start_viewer()
+        elif self.runner.request.sliders:
+            self._start_headless_sliders()
+
+    def _start_headless_sliders(self) -> None:
+        from robomodel.description import read_urdf
+        from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
+
+        text = self._description_text()
+        if text is None:
+            return
+        jsp = JointStatePublisher(
+            self.runner.context,
+            read_urdf(text).robot,
+            name="joint_state_publisher_gui",
+            namespace=self.runner.request.namespace,
+            remappings={"joint_states": self.runner.request.joint_states_topic},
+        )
+        self.runner._extra["headless_sliders"] = jsp
+        self.runner.log(
+            "[launch] headless: the sliders' joint states come from a joint_state_publisher"
+        )
+
+    def _description_text(self) -> str | None:
+        text: str | None = self.runner.request.robot_description_text
+        if text is not None:
+            return text
+        param = self.runner.request.robot_description_param or "/robot_description"
+        if self.runner.params is None or not self.runner.params.has(param):
+            self.runner.log(f"[launch] the viewer has no robot to show: {param} is not set")
+            return None
+        return str(self.runner.params.get(param))
+
+    def _start_viewer(self) -> None:
+        try:
+            from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+        except ImportError as exc:
+            self.runner.log(f"[launch] no viewer: {exc}")
+            return
+        text = self._description_text()
+        if text is None:
+            return
+        handle, path = tempfile.mkstemp(prefix="robomodel_launch_", suffix=".urdf")
+        with os.fdopen(handle, "w", encoding="utf-8") as out:
+            out.write(str(text))
+        self.runner._extra["viewer_file"] = path
+        settings = self.runner._extra.get("rviz")
+        server = self.runner._extra.get("sim_server")
+        scenery: tuple[Any, ...] = ()
+        if server is not None:  # gzclient draws the world's objects too
+            from robomodel.sim.scenery import scenery_of
+
+            scenery = scenery_of(server.world)
+        fixed_frame = settings.fixed_frame if settings is not None else None
+        options = ViewerOptions(
+            sources=(RobotSource(path),),
+            port=self.runner.options.port,
+            bus=self.runner.options.bus,
+            domain_id=self.runner.options.domain_id,
+            external=not self.runner.request.sliders,
+            state_publisher=False,  # the launch's robot_state_publisher publishes /tf
+            package_index=self.runner.options.package_index or _default_index(),
+            tools=self.runner.request.tools or True,
+            fixed_frame=fixed_frame or self.runner.request.fixed_frame,
+            scenery=scenery,
+            frame_rate_hz=(settings.frame_rate_hz or 60.0) if settings is not None else 60.0,
+            rviz=settings,
+        )
+        self.viewer = Viewer(options)
+        self.viewer.start()
+        panel = getattr(self.viewer, "tools", None)
+        if self.runner.request.steering_topic and panel is not None:
+            panel.steering.topic.value = self.runner.request.steering_topic
+        self.runner.log(f"[launch] viewer: serving {self.viewer.url}")
+        if self.runner.options.open_browser:
+            import webbrowser
+
+            webbrowser.open(self.viewer.url)
+
+    def close(self) -> None:
+        if self.viewer is not None:
+            self.viewer.close()
+        sliders = self.runner._extra.get("headless_sliders")
+        if sliders is not None:
+            sliders.node.destroy()
+        path = self.runner._extra.get("viewer_file")
+        if path:
+            Path(path).unlink(missing_ok=True)
+
+
+def _default_index() -> Any:
+    from robomodel.description.packages import PackageIndex
+
+    return PackageIndex()
