@@ -35,14 +35,21 @@ class ParameterValue:
 
     def __init__(self, value: Any, *, value_type: Any = None) -> None:
         if isinstance(value, (Substitution, str)) or (
-            isinstance(value, (list, tuple)) and any(isinstance(v, Substitution) for v in value)
+            isinstance(value, (list, tuple)) and value and all(isinstance(v, Substitution) for v in value)
         ):
             value = normalize_to_list_of_substitutions(value)
+        elif isinstance(value, (list, tuple)) and any(isinstance(v, list) for v in value):
+            value = [normalize_to_list_of_substitutions(v) for v in value]
         self.value = value
         self.value_type = value_type
 
     def evaluate(self, context: LaunchContext) -> Any:
         """The typed value."""
+        if isinstance(self.value, list) and self.value and isinstance(self.value[0], list):
+            items = [perform_substitutions(context, v) for v in self.value]
+            if self.value_type is str:
+                return items
+            return [yaml.safe_load(item) if item else "" for item in items]
         return perform_typed_substitution(context, self.value, self.value_type)
 
 
@@ -69,7 +76,7 @@ class ParameterFile:
 
     def evaluate(self, context: LaunchContext) -> tuple[Path, bool]:
         """The file's path (a substituted temporary copy with ``allow_substs``) and the flag."""
-        path = Path(perform_substitutions(context, self.param_file))
+        path = Path(os.path.abspath(perform_substitutions(context, self.param_file)))
         allow = self.allow_substs
         if not isinstance(allow, bool):
             from robomodel.launch.ros2.shim.substitutions import coerce_bool

@@ -118,7 +118,8 @@ class SetParameter(Action):
 
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
-        self.param_dict = normalize_dict({name: value})
+        key = tuple(normalize_to_list_of_substitutions(name))
+        self.param_dict = normalize_dict({key: value})
 
     def execute(self, context: LaunchContext) -> list[Any] | None:
         values = evaluate_dict(context, self.param_dict)
@@ -247,6 +248,12 @@ class Node(ExecuteProcess):
                 out.append(ParamSource(values=evaluate_dict(context, param)))
         return out
 
+    def _env(self, context: LaunchContext) -> tuple[tuple[str, str], ...]:
+        env = {k: v for k, v in context.env_changes.items() if v is not None}
+        for name, value in self.additional_env or []:
+            env[self._text(context, name) or ""] = self._text(context, value) or ""
+        return tuple(sorted(env.items()))
+
     def to_spec(self, context: LaunchContext) -> NodeSpec:
         """The node as plain data, substituted in ``context``."""
         remaps = list(context.launch_configurations.get("ros_remaps", []))
@@ -269,7 +276,7 @@ class Node(ExecuteProcess):
             args=tuple(self._text(context, a) or "" for a in self.arguments),
             remaps=tuple(remaps),
             parameters=tuple(self._parameters(context)),
-            env=tuple(sorted((k, v) for k, v in context.env_changes.items() if v is not None)),
+            env=self._env(context),
             respawn=_flag(context, options.get("respawn", False)),
             respawn_delay_s=_seconds(context, delay),
             output=self._text(context, self.output),
