@@ -14,7 +14,7 @@ from robomodel.launch.ros2 import format_print, format_show_args, load_launch
 from .conftest import CORPUS
 
 
-def _nodes(launch):  # noqa: ANN001, ANN202
+def _nodes(launch):
     return [(s.node.executable, s.node.name, s.node.namespace) for s in launch.steps if s.node]
 
 
@@ -29,7 +29,11 @@ def test_rrbot_spawner_chain(corpus_index: PackageIndex) -> None:
     assert launch.steps[3].node.args == ("joint_state_broadcaster",)
     controllers = CORPUS / "rrbot_demo/config/rrbot_controllers.yaml"
     assert launch.steps[0].node.parameters[0].file == controllers
-    assert launch.steps[2].node.args == ("forward_position_controller", "--param-file", str(controllers))
+    assert launch.steps[2].node.args == (
+        "forward_position_controller",
+        "--param-file",
+        str(controllers),
+    )
     description = launch.steps[1].node.parameters[0].values["robot_description"]
     assert '<robot name="rrbot">' in description and "joint1" in description
     assert str(launch.steps[0].location).endswith("rrbot.launch.py:43")
@@ -51,12 +55,18 @@ def test_urdf_tutorial_display(corpus_index: PackageIndex) -> None:
     gui selects joint_state_publisher_gui or joint_state_publisher; PythonExpression gates rviz."""
     path = CORPUS / "rrbot_demo/launch/display.launch.py"
     launch = load_launch(path, packages=corpus_index)
-    assert [n[0] for n in _nodes(launch)] == ["robot_state_publisher", "joint_state_publisher_gui", "rviz2"]
+    assert [n[0] for n in _nodes(launch)] == [
+        "robot_state_publisher",
+        "joint_state_publisher_gui",
+        "rviz2",
+    ]
     text = launch.steps[0].node.parameters[0].values["robot_description"]
     assert "\n" in text and 'name="arm_joint1"' in text
     off = load_launch(path, packages=corpus_index, args={"gui": "false"})
     assert [n[0] for n in _nodes(off)] == ["robot_state_publisher", "joint_state_publisher"]
-    with pytest.raises(LaunchError, match=r"Argument \"gui\" provided value \"maybe\" is not valid"):
+    with pytest.raises(
+        LaunchError, match=r"Argument \"gui\" provided value \"maybe\" is not valid"
+    ):
         load_launch(path, packages=corpus_index, args={"gui": "maybe"})
 
 
@@ -82,7 +92,10 @@ def test_seed_003_launch_files(
         assert [n.executable for n in nodes] == ["ros2_control_node", "robot_state_publisher"]
         assert len(launch.files) == 2
     if name == "control":
-        assert nodes[0].parameters[1].file == CORPUS / "ws_seed003/src/urdf_cpp_demo/config/position_controllers.yaml"
+        assert (
+            nodes[0].parameters[1].file
+            == CORPUS / "ws_seed003/src/urdf_cpp_demo/config/position_controllers.yaml"
+        )
         assert [n.name for n in nodes] == [None, None, None]
 
 
@@ -115,7 +128,9 @@ def _write(tmp_path: Path, text: str) -> Path:
 def test_unknown_api_name_is_located(tmp_path: Path) -> None:
     """A name robomodel lacks: LaunchError naming it at the importing line."""
     path = _write(tmp_path, "import os\nfrom launch.actions import FooBar\n")
-    with pytest.raises(LaunchError, match=r"t\.launch\.py:2: 'launch\.actions\.FooBar' is not supported"):
+    with pytest.raises(
+        LaunchError, match=r"t\.launch\.py:2: 'launch\.actions\.FooBar' is not supported"
+    ):
         load_launch(path)
     path = _write(tmp_path, "from launch.substitution import LaunchConfiguration\n")
     with pytest.raises(LaunchError, match=r":1: module 'launch\.substitution' is not supported"):
@@ -155,6 +170,12 @@ def test_print_tree(corpus_index: PackageIndex) -> None:
     launch = load_launch(CORPUS / "rrbot_demo/launch/rrbot.launch.py", packages=corpus_index)
     lines = format_print(launch).splitlines()
     assert lines[0] == "<launch.launch_description.LaunchDescription object at 0x0>"
-    assert lines[1] == "├── Action('<launch.actions.declare_launch_argument.DeclareLaunchArgument object at 0x0>')"
-    assert lines[5] == "├── RegisterEventHandler('<launch.event_handlers.on_process_exit.OnProcessExit object at 0x0>'):"
+    assert (
+        lines[1]
+        == "├── Action('<launch.actions.declare_launch_argument.DeclareLaunchArgument object at 0x0>')"
+    )
+    assert (
+        lines[5]
+        == "├── RegisterEventHandler('<launch.event_handlers.on_process_exit.OnProcessExit object at 0x0>'):"
+    )
     assert lines[-1].endswith("└── Action('<launch_ros.actions.node.Node object at 0x0>')")

@@ -32,14 +32,18 @@ class _Loaded(LaunchDescriptionSource):
         self.location = str(path)
         self.description = description
 
-    def get_launch_description(self, context: LaunchContext, include_location: Any = None) -> LaunchDescription:
+    def get_launch_description(
+        self, context: LaunchContext, include_location: Any = None
+    ) -> LaunchDescription:
         return self.description
 
     def try_get_launch_description_without_context(self) -> LaunchDescription | None:
         return self.description
 
 
-def _arguments(description: LaunchDescription, context: LaunchContext) -> tuple[DeclaredArgument, ...]:
+def _arguments(
+    description: LaunchDescription, context: LaunchContext
+) -> tuple[DeclaredArgument, ...]:
     out = []
     for action, conditional, _ in launch_arguments(description.entities):
         default: str | None = None
@@ -100,7 +104,9 @@ def load_launch(
         except Exception as exc:
             raise user_error(exc, SourceLocation(str(path))) from None
         lines = tuple(describe_entities(description.entities))
-        top = IncludeLaunchDescription(_Loaded(path, description), launch_arguments=list((args or {}).items()))
+        top = IncludeLaunchDescription(
+            _Loaded(path, description), launch_arguments=list((args or {}).items())
+        )
         visit_entities(context, [top])
         arguments = _arguments(description, context)
     return Ros2Launch(

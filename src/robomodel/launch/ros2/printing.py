@@ -66,7 +66,12 @@ def _indent(lines: list[str]) -> list[str]:
 def describe_entities(entities: Iterable[Any]) -> list[str]:
     """``format_entities`` of launch's introspector, before tree drawing."""
     from robomodel.launch.ros2.shim.action import Action
-    from robomodel.launch.ros2.shim.events import EmitEvent, ExecuteProcess, LogInfo, RegisterEventHandler
+    from robomodel.launch.ros2.shim.events import (
+        EmitEvent,
+        ExecuteProcess,
+        LogInfo,
+        RegisterEventHandler,
+    )
     from robomodel.launch.ros2.shim.ros import Node
 
     out: list[str] = []

@@ -6,10 +6,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.shim.action import LaunchDescription, user_error
 from robomodel.launch.ros2.shim.context import current_session
-from robomodel.errors import SourceLocation
 
 __all__ = ["load_python_description"]
 
@@ -36,7 +36,9 @@ def load_python_description(path: Path) -> LaunchDescription:
     except LaunchError:
         raise
     except OSError as exc:
-        raise LaunchError(f"cannot read launch file: {exc.strerror}", location=SourceLocation(filename)) from None
+        raise LaunchError(
+            f"cannot read launch file: {exc.strerror}", location=SourceLocation(filename)
+        ) from None
     except (Exception, SystemExit) as exc:
         raise user_error(exc, SourceLocation(filename)) from None
     if not isinstance(description, LaunchDescription):

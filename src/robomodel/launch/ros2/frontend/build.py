@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
 import shlex
+from collections.abc import Callable
 from typing import Any
 
 from robomodel.errors import SourceLocation
@@ -80,7 +80,9 @@ def _arg(e: Entity, kw: dict[str, Any]) -> Any:
 
 def _let(e: Entity, kw: dict[str, Any]) -> Any:
     e.check_attributes(("name", "value"))
-    return a.SetLaunchConfiguration(_subs(e.get("name", optional=False)), _subs(e.get("value", optional=False)), **kw)
+    return a.SetLaunchConfiguration(
+        _subs(e.get("name", optional=False)), _subs(e.get("value", optional=False)), **kw
+    )
 
 
 def _nested_params(params: list[Entity]) -> dict[Any, Any]:
@@ -112,7 +114,12 @@ def _parameters(params: list[Entity]) -> list[Any]:
             raise p.error("name and from attributes are mutually exclusive")
         if source is not None:
             allow = p.get("allow_substs")
-            out.append(ParameterFile(_subs(source), allow_substs=_subs(allow) if isinstance(allow, str) else bool(allow)))
+            out.append(
+                ParameterFile(
+                    _subs(source),
+                    allow_substs=_subs(allow) if isinstance(allow, str) else bool(allow),
+                )
+            )
         elif name is not None:
             if p.get("allow_substs") is not None:
                 raise p.error("'allow_substs' can only be used together with 'from' attribute")
@@ -123,7 +130,10 @@ def _parameters(params: list[Entity]) -> list[Any]:
 
 
 def _env(e: Entity) -> list[tuple[Any, Any]]:
-    return [(_subs(x.get("name", optional=False)), _subs(x.get("value", optional=False))) for x in e.entities("env")]
+    return [
+        (_subs(x.get("name", optional=False)), _subs(x.get("value", optional=False)))
+        for x in e.entities("env")
+    ]
 
 
 def _node(e: Entity, kw: dict[str, Any]) -> Any:
@@ -134,7 +144,11 @@ def _node(e: Entity, kw: dict[str, Any]) -> Any:
     args, ros_args = e.get("args"), e.get("ros_args")
     namespace = e.get("namespace") if e.get("namespace") is not None else e.get("ns")
     name = e.get("name") if e.get("name") is not None else e.get("node-name")
-    options = {k.replace("launch-prefix", "prefix"): _subs(e.get(k)) for k in ("respawn", "respawn_delay", "launch-prefix") if e.get(k) is not None}
+    options = {
+        k.replace("launch-prefix", "prefix"): _subs(e.get(k))
+        for k in ("respawn", "respawn_delay", "launch-prefix")
+        if e.get(k) is not None
+    }
     return ros.Node(
         package=_subs(e.get("pkg")),
         executable=_subs(e.get("exec", optional=False)),
@@ -143,7 +157,10 @@ def _node(e: Entity, kw: dict[str, Any]) -> Any:
         exec_name=None if e.get("exec_name") is None else _subs(e.get("exec_name")),
         arguments=_cmdline(str(args)) if args is not None else None,
         ros_arguments=_cmdline(str(ros_args)) if ros_args is not None else None,
-        remappings=[(_subs(r.get("from", optional=False)), _subs(r.get("to", optional=False))) for r in e.entities("remap")],
+        remappings=[
+            (_subs(r.get("from", optional=False)), _subs(r.get("to", optional=False)))
+            for r in e.entities("remap")
+        ],
         parameters=_parameters(e.entities("param")) or None,
         output=_subs(e.get("output") or "log"),
         additional_env=_env(e) or None,
@@ -162,14 +179,22 @@ def _executable(e: Entity, kw: dict[str, Any]) -> Any:
 
 def _include(e: Entity, kw: dict[str, Any]) -> Any:
     e.check_attributes(("file",))
-    arguments = [(_subs(x.get("name", optional=False)), _subs(x.get("value", optional=False))) for x in e.entities("arg")]
-    return a.IncludeLaunchDescription(_subs(e.get("file", optional=False)), launch_arguments=arguments, **kw)
+    arguments = [
+        (_subs(x.get("name", optional=False)), _subs(x.get("value", optional=False)))
+        for x in e.entities("arg")
+    ]
+    return a.IncludeLaunchDescription(
+        _subs(e.get("file", optional=False)), launch_arguments=arguments, **kw
+    )
 
 
 def _group(e: Entity, kw: dict[str, Any]) -> Any:
     e.check_attributes(("scoped", "forwarding", "ns", "namespace"))
     scoped, forwarding = e.get_bool("scoped"), e.get_bool("forwarding")
-    keeps = {tuple(_subs(k.get("name", optional=False))): _subs(k.get("value", optional=False)) for k in e.entities("keep")}
+    keeps = {
+        tuple(_subs(k.get("name", optional=False))): _subs(k.get("value", optional=False))
+        for k in e.entities("keep")
+    }
     children = build_actions([c for c in e.children if c.type_name != "keep"])
     ns = e.get("ns") if e.get("ns") is not None else e.get("namespace")
     if ns is not None:
@@ -182,7 +207,9 @@ def _group(e: Entity, kw: dict[str, Any]) -> Any:
 
 def _timer(e: Entity, kw: dict[str, Any]) -> Any:
     e.check_attributes(("period",))
-    return ev.TimerAction(period=_subs(e.get("period", optional=False)), actions=build_actions(e.children), **kw)
+    return ev.TimerAction(
+        period=_subs(e.get("period", optional=False)), actions=build_actions(e.children), **kw
+    )
 
 
 def _simple(e: Entity, kw: dict[str, Any]) -> Any:
@@ -198,16 +225,22 @@ def _simple(e: Entity, kw: dict[str, Any]) -> Any:
         return ros.PushRosNamespace(_subs(e.get("namespace", optional=False)), **kw)
     if t in ("set_parameter", "set-parameter"):
         e.check_attributes(("name", "value"))
-        return ros.SetParameter(_subs(e.get("name", optional=False)), _subs(e.get("value", optional=False)), **kw)
+        return ros.SetParameter(
+            _subs(e.get("name", optional=False)), _subs(e.get("value", optional=False)), **kw
+        )
     if t in ("set_remap", "set-remap"):
         e.check_attributes(("from", "to"))
-        return ros.SetRemap(_subs(e.get("from", optional=False)), _subs(e.get("to", optional=False)), **kw)
+        return ros.SetRemap(
+            _subs(e.get("from", optional=False)), _subs(e.get("to", optional=False)), **kw
+        )
     if t == "set_parameters_from_file":
         e.check_attributes(("filename",))
         return ros.SetParametersFromFile(_subs(e.get("filename", optional=False)), **kw)
     if t == "set_env":
         e.check_attributes(("name", "value"))
-        return a.SetEnvironmentVariable(_subs(e.get("name", optional=False)), _subs(e.get("value", optional=False)), **kw)
+        return a.SetEnvironmentVariable(
+            _subs(e.get("name", optional=False)), _subs(e.get("value", optional=False)), **kw
+        )
     if t == "unset_env":
         e.check_attributes(("name",))
         return a.UnsetEnvironmentVariable(_subs(e.get("name", optional=False)), **kw)
@@ -257,7 +290,9 @@ def build_actions(entities: list[Entity]) -> list[Any]:
 
 def _error(message: str, location: SourceLocation | None) -> LaunchError:
     session = current_session()
-    return LaunchError(message, location=location, include_stack=tuple(session.include_stack) if session else ())
+    return LaunchError(
+        message, location=location, include_stack=tuple(session.include_stack) if session else ()
+    )
 
 
 def build_description(entities: list[Entity], location: SourceLocation) -> LaunchDescription:
@@ -265,4 +300,3 @@ def build_description(entities: list[Entity], location: SourceLocation) -> Launc
     description = LaunchDescription(build_actions(entities))
     description.location = location
     return description
-

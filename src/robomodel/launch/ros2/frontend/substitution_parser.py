@@ -10,6 +10,7 @@ from collections.abc import Callable
 from typing import Any
 
 from robomodel.launch.ros2.shim import commands as c
+from robomodel.launch.ros2.shim import logic as b
 from robomodel.launch.ros2.shim import substitutions as s
 from robomodel.launch.ros2.shim.context import SubstitutionFailure
 
@@ -21,7 +22,9 @@ Args = list[list[s.Substitution]]
 def _n(name: str, args: Args, low: int, high: int) -> None:
     if not low <= len(args) <= high:
         expected = str(low) if low == high else f"{low} to {high}"
-        raise SubstitutionFailure(f"{name} substitution expects {expected} argument(s), got {len(args)}")
+        raise SubstitutionFailure(
+            f"{name} substitution expects {expected} argument(s), got {len(args)}"
+        )
 
 
 def _var(a: Args) -> s.Substitution:
@@ -73,7 +76,7 @@ def _none(cls: Callable[[], s.Substitution], name: str) -> Callable[[Args], s.Su
 
 def _if(a: Args) -> s.Substitution:
     _n("if", a, 1, 3)
-    return s.IfElseSubstitution(*a)
+    return b.IfElseSubstitution(*a)
 
 
 SUBSTITUTIONS: dict[str, Callable[[Args], s.Substitution]] = {
@@ -88,15 +91,15 @@ SUBSTITUTIONS: dict[str, Callable[[Args], s.Substitution]] = {
     "dirname": _none(s.ThisLaunchFileDir, "dirname"),
     "filename": _none(s.ThisLaunchFile, "filename"),
     "anon": _one(s.AnonName, "anon"),
-    "not": _one(s.NotSubstitution, "not"),
-    "and": _two(s.AndSubstitution, "and"),
-    "or": _two(s.OrSubstitution, "or"),
-    "equals": _two(s.EqualsSubstitution, "equals"),
-    "not-equals": _two(s.NotEqualsSubstitution, "not-equals"),
+    "not": _one(b.NotSubstitution, "not"),
+    "and": _two(b.AndSubstitution, "and"),
+    "or": _two(b.OrSubstitution, "or"),
+    "equals": _two(b.EqualsSubstitution, "equals"),
+    "not-equals": _two(b.NotEqualsSubstitution, "not-equals"),
     "file-content": _one(s.FileContent, "file-content"),
     "if": _if,
-    "all": lambda a: s.AllSubstitution(*a),
-    "any": lambda a: s.AnySubstitution(*a),
+    "all": lambda a: b.AllSubstitution(*a),
+    "any": lambda a: b.AnySubstitution(*a),
 }
 
 
@@ -134,7 +137,9 @@ class _Parser:
     def substitution(self) -> s.Substitution:
         self.pos += 2
         start = self.pos
-        while self.pos < len(self.text) and (self.text[self.pos].isalnum() or self.text[self.pos] in "-_"):
+        while self.pos < len(self.text) and (
+            self.text[self.pos].isalnum() or self.text[self.pos] in "-_"
+        ):
             self.pos += 1
         name = self.text[start : self.pos]
         if not name:

@@ -34,7 +34,11 @@ def load_xml_description(path: Path) -> LaunchDescription:
         root = etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
     except etree.XMLSyntaxError as exc:
         line, column = exc.position if exc.position else (None, None)
-        raise LaunchError(f"invalid XML: {exc.msg}", location=SourceLocation(str(path), line, column), include_stack=stack) from None
+        raise LaunchError(
+            f"invalid XML: {exc.msg}",
+            location=SourceLocation(str(path), line, column),
+            include_stack=stack,
+        ) from None
     entity = _entity(root, str(path))
     if entity.type_name != "launch":
         raise LaunchError(

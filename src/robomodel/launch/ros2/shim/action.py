@@ -129,7 +129,8 @@ def visit_entities(context: LaunchContext, entities: Iterable[Any]) -> None:
                 raise
             except RecursionError:
                 raise user_error(
-                    RuntimeError("launch files nested too deeply"), getattr(entity, "location", None)
+                    RuntimeError("launch files nested too deeply"),
+                    getattr(entity, "location", None),
                 ) from None
             except Exception as exc:
                 raise user_error(exc, getattr(entity, "location", None)) from None

@@ -52,13 +52,18 @@ class DeclareLaunchArgument(Action):
         )
         if choices is not None:
             if len(choices) == 0:
-                raise RuntimeError("Provided choices arg is empty. Use None to ignore the choice list.")
-            if default_value is not None and not isinstance(default_value, (Substitution, list)):
-                if default_value not in choices:
-                    raise RuntimeError(
-                        f'Provided default_value "{default_value}" is not in provided choices '
-                        f'"{choices}".'
-                    )
+                raise RuntimeError(
+                    "Provided choices arg is empty. Use None to ignore the choice list."
+                )
+            if (
+                default_value is not None
+                and not isinstance(default_value, (Substitution, list))
+                and default_value not in choices
+            ):
+                raise RuntimeError(
+                    f'Provided default_value "{default_value}" is not in provided choices '
+                    f'"{choices}".'
+                )
         if description is None:
             self.description = "no description given" if choices is None else f"One of: {choices}"
         else:
@@ -131,7 +136,9 @@ class PopLaunchConfigurations(Action):
 class ResetLaunchConfigurations(Action):
     """Clear the launch configurations, keeping the given ones (evaluated before clearing)."""
 
-    def __init__(self, launch_configurations: Mapping[Any, Any] | None = None, **kwargs: Any) -> None:
+    def __init__(
+        self, launch_configurations: Mapping[Any, Any] | None = None, **kwargs: Any
+    ) -> None:
         super().__init__(**kwargs)
         self.launch_configurations = launch_configurations
 
@@ -198,7 +205,12 @@ class AppendEnvironmentVariable(Action):
     """Append (or prepend) to an environment variable, with ``os.pathsep`` by default."""
 
     def __init__(
-        self, name: Any, value: Any, prepend: Any = False, separator: Any = os.pathsep, **kwargs: Any
+        self,
+        name: Any,
+        value: Any,
+        prepend: Any = False,
+        separator: Any = os.pathsep,
+        **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
@@ -214,7 +226,9 @@ class AppendEnvironmentVariable(Action):
         if not isinstance(prepend, bool):
             from robomodel.launch.ros2.shim.substitutions import coerce_bool
 
-            prepend = coerce_bool(perform_substitutions(context, normalize_to_list_of_substitutions(prepend)))
+            prepend = coerce_bool(
+                perform_substitutions(context, normalize_to_list_of_substitutions(prepend))
+            )
         old = context.environment.get(name)
         if old:
             value = value + sep + old if prepend else old + sep + value
@@ -308,7 +322,10 @@ class IncludeLaunchDescription(Action):
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
-        from robomodel.launch.ros2.shim.sources import AnyLaunchDescriptionSource, LaunchDescriptionSource
+        from robomodel.launch.ros2.shim.sources import (
+            AnyLaunchDescriptionSource,
+            LaunchDescriptionSource,
+        )
 
         if not isinstance(launch_description_source, LaunchDescriptionSource):
             launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
@@ -358,7 +375,9 @@ class IncludeLaunchDescription(Action):
                     f"(description: '{argument.description}'), given: [{', '.join(given)}]",
                     self.location if self.location is not None else argument.location,
                 )
-        sets: list[Any] = [SetLaunchConfiguration(name, value) for name, value in self.launch_arguments]
+        sets: list[Any] = [
+            SetLaunchConfiguration(name, value) for name, value in self.launch_arguments
+        ]
         return [*sets, _IncludeScope(self, description)]
 
 

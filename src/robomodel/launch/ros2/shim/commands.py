@@ -98,7 +98,9 @@ def run_xacro(argv: list[str], context: LaunchContext) -> str:
         doc = xacro.process_file(inputs[0], mappings, package_index=context.session.packages)
         return doc.toprettyxml(indent="  ")
     except RobomodelError as exc:
-        raise SubstitutionFailure(f"executed command failed. Command: {' '.join(argv)}\n{exc}") from None
+        raise SubstitutionFailure(
+            f"executed command failed. Command: {' '.join(argv)}\n{exc}"
+        ) from None
 
 
 class Command(Substitution):
@@ -171,7 +173,11 @@ class PythonExpression(Substitution):
 
     def __init__(self, expression: Any, python_modules: Any = ("math",)) -> None:
         self.expression = normalize_to_list_of_substitutions(expression)
-        self.python_modules = normalize_to_list_of_substitutions(list(python_modules) if not isinstance(python_modules, (str, Substitution)) else python_modules)
+        self.python_modules = normalize_to_list_of_substitutions(
+            list(python_modules)
+            if not isinstance(python_modules, (str, Substitution))
+            else python_modules
+        )
 
     def describe(self) -> str:
         modules = ", ".join(sub.describe() for sub in self.python_modules)
@@ -202,9 +208,13 @@ class PythonExpression(Substitution):
         except ExpressionError as exc:
             raise SubstitutionFailure(f"PythonExpression '{text}': {exc}") from None
         except SyntaxError as exc:
-            raise SubstitutionFailure(f"PythonExpression '{text}': invalid syntax ({exc.msg})") from None
+            raise SubstitutionFailure(
+                f"PythonExpression '{text}': invalid syntax ({exc.msg})"
+            ) from None
         except Exception as exc:  # the expression's own error (ZeroDivisionError, TypeError, ...)
-            raise SubstitutionFailure(f"PythonExpression '{text}': {type(exc).__name__}: {exc}") from None
+            raise SubstitutionFailure(
+                f"PythonExpression '{text}': {type(exc).__name__}: {exc}"
+            ) from None
         return str(value)
 
 

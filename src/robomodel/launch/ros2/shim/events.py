@@ -38,7 +38,11 @@ __all__ = [
 
 
 def record_step(
-    context: LaunchContext, action: Any, kind: StepKind, location: SourceLocation | None, **fields: Any
+    context: LaunchContext,
+    action: Any,
+    kind: StepKind,
+    location: SourceLocation | None,
+    **fields: Any,
 ) -> int:
     """Append a step for ``action`` with the current trigger; run handlers waiting for it."""
     session = context.session
@@ -182,7 +186,9 @@ class TimerAction(Action):
     ) -> None:
         super().__init__(**kwargs)
         self.period = (
-            float(period) if isinstance(period, (int, float)) else normalize_to_list_of_substitutions(period)
+            float(period)
+            if isinstance(period, (int, float))
+            else normalize_to_list_of_substitutions(period)
         )
         self.actions = list(actions)
 
@@ -214,7 +220,9 @@ class LogInfo(Action):
         self.msg = normalize_to_list_of_substitutions(msg)
 
     def execute(self, context: LaunchContext) -> list[Any] | None:
-        record_step(context, self, "log", self.location, message=perform_substitutions(context, self.msg))
+        record_step(
+            context, self, "log", self.location, message=perform_substitutions(context, self.msg)
+        )
         return None
 
 

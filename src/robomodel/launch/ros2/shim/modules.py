@@ -13,9 +13,10 @@ def _pick(module: Any, *names: str) -> dict[str, Any]:
 
 
 def _substitutions() -> dict[str, Any]:
-    from robomodel.launch.ros2.shim import commands, substitutions
+    from robomodel.launch.ros2.shim import commands, logic, substitutions
 
     out = _pick(substitutions, *substitutions.__all__)
+    out.update(_pick(logic, *logic.__all__))
     out.update(_pick(commands, "Command", "PythonExpression"))
     return out
 
@@ -25,8 +26,15 @@ def _actions() -> dict[str, Any]:
 
     out = _pick(actions, *actions.__all__)
     out.update(
-        _pick(events, "EmitEvent", "ExecuteProcess", "LogInfo", "RegisterEventHandler",
-              "Shutdown", "TimerAction")  # fmt: skip
+        _pick(
+            events,
+            "EmitEvent",
+            "ExecuteProcess",
+            "LogInfo",
+            "RegisterEventHandler",
+            "Shutdown",
+            "TimerAction",
+        )
     )
     out["ExecuteLocal"] = events.ExecuteProcess
     return out
@@ -92,7 +100,9 @@ def _ros_actions() -> dict[str, Any]:
 def _ros_substitutions() -> dict[str, Any]:
     from robomodel.launch.ros2.shim import commands
 
-    return _pick(commands, "FindPackage", "FindPackagePrefix", "FindPackageShare", "ExecutableInPackage")
+    return _pick(
+        commands, "FindPackage", "FindPackagePrefix", "FindPackageShare", "ExecutableInPackage"
+    )
 
 
 def _parameter_descriptions() -> dict[str, Any]:
@@ -134,13 +144,19 @@ MODULES: dict[str, Callable[[], dict[str, Any]]] = {
     "launch.events.process": _process_events,
     "launch.launch_description_sources": _sources,
     "launch.some_substitutions_type": lambda: {"SomeSubstitutionsType": Any},
-    "launch.launch_context": lambda: _pick(__import__("robomodel.launch.ros2.shim.context", fromlist=["x"]), "LaunchContext"),
+    "launch.launch_context": lambda: _pick(
+        __import__("robomodel.launch.ros2.shim.context", fromlist=["x"]), "LaunchContext"
+    ),
     "launch.launch_description": lambda: {"LaunchDescription": _launch()["LaunchDescription"]},
     "launch.utilities": _utilities,
     "launch_xml": _empty,
-    "launch_xml.launch_description_sources": lambda: {"XMLLaunchDescriptionSource": _sources()["XMLLaunchDescriptionSource"]},
+    "launch_xml.launch_description_sources": lambda: {
+        "XMLLaunchDescriptionSource": _sources()["XMLLaunchDescriptionSource"]
+    },
     "launch_yaml": _empty,
-    "launch_yaml.launch_description_sources": lambda: {"YAMLLaunchDescriptionSource": _sources()["YAMLLaunchDescriptionSource"]},
+    "launch_yaml.launch_description_sources": lambda: {
+        "YAMLLaunchDescriptionSource": _sources()["YAMLLaunchDescriptionSource"]
+    },
     "launch_ros": _empty,
     "launch_ros.actions": _ros_actions,
     "launch_ros.substitutions": _ros_substitutions,

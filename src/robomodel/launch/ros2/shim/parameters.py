@@ -35,7 +35,9 @@ class ParameterValue:
 
     def __init__(self, value: Any, *, value_type: Any = None) -> None:
         if isinstance(value, (Substitution, str)) or (
-            isinstance(value, (list, tuple)) and value and all(isinstance(v, Substitution) for v in value)
+            isinstance(value, (list, tuple))
+            and value
+            and all(isinstance(v, Substitution) for v in value)
         ):
             value = normalize_to_list_of_substitutions(value)
         elif isinstance(value, (list, tuple)) and any(isinstance(v, list) for v in value):
@@ -81,20 +83,26 @@ class ParameterFile:
         if not isinstance(allow, bool):
             from robomodel.launch.ros2.shim.substitutions import coerce_bool
 
-            allow = coerce_bool(perform_substitutions(context, normalize_to_list_of_substitutions(allow)))
+            allow = coerce_bool(
+                perform_substitutions(context, normalize_to_list_of_substitutions(allow))
+            )
         if not allow:
             return path, False
         try:
             text = path.read_text(encoding="utf-8")
         except OSError as exc:
-            raise SubstitutionFailure(f"cannot read parameter file '{path}': {exc.strerror}") from None
+            raise SubstitutionFailure(
+                f"cannot read parameter file '{path}': {exc.strerror}"
+            ) from None
         from robomodel.launch.ros2.frontend.substitution_parser import parse_substitution
 
         parsed = perform_substitutions(context, parse_substitution(text))
         try:
             yaml.safe_load(parsed)
         except yaml.YAMLError:
-            raise SubstitutionFailure("The substituted parameter file is not a valid yaml file") from None
+            raise SubstitutionFailure(
+                "The substituted parameter file is not a valid yaml file"
+            ) from None
         handle, name = tempfile.mkstemp(prefix="launch_params_", suffix=".yaml")
         with os.fdopen(handle, "w", encoding="utf-8") as f:
             f.write(parsed)
@@ -130,7 +138,9 @@ def _normalize_list(value: Sequence[Any]) -> Any:
     return tuple(out)
 
 
-def normalize_dict(parameters: Mapping[Any, Any], prefix: list[Substitution] | None = None) -> dict[tuple[Substitution, ...], Any]:
+def normalize_dict(
+    parameters: Mapping[Any, Any], prefix: list[Substitution] | None = None
+) -> dict[tuple[Substitution, ...], Any]:
     """``normalize_parameter_dict``: keys become substitution tuples, nested dicts flatten."""
     if not isinstance(parameters, Mapping):
         raise TypeError("expected dict")
@@ -189,7 +199,9 @@ def _yaml_value(name: str, text: str) -> Any:
     )
 
 
-def evaluate_dict(context: LaunchContext, parameters: Mapping[tuple[Any, ...], Any]) -> dict[str, Any]:
+def evaluate_dict(
+    context: LaunchContext, parameters: Mapping[tuple[Any, ...], Any]
+) -> dict[str, Any]:
     """``evaluate_parameter_dict``: substitute, then YAML-parse substituted text."""
     out: dict[str, Any] = {}
     for key, value in parameters.items():

@@ -65,8 +65,10 @@ def _validate_namespace(ns: str) -> None:
     if ns == "/":
         return
     for token in ns.strip("/").split("/"):
-        if not token or not (token[0].isalpha() or token[0] == "_") or not all(
-            c.isalnum() or c == "_" for c in token
+        if (
+            not token
+            or not (token[0].isalpha() or token[0] == "_")
+            or not all(c.isalnum() or c == "_" for c in token)
         ):
             raise SubstitutionFailure(f"invalid namespace '{ns}'")
 
@@ -148,7 +150,9 @@ def _normalize_remaps(remappings: Iterable[Any]) -> list[tuple[list[Any], list[A
     out = []
     for rule in remappings:
         src, dst = rule
-        out.append((normalize_to_list_of_substitutions(src), normalize_to_list_of_substitutions(dst)))
+        out.append(
+            (normalize_to_list_of_substitutions(src), normalize_to_list_of_substitutions(dst))
+        )
     return out
 
 
@@ -257,12 +261,19 @@ class Node(ExecuteProcess):
     def to_spec(self, context: LaunchContext) -> NodeSpec:
         """The node as plain data, substituted in ``context``."""
         remaps = list(context.launch_configurations.get("ros_remaps", []))
-        remaps += [(perform_substitutions(context, s), perform_substitutions(context, d)) for s, d in self.remappings]
+        remaps += [
+            (perform_substitutions(context, s), perform_substitutions(context, d))
+            for s, d in self.remappings
+        ]
         options = self.node_options
         extra: dict[str, Any] = {}
         for key in ("emulate_tty", "sigterm_timeout", "sigkill_timeout", "respawn_max_retries"):
             if key in options:
-                extra[key] = options[key] if not isinstance(options[key], (list, str)) else self._text(context, options[key])
+                extra[key] = (
+                    options[key]
+                    if not isinstance(options[key], (list, str))
+                    else self._text(context, options[key])
+                )
         exec_name = self._text(context, self.name)
         if exec_name is not None:
             extra["exec_name"] = exec_name
@@ -290,4 +301,3 @@ class Node(ExecuteProcess):
         spec = self.to_spec(context)
         record_step(context, self, "node", self.location, node=spec)
         return None
-

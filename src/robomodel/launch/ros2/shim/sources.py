@@ -34,7 +34,15 @@ def load_description_file(path: Path, kind: str, *, record: bool = True) -> Laun
     session = current_session()
     if kind == "any":
         suffix = path.suffix.lower()
-        kind = "python" if suffix in _PYTHON else "xml" if suffix in _XML else "yaml" if suffix in _YAML else "any"
+        kind = (
+            "python"
+            if suffix in _PYTHON
+            else "xml"
+            if suffix in _XML
+            else "yaml"
+            if suffix in _YAML
+            else "any"
+        )
         if kind == "any":
             raise SubstitutionFailure(
                 f"cannot tell the launch file type of '{path}' (expected .py, .xml or .yaml)"

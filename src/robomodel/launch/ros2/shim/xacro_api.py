@@ -51,4 +51,4 @@ def process_doc(doc: minidom.Document, mappings: Any = None, **kwargs: Any) -> N
     for child in list(doc.childNodes):
         doc.removeChild(child)
     for child in list(expanded.childNodes):
-        doc.appendChild(doc.importNode(child, True))
+        doc.appendChild(doc.importNode(child, True))  # type: ignore[type-var]
