@@ -1,0 +1,413 @@
+"""``launch.actions``: the actions of the ``launch`` package."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any
+
+from robomodel.launch.ros2.shim.action import Action, LaunchDescription
+from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure
+from robomodel.launch.ros2.shim.substitutions import (
+    Substitution,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+__all__ = [
+    "AppendEnvironmentVariable",
+    "DeclareLaunchArgument",
+    "GroupAction",
+    "IncludeLaunchDescription",
+    "OpaqueFunction",
+    "PopEnvironment",
+    "PopLaunchConfigurations",
+    "PushEnvironment",
+    "PushLaunchConfigurations",
+    "ResetEnvironment",
+    "ResetLaunchConfigurations",
+    "SetEnvironmentVariable",
+    "SetLaunchConfiguration",
+    "UnsetEnvironmentVariable",
+    "UnsetLaunchConfiguration",
+]
+
+
+class DeclareLaunchArgument(Action):
+    """Declare an argument: set its default if not given, check its choices."""
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        default_value: Any = None,
+        description: str | None = None,
+        choices: list[str] | None = None,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.name = name
+        self.default_value = (
+            None if default_value is None else normalize_to_list_of_substitutions(default_value)
+        )
+        if choices is not None:
+            if len(choices) == 0:
+                raise RuntimeError(
+                    "Provided choices arg is empty. Use None to ignore the choice list."
+                )
+            if (
+                default_value is not None
+                and not isinstance(default_value, (Substitution, list))
+                and default_value not in choices
+            ):
+                raise RuntimeError(
+                    f'Provided default_value "{default_value}" is not in provided choices '
+                    f'"{choices}".'
+                )
+        if description is None:
+            self.description = "no description given" if choices is None else f"One of: {choices}"
+        else:
+            self.description = description
+            if choices is not None:
+                if not self.description.endswith("."):
+                    self.description += "."
+                self.description += f" Valid choices are: {choices}"
+        self.choices = choices
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        if self.name not in context.launch_configurations:
+            if self.default_value is None:
+                raise RuntimeError(f'Required launch argument "{self.name}" was not provided.')
+            context.launch_configurations[self.name] = perform_substitutions(
+                context, self.default_value
+            )
+        if self.choices is not None:
+            value = context.launch_configurations[self.name]
+            if value not in self.choices:
+                raise RuntimeError(
+                    f'Argument "{self.name}" provided value "{value}" is not valid. '
+                    f"Valid options are: {self.choices}"
+                )
+        return None
+
+
+class SetLaunchConfiguration(Action):
+    """Set a launch configuration (``<let>``)."""
+
+    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        name = perform_substitutions(context, self.name)
+        context.launch_configurations[name] = perform_substitutions(context, self.value)
+        return None
+
+
+class UnsetLaunchConfiguration(Action):
+    """Remove a launch configuration."""
+
+    def __init__(self, name: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context.launch_configurations.pop(perform_substitutions(context, self.name), None)
+        return None
+
+
+class PushLaunchConfigurations(Action):
+    """Start a launch-configuration scope."""
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context._push_launch_configurations()
+        return None
+
+
+class PopLaunchConfigurations(Action):
+    """End a launch-configuration scope."""
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context._pop_launch_configurations()
+        return None
+
+
+class ResetLaunchConfigurations(Action):
+    """Clear the launch configurations, keeping the given ones (evaluated before clearing)."""
+
+    def __init__(
+        self, launch_configurations: Mapping[Any, Any] | None = None, **kwargs: Any
+    ) -> None:
+        super().__init__(**kwargs)
+        self.launch_configurations = launch_configurations
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        keep: dict[str, Any] = {}
+        for name, value in (self.launch_configurations or {}).items():
+            key = perform_substitutions(context, normalize_to_list_of_substitutions(name))
+            keep[key] = perform_substitutions(context, normalize_to_list_of_substitutions(value))
+        context._reset_launch_configurations(keep)
+        return None
+
+
+class PushEnvironment(Action):
+    """Start an environment scope."""
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context._push_environment()
+        return None
+
+
+class PopEnvironment(Action):
+    """End an environment scope."""
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context._pop_environment()
+        return None
+
+
+class ResetEnvironment(Action):
+    """Clear the environment."""
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context._reset_environment()
+        return None
+
+
+class SetEnvironmentVariable(Action):
+    """Set an environment variable for what follows (nodes, commands, package lookups)."""
+
+    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        name = perform_substitutions(context, self.name)
+        context.set_env(name, perform_substitutions(context, self.value))
+        return None
+
+
+class UnsetEnvironmentVariable(Action):
+    """Unset an environment variable."""
+
+    def __init__(self, name: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        context.set_env(perform_substitutions(context, self.name), None)
+        return None
+
+
+class AppendEnvironmentVariable(Action):
+    """Append (or prepend) to an environment variable, with ``os.pathsep`` by default."""
+
+    def __init__(
+        self,
+        name: Any,
+        value: Any,
+        prepend: Any = False,
+        separator: Any = os.pathsep,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+        self.prepend = prepend
+        self.separator = normalize_to_list_of_substitutions(separator)
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        name = perform_substitutions(context, self.name)
+        value = perform_substitutions(context, self.value)
+        sep = perform_substitutions(context, self.separator)
+        prepend = self.prepend
+        if not isinstance(prepend, bool):
+            from robomodel.launch.ros2.shim.substitutions import coerce_bool
+
+            prepend = coerce_bool(
+                perform_substitutions(context, normalize_to_list_of_substitutions(prepend))
+            )
+        old = context.environment.get(name)
+        if old:
+            value = value + sep + old if prepend else old + sep + value
+        context.set_env(name, value)
+        return None
+
+
+class GroupAction(Action):
+    """Actions in a scope (``scoped``), optionally without the outer configurations."""
+
+    def __init__(
+        self,
+        actions: Iterable[Any],
+        *,
+        scoped: bool = True,
+        forwarding: bool = True,
+        launch_configurations: Mapping[Any, Any] | None = None,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.actions = actions
+        self.scoped = scoped
+        self.forwarding = forwarding
+        self.launch_configurations = dict(launch_configurations or {})
+        self._returned: list[Any] | None = None
+
+    def get_sub_entities(self) -> list[Any]:
+        """As upstream: Push/Set/.../Pop around the actions when scoped."""
+        if self._returned is None:
+            actions = list(self.actions)
+            sets = [SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()]
+            if self.scoped and self.forwarding:
+                actions = [
+                    PushLaunchConfigurations(), PushEnvironment(), *sets, *actions,
+                    PopEnvironment(), PopLaunchConfigurations(),
+                ]  # fmt: skip
+            elif self.scoped:
+                actions = [
+                    PushLaunchConfigurations(), PushEnvironment(), ResetEnvironment(),
+                    ResetLaunchConfigurations(self.launch_configurations), *actions,
+                    PopEnvironment(), PopLaunchConfigurations(),
+                ]  # fmt: skip
+            else:
+                actions = [*sets, *actions]
+            self._returned = actions
+        return self._returned
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        return self.get_sub_entities()
+
+
+class OpaqueFunction(Action):
+    """Call ``function(context, *args, **kwargs)`` and visit the entities it returns."""
+
+    def __init__(
+        self,
+        *,
+        function: Callable[..., Any],
+        args: Iterable[Any] | None = None,
+        kwargs: Mapping[str, Any] | None = None,
+        **left_over: Any,
+    ) -> None:
+        super().__init__(**left_over)
+        if not callable(function):
+            raise TypeError("OpaqueFunction's function must be callable")
+        self.function = function
+        self.args = list(args or [])
+        self.kwargs = dict(kwargs or {})
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        result = self.function(context, *self.args, **self.kwargs)
+        if result is None:
+            return None
+        return list(result)
+
+
+class IncludeLaunchDescription(Action):
+    """Include another launch file; its arguments become launch configurations (not scoped).
+
+    As upstream (Humble and Jazzy alike), the include sets each ``launch_arguments`` item with
+    ``SetLaunchConfiguration`` in the current scope; wrap it in a ``GroupAction`` to scope it.
+    A required argument of the included file (no default, not conditional) must be among the
+    names given in ``launch_arguments``.
+    """
+
+    def __init__(
+        self,
+        launch_description_source: Any,
+        *,
+        launch_arguments: Iterable[tuple[Any, Any]] | None = None,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        from robomodel.launch.ros2.shim.sources import (
+            AnyLaunchDescriptionSource,
+            LaunchDescriptionSource,
+        )
+
+        if not isinstance(launch_description_source, LaunchDescriptionSource):
+            launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
+        self.launch_description_source = launch_description_source
+        self.launch_arguments = tuple(launch_arguments or ())
+
+    def get_sub_entities(self) -> list[Any]:
+        description = self.launch_description_source.try_get_launch_description_without_context()
+        return [description] if description is not None else []
+
+    def _argument_names_without_context(self) -> list[str]:
+        try:
+            context = LaunchContext()
+            return [
+                perform_substitutions(context, normalize_to_list_of_substitutions(name))
+                for name, _ in self.launch_arguments
+            ]
+        except Exception:
+            return []
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        from robomodel.launch.ros2.shim.static import launch_arguments
+
+        session = context.session
+        source = self.launch_description_source
+        description = source.get_launch_description(context, self.location)
+        location = source.location
+        context.extend_locals(
+            {
+                "current_launch_file_path": os.path.abspath(location),
+                "current_launch_file_directory": os.path.dirname(os.path.abspath(location)),
+            }
+        )
+        names = [
+            perform_substitutions(context, normalize_to_list_of_substitutions(name))
+            for name, _ in self.launch_arguments
+        ]
+        for argument, conditional, chain in launch_arguments(description.entities):
+            if conditional or argument.default_value is not None:
+                continue
+            given = list(names)
+            for include in chain or []:
+                given.extend(include._argument_names_without_context())
+            if argument.name not in given:
+                raise session.error(
+                    f"Included launch description missing required argument '{argument.name}' "
+                    f"(description: '{argument.description}'), given: [{', '.join(given)}]",
+                    self.location if self.location is not None else argument.location,
+                )
+        sets: list[Any] = [
+            SetLaunchConfiguration(name, value) for name, value in self.launch_arguments
+        ]
+        return [*sets, _IncludeScope(self, description)]
+
+
+class _IncludeScope(Action):
+    """Visits an included description with its include location on the error stack."""
+
+    def __init__(self, include: IncludeLaunchDescription, description: LaunchDescription) -> None:
+        super().__init__()
+        self.include = include
+        self.description = description
+
+    def execute(self, context: LaunchContext) -> list[Any] | None:
+        from robomodel.launch.ros2.shim.action import visit_entities
+
+        session = context.session
+        pushed = self.include.location is not None
+        if pushed:
+            session.include_stack.append(self.include.location)  # type: ignore[arg-type]
+        try:
+            visit_entities(context, [self.description])
+        finally:
+            if pushed:
+                session.include_stack.pop()
+        return None
+
+
+def unsupported(name: str) -> type:
+    """A class that fails, when constructed, with a clear "not supported" message."""
+
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        raise SubstitutionFailure(f"{name} is not supported by robomodel launch")
+
+    return type(name.rsplit(".", 1)[-1], (Action,), {"__init__": __init__})
