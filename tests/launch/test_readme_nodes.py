@@ -8,9 +8,7 @@ from robomodel.launch.nodes import supported
 from tests.conftest import ROOT
 
 
-def test_readme_node_table_matches_the_registry() -> None:
-    text = (ROOT / "README.md").read_text()
-    section = text.split("## Launch files: `robomodel launch`", 1)[1].split("\n## ", 1)[0]
+def _listed(section: str) -> set[tuple[str, str]]:
     listed: set[tuple[str, str]] = set()
     for row in re.findall(r"^\| `([^|]+)` \| ([^|]+) \|", section, flags=re.M):
         packages = re.findall(r"`([^`]+)`", "`" + row[0] + "`")
@@ -18,5 +16,16 @@ def test_readme_node_table_matches_the_registry() -> None:
         for package in packages:
             for kind in types or ["same"]:
                 listed.add((package, package if kind == "same" else kind))
-    registered = {(package, executable) for package, executable, _ in supported("ros1")}
-    assert registered == listed
+    return listed
+
+
+def test_readme_node_tables_match_the_registry() -> None:
+    text = (ROOT / "README.md").read_text()
+    section = text.split("## Launch files: `robomodel launch`", 1)[1].split("\n## ", 1)[0]
+    ros1, ros2 = section.split("### ROS 2 launch files", 1)
+    for dialect, part in (
+        ("ros1", ros1),
+        ("ros2", ros2.split("#### The ROS 2 launch language")[0]),
+    ):
+        registered = {(package, executable) for package, executable, _ in supported(dialect)}
+        assert registered == _listed(part), dialect

@@ -1,9 +1,11 @@
-"""``robomodel launch``: run a ROS 1 launch file (roslaunch) with robomodel's components.
+"""``robomodel launch``: run a ROS 1 (roslaunch) or ROS 2 (``ros2 launch``) launch file with
+robomodel's components.
 
 ``robomodel launch PKG FILE [name:=value ...]`` finds FILE inside package PKG, as roslaunch
-does; ``robomodel launch PATH [name:=value ...]`` takes the file itself. ``--dump-params``,
-``--nodes``, ``--args NODE``, ``--files`` and ``--ros-args`` print what roslaunch's flags of
-the same names print, and start nothing.
+and ``ros2 launch`` do; ``robomodel launch PATH [name:=value ...]`` takes the file itself.
+ROS 1: ``--dump-params``, ``--nodes``, ``--args NODE``, ``--files`` and ``--ros-args`` print
+what roslaunch's flags of the same names print. ROS 2 (``.launch.py``, ROS 2 XML, ``.yaml``):
+``--show-args`` and ``--print``/``-p`` as ``ros2 launch``. None of these starts anything.
 """
 
 from __future__ import annotations
@@ -16,15 +18,16 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 
-__all__ = ["register", "run"]
+__all__ = ["dialect_of", "register", "run"]
 
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "launch",
-        help="run a ROS 1 launch file (roslaunch) with robomodel's nodes",
+        help="run a ROS 1 or ROS 2 launch file with robomodel's nodes",
         description=(
-            "Run a ROS 1 launch file as roslaunch does, each node mapped onto a robomodel "
+            "Run a ROS 1 launch file as roslaunch does, or a ROS 2 one (.launch.py, XML, YAML) "
+            "as ros2 launch does, each node mapped onto a robomodel "
             "component (robot_state_publisher, joint_state_publisher(_gui), rviz -> the browser "
             "viewer, gazebo_ros gzserver/spawn_model -> the simulator, controller_manager "
             "spawner, static_transform_publisher, rqt tools). Arguments: PKG FILE or PATH, then "
@@ -46,6 +49,14 @@ def register(subparsers: Any) -> None:
     show.add_argument("--args", metavar="NODE", help="print the command line of NODE")
     show.add_argument("--files", action="store_true", help="print the launch files loaded")
     show.add_argument("--ros-args", action="store_true", help="print the launch file's args")
+    show.add_argument(
+        "-s", "--show-args", "--show-arguments", action="store_true", dest="show_args",
+        help="ROS 2: show the launch file's arguments (ros2 launch --show-args)",
+    )  # fmt: skip
+    show.add_argument(
+        "-p", "--print", "--print-description", action="store_true", dest="print_description",
+        help="ROS 2: print the launch description (ros2 launch --print)",
+    )  # fmt: skip
     parser.add_argument("--headless", action="store_true", help="run no viewer")
     parser.add_argument(
         "--no-browser", action="store_true", help="serve the viewer, open no browser"
@@ -118,12 +129,12 @@ def run(args: argparse.Namespace) -> int:
     if len(files) == 1 and Path(files[0]).exists():
         user_index = user_index.with_workspace_of(files[0])
     path = _resolve_file(files, launch_package_index(user_index))
-    if path.name.endswith((".launch.py", ".launch.yaml", ".launch.yml")) or (
-        path.name.endswith(".launch.xml") and b"<let" in path.read_bytes()
-    ):
+    if dialect_of(path) == "ros2":
+        return _run_ros2(path, launch_args, args, user_index)
+    if args.show_args or args.print_description:
         raise RobomodelError(
-            f"{path}: ROS 2 launch files are not supported yet; robomodel runs ROS 1 XML launch "
-            "files (roslaunch)"
+            f"{path} is a ROS 1 launch file: --show-args and --print are ros2 launch's; "
+            "roslaunch's are --ros-args and --nodes/--dump-params"
         )
     launch = load_launch(path, args=launch_args, packages=user_index)
     for warning in launch.warnings:
@@ -144,21 +155,74 @@ def run(args: argparse.Namespace) -> int:
     return _run(launch, args, user_index)
 
 
-def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
-    from robomodel.launch.runner import LaunchRunner, RunOptions
+_ROS2_XML_MARKERS = (b"<let ", b" exec=", b"$(var ", b"$(find-pkg-", b"<push-ros-namespace",
+                     b"<push_ros_namespace", b"<set_parameter", b"<set-parameter")  # fmt: skip
 
-    runner = LaunchRunner(
-        launch.nodes,
-        RunOptions(
-            bus=args.bus,
-            domain_id=args.domain_id,
-            headless=args.headless,
-            open_browser=not args.no_browser,
-            port=args.port,
-            duration_s=args.duration,
-            package_index=index,
-        ),
+
+def dialect_of(path: Path) -> str:
+    """``ros2`` for Python and YAML launch files and ROS 2 XML (``<let>``, ``exec=``,
+    ``$(var)``, ...); ``ros1`` for roslaunch XML."""
+    name = path.name
+    if name.endswith((".py", ".yaml", ".yml")):
+        return "ros2"
+    if name.endswith(".xml"):
+        head = path.read_bytes()[:1_000_000]
+        if any(marker in head for marker in _ROS2_XML_MARKERS):
+            return "ros2"
+    return "ros1"
+
+
+def _run_ros2(path: Path, launch_args: dict[str, str], args: argparse.Namespace, index: Any) -> int:
+    from robomodel.launch.packages import launch_package_index
+    from robomodel.launch.ros2 import format_print, format_show_args, load_launch
+
+    for flag in ("dump_params", "nodes", "files", "ros_args", "args"):
+        if getattr(args, flag):
+            raise RobomodelError(
+                f"{path} is a ROS 2 launch file: --{flag.replace('_', '-')} is roslaunch's; "
+                "ros2 launch has --show-args and --print"
+            )
+    launch = load_launch(path, args=launch_args, packages=launch_package_index(index))
+    for warning in launch.warnings:
+        print(warning, file=sys.stderr)
+    if args.show_args:
+        sys.stdout.write(format_show_args(launch))
+        return 0
+    if args.print_description:
+        sys.stdout.write(format_print(launch))
+        return 0
+    from robomodel.launch.runner import LaunchRunner
+
+    nodes = [step.node for step in launch.steps if step.node is not None]
+    runner = LaunchRunner(nodes, _options(args, index), steps=launch.steps)
+    runner.check()
+    runner.open_bus()
+    try:
+        runner.start_nodes()
+        print(f"[launch] {launch.path}: {len(runner.started)} nodes running", file=sys.stderr)
+        return runner.spin()
+    finally:
+        runner.shutdown()
+
+
+def _options(args: argparse.Namespace, index: Any) -> Any:
+    from robomodel.launch.runner import RunOptions
+
+    return RunOptions(
+        bus=args.bus,
+        domain_id=args.domain_id,
+        headless=args.headless,
+        open_browser=not args.no_browser,
+        port=args.port,
+        duration_s=args.duration,
+        package_index=index,
     )
+
+
+def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
+    from robomodel.launch.runner import LaunchRunner
+
+    runner = LaunchRunner(launch.nodes, _options(args, index))
     runner.check()
     runner.open_bus()
     try:
