@@ -161,3 +161,55 @@ def test_control_launch_runs_with_spawners_chained_by_on_process_exit() -> None:
         "started /spawner (controller_manager/spawner)", text.index("Configured and activated")
     )
     assert "[INFO] [launch.user]: all spawned" in text
+
+
+def test_named_manager_unknown_plugin_and_unknown_controller_type(tmp_path: Path) -> None:
+    """A ros2_control_node named my_ctrl_mgr is found by spawners' -c my_ctrl_mgr; a demo's own
+    hardware plugin runs as mock_components/GenericSystem with one warning; a controller type
+    robomodel lacks fails in the spawner as the manager reports it, and the others start."""
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+    from robomodel.xacro import process_file
+
+    urdf = process_file(str(ARM / "urdf" / "two_link_arm.urdf.xacro")).toxml()
+    urdf = urdf.replace(
+        "mock_components/GenericSystem",
+        "ros2_control_demo_example_1/RRBotSystemPositionOnlyHardware",
+    )
+    config = tmp_path / "controllers.yaml"
+    config.write_text(
+        "my_ctrl_mgr:\n  ros__parameters:\n    update_rate: 50\n"
+        "    joint_state_broadcaster:\n      type: joint_state_broadcaster/JointStateBroadcaster\n"
+        "    mystery:\n      type: acme_controllers/TeleportController\n"
+    )
+    cm = NodeSpec(
+        "ros2", "controller_manager", "ros2_control_node", "my_ctrl_mgr",
+        parameters=(ParamSource(values={"robot_description": urdf}), ParamSource(file=config)),
+    )  # fmt: skip
+    spawn = NodeSpec(
+        "ros2", "controller_manager", "spawner", None,
+        args=("mystery", "joint_state_broadcaster", "-c", "my_ctrl_mgr"),
+    )  # fmt: skip
+    lines: list[str] = []
+    runner = LaunchRunner(
+        [cm, spawn],
+        RunOptions(bus="inproc", headless=True, duration_s=3.0),
+        steps=(Step("node", cm), Step("node", spawn)),
+        log=lines.append,
+    )
+    runner.open_bus()
+    try:
+        with pytest.warns(UserWarning, match="RRBotSystemPositionOnlyHardware.*mock_components"):
+            runner.start_nodes()
+        runner.spin()
+        manager = runner.started[0].handle.system.manager
+        assert manager.service_prefix == "/my_ctrl_mgr" and manager.update_rate_hz == 50
+        states = {c["name"]: c["state"] for c in manager.list_controllers()}
+        assert states == {"joint_state_broadcaster": "active"}
+        assert runner.started[1].handle.exit_code() == 1  # the spawner failed on one
+    finally:
+        runner.shutdown()
+    text = "\n".join(lines)
+    assert (
+        "acme_controllers/TeleportController" in text
+        and "Failed loading controller mystery" in text
+    )

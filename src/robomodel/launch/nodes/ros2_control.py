@@ -36,16 +36,35 @@ def _nest(flat: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def unknown_types(spec: NodeSpec, manager_name: str) -> dict[str, str]:
+    """Controllers the manager's parameters give a type robomodel does not have: name -> type.
+    ros2_control reports those when a spawner loads them, not when the manager starts."""
+    from robomodel.control.config import ROS1_TYPES
+    from robomodel.control.controllers.registry import CONTROLLER_TYPES
+    from robomodel.launch.nodes.ros2_params import node_parameters
+
+    params = node_parameters(spec, name=manager_name)
+    return {
+        key.rsplit(".", 1)[0]: str(value)
+        for key, value in params.items()
+        if key.endswith(".type") and value not in CONTROLLER_TYPES and value not in ROS1_TYPES
+    }
+
+
 def controller_config_text(spec: NodeSpec, manager_name: str) -> str:
-    """The manager's and its controllers' parameters as one ros2_control YAML document."""
+    """The manager's and its controllers' parameters as one ros2_control YAML document
+    (controllers of types robomodel does not have left out: see :func:`unknown_types`)."""
     import dataclasses
 
     import yaml
 
     from robomodel.launch.nodes.ros2_params import node_parameters
 
+    unknown = unknown_types(spec, manager_name)
     params = node_parameters(spec, name=manager_name)
     params.pop("robot_description", None)
+    for name in unknown:
+        params = {k: v for k, v in params.items() if not k.startswith(name + ".")}
     doc: dict[str, Any] = {"controller_manager": {"ros__parameters": _nest(params)}}
     names = sorted({k.rsplit(".", 1)[0] for k in params if k.endswith(".type")})
     for name in names:
@@ -101,12 +120,29 @@ def ros2_control_node(ctx: NodeContext) -> RunningNode:
         name=name,
         unknown_hardware_as_mock=True,
     )
+    unknown = unknown_types(ctx.spec, name)
+    if unknown:
+        system.manager.spec_source = _not_found(unknown)
     system.manager.start()
     ctx.log(
         f"controller manager {system.manager.service_prefix} at {system.manager.update_rate_hz} "
         f"Hz on {', '.join(c.name for c in system.resources.components)}"
     )
     return ManagerNode(system)
+
+
+def _not_found(unknown: dict[str, str]) -> Any:
+    from robomodel.control.controllers.registry import CONTROLLER_TYPES
+    from robomodel.control.exceptions import ControlError
+
+    def source(name: str) -> None:
+        if name in unknown:
+            raise ControlError(
+                f"Loader for controller '{name}' (type '{unknown[name]}') not found. Available "
+                f"classes: {', '.join(sorted(CONTROLLER_TYPES))}"
+            )
+
+    return source
 
 
 @dataclass(frozen=True, slots=True)
