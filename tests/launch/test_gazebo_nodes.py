@@ -159,3 +159,14 @@ def test_a_second_spawn_keeps_time_joint_states_and_controllers() -> None:
     finally:
         server.close()
         context.shutdown()
+
+
+def test_rqt_plot_arguments_become_plot_fields() -> None:
+    from robomodel.launch.nodes.base import plot_fields
+
+    args = ("/rrbot/joint_states/position[0]", "/turtle1/pose/x:y", "--clear-config", "__name:=p")
+    assert plot_fields(args) == [
+        "/rrbot/joint_states/position[0]",
+        "/turtle1/pose/x",
+        "/turtle1/pose/y",
+    ]

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import os
 import tempfile
+import threading
+import time
 from pathlib import Path
 from typing import Any
 
@@ -96,6 +98,10 @@ class LaunchGui:
         self.viewer = Viewer(options)
         self.viewer.start()
         panel = getattr(self.viewer, "tools", None)
+        if self.runner.request.plot_fields and panel is not None:
+            threading.Thread(
+                target=_add_plots, args=(panel, list(self.runner.request.plot_fields)), daemon=True
+            ).start()
         if self.runner.request.steering_topic and panel is not None:
             panel.steering.topic.value = self.runner.request.steering_topic
         self.runner.log(f"[launch] viewer: serving {self.viewer.url}")
@@ -113,6 +119,26 @@ class LaunchGui:
         path = self.runner._extra.get("viewer_file")
         if path:
             Path(path).unlink(missing_ok=True)
+
+
+def _add_plots(panel: Any, fields: list[str], timeout_s: float = 15.0) -> None:
+    """rqt_plot's fields into the Plot folder, each once its topic is on the bus."""
+    from robomodel.errors import RobomodelError
+    from robomodel.viewer.tools.field_path import resolve_field_path
+
+    deadline = time.monotonic() + timeout_s
+    pending = list(fields)
+    while pending and time.monotonic() < deadline:
+        for text in list(pending):
+            try:
+                resolve_field_path(text, panel.tools.topic_types())
+            except RobomodelError:
+                continue
+            panel.plot.add(text)
+            pending.remove(text)
+        time.sleep(0.5)
+    for text in pending:  # what the Plot folder says of it
+        panel.plot.add(text)
 
 
 def _default_index() -> Any:

@@ -20,6 +20,7 @@ __all__ = [
     "ThreadNode",
     "ViewerRequest",
     "factory_for",
+    "plot_fields",
     "register",
     "supported",
 ]
@@ -80,6 +81,7 @@ class ViewerRequest:
     joint_states_topic: str = "/joint_states"
     steering_topic: str | None = None  # rqt_robot_steering's ~default_topic
     robot_description_text: str | None = None  # ROS 2: no parameter server to read it from
+    plot_fields: list[str] = field(default_factory=list)  # rqt_plot's topic/field arguments
     requested_by: list[str] = field(default_factory=list)
 
 
@@ -153,6 +155,21 @@ def register(
         return factory
 
     return decorate
+
+
+def plot_fields(args: tuple[str, ...]) -> list[str]:
+    """rqt_plot's arguments as field paths: ``/t/a`` stays, ``/t/pose/x:y`` is ``/t/pose/x``
+    and ``/t/pose/y``, options and ROS arguments are left out."""
+    fields: list[str] = []
+    for arg in args:
+        if arg.startswith(("-", "__")) or ":=" in arg:
+            continue
+        head, _, tail = arg.partition(":")
+        fields.append(head)
+        if tail:
+            base = head.rsplit("/", 1)[0]
+            fields.extend(f"{base}/{name}" for name in tail.split(":") if name)
+    return fields
 
 
 def factory_for(spec: NodeSpec) -> Factory | None:

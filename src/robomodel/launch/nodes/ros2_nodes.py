@@ -14,7 +14,7 @@ import contextlib
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.launch.nodes.base import NodeContext, RunningNode, register
+from robomodel.launch.nodes.base import NodeContext, RunningNode, plot_fields, register
 from robomodel.launch.nodes.state import InProcessNode, ViewerPart
 from robomodel.launch.nodes.tf_static import parse_static_transform_args
 from robomodel.launch.nodes.viewer import rviz_config_argument
@@ -144,6 +144,8 @@ def rviz2(ctx: NodeContext) -> RunningNode:
 
 def _tools(ctx: NodeContext) -> RunningNode:
     ctx.viewer.tools = True
+    if ctx.spec.executable == "rqt_plot":
+        ctx.viewer.plot_fields.extend(plot_fields(ctx.spec.args))
     ctx.viewer.requested_by.append(ctx.spec.fqn)
     if ctx.spec.executable == "rqt_robot_steering":
         topic = ctx.ros2_parameters("rqt_robot_steering").get("default_topic")

@@ -8,7 +8,7 @@ tool folders. One viewer serves every such node of the launch, as one screen wou
 
 from __future__ import annotations
 
-from robomodel.launch.nodes.base import NodeContext, RunningNode, register
+from robomodel.launch.nodes.base import NodeContext, RunningNode, plot_fields, register
 from robomodel.launch.nodes.state import ViewerPart
 
 __all__ = ["rviz_config_argument"]
@@ -46,6 +46,8 @@ def rviz(ctx: NodeContext) -> RunningNode:
 
 def _tools(ctx: NodeContext) -> RunningNode:
     ctx.viewer.tools = True
+    if ctx.spec.executable == "rqt_plot":
+        ctx.viewer.plot_fields.extend(plot_fields(ctx.spec.args))
     if ctx.spec.executable == "rqt_robot_steering":
         topic = ctx.param("~default_topic")
         if topic:
