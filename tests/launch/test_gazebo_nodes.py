@@ -170,3 +170,20 @@ def test_rqt_plot_arguments_become_plot_fields() -> None:
         "/turtle1/pose/x",
         "/turtle1/pose/y",
     ]
+
+
+def test_shapes_world_launch_runs_the_shapes_world() -> None:
+    """gazebo_ros's shapes_world.launch, a friend of empty_world.launch: its world name
+    resolves through the built-in worlds/ (GAZEBO_RESOURCE_PATH's role) and the server runs."""
+    import subprocess
+
+    from tests.conftest import ROBOMODEL
+
+    result = subprocess.run(
+        [*ROBOMODEL, "launch", "gazebo_ros", "shapes_world.launch", "--headless",
+         "--bus", "inproc", "--duration", "1"],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert "gazebo_ros/worlds/shapes.world" in result.stderr
+    assert "started /gazebo (gazebo_ros/gzserver)" in result.stderr
