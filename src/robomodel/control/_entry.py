@@ -9,16 +9,23 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from robomodel.control.controllers.base import ControllerInterface
+from robomodel.control.controllers.base import ControllerInterface, InterfaceSelection
 from robomodel.control.controllers.registry import create_controller
 from robomodel.errors import RobomodelError
 
 if TYPE_CHECKING:
+    from robomodel.control.hardware.resource_manager import ResourceManager
     from robomodel.description.model import Robot
     from robomodel.runtime.context import Context
     from robomodel.runtime.node import Node
 
-__all__ = ["ControllerEntry", "Strictness", "create_entry"]
+__all__ = [
+    "ControllerEntry",
+    "Strictness",
+    "controller_info",
+    "create_entry",
+    "required_interfaces",
+]
 
 log = logging.getLogger("robomodel.control")
 
@@ -98,3 +105,39 @@ def create_entry(
         max(1, manager_rate_hz // rate),
         node=node,
     )
+
+
+def required_interfaces(
+    controller: ControllerInterface, resources: ResourceManager
+) -> tuple[list[str], list[str]]:
+    """The full names of the command and state interfaces ``controller`` asks for (``ALL``
+    expands to every interface of the hardware, ``NONE`` to none)."""
+    cmd_cfg = controller.command_interface_configuration()
+    st_cfg = controller.state_interface_configuration()
+    if cmd_cfg.selection is InterfaceSelection.ALL:
+        commands = list(resources.commands.names)
+    elif cmd_cfg.selection is InterfaceSelection.NONE:
+        commands = []
+    else:
+        commands = list(cmd_cfg.names)
+    if st_cfg.selection is InterfaceSelection.ALL:
+        states = list(resources.states.names)
+    elif st_cfg.selection is InterfaceSelection.NONE:
+        states = []
+    else:
+        states = list(st_cfg.names)
+    return commands, states
+
+
+def controller_info(entry: ControllerEntry, resources: ResourceManager) -> dict[str, Any]:
+    """One controller as ``list_controllers`` reports it."""
+    commands, states = required_interfaces(entry.controller, resources)
+    return {
+        "name": entry.name,
+        "type": entry.type_name,
+        "state": entry.controller.state.value,
+        "update_rate": entry.update_rate_hz,
+        "claimed_interfaces": list(entry.claimed),
+        "required_command_interfaces": commands,
+        "required_state_interfaces": states,
+    }

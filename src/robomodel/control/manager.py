@@ -16,13 +16,17 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from robomodel.control._entry import ControllerEntry as _Entry
-from robomodel.control._entry import Strictness, create_entry
+from robomodel.control._entry import (
+    Strictness,
+    controller_info,
+    create_entry,
+    required_interfaces,
+)
 from robomodel.control._switch import plan_switch
 from robomodel.control.config import ControllerConfig, ControllerSpec
 from robomodel.control.controllers.base import (
     ControllerInterface,
     ControllerState,
-    InterfaceSelection,
 )
 from robomodel.control.exceptions import (
     ConfigError,
@@ -204,23 +208,7 @@ class ControllerManager:
         return self._interfaces(self._entry(name))
 
     def _interfaces(self, entry: _Entry) -> tuple[list[str], list[str]]:
-        c = entry.controller
-        cmd_cfg = c.command_interface_configuration()
-        st_cfg = c.state_interface_configuration()
-        rm = self.resources
-        if cmd_cfg.selection is InterfaceSelection.ALL:
-            commands = list(rm.commands.names)
-        elif cmd_cfg.selection is InterfaceSelection.NONE:
-            commands = []
-        else:
-            commands = list(cmd_cfg.names)
-        if st_cfg.selection is InterfaceSelection.ALL:
-            states = list(rm.states.names)
-        elif st_cfg.selection is InterfaceSelection.NONE:
-            states = []
-        else:
-            states = list(st_cfg.names)
-        return commands, states
+        return required_interfaces(entry.controller, self.resources)
 
     def switch_controllers(
         self,
@@ -394,21 +382,7 @@ class ControllerManager:
     # -- introspection and services -----------------------------------------------------------
     def list_controllers(self) -> list[dict[str, Any]]:
         """``list_controllers``: name, type, state, update rate and interfaces of each."""
-        out = []
-        for e in self.entries.values():
-            commands, states = self._interfaces(e)
-            out.append(
-                {
-                    "name": e.name,
-                    "type": e.type_name,
-                    "state": e.controller.state.value,
-                    "update_rate": e.update_rate_hz,
-                    "claimed_interfaces": list(e.claimed),
-                    "required_command_interfaces": commands,
-                    "required_state_interfaces": states,
-                }
-            )
-        return out
+        return [controller_info(e, self.resources) for e in self.entries.values()]
 
     def _register_services(self) -> None:
         from robomodel.control.services import register_services
