@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
 __all__ = ["register", "run"]
@@ -22,7 +23,7 @@ __all__ = ["register", "run"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "launch",
-        help="run a ROS 1 launch file (roslaunch) with robomodel's nodes",
+        help=verb_help("launch"),
         description=(
             "Run a ROS 1 launch file as roslaunch does, each node mapped onto a robomodel "
             "component (robot_state_publisher, joint_state_publisher(_gui), rviz -> the browser "
