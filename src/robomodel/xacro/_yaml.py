@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import yaml
+if TYPE_CHECKING:
+    import yaml
 
 __all__ = ["UNIT_TAGS", "YamlDictWrapper", "YamlListWrapper", "load_yaml_text", "wrap"]
 
@@ -55,6 +56,7 @@ class YamlDictWrapper(dict[Any, Any]):
 
 def _loader(evaluate_unit: Callable[[str], object]) -> type[yaml.SafeLoader]:
     """A SafeLoader subclass with the unit tags, so that the global SafeLoader stays untouched."""
+    import yaml  # not at the top: only files that call xacro.load_yaml pay for it
 
     class Loader(yaml.SafeLoader):
         pass
@@ -71,4 +73,6 @@ def _loader(evaluate_unit: Callable[[str], object]) -> type[yaml.SafeLoader]:
 
 def load_yaml_text(text: str, evaluate_unit: Callable[[str], object]) -> Any:
     """Parse YAML text; unit-tagged scalars are xacro expressions (``!degrees 2*90``)."""
+    import yaml
+
     return wrap(yaml.load(text, Loader=_loader(evaluate_unit)))
