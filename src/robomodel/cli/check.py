@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
@@ -67,6 +66,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _print_json(path: str, result: Any, diagnostics: list[Diagnostic], *, valid: bool) -> None:
+    import json  # only for --json (start-up of the plain check)
+
     payload: dict[str, Any] = {"file": path, "valid": valid}
     if result is not None:
         robot = result.robot

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from typing import TYPE_CHECKING, Any
 
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
 if TYPE_CHECKING:
+    from typing import Any
+
     import yaml
 
 __all__ = ["UNIT_TAGS", "YamlDictWrapper", "YamlListWrapper", "load_yaml_text", "wrap"]
@@ -31,7 +33,7 @@ def wrap(item: Any) -> Any:
     return item
 
 
-class YamlListWrapper(list[Any]):
+class YamlListWrapper(list["Any"]):
     """A YAML list whose items are wrapped on access."""
 
     def __getitem__(self, idx: Any) -> Any:
@@ -42,7 +44,7 @@ class YamlListWrapper(list[Any]):
             yield wrap(item)
 
 
-class YamlDictWrapper(dict[Any, Any]):
+class YamlDictWrapper(dict["Any", "Any"]):
     """A YAML mapping with dotted access (``settings.arm.length``); also ``xacro.dotify``."""
 
     def __getattr__(self, item: str) -> Any:
