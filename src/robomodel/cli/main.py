@@ -38,9 +38,9 @@ def build_parser(verb: str | None = None) -> argparse.ArgumentParser:
     a run imports only the module of the verb it runs (``robomodel check`` never loads the
     viewer, the bus or numpy).
     """
-    import argparse
+    from robomodel.cli._parser import Parser
 
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="robomodel",
         description="URDF and xacro tools without ROS: check, graph, xacro, new, ...",
     )
@@ -52,7 +52,8 @@ def build_parser(verb: str | None = None) -> argparse.ArgumentParser:
         if verb is None or entry.name == verb:
             importlib.import_module(entry.module).register(subparsers)
         else:
-            subparsers.add_parser(entry.name, help=entry.help)
+            # Never parsed with: it only lists the verb (and add_help=False halves its cost).
+            subparsers.add_parser(entry.name, help=entry.help, add_help=False)
     return parser
 
 
