@@ -317,10 +317,14 @@ class Viewer:
         next_reload = next_status = next_bodies = next_push = 0.0
         while not self._stop.is_set():
             self.context.spin_once(0.005)
-            for session in self.sessions:
-                if session.apply_queued():
-                    self.context.spin_once(0.0)  # robot_state_publisher -> /tf -> buffer
             now = time.monotonic()
+            if now >= next_push:
+                # Slider values are applied when a scene update is due, not at every turn: a
+                # joint state (and its /tf through robot_state_publisher) that no update would
+                # show is not computed, so a drag costs one message per update at most.
+                for session in self.sessions:
+                    if session.apply_queued():
+                        self.context.spin_once(0.0)  # robot_state_publisher -> /tf -> buffer
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()

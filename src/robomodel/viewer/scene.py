@@ -313,8 +313,9 @@ class RobotModelDisplay:
         moved |= np.isnan(self._last_xyz[:, 0])
         moved &= visible
         shown = visible != self._last_visible
-        for i in np.flatnonzero(moved):
-            self._write_pose(self._links[i], wxyz[i], xyz[i])
+        wxyz_rows, xyz_rows = wxyz.tolist(), xyz.tolist()  # floats, not numpy scalars
+        for k in np.flatnonzero(moved).tolist():
+            self._write_pose(self._links[k], wxyz_rows[k], xyz_rows[k])
         self._last_wxyz[moved] = wxyz[moved]
         self._last_xyz[moved] = xyz[moved]
         for i in np.flatnonzero(shown):
@@ -322,7 +323,7 @@ class RobotModelDisplay:
         self._last_visible = visible.copy()
         return int(moved.sum())
 
-    def _write_pose(self, handle: Any, wxyz: NDArray[np.float64], xyz: NDArray[np.float64]) -> None:
+    def _write_pose(self, handle: Any, wxyz: list[float], xyz: list[float]) -> None:
         """Set a node's pose; we already know it changed, so skip viser's per-setter checks.
 
         viser's ``wxyz``/``position`` setters cast, compare (``np.allclose``) and copy on every
@@ -337,8 +338,8 @@ class RobotModelDisplay:
             handle.wxyz = wxyz
             handle.position = xyz
             return
-        w, x, y, z = (float(v) for v in wxyz)
-        px, py, pz = (float(v) for v in xyz)
+        w, x, y, z = wxyz
+        px, py, pz = xyz
         impl.wxyz[:] = (w, x, y, z)
         impl.position[:] = (px, py, pz)
         queue(messages.SetOrientationMessage(impl.name, (w, x, y, z)))
