@@ -109,7 +109,18 @@ def updates_per_second(
     joints = list(session.jsp.free_joints.values())
     frames: list[float] = []
 
+    import msgspec
     import zstandard
+
+    # One scene update = one new orientation of the deepest link (it moves whenever any joint
+    # does). Counting websocket frames instead would count a big update once per frame that
+    # viser splits it into, and count nothing for updates that viser merged before sending.
+    display = session.display
+    assert display is not None
+    depth = {joint.child: d for d, joint in session.robot.tree().walk()}
+    deepest = max(display.link_names, key=lambda name: depth.get(name, 0))
+    marker = f"{display.root}/l{display.link_names.index(deepest)}"
+    marker_bytes = marker.encode()
 
     def on_frame(payload: bytes | str) -> None:
         # viser's wire format: [u64 raw size][u64 zstd size][zstd msgpack][binary buffers]
@@ -117,8 +128,11 @@ def updates_per_second(
             return
         size = int.from_bytes(payload[8:16], "little")
         meta = zstandard.ZstdDecompressor().decompress(payload[16 : 16 + size])
-        if b"SetOrientationMessage" in meta:
-            frames.append(time.perf_counter())
+        if b"SetOrientationMessage" not in meta or marker_bytes not in meta:
+            return
+        for message in msgspec.msgpack.decode(meta)["messages"]:
+            if message.get("type") == "SetOrientationMessage" and message.get("name") == marker:
+                frames.append(time.perf_counter())
 
     with sync_playwright() as pw:
         browser = pw.chromium.launch(
