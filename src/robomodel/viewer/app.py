@@ -137,6 +137,8 @@ class Viewer:
         self.display_options = DisplayOptions()
         self.meshes = MeshCache()
         self.updates_sent = 0
+        self._last_push_id: int | None = None  # viser's id of the last message of an update
+        self._last_push_s = 0.0
         self.reloads = 0
         self.server: Any = None
         self.context: Context | None = None
@@ -328,7 +330,7 @@ class Viewer:
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()
-            if self._dirty and now >= next_push:
+            if self._dirty and now >= next_push and not self._page_behind(now):
                 # On the schedule, not from now: the loop's own latency does not lower the rate.
                 next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
                 self._dirty = False
@@ -372,6 +374,26 @@ class Viewer:
         T[1, 3] = -(session.number - anchor) * spacing
         return T
 
+    def _broadcast_buffer(self) -> Any:
+        """viser's outgoing broadcast buffer (1.1's internals), or None if it differs."""
+        buffer = getattr(getattr(self.server, "_websock_server", None), "_broadcast_buffer", None)
+        ok = hasattr(buffer, "generator_cursors") and hasattr(buffer, "message_counter")
+        return buffer if ok else None
+
+    def _page_behind(self, now: float) -> bool:
+        """Whether a connected page has not yet been sent all of the previous update.
+
+        A new update replaces the pose messages still waiting, so when the pages cannot take
+        updates as fast as they are made (a 1,000-link robot: thousands of messages each), the
+        links queued last would never be sent. Waiting for the send cursor keeps every update
+        whole (at most 0.5 s, so a stalled page does not freeze the others).
+        """
+        buffer = self._broadcast_buffer()
+        if buffer is None or self._last_push_id is None or now - self._last_push_s > 0.5:
+            return False
+        cursors = list(buffer.generator_cursors.values())
+        return bool(cursors) and min(cursors) < self._last_push_id
+
     def _push(self) -> None:
         """Send the poses that changed, as one atomic batch, flushed immediately."""
         frames: list[str] = []
@@ -411,6 +433,10 @@ class Viewer:
                 )
         self.server.flush()
         self.updates_sent += 1
+        buffer = self._broadcast_buffer()
+        if buffer is not None:
+            self._last_push_id = buffer.message_counter - 1
+            self._last_push_s = time.monotonic()
 
     def _push_other_frames(
         self,
