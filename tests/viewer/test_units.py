@@ -280,20 +280,25 @@ def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:
         server.stop()
 
 
-def test_next_update_waits_for_pages_to_be_sent_the_previous_one() -> None:
+def test_next_big_update_waits_for_pages_to_be_sent_the_previous_one() -> None:
     """Issue 14.4: a new update would replace pose messages still waiting to be sent."""
     from types import SimpleNamespace
 
     from robomodel.viewer.app import Viewer
 
-    buffer = SimpleNamespace(generator_cursors={}, message_counter=100)
-    viewer = SimpleNamespace(_broadcast_buffer=lambda: buffer, _last_push_id=99, _last_push_s=10.0)
-    assert not Viewer._page_behind(viewer, 10.1)  # type: ignore[arg-type]  # no page
-    buffer.generator_cursors = {1: 99, 2: 40}
-    assert Viewer._page_behind(viewer, 10.1)  # type: ignore[arg-type]  # page 2 is behind
-    assert not Viewer._page_behind(viewer, 10.6)  # type: ignore[arg-type]  # waited 0.5 s
-    buffer.generator_cursors = {1: 99, 2: 99}
-    assert not Viewer._page_behind(viewer, 10.1)  # type: ignore[arg-type]
-    viewer._last_push_id = None
+    buffer = SimpleNamespace(generator_cursors={}, message_counter=300, max_window_size=128)
+    viewer = SimpleNamespace(
+        _broadcast_buffer=lambda: buffer, _last_push_ids=(100, 299), _last_push_s=10.0
+    )
+    behind = Viewer._page_behind
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]  # no page
+    buffer.generator_cursors = {1: 299, 2: 200}
+    assert behind(viewer, 10.1)  # type: ignore[arg-type]  # page 2 has half of it
+    assert not behind(viewer, 10.6)  # type: ignore[arg-type]  # waited 0.5 s
+    buffer.generator_cursors = {1: 299, 2: 299}
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]
+    viewer._last_push_ids = (250, 299)  # fits in one frame: sent whole, not waited for
     buffer.generator_cursors = {1: 0}
-    assert not Viewer._page_behind(viewer, 10.1)  # type: ignore[arg-type]  # nothing pushed
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]
+    viewer._last_push_ids = None
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]  # nothing pushed yet

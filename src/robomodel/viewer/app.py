@@ -137,7 +137,8 @@ class Viewer:
         self.display_options = DisplayOptions()
         self.meshes = MeshCache()
         self.updates_sent = 0
-        self._last_push_id: int | None = None  # viser's id of the last message of an update
+        # viser's ids of the first and last message of the last update, and when it went out
+        self._last_push_ids: tuple[int, int] | None = None
         self._last_push_s = 0.0
         self.reloads = 0
         self.server: Any = None
@@ -381,18 +382,24 @@ class Viewer:
         return buffer if ok else None
 
     def _page_behind(self, now: float) -> bool:
-        """Whether a connected page has not yet been sent all of the previous update.
+        """Whether a page has not yet been sent all of the previous update, when that update
+        takes more than one websocket frame.
 
         A new update replaces the pose messages still waiting, so when the pages cannot take
-        updates as fast as they are made (a 1,000-link robot: thousands of messages each), the
-        links queued last would never be sent. Waiting for the send cursor keeps every update
-        whole (at most 0.5 s, so a stalled page does not freeze the others).
+        updates as fast as they are made (a 1,000-link robot: thousands of messages, tens of
+        frames each), the links queued last would never be sent. Waiting for viser's send
+        cursor keeps such updates whole; an update that fits in one frame is sent whole anyway
+        and is not waited for (the next one is computed while it goes). At most 0.5 s, so that
+        a stalled page does not freeze the others.
         """
         buffer = self._broadcast_buffer()
-        if buffer is None or self._last_push_id is None or now - self._last_push_s > 0.5:
+        if buffer is None or self._last_push_ids is None or now - self._last_push_s > 0.5:
+            return False
+        first, last = self._last_push_ids
+        if last - first + 1 <= getattr(buffer, "max_window_size", 128):
             return False
         cursors = list(buffer.generator_cursors.values())
-        return bool(cursors) and min(cursors) < self._last_push_id
+        return bool(cursors) and min(cursors) < last
 
     def _push(self) -> None:
         """Send the poses that changed, as one atomic batch, flushed immediately."""
@@ -402,6 +409,8 @@ class Viewer:
         shown: list[np.ndarray] = []
         self._missing = {}
         self._beside = set()
+        buffer = self._broadcast_buffer()
+        first_id = buffer.message_counter if buffer is not None else 0
         with self.server.atomic():
             for session in self.sessions:
                 poses = session.link_poses(
@@ -433,9 +442,8 @@ class Viewer:
                 )
         self.server.flush()
         self.updates_sent += 1
-        buffer = self._broadcast_buffer()
         if buffer is not None:
-            self._last_push_id = buffer.message_counter - 1
+            self._last_push_ids = (first_id, buffer.message_counter - 1)
             self._last_push_s = time.monotonic()
 
     def _push_other_frames(
