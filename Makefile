@@ -28,6 +28,8 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q -n 2 tests
 
 bench: $(STAMP)
+	tools/system-deps bench
+	$(BIN)/python bench/bench_startup.py
 	$(BIN)/python bench/bench_parse.py
 	$(BIN)/python bench/bench_xacro.py
 	$(BIN)/python bench/bench_kinematics.py

@@ -11,6 +11,12 @@ Run: ``.venv/bin/python bench/bench_viewer.py`` (needs Debian's chromium for the
    the viewer's TF buffer -> poses in the fixed frame -> viser), and the websocket frames that
    carry link poses are counted as Chromium receives them (playwright ``framereceived``).
    Target: >= 60 updates/s.
+3. Scaling (issue 14.4): the same measurement at Frame Rate 240 on synthetic chains of 10, 100
+   and 1,000 links (a box per link, a revolute joint between each two) and on talos. Target:
+   the rate falls no faster than linearly with the links; >= 30 updates/s at 1,000 links and
+   >= 100/s on talos.
+
+``--scaling`` runs only part 3.
 """
 
 from __future__ import annotations
@@ -61,10 +67,26 @@ def cold_start(port: int) -> tuple[float, float]:
     return served, ready
 
 
+def chain_urdf(n_links: int) -> str:
+    """A serial chain of ``n_links`` links (a box each), revolute joints about y."""
+    parts = ['<?xml version="1.0"?>', f'<robot name="chain{n_links}">']
+    box = '<visual><geometry><box size="0.02 0.02 0.1"/></geometry></visual>'
+    parts += [f'  <link name="link{i}">{box}</link>' for i in range(n_links)]
+    for i in range(1, n_links):
+        parts.append(
+            f'  <joint name="joint{i}" type="revolute"><parent link="link{i - 1}"/>'
+            f'<child link="link{i}"/><origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>'
+            '<limit lower="-0.2" upper="0.2" effort="1" velocity="1"/></joint>'
+        )
+    parts.append("</robot>")
+    return "\n".join(parts)
+
+
 def updates_per_second(
-    frame_rate_hz: float | None = None, duration_s: float = 5.0
-) -> tuple[float, float]:
-    """(pose frames/s received by Chromium, pushes/s sent by the viewer).
+    frame_rate_hz: float | None = None, duration_s: float = 5.0, urdf: Path = URDF
+) -> tuple[float, float, float]:
+    """(scene updates/s received by Chromium, pushes/s sent by the viewer, websocket frames/s
+    carrying poses: the measure before issue 14, which counts a split update several times).
 
     ``frame_rate_hz`` None: the viewer's default Frame Rate (the cap on scene updates).
     """
@@ -74,7 +96,7 @@ def updates_per_second(
     from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 
     options = ViewerOptions(
-        sources=(RobotSource(str(URDF)),),
+        sources=(RobotSource(str(urdf)),),
         port=0,
         package_index=index_from_options((), (PACKAGE,)),
     )
@@ -87,8 +109,20 @@ def updates_per_second(
     assert session.jsp is not None and viewer.context is not None
     joints = list(session.jsp.free_joints.values())
     frames: list[float] = []
+    pose_frames: list[float] = []
 
+    import msgspec
     import zstandard
+
+    # One scene update = one new orientation of the deepest link (it moves whenever any joint
+    # does). Counting websocket frames instead would count a big update once per frame that
+    # viser splits it into, and count nothing for updates that viser merged before sending.
+    display = session.display
+    assert display is not None
+    depth = {joint.child: d for d, joint in session.robot.tree().walk()}
+    deepest = max(display.link_names, key=lambda name: depth.get(name, 0))
+    marker = f"{display.root}/l{display.link_names.index(deepest)}"
+    marker_bytes = marker.encode()
 
     def on_frame(payload: bytes | str) -> None:
         # viser's wire format: [u64 raw size][u64 zstd size][zstd msgpack][binary buffers]
@@ -96,8 +130,14 @@ def updates_per_second(
             return
         size = int.from_bytes(payload[8:16], "little")
         meta = zstandard.ZstdDecompressor().decompress(payload[16 : 16 + size])
-        if b"SetOrientationMessage" in meta:
-            frames.append(time.perf_counter())
+        if b"SetOrientationMessage" not in meta:
+            return
+        pose_frames.append(time.perf_counter())
+        if marker_bytes not in meta:
+            return
+        for message in msgspec.msgpack.decode(meta)["messages"]:
+            if message.get("type") == "SetOrientationMessage" and message.get("name") == marker:
+                frames.append(time.perf_counter())
 
     with sync_playwright() as pw:
         browser = pw.chromium.launch(
@@ -125,6 +165,7 @@ def updates_per_second(
 
         sent0 = viewer.updates_sent
         frames.clear()
+        pose_frames.clear()
         driver = threading.Thread(target=drive, daemon=True)
         started = time.perf_counter()
         driver.start()
@@ -136,11 +177,44 @@ def updates_per_second(
         received = len([f for f in frames if f - started <= elapsed])
         browser.close()
     viewer.close()
-    return received / elapsed, sent / elapsed
+    pose_frame_rate = len([f for f in pose_frames if f - started <= elapsed]) / elapsed
+    return received / elapsed, sent / elapsed, pose_frame_rate
+
+
+def scaling(rounds: int = 3) -> None:
+    """Updates/s received at Frame Rate 240 against robot size (part 3)."""
+    import tempfile
+
+    print(f"scaling at Frame Rate 240 (median of {rounds} runs of 5 s):")
+    print(
+        "| robot | links | updates/s received | viewer pushes/s | links x updates/s "
+        "| pose frames/s (old measure) |"
+    )
+    print("|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        robots: list[tuple[str, int, Path]] = []
+        for n_links in (10, 100, 1000):
+            path = Path(tmp) / f"chain{n_links}.urdf"
+            path.write_text(chain_urdf(n_links))
+            robots.append((f"chain{n_links}", n_links, path))
+        if URDF.exists():
+            robots.append(("talos_full_v2", 60, URDF))
+        for label, n_links, path in robots:
+            rates = [updates_per_second(240.0, urdf=path) for _ in range(rounds)]
+            received = statistics.median(r[0] for r in rates)
+            pushed = statistics.median(r[1] for r in rates)
+            pose_frames = statistics.median(r[2] for r in rates)
+            print(
+                f"| {label} | {n_links} | {received:.0f} | {pushed:.0f} | "
+                f"{n_links * received:,.0f} | {pose_frames:.0f} |"
+            )
 
 
 def main() -> None:
     os.environ.setdefault("PYTHONUNBUFFERED", "1")
+    if "--scaling" in sys.argv[1:]:
+        scaling()
+        return
     print(f"robot: {URDF.name} (60 links, 48 visual + 47 collision meshes)")
     served, ready = [], []
     for i in range(RUNS):
@@ -163,6 +237,7 @@ def main() -> None:
             f"pose updates received by Chromium at Frame Rate {frame_rate_hz or default_hz:.0f}: "
             f"median {received:.0f}/s (viewer pushed {pushed:.0f}/s; target >= 60/s)"
         )
+    scaling()
 
 
 if __name__ == "__main__":

@@ -1,10 +1,23 @@
-"""robomodel: the ROS robot-modelling workflow as one pip-installable package."""
+"""robomodel: the ROS robot-modelling workflow as one pip-installable package.
+
+The names below are re-exported lazily (PEP 562): ``import robomodel`` loads no sub-package, so
+a command such as ``robomodel xacro`` pays only for what it uses; ``robomodel.Robot`` imports
+the description layer on first access.
+"""
+
+from __future__ import annotations
+
+import importlib
 
 from robomodel._version import __version__
-from robomodel.description import PackageIndex, Robot, parse_urdf, read_urdf
-from robomodel.errors import InputError, RobomodelError
-from robomodel.kinematics import Kinematics
-from robomodel.loading import load
+
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (mypy knows the name)
+
+if TYPE_CHECKING:
+    from robomodel.description import PackageIndex, Robot, parse_urdf, read_urdf
+    from robomodel.errors import InputError, RobomodelError
+    from robomodel.kinematics import Kinematics
+    from robomodel.loading import load
 
 __all__ = [
     "InputError",
@@ -17,3 +30,27 @@ __all__ = [
     "parse_urdf",
     "read_urdf",
 ]
+
+_LAZY: dict[str, str] = {
+    "InputError": "robomodel.errors",
+    "Kinematics": "robomodel.kinematics",
+    "PackageIndex": "robomodel.description",
+    "RobomodelError": "robomodel.errors",
+    "Robot": "robomodel.description",
+    "load": "robomodel.loading",
+    "parse_urdf": "robomodel.description",
+    "read_urdf": "robomodel.description",
+}
+
+
+def __getattr__(name: str) -> object:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'robomodel' has no attribute '{name}'")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})

@@ -6,7 +6,6 @@ file carry a :class:`SourceLocation` so that the CLI can print ``file:line:colum
 
 from __future__ import annotations
 
-import difflib
 import enum
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -120,6 +119,8 @@ class InputError(RobomodelError):
 
 def close_matches(word: str, candidates: Iterable[str], n: int = 3) -> list[str]:
     """Return up to ``n`` candidates that look like ``word`` (for "did you mean" hints)."""
+    import difflib  # only when an error message is built (keeps start-up short)
+
     return difflib.get_close_matches(word, list(candidates), n=n, cutoff=0.6)
 
 

@@ -11,7 +11,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from robomodel import xacro
 from robomodel.description.model import Robot
 from robomodel.description.packages import PackageIndex
 from robomodel.description.urdf.reader import ParseResult, read_urdf
@@ -58,6 +57,8 @@ def expand_description(
         except OSError as exc:
             raise RobomodelError(f"cannot read '{text}': {exc.strerror}") from None
         return LoadedDescription(data, text, path.resolve().parent, False, ())
+    from robomodel import xacro  # not at the top: a plain URDF does not need the xacro layer
+
     if inline:
         expanded = xacro.process(text, dict(args or {}), package_index=index)
         return LoadedDescription(expanded.encode(), None, Path.cwd(), True, ())

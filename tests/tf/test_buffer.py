@@ -166,3 +166,40 @@ def test_frames_as_string_and_yaml() -> None:
         "  most_recent_transform: 3.000000\n  oldest_transform: 1.000000\n  buffer_length: 2.000\n"
     )
     assert BufferCore().all_frames_as_yaml() == "[]"
+
+
+@pytest.mark.parametrize("static", [False, True])
+def test_one_hop_lookup_is_the_general_walk(static: bool) -> None:
+    """Issue 14.4: parent<-child at time 0 answers from the child's newest sample, and gives
+    exactly what the general walk gives (also when the parent's own data would extrapolate)."""
+    buf = BufferCore()
+    buf.set_transform(_tf("world", "base", x=0.5, t_s=1.0), "a")
+    buf.set_transform(_tf("world", "base", x=0.7, t_s=3.0), "a")  # base is newer than arm
+    for k, t_s in enumerate((1.0, 1.5, 2.0)):
+        buf.set_transform(_tf("base", "arm", x=0.1 * k, yaw=0.3 * k, t_s=t_s), "a", static)
+    expected_pose, expected_stamp = buf._walk(
+        "base", "arm", buf.latest_common_time_ns("base", "arm")
+    )
+    result = buf.lookup_transform("base", "arm")
+    assert (result.translation_m, result.rotation_xyzw) == expected_pose
+    assert result.stamp_ns == expected_stamp == (0 if static else 2 * S)
+    assert result.translation_m == pytest.approx((0.2, 0.0, 0.0))
+    # An unknown source still fails with tf2's message; frames keep their first-seen order.
+    with pytest.raises(LookupError, match="Did you mean 'arm'"):
+        buf.lookup_transform("base", "armm")
+    assert buf.frames == ("base", "world", "arm")
+
+
+def test_frame_membership_scales_to_many_frames() -> None:
+    """A 2,000-frame chain: every one-hop lookup works and the frames stay in order."""
+    buf = BufferCore()
+    for i in range(2000):
+        buf.set_transform(_tf(f"l{i}", f"l{i + 1}", x=1.0, t_s=1.0), "a")
+    assert buf.frames[:3] == ("l1", "l0", "l2")
+    assert len(buf.frames) == 2001
+    assert all(
+        buf.lookup_transform(f"l{i}", f"l{i + 1}").translation_m == (1.0, 0.0, 0.0)
+        for i in range(2000)
+    )
+    # tf2 walks at most 1,000 hops (MAX_GRAPH_DEPTH).
+    assert buf.lookup_transform("l0", "l900").translation_m == pytest.approx((900.0, 0.0, 0.0))

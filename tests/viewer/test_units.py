@@ -224,3 +224,81 @@ def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
     code += "print('viser' in sys.modules, 'trimesh' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:
+    """Issue 14.4: a link that only turns sends one message, not two; unchanged links none."""
+    import viser
+
+    from robomodel.viewer.scene import RobotModelDisplay
+
+    robot = read_urdf(
+        '<robot name="r"><link name="a"/><link name="b"/><link name="c"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        '<joint name="k" type="fixed"><parent link="b"/><child link="c"/></joint></robot>'
+    ).robot
+    server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        display = RobotModelDisplay(
+            server.scene,
+            "/robots/0",
+            robot,
+            index=PackageIndex(),
+            base_dir=Path.cwd(),
+            meshes=MeshCache(),
+        )
+        display.build()
+        sent: list[tuple[str, str]] = []
+        queue = server.scene._queue_scene_message
+
+        def record(message: object) -> None:
+            sent.append((type(message).__name__, str(getattr(message, "name", ""))))
+            queue(message)  # type: ignore[arg-type]
+
+        server.scene._queue_scene_message = record  # type: ignore[method-assign]
+        wxyz = np.tile([1.0, 0.0, 0.0, 0.0], (3, 1))
+        xyz = np.zeros((3, 3))
+        visible = np.ones(3, dtype=bool)
+        assert display.set_poses(wxyz, xyz, visible) == 3  # first time: everything
+        assert len([m for m in sent if m[0] == "SetOrientationMessage"]) == 3
+        sent.clear()
+        turned = wxyz.copy()
+        turned[1] = [math.cos(0.2), 0.0, 0.0, math.sin(0.2)]
+        shifted = xyz.copy()
+        shifted[2] = [0.0, 0.0, 0.5]
+        assert display.set_poses(turned, shifted, visible) == 2
+        names = {display._links[i]._impl.name for i in range(3)}
+        assert sent == [
+            ("SetOrientationMessage", f"/robots/0/l{robot.link_names.index('b')}"),
+            ("SetPositionMessage", f"/robots/0/l{robot.link_names.index('c')}"),
+        ]
+        assert len(names) == 3
+        sent.clear()
+        assert display.set_poses(turned, shifted, visible) == 0
+        assert sent == []
+    finally:
+        server.stop()
+
+
+def test_next_big_update_waits_for_pages_to_be_sent_the_previous_one() -> None:
+    """Issue 14.4: a new update would replace pose messages still waiting to be sent."""
+    from types import SimpleNamespace
+
+    from robomodel.viewer.app import Viewer
+
+    buffer = SimpleNamespace(generator_cursors={}, message_counter=300, max_window_size=128)
+    viewer = SimpleNamespace(
+        _broadcast_buffer=lambda: buffer, _last_push_ids=(100, 299), _last_push_s=10.0
+    )
+    behind = Viewer._page_behind
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]  # no page
+    buffer.generator_cursors = {1: 299, 2: 200}
+    assert behind(viewer, 10.1)  # type: ignore[arg-type]  # page 2 has half of it
+    assert not behind(viewer, 10.6)  # type: ignore[arg-type]  # waited 0.5 s
+    buffer.generator_cursors = {1: 299, 2: 299}
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]
+    viewer._last_push_ids = (250, 299)  # fits in one frame: sent whole, not waited for
+    buffer.generator_cursors = {1: 0}
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]
+    viewer._last_push_ids = None
+    assert not behind(viewer, 10.1)  # type: ignore[arg-type]  # nothing pushed yet

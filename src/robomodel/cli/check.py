@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
 from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.cli._verbs import verb_help
 from robomodel.description.report import check_urdf_text
 from robomodel.description.validate import validate_resources
 from robomodel.errors import Diagnostic, InputError, Severity
@@ -21,7 +21,7 @@ EXIT_INVALID = 2
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "check",
-        help="validate a URDF/xacro file (check_urdf, with line numbers)",
+        help=verb_help("check"),
         description=(
             "Parse and validate a robot description. On success stdout starts with exactly what "
             "urdfdom's check_urdf prints, followed by robomodel's extra warnings."
@@ -66,6 +66,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _print_json(path: str, result: Any, diagnostics: list[Diagnostic], *, valid: bool) -> None:
+    import json  # only for --json (start-up of the plain check)
+
     payload: dict[str, Any] = {"file": path, "valid": valid}
     if result is not None:
         robot = result.robot

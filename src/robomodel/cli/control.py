@@ -22,6 +22,7 @@ from robomodel.cli._common import (
     add_frame_rate_argument,
     load_from_args,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
 __all__ = ["register"]
@@ -38,7 +39,7 @@ def _cm_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def register(subparsers: Any) -> None:
-    parser = subparsers.add_parser("control", help="controller manager: run, list, load, switch")
+    parser = subparsers.add_parser("control", help=verb_help("control"))
     verbs = parser.add_subparsers(dest="control_verb", metavar="VERB")
     verbs.required = True
 

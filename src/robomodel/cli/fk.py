@@ -13,6 +13,7 @@ from robomodel.cli._joints import (
     configuration_from_args,
     kinematics_from_args,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.kinematics.se3 import quat_xyzw_from_matrix, rpy_from_matrix
 
 __all__ = ["register"]
@@ -21,7 +22,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "fk",
-        help="forward kinematics: link poses in the root frame",
+        help=verb_help("fk"),
         description="Print the pose of every link (or of --link LINK) in the root link's frame.",
     )
     parser.add_argument("file", metavar="FILE", help="a .urdf or .xacro file")

@@ -16,6 +16,7 @@ from robomodel.cli._joints import (
     configuration_from_args,
     kinematics_from_args,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.cli.graph import render_dot
 from robomodel.errors import RobomodelError
 from robomodel.tf import BufferCore, buffer_from_model, frames_dot
@@ -26,7 +27,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "frames",
-        help="draw the TF tree, as view_frames does",
+        help=verb_help("frames"),
         description=(
             "Write view_frames' graph of the transforms robot_state_publisher would publish "
             "for the model. Without -o the .gv text goes to stdout; -o FILE.pdf|.svg|.png "

@@ -15,6 +15,7 @@ from typing import Any
 
 from robomodel._atomic import atomic_write_bytes, atomic_write_text
 from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.cli._verbs import verb_help
 from robomodel.description.report import graphviz_text
 from robomodel.errors import RobomodelError
 
@@ -26,7 +27,7 @@ _RENDERED = {".svg": "svg", ".pdf": "pdf", ".png": "png"}
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "graph",
-        help="draw the link/joint tree (urdf_to_graphviz)",
+        help=verb_help("graph"),
         description=(
             "Write the link/joint graph that urdf_to_graphviz writes. Without -o the .gv text "
             "goes to stdout; -o FILE.svg|.pdf|.png renders it with Graphviz's dot."

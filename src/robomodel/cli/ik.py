@@ -11,6 +11,7 @@ import numpy as np
 
 from robomodel.cli._common import add_package_options
 from robomodel.cli._joints import kinematics_from_args
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.kinematics.se3 import transform_from_xyz_rpy
 
@@ -22,7 +23,7 @@ EXIT_UNREACHABLE = 1
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "ik",
-        help="inverse kinematics: joint values for a link pose",
+        help=verb_help("ik"),
         description=(
             "Find joint values inside the limits that put LINK at --xyz (and --rpy, else the "
             "orientation is free). --all lists every analytic solution (UR-type arms). Exit "

@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
 __all__ = ["dialect_of", "register", "run"]
@@ -24,7 +25,7 @@ __all__ = ["dialect_of", "register", "run"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "launch",
-        help="run a ROS 1 or ROS 2 launch file with robomodel's nodes",
+        help=verb_help("launch"),
         description=(
             "Run a ROS 1 launch file as roslaunch does, or a ROS 2 one (.launch.py, XML, YAML) "
             "as ros2 launch does, each node mapped onto a robomodel "

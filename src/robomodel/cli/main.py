@@ -8,60 +8,68 @@ whose ``func`` default takes the parsed arguments and returns the exit code. Err
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import sys
-from collections.abc import Callable, Sequence
 
 from robomodel._version import __version__
-from robomodel.errors import InputError, RobomodelError
+from robomodel.cli._verbs import VERBS
+
+# Start-up matters here (`robomodel --version` should cost little more than starting Python),
+# so this module imports argparse, typing and the error classes only where they are used.
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (mypy knows the name)
+if TYPE_CHECKING:
+    import argparse
+    from collections.abc import Callable, Sequence
+
+    from robomodel.errors import RobomodelError
 
 __all__ = ["EXIT_INVALID", "build_parser", "main"]
 
 EXIT_INVALID = 2
-
-# Verb modules, imported lazily so that `robomodel check` never pays for the viewer or physics.
-_VERBS: tuple[str, ...] = (
-    "robomodel.cli.check",
-    "robomodel.cli.graph",
-    "robomodel.cli.new",
-    "robomodel.cli.xacro",
-    "robomodel.cli.tf",
-    "robomodel.cli.frames",
-    "robomodel.cli.fk",
-    "robomodel.cli.ik",
-    "robomodel.cli.topic",
-    "robomodel.cli.param",
-    "robomodel.cli.service",
-    "robomodel.cli.publish_state",
-    "robomodel.cli.control",
-    "robomodel.cli.view",
-    "robomodel.cli.sim",
-    "robomodel.cli.launch",
-)
+_VERB_NAMES = frozenset(verb.name for verb in VERBS)
+_VERSION_TEXT = f"robomodel {__version__}"
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+def build_parser(verb: str | None = None) -> argparse.ArgumentParser:
+    """The ``robomodel`` parser; with ``verb``, only that verb's sub-parser is built in full.
+
+    The other verbs get an empty sub-parser carrying their help line from the static table, so
+    ``--help``, the list of choices and the errors are the same as with every verb built, while
+    a run imports only the module of the verb it runs (``robomodel check`` never loads the
+    viewer, the bus or numpy).
+    """
+    from robomodel.cli._parser import Parser
+
+    parser = Parser(
         prog="robomodel",
         description="URDF and xacro tools without ROS: check, graph, xacro, new, ...",
     )
-    parser.add_argument("--version", action="version", version=f"robomodel {__version__}")
+    parser.add_argument("--version", action="version", version=_VERSION_TEXT)
     parser.add_argument("--debug", action="store_true", help="show Python tracebacks for errors")
     subparsers = parser.add_subparsers(dest="verb", metavar="COMMAND")
     subparsers.required = True
-    for module_name in _VERBS:
-        try:
-            module = importlib.import_module(module_name)
-        except ModuleNotFoundError as exc:
-            if exc.name == module_name:
-                continue  # verb not built yet
-            raise
-        module.register(subparsers)
+    for entry in VERBS:
+        if verb is None or entry.name == verb:
+            importlib.import_module(entry.module).register(subparsers)
+        else:
+            # Never parsed with: it only lists the verb (and add_help=False halves its cost).
+            subparsers.add_parser(entry.name, help=entry.help, add_help=False)
     return parser
 
 
+def _chosen_verb(args: Sequence[str]) -> str | None:
+    """The verb named on the command line (the top-level options take no values), if any."""
+    for index, arg in enumerate(args):
+        if arg == "--":
+            return args[index + 1] if index + 1 < len(args) else None
+        if not arg.startswith("-"):
+            return arg
+    return None
+
+
 def _report(exc: RobomodelError) -> None:
+    from robomodel.errors import InputError
+
     if isinstance(exc, InputError):
         print(exc.diagnostic.format(), file=sys.stderr)
         for note in exc.notes:
@@ -73,9 +81,17 @@ def _report(exc: RobomodelError) -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line and return its exit code."""
     args_list = list(sys.argv[1:] if argv is None else argv)
-    parser = build_parser()
+    if args_list == ["--version"]:
+        # What argparse's version action prints, without loading argparse and its help
+        # formatter (shutil, textwrap, locale): a third of the command's start-up.
+        print(_VERSION_TEXT)
+        return 0
+    verb = _chosen_verb(args_list)
+    parser = build_parser(verb if verb in _VERB_NAMES else "")
     args = parser.parse_args(args_list)
     func: Callable[[argparse.Namespace], int] = args.func
+    from robomodel.errors import RobomodelError  # every verb module has loaded it already
+
     try:
         return func(args)
     except RobomodelError as exc:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from robomodel.cli._verbs import verb_help
 from robomodel.description.scaffold import create_description_package
 
 __all__ = ["register"]
@@ -13,7 +14,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "new",
-        help="create a robot description package (package.xml, urdf/, meshes/, launch/, config/)",
+        help=verb_help("new"),
     )
     parser.add_argument("name", metavar="NAME_description", help="package name")
     parser.add_argument("--dir", default=".", help="where to create it (default: .)")

@@ -15,6 +15,7 @@ from robomodel.cli._bus import (
     settled_graph,
     wait_for_peers,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
 from robomodel.runtime.params import (
@@ -35,7 +36,7 @@ _LABELS = {
 
 
 def register(subparsers: Any) -> None:
-    parser = subparsers.add_parser("param", help="inspect and change node parameters (ros2 param)")
+    parser = subparsers.add_parser("param", help=verb_help("param"))
     verbs = parser.add_subparsers(dest="param_verb", metavar="VERB")
     verbs.required = True
     specs = {

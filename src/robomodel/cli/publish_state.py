@@ -13,6 +13,7 @@ from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, context_from_args
 from robomodel.cli._common import add_description_arguments, load_from_args
+from robomodel.cli._verbs import verb_help
 from robomodel.description.urdf.writer import urdf_to_string
 from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
 from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
@@ -23,7 +24,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "publish-state",
-        help="run robot_state_publisher + joint_state_publisher for a description",
+        help=verb_help("publish-state"),
     )
     add_description_arguments(parser)
     parser.add_argument("--prefix", default="", help="frame_prefix, prepended verbatim to frames")

@@ -24,13 +24,14 @@ from robomodel.cli._bus import (
     settled_graph,
     wait_for_peers,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
 __all__ = ["parse_request", "register"]
 
 
 def register(subparsers: Any) -> None:
-    parser = subparsers.add_parser("service", help="list and call services (ros2 service)")
+    parser = subparsers.add_parser("service", help=verb_help("service"))
     verbs = parser.add_subparsers(dest="service_verb", metavar="VERB")
     verbs.required = True
 

@@ -28,15 +28,14 @@ from robomodel.cli._common import (
     package_index_from_args,
     split_inputs,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
 __all__ = ["parse_rate", "register"]
 
 
 def register(subparsers: Any) -> None:
-    p = subparsers.add_parser(
-        "sim", help="simulate a robot (Gazebo's role, on MuJoCo) with its controllers"
-    )
+    p = subparsers.add_parser("sim", help=verb_help("sim"))
     p.add_argument(
         "inputs",
         nargs="+",

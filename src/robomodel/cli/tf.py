@@ -24,6 +24,7 @@ from robomodel.cli._joints import (
     configuration_from_args,
     kinematics_from_args,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.tf import TransformError, buffer_from_model, format_echo
 
@@ -33,7 +34,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "tf",
-        help="print the transform between two frames, as tf2_echo does",
+        help=verb_help("tf"),
         description=(
             "Print what 'tf2_echo SOURCE TARGET' prints: the pose of TARGET in SOURCE. With a "
             "FILE, for the robot at the joint values given (others at joint_state_publisher's "

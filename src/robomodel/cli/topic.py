@@ -16,6 +16,7 @@ from robomodel.cli._bus import (
     settled_graph,
     wait_for_peers,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
 from robomodel.runtime.msg import Message, get_message_type, message_from_yaml, message_to_yaml
@@ -26,9 +27,7 @@ __all__ = ["register"]
 
 
 def register(subparsers: Any) -> None:
-    parser = subparsers.add_parser(
-        "topic", help="list, echo, publish and measure topics (ros2 topic)"
-    )
+    parser = subparsers.add_parser("topic", help=verb_help("topic"))
     verbs = parser.add_subparsers(dest="topic_verb", metavar="VERB")
     verbs.required = True
 

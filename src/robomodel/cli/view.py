@@ -22,6 +22,7 @@ from robomodel.cli._common import (
     package_index_from_args,
     split_inputs,
 )
+from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
 __all__ = ["register"]
@@ -30,7 +31,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "view",
-        help="view descriptions in the browser: robot model, TF frames and joint sliders",
+        help=verb_help("view"),
         description=(
             "Serve a web page showing the robots (RViz's RobotModel and TF displays) with "
             "joint sliders (joint_state_publisher_gui); reloads when a file is saved."

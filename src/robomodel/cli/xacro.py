@@ -12,6 +12,7 @@ import sys
 from collections.abc import Sequence
 
 from robomodel._atomic import atomic_write_text
+from robomodel.cli._verbs import verb_help
 from robomodel.description.packages import index_from_options
 from robomodel.errors import Diagnostic, RobomodelError, Severity
 
@@ -39,7 +40,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     """Add the ``xacro`` verb."""
     parser = subparsers.add_parser(
         "xacro",
-        help="expand a xacro file (same output as ROS xacro 2.1.1)",
+        help=verb_help("xacro"),
         description="Expand a xacro file to URDF; output is byte-identical to ROS xacro 2.1.1.",
     )
     parser.add_argument("input", help="the .xacro file")

@@ -83,6 +83,7 @@ class BufferCore:
     def __init__(self, cache_time_ns: int = DEFAULT_CACHE_TIME_NS) -> None:
         self.cache_time_ns = cache_time_ns
         self._frames: list[str] = []  # in order of first appearance
+        self._known: set[str] = set()  # the same frames: O(1) membership for every lookup
         self._caches: dict[str, TimeCache | StaticCache] = {}
         self._authority: dict[str, str] = {}
 
@@ -92,7 +93,8 @@ class BufferCore:
         return False
 
     def _number(self, frame: str) -> None:
-        if frame not in self._caches and frame not in self._frames:
+        if frame not in self._known:
+            self._known.add(frame)
             self._frames.append(frame)
 
     def set_transform(
@@ -118,7 +120,8 @@ class BufferCore:
                 f'TF_NO_FRAME_ID: Ignoring transform with child_frame_id "{child}"  from '
                 f'authority "{authority}" because frame_id not set'
             )
-        if any(math.isnan(v) for v in values):
+        # One addition flags a NaN among the seven (the exact test runs only then: inf - inf).
+        if math.isnan(sum(values)) and any(math.isnan(v) for v in values):
             problems.append(
                 f'TF_NAN_INPUT: Ignoring transform for child_frame_id "{child}" from authority '
                 f'"{authority}" because of a nan value in the transform'
@@ -170,7 +173,7 @@ class BufferCore:
                 f'Invalid argument "{frame}" passed to {argument} - in tf2 frame_ids cannot '
                 "start with a '/'"
             )
-        if frame not in self._frames:
+        if frame not in self._known:
             hint = close_matches(frame, self._frames)
             suggestion = f"Did you mean {', '.join(repr(h) for h in hint)}?" if hint else ""
             raise LookupError(f'"{frame}" passed to {argument} does not exist. {suggestion}')
@@ -322,6 +325,17 @@ class BufferCore:
             return TransformStamped(target, source, stamp_ns=stamp)
         self._validate(target, "lookupTransform argument target_frame")
         self._validate(source, "lookupTransform argument source_frame")
+        if time_ns == 0:
+            # One hop (target is source's parent) at the latest time: the newest sample is the
+            # answer, as the walk below would find it (what a viewer asks once per joint).
+            cache = self._caches.get(source)
+            if cache is not None:
+                latest_ns, parent = cache.latest()
+                if parent == target:
+                    sample = cache.get(latest_ns)
+                    return TransformStamped(
+                        target, source, sample.translation, sample.rotation_xyzw, sample.stamp_ns
+                    )
         (t, q), stamp = self._walk(target, source, time_ns)
         return TransformStamped(target, source, t, q, stamp)
 

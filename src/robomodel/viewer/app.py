@@ -137,6 +137,9 @@ class Viewer:
         self.display_options = DisplayOptions()
         self.meshes = MeshCache()
         self.updates_sent = 0
+        # viser's ids of the first and last message of the last update, and when it went out
+        self._last_push_ids: tuple[int, int] | None = None
+        self._last_push_s = 0.0
         self.reloads = 0
         self.server: Any = None
         self.context: Context | None = None
@@ -317,14 +320,18 @@ class Viewer:
         next_reload = next_status = next_bodies = next_push = 0.0
         while not self._stop.is_set():
             self.context.spin_once(0.005)
-            for session in self.sessions:
-                if session.apply_queued():
-                    self.context.spin_once(0.0)  # robot_state_publisher -> /tf -> buffer
             now = time.monotonic()
+            if now >= next_push:
+                # Slider values are applied when a scene update is due, not at every turn: a
+                # joint state (and its /tf through robot_state_publisher) that no update would
+                # show is not computed, so a drag costs one message per update at most.
+                for session in self.sessions:
+                    if session.apply_queued():
+                        self.context.spin_once(0.0)  # robot_state_publisher -> /tf -> buffer
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()
-            if self._dirty and now >= next_push:
+            if self._dirty and now >= next_push and not self._page_behind(now):
                 # On the schedule, not from now: the loop's own latency does not lower the rate.
                 next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
                 self._dirty = False
@@ -368,6 +375,32 @@ class Viewer:
         T[1, 3] = -(session.number - anchor) * spacing
         return T
 
+    def _broadcast_buffer(self) -> Any:
+        """viser's outgoing broadcast buffer (1.1's internals), or None if it differs."""
+        buffer = getattr(getattr(self.server, "_websock_server", None), "_broadcast_buffer", None)
+        ok = hasattr(buffer, "generator_cursors") and hasattr(buffer, "message_counter")
+        return buffer if ok else None
+
+    def _page_behind(self, now: float) -> bool:
+        """Whether a page has not yet been sent all of the previous update, when that update
+        takes more than one websocket frame.
+
+        A new update replaces the pose messages still waiting, so when the pages cannot take
+        updates as fast as they are made (a 1,000-link robot: thousands of messages, tens of
+        frames each), the links queued last would never be sent. Waiting for viser's send
+        cursor keeps such updates whole; an update that fits in one frame is sent whole anyway
+        and is not waited for (the next one is computed while it goes). At most 0.5 s, so that
+        a stalled page does not freeze the others.
+        """
+        buffer = self._broadcast_buffer()
+        if buffer is None or self._last_push_ids is None or now - self._last_push_s > 0.5:
+            return False
+        first, last = self._last_push_ids
+        if last - first + 1 <= getattr(buffer, "max_window_size", 128):
+            return False
+        cursors = list(buffer.generator_cursors.values())
+        return bool(cursors) and min(cursors) < last
+
     def _push(self) -> None:
         """Send the poses that changed, as one atomic batch, flushed immediately."""
         frames: list[str] = []
@@ -376,6 +409,8 @@ class Viewer:
         shown: list[np.ndarray] = []
         self._missing = {}
         self._beside = set()
+        buffer = self._broadcast_buffer()
+        first_id = buffer.message_counter if buffer is not None else 0
         with self.server.atomic():
             for session in self.sessions:
                 poses = session.link_poses(
@@ -407,6 +442,9 @@ class Viewer:
                 )
         self.server.flush()
         self.updates_sent += 1
+        if buffer is not None:
+            self._last_push_ids = (first_id, buffer.message_counter - 1)
+            self._last_push_s = time.monotonic()
 
     def _push_other_frames(
         self,

@@ -64,28 +64,21 @@ def robot_link_poses(
     tree = robot.tree()
     root = prefix + tree.root
     names = link_names
-    n = len(names)
-    t = np.zeros((n, 3))
-    q = np.zeros((n, 4))
-    q[:, 3] = 1.0
-    visible = np.zeros(n, dtype=bool)
-    index = {name: i for i, name in enumerate(names)}
-    visible[index[tree.root]] = True
-    poses: dict[str, tuple[Vec3, QuatXyzw]] = {tree.root: ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))}
+    identity: tuple[Vec3, QuatXyzw] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    # Plain lists and floats while walking (numpy element access costs more than the maths),
+    # one array per field at the end.
+    poses: dict[str, tuple[Vec3, QuatXyzw]] = {tree.root: identity}
     missing = []
     # One hop per joint (parent -> child), composed down the tree: O(links), not
     # O(links x depth) as looking every link up from the root would be.
     for _depth, joint in tree.walk():
-        i, p = index[joint.child], index[joint.parent]
         frame = prefix + joint.child
+        parent_pose = poses.get(joint.parent)
         try:
-            if not visible[p]:
+            if parent_pose is None:
                 raise TransformError("parent not connected")
             tf = buffer.lookup_transform(prefix + joint.parent, frame)
-            t_p, q_p = poses[joint.parent]
-            poses[joint.child] = compose(t_p, q_p, tf.translation_m, tf.rotation_xyzw)
-            t[i], q[i] = poses[joint.child]
-            visible[i] = True
+            poses[joint.child] = compose(*parent_pose, tf.translation_m, tf.rotation_xyzw)
         except TransformError:
             try:  # another process may publish a different tree: ask the root directly
                 tf = buffer.lookup_transform(root, frame)
@@ -93,7 +86,10 @@ def robot_link_poses(
                 missing.append(frame)
                 continue
             poses[joint.child] = (tf.translation_m, tf.rotation_xyzw)
-            t[i], q[i], visible[i] = tf.translation_m, tf.rotation_xyzw, True
+    rows = [poses.get(name) for name in names]
+    visible = np.array([row is not None for row in rows], dtype=bool)
+    t = np.array([row[0] if row is not None else (0.0, 0.0, 0.0) for row in rows]).reshape(-1, 3)
+    q = np.array([row[1] if row is not None else identity[1] for row in rows]).reshape(-1, 4)
     connected = True
     try:
         base = buffer.lookup_transform(fixed_frame, root)

@@ -307,23 +307,32 @@ class RobotModelDisplay:
             xyz: Shape (n_links, 3) [m].
             visible: Shape (n_links,): False for links with no transform to the fixed frame.
         """
-        moved = (np.abs(xyz - self._last_xyz).max(axis=1, initial=0.0) > _POSITION_TOL_M) | (
-            np.abs(wxyz - self._last_wxyz).max(axis=1, initial=0.0) > _ROTATION_TOL
-        )
-        moved |= np.isnan(self._last_xyz[:, 0])
-        moved &= visible
+        # Orientation and position are separate viser messages (each ~15 us to queue and send):
+        # send each only when it changed, e.g. a link turning about its own origin sends one.
+        turned = np.abs(wxyz - self._last_wxyz).max(axis=1, initial=0.0) > _ROTATION_TOL
+        shifted = np.abs(xyz - self._last_xyz).max(axis=1, initial=0.0) > _POSITION_TOL_M
+        new = np.isnan(self._last_xyz[:, 0])
+        turned = (turned | new) & visible
+        shifted = (shifted | new) & visible
+        moved = turned | shifted
         shown = visible != self._last_visible
-        for i in np.flatnonzero(moved):
-            self._write_pose(self._links[i], wxyz[i], xyz[i])
-        self._last_wxyz[moved] = wxyz[moved]
-        self._last_xyz[moved] = xyz[moved]
+        wxyz_rows, xyz_rows = wxyz.tolist(), xyz.tolist()  # floats, not numpy scalars
+        turned_rows, shifted_rows = turned.tolist(), shifted.tolist()
+        for k in np.flatnonzero(moved).tolist():
+            self._write_pose(
+                self._links[k],
+                wxyz_rows[k] if turned_rows[k] else None,
+                xyz_rows[k] if shifted_rows[k] else None,
+            )
+        self._last_wxyz[turned] = wxyz[turned]
+        self._last_xyz[shifted] = xyz[shifted]
         for i in np.flatnonzero(shown):
             self._links[i].visible = bool(visible[i])
         self._last_visible = visible.copy()
         return int(moved.sum())
 
-    def _write_pose(self, handle: Any, wxyz: NDArray[np.float64], xyz: NDArray[np.float64]) -> None:
-        """Set a node's pose; we already know it changed, so skip viser's per-setter checks.
+    def _write_pose(self, handle: Any, wxyz: list[float] | None, xyz: list[float] | None) -> None:
+        """Set a node's orientation and/or position (None: unchanged), known to have changed.
 
         viser's ``wxyz``/``position`` setters cast, compare (``np.allclose``) and copy on every
         call, which is most of the cost of a 60-link update. When this viser has the same
@@ -334,15 +343,19 @@ class RobotModelDisplay:
         impl = getattr(handle, "_impl", None)
         messages = _viser_messages()
         if queue is None or impl is None or messages is None:
-            handle.wxyz = wxyz
-            handle.position = xyz
+            if wxyz is not None:
+                handle.wxyz = wxyz
+            if xyz is not None:
+                handle.position = xyz
             return
-        w, x, y, z = (float(v) for v in wxyz)
-        px, py, pz = (float(v) for v in xyz)
-        impl.wxyz[:] = (w, x, y, z)
-        impl.position[:] = (px, py, pz)
-        queue(messages.SetOrientationMessage(impl.name, (w, x, y, z)))
-        queue(messages.SetPositionMessage(impl.name, (px, py, pz)))
+        if wxyz is not None:
+            w, x, y, z = wxyz
+            impl.wxyz[:] = (w, x, y, z)
+            queue(messages.SetOrientationMessage(impl.name, (w, x, y, z)))
+        if xyz is not None:
+            px, py, pz = xyz
+            impl.position[:] = (px, py, pz)
+            queue(messages.SetPositionMessage(impl.name, (px, py, pz)))
 
     def remove(self) -> None:
         """Take the robot out of the scene."""

@@ -7,7 +7,6 @@ import gc
 import os
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
-from typing import IO
 
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import Diagnostic, InputError, RobomodelError
@@ -19,6 +18,10 @@ from robomodel.xacro._parse import parse_xml
 from robomodel.xacro._processor import process_document
 from robomodel.xacro._safe_eval import Limits
 from robomodel.xacro._serialize import SerializationError, serialize
+
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
+if TYPE_CHECKING:
+    from typing import IO
 
 __all__ = ["ExpansionResult", "XacroDocument", "expand", "process", "process_file"]
 

@@ -13,7 +13,6 @@ import os
 import re
 from collections.abc import Callable
 from types import CodeType
-from typing import Any
 
 from robomodel.errors import InputError, Severity, close_matches
 from robomodel.xacro._context import Context
@@ -27,6 +26,10 @@ from robomodel.xacro._safe_eval import (
 from robomodel.xacro._subst import SubstitutionError, SubstitutionHooks, resolve_args
 from robomodel.xacro._symbols import CircularDefinitionError, ReadOnlyNamespace, Scope
 from robomodel.xacro._yaml import YamlDictWrapper, load_yaml_text
+
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["abs_filename_spec", "build_globals", "eval_expression", "eval_text"]
 

@@ -25,9 +25,12 @@ import string
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from types import CodeType
-from typing import Any
 
 from robomodel.xacro._symbols import ReadOnlyNamespace, Scope
+
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = [
     "ExpressionError",

@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from typing import Any
 
-import yaml
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
+if TYPE_CHECKING:
+    from typing import Any
+
+    import yaml
 
 __all__ = ["UNIT_TAGS", "YamlDictWrapper", "YamlListWrapper", "load_yaml_text", "wrap"]
 
@@ -30,7 +33,7 @@ def wrap(item: Any) -> Any:
     return item
 
 
-class YamlListWrapper(list[Any]):
+class YamlListWrapper(list["Any"]):
     """A YAML list whose items are wrapped on access."""
 
     def __getitem__(self, idx: Any) -> Any:
@@ -41,7 +44,7 @@ class YamlListWrapper(list[Any]):
             yield wrap(item)
 
 
-class YamlDictWrapper(dict[Any, Any]):
+class YamlDictWrapper(dict["Any", "Any"]):
     """A YAML mapping with dotted access (``settings.arm.length``); also ``xacro.dotify``."""
 
     def __getattr__(self, item: str) -> Any:
@@ -55,6 +58,7 @@ class YamlDictWrapper(dict[Any, Any]):
 
 def _loader(evaluate_unit: Callable[[str], object]) -> type[yaml.SafeLoader]:
     """A SafeLoader subclass with the unit tags, so that the global SafeLoader stays untouched."""
+    import yaml  # not at the top: only files that call xacro.load_yaml pay for it
 
     class Loader(yaml.SafeLoader):
         pass
@@ -71,4 +75,6 @@ def _loader(evaluate_unit: Callable[[str], object]) -> type[yaml.SafeLoader]:
 
 def load_yaml_text(text: str, evaluate_unit: Callable[[str], object]) -> Any:
     """Parse YAML text; unit-tagged scalars are xacro expressions (``!degrees 2*90``)."""
+    import yaml
+
     return wrap(yaml.load(text, Loader=_loader(evaluate_unit)))

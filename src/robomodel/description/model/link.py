@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-
-import numpy as np
-from numpy.typing import NDArray
+from typing import TYPE_CHECKING
 
 from robomodel.description.model.geometry import Collision, Visual
 from robomodel.description.model.pose import Origin
 from robomodel.description.model.raw import RawElement
 from robomodel.description.model.source import SourceSpan
+
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
 
 __all__ = ["Inertia", "Inertial", "Link"]
 
@@ -28,6 +30,8 @@ class Inertia:
 
     def matrix(self) -> NDArray[np.float64]:
         """The symmetric 3x3 tensor."""
+        import numpy as np  # not at the top: parsing and checking a URDF never need numpy
+
         m = np.array(
             [
                 [self.ixx, self.ixy, self.ixz],

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
-from numpy.typing import NDArray
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
 
 __all__ = ["Origin", "matrix_from_xyz_rpy", "quat_xyzw_from_rpy", "rpy_from_quat_xyzw"]
 
@@ -42,6 +44,8 @@ class Origin:
 
     def matrix(self) -> NDArray[np.float64]:
         """The 4x4 homogeneous transform of this pose."""
+        import numpy as np  # not at the top: parsing and checking a URDF never need numpy
+
         if self.quat_xyzw is None:
             return matrix_from_xyz_rpy(self.xyz_m, self.rpy_rad)
         x, y, z, w = self.quaternion_xyzw()
@@ -97,6 +101,8 @@ def matrix_from_xyz_rpy(
     xyz: tuple[float, float, float], rpy: tuple[float, float, float]
 ) -> NDArray[np.float64]:
     """4x4 transform from translation [m] and fixed-axis roll, pitch, yaw [rad]."""
+    import numpy as np
+
     r, p, y = rpy
     cr, sr = math.cos(r), math.sin(r)
     cp, sp = math.cos(p), math.sin(p)

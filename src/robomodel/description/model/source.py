@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
 from typing import NamedTuple
-
-import numpy as np
 
 from robomodel.errors import SourceLocation
 
@@ -23,8 +22,10 @@ class SourceText:
 
     def _starts(self) -> list[int]:
         if self._line_starts is None:
-            newlines = np.flatnonzero(np.frombuffer(self.data, dtype=np.uint8) == 10)
-            self._line_starts = [0, *(newlines + 1).tolist()]
+            # Each line starts one byte after the previous line's end (no numpy: checking a
+            # URDF should not pay for importing it).
+            lengths = (len(line) + 1 for line in self.data.split(b"\n")[:-1])
+            self._line_starts = list(itertools.accumulate(lengths, initial=0))
         return self._line_starts
 
     def column_of(self, tag: str, line: int, ordinal: int = 0) -> int | None:

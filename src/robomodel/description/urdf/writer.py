@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable
-from xml.sax.saxutils import quoteattr
 
 from robomodel._atomic import atomic_write_text
 from robomodel.description.model import (
@@ -34,7 +33,7 @@ from robomodel.description.model import (
     Visual,
 )
 
-__all__ = ["urdf_to_string", "write_urdf"]
+__all__ = ["quote_attr", "urdf_to_string", "write_urdf"]
 
 
 def _num(value: float) -> str:
@@ -52,8 +51,22 @@ def _attrs(pairs: Iterable[tuple[str, str | float | None]]) -> str:
         if value is None:
             continue
         text = value if isinstance(value, str) else _num(value)
-        out.append(f" {key}={quoteattr(text)}")
+        out.append(f" {key}={quote_attr(text)}")
     return "".join(out)
+
+
+def quote_attr(text: str) -> str:
+    """``xml.sax.saxutils.quoteattr``: the escaped value in the quotes that need no escaping.
+
+    Written here because importing ``xml.sax.saxutils`` pulls in ``urllib.request``, ``http``,
+    ``ssl`` and ``email`` (tens of ms of every command that writes URDF).
+    """
+    text = _escape_text(text).replace("\n", "&#10;").replace("\r", "&#13;").replace("\t", "&#9;")
+    if '"' not in text:
+        return f'"{text}"'
+    if "'" not in text:
+        return f"'{text}'"
+    return '"' + text.replace('"', "&quot;") + '"'
 
 
 def _escape_text(text: str) -> str:
