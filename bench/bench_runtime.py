@@ -1,7 +1,14 @@
 """Runtime benchmark: /joint_states at 1 kHz from process A into robot_state_publisher in
 process B, /tf received in process C, over Zenoh on loopback, for a 60-link robot.
 
-Run: ``.venv/bin/python bench/bench_runtime.py [--seconds 10] [--rate 1000]``.
+Run: ``.venv/bin/python bench/bench_runtime.py [--seconds 10] [--rate 1000] [--rounds 3]
+[--reference]``.
+
+With ``--reference``, each round is followed by the same pipeline in ROS 1 (issue 14 target 6):
+a rospy publisher (A), Debian's C++ ``/usr/lib/robot_state_publisher/robot_state_publisher``
+with ``_ignore_timestamp:=true`` (B) and a rospy /tf subscriber (C) under their own roscore;
+the master's CPU is counted with B's, since ROS 1's robot_state_publisher looks its
+``tf_prefix`` parameter up on the master for every message (bench/_ros1_rsp.py).
 
 Prints the sustained rates, the latency from A's publish to C's receipt of the matching /tf
 (p50/p99/max, from the JointState stamp: all processes share the machine's clock) and the CPU
@@ -15,11 +22,14 @@ import argparse
 import contextlib
 import json
 import os
+import signal
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -71,44 +81,28 @@ def _percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--seconds", type=float, default=10.0)
-    parser.add_argument("--rate", type=float, default=1000.0)
-    parser.add_argument("--role", choices=("driver", "rsp", "sink"), default="driver")
-    parser.add_argument("--domain", type=int, default=77)
-    args = parser.parse_args()
-    if args.role == "rsp":
-        role_rsp(args.domain)
-        return
-    if args.role == "sink":
-        role_sink(args.domain, args.seconds + 6.0)
-        return
-
-    from robomodel.description import read_urdf
-    from robomodel.kinematics import Kinematics
+def _run_ours(names: list[str], seconds: float, rate: float, domain: int) -> dict[str, Any]:
+    """One run of A -> robomodel robot_state_publisher -> C over Zenoh."""
     from robomodel.runtime import Context
     from robomodel.runtime.msg import Header, JointState, Time
 
-    robot = read_urdf(example_robot_data(ROBOT)).robot
-    names = list(Kinematics(robot).joint_names)
-    me = [sys.executable, __file__, "--domain", str(args.domain), "--seconds", str(args.seconds)]
+    me = [sys.executable, __file__, "--domain", str(domain), "--seconds", str(seconds)]
     rsp = subprocess.Popen([*me, "--role", "rsp"], stdout=subprocess.PIPE, text=True)
     sink = subprocess.Popen([*me, "--role", "sink"], stdout=subprocess.PIPE, text=True)
     for proc in (rsp, sink):
         assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
-    with Context("zenoh", domain_id=args.domain) as ctx:
+    with Context("zenoh", domain_id=domain) as ctx:
         pub = ctx.create_node("driver").create_publisher(JointState, "/joint_states", 1000)
         time.sleep(2.0)  # let the three peers link up
         cpu0 = {p.pid: _cpu_s(p.pid) for p in (rsp, sink)}
         own0 = time.process_time()
-        period = 1.0 / args.rate
+        period = 1.0 / rate
         start = time.perf_counter()
         sent = 0
         positions = [0.0] * len(names)
         while True:
             now = time.perf_counter()
-            if now - start >= args.seconds:
+            if now - start >= seconds:
                 break
             target = start + sent * period
             if now < target:
@@ -125,21 +119,160 @@ def main() -> None:
     rsp.terminate()
     rsp.wait(timeout=10)
     data = json.loads(out.strip().splitlines()[-1])
-    lat = data["latencies"]
-    arrivals = data["arrivals"]
-    received_rate = (len(arrivals) - 1) / (arrivals[-1] - arrivals[0]) if len(arrivals) > 1 else 0.0
-    print(f"robot: talos_full_v2 ({len(robot.links)} links, {len(names)} joints in each message)")
-    print(f"A published {sent} /joint_states in {elapsed:.2f} s: {sent / elapsed:.1f} Hz")
-    print(f"C received {len(lat)} /tf ({len(lat) / sent:.1%}): sustained {received_rate:.1f} Hz")
-    if lat:
-        print(
-            f"latency A->B->C: p50 {statistics.median(lat) * 1e3:.3f} ms, "
-            f"p99 {_percentile(lat, 0.99) * 1e3:.3f} ms, max {max(lat) * 1e3:.3f} ms"
+    return {
+        "sent": sent,
+        "elapsed": elapsed,
+        "latencies": data["latencies"],
+        "arrivals": data["arrivals"],
+        "cpu_a": own_cpu,
+        "cpu_b": cpu[rsp.pid],
+        "cpu_c": cpu[sink.pid],
+        "cpu_master": 0.0,
+    }
+
+
+_ROS1_RSP = "/usr/lib/robot_state_publisher/robot_state_publisher"
+_ROS_PY = "/usr/bin/python3"
+
+
+def _run_ros1(names: list[str], seconds: float, rate: float, port: int) -> dict[str, Any]:
+    """One run of rospy A -> Debian's C++ robot_state_publisher -> rospy C, with a roscore."""
+    work = Path(tempfile.mkdtemp(prefix="bench_runtime_ros1_"))
+    env = {
+        "PATH": "/usr/bin:/bin",
+        "HOME": str(work),
+        "ROS_HOME": str(work / ".ros"),
+        "ROS_MASTER_URI": f"http://localhost:{port}",
+        "ROS_PACKAGE_PATH": "/usr/share",
+        "LANG": "C.UTF-8",
+    }
+    helper = str(Path(__file__).resolve().parent / "_ros1_rsp.py")
+    text = example_robot_data(ROBOT).read_text()
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": env}
+    core = subprocess.Popen(["/usr/bin/roscore", "-p", str(port)], **quiet)  # type: ignore[call-overload]
+    procs: list[subprocess.Popen[str]] = []
+    try:
+        setter = (
+            "import rospy, sys, time\n"
+            "text = sys.stdin.read()\n"
+            "for _ in range(100):\n"
+            "    try:\n"
+            "        rospy.set_param('/robot_description', text)\n"
+            "        break\n"
+            "    except Exception:\n"
+            "        time.sleep(0.1)\n"
         )
+        subprocess.run(
+            [_ROS_PY, "-c", setter], input=text, text=True, env=env, check=True, timeout=60
+        )
+        rsp = subprocess.Popen([_ROS1_RSP, "_ignore_timestamp:=true"], **quiet)  # type: ignore[call-overload]
+        sink = subprocess.Popen([_ROS_PY, helper, "sink", str(seconds + 6.0)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env, text=True)  # fmt: skip
+        procs = [rsp, sink]
+        assert sink.stdout is not None and sink.stdout.readline().strip() == "ready"
+        master = _master_pid(core.pid)
+        driver = subprocess.Popen([_ROS_PY, helper, "driver", json.dumps(names), str(seconds), str(rate)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env, text=True)  # fmt: skip
+        procs.append(driver)
+        assert driver.stdout is not None and driver.stdout.readline().strip() == "start"
+        cpu0 = {p: _cpu_s(p) for p in (rsp.pid, sink.pid, master)}
+        out = driver.stdout.readline()  # its summary, when the timed part ends
+        cpu = {p: _cpu_s(p) - cpu0[p] for p in cpu0}
+        driver.wait(timeout=30)
+        summary = json.loads(out)
+        data = json.loads(sink.communicate(timeout=30)[0].strip().splitlines()[-1])
+    finally:
+        for proc in [*procs, core]:
+            if proc.poll() is None:
+                proc.send_signal(signal.SIGINT)
+                try:
+                    proc.wait(10)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+    return {
+        "sent": summary["sent"],
+        "elapsed": summary["elapsed"],
+        "latencies": data["latencies"],
+        "arrivals": data["arrivals"],
+        "cpu_a": summary["cpu"],
+        "cpu_b": cpu[rsp.pid],
+        "cpu_c": cpu[sink.pid],
+        "cpu_master": cpu[master],
+    }
+
+
+def _master_pid(core_pid: int) -> int:
+    """The rosmaster process roscore started (its CPU is the reference's master traffic)."""
+    for _ in range(100):
+        for child in Path("/proc").glob("[0-9]*/stat"):
+            with contextlib.suppress(OSError):
+                fields = child.read_text().rsplit(")", 1)[1].split()
+                cmdline = (child.parent / "cmdline").read_bytes()
+                if int(fields[1]) == core_pid and b"rosmaster" in cmdline:  # its child
+                    return int(child.parent.name)
+        time.sleep(0.1)
+    return core_pid
+
+
+def _report(label: str, run: dict[str, Any]) -> None:
+    lat, sent, elapsed = run["latencies"], run["sent"], run["elapsed"]
     print(
-        f"CPU: A (publisher) {own_cpu / elapsed:.0%}, B (robot_state_publisher) "
-        f"{cpu[rsp.pid] / elapsed:.0%}, C (/tf subscriber) {cpu[sink.pid] / elapsed:.0%} of one core"
+        f"{label}: sent {sent} in {elapsed:.2f} s, received {len(lat)} /tf ({len(lat) / sent:.1%})"
+        + (
+            f"; latency p50 {statistics.median(lat) * 1e3:.3f} ms, p99 "
+            f"{_percentile(lat, 0.99) * 1e3:.3f} ms, max {max(lat) * 1e3:.3f} ms"
+            if lat
+            else ""
+        )
+        + f"; CPU per message: publisher {run['cpu_a'] / sent * 1e6:.0f} us, "
+        f"robot_state_publisher {run['cpu_b'] / sent * 1e6:.0f} us, /tf subscriber "
+        f"{run['cpu_c'] / sent * 1e6:.0f} us, master {run['cpu_master'] / sent * 1e6:.1f} us",
+        flush=True,
     )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--seconds", type=float, default=10.0)
+    parser.add_argument("--rate", type=float, default=1000.0)
+    parser.add_argument("--rounds", type=int, default=1)
+    parser.add_argument(
+        "--reference", action="store_true", help="also run Debian's ROS 1 C++ robot_state_publisher"
+    )
+    parser.add_argument("--role", choices=("driver", "rsp", "sink"), default="driver")
+    parser.add_argument("--domain", type=int, default=77)
+    args = parser.parse_args()
+    if args.role == "rsp":
+        role_rsp(args.domain)
+        return
+    if args.role == "sink":
+        role_sink(args.domain, args.seconds + 6.0)
+        return
+
+    from robomodel.description import read_urdf
+    from robomodel.kinematics import Kinematics
+
+    robot = read_urdf(example_robot_data(ROBOT)).robot
+    names = list(Kinematics(robot).joint_names)
+    print(f"robot: talos_full_v2 ({len(robot.links)} links, {len(names)} joints in each message)")
+    ours: list[dict[str, Any]] = []
+    ref: list[dict[str, Any]] = []
+    for k in range(args.rounds):  # interleaved: the shared machine's load hits both alike
+        ours.append(_run_ours(names, args.seconds, args.rate, args.domain))
+        _report(f"round {k + 1} robomodel (Zenoh)", ours[-1])
+        if args.reference:
+            ref.append(_run_ros1(names, args.seconds, args.rate, 11390 + k % 10))
+            _report(f"round {k + 1} ROS 1 C++ (rospy ends)", ref[-1])
+    for label, runs in (("robomodel", ours), ("ROS 1", ref)):
+        if runs:
+            med = statistics.median
+            print(
+                f"{label:9s} median over rounds: p50 "
+                f"{med(statistics.median(r['latencies']) for r in runs) * 1e3:.3f} ms, p99 "
+                f"{med(_percentile(r['latencies'], 0.99) for r in runs) * 1e3:.3f} ms, max "
+                f"{med(max(r['latencies']) for r in runs) * 1e3:.3f} ms; "
+                f"robot_state_publisher + master CPU per message "
+                f"{med((r['cpu_b'] + r['cpu_master']) / r['sent'] for r in runs) * 1e6:.0f} us"
+            )
 
 
 if __name__ == "__main__":

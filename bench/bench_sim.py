@@ -12,6 +12,11 @@ Run: ``.venv/bin/python bench/bench_sim.py [--seconds 5] [--rounds 5]``.
 3. For reference: raw ``mj_step`` on the UR5 model (no Python per step) and the per-step Python
    loop of the engine with no controllers.
 
+Each of 1 and 2 is followed by raw ``mj_step`` (``nstep``) on the same compiled model from the
+same initial state (the UR5 held against gravity by a constant generalised force, simplebot with
+the wheels' final servo commands); the ratio raw/ours is the Python overhead (issue 14 target 5:
+<= 2 for the UR5, <= 1.5 for simplebot). The scenes run interleaved, round after round.
+
 Each round builds the scene anew and runs ``--seconds`` of sim time as fast as possible;
 the median over the rounds is printed (the machine is shared; take medians).
 """
@@ -20,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import logging
 import math
 import statistics
 import time
@@ -55,8 +61,9 @@ def _ur5_effort():  # type: ignore[no-untyped-def]
     return dataclasses.replace(robot, transmissions=transmissions)
 
 
-def ur5_round(seconds: float) -> tuple[float, float, float]:
-    """(real-time factor by wall time, by process CPU time, final tracking error [rad])."""
+def ur5_round(seconds: float) -> tuple[float, float, float, float]:
+    """(real-time factor by wall time, by process CPU time, final tracking error [rad],
+    raw ``mj_step`` real-time factor on the same compiled model, run right after)."""
     from robomodel.control.config import load_controller_config
     from robomodel.description.urdf.writer import urdf_to_string
     from robomodel.runtime import Context, ManualClock
@@ -83,17 +90,42 @@ def ur5_round(seconds: float) -> tuple[float, float, float]:
             c.set_command(targets[i])  # type: ignore[attr-defined]
 
     sim.every(50.0, command, order=-2)
+    raw_data = _held_copy(sim)
     cpu = time.process_time()
     wall = sim.run(seconds)
     cpu = time.process_time() - cpu
     q = [sim.data.joint(f"{j}_joint").qpos[0] for j in JOINTS]
     error = max(abs(a - b) for a, b in zip(q, targets, strict=True))
     context.shutdown()
-    return seconds / wall, seconds / cpu, error
+    return seconds / wall, seconds / cpu, error, _raw_rtf(sim, raw_data, seconds)
 
 
-def simplebot_round(seconds: float) -> tuple[float, float, int]:
-    """(real-time factor by wall time, by process CPU time, scans received)."""
+def _held_copy(sim):  # type: ignore[no-untyped-def]
+    """A fresh ``MjData`` of ``sim``'s model in its current state, with gravity held by a
+    constant generalised force (so the raw reference stays near the same pose, contacts
+    and all, as the controlled arm)."""
+    import mujoco
+
+    data = mujoco.MjData(sim.model)
+    data.qpos[:] = sim.data.qpos
+    mujoco.mj_forward(sim.model, data)
+    data.qfrc_applied[:] = data.qfrc_bias
+    return data
+
+
+def _raw_rtf(sim, data, seconds: float) -> float:  # type: ignore[no-untyped-def]
+    """Real-time factor of plain ``mj_step`` (``nstep``: no Python per step) on ``data``."""
+    import mujoco
+
+    n = round(seconds / sim.timestep_s)
+    start = time.perf_counter()
+    mujoco.mj_step(sim.model, data, nstep=n)
+    return seconds / (time.perf_counter() - start)
+
+
+def simplebot_round(seconds: float) -> tuple[float, float, int, float]:
+    """(real-time factor by wall time, by process CPU time, scans received, raw ``mj_step``
+    real-time factor on the same compiled model with the wheels' final servo commands)."""
     from robomodel.description.urdf.writer import urdf_to_string
     from robomodel.loading import load
     from robomodel.runtime import Context, ManualClock
@@ -115,11 +147,16 @@ def simplebot_round(seconds: float) -> tuple[float, float, int]:
     CmdVelDriver.attach(sim, system, context, (0.1, 0.0, 0.2))
     scans: list[LaserScan] = []
     context.create_node("listener").create_subscription(LaserScan, "/scan", scans.append)
+    import mujoco
+
+    raw_data = mujoco.MjData(sim.model)
+    raw_data.qpos[:] = sim.data.qpos
     cpu = time.process_time()
     wall = sim.run(seconds)
     cpu = time.process_time() - cpu
     context.shutdown()
-    return seconds / wall, seconds / cpu, len(scans)
+    raw_data.ctrl[:] = sim.data.ctrl  # the wheels' velocity servos, as the controller left them
+    return seconds / wall, seconds / cpu, len(scans), _raw_rtf(sim, raw_data, seconds)
 
 
 def raw_round(seconds: float) -> tuple[float, float]:
@@ -146,23 +183,35 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=5)
     args = parser.parse_args()
     print(f"simulation benchmark: {args.seconds:g} s of sim time x {args.rounds} rounds (median)")
-    ur5 = [ur5_round(args.seconds) for _ in range(args.rounds)]
+    logging.getLogger("robomodel").setLevel(logging.ERROR)  # clamping notices, not timed
+    ur5, bot, raw = [], [], []
+    for _ in range(args.rounds):  # interleaved: the shared machine's load hits all alike
+        ur5.append(ur5_round(args.seconds))
+        bot.append(simplebot_round(args.seconds))
+        raw.append(raw_round(args.seconds))
+    med = statistics.median
     print(
-        f"UR5 + 6 PID + JSB + RSP, 1 kHz       median {statistics.median(r[0] for r in ur5):6.1f}x "
+        f"UR5 + 6 PID + JSB + RSP, 1 kHz       median {med(r[0] for r in ur5):6.1f}x "
         f"real time (best {max(r[0] for r in ur5):.1f}x; by CPU time "
-        f"{statistics.median(r[1] for r in ur5):.1f}x; target >= 50x; "
+        f"{med(r[1] for r in ur5):.1f}x; target >= 50x; "
         f"tracking error {ur5[-1][2]:.4f} rad)"
     )
-    bot = [simplebot_round(args.seconds) for _ in range(args.rounds)]
     print(
-        f"simplebot + 360-ray lidar 10 Hz       median {statistics.median(r[0] for r in bot):6.1f}x "
-        f"real time (best {max(r[0] for r in bot):.1f}x; by CPU time "
-        f"{statistics.median(r[1] for r in bot):.1f}x; target >= 20x; {bot[-1][2]} scans)"
+        f"  raw mj_step, same model           median {med(r[3] for r in ur5):6.1f}x; "
+        f"ratio raw/ours {med(r[3] / r[0] for r in ur5):.2f} (target <= 2)"
     )
-    raw = [raw_round(args.seconds) for _ in range(args.rounds)]
     print(
-        f"UR5 raw mj_step (nstep)               median {statistics.median(r for r, _ in raw):6.1f}x"
-        f"; engine loop, no controllers {statistics.median(e for _, e in raw):6.1f}x"
+        f"simplebot + 360-ray lidar 10 Hz       median {med(r[0] for r in bot):6.1f}x "
+        f"real time (best {max(r[0] for r in bot):.1f}x; by CPU time "
+        f"{med(r[1] for r in bot):.1f}x; target >= 20x; {bot[-1][2]} scans)"
+    )
+    print(
+        f"  raw mj_step, same model           median {med(r[3] for r in bot):6.1f}x; "
+        f"ratio raw/ours {med(r[3] / r[0] for r in bot):.2f} (target <= 1.5)"
+    )
+    print(
+        f"UR5 raw mj_step (nstep)               median {med(r for r, _ in raw):6.1f}x"
+        f"; engine loop, no controllers {med(e for _, e in raw):6.1f}x"
     )
 
 

@@ -122,12 +122,33 @@ class Pid:
         self.error_last = 0.0
 
     def compute(self, error: float, dt_s: float) -> float:
-        """Command for ``error`` with the derivative by finite difference of the error."""
+        """Command for ``error`` with the derivative by finite difference of the error.
+
+        The same arithmetic as :meth:`compute_with_rate` with ``error_dot`` by finite
+        difference, written out: this runs per joint per control cycle.
+        """
         if dt_s == 0.0 or not math.isfinite(error):
             return 0.0
         error_dot = (error - self.error_last) / dt_s
         self.error_last = error
-        return self.compute_with_rate(error, error_dot, dt_s)
+        if not math.isfinite(error_dot):
+            return 0.0
+        g = self.gains
+        self.p_error = error
+        self.d_error = error_dot
+        i_err = self.i_error + dt_s * error
+        gi = g.i
+        if g.antiwindup and gi != 0.0:
+            i_err = min(max(i_err, self._i_lo), self._i_hi)
+            i_term = gi * i_err
+        else:
+            i_term = gi * i_err
+            if i_term < g.i_min:  # min(max(i_term, i_min), i_max), as compute_with_rate
+                i_term = g.i_min
+            if i_term > g.i_max:
+                i_term = g.i_max
+        self.i_error = i_err
+        return g.p * error + i_term + g.d * error_dot
 
     def compute_with_rate(self, error: float, error_dot: float, dt_s: float) -> float:
         """Command for ``error`` and a known error rate (e.g. a velocity error)."""

@@ -19,11 +19,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from robomodel.sim._divergence import check_finite
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.build.geoms import MeshLoader
 from robomodel.sim.build.robot import BuiltRobot, Placement, add_robot
 from robomodel.sim.build.scene import add_world, apply_min_friction, new_spec
-from robomodel.sim.exceptions import DivergenceError, SimulationError
+from robomodel.sim.exceptions import SimulationError
 from robomodel.sim.world import World, default_world
 
 if TYPE_CHECKING:
@@ -77,6 +78,7 @@ class Simulation:
         self._model: Any = None
         self._data: Any = None
         self._schedule: list[_Scheduled] = []
+        self._plan: list[tuple[int, StepCallback]] = []  # (every_steps, callback) in order
         self._hardware: list[SimSystem] = []
         self._controls: list[ControlSystem] = []
         self._steps = 0
@@ -258,6 +260,7 @@ class Simulation:
     def _add(self, item: _Scheduled) -> None:
         self._schedule.append(item)
         self._schedule.sort(key=lambda s: s.order)
+        self._plan = [(s.every_steps, s.callback) for s in self._schedule]
 
     # -- stepping -------------------------------------------------------------------------------
     def step(self, n: int = 1) -> None:
@@ -268,11 +271,12 @@ class Simulation:
         """
         mj = mujoco()
         model, data = self.model, self.data
-        schedule = [(item.every_steps, item.callback) for item in self._schedule]
+        schedule = self._plan
         hardware = [hw for hw in self._hardware if hw.has_kinematic_joints]
         kinematic = [hw for hw in hardware if hw.has_position_joints]
         mj_step = mj.mj_step
         steps = self._steps
+        check = check_finite
         for _ in range(n):
             t = data.time
             for every, callback in schedule:
@@ -286,9 +290,9 @@ class Simulation:
             steps += 1
             if steps % _CHECK_EVERY_STEPS == 0:
                 self._steps = steps
-                self.check_finite()
+                check(model, data)
         self._steps = steps
-        self.check_finite()
+        check(model, data)
 
     def run(
         self,
@@ -324,48 +328,8 @@ class Simulation:
 
     def check_finite(self) -> None:
         """Raise :class:`DivergenceError` if the physics state is not finite."""
-        mj = mujoco()
-        data = self._data
-        if data is None:
-            return
-        warn = data.warning
-        bad = [
-            w
-            for w in (
-                mj.mjtWarning.mjWARN_BADQACC,
-                mj.mjtWarning.mjWARN_BADQVEL,
-                mj.mjtWarning.mjWARN_BADQPOS,
-            )
-            if warn[int(w)].number > 0
-        ]
-        if bad:
-            dof = int(warn[int(bad[0])].lastinfo)
-            self._diverged(f"MuJoCo reported {bad[0].name} (it would reset the state)", dof=dof)
-        if np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all():
-            return
-        bad_q = np.flatnonzero(~np.isfinite(data.qvel))
-        dof = int(bad_q[0]) if len(bad_q) else -1
-        if dof < 0:
-            qbad = int(np.flatnonzero(~np.isfinite(data.qpos))[0])
-            jid = int(np.searchsorted(self._model.jnt_qposadr, qbad, side="right") - 1)
-            dof = int(self._model.jnt_dofadr[jid])
-        self._diverged("the state became NaN/infinite", dof=dof)
-
-    def _diverged(self, what: str, *, dof: int) -> None:
-        mj = mujoco()
-        model = self._model
-        joint = body = "?"
-        if 0 <= dof < model.nv:
-            jid = int(model.dof_jntid[dof])
-            joint = mj.mj_id2name(model, mj.mjtObj.mjOBJ_JOINT, jid) or f"joint {jid}"
-            bid = int(model.jnt_bodyid[jid])
-            body = mj.mj_id2name(model, mj.mjtObj.mjOBJ_BODY, bid) or f"body {bid}"
-        raise DivergenceError(
-            f"simulation diverged at t = {self.time_s:.4f} s: {what}; body '{body}' "
-            f"(joint '{joint}') diverged first. Check its inertia, joint damping, controller "
-            "gains and commands, or use a smaller physics step",
-            name=body,
-        )
+        if self._data is not None:
+            check_finite(self._model, self._data)
 
     # -- interaction ----------------------------------------------------------------------------
     def body_id(self, link: str, *, prefix: str = "") -> int:

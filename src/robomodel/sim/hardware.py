@@ -83,6 +83,12 @@ class SimSystem(HardwareComponent):
         # buffers never move, so keep the views.
         self._qpos, self._qvel = data.qpos, data.qvel
         self._qfrc, self._ctrl = data.qfrc_applied, data.ctrl
+        # Scalar reads and writes through memoryviews of the same buffers return and take plain
+        # Python floats without numpy's per-element boxing or fancy-index set-up (for a handful
+        # of joints, cheaper than either whole-array tolist or index-array assignment).
+        self._qpos_mv: Any = memoryview(self._qpos)  # format "d": items are Python floats
+        self._qvel_mv: Any = memoryview(self._qvel)
+        self._qfrc_mv: Any = memoryview(self._qfrc)
         self._joints = [j.name for j in info.joints]
         self._qadr: list[int] = []
         self._dadr: list[int] = []
@@ -161,6 +167,7 @@ class SimSystem(HardwareComponent):
         self._eff_slots = [slots[i] for i in self._eff_i]
         self._pos_q, self._pos_d = q[self._pos_i], d[self._pos_i]
         self._eff_d = d[self._eff_i]
+        self._eff_d_list = [self._dadr[i] for i in self._eff_i]
         self._pos_range = [tuple(self._range[i]) for i in self._pos_i]
         self._eff_limit = [float(self._effort_limit[i]) for i in self._eff_i]
         self._hold = [float(self._hold_q[i]) for i in self._pos_i]
@@ -194,16 +201,15 @@ class SimSystem(HardwareComponent):
     # -- the loop -------------------------------------------------------------------------------
     def read(self, time_s: float, period_s: float) -> ReturnType:
         states = self.states
-        q = self._qpos.tolist()  # whole-array tolist: cheaper than per-element numpy scalars
+        q = self._qpos_mv
         for slot, a in self._read_p:
             states[slot] = q[a]
-        v = self._qvel.tolist()
+        v = self._qvel_mv
         for slot, a in self._read_v:
             states[slot] = v[a]
-        if self._read_e:
-            f = self._qfrc.tolist()
-            for slot, a in self._read_e:
-                states[slot] = f[a]
+        f = self._qfrc_mv
+        for slot, a in self._read_e:
+            states[slot] = f[a]
         return _OK
 
     def write(self, time_s: float, period_s: float) -> ReturnType:
@@ -214,10 +220,9 @@ class SimSystem(HardwareComponent):
                 values = self._sanitize(values, self._eff_i, [0.0] * len(values), EFFORT)
             else:
                 self._ok[EFFORT] = True
-            self._qfrc[self._eff_d] = [
-                -lim if v < -lim else lim if v > lim else v
-                for v, lim in zip(values, self._eff_limit, strict=True)
-            ]
+            qfrc = self._qfrc_mv
+            for a, v, lim in zip(self._eff_d_list, values, self._eff_limit, strict=True):
+                qfrc[a] = -lim if v < -lim else lim if v > lim else v
         if self._vel_slots:
             values = [commands[s] for s in self._vel_slots]
             if not math.isfinite(sum(values)):

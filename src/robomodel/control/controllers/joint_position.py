@@ -32,6 +32,7 @@ __all__ = ["JointPositionController", "shortest_angular_distance"]
 
 log = logging.getLogger("robomodel.control")
 
+_OK = ReturnType.OK
 _TWO_PI = 2.0 * math.pi
 _GAIN_NAMES = ("p", "i", "d", "i_clamp", "i_clamp_min", "i_clamp_max", "antiwindup")
 
@@ -167,19 +168,17 @@ class JointPositionController(ControllerInterface):
         elif cmd > self.upper:
             cmd = self.upper
         pos = self._state_values[self._state_slot]
-        if self.continuous:
-            error = shortest_angular_distance(pos, cmd)
-        elif self.prismatic:
-            error = cmd - pos
-        else:  # revolute: shortest_angular_distance_with_large_limits ~ plain difference
-            error = cmd - pos
+        # continuous: shortest angular distance; revolute (shortest_angular_distance_with_large_
+        # limits ~ plain difference) and prismatic: cmd - pos
+        error = shortest_angular_distance(pos, cmd) if self.continuous else cmd - pos
         effort = self.pid.compute(error, period_s)
         self._cmd_values[self._cmd_slot] = effort
-        self._loop_count += 1
-        if self._state_pub is not None and self._loop_count % 10 == 0:  # ROS 1: every 10th
+        count = self._loop_count + 1
+        self._loop_count = count
+        if count % 10 == 0 and self._state_pub is not None:  # ROS 1: every 10th
             self._publish_state(time_s, period_s, cmd, pos, error, effort)
         self._last_pos = pos
-        return ReturnType.OK
+        return _OK
 
     def _publish_state(
         self, time_s: float, period_s: float, cmd: float, pos: float, error: float, effort: float

@@ -17,6 +17,9 @@ from robomodel.control.hardware.interfaces import ValueTable
 __all__ = ["ResourceManager"]
 
 log = logging.getLogger("robomodel.control")
+# Looked up once: the loop compares against these every cycle for every component.
+_OK = ReturnType.OK
+_ACTIVE, _INACTIVE = HardwareState.ACTIVE, HardwareState.INACTIVE
 
 
 class ResourceManager:
@@ -130,8 +133,9 @@ class ResourceManager:
         """Read every active or inactive component; return those that failed."""
         failed: list[HardwareComponent] = []
         for c in self.components:
-            readable = c.state is HardwareState.ACTIVE or c.state is HardwareState.INACTIVE
-            if readable and c.read(time_s, period_s) is not ReturnType.OK:
+            state = c.state
+            readable = state is _ACTIVE or state is _INACTIVE
+            if readable and c.read(time_s, period_s) is not _OK:
                 failed.append(c)
         return failed
 
@@ -190,7 +194,7 @@ class ResourceManager:
         self.enforce_command_limits()
         failed: list[HardwareComponent] = []
         for c in self.components:
-            if c.state is HardwareState.ACTIVE and c.write(time_s, period_s) is not ReturnType.OK:
+            if c.state is _ACTIVE and c.write(time_s, period_s) is not _OK:
                 failed.append(c)
         return failed
 
