@@ -187,3 +187,36 @@ def test_shapes_world_launch_runs_the_shapes_world() -> None:
     assert result.returncode == 0, result.stderr
     assert "gazebo_ros/worlds/shapes.world" in result.stderr
     assert "started /gazebo (gazebo_ros/gzserver)" in result.stderr
+
+
+def test_spawn_model_sdf_adds_rigid_shapes_and_refuses_articulated_models() -> None:
+    """spawn_model -sdf: a model of rigid shapes joins the world where -x -y -z put it; one
+    with joints is refused with what to do instead."""
+    from robomodel.sim.world import WorldError
+
+    server, context = _server(ParamServer())
+    crate = (
+        "<sdf version='1.6'><model name='ignored'><link name='l'><inertial><mass>2</mass>"
+        "</inertial><collision name='c'><geometry><box><size>0.2 0.2 0.2</size></box>"
+        "</geometry></collision></link></model></sdf>"
+    )
+    try:
+        reply = context.call_service(
+            "/gazebo/spawn_sdf_model",
+            {"model_name": "crate", "model_xml": crate, "initial_pose": [1, 2, 0.5, 0, 0, 0]},
+        )
+        assert reply["success"], reply
+        (shape,) = [s for s in server.world.shapes if s.model == "crate"]
+        assert shape.pose[:3] == pytest.approx((1.0, 2.0, 0.5)) and shape.mass_kg == 2.0
+        server.drive(0.2)  # it falls onto the ground
+        model = server.sim.model
+        names = [model.body(i).name for i in range(model.nbody)]
+        body = server.sim.data.body(next(n for n in names if "crate" in n))
+        assert float(body.xpos[2]) < 0.5
+        with pytest.raises(WorldError, match="has joints"):
+            server.spawn_sdf(
+                "arm", "<model name='a'><link name='x'/><joint name='j' type='revolute'/></model>"
+            )
+    finally:
+        server.close()
+        context.shutdown()

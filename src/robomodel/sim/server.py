@@ -340,12 +340,50 @@ class SimServer:
         message = str(reply["status_message"]).replace("SpawnModel: ", "SpawnEntity: ")
         return {"success": reply["success"], "status_message": message}
 
+    def spawn_sdf(
+        self,
+        model_name: str,
+        sdf_xml: str,
+        *,
+        xyz_m: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        rpy_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    ) -> None:
+        """Add an SDF model of rigid shapes (``spawn_model -sdf``) to the world.
+
+        Raises:
+            WorldError: a model with joints or no shapes; SimulationError: a taken name.
+        """
+        from robomodel.sim.world import model_shapes
+
+        taken = {s.model for s in self.world.shapes} | {r.model_name for r in self.robots}
+        if model_name in taken:
+            raise SimulationError(f"a model named '{model_name}' is already in the world")
+        shapes = model_shapes(
+            sdf_xml, name=model_name, pose=(*xyz_m, *rpy_rad), path=f"<spawned model {model_name}>"
+        )
+        if not shapes:
+            raise SimulationError(f"SDF model '{model_name}' has no collision shapes")
+        previous = self.world
+        self.world = dataclasses.replace(previous, shapes=previous.shapes + shapes)
+        try:
+            self._rebuild()
+        except RobomodelError:
+            self.world = previous
+            self._rebuild()
+            raise
+
     def _spawn_sdf(self, request: dict[str, Any]) -> dict[str, Any]:
-        return {
-            "success": False,
-            "status_message": "SpawnModel: robomodel spawns URDF models (-urdf); an SDF model "
-            "goes into the world file (gzserver's world_name)",
-        }
+        try:
+            pose = [float(v) for v in request.get("initial_pose", (0.0,) * 6)]
+            self.spawn_sdf(
+                str(request.get("model_name", "")) or "model",
+                str(request["model_xml"]),
+                xyz_m=(pose[0], pose[1], pose[2]),
+                rpy_rad=(pose[3], pose[4], pose[5]),
+            )
+        except (RobomodelError, KeyError, TypeError, ValueError, IndexError) as exc:
+            return {"success": False, "status_message": f"SpawnModel: {exc}"}
+        return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
 
     def _delete(self, request: dict[str, Any]) -> dict[str, Any]:
         try:

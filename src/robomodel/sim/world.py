@@ -14,14 +14,22 @@ import enum
 import math
 import os
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from lxml import etree
 
 from robomodel.sim.exceptions import WorldError
 
-__all__ = ["Shape", "ShapeKind", "World", "default_world", "parse_world", "read_world"]
+__all__ = [
+    "Shape",
+    "ShapeKind",
+    "World",
+    "default_world",
+    "model_shapes",
+    "parse_world",
+    "read_world",
+]
 
 
 class ShapeKind(enum.Enum):
@@ -96,7 +104,7 @@ def parse_world(data: bytes | str, *, path: str = "<string>") -> World:
     """Parse SDF world text; ``path`` names it in messages."""
     raw = data.encode() if isinstance(data, str) else data
     try:
-        root = etree.fromstring(raw)
+        root = etree.fromstring(raw, _safe_parser())
     except etree.XMLSyntaxError as exc:
         line = exc.lineno if exc.lineno else 1
         raise WorldError(f"world file does not parse: {exc.msg}", where=f"{path}:{line}") from None
@@ -126,6 +134,38 @@ def _floats(
     if len(values) != n:
         raise WorldError(f"<{el.tag}> must be {n} numbers, got {el.text!r}", where=_at(path, el))
     return values
+
+
+def _safe_parser() -> etree.XMLParser:
+    """No entity expansion, no network, no huge trees: a world file cannot read other files."""
+    return etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
+
+
+def model_shapes(
+    data: str, *, name: str, pose: tuple[float, float, float, float, float, float], path: str
+) -> tuple[Shape, ...]:
+    """The shapes of one SDF ``<model>`` (alone or in ``<sdf>``), renamed ``name`` and placed
+    at ``pose`` (``spawn_model -sdf``): models of rigid shapes, as a world file holds them.
+
+    Raises:
+        WorldError: not XML, no ``<model>``, or a model with joints (an articulated robot is a
+            URDF, spawned with ``-urdf``).
+    """
+    try:
+        root = etree.fromstring(data.encode(), _safe_parser())
+    except etree.XMLSyntaxError as exc:
+        raise WorldError(f"the SDF model does not parse: {exc.msg}", where=path) from None
+    model = root if root.tag == "model" else root.find("model")
+    if model is None:
+        raise WorldError(f"no <model> element (root is <{root.tag}>)", where=path)
+    if model.find("joint") is not None:
+        raise WorldError(
+            f"SDF model '{name}' has joints: robomodel spawns articulated robots from URDF "
+            "(spawn_model -urdf); SDF models of rigid shapes only",
+            where=path,
+        )
+    model.set("name", name)
+    return tuple(replace(s, pose=_compose(pose, s.pose)) for s in _model(model, path))
 
 
 def _read(world: etree._Element, path: str) -> World:

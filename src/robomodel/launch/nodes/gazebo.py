@@ -239,11 +239,6 @@ def _number(option: str, text: str) -> float:
 )
 def spawn_model(ctx: NodeContext) -> RunningNode:
     options = parse_spawn_args(ctx.spec.args)
-    if options.format == "sdf":
-        raise RobomodelError(
-            "spawn_model -sdf: robomodel spawns URDF models (-urdf); put an SDF model in the "
-            "world file instead"
-        )
     if options.param is not None:
         key = ctx.resolve(options.param)
         if not ctx.params.has(key):
@@ -263,7 +258,7 @@ def spawn_model(ctx: NodeContext) -> RunningNode:
         "joints": options.joints,
         "unpause": options.unpause,
     }
-    service = f"{options.gazebo_namespace}/spawn_urdf_model"
+    service = f"{options.gazebo_namespace}/spawn_{options.format}_model"
 
     def work(node: ThreadNode) -> int:
         deadline = time.monotonic() + options.timeout_s
