@@ -220,3 +220,12 @@ def test_spawn_model_sdf_adds_rigid_shapes_and_refuses_articulated_models() -> N
     finally:
         server.close()
         context.shutdown()
+
+
+def test_gzserver_arguments_as_gazebo_reads_them() -> None:
+    from robomodel.launch.nodes.gazebo import parse_server_args
+
+    assert parse_server_args(["-u", "", "--verbose", "-e", "ode", "w.world"]) == (True, "w.world")
+    # -s takes a system plugin: it is not the world (ROS 2's gzserver.launch.py passes them)
+    assert parse_server_args(["w.world", "-s", "libgazebo_ros_init.so"]) == (False, "w.world")
+    assert parse_server_args(["-r", "-v", "4", "empty.sdf"]) == (False, "empty.sdf")

@@ -22,7 +22,13 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
 
-__all__ = ["SpawnArgs", "parse_spawn_args", "resolve_world"]
+__all__ = [
+    "SpawnArgs",
+    "parse_server_args",
+    "parse_spawn_args",
+    "resolve_world",
+    "start_sim_server",
+]
 
 _SHARE = Path(__file__).resolve().parent.parent / "share" / "gazebo_ros"
 
@@ -51,20 +57,50 @@ def _bundled_worlds() -> list[str]:
     return sorted(f"worlds/{p.name}" for p in (_SHARE / "worlds").glob("*.world"))
 
 
-def _server_args(args: tuple[str, ...]) -> tuple[bool, str]:
+def parse_server_args(words: list[str]) -> tuple[bool, str]:
+    """``(paused, world)`` from gzserver's (ROS 1 and 2) or ``gz sim``'s arguments."""
     paused, world, skip = False, "", False
-    for token in args:
+    for word in words:
         if skip:
             skip = False
-        elif token == "-u":
+        elif word in ("-u", "--pause"):
             paused = True
-        elif token in ("-e", "--physics"):
-            skip = True  # MuJoCo is the engine whatever Gazebo's was
-        elif token.startswith("-"):
-            continue  # --verbose, -r, --record_path=... change nothing here
+        elif word in ("-s", "-e", "-v", "--physics", "--iterations", "--seed"):
+            skip = True  # e.g. the engine: MuJoCo is the engine whatever Gazebo's was
+        elif word.startswith("-"):
+            continue  # --verbose, -r, --record_path=..., -g: nothing changes here
         else:
-            world = token
+            world = word
     return paused, world
+
+
+def start_sim_server(
+    ctx: NodeContext, paused: bool, name: str, *, spec_source: Any = None
+) -> RunningNode:
+    """The launch's one simulation server on world ``name`` (see :func:`resolve_world`)."""
+    from robomodel.sim import default_world, read_world
+    from robomodel.sim.server import SimServer
+
+    if ctx.extra.get("sim_server") is not None:
+        raise RobomodelError("a simulator already runs in this launch")
+    if name in ("empty.sdf", "empty.world"):  # Gazebo's own empty worlds
+        name = ""
+    path = resolve_world(name)
+    world = read_world(path) if path else default_world()
+    server = SimServer(
+        world,
+        context=ctx.runtime,
+        package_index=ctx.extra["package_index"],
+        paused=paused,
+        real_time_factor=world.real_time_factor,
+        spec_source=spec_source,
+    )
+    ctx.extra["sim_server"] = server
+    ctx.log(
+        f"world '{world.name}' ({path or 'the default ground and sun'}) at "
+        f"{world.timestep_s * 1e3:g} ms steps{', paused' if paused else ''}"
+    )
+    return SimServerNode(server)
 
 
 class SimServerNode:
@@ -97,28 +133,9 @@ class SimServerNode:
 )
 def gzserver(ctx: NodeContext) -> RunningNode:
     from robomodel.launch.nodes.controllers import ros1_spec_source
-    from robomodel.sim import default_world, read_world
-    from robomodel.sim.server import SimServer
 
-    if ctx.extra.get("sim_server") is not None:
-        raise RobomodelError("a gzserver already runs in this launch")
-    paused, name = _server_args(ctx.spec.args)
-    path = resolve_world(name)
-    world = read_world(path) if path else default_world()
-    server = SimServer(
-        world,
-        context=ctx.runtime,
-        package_index=ctx.extra["package_index"],
-        paused=paused,
-        real_time_factor=world.real_time_factor,
-        spec_source=ros1_spec_source(ctx.params),
-    )
-    ctx.extra["sim_server"] = server
-    ctx.log(
-        f"world '{world.name}' ({path or 'the default ground and sun'}) at "
-        f"{world.timestep_s * 1e3:g} ms steps{', paused' if paused else ''}"
-    )
-    return SimServerNode(server)
+    paused, name = parse_server_args(list(ctx.spec.args))
+    return start_sim_server(ctx, paused, name, spec_source=ros1_spec_source(ctx.params))
 
 
 @register(

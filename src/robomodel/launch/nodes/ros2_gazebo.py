@@ -19,49 +19,10 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
-from robomodel.launch.nodes.gazebo import SimServerNode, resolve_world
+from robomodel.launch.nodes.gazebo import parse_server_args, start_sim_server
 from robomodel.launch.nodes.state import ViewerPart
 
-__all__ = ["parse_entity_args", "parse_server_args"]
-
-
-def parse_server_args(words: list[str]) -> tuple[bool, str]:
-    """``(paused, world)`` from gzserver's or ``gz sim``'s arguments."""
-    paused, world, skip = False, "", False
-    for word in words:
-        if skip:
-            skip = False
-        elif word in ("-u", "--pause"):
-            paused = True
-        elif word in ("-s", "-e", "-v", "--verbose", "--physics", "--iterations", "--seed"):
-            skip = word not in ("--verbose",)
-        elif word.startswith("-"):
-            continue  # -r (run), --render-engine=..., -g: nothing changes here
-        else:
-            world = word
-    return paused, world
-
-
-def _start_server(ctx: NodeContext, paused: bool, name: str) -> RunningNode:
-    from robomodel.sim import default_world, read_world
-    from robomodel.sim.server import SimServer
-
-    if ctx.extra.get("sim_server") is not None:
-        raise RobomodelError("a simulator already runs in this launch")
-    if name in ("empty.sdf", "empty.world", "worlds/empty.world"):
-        name = ""
-    path = resolve_world(name)
-    world = read_world(path) if path else default_world()
-    server = SimServer(
-        world,
-        context=ctx.runtime,
-        package_index=ctx.extra["package_index"],
-        paused=paused,
-        real_time_factor=world.real_time_factor,
-    )
-    ctx.extra["sim_server"] = server
-    ctx.log(f"world '{world.name}' ({path or 'the default ground and sun'})")
-    return SimServerNode(server)
+__all__ = ["parse_entity_args"]
 
 
 def _words(args: tuple[str, ...]) -> list[str]:
@@ -77,7 +38,7 @@ def _words(args: tuple[str, ...]) -> list[str]:
 )
 def gzserver(ctx: NodeContext) -> RunningNode:
     paused, world = parse_server_args(_words(ctx.spec.args))
-    return _start_server(ctx, paused, world)
+    return start_sim_server(ctx, paused, world)
 
 
 @register(
@@ -91,7 +52,7 @@ def gz_sim(ctx: NodeContext) -> RunningNode:
     paused, world = parse_server_args(words)
     if "-s" not in words:  # gz sim runs its GUI unless -s (server only)
         _client(ctx)
-    return _start_server(ctx, paused or "-r" not in words, world)
+    return start_sim_server(ctx, paused or "-r" not in words, world)
 
 
 def _client(ctx: NodeContext) -> RunningNode:
