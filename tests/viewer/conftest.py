@@ -193,3 +193,35 @@ def save_shot(page: Any, name: str) -> Path:
 def domain_id(_offset: int = 0) -> str:
     """A Zenoh domain of its own per test (see tests.conftest.unique_domain)."""
     return unique_domain()
+
+
+def start_launch_viewer(
+    *argv: str, domain: str, env: dict[str, str]
+) -> tuple[subprocess.Popen[str], str, list[str]]:
+    """``robomodel launch ARGV`` serving its viewer on a free port: the process, the viewer's
+    URL and its output lines so far (drained in a thread: a full pipe would block it)."""
+    import threading
+
+    launch = subprocess.Popen(
+        [*ROBOMODEL, "launch", *argv, "--domain-id", domain, "--port", "0", "--no-browser"],
+        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env,
+    )  # fmt: skip
+    lines: list[str] = []
+    started = threading.Event()
+
+    def drain() -> None:
+        assert launch.stderr is not None
+        for line in launch.stderr:
+            lines.append(line)
+            if "viewer: serving" in line:
+                started.set()
+        started.set()
+
+    threading.Thread(target=drain, daemon=True).start()
+    started.wait(60)
+    url = next((x.rsplit(" ", 1)[1].strip() for x in lines if "viewer: serving" in x), None)
+    if not url:
+        launch.terminate()
+        launch.wait(30)
+        raise AssertionError(f"robomodel launch did not start its viewer: {''.join(lines)}")
+    return launch, url, lines

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import os
 import subprocess
-import threading
 from typing import Any
 
 import pytest
@@ -22,6 +21,7 @@ from tests.viewer.conftest import (
     save_shot,
     screenshot,
     slider_input,
+    start_launch_viewer,
     wait_for,
 )
 
@@ -50,27 +50,10 @@ def _scene(page: Any) -> Any:
 def test_display_launch_sliders_move_the_robot(page: Any) -> None:
     domain = domain_id()
     env = {**os.environ, "ROS_PACKAGE_PATH": str(EXAMPLES)}
-    launch = subprocess.Popen(
-        [*ROBOMODEL, "launch", "gripper_description", "display_xacro.launch",
-         "--domain-id", domain, "--port", "0", "--no-browser"],
-        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env,
-    )  # fmt: skip
-    lines: list[str] = []
-    started = threading.Event()
-
-    def drain() -> None:
-        assert launch.stderr is not None
-        for line in launch.stderr:
-            lines.append(line)
-            if "viewer: serving" in line:
-                started.set()
-        started.set()
-
-    threading.Thread(target=drain, daemon=True).start()
+    launch, url, _lines = start_launch_viewer(
+        "gripper_description", "display_xacro.launch", domain=domain, env=env
+    )
     try:
-        started.wait(60)
-        url = next((x.rsplit(" ", 1)[1].strip() for x in lines if "viewer: serving" in x), None)
-        assert url, f"no viewer: {''.join(lines)}"
         open_viewer(page, url)
         # urdf.rviz's Global Options reached the page
         fixed = gui_row(page, "Fixed Frame").locator("input:not([type=hidden])").first

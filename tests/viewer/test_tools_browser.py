@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import io
 import math
-import threading
 from collections.abc import Iterator
 from typing import Any
 
@@ -137,32 +136,14 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
     import subprocess
 
     from tests.conftest import ROBOMODEL
-    from tests.viewer.conftest import changed_fraction, domain_id, settle
+    from tests.viewer.conftest import changed_fraction, domain_id, settle, start_launch_viewer
 
     domain = domain_id(41)
     env = {**os.environ, "ROS_PACKAGE_PATH": str(EXAMPLES)}
-    launch = subprocess.Popen(
-        [*ROBOMODEL, "launch", "simplebot_control", "simplebot_demo.launch",
-         "--domain-id", domain, "--port", "0", "--no-browser"],
-        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env,
-    )  # fmt: skip
-    assert launch.stderr is not None
-    errors: list[str] = []
-    started = threading.Event()
-
-    def drain() -> None:  # a full stderr pipe would block the launch
-        assert launch.stderr is not None
-        for line in launch.stderr:
-            errors.append(line)
-            if "viewer: serving" in line:
-                started.set()
-        started.set()
-
-    threading.Thread(target=drain, daemon=True).start()
+    launch, url, errors = start_launch_viewer(
+        "simplebot_control", "simplebot_demo.launch", domain=domain, env=env
+    )
     try:
-        started.wait(60)
-        url = next((x.rsplit(" ", 1)[1].strip() for x in errors if "viewer: serving" in x), None)
-        assert url, f"robomodel launch did not start its viewer: {''.join(errors)}"
         open_viewer(page, url)
         _open(page, "Robot Steering")
         topic = gui_row(page, "Steering topic").locator("input:not([type=hidden])").first
