@@ -1,5 +1,5 @@
-"""ROS 2 nodes of a launch file: robot_state_publisher, joint_state_publisher(_gui), rviz2,
-tf2_ros static_transform_publisher and the rqt tools.
+"""ROS 2 nodes of a launch file: robot_state_publisher, joint_state_publisher(_gui), rviz2 and
+tf2_ros static_transform_publisher (the rqt tools are in :mod:`.viewer`, for both dialects).
 
 Parameters come from the launch file's ``parameters=[...]`` (:mod:`.ros2_params`), remaps and
 namespaces as the real nodes would take them. joint_state_publisher (Humble and Jazzy) and the
@@ -14,7 +14,7 @@ import contextlib
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.launch.nodes.base import NodeContext, RunningNode, plot_fields, register
+from robomodel.launch.nodes.base import NodeContext, RunningNode, register
 from robomodel.launch.nodes.state import InProcessNode, ViewerPart
 from robomodel.launch.nodes.tf_static import parse_static_transform_args
 from robomodel.launch.nodes.viewer import rviz_config_argument
@@ -140,27 +140,6 @@ def rviz2(ctx: NodeContext) -> RunningNode:
         with contextlib.suppress(RobomodelError):
             request.robot_description_text = robot_description_of(ctx, {})
     return ViewerPart()
-
-
-def _tools(ctx: NodeContext) -> RunningNode:
-    ctx.viewer.tools = True
-    if ctx.spec.executable == "rqt_plot":
-        ctx.viewer.plot_fields.extend(plot_fields(ctx.spec.args))
-    ctx.viewer.requested_by.append(ctx.spec.fqn)
-    if ctx.spec.executable == "rqt_robot_steering":
-        topic = ctx.ros2_parameters("rqt_robot_steering").get("default_topic")
-        if topic:
-            ctx.viewer.steering_topic = str(topic)
-    return ViewerPart()
-
-
-for _package, _executable, _purpose in (
-    ("rqt_robot_steering", "rqt_robot_steering", "the viewer's Robot Steering folder"),
-    ("rqt_plot", "rqt_plot", "the viewer's Plot folder"),
-    ("rqt_gui", "rqt_gui", "the viewer's tool folders"),
-    ("rqt_reconfigure", "rqt_reconfigure", "the viewer's Parameters folder"),
-):
-    register("ros2", _package, _executable, purpose=_purpose)(_tools)
 
 
 _FLAGS = {

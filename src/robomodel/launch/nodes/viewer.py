@@ -45,17 +45,24 @@ def rviz(ctx: NodeContext) -> RunningNode:
 
 
 def _tools(ctx: NodeContext) -> RunningNode:
-    ctx.viewer.tools = True
+    """rqt tools (ROS 1 and 2): the viewer's tool folders; rqt_plot's fields, rqt_robot_steering's
+    ``default_topic`` (a private parameter in ROS 1, a node parameter in ROS 2)."""
+    request = ctx.viewer
+    request.tools = True
+    request.requested_by.append(ctx.spec.fqn)
     if ctx.spec.executable == "rqt_plot":
-        ctx.viewer.plot_fields.extend(plot_fields(ctx.spec.args))
+        request.plot_fields.extend(plot_fields(ctx.spec.args))
     if ctx.spec.executable == "rqt_robot_steering":
-        topic = ctx.param("~default_topic")
+        if ctx.spec.dialect == "ros1":
+            topic = ctx.param("~default_topic")
+        else:
+            topic = ctx.ros2_parameters("rqt_robot_steering").get("default_topic")
         if topic:
-            ctx.viewer.steering_topic = str(topic)
-    ctx.viewer.requested_by.append(ctx.spec.fqn)
-    found = ctx.search("robot_description")
-    if found and ctx.viewer.robot_description_param is None:
-        ctx.viewer.robot_description_param = found
+            request.steering_topic = str(topic)
+    if ctx.spec.dialect == "ros1":
+        found = ctx.search("robot_description")
+        if found and request.robot_description_param is None:
+            request.robot_description_param = found
     return ViewerPart()
 
 
@@ -65,4 +72,5 @@ for _package, _executable, _purpose in (
     ("rqt_gui", "rqt_gui", "the viewer's tool folders"),
     ("rqt_reconfigure", "rqt_reconfigure", "the viewer's Parameters folder"),
 ):
-    register("ros1", _package, _executable, purpose=_purpose)(_tools)
+    for _dialect in ("ros1", "ros2"):
+        register(_dialect, _package, _executable, purpose=_purpose)(_tools)
