@@ -7,8 +7,6 @@ that raises is logged and the executor goes on: a bad message never kills a node
 
 from __future__ import annotations
 
-import heapq
-import itertools
 import logging
 import queue
 import threading
@@ -55,6 +53,10 @@ class Timer:
         self.ticks += 1
         if self.next_s <= now_s:
             self.ticks = int((now_s - self.start_s) // self.period_s) + 1
+
+
+def _next_s(timer: Timer) -> float:
+    return timer.next_s
 
 
 class Executor:
@@ -154,19 +156,22 @@ class Executor:
     def advance(self, clock: ManualClock, dt_s: float) -> None:
         """Move a manual clock forward by ``dt_s``, firing timers at their exact times in order."""
         target = clock.now_s() + dt_s
+        limit = target + 1e-12
         self.run_pending()
-        counter = itertools.count()
         while True:
-            due = [
-                (t.next_s, next(counter), t)
-                for t in self._timers
-                if not t.cancelled and t.clock is clock and t.next_s <= target + 1e-12
-            ]
-            if not due:
+            # the earliest due timer; min keeps the first of equals: registration order
+            timer = min(
+                (
+                    t
+                    for t in self._timers
+                    if t.next_s <= limit and t.clock is clock and not t.cancelled
+                ),
+                key=_next_s,
+                default=None,
+            )
+            if timer is None:
                 break
-            heapq.heapify(due)
-            next_s, _, timer = due[0]
-            clock.set(max(next_s, clock.now_s()))
+            clock.set(max(timer.next_s, clock.now_s()))
             timer.ticks += 1
             self._run(timer.callback)
             self.run_pending()

@@ -33,10 +33,10 @@ def check_finite(model: Any, data: Any) -> None:
         model: The compiled ``mujoco.MjModel``.
         data: Its ``mujoco.MjData``.
     """
-    mj = mujoco()
     counts = data.warning.number  # one array of counts: cheap to test when all is well
     bad_warnings = _bad_warnings()
     if counts[bad_warnings].any():
+        mj = mujoco()
         bad = next(mj.mjtWarning(w) for w in bad_warnings if counts[w] > 0)
         dof = int(data.warning[int(bad)].lastinfo)
         _diverged(model, data, f"MuJoCo reported {bad.name} (it would reset the state)", dof)

@@ -11,7 +11,7 @@ from robomodel.errors import MissingDependencyError
 __all__ = ["mujoco"]
 
 _log = logging.getLogger("robomodel.sim")
-_configured = False
+_module: Any = None
 
 
 def _warn(message: str) -> None:
@@ -25,13 +25,14 @@ def mujoco() -> Any:
     ``MUJOCO_LOG.TXT`` file in the working directory (unless a handler is already set);
     divergence itself is raised by the engine as :class:`~robomodel.sim.DivergenceError`.
     """
-    global _configured
+    global _module
+    if _module is not None:  # called in the stepping loop: no import machinery after the first
+        return _module
     try:
         module = importlib.import_module("mujoco")
     except ImportError:
         raise MissingDependencyError("mujoco", "sim", "the simulator") from None
-    if not _configured:
-        _configured = True
-        if module.get_mju_user_warning() is None:
-            module.set_mju_user_warning(_warn)
+    if module.get_mju_user_warning() is None:
+        module.set_mju_user_warning(_warn)
+    _module = module
     return module

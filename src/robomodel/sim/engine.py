@@ -14,7 +14,6 @@ import math
 import os
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -25,6 +24,7 @@ from robomodel.sim.build.geoms import MeshLoader
 from robomodel.sim.build.robot import BuiltRobot, Placement, add_robot
 from robomodel.sim.build.scene import add_world, apply_min_friction, new_spec
 from robomodel.sim.exceptions import SimulationError
+from robomodel.sim.schedule import ScheduledCallback, StepCallback, StepSchedule
 from robomodel.sim.world import World, default_world
 
 if TYPE_CHECKING:
@@ -37,15 +37,7 @@ if TYPE_CHECKING:
 
 __all__ = ["Simulation", "StepCallback"]
 
-StepCallback = Callable[[float], None]
 _CHECK_EVERY_STEPS = 100
-
-
-@dataclass(eq=False)
-class _Scheduled:
-    every_steps: int
-    callback: StepCallback
-    order: int = 0
 
 
 class Simulation:
@@ -77,8 +69,7 @@ class Simulation:
         self.robots: list[BuiltRobot] = []
         self._model: Any = None
         self._data: Any = None
-        self._schedule: list[_Scheduled] = []
-        self._plan: list[tuple[int, StepCallback]] = []  # (every_steps, callback) in order
+        self._schedule = StepSchedule()
         self._hardware: list[SimSystem] = []
         self._controls: list[ControlSystem] = []
         self._steps = 0
@@ -222,7 +213,7 @@ class Simulation:
             manager.update(time_s, period)
             manager.write(time_s, period)
 
-        self._add(_Scheduled(steps, cycle, 0))
+        self._schedule.add(ScheduledCallback(steps, cycle, 0))
         return system
 
     def _components(self, built: BuiltRobot) -> list[Any]:
@@ -255,44 +246,50 @@ class Simulation:
         sensors 1), then by registration.
         """
         steps = 1 if rate_hz <= 0 else max(1, round(1.0 / (rate_hz * self.timestep_s)))
-        self._add(_Scheduled(steps, callback, order))
-
-    def _add(self, item: _Scheduled) -> None:
-        self._schedule.append(item)
-        self._schedule.sort(key=lambda s: s.order)
-        self._plan = [(s.every_steps, s.callback) for s in self._schedule]
+        self._schedule.add(ScheduledCallback(steps, callback, order))
 
     # -- stepping -------------------------------------------------------------------------------
     def step(self, n: int = 1) -> None:
         """Advance ``n`` physics steps.
 
+        Callbacks run at the steps they are due; the stretches between them go to MuJoCo in
+        one ``mj_step(nstep=k)`` call (the same result as ``k`` single steps, without Python
+        per step) unless a robot has position (kinematic) joints, which are written every step.
+
         Raises:
             DivergenceError: the state became NaN/infinite (checked every 100 steps and at the end).
         """
+        self._advance(n)
+        check_finite(self.model, self.data)
+
+    def _advance(self, n: int) -> None:
+        """``n`` steps, checking for divergence every 100 (see :meth:`step`)."""
         mj = mujoco()
         model, data = self.model, self.data
-        schedule = self._plan
+        schedule = self._schedule
         hardware = [hw for hw in self._hardware if hw.has_kinematic_joints]
         kinematic = [hw for hw in hardware if hw.has_position_joints]
         mj_step = mj.mj_step
         steps = self._steps
-        check = check_finite
-        for _ in range(n):
-            t = data.time
-            for every, callback in schedule:
-                if steps % every == 0:
-                    callback(t)
-            for hw in hardware:
-                hw.apply()
-            mj_step(model, data)
-            for hw in kinematic:  # position joints are kinematic: no drift within a step
-                hw.apply()
-            steps += 1
+        end = steps + n
+        while steps < end:
+            schedule.run_due(steps, data.time)
+            if hardware:
+                for hw in hardware:
+                    hw.apply()
+                mj_step(model, data)
+                for hw in kinematic:  # position joints are kinematic: no drift within a step
+                    hw.apply()
+                k = 1
+            else:
+                to_check = _CHECK_EVERY_STEPS - steps % _CHECK_EVERY_STEPS
+                k = min(schedule.steps_to_next_due(steps), to_check, end - steps)
+                mj_step(model, data, k)
+            steps += k
             if steps % _CHECK_EVERY_STEPS == 0:
                 self._steps = steps
-                check(model, data)
+                check_finite(model, data)
         self._steps = steps
-        check(model, data)
 
     def run(
         self,
@@ -309,13 +306,14 @@ class Simulation:
             until: Stop early when this returns True (checked every 10 ms of sim time).
         """
         total = max(0, round(duration_s / self.timestep_s))
-        chunk = max(1, round(0.01 / self.timestep_s))
+        paced = until is not None or (real_time_factor is not None and real_time_factor > 0)
+        chunk = max(1, round(0.01 / self.timestep_s)) if paced else max(1, total)
         start_wall = time.perf_counter()
         start_sim = self.time_s
         done = 0
         while done < total:
             n = min(chunk, total - done)
-            self.step(n)
+            self._advance(n)
             done += n
             if until is not None and until():
                 break
@@ -324,6 +322,7 @@ class Simulation:
                 delay = target - time.perf_counter()
                 if delay > 0:
                     time.sleep(delay)
+        self.check_finite()
         return time.perf_counter() - start_wall
 
     def check_finite(self) -> None:

@@ -42,6 +42,8 @@ class GroundTruth:
         self.data = data
         self.body = int(model.body(body_name).id)
         self.child_frame = child_frame
+        self._velocity = np.zeros(6)  # mj_objectVelocity's output: [angular, linear]
+        self._body_type = int(mujoco().mjtObj.mjOBJ_BODY)
 
     def xy_yaw(self) -> tuple[float, float, float]:
         p = self.data.xpos[self.body]
@@ -49,43 +51,37 @@ class GroundTruth:
 
     def transform(self, time_s: float, child_frame: str) -> TFMessage:
         """The same pose as TF ``world -> child_frame`` (for drawing the true pose)."""
-        p, q = self.data.xpos[self.body], self.data.xquat[self.body]
+        px, py, pz = self.data.xpos[self.body].tolist()
+        qw, qx, qy, qz = self.data.xquat[self.body].tolist()
         return TFMessage(
             [
                 TransformStamped(
                     header=Header(stamp=Time.from_seconds(time_s), frame_id="world"),
                     child_frame_id=child_frame,
                     transform=Transform(
-                        translation=Vector3(float(p[0]), float(p[1]), float(p[2])),
-                        rotation=Quaternion(
-                            x=float(q[1]), y=float(q[2]), z=float(q[3]), w=float(q[0])
-                        ),
+                        translation=Vector3(px, py, pz),
+                        rotation=Quaternion(x=qx, y=qy, z=qz, w=qw),
                     ),
                 )
             ]
         )
 
     def measure(self, time_s: float) -> Odometry:
-        mj = mujoco()
         d = self.data
-        p, q = d.xpos[self.body], d.xquat[self.body]
-        vel = np.zeros(6)
-        mj.mj_objectVelocity(self.model, d, mj.mjtObj.mjOBJ_BODY, self.body, vel, 0)
+        px, py, pz = d.xpos[self.body].tolist()
+        qw, qx, qy, qz = d.xquat[self.body].tolist()
+        vel = self._velocity
+        mujoco().mj_objectVelocity(self.model, d, self._body_type, self.body, vel, 0)
+        wx, wy, wz, vx, vy, vz = vel.tolist()
         return Odometry(
             header=Header(stamp=Time.from_seconds(time_s), frame_id="world"),
             child_frame_id=self.child_frame,
             pose=PoseWithCovariance(
                 pose=Pose(
-                    position=Point(float(p[0]), float(p[1]), float(p[2])),
-                    orientation=Quaternion(
-                        x=float(q[1]), y=float(q[2]), z=float(q[3]), w=float(q[0])
-                    ),
+                    position=Point(px, py, pz), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)
                 )
             ),
             twist=TwistWithCovariance(
-                twist=Twist(
-                    linear=Vector3(*(float(v) for v in vel[3:])),
-                    angular=Vector3(*(float(v) for v in vel[:3])),
-                )
+                twist=Twist(linear=Vector3(vx, vy, vz), angular=Vector3(wx, wy, wz))
             ),
         )
