@@ -60,6 +60,7 @@ class ParseContext:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     _ordinals: dict[tuple[int, str], int] = field(default_factory=dict)
     _vectors: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    _numbers: dict[str, float] = field(default_factory=dict)
     _origins: dict[tuple[str | None, str | None], Origin] = field(default_factory=dict)
 
     # -- locations --------------------------------------------------------------------
@@ -100,18 +101,22 @@ class ParseContext:
         return self.version >= (major, minor)
 
     # -- numbers ----------------------------------------------------------------------
-    @staticmethod
-    def number(text: str, what: str, element: etree._Element | None = None) -> float:
+    def number(self, text: str, what: str, element: etree._Element | None = None) -> float:
         """Parse one number like urdfdom's ``strToDouble``; raise ElementError otherwise.
 
         ``float()`` accepts a superset of what a C-locale stream reads to the end: refuse
-        non-finite values, digit separators, trailing whitespace and non-ASCII digits.
+        non-finite values, digit separators, trailing whitespace and non-ASCII digits. A text
+        seen before in this document is answered from a cache (robots repeat "0", "1", ...).
         """
+        cached = self._numbers.get(text)
+        if cached is not None:
+            return cached
         try:
             value = float(text)
         except ValueError:
             value = math.nan
         if math.isfinite(value) and "_" not in text and not text[-1].isspace() and text.isascii():
+            self._numbers[text] = value
             return value
         raise ElementError(
             f"{what} [{text}] is not a valid number; expected a finite decimal such as 0.5 or 1e-3",
