@@ -10,7 +10,7 @@ import pycdr2
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-from pycdr2.types import array, float32, float64, int32, sequence, uint32
+from pycdr2.types import array, float32, float64, int8, int16, int32, sequence, uint8, uint32
 
 from robomodel.runtime import msg as m
 
@@ -269,6 +269,89 @@ def test_joint_trajectory_controller_state_bytes_match_pycdr2() -> None:
     )  # fmt: skip
     assert m.serialize(ours) == ref.serialize()
     assert m.deserialize(ref.serialize(), m.JointTrajectoryControllerState) == ours
+
+
+@dataclasses.dataclass(slots=True)
+class Mixed(m.Message):
+    """Every alignment case the generated codecs plan statically: sizes 1/2/4/8 after one
+    another, fixed arrays, strings and sequences that make the offset unknown again, nested
+    messages inline and inside sequences."""
+
+    flag: bool = False
+    wide: float = 0.0
+    small: int = 0
+    tag: str = ""
+    bytes3: list = dataclasses.field(default_factory=lambda: [0, 0, 0])  # noqa: RUF009
+    pair: list = dataclasses.field(default_factory=lambda: [0.0, 0.0])  # noqa: RUF009
+    stamp: m.Time = dataclasses.field(default_factory=m.Time)
+    level: int = 0
+    values: list = dataclasses.field(default_factory=list)
+    headers: list = dataclasses.field(default_factory=list)
+    last: float = 0.0
+    __typename__ = "robomodel_test/msg/Mixed"
+    __fields__ = (
+        ("flag", "bool"),
+        ("wide", "float64"),
+        ("small", "int16"),
+        ("tag", "string"),
+        ("bytes3", m.Array("uint8", 3)),
+        ("pair", m.Array("float64", 2)),
+        ("stamp", m.Time),
+        ("level", "int8"),
+        ("values", m.Seq("float32")),
+        ("headers", m.Seq(m.Header)),
+        ("last", "float64"),
+    )
+
+
+@dataclasses.dataclass
+class RefMixed(pycdr2.IdlStruct, typename="robomodel_test/msg/Mixed"):
+    flag: bool
+    wide: float64
+    small: int16
+    tag: str
+    bytes3: array[uint8, 3]
+    pair: array[float64, 2]
+    stamp: RefTime
+    level: int8
+    values: sequence[float32]
+    headers: sequence[RefHeader]
+    last: float64
+
+
+_f32 = st.floats(width=32, allow_nan=False)
+_f64 = st.floats(allow_nan=False)
+
+
+@given(
+    st.booleans(),
+    _f64,
+    st.integers(-(2**15), 2**15 - 1),
+    st.text(max_size=7),
+    st.lists(st.integers(0, 255), min_size=3, max_size=3),
+    st.lists(_f64, min_size=2, max_size=2),
+    st.integers(-(2**31), 2**31 - 1),
+    st.integers(-128, 127),
+    st.lists(_f32, max_size=3),
+    st.lists(st.tuples(st.integers(0, 9), st.text(max_size=5)), max_size=3),
+    _f64,
+)
+def test_mixed_alignment_bytes_match_pycdr2(  # type: ignore[no-untyped-def]
+    flag, wide, small, tag, bytes3, pair, sec, level, values, headers, last
+) -> None:
+    ours = Mixed(
+        flag, wide, small, tag, bytes3, pair, m.Time(sec, 7), level, values,
+        [m.Header(m.Time(s, 1), f) for s, f in headers], last,
+    )  # fmt: skip
+    ref = RefMixed(
+        flag, wide, small, tag, bytes3, pair, RefTime(sec, 7), level, values,
+        [RefHeader(RefTime(s, 1), f) for s, f in headers], last,
+    )  # fmt: skip
+    payload = m.serialize(ours)
+    assert payload == ref.serialize()
+    assert m.deserialize(payload, Mixed) == ours
+    with pytest.raises(m.CDRError):
+        m.deserialize(payload[:-1], Mixed)
 
 
 def test_known_byte_vector() -> None:

@@ -6,8 +6,11 @@ uint32 length including the terminating NUL, the bytes and the NUL; sequences a 
 followed by the elements; fixed arrays just the elements; nested messages inline.
 
 For speed, each message type gets an encoder and a decoder generated as Python source with
-every field inlined (no per-field function calls); nested types and sequences of messages
-call the nested type's generated function.
+every field inlined, nested messages and the elements of message sequences included (no
+per-field or per-message function calls), and consecutive fixed-size values packed or
+unpacked by one ``struct`` call whose format holds the alignment padding wherever the offset
+is known when the code is generated (a ``TransformStamped`` is two such calls and its two
+strings).
 """
 
 from __future__ import annotations
@@ -110,64 +113,150 @@ class _Gen:
         self.lines.append("    " * depth + line)
 
 
-def _enc_pad(g: _Gen, d: int, align: int) -> None:
-    if align > 1:
-        g.emit(d, f"r = (len(buf) - 4) & {align - 1}")
-        g.emit(d, f"if r: buf += b'\\x00' * ({align} - r)")
+class _Run:
+    """Consecutive fixed-size values packed or unpacked with one ``struct`` call.
+
+    The generator tracks what it knows about the offset statically (``offset = r mod m``,
+    relative to the first byte after the header), so CDR's alignment padding inside a run
+    becomes ``x`` pad bytes of the format; where the offset is not known (after a string or a
+    sequence) the run ends and the padding is computed at run time.
+    """
+
+    def __init__(self, modulus: int) -> None:
+        self.fmt: list[str] = []
+        self.items: list[str] = []  # encode: value expressions; decode: target names
+        self.size = 0
+        self.m = modulus
+        self.r = 0
+
+    def forget(self, modulus: int = 1) -> None:
+        """The offset is now only known to be a multiple of ``modulus``."""
+        self.m, self.r = modulus, 0
 
 
-def _enc_field(g: _Gen, d: int, spec: Spec, expr: str) -> None:
+def _add_prim(
+    g: _Gen, d: int, run: _Run, code: str, size: int, item: str, count: int, enc: bool
+) -> None:
+    if size > 1 and run.m % size:  # alignment unknown here: pad at run time
+        _flush(g, d, run, enc)
+        if enc:
+            g.emit(d, f"r = (len(buf) - 4) & {size - 1}")
+            g.emit(d, f"if r: buf += b'\\x00' * ({size} - r)")
+        else:
+            g.emit(d, f"o += (-(o - 4)) & {size - 1}")
+        run.forget(size)
+    pad = (-run.r) % size if size > 1 else 0
+    if pad:
+        run.fmt.append(f"{pad}x")
+    run.fmt.append(f"{count}{code}" if count > 1 else code)
+    run.items.append(item)
+    run.size += pad + size * count
+    run.r = (run.r + pad + size * count) % run.m
+
+
+def _flush(g: _Gen, d: int, run: _Run, enc: bool, *, whole: str | None = None) -> None:
+    """Emit the pending run. Decoding with ``whole``: the run's last item is a fixed array of
+    that name, unpacked as a list after the run's other values."""
+    if not run.fmt:
+        return
+    packer = struct.Struct("<" + "".join(run.fmt))
+    if enc:
+        g.emit(d, f"buf += {g.ref(packer.pack, 'pk')}({', '.join(run.items)})")
+    else:
+        g.emit(d, f"if o + {run.size} > n: raise CDRError(f'payload truncated at offset {{o}}')")
+        unpack = f"{g.ref(packer.unpack_from, 'up')}(data, o)"
+        if whole is not None:
+            g.emit(d, f"[{', '.join([*run.items[:-1], '*' + whole])}] = {unpack}")
+        else:
+            g.emit(d, f"{', '.join(run.items)}{',' if len(run.items) == 1 else ''} = {unpack}")
+        g.emit(d, f"o += {run.size}")
+    run.fmt, run.items, run.size = [], [], 0
+
+
+def _after_prim_seq(run: _Run, size: int) -> None:
+    # An empty sequence ends after its 4-byte count; a non-empty one after its elements.
+    run.forget(min(size, 4) if size > 1 else 1)
+
+
+def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
     if isinstance(spec, str):
         if spec == "string":
+            _flush(g, d, run, True)
             g.emit(d, f"_encode_string(buf, {expr})")
+            run.forget()
             return
         code, size, _ = PRIMITIVES[spec]
-        packer = g.ref(struct.Struct("<" + code).pack, "pk")
-        _enc_pad(g, d, size)
-        g.emit(d, f"buf += {packer}({expr})")
+        _add_prim(g, d, run, code, size, expr, 1, True)
         return
     if isinstance(spec, (Seq, Array)):
         item = spec.item
         seq = g.name("s")
         if isinstance(spec, Array):
-            g.emit(d, f"{seq} = _fixed({expr}, {spec.size})")
+            g_expr = f"_fixed({expr}, {spec.size})"
+            if isinstance(item, str) and item != "string":
+                code, size, _ = PRIMITIVES[item]
+                if spec.size:
+                    _add_prim(g, d, run, code, size, "*" + g_expr, spec.size, True)
+                return
+            _flush(g, d, run, True)
+            g.emit(d, f"{seq} = {g_expr}")
         else:
+            _flush(g, d, run, True)
             g.emit(d, f"{seq} = {expr}")
-            _enc_pad(g, d, 4)
-            g.emit(d, f"buf += len({seq}).to_bytes(4, 'little')")
-        if isinstance(item, str) and item != "string":
-            code, size, _ = PRIMITIVES[item]
-            g.emit(d, f"if {seq}:")
-            _enc_pad(g, d + 1, size)
-            g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
-            return
+            _add_prim(g, d, run, "I", 4, f"len({seq})", 1, True)
+            _flush(g, d, run, True)
+            if isinstance(item, str) and item != "string":
+                code, size, _ = PRIMITIVES[item]
+                g.emit(d, f"if {seq}:")
+                if size > 1:
+                    g.emit(d + 1, f"r = (len(buf) - 4) & {size - 1}")
+                    g.emit(d + 1, f"if r: buf += b'\\x00' * ({size} - r)")
+                g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
+                _after_prim_seq(run, size)
+                return
         var = g.name("v")
         g.emit(d, f"for {var} in {seq}:")
-        _enc_field(g, d + 1, item, var)
+        inner = _Run(1)
+        _enc_field(g, d + 1, inner, item, var)
+        _flush(g, d + 1, inner, True)
+        g.emit(d + 1, "pass")
+        run.forget()
         return
-    g.emit(d, f"{g.ref(_message_encoder(spec), 'enc')}(buf, {expr})")
+    local = g.name("m")  # a nested message: its fields inline, through one local name
+    g.emit(d, f"{local} = {expr}")
+    for name, field_spec in spec.__fields__:
+        _enc_field(g, d, run, field_spec, f"{local}.{name}")
 
 
-def _dec_field(g: _Gen, d: int, spec: Spec, target: str) -> None:
+def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
+    """Emit the decoding of one field; return the expression of its value (valid after the
+    run is flushed)."""
     if isinstance(spec, str):
+        var = g.name("f")
         if spec == "string":
-            g.emit(d, f"{target}, o = _decode_string(data, o)")
-            return
+            _flush(g, d, run, False)
+            g.emit(d, f"{var}, o = _decode_string(data, o)")
+            run.forget()
+            return var
         code, size, _ = PRIMITIVES[spec]
-        unpacker = g.ref(struct.Struct("<" + code).unpack_from, "up")
-        if size > 1:
-            g.emit(d, f"o += (-(o - 4)) & {size - 1}")
-        g.emit(d, f"if o + {size} > n: raise CDRError(f'payload truncated at offset {{o}}')")
-        g.emit(d, f"{target}, = {unpacker}(data, o)")
-        g.emit(d, f"o += {size}")
-        return
+        _add_prim(g, d, run, code, size, var, 1, False)
+        return var
     if isinstance(spec, (Seq, Array)):
         item = spec.item
-        count = g.name("c")
+        target, count = g.name("f"), g.name("c")
+        if isinstance(spec, Array) and isinstance(item, str) and item != "string":
+            code, size, _ = PRIMITIVES[item]
+            if not spec.size:
+                return "[]"
+            _add_prim(g, d, run, code, size, target, spec.size, False)
+            _flush(g, d, run, False, whole=target)  # the values as one list
+            return target
+        _flush(g, d, run, False)
         if isinstance(spec, Array):
             g.emit(d, f"{count} = {spec.size}")
         else:
             g.emit(d, f"{count}, o = _count(data, o)")
+            run.forget(4)
         if isinstance(item, str) and item != "string":
             code, size, _ = PRIMITIVES[item]
             g.emit(d, f"if {count}:")
@@ -181,15 +270,18 @@ def _dec_field(g: _Gen, d: int, spec: Spec, target: str) -> None:
             g.emit(d + 1, f"o += {count} * {size}")
             g.emit(d, "else:")
             g.emit(d + 1, f"{target} = []")
-            return
-        items, var = g.name("l"), g.name("v")
-        g.emit(d, f"{items} = []")
+            _after_prim_seq(run, size)
+            return target
+        g.emit(d, f"{target} = []")
         g.emit(d, f"for _ in range({count}):")
-        _dec_field(g, d + 1, item, var)
-        g.emit(d + 1, f"{items}.append({var})")
-        g.emit(d, f"{target} = {items}")
-        return
-    g.emit(d, f"{target}, o = {g.ref(_message_decoder(spec), 'dec')}(data, o)")
+        inner = _Run(1)
+        value = _dec_field(g, d + 1, inner, item)
+        _flush(g, d + 1, inner, False)
+        g.emit(d + 1, f"{target}.append({value})")
+        run.forget()
+        return target
+    args = [_dec_field(g, d, run, field_spec) for _, field_spec in spec.__fields__]
+    return f"{g.ref(spec, 'T')}({', '.join(args)})"
 
 
 def _message_encoder(cls: type[Message]) -> _Encoder:
@@ -198,8 +290,10 @@ def _message_encoder(cls: type[Message]) -> _Encoder:
         return cached
     g = _Gen()
     g.emit(0, "def encode(buf, m):")
+    run = _Run(8)  # the message starts right after the header: offset 0
     for name, spec in cls.__fields__:
-        _enc_field(g, 1, spec, f"m.{name}")
+        _enc_field(g, 1, run, spec, f"m.{name}")
+    _flush(g, 1, run, True)
     g.emit(1, "return None")
     exec("\n".join(g.lines), g.env)
     encode: _Encoder = g.env["encode"]
@@ -212,15 +306,12 @@ def _message_decoder(cls: type[Message]) -> _Decoder:
     if cached is not None:
         return cached
     g = _Gen()
-    g.env["cls"] = cls
     g.emit(0, "def decode(data, o):")
     g.emit(1, "n = len(data)")
-    names = []
-    for index, (_, spec) in enumerate(cls.__fields__):
-        var = f"f{index}"
-        names.append(var)
-        _dec_field(g, 1, spec, var)
-    g.emit(1, f"return cls({', '.join(names)}), o")
+    run = _Run(8)
+    value = _dec_field(g, 1, run, cls)
+    _flush(g, 1, run, False)
+    g.emit(1, f"return {value}, o")
     exec("\n".join(g.lines), g.env)
     decode: _Decoder = g.env["decode"]
     _decoders[cls] = decode
