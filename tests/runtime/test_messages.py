@@ -281,8 +281,8 @@ class Mixed(m.Message):
     wide: float = 0.0
     small: int = 0
     tag: str = ""
-    bytes3: list = dataclasses.field(default_factory=lambda: [0, 0, 0])  # noqa: RUF009
-    pair: list = dataclasses.field(default_factory=lambda: [0.0, 0.0])  # noqa: RUF009
+    bytes3: list = dataclasses.field(default_factory=lambda: [0, 0, 0])
+    pair: list = dataclasses.field(default_factory=lambda: [0.0, 0.0])
     stamp: m.Time = dataclasses.field(default_factory=m.Time)
     level: int = 0
     values: list = dataclasses.field(default_factory=list)
