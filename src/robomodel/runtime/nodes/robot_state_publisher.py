@@ -68,6 +68,8 @@ class _Segment:
     rotation: Quat  # of the origin, xyzw
     axis: Vec3  # unit axis in the joint frame (KDL normalises it)
     axis_in_parent: Vec3  # origin rotation applied to the axis (for prismatic travel)
+    rotation_times_axis: Quat  # rotation ⊗ (axis, 0): a revolute pose is linear in sin, cos
+    kind: int  # 0 revolute/continuous, 1 prismatic, 2 fixed/planar
 
     @classmethod
     def of(cls, joint: Joint) -> _Segment:
@@ -81,26 +83,50 @@ class _Segment:
         R = joint.origin.matrix()[:3, :3]
         ux, uy, uz = (float(v) for v in unit)
         px, py, pz = (float(v) for v in R @ unit)
+        rotation = joint.origin.quaternion_xyzw()
+        kind = (
+            0
+            if joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS)
+            else 1
+            if joint.type is JointType.PRISMATIC
+            else 2
+        )
         return cls(
-            joint, joint.origin.xyz_m, joint.origin.quaternion_xyzw(), (ux, uy, uz), (px, py, pz)
+            joint,
+            joint.origin.xyz_m,
+            rotation,
+            (ux, uy, uz),
+            (px, py, pz),
+            _qmul(rotation, (ux, uy, uz, 0.0)),
+            kind,
         )
 
     def pose(self, value: float = 0.0) -> tuple[Vec3, Quat]:
         """Translation and rotation of the child in the parent at ``value`` [rad or m]."""
-        kind = self.joint.type
-        if kind in (JointType.REVOLUTE, JointType.CONTINUOUS):
+        kind = self.kind
+        if kind == 0:
+            # rotation ⊗ (axis sin(v/2), cos(v/2)) = sin(v/2) rotation⊗(axis, 0) + cos(v/2) rotation
             half = 0.5 * value
-            s = math.sin(half)
-            ux, uy, uz = self.axis
-            return self.xyz, _qmul(self.rotation, (ux * s, uy * s, uz * s, math.cos(half)))
-        if kind is JointType.PRISMATIC:
+            s, c = math.sin(half), math.cos(half)
+            ax, ay, az, aw = self.rotation_times_axis
+            bx, by, bz, bw = self.rotation
+            return self.xyz, (ax * s + bx * c, ay * s + by * c, az * s + bz * c, aw * s + bw * c)
+        if kind == 1:
             x, y, z = self.xyz
             px, py, pz = self.axis_in_parent
             return (x + px * value, y + py * value, z + pz * value), self.rotation
         return self.xyz, self.rotation
 
     def message(self, value: float, prefix: str, stamp: Time) -> TransformStamped:
-        (x, y, z), (qx, qy, qz, qw) = self.pose(value)
+        if self.kind == 0:  # pose() inlined: this runs once per joint per /joint_states
+            half = 0.5 * value
+            s, c = math.sin(half), math.cos(half)
+            ax, ay, az, aw = self.rotation_times_axis
+            bx, by, bz, bw = self.rotation
+            x, y, z = self.xyz
+            qx, qy, qz, qw = ax * s + bx * c, ay * s + by * c, az * s + bz * c, aw * s + bw * c
+        else:
+            (x, y, z), (qx, qy, qz, qw) = self.pose(value)
         joint = self.joint
         return TransformStamped(
             Header(stamp, prefix + joint.parent),
