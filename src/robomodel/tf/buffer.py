@@ -101,8 +101,12 @@ class BufferCore:
         self, transform: TransformStamped, authority: str, is_static: bool = False
     ) -> bool:
         """Add a transform; False (and a :class:`TFWarning` with tf2's text) if rejected."""
-        parent = _strip(transform.frame_id)
-        child = _strip(transform.child_frame_id)
+        parent = transform.frame_id
+        if parent[:1] == "/":
+            parent = parent[1:]
+        child = transform.child_frame_id
+        if child[:1] == "/":
+            child = child[1:]
         values = (*transform.translation_m, *transform.rotation_xyzw)
         problems = []
         if child == parent:
@@ -135,12 +139,15 @@ class BufferCore:
             )
         if problems:
             return self._ignore("\n".join(problems))
-        self._number(child)
+        known = self._known
+        if child not in known:
+            self._number(child)
         cache = self._caches.get(child)
         if cache is None or cache.is_static != is_static:
             cache = StaticCache() if is_static else TimeCache(self.cache_time_ns)
             self._caches[child] = cache
-        self._number(parent)
+        if parent not in known:
+            self._number(parent)
         sample = Storage(
             transform.stamp_ns,
             parent,

@@ -8,7 +8,8 @@ keeps one sample that answers for any time (``tf2/src/static_cache.cpp``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from collections import deque
+from typing import NamedTuple
 
 import numpy as np
 
@@ -24,9 +25,12 @@ from robomodel.tf.message import display_time
 __all__ = ["StaticCache", "Storage", "TimeCache"]
 
 
-@dataclass(frozen=True, slots=True)
-class Storage:
-    """One sample: the child's pose in ``parent`` at ``stamp_ns``."""
+class Storage(NamedTuple):
+    """One sample: the child's pose in ``parent`` at ``stamp_ns``.
+
+    A named tuple rather than a dataclass: one is created per transform received (a /tf
+    listener stores thousands a second), and tuple construction is several times cheaper.
+    """
 
     stamp_ns: int
     parent: str
@@ -56,12 +60,18 @@ class TimeCache:
 
     def __init__(self, cache_time_ns: int) -> None:
         self.cache_time_ns = cache_time_ns
-        self._samples: list[Storage] = []  # newest first
+        self._samples: deque[Storage] = deque()  # newest first: new data goes in at the left
 
     def insert(self, sample: Storage) -> bool:
         """Add a sample; False if it is older than the newest minus the cache time."""
         s = self._samples
-        if s and s[0].stamp_ns > sample.stamp_ns + self.cache_time_ns:
+        if not s or s[0].stamp_ns < sample.stamp_ns:  # the usual case: newer than all
+            s.appendleft(sample)
+            latest = sample.stamp_ns
+            while s[-1].stamp_ns + self.cache_time_ns < latest:
+                s.pop()
+            return True
+        if s[0].stamp_ns > sample.stamp_ns + self.cache_time_ns:
             return False
         k = 0
         while k < len(s) and s[k].stamp_ns > sample.stamp_ns:
@@ -152,7 +162,7 @@ class StaticCache:
     def get(self, time_ns: int) -> Storage:
         if self._sample is None:
             raise ExtrapolationError("Lookup would require extrapolation: no data")
-        return replace(self._sample, stamp_ns=time_ns)
+        return self._sample._replace(stamp_ns=time_ns)
 
     def latest(self) -> tuple[int, str | None]:
         return 0, None if self._sample is None else self._sample.parent
