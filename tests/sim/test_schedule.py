@@ -16,6 +16,7 @@ def test_steps_to_next_due_is_the_nearest_multiple_of_any_interval() -> None:
     assert schedule.steps_to_next_due(7) > 10**6  # nothing scheduled: no bound from here
     schedule.add(ScheduledCallback(10, lambda t: None))
     schedule.add(ScheduledCallback(4, lambda t: None))
+    assert not schedule.runs_every_step
     # after step 0 the next due steps are 4, 8, 10, 12, 16, 20
     assert [schedule.steps_to_next_due(s) for s in (0, 3, 4, 8, 9, 10, 11)] == [4, 1, 4, 2, 1, 2, 1]
 
@@ -37,6 +38,9 @@ def test_callbacks_run_at_their_steps_in_order_then_registration() -> None:
         ("tick", 4), ("sensor", 4),
         ("tick", 6), ("manager", 6), ("sensor", 6),
     ]  # fmt: skip
+    assert not schedule.runs_every_step
+    schedule.add(ScheduledCallback(1, lambda t: None))
+    assert schedule.runs_every_step
     with pytest.raises(ValueError, match="every_steps"):
         schedule.add(ScheduledCallback(0, lambda t: None))
 

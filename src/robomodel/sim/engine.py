@@ -272,20 +272,21 @@ class Simulation:
         mj_step = mj.mj_step
         steps = self._steps
         end = steps + n
+        every_step = bool(hardware) or schedule.runs_every_step
         while steps < end:
             schedule.run_due(steps, data.time)
-            if hardware:
+            if every_step:  # something runs every step: no stretch to hand over
                 for hw in hardware:
                     hw.apply()
                 mj_step(model, data)
                 for hw in kinematic:  # position joints are kinematic: no drift within a step
                     hw.apply()
-                k = 1
+                steps += 1
             else:
                 to_check = _CHECK_EVERY_STEPS - steps % _CHECK_EVERY_STEPS
                 k = min(schedule.steps_to_next_due(steps), to_check, end - steps)
                 mj_step(model, data, k)
-            steps += k
+                steps += k
             if steps % _CHECK_EVERY_STEPS == 0:
                 self._steps = steps
                 check_finite(model, data)

@@ -42,6 +42,11 @@ class StepSchedule:
         self.plan = tuple((s.every_steps, s.callback) for s in self._items)
         self._intervals = tuple(sorted({s.every_steps for s in self._items}))
 
+    @property
+    def runs_every_step(self) -> bool:
+        """Whether a callback is due at every step (then there is nothing to jump over)."""
+        return bool(self._intervals) and self._intervals[0] == 1
+
     def run_due(self, step_index: int, time_s: float) -> None:
         """Call every callback due at ``step_index``."""
         for every, callback in self.plan:
