@@ -171,17 +171,11 @@ class Simulation:
         update_rate_hz: int | None = None,
         namespace: str | None = None,
     ) -> ControlSystem:
-        """Hardware + controller manager for the robot with ``prefix``, stepped with the physics.
-
-        Simulator plugins (``gazebo_ros2_control/GazeboSystem``, ``gz_ros2_control/GazeboSimSystem``,
-        or ROS 1 ``<transmission>`` tags, as the ``gazebo_ros_control`` plugin reads them) get
-        a :class:`~robomodel.sim.hardware.SimSystem`; other plugins (mock hardware) are built as
-        usual and do not touch the physics.
-        """
-        from robomodel.control import ControlSystem
+        """Hardware + controller manager for the robot with ``prefix``, stepped with the physics
+        (see :mod:`robomodel.sim.control_loop`: simulator plugins act on the MuJoCo state, mock
+        hardware does not)."""
         from robomodel.control.config import ControllerConfig, load_controller_config
-        from robomodel.control.hardware import ResourceManager
-        from robomodel.control.manager import ControllerManager
+        from robomodel.sim.control_loop import control_cycle, simulated_components
 
         built = self.robot(prefix)
         config = (
@@ -189,55 +183,21 @@ class Simulation:
             if isinstance(controllers, ControllerConfig)
             else load_controller_config(controllers)
         )
-        components = self._components(built)
-        resources = ResourceManager(components)
-        rate = int(update_rate_hz or config.update_rate_hz)
-        steps = max(1, round(1.0 / (rate * self.timestep_s)))
-        manager = ControllerManager(
-            resources,
+        components, simulated = simulated_components(built, self.model, self.data)
+        self._hardware.extend(simulated)
+        loop = control_cycle(
+            built,
+            config,
+            components,
+            timestep_s=self.timestep_s,
             context=context,
-            robot=built.robot,
-            update_rate_hz=rate,
-            namespace=namespace if namespace is not None else config.namespace,
-            parameters={**config.manager_params, "use_sim_time": True},
+            spawn=spawn,
+            update_rate_hz=update_rate_hz,
+            namespace=namespace,
         )
-        manager.set_config(config)
-        manager.spawn([s.name for s in config.controllers] if spawn is None else list(spawn))
-        system = ControlSystem(resources, manager, config)
-        self._controls.append(system)
-        period = steps * self.timestep_s
-
-        def cycle(time_s: float) -> None:
-            manager.time_s = time_s
-            manager.read(time_s, period)
-            manager.update(time_s, period)
-            manager.write(time_s, period)
-
-        self._schedule.add(ScheduledCallback(steps, cycle, 0))
-        return system
-
-    def _components(self, built: BuiltRobot) -> list[Any]:
-        from robomodel.control.exceptions import ControlError
-        from robomodel.control.hardware import HARDWARE_PLUGINS, hardware_infos_from_robot
-        from robomodel.sim.hardware import SIMULATOR_PLUGINS, SimSystem
-
-        model, data = self.model, self.data
-        components: list[Any] = []
-        for info in hardware_infos_from_robot(built.robot):
-            derived = info.source == "<transmission> tags"
-            if info.plugin in SIMULATOR_PLUGINS or derived:
-                component = SimSystem(info, model, data, prefix=built.prefix)
-                self._hardware.append(component)
-                components.append(component)
-            else:
-                components.append(HARDWARE_PLUGINS[info.plugin](info, built.robot))
-        if not components:
-            raise ControlError(
-                f"robot '{built.robot.name}' has no <ros2_control> block and no <transmission> "
-                "tags, so the controllers have no hardware; add a <ros2_control> block with "
-                "<plugin>gazebo_ros2_control/GazeboSystem</plugin>"
-            )
-        return components
+        self._controls.append(loop.system)
+        self._schedule.add(ScheduledCallback(loop.every_steps, loop.callback, 0))
+        return loop.system
 
     def every(self, rate_hz: float, callback: StepCallback, *, order: int = 0) -> None:
         """Call ``callback(time_s)`` every ``1 / rate_hz`` of sim time (0: every step).
