@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import contextlib
-import gc
 import os
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 
+from robomodel._gc import paused_gc
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import Diagnostic, InputError, RobomodelError
 from robomodel.xacro._calls import read_document
@@ -47,7 +46,7 @@ class XacroDocument:
     def toprettyxml(self, indent: str = "\t", newl: str = "\n") -> str:
         """The text ``minidom.Document.toprettyxml`` gives with xacro's writer."""
         try:
-            with _no_gc():
+            with paused_gc():
                 return serialize(
                     self.document,
                     indent=indent,
@@ -96,30 +95,9 @@ def _context(
     return ctx
 
 
-@contextlib.contextmanager
-def _no_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while the tree grows (it would traverse it again and
-    again), then hand the survivors to the oldest generation."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            if gc.get_freeze_count() == 0:
-                # The objects allocated meanwhile would make the next young collection
-                # traverse the whole new tree (~8 ms on a PR2). Moving every tracked object
-                # to the oldest generation instead is O(1); it only delays collecting cyclic
-                # garbage to the next full collection. Skipped if the application uses
-                # gc.freeze() itself.
-                gc.freeze()
-                gc.unfreeze()
-            gc.enable()
-
-
 def _run(ctx: Context, document: Document, banner_for: str | None) -> XacroDocument:
     try:
-        with _no_gc():
+        with paused_gc():
             process_document(ctx, document)
     except RecursionError:
         raise ctx.error("expansion nested too deeply (recursion limit)") from None
@@ -161,7 +139,7 @@ def process_file(
     name = os.fspath(path)
     ctx = _context(mappings, package_index, root_dir, limits)
     ctx.filestack.append(name)
-    with _no_gc():
+    with paused_gc():
         try:
             document = read_document(ctx, name)
         except OSError as exc:
