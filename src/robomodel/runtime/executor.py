@@ -13,6 +13,7 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 from robomodel.runtime.clock import Clock, ManualClock
 
@@ -73,6 +74,28 @@ class Executor:
     # -- producers (any thread) ----------------------------------------------------------
     def post(self, callback: Callable[[], None]) -> None:
         self._queue.put(callback)
+
+    def answer(
+        self,
+        handler: Callable[[dict[str, Any]], dict[str, Any]],
+        request: dict[str, Any],
+        timeout_s: float,
+    ) -> dict[str, Any] | None:
+        """Run ``handler(request)`` on the spinning thread and wait for its reply (a service or
+        parameter request from another thread). An exception becomes ``{"error": text}``;
+        ``None`` if no reply came within ``timeout_s``."""
+        done = threading.Event()
+        box: dict[str, dict[str, Any]] = {}
+
+        def run() -> None:
+            try:
+                box["reply"] = handler(request)
+            except Exception as exc:
+                box["reply"] = {"error": str(exc)}
+            done.set()
+
+        self.post(run)
+        return box["reply"] if done.wait(timeout_s) else None
 
     def _wake(self) -> None:
         self._queue.put(_noop)

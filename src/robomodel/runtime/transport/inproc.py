@@ -168,20 +168,9 @@ class InprocTransport(Transport):
             return handler(request)
         # Another thread (a spawner, as a separate process would be): the handler runs on the
         # spinning thread, as every other callback does, and this thread waits for it.
-        done = threading.Event()
-        box: dict[str, Any] = {}
-
-        def run() -> None:
-            try:
-                box["reply"] = handler(request)
-            except Exception as exc:
-                box["reply"] = {"error": str(exc)}
-            done.set()
-
-        self._executor.post(run)
-        if not done.wait(timeout_s):
+        reply = self._executor.answer(handler, request, timeout_s)
+        if reply is None:
             raise RobomodelError(f"service '{name}' did not answer in {timeout_s:g} s")
-        reply: dict[str, Any] = box["reply"]
         return reply
 
     def close(self) -> None:

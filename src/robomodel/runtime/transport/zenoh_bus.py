@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import json
 import os
-import threading
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -150,20 +149,10 @@ class ZenohTransport(Transport):
             except ValueError:
                 query.reply(query.key_expr, json.dumps({"error": "request is not JSON"}))
                 return
-            done = threading.Event()
-            box: dict[str, Any] = {}
-
-            def run() -> None:
-                try:
-                    box["reply"] = handler(request)
-                except Exception as exc:
-                    box["reply"] = {"error": str(exc)}
-                done.set()
-
-            self.executor.post(run)
-            if not done.wait(5.0):
-                box["reply"] = {"error": f"{who} did not answer (is it spinning?)"}
-            query.reply(query.key_expr, json.dumps(box["reply"]))
+            reply = self.executor.answer(handler, request, 5.0)
+            if reply is None:
+                reply = {"error": f"{who} did not answer (is it spinning?)"}
+            query.reply(query.key_expr, json.dumps(reply))
 
         return on_query
 
