@@ -28,6 +28,7 @@ __all__ = [
     "parse_spawn_args",
     "resolve_world",
     "start_sim_server",
+    "world_viewer",
 ]
 
 _SHARE = Path(__file__).resolve().parent.parent / "share" / "gazebo_ros"
@@ -145,14 +146,21 @@ def gzserver(ctx: NodeContext) -> RunningNode:
     purpose="the browser viewer, fixed frame 'world'",
 )
 def gzclient(ctx: NodeContext) -> RunningNode:
+    part = world_viewer(ctx)
+    found = ctx.search("robot_description")  # ROS 1: the description is a parameter
+    if found:
+        request = ctx.viewer
+        request.robot_description_param = request.robot_description_param or found
+    return part
+
+
+def world_viewer(ctx: NodeContext) -> RunningNode:
+    """The simulator's client: the launch's viewer, fixed frame 'world' unless set."""
     from robomodel.launch.nodes.state import ViewerPart
 
     request = ctx.viewer
     request.requested_by.append(ctx.spec.fqn)
     request.fixed_frame = request.fixed_frame or "world"
-    found = ctx.search("robot_description")
-    if found:
-        request.robot_description_param = request.robot_description_param or found
     return ViewerPart()
 
 

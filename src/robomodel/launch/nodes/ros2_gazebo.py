@@ -19,7 +19,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
-from robomodel.launch.nodes.gazebo import parse_server_args, start_sim_server
+from robomodel.launch.nodes.gazebo import parse_server_args, start_sim_server, world_viewer
 from robomodel.launch.nodes.state import ViewerPart
 
 __all__ = ["parse_entity_args"]
@@ -51,21 +51,16 @@ def gz_sim(ctx: NodeContext) -> RunningNode:
     words = _words(ctx.spec.args)
     paused, world = parse_server_args(words)
     if "-s" not in words:  # gz sim runs its GUI unless -s (server only)
-        _client(ctx)
+        world_viewer(ctx)
     return start_sim_server(ctx, paused or "-r" not in words, world)
 
 
-def _client(ctx: NodeContext) -> RunningNode:
-    request = ctx.viewer
-    request.requested_by.append(ctx.spec.fqn)
-    request.fixed_frame = request.fixed_frame or "world"
-    return ViewerPart()
-
-
 register("ros2", "gazebo_ros", "gzclient", purpose="the browser viewer, fixed frame 'world'")(
-    _client
+    world_viewer
 )
-register("ros2", "ros_gz_sim", "gz_gui", purpose="the browser viewer, fixed frame 'world'")(_client)
+register("ros2", "ros_gz_sim", "gz_gui", purpose="the browser viewer, fixed frame 'world'")(
+    world_viewer
+)
 
 
 @register(
