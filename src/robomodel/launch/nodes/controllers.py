@@ -22,7 +22,7 @@ from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, re
 if TYPE_CHECKING:
     from robomodel.control.config import ControllerSpec
 
-__all__ = ["SpawnerArgs", "parse_spawner_args", "ros1_spec_source"]
+__all__ = ["SpawnerArgs", "parse_spawner_args", "ros1_spec_source", "wait_for_manager"]
 
 
 def ros1_spec_source(params: Any) -> Callable[[str, str], ControllerSpec | None]:
@@ -111,6 +111,30 @@ def _seconds(values: dict[str, str], option: str, default: float) -> float:
         raise RobomodelError(f"spawner: {option} needs a number of seconds") from None
 
 
+def wait_for_manager(
+    ctx: NodeContext,
+    node: ThreadNode,
+    manager: str,
+    timeout_s: float,
+    *,
+    call_timeout_s: float = 10.0,
+    zero_waits_forever: bool = False,
+) -> bool | None:
+    """Poll ``manager``'s ``list_controllers`` until it answers (True), ``timeout_s`` passes
+    (False; with ``zero_waits_forever``, a timeout of 0 never passes) or the node is stopped
+    (None), as the spawners wait for their controller manager."""
+    deadline = time.monotonic() + timeout_s
+    while not node.stopping.is_set():
+        try:
+            ctx.runtime.call_service(f"{manager}/list_controllers", {}, call_timeout_s)
+            return True
+        except RobomodelError:
+            if not (zero_waits_forever and timeout_s <= 0) and time.monotonic() > deadline:
+                return False
+            time.sleep(0.2)
+    return None
+
+
 class _Manager:
     """Calls to one controller manager's services."""
 
@@ -128,22 +152,15 @@ class _Manager:
         return reply
 
     def wait(self, node: ThreadNode, timeout_s: float) -> bool:
-        deadline = time.monotonic() + timeout_s
         self.ctx.log(f"Controller Spawner: Waiting for service {self.prefix}/load_controller")
-        while not node.stopping.is_set():
-            try:
-                self.call("list_controllers", {}, timeout_s=2.0)
-                return True
-            except RobomodelError:
-                if time.monotonic() > deadline:
-                    self.ctx.log(
-                        f"Controller Spawner couldn't find the expected controller_manager ROS "
-                        f"interface ({self.prefix}: no robomodel process runs it; start the "
-                        "simulation first, e.g. the launch file with gazebo_ros)"
-                    )
-                    return False
-                time.sleep(0.2)
-        return False
+        ready = wait_for_manager(self.ctx, node, self.prefix, timeout_s, call_timeout_s=2.0)
+        if ready is False:
+            self.ctx.log(
+                f"Controller Spawner couldn't find the expected controller_manager ROS "
+                f"interface ({self.prefix}: no robomodel process runs it; start the "
+                "simulation first, e.g. the launch file with gazebo_ros)"
+            )
+        return bool(ready)
 
     def load(self, name: str) -> bool:
         reply = self.call("load_controller", {"name": name, "set_state": "inactive"})

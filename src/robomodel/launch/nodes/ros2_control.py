@@ -13,7 +13,6 @@ manager is named as the launch file names the node (``name="my_ctrl_mgr"``), so 
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -21,6 +20,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.launch.model import NodeSpec
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
+from robomodel.launch.nodes.controllers import wait_for_manager
 
 __all__ = ["Ros2SpawnerArgs", "parse_ros2_spawner_args"]
 
@@ -224,17 +224,10 @@ def _call(ctx: NodeContext, path: str, service: str, request: dict[str, Any]) ->
 
 
 def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bool:
-    deadline = time.monotonic() + timeout_s
-    while not node.stopping.is_set():
-        try:
-            _call(ctx, path, "list_controllers", {})
-            return True
-        except RobomodelError:
-            if timeout_s > 0 and time.monotonic() > deadline:
-                ctx.log(f"Controller manager not available: {path} (after {timeout_s:g} s)")
-                return False
-            time.sleep(0.2)
-    return False
+    ready = wait_for_manager(ctx, node, path, timeout_s, zero_waits_forever=True)
+    if ready is False:
+        ctx.log(f"Controller manager not available: {path} (after {timeout_s:g} s)")
+    return bool(ready)
 
 
 def _file_params(path: str, name: str, namespace: str) -> dict[str, Any]:
