@@ -227,16 +227,15 @@ class Simulation:
         mj = mujoco()
         model, data = self.model, self.data
         schedule = self._schedule
-        hardware = [hw for hw in self._hardware if hw.has_kinematic_joints]
-        kinematic = [hw for hw in hardware if hw.has_position_joints]
+        kinematic = [hw for hw in self._hardware if hw.has_kinematic_joints]
         mj_step = mj.mj_step
         steps = self._steps
         end = steps + n
-        every_step = bool(hardware) or schedule.runs_every_step
+        every_step = bool(kinematic) or schedule.runs_every_step
         while steps < end:
             schedule.run_due(steps, data.time)
             if every_step:  # something runs every step: no stretch to hand over
-                for hw in hardware:
+                for hw in kinematic:
                     hw.apply()
                 mj_step(model, data)
                 for hw in kinematic:  # position joints are kinematic: no drift within a step

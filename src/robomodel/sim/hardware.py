@@ -300,10 +300,6 @@ class SimSystem(HardwareComponent):
         """Position joints (written into the state every physics step)."""
         return bool(self._pos_i)
 
-    @property
-    def has_position_joints(self) -> bool:
-        return bool(self._pos_i)
-
     def apply(self) -> None:
         """Write the kinematic (position) commands into the state; every physics step."""
         if self._pos_i:
