@@ -151,3 +151,32 @@ def test_published_tf_equals_forward_kinematics() -> None:
     T = kin.fk(q, links=["gripper"])[0]
     looked = listener.buffer.lookup_transform("base_link", "gripper").matrix()
     np.testing.assert_allclose(looked, T, atol=1e-12)
+
+
+MIXED = """<robot name="mixed"><link name="base"/><link name="a"/><link name="b"/><link name="c"/>
+<link name="d"/>
+<joint name="rev" type="revolute"><parent link="base"/><child link="a"/>
+<origin xyz="0.1 0.2 0.3" rpy="0.4 -0.2 0.9"/><axis xyz="0 0 2"/>
+<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+<joint name="slide" type="prismatic"><parent link="a"/><child link="b"/>
+<origin xyz="0.5 0 0" rpy="0 0.7 0"/><axis xyz="1 1 0"/>
+<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+<joint name="spin" type="continuous"><parent link="b"/><child link="c"/>
+<origin xyz="0 0 0.2" rpy="1.2 0 0.3"/><axis xyz="0.3 -0.5 0.8"/></joint>
+<joint name="weld" type="fixed"><parent link="c"/><child link="d"/>
+<origin xyz="0.05 0 0" rpy="0 0 0.5"/></joint></robot>"""
+
+
+def test_published_tf_equals_forward_kinematics_for_every_joint_kind() -> None:
+    """Revolute, prismatic and continuous joints with rotated origins and non-unit axes (KDL
+    normalises them), and a fixed joint on /tf_static: each link where FK puts it."""
+    robot = read_urdf(MIXED).robot
+    ctx, _, listener = _setup(MIXED)
+    kin = Kinematics(robot)
+    q = np.array([0.8, 0.35, -2.1])
+    js = ctx.create_node("jsp").create_publisher(JointState, "joint_states")
+    js.publish(JointState(Header(Time(10, 0)), list(kin.joint_names), list(q)))
+    ctx.spin_once()
+    for link, T in zip(["a", "b", "c", "d"], kin.fk(q, links=["a", "b", "c", "d"]), strict=True):
+        looked = listener.buffer.lookup_transform("base", link).matrix()
+        np.testing.assert_allclose(looked, T, atol=1e-12, err_msg=link)

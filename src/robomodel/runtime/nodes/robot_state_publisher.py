@@ -66,10 +66,10 @@ class _Segment:
     joint: Joint
     xyz: Vec3
     rotation: Quat  # of the origin, xyzw
-    axis: Vec3  # unit axis in the joint frame (KDL normalises it)
-    axis_in_parent: Vec3  # origin rotation applied to the axis (for prismatic travel)
-    rotation_times_axis: Quat  # rotation ⊗ (axis, 0): a revolute pose is linear in sin, cos
-    kind: int  # 0 revolute/continuous, 1 prismatic, 2 fixed/planar
+    axis_in_parent: Vec3  # origin rotation applied to the unit axis (for prismatic travel)
+    rotation_times_axis: Quat  # rotation ⊗ (unit axis, 0): a revolute pose is linear in sin, cos
+    revolute: bool  # revolute or continuous
+    prismatic: bool
 
     @classmethod
     def of(cls, joint: Joint) -> _Segment:
@@ -79,54 +79,35 @@ class _Segment:
             raise RobomodelError(
                 f"joint '{joint.name}' has a zero axis; robot_state_publisher needs a direction"
             )
-        unit = axis / norm if norm else axis
+        unit = axis / norm if norm else axis  # KDL normalises the axis
         R = joint.origin.matrix()[:3, :3]
         ux, uy, uz = (float(v) for v in unit)
         px, py, pz = (float(v) for v in R @ unit)
         rotation = joint.origin.quaternion_xyzw()
-        kind = (
-            0
-            if joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS)
-            else 1
-            if joint.type is JointType.PRISMATIC
-            else 2
-        )
         return cls(
             joint,
             joint.origin.xyz_m,
             rotation,
-            (ux, uy, uz),
             (px, py, pz),
             _qmul(rotation, (ux, uy, uz, 0.0)),
-            kind,
+            joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS),
+            joint.type is JointType.PRISMATIC,
         )
 
-    def pose(self, value: float = 0.0) -> tuple[Vec3, Quat]:
-        """Translation and rotation of the child in the parent at ``value`` [rad or m]."""
-        kind = self.kind
-        if kind == 0:
+    def message(self, value: float, prefix: str, stamp: Time) -> TransformStamped:
+        """The child's pose in the parent at ``value`` [rad or m] (once per joint per
+        /joint_states, so the pose is computed inline)."""
+        x, y, z = self.xyz
+        qx, qy, qz, qw = self.rotation
+        if self.revolute:
             # rotation ⊗ (axis sin(v/2), cos(v/2)) = sin(v/2) rotation⊗(axis, 0) + cos(v/2) rotation
             half = 0.5 * value
             s, c = math.sin(half), math.cos(half)
             ax, ay, az, aw = self.rotation_times_axis
-            bx, by, bz, bw = self.rotation
-            return self.xyz, (ax * s + bx * c, ay * s + by * c, az * s + bz * c, aw * s + bw * c)
-        if kind == 1:
-            x, y, z = self.xyz
+            qx, qy, qz, qw = ax * s + qx * c, ay * s + qy * c, az * s + qz * c, aw * s + qw * c
+        elif self.prismatic:
             px, py, pz = self.axis_in_parent
-            return (x + px * value, y + py * value, z + pz * value), self.rotation
-        return self.xyz, self.rotation
-
-    def message(self, value: float, prefix: str, stamp: Time) -> TransformStamped:
-        if self.kind == 0:  # pose() inlined: this runs once per joint per /joint_states
-            half = 0.5 * value
-            s, c = math.sin(half), math.cos(half)
-            ax, ay, az, aw = self.rotation_times_axis
-            bx, by, bz, bw = self.rotation
-            x, y, z = self.xyz
-            qx, qy, qz, qw = ax * s + bx * c, ay * s + by * c, az * s + bz * c, aw * s + bw * c
-        else:
-            (x, y, z), (qx, qy, qz, qw) = self.pose(value)
+            x, y, z = x + px * value, y + py * value, z + pz * value
         joint = self.joint
         return TransformStamped(
             Header(stamp, prefix + joint.parent),
