@@ -65,22 +65,19 @@ class TimeCache:
     def insert(self, sample: Storage) -> bool:
         """Add a sample; False if it is older than the newest minus the cache time."""
         s = self._samples
-        if not s or s[0].stamp_ns < sample.stamp_ns:  # the usual case: newer than all
-            s.appendleft(sample)
-            latest = sample.stamp_ns
-            while s[-1].stamp_ns + self.cache_time_ns < latest:
-                s.pop()
-            return True
-        if s[0].stamp_ns > sample.stamp_ns + self.cache_time_ns:
-            return False
-        k = 0
-        while k < len(s) and s[k].stamp_ns > sample.stamp_ns:
-            k += 1
-        if k < len(s) and s[k].stamp_ns == sample.stamp_ns:
-            return True  # exact duplicate time: tf2 keeps the first one
-        s.insert(k, sample)
-        latest = s[0].stamp_ns
-        while s and s[-1].stamp_ns + self.cache_time_ns < latest:
+        if s and s[0].stamp_ns >= sample.stamp_ns:  # not newer than the newest: find its place
+            if s[0].stamp_ns > sample.stamp_ns + self.cache_time_ns:
+                return False
+            k = 0
+            while k < len(s) and s[k].stamp_ns > sample.stamp_ns:
+                k += 1
+            if k < len(s) and s[k].stamp_ns == sample.stamp_ns:
+                return True  # exact duplicate time: tf2 keeps the first one
+            s.insert(k, sample)
+            return True  # the newest is unchanged, so nothing falls out of the cache time
+        s.appendleft(sample)  # the usual case: newer than all, O(1) at the left
+        latest = sample.stamp_ns
+        while s[-1].stamp_ns + self.cache_time_ns < latest:
             s.pop()
         return True
 
