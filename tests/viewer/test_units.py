@@ -190,6 +190,7 @@ def test_missing_viser_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
         "robomodel.viewer.scene",
         "robomodel.viewer.session",
         "robomodel.viewer.link_poses",
+        "robomodel.viewer.pose_messages",
         "robomodel.viewer.meshes",
         "robomodel.viewer.joint_panel",
         "robomodel.viewer.tf_display",
@@ -252,7 +253,8 @@ def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:
         queue = server.scene._queue_scene_message
 
         def record(message: object) -> None:
-            sent.append((type(message).__name__, str(getattr(message, "name", ""))))
+            wire = message.as_serializable_dict()  # type: ignore[attr-defined]
+            sent.append((wire["type"], wire["name"]))
             queue(message)  # type: ignore[arg-type]
 
         server.scene._queue_scene_message = record  # type: ignore[method-assign]
@@ -278,6 +280,56 @@ def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:
         assert sent == []
     finally:
         server.stop()
+
+
+def test_pose_messages_are_what_viser_sends_for_its_own() -> None:
+    """Issue 14.4: the quickly serialised pose messages put viser's bytes on the wire."""
+    import msgspec
+    from viser import _messages
+
+    from robomodel.viewer.pose_messages import pose_message_types
+
+    types = pose_message_types()
+    assert types is not None  # this viser (1.1) has the message layout they rely on
+    rng = np.random.default_rng(3)
+    pairs = [
+        (types.orientation, _messages.SetOrientationMessage, 4),
+        (types.position, _messages.SetPositionMessage, 3),
+    ]
+    for fast, base, n in pairs:
+        for k in range(20):
+            value = tuple(rng.normal(size=n).tolist())
+            ours, theirs = fast(f"/robots/0/l{k}", value), base(f"/robots/0/l{k}", value)
+            ours.owner = theirs.owner = f"owner-{k}"
+            wire = ours.as_serializable_dict()
+            assert wire["type"] == base.__name__
+            assert msgspec.msgpack.encode(wire) == msgspec.msgpack.encode(
+                theirs.as_serializable_dict()
+            )
+            # viser coalesces by these keys: a fast message replaces viser's own and back
+            assert ours.redundancy_key() == theirs.redundancy_key()
+            assert ours.entity_state_key() == theirs.entity_state_key()
+    # Clients' messages are looked up by type name: the subclasses must not shadow viser's.
+    table = _messages.Message._subclass_from_type_string()
+    assert table["SetOrientationMessage"] is _messages.SetOrientationMessage
+
+
+def test_pose_messages_fall_back_when_viser_serialises_differently(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from viser import _messages
+
+    from robomodel.viewer import pose_messages
+
+    def renamed(self: object, binary_buffers: object = None) -> dict[str, object]:
+        return {"type": type(self).__name__, "node": getattr(self, "name", None)}
+
+    pose_messages.pose_message_types.cache_clear()
+    monkeypatch.setattr(_messages.Message, "as_serializable_dict", renamed)
+    try:
+        assert pose_messages.pose_message_types() is None
+    finally:
+        pose_messages.pose_message_types.cache_clear()
 
 
 def test_next_big_update_waits_for_pages_to_be_sent_the_previous_one() -> None:

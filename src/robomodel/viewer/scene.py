@@ -9,7 +9,6 @@ RobotModel display does. Meshes that cannot be found or read are skipped and rep
 
 from __future__ import annotations
 
-import functools
 import threading
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,6 +24,7 @@ from robomodel.errors import RobomodelError
 from robomodel.viewer._poses import wxyz_xyz_from_matrix
 from robomodel.viewer.materials import DEFAULT_RGBA, material_rgba, rgb255
 from robomodel.viewer.meshes import MeshCache, resolve_mesh_uri
+from robomodel.viewer.pose_messages import pose_message_types
 
 __all__ = ["GeometryProblem", "RobotModelDisplay"]
 
@@ -33,17 +33,6 @@ Rgba = tuple[float, float, float, float]
 _POSITION_TOL_M = 1e-6
 # RViz draws no shadows, and software WebGL renders much faster without them.
 _NO_SHADOWS: dict[str, Any] = {"cast_shadow": False, "receive_shadow": False}
-
-
-@functools.cache
-def _viser_messages() -> Any:
-    """viser's message classes if they are the ones 1.1 has, else None (use the setters)."""
-    try:
-        from viser import _messages
-    except ImportError:
-        return None
-    ok = hasattr(_messages, "SetOrientationMessage") and hasattr(_messages, "SetPositionMessage")
-    return _messages if ok else None
 
 
 _ROTATION_TOL = 1e-7
@@ -336,12 +325,13 @@ class RobotModelDisplay:
 
         viser's ``wxyz``/``position`` setters cast, compare (``np.allclose``) and copy on every
         call, which is most of the cost of a 60-link update. When this viser has the same
-        internals as 1.1 (``_queue_scene_message``, ``SetOrientationMessage``), the messages are
-        queued directly and the handle's state updated in place; otherwise the public setters.
+        internals as 1.1 (``_queue_scene_message``, its pose messages), the messages are
+        queued directly, as :mod:`~robomodel.viewer.pose_messages`' quickly serialised
+        subclasses, and the handle's state updated in place; otherwise the public setters.
         """
         queue = getattr(self.scene, "_queue_scene_message", None)
         impl = getattr(handle, "_impl", None)
-        messages = _viser_messages()
+        messages = pose_message_types()
         if queue is None or impl is None or messages is None:
             if wxyz is not None:
                 handle.wxyz = wxyz
@@ -351,11 +341,11 @@ class RobotModelDisplay:
         if wxyz is not None:
             w, x, y, z = wxyz
             impl.wxyz[:] = (w, x, y, z)
-            queue(messages.SetOrientationMessage(impl.name, (w, x, y, z)))
+            queue(messages.orientation(impl.name, (w, x, y, z)))
         if xyz is not None:
             px, py, pz = xyz
             impl.position[:] = (px, py, pz)
-            queue(messages.SetPositionMessage(impl.name, (px, py, pz)))
+            queue(messages.position(impl.name, (px, py, pz)))
 
     def remove(self) -> None:
         """Take the robot out of the scene."""
