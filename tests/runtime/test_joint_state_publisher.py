@@ -167,3 +167,20 @@ def test_robot_description_topic_reconfigures() -> None:
     )
     ctx.spin_once()
     assert list(jsp.free_joints) == ["j12"]
+
+
+def test_publish_now_restarts_the_rate_timer() -> None:
+    ctx = Context(clock=ManualClock())
+    jsp = JointStatePublisher(ctx, _robot(_joint("j12", 1, 2), links=2))  # type: ignore[arg-type]
+    got = _collect(ctx)
+    ctx.advance(0.05)
+    jsp.set_positions({"j12": 0.5})
+    jsp.publish_now()  # a slider moved at t = 0.05 s
+    ctx.advance(0.0)  # deliver
+    assert [m.position for m in got] == [[0.5]]
+    ctx.advance(0.099)  # the tick due at 0.1 s would repeat the values just sent
+    assert len(got) == 1
+    ctx.advance(0.002)  # one period after the out-of-turn message
+    assert len(got) == 2
+    ctx.advance(0.1)
+    assert len(got) == 3  # and at the rate again from there

@@ -12,7 +12,7 @@ from robomodel.tf import BufferCore
 from robomodel.tf.exceptions import TransformError
 from robomodel.viewer._poses import QuatXyzw, Vec3, compose
 
-__all__ = ["LinkPoses", "robot_link_poses"]
+__all__ = ["LinkPoseSolver", "LinkPoses"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -46,50 +46,79 @@ def _rotate_xyzw(q: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.f
     return v + w * t + np.cross(u, t)
 
 
-def robot_link_poses(
-    robot: Robot,
-    prefix: str,
-    link_names: tuple[str, ...],
-    buffer: BufferCore,
-    fixed_frame: str,
-    T_fixed_root_default: NDArray[np.float64],
-) -> LinkPoses:
-    """Every link of ``robot`` in the fixed frame, in ``link_names`` order, from TF.
+class LinkPoseSolver:
+    """Every link of one robot in the fixed frame, from TF (the plan is made once per model).
 
-    Each joint is looked up one hop (parent to child, with ``prefix``) and composed down the
-    tree from the root, then the root is placed in the fixed frame. When the root has no
+    Each joint is looked up one hop (parent to child, with the frame prefix) and composed down
+    the tree from the root, then the root is placed in the fixed frame. When the root has no
     transform to the fixed frame (another robot's tree), the robot is placed at
     ``T_fixed_root_default`` so that unconnected robots still appear side by side.
     """
-    tree = robot.tree()
-    root = prefix + tree.root
-    names = link_names
-    identity: tuple[Vec3, QuatXyzw] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-    # Plain lists and floats while walking (numpy element access costs more than the maths),
-    # one array per field at the end.
-    poses: dict[str, tuple[Vec3, QuatXyzw]] = {tree.root: identity}
-    missing = []
-    # One hop per joint (parent -> child), composed down the tree: O(links), not
-    # O(links x depth) as looking every link up from the root would be.
-    for _depth, joint in tree.walk():
-        frame = prefix + joint.child
-        parent_pose = poses.get(joint.parent)
-        try:
-            if parent_pose is None:
-                raise TransformError("parent not connected")
-            tf = buffer.lookup_transform(prefix + joint.parent, frame)
-            poses[joint.child] = compose(*parent_pose, tf.translation_m, tf.rotation_xyzw)
-        except TransformError:
-            try:  # another process may publish a different tree: ask the root directly
-                tf = buffer.lookup_transform(root, frame)
+
+    def __init__(self, robot: Robot, prefix: str, link_names: tuple[str, ...]) -> None:
+        tree = robot.tree()
+        self.robot = robot
+        self.link_names = link_names
+        self._root = tree.root
+        self._root_frame = prefix + tree.root
+        # (parent link, child link, parent frame, child frame), parents before children: the
+        # tree walk is the same every update, and it cost about a third of one at 1,000 links.
+        self._hops = tuple(
+            (joint.parent, joint.child, prefix + joint.parent, prefix + joint.child)
+            for _depth, joint in tree.walk()
+        )
+
+    def solve(
+        self, buffer: BufferCore, fixed_frame: str, T_fixed_root_default: NDArray[np.float64]
+    ) -> LinkPoses:
+        """Every link in the fixed frame, in ``link_names`` order."""
+        root = self._root_frame
+        names = self.link_names
+        identity: tuple[Vec3, QuatXyzw] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+        # Plain lists and floats while walking (numpy element access costs more than the
+        # maths), one array per field at the end.
+        poses: dict[str, tuple[Vec3, QuatXyzw]] = {self._root: identity}
+        missing = []
+        lookup = buffer.lookup_transform
+        # One hop per joint (parent -> child), composed down the tree: O(links), not
+        # O(links x depth) as looking every link up from the root would be.
+        for parent, child, parent_frame, frame in self._hops:
+            parent_pose = poses.get(parent)
+            try:
+                if parent_pose is None:
+                    raise TransformError("parent not connected")
+                tf = lookup(parent_frame, frame)
+                poses[child] = compose(*parent_pose, tf.translation_m, tf.rotation_xyzw)
             except TransformError:
-                missing.append(frame)
-                continue
-            poses[joint.child] = (tf.translation_m, tf.rotation_xyzw)
-    rows = [poses.get(name) for name in names]
+                try:  # another process may publish a different tree: ask the root directly
+                    tf = lookup(root, frame)
+                except TransformError:
+                    missing.append(frame)
+                    continue
+                poses[child] = (tf.translation_m, tf.rotation_xyzw)
+        return _in_fixed_frame(
+            [poses.get(name) for name in names],
+            root,
+            buffer,
+            fixed_frame,
+            T_fixed_root_default,
+            tuple(missing),
+        )
+
+
+def _in_fixed_frame(
+    rows: list[tuple[Vec3, QuatXyzw] | None],
+    root: str,
+    buffer: BufferCore,
+    fixed_frame: str,
+    T_fixed_root_default: NDArray[np.float64],
+    missing: tuple[str, ...],
+) -> LinkPoses:
+    """Link poses in the root frame (None: not connected) placed in the fixed frame."""
+    identity_xyzw = (0.0, 0.0, 0.0, 1.0)
     visible = np.array([row is not None for row in rows], dtype=bool)
     t = np.array([row[0] if row is not None else (0.0, 0.0, 0.0) for row in rows]).reshape(-1, 3)
-    q = np.array([row[1] if row is not None else identity[1] for row in rows]).reshape(-1, 4)
+    q = np.array([row[1] if row is not None else identity_xyzw for row in rows]).reshape(-1, 4)
     connected = True
     try:
         base = buffer.lookup_transform(fixed_frame, root)
@@ -103,4 +132,4 @@ def robot_link_poses(
     q_fixed = _qmul_xyzw(np.broadcast_to(q0, q.shape), q)
     wxyz = np.concatenate([q_fixed[:, 3:4], q_fixed[:, :3]], axis=1)
     wxyz *= np.where(wxyz[:, :1] < 0, -1.0, 1.0)
-    return LinkPoses(wxyz, xyz, visible, connected, tuple(missing))
+    return LinkPoses(wxyz, xyz, visible, connected, missing)

@@ -32,7 +32,7 @@ from robomodel.runtime.tf_listener import to_msg
 from robomodel.tf import BufferCore, TransformStamped
 from robomodel.viewer.bodies import body_transform
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
-from robomodel.viewer.link_poses import LinkPoses, robot_link_poses
+from robomodel.viewer.link_poses import LinkPoses, LinkPoseSolver
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.reload import FileWatcher
 from robomodel.viewer.scene import RobotModelDisplay
@@ -120,6 +120,7 @@ class RobotSession:
         self.rsp: RobotStatePublisher | None = None
         self.jsp: JointStatePublisher | None = None
         self.display: RobotModelDisplay | None = None
+        self._pose_solver: LinkPoseSolver | None = None
         self.panel: JointPanel | None = None
         self.bodies: dict[str, BodyPose] = {}
         self.stale_frames: set[str] = set()
@@ -302,20 +303,20 @@ class RobotSession:
             return
         known = {k: v for k, v in values.items() if k in self.jsp.free_joints}
         self.jsp.set_positions(known)
-        self.jsp.publish()
+        self.jsp.publish_now()
 
     def randomize(self, rng: random.Random | None = None) -> None:
         if self.jsp is None:
             return
         self.jsp.randomize(rng)
-        self.jsp.publish()
+        self.jsp.publish_now()
         self._sync_sliders()
 
     def center(self) -> None:
         if self.jsp is None:
             return
         self.jsp.center()
-        self.jsp.publish()
+        self.jsp.publish_now()
         self._sync_sliders()
 
     def _sync_sliders(self) -> None:
@@ -361,17 +362,18 @@ class RobotSession:
     def link_poses(
         self, buffer: BufferCore, fixed_frame: str, T_fixed_root_default: NDArray[np.float64]
     ) -> LinkPoses | None:
-        """Every link in the fixed frame (see :func:`robot_link_poses`); None before a model."""
+        """Every link in the fixed frame (see :class:`LinkPoseSolver`); None before a model."""
         if self.robot is None or self.display is None:
             return None
-        return robot_link_poses(
-            self.robot,
-            self.prefix,
-            self.display.link_names,
-            buffer,
-            fixed_frame,
-            T_fixed_root_default,
-        )
+        solver = self._pose_solver
+        if (
+            solver is None
+            or solver.robot is not self.robot
+            or solver.link_names is not self.display.link_names
+        ):
+            solver = LinkPoseSolver(self.robot, self.prefix, self.display.link_names)
+            self._pose_solver = solver
+        return solver.solve(buffer, fixed_frame, T_fixed_root_default)
 
     def close(self) -> None:
         if self.display is not None:

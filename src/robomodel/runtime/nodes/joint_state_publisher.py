@@ -357,3 +357,14 @@ class JointStatePublisher:
         msg = self.make_message()
         if msg.name or msg.position or msg.velocity or msg.effort:
             self.publisher.publish(msg)
+
+    def publish_now(self) -> None:
+        """Publish out of turn (a slider moved) and restart the ``rate`` timer.
+
+        ROS's node publishes only on its timer, so joint_state_publisher_gui's sliders are
+        seen at ``rate`` (10 Hz). A slider here is published when it moves; restarting the
+        timer keeps at least ``rate`` messages a second without a tick repeating the values
+        just sent (each /joint_states costs robot_state_publisher and every TF listener).
+        """
+        self.publish()
+        self._timer.reset()
