@@ -407,3 +407,16 @@ def test_registry_and_field_order() -> None:
     for name in m.message_type_names():
         cls = m.get_message_type(name)
         assert [f.name for f in dataclasses.fields(cls)] == list(cls.field_names()), name
+
+
+def test_publishers_and_subscriptions_generate_their_codecs_when_created() -> None:
+    """The first message does not pay for code generation (it held up the ones behind it)."""
+    from robomodel.runtime.msg import cdr
+
+    cdr._encoders.pop(m.Imu, None)
+    cdr._decoders.pop(m.Imu, None)
+    cdr.prepare(m.Imu)
+    encode, decode = cdr._encoders[m.Imu], cdr._decoders[m.Imu]
+    msg = m.Imu(m.Header(m.Time(3, 4), "imu_link"))
+    assert cdr.deserialize(cdr.serialize(msg), m.Imu) == msg
+    assert cdr._encoders[m.Imu] is encode and cdr._decoders[m.Imu] is decode  # not made again

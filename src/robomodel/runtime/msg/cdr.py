@@ -21,7 +21,7 @@ from typing import Any, TypeVar
 
 from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, MessageTypeError, Seq, Spec
 
-__all__ = ["CDRError", "deserialize", "serialize"]
+__all__ = ["CDRError", "deserialize", "prepare", "serialize"]
 
 HEADER_LE = b"\x00\x01\x00\x00"
 _M = TypeVar("_M", bound=Message)
@@ -316,6 +316,17 @@ def _message_decoder(cls: type[Message]) -> _Decoder:
     decode: _Decoder = g.env["decode"]
     _decoders[cls] = decode
     return decode
+
+
+def prepare(cls: type[Message]) -> None:
+    """Generate ``cls``'s encoder and decoder now (each is generated once per type).
+
+    A publisher or subscription calls this when it is created, so the first message does not
+    pay for the code generation (a few ms for a nested type such as TFMessage: with messages
+    arriving every millisecond, the first ones queued up behind it).
+    """
+    _message_encoder(cls)
+    _message_decoder(cls)
 
 
 def serialize(msg: Message) -> bytes:

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
+from robomodel.runtime.msg.cdr import prepare
 from robomodel.runtime.qos import Durability
 from robomodel.runtime.transport._attachment import SequenceFilter, parse_attachment
 from robomodel.runtime.transport._zenoh_common import import_zenoh, log
@@ -27,6 +28,7 @@ class ZenohPublisher(PublisherHandle):
         self._type = msg_type
         self._id = uuid.uuid4().hex[:16]
         self._seq = 0
+        prepare(msg_type)
         self._lock = threading.Lock()
         session, prefix = bus.session, bus.prefix
         self._pub = session.declare_publisher(f"{prefix}/t{endpoint.topic}")
@@ -87,6 +89,7 @@ class ZenohSubscription(SubscriptionHandle):
         self._deliver = deliver
         self._sequences = SequenceFilter()
         self._alive = True
+        prepare(msg_type)
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
         # the oldest (as DDS does) instead of falling further and further behind.
         self._pending: collections.deque[tuple[bytes, bytes]] = collections.deque(
