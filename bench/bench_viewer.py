@@ -16,7 +16,9 @@ Run: ``.venv/bin/python bench/bench_viewer.py`` (needs Debian's chromium for the
    the rate falls no faster than linearly with the links; >= 30 updates/s at 1,000 links and
    >= 100/s on talos.
 
-``--scaling`` runs only part 3.
+``--scaling`` runs only part 3; ``--scaling --socket`` runs it with a plain websocket reader
+process (``_ws_count.py``) in place of Chromium: what the viewer can send when no browser
+shares the machine.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ import threading
 import time
 import urllib.request
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -84,16 +87,13 @@ def chain_urdf(n_links: int) -> str:
     return "\n".join(parts)
 
 
-def updates_per_second(
-    frame_rate_hz: float | None = None, duration_s: float = 5.0, urdf: Path = URDF
-) -> tuple[float, float, float]:
-    """(scene updates/s received by Chromium, pushes/s sent by the viewer, websocket frames/s
-    carrying poses: the measure before issue 14, which counts a split update several times).
+def _viewer_and_marker(frame_rate_hz: float | None, urdf: Path) -> tuple[Any, list[Any], str]:
+    """A started viewer of ``urdf``, its slider joints and the scene node counted as updates.
 
-    ``frame_rate_hz`` None: the viewer's default Frame Rate (the cap on scene updates).
+    One scene update = one new orientation of the deepest link (it moves whenever any joint
+    does). Counting websocket frames instead would count a big update once per frame that
+    viser splits it into, and count nothing for updates that viser merged before sending.
     """
-    from playwright.sync_api import sync_playwright
-
     from robomodel.description.packages import index_from_options
     from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 
@@ -110,21 +110,79 @@ def updates_per_second(
     session = viewer.sessions[0]
     assert session.jsp is not None and viewer.context is not None
     joints = list(session.jsp.free_joints.values())
+    display = session.display
+    assert display is not None and session.robot is not None
+    depth = {joint.child: d for d, joint in session.robot.tree().walk()}
+    deepest = max(display.link_names, key=lambda name: depth.get(name, 0))
+    return viewer, joints, f"{display.root}/l{display.link_names.index(deepest)}"
+
+
+def _drive_sliders(session: Any, joints: list[Any], stop: threading.Event) -> None:
+    """Move every slider joint at 240 Hz until ``stop`` (what dragging sliders does).
+
+    Every joint's value is one numpy expression: the driver stands in for the browser's
+    slider events (each one value, handled on viser's thread), so it must not itself take a
+    share of the GIL that grows with the robot (a per-joint Python loop at 240 Hz cost a third
+    of a core at 1,000 joints, more than robot_state_publisher).
+    """
+    names = [j.name for j in joints]
+    low = np.array([j.min for j in joints])
+    span = np.array([j.max - j.min for j in joints])
+    phase = np.arange(len(joints), dtype=float)
+    t0 = time.perf_counter()
+    while not stop.is_set():
+        t = time.perf_counter() - t0
+        values = low + span * (0.5 + 0.4 * np.sin(2 * t + phase))
+        session.queue_positions(dict(zip(names, values.tolist(), strict=True)))
+        time.sleep(1 / 240)
+
+
+def updates_per_second_socket(urdf: Path, duration_s: float = 5.0) -> tuple[float, float]:
+    """(scene updates/s received, pushes/s) with a plain websocket reader instead of Chromium.
+
+    The reader (``_ws_count.py``) runs in a process of its own and only decodes what it
+    receives: what the viewer's side can send when no browser shares the machine's two cores.
+    """
+    viewer, joints, marker = _viewer_and_marker(240.0, urdf)
+    stop = threading.Event()
+    driver = threading.Thread(
+        target=_drive_sliders, args=(viewer.sessions[0], joints, stop), daemon=True
+    )
+    driver.start()
+    sent0, started = viewer.updates_sent, time.perf_counter()
+    reader = Path(__file__).resolve().parent / "_ws_count.py"
+    url = viewer.url.replace("http://", "ws://")
+    out = subprocess.run(
+        [sys.executable, str(reader), url, marker, str(duration_s)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    pushed = (viewer.updates_sent - sent0) / (time.perf_counter() - started)
+    stop.set()
+    driver.join()
+    viewer.close()
+    return float(out.stdout.split()[-1]), pushed
+
+
+def updates_per_second(
+    frame_rate_hz: float | None = None, duration_s: float = 5.0, urdf: Path = URDF
+) -> tuple[float, float, float]:
+    """(scene updates/s received by Chromium, pushes/s sent by the viewer, websocket frames/s
+    carrying poses: the measure before issue 14, which counts a split update several times).
+
+    ``frame_rate_hz`` None: the viewer's default Frame Rate (the cap on scene updates).
+    """
+    from playwright.sync_api import sync_playwright
+
+    viewer, joints, marker = _viewer_and_marker(frame_rate_hz, urdf)
+    session = viewer.sessions[0]
+    marker_bytes = marker.encode()
     frames: list[float] = []
     pose_frames: list[float] = []
 
     import msgspec
     import zstandard
-
-    # One scene update = one new orientation of the deepest link (it moves whenever any joint
-    # does). Counting websocket frames instead would count a big update once per frame that
-    # viser splits it into, and count nothing for updates that viser merged before sending.
-    display = session.display
-    assert display is not None
-    depth = {joint.child: d for d, joint in session.robot.tree().walk()}
-    deepest = max(display.link_names, key=lambda name: depth.get(name, 0))
-    marker = f"{display.root}/l{display.link_names.index(deepest)}"
-    marker_bytes = marker.encode()
 
     def on_frame(payload: bytes | str) -> None:
         # viser's wire format: [u64 raw size][u64 zstd size][zstd msgpack][binary buffers]
@@ -154,29 +212,10 @@ def updates_per_second(
         page.wait_for_timeout(2000)
         stop = threading.Event()
 
-        # Every joint's value as one numpy expression: the driver stands in for the browser's
-        # slider events (each one value, handled on viser's thread), so it must not itself
-        # take a share of the GIL that grows with the robot (a per-joint Python loop at 240 Hz
-        # cost a third of a core at 1,000 joints, more than robot_state_publisher).
-        names = [j.name for j in joints]
-        low = np.array([j.min for j in joints])
-        span = np.array([j.max - j.min for j in joints])
-        phase = np.arange(len(joints), dtype=float)
-
-        def drive() -> None:
-            t0 = time.perf_counter()
-            while not stop.is_set():
-                t = time.perf_counter() - t0
-                values = low + span * (0.5 + 0.4 * np.sin(2 * t + phase))
-                session.queue_positions(
-                    dict(zip(names, values.tolist(), strict=False))
-                )  # a slider drag
-                time.sleep(1 / 240)
-
         sent0 = viewer.updates_sent
         frames.clear()
         pose_frames.clear()
-        driver = threading.Thread(target=drive, daemon=True)
+        driver = threading.Thread(target=_drive_sliders, args=(session, joints, stop), daemon=True)
         started = time.perf_counter()
         driver.start()
         page.wait_for_timeout(duration_s * 1000)
@@ -191,11 +230,12 @@ def updates_per_second(
     return received / elapsed, sent / elapsed, pose_frame_rate
 
 
-def scaling(rounds: int = 3) -> None:
+def scaling(rounds: int = 3, *, socket: bool = False) -> None:
     """Updates/s received at Frame Rate 240 against robot size (part 3)."""
     import tempfile
 
-    print(f"scaling at Frame Rate 240 (median of {rounds} runs of 5 s):")
+    reader = "a websocket reader process, no browser" if socket else "headless Chromium"
+    print(f"scaling at Frame Rate 240 (median of {rounds} runs of 5 s; {reader}):")
     print(
         "| robot | links | updates/s received | viewer pushes/s | links x updates/s "
         "| pose frames/s (old measure) |"
@@ -210,6 +250,15 @@ def scaling(rounds: int = 3) -> None:
         if URDF.exists():
             robots.append(("talos_full_v2", 60, URDF))
         for label, n_links, path in robots:
+            if socket:
+                sock = [updates_per_second_socket(path) for _ in range(rounds)]
+                received = statistics.median(r[0] for r in sock)
+                pushed = statistics.median(r[1] for r in sock)
+                print(
+                    f"| {label} | {n_links} | {received:.0f} | {pushed:.0f} | "
+                    f"{n_links * received:,.0f} | - |"
+                )
+                continue
             rates = [updates_per_second(240.0, urdf=path) for _ in range(rounds)]
             received = statistics.median(r[0] for r in rates)
             pushed = statistics.median(r[1] for r in rates)
@@ -223,7 +272,7 @@ def scaling(rounds: int = 3) -> None:
 def main() -> None:
     os.environ.setdefault("PYTHONUNBUFFERED", "1")
     if "--scaling" in sys.argv[1:]:
-        scaling()
+        scaling(socket="--socket" in sys.argv[1:])
         return
     print(f"robot: {URDF.name} (60 links, 48 visual + 47 collision meshes)")
     served, ready = [], []
