@@ -9,7 +9,7 @@ message buffer cannot tell them apart.
 
 They depend on viser's private message module; :func:`pose_message_types` checks, once,
 that the fast dicts and keys equal what viser itself produces for a probe message and
-returns None otherwise (the caller then queues viser's own classes).
+returns None otherwise (the caller then sets poses through viser's public setters).
 """
 
 from __future__ import annotations
