@@ -1,4 +1,5 @@
-"""Checking a switch request (controller_manager.cpp ``switch_controller_cb``) before applying it."""
+"""Switching controllers: checking a request (controller_manager.cpp ``switch_controller_cb``)
+before applying it, and activating or deactivating one controller."""
 
 from __future__ import annotations
 
@@ -6,14 +7,17 @@ import logging
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from robomodel.control._entry import ControllerEntry, required_interfaces
 from robomodel.control.controllers.base import ControllerState
 from robomodel.control.exceptions import ControlError, UnknownControllerError
+from robomodel.control.hardware.interfaces import LoanedInterface
 from robomodel.errors import RobomodelError
 
 if TYPE_CHECKING:
+    from robomodel.control.hardware.resource_manager import ResourceManager
     from robomodel.control.manager import ControllerManager
 
-__all__ = ["plan_switch"]
+__all__ = ["activate_entry", "deactivate_entry", "plan_switch"]
 
 log = logging.getLogger("robomodel.control")
 
@@ -84,3 +88,34 @@ def plan_switch(
             refuse(f"cannot activate '{name}': {exc}")
             to_activate.remove(name)
     return to_activate, to_deactivate
+
+
+def activate_entry(entry: ControllerEntry, rm: ResourceManager) -> None:
+    """Claim ``entry``'s command interfaces, loan them and its state interfaces to the
+    controller and activate it; on failure nothing stays claimed or loaned."""
+    commands, states = required_interfaces(entry.controller, rm)
+    rm.claim(commands, entry.name)
+    try:
+        loaned_cmd = [LoanedInterface(rm.commands, n, "command") for n in commands]
+        loaned_st = [LoanedInterface(rm.states, n, "state") for n in states]
+        entry.controller.assign_interfaces(loaned_cmd, loaned_st)
+        entry.controller.on_activate()
+    except Exception:
+        rm.release(commands, entry.name)
+        entry.controller.release_interfaces()
+        raise
+    entry.claimed = tuple(commands)
+    entry.state_names = tuple(states)
+    entry.controller.state = ControllerState.ACTIVE
+
+
+def deactivate_entry(entry: ControllerEntry, rm: ResourceManager) -> None:
+    """Deactivate ``entry``'s controller and release its interfaces (even if
+    ``on_deactivate`` raises)."""
+    try:
+        entry.controller.on_deactivate()
+    finally:
+        rm.release(entry.claimed, entry.name)
+        entry.claimed = ()
+        entry.controller.release_interfaces()
+        entry.controller.state = ControllerState.INACTIVE

@@ -22,7 +22,7 @@ from robomodel.control._entry import (
     create_entry,
     required_interfaces,
 )
-from robomodel.control._switch import plan_switch
+from robomodel.control._switch import activate_entry, deactivate_entry, plan_switch
 from robomodel.control.config import ControllerConfig, ControllerSpec
 from robomodel.control.controllers.base import (
     ControllerInterface,
@@ -35,7 +35,6 @@ from robomodel.control.exceptions import (
     UnknownControllerError,
 )
 from robomodel.control.hardware.base import ReturnType
-from robomodel.control.hardware.interfaces import LoanedInterface
 from robomodel.control.hardware.resource_manager import ResourceManager
 from robomodel.errors import RobomodelError
 
@@ -232,45 +231,19 @@ class ControllerManager:
             raise ControlError("switch refused by the hardware (prepare_command_mode_switch)")
         self.resources.perform_switch(start, stop)
         for name in to_deactivate:
-            self._deactivate(self.entries[name])
+            deactivate_entry(self.entries[name], self.resources)
         activated: list[str] = []
         for name in to_activate:
             try:
-                self._activate(self.entries[name])
+                activate_entry(self.entries[name], self.resources)
                 activated.append(name)
             except RobomodelError as exc:
                 if strict:
                     for done in activated:
-                        self._deactivate(self.entries[done])
+                        deactivate_entry(self.entries[done], self.resources)
                     raise ControlError(f"activating '{name}' failed: {exc}") from exc
                 log.warning("activating '%s' failed: %s", name, exc)
         self._rebuild()
-
-    def _activate(self, entry: _Entry) -> None:
-        commands, states = self._interfaces(entry)
-        rm = self.resources
-        rm.claim(commands, entry.name)
-        try:
-            loaned_cmd = [LoanedInterface(rm.commands, n, "command") for n in commands]
-            loaned_st = [LoanedInterface(rm.states, n, "state") for n in states]
-            entry.controller.assign_interfaces(loaned_cmd, loaned_st)
-            entry.controller.on_activate()
-        except Exception:
-            rm.release(commands, entry.name)
-            entry.controller.release_interfaces()
-            raise
-        entry.claimed = tuple(commands)
-        entry.state_names = tuple(states)
-        entry.controller.state = ControllerState.ACTIVE
-
-    def _deactivate(self, entry: _Entry) -> None:
-        try:
-            entry.controller.on_deactivate()
-        finally:
-            self.resources.release(entry.claimed, entry.name)
-            entry.claimed = ()
-            entry.controller.release_interfaces()
-            entry.controller.state = ControllerState.INACTIVE
 
     def _rebuild(self) -> None:
         self._active = [
@@ -333,7 +306,7 @@ class ControllerManager:
         fallbacks: list[str] = []
         for entry in errors:
             log.error("controller '%s' returned ERROR from update(); deactivating it", entry.name)
-            self._deactivate(entry)
+            deactivate_entry(entry, self.resources)
             fallbacks.extend(f for f in entry.fallback if f not in fallbacks)
         self._rebuild()
         if fallbacks:
@@ -347,7 +320,7 @@ class ControllerManager:
         for entry in list(self._active):
             if self.resources.components_of(entry.claimed) & names:
                 log.error("hardware %s failed in %s(); deactivating '%s'", names, what, entry.name)
-                self._deactivate(entry)
+                deactivate_entry(entry, self.resources)
         self._rebuild()
 
     # -- real time ------------------------------------------------------------------------------
@@ -397,7 +370,7 @@ class ControllerManager:
         self._unregister.clear()
         for entry in list(self.entries.values()):
             if entry.controller.state is ControllerState.ACTIVE:
-                self._deactivate(entry)
+                deactivate_entry(entry, self.resources)
         self._rebuild()
 
     def close(self) -> None:

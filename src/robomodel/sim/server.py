@@ -11,6 +11,9 @@ runs the bus callbacks, so that physics, controllers and service handlers share 
 MuJoCo compiles a whole scene at once, so a spawn recompiles it: the robots already there keep
 their joint positions and velocities, the time goes on, and their controllers are loaded again
 in the state they had.
+
+The gazebo_msgs services that call into the server are in
+:mod:`robomodel.sim.server_services`.
 """
 
 from __future__ import annotations
@@ -19,11 +22,12 @@ import dataclasses
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from robomodel.errors import RobomodelError
 from robomodel.sim.build.robot import Placement
 from robomodel.sim.exceptions import SimulationError
+from robomodel.sim.server_services import service_handlers
 
 if TYPE_CHECKING:
     from robomodel.control import ControlSystem
@@ -96,11 +100,8 @@ class SimServer:
         self._anchor: tuple[float, float] | None = None
         self._rebuild()
         self._unregister = [
-            context.create_service("/gazebo/spawn_urdf_model", self._spawn_urdf),
-            context.create_service("/spawn_entity", self._spawn_entity),
-            context.create_service("/gazebo/spawn_sdf_model", self._spawn_sdf),
-            context.create_service("/gazebo/delete_model", self._delete),
-            context.create_service("/gazebo/get_world_properties", self._properties),
+            context.create_service(name, handler)
+            for name, handler in service_handlers(self).items()
         ]
 
     # -- spawning -------------------------------------------------------------------------------
@@ -192,6 +193,38 @@ class SimServer:
                 )
             data.qpos[model.jnt_qposadr[jid]] = value
         mj.mj_forward(model, data)
+
+    def spawn_sdf(
+        self,
+        model_name: str,
+        sdf_xml: str,
+        *,
+        xyz_m: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        rpy_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    ) -> None:
+        """Add an SDF model of rigid shapes (``spawn_model -sdf``) to the world.
+
+        Raises:
+            WorldError: a model with joints or no shapes; SimulationError: a taken name.
+        """
+        from robomodel.sim.world import model_shapes
+
+        taken = {s.model for s in self.world.shapes} | {r.model_name for r in self.robots}
+        if model_name in taken:
+            raise SimulationError(f"a model named '{model_name}' is already in the world")
+        shapes = model_shapes(
+            sdf_xml, name=model_name, pose=(*xyz_m, *rpy_rad), path=f"<spawned model {model_name}>"
+        )
+        if not shapes:
+            raise SimulationError(f"SDF model '{model_name}' has no collision shapes")
+        previous = self.world
+        self.world = dataclasses.replace(previous, shapes=previous.shapes + shapes)
+        try:
+            self._rebuild()
+        except RobomodelError:
+            self.world = previous
+            self._rebuild()
+            raise
 
     # -- the scene -------------------------------------------------------------------------------
     def _rebuild(self) -> None:
@@ -304,102 +337,6 @@ class SimServer:
                 entry.control.manager.close()
         if self.bridge is not None:
             self.bridge.close()
-
-    # -- services (gazebo_msgs, as dicts) ---------------------------------------------------------
-    def _spawn_urdf(self, request: dict[str, Any]) -> dict[str, Any]:
-        try:
-            pose = [float(v) for v in request.get("initial_pose", (0.0,) * 6)]
-            if len(pose) != 6:
-                raise SimulationError(f"initial_pose needs 6 numbers, got {len(pose)}")
-            joints = {str(k): float(v) for k, v in dict(request.get("joints", {})).items()}
-            self.spawn(
-                str(request.get("model_name", "")) or "robot",
-                str(request["model_xml"]),
-                xyz_m=(pose[0], pose[1], pose[2]),
-                rpy_rad=(pose[3], pose[4], pose[5]),
-                joint_positions=joints,
-                robot_namespace=str(request.get("robot_namespace", "/")),
-            )
-        except (RobomodelError, KeyError, TypeError, ValueError) as exc:
-            return {"success": False, "status_message": f"SpawnModel: {exc}"}
-        if request.get("unpause") and self.bridge is not None:
-            self.bridge.paused = False
-        return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
-
-    def _spawn_entity(self, request: dict[str, Any]) -> dict[str, Any]:
-        """gazebo_ros (ROS 2) ``/spawn_entity``: ``name``, ``xml``, ``robot_namespace``,
-        ``initial_pose`` [x, y, z, R, P, Y]."""
-        renamed = {
-            "model_name": request.get("name", ""),
-            "model_xml": request.get("xml", ""),
-            "robot_namespace": request.get("robot_namespace", "/"),
-            "initial_pose": request.get("initial_pose", (0.0,) * 6),
-            "unpause": request.get("unpause", False),
-        }
-        reply = self._spawn_urdf(renamed)
-        message = str(reply["status_message"]).replace("SpawnModel: ", "SpawnEntity: ")
-        return {"success": reply["success"], "status_message": message}
-
-    def spawn_sdf(
-        self,
-        model_name: str,
-        sdf_xml: str,
-        *,
-        xyz_m: tuple[float, float, float] = (0.0, 0.0, 0.0),
-        rpy_rad: tuple[float, float, float] = (0.0, 0.0, 0.0),
-    ) -> None:
-        """Add an SDF model of rigid shapes (``spawn_model -sdf``) to the world.
-
-        Raises:
-            WorldError: a model with joints or no shapes; SimulationError: a taken name.
-        """
-        from robomodel.sim.world import model_shapes
-
-        taken = {s.model for s in self.world.shapes} | {r.model_name for r in self.robots}
-        if model_name in taken:
-            raise SimulationError(f"a model named '{model_name}' is already in the world")
-        shapes = model_shapes(
-            sdf_xml, name=model_name, pose=(*xyz_m, *rpy_rad), path=f"<spawned model {model_name}>"
-        )
-        if not shapes:
-            raise SimulationError(f"SDF model '{model_name}' has no collision shapes")
-        previous = self.world
-        self.world = dataclasses.replace(previous, shapes=previous.shapes + shapes)
-        try:
-            self._rebuild()
-        except RobomodelError:
-            self.world = previous
-            self._rebuild()
-            raise
-
-    def _spawn_sdf(self, request: dict[str, Any]) -> dict[str, Any]:
-        try:
-            pose = [float(v) for v in request.get("initial_pose", (0.0,) * 6)]
-            self.spawn_sdf(
-                str(request.get("model_name", "")) or "model",
-                str(request["model_xml"]),
-                xyz_m=(pose[0], pose[1], pose[2]),
-                rpy_rad=(pose[3], pose[4], pose[5]),
-            )
-        except (RobomodelError, KeyError, TypeError, ValueError, IndexError) as exc:
-            return {"success": False, "status_message": f"SpawnModel: {exc}"}
-        return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
-
-    def _delete(self, request: dict[str, Any]) -> dict[str, Any]:
-        try:
-            self.delete(str(request.get("model_name", "")))
-        except RobomodelError as exc:
-            return {"success": False, "status_message": f"DeleteModel: {exc}"}
-        return {"success": True, "status_message": "DeleteModel: successfully deleted model"}
-
-    def _properties(self, request: dict[str, Any]) -> dict[str, Any]:
-        assert self.sim is not None
-        return {
-            "sim_time": self.sim.time_s,
-            "model_names": [r.model_name for r in self.robots],
-            "rendering_enabled": False,
-            "success": True,
-        }
 
 
 def _namespace(plugin_namespace: str, robot_namespace: str) -> str:

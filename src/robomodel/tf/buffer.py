@@ -13,6 +13,7 @@ import math
 import warnings
 
 from robomodel.errors import close_matches
+from robomodel.tf._pose import IDENTITY, Pose, compose, inverse
 from robomodel.tf.cache import StaticCache, Storage, TimeCache
 from robomodel.tf.exceptions import (
     ConnectivityError,
@@ -36,41 +37,6 @@ class TFWarning(UserWarning):
 
 def _strip(frame: str) -> str:
     return frame[1:] if frame.startswith("/") else frame
-
-
-Vec3 = tuple[float, float, float]
-Quat = tuple[float, float, float, float]
-_Pose = tuple[Vec3, Quat]
-_IDENTITY: _Pose = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-
-
-def _qmul(a: Quat, b: Quat) -> Quat:
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by + ay * bw + az * bx - ax * bz,
-        aw * bz + az * bw + ax * by - ay * bx,
-        aw * bw - ax * bx - ay * by - az * bz,
-    )
-
-
-def _rotate(q: Quat, v: Vec3) -> Vec3:
-    x, y, z, _ = _qmul(_qmul(q, (v[0], v[1], v[2], 0.0)), (-q[0], -q[1], -q[2], q[3]))
-    return (x, y, z)
-
-
-def _compose(a: _Pose, b: _Pose) -> _Pose:
-    """``a * b`` (b expressed in a), as tf2's ``quatRotate(a.q, b.t) + a.t``, ``a.q * b.q``."""
-    r = _rotate(a[1], b[0])
-    return (r[0] + a[0][0], r[1] + a[0][1], r[2] + a[0][2]), _qmul(a[1], b[1])
-
-
-def _inverse(a: _Pose) -> _Pose:
-    x, y, z, w = a[1]
-    inv: Quat = (-x, -y, -z, w)
-    t = _rotate(inv, a[0])
-    return (-t[0], -t[1], -t[2]), inv
 
 
 class BufferCore:
@@ -252,7 +218,7 @@ class BufferCore:
                 break
         return 0 if common == math.inf else int(common)
 
-    def _walk(self, target: str, source: str, time_ns: int) -> tuple[_Pose, int]:
+    def _walk(self, target: str, source: str, time_ns: int) -> tuple[Pose, int]:
         """``(pose of source in target, time)`` following tf2's ``walkToTopParent``.
 
         Poses are accumulated as (translation, quaternion) exactly as tf2's
@@ -260,7 +226,7 @@ class BufferCore:
         """
         if time_ns == 0:
             time_ns = self.latest_common_time_ns(target, source)
-        source_to_top = _IDENTITY
+        source_to_top = IDENTITY
         frame = source
         top = frame
         extrapolation: ExtrapolationError | None = None
@@ -277,13 +243,13 @@ class BufferCore:
                 break
             if frame == target:
                 return source_to_top, time_ns
-            source_to_top = _compose((sample.translation, sample.rotation_xyzw), source_to_top)
+            source_to_top = compose((sample.translation, sample.rotation_xyzw), source_to_top)
             top = frame
             frame = sample.parent
             depth += 1
             if depth > _MAX_GRAPH_DEPTH:
                 raise self._loop()
-        target_to_top = _IDENTITY
+        target_to_top = IDENTITY
         frame = target
         depth = 0
         while frame != top:
@@ -297,8 +263,8 @@ class BufferCore:
                     f"{exc}, when looking up transform from frame [{source}] to frame [{target}]"
                 ) from None
             if frame == source:
-                return _inverse(target_to_top), time_ns
-            target_to_top = _compose((sample.translation, sample.rotation_xyzw), target_to_top)
+                return inverse(target_to_top), time_ns
+            target_to_top = compose((sample.translation, sample.rotation_xyzw), target_to_top)
             frame = sample.parent
             depth += 1
             if depth > _MAX_GRAPH_DEPTH:
@@ -310,7 +276,7 @@ class BufferCore:
                     f"frame [{target}]"
                 )
             raise self._connectivity(target, source)
-        return _compose(_inverse(target_to_top), source_to_top), time_ns
+        return compose(inverse(target_to_top), source_to_top), time_ns
 
     def lookup_transform(self, target: str, source: str, time_ns: int = 0) -> TransformStamped:
         """The pose of ``source`` in ``target`` (maps data from source into target).

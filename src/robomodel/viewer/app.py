@@ -13,100 +13,36 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
-import math
 import os
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from robomodel.description.model import Robot
-from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage
 from robomodel.runtime.node import Node
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.tf_listener import TransformListener
-from robomodel.tf.exceptions import TransformError
 from robomodel.viewer._deps import import_viser
+from robomodel.viewer.layout import beside_root_pose, place_camera, session_namespace
+from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
+from robomodel.viewer.link_poses import append_other_frames
 from robomodel.viewer.meshes import MeshCache
+from robomodel.viewer.options import ViewerOptions
 from robomodel.viewer.options_panel import OptionsPanel
 from robomodel.viewer.ports import ensure_port_free
 from robomodel.viewer.rviz_apply import apply_rviz_settings
-from robomodel.viewer.rviz_config import RvizSettings
-from robomodel.viewer.scenery import SceneryDisplay, SceneryShape
-from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession, RobotSource
-from robomodel.viewer.status import RobotStatus, render_status
+from robomodel.viewer.scenery import SceneryDisplay
+from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession
+from robomodel.viewer.status import viewer_status
 
 __all__ = ["Viewer", "ViewerOptions"]
 
 log = logging.getLogger("robomodel.viewer")
-
-
-@dataclass(frozen=True, slots=True)
-class ViewerOptions:
-    """Everything ``robomodel view`` takes from its command line.
-
-    Args:
-        sources: The robots, in command-line order.
-        host, port: Where to serve the page (loopback by default).
-        fixed_frame: RViz's Fixed Frame; default the first robot's root link.
-        bus: ``"inproc"`` or ``"zenoh"``.
-        external: Joint states (or /tf) come from another process on the bus.
-        state_publisher: With ``external``, run a robot_state_publisher per robot (turning
-            /joint_states from the bus into /tf); off when that process runs its own.
-        reload_period_s: How often the description files are polled for changes.
-        tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
-        scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
-        frame_rate_hz: At most this many scene updates per second (RViz's Global Options >
-            Frame Rate). Default 60: a browser draws 60 frames a second, more updates are never
-            seen. TF arriving faster (a simulation publishes at 100 Hz and more, a dragged slider
-            at the GUI's event rate) is merged into the next update, so a slow browser is never
-            flooded.
-        rviz: Settings read from an RViz config (``-d file.rviz``): applied after start.
-    """
-
-    sources: tuple[RobotSource, ...]
-    host: str = "127.0.0.1"
-    port: int = 8080
-    fixed_frame: str | None = None
-    bus: str = "inproc"
-    domain_id: int | None = None
-    connect: tuple[str, ...] = ()
-    listen: tuple[str, ...] = ()
-    external: bool = False
-    state_publisher: bool = True
-    package_index: PackageIndex = field(default_factory=PackageIndex)
-    reload_period_s: float = 0.25
-    tools: bool = True
-    scenery: tuple[SceneryShape, ...] = ()
-    frame_rate_hz: float = 60.0
-    rviz: RvizSettings | None = None
-
-
-def zero_pose_extent_m(robot: Robot) -> float:
-    """Largest distance of a link frame from the root with every joint at zero [m]."""
-    tree = robot.tree()
-    positions = {tree.root: np.eye(4)}
-    extent = 0.0
-    for _depth, joint in tree.walk():
-        T = positions.get(joint.parent, np.eye(4)) @ joint.origin.matrix()
-        positions[joint.child] = T
-        extent = max(extent, float(np.linalg.norm(T[:3, 3])))
-    return extent
-
-
-def _namespace(source: RobotSource, number: int, count: int) -> str:
-    if count == 1:
-        return "/"
-    cleaned = "".join(c if c.isalnum() or c == "_" else "_" for c in source.prefix.strip("/"))
-    if not cleaned or not cleaned[0].isalpha():
-        cleaned = f"robot{number + 1}" if not cleaned else f"r{cleaned}"
-    return "/" + cleaned
 
 
 class Viewer:
@@ -128,7 +64,7 @@ class Viewer:
                 i,
                 source,
                 index=options.package_index,
-                namespace=_namespace(source, i, count),
+                namespace=session_namespace(source, i, count),
                 external=options.external,
                 state_publisher=options.state_publisher,
             )
@@ -206,22 +142,9 @@ class Viewer:
         self._spawn(self._load_meshes, "robomodel-view-meshes")
 
     def _place_camera(self) -> None:
-        """RViz's orbit view (yaw 5.5, pitch 0.33 rad), far enough to see the first robot."""
+        """RViz's orbit view, far enough to see the first robot (see :func:`place_camera`)."""
         robot = next((s.robot for s in self.sessions if s.robot is not None), None)
-        extent = zero_pose_extent_m(robot) if robot is not None else 0.5
-        distance = max(1.0, 3.0 * extent + 0.5) * max(1.0, len(self.sessions) ** 0.5)
-        near = [float(np.linalg.norm(s.xyz_m)) for s in self.options.scenery if s.frame == "world"]
-        yaw, pitch = 5.5, 0.33
-        if near:  # a simulated world: from behind the spawn pose, its nearest objects in view
-            distance = max(distance, min(1.5 * min(near), 12.0))
-            yaw, pitch = 3.7, 0.5
-        camera = self.server.initial_camera
-        camera.look_at = (0.0, 0.0, 0.0)
-        camera.position = (
-            distance * math.cos(pitch) * math.cos(yaw),
-            distance * math.cos(pitch) * math.sin(yaw),
-            distance * math.sin(pitch),
-        )
+        place_camera(self.server, robot, len(self.sessions), self.options.scenery)
 
     def _spawn(self, target: Callable[[], None], name: str) -> None:
         thread = threading.Thread(target=target, name=name, daemon=True)
@@ -366,15 +289,6 @@ class Viewer:
             self._dirty = True
             self._refresh_status()
 
-    def _default_root_pose(self, session: RobotSession) -> np.ndarray:
-        """Where an unconnected robot goes: side by side along -y (to the left in the default
-        view, away from the panel), ordered as given."""
-        anchor = next((s.number for s in self.sessions if s.root_frame == self.fixed_frame), 0)
-        spacing = max([1.0, *(2.0 * e + 0.5 for e in self._extent_m.values())])
-        T = np.eye(4)
-        T[1, 3] = -(session.number - anchor) * spacing
-        return T
-
     def _broadcast_buffer(self) -> Any:
         """viser's outgoing broadcast buffer (1.1's internals), or None if it differs."""
         buffer = getattr(getattr(self.server, "_websock_server", None), "_broadcast_buffer", None)
@@ -414,7 +328,9 @@ class Viewer:
         with self.server.atomic():
             for session in self.sessions:
                 poses = session.link_poses(
-                    self.buffer, self.fixed_frame, self._default_root_pose(session)
+                    self.buffer,
+                    self.fixed_frame,
+                    beside_root_pose(session, self.sessions, self.fixed_frame, self._extent_m),
                 )
                 if poses is None or session.display is None:
                     continue
@@ -430,7 +346,9 @@ class Viewer:
                 wxyzs.append(poses.wxyz)
                 xyzs.append(poses.xyz)
                 shown.append(poses.visible)
-            self._push_other_frames(frames, wxyzs, xyzs, shown)
+            append_other_frames(
+                self.buffer, self.fixed_frame, self.sessions, frames, wxyzs, xyzs, shown
+            )
             if self.scenery is not None:
                 self.scenery.update(self.buffer, self.fixed_frame)
             if frames:
@@ -446,29 +364,6 @@ class Viewer:
             self._last_push_ids = (first_id, buffer.message_counter - 1)
             self._last_push_s = time.monotonic()
 
-    def _push_other_frames(
-        self,
-        frames: list[str],
-        wxyzs: list[np.ndarray],
-        xyzs: list[np.ndarray],
-        shown: list[np.ndarray],
-    ) -> None:
-        """TF frames that belong to no robot (from other processes): looked up directly."""
-        known = set(frames)
-        stale = set().union(*(s.stale_frames for s in self.sessions))
-        for frame in self.buffer.frames:
-            if frame in known or frame in stale:
-                continue
-            try:
-                tf = self.buffer.lookup_transform(self.fixed_frame, frame)
-            except TransformError:
-                continue
-            x, y, z, w = tf.rotation_xyzw
-            frames.append(frame)
-            wxyzs.append(np.array([[w, x, y, z]]))
-            xyzs.append(np.array([tf.translation_m]))
-            shown.append(np.array([True]))
-
     def _refresh_frames(self) -> None:
         stale = set().union(*(s.stale_frames for s in self.sessions))
         frames = {f for f in self.buffer.frames if f not in stale}
@@ -482,26 +377,10 @@ class Viewer:
             self.fixed_dropdown.value = self.fixed_frame
 
     def _refresh_status(self) -> None:
-        statuses = []
-        missing, beside = self._missing, self._beside
-        for session in self.sessions:
-            display = session.display
-            statuses.append(
-                RobotStatus(
-                    label=session.label,
-                    path=session.source.path,
-                    failure=session.failure,
-                    problems=tuple(display.problems) if display is not None else (),
-                    missing_frames=missing.get(session.number, ()),
-                    fixed_frame=self.fixed_frame,
-                    placed_beside=session.number in beside and len(self.sessions) > 1,
-                    pending_meshes=display.pending_meshes if display is not None else 0,
-                )
-            )
-        known = self.fixed_frame in self.buffer.frames or any(
-            self.fixed_frame == s.root_frame for s in self.sessions
+        text = (
+            viewer_status(self.sessions, self.buffer, self.fixed_frame, self._missing, self._beside)
+            + self.status_note
         )
-        text = render_status(statuses, known, self.fixed_frame) + self.status_note
         if text != self._status_text:
             self._status_text = text
             self.status.content = text

@@ -1,8 +1,10 @@
-"""Where a robot's links are in the fixed frame, from the TF buffer."""
+"""Where a robot's links (and the frames of no robot) are in the fixed frame, from the TF buffer."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -12,7 +14,10 @@ from robomodel.tf import BufferCore
 from robomodel.tf.exceptions import TransformError
 from robomodel.viewer._poses import QuatXyzw, Vec3, compose
 
-__all__ = ["LinkPoseSolver", "LinkPoses"]
+if TYPE_CHECKING:
+    from robomodel.viewer.session import RobotSession
+
+__all__ = ["LinkPoseSolver", "LinkPoses", "append_other_frames"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -133,3 +138,33 @@ def _in_fixed_frame(
     wxyz = np.concatenate([q_fixed[:, 3:4], q_fixed[:, :3]], axis=1)
     wxyz *= np.where(wxyz[:, :1] < 0, -1.0, 1.0)
     return LinkPoses(wxyz, xyz, visible, connected, missing)
+
+
+def append_other_frames(
+    buffer: BufferCore,
+    fixed_frame: str,
+    sessions: Sequence[RobotSession],
+    frames: list[str],
+    wxyzs: list[np.ndarray],
+    xyzs: list[np.ndarray],
+    shown: list[np.ndarray],
+) -> None:
+    """TF frames that belong to no robot (from other processes): looked up directly.
+
+    Appended to ``frames`` and their poses to ``wxyzs``, ``xyzs``, ``shown``; frames already
+    in ``frames`` and the sessions' stale frames are skipped.
+    """
+    known = set(frames)
+    stale = set().union(*(s.stale_frames for s in sessions))
+    for frame in buffer.frames:
+        if frame in known or frame in stale:
+            continue
+        try:
+            tf = buffer.lookup_transform(fixed_frame, frame)
+        except TransformError:
+            continue
+        x, y, z, w = tf.rotation_xyzw
+        frames.append(frame)
+        wxyzs.append(np.array([[w, x, y, z]]))
+        xyzs.append(np.array([tf.translation_m]))
+        shown.append(np.array([True]))

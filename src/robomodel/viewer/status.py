@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence, Set
 from dataclasses import dataclass
+from typing import Any
 
 from robomodel.viewer.scene import GeometryProblem
-from robomodel.viewer.session import LoadFailure
+from robomodel.viewer.session import LoadFailure, RobotSession
 
-__all__ = ["RobotStatus", "render_status"]
+__all__ = ["RobotStatus", "render_status", "viewer_status"]
 
 _MAX_LISTED = 8
 
@@ -90,3 +91,38 @@ def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed:
                 "drawn beside it"
             )
     return "\n\n".join(parts) if parts else "OK"
+
+
+def viewer_status(
+    sessions: Sequence[RobotSession],
+    buffer: Any,
+    fixed_frame: str,
+    missing: Mapping[int, tuple[str, ...]],
+    beside: Set[int],
+) -> str:
+    """The status panel's Markdown for the viewer's robots (see :func:`render_status`).
+
+    Args:
+        sessions: The robots.
+        buffer: The viewer's TF buffer (whether the Fixed Frame exists).
+        fixed_frame: The viewer's Fixed Frame.
+        missing: Robot number -> its links without a transform at the last update.
+        beside: Numbers of the robots drawn beside the Fixed Frame's tree.
+    """
+    statuses = []
+    for session in sessions:
+        display = session.display
+        statuses.append(
+            RobotStatus(
+                label=session.label,
+                path=session.source.path,
+                failure=session.failure,
+                problems=tuple(display.problems) if display is not None else (),
+                missing_frames=missing.get(session.number, ()),
+                fixed_frame=fixed_frame,
+                placed_beside=session.number in beside and len(sessions) > 1,
+                pending_meshes=display.pending_meshes if display is not None else 0,
+            )
+        )
+    known = fixed_frame in buffer.frames or any(fixed_frame == s.root_frame for s in sessions)
+    return render_status(statuses, known, fixed_frame)

@@ -7,15 +7,16 @@ trajectory"); a running goal is then canceled. Tolerances (``constraints``) abor
 ``PATH_TOLERANCE_VIOLATED`` or ``GOAL_TOLERANCE_VIOLATED`` and hold the measured position.
 Position commands forward the desired position; velocity/effort-only commands run a PID per
 joint on the position error with the velocity error as its derivative (``gains.<joint>``).
+
+Goals and trajectory validation live in :mod:`.joint_trajectory_goal`; the services and the
+state topics in :mod:`.joint_trajectory_services`; sampling in :mod:`.trajectory`.
 """
 
 from __future__ import annotations
 
-import enum
 import logging
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 from robomodel.control.controllers.base import (
@@ -25,16 +26,18 @@ from robomodel.control.controllers.base import (
 )
 from robomodel.control.controllers.exceptions import ControllerError
 from robomodel.control.controllers.joint_position import shortest_angular_distance
-from robomodel.control.controllers.trajectory import Sample, Trajectory, TrajectoryPoint
-from robomodel.control.pid import Gains, Pid
-from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import (
-    Header,
-    JointTrajectory,
-    JointTrajectoryControllerState,
-    JointTrajectoryPoint,
-    Time,
+from robomodel.control.controllers.joint_trajectory_goal import (
+    GoalHandle,
+    GoalStatus,
+    validate_trajectory,
 )
+from robomodel.control.controllers.joint_trajectory_services import (
+    publish_state,
+    service_handlers,
+)
+from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
+from robomodel.control.pid import Gains, Pid
+from robomodel.runtime.msg import JointTrajectory, JointTrajectoryControllerState
 
 __all__ = ["GoalHandle", "GoalStatus", "JointTrajectoryController"]
 
@@ -48,25 +51,6 @@ _ALLOWED_COMMANDS = (
     ("effort",),
     ("position", "effort"),
 )
-
-
-class GoalStatus(enum.Enum):
-    ACTIVE = "active"
-    SUCCEEDED = "succeeded"
-    ABORTED = "aborted"
-    CANCELED = "canceled"
-
-
-@dataclass
-class GoalHandle:
-    """A FollowJointTrajectory goal: its status and ``error_code`` / ``error_string``."""
-
-    status: GoalStatus = GoalStatus.ACTIVE
-    error_code: int = 0  # control_msgs: SUCCESSFUL 0, INVALID_GOAL -1, PATH_TOLERANCE_VIOLATED -4, GOAL_TOLERANCE_VIOLATED -5
-    error_string: str = ""
-    path_tolerance: dict[str, float] = field(default_factory=dict)
-    goal_tolerance: dict[str, float] = field(default_factory=dict)
-    goal_time_tolerance_s: float | None = None
 
 
 class JointTrajectoryController(ControllerInterface):
@@ -151,9 +135,8 @@ class JointTrajectoryController(ControllerInterface):
             base = self.node.fully_qualified_name
             ctx = self.node.context
             self._unregister = [
-                ctx.create_service(f"{base}/follow_joint_trajectory", self._srv_goal),
-                ctx.create_service(f"{base}/goal_status", self._srv_status),
-                ctx.create_service(f"{base}/query_state", self._srv_query_state),
+                ctx.create_service(f"{base}/{service}", handler)
+                for service, handler in service_handlers(self).items()
             ]
             if self.state_publish_rate_hz > 0.0:  # humble: ~/controller_state and legacy ~/state
                 self._state_pubs = [
@@ -171,80 +154,6 @@ class JointTrajectoryController(ControllerInterface):
         for pub in self._state_pubs:
             pub.destroy()
         self._state_pubs = []
-
-    def _srv_goal(self, request: dict[str, Any]) -> dict[str, Any]:
-        """``{"trajectory": {...}, "path_tolerance": {joint: tol}, "goal_tolerance": {...},
-        "goal_time_tolerance": s}`` -> ``{"goal_id": n, "status": ..., "error_string": ...}``."""
-        from robomodel.runtime.msg import message_from_dict
-
-        try:
-            msg = message_from_dict(JointTrajectory, request.get("trajectory"))
-        except RobomodelError as exc:
-            return {"error": str(exc)}
-        handle = self.send_goal(
-            msg,
-            path_tolerance=dict(request.get("path_tolerance") or {}),
-            goal_tolerance=dict(request.get("goal_tolerance") or {}),
-            goal_time_tolerance_s=request.get("goal_time_tolerance"),
-        )
-        goal_id = len(self._goals) + 1
-        self._goals[goal_id] = handle
-        return {"goal_id": goal_id, **self._describe(handle)}
-
-    def _srv_query_state(self, request: dict[str, Any]) -> dict[str, Any]:
-        """humble ``query_state_service`` (control_msgs/QueryTrajectoryState): the running
-        trajectory sampled at ``time`` (seconds, or ``{sec, nanosec}``); ``success`` only while
-        the controller is active and the time lies within the trajectory; otherwise the
-        measured state is returned with ``success: false`` and the reason in ``message``."""
-        if not self._active:
-            return {"success": False, "message": "Can't sample trajectory. Controller is not active."}  # fmt: skip
-        stamp = request.get("time", self._now_s)
-        try:
-            if isinstance(stamp, dict):
-                time_s = int(stamp.get("sec", 0)) + int(stamp.get("nanosec", 0)) * 1e-9
-            else:
-                time_s = float(stamp)
-        except (TypeError, ValueError):
-            return {"success": False, "message": f"time must be seconds or {{sec, nanosec}}, got {stamp!r}"}  # fmt: skip
-        reply: dict[str, Any] = {
-            "success": False,
-            "message": "",
-            "name": list(self.joints),
-            "position": list(self._measured("position")),
-            "velocity": list(self._measured("velocity")),
-            "acceleration": [],
-        }
-        traj = self.trajectory
-        sample = traj.sample(time_s) if traj is not None else None
-        if traj is None:
-            reply["message"] = "Currently there is no valid trajectory instance."
-        elif sample is None:
-            reply["message"] = "Requested sample time is earlier than the current trajectory start time."  # fmt: skip
-        else:
-            reply["position"] = list(sample.positions)
-            reply["velocity"] = list(sample.velocities)
-            reply["acceleration"] = list(sample.accelerations)
-            if sample.segment >= len(traj.points):
-                reply["message"] = "Requested sample time is after the current trajectory end time."  # fmt: skip
-            else:
-                reply["success"] = True
-        return reply
-
-    def _srv_status(self, request: dict[str, Any]) -> dict[str, Any]:
-        handle = self._goals.get(int(request.get("goal_id", 0)))
-        if handle is None:
-            return {"error": f"unknown goal id {request.get('goal_id')!r}"}
-        if request.get("cancel") and handle.status is GoalStatus.ACTIVE:
-            self.cancel_goal(handle)
-        return self._describe(handle)
-
-    @staticmethod
-    def _describe(handle: GoalHandle) -> dict[str, Any]:
-        return {
-            "status": handle.status.value,
-            "error_code": handle.error_code,
-            "error_string": handle.error_string,
-        }
 
     def cancel_goal(self, handle: GoalHandle) -> None:
         """Cancel a running goal: the controller holds the measured position."""
@@ -282,45 +191,7 @@ class JointTrajectoryController(ControllerInterface):
 
     def validate(self, msg: JointTrajectory) -> str:
         """Why ``msg`` is rejected (humble ``validate_trajectory_msg``), or ``""``."""
-        if not msg.joint_names or not msg.points:
-            return "empty joint names or points"
-        unknown = [j for j in msg.joint_names if j not in self.joints]
-        if unknown:
-            return f"unknown joints {unknown}"
-        if len(msg.joint_names) != len(self.joints) and not self.allow_partial_joints_goal:
-            return "the trajectory must name every joint (allow_partial_joints_goal is false)"
-        previous = -math.inf
-        for point in msg.points:
-            t = point.time_from_start.sec + point.time_from_start.nanosec * 1e-9
-            if t <= previous:
-                return "time_from_start must be strictly increasing"
-            previous = t
-            n = len(msg.joint_names)
-            if len(point.positions) != n:
-                return "every point needs one position per joint"
-            for arr in (point.velocities, point.accelerations):
-                if arr and len(arr) != n:
-                    return "velocities/accelerations must be empty or one per joint"
-            if point.effort:
-                return "effort in trajectory points is not supported (humble)"
-            if not all(
-                math.isfinite(v)
-                for v in (*point.positions, *point.velocities, *point.accelerations)
-            ):
-                return "non-finite values"
-        last = msg.points[-1]
-        if (
-            not self.allow_nonzero_velocity_at_trajectory_end
-            and last.velocities
-            and any(v != 0.0 for v in last.velocities)
-        ):
-            return (
-                "non-zero velocity at the end (allow_nonzero_velocity_at_trajectory_end is false)"
-            )
-        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-        if stamp != 0.0 and stamp + t < self._now_s:
-            return "the trajectory ends in the past"
-        return ""
+        return validate_trajectory(self, msg)
 
     def _on_trajectory(self, msg: JointTrajectory) -> None:
         self.send_trajectory(msg)
@@ -486,51 +357,8 @@ class JointTrajectoryController(ControllerInterface):
         )
         if self._state_pubs and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
             self._next_state_s = time_s + 1.0 / self.state_publish_rate_hz
-            self._publish_state(time_s, sample, pos, vel, errors)
+            publish_state(self, time_s, sample, pos, vel, errors)
         return ReturnType.OK
-
-    def _publish_state(
-        self,
-        time_s: float,
-        sample: Sample,
-        pos: Sequence[float],
-        vel: Sequence[float],
-        errors: Sequence[float],
-    ) -> None:
-        """humble ``publish_state``: the sampled reference, the measured feedback, their
-        difference and what was written; ``~/state`` carries the same as desired/actual."""
-        reference = JointTrajectoryPoint(
-            positions=list(sample.positions),
-            velocities=list(sample.velocities),
-            accelerations=list(sample.accelerations),
-        )
-        feedback = JointTrajectoryPoint(positions=list(pos), velocities=list(vel))
-        error = JointTrajectoryPoint(positions=list(errors))
-        if vel and len(sample.velocities) == len(vel):
-            error.velocities = [d - m for d, m in zip(sample.velocities, vel, strict=True)]
-        output = JointTrajectoryPoint()
-        for kind, interfaces in self._cmd.items():
-            values = [ci.get() for ci in interfaces]
-            if kind == "position":
-                output.positions = values
-            elif kind == "velocity":
-                output.velocities = values
-            elif kind == "acceleration":
-                output.accelerations = values
-            elif kind == "effort":
-                output.effort = values
-        header = Header(stamp=Time.from_seconds(time_s))
-        controller_state, legacy = self._state_pubs
-        controller_state.publish(
-            JointTrajectoryControllerState(
-                header, list(self.joints), reference, feedback, error, output
-            )
-        )
-        legacy.publish(
-            JointTrajectoryControllerState(
-                header, list(self.joints), error=error, desired=reference, actual=feedback
-            )
-        )
 
     def _write(
         self,

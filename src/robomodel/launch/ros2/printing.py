@@ -18,6 +18,8 @@ __all__ = ["describe_entities", "format_print", "format_show_args", "object_text
 _UPSTREAM_MODULE = {
     "action": "launch.action",
     "actions": "launch.actions",
+    "configuration_actions": "launch.actions",
+    "environment_actions": "launch.actions",
     "events": "launch.actions",
     "ros": "launch_ros.actions",
 }

@@ -1,4 +1,9 @@
-"""``launch.actions``: the actions of the ``launch`` package."""
+"""``launch.actions``: the actions of the ``launch`` package.
+
+The launch-configuration actions are defined in :mod:`.configuration_actions`, the environment
+actions in :mod:`.environment_actions`; this module defines grouping, opaque functions and
+includes, and offers all of them (``__all__`` is what ``launch.actions`` holds).
+"""
 
 from __future__ import annotations
 
@@ -7,9 +12,24 @@ from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 from robomodel.launch.ros2.shim.action import Action, LaunchDescription
+from robomodel.launch.ros2.shim.configuration_actions import (
+    DeclareLaunchArgument,
+    PopLaunchConfigurations,
+    PushLaunchConfigurations,
+    ResetLaunchConfigurations,
+    SetLaunchConfiguration,
+    UnsetLaunchConfiguration,
+)
 from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure
+from robomodel.launch.ros2.shim.environment_actions import (
+    AppendEnvironmentVariable,
+    PopEnvironment,
+    PushEnvironment,
+    ResetEnvironment,
+    SetEnvironmentVariable,
+    UnsetEnvironmentVariable,
+)
 from robomodel.launch.ros2.shim.substitutions import (
-    Substitution,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
@@ -31,209 +51,6 @@ __all__ = [
     "UnsetEnvironmentVariable",
     "UnsetLaunchConfiguration",
 ]
-
-
-class DeclareLaunchArgument(Action):
-    """Declare an argument: set its default if not given, check its choices."""
-
-    def __init__(
-        self,
-        name: str,
-        *,
-        default_value: Any = None,
-        description: str | None = None,
-        choices: list[str] | None = None,
-        **kwargs: Any,
-    ) -> None:
-        super().__init__(**kwargs)
-        self.name = name
-        self.default_value = (
-            None if default_value is None else normalize_to_list_of_substitutions(default_value)
-        )
-        if choices is not None:
-            if len(choices) == 0:
-                raise RuntimeError(
-                    "Provided choices arg is empty. Use None to ignore the choice list."
-                )
-            if (
-                default_value is not None
-                and not isinstance(default_value, (Substitution, list))
-                and default_value not in choices
-            ):
-                raise RuntimeError(
-                    f'Provided default_value "{default_value}" is not in provided choices '
-                    f'"{choices}".'
-                )
-        if description is None:
-            self.description = "no description given" if choices is None else f"One of: {choices}"
-        else:
-            self.description = description
-            if choices is not None:
-                if not self.description.endswith("."):
-                    self.description += "."
-                self.description += f" Valid choices are: {choices}"
-        self.choices = choices
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        if self.name not in context.launch_configurations:
-            if self.default_value is None:
-                raise RuntimeError(f'Required launch argument "{self.name}" was not provided.')
-            context.launch_configurations[self.name] = perform_substitutions(
-                context, self.default_value
-            )
-        if self.choices is not None:
-            value = context.launch_configurations[self.name]
-            if value not in self.choices:
-                raise RuntimeError(
-                    f'Argument "{self.name}" provided value "{value}" is not valid. '
-                    f"Valid options are: {self.choices}"
-                )
-        return None
-
-
-class SetLaunchConfiguration(Action):
-    """Set a launch configuration (``<let>``)."""
-
-    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        name = perform_substitutions(context, self.name)
-        context.launch_configurations[name] = perform_substitutions(context, self.value)
-        return None
-
-
-class UnsetLaunchConfiguration(Action):
-    """Remove a launch configuration."""
-
-    def __init__(self, name: Any, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context.launch_configurations.pop(perform_substitutions(context, self.name), None)
-        return None
-
-
-class PushLaunchConfigurations(Action):
-    """Start a launch-configuration scope."""
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context._push_launch_configurations()
-        return None
-
-
-class PopLaunchConfigurations(Action):
-    """End a launch-configuration scope."""
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context._pop_launch_configurations()
-        return None
-
-
-class ResetLaunchConfigurations(Action):
-    """Clear the launch configurations, keeping the given ones (evaluated before clearing)."""
-
-    def __init__(
-        self, launch_configurations: Mapping[Any, Any] | None = None, **kwargs: Any
-    ) -> None:
-        super().__init__(**kwargs)
-        self.launch_configurations = launch_configurations
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        keep: dict[str, Any] = {}
-        for name, value in (self.launch_configurations or {}).items():
-            key = perform_substitutions(context, normalize_to_list_of_substitutions(name))
-            keep[key] = perform_substitutions(context, normalize_to_list_of_substitutions(value))
-        context._reset_launch_configurations(keep)
-        return None
-
-
-class PushEnvironment(Action):
-    """Start an environment scope."""
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context._push_environment()
-        return None
-
-
-class PopEnvironment(Action):
-    """End an environment scope."""
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context._pop_environment()
-        return None
-
-
-class ResetEnvironment(Action):
-    """Clear the environment."""
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context._reset_environment()
-        return None
-
-
-class SetEnvironmentVariable(Action):
-    """Set an environment variable for what follows (nodes, commands, package lookups)."""
-
-    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        name = perform_substitutions(context, self.name)
-        context.set_env(name, perform_substitutions(context, self.value))
-        return None
-
-
-class UnsetEnvironmentVariable(Action):
-    """Unset an environment variable."""
-
-    def __init__(self, name: Any, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        context.set_env(perform_substitutions(context, self.name), None)
-        return None
-
-
-class AppendEnvironmentVariable(Action):
-    """Append (or prepend) to an environment variable, with ``os.pathsep`` by default."""
-
-    def __init__(
-        self,
-        name: Any,
-        value: Any,
-        prepend: Any = False,
-        separator: Any = os.pathsep,
-        **kwargs: Any,
-    ) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
-        self.prepend = prepend
-        self.separator = normalize_to_list_of_substitutions(separator)
-
-    def execute(self, context: LaunchContext) -> list[Any] | None:
-        name = perform_substitutions(context, self.name)
-        value = perform_substitutions(context, self.value)
-        sep = perform_substitutions(context, self.separator)
-        prepend = self.prepend
-        if not isinstance(prepend, bool):
-            from robomodel.launch.ros2.shim.substitutions import coerce_bool
-
-            prepend = coerce_bool(
-                perform_substitutions(context, normalize_to_list_of_substitutions(prepend))
-            )
-        old = context.environment.get(name)
-        if old:
-            value = value + sep + old if prepend else old + sep + value
-        context.set_env(name, value)
-        return None
 
 
 class GroupAction(Action):
