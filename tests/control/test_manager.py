@@ -118,6 +118,22 @@ def test_mock_follows_commands_initial_values_and_limits(caplog: pytest.LogCaptu
         cm.step()
     assert any("not finite" in r.message for r in caplog.records)
     assert rm.commands.values[rm.commands.slot("joint1/position")] == 1.0  # last good held
+    caplog.clear()
+    with caplog.at_level(logging.WARNING, logger="robomodel.control"):
+        for _ in range(20):  # chattering at the limit: out, in, out, ...
+            fwd.set_command([3.0, 0.0])  # type: ignore[attr-defined]
+            cm.step()
+            fwd.set_command([0.0, 0.0])  # type: ignore[attr-defined]
+            cm.step()
+    counts = [r.getMessage() for r in caplog.records if "joint1/position" in r.getMessage()]
+    # throttled: entries 2, 3, 5, 9, 17 of joint1 (the 1st was above), each with its count
+    assert [m.rsplit("(", 1)[1] for m in counts] == [
+        "2 times)",
+        "3 times)",
+        "5 times)",
+        "9 times)",
+        "17 times)",
+    ]
 
 
 def test_non_finite_hardware_command_holds_last_good(caplog: pytest.LogCaptureFixture) -> None:

@@ -47,6 +47,7 @@ class ResourceManager:
         self._guarded: list[int] = []
         self._last_good: list[float] = []
         self._out_of_limits: set[int] = set()
+        self._limit_count: dict[int, int] = {}
         self._bad_count: dict[int, int] = {}
         for component in components:
             self.add(component, activate=activate)
@@ -161,16 +162,29 @@ class ResourceManager:
                 last[slot] = clamped
                 if slot not in self._out_of_limits:
                     self._out_of_limits.add(slot)
-                    log.warning(
-                        "command %s = %g is outside its limits [%g, %g]; clamped to %g",
-                        self.commands.names[slot],
-                        v,
-                        lo,
-                        hi,
-                        clamped,
-                    )
+                    self._warn_limit(slot, v, lo, hi, clamped)
             elif self._out_of_limits and slot in self._out_of_limits:
                 self._out_of_limits.discard(slot)
+
+    def _warn_limit(self, slot: int, value: float, lo: float, hi: float, clamped: float) -> None:
+        """Warn that a command went out of its limits, throttled per interface.
+
+        A controller saturating at an effort limit goes in and out of it every other cycle:
+        the 1st, 2nd, 3rd, 5th, 9th, ... time is reported, with the count (ros2_control's
+        limiters throttle theirs too).
+        """
+        n = self._limit_count.get(slot, 0)
+        self._limit_count[slot] = n + 1
+        if n & (n - 1) == 0:
+            log.warning(
+                "command %s = %g is outside its limits [%g, %g]; clamped to %g (%d times)",
+                self.commands.names[slot],
+                value,
+                lo,
+                hi,
+                clamped,
+                n + 1,
+            )
 
     def _reject(self, slot: int, value: float) -> None:
         n = self._bad_count.get(slot, 0)
