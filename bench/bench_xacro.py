@@ -11,8 +11,11 @@ Inputs:
   * optionally the PR2 snapshot shipped in the reference's sdist (``--pr2 DIR`` = the unpacked
     ``xacro-2.1.1`` directory, whose ``test/robots/pr2`` uses ``$(find xacro)``).
 
+With ``--scaling`` only serial chains of 10, 100 and 1,000 links (one macro call per link) are
+run, for issue 14's scaling table.
+
 Usage:
-    python bench/bench_xacro.py [--runs N] [--pr2 DIR]
+    python bench/bench_xacro.py [--runs N] [--pr2 DIR] [--scaling]
 """
 
 from __future__ import annotations
@@ -271,6 +274,47 @@ FILES = {
 }
 
 
+def chain_xacro(n_links: int) -> str:
+    """A serial chain of ``n_links`` links (issue 14's scaling table): one macro call per link,
+    each with an inertial, a box visual and a cylinder collision, computed from properties."""
+    calls = "\n".join(
+        f'  <xacro:segment i="{i}" parent="link_{i - 1}"/>' for i in range(1, n_links)
+    )
+    return f"""<?xml version="1.0"?>
+<robot name="chain{n_links}" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="length" value="0.1"/>
+  <xacro:property name="radius" value="0.02"/>
+  <xacro:macro name="segment" params="i parent">
+    <link name="link_${{i}}">
+      <inertial>
+        <origin xyz="0 0 ${{length / 2}}"/>
+        <mass value="${{0.5 + 0.001 * i}}"/>
+        <inertia ixx="${{0.5 * radius * radius}}" ixy="0" ixz="0" iyy="${{length * length / 12}}"
+                 iyz="0" izz="${{length * length / 12}}"/>
+      </inertial>
+      <visual>
+        <origin xyz="0 0 ${{length / 2}}"/>
+        <geometry><box size="${{radius}} ${{radius}} ${{length}}"/></geometry>
+      </visual>
+      <collision>
+        <origin xyz="0 0 ${{length / 2}}"/>
+        <geometry><cylinder radius="${{radius}}" length="${{length}}"/></geometry>
+      </collision>
+    </link>
+    <joint name="joint_${{i}}" type="revolute">
+      <parent link="${{parent}}"/>
+      <child link="link_${{i}}"/>
+      <origin xyz="0 0 ${{length}}" rpy="0 0 0"/>
+      <axis xyz="0 1 0"/>
+      <limit lower="${{-pi / 2}}" upper="${{pi / 2}}" effort="10" velocity="1"/>
+    </joint>
+  </xacro:macro>
+  <link name="link_0"/>
+{calls}
+</robot>
+"""
+
+
 def write_synthetic_robot(root: Path) -> Path:
     """Write the synthetic PR2-size package below ``root``; return the top xacro file."""
     for relative, text in FILES.items():
@@ -342,9 +386,22 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--pr2", type=Path, help="unpacked xacro-2.1.1 sdist (for its PR2 snapshot)"
     )
+    parser.add_argument(
+        "--scaling",
+        action="store_true",
+        help="only the synthetic chains of 10, 100 and 1,000 links (issue 14's scaling table)",
+    )
     args = parser.parse_args(argv)
     print(f"Python {sys.version.split()[0]}, median of {args.runs} runs, in one process")
     ok = True
+    if args.scaling:
+        no_packages = PackageIndex(use_environment=False)
+        with tempfile.TemporaryDirectory() as tmp:
+            for n_links in (10, 100, 1000):
+                path = Path(tmp) / f"chain{n_links}.urdf.xacro"
+                path.write_text(chain_xacro(n_links))
+                ok &= bench(f"chain of {n_links} links", path, no_packages, args.runs)
+        return 0 if ok else 1
     examples = PackageIndex(package_paths=[REPO / "examples"], use_environment=False)
     biggest = REPO / "examples/ur5_description/urdf/ur5_joint_limited_robot.urdf.xacro"
     ok &= bench("example: UR5 joint-limited", biggest, examples, args.runs)
