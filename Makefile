@@ -32,10 +32,12 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_startup.py
 	$(BIN)/python bench/bench_parse.py
 	$(BIN)/python bench/bench_xacro.py
+	$(BIN)/python bench/bench_xacro.py --scaling --runs 15
 	$(BIN)/python bench/bench_kinematics.py
-	$(BIN)/python bench/bench_runtime.py
+	$(BIN)/python bench/bench_runtime.py --seconds 8 --rounds 3 --reference
 	$(BIN)/python bench/bench_control.py
 	$(BIN)/python bench/bench_viewer.py
+	$(BIN)/python bench/bench_viewer.py --scaling --socket
 	$(BIN)/python bench/bench_sim.py
 	$(BIN)/python bench/bench_launch.py
 
