@@ -200,7 +200,10 @@ def test_spawn_model_sdf_adds_rigid_shapes_and_refuses_articulated_models() -> N
         "</inertial><collision name='c'><geometry><box><size>0.2 0.2 0.2</size></box>"
         "</geometry></collision></link></model></sdf>"
     )
+    from robomodel.launch.gui import _world_scenery  # what the launch's viewer draws
+
     try:
+        assert not [s for s in _world_scenery(server) if "crate" in s.name]
         reply = context.call_service(
             "/gazebo/spawn_sdf_model",
             {"model_name": "crate", "model_xml": crate, "initial_pose": [1, 2, 0.5, 0, 0, 0]},
@@ -208,6 +211,8 @@ def test_spawn_model_sdf_adds_rigid_shapes_and_refuses_articulated_models() -> N
         assert reply["success"], reply
         (shape,) = [s for s in server.world.shapes if s.model == "crate"]
         assert shape.pose[:3] == pytest.approx((1.0, 2.0, 0.5)) and shape.mass_kg == 2.0
+        (drawn,) = [s for s in _world_scenery(server) if "crate" in s.name]
+        assert drawn.kind == "box" and drawn.frame == drawn.name  # it moves: its own TF frame
         server.drive(0.2)  # it falls onto the ground
         model = server.sim.model
         names = [model.body(i).name for i in range(model.nbody)]

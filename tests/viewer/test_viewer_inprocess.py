@@ -206,6 +206,45 @@ def test_scenery_is_posed_in_its_frame_and_hidden_while_unconnected(
         SceneryShape("x", "world", "cone", (1, 1, 1))
 
 
+def test_scenery_from_a_source_follows_spawned_and_deleted_models(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    """gzclient shows a model spawned (or deleted) after it started: so does the viewer."""
+    from robomodel.viewer import SceneryShape
+
+    wall = SceneryShape("wall_0", "world", "box", (0.1, 4.0, 1.0), (2.25, 0.0, 0.5))
+    crate = SceneryShape("crate_1", "world", "box", (0.5, 0.5, 0.5), (0.0, 1.5, 0.25))
+    world: list[tuple[SceneryShape, ...]] = [(wall,)]
+    viewer = _start(
+        started,
+        RobotSource(str(write_arm(tmp_path))),
+        fixed_frame="world",
+        scenery=world[0],
+        scenery_source=lambda: world[0],
+    )
+    wait_for(lambda: viewer.scenery is not None and viewer.scenery.shown == 1, what="the wall")
+    first = viewer.scenery
+    world[0] = (wall, crate)  # spawn_model -sdf: the server's world gains a model
+    wait_for(
+        lambda: viewer.scenery is not None and viewer.scenery.shown == 2, what="the spawned crate"
+    )
+    assert viewer.scenery is not first and viewer.scenery.shapes == (wall, crate)
+    assert np.allclose(viewer.scenery.nodes[1].position, (0.0, 1.5, 0.25))
+    assert not first.nodes  # the old nodes were taken out of the scene, not left behind
+    scene = viewer.server.scene
+    assert scene.get_handle_by_name("/scenery/crate_1/g") is not None
+    world[0] = (crate,)  # delete_model of the wall
+    wait_for(
+        lambda: viewer.scenery is not None and viewer.scenery.shapes == (crate,),
+        what="the wall gone",
+    )
+    assert scene.get_handle_by_name("/scenery/wall_0") is None
+    assert scene.get_handle_by_name("/scenery/wall_0/g") is None
+    assert scene.get_handle_by_name("/scenery/crate_1") is not None
+    world[0] = ()
+    wait_for(lambda: viewer.scenery is None, what="no scenery left")
+
+
 def test_external_without_a_state_publisher_draws_from_the_other_ones_tf(
     started: list[Viewer], tmp_path: Path
 ) -> None:

@@ -4,10 +4,12 @@ standing in for the sliders so that /tf stays complete."""
 
 from __future__ import annotations
 
+import functools
 import os
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -76,10 +78,11 @@ class LaunchGui:
         settings = self.runner._extra.get("rviz")
         server = self.runner._extra.get("sim_server")
         scenery: tuple[Any, ...] = ()
-        if server is not None:  # gzclient draws the world's objects too
-            from robomodel.sim.scenery import scenery_of
+        scenery_source: Callable[[], tuple[Any, ...]] | None = None
+        if server is not None:  # gzclient draws the world's objects too, spawned ones included
+            scenery = _world_scenery(server)
+            scenery_source = functools.partial(_world_scenery, server)
 
-            scenery = scenery_of(server.world)
         fixed_frame = settings.fixed_frame if settings is not None else None
         options = ViewerOptions(
             sources=(RobotSource(path),),
@@ -92,6 +95,7 @@ class LaunchGui:
             tools=self.runner.request.tools or True,
             fixed_frame=fixed_frame or self.runner.request.fixed_frame,
             scenery=scenery,
+            scenery_source=scenery_source,
             frame_rate_hz=(settings.frame_rate_hz or 60.0) if settings is not None else 60.0,
             rviz=settings,
         )
@@ -119,6 +123,13 @@ class LaunchGui:
         path = self.runner._extra.get("viewer_file")
         if path:
             Path(path).unlink(missing_ok=True)
+
+
+def _world_scenery(server: Any) -> tuple[Any, ...]:
+    """The simulator server's current world as the viewer's scenery (it changes on spawns)."""
+    from robomodel.sim.scenery import scenery_of
+
+    return scenery_of(server.world)
 
 
 def _add_plots(panel: Any, fields: list[str], timeout_s: float = 15.0) -> None:

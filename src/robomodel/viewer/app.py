@@ -261,6 +261,7 @@ class Viewer:
                 self._push()
             if now >= next_status:
                 next_status = now + 0.25
+                self._refresh_scenery()
                 self._refresh_frames()
                 self._refresh_status()
             if now >= next_bodies:
@@ -363,6 +364,19 @@ class Viewer:
         if buffer is not None:
             self._last_push_ids = (first_id, buffer.message_counter - 1)
             self._last_push_s = time.monotonic()
+
+    def _refresh_scenery(self) -> None:
+        """Redraw the scenery when its source has other shapes (a model spawned or deleted)."""
+        source = self.options.scenery_source
+        if source is None:
+            return
+        shapes = source()
+        if shapes == (self.scenery.shapes if self.scenery is not None else ()):
+            return
+        if self.scenery is not None:
+            self.scenery.remove()
+        self.scenery = SceneryDisplay(self.server.scene, shapes) if shapes else None
+        self._dirty = True
 
     def _refresh_frames(self) -> None:
         stale = set().union(*(s.stale_frames for s in self.sessions))

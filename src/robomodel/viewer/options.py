@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from robomodel.description.packages import PackageIndex
@@ -27,6 +28,10 @@ class ViewerOptions:
         reload_period_s: How often the description files are polled for changes.
         tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
         scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
+        scenery_source: For scenery that changes while the viewer runs (a simulator's world
+            gaining or losing models, as gzclient shows ``spawn_model -sdf``): called a few
+            times a second, on the viewer's loop; when it returns other shapes than those
+            drawn, they replace them. ``scenery`` is what is drawn until the first call.
         frame_rate_hz: At most this many scene updates per second (RViz's Global Options >
             Frame Rate). Default 60: a browser draws 60 frames a second, more updates are never
             seen. TF arriving faster (a simulation publishes at 100 Hz and more, a dragged slider
@@ -49,5 +54,6 @@ class ViewerOptions:
     reload_period_s: float = 0.25
     tools: bool = True
     scenery: tuple[SceneryShape, ...] = ()
+    scenery_source: Callable[[], tuple[SceneryShape, ...]] | None = None
     frame_rate_hz: float = 60.0
     rviz: RvizSettings | None = None

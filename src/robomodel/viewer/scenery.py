@@ -60,6 +60,7 @@ class SceneryDisplay:
     def __init__(self, scene: Any, shapes: tuple[SceneryShape, ...]) -> None:
         self.shapes = shapes
         self.nodes: list[Any] = []
+        self._leaves: list[Any] = []
         self.shown = 0
         self._sent: list[object] = []
         for shape in shapes:
@@ -73,13 +74,24 @@ class SceneryDisplay:
             a, b, c = shape.size_m
             leaf = f"/scenery/{shape.name}/g"
             if shape.kind == "box":
-                scene.add_box(leaf, dimensions=(a, b, c), **common)
+                geometry = scene.add_box(leaf, dimensions=(a, b, c), **common)
             elif shape.kind == "cylinder":
-                scene.add_cylinder(leaf, radius=a, height=b, radial_segments=32, **common)
+                geometry = scene.add_cylinder(
+                    leaf, radius=a, height=b, radial_segments=32, **common
+                )
             else:
-                scene.add_icosphere(leaf, radius=a, subdivisions=3, **common)
+                geometry = scene.add_icosphere(leaf, radius=a, subdivisions=3, **common)
             self.nodes.append(node)
+            self._leaves.append(geometry)
             self._sent.append(None)
+
+    def remove(self) -> None:
+        """Take every shape out of the scene."""
+        for handle in (*self._leaves, *self.nodes):
+            handle.remove()
+        self._leaves.clear()
+        self.nodes.clear()
+        self.shown = 0
 
     def update(self, buffer: Any, fixed_frame: str) -> None:
         """Pose every shape in ``fixed_frame`` (inside the caller's atomic batch)."""
