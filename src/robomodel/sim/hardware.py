@@ -89,6 +89,7 @@ class SimSystem(HardwareComponent):
         self._qpos_mv: Any = memoryview(self._qpos)  # format "d": items are Python floats
         self._qvel_mv: Any = memoryview(self._qvel)
         self._qfrc_mv: Any = memoryview(self._qfrc)
+        self._ctrl_mv: Any = memoryview(self._ctrl)
         self._joints = [j.name for j in info.joints]
         self._qadr: list[int] = []
         self._dadr: list[int] = []
@@ -173,6 +174,7 @@ class SimSystem(HardwareComponent):
         self._hold = [float(self._hold_q[i]) for i in self._pos_i]
         self._pos_cmd = np.array(self._hold, dtype=float)
         self._vel_act = np.array([self._servo[i] for i in self._vel_i], dtype=int)
+        self._vel_act_list = [int(a) for a in self._vel_act]
         for i, actuator in enumerate(self._servo):
             if actuator >= 0:  # servo on for velocity-mode joints only
                 kv = self._servo_gain[i] if i in self._vel_i else 0.0
@@ -231,7 +233,9 @@ class SimSystem(HardwareComponent):
                 self._ok[VELOCITY] = True
             if max(map(abs, values)) > MAX_VELOCITY_COMMAND:
                 values = self._bounded(values, self._vel_i, VELOCITY, MAX_VELOCITY_COMMAND)
-            self._ctrl[self._vel_act] = values
+            ctrl = self._ctrl_mv
+            for a, v in zip(self._vel_act_list, values, strict=True):
+                ctrl[a] = v
         if self._pos_slots:
             values = [commands[s] for s in self._pos_slots]
             if not math.isfinite(sum(values)):
