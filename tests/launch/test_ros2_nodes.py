@@ -6,9 +6,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import pytest
 
@@ -17,6 +15,7 @@ from robomodel.launch.model import NodeSpec, ParamSource
 from robomodel.launch.nodes.ros2_control import controller_config_text, parse_ros2_spawner_args
 from robomodel.launch.nodes.ros2_nodes import parse_ros2_static_transform_args
 from robomodel.launch.nodes.ros2_params import node_parameters, parameters_from_file
+from robomodel.launch.ros2.model import LaunchStep
 from tests.conftest import EXAMPLES
 
 ARM = EXAMPLES / "two_link_arm"
@@ -98,20 +97,6 @@ def test_controller_parameters_come_from_the_manager_and_controller_keys() -> No
     assert spec_of["joint1_position_controller"].params["joints"] == ["joint1"]
 
 
-@dataclass(frozen=True)
-class Step:
-    """A launch step as the ROS 2 front-end gives them (duck-typed by the runner)."""
-
-    kind: str
-    node: NodeSpec | None = None
-    command: tuple[str, ...] = ()
-    message: str = ""
-    delay_s: float = 0.0
-    after_exit_of: int | None = None
-    after_start_of: int | None = None
-    location: Any = None
-
-
 def test_control_launch_runs_with_spawners_chained_by_on_process_exit() -> None:
     from robomodel.launch.runner import LaunchRunner, RunOptions
     from robomodel.xacro import process_file
@@ -131,11 +116,11 @@ def test_control_launch_runs_with_spawners_chained_by_on_process_exit() -> None:
         args=("joint1_position_controller", "-c", "/controller_manager"),
     )  # fmt: skip
     steps = (
-        Step("node", cm),  # Jazzy: robot_description from robot_state_publisher
-        Step("node", rsp),
-        Step("node", jsb),
-        Step("node", arm, after_exit_of=2),
-        Step("log", message="all spawned", after_exit_of=3),
+        LaunchStep("node", cm),  # Jazzy: robot_description from robot_state_publisher
+        LaunchStep("node", rsp),
+        LaunchStep("node", jsb),
+        LaunchStep("node", arm, after_exit_of=2),
+        LaunchStep("log", message="all spawned", after_exit_of=3),
     )
     lines: list[str] = []
     runner = LaunchRunner(
@@ -193,7 +178,7 @@ def test_named_manager_unknown_plugin_and_unknown_controller_type(tmp_path: Path
     runner = LaunchRunner(
         [cm, spawn],
         RunOptions(bus="inproc", headless=True, duration_s=3.0),
-        steps=(Step("node", cm), Step("node", spawn)),
+        steps=(LaunchStep("node", cm), LaunchStep("node", spawn)),
         log=lines.append,
     )
     runner.open_bus()
