@@ -63,6 +63,45 @@ def test_static_transform_publisher_both_argument_forms() -> None:
         parse_ros2_static_transform_args(("--x", "1"))
 
 
+def test_static_transform_publishers_of_ros2_tf2_and_ros1_tf() -> None:
+    """ROS 2's and tf2's publish once, latched on /tf_static; ROS 1 tf's every period on /tf."""
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+    from robomodel.runtime.msg import TFMessage
+    from robomodel.runtime.qos import latched
+
+    nodes = [
+        NodeSpec("ros2", "tf2_ros", "static_transform_publisher", "s2",
+                 args=("--x", "1", "--frame-id", "world", "--child-frame-id", "a")),
+        NodeSpec("ros1", "tf2_ros", "static_transform_publisher", "s1",
+                 args=("0", "2", "0", "0", "0", "0", "world", "b")),
+        NodeSpec("ros1", "tf", "static_transform_publisher", "t1",
+                 args=("0", "0", "3", "0", "0", "0", "world", "c", "50")),
+    ]  # fmt: skip
+    runner = LaunchRunner(nodes, RunOptions(bus="inproc", headless=True, duration_s=0.5))
+    runner.open_bus()
+    static: list[TFMessage] = []
+    dynamic: list[TFMessage] = []
+    listener = runner.context.create_node("listener")
+    listener.create_subscription(TFMessage, "/tf_static", static.append, latched())
+    listener.create_subscription(TFMessage, "/tf", dynamic.append)
+    try:
+        runner.start_nodes()
+        runner.spin()
+    finally:
+        runner.shutdown()
+    latched_xyz = {
+        t.child_frame_id: (t.transform.translation.x, t.transform.translation.y)
+        for m in static
+        for t in m.transforms
+    }
+    assert latched_xyz == {"a": (1.0, 0.0), "b": (0.0, 2.0)}
+    assert len(static) == 2  # once each
+    periodic = [t for m in dynamic for t in m.transforms]
+    assert {t.child_frame_id for t in periodic} == {"c"}
+    assert periodic[0].transform.translation.z == 3.0
+    assert len(periodic) >= 2  # republished every period, not once
+
+
 def test_spawner_command_line() -> None:
     args = parse_ros2_spawner_args(
         ("jsb", "arm", "-c", "/my_ctrl_mgr", "--param-file", "/p.yaml", "--inactive",

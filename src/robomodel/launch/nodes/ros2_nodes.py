@@ -198,27 +198,10 @@ def parse_ros2_static_transform_args(
     purpose="a static transform on /tf_static (both argument forms)",
 )
 def static_transform_publisher(ctx: NodeContext) -> RunningNode:
-    from robomodel.launch.nodes.tf_static import _Holder
-    from robomodel.runtime.msg import (
-        Header,
-        Quaternion,
-        TFMessage,
-        Transform,
-        TransformStamped,
-        Vector3,
-    )
-    from robomodel.runtime.qos import latched
+    from robomodel.launch.nodes.tf_static import start_transform_publisher
 
     try:
         xyz, quat, parent, child = parse_ros2_static_transform_args(ctx.spec.args)
     except ValueError as exc:
         raise RobomodelError(f"static_transform_publisher: {exc}") from None
-    node = ctx.runtime.create_node(
-        ctx.spec.name or "static_transform_publisher", ctx.namespace, remappings=ctx.remappings
-    )
-    stamped = TransformStamped(
-        Header(node.now(), parent), child, Transform(Vector3(*xyz), Quaternion(*quat))
-    )
-    pub = node.create_publisher(TFMessage, "/tf_static", latched())
-    pub.publish(TFMessage([stamped]))
-    return InProcessNode(_Holder(node))
+    return start_transform_publisher(ctx, xyz, quat, parent, child)

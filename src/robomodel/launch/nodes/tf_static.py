@@ -13,7 +13,7 @@ import math
 from robomodel.launch.nodes.base import NodeContext, RunningNode, register
 from robomodel.launch.nodes.state import InProcessNode
 
-__all__ = ["parse_static_transform_args"]
+__all__ = ["parse_static_transform_args", "start_transform_publisher"]
 
 _USAGE = (
     "static_transform_publisher x y z yaw pitch roll frame_id child_frame_id [period_in_ms]\n"
@@ -69,7 +69,16 @@ class _Holder:
         self.node = node
 
 
-def _start(ctx: NodeContext, with_period: bool) -> RunningNode:
+def start_transform_publisher(
+    ctx: NodeContext,
+    xyz: tuple[float, float, float],
+    quat_xyzw: tuple[float, float, float, float],
+    parent: str,
+    child: str,
+    period_s: float | None = None,
+) -> RunningNode:
+    """A static_transform_publisher node: ``parent`` -> ``child`` latched on /tf_static, or,
+    with ``period_s`` (tf's ROS 1 node), republished on /tf every period."""
     from robomodel.runtime.msg import (
         Header,
         Quaternion,
@@ -80,22 +89,27 @@ def _start(ctx: NodeContext, with_period: bool) -> RunningNode:
     )
     from robomodel.runtime.qos import latched
 
-    xyz, quat, parent, child, period = parse_static_transform_args(ctx.spec.args, with_period)
     node = ctx.runtime.create_node(
         ctx.spec.name or "static_transform_publisher",
         ctx.namespace,
         remappings=ctx.remappings,
     )
     stamped = TransformStamped(
-        Header(node.now(), parent), child, Transform(Vector3(*xyz), Quaternion(*quat))
+        Header(node.now(), parent), child, Transform(Vector3(*xyz), Quaternion(*quat_xyzw))
     )
-    if with_period:  # tf (ROS 1): republished on /tf every period
+    if period_s is not None:
         pub = node.create_publisher(TFMessage, "/tf", 10)
-        node.create_timer(period or 0.1, lambda: pub.publish(TFMessage([stamped])))
+        node.create_timer(period_s, lambda: pub.publish(TFMessage([stamped])))
     else:
         pub = node.create_publisher(TFMessage, "/tf_static", latched())
         pub.publish(TFMessage([stamped]))
     return InProcessNode(_Holder(node))
+
+
+def _start(ctx: NodeContext, with_period: bool) -> RunningNode:
+    xyz, quat, parent, child, period = parse_static_transform_args(ctx.spec.args, with_period)
+    period_s = (period or 0.1) if with_period else None
+    return start_transform_publisher(ctx, xyz, quat, parent, child, period_s)
 
 
 @register(
