@@ -14,6 +14,40 @@ def example_robot_data(relative: str) -> Path:
     return prefix / "share" / "example-robot-data" / "robots" / relative
 
 
+def ros1_env(work: Path, port: int | str) -> dict[str, str]:
+    """The environment of Debian's ROS 1 processes: only ``/usr`` on the path, a master on
+    ``port``, ROS's home and logs under ``work`` (nothing of this venv, nothing of ``~``)."""
+    return {
+        "PATH": "/usr/bin:/bin",
+        "HOME": str(work),
+        "ROS_HOME": str(work / ".ros"),
+        "ROS_MASTER_URI": f"http://localhost:{port}",
+        "ROS_PACKAGE_PATH": "/usr/share",
+        "LANG": "C.UTF-8",
+    }
+
+
+def paced_sends(seconds: float, rate_hz: float, send: Callable[[int], None]) -> tuple[int, float]:
+    """Call ``send(k)`` for k = 0, 1, ... on the schedule ``start + k / rate_hz`` for
+    ``seconds`` (never accumulated: a late send is made at once, not skipped); returns
+    (messages sent, elapsed [s]). Standard library only: Debian's Python runs it too
+    (``_ros1_rsp.py``)."""
+    period = 1.0 / rate_hz
+    start = time.perf_counter()
+    sent = 0
+    while True:
+        now = time.perf_counter()
+        if now - start >= seconds:
+            break
+        target = start + sent * period
+        if now < target:
+            time.sleep(max(0.0, target - now - 0.0001))
+            continue
+        send(sent)
+        sent += 1
+    return sent, time.perf_counter() - start
+
+
 def time_call(func: Callable[[], object], *, repeat: int = 7, min_time_s: float = 0.2) -> float:
     """Median over ``repeat`` rounds of the mean time per call [s]; each round >= min_time_s."""
     func()

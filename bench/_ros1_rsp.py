@@ -14,6 +14,8 @@ import json
 import sys
 import time
 
+from _common import paced_sends  # this script's folder is on the path
+
 
 def driver(names: list[str], seconds: float, rate: float) -> None:
     import rospy
@@ -30,24 +32,15 @@ def driver(names: list[str], seconds: float, rate: float) -> None:
     time.sleep(0.5)
     print("start", flush=True)
     own0 = time.process_time()
-    period = 1.0 / rate
-    start = time.perf_counter()
-    sent = 0
     positions = [0.0] * len(names)
-    while True:
-        now = time.perf_counter()
-        if now - start >= seconds:
-            break
-        target = start + sent * period
-        if now < target:
-            time.sleep(max(0.0, target - now - 0.0001))
-            continue
-        positions[0] = 0.001 * sent
+
+    def send(k: int) -> None:
+        positions[0] = 0.001 * k
         msg = JointState(name=names, position=list(positions))
         msg.header.stamp = rospy.Time.from_sec(time.time())
         pub.publish(msg)
-        sent += 1
-    elapsed = time.perf_counter() - start
+
+    sent, elapsed = paced_sends(seconds, rate, send)
     own = time.process_time() - own0
     print(json.dumps({"sent": sent, "elapsed": elapsed, "cpu": own}), flush=True)
 

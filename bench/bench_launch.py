@@ -24,6 +24,10 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _common import ros1_env
+
 ROOT = Path(__file__).resolve().parents[1]
 URDF = ROOT / "examples" / "gripper_description" / "urdf" / "planar_3dof.urdf"
 LAUNCH = f"""<launch>
@@ -77,14 +81,7 @@ def main() -> None:
     launch = work / "display_no_rviz.launch"
     launch.write_text(LAUNCH)
     port = "11377"
-    ros_env = {
-        "PATH": "/usr/bin:/bin",
-        "HOME": str(work),
-        "ROS_HOME": str(work / ".ros"),
-        "ROS_MASTER_URI": f"http://localhost:{port}",
-        "ROS_PACKAGE_PATH": "/usr/share",
-        "LANG": "C.UTF-8",
-    }
+    ros_env = ros1_env(work, port)
     our_env = {**os.environ}
     core = subprocess.Popen(
         ["/usr/bin/roscore", "-p", port], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,

@@ -33,7 +33,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import example_robot_data
+from _common import example_robot_data, paced_sends, ros1_env
 
 ROBOT = "talos_data/robots/talos_full_v2.urdf"
 
@@ -96,23 +96,14 @@ def _run_ours(names: list[str], seconds: float, rate: float, domain: int) -> dic
         time.sleep(2.0)  # let the three peers link up
         cpu0 = {p.pid: _cpu_s(p.pid) for p in (rsp, sink)}
         own0 = time.process_time()
-        period = 1.0 / rate
-        start = time.perf_counter()
-        sent = 0
         positions = [0.0] * len(names)
-        while True:
-            now = time.perf_counter()
-            if now - start >= seconds:
-                break
-            target = start + sent * period
-            if now < target:
-                time.sleep(max(0.0, target - now - 0.0001))
-                continue
+
+        def send(k: int) -> None:
             stamp = Time.from_seconds(time.time())
-            positions[0] = 0.001 * sent
+            positions[0] = 0.001 * k
             pub.publish(JointState(Header(stamp), names, list(positions)))
-            sent += 1
-        elapsed = time.perf_counter() - start
+
+        sent, elapsed = paced_sends(seconds, rate, send)
         own_cpu = time.process_time() - own0
         cpu = {p.pid: _cpu_s(p.pid) - cpu0[p.pid] for p in (rsp, sink)}
     out, _ = sink.communicate(timeout=30)
@@ -138,14 +129,7 @@ _ROS_PY = "/usr/bin/python3"
 def _run_ros1(names: list[str], seconds: float, rate: float, port: int) -> dict[str, Any]:
     """One run of rospy A -> Debian's C++ robot_state_publisher -> rospy C, with a roscore."""
     work = Path(tempfile.mkdtemp(prefix="bench_runtime_ros1_"))
-    env = {
-        "PATH": "/usr/bin:/bin",
-        "HOME": str(work),
-        "ROS_HOME": str(work / ".ros"),
-        "ROS_MASTER_URI": f"http://localhost:{port}",
-        "ROS_PACKAGE_PATH": "/usr/share",
-        "LANG": "C.UTF-8",
-    }
+    env = ros1_env(work, port)
     helper = str(Path(__file__).resolve().parent / "_ros1_rsp.py")
     text = example_robot_data(ROBOT).read_text()
     quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": env}
