@@ -5,11 +5,15 @@ from __future__ import annotations
 
 import enum
 import logging
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from robomodel.control.controllers.base import ControllerInterface, InterfaceSelection
+from robomodel.control.controllers.base import (
+    ControllerInterface,
+    InterfaceConfiguration,
+    InterfaceSelection,
+)
 from robomodel.control.controllers.registry import create_controller
 from robomodel.errors import RobomodelError
 
@@ -112,21 +116,18 @@ def required_interfaces(
 ) -> tuple[list[str], list[str]]:
     """The full names of the command and state interfaces ``controller`` asks for (``ALL``
     expands to every interface of the hardware, ``NONE`` to none)."""
-    cmd_cfg = controller.command_interface_configuration()
-    st_cfg = controller.state_interface_configuration()
-    if cmd_cfg.selection is InterfaceSelection.ALL:
-        commands = list(resources.commands.names)
-    elif cmd_cfg.selection is InterfaceSelection.NONE:
-        commands = []
-    else:
-        commands = list(cmd_cfg.names)
-    if st_cfg.selection is InterfaceSelection.ALL:
-        states = list(resources.states.names)
-    elif st_cfg.selection is InterfaceSelection.NONE:
-        states = []
-    else:
-        states = list(st_cfg.names)
+    commands = _selected(controller.command_interface_configuration(), resources.commands.names)
+    states = _selected(controller.state_interface_configuration(), resources.states.names)
     return commands, states
+
+
+def _selected(config: InterfaceConfiguration, available: Iterable[str]) -> list[str]:
+    """The interfaces a configuration selects among ``available`` (ALL, NONE or its names)."""
+    if config.selection is InterfaceSelection.ALL:
+        return list(available)
+    if config.selection is InterfaceSelection.NONE:
+        return []
+    return list(config.names)
 
 
 def controller_info(entry: ControllerEntry, resources: ResourceManager) -> dict[str, Any]:
