@@ -9,6 +9,8 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.clock import Clock, ManualClock, SystemClock
 from robomodel.runtime.executor import Executor
+from robomodel.runtime.msg import Message
+from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.node import Node
 from robomodel.runtime.params import load_parameters_file
 from robomodel.runtime.transport.base import Graph, Transport
@@ -104,22 +106,18 @@ class Context:
     def graph(self, timeout_s: float = 1.0) -> Graph:
         return self.transport.graph(timeout_s)
 
-    def call_parameters(
-        self, node: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        return self.transport.call_parameters(node, request, timeout_s)
-
-    def create_service(
-        self, name: str, handler: Callable[[dict[str, Any]], dict[str, Any]]
-    ) -> Callable[[], None]:
-        """Offer service ``name`` (JSON-like dict in, dict out); returns an unregister function."""
-        return self.transport.register_service(name, handler)
-
     def call_service(
-        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        """Call a service offered by any process on the bus (or this one)."""
-        return self.transport.call_service(name, request, timeout_s)
+        self,
+        name: str,
+        srv_type: type[Service],
+        request: Message | None = None,
+        timeout_s: float = 2.0,
+    ) -> Any:
+        """Call service ``name`` (offered by any process on the bus, or this one) and return
+        its response; :class:`ServiceCallError` when none comes within ``timeout_s``."""
+        if request is None:
+            request = srv_type.Request()
+        return self.transport.call_service(name, srv_type, request, timeout_s)
 
     def shutdown(self) -> None:
         if self._closed:

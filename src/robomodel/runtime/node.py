@@ -1,4 +1,4 @@
-"""Nodes: publishers, subscriptions, timers, a clock and parameters, as in rclpy."""
+"""Nodes: publishers, subscriptions, services, timers, a clock and parameters, as in rclpy."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from robomodel.runtime.clock import Clock, SimClock
 from robomodel.runtime.executor import Timer
 from robomodel.runtime.msg import Clock as ClockMsg
 from robomodel.runtime.msg import Message, Time
+from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.names import (
     apply_remappings,
     expand_topic_name,
@@ -20,12 +21,17 @@ from robomodel.runtime.names import (
 )
 from robomodel.runtime.params import ParameterStore, SetResult
 from robomodel.runtime.qos import QoSProfile, as_qos
-from robomodel.runtime.transport.base import PublisherHandle, SubscriptionHandle
+from robomodel.runtime.transport.base import (
+    PublisherHandle,
+    ServiceHandle,
+    ServiceHandler,
+    SubscriptionHandle,
+)
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
 
-__all__ = ["Node", "Publisher", "Subscription"]
+__all__ = ["Client", "Node", "Publisher", "ServiceServer", "Subscription"]
 
 M = TypeVar("M", bound=Message)
 
@@ -57,6 +63,37 @@ class Subscription(Generic[M]):
         self._handle.destroy()
 
 
+@dataclass(eq=False)
+class ServiceServer:
+    """A service offered by a node."""
+
+    name: str
+    srv_type: type[Service]
+    _handle: ServiceHandle
+
+    def destroy(self) -> None:
+        self._handle.destroy()
+
+
+@dataclass(eq=False)
+class Client:
+    """Calls one service of a given type (blocking, from any thread)."""
+
+    node: Node
+    name: str
+    srv_type: type[Service]
+
+    def call(self, request: Message | None = None, timeout_s: float = 2.0) -> Any:
+        """The response; ServiceCallError if none comes within ``timeout_s``."""
+        return self.node.context.transport.call_service(
+            self.name,
+            self.srv_type,
+            request if request is not None else self.srv_type.Request(),
+            timeout_s,
+            node=self.node.fully_qualified_name,
+        )
+
+
 class Node:
     """A ROS-style node living in a :class:`~robomodel.runtime.context.Context`.
 
@@ -86,15 +123,17 @@ class Node:
         )
         self._publishers: list[Publisher[Any]] = []
         self._subscriptions: list[Subscription[Any]] = []
+        self._services: list[ServiceServer] = []
         self._timers: list[Timer] = []
         self._sim_clock: SimClock | None = None
         self._clock_sub: Subscription[ClockMsg] | None = None
         self.logger = logging.getLogger(
             f"robomodel.node{self.fully_qualified_name.replace('/', '.')}"
         )
-        self._unregister = context.transport.register_node(
-            self.fully_qualified_name, self._parameter_service
-        )
+        self._unregister = context.transport.register_node(self.fully_qualified_name)
+        from robomodel.runtime.param_services import ParameterServices
+
+        self._parameter_services = ParameterServices(self)
         use_sim_time = self.declare_parameter("use_sim_time", False)
         self._set_sim_time(bool(use_sim_time))
         self.parameters.add_post_set_callback(self._on_parameters)
@@ -138,6 +177,21 @@ class Node:
         self._subscriptions.append(subscription)
         return subscription
 
+    def create_service(
+        self, srv_type: type[Service], name: str, handler: ServiceHandler
+    ) -> ServiceServer:
+        """Answer requests to service ``name`` (``~/x`` and relative names expand as topics do)."""
+        resolved = self.resolve_topic_name(name)
+        handle = self.context.transport.create_service(
+            self.fully_qualified_name, resolved, srv_type, handler
+        )
+        server = ServiceServer(resolved, srv_type, handle)
+        self._services.append(server)
+        return server
+
+    def create_client(self, srv_type: type[Service], name: str) -> Client:
+        return Client(self, self.resolve_topic_name(name), srv_type)
+
     def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
         """Call ``callback`` every ``period_s`` seconds of this node's clock."""
         timer = self.context.executor.add_timer(period_s, callback, self.get_clock())
@@ -176,7 +230,9 @@ class Node:
     def declare_parameter(
         self, name: str, default: Any, *, description: str = "", read_only: bool = False
     ) -> Any:
-        return self.parameters.declare(name, default, description=description, read_only=read_only)
+        value = self.parameters.declare(name, default, description=description, read_only=read_only)
+        self._parameter_services.publish_event(new={name: value})
+        return value
 
     def get_parameter(self, name: str) -> Any:
         return self.parameters.get(name)
@@ -187,22 +243,7 @@ class Node:
     def _on_parameters(self, changed: Mapping[str, Any]) -> None:
         if "use_sim_time" in changed:
             self._set_sim_time(bool(changed["use_sim_time"]))
-
-    def _parameter_service(self, request: dict[str, Any]) -> dict[str, Any]:
-        op = request.get("op")
-        store = self.parameters
-        if op == "list":
-            return {"names": store.names(str(request.get("prefix", "")))}
-        if op in ("get", "dump"):
-            names = request.get("names") or store.names()
-            missing = [n for n in names if not store.has(n)]
-            if missing:
-                return {"error": f"parameter(s) not set: {', '.join(missing)}"}
-            return {"values": {n: store.get(n) for n in names}}
-        if op == "set":
-            result = store.set(dict(request.get("values", {})))
-            return {"successful": result.successful, "reason": result.reason}
-        return {"error": f"unknown parameter operation {op!r}"}
+        self._parameter_services.publish_event(changed=changed)
 
     # -- lifetime -------------------------------------------------------------------------
     def destroy(self) -> None:
@@ -212,6 +253,9 @@ class Node:
             publisher.destroy()
         for subscription in self._subscriptions:
             subscription.destroy()
+        for service in self._services:
+            service.destroy()
         self._publishers.clear()
         self._subscriptions.clear()
+        self._services.clear()
         self._unregister()

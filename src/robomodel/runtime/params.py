@@ -160,6 +160,9 @@ class ParameterStore:
     def describe(self, name: str) -> str:
         return self._descriptions.get(name, "")
 
+    def is_read_only(self, name: str) -> bool:
+        return name in self._read_only
+
     def add_set_callback(self, callback: SetCallback) -> None:
         """Validate changes before they apply (``add_on_set_parameters_callback``)."""
         self._callbacks.append(callback)

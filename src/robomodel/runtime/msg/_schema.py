@@ -1,8 +1,11 @@
-"""Message type machinery: field specifications, the message base class and the registry.
+"""Message type machinery: field specifications, the message and service base classes and
+their registries.
 
 A message class declares ``__fields__`` as ``(name, spec)`` pairs, where a spec is a primitive
 name (``"float64"``, ``"string"``, ...), another message class, ``Seq(spec)`` for an unbounded
-sequence or ``Array(spec, n)`` for a fixed-size array, exactly as the ``.msg`` file does.
+sequence or ``Array(spec, n)`` for a fixed-size array, exactly as the ``.msg`` file does. A
+service class names its ``Request`` and ``Response`` message classes, as the ``.srv`` file's two
+halves.
 """
 
 from __future__ import annotations
@@ -18,11 +21,15 @@ __all__ = [
     "Message",
     "MessageTypeError",
     "Seq",
+    "Service",
     "Spec",
+    "canonical_service_name",
     "canonical_type_name",
     "default_for",
     "get_message_type",
+    "get_service_type",
     "message_type_names",
+    "service_type_names",
 ]
 
 # name -> (struct code, size in bytes, Python default)
@@ -46,9 +53,10 @@ PRIMITIVES: dict[str, tuple[str, int, Any]] = {
 
 @dataclass(frozen=True, slots=True)
 class Seq:
-    """An unbounded sequence ``T[]``."""
+    """A sequence ``T[]``, or ``T[<=bound]`` when ``bound`` is given (the same on the wire)."""
 
     item: Spec
+    bound: int | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -91,6 +99,27 @@ class Message:
 _REGISTRY: dict[str, type[Message]] = {}
 
 
+class Service:
+    """Base class of all service types.
+
+    Subclasses set ``__typename__`` (``pkg/srv/Name``) and their ``Request`` and ``Response``
+    message classes (``pkg/srv/Name_Request``, ``pkg/srv/Name_Response``). Defining one
+    registers it.
+    """
+
+    __typename__: ClassVar[str] = ""
+    Request: ClassVar[type[Message]]
+    Response: ClassVar[type[Message]]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.__typename__ and "__typename__" in cls.__dict__:
+            _SERVICES[cls.__typename__] = cls
+
+
+_SERVICES: dict[str, type[Service]] = {}
+
+
 def default_for(spec: Spec) -> Any:
     """A fresh default value for a field (a new list or message each time)."""
     if isinstance(spec, str):
@@ -125,3 +154,28 @@ def get_message_type(name: str) -> type[Message]:
 
 def message_type_names() -> tuple[str, ...]:
     return tuple(sorted(_REGISTRY))
+
+
+def canonical_service_name(name: str) -> str:
+    """``std_srvs/Empty`` and ``std_srvs/srv/Empty`` both become ``std_srvs/srv/Empty``."""
+    parts = name.strip().strip("/").split("/")
+    if len(parts) == 2:
+        return f"{parts[0]}/srv/{parts[1]}"
+    return "/".join(parts)
+
+
+def get_service_type(name: str) -> type[Service]:
+    """Look up a service class by ROS name (``pkg/srv/Name`` or ``pkg/Name``)."""
+    key = canonical_service_name(name)
+    try:
+        return _SERVICES[key]
+    except KeyError:
+        hint = close_matches(key, _SERVICES)
+        extra = f"; did you mean {', '.join(hint)}?" if hint else ""
+        raise MessageTypeError(
+            f"unknown service type '{name}'{extra} Known types: {', '.join(sorted(_SERVICES))}"
+        ) from None
+
+
+def service_type_names() -> tuple[str, ...]:
+    return tuple(sorted(_SERVICES))

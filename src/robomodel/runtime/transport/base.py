@@ -1,8 +1,14 @@
-"""The transport interface. Implementations: in-process (default) and Zenoh.
+"""The transport interface. Implementations: in-process (default), Zenoh (rmw_zenoh's wire) and
+ROS 1 (a master, XML-RPC and TCPROS).
 
-A transport moves messages between publishers and subscriptions and answers graph and parameter
-queries. It never calls user code itself: deliveries are posted to the context's executor, so
-callbacks run on the spinning thread, one at a time.
+A transport moves messages between publishers and subscriptions, requests and replies between
+service clients and servers, and answers graph queries. It never calls user code on its own
+threads: deliveries and service requests are posted to the context's executor, so callbacks and
+handlers run on the spinning thread, one at a time.
+
+Nodes are named by their fully qualified name (``/ns/name``); every endpoint belongs to one.
+Message and service types are the classes of :mod:`robomodel.runtime.msg`; how they travel (CDR,
+ROS 1 serialization, no serialization at all) is the transport's business.
 """
 
 from __future__ import annotations
@@ -10,27 +16,65 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
 
+from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
+from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.qos import QoSProfile
 
 __all__ = [
+    "Deferred",
     "Endpoint",
     "Graph",
-    "ParameterHandler",
     "PublisherHandle",
+    "ServiceCallError",
+    "ServiceHandle",
+    "ServiceHandler",
+    "ServiceInfo",
     "SubscriptionHandle",
     "TopicInfo",
     "Transport",
 ]
 
-ParameterHandler = Callable[[dict[str, Any]], dict[str, Any]]
+
+class Deferred:
+    """A response that comes later: a handler returns one, and calls :meth:`resolve` (on the
+    executor's thread) when it has the answer, as an action server's ``get_result`` does."""
+
+    __slots__ = ("_callbacks", "response")
+
+    def __init__(self) -> None:
+        self.response: Message | None = None
+        self._callbacks: list[Callable[[Message], None]] = []
+
+    def resolve(self, response: Message) -> None:
+        if self.response is not None:
+            return
+        self.response = response
+        callbacks, self._callbacks = self._callbacks, []
+        for callback in callbacks:
+            callback(response)
+
+    def then(self, callback: Callable[[Message], None]) -> None:
+        """Run ``callback(response)`` once resolved (now, if it already is)."""
+        if self.response is not None:
+            callback(self.response)
+        else:
+            self._callbacks.append(callback)
+
+
+ServiceHandler = Callable[[Message], "Message | Deferred"]
+"""A service's handler: the request in, the response (or a :class:`Deferred`) out, on the
+executor's thread."""
+
+
+class ServiceCallError(RobomodelError):
+    """A service call that got no answer, or an error instead of a response."""
 
 
 @dataclass(frozen=True, slots=True)
 class Endpoint:
-    """A publisher or subscription as seen in the graph."""
+    """A publisher or subscription (or a service server or client) as seen in the graph."""
 
     node: str
     topic: str
@@ -47,15 +91,29 @@ class TopicInfo:
 
 
 @dataclass
+class ServiceInfo:
+    name: str
+    types: set[str] = field(default_factory=set)
+    servers: list[Endpoint] = field(default_factory=list)
+    clients: list[Endpoint] = field(default_factory=list)
+
+
+@dataclass
 class Graph:
-    """A snapshot of the nodes and topics a transport can see."""
+    """A snapshot of the nodes, topics and services a transport can see."""
 
     nodes: set[str] = field(default_factory=set)
     topics: dict[str, TopicInfo] = field(default_factory=dict)
-    services: set[str] = field(default_factory=set)
+    services: dict[str, ServiceInfo] = field(default_factory=dict)
 
     def add(self, kind: str, endpoint: Endpoint) -> None:
+        """Record an endpoint; ``kind`` is ``pub``, ``sub``, ``srv`` or ``cli``."""
         self.nodes.add(endpoint.node)
+        if kind in ("srv", "cli"):
+            service = self.services.setdefault(endpoint.topic, ServiceInfo(endpoint.topic))
+            service.types.add(endpoint.type_name)
+            (service.servers if kind == "srv" else service.clients).append(endpoint)
+            return
         info = self.topics.setdefault(endpoint.topic, TopicInfo(endpoint.topic))
         info.types.add(endpoint.type_name)
         (info.publishers if kind == "pub" else info.subscribers).append(endpoint)
@@ -74,10 +132,19 @@ class SubscriptionHandle(ABC):
     def destroy(self) -> None: ...
 
 
+class ServiceHandle(ABC):
+    @abstractmethod
+    def destroy(self) -> None: ...
+
+
 class Transport(ABC):
     """What a context needs from a transport."""
 
     name: str = ""
+
+    @abstractmethod
+    def register_node(self, node: str) -> Callable[[], None]:
+        """Make node ``node`` (``/ns/name``) visible in the graph; returns an unregister function."""
 
     @abstractmethod
     def create_publisher(
@@ -95,29 +162,33 @@ class Transport(ABC):
     ) -> SubscriptionHandle: ...
 
     @abstractmethod
-    def register_node(self, node: str, handler: ParameterHandler) -> Callable[[], None]:
-        """Make a node visible and answer its parameter calls; returns an unregister function."""
+    def create_service(
+        self, node: str, name: str, srv_type: type[Service], handler: ServiceHandler
+    ) -> ServiceHandle:
+        """Answer requests to service ``name`` with ``handler`` (run on the executor's thread).
+
+        A handler that raises answers the call with an error (the client's ServiceCallError
+        says why) and the server goes on.
+        """
+
+    @abstractmethod
+    def call_service(
+        self,
+        name: str,
+        srv_type: type[Service],
+        request: Message,
+        timeout_s: float = 2.0,
+        *,
+        node: str | None = None,
+    ) -> Message:
+        """Call service ``name`` and return its response; ServiceCallError if none comes.
+
+        Any thread may call, the executor's own included (a handler of this process is then
+        run in place). ``node``, when given, is the calling node (for the graph).
+        """
 
     @abstractmethod
     def graph(self, timeout_s: float = 1.0) -> Graph: ...
-
-    @abstractmethod
-    def call_parameters(
-        self, node: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]: ...
-
-    def register_service(self, name: str, handler: ParameterHandler) -> Callable[[], None]:
-        """Answer JSON-like requests to service ``name``; returns an unregister function.
-
-        The handler runs on the executor's thread, like a subscription callback.
-        """
-        raise NotImplementedError(f"the {self.name} transport has no services")
-
-    def call_service(
-        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        """Call service ``name`` with ``request`` and return its response."""
-        raise NotImplementedError(f"the {self.name} transport has no services")
 
     @abstractmethod
     def close(self) -> None: ...

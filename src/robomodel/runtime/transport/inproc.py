@@ -5,6 +5,7 @@ from __future__ import annotations
 import collections
 import functools
 import logging
+import queue
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -13,12 +14,16 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
+from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.transport.base import (
+    Deferred,
     Endpoint,
     Graph,
-    ParameterHandler,
     PublisherHandle,
+    ServiceCallError,
+    ServiceHandle,
+    ServiceHandler,
     SubscriptionHandle,
     Transport,
 )
@@ -66,6 +71,18 @@ class _Pub(PublisherHandle):
             pubs.remove(self)
 
 
+@dataclass(eq=False)
+class _Srv(ServiceHandle):
+    transport: InprocTransport
+    endpoint: Endpoint
+    srv_type: type[Service]
+    handler: ServiceHandler
+
+    def destroy(self) -> None:
+        if self.transport._services.get(self.endpoint.topic) is self:
+            del self.transport._services[self.endpoint.topic]
+
+
 class InprocTransport(Transport):
     """Delivers the published object itself to every matching subscription (treat as read-only)."""
 
@@ -75,9 +92,9 @@ class InprocTransport(Transport):
         self._executor = executor
         self._subs: dict[str, list[_Sub]] = {}
         self._pubs: dict[str, list[_Pub]] = {}
-        self._nodes: dict[str, ParameterHandler] = {}
+        self._nodes: dict[str, int] = {}
         self._warned: set[tuple[str, str, str]] = set()
-        self._services: dict[str, ParameterHandler] = {}
+        self._services: dict[str, _Srv] = {}
 
     def _compatible(self, pub_type: type[Message], sub: _Sub, topic: str) -> bool:
         if pub_type is sub.msg_type:
@@ -123,54 +140,84 @@ class InprocTransport(Transport):
                         self._executor.post(functools.partial(deliver, msg))
         return sub
 
-    def register_node(self, node: str, handler: ParameterHandler) -> Callable[[], None]:
+    def register_node(self, node: str) -> Callable[[], None]:
         if node in self._nodes:
             log.warning("a node named %s already exists; names should be unique", node)
-        self._nodes[node] = handler
-        return lambda: self._nodes.pop(node, None)  # type: ignore[return-value]
+        self._nodes[node] = self._nodes.get(node, 0) + 1
+
+        def unregister() -> None:
+            count = self._nodes.get(node, 0) - 1
+            if count > 0:
+                self._nodes[node] = count
+            else:
+                self._nodes.pop(node, None)
+
+        return unregister
 
     def graph(self, timeout_s: float = 1.0) -> Graph:
-        graph = Graph(nodes=set(self._nodes), services=set(self._services))
+        graph = Graph(nodes=set(self._nodes))
         for pubs in self._pubs.values():
             for pub in pubs:
                 graph.add("pub", pub.endpoint)
         for subs in self._subs.values():
             for sub in subs:
                 graph.add("sub", sub.endpoint)
+        for srv in self._services.values():
+            graph.add("srv", srv.endpoint)
         return graph
 
-    def call_parameters(
-        self, node: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        handler = self._nodes.get(node)
-        if handler is None:
-            raise RobomodelError(
-                f"node '{node}' not found; nodes: {', '.join(sorted(self._nodes))}"
-            )
-        return handler(request)
-
-    def register_service(self, name: str, handler: ParameterHandler) -> Callable[[], None]:
+    def create_service(
+        self, node: str, name: str, srv_type: type[Service], handler: ServiceHandler
+    ) -> ServiceHandle:
         if name in self._services:
             raise RobomodelError(f"service '{name}' is already offered in this process")
-        self._services[name] = handler
-        return lambda: self._services.pop(name, None)  # type: ignore[return-value]
+        srv = _Srv(self, Endpoint(node, name, srv_type.__typename__), srv_type, handler)
+        self._services[name] = srv
+        return srv
 
     def call_service(
-        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        handler = self._services.get(name)
-        if handler is None:
-            raise RobomodelError(
-                f"service '{name}' not found; services: {', '.join(sorted(self._services)) or '(none)'}"
+        self,
+        name: str,
+        srv_type: type[Service],
+        request: Message,
+        timeout_s: float = 2.0,
+        *,
+        node: str | None = None,
+    ) -> Message:
+        srv = self._services.get(name)
+        if srv is None:
+            offered = ", ".join(sorted(self._services)) or "(none)"
+            raise ServiceCallError(f"service '{name}' not found; services: {offered}")
+        if srv.srv_type is not srv_type:
+            raise ServiceCallError(
+                f"service '{name}' has type {srv.srv_type.__typename__}, "
+                f"called as {srv_type.__typename__}"
             )
         spinner = self._executor.spinner
         if spinner is None or spinner == threading.get_ident():
-            return handler(request)
+            return _resolved(name, _run_handler(name, srv.handler, request))
         # Another thread (a spawner, as a separate process would be): the handler runs on the
         # spinning thread, as every other callback does, and this thread waits for it.
-        reply = self._executor.answer(handler, request, timeout_s)
-        if reply is None:
-            raise RobomodelError(f"service '{name}' did not answer in {timeout_s:g} s")
+        box: queue.SimpleQueue[Message | ServiceCallError] = queue.SimpleQueue()
+
+        def run() -> None:
+            try:
+                answer = _run_handler(name, srv.handler, request)
+            except ServiceCallError as exc:
+                box.put(exc)
+                return
+            if isinstance(answer, Deferred):
+                answer.then(box.put)
+            else:
+                box.put(answer)
+
+        self._executor.post(run)
+        try:
+            reply = box.get(timeout=timeout_s)
+        except queue.Empty:
+            raise ServiceCallError(f"service '{name}' did not answer in {timeout_s:g} s") from None
+        if isinstance(reply, ServiceCallError):
+            raise reply
         return reply
 
     def close(self) -> None:
@@ -178,3 +225,21 @@ class InprocTransport(Transport):
         self._subs.clear()
         self._pubs.clear()
         self._nodes.clear()
+
+
+def _run_handler(name: str, handler: ServiceHandler, request: Message) -> Message | Deferred:
+    try:
+        return handler(request)
+    except Exception as exc:  # the server goes on; the caller learns why
+        log.exception("service %s failed", name)
+        raise ServiceCallError(f"service '{name}' failed: {exc}") from None
+
+
+def _resolved(name: str, answer: Message | Deferred) -> Message:
+    if isinstance(answer, Deferred):
+        if answer.response is None:
+            raise ServiceCallError(
+                f"service '{name}' answers later; call it from another thread than the spinner"
+            )
+        return answer.response
+    return answer
