@@ -27,7 +27,7 @@ def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str = "zenoh"
         action="append",
         default=[],
         metavar="ENDPOINT",
-        help="also connect to a Zenoh endpoint on another machine, e.g. tcp/192.168.1.5:7447",
+        help="also connect to a Zenoh router or peer elsewhere, e.g. tcp/192.168.1.5:7447",
     )
     group.add_argument(
         "--listen",
@@ -51,7 +51,7 @@ def wait_for_peers(context: Context, timeout_s: float = 1.0) -> bool:
     session = getattr(context.transport, "session", None)
     deadline = time.monotonic() + timeout_s
     while session is not None and time.monotonic() < deadline:
-        if list(session.info.peers_zid()):
+        if list(session.info.peers_zid()) or list(session.info.routers_zid()):
             time.sleep(0.1)  # let liveliness tokens propagate over the new link
             return True
         time.sleep(0.02)

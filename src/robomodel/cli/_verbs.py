@@ -43,6 +43,11 @@ VERBS: tuple[Verb, ...] = (
     Verb("param", "robomodel.cli.param", "inspect and change node parameters (ros2 param)"),
     Verb("service", "robomodel.cli.service", "list and call services (ros2 service)"),
     Verb(
+        "router",
+        "robomodel.cli.router",
+        "run a Zenoh router for ROS 2 (ros2 run rmw_zenoh_cpp rmw_zenohd)",
+    ),
+    Verb(
         "publish-state",
         "robomodel.cli.publish_state",
         "run robot_state_publisher + joint_state_publisher for a description",

@@ -118,69 +118,82 @@ def register(subparsers: Any) -> None:
         p.set_defaults(func=_simple, service=f"{verb}_controller")
 
 
-def _call(args: argparse.Namespace, service: str, request: dict[str, Any]) -> dict[str, Any]:
+def _with_manager(args: argparse.Namespace, action: Any) -> Any:
+    """``action(client)`` against the controller manager the arguments name."""
+    from robomodel.control.client import ManagerClient
+
     cm = "/" + args.controller_manager.strip("/")
     with context_from_args(args) as context:
         wait_for_peers(context)
         try:
-            answer = context.call_service(f"{cm}/{service}", request, timeout_s=3.0)
+            return action(ManagerClient(context, cm, timeout_s=3.0))
         except RobomodelError as exc:
             raise RobomodelError(
                 f"{exc}; is `robomodel control run` running (controller manager {cm})?"
             ) from None
-    if "error" in answer and not answer.get("ok", True):
-        raise RobomodelError(str(answer["error"]))
-    if "error" in answer and "ok" not in answer:
-        raise RobomodelError(str(answer["error"]))
-    return answer
+
+
+def _check(ok: bool, what: str) -> None:
+    if not ok:
+        raise RobomodelError(f"{what} failed; the controller manager's log says why")
 
 
 def _list_controllers(args: argparse.Namespace) -> int:
-    controllers = _call(args, "list_controllers", {})["controllers"]
-    wn = max((len(c["name"]) for c in controllers), default=0)
-    wt = max((len(c["type"]) for c in controllers), default=0)
+    controllers = _with_manager(args, lambda c: c.list_controllers())
+    wn = max((len(c.name) for c in controllers), default=0)
+    wt = max((len(c.type) for c in controllers), default=0)
     for c in controllers:  # ros2controlcli list_controllers format
-        print(f"{c['name']:<{wn}} {c['type']:<{wt}}  {c['state']}")
+        print(f"{c.name:<{wn}} {c.type:<{wt}}  {c.state}")
         if args.verbose:
-            print(f"\tupdate_rate: {c['update_rate']} Hz")
+            print(f"\tupdate_rate: {c.update_rate} Hz")
             print("\tclaimed interfaces:")
-            for i in c["claimed_interfaces"]:
+            for i in c.claimed_interfaces:
                 print(f"\t\t{i}")
             print("\trequired state interfaces:")
-            for i in c["required_state_interfaces"]:
+            for i in c.required_state_interfaces:
                 print(f"\t\t{i}")
     return 0
 
 
 def _list_types(args: argparse.Namespace) -> int:
-    for name in _call(args, "list_controller_types", {})["types"]:
+    for name in _with_manager(args, lambda c: c.list_types()):
         print(name)
     return 0
 
 
 def _list_components(args: argparse.Namespace) -> int:
-    for k, c in enumerate(_call(args, "list_hardware_components", {})["components"]):
-        print(f"Hardware Component {k + 1}\n\tname: {c['name']}\n\ttype: {c['type']}")
-        print(f"\tplugin name: {c['plugin']}\n\tstate: {c['state']}")
+    for k, c in enumerate(_with_manager(args, lambda c: c.list_components())):
+        print(f"Hardware Component {k + 1}\n\tname: {c.name}\n\ttype: {c.type}")
+        print(f"\tplugin name: {c.plugin_name}\n\tstate: id={c.state.id} label={c.state.label}")
     return 0
 
 
 def _list_interfaces(args: argparse.Namespace) -> int:
-    answer = _call(args, "list_hardware_interfaces", {})
+    answer = _with_manager(args, lambda c: c.list_interfaces())
     print("command interfaces")
-    for i in answer["command"]:
-        available = "available" if i["available"] else "unavailable"
-        claimed = "claimed" if i["claimed"] else "unclaimed"
-        print(f"\t{i['name']} [{available}] [{claimed}]")
+    for i in answer.command_interfaces:
+        available = "available" if i.is_available else "unavailable"
+        claimed = "claimed" if i.is_claimed else "unclaimed"
+        print(f"\t{i.name} [{available}] [{claimed}]")
     print("state interfaces")
-    for i in answer["state"]:
-        print(f"\t{i['name']}")
+    for i in answer.state_interfaces:
+        print(f"\t{i.name}")
     return 0
 
 
 def _load(args: argparse.Namespace) -> int:
     state = {"configure": "inactive", "start": "active"}.get(args.set_state, args.set_state)
-    _call(args, "load_controller", {"name": args.name, "set_state": state})
+
+    def load(client: Any) -> None:
+        _check(client.load(args.name), f"loading controller {args.name}")
+        if state in ("inactive", "active"):
+            _check(client.configure(args.name), f"configuring controller {args.name}")
+        if state == "active":
+            ok, message = client.switch([args.name], [], 2)
+            if not ok:
+                raise RobomodelError(f"activating controller {args.name} failed: {message}")
+
+    _with_manager(args, load)
     print(
         f"Successfully loaded controller {args.name}"
         + (f" into state {args.set_state}" if args.set_state else "")
@@ -189,24 +202,20 @@ def _load(args: argparse.Namespace) -> int:
 
 
 def _switch(args: argparse.Namespace) -> int:
-    _call(
-        args,
-        "switch_controller",
-        {
-            "activate": args.activate,
-            "deactivate": args.deactivate,
-            "strictness": 2 if args.strict else 1,
-        },
+    strictness = 2 if args.strict else 1
+    ok, message = _with_manager(
+        args, lambda c: c.switch(args.activate, args.deactivate, strictness)
     )
+    if not ok:
+        raise RobomodelError(f"switching controllers failed: {message}")
     print("Successfully switched controllers")
     return 0
 
 
 def _simple(args: argparse.Namespace) -> int:
-    _call(args, args.service, {"name": args.name})
-    print(
-        f"Successfully {args.service.split('_')[0]}ed controller {args.name}".replace("eed ", "ed ")
-    )
+    verb = args.service.split("_")[0]
+    _check(_with_manager(args, lambda c: getattr(c, verb)(args.name)), f"{verb} of {args.name}")
+    print(f"Successfully {verb}ed controller {args.name}".replace("eed ", "ed "))
     return 0
 
 

@@ -18,7 +18,9 @@ from robomodel.cli._bus import (
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
+from robomodel.runtime.param_client import ParameterClient
 from robomodel.runtime.params import (
+    ParameterError,
     dump_parameters_yaml,
     load_parameters_file,
     parameter_type_name,
@@ -58,12 +60,8 @@ def register(subparsers: Any) -> None:
         p.set_defaults(func=globals()[f"run_{verb}"])
 
 
-def _call(context: Context, node: str, request: dict[str, Any]) -> dict[str, Any]:
-    node = node if node.startswith("/") else f"/{node}"
-    reply = context.call_parameters(node, request)
-    if "error" in reply:
-        raise RobomodelError(str(reply["error"]))
-    return reply
+def _client(context: Context, node: str) -> ParameterClient:
+    return ParameterClient(context, node if node.startswith("/") else f"/{node}")
 
 
 def run_list(args: argparse.Namespace) -> int:
@@ -84,7 +82,7 @@ def run_list(args: argparse.Namespace) -> int:
         else:
             nodes = sorted(settled_graph(context).nodes)
         for node in nodes:
-            names = _call(context, node, {"op": "list"})["names"]
+            names = _client(context, node).list()
             print(f"{node if node.startswith('/') else '/' + node}:")
             for name in names:
                 print(f"  {name}")
@@ -128,12 +126,11 @@ def run_get(args: argparse.Namespace) -> int:
         return _server_call(args, lambda server: _print_value(server.get(args.node)))
     with context_from_args(args) as context:
         wait_for_peers(context)
-        node = args.node if args.node.startswith("/") else f"/{args.node}"
-        reply = context.call_parameters(node, {"op": "get", "names": [args.name]})
-        if "error" in reply:
+        try:
+            value = _client(context, args.node).get([args.name])[args.name]
+        except ParameterError:
             print("Parameter not set.")
             return 1
-        value = reply["values"][args.name]
         kind = parameter_type_name(value)
         label = _LABELS.get(kind, f"{kind.replace('_', ' ').capitalize()} value is")
         print(f"{label}: {value}")
@@ -147,20 +144,20 @@ def run_set(args: argparse.Namespace) -> int:
     value = parse_parameter_value(args.value)
     with context_from_args(args) as context:
         wait_for_peers(context)
-        reply = _call(context, args.node, {"op": "set", "values": {args.name: value}})
-        if reply["successful"]:
+        result = _client(context, args.node).set({args.name: value})[0]
+        if result.successful:
             print("Set parameter successful")
             return 0
-        print(f"Setting parameter failed: {reply['reason']}")
+        print(f"Setting parameter failed: {result.reason}")
         return 1
 
 
 def run_dump(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         wait_for_peers(context)
-        values = _call(context, args.node, {"op": "dump"})["values"]
-        node = args.node if args.node.startswith("/") else f"/{args.node}"
-        print(dump_parameters_yaml(node, values), end="")
+        client = _client(context, args.node)
+        values = client.get(client.list())
+        print(dump_parameters_yaml(client.node, values), end="")
     return 0
 
 
@@ -175,11 +172,11 @@ def run_load(args: argparse.Namespace) -> int:
     failed = 0
     with context_from_args(args) as context:
         wait_for_peers(context)
-        for name, value in values.items():
-            reply = _call(context, node, {"op": "set", "values": {name: value}})
-            if reply["successful"]:
+        results = _client(context, node).set(values) if values else []
+        for name, result in zip(values, results, strict=False):
+            if result.successful:
                 print(f"Set parameter {name} successful")
             else:
                 failed += 1
-                print(f"Set parameter {name} failed: {reply['reason']}")
+                print(f"Set parameter {name} failed: {result.reason}")
     return 1 if failed else 0

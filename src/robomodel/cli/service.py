@@ -1,22 +1,20 @@
-"""``robomodel service``: list and call services on the bus (``ros2 service list|call``).
+"""``robomodel service``: list, type and call services on the bus (``ros2 service``).
 
-robomodel services take and return JSON-like mappings (not typed .srv messages), so a request
-is given as YAML, as ``ros2 service call`` takes it, without the type argument::
+Services have their ROS 2 types, so a robomodel service answers ``ros2 service call`` and a
+real ROS 2 service answers ``robomodel service call``. The request is YAML, as
+``ros2 service call`` takes it; the type may be left out when the graph knows it::
 
-    robomodel service list
-    robomodel service call /gazebo/pause_physics
-    robomodel service call /gazebo/step '{steps: 100}'
+    robomodel service list -t
+    robomodel service call /gazebo/pause_physics std_srvs/srv/Empty
     robomodel service call /controller_manager/list_controllers
+    robomodel service call /talker/get_parameters rcl_interfaces/srv/GetParameters "{names: [gain]}"
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import time
 from typing import Any
-
-import yaml
 
 from robomodel.cli._bus import (
     add_bus_arguments,
@@ -26,8 +24,11 @@ from robomodel.cli._bus import (
 )
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
+from robomodel.runtime import Context
+from robomodel.runtime.msg import message_from_yaml, message_to_yaml
+from robomodel.runtime.msg._schema import Service, get_service_type
 
-__all__ = ["parse_request", "register"]
+__all__ = ["register", "service_type"]
 
 
 def register(subparsers: Any) -> None:
@@ -36,12 +37,21 @@ def register(subparsers: Any) -> None:
     verbs.required = True
 
     p = verbs.add_parser("list", help="the services offered on the bus")
+    p.add_argument("-t", "--show-types", action="store_true", help="also print each one's type")
     add_bus_arguments(p)
     p.set_defaults(func=_run_list)
 
+    p = verbs.add_parser("type", help="the type of a service")
+    p.add_argument("service")
+    add_bus_arguments(p)
+    p.set_defaults(func=_run_type)
+
     p = verbs.add_parser("call", help="call a service with a YAML request and print the reply")
     p.add_argument("service", help="service name, e.g. /gazebo/reset_world")
-    p.add_argument("request", nargs="?", default="{}", help="YAML mapping, e.g. '{steps: 10}'")
+    p.add_argument(
+        "type", nargs="?", help="e.g. std_srvs/srv/Empty (default: the type the graph shows)"
+    )
+    p.add_argument("request", nargs="?", default="{}", help="YAML, e.g. '{names: [gain]}'")
     p.add_argument(
         "--timeout", type=float, default=3.0, metavar="S", help="give up after S s (default 3)"
     )
@@ -49,49 +59,56 @@ def register(subparsers: Any) -> None:
     p.set_defaults(func=_run_call)
 
 
-def parse_request(text: str) -> dict[str, Any]:
-    """The YAML mapping of a request (``''`` and ``{}`` are the empty request)."""
-    try:
-        value = yaml.safe_load(text) if text.strip() else {}
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        at = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        raise RobomodelError(
-            f"the request is not valid YAML{at}: {getattr(exc, 'problem', exc)}; "
-            "give a mapping, e.g. '{steps: 10}'"
-        ) from None
-    if value is None:
-        return {}
-    if not isinstance(value, dict):
-        raise RobomodelError(
-            f"the request must be a YAML mapping such as '{{steps: 10}}', got {text!r}"
-        )
-    return value
-
-
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        for name in sorted(settled_graph(context).services):
-            print(name)
+        for name, info in sorted(settled_graph(context).services.items()):
+            print(f"{name} [{', '.join(sorted(info.types))}]" if args.show_types else name)
     return 0
+
+
+def _run_type(args: argparse.Namespace) -> int:
+    name = "/" + args.service.lstrip("/")
+    with context_from_args(args) as context:
+        info = settled_graph(context).services.get(name)
+        if info is None:
+            raise RobomodelError(f"service '{name}' is not offered on the bus")
+        for type_name in sorted(info.types):
+            print(type_name)
+    return 0
+
+
+def service_type(context: Context, name: str, given: str | None) -> type[Service]:
+    """The type to call ``name`` with: ``given``, else the one the graph shows."""
+    if given:
+        return get_service_type(given)
+    info = settled_graph(context).services.get(name)
+    if info is None or not info.types:
+        offered = ", ".join(sorted(settled_graph(context, 0.5).services)) or "(none found)"
+        raise RobomodelError(
+            f"service '{name}' is not offered on the bus; give its type to call it anyway "
+            f"(services on the bus: {offered})"
+        )
+    if len(info.types) > 1:
+        raise RobomodelError(
+            f"service '{name}' is offered with several types ({', '.join(sorted(info.types))}); "
+            "give the one to call"
+        )
+    return get_service_type(next(iter(info.types)))
 
 
 def _run_call(args: argparse.Namespace) -> int:
     name = "/" + args.service.lstrip("/")
-    request = parse_request(args.request)
+    given, text = args.type, args.request
+    if given is not None and ("{" in given or ":" in given):  # the type left out, a request given
+        given, text = None, given
     with context_from_args(args) as context:
         wait_for_peers(context)
-        print(f"requester: making request: {json.dumps(request)}\n")
+        srv_type = service_type(context, name, given)
+        request = message_from_yaml(srv_type.Request, text)
+        print(f"requester: making request: {srv_type.Request.__typename__}")
+        print(message_to_yaml(request).rstrip() if request.__fields__ else "{}")
         start = time.monotonic()
-        try:
-            reply = context.call_service(name, request, timeout_s=args.timeout)
-        except RobomodelError as exc:
-            offered = sorted(context.graph(timeout_s=0.5).services)
-            raise RobomodelError(
-                f"{exc}; services on the bus: {', '.join(offered) or '(none found)'}"
-            ) from None
-        print(f"response ({(time.monotonic() - start) * 1e3:.1f} ms):")
-        print(yaml.safe_dump(reply, default_flow_style=False, sort_keys=False).rstrip())
-    if "error" in reply and not reply.get("success", reply.get("ok", False)):
-        return 2
+        reply = context.call_service(name, srv_type, request, timeout_s=args.timeout)
+        print(f"\nresponse ({(time.monotonic() - start) * 1e3:.1f} ms):")
+        print(message_to_yaml(reply).rstrip() if reply.__fields__ else "{}")
     return 0

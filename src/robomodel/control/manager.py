@@ -360,8 +360,8 @@ class ControllerManager:
     def _register_services(self) -> None:
         from robomodel.control.services import register_services
 
-        assert self.context is not None
-        self._unregister.extend(register_services(self, self.context))
+        assert self.node is not None
+        self._unregister.extend(register_services(self, self.node))
 
     def shutdown(self) -> None:
         self.stop()

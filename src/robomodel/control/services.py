@@ -1,22 +1,201 @@
-"""The controller manager's services on the bus (controller_manager.cpp ``init_services``).
+"""The controller manager's services with their controller_manager_msgs types (Jazzy), under
+``<namespace>/<manager>/<service>`` (controller_manager.cpp ``init_services``), so that
+``ros2 control list_controllers``, the ros2_control spawner and robomodel's own clients work
+alike.
 
-Each is ``<namespace>/<manager>/<service>`` with a JSON-like request and response; failures
-answer ``{"ok": false, "error": "..."}`` rather than raising in the manager's process.
+As in ros2_control, a refused request answers ``ok: false`` (SwitchController also says why in
+``message``) and the reason is logged by the manager; the manager's process never raises. A
+controller's type and parameters file may be set, before ``load_controller``, as the manager's
+parameters ``<controller>.type`` and ``<controller>.params_file`` (what the Jazzy spawner's
+``--controller-type`` and ``--param-file`` do).
 """
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from robomodel.control.controllers.registry import CONTROLLER_TYPES
 from robomodel.errors import RobomodelError
+from robomodel.runtime.msg import controller_manager_msgs as cm_msgs
+from robomodel.runtime.msg.lifecycle_msgs import State
 
 if TYPE_CHECKING:
     from robomodel.control.manager import ControllerManager
-    from robomodel.runtime.context import Context
+    from robomodel.runtime.node import Node
 
-__all__ = ["SERVICES", "register_services"]
+__all__ = ["SERVICES", "lifecycle_state", "register_services"]
+
+log = logging.getLogger("robomodel.control")
+
+_LIFECYCLE = {"unconfigured": 1, "inactive": 2, "active": 3, "finalized": 4}
+
+
+def lifecycle_state(label: str) -> State:
+    """A controller's or component's state as lifecycle_msgs/State (``id``, ``label``)."""
+    return State(_LIFECYCLE.get(label, 0), label)
+
+
+def _guarded(action: Callable[[], None], what: str) -> str | None:
+    """Run ``action``; the reason it failed (also logged), or None."""
+    try:
+        action()
+    except (RobomodelError, KeyError, ValueError) as exc:
+        reason = str(exc)
+        log.error("%s: %s", what, reason)
+        return reason or type(exc).__name__
+    return None
+
+
+def _controller_state(info: dict[str, Any]) -> cm_msgs.ControllerState:
+    return cm_msgs.ControllerState(
+        name=info["name"],
+        state=info["state"],
+        type=info["type"],
+        update_rate=int(info["update_rate"]),
+        claimed_interfaces=list(info["claimed_interfaces"]),
+        required_command_interfaces=list(info["required_command_interfaces"]),
+        required_state_interfaces=list(info["required_state_interfaces"]),
+    )
+
+
+def _interfaces(cm: ControllerManager) -> cm_msgs.ListHardwareInterfaces_Response:
+    listed = cm.resources.list_interfaces()
+    return cm_msgs.ListHardwareInterfaces_Response(
+        command_interfaces=[
+            cm_msgs.HardwareInterface(
+                str(i["name"]), "double", bool(i["available"]), bool(i["claimed"])
+            )
+            for i in listed["command"]
+        ],
+        state_interfaces=[
+            cm_msgs.HardwareInterface(str(i["name"]), "double", True, False)
+            for i in listed["state"]
+        ],
+    )
+
+
+def _components(cm: ControllerManager) -> cm_msgs.ListHardwareComponents_Response:
+    resources = cm.resources
+    components = []
+    for c in resources.components:
+        commands = {d.name for d in c.export_command_interfaces()}
+        states = [d.name for d in c.export_state_interfaces()]
+        components.append(
+            cm_msgs.HardwareComponentState(
+                name=c.name,
+                type=c.info.type,
+                plugin_name=c.info.plugin,
+                state=lifecycle_state(c.state.value),
+                command_interfaces=[
+                    cm_msgs.HardwareInterface(
+                        n, "double", resources.command_available(n), n in resources.claimed
+                    )
+                    for n in sorted(commands)
+                ],
+                state_interfaces=[
+                    cm_msgs.HardwareInterface(n, "double", True, False) for n in states
+                ],
+            )
+        )
+    return cm_msgs.ListHardwareComponents_Response(components)
+
+
+def _spec_from_parameters(node: Node | None, name: str) -> tuple[str | None, dict[str, Any] | None]:
+    """``<name>.type`` and the parameters of ``<name>.params_file`` set on the manager."""
+    if node is None:
+        return None, None
+    store = node.parameters
+    type_name = store.get(f"{name}.type") if store.has(f"{name}.type") else None
+    params: dict[str, Any] | None = None
+    if store.has(f"{name}.params_file"):
+        from robomodel.launch.nodes.ros2_params import parameters_from_file
+
+        files = store.get(f"{name}.params_file")
+        params = {}
+        for path in [files] if isinstance(files, str) else list(files):
+            fqn = f"{node.namespace.rstrip('/')}/{name}"
+            params.update(parameters_from_file(Path(str(path)), fqn))
+        if type_name is None and "type" in params:
+            type_name = params.pop("type")
+        params.pop("type", None)
+    return (str(type_name) if type_name is not None else None), params
+
+
+def _load(
+    cm: ControllerManager, request: cm_msgs.LoadController_Request
+) -> cm_msgs.LoadController_Response:
+    name = request.name
+    type_name, params = _spec_from_parameters(cm.node, name)
+    failed = _guarded(
+        lambda: cm.load_controller(name, type_name, params), f"Could not load controller '{name}'"
+    )
+    return cm_msgs.LoadController_Response(failed is None)
+
+
+def _switch(
+    cm: ControllerManager, request: cm_msgs.SwitchController_Request
+) -> cm_msgs.SwitchController_Response:
+    failed = _guarded(
+        lambda: cm.switch_controllers(
+            list(request.activate_controllers),
+            list(request.deactivate_controllers),
+            int(request.strictness) or 1,
+        ),
+        "Could not switch controllers",
+    )
+    return cm_msgs.SwitchController_Response(failed is None, failed or "")
+
+
+def _reload(
+    cm: ControllerManager, request: cm_msgs.ReloadControllerLibraries_Request
+) -> cm_msgs.ReloadControllerLibraries_Response:
+    """Unload every controller (they must be inactive unless ``force_kill``); robomodel's
+    controllers are Python classes, so there is no library to reload."""
+    names = list(cm.entries)
+
+    def unload_all() -> None:
+        active = [n for n in names if cm.entries[n].controller.state.value == "active"]
+        if active and not request.force_kill:
+            raise RobomodelError(
+                f"controllers are still active: {', '.join(active)} (use force_kill)"
+            )
+        if active:
+            cm.switch_controllers(deactivate=active, strictness=1)
+        for n in names:
+            cm.unload_controller(n)
+
+    return cm_msgs.ReloadControllerLibraries_Response(
+        _guarded(unload_all, "Could not reload") is None
+    )
+
+
+def _handlers(cm: ControllerManager) -> list[tuple[str, Any, Callable[[Any], Any]]]:
+    m = cm_msgs
+    return [
+        ("list_controllers", m.ListControllers,
+         lambda r: m.ListControllers_Response([_controller_state(i) for i in cm.list_controllers()])),
+        ("list_controller_types", m.ListControllerTypes,
+         lambda r: m.ListControllerTypes_Response(
+             sorted(CONTROLLER_TYPES), ["controller_interface::ControllerInterface"] * len(CONTROLLER_TYPES))),
+        ("list_hardware_interfaces", m.ListHardwareInterfaces, lambda r: _interfaces(cm)),
+        ("list_hardware_components", m.ListHardwareComponents, lambda r: _components(cm)),
+        ("load_controller", m.LoadController, lambda r: _load(cm, r)),
+        ("configure_controller", m.ConfigureController,
+         lambda r: m.ConfigureController_Response(
+             _guarded(lambda: cm.configure_controller(r.name), f"Could not configure '{r.name}'") is None)),
+        ("switch_controller", m.SwitchController, lambda r: _switch(cm, r)),
+        ("unload_controller", m.UnloadController,
+         lambda r: m.UnloadController_Response(
+             _guarded(lambda: cm.unload_controller(r.name), f"Could not unload '{r.name}'") is None)),
+        ("cleanup_controller", m.CleanupController,
+         lambda r: m.CleanupController_Response(
+             _guarded(lambda: cm.cleanup_controller(r.name), f"Could not clean up '{r.name}'") is None)),
+        ("reload_controller_libraries", m.ReloadControllerLibraries, lambda r: _reload(cm, r)),
+    ]  # fmt: skip
+
 
 SERVICES = (
     "list_controllers",
@@ -28,70 +207,14 @@ SERVICES = (
     "switch_controller",
     "unload_controller",
     "cleanup_controller",
+    "reload_controller_libraries",
 )
 
-Handler = Callable[[dict[str, Any]], dict[str, Any]]
 
-
-def _guarded(action: Callable[[], None]) -> dict[str, Any]:
-    try:
-        action()
-    except (RobomodelError, KeyError) as exc:
-        return {"ok": False, "error": str(exc)}
-    return {"ok": True}
-
-
-def _handlers(cm: ControllerManager) -> dict[str, Handler]:
-    def load(request: dict[str, Any]) -> dict[str, Any]:
-        name = str(request["name"])
-
-        def run() -> None:
-            params = request.get("params")
-            cm.load_controller(
-                name, request.get("type"), params if isinstance(params, dict) else None
-            )
-            target = request.get("set_state")
-            if target in ("inactive", "active"):
-                cm.configure_controller(name)
-            if target == "active":
-                cm.switch_controllers(activate=[name])
-
-        return _guarded(run)
-
-    def components(_: dict[str, Any]) -> dict[str, Any]:
-        return {
-            "components": [
-                {
-                    "name": c.name,
-                    "type": c.info.type,
-                    "plugin": c.info.plugin,
-                    "state": c.state.value,
-                }
-                for c in cm.resources.components
-            ]
-        }
-
-    return {
-        "list_controllers": lambda r: {"controllers": cm.list_controllers()},
-        "list_controller_types": lambda r: {"types": sorted(CONTROLLER_TYPES)},
-        "list_hardware_interfaces": lambda r: cm.resources.list_interfaces(),
-        "list_hardware_components": components,
-        "load_controller": load,
-        "configure_controller": lambda r: _guarded(lambda: cm.configure_controller(r["name"])),
-        "switch_controller": lambda r: _guarded(
-            lambda: cm.switch_controllers(
-                r.get("activate", []), r.get("deactivate", []), int(r.get("strictness", 2))
-            )
-        ),
-        "unload_controller": lambda r: _guarded(lambda: cm.unload_controller(r["name"])),
-        "cleanup_controller": lambda r: _guarded(lambda: cm.cleanup_controller(r["name"])),
-    }
-
-
-def register_services(cm: ControllerManager, context: Context) -> list[Callable[[], None]]:
-    """Offer the manager's services; returns the unregister functions."""
+def register_services(cm: ControllerManager, node: Node) -> list[Callable[[], None]]:
+    """Offer the manager's services on its node; returns the unregister functions."""
     prefix = cm.service_prefix
     return [
-        context.create_service(f"{prefix}/{name}", handler)
-        for name, handler in _handlers(cm).items()
+        node.create_service(srv_type, f"{prefix}/{name}", handler).destroy
+        for name, srv_type, handler in _handlers(cm)
     ]

@@ -1,9 +1,10 @@
 """A ROS 1 parameter server (rosmaster's), shared by every robomodel process of a domain.
 
 The first ``robomodel launch`` of a domain hosts it, as ``roscore`` does, and offers it over the
-bus as the services ``/rosmaster/<call>`` (``getParam``, ``setParam``, ``deleteParam``,
-``hasParam``, ``searchParam``, ``getParamNames``); later processes of the domain find it there
-and use it. ``robomodel param get /name`` / ``set`` / ``list /`` / ``delete`` reach it too.
+bus as one service of its own, ``/rosmaster`` (``robomodel_interfaces/srv/MasterCall``: the call
+-- ``getParam``, ``setParam``, ``deleteParam``, ``hasParam``, ``searchParam``, ``getParamNames``
+-- and its arguments and result as JSON); later processes of the domain find it there and use
+it. ``robomodel param get /name`` / ``set`` / ``list /`` / ``delete`` reach it too.
 
 Values are stored as rosmaster stores them: a tree, so getting a namespace returns a dict and
 setting a dict replaces the whole namespace.
@@ -13,15 +14,21 @@ from __future__ import annotations
 
 import base64
 import copy
+import json
 import threading
 from collections.abc import Callable, Mapping
 from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.ros1.params import Binary
+from robomodel.runtime.msg.robomodel_interfaces import (
+    MasterCall,
+    MasterCall_Request,
+    MasterCall_Response,
+)
 
 __all__ = [
-    "SERVICE_PREFIX",
+    "SERVICE",
     "ParamServer",
     "ParamServerError",
     "RemoteParamServer",
@@ -30,7 +37,7 @@ __all__ = [
     "encode_value",
 ]
 
-SERVICE_PREFIX = "/rosmaster/"
+SERVICE = "/rosmaster"
 _CALLS = ("getParam", "setParam", "deleteParam", "hasParam", "searchParam", "getParamNames")
 
 
@@ -168,19 +175,22 @@ class ParamServer:
         return {"error": f"unknown call {call}"}
 
     def serve(self, context: Any) -> Callable[[], None]:
-        """Offer this server as ``/rosmaster/*`` services on ``context``'s bus."""
-        stops = [
-            context.create_service(SERVICE_PREFIX + call, self._handler(call)) for call in _CALLS
-        ]
+        """Offer this server as the ``/rosmaster`` service on ``context``'s bus."""
+        node = context.create_node("rosmaster")
+        node.create_service(MasterCall, SERVICE, self._answer)
+        return node.destroy  # type: ignore[no-any-return]
 
-        def stop() -> None:
-            for unregister in stops:
-                unregister()
-
-        return stop
-
-    def _handler(self, call: str) -> Callable[[dict[str, Any]], dict[str, Any]]:
-        return lambda request: self.handle(call, request)
+    def _answer(self, request: MasterCall_Request) -> MasterCall_Response:
+        try:
+            arguments = json.loads(request.arguments or "{}")
+        except ValueError:
+            return MasterCall_Response(False, "null", "arguments are not JSON")
+        if not isinstance(arguments, dict):
+            return MasterCall_Response(False, "null", "arguments must be a JSON object")
+        reply = self.handle(request.method, arguments)
+        if "error" in reply:
+            return MasterCall_Response(False, "null", str(reply["error"]))
+        return MasterCall_Response(True, json.dumps(reply.get("value")), "")
 
 
 class RemoteParamServer:
@@ -193,13 +203,13 @@ class RemoteParamServer:
     def _call(self, call: str, **request: Any) -> Any:
         try:
             reply = self._context.call_service(
-                SERVICE_PREFIX + call, request, timeout_s=self._timeout_s
+                SERVICE, MasterCall, MasterCall_Request(call, json.dumps(request)), self._timeout_s
             )
         except RobomodelError as exc:
             raise ParamServerError(f"the parameter server does not answer: {exc}") from None
-        if "error" in reply:
-            raise ParamServerError(str(reply["error"]))
-        return decode_value(reply.get("value"))
+        if not reply.ok:
+            raise ParamServerError(reply.error)
+        return decode_value(json.loads(reply.result))
 
     def get(self, name: str) -> Any:
         return self._call("getParam", key=name)

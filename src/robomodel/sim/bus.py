@@ -13,12 +13,9 @@ the root link) with the ground truth, and a latched ``/tf_static`` ``world -> <p
 at the spawn pose, so a viewer with fixed frame ``world`` draws the robot where its odometry
 says and the ground-truth frame where it really is (Gazebo's model vs. the odometry in RViz).
 
-Services (JSON-like dicts, as the runtime's services): ``/gazebo/apply_body_wrench``
-``{link, prefix?, force: [3], torque: [3]}``, ``/gazebo/set_model_state``
-``{prefix?, pose: [x, y, z, R, P, Y]}``, ``/gazebo/reset_world`` and
-``/gazebo/reset_simulation``, ``/gazebo/pause_physics``, ``/gazebo/unpause_physics``,
-``/gazebo/step`` ``{steps: n}`` (single-stepping while paused, run by the owner's loop via
-:attr:`SimBridge.pending_steps`).
+Services: pause, unpause, reset, step (single-stepping while paused, run by the owner's loop
+via :attr:`SimBridge.pending_steps`), apply a body wrench and set a model's pose, with their
+gazebo_msgs / std_srvs / ros_gz_interfaces types (see :mod:`robomodel.sim.bus_services`).
 """
 
 from __future__ import annotations
@@ -82,6 +79,8 @@ class SimBridge:
         clock_rate_hz: /clock and bus-tick rate (Gazebo classic publishes /clock at 100 Hz
             by default, ROS 1 ``pub_clock_frequency``).
         ground_truth_rate_hz: Rate of the ground-truth odometry (0 disables it).
+        node_name: The bridge's node (``gazebo``; a :class:`SimServer`, whose own node has
+            that name, gives another).
     """
 
     def __init__(
@@ -91,6 +90,7 @@ class SimBridge:
         *,
         clock_rate_hz: float = 100.0,
         ground_truth_rate_hz: float = 50.0,
+        node_name: str = "gazebo",
     ) -> None:
         self.sim = sim
         self.context = context
@@ -98,7 +98,7 @@ class SimBridge:
         self.pending_steps = 0
         self._last_idle_clock = 0.0
         self._requests: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
-        self.node = context.create_node("gazebo")
+        self.node = context.create_node(node_name)
         self._clock_pub = self.node.create_publisher(Clock, "/clock", 10)
         self._manual = isinstance(context.clock, ManualClock)
         sim.every(clock_rate_hz, self._tick, order=-1)
@@ -110,17 +110,12 @@ class SimBridge:
             self._add_robot(built, ground_truth_rate_hz)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
+        self._wrench_ends: list[tuple[float, str, str]] = []
+        from robomodel.sim.bus_services import bridge_services
+
         self._unregister = [
-            context.create_service(name, handler)
-            for name, handler in (
-                ("/gazebo/apply_body_wrench", self._apply_wrench),
-                ("/gazebo/set_model_state", self._set_model_state),
-                ("/gazebo/reset_world", self._reset),
-                ("/gazebo/reset_simulation", self._reset),
-                ("/gazebo/pause_physics", self._pause),
-                ("/gazebo/unpause_physics", self._unpause),
-                ("/gazebo/step", self._step),
-            )
+            self.node.create_service(srv_type, name, handler).destroy
+            for name, srv_type, handler in bridge_services(self)
         ]
 
     def _add_robot(self, built: BuiltRobot, ground_truth_rate_hz: float) -> None:
@@ -220,6 +215,7 @@ class SimBridge:
         self.context.spin_once(0.0)
 
     def _tick(self, time_s: float) -> None:
+        self._end_wrenches(time_s)
         while True:
             try:
                 request = self._requests.get_nowait()
@@ -235,44 +231,35 @@ class SimBridge:
                 self.context.spin_once(0.0)
 
     # -- services ------------------------------------------------------------------------------
-    def _queue(self, action: Callable[[], None]) -> dict[str, Any]:
+    def queue(self, action: Callable[[], None]) -> None:
+        """Run ``action`` in the simulation loop, at its next tick (or poll while paused)."""
         self._requests.put(action)
-        return {"success": True, "status_message": "queued for the next tick"}
 
-    def _apply_wrench(self, request: dict[str, Any]) -> dict[str, Any]:
-        link = str(request.get("link", request.get("body_name", "")))
-        prefix = str(request.get("prefix", ""))
-        force = [float(v) for v in request.get("force", (0.0, 0.0, 0.0))]
-        torque = [float(v) for v in request.get("torque", (0.0, 0.0, 0.0))]
-        self.sim.body_id(link, prefix=prefix)  # unknown link: error now, to the caller
-        return self._queue(
-            lambda: self.sim.apply_wrench(link, force_n=force, torque_nm=torque, prefix=prefix)
-        )
+    def apply_wrench(
+        self,
+        link: str,
+        prefix: str,
+        force_n: tuple[float, float, float],
+        torque_nm: tuple[float, float, float],
+        duration_s: float | None,
+    ) -> None:
+        """Apply a wrench (world frame, at the link's centre of mass) from the next tick on,
+        for ``duration_s`` of sim time or, with None, until another one replaces it."""
 
-    def _set_model_state(self, request: dict[str, Any]) -> dict[str, Any]:
-        prefix = str(request.get("prefix", ""))
-        pose = [float(v) for v in request.get("pose", (0.0,) * 6)]
-        self.sim.robot(prefix)
-        return self._queue(lambda: self.sim.teleport(pose[:3], pose[3:], prefix=prefix))
+        def apply() -> None:
+            self.sim.apply_wrench(link, force_n=force_n, torque_nm=torque_nm, prefix=prefix)
+            self._wrench_ends = [e for e in self._wrench_ends if e[1:] != (link, prefix)]
+            if duration_s is not None:
+                self._wrench_ends.append((self.sim.time_s + duration_s, link, prefix))
 
-    def _reset(self, request: dict[str, Any]) -> dict[str, Any]:
-        return self._queue(self.sim.reset)
+        self.queue(apply)
 
-    def _pause(self, request: dict[str, Any]) -> dict[str, Any]:
-        self.paused = True
-        return {"success": True}
-
-    def _unpause(self, request: dict[str, Any]) -> dict[str, Any]:
-        self.paused = False
-        self.pending_steps = 0
-        return {"success": True}
-
-    def _step(self, request: dict[str, Any]) -> dict[str, Any]:
-        steps = int(request.get("steps", 1))
-        if steps < 1:
-            return {"success": False, "status_message": f"steps must be >= 1, got {steps}"}
-        self.pending_steps += steps
-        return {"success": True}
+    def _end_wrenches(self, time_s: float) -> None:
+        ended = [e for e in self._wrench_ends if e[0] <= time_s]
+        if ended:
+            self._wrench_ends = [e for e in self._wrench_ends if e[0] > time_s]
+            for _, link, prefix in ended:
+                self.sim.apply_wrench(link, prefix=prefix)
 
     def close(self) -> None:
         for unregister in self._unregister:

@@ -98,11 +98,10 @@ class SimServer:
         self.bridge: SimBridge | None = None
         self._paused = paused
         self._anchor: tuple[float, float] | None = None
+        self.node = context.create_node("gazebo")
         self._rebuild()
-        self._unregister = [
-            context.create_service(name, handler)
-            for name, handler in service_handlers(self).items()
-        ]
+        for name, srv_type, handler in service_handlers(self):
+            self.node.create_service(srv_type, name, handler)
 
     # -- spawning -------------------------------------------------------------------------------
     def spawn(
@@ -179,6 +178,22 @@ class SimServer:
         self.robots = [r for r in self.robots if r.model_name != model_name]
         self._rebuild()
 
+    def model_names(self) -> list[str]:
+        """The robots' and the SDF models' names (``get_world_properties``)."""
+        names = [r.model_name for r in self.robots]
+        return names + sorted({s.model for s in self.world.shapes if s.model not in names})
+
+    def set_joint_positions(self, model_name: str, positions: dict[str, float]) -> None:
+        """Set joints of a spawned robot (``set_model_configuration``, ``spawn_model -J``)."""
+        for entry in self.robots:
+            if entry.model_name == model_name:
+                self._set_joints(entry, positions)
+                return
+        from robomodel.errors import describe_unknown
+
+        names = [r.model_name for r in self.robots]
+        raise SimulationError(describe_unknown("model", model_name, names, "models are"))
+
     def _set_joints(self, entry: SpawnedRobot, positions: dict[str, float]) -> None:
         from robomodel.sim._mujoco import mujoco
 
@@ -188,9 +203,7 @@ class SimServer:
         for joint, value in positions.items():
             jid = mj.mj_name2id(model, mj.mjtObj.mjOBJ_JOINT, entry.placement.prefix + joint)
             if jid < 0:
-                raise SimulationError(
-                    f"-J {joint}: model '{entry.model_name}' has no joint '{joint}'"
-                )
+                raise SimulationError(f"model '{entry.model_name}' has no joint '{joint}'")
             data.qpos[model.jnt_qposadr[jid]] = value
         mj.mj_forward(model, data)
 
@@ -251,7 +264,7 @@ class SimServer:
         self.sim = sim
         for entry in self.robots:
             entry.control = self._control(sim, entry, previous.get(entry.model_name))
-        self.bridge = SimBridge(sim, self.context)
+        self.bridge = SimBridge(sim, self.context, node_name="gazebo_physics")
         self.bridge.paused = self._paused
 
     def _control(
@@ -329,9 +342,7 @@ class SimServer:
                 self._anchor = None
 
     def close(self) -> None:
-        for unregister in self._unregister:
-            unregister()
-        self._unregister = []
+        self.node.destroy()
         for entry in self.robots:
             if entry.control is not None:
                 entry.control.manager.close()

@@ -1,107 +1,136 @@
-"""The simulation server's gazebo_msgs services (as dicts): spawn, delete, world properties.
+"""The simulation server's world services with their gazebo_msgs types: spawn, delete, model
+configuration and world properties, under gazebo_ros's ROS 1 names (``/gazebo/...``) and its
+ROS 2 names (``/spawn_entity``, ``/delete_entity``, ``/get_model_list``).
 
-``/gazebo/spawn_urdf_model`` and ``/gazebo/spawn_sdf_model`` (gazebo_ros, ROS 1),
-``/spawn_entity`` (gazebo_ros, ROS 2), ``/gazebo/delete_model`` and
-``/gazebo/get_world_properties``. A failure is a reply with ``success: false`` and the reason in
-``status_message``, never an exception in the server's process.
+A failure is a reply with ``success: false`` and the reason in ``status_message`` (prefixed
+with the service type, as gazebo_ros words it), never an exception in the server's process.
+``SpawnEntity``'s XML is a URDF (``<robot>``) or an SDF model (``<sdf>``), as in gazebo_ros.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from functools import partial
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.sim.exceptions import SimulationError
+from robomodel.runtime.msg import gazebo_msgs as gz
+from robomodel.runtime.msg.geometry_msgs import Pose
+from robomodel.runtime.msg.std_msgs import Header
+from robomodel.sim.bus_services import rpy_from_quaternion_xyzw
 
 if TYPE_CHECKING:
     from robomodel.sim.server import SimServer
 
 __all__ = ["service_handlers"]
 
-Handler = Callable[[dict[str, Any]], dict[str, Any]]
+Handler = Callable[[Any], Any]
+_ERRORS = (RobomodelError, KeyError, TypeError, ValueError, IndexError)
 
 
-def service_handlers(server: SimServer) -> dict[str, Handler]:
-    """The server's services by name, in the order they are offered."""
-    return {
-        "/gazebo/spawn_urdf_model": partial(spawn_urdf_model, server),
-        "/spawn_entity": partial(spawn_entity, server),
-        "/gazebo/spawn_sdf_model": partial(spawn_sdf_model, server),
-        "/gazebo/delete_model": partial(delete_model, server),
-        "/gazebo/get_world_properties": partial(get_world_properties, server),
-    }
+def _pose(pose: Pose) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    p, q = pose.position, pose.orientation
+    if (q.x, q.y, q.z, q.w) == (0.0, 0.0, 0.0, 0.0):  # an unset quaternion: no rotation
+        return (p.x, p.y, p.z), (0.0, 0.0, 0.0)
+    return (p.x, p.y, p.z), rpy_from_quaternion_xyzw(q.x, q.y, q.z, q.w)
 
 
-def spawn_urdf_model(server: SimServer, request: dict[str, Any]) -> dict[str, Any]:
-    """gazebo_ros ``/gazebo/spawn_urdf_model``: ``model_name``, ``model_xml``,
-    ``robot_namespace``, ``initial_pose`` [x, y, z, R, P, Y], ``joints``, ``unpause``."""
+def _spawn(
+    server: SimServer, name: str, xml: str, robot_namespace: str, pose: Pose, reference: str
+) -> tuple[bool, str]:
+    if reference not in ("", "world"):
+        return False, f"reference_frame '{reference}': only the world frame is supported"
+    xyz, rpy = _pose(pose)
     try:
-        pose = [float(v) for v in request.get("initial_pose", (0.0,) * 6)]
-        if len(pose) != 6:
-            raise SimulationError(f"initial_pose needs 6 numbers, got {len(pose)}")
-        joints = {str(k): float(v) for k, v in dict(request.get("joints", {})).items()}
-        server.spawn(
-            str(request.get("model_name", "")) or "robot",
-            str(request["model_xml"]),
-            xyz_m=(pose[0], pose[1], pose[2]),
-            rpy_rad=(pose[3], pose[4], pose[5]),
-            joint_positions=joints,
-            robot_namespace=str(request.get("robot_namespace", "/")),
-        )
-    except (RobomodelError, KeyError, TypeError, ValueError) as exc:
-        return {"success": False, "status_message": f"SpawnModel: {exc}"}
-    if request.get("unpause") and server.bridge is not None:
-        server.bridge.paused = False
-    return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
+        if "<sdf" in xml[:512]:
+            server.spawn_sdf(name or "model", xml, xyz_m=xyz, rpy_rad=rpy)
+        else:
+            server.spawn(
+                name or "robot", xml, xyz_m=xyz, rpy_rad=rpy, robot_namespace=robot_namespace or "/"
+            )
+    except _ERRORS as exc:
+        return False, str(exc)
+    return True, "Successfully spawned entity"
 
 
-def spawn_entity(server: SimServer, request: dict[str, Any]) -> dict[str, Any]:
-    """gazebo_ros (ROS 2) ``/spawn_entity``: ``name``, ``xml``, ``robot_namespace``,
-    ``initial_pose`` [x, y, z, R, P, Y]."""
-    renamed = {
-        "model_name": request.get("name", ""),
-        "model_xml": request.get("xml", ""),
-        "robot_namespace": request.get("robot_namespace", "/"),
-        "initial_pose": request.get("initial_pose", (0.0,) * 6),
-        "unpause": request.get("unpause", False),
-    }
-    reply = spawn_urdf_model(server, renamed)
-    message = str(reply["status_message"]).replace("SpawnModel: ", "SpawnEntity: ")
-    return {"success": reply["success"], "status_message": message}
+def spawn_model(server: SimServer, request: gz.SpawnModel_Request) -> gz.SpawnModel_Response:
+    """gazebo_ros (ROS 1) ``/gazebo/spawn_urdf_model`` and ``/gazebo/spawn_sdf_model``."""
+    ok, message = _spawn(
+        server, request.model_name, request.model_xml, request.robot_namespace,
+        request.initial_pose, request.reference_frame,
+    )  # fmt: skip
+    return gz.SpawnModel_Response(ok, f"SpawnModel: {message}")
 
 
-def spawn_sdf_model(server: SimServer, request: dict[str, Any]) -> dict[str, Any]:
-    """gazebo_ros ``/gazebo/spawn_sdf_model``: ``model_name``, ``model_xml``, ``initial_pose``."""
+def spawn_entity(server: SimServer, request: gz.SpawnEntity_Request) -> gz.SpawnEntity_Response:
+    """gazebo_ros (ROS 2) ``/spawn_entity``."""
+    ok, message = _spawn(
+        server, request.name, request.xml, request.robot_namespace,
+        request.initial_pose, request.reference_frame,
+    )  # fmt: skip
+    return gz.SpawnEntity_Response(ok, f"SpawnEntity: {message}")
+
+
+def _delete(server: SimServer, name: str) -> tuple[bool, str]:
     try:
-        pose = [float(v) for v in request.get("initial_pose", (0.0,) * 6)]
-        server.spawn_sdf(
-            str(request.get("model_name", "")) or "model",
-            str(request["model_xml"]),
-            xyz_m=(pose[0], pose[1], pose[2]),
-            rpy_rad=(pose[3], pose[4], pose[5]),
-        )
-    except (RobomodelError, KeyError, TypeError, ValueError, IndexError) as exc:
-        return {"success": False, "status_message": f"SpawnModel: {exc}"}
-    return {"success": True, "status_message": "SpawnModel: Successfully spawned entity"}
-
-
-def delete_model(server: SimServer, request: dict[str, Any]) -> dict[str, Any]:
-    """gazebo_ros ``/gazebo/delete_model``: ``model_name``."""
-    try:
-        server.delete(str(request.get("model_name", "")))
+        server.delete(name)
     except RobomodelError as exc:
-        return {"success": False, "status_message": f"DeleteModel: {exc}"}
-    return {"success": True, "status_message": "DeleteModel: successfully deleted model"}
+        return False, str(exc)
+    return True, "successfully deleted model"
 
 
-def get_world_properties(server: SimServer, request: dict[str, Any]) -> dict[str, Any]:
-    """gazebo_ros ``/gazebo/get_world_properties``: the sim time and the robots' names."""
-    assert server.sim is not None
-    return {
-        "sim_time": server.sim.time_s,
-        "model_names": [r.model_name for r in server.robots],
-        "rendering_enabled": False,
-        "success": True,
-    }
+def delete_model(server: SimServer, request: gz.DeleteModel_Request) -> gz.DeleteModel_Response:
+    ok, message = _delete(server, request.model_name)
+    return gz.DeleteModel_Response(ok, f"DeleteModel: {message}")
+
+
+def delete_entity(server: SimServer, request: gz.DeleteEntity_Request) -> gz.DeleteEntity_Response:
+    ok, message = _delete(server, request.name)
+    return gz.DeleteEntity_Response(ok, f"DeleteEntity: {message}")
+
+
+def set_model_configuration(
+    server: SimServer, request: gz.SetModelConfiguration_Request
+) -> gz.SetModelConfiguration_Response:
+    """gazebo_ros ``/gazebo/set_model_configuration`` (``spawn_model -J``): joint positions."""
+    if len(request.joint_names) != len(request.joint_positions):
+        return gz.SetModelConfiguration_Response(
+            False, "SetModelConfiguration: joint_names and joint_positions differ in length"
+        )
+    positions = dict(zip(request.joint_names, request.joint_positions, strict=True))
+    try:
+        server.set_joint_positions(request.model_name, positions)
+    except RobomodelError as exc:
+        return gz.SetModelConfiguration_Response(False, f"SetModelConfiguration: {exc}")
+    return gz.SetModelConfiguration_Response(True, "SetModelConfiguration: success")
+
+
+def get_world_properties(server: SimServer, _request: Any) -> gz.GetWorldProperties_Response:
+    """gazebo_ros ``/gazebo/get_world_properties``: the sim time and the models' names."""
+    return gz.GetWorldProperties_Response(
+        sim_time=server.sim.time_s if server.sim is not None else 0.0,
+        model_names=server.model_names(),
+        rendering_enabled=False,
+        success=True,
+        status_message="GetWorldProperties: got properties",
+    )
+
+
+def get_model_list(server: SimServer, _request: Any) -> gz.GetModelList_Response:
+    """gazebo_ros (ROS 2) ``/get_model_list``."""
+    return gz.GetModelList_Response(Header(), server.model_names(), True)
+
+
+def service_handlers(server: SimServer) -> list[tuple[str, Any, Handler]]:
+    """(name, type, handler) of the server's services, in the order they are offered."""
+    return [
+        ("/gazebo/spawn_urdf_model", gz.SpawnModel, lambda r: spawn_model(server, r)),
+        ("/gazebo/spawn_sdf_model", gz.SpawnModel, lambda r: spawn_model(server, r)),
+        ("/spawn_entity", gz.SpawnEntity, lambda r: spawn_entity(server, r)),
+        ("/gazebo/delete_model", gz.DeleteModel, lambda r: delete_model(server, r)),
+        ("/delete_entity", gz.DeleteEntity, lambda r: delete_entity(server, r)),
+        ("/gazebo/set_model_configuration", gz.SetModelConfiguration,
+         lambda r: set_model_configuration(server, r)),
+        ("/gazebo/get_world_properties", gz.GetWorldProperties,
+         lambda r: get_world_properties(server, r)),
+        ("/get_model_list", gz.GetModelList, lambda r: get_model_list(server, r)),
+    ]  # fmt: skip

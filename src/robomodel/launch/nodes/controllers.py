@@ -123,10 +123,13 @@ def wait_for_manager(
     """Poll ``manager``'s ``list_controllers`` until it answers (True), ``timeout_s`` passes
     (False; with ``zero_waits_forever``, a timeout of 0 never passes) or the node is stopped
     (None), as the spawners wait for their controller manager."""
+    from robomodel.control.client import ManagerClient
+
+    client = ManagerClient(ctx.runtime, manager)
     deadline = time.monotonic() + timeout_s
     while not node.stopping.is_set():
         try:
-            ctx.runtime.call_service(f"{manager}/list_controllers", {}, call_timeout_s)
+            client.list_controllers(timeout_s=call_timeout_s)
             return True
         except RobomodelError:
             if not (zero_waits_forever and timeout_s <= 0) and time.monotonic() > deadline:
@@ -136,20 +139,15 @@ def wait_for_manager(
 
 
 class _Manager:
-    """Calls to one controller manager's services."""
+    """Calls to one controller manager's services, with the spawner scripts' messages."""
 
     def __init__(self, ctx: NodeContext, namespace: str | None) -> None:
+        from robomodel.control.client import ManagerClient
+
         base = ctx.resolve(namespace) if namespace else ctx.spec.namespace
         self.prefix = base.rstrip("/") + "/controller_manager"
         self.ctx = ctx
-
-    def call(
-        self, service: str, request: dict[str, Any], timeout_s: float = 10.0
-    ) -> dict[str, Any]:
-        reply: dict[str, Any] = self.ctx.runtime.call_service(
-            f"{self.prefix}/{service}", request, timeout_s
-        )
-        return reply
+        self.client = ManagerClient(ctx.runtime, self.prefix)
 
     def wait(self, node: ThreadNode, timeout_s: float) -> bool:
         self.ctx.log(f"Controller Spawner: Waiting for service {self.prefix}/load_controller")
@@ -163,21 +161,19 @@ class _Manager:
         return bool(ready)
 
     def load(self, name: str) -> bool:
-        reply = self.call("load_controller", {"name": name, "set_state": "inactive"})
-        if not reply.get("ok"):
-            self.ctx.log(f"Failed to load {name}: {reply.get('error', 'unknown error')}")
-        return bool(reply.get("ok"))
+        ok = self.client.load(name)
+        if not ok:
+            self.ctx.log(f"Failed to load {name} (the controller manager logs why)")
+        return ok
 
     def switch(self, start: list[str], stop: list[str], strictness: int = 2) -> bool:
-        request = {"activate": start, "deactivate": stop, "strictness": strictness}
-        reply = self.call("switch_controller", request)
-        if not reply.get("ok"):
-            self.ctx.log(f"switch_controller failed: {reply.get('error', 'unknown error')}")
-        return bool(reply.get("ok"))
+        ok, message = self.client.switch(start, stop, strictness)
+        if not ok:
+            self.ctx.log(f"switch_controller failed: {message or 'unknown error'}")
+        return ok
 
     def unload(self, name: str) -> bool:
-        reply = self.call("unload_controller", {"name": name})
-        return bool(reply.get("ok"))
+        return self.client.unload(name)
 
 
 @register(
@@ -245,10 +241,10 @@ def controller_manager(ctx: NodeContext) -> RunningNode:
             return 1
         ok = True
         if command == "list":
-            for entry in manager.call("list_controllers", {}).get("controllers", []):
-                ctx.log(f"{entry['name']} - {entry['type']} ( {entry['state']} )")
+            for entry in manager.client.list_controllers():
+                ctx.log(f"{entry.name} - {entry.type} ( {entry.state} )")
         elif command == "list-types":
-            for name in manager.call("list_controller_types", {}).get("types", []):
+            for name in manager.client.list_types():
                 ctx.log(name)
         if command in ("load", "spawn"):
             ok = all(manager.load(n) for n in names)

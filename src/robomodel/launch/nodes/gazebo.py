@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
 
 __all__ = [
@@ -275,14 +276,12 @@ def spawn_model(ctx: NodeContext) -> RunningNode:
             xml = Path(options.file).read_text(encoding="utf-8")
         except OSError as exc:
             raise RobomodelError(f"spawn_model: cannot read {options.file}: {exc}") from None
-    request = {
-        "model_name": options.model,
-        "model_xml": xml,
-        "robot_namespace": options.robot_namespace or ctx.namespace,
-        "initial_pose": [*options.xyz_m, *options.rpy_rad],
-        "joints": options.joints,
-        "unpause": options.unpause,
-    }
+    request = SpawnModel_Request(
+        model_name=options.model,
+        model_xml=xml,
+        robot_namespace=options.robot_namespace or ctx.namespace,
+        initial_pose=pose_message(options.xyz_m, options.rpy_rad),
+    )
     service = f"{options.gazebo_namespace}/spawn_{options.format}_model"
 
     def work(node: ThreadNode) -> int:
@@ -290,18 +289,50 @@ def spawn_model(ctx: NodeContext) -> RunningNode:
         ctx.log(f"Waiting for service {service}")
         while not node.stopping.is_set():
             try:
-                reply = ctx.runtime.call_service(service, request, timeout_s=30.0)
+                reply = ctx.runtime.call_service(service, SpawnModel, request, timeout_s=30.0)
             except RobomodelError:
                 if time.monotonic() > deadline:
                     ctx.log(f"Timeout waiting for service {service}")
                     return 1
                 time.sleep(0.2)
                 continue
-            message = reply.get("status_message", reply.get("error", ""))
-            ctx.log(f"Spawn status: {message}")
-            return 0 if reply.get("success") else 1
+            ctx.log(f"Spawn status: {reply.status_message}")
+            if not reply.success:
+                return 1
+            return _after_spawn(ctx, options)
         return 0
 
     source = f"ros parameter {options.param}" if options.param else f"file {options.file}"
     ctx.log(f"Loading model XML from {source}")
     return ThreadNode(f"spawn_model {ctx.spec.fqn}", work, ctx.log)
+
+
+def pose_message(xyz_m: tuple[float, float, float], rpy_rad: tuple[float, float, float]) -> Any:
+    """A geometry_msgs/Pose from a position and roll, pitch, yaw."""
+    from robomodel.description.model.pose import quat_xyzw_from_rpy
+    from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion
+
+    qx, qy, qz, qw = quat_xyzw_from_rpy(*rpy_rad)
+    return Pose(Point(*xyz_m), Quaternion(qx, qy, qz, qw))
+
+
+def _after_spawn(ctx: NodeContext, options: SpawnArgs) -> int:
+    """spawn_model's ``-J`` (``set_model_configuration``) and ``-unpause``."""
+    from robomodel.runtime.msg import gazebo_msgs, std_srvs
+
+    code = 0
+    if options.joints:
+        request = gazebo_msgs.SetModelConfiguration_Request(
+            model_name=options.model,
+            joint_names=list(options.joints),
+            joint_positions=[float(v) for v in options.joints.values()],
+        )
+        service = f"{options.gazebo_namespace}/set_model_configuration"
+        reply = ctx.runtime.call_service(service, gazebo_msgs.SetModelConfiguration, request, 10.0)
+        ctx.log(f"SetModelConfiguration: {reply.status_message}")
+        code = 0 if reply.success else 1
+    if options.unpause:
+        ctx.runtime.call_service(
+            f"{options.gazebo_namespace}/unpause_physics", std_srvs.Empty, None, 10.0
+        )
+    return code

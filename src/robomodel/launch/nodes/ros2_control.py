@@ -15,12 +15,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.model import NodeSpec
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
 from robomodel.launch.nodes.controllers import wait_for_manager
+
+if TYPE_CHECKING:
+    from robomodel.control.client import ManagerClient
 
 __all__ = ["Ros2SpawnerArgs", "parse_ros2_spawner_args"]
 
@@ -218,9 +221,10 @@ def _manager_path(ctx: NodeContext, name: str) -> str:
     return ctx.spec.namespace.rstrip("/") + "/" + name
 
 
-def _call(ctx: NodeContext, path: str, service: str, request: dict[str, Any]) -> dict[str, Any]:
-    reply: dict[str, Any] = ctx.runtime.call_service(f"{path}/{service}", request, 10.0)
-    return reply
+def _client(ctx: NodeContext, path: str) -> ManagerClient:
+    from robomodel.control.client import ManagerClient
+
+    return ManagerClient(ctx.runtime, path)
 
 
 def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bool:
@@ -228,12 +232,6 @@ def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bo
     if ready is False:
         ctx.log(f"Controller manager not available: {path} (after {timeout_s:g} s)")
     return bool(ready)
-
-
-def _file_params(path: str, name: str, namespace: str) -> dict[str, Any]:
-    from robomodel.launch.nodes.ros2_params import parameters_from_file
-
-    return parameters_from_file(Path(path), namespace.rstrip("/") + "/" + name)
 
 
 @register(
@@ -250,7 +248,8 @@ def spawner(ctx: NodeContext) -> RunningNode:
     def work(node: ThreadNode) -> int:
         if not _wait(ctx, node, path, options.timeout_s):
             return 1
-        listed = {c["name"] for c in _call(ctx, path, "list_controllers", {})["controllers"]}
+        client = _client(ctx, path)
+        listed = {c.name for c in client.list_controllers()}
         loaded: list[str] = []
         code = 0
         for name in options.controllers:
@@ -258,17 +257,11 @@ def spawner(ctx: NodeContext) -> RunningNode:
                 ctx.log(f"Controller already loaded, skipping load_controller: {name}")
                 loaded.append(name)
                 continue
-            request: dict[str, Any] = {"name": name, "set_state": "unconfigured"}
-            if options.param_file:
-                params = _file_params(options.param_file, name, ctx.spec.namespace)
-                if "type" in params:
-                    request["type"] = params.pop("type")
-                request["params"] = params
-            if options.controller_type:
-                request["type"] = options.controller_type
-            reply = _call(ctx, path, "load_controller", request)
-            if not reply.get("ok"):
-                ctx.log(f"{reply.get('error', '')}\nFailed loading controller {name}")
+            client.set_controller_parameters(
+                name, type_name=options.controller_type, params_file=options.param_file
+            )
+            if not client.load(name):
+                ctx.log(f"Failed loading controller {name}")
                 code = 1
                 continue
             ctx.log(f"Loaded {name}")
@@ -276,25 +269,23 @@ def spawner(ctx: NodeContext) -> RunningNode:
         if options.load_only:
             return code
         for name in loaded:
-            if not _call(ctx, path, "configure_controller", {"name": name}).get("ok"):
+            if not client.configure(name):
                 ctx.log(f"Failed to configure controller {name}")
                 code = 1
         if not options.inactive:
             groups = [loaded] if options.activate_as_group else [[n] for n in loaded]
             for group in groups:
-                reply = _call(ctx, path, "switch_controller", {"activate": group, "strictness": 2})
-                if reply.get("ok"):
+                ok, message = client.switch(group, [], 2)
+                if ok:
                     ctx.log(f"Configured and activated {', '.join(group)}")
                 else:
-                    ctx.log(
-                        f"Failed to activate controller {', '.join(group)}: {reply.get('error')}"
-                    )
+                    ctx.log(f"Failed to activate controller {', '.join(group)}: {message}")
                     code = 1
         if options.unload_on_kill:
             node.stopping.wait()
-            _call(ctx, path, "switch_controller", {"deactivate": loaded, "strictness": 1})
+            client.switch([], loaded, 1)
             for name in reversed(loaded):
-                _call(ctx, path, "unload_controller", {"name": name})
+                client.unload(name)
         return code
 
     return ThreadNode(f"spawner {ctx.spec.fqn}", work, ctx.log)
@@ -313,11 +304,12 @@ def unspawner(ctx: NodeContext) -> RunningNode:
     def work(node: ThreadNode) -> int:
         if not _wait(ctx, node, path, options.timeout_s):
             return 1
+        client = _client(ctx, path)
         names = list(options.controllers)
-        _call(ctx, path, "switch_controller", {"deactivate": names, "strictness": 1})
+        client.switch([], names, 1)
         code = 0
         for name in names:
-            if _call(ctx, path, "unload_controller", {"name": name}).get("ok"):
+            if client.unload(name):
                 ctx.log(f"Unloaded {name}")
             else:
                 code = 1

@@ -162,18 +162,23 @@ def _spawn(ctx: NodeContext) -> RunningNode:
     options = parse_entity_args(ctx.spec.args)
 
     def work(node: ThreadNode) -> int:
+        from robomodel.launch.nodes.gazebo import pose_message
+        from robomodel.runtime.msg import gazebo_msgs, std_srvs
+
         xml = _description(ctx, options, node.stopping)
-        request = {
-            "name": options["entity"],
-            "xml": xml,
-            "robot_namespace": options.get("robot_namespace", ctx.namespace),
-            "initial_pose": options["pose"],
-            "unpause": options["unpause"],
-        }
+        pose = options["pose"]
+        request = gazebo_msgs.SpawnEntity_Request(
+            name=options["entity"],
+            xml=xml,
+            robot_namespace=options.get("robot_namespace", ctx.namespace),
+            initial_pose=pose_message(tuple(pose[:3]), tuple(pose[3:])),
+        )
         deadline = time.monotonic() + float(options.get("spawn_service_timeout", 30.0))
         while not node.stopping.is_set():
             try:
-                reply = ctx.runtime.call_service("/spawn_entity", request, 30.0)
+                reply = ctx.runtime.call_service(
+                    "/spawn_entity", gazebo_msgs.SpawnEntity, request, 30.0
+                )
             except RobomodelError:
                 if time.monotonic() > deadline:
                     ctx.log(
@@ -182,8 +187,10 @@ def _spawn(ctx: NodeContext) -> RunningNode:
                     return 1
                 time.sleep(0.2)
                 continue
-            ctx.log(str(reply.get("status_message", reply.get("error", ""))))
-            return 0 if reply.get("success") else 1
+            ctx.log(reply.status_message)
+            if reply.success and options["unpause"]:
+                ctx.runtime.call_service("/unpause_physics", std_srvs.Empty, None, 10.0)
+            return 0 if reply.success else 1
         return 0
 
     return ThreadNode(f"spawn {ctx.spec.fqn}", work, ctx.log)

@@ -18,6 +18,7 @@ __all__ = [
     "TwistStamped",
     "TwistWithCovariance",
     "Vector3",
+    "Wrench",
 ]
 
 
@@ -94,6 +95,16 @@ class TwistStamped(Message):
     twist: Twist = field(default_factory=Twist)
     __typename__ = "geometry_msgs/msg/TwistStamped"
     __fields__ = (("header", Header), ("twist", Twist))
+
+
+@dataclass(slots=True)
+class Wrench(Message):
+    """Force [N] and torque [N m]."""
+
+    force: Vector3 = field(default_factory=Vector3)
+    torque: Vector3 = field(default_factory=Vector3)
+    __typename__ = "geometry_msgs/msg/Wrench"
+    __fields__ = (("force", Vector3), ("torque", Vector3))
 
 
 @dataclass(slots=True)

@@ -1,56 +1,91 @@
-"""The Zenoh transport's publishers and subscriptions (see ``zenoh_bus`` for the keys)."""
+"""The Zenoh transport's publishers and subscriptions, as rmw_zenoh's PublisherData and
+SubscriptionData declare them (rmw_publisher_data.cpp, rmw_subscription_data.cpp):
+
+- a volatile publisher is a Zenoh publisher on the topic's key; a transient-local one an
+  advanced publisher with a cache of ``depth`` samples that late subscribers can query, with
+  publisher detection, and (when reliable) sporadic heartbeats every 500 ms for sample-miss
+  detection. Reliable maps to Zenoh's reliable reliability, best effort to best effort; the
+  congestion control is DROP (BLOCK is for KEEP_ALL, which robomodel does not model).
+- a volatile subscription is a Zenoh subscriber; a transient-local one an advanced subscriber
+  that queries the history of every publisher, present or late-joining (and recovers missed
+  samples from their heartbeats when reliable).
+- every sample carries rmw_zenoh's attachment (sequence number from 1, source timestamp,
+  the publisher's GID). A sample without a valid attachment is dropped with a bounded warning,
+  as rmw_zenoh drops it ("Unable to obtain attachment").
+"""
 
 from __future__ import annotations
 
 import collections
 import threading
-import uuid
+import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
 from robomodel.runtime.msg.cdr import prepare
-from robomodel.runtime.qos import Durability
-from robomodel.runtime.transport._attachment import SequenceFilter, parse_attachment
-from robomodel.runtime.transport._zenoh_common import import_zenoh, log
+from robomodel.runtime.qos import Durability, Reliability
+from robomodel.runtime.transport._attachment import SequenceTracker
+from robomodel.runtime.transport._zenoh_common import import_zenoh, log, undeclare_all
 from robomodel.runtime.transport.base import Endpoint, PublisherHandle, SubscriptionHandle
+from robomodel.runtime.transport.rmw_zenoh import (
+    EntityKind,
+    encode_attachment,
+    entity_gid,
+    parse_attachment,
+)
 
 if TYPE_CHECKING:
     from robomodel.runtime.transport.zenoh_bus import ZenohTransport
 
 __all__ = ["ZenohPublisher", "ZenohSubscription"]
 
+HEARTBEAT_PERIOD_S = 0.5  # SAMPLE_MISS_DETECTION_HEARTBEAT_PERIOD
+
+
+def _reliability(zenoh: Any, endpoint: Endpoint) -> Any:
+    reliable = endpoint.qos.reliability is Reliability.RELIABLE
+    return zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT
+
 
 class ZenohPublisher(PublisherHandle):
     def __init__(self, bus: ZenohTransport, endpoint: Endpoint, msg_type: type[Message]) -> None:
-        self._bus = bus
+        zenoh = import_zenoh()
         self._type = msg_type
-        self._id = uuid.uuid4().hex[:16]
-        self._seq = 0
-        prepare(msg_type)
-        self._lock = threading.Lock()
-        session, prefix = bus.session, bus.prefix
-        self._pub = session.declare_publisher(f"{prefix}/t{endpoint.topic}")
-        self._token = session.liveliness().declare_token(bus.graph_key("pub", endpoint))
-        self._history: collections.deque[tuple[bytes, bytes]] | None = None
-        self._queryable = None
-        self._history_token = None
-        if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
-            self._history = collections.deque(maxlen=max(1, endpoint.qos.depth))
-            self._history_key = f"{prefix}/@l{endpoint.topic}/{self._id}"
-            self._queryable = session.declare_queryable(self._history_key, self._serve_history)
-            # Announces the history: subscribers query it whenever it becomes reachable.
-            self._history_token = session.liveliness().declare_token(self._history_key)
         self._endpoint = endpoint
+        self._seq = 0
+        self._lock = threading.Lock()
+        prepare(msg_type)
+        token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
+        self._gid = entity_gid(token.key())
+        key = bus.data_key(endpoint.topic, msg_type)
+        options: dict[str, Any] = {
+            "congestion_control": zenoh.CongestionControl.DROP,
+            "reliability": _reliability(zenoh, endpoint),
+        }
+        if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
+            ext = zenoh.ext
+            miss = None
+            if endpoint.qos.reliability is Reliability.RELIABLE:
+                miss = ext.MissDetectionConfig(
+                    heartbeat=None, sporadic_heartbeat=HEARTBEAT_PERIOD_S
+                )
+            self._pub = ext.declare_advanced_publisher(
+                bus.session,
+                key,
+                cache=ext.CacheConfig(max(1, endpoint.qos.depth)),
+                publisher_detection=True,
+                sample_miss_detection=miss,
+                **options,
+            )
+        else:
+            self._pub = bus.session.declare_publisher(key, **options)
+        self._token = bus.session.liveliness().declare_token(token.key())
 
-    def _serve_history(self, query: Any) -> None:
-        with self._lock:
-            history = list(self._history or ())
-        # Each publisher answers on its own key: replies on the query's wildcard key would be
-        # consolidated into one, and a late subscriber would get one broadcaster's /tf_static.
-        for payload, attachment in history:
-            query.reply(self._history_key, payload, attachment=attachment)
+    @property
+    def gid(self) -> bytes:
+        return self._gid
 
     def publish(self, msg: Message) -> None:
         if not isinstance(msg, self._type):
@@ -61,18 +96,11 @@ class ZenohPublisher(PublisherHandle):
         payload = serialize(msg)
         with self._lock:
             self._seq += 1
-            attachment = f"{self._type.__typename__}|{self._id}|{self._seq}".encode()
-            if self._history is not None:
-                self._history.append((payload, attachment))
-        self._pub.put(payload, attachment=attachment)
+            attachment = encode_attachment(self._seq, time.time_ns(), self._gid)
+            self._pub.put(payload, attachment=attachment)
 
     def destroy(self) -> None:
-        for handle in (self._history_token, self._queryable, self._token, self._pub):
-            if handle is not None:
-                try:
-                    handle.undeclare()
-                except Exception:  # already closed with the session
-                    log.debug("undeclare failed", exc_info=True)
+        undeclare_all(self._token, self._pub)
 
 
 class ZenohSubscription(SubscriptionHandle):
@@ -83,32 +111,47 @@ class ZenohSubscription(SubscriptionHandle):
         msg_type: type[Message],
         deliver: Callable[[Message], None],
     ) -> None:
+        zenoh = import_zenoh()
         self._bus = bus
         self._endpoint = endpoint
         self._type = msg_type
         self._deliver = deliver
-        self._sequences = SequenceFilter()
+        self._sequences = SequenceTracker()
         self._alive = True
         prepare(msg_type)
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
-        # the oldest (as DDS does) instead of falling further and further behind.
+        # the oldest (rmw_zenoh's message queue) instead of falling further behind.
         self._pending: collections.deque[tuple[bytes, bytes]] = collections.deque(
             maxlen=max(1, endpoint.qos.depth)
         )
         self._pending_lock = threading.Lock()
         self._scheduled = False
         self.dropped = 0
-        session, prefix = bus.session, bus.prefix
-        self._sub = session.declare_subscriber(f"{prefix}/t{endpoint.topic}", self._on_sample)
-        self._token = session.liveliness().declare_token(bus.graph_key("sub", endpoint))
-        self._history_sub = None
+        token = bus.entity_token(endpoint, EntityKind.SUBSCRIPTION, msg_type)
+        key = bus.data_key(endpoint.topic, msg_type)
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
-            # As DDS on matching a writer: every latched publisher's history is queried when its
-            # token becomes visible, now (history=True) or later (a publisher that starts
-            # later, or a peer reached again after the process that linked us exited).
-            self._history_sub = session.liveliness().declare_subscriber(
-                f"{prefix}/@l{endpoint.topic}/*", self._on_history_token, history=True
+            ext = zenoh.ext
+            recovery = None
+            if endpoint.qos.reliability is Reliability.RELIABLE:
+                recovery = ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
+            self._sub = ext.declare_advanced_subscriber(
+                bus.session,
+                key,
+                self._on_sample,
+                history=ext.HistoryConfig(
+                    detect_late_publishers=True, max_samples=max(1, endpoint.qos.depth)
+                ),
+                recovery=recovery,
+                subscriber_detection=True,
             )
+        else:
+            self._sub = bus.session.declare_subscriber(key, self._on_sample)
+        self._token = bus.session.liveliness().declare_token(token.key())
+
+    @property
+    def lost(self) -> int:
+        """Messages lost, by the publishers' sequence numbers (rmw_zenoh's MESSAGE_LOST)."""
+        return self._sequences.lost
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
         payload = sample.payload.to_bytes()
@@ -134,58 +177,29 @@ class ZenohSubscription(SubscriptionHandle):
             except Exception:  # one bad sample (or callback) never costs the others
                 log.exception("error handling a sample on %s", self._endpoint.topic)
 
-    def _on_history_token(self, sample: Any) -> None:  # a Zenoh thread
-        zenoh = import_zenoh()
-        if not self._alive or sample.kind != zenoh.SampleKind.PUT:
-            return
-        # No consolidation: the publisher's whole history (depth samples on its one key).
-        self._bus.session.get(
-            str(sample.key_expr),
-            self._on_reply,
-            consolidation=zenoh.ConsolidationMode.NONE,
-            timeout=2.0,
-        )
-
-    def _on_reply(self, reply: Any) -> None:  # a Zenoh thread
-        sample = reply.ok
-        if sample is not None:
-            self._on_sample(sample)
-
     def _handle(self, payload: bytes, attachment: bytes) -> None:
         if not self._alive:
             return
         parsed = parse_attachment(attachment)
+        topic = self._endpoint.topic
         if parsed is None:
-            if attachment:  # a foreign or forged attachment: the sample cannot be trusted
-                self._bus.warn_once(
-                    (self._endpoint.topic, "attachment"),
-                    "dropping samples on %s with a malformed attachment (%r...)",
-                    self._endpoint.topic,
-                    attachment[:40],
-                )
-                return
-            pub_id, seq = "", 0
-        else:
-            if parsed.type_name != self._type.__typename__:
-                self._bus.warn_once(
-                    (self._endpoint.topic, parsed.type_name),
-                    "topic %s is published as %s but subscribed as %s; messages are not delivered",
-                    self._endpoint.topic,
-                    parsed.type_name,
-                    self._type.__typename__,
-                )
-                return
-            pub_id, seq = parsed.publisher_id, parsed.sequence
-        if pub_id and not self._sequences.accept(pub_id, seq):
+            self._bus.warn_once(
+                (topic, "attachment"),
+                "dropping samples on %s without a valid rmw_zenoh attachment (%r...)",
+                topic,
+                attachment[:40],
+            )
+            return
+        if not self._sequences.accept(parsed.gid, parsed.sequence_number):
             return  # already delivered (history replay overlapping live data)
         try:
             msg = deserialize(payload, self._type)
         except CDRError as exc:
             self._bus.warn_once(
-                (self._endpoint.topic, "malformed"),
+                (topic, "malformed"),
                 "dropping a malformed %s payload on %s: %s",
                 self._type.__typename__,
-                self._endpoint.topic,
+                topic,
                 exc,
             )
             return
@@ -193,10 +207,4 @@ class ZenohSubscription(SubscriptionHandle):
 
     def destroy(self) -> None:
         self._alive = False
-        for handle in (self._history_sub, self._token, self._sub):
-            if handle is None:
-                continue
-            try:
-                handle.undeclare()
-            except Exception:
-                log.debug("undeclare failed", exc_info=True)
+        undeclare_all(self._token, self._sub)

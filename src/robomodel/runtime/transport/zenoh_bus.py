@@ -1,44 +1,54 @@
-"""The Zenoh transport: robomodel processes on one machine or several, peer to peer.
+"""The Zenoh transport in rmw_zenoh's wire format: real ROS 2 nodes running with
+``RMW_IMPLEMENTATION=rmw_zenoh_cpp`` and robomodel processes are peers of one graph.
 
-Discovery needs no configuration and no router, and never leaves loopback unless asked:
-multicast scouting is off; the first process of a domain also listens on a well-known loopback
-port (``17470 + domain_id``), later ones connect to it, and Zenoh's gossip then links every
-peer directly, so the group survives the first process exiting. ``connect`` endpoints (or
-``ROBOMODEL_CONNECT=tcp/host:port``) join processes on other machines; ``listen`` endpoints
-(``ROBOMODEL_LISTEN``) accept them.
-
-Key expressions, under ``rm/<domain>``: ``t/<topic>`` carries CDR payloads with an attachment
-``type|publisher id|sequence``; liveliness tokens ``@g/<pub|sub|node>/...`` describe the graph;
-``@l/<topic>/<publisher id>`` serves the history of transient-local publishers to late
-subscribers; ``@p/<node>`` answers parameter calls (JSON).
+- Topics and services: keys ``<domain>/<name>/<DDS type>/<RIHS01 hash>``, CDR payloads and
+  rmw_zenoh's attachments (see :mod:`robomodel.runtime.transport.rmw_zenoh`).
+- Graph: a liveliness token per node (``NN``), publisher (``MP``), subscription (``MS``),
+  service (``SS``) and client (``SC``), numbered from one counter per session as rmw_zenoh's
+  context numbers them; ``graph()`` reads everyone's.
+- Session: rmw_zenoh's configuration and environment (``ZENOH_SESSION_CONFIG_URI``,
+  ``ZENOH_CONFIG_OVERRIDE``, ``ROS_DOMAIN_ID``), the router at ``tcp/localhost:7447``, and this
+  process as that router when none answers (see ``_zenoh_session``).
+- ``ROS_DISTRO=humble`` keys types by ``TypeHashNotSupported``, as Humble's rmw_zenoh does
+  (Humble has no type hashes).
 """
 
 from __future__ import annotations
 
-import json
+import itertools
 import os
+import threading
 from collections.abc import Callable, Sequence
-from typing import Any
+from dataclasses import dataclass
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
-from robomodel.runtime.qos import Durability, QoSProfile
-from robomodel.runtime.transport._zenoh_common import import_zenoh, log, mangle, unmangle
+from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.typehash import dds_type_name, type_hash
+from robomodel.runtime.qos import QoSProfile
+from robomodel.runtime.transport._zenoh_common import log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
+from robomodel.runtime.transport._zenoh_graph import read_graph
+from robomodel.runtime.transport._zenoh_services import ServiceClient, ZenohService
+from robomodel.runtime.transport._zenoh_session import open_session
 from robomodel.runtime.transport.base import (
+    Deferred,
     Endpoint,
     Graph,
-    ParameterHandler,
     PublisherHandle,
+    ServiceCallError,
+    ServiceHandle,
+    ServiceHandler,
     SubscriptionHandle,
     Transport,
 )
+from robomodel.runtime.transport.rmw_zenoh import EntityKind, EntityToken, qos_to_key, topic_key
 
-__all__ = ["ANCHOR_BASE_PORT", "MAX_WARNINGS", "ZenohTransport", "domain_id_from_env"]
+__all__ = ["MAX_WARNINGS", "ZenohTransport", "domain_id_from_env"]
 
-ANCHOR_BASE_PORT = 17470
 MAX_WARNINGS = 256
+HUMBLE_TYPE_HASH = "TypeHashNotSupported"
 
 
 def domain_id_from_env() -> int:
@@ -53,23 +63,22 @@ def domain_id_from_env() -> int:
     return value
 
 
-def _config(zenoh: Any, listen: Sequence[str], connect: Sequence[str]) -> Any:
-    conf = zenoh.Config()
-    conf.insert_json5("mode", '"peer"')
-    conf.insert_json5("scouting/multicast/enabled", "false")
-    conf.insert_json5("scouting/gossip/enabled", "true")
-    conf.insert_json5("listen/endpoints", json.dumps(list(listen)))
-    conf.insert_json5("listen/exit_on_failure", "true")
-    conf.insert_json5("connect/endpoints", json.dumps(list(connect)))
-    return conf
+def split_node_name(node: str) -> tuple[str, str]:
+    """``/ns/name`` -> (``/ns``, ``name``); ``/name`` -> (``/``, ``name``)."""
+    namespace, _, name = node.rpartition("/")
+    return namespace or "/", name
 
 
-def _env_list(name: str) -> list[str]:
-    return [p.strip() for p in os.environ.get(name, "").split(",") if p.strip()]
+@dataclass
+class _NodeRecord:
+    node_id: int
+    token: EntityToken
+    handle: object
+    count: int = 1
 
 
 class ZenohTransport(Transport):
-    """Peer-to-peer transport over Zenoh (see the module docstring)."""
+    """ROS 2 over Zenoh, as rmw_zenoh_cpp (see the module docstring)."""
 
     name = "zenoh"
 
@@ -81,27 +90,59 @@ class ZenohTransport(Transport):
         connect: Sequence[str] = (),
         listen: Sequence[str] = (),
     ) -> None:
-        zenoh = import_zenoh()
         self.executor = executor
         self.domain_id = domain_id_from_env() if domain_id is None else domain_id
-        self.prefix = f"rm/{self.domain_id}"
-        connect = [*connect, *_env_list("ROBOMODEL_CONNECT")]
-        listen = ["tcp/127.0.0.1:0", *listen, *_env_list("ROBOMODEL_LISTEN")]
-        anchor = f"tcp/127.0.0.1:{ANCHOR_BASE_PORT + self.domain_id}"
-        try:
-            self.session = zenoh.open(_config(zenoh, [*listen, anchor], connect))
-            self.is_anchor = True
-        except Exception:  # the anchor port is taken: another process anchors this domain
-            self.session = zenoh.open(_config(zenoh, listen, [*connect, anchor]))
-            self.is_anchor = False
+        opened = open_session(connect, listen)
+        self.session = opened.session
+        self.is_router = opened.is_router
+        self.zid = str(self.session.zid())
+        self.ids = itertools.count()  # rmw_zenoh: one counter per context, nodes included
+        self.humble = os.environ.get("ROS_DISTRO", "") == "humble"
+        self._lock = threading.Lock()
+        self._nodes: dict[str, _NodeRecord] = {}
+        self._services: dict[str, ZenohService] = {}
+        self._clients: dict[tuple[str | None, str, str], ServiceClient] = {}
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
-        self._node_handles: dict[str, tuple[Any, ...]] = {}
+
+    # -- naming ---------------------------------------------------------------------------------
+    def type_hash(self, kind: type[Message] | type[Service]) -> str:
+        return HUMBLE_TYPE_HASH if self.humble else type_hash(kind)
+
+    def data_key(self, name: str, kind: type[Message] | type[Service]) -> str:
+        return topic_key(
+            self.domain_id, name, dds_type_name(kind.__typename__), self.type_hash(kind)
+        )
+
+    def _node(self, node: str) -> _NodeRecord:
+        record = self._nodes.get(node)
+        if record is None:  # an endpoint of a node never registered: give it a token
+            self.register_node(node)
+            record = self._nodes[node]
+        return record
+
+    def entity_token(
+        self, endpoint: Endpoint, kind: EntityKind, type_: type[Message] | type[Service]
+    ) -> EntityToken:
+        node = self._node(endpoint.node).token
+        return EntityToken(
+            self.domain_id,
+            self.zid,
+            node.node_id,
+            next(self.ids),
+            kind,
+            node.namespace,
+            node.node_name,
+            name=endpoint.topic,
+            dds_type=dds_type_name(type_.__typename__),
+            type_hash=self.type_hash(type_),
+            qos=qos_to_key(endpoint.qos),
+        )
 
     def warn_once(self, key: tuple[str, ...], fmt: str, *args: object) -> None:
-        """Log a warning once per ``key``. Keys come partly from other processes (type names),
-        so at most ``MAX_WARNINGS`` are remembered; past that one line says the rest are
-        suppressed, and memory stays bounded however many distinct names a peer sends."""
+        """Log a warning once per ``key``. Keys come partly from other processes, so at most
+        ``MAX_WARNINGS`` are remembered; past that one line says the rest are suppressed, and
+        memory stays bounded however many distinct names a peer sends."""
         if key in self._warned:
             return
         if len(self._warned) >= MAX_WARNINGS:
@@ -114,13 +155,35 @@ class ZenohTransport(Transport):
         self._warned.add(key)
         log.warning(fmt, *args)
 
-    def graph_key(self, kind: str, endpoint: Endpoint) -> str:
-        qos = f"{endpoint.qos.depth}:{endpoint.qos.durability.value}"
-        return (
-            f"{self.prefix}/@g/{kind}/{mangle(endpoint.node)}/{mangle(endpoint.topic)}/"
-            f"{mangle(endpoint.type_name)}/{mangle(qos)}"
-        )
+    # -- nodes ----------------------------------------------------------------------------------
+    def register_node(self, node: str) -> Callable[[], None]:
+        with self._lock:
+            record = self._nodes.get(node)
+            if record is not None:
+                log.warning("a node named %s already exists; names should be unique", node)
+                record.count += 1
+            else:
+                node_id = next(self.ids)
+                namespace, name = split_node_name(node)
+                token = EntityToken(
+                    self.domain_id, self.zid, node_id, node_id, EntityKind.NODE, namespace, name
+                )
+                handle = self.session.liveliness().declare_token(token.key())
+                self._nodes[node] = _NodeRecord(node_id, token, handle)
 
+        def unregister() -> None:
+            with self._lock:
+                current = self._nodes.get(node)
+                if current is None:
+                    return
+                current.count -= 1
+                if current.count == 0:
+                    del self._nodes[node]
+                    undeclare_all(current.handle)
+
+        return unregister
+
+    # -- topics ---------------------------------------------------------------------------------
     def create_publisher(
         self, node: str, topic: str, msg_type: type[Message], qos: QoSProfile
     ) -> PublisherHandle:
@@ -134,118 +197,71 @@ class ZenohTransport(Transport):
         qos: QoSProfile,
         deliver: Callable[[Message], None],
     ) -> SubscriptionHandle:
-        return ZenohSubscription(
-            self, Endpoint(node, topic, msg_type.__typename__, qos), msg_type, deliver
-        )
+        endpoint = Endpoint(node, topic, msg_type.__typename__, qos)
+        return ZenohSubscription(self, endpoint, msg_type, deliver)
 
-    def _answer_on_executor(self, handler: ParameterHandler, who: str) -> Callable[[Any], None]:
-        """A queryable callback that runs ``handler`` on the executor and replies with JSON."""
+    # -- services -------------------------------------------------------------------------------
+    def create_service(
+        self, node: str, name: str, srv_type: type[Service], handler: ServiceHandler
+    ) -> ServiceHandle:
+        if name in self._services:
+            raise RobomodelError(f"service '{name}' is already offered in this process")
+        service = ZenohService(self, Endpoint(node, name, srv_type.__typename__), srv_type, handler)
+        self._services[name] = service
+        return service
 
-        def on_query(query: Any) -> None:  # a Zenoh thread: hand over to the executor
-            try:
-                request = json.loads(
-                    query.payload.to_bytes() if query.payload is not None else b"{}"
-                )
-            except ValueError:
-                query.reply(query.key_expr, json.dumps({"error": "request is not JSON"}))
-                return
-            reply = self.executor.answer(handler, request, 5.0)
-            if reply is None:
-                reply = {"error": f"{who} did not answer (is it spinning?)"}
-            query.reply(query.key_expr, json.dumps(reply))
-
-        return on_query
-
-    def register_node(self, node: str, handler: ParameterHandler) -> Callable[[], None]:
-        token = self.session.liveliness().declare_token(f"{self.prefix}/@g/node/{mangle(node)}")
-        on_query = self._answer_on_executor(handler, f"node {node}")
-        queryable = self.session.declare_queryable(f"{self.prefix}/@p/{mangle(node)}", on_query)
-        self._node_handles[node] = (token, queryable)
-
-        def unregister() -> None:
-            for handle in self._node_handles.pop(node, ()):
-                try:
-                    handle.undeclare()
-                except Exception:
-                    log.debug("undeclare failed", exc_info=True)
-
-        return unregister
-
-    def graph(self, timeout_s: float = 1.0) -> Graph:
-        graph = Graph()
-        replies = self.session.liveliness().get(f"{self.prefix}/@g/**", timeout=timeout_s)
-        for reply in replies:
-            sample = reply.ok
-            if sample is None:
-                continue
-            parts = str(sample.key_expr).split("/")
-            if len(parts) < 5:
-                continue
-            kind = parts[3]
-            if kind == "node":
-                graph.nodes.add(unmangle(parts[4]))
-            elif kind == "srv":
-                graph.services.add(unmangle(parts[4]))
-            elif kind in ("pub", "sub") and len(parts) >= 8:
-                depth, _, durability = unmangle(parts[7]).partition(":")
-                qos = QoSProfile(
-                    int(depth) if depth.isdigit() else 10, Durability(durability or "volatile")
-                )
-                graph.add(
-                    kind,
-                    Endpoint(unmangle(parts[4]), unmangle(parts[5]), unmangle(parts[6]), qos),
-                )
-        return graph
-
-    def call_parameters(
-        self, node: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        replies = self.session.get(
-            f"{self.prefix}/@p/{mangle(node)}", payload=json.dumps(request), timeout=timeout_s
-        )
-        for reply in replies:
-            if reply.ok is not None:
-                answer: dict[str, Any] = json.loads(reply.ok.payload.to_bytes())
-                return answer
-        nodes = sorted(self.graph(timeout_s=0.5).nodes)
-        raise RobomodelError(
-            f"node '{node}' did not answer; running nodes: {', '.join(nodes) or '(none found)'}"
-        )
-
-    def register_service(self, name: str, handler: ParameterHandler) -> Callable[[], None]:
-        key = f"{self.prefix}/@s/{mangle(name)}"
-        queryable = self.session.declare_queryable(
-            key, self._answer_on_executor(handler, f"service {name}")
-        )
-        token = self.session.liveliness().declare_token(f"{self.prefix}/@g/srv/{mangle(name)}")
-        self._node_handles[f"@s{name}"] = (queryable, token)
-
-        def unregister() -> None:
-            for handle in self._node_handles.pop(f"@s{name}", ()):
-                try:
-                    handle.undeclare()
-                except Exception:
-                    log.debug("undeclare failed", exc_info=True)
-
-        return unregister
+    def forget_service(self, service: ZenohService) -> None:
+        if self._services.get(service.endpoint.topic) is service:
+            del self._services[service.endpoint.topic]
 
     def call_service(
-        self, name: str, request: dict[str, Any], timeout_s: float = 2.0
-    ) -> dict[str, Any]:
-        replies = self.session.get(
-            f"{self.prefix}/@s/{mangle(name)}", payload=json.dumps(request), timeout=timeout_s
-        )
-        for reply in replies:
-            if reply.ok is not None:
-                answer: dict[str, Any] = json.loads(reply.ok.payload.to_bytes())
-                return answer
-        raise RobomodelError(f"service '{name}' did not answer (is its process running?)")
+        self,
+        name: str,
+        srv_type: type[Service],
+        request: Message,
+        timeout_s: float = 2.0,
+        *,
+        node: str | None = None,
+    ) -> Message:
+        local = self._services.get(name)
+        if (
+            local is not None
+            and local.srv_type is srv_type
+            and self.executor.spinner in (None, threading.get_ident())
+        ):
+            # This thread runs the executor: a query would wait for itself. Run it in place.
+            return _in_place(name, local.handler, request)
+        key = (node, name, srv_type.__typename__)
+        with self._lock:
+            client = self._clients.get(key)
+            if client is None:
+                client = self._clients[key] = ServiceClient(self, name, srv_type, node)
+        return client.call(request, timeout_s)
+
+    # -- graph and lifetime ---------------------------------------------------------------------
+    def graph(self, timeout_s: float = 1.0) -> Graph:
+        return read_graph(self.session, self.domain_id, timeout_s)
 
     def close(self) -> None:
-        for node in list(self._node_handles):
-            for handle in self._node_handles.pop(node):
-                try:
-                    handle.undeclare()
-                except Exception:
-                    log.debug("undeclare failed", exc_info=True)
+        for service in list(self._services.values()):
+            service.destroy()
+        for client in self._clients.values():
+            client.destroy()
+        self._clients.clear()
+        for record in self._nodes.values():
+            undeclare_all(record.handle)
+        self._nodes.clear()
         self.session.close()
+
+
+def _in_place(name: str, handler: ServiceHandler, request: Message) -> Message:
+    try:
+        answer = handler(request)
+    except Exception as exc:
+        log.exception("service %s failed", name)
+        raise ServiceCallError(f"service '{name}' failed: {exc}") from None
+    if isinstance(answer, Deferred):
+        if answer.response is None:
+            raise ServiceCallError(f"service '{name}' answers later; call it from another thread")
+        return answer.response
+    return answer

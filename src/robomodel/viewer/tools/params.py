@@ -1,7 +1,8 @@
 """Parameters (rqt_reconfigure / dynamic_reconfigure): edit a node's parameters live.
 
-A node is picked from the graph, its parameters are listed through the parameter service
-(``list`` then ``get``, as ``robomodel param`` does) and shown as number boxes, checkboxes or
+A node is picked from the graph, its parameters are listed through its rcl_interfaces
+parameter services (``list_parameters`` then ``get_parameters``, as ``robomodel param`` does;
+real ROS 2 nodes on the bus answer too) and shown as number boxes, checkboxes or
 text boxes (arrays as YAML). Each edit is one ``set``; a refusal puts the old value back and
 shows the node's reason.
 """
@@ -11,7 +12,8 @@ from __future__ import annotations
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.params import parameter_type_name, parse_parameter_value
+from robomodel.runtime.param_client import ParameterClient
+from robomodel.runtime.params import SetResult, parameter_type_name, parse_parameter_value
 from robomodel.viewer.tools.base import ToolContext, escape_markdown
 
 __all__ = ["ParameterTool"]
@@ -52,8 +54,9 @@ class ParameterTool:
 
         def job() -> None:
             try:
-                names = self._call(node, {"op": "list"})["names"]
-                values = self._call(node, {"op": "get", "names": names})["values"] if names else {}
+                client = self._client(node)
+                names = self.tools.bus.query(client.list)
+                values = self.tools.bus.query(lambda: client.get(names)) if names else {}
             except RobomodelError as exc:
                 self.result.content = f"**{node}:** {escape_markdown(str(exc))}"
                 return
@@ -61,13 +64,8 @@ class ParameterTool:
 
         self.tools.bus.submit(job)
 
-    def _call(self, node: str, request: dict[str, Any]) -> dict[str, Any]:
-        reply: dict[str, Any] = self.tools.bus.query(
-            lambda: self.tools.node.context.call_parameters(node, request)
-        )
-        if "error" in reply:
-            raise RobomodelError(str(reply["error"]))
-        return reply
+    def _client(self, node: str) -> ParameterClient:
+        return ParameterClient(self.tools.node.context, node)
 
     def _build(self, node: str, values: dict[str, Any]) -> None:
         if self._folder is not None:
@@ -104,18 +102,17 @@ class ParameterTool:
 
     def set(self, node: str, name: str, value: Any) -> bool:
         """Set one parameter (bus worker thread); show the outcome, revert on refusal."""
+        client = self._client(node)
         try:
-            reply = self._call(node, {"op": "set", "values": {name: value}})
-        except RobomodelError as exc:
-            reply = {"successful": False, "reason": str(exc)}
+            result = self.tools.bus.query(lambda: client.set({name: value}))[0]
+        except (RobomodelError, IndexError) as exc:
+            result = SetResult(False, str(exc) or "no answer")
         self.sets += 1
-        if reply.get("successful"):
+        if result.successful:
             self.values[name] = value
             self.result.content = f"`{name}` set to `{value}`"
             return True
-        self.result.content = (
-            f"**refused:** `{name}`: {escape_markdown(str(reply.get('reason', '')))}"
-        )
+        self.result.content = f"**refused:** `{name}`: {escape_markdown(result.reason)}"
         control = self.controls.get(name)
         old = self.values.get(name)
         if control is not None and node == self.node_name:

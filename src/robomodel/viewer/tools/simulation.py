@@ -1,8 +1,9 @@
 """Simulation controls (Gazebo's play / pause / step / reset bar) for ``robomodel sim``.
 
 The buttons call the simulator's services on the bus (``/gazebo/pause_physics``,
-``/gazebo/unpause_physics``, ``/gazebo/step``, ``/gazebo/reset_world``), so they work for a
-simulator in this process or in another one. The status line shows the sim time from /clock
+``/gazebo/unpause_physics`` and ``/gazebo/reset_world``, std_srvs/Empty; ``/gazebo/step``,
+ros_gz_interfaces/ControlWorld with ``multi_step``), so they work for a simulator in this
+process or in another one. The status line shows the sim time from /clock
 and the real-time factor measured over the last second of /clock messages, as Gazebo's bottom
 bar does. Without a simulator on the bus the folder says so and the buttons do nothing.
 """
@@ -14,7 +15,9 @@ import time
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import Clock
+from robomodel.runtime.msg import Clock, Message
+from robomodel.runtime.msg import ros_gz_interfaces as rgz
+from robomodel.runtime.msg import std_srvs
 from robomodel.viewer.tools.base import ToolContext, escape_markdown
 
 __all__ = ["RealTimeFactor", "SimulationTool"]
@@ -58,17 +61,18 @@ class SimulationTool:
         gui = tools.server.gui
         self.sim_time_s: float | None = None
         self.rtf = RealTimeFactor()
-        self.last_reply: dict[str, Any] | None = None
+        self.last_reply: Message | None = None
+        self.last_error = ""
         self.status = gui.add_markdown("No simulator on the bus (start `robomodel sim`).")
         self.pause = gui.add_button("Pause", hint="pause the physics (/gazebo/pause_physics)")
         self.play = gui.add_button("Play", hint="run the physics (/gazebo/unpause_physics)")
         self.steps = gui.add_number("Steps", 1, min=1, max=100000, step=1)
         self.step = gui.add_button("Step", hint="while paused: advance this many physics steps")
         self.reset = gui.add_button("Reset world", hint="time and poses back to the start")
-        self.pause.on_click(lambda _e: self.call(PAUSE, {}))
-        self.play.on_click(lambda _e: self.call(UNPAUSE, {}))
-        self.step.on_click(lambda _e: self.call(STEP, {"steps": int(self.steps.value)}))
-        self.reset.on_click(lambda _e: self.call(RESET, {}))
+        self.pause.on_click(lambda _e: self.call(PAUSE, std_srvs.Empty))
+        self.play.on_click(lambda _e: self.call(UNPAUSE, std_srvs.Empty))
+        self.step.on_click(lambda _e: self.call(STEP, rgz.ControlWorld, self._step_request()))
+        self.reset.on_click(lambda _e: self.call(RESET, std_srvs.Empty))
         tools.post(self._subscribe)
 
     def _subscribe(self) -> None:
@@ -93,17 +97,22 @@ class SimulationTool:
         rtf = "paused" if factor == 0.0 else ("-" if factor is None else f"{factor:.2f}x")
         self.status.content = f"Sim time **{self.sim_time_s:.3f} s** · real-time factor **{rtf}**"
 
-    def call(self, service: str, request: dict[str, Any]) -> None:
+    def _step_request(self) -> rgz.ControlWorld_Request:
+        control = rgz.WorldControl(pause=True, multi_step=int(self.steps.value))
+        return rgz.ControlWorld_Request(control)
+
+    def call(self, service: str, srv_type: Any, request: Message | None = None) -> None:
         """Call ``service`` on the bus worker; the reply (or the error) is kept and shown."""
 
         def job() -> None:
             context = self.tools.node.context
             try:
-                reply = self.tools.bus.query(lambda: context.call_service(service, request, 2.0))
-            except (RobomodelError, NotImplementedError) as exc:
-                reply = {"success": False, "error": str(exc)}
-            self.last_reply = reply
-            if "error" in reply:
-                self.status.content = f"{service}: {escape_markdown(str(reply['error']))}"
+                self.last_reply = self.tools.bus.query(
+                    lambda: context.call_service(service, srv_type, request, 2.0)
+                )
+                self.last_error = ""
+            except RobomodelError as exc:
+                self.last_reply, self.last_error = None, str(exc)
+                self.status.content = f"{service}: {escape_markdown(str(exc))}"
 
         self.tools.bus.submit(job)

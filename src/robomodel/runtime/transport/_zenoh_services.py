@@ -1,0 +1,180 @@
+"""The Zenoh transport's service servers and clients, as rmw_zenoh's ServiceData and ClientData
+(rmw_service_data.cpp, rmw_client_data.cpp):
+
+- a server is a *complete* queryable on the service's key (``<domain>/<name>/<DDS service
+  type>/<service type hash>``) and an ``SS`` liveliness token;
+- a request is a ``get`` on that key with target ALL_COMPLETE and no consolidation, the CDR
+  request as payload and an attachment (the client's sequence number from 1, a timestamp, the
+  client's GID); the server replies on its key with the CDR response and an attachment that
+  carries the request's sequence number and client GID back.
+
+A handler runs on the executor's thread; the Zenoh thread that received the query only hands
+it over. A request that cannot be decoded, or a handler that raises, is answered with a Zenoh
+error reply saying why (rmw_zenoh clients log it; robomodel's raise ServiceCallError).
+"""
+
+from __future__ import annotations
+
+import itertools
+import threading
+import time
+from typing import TYPE_CHECKING, Any
+
+from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
+from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.cdr import prepare
+from robomodel.runtime.transport._zenoh_common import import_zenoh, log, undeclare_all
+from robomodel.runtime.transport.base import (
+    Deferred,
+    Endpoint,
+    ServiceCallError,
+    ServiceHandle,
+    ServiceHandler,
+)
+from robomodel.runtime.transport.rmw_zenoh import (
+    EntityKind,
+    encode_attachment,
+    entity_gid,
+    parse_attachment,
+)
+
+if TYPE_CHECKING:
+    from robomodel.runtime.transport.zenoh_bus import ZenohTransport
+
+__all__ = ["ServiceClient", "ZenohService"]
+
+
+class ZenohService(ServiceHandle):
+    def __init__(
+        self,
+        bus: ZenohTransport,
+        endpoint: Endpoint,
+        srv_type: type[Service],
+        handler: ServiceHandler,
+    ) -> None:
+        self._bus = bus
+        self.endpoint = endpoint
+        self.srv_type = srv_type
+        self.handler = handler
+        prepare(srv_type.Request)
+        prepare(srv_type.Response)
+        self._key = bus.data_key(endpoint.topic, srv_type)
+        token = bus.entity_token(endpoint, EntityKind.SERVICE, srv_type)
+        self._queryable = bus.session.declare_queryable(self._key, self._on_query, complete=True)
+        self._token = bus.session.liveliness().declare_token(token.key())
+
+    def _on_query(self, query: Any) -> None:  # a Zenoh thread: decode, then hand over
+        name = self.endpoint.topic
+        attachment = parse_attachment(query.attachment.to_bytes() if query.attachment else b"")
+        if attachment is None:
+            self._refuse(query, f"request to {name} without a valid rmw_zenoh attachment")
+            return
+        try:
+            payload = query.payload.to_bytes() if query.payload is not None else b""
+            request = deserialize(payload, self.srv_type.Request)
+        except CDRError as exc:
+            self._refuse(query, f"malformed {self.srv_type.__typename__} request to {name}: {exc}")
+            return
+        self._bus.executor.post(lambda: self._serve(query, request, attachment))
+
+    def _refuse(self, query: Any, reason: str) -> None:
+        self._bus.warn_once((self.endpoint.topic, "request"), "%s", reason)
+        try:
+            query.reply_err(reason)
+        finally:
+            query.drop()
+
+    def _serve(self, query: Any, request: Message, attachment: Any) -> None:
+        """On the executor: run the handler; reply now, or when a Deferred resolves."""
+        try:
+            answer = self.handler(request)
+        except Exception as exc:  # the server goes on; the caller learns why
+            log.exception("service %s failed", self.endpoint.topic)
+            self._refuse(query, f"service '{self.endpoint.topic}' failed: {exc}")
+            return
+        if isinstance(answer, Deferred):
+            answer.then(lambda response: self._reply(query, response, attachment))
+        else:
+            self._reply(query, answer, attachment)
+
+    def _reply(self, query: Any, response: Message, attachment: Any) -> None:
+        try:
+            if not isinstance(response, self.srv_type.Response):
+                raise TypeError(
+                    f"handler returned {type(response).__name__}, "
+                    f"not {self.srv_type.Response.__typename__}"
+                )
+            reply = encode_attachment(attachment.sequence_number, time.time_ns(), attachment.gid)
+            query.reply(self._key, serialize(response), attachment=reply)
+        except Exception as exc:
+            log.exception("cannot answer %s", self.endpoint.topic)
+            query.reply_err(f"service '{self.endpoint.topic}' failed: {exc}")
+        finally:
+            query.drop()
+
+    def destroy(self) -> None:
+        self._bus.forget_service(self)
+        undeclare_all(self._token, self._queryable)
+
+
+class ServiceClient:
+    """Calls of one (node, service, type): its GID, its sequence numbers and, for a node's
+    client, its ``SC`` token."""
+
+    def __init__(
+        self, bus: ZenohTransport, name: str, srv_type: type[Service], node: str | None
+    ) -> None:
+        self._bus = bus
+        self.name = name
+        self.srv_type = srv_type
+        self._key = bus.data_key(name, srv_type)
+        self._numbers = itertools.count(1)
+        self._lock = threading.Lock()
+        self._token = None
+        prepare(srv_type.Request)
+        prepare(srv_type.Response)
+        if node is not None:
+            endpoint = Endpoint(node, name, srv_type.__typename__)
+            token = bus.entity_token(endpoint, EntityKind.CLIENT, srv_type)
+            self.gid = entity_gid(token.key())
+            self._token = bus.session.liveliness().declare_token(token.key())
+        else:  # a one-off caller (a command line): a GID of its own, no graph entry
+            self.gid = entity_gid(f"{bus.zid}/client/{next(bus.ids)}/{name}")
+
+    def call(self, request: Message, timeout_s: float) -> Message:
+        zenoh = import_zenoh()
+        with self._lock:
+            number = next(self._numbers)
+        replies = self._bus.session.get(
+            self._key,
+            payload=serialize(request),
+            attachment=encode_attachment(number, time.time_ns(), self.gid),
+            target=zenoh.QueryTarget.ALL_COMPLETE,
+            consolidation=zenoh.ConsolidationMode.NONE,
+            timeout=timeout_s,
+        )
+        errors: list[str] = []
+        for reply in replies:
+            sample = reply.ok
+            if sample is None:
+                error = reply.err
+                errors.append(error.payload.to_string() if error is not None else "error reply")
+                continue
+            attachment = parse_attachment(
+                sample.attachment.to_bytes() if sample.attachment else b""
+            )
+            if attachment is None or attachment.sequence_number != number:
+                continue  # not the reply to this request
+            try:
+                return deserialize(sample.payload.to_bytes(), self.srv_type.Response)
+            except CDRError as exc:
+                errors.append(f"malformed response: {exc}")
+        if errors:
+            raise ServiceCallError(f"service '{self.name}': {'; '.join(errors)}")
+        raise ServiceCallError(
+            f"service '{self.name}' ({self.srv_type.__typename__}) did not answer within "
+            f"{timeout_s:g} s (is its process running?)"
+        )
+
+    def destroy(self) -> None:
+        undeclare_all(self._token)

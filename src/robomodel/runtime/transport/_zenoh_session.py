@@ -1,0 +1,200 @@
+"""Opening a Zenoh session as rmw_zenoh does, and the router robomodel starts when none runs.
+
+The session's configuration is rmw_zenoh's (``DEFAULT_RMW_ZENOH_SESSION_CONFIG.json5``): peer
+mode, connect to the router at ``tcp/localhost:7447``, listen on a free loopback port, no
+multicast scouting, gossip on, timestamps on. ``ZENOH_SESSION_CONFIG_URI`` replaces it with a
+file and ``ZENOH_CONFIG_OVERRIDE`` (``key=json5 value;...``) changes keys of it, as in
+rmw_zenoh's ``zenoh_config.cpp``; robomodel's own ``--connect`` / ``--listen`` endpoints (and
+``ROBOMODEL_CONNECT`` / ``ROBOMODEL_LISTEN``) are added last.
+
+As ``zenoh_router_check.cpp``, the session then checks that a router answered. When none did
+and the configuration names the local default router, this process becomes it: the session
+is reopened in router mode on ``tcp/localhost:7447`` (loopback only), so that one machine
+needs no extra command. When that process exits, its peers keep their direct links (gossip)
+and reconnect to the next robomodel process that takes the port, or to ``robomodel router``.
+``ZENOH_ROUTER_CHECK_ATTEMPTS`` below zero skips the check (peers only, as in rmw_zenoh).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.runtime.transport._zenoh_common import import_zenoh, log
+
+__all__ = [
+    "DEFAULT_ROUTER",
+    "ZenohConfigError",
+    "apply_override",
+    "open_session",
+    "parse_override",
+    "router_config",
+]
+
+DEFAULT_ROUTER = "tcp/localhost:7447"
+_LOCAL_ROUTERS = {DEFAULT_ROUTER, "tcp/127.0.0.1:7447", "tcp/[::1]:7447"}
+
+# DEFAULT_RMW_ZENOH_SESSION_CONFIG.json5, the keys that differ from Zenoh's defaults. The
+# scouting delay is Zenoh's 1.0 default's short one: with multicast off there is nothing to
+# wait for, and Zenoh's 500 ms would be paid by every robomodel command.
+_SESSION = {
+    "mode": "peer",
+    "connect/endpoints": [DEFAULT_ROUTER],
+    "listen/endpoints": ["tcp/localhost:0"],
+    "scouting/delay": 1,
+    "scouting/multicast/enabled": False,
+    "scouting/gossip/enabled": True,
+    "scouting/gossip/multihop": False,
+    "timestamping/enabled": {"router": True, "peer": True, "client": False},
+    "queries_default_timeout": 600000,
+}
+_ROUTER = {
+    **_SESSION,
+    "mode": "router",
+    "connect/endpoints": [],
+    "listen/endpoints": [DEFAULT_ROUTER],
+}
+
+
+class ZenohConfigError(RobomodelError):
+    """A Zenoh configuration file or override that cannot be used."""
+
+
+def parse_override(text: str) -> list[tuple[str, str]]:
+    """``ZENOH_CONFIG_OVERRIDE``: ``key=value`` pairs separated by ``;`` (values are JSON5)."""
+    pairs = []
+    for part in text.split(";"):
+        part = part.strip()
+        if not part:
+            continue
+        key, sep, value = part.partition("=")
+        if not sep or not key.strip() or not value.strip():
+            raise ZenohConfigError(
+                f"ZENOH_CONFIG_OVERRIDE: '{part}' is not key=value, e.g. "
+                '\'mode="client";connect/endpoints=["tcp/192.168.1.5:7447"]\''
+            )
+        pairs.append((key.strip(), value.strip()))
+    return pairs
+
+
+def apply_override(conf: Any, text: str) -> None:
+    for key, value in parse_override(text):
+        try:
+            conf.insert_json5(key, value)
+        except Exception as exc:
+            raise ZenohConfigError(
+                f"ZENOH_CONFIG_OVERRIDE: cannot set {key}={value}: {exc}"
+            ) from None
+
+
+def _config(zenoh: Any, defaults: dict[str, Any], uri_variable: str) -> Any:
+    uri = os.environ.get(uri_variable, "").strip()
+    if uri:
+        try:
+            conf = zenoh.Config.from_file(uri)
+        except Exception as exc:
+            raise ZenohConfigError(
+                f"{uri_variable}={uri}: not a usable Zenoh configuration: {exc}"
+            ) from None
+    else:
+        conf = zenoh.Config()
+        for key, value in defaults.items():
+            conf.insert_json5(key, json.dumps(value))
+    apply_override(conf, os.environ.get("ZENOH_CONFIG_OVERRIDE", ""))
+    return conf
+
+
+def _endpoints(conf: Any, key: str) -> list[str]:
+    try:
+        value = json.loads(conf.get_json(key))
+    except Exception:
+        return []
+    return [str(v) for v in value] if isinstance(value, list) else []
+
+
+def _add_endpoints(conf: Any, key: str, extra: Sequence[str]) -> None:
+    if extra:
+        conf.insert_json5(key, json.dumps([*_endpoints(conf, key), *extra]))
+
+
+def router_config(listen: Sequence[str] = ()) -> Any:
+    """The configuration of ``robomodel router`` (``ZENOH_ROUTER_CONFIG_URI`` honoured)."""
+    zenoh = import_zenoh()
+    conf = _config(zenoh, _ROUTER, "ZENOH_ROUTER_CONFIG_URI")
+    if listen:
+        conf.insert_json5("listen/endpoints", json.dumps(list(listen)))
+    return conf
+
+
+def _env_list(name: str) -> list[str]:
+    return [p.strip() for p in os.environ.get(name, "").split(",") if p.strip()]
+
+
+def _check_attempts() -> int:
+    text = os.environ.get("ZENOH_ROUTER_CHECK_ATTEMPTS", "").strip()
+    try:
+        return int(text) if text else 0
+    except ValueError:
+        raise ZenohConfigError(
+            f"ZENOH_ROUTER_CHECK_ATTEMPTS must be an integer, got '{text}'"
+        ) from None
+
+
+@dataclass
+class OpenedSession:
+    session: Any
+    is_router: bool
+
+
+def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> OpenedSession:
+    """A session joined to the ROS 2 graph's router, or this process as that router."""
+    zenoh = import_zenoh()
+    conf = _config(zenoh, _SESSION, "ZENOH_SESSION_CONFIG_URI")
+    _add_endpoints(conf, "connect/endpoints", [*connect, *_env_list("ROBOMODEL_CONNECT")])
+    _add_endpoints(conf, "listen/endpoints", [*listen, *_env_list("ROBOMODEL_LISTEN")])
+    try:
+        session = zenoh.open(conf)
+    except Exception as exc:
+        raise ZenohConfigError(f"cannot open a Zenoh session: {exc}") from None
+    attempts = _check_attempts()
+    if attempts < 0 or _is_router(conf) or list(session.info.routers_zid()):
+        return OpenedSession(session, _is_router(conf))
+    if not set(_endpoints(conf, "connect/endpoints")) & _LOCAL_ROUTERS:
+        log.warning(
+            "no Zenoh router answers at %s; peers on other machines will not be found",
+            ", ".join(_endpoints(conf, "connect/endpoints")) or "(no connect endpoint)",
+        )
+        return OpenedSession(session, False)
+    return _become_router(zenoh, session, conf)
+
+
+def _is_router(conf: Any) -> bool:
+    try:
+        return bool(json.loads(conf.get_json("mode")) == "router")
+    except Exception:
+        return False
+
+
+def _become_router(zenoh: Any, peer_session: Any, peer_conf: Any) -> OpenedSession:
+    """Reopen as the local router; if another process took the port first, stay a peer."""
+    conf = zenoh.Config.from_json5(str(peer_conf))
+    conf.insert_json5("mode", '"router"')
+    listen = [e for e in _endpoints(peer_conf, "listen/endpoints") if not e.endswith(":0")]
+    conf.insert_json5("listen/endpoints", json.dumps([DEFAULT_ROUTER, *listen]))
+    conf.insert_json5("listen/exit_on_failure", "true")
+    conf.insert_json5(
+        "connect/endpoints",
+        json.dumps(
+            [e for e in _endpoints(peer_conf, "connect/endpoints") if e not in _LOCAL_ROUTERS]
+        ),
+    )
+    peer_session.close()
+    try:
+        return OpenedSession(zenoh.open(conf), True)
+    except Exception:
+        log.debug("another process became the router first; joining it", exc_info=True)
+        return OpenedSession(zenoh.open(peer_conf), False)

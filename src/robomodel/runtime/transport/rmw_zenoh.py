@@ -1,0 +1,239 @@
+"""rmw_zenoh's wire format (Jazzy 0.2.4 and later): key expressions, liveliness tokens, QoS
+strings, entity GIDs and attachments. Pure functions, no Zenoh session.
+
+Transcribed from ros2/rmw_zenoh ``rmw_zenoh_cpp/src/detail``:
+
+- ``liveliness_utils.cpp`` — ``TopicInfo`` (data keys ``<domain>/<name without the outer
+  slashes>/<DDS type>/<type hash>``), ``Entity`` (tokens ``@ros2_lv/<domain>/<zid>/<nid>/<id>/
+  <NN|MP|MS|SS|SC>/<enclave>/<namespace>/<node>[/<name>/<type>/<hash>/<qos>]`` with ``/``
+  mangled to ``%``; a part may not be empty), ``qos_to_keyexpr`` / ``keyexpr_to_qos`` (fields
+  equal to rmw_zenoh's default QoS are left empty) and the GID: XXH3-128 of the token, its low
+  then its high 64 bits in little-endian order.
+- ``qos.cpp`` — the default QoS: keep last 42, reliable, volatile, infinite durations,
+  automatic liveliness.
+- ``attachment_helpers.cpp`` (0.2.4, "Change serialization format", PR #601) — the attachment
+  of every sample, request and reply: int64 sequence number, int64 source timestamp [ns since
+  the epoch], then the 16-byte GID as a zenoh-ext array (LEB128 length 16 and the bytes): 33
+  bytes, little-endian. Before 0.2.4 (and in Humble's 0.1.0 and 0.1.1) each value was preceded
+  by its name as a zenoh-ext string; :func:`parse_attachment` reads that form too.
+"""
+
+from __future__ import annotations
+
+import enum
+import struct
+from dataclasses import dataclass, replace
+
+from robomodel.runtime.qos import Durability, QoSProfile, Reliability
+
+__all__ = [
+    "ADMIN_SPACE",
+    "ATTACHMENT_SIZE",
+    "Attachment",
+    "EntityKind",
+    "EntityToken",
+    "demangle",
+    "encode_attachment",
+    "entity_gid",
+    "mangle",
+    "parse_attachment",
+    "qos_from_key",
+    "qos_to_key",
+    "topic_key",
+]
+
+ADMIN_SPACE = "@ros2_lv"
+GID_SIZE = 16
+ATTACHMENT_SIZE = 8 + 8 + 1 + GID_SIZE
+_ATTACHMENT = struct.Struct("<qqB16s")
+
+# rmw's enum values (rmw/types.h) and rmw_zenoh's defaults (qos.cpp)
+_RELIABLE, _BEST_EFFORT = 1, 2
+_TRANSIENT_LOCAL, _VOLATILE = 1, 2
+_KEEP_LAST, _KEEP_ALL = 1, 2
+_DEFAULT_DEPTH = 42
+
+
+class EntityKind(enum.Enum):
+    NODE = "NN"
+    PUBLISHER = "MP"
+    SUBSCRIPTION = "MS"
+    SERVICE = "SS"
+    CLIENT = "SC"
+
+
+def mangle(name: str) -> str:
+    return name.replace("/", "%")
+
+
+def demangle(text: str) -> str:
+    return text.replace("%", "/")
+
+
+def topic_key(domain_id: int, name: str, dds_type: str, type_hash: str) -> str:
+    """The key of a topic's samples or a service's queries (``TopicInfo``)."""
+    return f"{domain_id}/{name.strip('/')}/{dds_type}/{type_hash}"
+
+
+# -- QoS ----------------------------------------------------------------------------------------
+
+
+def qos_to_key(qos: QoSProfile, *, keep_all: bool = False) -> str:
+    """``qos_to_keyexpr``: ``reliability:durability:history,depth:deadline:lifespan:liveliness``
+    with every value equal to the default left empty (``::,10:,:,:,,`` is rclcpp's default)."""
+    reliability = "" if qos.reliability is Reliability.RELIABLE else str(_BEST_EFFORT)
+    durability = "" if qos.durability is Durability.VOLATILE else str(_TRANSIENT_LOCAL)
+    history = str(_KEEP_ALL) if keep_all else ""
+    depth = "" if qos.depth == _DEFAULT_DEPTH else str(qos.depth)
+    return f"{reliability}:{durability}:{history},{depth}:,:,:,,"
+
+
+def _number(text: str, default: int) -> int | None:
+    if not text:
+        return default
+    if not text.isascii() or not text.isdigit() or len(text) > 20:
+        return None
+    return int(text)
+
+
+def qos_from_key(text: str) -> QoSProfile | None:
+    """``keyexpr_to_qos`` for what robomodel models (reliability, durability, depth); None when
+    the string is not of that form. A depth of 0 reads as the default, as rmw_zenoh adapts it."""
+    parts = text.split(":")
+    if len(parts) < 6:
+        return None
+    history = parts[2].split(",")
+    if len(history) < 2 or len(parts[3].split(",")) < 2 or len(parts[4].split(",")) < 2:
+        return None
+    if len(parts[5].split(",")) < 3:
+        return None
+    reliability = {"": Reliability.RELIABLE, "0": Reliability.RELIABLE, "1": Reliability.RELIABLE,
+                   "2": Reliability.BEST_EFFORT, "4": Reliability.RELIABLE}.get(parts[0])  # fmt: skip
+    durability = {"": Durability.VOLATILE, "0": Durability.VOLATILE, "2": Durability.VOLATILE,
+                  "1": Durability.TRANSIENT_LOCAL, "4": Durability.VOLATILE}.get(parts[1])  # fmt: skip
+    depth = _number(history[1], _DEFAULT_DEPTH)
+    if (
+        reliability is None
+        or durability is None
+        or depth is None
+        or history[0] not in ("", "0", "1", "2")
+    ):
+        return None
+    return QoSProfile(depth or _DEFAULT_DEPTH, durability, reliability)
+
+
+# -- liveliness tokens -------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class EntityToken:
+    """One entity of the ROS graph as its liveliness token names it."""
+
+    domain_id: int
+    zid: str
+    node_id: int
+    entity_id: int
+    kind: EntityKind
+    namespace: str
+    node_name: str
+    enclave: str = "/"
+    name: str = ""
+    dds_type: str = ""
+    type_hash: str = ""
+    qos: str = ""
+
+    @property
+    def node(self) -> str:
+        """The node's fully qualified name."""
+        return f"{self.namespace.rstrip('/')}/{self.node_name}"
+
+    def key(self) -> str:
+        parts = [
+            ADMIN_SPACE,
+            str(self.domain_id),
+            self.zid,
+            str(self.node_id),
+            str(self.entity_id),
+            self.kind.value,
+            mangle(self.enclave),
+            mangle(self.namespace),
+            mangle(self.node_name),
+        ]
+        if self.kind is not EntityKind.NODE:
+            parts += [mangle(self.name), mangle(self.dds_type), mangle(self.type_hash), self.qos]
+        return "/".join(parts)
+
+    @classmethod
+    def parse(cls, key: str) -> EntityToken | None:
+        """The entity of a token; None for a malformed one (as ``Entity::make`` refuses it)."""
+        parts = key.split("/")
+        if len(parts) < 9 or parts[0] != ADMIN_SPACE or not all(parts):
+            return None
+        try:
+            kind = EntityKind(parts[5])
+        except ValueError:
+            return None
+        numbers = [_number(p, -1) for p in parts[1:2] + parts[3:5]]
+        if any(n is None or n < 0 for n in numbers):
+            return None
+        domain_id, node_id, entity_id = (int(n) for n in numbers)  # type: ignore[arg-type]
+        token = cls(domain_id, parts[2], node_id, entity_id, kind, demangle(parts[7]),
+                    demangle(parts[8]), demangle(parts[6]))  # fmt: skip
+        if kind is EntityKind.NODE:
+            return token if len(parts) == 9 else None
+        if len(parts) != 13 or qos_from_key(parts[12]) is None:
+            return None
+        return replace(token, name=demangle(parts[9]), dds_type=demangle(parts[10]),
+                       type_hash=demangle(parts[11]), qos=parts[12])  # fmt: skip
+
+
+def entity_gid(token_key: str) -> bytes:
+    """The 16-byte GID rmw_zenoh derives from an entity's token (XXH3-128, low then high)."""
+    import xxhash
+
+    return int(xxhash.xxh3_128_intdigest(token_key.encode("utf-8"))).to_bytes(16, "little")
+
+
+# -- attachments --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Attachment:
+    sequence_number: int
+    source_timestamp_ns: int
+    gid: bytes
+
+
+def encode_attachment(sequence_number: int, source_timestamp_ns: int, gid: bytes) -> bytes:
+    return _ATTACHMENT.pack(sequence_number, source_timestamp_ns, GID_SIZE, gid)
+
+
+def _legacy(data: bytes) -> Attachment | None:
+    """The labelled form of rmw_zenoh before 0.2.4: each value after its name."""
+    values: list[int | bytes] = []
+    offset = 0
+    for label, size in ((b"sequence_number", 8), (b"source_timestamp", 8), (b"source_gid", 0)):
+        if data[offset : offset + 1 + len(label)] != bytes([len(label)]) + label:
+            return None
+        offset += 1 + len(label)
+        if size:
+            if offset + 8 > len(data):
+                return None
+            values.append(struct.unpack_from("<q", data, offset)[0])
+            offset += 8
+        else:
+            if data[offset : offset + 1] != bytes([GID_SIZE]) or len(data) != offset + 1 + GID_SIZE:
+                return None
+            values.append(data[offset + 1 :])
+    seq, stamp, gid = values
+    return Attachment(int(seq), int(stamp), bytes(gid))  # type: ignore[call-overload]
+
+
+def parse_attachment(data: bytes) -> Attachment | None:
+    """The attachment, or None when it is absent or not exactly one of rmw_zenoh's forms."""
+    if len(data) == ATTACHMENT_SIZE and data[16] == GID_SIZE:
+        seq, stamp, _, gid = _ATTACHMENT.unpack(data)
+        return Attachment(seq, stamp, gid)
+    if 40 < len(data) < 128:
+        return _legacy(data)
+    return None
