@@ -8,6 +8,7 @@ import shutil
 import subprocess
 import sys
 import sysconfig
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,6 +28,45 @@ EXAMPLES = ROOT / "examples"
 
 
 _DOMAINS = itertools.count()
+
+
+_ROUTER: subprocess.Popen[bytes] | None = None
+
+
+def _listening(port: int) -> bool:
+    import socket
+
+    with socket.socket() as probe:
+        probe.settimeout(0.2)
+        return probe.connect_ex(("127.0.0.1", port)) == 0
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """One Zenoh router for the whole run, as a ROS 2 user runs ``rmw_zenohd``: started by
+    the controlling process (not by an xdist worker), so that the robomodel processes of every
+    test find the same router however short-lived the others are. Without it the first process
+    of a test becomes the router and takes it along when it exits (tested on its own port in
+    tests/runtime/test_zenoh_router.py)."""
+    global _ROUTER
+    if hasattr(config, "workerinput") or _listening(7447):
+        return
+    _ROUTER = subprocess.Popen(
+        [*ROBOMODEL, "router"], stderr=subprocess.DEVNULL, start_new_session=True
+    )
+    for _ in range(100):
+        if _listening(7447):
+            return
+        time.sleep(0.05)
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    if _ROUTER is not None:
+        _ROUTER.terminate()
+        try:
+            _ROUTER.wait(10)
+        except subprocess.TimeoutExpired:
+            _ROUTER.kill()
+            _ROUTER.wait()
 
 
 def unique_domain() -> str:

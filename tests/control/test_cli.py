@@ -11,7 +11,6 @@ from pathlib import Path
 import pytest
 import yaml
 
-from robomodel.runtime import Context
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 
 RUNS = [
@@ -76,15 +75,6 @@ def test_bad_controller_file_reports_file_line(tmp_path: Path, cli: Callable[...
     )
     assert result.code == 2  # type: ignore[attr-defined]
     assert f"{bad}:2:3" in result.err and "did you mean" in result.err  # type: ignore[attr-defined]
-
-
-def test_services_inproc() -> None:
-    with Context("inproc") as ctx:
-        unregister = ctx.create_service("/svc/echo", lambda r: {"got": r["x"] + 1})
-        assert ctx.call_service("/svc/echo", {"x": 1}) == {"got": 2}
-        unregister()
-        with pytest.raises(Exception, match="not found"):
-            ctx.call_service("/svc/echo", {"x": 1})
 
 
 def _domain() -> str:

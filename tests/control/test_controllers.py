@@ -410,8 +410,10 @@ def test_seed_000_namespaced_file(caplog: pytest.LogCaptureFixture) -> None:
         system.manager.step(0.01)
     ctx.spin_once()
     assert states[-1].position[0] == pytest.approx(1.6, abs=0.2)
-    answer = ctx.call_service("/rrbot/controller_manager/list_controllers", {})
-    assert [c["state"] for c in answer["controllers"]] == ["active", "active"]
+    from robomodel.runtime.msg.controller_manager_msgs import ListControllers
+
+    answer = ctx.call_service("/rrbot/controller_manager/list_controllers", ListControllers)
+    assert [c.state for c in answer.controller] == ["active", "active"]
     ctx.shutdown()
 
 
@@ -455,50 +457,75 @@ def test_seed_002_simplebot_drives_in_a_circle() -> None:
     ctx.shutdown()
 
 
-def test_jtc_follow_joint_trajectory_services() -> None:
+def test_jtc_follow_joint_trajectory_action_and_query_state() -> None:
+    """FollowJointTrajectory over rcl_action's services and topics, QueryTrajectoryState."""
+    from robomodel.runtime.action_client import ActionClient
+    from robomodel.runtime.msg import JointTrajectory, message_from_dict
+    from robomodel.runtime.msg.action_msgs import GoalStatus, GoalStatusArray
+    from robomodel.runtime.msg.builtin_interfaces import Time
+    from robomodel.runtime.msg.control_msgs_actions import (
+        FollowJointTrajectory,
+        QueryTrajectoryState,
+        QueryTrajectoryState_Request,
+    )
+
     ctx = Context("inproc", clock=ManualClock())
     cm, ctrl = _jtc({"constraints.joint1.goal": 0.01}, context=ctx)
-    trajectory = {
-        "joint_names": ["joint1", "joint2"],
-        "points": [{"positions": [0.6, 0.1], "time_from_start": {"sec": 1}}],
-    }
-    answer = ctx.call_service("/jtc/follow_joint_trajectory", {"trajectory": trajectory})
-    assert answer["status"] == "active"
-    cm.step()  # type: ignore[attr-defined]
+    graph = ctx.graph()
+    base = "/jtc/follow_joint_trajectory/_action"
+    assert {f"{base}/send_goal", f"{base}/cancel_goal", f"{base}/get_result"} <= set(graph.services)
+    assert {f"{base}/feedback", f"{base}/status"} <= set(graph.topics)
+    statuses: list[GoalStatusArray] = []
+    ctx.create_node("probe").create_subscription(GoalStatusArray, f"{base}/status", statuses.append)
+
+    def goal(
+        points: list[dict[str, object]], joints: tuple[str, ...] = ("joint1", "joint2")
+    ) -> object:
+        trajectory = message_from_dict(
+            JointTrajectory, {"joint_names": list(joints), "points": points}
+        )
+        return FollowJointTrajectory.Goal(trajectory=trajectory)
+
+    def run(cycles: int) -> None:
+        for _ in range(cycles):
+            cm.step()  # type: ignore[attr-defined]
+            ctx.advance(0.01)
+
+    client = ActionClient(ctx, FollowJointTrajectory, "/jtc/follow_joint_trajectory")
+    goal_id, accepted = client.send_goal(
+        goal([{"positions": [0.6, 0.1], "time_from_start": {"sec": 1}}])
+    )
+    assert accepted
+    run(1)
     start = ctrl.trajectory.start_s  # type: ignore[union-attr]
-    mid = ctx.call_service("/jtc/query_state", {"time": start + 0.5})
-    assert mid["success"] and mid["name"] == ["joint1", "joint2"]
+
+    def query(t: float) -> object:
+        request = QueryTrajectoryState_Request(Time.from_seconds(t))
+        return ctx.call_service("/jtc/query_state", QueryTrajectoryState, request)
+
+    mid = query(start + 0.5)
+    assert mid.success and mid.name == ["joint1", "joint2"]  # type: ignore[attr-defined]
     # linear from the measured (0.25, 0) at reception to (0.6, 0.1) at 1 s
-    assert mid["position"] == pytest.approx([0.25 + 0.35 * 0.5, 0.05], abs=0.02)
-    stamped = ctx.call_service("/jtc/query_state", {"time": {"sec": 0, "nanosec": int((start + 0.5) * 1e9)}})  # fmt: skip
-    assert stamped["position"] == pytest.approx(mid["position"])
-    late = ctx.call_service("/jtc/query_state", {"time": start + 5.0})
-    assert not late["success"] and "after the current trajectory end" in late["message"]
-    assert late["position"] == pytest.approx([0.6, 0.1])
-    early = ctx.call_service("/jtc/query_state", {"time": -1.0})
-    assert not early["success"] and "earlier than the current trajectory start" in early["message"]
-    assert "seconds" in ctx.call_service("/jtc/query_state", {"time": "soon"})["message"]
-    for _ in range(120):
-        cm.step()
-    status = ctx.call_service("/jtc/goal_status", {"goal_id": answer["goal_id"]})
-    assert status["status"] == "succeeded"
-    second = ctx.call_service(
-        "/jtc/follow_joint_trajectory",
-        {
-            "trajectory": trajectory
-            | {"points": [{"positions": [0.0, 0.0], "time_from_start": {"sec": 2}}]}
-        },
-    )
-    cm.step()
-    canceled = ctx.call_service("/jtc/goal_status", {"goal_id": second["goal_id"], "cancel": True})
-    assert canceled["status"] == "canceled"
-    bad = ctx.call_service(
-        "/jtc/follow_joint_trajectory",
-        {"trajectory": {"joint_names": ["x"], "points": [{"positions": [1.0]}]}},
-    )
-    assert bad["status"] == "aborted" and "unknown joints" in bad["error_string"]
+    assert mid.position == pytest.approx([0.25 + 0.35 * 0.5, 0.05], abs=0.02)  # type: ignore[attr-defined]
+    late = query(start + 5.0)
+    assert not late.success and "after the current trajectory end" in late.message  # type: ignore[attr-defined]
+    assert late.position == pytest.approx([0.6, 0.1])  # type: ignore[attr-defined]
+    assert "earlier than the current trajectory start" in query(0.0).message  # type: ignore[attr-defined]
+    run(120)
+    status, result = client.get_result(goal_id)
+    assert status == GoalStatus.STATUS_SUCCEEDED and result.error_code == 0
+    assert statuses and statuses[-1].status_list[-1].status == GoalStatus.STATUS_SUCCEEDED
+    second, _ = client.send_goal(goal([{"positions": [0.0, 0.0], "time_from_start": {"sec": 2}}]))
+    run(2)
+    canceling = client.cancel(second)
+    assert canceling.return_code == 0 and canceling.goals_canceling[0].goal_id == second
+    run(1)
+    assert client.get_result(second)[0] == GoalStatus.STATUS_CANCELED
+    assert client.cancel(second).return_code == 3  # ERROR_GOAL_TERMINATED
+    _, rejected = client.send_goal(goal([{"positions": [1.0]}], ("x",)))
+    assert not rejected  # validation fails: rejected, as Humble's goal_received_callback
     cm.switch_controllers(deactivate=["jtc"])  # type: ignore[attr-defined]
-    assert ctx.call_service("/jtc/query_state", {"time": 0.0})["message"].endswith("not active.")
+    assert query(0.0).message.endswith("not active.")  # type: ignore[attr-defined]
     ctx.shutdown()
 
 
@@ -528,26 +555,24 @@ def test_pid_gains_set_through_the_parameter_service_apply_live() -> None:
     node.create_subscription(
         JointControllerState, "/joint1_position_controller/state", pid_state.append
     )
-    name = "/joint1_position_controller"
-    reply = ctx.call_parameters(name, {"op": "set", "values": {"pid.p": 12.5, "pid.d": 0.5}})
-    assert reply == {"successful": True, "reason": ""}
+    from robomodel.runtime.param_client import ParameterClient
+
+    params = ParameterClient(ctx, "/joint1_position_controller")
+    assert params.set_atomically({"pid.p": 12.5, "pid.d": 0.5}).successful
     assert controller.pid.gains.p == 12.5 and controller.pid.gains.d == 0.5  # type: ignore[attr-defined]
     for _ in range(10):
         system.manager.step(0.01)
     ctx.spin_once()
     assert pid_state[-1].p == 12.5 and pid_state[-1].d == 0.5
-    refused = ctx.call_parameters(name, {"op": "set", "values": {"pid.i": "fast"}})
-    assert refused["successful"] is False and "pid.i" in refused["reason"]  # a double stays one
+    [refused] = params.set({"pid.i": "fast"})
+    assert not refused.successful and "pid.i" in refused.reason  # a double stays one
     # A gain not in the file yet is new to the node; the controller refuses a non-number.
-    refused = ctx.call_parameters(name, {"op": "set", "values": {"pid.i_clamp": "wide"}})
-    assert refused["successful"] is False
-    assert "'pid.i_clamp' must be a number" in refused["reason"]
-    clamp = ctx.call_parameters(name, {"op": "set", "values": {"pid.i_clamp": 2.0}})
-    assert clamp["successful"] is True
+    [refused] = params.set({"pid.i_clamp": "wide"})
+    assert not refused.successful and "'pid.i_clamp' must be a number" in refused.reason
+    assert params.set({"pid.i_clamp": 2.0})[0].successful
     assert controller.pid.gains.i_max == 2.0 and controller.pid.gains.i_min == -2.0  # type: ignore[attr-defined]
     assert controller.pid.gains.i == pytest.approx(0.01)  # type: ignore[attr-defined]
-    other = ctx.call_parameters(name, {"op": "set", "values": {"joint": "joint1"}})
-    assert other["successful"] is True  # not a gain: no PID change, no refusal
+    assert params.set({"joint": "joint1"})[0].successful  # not a gain: no PID change, no refusal
     ctx.shutdown()
 
 

@@ -3,6 +3,7 @@ simulation server that spawn_model spawns into."""
 
 from __future__ import annotations
 
+import logging
 import re
 from pathlib import Path
 from typing import Any
@@ -108,25 +109,28 @@ def _loaded_params() -> ParamServer:
     return params
 
 
-def test_spawned_robot_gets_a_controller_manager_with_parameter_server_controllers() -> None:
+def test_spawned_robot_gets_a_controller_manager_with_parameter_server_controllers(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    from robomodel.control.client import ManagerClient
+
     server, context = _server(_loaded_params())
     try:
         server.drive(0.05)
         entry = server.spawn("rrbot", _rrbot_xml(), joint_positions={"joint2": 0.3})
         manager = entry.control.manager
         assert manager.service_prefix == "/rrbot/controller_manager"  # the plugin's namespace
-        reply = context.call_service(
-            "/rrbot/controller_manager/load_controller",
-            {"name": "joint1_position_controller", "set_state": "active"},
-        )
-        assert reply == {"ok": True}
+        client = ManagerClient(context, "/rrbot/controller_manager")
+        assert client.load("joint1_position_controller")
+        assert client.configure("joint1_position_controller")
+        assert client.switch(["joint1_position_controller"]) == (True, "")
         spec = manager.specs["joint1_position_controller"]
         assert spec.params["joint"] == "joint1" and spec.params["pid.p"] == 100.0
         joint2 = server.sim.model.joint("joint2").qposadr[0]
         assert server.sim.data.qpos[joint2] == pytest.approx(0.3)  # -J
-        unknown = context.call_service("/rrbot/controller_manager/load_controller", {"name": "x"})
-        assert unknown["ok"] is False
-        assert "namespace: '/rrbot/x'" in unknown["error"]  # ROS 1's message
+        with caplog.at_level(logging.ERROR, logger="robomodel.control"):
+            assert not client.load("x")
+        assert "namespace: '/rrbot/x'" in caplog.text  # ROS 1's message, in the manager's log
     finally:
         server.close()
         context.shutdown()
@@ -204,11 +208,14 @@ def test_spawn_model_sdf_adds_rigid_shapes_and_refuses_articulated_models() -> N
 
     try:
         assert not [s for s in _world_scenery(server) if "crate" in s.name]
-        reply = context.call_service(
-            "/gazebo/spawn_sdf_model",
-            {"model_name": "crate", "model_xml": crate, "initial_pose": [1, 2, 0.5, 0, 0, 0]},
+        from robomodel.launch.nodes.gazebo import pose_message
+        from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
+
+        request = SpawnModel_Request(
+            model_name="crate", model_xml=crate, initial_pose=pose_message((1, 2, 0.5), (0, 0, 0))
         )
-        assert reply["success"], reply
+        reply = context.call_service("/gazebo/spawn_sdf_model", SpawnModel, request)
+        assert reply.success, reply
         (shape,) = [s for s in server.world.shapes if s.model == "crate"]
         assert shape.pose[:3] == pytest.approx((1.0, 2.0, 0.5)) and shape.mass_kg == 2.0
         (drawn,) = [s for s in _world_scenery(server) if "crate" in s.name]

@@ -18,11 +18,11 @@ class _Runtime:
         self.answer_after = answer_after
         self.calls: list[tuple[str, float]] = []
 
-    def call_service(self, name: str, request: dict[str, Any], timeout_s: float) -> dict[str, Any]:
+    def call_service(self, name: str, srv_type: Any, request: Any, timeout_s: float) -> Any:
         self.calls.append((name, timeout_s))
         if self.answer_after is None or len(self.calls) < self.answer_after:
             raise RobomodelError(f"service '{name}' not found")
-        return {"controllers": []}
+        return srv_type.Response()
 
 
 def _wait(runtime: _Runtime, timeout_s: float, stopping: threading.Event | None = None, **kw: Any):  # type: ignore[no-untyped-def]

@@ -8,6 +8,8 @@ import pytest
 
 from robomodel.runtime import Context, ManualClock, latched
 from robomodel.runtime.msg import Clock, Float64, String, Time
+from robomodel.runtime.param_client import ParameterClient
+from robomodel.runtime.params import ParameterError, SetResult
 
 
 def _run(seed_order: list[str]) -> list[tuple[float, str, float]]:
@@ -117,8 +119,46 @@ def test_graph_and_parameter_service() -> None:
     graph = ctx.graph()
     assert "/arm/jsp" in graph.nodes
     assert graph.topics["/arm/joint_states"].types == {"std_msgs/msg/Float64"}
-    assert ctx.call_parameters("/arm/jsp", {"op": "get", "names": ["rate"]}) == {
-        "values": {"rate": 10}
+    # rclcpp's ParameterService: six rcl_interfaces services under the node's name
+    assert {s for s in graph.services if s.startswith("/arm/jsp/")} == {
+        f"/arm/jsp/{name}"
+        for name in (
+            "describe_parameters",
+            "get_parameter_types",
+            "get_parameters",
+            "list_parameters",
+            "set_parameters",
+            "set_parameters_atomically",
+        )
     }
-    assert ctx.call_parameters("/arm/jsp", {"op": "set", "values": {"rate": 20}})["successful"]
+    params = ParameterClient(ctx, "/arm/jsp")
+    assert params.list_names() == ["rate", "use_sim_time"]
+    assert params.get(["rate"]) == {"rate": 10}
+    assert params.set({"rate": 20}) == [SetResult(True, "")]
     assert node.get_parameter("rate") == 20
+    refused = params.set({"rate": "fast", "use_sim_time": False})
+    assert not refused[0].successful and refused[1].successful  # each on its own
+    atomic = params.set_atomically({"rate": 30, "nope": 1})
+    assert not atomic.successful and node.get_parameter("rate") == 20  # all or nothing
+    with pytest.raises(ParameterError, match="not set"):
+        params.get(["rate", "nope"])  # rclcpp answers nothing when one name is unknown
+    described = params.describe(["rate"])
+    assert described[0].name == "rate" and described[0].type == 2  # PARAMETER_INTEGER
+
+
+def test_parameter_events_are_published() -> None:
+    from robomodel.runtime.msg.rcl_interfaces import ParameterEvent
+
+    ctx = Context(clock=ManualClock())
+    events: list[ParameterEvent] = []
+    ctx.create_node("watcher").create_subscription(
+        ParameterEvent, "/parameter_events", events.append, 1000
+    )
+    node = ctx.create_node("talker")
+    node.declare_parameter("gain", 1.5)
+    node.set_parameters({"gain": 2.0})
+    ctx.spin_once()
+    mine = [e for e in events if e.node == "/talker"]
+    assert [p.name for e in mine for p in e.new_parameters] == ["use_sim_time", "gain"]
+    changed = [p for e in mine for p in e.changed_parameters]
+    assert [(p.name, p.value.double_value) for p in changed] == [("gain", 2.0)]

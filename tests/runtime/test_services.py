@@ -1,4 +1,5 @@
-"""Request/response services: in-process and across processes over Zenoh."""
+"""Typed request/response services: in-process and across processes over Zenoh (rmw_zenoh's
+queryables), and the ``robomodel service`` command."""
 
 from __future__ import annotations
 
@@ -11,34 +12,50 @@ import pytest
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
+from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Request, SetBool_Response, Trigger
+from robomodel.runtime.transport.base import ServiceCallError
 from tests.conftest import ROBOMODEL, unique_domain
 
 SERVER = textwrap.dedent(
     """
     import sys
     from robomodel.runtime import Context
+    from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Response
     ctx = Context("zenoh", domain_id=int(sys.argv[1]))
-    def add(request):
-        if "a" not in request:
-            raise ValueError("missing 'a'")
-        return {"sum": request["a"] + request["b"]}
-    ctx.create_service("/calc/add", add)
+    def check(request):
+        if not request.data:
+            raise ValueError("data must be true")
+        return SetBool_Response(True, "checked")
+    ctx.create_node("calc").create_service(SetBool, "/calc/check", check)
     print("ready", flush=True)
     ctx.spin(duration_s=30)
     """
 )
 
 
+def _check(request: SetBool_Request) -> SetBool_Response:
+    if not request.data:
+        raise ValueError("data must be true")
+    return SetBool_Response(True, "checked")
+
+
 def test_inproc_service_call_and_errors() -> None:
     with Context("inproc") as ctx:
-        unregister = ctx.create_service("/calc/add", lambda r: {"sum": r["a"] + r["b"]})
-        assert ctx.call_service("/calc/add", {"a": 1, "b": 2}) == {"sum": 3}
+        node = ctx.create_node("calc")
+        server = node.create_service(SetBool, "check", _check)
+        assert server.name == "/check"
+        reply = ctx.call_service("/check", SetBool, SetBool_Request(True))
+        assert reply == SetBool_Response(True, "checked")
+        with pytest.raises(ServiceCallError, match="data must be true"):
+            ctx.call_service("/check", SetBool, SetBool_Request(False))
+        with pytest.raises(ServiceCallError, match="has type std_srvs/srv/SetBool"):
+            ctx.call_service("/check", Trigger)
         with pytest.raises(RobomodelError, match="already offered"):
-            ctx.create_service("/calc/add", lambda r: r)
-        assert ctx.graph().services == {"/calc/add"}
-        unregister()
-        with pytest.raises(RobomodelError, match="not found"):
-            ctx.call_service("/calc/add", {})
+            node.create_service(SetBool, "/check", _check)
+        assert ctx.graph().services["/check"].types == {"std_srvs/srv/SetBool"}
+        server.destroy()
+        with pytest.raises(ServiceCallError, match="not found"):
+            ctx.call_service("/check", SetBool)
 
 
 def test_zenoh_service_across_processes(tmp_path: Path) -> None:
@@ -54,34 +71,35 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
             from robomodel.cli._bus import wait_for_peers
 
             wait_for_peers(ctx)
-            assert ctx.call_service("/calc/add", {"a": 2, "b": 40}) == {"sum": 42}
+            assert (
+                ctx.call_service("/calc/check", SetBool, SetBool_Request(True)).message == "checked"
+            )
             # a handler's exception comes back as an error answer, not a dead server
-            assert "missing 'a'" in ctx.call_service("/calc/add", {"b": 1})["error"]
-            with pytest.raises(RobomodelError, match="did not answer"):
-                ctx.call_service("/calc/nothing", {}, timeout_s=0.5)
-            assert "/calc/add" in ctx.graph().services
+            with pytest.raises(ServiceCallError, match="data must be true"):
+                ctx.call_service("/calc/check", SetBool, SetBool_Request(False))
+            with pytest.raises(ServiceCallError, match="did not answer"):
+                ctx.call_service("/calc/nothing", SetBool, timeout_s=0.5)
+            with pytest.raises(ServiceCallError, match="did not answer"):
+                ctx.call_service("/calc/check", Trigger, timeout_s=0.5)  # another type: no match
+            info = ctx.graph().services["/calc/check"]
+            assert info.types == {"std_srvs/srv/SetBool"} and info.servers[0].node == "/calc"
         cli = [*ROBOMODEL, "service"]
-        listed = subprocess.run([*cli, "list", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
-        assert listed.returncode == 0 and "/calc/add" in listed.stdout.split()
-        called = subprocess.run([*cli, "call", "calc/add", "{a: 2, b: 3.5}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        listed = subprocess.run([*cli, "list", "-t", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert listed.returncode == 0 and "/calc/check [std_srvs/srv/SetBool]" in listed.stdout
+        typed = subprocess.run([*cli, "type", "/calc/check", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert typed.stdout.strip() == "std_srvs/srv/SetBool"
+        called = subprocess.run([*cli, "call", "calc/check", "std_srvs/srv/SetBool", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
         assert called.returncode == 0, called.stderr
-        assert "sum: 5.5" in called.stdout and '{"a": 2, "b": 3.5}' in called.stdout
-        failed = subprocess.run([*cli, "call", "/calc/add", "{b: 1}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
-        assert failed.returncode == 2 and "missing 'a'" in failed.stdout
+        assert "message: checked" in called.stdout and "data: true" in called.stdout
+        untyped = subprocess.run([*cli, "call", "/calc/check", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert untyped.returncode == 0 and "success: true" in untyped.stdout
+        failed = subprocess.run([*cli, "call", "/calc/check", "std_srvs/SetBool", "{data: false}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert failed.returncode == 2 and "data must be true" in failed.stderr
+        wrong = subprocess.run([*cli, "call", "/calc/check", "std_srvs/srv/SetBool", "{dat: 1}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert wrong.returncode == 2 and "has no field 'dat'" in wrong.stderr
         missing = subprocess.run([*cli, "call", "/calc/sub", "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
         assert missing.returncode == 2
-        assert "did not answer" in missing.stderr and "/calc/add" in missing.stderr
+        assert "not offered" in missing.stderr and "/calc/check" in missing.stderr
     finally:
         proc.kill()
         proc.wait()
-
-
-def test_service_request_yaml_is_checked() -> None:
-    from robomodel.cli.service import parse_request
-
-    assert parse_request("") == {} and parse_request("{}") == {}
-    assert parse_request("{steps: 10}") == {"steps": 10}
-    with pytest.raises(RobomodelError, match="mapping"):
-        parse_request("[1, 2]")
-    with pytest.raises(RobomodelError, match="not valid YAML at line 1"):
-        parse_request("{steps: [}")

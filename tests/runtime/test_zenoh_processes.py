@@ -281,9 +281,12 @@ def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
             if info is not None and info.subscribers:
                 break
             time.sleep(0.1)
-        key = f"rm/{domain}/t/chatter"
-        session.put(key, b"\x00\x01\x00\x00\x01", attachment=b"std_msgs/msg/Float64|foreign|1")
-        session.put(key, b"not cdr at all", attachment=b"std_msgs/msg/Float64|foreign|2")
+        from robomodel.runtime.transport.rmw_zenoh import encode_attachment
+
+        key = ctx.transport.data_key("/chatter", Float64)  # type: ignore[attr-defined]
+        gid = bytes(range(16))
+        session.put(key, b"\x00\x01\x00\x00\x01", attachment=encode_attachment(1, 0, gid))
+        session.put(key, b"not cdr at all", attachment=encode_attachment(2, 0, gid))
         time.sleep(0.3)
         pub = ctx.create_node("good").create_publisher(Float64, "/chatter")
         time.sleep(0.5)

@@ -54,14 +54,32 @@ def test_services_queue_requests_to_the_loop() -> None:
     sim = _simplebot()
     SimBridge(sim, context)
     sim.step(100)
-    reply = context.call_service("/gazebo/set_model_state", {"pose": [1, 1, 0.1, 0, 0, 0]})
-    assert reply["success"]
+    from robomodel.runtime.msg import gazebo_msgs as gz
+    from robomodel.runtime.msg import std_srvs
+    from robomodel.runtime.msg.builtin_interfaces import Duration
+    from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion, Vector3, Wrench
+
+    state = gz.ModelState("simplebot", Pose(Point(1, 1, 0.1), Quaternion(0, 0, 0, 1)))
+    reply = context.call_service(
+        "/gazebo/set_model_state", gz.SetModelState, gz.SetModelState_Request(state)
+    )
+    assert reply.success, reply.status_message
+    unknown = gz.SetModelState_Request(gz.ModelState("nobody"))
+    refused = context.call_service("/gazebo/set_model_state", gz.SetModelState, unknown)
+    assert not refused.success and "models are: simplebot" in refused.status_message
     sim.step(20)
     assert sim.data.body("base_link").xpos[0] == pytest.approx(1.0, abs=1e-3)
-    context.call_service("/gazebo/apply_body_wrench", {"link": "base_link", "force": [0, 0, 100]})
+    lift = gz.ApplyBodyWrench_Request(
+        body_name="simplebot::base_link",
+        wrench=Wrench(force=Vector3(0, 0, 100)),
+        duration=Duration.from_seconds(0.5),
+    )
+    assert context.call_service("/gazebo/apply_body_wrench", gz.ApplyBodyWrench, lift).success
     sim.step(200)
     assert sim.data.body("base_link").xpos[2] > 0.3  # lifted off
-    context.call_service("/gazebo/reset_world", {})
+    sim.step(400)  # the 0.5 s of the wrench have passed: it is removed
+    assert sim.data.xfrc_applied.max() == 0.0
+    context.call_service("/gazebo/reset_world", std_srvs.Empty)
     sim.step(10)
     assert sim.time_s < 0.02
 
@@ -189,5 +207,8 @@ def test_ground_truth_tf_and_static_odom_frame() -> None:
     assert truth.header.frame_id == "world"  # type: ignore[attr-defined]
     assert truth.transform.translation.x == pytest.approx(1.0, abs=0.01)  # type: ignore[attr-defined]
     assert odom.transform.translation.y == pytest.approx(2.0)  # type: ignore[attr-defined]
-    assert context.call_service("/gazebo/step", {"steps": 3})["success"]
+    from robomodel.runtime.msg import ros_gz_interfaces as rgz
+
+    step = rgz.ControlWorld_Request(rgz.WorldControl(multi_step=3))
+    assert context.call_service("/gazebo/step", rgz.ControlWorld, step).success
     assert bridge.pending_steps == 3

@@ -82,7 +82,7 @@ def run_list(args: argparse.Namespace) -> int:
         else:
             nodes = sorted(settled_graph(context).nodes)
         for node in nodes:
-            names = _client(context, node).list()
+            names = _client(context, node).list_names()
             print(f"{node if node.startswith('/') else '/' + node}:")
             for name in names:
                 print(f"  {name}")
@@ -156,7 +156,7 @@ def run_dump(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         wait_for_peers(context)
         client = _client(context, args.node)
-        values = client.get(client.list())
+        values = client.get(client.list_names())
         print(dump_parameters_yaml(client.node, values), end="")
     return 0
 

@@ -38,13 +38,14 @@ def lifecycle_state(label: str) -> State:
     return State(_LIFECYCLE.get(label, 0), label)
 
 
-def _guarded(action: Callable[[], None], what: str) -> str | None:
-    """Run ``action``; the reason it failed (also logged), or None."""
+def _guarded(cm: ControllerManager, action: Callable[[], object], what: str) -> str | None:
+    """Run ``action``; the reason it failed (also logged, on the manager node's logger, as the
+    controller_manager logs it), or None."""
     try:
         action()
     except (RobomodelError, KeyError, ValueError) as exc:
         reason = str(exc)
-        log.error("%s: %s", what, reason)
+        (cm.node.logger if cm.node is not None else log).error("%s: %s", what, reason)
         return reason or type(exc).__name__
     return None
 
@@ -130,7 +131,9 @@ def _load(
     name = request.name
     type_name, params = _spec_from_parameters(cm.node, name)
     failed = _guarded(
-        lambda: cm.load_controller(name, type_name, params), f"Could not load controller '{name}'"
+        cm,
+        lambda: cm.load_controller(name, type_name, params),
+        f"Could not load controller '{name}'",
     )
     return cm_msgs.LoadController_Response(failed is None)
 
@@ -139,6 +142,7 @@ def _switch(
     cm: ControllerManager, request: cm_msgs.SwitchController_Request
 ) -> cm_msgs.SwitchController_Response:
     failed = _guarded(
+        cm,
         lambda: cm.switch_controllers(
             list(request.activate_controllers),
             list(request.deactivate_controllers),
@@ -168,7 +172,7 @@ def _reload(
             cm.unload_controller(n)
 
     return cm_msgs.ReloadControllerLibraries_Response(
-        _guarded(unload_all, "Could not reload") is None
+        _guarded(cm, unload_all, "Could not reload") is None
     )
 
 
@@ -185,14 +189,14 @@ def _handlers(cm: ControllerManager) -> list[tuple[str, Any, Callable[[Any], Any
         ("load_controller", m.LoadController, lambda r: _load(cm, r)),
         ("configure_controller", m.ConfigureController,
          lambda r: m.ConfigureController_Response(
-             _guarded(lambda: cm.configure_controller(r.name), f"Could not configure '{r.name}'") is None)),
+             _guarded(cm, lambda: cm.configure_controller(r.name), f"Could not configure '{r.name}'") is None)),
         ("switch_controller", m.SwitchController, lambda r: _switch(cm, r)),
         ("unload_controller", m.UnloadController,
          lambda r: m.UnloadController_Response(
-             _guarded(lambda: cm.unload_controller(r.name), f"Could not unload '{r.name}'") is None)),
+             _guarded(cm, lambda: cm.unload_controller(r.name), f"Could not unload '{r.name}'") is None)),
         ("cleanup_controller", m.CleanupController,
          lambda r: m.CleanupController_Response(
-             _guarded(lambda: cm.cleanup_controller(r.name), f"Could not clean up '{r.name}'") is None)),
+             _guarded(cm, lambda: cm.cleanup_controller(r.name), f"Could not clean up '{r.name}'") is None)),
         ("reload_controller_libraries", m.ReloadControllerLibraries, lambda r: _reload(cm, r)),
     ]  # fmt: skip
 

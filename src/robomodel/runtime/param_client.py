@@ -30,7 +30,7 @@ class ParameterClient:
             f"{self.node.rstrip('/')}/{service}", srv_type, request, self.timeout_s
         )
 
-    def list(self, prefixes: Sequence[str] = (), depth: int = 0) -> list[str]:
+    def list_names(self, prefixes: Sequence[str] = (), depth: int = 0) -> list[str]:
         """Parameter names (``ros2 param list``), sorted."""
         reply = self._call(
             "list_parameters", rcl.ListParameters, rcl.ListParameters_Request(list(prefixes), depth)

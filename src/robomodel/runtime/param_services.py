@@ -11,9 +11,11 @@ depth with ``.`` as the separator. A declaration and every successful set is pub
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
+from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import rcl_interfaces as rcl
 from robomodel.runtime.param_values import from_parameter_value, to_parameter_value, type_code
 from robomodel.runtime.params import ParameterError, ParameterStore
@@ -23,6 +25,8 @@ if TYPE_CHECKING:
     from robomodel.runtime.node import Node
 
 __all__ = ["PARAMETER_EVENTS_QOS", "ParameterServices", "list_names"]
+
+log = logging.getLogger("robomodel.runtime")
 
 # rclcpp's ParameterEventsQoS: reliable, volatile, keep last 1000.
 PARAMETER_EVENTS_QOS = QoSProfile(depth=1000)
@@ -70,10 +74,16 @@ class ParameterServices:
             ("set_parameters", rcl.SetParameters, self._set),
             ("set_parameters_atomically", rcl.SetParametersAtomically, self._set_atomically),
         ]
-        self.services = [
-            node.create_service(srv_type, f"{base}/{name}", handler)
-            for name, srv_type, handler in handlers
-        ]
+        self.services = []
+        try:
+            for name, srv_type, handler in handlers:
+                self.services.append(node.create_service(srv_type, f"{base}/{name}", handler))
+        except RobomodelError:  # a second node of the same name in this process (as rcl warns)
+            log.warning(
+                "a node named %s already offers parameter services in this process; the "
+                "parameters of this one are not reachable over the bus",
+                node.fully_qualified_name,
+            )
 
     def publish_event(
         self, *, new: Mapping[str, Any] | None = None, changed: Mapping[str, Any] | None = None

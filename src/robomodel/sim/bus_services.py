@@ -107,7 +107,7 @@ def _wrench(bridge: SimBridge, request: gz.ApplyBodyWrench_Request) -> gz.ApplyB
 
 def _robot_with_link(bridge: SimBridge, link: str) -> BuiltRobot:
     for built in bridge.sim.robots:
-        if any(l.name == link for l in built.robot.links):
+        if any(candidate.name == link for candidate in built.robot.links):
             return built
     raise RobomodelError(f"no model has a link named '{link}'")
 

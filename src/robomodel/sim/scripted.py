@@ -75,7 +75,8 @@ class CmdVelDriver:
                 )
             name = "~/cmd_vel" if stamped else controller.unstamped_topic
             topic = controller.node.resolve_topic_name(name)
-        node = context.create_node("sim_cmd_vel")
+        namespace = controller.node.namespace if controller and controller.node else "/"
+        node = context.create_node("sim_cmd_vel", namespace)
         twist = Twist(linear=Vector3(cmd[0], cmd[1], 0.0), angular=Vector3(0.0, 0.0, cmd[2]))
         if (
             controller is not None

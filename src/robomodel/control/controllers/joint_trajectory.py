@@ -32,8 +32,8 @@ from robomodel.control.controllers.joint_trajectory_goal import (
     validate_trajectory,
 )
 from robomodel.control.controllers.joint_trajectory_services import (
+    offer,
     publish_state,
-    service_handlers,
 )
 from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
 from robomodel.control.pid import Gains, Pid
@@ -131,13 +131,8 @@ class JointTrajectoryController(ControllerInterface):
             self._sub = self.node.create_subscription(
                 JointTrajectory, self.topic, self._on_trajectory, 10
             )
-            # FollowJointTrajectory as two services (goal, then status polling/cancel)
-            base = self.node.fully_qualified_name
-            ctx = self.node.context
-            self._unregister = [
-                ctx.create_service(f"{base}/{service}", handler)
-                for service, handler in service_handlers(self).items()
-            ]
+            # FollowJointTrajectory (a ROS 2 action) and QueryTrajectoryState
+            self._unregister = [part.destroy for part in offer(self)]
             if self.state_publish_rate_hz > 0.0:  # humble: ~/controller_state and legacy ~/state
                 self._state_pubs = [
                     self.node.create_publisher(JointTrajectoryControllerState, topic, 1)

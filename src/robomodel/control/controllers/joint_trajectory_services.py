@@ -1,123 +1,160 @@
-"""joint_trajectory_controller on the bus: its action and query services, its state topics.
+"""joint_trajectory_controller on the bus: its FollowJointTrajectory action, its query_state
+service and its state topics.
 
-FollowJointTrajectory is offered as two services (goal, then status polling/cancel) beside
-humble's ``query_state`` service; ``~/controller_state`` and the legacy ``~/state`` carry what
-humble's ``publish_state`` publishes.
+``~/follow_joint_trajectory`` is a real ROS 2 action (control_msgs/action/FollowJointTrajectory,
+rcl_action's services and topics: see :mod:`robomodel.runtime.action_server`): a goal that
+fails validation is rejected, as Humble's ``goal_received_callback`` rejects it; a new goal
+preempts the running one; feedback (desired, actual, error) is published while it runs.
+``~/query_state`` is control_msgs/srv/QueryTrajectoryState; ``~/controller_state`` and the
+legacy ``~/state`` carry what humble's ``publish_state`` publishes.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from functools import partial
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from robomodel.control.controllers.joint_trajectory_goal import GoalHandle, GoalStatus
-from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import (
     Header,
-    JointTrajectory,
     JointTrajectoryControllerState,
     JointTrajectoryPoint,
     Time,
+)
+from robomodel.runtime.msg.action_msgs import GoalStatus as ActionStatus
+from robomodel.runtime.msg.control_msgs_actions import (
+    FollowJointTrajectory,
+    FollowJointTrajectory_Feedback,
+    FollowJointTrajectory_Goal,
+    FollowJointTrajectory_Result,
+    QueryTrajectoryState,
+    QueryTrajectoryState_Request,
+    QueryTrajectoryState_Response,
 )
 
 if TYPE_CHECKING:
     from robomodel.control.controllers.joint_trajectory import JointTrajectoryController
     from robomodel.control.controllers.trajectory import Sample
 
-__all__ = ["describe", "publish_state", "service_handlers"]
+__all__ = ["accept_goal", "offer", "publish_state", "query_state"]
 
-Handler = Callable[[dict[str, Any]], dict[str, Any]]
-
-
-def service_handlers(controller: JointTrajectoryController) -> dict[str, Handler]:
-    """The controller's services by name under its node: goal, goal status, query state."""
-    return {
-        "follow_joint_trajectory": partial(follow_joint_trajectory, controller),
-        "goal_status": partial(goal_status, controller),
-        "query_state": partial(query_state, controller),
-    }
+_STATUS = {
+    GoalStatus.ACTIVE: ActionStatus.STATUS_EXECUTING,
+    GoalStatus.SUCCEEDED: ActionStatus.STATUS_SUCCEEDED,
+    GoalStatus.ABORTED: ActionStatus.STATUS_ABORTED,
+    GoalStatus.CANCELED: ActionStatus.STATUS_CANCELED,
+}
 
 
-def follow_joint_trajectory(
-    controller: JointTrajectoryController, request: dict[str, Any]
-) -> dict[str, Any]:
-    """``{"trajectory": {...}, "path_tolerance": {joint: tol}, "goal_tolerance": {...},
-    "goal_time_tolerance": s}`` -> ``{"goal_id": n, "status": ..., "error_string": ...}``."""
-    from robomodel.runtime.msg import message_from_dict
+def _tolerances(items: Sequence[Any]) -> dict[str, float]:
+    return {t.name: t.position for t in items}
 
-    try:
-        msg = message_from_dict(JointTrajectory, request.get("trajectory"))
-    except RobomodelError as exc:
-        return {"error": str(exc)}
+
+class _Goal:
+    """A FollowJointTrajectory goal as the action server sees it (runtime.ActionGoal)."""
+
+    def __init__(self, controller: JointTrajectoryController, handle: GoalHandle) -> None:
+        self.controller, self.handle = controller, handle
+
+    def status(self) -> int:
+        return _STATUS[self.handle.status]
+
+    def result(self) -> FollowJointTrajectory_Result:
+        return FollowJointTrajectory_Result(self.handle.error_code, self.handle.error_string)
+
+    def feedback(self) -> FollowJointTrajectory_Feedback | None:
+        controller = self.controller
+        traj = controller.trajectory
+        if traj is None or controller.goal is not self.handle:
+            return None
+        sample = traj.sample(controller._now_s)
+        actual = JointTrajectoryPoint(
+            positions=list(controller._measured("position")),
+            velocities=list(controller._measured("velocity")),
+        )
+        desired = JointTrajectoryPoint()
+        error = JointTrajectoryPoint()
+        if sample is not None:
+            desired.positions = list(sample.positions)
+            desired.velocities = list(sample.velocities)
+            error.positions = [
+                d - a for d, a in zip(desired.positions, actual.positions, strict=False)
+            ]
+        header = Header(stamp=Time.from_seconds(controller._now_s))
+        return FollowJointTrajectory_Feedback(
+            header, list(controller.joints), desired, actual, error
+        )
+
+    def cancel(self) -> bool:
+        self.controller.cancel_goal(self.handle)
+        return True
+
+
+def accept_goal(
+    controller: JointTrajectoryController, goal: FollowJointTrajectory_Goal
+) -> _Goal | None:
+    """``goal_received_callback``: reject when inactive or invalid, else start it."""
+    if not controller._active or controller.validate(goal.trajectory):
+        return None
+    tolerance = goal.goal_time_tolerance
     handle = controller.send_goal(
-        msg,
-        path_tolerance=dict(request.get("path_tolerance") or {}),
-        goal_tolerance=dict(request.get("goal_tolerance") or {}),
-        goal_time_tolerance_s=request.get("goal_time_tolerance"),
+        goal.trajectory,
+        path_tolerance=_tolerances(goal.path_tolerance),
+        goal_tolerance=_tolerances(goal.goal_tolerance),
+        goal_time_tolerance_s=(
+            tolerance.to_seconds() if tolerance.sec or tolerance.nanosec else None
+        ),
     )
-    goal_id = len(controller._goals) + 1
-    controller._goals[goal_id] = handle
-    return {"goal_id": goal_id, **describe(handle)}
+    return _Goal(controller, handle)
 
 
-def query_state(controller: JointTrajectoryController, request: dict[str, Any]) -> dict[str, Any]:
-    """humble ``query_state_service`` (control_msgs/QueryTrajectoryState): the running
-    trajectory sampled at ``time`` (seconds, or ``{sec, nanosec}``); ``success`` only while
-    the controller is active and the time lies within the trajectory; otherwise the
-    measured state is returned with ``success: false`` and the reason in ``message``."""
+def offer(controller: JointTrajectoryController) -> list[Any]:
+    """The action server and the query_state service on the controller's node."""
+    from robomodel.runtime.action_server import ActionServer
+
+    node = controller.node
+    assert node is not None
+    server = ActionServer(
+        node,
+        FollowJointTrajectory,
+        "~/follow_joint_trajectory",
+        lambda g: accept_goal(controller, g),
+    )
+    query = node.create_service(
+        QueryTrajectoryState, "~/query_state", lambda r: query_state(controller, r)
+    )
+    return [server, query]
+
+
+def query_state(
+    controller: JointTrajectoryController, request: QueryTrajectoryState_Request
+) -> QueryTrajectoryState_Response:
+    """humble ``query_state_service``: the running trajectory sampled at ``time``;
+    ``success`` only while the controller is active and the time lies within the trajectory;
+    otherwise the measured state is returned with ``success: false`` and the reason."""
     if not controller._active:
-        return {"success": False, "message": "Can't sample trajectory. Controller is not active."}  # fmt: skip
-    stamp = request.get("time", controller._now_s)
-    try:
-        if isinstance(stamp, dict):
-            time_s = int(stamp.get("sec", 0)) + int(stamp.get("nanosec", 0)) * 1e-9
-        else:
-            time_s = float(stamp)
-    except (TypeError, ValueError):
-        return {"success": False, "message": f"time must be seconds or {{sec, nanosec}}, got {stamp!r}"}  # fmt: skip
-    reply: dict[str, Any] = {
-        "success": False,
-        "message": "",
-        "name": list(controller.joints),
-        "position": list(controller._measured("position")),
-        "velocity": list(controller._measured("velocity")),
-        "acceleration": [],
-    }
+        return QueryTrajectoryState_Response(False, "Can't sample trajectory. Controller is not active.")  # fmt: skip
+    time_s = request.time.to_seconds()
+    reply = QueryTrajectoryState_Response(
+        name=list(controller.joints),
+        position=list(controller._measured("position")),
+        velocity=list(controller._measured("velocity")),
+    )
     traj = controller.trajectory
     sample = traj.sample(time_s) if traj is not None else None
     if traj is None:
-        reply["message"] = "Currently there is no valid trajectory instance."
+        reply.message = "Currently there is no valid trajectory instance."
     elif sample is None:
-        reply["message"] = "Requested sample time is earlier than the current trajectory start time."  # fmt: skip
+        reply.message = "Requested sample time is earlier than the current trajectory start time."
     else:
-        reply["position"] = list(sample.positions)
-        reply["velocity"] = list(sample.velocities)
-        reply["acceleration"] = list(sample.accelerations)
+        reply.position = list(sample.positions)
+        reply.velocity = list(sample.velocities)
+        reply.acceleration = list(sample.accelerations)
         if sample.segment >= len(traj.points):
-            reply["message"] = "Requested sample time is after the current trajectory end time."  # fmt: skip
+            reply.message = "Requested sample time is after the current trajectory end time."
         else:
-            reply["success"] = True
+            reply.success = True
     return reply
-
-
-def goal_status(controller: JointTrajectoryController, request: dict[str, Any]) -> dict[str, Any]:
-    """``{"goal_id": n, "cancel": bool}`` -> the goal's status (canceling it first if asked)."""
-    handle = controller._goals.get(int(request.get("goal_id", 0)))
-    if handle is None:
-        return {"error": f"unknown goal id {request.get('goal_id')!r}"}
-    if request.get("cancel") and handle.status is GoalStatus.ACTIVE:
-        controller.cancel_goal(handle)
-    return describe(handle)
-
-
-def describe(handle: GoalHandle) -> dict[str, Any]:
-    """A goal as a service reply: ``status``, ``error_code`` and ``error_string``."""
-    return {
-        "status": handle.status.value,
-        "error_code": handle.error_code,
-        "error_string": handle.error_string,
-    }
 
 
 def publish_state(

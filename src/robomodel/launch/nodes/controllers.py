@@ -161,7 +161,8 @@ class _Manager:
         return bool(ready)
 
     def load(self, name: str) -> bool:
-        ok = self.client.load(name)
+        """ROS 1's ``load_controller``: loaded and initialized, i.e. ROS 2's inactive."""
+        ok = self.client.load(name) and self.client.configure(name)
         if not ok:
             self.ctx.log(f"Failed to load {name} (the controller manager logs why)")
         return ok

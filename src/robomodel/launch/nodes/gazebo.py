@@ -20,8 +20,8 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
+from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
 
 __all__ = [
     "SpawnArgs",

@@ -13,8 +13,8 @@ manager is named as the launch file names the node (``name="my_ctrl_mgr"``), so 
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
@@ -79,17 +79,36 @@ def controller_config_text(spec: NodeSpec, manager_name: str) -> str:
     return yaml.safe_dump(doc, sort_keys=False)
 
 
-class ManagerNode:
-    """A running ros2_control_node."""
+class _ToLaunchLog(logging.Handler):
+    """The manager node's warnings and errors in the launch's output, as ros2 launch shows a
+    ros2_control_node's ``[ERROR] [controller_manager]: ...`` lines."""
 
-    def __init__(self, system: Any) -> None:
+    def __init__(self, log: Any) -> None:
+        super().__init__(logging.WARNING)
+        self._log = log
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self._log(f"[{record.levelname}] {record.getMessage()}")
+
+
+class ManagerNode:
+    """A running ros2_control_node; its node's log goes to the launch's output."""
+
+    def __init__(self, system: Any, log: Any) -> None:
         self.system = system
         self._code: int | None = None
+        node = system.manager.node
+        self._logger = node.logger if node is not None else None
+        self._handler = _ToLaunchLog(log)
+        if self._logger is not None:
+            self._logger.addHandler(self._handler)
 
     def stop(self) -> None:
         if self._code is None:
             self._code = 0
             self.system.manager.close()
+            if self._logger is not None:
+                self._logger.removeHandler(self._handler)
 
     def exit_code(self) -> int | None:
         return self._code
@@ -131,7 +150,7 @@ def ros2_control_node(ctx: NodeContext) -> RunningNode:
         f"controller manager {system.manager.service_prefix} at {system.manager.update_rate_hz} "
         f"Hz on {', '.join(c.name for c in system.resources.components)}"
     )
-    return ManagerNode(system)
+    return ManagerNode(system, ctx.log)
 
 
 def _not_found(unknown: dict[str, str]) -> Any:

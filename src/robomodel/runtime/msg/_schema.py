@@ -17,6 +17,7 @@ from robomodel.errors import RobomodelError, close_matches
 
 __all__ = [
     "PRIMITIVES",
+    "Action",
     "Array",
     "Message",
     "MessageTypeError",
@@ -120,6 +121,21 @@ class Service:
 _SERVICES: dict[str, type[Service]] = {}
 
 
+class Action:
+    """Base class of action types (``pkg/action/Name``), as rosidl derives them from an
+    ``.action`` file: the Goal, Result and Feedback messages, the ``SendGoal`` and
+    ``GetResult`` services and the ``FeedbackMessage`` (see :func:`msg.action.make_action`)."""
+
+    __typename__: ClassVar[str] = ""
+    # Derived classes are made at run time (make_action), hence Any for the type checker.
+    Goal: ClassVar[Any]
+    Result: ClassVar[Any]
+    Feedback: ClassVar[Any]
+    SendGoal: ClassVar[Any]
+    GetResult: ClassVar[Any]
+    FeedbackMessage: ClassVar[Any]
+
+
 def default_for(spec: Spec) -> Any:
     """A fresh default value for a field (a new list or message each time)."""
     if isinstance(spec, str):
@@ -139,9 +155,50 @@ def canonical_type_name(name: str) -> str:
     return "/".join(parts)
 
 
+# The module of each package robomodel has types of, imported when a type of it is first asked
+# for by name (``robomodel topic pub``, a type in the graph), so that importing the message
+# package stays cheap.
+_PACKAGES = {
+    "action_msgs": "action_msgs",
+    "builtin_interfaces": "builtin_interfaces",
+    "control_msgs": "control_msgs",
+    "controller_manager_msgs": "controller_manager_msgs",
+    "gazebo_msgs": "gazebo_msgs",
+    "geometry_msgs": "geometry_msgs",
+    "lifecycle_msgs": "lifecycle_msgs",
+    "nav_msgs": "nav_msgs",
+    "rcl_interfaces": "rcl_interfaces",
+    "robomodel_interfaces": "robomodel_interfaces",
+    "ros_gz_interfaces": "ros_gz_interfaces",
+    "rosgraph_msgs": "nav_msgs",
+    "sensor_msgs": "sensor_msgs",
+    "service_msgs": "service_msgs",
+    "std_msgs": "std_msgs",
+    "std_srvs": "std_srvs",
+    "tf2_msgs": "nav_msgs",
+    "trajectory_msgs": "trajectory_msgs",
+    "unique_identifier_msgs": "action_msgs",
+}
+_EXTRA_MODULES = {"control_msgs": ("control_msgs_actions",)}
+
+
+def _import_package(key: str) -> None:
+    """Import the module holding the types of ``key``'s package, if robomodel has one."""
+    import importlib
+
+    package = key.split("/", 1)[0]
+    module = _PACKAGES.get(package)
+    if module is None:
+        return
+    for name in (module, *_EXTRA_MODULES.get(package, ())):
+        importlib.import_module(f"robomodel.runtime.msg.{name}")
+
+
 def get_message_type(name: str) -> type[Message]:
     """Look up a message class by ROS name (``pkg/msg/Name`` or ``pkg/Name``)."""
     key = canonical_type_name(name)
+    if key not in _REGISTRY:
+        _import_package(key)
     try:
         return _REGISTRY[key]
     except KeyError:
@@ -167,6 +224,8 @@ def canonical_service_name(name: str) -> str:
 def get_service_type(name: str) -> type[Service]:
     """Look up a service class by ROS name (``pkg/srv/Name`` or ``pkg/Name``)."""
     key = canonical_service_name(name)
+    if key not in _SERVICES:
+        _import_package(key)
     try:
         return _SERVICES[key]
     except KeyError:

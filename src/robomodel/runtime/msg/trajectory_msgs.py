@@ -1,4 +1,4 @@
-"""trajectory_msgs: JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectoryPoint."""
+"""trajectory_msgs: JointTrajectory, JointTrajectoryPoint and their multi-DOF counterparts."""
 
 from __future__ import annotations
 
@@ -9,7 +9,12 @@ from robomodel.runtime.msg.builtin_interfaces import Duration
 from robomodel.runtime.msg.geometry_msgs import Transform, Twist
 from robomodel.runtime.msg.std_msgs import Header
 
-__all__ = ["JointTrajectory", "JointTrajectoryPoint", "MultiDOFJointTrajectoryPoint"]
+__all__ = [
+    "JointTrajectory",
+    "JointTrajectoryPoint",
+    "MultiDOFJointTrajectory",
+    "MultiDOFJointTrajectoryPoint",
+]
 
 
 @dataclass(slots=True)
@@ -60,4 +65,19 @@ class MultiDOFJointTrajectoryPoint(Message):
         ("velocities", Seq(Twist)),
         ("accelerations", Seq(Twist)),
         ("time_from_start", Duration),
+    )
+
+
+@dataclass(slots=True)
+class MultiDOFJointTrajectory(Message):
+    """Waypoints of multi-DOF joints (FollowJointTrajectory's ``multi_dof_trajectory``)."""
+
+    header: Header = field(default_factory=Header)
+    joint_names: list[str] = field(default_factory=list)
+    points: list[MultiDOFJointTrajectoryPoint] = field(default_factory=list)
+    __typename__ = "trajectory_msgs/msg/MultiDOFJointTrajectory"
+    __fields__ = (
+        ("header", Header),
+        ("joint_names", Seq("string")),
+        ("points", Seq(MultiDOFJointTrajectoryPoint)),
     )

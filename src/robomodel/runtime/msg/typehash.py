@@ -19,7 +19,6 @@ never match.
 
 from __future__ import annotations
 
-import functools
 import hashlib
 import json
 from typing import Any
@@ -145,11 +144,16 @@ def type_description(kind: type[Message] | type[Service]) -> dict[str, Any]:
     return {"type_description": top, "referenced_type_descriptions": referenced}
 
 
-@functools.cache
+_HASHES: dict[type, str] = {}
+
+
 def type_hash(kind: type[Message] | type[Service]) -> str:
     """The RIHS01 hash of a message or service type, ``RIHS01_<64 hex digits>``."""
-    text = json.dumps(type_description(kind), ensure_ascii=True, allow_nan=False)
-    return "RIHS01_" + hashlib.sha256(text.encode("utf-8")).hexdigest()
+    cached = _HASHES.get(kind)
+    if cached is None:
+        text = json.dumps(type_description(kind), ensure_ascii=True, allow_nan=False)
+        cached = _HASHES[kind] = "RIHS01_" + hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return cached
 
 
 def dds_type_name(ros_name: str) -> str:

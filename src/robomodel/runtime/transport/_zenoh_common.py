@@ -15,7 +15,7 @@ log = logging.getLogger("robomodel.runtime")
 def import_zenoh() -> Any:
     try:
         import zenoh
-        import zenoh.ext  # noqa: F401  (advanced publishers and subscribers)
+        import zenoh.ext
     except ImportError:
         raise MissingDependencyError("eclipse-zenoh", "bus", "the zenoh bus") from None
     return zenoh

@@ -8,9 +8,9 @@ rmw_zenoh's ``zenoh_config.cpp``; robomodel's own ``--connect`` / ``--listen`` e
 ``ROBOMODEL_CONNECT`` / ``ROBOMODEL_LISTEN``) are added last.
 
 As ``zenoh_router_check.cpp``, the session then checks that a router answered. When none did
-and the configuration names the local default router, this process becomes it: the session
-is reopened in router mode on ``tcp/localhost:7447`` (loopback only), so that one machine
-needs no extra command. When that process exits, its peers keep their direct links (gossip)
+and the configuration names a router on this machine (a loopback endpoint: by default
+``tcp/localhost:7447``), this process becomes it: the session is reopened in router mode
+listening on that endpoint (loopback only), so that one machine needs no extra command. When that process exits, its peers keep their direct links (gossip)
 and reconnect to the next robomodel process that takes the port, or to ``robomodel router``.
 ``ZENOH_ROUTER_CHECK_ATTEMPTS`` below zero skips the check (peers only, as in rmw_zenoh).
 """
@@ -36,7 +36,7 @@ __all__ = [
 ]
 
 DEFAULT_ROUTER = "tcp/localhost:7447"
-_LOCAL_ROUTERS = {DEFAULT_ROUTER, "tcp/127.0.0.1:7447", "tcp/[::1]:7447"}
+_LOOPBACK_HOSTS = ("tcp/localhost:", "tcp/127.0.0.1:", "tcp/[::1]:")
 
 # DEFAULT_RMW_ZENOH_SESSION_CONFIG.json5, the keys that differ from Zenoh's defaults. The
 # scouting delay is Zenoh's 1.0 default's short one: with multicast off there is nothing to
@@ -46,6 +46,9 @@ _SESSION = {
     "connect/endpoints": [DEFAULT_ROUTER],
     "listen/endpoints": ["tcp/localhost:0"],
     "scouting/delay": 1,
+    # Back to a router that restarted (or to the next robomodel process that became it) within
+    # a second, rather than Zenoh's 4 s at most.
+    "connect/retry": {"period_init_ms": 250, "period_max_ms": 1000, "period_increase_factor": 2},
     "scouting/multicast/enabled": False,
     "scouting/gossip/enabled": True,
     "scouting/gossip/multihop": False,
@@ -163,13 +166,14 @@ def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> Ope
     attempts = _check_attempts()
     if attempts < 0 or _is_router(conf) or list(session.info.routers_zid()):
         return OpenedSession(session, _is_router(conf))
-    if not set(_endpoints(conf, "connect/endpoints")) & _LOCAL_ROUTERS:
+    local = [e for e in _endpoints(conf, "connect/endpoints") if e.startswith(_LOOPBACK_HOSTS)]
+    if not local:
         log.warning(
             "no Zenoh router answers at %s; peers on other machines will not be found",
             ", ".join(_endpoints(conf, "connect/endpoints")) or "(no connect endpoint)",
         )
         return OpenedSession(session, False)
-    return _become_router(zenoh, session, conf)
+    return _become_router(zenoh, session, conf, local[0])
 
 
 def _is_router(conf: Any) -> bool:
@@ -179,19 +183,15 @@ def _is_router(conf: Any) -> bool:
         return False
 
 
-def _become_router(zenoh: Any, peer_session: Any, peer_conf: Any) -> OpenedSession:
-    """Reopen as the local router; if another process took the port first, stay a peer."""
+def _become_router(zenoh: Any, peer_session: Any, peer_conf: Any, endpoint: str) -> OpenedSession:
+    """Reopen as the router on ``endpoint``; if another process took it first, stay a peer."""
     conf = zenoh.Config.from_json5(str(peer_conf))
     conf.insert_json5("mode", '"router"')
     listen = [e for e in _endpoints(peer_conf, "listen/endpoints") if not e.endswith(":0")]
-    conf.insert_json5("listen/endpoints", json.dumps([DEFAULT_ROUTER, *listen]))
+    conf.insert_json5("listen/endpoints", json.dumps([endpoint, *listen]))
     conf.insert_json5("listen/exit_on_failure", "true")
-    conf.insert_json5(
-        "connect/endpoints",
-        json.dumps(
-            [e for e in _endpoints(peer_conf, "connect/endpoints") if e not in _LOCAL_ROUTERS]
-        ),
-    )
+    connect = [e for e in _endpoints(peer_conf, "connect/endpoints") if e != endpoint]
+    conf.insert_json5("connect/endpoints", json.dumps(connect))
     peer_session.close()
     try:
         return OpenedSession(zenoh.open(conf), True)

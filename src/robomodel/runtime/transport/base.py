@@ -16,6 +16,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
@@ -63,9 +64,9 @@ class Deferred:
             self._callbacks.append(callback)
 
 
-ServiceHandler = Callable[[Message], "Message | Deferred"]
-"""A service's handler: the request in, the response (or a :class:`Deferred`) out, on the
-executor's thread."""
+ServiceHandler = Callable[[Any], Any]
+"""A service's handler: the request (its type's ``Request`` message) in, the ``Response``
+message (or a :class:`Deferred` of it) out, on the executor's thread."""
 
 
 class ServiceCallError(RobomodelError):

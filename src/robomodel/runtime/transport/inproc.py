@@ -9,7 +9,6 @@ import queue
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
@@ -229,7 +228,8 @@ class InprocTransport(Transport):
 
 def _run_handler(name: str, handler: ServiceHandler, request: Message) -> Message | Deferred:
     try:
-        return handler(request)
+        answer: Message | Deferred = handler(request)
+        return answer
     except Exception as exc:  # the server goes on; the caller learns why
         log.exception("service %s failed", name)
         raise ServiceCallError(f"service '{name}' failed: {exc}") from None

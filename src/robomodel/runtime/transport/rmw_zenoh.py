@@ -210,7 +210,8 @@ def encode_attachment(sequence_number: int, source_timestamp_ns: int, gid: bytes
 
 def _legacy(data: bytes) -> Attachment | None:
     """The labelled form of rmw_zenoh before 0.2.4: each value after its name."""
-    values: list[int | bytes] = []
+    numbers: list[int] = []
+    gid = b""
     offset = 0
     for label, size in ((b"sequence_number", 8), (b"source_timestamp", 8), (b"source_gid", 0)):
         if data[offset : offset + 1 + len(label)] != bytes([len(label)]) + label:
@@ -219,14 +220,13 @@ def _legacy(data: bytes) -> Attachment | None:
         if size:
             if offset + 8 > len(data):
                 return None
-            values.append(struct.unpack_from("<q", data, offset)[0])
+            numbers.append(struct.unpack_from("<q", data, offset)[0])
             offset += 8
         else:
             if data[offset : offset + 1] != bytes([GID_SIZE]) or len(data) != offset + 1 + GID_SIZE:
                 return None
-            values.append(data[offset + 1 :])
-    seq, stamp, gid = values
-    return Attachment(int(seq), int(stamp), bytes(gid))  # type: ignore[call-overload]
+            gid = bytes(data[offset + 1 :])
+    return Attachment(numbers[0], numbers[1], gid)
 
 
 def parse_attachment(data: bytes) -> Attachment | None:

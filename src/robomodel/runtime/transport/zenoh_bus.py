@@ -256,7 +256,7 @@ class ZenohTransport(Transport):
 
 def _in_place(name: str, handler: ServiceHandler, request: Message) -> Message:
     try:
-        answer = handler(request)
+        answer: Message | Deferred = handler(request)
     except Exception as exc:
         log.exception("service %s failed", name)
         raise ServiceCallError(f"service '{name}' failed: {exc}") from None

@@ -55,7 +55,7 @@ class ParameterTool:
         def job() -> None:
             try:
                 client = self._client(node)
-                names = self.tools.bus.query(client.list)
+                names = self.tools.bus.query(client.list_names)
                 values = self.tools.bus.query(lambda: client.get(names)) if names else {}
             except RobomodelError as exc:
                 self.result.content = f"**{node}:** {escape_markdown(str(exc))}"
