@@ -420,3 +420,40 @@ def test_publishers_and_subscriptions_generate_their_codecs_when_created() -> No
     msg = m.Imu(m.Header(m.Time(3, 4), "imu_link"))
     assert cdr.deserialize(cdr.serialize(msg), m.Imu) == msg
     assert cdr._encoders[m.Imu] is encode and cdr._decoders[m.Imu] is decode  # not made again
+
+
+def test_an_empty_message_is_one_byte_on_the_wire() -> None:
+    """rosidl gives a message without fields ``uint8 structure_needs_at_least_one_member``: ROS 2
+    sends std_msgs/Empty and std_srvs/Empty's halves as one byte after the header, nested too
+    (the bytes below are pycdr2's of the same structure)."""
+    from dataclasses import dataclass, field
+
+    from pycdr2 import IdlStruct
+    from pycdr2.types import float64, uint8
+
+    from robomodel.runtime.msg import Empty, deserialize, serialize
+    from robomodel.runtime.msg._schema import Message
+    from robomodel.runtime.msg.std_srvs import Empty_Request, Empty_Response
+
+    assert serialize(Empty()) == serialize(Empty_Request()) == b"\x00\x01\x00\x00\x00"
+    assert deserialize(b"\x00\x01\x00\x00\x00", Empty_Response) == Empty_Response()
+    assert deserialize(b"\x00\x01\x00\x00", Empty) == Empty()  # absent: accepted
+
+    @dataclass(slots=True)
+    class Holder(Message):
+        empty: Empty = field(default_factory=Empty)
+        value: float = 1.5
+        __typename__ = "test_msgs/msg/Holder"
+        __fields__ = (("empty", Empty), ("value", "float64"))
+
+    @dataclass
+    class E(IdlStruct, typename="E"):
+        structure_needs_at_least_one_member: uint8 = 0
+
+    @dataclass
+    class H(IdlStruct, typename="H"):
+        empty: E
+        value: float64
+
+    assert serialize(Holder()) == H(E(), 1.5).serialize()
+    assert deserialize(H(E(), 2.5).serialize(), Holder) == Holder(Empty(), 2.5)

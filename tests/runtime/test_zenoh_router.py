@@ -149,3 +149,22 @@ def test_bad_configuration_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> 
     )
     assert listed.returncode == 2 and "Traceback" not in listed.stderr
     assert "not a usable Zenoh configuration" in listed.stderr
+
+
+def test_humble_keys_have_no_type_hash(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Humble has no type hashes: its rmw_zenoh (0.1.x) writes ``TypeHashNotSupported``."""
+    _use_router(monkeypatch, _free_port())
+    monkeypatch.setenv("ROS_DISTRO", "humble")
+    domain = int(unique_domain())
+    with Context("zenoh", domain_id=domain) as a, Context("zenoh", domain_id=domain) as b:
+        key = a.transport.data_key("/chatter", String)  # type: ignore[attr-defined]
+        assert key == f"{domain}/chatter/std_msgs::msg::dds_::String_/TypeHashNotSupported"
+        assert _exchange(a, b)
+        tokens = [
+            str(r.ok.key_expr)
+            for r in b.transport.session.liveliness().get(f"@ros2_lv/{domain}/**", timeout=1.0)  # type: ignore[attr-defined]
+            if r.ok is not None
+            and "/MP/" in str(r.ok.key_expr)
+            and "%chatter" in str(r.ok.key_expr)
+        ]
+        assert tokens and tokens[0].endswith("/TypeHashNotSupported/::,10:,:,:,,")

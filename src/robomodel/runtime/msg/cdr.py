@@ -222,6 +222,9 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
         g.emit(d + 1, "pass")
         run.forget()
         return
+    if not spec.__fields__:  # rosidl's uint8 structure_needs_at_least_one_member
+        _add_prim(g, d, run, "B", 1, "0", 1, True)
+        return
     local = g.name("m")  # a nested message: its fields inline, through one local name
     g.emit(d, f"{local} = {expr}")
     for name, field_spec in spec.__fields__:
@@ -280,6 +283,9 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
         g.emit(d + 1, f"{target}.append({value})")
         run.forget()
         return target
+    if not spec.__fields__:  # rosidl's one-byte placeholder, read and dropped
+        _add_prim(g, d, run, "B", 1, g.name("pad"), 1, False)
+        return f"{g.ref(spec, 'T')}()"
     args = [_dec_field(g, d, run, field_spec) for _, field_spec in spec.__fields__]
     return f"{g.ref(spec, 'T')}({', '.join(args)})"
 
@@ -291,8 +297,7 @@ def _message_encoder(cls: type[Message]) -> _Encoder:
     g = _Gen()
     g.emit(0, "def encode(buf, m):")
     run = _Run(8)  # the message starts right after the header: offset 0
-    for name, spec in cls.__fields__:
-        _enc_field(g, 1, run, spec, f"m.{name}")
+    _enc_field(g, 1, run, cls, "m")
     _flush(g, 1, run, True)
     g.emit(1, "return None")
     exec("\n".join(g.lines), g.env)
@@ -349,6 +354,8 @@ def deserialize(payload: bytes | bytearray | memoryview, cls: type[_M]) -> _M:
         raise CDRError(
             f"unsupported CDR encapsulation 0x{kind}; expected 0x0001 (CDR little endian)"
         )
+    if not cls.__fields__:  # its one placeholder byte carries nothing (absent: accepted)
+        return cls()
     try:
         msg, _ = _message_decoder(cls)(data, 4)
     except struct.error as exc:

@@ -27,7 +27,7 @@ from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
 from robomodel.runtime.msg.cdr import prepare
 from robomodel.runtime.qos import Durability, Reliability
 from robomodel.runtime.transport._attachment import SequenceTracker
-from robomodel.runtime.transport._zenoh_common import import_zenoh, log, undeclare_all
+from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
 from robomodel.runtime.transport.base import Endpoint, PublisherHandle, SubscriptionHandle
 from robomodel.runtime.transport.rmw_zenoh import (
     EntityKind,
@@ -56,6 +56,7 @@ class ZenohPublisher(PublisherHandle):
         self._endpoint = endpoint
         self._seq = 0
         self._lock = threading.Lock()
+        self._destroyed = False
         prepare(msg_type)
         token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
         self._gid = entity_gid(token.key())
@@ -95,11 +96,15 @@ class ZenohPublisher(PublisherHandle):
             )
         payload = serialize(msg)
         with self._lock:
+            if self._destroyed:  # a message of a node torn down by another callback: dropped
+                return
             self._seq += 1
             attachment = encode_attachment(self._seq, time.time_ns(), self._gid)
             self._pub.put(payload, attachment=attachment)
 
     def destroy(self) -> None:
+        with self._lock:
+            self._destroyed = True
         undeclare_all(self._token, self._pub)
 
 
@@ -137,7 +142,7 @@ class ZenohSubscription(SubscriptionHandle):
             self._sub = ext.declare_advanced_subscriber(
                 bus.session,
                 key,
-                self._on_sample,
+                direct(self._on_sample),
                 history=ext.HistoryConfig(
                     detect_late_publishers=True, max_samples=max(1, endpoint.qos.depth)
                 ),
@@ -145,7 +150,7 @@ class ZenohSubscription(SubscriptionHandle):
                 subscriber_detection=True,
             )
         else:
-            self._sub = bus.session.declare_subscriber(key, self._on_sample)
+            self._sub = bus.session.declare_subscriber(key, direct(self._on_sample))
         self._token = bus.session.liveliness().declare_token(token.key())
 
     @property

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.cdr import prepare
-from robomodel.runtime.transport._zenoh_common import import_zenoh, log, undeclare_all
+from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
 from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
@@ -60,7 +60,9 @@ class ZenohService(ServiceHandle):
         prepare(srv_type.Response)
         self._key = bus.data_key(endpoint.topic, srv_type)
         token = bus.entity_token(endpoint, EntityKind.SERVICE, srv_type)
-        self._queryable = bus.session.declare_queryable(self._key, self._on_query, complete=True)
+        self._queryable = bus.session.declare_queryable(
+            self._key, direct(self._on_query), complete=True
+        )
         self._token = bus.session.liveliness().declare_token(token.key())
 
     def _on_query(self, query: Any) -> None:  # a Zenoh thread: decode, then hand over

@@ -18,6 +18,7 @@ from __future__ import annotations
 import itertools
 import os
 import threading
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -45,7 +46,10 @@ from robomodel.runtime.transport.base import (
 )
 from robomodel.runtime.transport.rmw_zenoh import EntityKind, EntityToken, qos_to_key, topic_key
 
-__all__ = ["MAX_WARNINGS", "ZenohTransport", "domain_id_from_env"]
+DECLARATIONS_SETTLE_S = 0.25
+"""How long after opening an empty graph is asked again (see ``ZenohTransport.graph``)."""
+
+__all__ = ["DECLARATIONS_SETTLE_S", "MAX_WARNINGS", "ZenohTransport", "domain_id_from_env"]
 
 MAX_WARNINGS = 256
 HUMBLE_TYPE_HASH = "TypeHashNotSupported"
@@ -96,6 +100,7 @@ class ZenohTransport(Transport):
         self.session = opened.session
         self.is_router = opened.is_router
         self.zid = str(self.session.zid())
+        self._opened_at = time.monotonic()
         self.ids = itertools.count()  # rmw_zenoh: one counter per context, nodes included
         self.humble = os.environ.get("ROS_DISTRO", "") == "humble"
         self._lock = threading.Lock()
@@ -240,7 +245,24 @@ class ZenohTransport(Transport):
 
     # -- graph and lifetime ---------------------------------------------------------------------
     def graph(self, timeout_s: float = 1.0) -> Graph:
-        return read_graph(self.session, self.domain_id, timeout_s)
+        """Everyone's entities in this domain.
+
+        A session that has just linked up with a router has not yet received the router's
+        liveliness declarations (some milliseconds), and a query sent before then comes back
+        empty at once, which made a second launch miss the first one's parameter server. While
+        the session is that young and linked, an answer with none but its own nodes is asked again."""
+        graph = read_graph(self.session, self.domain_id, timeout_s)
+        while len(graph.nodes) <= len(self._nodes) and self._young() and self._linked():
+            time.sleep(0.005)
+            graph = read_graph(self.session, self.domain_id, timeout_s)
+        return graph
+
+    def _young(self) -> bool:
+        return time.monotonic() - self._opened_at < DECLARATIONS_SETTLE_S
+
+    def _linked(self) -> bool:
+        info = self.session.info
+        return bool(list(info.routers_zid()) or list(info.peers_zid()))
 
     def close(self) -> None:
         for service in list(self._services.values()):
