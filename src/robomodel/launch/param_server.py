@@ -231,16 +231,18 @@ class RemoteParamServer:
         return None if value is None else str(value)
 
 
-def connect_or_host(context: Any, probe_timeout_s: float = 1.0) -> tuple[Any, bool]:
-    """The domain's parameter server: a remote one if a process already hosts it, else a new
-    one hosted (and served) here. Returns ``(server, hosted_here)``."""
-    if context.transport.name != "inproc":
-        remote = RemoteParamServer(context, timeout_s=probe_timeout_s)
-        try:
-            remote.names()
-            return RemoteParamServer(context), False
-        except ParamServerError:
-            pass
+def connect_or_host(context: Any, graph_timeout_s: float = 3.0) -> tuple[Any, bool]:
+    """The domain's parameter server: a remote one if a process already hosts it (its
+    ``/rosmaster`` service is in the graph), else a new one hosted (and served) here. Returns
+    ``(server, hosted_here)``.
+
+    The graph decides rather than a timed call, and one query of it is enough: the router
+    answers with every token of the domain and says when it is done, which on a loaded machine
+    can take longer than a call's timeout but not longer than ``graph_timeout_s``. A second
+    server would split the launch's parameters in two."""
+    remote = context.transport.name != "inproc"
+    if remote and SERVICE in context.graph(timeout_s=graph_timeout_s).services:
+        return RemoteParamServer(context), False
     server = ParamServer()
     server.serve(context)
     return server, True

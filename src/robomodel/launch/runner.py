@@ -83,6 +83,7 @@ class LaunchRunner:
     request: ViewerRequest = field(default_factory=ViewerRequest)
     hosted_params: bool = False
     _stop: threading.Event = field(default_factory=threading.Event)
+    _terminated: bool = False
     _scheduler: Any = None
     gui: LaunchGui = field(init=False)
 
@@ -215,12 +216,14 @@ class LaunchRunner:
         )
         previous = signal.getsignal(signal.SIGTERM)
         try:
-            signal.signal(signal.SIGTERM, lambda *_: self._stop.set())
+            # A plain flag: Event.set takes a lock, and a second SIGTERM arriving inside it
+            # (timeout, then pkill) would wait for that lock forever.
+            signal.signal(signal.SIGTERM, lambda *_: setattr(self, "_terminated", True))
         except ValueError:  # not the main thread
             previous = None
         code = 0
         try:
-            while not self._stop.is_set():
+            while not (self._stop.is_set() or self._terminated):
                 if deadline is not None and time.monotonic() >= deadline:
                     break
                 driver = self._driver()
