@@ -278,3 +278,46 @@ def test_external_without_a_state_publisher_draws_from_the_other_ones_tf(
         lambda: (p := tool()) is not None and np.allclose(p, (0.0, -1.1, 0.1), atol=1e-9),
         what="the tool posed from the other robot_state_publisher's /tf",
     )
+
+
+def test_a_description_from_a_topic_is_drawn_with_the_robot_s_tf(started: list[Viewer]) -> None:
+    """``robomodel view --bus zenoh --joint-states external`` with no file: RViz's RobotModel
+    with Description Source: Topic. The robot comes from another process (here robomodel's
+    publish-state, a stand-in for a real robot's robot_state_publisher): its latched
+    /robot_description, and its /tf for the poses; the viewer runs no state publisher."""
+    import signal
+    import subprocess
+
+    from tests.conftest import ROBOMODEL, unique_domain
+
+    domain = unique_domain()
+    robot = subprocess.Popen(
+        [*ROBOMODEL, "publish-state", str(EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"),
+         "--delta", "0.02", "--domain-id", domain],
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+    try:
+        assert robot.stderr is not None and "publishing robot" in robot.stderr.readline()
+        viewer = _start(
+            started,
+            RobotSource("", topic="/robot_description"),
+            bus="zenoh",
+            domain_id=int(domain),
+            external=True,
+        )
+        session = viewer.sessions[0]
+        wait_for(lambda: session.robot is not None and session.display is not None)
+        assert session.robot.name == "planar_3dof" and session.rsp is None  # type: ignore[union-attr]
+        assert viewer.fixed_frame == "base_link"
+        wait_for(
+            lambda: viewer.buffer.can_transform("base_link", "gripper"), what="the robot's /tf"
+        )
+        first = viewer.buffer.lookup_transform("base_link", "gripper")
+        time.sleep(0.5)  # --delta moves every joint: the poses drawn follow the robot's /tf
+        moved = viewer.buffer.lookup_transform("base_link", "gripper")
+        assert first.transform.translation != moved.transform.translation
+        wait_for(lambda: viewer.status.content == "OK", what="the status to clear")
+    finally:
+        robot.send_signal(signal.SIGINT)
+        robot.wait(10)

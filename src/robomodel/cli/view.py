@@ -39,9 +39,17 @@ def register(subparsers: Any) -> None:
     )
     parser.add_argument(
         "inputs",
-        nargs="+",
+        nargs="*",
         metavar="FILE|name:=value",
-        help=".urdf or .xacro files, and xacro arguments name:=value (for every file)",
+        help=".urdf or .xacro files, and xacro arguments name:=value (for every file); none "
+        "with --joint-states external: the description another process publishes",
+    )
+    parser.add_argument(
+        "--description-topic",
+        default=None,
+        metavar="TOPIC",
+        help="draw the robot described on TOPIC (RViz's Description Source: Topic; default "
+        "/robot_description when no FILE is given)",
     )
     parser.add_argument(
         "--prefix",
@@ -98,7 +106,10 @@ def _report_meshes(viewer: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 
-    files, mappings = split_inputs(args.inputs, "view")
+    if args.inputs or args.joint_states != "external":
+        files, mappings = split_inputs(args.inputs, "view")
+    else:
+        files, mappings = [], {}
     if len(args.prefix) > len(files):
         raise RobomodelError(
             f"{len(args.prefix)} --prefix options for {len(files)} file(s); give one per FILE"
@@ -108,9 +119,18 @@ def run(args: argparse.Namespace) -> int:
             "--joint-states external reads /joint_states and /tf from other processes: "
             "add --bus zenoh"
         )
+    topic = args.description_topic or (None if files else "/robot_description")
+    if topic is not None and args.joint_states != "external":
+        raise RobomodelError(
+            "a description from a topic comes from another process, with its joint states: "
+            "add --bus zenoh --joint-states external (or give a FILE)"
+        )
     prefixes = [*args.prefix, *([""] * (len(files) - len(args.prefix)))]
+    sources = [RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=True)]
+    if topic is not None:
+        sources.append(RobotSource("", mappings, "", topic="/" + topic.lstrip("/")))
     options = ViewerOptions(
-        sources=tuple(RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=True)),
+        sources=tuple(sources),
         host=args.host,
         port=args.port,
         fixed_frame=args.fixed_frame,

@@ -34,6 +34,7 @@ from robomodel.viewer.link_poses import append_other_frames
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.options import ViewerOptions
 from robomodel.viewer.options_panel import OptionsPanel
+from robomodel.viewer.pacing import page_behind
 from robomodel.viewer.ports import ensure_port_free
 from robomodel.viewer.rviz_apply import apply_rviz_settings
 from robomodel.viewer.scenery import SceneryDisplay
@@ -110,6 +111,7 @@ class Viewer:
         if not self.fixed_frame:
             roots = [s.root_frame for s in self.sessions if s.root_frame]
             self.fixed_frame = roots[0] if roots else "base_link"
+            self._guess_fixed = not roots  # a description from a topic: its root, once loaded
         opts = self.options
         self.context = Context(
             opts.bus, domain_id=opts.domain_id, connect=opts.connect, listen=opts.listen
@@ -297,24 +299,8 @@ class Viewer:
         return buffer if ok else None
 
     def _page_behind(self, now: float) -> bool:
-        """Whether a page has not yet been sent all of the previous update, when that update
-        takes more than one websocket frame.
-
-        A new update replaces the pose messages still waiting, so when the pages cannot take
-        updates as fast as they are made (a 1,000-link robot: thousands of messages, tens of
-        frames each), the links queued last would never be sent. Waiting for viser's send
-        cursor keeps such updates whole; an update that fits in one frame is sent whole anyway
-        and is not waited for (the next one is computed while it goes). At most 0.5 s, so that
-        a stalled page does not freeze the others.
-        """
-        buffer = self._broadcast_buffer()
-        if buffer is None or self._last_push_ids is None or now - self._last_push_s > 0.5:
-            return False
-        first, last = self._last_push_ids
-        if last - first + 1 <= getattr(buffer, "max_window_size", 128):
-            return False
-        cursors = list(buffer.generator_cursors.values())
-        return bool(cursors) and min(cursors) < last
+        """Whether a page still waits for the previous update (see :func:`page_behind`)."""
+        return page_behind(self._broadcast_buffer(), self._last_push_ids, self._last_push_s, now)
 
     def _push(self) -> None:
         """Send the poses that changed, as one atomic batch, flushed immediately."""
@@ -379,6 +365,9 @@ class Viewer:
         self._dirty = True
 
     def _refresh_frames(self) -> None:
+        roots = [s.root_frame for s in self.sessions if s.root_frame]
+        if getattr(self, "_guess_fixed", False) and roots:
+            self.fixed_frame, self._guess_fixed = roots[0], False
         stale = set().union(*(s.stale_frames for s in self.sessions))
         frames = {f for f in self.buffer.frames if f not in stale}
         for session in self.sessions:

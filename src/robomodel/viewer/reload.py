@@ -1,4 +1,5 @@
-"""Live reload: polling the modification times of a description and the files it includes.
+"""Live reload: polling the modification times of a description and the files it includes,
+or following the description another process publishes on a topic.
 
 Polling (a few times a second) needs no extra dependency and works the same on every
 platform and filesystem, including editors that save by renaming a new file into place.
@@ -7,9 +8,11 @@ platform and filesystem, including editors that save by renaming a new file into
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Iterable
+from typing import Any
 
-__all__ = ["FileWatcher"]
+__all__ = ["FileWatcher", "TopicWatcher"]
 
 _Stamp = tuple[int, int] | None
 
@@ -52,3 +55,43 @@ class FileWatcher:
                 self._stamps[path] = new
                 changed.append(path)
         return tuple(changed)
+
+
+class TopicWatcher:
+    """The latest robot description on a topic (``std_msgs/String``, transient local, as
+    robot_state_publisher publishes ``/robot_description``): ``changed`` reports a new one.
+
+    The same interface as :class:`FileWatcher`, so a session reloads from either.
+    """
+
+    def __init__(self, topic: str) -> None:
+        self.topic = topic
+        self.text: str | None = None
+        self._new = False
+        self._lock = threading.Lock()
+
+    @property
+    def paths(self) -> tuple[str, ...]:
+        return ()
+
+    def subscribe(self, node: Any) -> None:
+        from robomodel.runtime.msg import String
+        from robomodel.runtime.qos import latched
+
+        node.create_subscription(String, self.topic, self._on_description, latched())
+
+    def _on_description(self, msg: Any) -> None:
+        with self._lock:
+            if msg.data != self.text:
+                self.text, self._new = msg.data, True
+
+    def watch(self, paths: Iterable[str]) -> None:
+        """Nothing to watch on disk (a description from a topic has no files)."""
+
+    def add(self, paths: Iterable[str]) -> None:
+        """Likewise."""
+
+    def changed(self) -> tuple[str, ...]:
+        with self._lock:
+            new, self._new = self._new, False
+        return (self.topic,) if new else ()

@@ -34,7 +34,7 @@ from robomodel.viewer.bodies import body_transform
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
 from robomodel.viewer.link_poses import LinkPoses, LinkPoseSolver
 from robomodel.viewer.meshes import MeshCache
-from robomodel.viewer.reload import FileWatcher
+from robomodel.viewer.reload import FileWatcher, TopicWatcher
 from robomodel.viewer.scene import RobotModelDisplay
 
 __all__ = ["DisplayOptions", "LoadFailure", "RobotSession", "RobotSource"]
@@ -42,11 +42,14 @@ __all__ = ["DisplayOptions", "LoadFailure", "RobotSession", "RobotSource"]
 
 @dataclass(frozen=True, slots=True)
 class RobotSource:
-    """A description file to view, its xacro arguments and its frame prefix."""
+    """A description file to view, its xacro arguments and its frame prefix; or, with
+    ``topic``, the description another process publishes there (RViz's RobotModel with
+    Description Source: Topic), reloaded whenever a new one arrives."""
 
     path: str
     mappings: Mapping[str, str] = field(default_factory=dict)
     prefix: str = ""
+    topic: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -106,17 +109,20 @@ class RobotSession:
         self.number = number
         self.source = source
         self.prefix = source.prefix
-        self.index = index.with_workspace_of(source.path)
+        self.index = index.with_workspace_of(source.path) if source.path else index
         self.namespace = namespace
         self.external = external
         # Sliders without a robot_state_publisher: another node of the process (a launch file's
         # robot_state_publisher) turns their /joint_states into /tf.
-        self.state_publisher = state_publisher
+        # A description from a topic comes from a robot_state_publisher, which publishes /tf.
+        self.state_publisher = state_publisher and not source.topic
         self._publishers_created = False
         self.robot: Robot | None = None
         self.loaded: LoadedDescription | None = None
         self.failure: LoadFailure | None = None
-        self.watcher = FileWatcher([source.path])
+        self.watcher: FileWatcher | TopicWatcher = (
+            TopicWatcher(source.topic) if source.topic else FileWatcher([source.path])
+        )
         self.rsp: RobotStatePublisher | None = None
         self.jsp: JointStatePublisher | None = None
         self.display: RobotModelDisplay | None = None
@@ -135,7 +141,11 @@ class RobotSession:
     # -- loading ------------------------------------------------------------------------------
     @property
     def label(self) -> str:
-        name = self.robot.name if self.robot is not None else Path(self.source.path).name
+        name = (
+            self.robot.name
+            if self.robot is not None
+            else (self.source.topic or Path(self.source.path).name)
+        )
         return f"{self.prefix}{name}" if self.prefix else name
 
     @property
@@ -151,9 +161,15 @@ class RobotSession:
 
     def try_load(self) -> bool:
         """Expand and parse the description; on failure keep the last model and the error."""
+        text = self.watcher.text if isinstance(self.watcher, TopicWatcher) else None
+        if isinstance(self.watcher, TopicWatcher) and text is None:
+            self.failure = LoadFailure(f"waiting for a robot description on {self.source.topic}")
+            return False
         try:
             result, loaded = read_description(
-                self.source.path, args=dict(self.source.mappings), package_index=self.index
+                text if text is not None else self.source.path,
+                args=dict(self.source.mappings),
+                package_index=self.index,
             )
             result.robot.tree()  # a loop or several roots cannot be drawn
         except RobomodelError as exc:
@@ -179,6 +195,8 @@ class RobotSession:
         """Create robot_state_publisher (and joint_state_publisher) for the loaded model."""
         self._context, self._node = context, node
         self._tf_pub = node.create_publisher(TFMessage, "/tf", 100)
+        if isinstance(self.watcher, TopicWatcher):
+            self.watcher.subscribe(node)
         if self.robot is None:
             return
         try:
