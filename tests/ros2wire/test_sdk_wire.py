@@ -212,9 +212,15 @@ def test_robomodel_sees_the_sdk_publisher(definitions: Path) -> None:
                               capture_output=True, text=True, timeout=20)  # fmt: skip
         assert echo.returncode == 0, echo.stderr
         assert echo.stdout.startswith("data: hello from the SDK")
-        nodes = subprocess.run([*ROBOMODEL, "topic", "info", "/chatter", "-v", "--domain-id", domain],
+        info = subprocess.run([*ROBOMODEL, "topic", "info", "/chatter", "-v", "--domain-id", domain],
+                              capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert "sdk_talker" in info.stdout
+        nodes = subprocess.run([*ROBOMODEL, "node", "list", "--domain-id", domain],
                                capture_output=True, text=True, timeout=20)  # fmt: skip
-        assert "sdk_talker" in nodes.stdout
+        assert "/sdk_talker" in nodes.stdout.split()
+        about = subprocess.run([*ROBOMODEL, "node", "info", "/sdk_talker", "--domain-id", domain],
+                               capture_output=True, text=True, timeout=20)  # fmt: skip
+        assert "  Publishers:\n    /chatter: std_msgs/msg/String" in about.stdout
     finally:
         talker.kill()
         talker.wait()

@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 import signal
 import sys
-import threading
+import time
 from typing import Any
 
 from robomodel.cli._verbs import verb_help
@@ -50,16 +50,18 @@ def run(args: argparse.Namespace) -> int:
             f"cannot start the router: {exc} (is another router, or a robomodel process acting "
             "as one, already listening there?)"
         ) from None
-    stop = threading.Event()
-    previous = signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    stopped: list[bool] = []  # a flag, not an Event: a second SIGTERM must not wait on a lock
+    previous = signal.signal(signal.SIGTERM, lambda *_: stopped.append(True))
     print(
         f"Started Zenoh router with id {session.zid()}; listening on "
         f"{', '.join(args.listen) or 'tcp/localhost:7447'}; Ctrl-C stops",
         file=sys.stderr,
         flush=True,
     )
+    end = None if args.duration is None else time.monotonic() + args.duration
     try:
-        stop.wait(args.duration)
+        while not stopped and (end is None or time.monotonic() < end):
+            time.sleep(0.1)
     except KeyboardInterrupt:
         pass
     finally:
