@@ -5,6 +5,10 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+# zenoh-ros2-sdk, an independent implementation of rmw_zenoh's wire format that the tests talk
+# to (tests/ros2wire): a venv of its own, as its pinned dependencies differ from ours
+SDK_VENV := .venv-ros2sdk
+SDK_STAMP := $(SDK_VENV)/.installed
 
 .PHONY: demo test bench lint typecheck clean
 
@@ -16,11 +20,16 @@ $(STAMP): $(BIN)/python pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[all,test]'
 	touch $(STAMP)
 
+$(SDK_STAMP):
+	$(PYTHON) -m venv $(SDK_VENV)
+	$(SDK_VENV)/bin/python -m pip install --quiet 'zenoh-ros2-sdk==0.1.8'
+	touch $(SDK_STAMP)
+
 demo: $(STAMP)
 	tools/system-deps demo
 	ROS_PACKAGE_PATH=$(CURDIR)/examples $(BIN)/robomodel launch simplebot_control simplebot_demo.launch
 
-test: $(STAMP)
+test: $(STAMP) $(SDK_STAMP)
 	tools/system-deps test
 	$(BIN)/ruff check --no-cache src tests bench
 	$(BIN)/ruff format --no-cache --check src tests bench
@@ -42,4 +51,4 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_launch.py
 
 clean:
-	rm -rf $(VENV) build .pytest_cache .mypy_cache .ruff_cache
+	rm -rf $(VENV) $(SDK_VENV) build .pytest_cache .mypy_cache .ruff_cache
