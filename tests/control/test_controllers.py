@@ -576,37 +576,38 @@ def test_pid_gains_set_through_the_parameter_service_apply_live() -> None:
     ctx.shutdown()
 
 
-def test_jtc_publishes_controller_state_and_legacy_state_at_the_state_rate() -> None:
+def test_jtc_publishes_controller_state_at_every_update_or_the_state_rate() -> None:
+    """Jazzy: ~/controller_state at every update (control_msgs 5 layout, speed scaling 1);
+    a Humble YAML's state_publish_rate still throttles it; no legacy ~/state."""
     from robomodel.runtime.msg import JointTrajectoryControllerState
 
-    ctx = Context("inproc", clock=ManualClock())
-    cm, ctrl = _jtc({"state_publish_rate": 25.0}, context=ctx)
-    probe = ctx.create_node("probe")
-    states: list[JointTrajectoryControllerState] = []
-    legacy: list[JointTrajectoryControllerState] = []
-    probe.create_subscription(
-        JointTrajectoryControllerState, "/jtc/controller_state", states.append
-    )
-    probe.create_subscription(JointTrajectoryControllerState, "/jtc/state", legacy.append)
-    ctrl.send_trajectory(_trajectory([(1.0, [0.5, -0.5])], ["joint1", "joint2"]))
-    period = 1.0 / cm.update_rate_hz
-    for _ in range(round(0.5 / period)):
-        cm.step()
-        ctx.spin_once(0.0)
-    stamps = [m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in states]
-    assert len(states) == len(legacy) == 13  # 25 Hz over 0.5 s of 100 Hz updates
-    assert np.diff(stamps) == pytest.approx([0.04] * 12)
-    last = states[-1]
-    assert last.joint_names == ["joint1", "joint2"]
-    # reference: the linear ramp from 0.25 (initial_value) to the waypoint, sampled
-    assert last.reference.positions[0] == pytest.approx(0.25 + 0.25 * stamps[-1], abs=0.02)
-    assert last.output.positions == last.reference.positions  # position commands forward it
-    measured = [rm.get() for rm in ctrl.state_interfaces[:2]]  # positions after the last write
-    assert len(last.feedback.positions) == 2 and len(last.feedback.velocities) == 2
-    assert last.error.positions == pytest.approx(
-        [r - f for r, f in zip(last.reference.positions, last.feedback.positions, strict=True)]
-    )
-    assert measured[0] == pytest.approx(last.reference.positions[0], abs=0.02)
-    assert legacy[-1].desired == last.reference and legacy[-1].actual == last.feedback
-    assert legacy[-1].error == last.error and legacy[-1].reference.positions == []
-    ctx.shutdown()
+    for params, expected, spacing_s in (({}, 50, 0.01), ({"state_publish_rate": 25.0}, 13, 0.04)):
+        ctx = Context("inproc", clock=ManualClock())
+        cm, ctrl = _jtc(params, context=ctx)
+        probe = ctx.create_node("probe")
+        states: list[JointTrajectoryControllerState] = []
+        legacy: list[JointTrajectoryControllerState] = []
+        probe.create_subscription(
+            JointTrajectoryControllerState, "/jtc/controller_state", states.append
+        )
+        probe.create_subscription(JointTrajectoryControllerState, "/jtc/state", legacy.append)
+        ctrl.send_trajectory(_trajectory([(1.0, [0.5, -0.5])], ["joint1", "joint2"]))
+        period = 1.0 / cm.update_rate_hz
+        for _ in range(round(0.5 / period)):
+            cm.step()
+            ctx.spin_once(0.0)
+        stamps = [m.header.stamp.sec + m.header.stamp.nanosec * 1e-9 for m in states]
+        assert len(states) == expected and legacy == []  # 0.5 s of 100 Hz updates
+        assert np.diff(stamps) == pytest.approx([spacing_s] * (expected - 1))
+        last = states[-1]
+        assert last.joint_names == ["joint1", "joint2"] and last.speed_scaling_factor == 1.0
+        # reference: the linear ramp from 0.25 (initial_value) to the waypoint, sampled
+        assert last.reference.positions[0] == pytest.approx(0.25 + 0.25 * stamps[-1], abs=0.02)
+        assert last.output.positions == last.reference.positions  # position commands forward it
+        measured = [rm.get() for rm in ctrl.state_interfaces[:2]]  # positions after the write
+        assert len(last.feedback.positions) == 2 and len(last.feedback.velocities) == 2
+        assert last.error.positions == pytest.approx(
+            [r - f for r, f in zip(last.reference.positions, last.feedback.positions, strict=True)]
+        )
+        assert measured[0] == pytest.approx(last.reference.positions[0], abs=0.02)
+        ctx.shutdown()

@@ -101,8 +101,10 @@ class JointTrajectoryController(ControllerInterface):
             for j in self.joints
         ]
         self.cmd_timeout_s = self.param_float("cmd_timeout", 0.0)
-        self.state_publish_rate_hz = self.param_float("state_publish_rate", 50.0)  # humble
-        self._state_pubs: list[Any] = []
+        # Jazzy publishes the state at every update; Humble's state_publish_rate, if a
+        # controller YAML still sets it, throttles it
+        self.state_publish_rate_hz = self.param_float("state_publish_rate", 0.0)
+        self._state_pub: Any = None
         self._next_state_s = -math.inf
         self._active = False
         self.trajectory: Trajectory | None = None
@@ -133,11 +135,9 @@ class JointTrajectoryController(ControllerInterface):
             )
             # FollowJointTrajectory (a ROS 2 action) and QueryTrajectoryState
             self._unregister = [part.destroy for part in offer(self)]
-            if self.state_publish_rate_hz > 0.0:  # humble: ~/controller_state and legacy ~/state
-                self._state_pubs = [
-                    self.node.create_publisher(JointTrajectoryControllerState, topic, 1)
-                    for topic in ("~/controller_state", "~/state")
-                ]
+            self._state_pub = self.node.create_publisher(
+                JointTrajectoryControllerState, "~/controller_state", 1
+            )
 
     def on_cleanup(self) -> None:
         sub = getattr(self, "_sub", None)
@@ -146,9 +146,9 @@ class JointTrajectoryController(ControllerInterface):
         for unregister in getattr(self, "_unregister", []):
             unregister()
         self._unregister = []
-        for pub in self._state_pubs:
-            pub.destroy()
-        self._state_pubs = []
+        if self._state_pub is not None:
+            self._state_pub.destroy()
+        self._state_pub = None
 
     def cancel_goal(self, handle: GoalHandle) -> None:
         """Cancel a running goal: the controller holds the measured position."""
@@ -350,8 +350,9 @@ class JointTrajectoryController(ControllerInterface):
         self._write(
             sample.positions, sample.velocities, sample.accelerations, errors, vel, period_s
         )
-        if self._state_pubs and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
-            self._next_state_s = time_s + 1.0 / self.state_publish_rate_hz
+        if self._state_pub is not None and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
+            if self.state_publish_rate_hz > 0.0:
+                self._next_state_s = time_s + 1.0 / self.state_publish_rate_hz
             publish_state(self, time_s, sample, pos, vel, errors)
         return ReturnType.OK
 

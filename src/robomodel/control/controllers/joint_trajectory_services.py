@@ -5,8 +5,8 @@ service and its state topics.
 rcl_action's services and topics: see :mod:`robomodel.runtime.action_server`): a goal that
 fails validation is rejected, as Humble's ``goal_received_callback`` rejects it; a new goal
 preempts the running one; feedback (desired, actual, error) is published while it runs.
-``~/query_state`` is control_msgs/srv/QueryTrajectoryState; ``~/controller_state`` and the
-legacy ``~/state`` carry what humble's ``publish_state`` publishes.
+``~/query_state`` is control_msgs/srv/QueryTrajectoryState; ``~/controller_state`` carries
+what Jazzy's ``publish_state`` publishes (no speed scaling here, so its factor is 1).
 """
 
 from __future__ import annotations
@@ -165,8 +165,8 @@ def publish_state(
     vel: Sequence[float],
     errors: Sequence[float],
 ) -> None:
-    """humble ``publish_state``: the sampled reference, the measured feedback, their
-    difference and what was written; ``~/state`` carries the same as desired/actual."""
+    """Jazzy's ``publish_state``: the sampled reference, the measured feedback, their
+    difference and what was written."""
     reference = JointTrajectoryPoint(
         positions=list(sample.positions),
         velocities=list(sample.velocities),
@@ -188,14 +188,14 @@ def publish_state(
         elif kind == "effort":
             output.effort = values
     header = Header(stamp=Time.from_seconds(time_s))
-    controller_state, legacy = controller._state_pubs
-    controller_state.publish(
+    controller._state_pub.publish(
         JointTrajectoryControllerState(
-            header, list(controller.joints), reference, feedback, error, output
-        )
-    )
-    legacy.publish(
-        JointTrajectoryControllerState(
-            header, list(controller.joints), error=error, desired=reference, actual=feedback
+            header,
+            list(controller.joints),
+            reference,
+            feedback,
+            error,
+            output,
+            speed_scaling_factor=1.0,
         )
     )

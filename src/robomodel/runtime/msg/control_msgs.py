@@ -86,8 +86,8 @@ def _multi() -> MultiDOFJointTrajectoryPoint:
 
 @dataclass(slots=True)
 class JointTrajectoryControllerState(Message):
-    """joint_trajectory_controller's state (Humble's field layout: ``reference``/``feedback``/
-    ``error``/``output`` and the deprecated ``desired``/``actual``, plus the multi-DOF ones)."""
+    """joint_trajectory_controller's state, in Jazzy's field layout (control_msgs 5: the
+    Humble-era ``desired``/``actual`` are gone, ``speed_scaling_factor`` is new)."""
 
     header: Header = field(default_factory=Header)
     joint_names: list[str] = field(default_factory=list)
@@ -95,15 +95,12 @@ class JointTrajectoryControllerState(Message):
     feedback: JointTrajectoryPoint = field(default_factory=_point)
     error: JointTrajectoryPoint = field(default_factory=_point)
     output: JointTrajectoryPoint = field(default_factory=_point)
-    desired: JointTrajectoryPoint = field(default_factory=_point)
-    actual: JointTrajectoryPoint = field(default_factory=_point)
     multi_dof_joint_names: list[str] = field(default_factory=list)
     multi_dof_reference: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
     multi_dof_feedback: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
     multi_dof_error: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
     multi_dof_output: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
-    multi_dof_desired: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
-    multi_dof_actual: MultiDOFJointTrajectoryPoint = field(default_factory=_multi)
+    speed_scaling_factor: float = 0.0
     __typename__ = "control_msgs/msg/JointTrajectoryControllerState"
     __fields__ = (
         ("header", Header),
@@ -112,13 +109,10 @@ class JointTrajectoryControllerState(Message):
         ("feedback", JointTrajectoryPoint),
         ("error", JointTrajectoryPoint),
         ("output", JointTrajectoryPoint),
-        ("desired", JointTrajectoryPoint),
-        ("actual", JointTrajectoryPoint),
         ("multi_dof_joint_names", Seq("string")),
         ("multi_dof_reference", MultiDOFJointTrajectoryPoint),
         ("multi_dof_feedback", MultiDOFJointTrajectoryPoint),
         ("multi_dof_error", MultiDOFJointTrajectoryPoint),
         ("multi_dof_output", MultiDOFJointTrajectoryPoint),
-        ("multi_dof_desired", MultiDOFJointTrajectoryPoint),
-        ("multi_dof_actual", MultiDOFJointTrajectoryPoint),
+        ("speed_scaling_factor", "float64"),
     )
