@@ -194,3 +194,62 @@ def test_char_is_uint8_as_rosidl_has_it() -> None:
     assert type_hash(kind) == dict(CITED)["service_msgs/msg/ServiceEventInfo"]
     assert type_hash(kind) != STORE.hash_rihs01("service_msgs/msg/ServiceEventInfo")
     assert dds_type_name(kind.__typename__) == "service_msgs::msg::dds_::ServiceEventInfo_"
+
+
+def test_action_types_derived_as_rosidl_does() -> None:
+    """tf2_msgs/action/LookupTransform's SendGoal, GetResult and FeedbackMessage hashes as a
+    Jazzy install has them (captured from /opt/ros/jazzy type descriptions, published with
+    nano-ros' notes): make_action derives the services and the feedback message as rosidl."""
+    from dataclasses import dataclass, field
+
+    from robomodel.runtime.msg import _schema
+    from robomodel.runtime.msg.action import make_action
+    from robomodel.runtime.msg.builtin_interfaces import Duration, Time
+    from robomodel.runtime.msg.geometry_msgs import TransformStamped
+
+    @dataclass(slots=True)
+    class Goal(Message):
+        __fields__ = (
+            ("target_frame", "string"),
+            ("source_frame", "string"),
+            ("source_time", Time),
+            ("timeout", Duration),
+            ("target_time", Time),
+            ("fixed_frame", "string"),
+            ("advanced", "bool"),
+        )
+
+    @dataclass(slots=True)
+    class TF2Error(Message):
+        __fields__ = (("error", "uint8"), ("error_string", "string"))
+
+    @dataclass(slots=True)
+    class Result(Message):
+        __fields__ = (("transform", TransformStamped), ("error", TF2Error))
+        transform: TransformStamped = field(default_factory=TransformStamped)
+
+    @dataclass(slots=True)
+    class Feedback(Message):
+        pass
+
+    Goal.__typename__ = "tf2_msgs/action/LookupTransform_Goal"
+    TF2Error.__typename__ = "tf2_msgs/msg/TF2Error"
+    Result.__typename__ = "tf2_msgs/action/LookupTransform_Result"
+    Feedback.__typename__ = "tf2_msgs/action/LookupTransform_Feedback"
+    before = (dict(_schema._REGISTRY), dict(_schema._SERVICES))
+    try:
+        action = make_action("tf2_msgs/action/LookupTransform", Goal, Result, Feedback)
+        assert type_hash(action.SendGoal) == (
+            "RIHS01_4646ff5706c86b04d0a1098d329951a9731a7517e16702905de6073cc72c8530"
+        )
+        assert type_hash(action.GetResult) == (
+            "RIHS01_3cd1715751899e3167b5aec3e4ac194f7da9e8493a77285f9f6a4c914f5e8b24"
+        )
+        assert type_hash(action.FeedbackMessage) == (
+            "RIHS01_10cb89922dcb103e95c185d43e8a5efa3d38db996f733151a2f3e2ac133f4839"
+        )
+    finally:  # keep tf2_msgs' action out of the registry for the other tests
+        _schema._REGISTRY.clear()
+        _schema._REGISTRY.update(before[0])
+        _schema._SERVICES.clear()
+        _schema._SERVICES.update(before[1])
