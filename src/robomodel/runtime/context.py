@@ -18,20 +18,23 @@ from robomodel.runtime.transport.inproc import InprocTransport
 
 __all__ = ["BUSES", "Context"]
 
-BUSES = ("inproc", "zenoh")
+BUSES = ("inproc", "zenoh", "ros1")
 
 
 class Context:
     """Where nodes live and run.
 
     Args:
-        bus: ``"inproc"`` (deterministic, in this process; the library default) or ``"zenoh"``
-            (other robomodel processes on this machine, or others with ``connect``).
+        bus: ``"inproc"`` (deterministic, in this process; the library default), ``"zenoh"``
+            (other robomodel processes and ROS 2 nodes: rmw_zenoh's wire) or ``"ros1"`` (a ROS 1
+            master's graph: XML-RPC and TCPROS).
         clock: The time source; pass a :class:`ManualClock` and call :meth:`advance` for
             reproducible runs. Defaults to wall-clock time.
         domain_id: Keeps groups of processes apart (like ROS_DOMAIN_ID); Zenoh only.
         connect: Zenoh endpoints to connect to (``tcp/host:port``).
         listen: Extra Zenoh endpoints to listen on.
+        master: The ROS 1 master's URI (``ros1``; default ``ROS_MASTER_URI``, else
+            http://localhost:11311/).
     """
 
     def __init__(
@@ -42,6 +45,7 @@ class Context:
         domain_id: int | None = None,
         connect: Sequence[str] = (),
         listen: Sequence[str] = (),
+        master: str | None = None,
     ) -> None:
         self.clock = clock or SystemClock()
         self.executor = Executor()
@@ -54,6 +58,10 @@ class Context:
             self.transport = ZenohTransport(
                 self.executor, domain_id=domain_id, connect=connect, listen=listen
             )
+        elif bus == "ros1":
+            from robomodel.runtime.transport.ros1_bus import Ros1Transport
+
+            self.transport = Ros1Transport(self.executor, master=master)
         else:
             raise RobomodelError(f"unknown bus '{bus}'; choose one of: {', '.join(BUSES)}")
         self.nodes: list[Node] = []

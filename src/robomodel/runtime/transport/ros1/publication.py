@@ -1,0 +1,158 @@
+"""A node's publication of one topic over TCPROS: the subscribers connected to it, each with a
+writer thread and a queue of ``queue_size`` messages (the oldest dropped when a subscriber falls
+behind, as roscpp's publisher queue drops), and the latched message new subscribers get first.
+
+A message is serialized once per publish, and not at all while nobody is connected and the
+topic is not latched.
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import itertools
+import socket
+import threading
+from typing import TYPE_CHECKING, Any
+
+from robomodel.runtime.msg import Message
+from robomodel.runtime.transport.ros1.tcpros import TcprosError, write_frame, write_header
+from robomodel.runtime.transport.ros1.xmlrpc_io import log
+
+if TYPE_CHECKING:
+    from robomodel.runtime.transport.ros1.ros1_types import Ros1Type
+
+__all__ = ["Publication"]
+
+_connection_ids = itertools.count(1)
+
+
+class _Outbound:
+    """One subscriber's connection: a writer thread draining a bounded queue."""
+
+    def __init__(self, sock: socket.socket, peer: str, queue_size: int, on_close: Any) -> None:
+        self.sock = sock
+        self.peer = peer
+        self.id = next(_connection_ids)
+        self._queue: collections.deque[bytes] = collections.deque(maxlen=max(1, queue_size))
+        self._ready = threading.Condition()
+        self._open = True
+        self._on_close = on_close
+        self.dropped = 0
+        self._thread = threading.Thread(target=self._write, name="ros1-pub-writer", daemon=True)
+        self._thread.start()
+
+    def push(self, data: bytes) -> None:
+        with self._ready:
+            if len(self._queue) == self._queue.maxlen:
+                self.dropped += 1
+            self._queue.append(data)
+            self._ready.notify()
+
+    def _write(self) -> None:
+        try:
+            while True:
+                with self._ready:
+                    while self._open and not self._queue:
+                        self._ready.wait()
+                    if not self._open:
+                        return
+                    batch = list(self._queue)
+                    self._queue.clear()
+                for data in batch:
+                    write_frame(self.sock, data)
+        except OSError as exc:
+            log.debug("subscriber %s gone: %s", self.peer, exc)
+        finally:
+            self.close()
+
+    def close(self) -> None:
+        with self._ready:
+            if not self._open and self.sock.fileno() < 0:
+                return
+            self._open = False
+            self._ready.notify()
+        try:
+            self.sock.close()
+        finally:
+            self._on_close(self)
+
+
+class Publication:
+    """One topic a node publishes."""
+
+    def __init__(
+        self, caller_id: str, topic: str, kind: Ros1Type, *, latch: bool, queue_size: int
+    ) -> None:
+        self.caller_id = caller_id
+        self.topic = topic
+        self.kind = kind
+        self.latch = latch
+        self.queue_size = queue_size
+        self.refs = 0
+        self._seq = 0
+        self._latched: bytes | None = None
+        self._lock = threading.Lock()
+        self.connections: list[_Outbound] = []
+
+    def publish(self, msg: Message) -> None:
+        with self._lock:
+            connections = list(self.connections)
+            if not connections and not self.latch:
+                return
+            data = self.kind.encode(msg, self._seq)
+            self._seq += 1
+            if self.latch:
+                self._latched = data
+        for connection in connections:
+            connection.push(data)
+
+    def accept(self, sock: socket.socket, header: dict[str, str]) -> None:
+        """A subscriber's connection whose header asked for this topic."""
+        peer = header.get("callerid", "?")
+        md5 = header.get("md5sum", "")
+        if md5 not in ("*", self.kind.md5sum):
+            reason = (
+                f"Client [{peer}] wants topic [{self.topic}] to have datatype/md5sum "
+                f"[{header.get('type', '')}/{md5}], but our version has "
+                f"[{self.kind.name}/{self.kind.md5sum}]. Dropping connection."
+            )
+            log.warning("%s", reason)
+            _refuse(sock, reason)
+            return
+        write_header(
+            sock,
+            {
+                "callerid": self.caller_id,
+                "latching": "1" if self.latch else "0",
+                "md5sum": self.kind.md5sum,
+                "message_definition": self.kind.definition,
+                "topic": self.topic,
+                "type": self.kind.name,
+            },
+        )
+        if header.get("tcp_nodelay") == "1":
+            sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        connection = _Outbound(sock, peer, self.queue_size, self._forget)
+        with self._lock:
+            self.connections.append(connection)
+            latched = self._latched
+        if latched is not None:
+            connection.push(latched)
+
+    def _forget(self, connection: _Outbound) -> None:
+        with self._lock:
+            if connection in self.connections:
+                self.connections.remove(connection)
+
+    def close(self) -> None:
+        with self._lock:
+            connections, self.connections = self.connections, []
+        for connection in connections:
+            connection.close()
+
+
+def _refuse(sock: socket.socket, reason: str) -> None:
+    with contextlib.suppress(OSError, TcprosError):
+        write_header(sock, {"error": reason})
+    sock.close()

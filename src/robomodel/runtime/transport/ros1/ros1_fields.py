@@ -1,0 +1,84 @@
+"""Where a ROS 1 type and robomodel's (ROS 2) type of the same name differ.
+
+Everything else maps field by field, by name (std_msgs/Header's ``seq`` is the publisher's
+message count; ``time``/``duration`` are builtin_interfaces' Time/Duration).
+
+- ``tf/tfMessage`` is ``tf2_msgs/TFMessage`` (the same definition; old nodes still use it).
+- controller_manager_msgs/ControllerState: ROS 1's states ``initialized``/``stopped``/
+  ``running`` are ROS 2's ``unconfigured``/``inactive``/``active``; ``claimed_resources``
+  (one entry per hardware interface type, its joints as resources) is built from, and read
+  back into, ROS 2's ``claimed_interfaces`` (``joint/type``).
+- controller_manager_msgs/SwitchController: ROS 1's ``start_controllers``/
+  ``stop_controllers``/``start_asap``/``timeout`` (float64 seconds) are ROS 2's
+  ``activate_controllers``/``deactivate_controllers``/``activate_asap``/``timeout``
+  (a Duration). The strictness values are the same (BEST_EFFORT 1, STRICT 2).
+- control_msgs/JointTrajectoryControllerState: ROS 1's ``desired``/``actual``/``error`` are
+  Jazzy's ``reference``/``feedback``/``error``.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+from typing import Any
+
+from robomodel.runtime.transport.ros1.ros1_codec import Field
+
+__all__ = ["ALIASES", "special_field"]
+
+ALIASES = {"tf/msg/tfMessage": "tf2_msgs/msg/TFMessage"}
+
+_STATES_TO_ROS1 = {"active": "running", "inactive": "stopped", "unconfigured": "initialized"}
+_STATES_FROM_ROS1 = {v: k for k, v in _STATES_TO_ROS1.items()}
+
+
+def _resources(claimed: Any) -> list[types.SimpleNamespace]:
+    """``["joint1/position", "joint2/position"]`` -> one resource list per interface type."""
+    by_kind: dict[str, list[str]] = {}
+    for interface in claimed:
+        joint, _, kind = str(interface).rpartition("/")
+        by_kind.setdefault(kind, []).append(joint)
+    return [types.SimpleNamespace(hardware_interface=k, resources=v) for k, v in by_kind.items()]
+
+
+def _interfaces(resources: Any) -> list[str]:
+    return [f"{r}/{entry.hardware_interface}" for entry in resources for r in entry.resources]
+
+
+def _seconds(duration: Any) -> float:
+    return float(duration.sec) + float(duration.nanosec) * 1e-9
+
+
+def _duration(seconds: float) -> Any:
+    from robomodel.runtime.msg.builtin_interfaces import Duration
+
+    if not math.isfinite(seconds):
+        return Duration(0, 0)
+    sec = math.floor(seconds)
+    return Duration(int(sec), round((seconds - sec) * 1e9) % 1_000_000_000)
+
+
+_SPECIAL = {
+    ("controller_manager_msgs/msg/ControllerState", "state"): Field(
+        "state", lambda s: _STATES_TO_ROS1.get(s, s), lambda s: _STATES_FROM_ROS1.get(s, s)
+    ),
+    ("controller_manager_msgs/msg/ControllerState", "claimed_resources"): Field(
+        "claimed_interfaces", _resources, _interfaces
+    ),
+    ("controller_manager_msgs/msg/SwitchControllerRequest", "start_controllers"): Field(
+        "activate_controllers"
+    ),
+    ("controller_manager_msgs/msg/SwitchControllerRequest", "stop_controllers"): Field(
+        "deactivate_controllers"
+    ),
+    ("controller_manager_msgs/msg/SwitchControllerRequest", "start_asap"): Field("activate_asap"),
+    ("controller_manager_msgs/msg/SwitchControllerRequest", "timeout"): Field(
+        "timeout", _seconds, _duration
+    ),
+    ("control_msgs/msg/JointTrajectoryControllerState", "desired"): Field("reference"),
+    ("control_msgs/msg/JointTrajectoryControllerState", "actual"): Field("feedback"),
+}
+
+
+def special_field(ros1_type: str, field: str) -> Field | None:
+    return _SPECIAL.get((ros1_type, field))

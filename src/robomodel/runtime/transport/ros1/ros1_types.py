@@ -1,0 +1,226 @@
+"""robomodel's (ROS 2) message and service types as ROS 1 types: names, md5sums, definitions
+and codecs.
+
+The ROS 1 definitions come from rosbags' Noetic type store (std_msgs, geometry_msgs,
+sensor_msgs, nav_msgs, trajectory_msgs, rosgraph_msgs, ...) and, for the packages it lacks,
+from the ROS 1 files vendored under ``definitions/`` (tf2_msgs, tf, std_srvs, control_msgs,
+controller_manager_msgs, gazebo_msgs; see its README). md5sums and message definitions are
+rosbags' (genmsg's algorithm); a service's md5sum is genmsg's: the md5 of its request's md5
+text followed by its response's.
+
+A robomodel type ``pkg/msg/Name`` is ROS 1's ``pkg/Name``; a service ``pkg/srv/Name`` ROS 1's
+``pkg/Name`` with ``pkg/NameRequest`` and ``pkg/NameResponse``. Fields map by name, with the
+differences between the ROS 1 and ROS 2 versions of a type written out in :mod:`.ros1_fields`.
+A type with no ROS 1 counterpart (rcl_interfaces, lifecycle_msgs, action types, ...) raises
+:class:`Ros1TypeError`: the transport keeps such topics and services inside the process.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from robomodel.errors import RobomodelError
+from robomodel.runtime.msg import Message, get_message_type
+from robomodel.runtime.msg._schema import MessageTypeError, Service
+from robomodel.runtime.transport.ros1.ros1_codec import (
+    DURATION,
+    PLACEHOLDER,
+    TIME,
+    Decoder,
+    Encoder,
+    Ros1CodecError,
+    make_codec,
+)
+from robomodel.runtime.transport.ros1.ros1_fields import ALIASES, special_field
+
+__all__ = [
+    "Ros1CodecError",
+    "Ros1ServiceType",
+    "Ros1Type",
+    "Ros1TypeError",
+    "robomodel_type_for",
+    "ros1_service_type",
+    "ros1_type",
+    "ros1_type_named",
+]
+
+DEFINITIONS = Path(__file__).parent / "definitions"
+
+
+class Ros1TypeError(RobomodelError):
+    """A robomodel type with no ROS 1 counterpart, or an unknown ROS 1 type name."""
+
+
+@dataclass(frozen=True)
+class Ros1Type:
+    """A message type as ROS 1 knows it, with the codec of its robomodel class."""
+
+    name: str  # "sensor_msgs/JointState"
+    md5sum: str
+    definition: str
+    cls: type[Message]
+    _encode: Encoder
+    _decode: Decoder
+
+    def encode(self, msg: Message, seq: int = 0) -> bytes:
+        return self._encode(msg, seq)
+
+    def decode(self, data: bytes | memoryview) -> Message:
+        return self._decode(bytes(data))
+
+
+@dataclass(frozen=True)
+class Ros1ServiceType:
+    name: str  # "std_srvs/Empty"
+    md5sum: str
+    request: Ros1Type
+    response: Ros1Type
+    cls: type[Service]
+
+
+@functools.cache
+def _store() -> Any:
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    store = get_typestore(Stores.ROS1_NOETIC)
+    found: dict[str, Any] = {}
+    for path in sorted(DEFINITIONS.glob("*/*/*.*")):
+        package, kind, stem = path.parent.parent.name, path.parent.name, path.stem
+        text = path.read_text()
+        if kind == "msg":
+            found.update(get_types_from_msg(text, f"{package}/msg/{stem}"))
+            continue
+        request, response = re.split(r"^---[ \t]*$", text, maxsplit=1, flags=re.MULTILINE)
+        found.update(get_types_from_msg(request, f"{package}/msg/{stem}Request"))
+        found.update(get_types_from_msg(response, f"{package}/msg/{stem}Response"))
+    store.register(found)
+    return store
+
+
+def _ros1_key(name: str) -> str:
+    """``sensor_msgs/JointState`` or ``sensor_msgs/msg/JointState`` -> the store's key."""
+    parts = name.strip("/").split("/")
+    return f"{parts[0]}/msg/{parts[-1]}" if len(parts) in (2, 3) else name
+
+
+def _robomodel_class(ros1_key: str) -> Any:
+    """The robomodel class of ROS 1 type ``pkg/msg/Name`` (None if robomodel has none)."""
+    if ros1_key in (TIME, DURATION):
+        return get_message_type(ros1_key)
+    target = ALIASES.get(ros1_key, ros1_key)
+    service = re.fullmatch(r"(\w+)/msg/(\w+?)(Request|Response)", target)
+    if service is not None:
+        from robomodel.runtime.msg._schema import get_service_type
+
+        try:
+            kind = get_service_type(f"{service[1]}/srv/{service[2]}")
+        except MessageTypeError:
+            pass
+        else:
+            return kind.Request if service[3] == "Request" else kind.Response
+    try:
+        return get_message_type(target)
+    except MessageTypeError:
+        return None
+
+
+def _md5_text(store: Any, key: str) -> str:
+    """genmsg's md5 text of a message: constants, then fields with message types by md5."""
+    constants, fields = store.fielddefs[key]
+    lines = [f"{typ} {name}={value}" for name, typ, value in constants]
+    for name, desc in fields:
+        if name != PLACEHOLDER:
+            lines.append(f"{_md5_type(store, desc)} {name}")
+    return "\n".join(lines)
+
+
+def _md5_type(store: Any, desc: Any) -> str:
+    kind, rest = int(desc[0]), desc[1]
+    if kind == 1:
+        return str(rest[0])
+    if kind == 2:
+        if rest in (TIME, DURATION):
+            return "time" if rest == TIME else "duration"
+        return str(store.generate_msgdef(rest, ros_version=1)[1])
+    item, size = rest
+    inner = _md5_type(store, item)
+    if int(item[0]) == 2 and item[1] not in (TIME, DURATION):
+        return inner  # a message array is its md5, without brackets
+    return f"{inner}[{size if kind == 3 else ''}]"
+
+
+def _make_type(key: str, name: str) -> Ros1Type:
+    store = _store()
+    if key not in store.fielddefs:
+        raise Ros1TypeError(f"ROS 1 has no type {name}")
+    cls = _robomodel_class(key)
+    if cls is None:
+        raise Ros1TypeError(f"robomodel has no class for the ROS 1 type {name}")
+    definition, md5 = store.generate_msgdef(key, ros_version=1)
+    encode, decode = make_codec(key, store.fielddefs, _robomodel_class, special_field)
+    return Ros1Type(name, md5, definition, cls, encode, decode)
+
+
+@functools.cache
+def ros1_type_named(ros1_name: str) -> Ros1Type:
+    """The ROS 1 type ``ros1_name`` (``tf/tfMessage``), decoding into its robomodel class."""
+    key = _ros1_key(ros1_name)
+    return _make_type(key, key.replace("/msg/", "/"))
+
+
+def robomodel_type_for(ros1_name: str) -> type[Message]:
+    cls = _robomodel_class(_ros1_key(ros1_name))
+    if cls is None:
+        raise Ros1TypeError(f"robomodel has no class for the ROS 1 type {ros1_name}")
+    return cls  # type: ignore[no-any-return]
+
+
+def _ros1_name_of(cls: type[Message]) -> str:
+    package, kind, name = cls.__typename__.split("/")
+    if kind != "msg":
+        raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
+    for ros1_key, target in ALIASES.items():
+        if target == cls.__typename__ and ros1_key.split("/")[0] != "tf":
+            return ros1_key
+    return f"{package}/msg/{name}"
+
+
+_TYPES: dict[type[Message], Ros1Type] = {}
+_SERVICES: dict[type[Service], Ros1ServiceType] = {}
+
+
+def ros1_type(cls: type[Message]) -> Ros1Type:
+    """The ROS 1 type of robomodel message class ``cls``; Ros1TypeError if ROS 1 has none."""
+    found = _TYPES.get(cls)
+    if found is None:
+        key = _ros1_name_of(cls)
+        found = _make_type(key, key.replace("/msg/", "/"))
+        if found.cls is not cls:
+            raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
+        _TYPES[cls] = found
+    return found
+
+
+def ros1_service_type(cls: type[Service]) -> Ros1ServiceType:
+    """The ROS 1 service of robomodel service class ``cls``; Ros1TypeError if none."""
+    found = _SERVICES.get(cls)
+    if found is None:
+        found = _SERVICES[cls] = _make_service(cls)
+    return found
+
+
+def _make_service(cls: type[Service]) -> Ros1ServiceType:
+    package, kind, name = cls.__typename__.split("/")
+    store = _store()
+    keys = [f"{package}/msg/{name}{part}" for part in ("Request", "Response")]
+    if kind != "srv" or any(k not in store.fielddefs for k in keys):
+        raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
+    request, response = (_make_type(k, k.replace("/msg/", "/")) for k in keys)
+    text = _md5_text(store, keys[0]) + _md5_text(store, keys[1])
+    md5 = hashlib.md5(text.encode()).hexdigest()
+    return Ros1ServiceType(f"{package}/{name}", md5, request, response, cls)

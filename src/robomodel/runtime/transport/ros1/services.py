@@ -1,0 +1,171 @@
+"""ROS 1 services over TCPROS (rospy's tcpros_service.py, roscpp's ServiceClientLink).
+
+Server: a connection's header names the service; the reply header carries the md5sums and
+types (a ``probe=1`` connection, as ``rosservice type`` makes, ends there); then each request
+frame is answered with an ok byte and the response (1), or the error text (0). The handler runs
+on the executor's thread, as every robomodel callback; a :class:`Deferred` answer is written
+when it resolves.
+
+Client: the master's ``lookupService`` gives ``rosrpc://host:port``; one connection per call
+(``persistent=0``).
+"""
+
+from __future__ import annotations
+
+import socket
+import threading
+import time
+from typing import TYPE_CHECKING, Any
+
+from robomodel.runtime.msg import Message
+from robomodel.runtime.transport.base import Deferred, ServiceCallError, ServiceHandler
+from robomodel.runtime.transport.ros1.names import split_uri
+from robomodel.runtime.transport.ros1.tcpros import (
+    TcprosError,
+    read_frame,
+    read_header,
+    recv_exact,
+    write_frame,
+    write_header,
+)
+from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError, call, log
+
+if TYPE_CHECKING:
+    from robomodel.runtime.executor import Executor
+    from robomodel.runtime.transport.ros1.ros1_types import Ros1ServiceType
+
+__all__ = ["ServiceServer", "call_service"]
+
+HANDLER_TIMEOUT_S = 300.0  # a controller switch or a model spawn can take a while
+
+
+class ServiceServer:
+    """One service a node offers."""
+
+    def __init__(
+        self,
+        caller_id: str,
+        name: str,
+        kind: Ros1ServiceType,
+        handler: ServiceHandler,
+        executor: Executor,
+    ) -> None:
+        self.caller_id = caller_id
+        self.name = name
+        self.kind = kind
+        self.handler = handler
+        self._executor = executor
+
+    def _reply_header(self) -> dict[str, str]:
+        return {
+            "callerid": self.caller_id,
+            "md5sum": self.kind.md5sum,
+            "request_type": self.kind.request.name,
+            "response_type": self.kind.response.name,
+            "type": self.kind.name,
+        }
+
+    def serve(self, sock: socket.socket, header: dict[str, str]) -> None:
+        """Serve one client connection (on its own thread) until it closes."""
+        md5 = header.get("md5sum", "*")
+        if md5 not in ("*", self.kind.md5sum):
+            reason = (
+                f"request from [{header.get('callerid', '?')}]: md5sums do not match: "
+                f"[{md5}] vs. [{self.kind.md5sum}]"
+            )
+            log.warning("service %s: %s", self.name, reason)
+            write_header(sock, {"error": reason})
+            return
+        write_header(sock, self._reply_header())
+        if header.get("probe") == "1":
+            return
+        persistent = header.get("persistent") == "1"
+        sock.settimeout(None)
+        while True:
+            try:
+                payload = read_frame(sock)
+            except TcprosError:
+                return  # the client is done
+            ok, body = self._answer(payload)
+            sock.sendall(b"\x01" if ok else b"\x00")
+            write_frame(sock, body)
+            if not persistent:
+                return
+
+    def _answer(self, payload: bytes) -> tuple[bool, bytes]:
+        from robomodel.runtime.transport.ros1.ros1_types import Ros1CodecError
+
+        try:
+            request = self.kind.request.decode(payload)
+        except Ros1CodecError as exc:
+            return False, f"malformed request: {exc}".encode()
+        done = threading.Event()
+        box: dict[str, Any] = {}
+
+        def finish(response: Any) -> None:
+            box["response"] = response
+            done.set()
+
+        def run() -> None:
+            try:
+                answer = self.handler(request)
+            except Exception as exc:
+                log.exception("service %s failed", self.name)
+                box["error"] = f"service [{self.name}] failed: {exc}"
+                done.set()
+                return
+            if isinstance(answer, Deferred):
+                answer.then(finish)
+            else:
+                finish(answer)
+
+        self._executor.post(run)
+        if not done.wait(HANDLER_TIMEOUT_S):
+            return False, f"service [{self.name}] did not answer in {HANDLER_TIMEOUT_S} s".encode()
+        if "error" in box:
+            return False, str(box["error"]).encode()
+        try:
+            return True, self.kind.response.encode(box["response"])
+        except Exception as exc:
+            log.exception("service %s: cannot encode the response", self.name)
+            return False, f"service [{self.name}] answered something unencodable: {exc}".encode()
+
+
+def call_service(
+    master: str,
+    caller_id: str,
+    name: str,
+    kind: Ros1ServiceType,
+    request: Message,
+    timeout_s: float,
+) -> Message:
+    """Call ``name`` through the master's registration; ServiceCallError if it fails."""
+    deadline = time.monotonic() + timeout_s
+    try:
+        uri = str(call(master, "lookupService", caller_id, name, timeout_s=timeout_s))
+        host, port = split_uri(uri)
+    except (Ros1WireError, Exception) as exc:
+        raise ServiceCallError(f"service '{name}' is not available: {exc}") from None
+    try:
+        with socket.create_connection((host, port), timeout=max(0.1, timeout_s)) as sock:
+            write_header(
+                sock,
+                {
+                    "callerid": caller_id,
+                    "md5sum": kind.md5sum,
+                    "persistent": "0",
+                    "service": name,
+                },
+            )
+            header = read_header(sock)
+            if "error" in header:
+                raise ServiceCallError(f"service '{name}' refused the call: {header['error']}")
+            write_frame(sock, kind.request.encode(request))
+            sock.settimeout(max(0.1, deadline - time.monotonic()))
+            ok = recv_exact(sock, 1)
+            body = read_frame(sock)
+    except (OSError, TcprosError) as exc:
+        raise ServiceCallError(f"service '{name}' did not answer: {exc}") from None
+    if ok != b"\x01":
+        raise ServiceCallError(f"service '{name}' failed: {body.decode(errors='replace')}")
+    return kind.response.decode(body)

@@ -1,0 +1,186 @@
+"""A node's subscription to one topic over TCPROS: one connection per publisher the master (or a
+``publisherUpdate``) names, each a reader thread that asks the publisher for the topic
+(``requestTopic``), connects, exchanges headers and reads messages.
+
+Messages are decoded on the reader thread and handed to the executor through a queue of
+``depth`` messages (the oldest dropped when the node falls behind). A publisher that drops the
+connection while it is still registered is asked again after a growing pause (up to 2 s); a
+malformed message is dropped with a log line, and the connection closed.
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import socket
+import threading
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
+from robomodel.runtime.msg import Message
+from robomodel.runtime.transport.ros1.names import split_uri
+from robomodel.runtime.transport.ros1.tcpros import (
+    TcprosError,
+    read_frame,
+    read_header,
+    write_header,
+)
+from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError, call, log
+
+if TYPE_CHECKING:
+    from robomodel.runtime.executor import Executor
+    from robomodel.runtime.transport.ros1.ros1_types import Ros1Type
+
+__all__ = ["Subscription"]
+
+RETRY_MAX_S = 2.0
+
+
+class _Inbound:
+    """The connection to one publisher (its slave API ``uri``)."""
+
+    def __init__(self, subscription: Subscription, uri: str) -> None:
+        self.sub = subscription
+        self.uri = uri
+        self.peer = uri
+        self.connected = False
+        self._alive = True
+        self._sock: socket.socket | None = None
+        self._thread = threading.Thread(target=self._run, name="ros1-sub-reader", daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        pause_s = 0.1
+        while self._alive:
+            try:
+                self._connect_and_read()
+            except (OSError, TcprosError, Ros1WireError) as exc:
+                if self._alive:
+                    log.debug("%s from %s: %s", self.sub.topic, self.uri, exc)
+            self.connected = False
+            if not self._alive:
+                return
+            threading.Event().wait(pause_s)
+            pause_s = min(RETRY_MAX_S, pause_s * 2)
+
+    def _connect_and_read(self) -> None:
+        sub = self.sub
+        answer = call(self.uri, "requestTopic", sub.caller_id, sub.topic, [["TCPROS"]])
+        if not (isinstance(answer, list) and len(answer) >= 3 and answer[0] == "TCPROS"):
+            raise Ros1WireError(f"{self.uri} offers {sub.topic} over {answer!r:.60}, not TCPROS")
+        host, port = str(answer[1]), int(answer[2])
+        sock = socket.create_connection((host, port), timeout=5.0)
+        self._sock = sock
+        try:
+            write_header(
+                sock,
+                {
+                    "callerid": sub.caller_id,
+                    "md5sum": sub.kind.md5sum,
+                    "message_definition": sub.kind.definition,
+                    "tcp_nodelay": "1",
+                    "topic": sub.topic,
+                    "type": sub.kind.name,
+                },
+            )
+            header = read_header(sock)
+            if "error" in header:
+                log.warning("%s: publisher %s refused: %s", sub.topic, self.uri, header["error"])
+                self._alive = False
+                return
+            self.peer = header.get("callerid", self.uri)
+            sock.settimeout(None)
+            self.connected = True
+            while self._alive:
+                sub.receive(read_frame(sock), self)
+        finally:
+            sock.close()
+
+    def close(self) -> None:
+        self._alive = False
+        if self._sock is not None:
+            with contextlib.suppress(OSError):
+                self._sock.shutdown(socket.SHUT_RDWR)
+
+
+class Subscription:
+    """One topic a node subscribes to."""
+
+    def __init__(
+        self,
+        caller_id: str,
+        topic: str,
+        kind: Ros1Type,
+        depth: int,
+        executor: Executor,
+        deliver: Callable[[Message], None],
+    ) -> None:
+        self.caller_id = caller_id
+        self.topic = topic
+        self.kind = kind
+        self._executor = executor
+        self._deliver = deliver
+        self._pending: collections.deque[Message] = collections.deque(maxlen=max(1, depth))
+        self._lock = threading.Lock()
+        self._scheduled = False
+        self._alive = True
+        self.inbound: dict[str, _Inbound] = {}
+        self.dropped = 0
+
+    def update_publishers(self, uris: Sequence[str]) -> None:
+        """Connect to publishers newly listed, drop the ones no longer listed."""
+        wanted = []
+        for uri in uris:
+            try:
+                split_uri(str(uri))
+                wanted.append(str(uri))
+            except Exception:
+                log.warning("%s: ignoring publisher URI %r", self.topic, uri)
+        with self._lock:
+            if not self._alive:
+                return
+            gone = [self.inbound.pop(u) for u in list(self.inbound) if u not in wanted]
+            for uri in wanted:
+                if uri not in self.inbound:
+                    self.inbound[uri] = _Inbound(self, uri)
+        for connection in gone:
+            connection.close()
+
+    def receive(self, data: bytes, connection: Any) -> None:  # a reader thread
+        from robomodel.runtime.transport.ros1.ros1_types import Ros1CodecError
+
+        try:
+            msg = self.kind.decode(data)
+        except Ros1CodecError as exc:
+            log.warning(
+                "%s: dropping a malformed message from %s: %s", self.topic, connection.peer, exc
+            )
+            raise TcprosError("malformed message") from None
+        with self._lock:
+            if len(self._pending) == self._pending.maxlen:
+                self.dropped += 1
+            self._pending.append(msg)
+            if self._scheduled:
+                return
+            self._scheduled = True
+        self._executor.post(self._drain)
+
+    def _drain(self) -> None:
+        with self._lock:
+            batch = list(self._pending)
+            self._pending.clear()
+            self._scheduled = False
+        for msg in batch:
+            if not self._alive:
+                return
+            try:
+                self._deliver(msg)
+            except Exception:
+                log.exception("error handling a message on %s", self.topic)
+
+    def close(self) -> None:
+        with self._lock:
+            self._alive = False
+            connections, self.inbound = list(self.inbound.values()), {}
+        for connection in connections:
+            connection.close()

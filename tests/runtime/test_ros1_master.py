@@ -1,0 +1,153 @@
+"""robomodel's ROS 1 master against rosmaster's API (rosmaster/master_api.py), and what it does
+with malformed or hostile XML-RPC and TCPROS input: a log line, an error answer, and it goes on."""
+
+from __future__ import annotations
+
+import socket
+import struct
+import time
+import xmlrpc.client
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+from robomodel.runtime.transport.ros1.master import Master
+from robomodel.runtime.transport.ros1.names import canonical, namespace_of, resolve
+from robomodel.runtime.transport.ros1.tcpros import (
+    MAX_HEADER_BYTES,
+    TcprosError,
+    encode_header,
+    parse_header,
+)
+from robomodel.runtime.transport.ros1.xmlrpc_io import MAX_BODY_BYTES, XmlRpcServer
+from tests.ros1wire.conftest import free_port
+
+
+@pytest.fixture
+def master() -> Iterator[tuple[Master, Any]]:
+    uri = f"http://127.0.0.1:{free_port()}/"
+    m = Master(uri, "127.0.0.1")
+    try:
+        yield m, xmlrpc.client.ServerProxy(uri)
+    finally:
+        m.close()
+
+
+def test_names_resolve_as_rosgraph_does() -> None:
+    assert resolve("chatter", "/ns/node") == "/ns/chatter"
+    assert resolve("~private", "/ns/node") == "/ns/node/private"
+    assert resolve("/abs//x/", "/ns/node") == "/abs/x"
+    assert namespace_of("/a/b") == "/a/" and namespace_of("/a") == "/"
+    assert canonical("//a///b/") == "/a/b"
+
+
+def test_registrations_lookups_and_system_state(master: tuple[Master, Any]) -> None:
+    _, proxy = master
+    code, _, subs = proxy.registerPublisher("/talker", "chatter", "std_msgs/String", "http://h:1/")
+    assert code == 1 and subs == []
+    code, _, pubs = proxy.registerSubscriber(
+        "/ns/listener", "/chatter", "std_msgs/String", "http://h:2/"
+    )
+    assert code == 1 and pubs == ["http://h:1/"]
+    assert proxy.lookupNode("/x", "/talker") == [1, "node api for /talker", "http://h:1/"]
+    assert proxy.lookupNode("/x", "/nobody")[0] == -1
+    assert proxy.registerService("/talker", "/srv", "rosrpc://h:3", "http://h:1/")[0] == 1
+    assert proxy.lookupService("/x", "/srv")[2] == "rosrpc://h:3"
+    assert proxy.lookupService("/x", "/other")[:2] == [-1, "no provider"]
+    _, _, (publishers, subscribers, services) = proxy.getSystemState("/x")
+    assert publishers == [["/chatter", ["/talker"]]]
+    assert subscribers == [["/chatter", ["/ns/listener"]]]
+    assert services == [["/srv", ["/talker"]]]
+    assert proxy.getPublishedTopics("/x", "")[2] == [["/chatter", "std_msgs/String"]]
+    assert proxy.getTopicTypes("/x")[2] == [["/chatter", "std_msgs/String"]]
+    assert proxy.unregisterPublisher("/talker", "/chatter", "http://h:1/")[2] == 1
+    assert proxy.unregisterPublisher("/talker", "/chatter", "http://h:1/")[2] == 0
+    assert proxy.getPublishedTopics("/x", "")[2] == []
+
+
+def test_parameters_as_rosmaster_stores_and_searches_them(master: tuple[Master, Any]) -> None:
+    _, proxy = master
+    assert proxy.setParam("/ns/node", "gains", {"p": 1.5, "i": [1, 2]})[0] == 1
+    assert proxy.getParam("/x", "/ns/gains") == [
+        1,
+        "Parameter [/ns/gains]",
+        {"p": 1.5, "i": [1, 2]},
+    ]
+    assert proxy.getParam("/ns/node", "~missing")[0] == -1
+    assert proxy.hasParam("/x", "/ns/gains/p")[2] is True
+    assert sorted(proxy.getParamNames("/x")[2]) == ["/ns/gains/i", "/ns/gains/p"]
+    assert proxy.searchParam("/ns/deeper/node", "gains")[2] == "/ns/gains"
+    assert proxy.searchParam("/other/node", "gains")[0] == -1
+    assert proxy.setParam("/x", "/ns/gains", 3)[0] == 1  # a value replaces the namespace
+    assert proxy.getParamNames("/x")[2] == ["/ns/gains"]
+    assert proxy.setParam("/x", "/", 5)[0] == -1  # the root stays a dictionary
+    assert proxy.deleteParam("/x", "/ns")[0] == 1 and proxy.getParamNames("/x")[2] == []
+    assert proxy.setParam("/x", "/blob", xmlrpc.client.Binary(b"\x00\x01"))[0] == 1
+    assert proxy.getParam("/x", "/blob")[2] == xmlrpc.client.Binary(b"\x00\x01")
+
+
+def test_param_subscribers_get_param_update(master: tuple[Master, Any]) -> None:
+    updates: list[tuple[str, str, Any]] = []
+    node = XmlRpcServer("127.0.0.1", 0, {"paramUpdate": lambda *a: updates.append(a) or [1, "", 0]})
+    api = f"http://127.0.0.1:{node.port}/"
+    _, proxy = master
+    try:
+        assert proxy.subscribeParam("/node", api, "/robot")[2] == {}
+        proxy.setParam("/other", "/robot/x", 1)
+        proxy.setParam("/node", "/robot/y", 2)  # the changing node itself is not told
+        proxy.deleteParam("/other", "/robot")
+        deadline = time.monotonic() + 5
+        while len(updates) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert updates[0] == ("/master", "/robot/", {"x": 1})
+        assert updates[-1] == ("/master", "/robot/", {})
+    finally:
+        node.close()
+
+
+def _post(port: int, body: bytes, length: int | None = None) -> bytes:
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as sock:
+        head = (
+            f"POST / HTTP/1.0\r\nContent-Length: {len(body) if length is None else length}\r\n\r\n"
+        )
+        sock.sendall(head.encode() + body)
+        chunks = b""
+        while chunk := sock.recv(65536):
+            chunks += chunk
+        return chunks
+
+
+def test_malformed_and_hostile_xmlrpc_get_an_error_and_the_master_goes_on(
+    master: tuple[Master, Any],
+) -> None:
+    m, proxy = master
+    port = int(m.uri.rsplit(":", 1)[1].strip("/"))
+    assert b"parse error" in _post(port, b"<methodCall><methodName>getPid")
+    bomb = (
+        b'<?xml version="1.0"?><!DOCTYPE x [<!ENTITY a "aaaaaaaaaa">'
+        + b"".join(
+            b'<!ENTITY %c "&%c;&%c;&%c;&%c;&%c;&%c;&%c;&%c;&%c;&%c;">' % ((c,) + (c - 1,) * 10)
+            for c in range(98, 108)
+        )
+        + b"]><methodCall><methodName>getParam</methodName><params><param><value>&k;</value></param></params></methodCall>"
+    )
+    started = time.monotonic()
+    assert b"parse error" in _post(port, bomb)
+    assert time.monotonic() - started < 5
+    assert b"413" in _post(port, b"", length=MAX_BODY_BYTES + 1)
+    assert b"not supported" in _post(port, xmlrpc.client.dumps(("/x",), "noSuchMethod").encode())
+    assert b"bad call arity" in _post(port, xmlrpc.client.dumps(("/x", 1, 2, 3), "getPid").encode())
+    assert proxy.getPid("/x")[0] == 1  # still serving
+
+
+def test_tcpros_headers_are_parsed_within_bounds() -> None:
+    fields = {"callerid": "/n", "topic": "/t", "md5sum": "*", "message_definition": "a=b\nc"}
+    encoded = encode_header(fields)
+    assert struct.unpack("<I", encoded[:4])[0] == len(encoded) - 4
+    assert parse_header(encoded[4:]) == fields
+    with pytest.raises(TcprosError, match="overruns"):
+        parse_header(struct.pack("<I", 1000) + b"topic=/t")
+    with pytest.raises(TcprosError, match="no '='"):
+        parse_header(struct.pack("<I", 5) + b"topic")
+    assert MAX_HEADER_BYTES <= 1 << 20
