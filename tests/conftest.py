@@ -48,6 +48,9 @@ def pytest_configure(config: pytest.Config) -> None:
     of a test becomes the router and takes it along when it exits (tested on its own port in
     tests/runtime/test_zenoh_router.py)."""
     global _ROUTER
+    # robomodel's verbs take the ROS 1 bus when ROS_MASTER_URI is set: tests that want it set
+    # it for their own processes (tests/ros1wire)
+    os.environ.pop("ROS_MASTER_URI", None)
     if hasattr(config, "workerinput") or _listening(7447):
         return
     _ROUTER = subprocess.Popen(

@@ -145,15 +145,12 @@ class RefJTCState(pycdr2.IdlStruct, typename="control_msgs/msg/JointTrajectoryCo
     feedback: RefPoint
     error: RefPoint
     output: RefPoint
-    desired: RefPoint
-    actual: RefPoint
     multi_dof_joint_names: sequence[str]
     multi_dof_reference: RefMultiPoint
     multi_dof_feedback: RefMultiPoint
     multi_dof_error: RefMultiPoint
     multi_dof_output: RefMultiPoint
-    multi_dof_desired: RefMultiPoint
-    multi_dof_actual: RefMultiPoint
+    speed_scaling_factor: float64
 
 
 names = st.text(alphabet=st.characters(min_codepoint=32, max_codepoint=0x2FF), max_size=12)
@@ -252,7 +249,7 @@ def test_joint_trajectory_controller_state_bytes_match_pycdr2() -> None:
     )
     ours = m.JointTrajectoryControllerState(
         m.Header(m.Time(9, 10), "arm"), ["j1", "j2"], point, point, m.JointTrajectoryPoint(),
-        point, point, m.JointTrajectoryPoint(), ["base"], base, empty, empty, empty, empty, base,
+        point, ["base"], base, empty, empty, base, 0.75,
     )  # fmt: skip
     ref_point = RefPoint([0.5, -1.0], [0.1], [], [2.0], RefDuration(1, 5))
     none = RefPoint([], [], [], [], RefDuration(0, 0))
@@ -265,7 +262,7 @@ def test_joint_trajectory_controller_state_bytes_match_pycdr2() -> None:
     )
     ref = RefJTCState(
         RefHeader(RefTime(9, 10), "arm"), ["j1", "j2"], ref_point, ref_point, none, ref_point,
-        ref_point, none, ["base"], ref_base, ref_empty, ref_empty, ref_empty, ref_empty, ref_base,
+        ["base"], ref_base, ref_empty, ref_empty, ref_base, 0.75,
     )  # fmt: skip
     assert m.serialize(ours) == ref.serialize()
     assert m.deserialize(ref.serialize(), m.JointTrajectoryControllerState) == ours

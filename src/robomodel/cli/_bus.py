@@ -3,18 +3,31 @@
 from __future__ import annotations
 
 import argparse
+import os
 import time
 
 from robomodel.runtime import BUSES, Context
+from robomodel.runtime.clock import Clock
 from robomodel.runtime.transport.base import Graph
 
-__all__ = ["add_bus_arguments", "context_from_args", "settled_graph", "wait_for_peers"]
+__all__ = [
+    "add_bus_arguments",
+    "bus_from_args",
+    "context_from_args",
+    "settled_graph",
+    "wait_for_peers",
+]
 
 
-def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str = "zenoh") -> None:
+def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str | None = None) -> None:
     group = parser.add_argument_group("bus")
+    said = default or "ros1 when ROS_MASTER_URI is set, else zenoh"
+    group.add_argument("--bus", choices=BUSES, default=default, help=f"transport (default: {said})")
     group.add_argument(
-        "--bus", choices=BUSES, default=default, help=f"transport (default: {default})"
+        "--master",
+        default=None,
+        metavar="URI",
+        help="the ROS 1 master (--bus ros1; default ROS_MASTER_URI, else http://localhost:11311/)",
     )
     group.add_argument(
         "--domain-id",
@@ -38,8 +51,22 @@ def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str = "zenoh"
     )
 
 
-def context_from_args(args: argparse.Namespace) -> Context:
-    return Context(args.bus, domain_id=args.domain_id, connect=args.connect, listen=args.listen)
+def bus_from_args(args: argparse.Namespace) -> str:
+    """The bus asked for; by default ros1 when a ROS 1 master is named (``--master`` or
+    ``ROS_MASTER_URI``), as ROS 1 tools find theirs, else zenoh."""
+    if args.bus:
+        return str(args.bus)
+    master = getattr(args, "master", None) or os.environ.get("ROS_MASTER_URI")
+    return "ros1" if master else "zenoh"
+
+
+def context_from_args(args: argparse.Namespace, clock: Clock | None = None) -> Context:
+    bus = bus_from_args(args)
+    if bus == "ros1":
+        return Context("ros1", clock=clock, master=getattr(args, "master", None))
+    return Context(
+        bus, clock=clock, domain_id=args.domain_id, connect=args.connect, listen=args.listen
+    )
 
 
 def wait_for_peers(context: Context, timeout_s: float = 1.0) -> bool:

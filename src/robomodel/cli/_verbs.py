@@ -49,6 +49,9 @@ VERBS: tuple[Verb, ...] = (
         "run a Zenoh router for ROS 2 (ros2 run rmw_zenoh_cpp rmw_zenohd)",
     ),
     Verb(
+        "master", "robomodel.cli.master", "run a ROS 1 master with its parameter server (roscore)"
+    ),
+    Verb(
         "publish-state",
         "robomodel.cli.publish_state",
         "run robot_state_publisher + joint_state_publisher for a description",

@@ -16,7 +16,12 @@ import sys
 import webbrowser
 from typing import Any
 
-from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._bus import (
+    add_bus_arguments,
+    bus_from_args,
+    context_from_args,
+    wait_for_peers,
+)
 from robomodel.cli._common import (
     add_description_arguments,
     add_frame_rate_argument,
@@ -287,7 +292,7 @@ def _start_viewer(
             file=sys.stderr,
         )
         return None
-    if args.bus != "zenoh":
+    if bus_from_args(args) != "zenoh":
         print("robomodel: the viewer needs --bus zenoh; running headless", file=sys.stderr)
         return None
     from robomodel.cli._common import package_index_from_args, split_mappings

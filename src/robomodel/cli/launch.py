@@ -64,8 +64,15 @@ def register(subparsers: Any) -> None:
     )
     parser.add_argument("--port", type=int, default=8080, help="the viewer's HTTP port")
     parser.add_argument(
-        "--bus", choices=("zenoh", "inproc"), default="zenoh",
-        help="zenoh (default: other robomodel commands see the nodes) or inproc",
+        "--bus", choices=("zenoh", "inproc", "ros1"), default=None,
+        help="zenoh (rmw_zenoh's wire: ROS 2 nodes and other robomodel commands see the nodes), "
+        "ros1 (a ROS 1 master's graph; the default for ROS 1 launch files when ROS_MASTER_URI "
+        "is set or with --ros1-master) or inproc",
+    )  # fmt: skip
+    parser.add_argument(
+        "--ros1-master", nargs="?", const="", default=None, metavar="URI",
+        help="ROS 1 launch files: join the ROS 1 master at URI (default ROS_MASTER_URI, else "
+        "http://localhost:11311/), or start one there if none answers, as roslaunch does",
     )  # fmt: skip
     parser.add_argument("--domain-id", type=int, default=None, help="ROS_DOMAIN_ID for zenoh")
     parser.add_argument(
@@ -206,11 +213,12 @@ def _run_ros2(path: Path, launch_args: dict[str, str], args: argparse.Namespace,
         runner.shutdown()
 
 
-def _options(args: argparse.Namespace, index: Any) -> Any:
+def _options(args: argparse.Namespace, index: Any, *, ros1_launch: bool = False) -> Any:
     from robomodel.launch.runner import RunOptions
 
     return RunOptions(
-        bus=args.bus,
+        bus=_bus(args, ros1_launch),
+        master_uri=args.ros1_master or None,
         domain_id=args.domain_id,
         headless=args.headless,
         open_browser=not args.no_browser,
@@ -220,10 +228,19 @@ def _options(args: argparse.Namespace, index: Any) -> Any:
     )
 
 
+def _bus(args: argparse.Namespace, ros1_launch: bool) -> str:
+    """The bus asked for; by default ros1 for a ROS 1 launch file when a ROS 1 master is wanted
+    (ROS_MASTER_URI set, or --ros1-master), zenoh otherwise."""
+    if args.bus is not None:
+        return str(args.bus)
+    wanted = args.ros1_master is not None or bool(os.environ.get("ROS_MASTER_URI"))
+    return "ros1" if ros1_launch and wanted else "zenoh"
+
+
 def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
     from robomodel.launch.runner import LaunchRunner
 
-    runner = LaunchRunner(launch.nodes, _options(args, index))
+    runner = LaunchRunner(launch.nodes, _options(args, index, ros1_launch=True))
     runner.check()
     runner.open_bus()
     try:

@@ -11,6 +11,7 @@ import yaml
 
 from robomodel.cli._bus import (
     add_bus_arguments,
+    bus_from_args,
     context_from_args,
     settled_graph,
     wait_for_peers,
@@ -65,8 +66,9 @@ def _client(context: Context, node: str) -> ParameterClient:
 
 
 def run_list(args: argparse.Namespace) -> int:
-    if args.node is not None and args.node.endswith("/"):  # rosparam list [NAMESPACE/]
-        namespace = args.node
+    ros1 = bus_from_args(args) == "ros1"  # ROS 1 has one parameter tree, no node parameters
+    if ros1 or (args.node is not None and args.node.endswith("/")):  # rosparam list [NS/]
+        namespace = args.node or "/"
 
         def show_names(server: Any) -> int:
             for name in server.names():
@@ -98,6 +100,15 @@ def _server(context: Context) -> Any:
 def _server_call(args: argparse.Namespace, action: Any) -> int:
     from robomodel.launch.param_server import ParamServerError
 
+    if bus_from_args(args) == "ros1":  # the master's parameter server, as rosparam reads it
+        from robomodel.runtime.transport.ros1.names import master_uri
+        from robomodel.runtime.transport.ros1.param_client import MasterParams
+
+        uri = master_uri(args.master)
+        try:
+            return int(action(MasterParams(uri, "/rosparam")))
+        except ParamServerError as exc:
+            raise RobomodelError(f"{exc} (the ROS 1 master at {uri})") from None
     with context_from_args(args) as context:
         wait_for_peers(context, 3.0)
         try:

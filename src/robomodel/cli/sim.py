@@ -21,7 +21,7 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
-from robomodel.cli._bus import add_bus_arguments
+from robomodel.cli._bus import add_bus_arguments, context_from_args
 from robomodel.cli._common import (
     add_frame_rate_argument,
     add_package_options,
@@ -222,7 +222,7 @@ def _run(args: argparse.Namespace) -> int:
     from robomodel.cli.control import _start_viewer
     from robomodel.description.urdf.writer import urdf_to_string
     from robomodel.loading import read_description
-    from robomodel.runtime import Context, ManualClock
+    from robomodel.runtime import ManualClock
     from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
     from robomodel.sim import Placement, Simulation, default_world, read_world
     from robomodel.sim.bus import SimBridge
@@ -243,7 +243,7 @@ def _run(args: argparse.Namespace) -> int:
         built = sim.add_robot(result.robot, placement=placement, base_dir=loaded.base_dir)
         robots.append((request, result.robot, built))
     several = len(robots) > 1
-    with Context(args.bus, clock=ManualClock(), domain_id=args.domain_id, connect=args.connect, listen=args.listen) as context:  # fmt: skip
+    with context_from_args(args, clock=ManualClock()) as context:
         systems = []
         watchers: list[Any] = []
         for request, robot, _built in robots:

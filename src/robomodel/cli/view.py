@@ -114,10 +114,10 @@ def run(args: argparse.Namespace) -> int:
         raise RobomodelError(
             f"{len(args.prefix)} --prefix options for {len(files)} file(s); give one per FILE"
         )
-    if args.joint_states == "external" and args.bus != "zenoh":
+    if args.joint_states == "external" and args.bus not in ("zenoh", "ros1"):
         raise RobomodelError(
             "--joint-states external reads /joint_states and /tf from other processes: "
-            "add --bus zenoh"
+            "add --bus zenoh (ROS 2, robomodel) or --bus ros1 (a ROS 1 master)"
         )
     topic = args.description_topic or (None if files else "/robot_description")
     if topic is not None and args.joint_states != "external":
@@ -135,6 +135,7 @@ def run(args: argparse.Namespace) -> int:
         port=args.port,
         fixed_frame=args.fixed_frame,
         bus=args.bus,
+        master=args.master,
         domain_id=args.domain_id,
         connect=tuple(args.connect),
         listen=tuple(args.listen),

@@ -73,6 +73,8 @@ class ManagerClient:
         )
 
     def configure(self, name: str) -> bool:
+        if self.context.transport.name == "ros1":
+            return True  # ROS 1's load_controller initialises the controller; no configure
         request = cm_msgs.ConfigureController_Request(name)
         return bool(self.call("configure_controller", cm_msgs.ConfigureController, request).ok)
 

@@ -135,7 +135,18 @@ def _load(
         lambda: cm.load_controller(name, type_name, params),
         f"Could not load controller '{name}'",
     )
+    if failed is None and _ros1_wire(cm):  # ROS 1's loadController initialises it too
+        failed = _guarded(
+            cm, lambda: cm.configure_controller(name), f"Could not initialize controller '{name}'"
+        )
     return cm_msgs.LoadController_Response(failed is None)
+
+
+def _ros1_wire(cm: ControllerManager) -> bool:
+    """Whether the manager's services are on a ROS 1 graph, where ROS 1's controller_manager
+    semantics apply (no configure step: load initialises)."""
+    node = cm.node
+    return node is not None and node.context.transport.name == "ros1"
 
 
 def _switch(

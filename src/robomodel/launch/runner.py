@@ -44,6 +44,7 @@ class RunOptions:
     port: int = 8080
     duration_s: float | None = None
     package_index: Any = None
+    master_uri: str | None = None  # the ROS 1 master (bus "ros1"); default ROS_MASTER_URI
 
 
 def unsupported_message(spec: NodeSpec) -> str:
@@ -85,6 +86,7 @@ class LaunchRunner:
     _stop: threading.Event = field(default_factory=threading.Event)
     _terminated: bool = False
     _scheduler: Any = None
+    _ros1: Any = None
     gui: LaunchGui = field(init=False)
 
     def __post_init__(self) -> None:
@@ -108,6 +110,13 @@ class LaunchRunner:
         from robomodel.launch.param_server import connect_or_host
         from robomodel.runtime import Context
 
+        if self.options.bus == "ros1":
+            from robomodel.launch.ros1_master import open_ros1
+
+            ros1 = open_ros1(self.options.master_uri, self.log)
+            self.context, self.params, self._ros1 = ros1.context, ros1.params, ros1
+            self.hosted_params = ros1.master is not None
+            return
         kwargs: dict[str, Any] = {}
         if self.options.bus == "zenoh" and self.options.domain_id is not None:
             kwargs["domain_id"] = self.options.domain_id
@@ -289,6 +298,8 @@ class LaunchRunner:
         self.gui.close()
         if self.context is not None:
             self.context.shutdown()
+        if self._ros1 is not None:
+            self._ros1.close()
 
 
 _STOP_TIMEOUT_S = 5.0

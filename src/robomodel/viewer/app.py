@@ -114,7 +114,11 @@ class Viewer:
             self._guess_fixed = not roots  # a description from a topic: its root, once loaded
         opts = self.options
         self.context = Context(
-            opts.bus, domain_id=opts.domain_id, connect=opts.connect, listen=opts.listen
+            opts.bus,
+            domain_id=opts.domain_id,
+            connect=opts.connect,
+            listen=opts.listen,
+            master=opts.master,
         )
         node = self.context.create_node("robomodel_viewer")
         self.buffer = TransformListener(node).buffer

@@ -21,7 +21,8 @@ class ViewerOptions:
         sources: The robots, in command-line order.
         host, port: Where to serve the page (loopback by default).
         fixed_frame: RViz's Fixed Frame; default the first robot's root link.
-        bus: ``"inproc"`` or ``"zenoh"``.
+        bus: ``"inproc"``, ``"zenoh"`` or ``"ros1"`` (``master``: the ROS 1 master's URI,
+            default ``ROS_MASTER_URI``).
         external: Joint states (or /tf) come from another process on the bus.
         state_publisher: With ``external``, run a robot_state_publisher per robot (turning
             /joint_states from the bus into /tf); off when that process runs its own.
@@ -45,6 +46,7 @@ class ViewerOptions:
     port: int = 8080
     fixed_frame: str | None = None
     bus: str = "inproc"
+    master: str | None = None
     domain_id: int | None = None
     connect: tuple[str, ...] = ()
     listen: tuple[str, ...] = ()

@@ -3,7 +3,6 @@ roslaunch as the reference, and the fake ``xacro`` package that runs the PyPI xa
 
 from __future__ import annotations
 
-import os
 import shutil
 import subprocess
 import sys
@@ -72,7 +71,7 @@ sys.modules["ament_index_python.packages"] = _packages
 
 
 @pytest.fixture
-def workspace(tmp_path: Path) -> Path:
+def workspace(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """The corpus copied to a temporary workspace, plus a ``xacro`` package whose scripts run
     the reference xacro 2.1.1 (PyPI), for Debian's roslaunch to call."""
     ws = tmp_path / "ws"
@@ -89,5 +88,7 @@ def workspace(tmp_path: Path) -> Path:
         )
         script.chmod(0o755)
     (tmp_path / "home").mkdir()
-    os.environ.setdefault("ROS_MASTER_URI", "http://localhost:11311")
+    # for the reference roslaunch's in-process parts; undone after the test, as robomodel's
+    # verbs pick the ROS 1 bus when ROS_MASTER_URI is set
+    monkeypatch.setenv("ROS_MASTER_URI", "http://localhost:11311")
     return ws

@@ -1,0 +1,72 @@
+"""``robomodel master``: a ROS 1 master and parameter server, as ``roscore`` (without rosout).
+
+ROS 1 nodes, Debian's rostopic/rosparam/rosnode and ``robomodel launch`` of a ROS 1 launch file
+find it at ``ROS_MASTER_URI`` (default http://localhost:11311/). It listens on loopback unless
+``ROS_IP``/``ROS_HOSTNAME`` name this machine for others. It runs until Ctrl-C or SIGTERM.
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+import time
+from typing import Any
+
+from robomodel.cli._verbs import verb_help
+from robomodel.errors import RobomodelError
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("master", help=verb_help("master"))
+    parser.add_argument(
+        "-p", "--port", type=int, default=None,
+        help="the port (default: ROS_MASTER_URI's, else 11311), as roscore -p",
+    )  # fmt: skip
+    parser.add_argument("--duration", type=float, default=None, help="stop after S seconds")
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from robomodel.launch.ros1_master import ROSDISTRO, ROSVERSION
+    from robomodel.runtime.transport.ros1.master import Master, master_answers
+    from robomodel.runtime.transport.ros1.names import (
+        advertised_host,
+        bind_host,
+        master_uri,
+        split_uri,
+    )
+
+    uri = master_uri()
+    if args.port is not None:
+        uri = f"http://{advertised_host()}:{args.port}/"
+    if master_answers(uri):
+        raise RobomodelError(f"a ROS 1 master already answers at {uri}")
+    try:
+        master = Master(uri, bind_host())
+    except RobomodelError as exc:
+        raise RobomodelError(f"cannot start the master: {exc}") from None
+    import uuid
+
+    master.api.params.set("/run_id", str(uuid.uuid1()))
+    master.api.params.set("/rosdistro", ROSDISTRO + "\n")
+    master.api.params.set("/rosversion", ROSVERSION + "\n")
+    stopped: list[bool] = []  # a flag, not an Event: a second SIGTERM must not wait on a lock
+    previous = signal.signal(signal.SIGTERM, lambda *_: stopped.append(True))
+    print(
+        f"started ROS 1 master at {uri} (port {split_uri(uri)[1]}); Ctrl-C stops",
+        file=sys.stderr,
+        flush=True,
+    )
+    end = None if args.duration is None else time.monotonic() + args.duration
+    try:
+        while not stopped and (end is None or time.monotonic() < end):
+            time.sleep(0.1)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        master.close()
+    return 0

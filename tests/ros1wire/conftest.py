@@ -1,0 +1,122 @@
+"""Debian 12's real ROS 1 as the other side of robomodel's ROS 1 wire: roscore, rostopic,
+rosparam, rosnode, rosservice, rosbag, rviz and the C++ robot_state_publisher, installed by
+``tools/system-deps test``. Every process a test starts runs in a process group of its own and
+is ended (SIGINT, then SIGKILL) when the test ends."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import EXAMPLES, ROBOMODEL
+
+ROSCORE = "/usr/bin/roscore"
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+@dataclass
+class Ros1:
+    """One ROS 1 graph for a test: its master's URI, the environment of every process, the
+    processes started."""
+
+    home: Path
+    port: int = field(default_factory=free_port)
+    procs: list[subprocess.Popen[str]] = field(default_factory=list)
+
+    @property
+    def uri(self) -> str:
+        return f"http://127.0.0.1:{self.port}/"
+
+    @property
+    def env(self) -> dict[str, str]:
+        return {
+            **{k: v for k, v in os.environ.items() if not k.startswith("ROS")},
+            "ROS_MASTER_URI": self.uri,
+            "ROS_PACKAGE_PATH": f"{EXAMPLES}:/usr/share",
+            "ROS_HOME": str(self.home / ".ros"),
+            "HOME": str(self.home),
+            "ROS_IP": "127.0.0.1",
+            "PYTHONUNBUFFERED": "1",
+            "LANG": "C.UTF-8",
+        }
+
+    def start(self, argv: list[str], log: Path | None = None) -> subprocess.Popen[str]:
+        out = log.open("w") if log is not None else subprocess.DEVNULL
+        proc = subprocess.Popen(
+            argv,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            text=True,
+            env=self.env,
+            start_new_session=True,
+        )
+        self.procs.append(proc)
+        return proc
+
+    def robomodel(self, *argv: str, log: Path | None = None) -> subprocess.Popen[str]:
+        return self.start([*ROBOMODEL, *argv], log)
+
+    def robomodel_run(self, *argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+        return self.run(*ROBOMODEL, *argv, timeout=timeout)
+
+    def run(self, *argv: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            list(argv), capture_output=True, text=True, env=self.env, timeout=timeout
+        )
+
+    def until(self, check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:
+        deadline = time.monotonic() + timeout_s
+        while not check():
+            assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
+            time.sleep(0.3)
+
+    def roscore(self) -> subprocess.Popen[str]:
+        proc = self.start([ROSCORE, "-p", str(self.port)])
+        self.until(
+            lambda: self.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "roscore"
+        )
+        return proc
+
+    def stop(self, proc: subprocess.Popen[str], timeout_s: float = 20) -> int:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGINT)
+            try:
+                proc.wait(timeout_s)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+        return int(proc.returncode)
+
+    def close(self) -> None:
+        for proc in reversed(self.procs):
+            self.stop(proc)
+
+
+@pytest.fixture
+def ros1(tmp_path: Path) -> Iterator[Ros1]:
+    for tool in (ROSCORE, "/usr/bin/rostopic", "/usr/bin/rosparam", "/usr/bin/rosnode"):
+        if not Path(tool).exists():
+            pytest.fail(f"Debian's ROS 1 is missing ({tool}): tools/system-deps test installs it")
+    graph = Ros1(tmp_path)
+    try:
+        yield graph
+    finally:
+        graph.close()
+
+
+def has(tool: str) -> bool:
+    return shutil.which(tool) is not None
