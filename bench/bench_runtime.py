@@ -1,8 +1,9 @@
 """Runtime benchmark: /joint_states at 1 kHz from process A into robot_state_publisher in
-process B, /tf received in process C, over Zenoh on loopback, for a 60-link robot.
+process B, /tf received in process C, over Zenoh (or, with ``--bus ros1``, over TCPROS with
+robomodel's ROS 1 master) on loopback, for a 60-link robot.
 
 Run: ``.venv/bin/python bench/bench_runtime.py [--seconds 10] [--rate 1000] [--rounds 3]
-[--reference]``.
+[--reference] [--bus zenoh|ros1]``.
 
 With ``--reference``, each round is followed by the same pipeline in ROS 1 (issue 14 target 6):
 a rospy publisher (A), Debian's C++ ``/usr/lib/robot_state_publisher/robot_state_publisher``
@@ -43,11 +44,18 @@ def _cpu_s(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def role_rsp(domain: int) -> None:
+def _context(bus: str, domain: int) -> Any:
     from robomodel.runtime import Context
+
+    if bus == "ros1":
+        return Context("ros1", master=f"http://127.0.0.1:{domain}/")
+    return Context("zenoh", domain_id=domain)
+
+
+def role_rsp(bus: str, domain: int) -> None:
     from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
 
-    with Context("zenoh", domain_id=domain) as ctx:
+    with _context(bus, domain) as ctx:
         text = example_robot_data(ROBOT).read_text()
         RobotStatePublisher(ctx, text, parameters={"ignore_timestamp": True})
         print("ready", flush=True)
@@ -55,13 +63,12 @@ def role_rsp(domain: int) -> None:
             ctx.spin()
 
 
-def role_sink(domain: int, seconds: float) -> None:
-    from robomodel.runtime import Context
+def role_sink(bus: str, domain: int, seconds: float) -> None:
     from robomodel.runtime.msg import TFMessage
 
     latencies: list[float] = []
     arrivals: list[float] = []
-    with Context("zenoh", domain_id=domain) as ctx:
+    with _context(bus, domain) as ctx:
         node = ctx.create_node("sink")
 
         def on_tf(msg: TFMessage) -> None:
@@ -81,20 +88,34 @@ def _percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
 
 
-def _run_ours(names: list[str], seconds: float, rate: float, domain: int) -> dict[str, Any]:
-    """One run of A -> robomodel robot_state_publisher -> C over Zenoh."""
-    from robomodel.runtime import Context
+def _start_master(bus: str, port: int) -> subprocess.Popen[str] | None:
+    """ROS 1: robomodel's master in a process of its own (its CPU counted as the master's)."""
+    if bus != "ros1":
+        return None
+    cmd = [sys.executable, "-m", "robomodel.cli.main", "master", "--port", str(port)]
+    master = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True)
+    assert master.stderr is not None and "started ROS 1 master" in master.stderr.readline()
+    return master
+
+
+def _run_ours(
+    names: list[str], seconds: float, rate: float, domain: int, bus: str
+) -> dict[str, Any]:
+    """One run of A -> robomodel robot_state_publisher -> C over Zenoh or TCPROS."""
     from robomodel.runtime.msg import Header, JointState, Time
 
+    master = _start_master(bus, domain)
     me = [sys.executable, __file__, "--domain", str(domain), "--seconds", str(seconds)]
+    me += ["--bus", bus]
     rsp = subprocess.Popen([*me, "--role", "rsp"], stdout=subprocess.PIPE, text=True)
     sink = subprocess.Popen([*me, "--role", "sink"], stdout=subprocess.PIPE, text=True)
     for proc in (rsp, sink):
         assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
-    with Context("zenoh", domain_id=domain) as ctx:
+    with _context(bus, domain) as ctx:
         pub = ctx.create_node("driver").create_publisher(JointState, "/joint_states", 1000)
         time.sleep(2.0)  # let the three peers link up
         cpu0 = {p.pid: _cpu_s(p.pid) for p in (rsp, sink)}
+        master0 = _cpu_s(master.pid) if master is not None else 0.0
         own0 = time.process_time()
         positions = [0.0] * len(names)
 
@@ -106,9 +127,13 @@ def _run_ours(names: list[str], seconds: float, rate: float, domain: int) -> dic
         sent, elapsed = paced_sends(seconds, rate, send)
         own_cpu = time.process_time() - own0
         cpu = {p.pid: _cpu_s(p.pid) - cpu0[p.pid] for p in (rsp, sink)}
+        master_cpu = _cpu_s(master.pid) - master0 if master is not None else 0.0
     out, _ = sink.communicate(timeout=30)
     rsp.terminate()
     rsp.wait(timeout=10)
+    if master is not None:
+        master.terminate()
+        master.wait(timeout=10)
     data = json.loads(out.strip().splitlines()[-1])
     return {
         "sent": sent,
@@ -118,7 +143,7 @@ def _run_ours(names: list[str], seconds: float, rate: float, domain: int) -> dic
         "cpu_a": own_cpu,
         "cpu_b": cpu[rsp.pid],
         "cpu_c": cpu[sink.pid],
-        "cpu_master": 0.0,
+        "cpu_master": master_cpu,
     }
 
 
@@ -239,13 +264,16 @@ def main() -> None:
         "--reference", action="store_true", help="also run Debian's ROS 1 C++ robot_state_publisher"
     )
     parser.add_argument("--role", choices=("driver", "rsp", "sink"), default="driver")
-    parser.add_argument("--domain", type=int, default=77)
+    parser.add_argument("--domain", type=int, default=None, help="zenoh domain / ROS 1 port")
+    parser.add_argument("--bus", choices=("zenoh", "ros1"), default="zenoh")
     args = parser.parse_args()
+    if args.domain is None:
+        args.domain = 11377 if args.bus == "ros1" else 77
     if args.role == "rsp":
-        role_rsp(args.domain)
+        role_rsp(args.bus, args.domain)
         return
     if args.role == "sink":
-        role_sink(args.domain, args.seconds + 6.0)
+        role_sink(args.bus, args.domain, args.seconds + 6.0)
         return
 
     from robomodel.description import read_urdf
@@ -257,8 +285,9 @@ def main() -> None:
     ours: list[dict[str, Any]] = []
     ref: list[dict[str, Any]] = []
     for k in range(args.rounds):  # interleaved: the shared machine's load hits both alike
-        ours.append(_run_ours(names, args.seconds, args.rate, args.domain))
-        _report(f"round {k + 1} robomodel (Zenoh)", ours[-1])
+        ours.append(_run_ours(names, args.seconds, args.rate, args.domain, args.bus))
+        wire = "TCPROS, robomodel's master" if args.bus == "ros1" else "Zenoh"
+        _report(f"round {k + 1} robomodel ({wire})", ours[-1])
         if args.reference:
             ref.append(_run_ros1(names, args.seconds, args.rate, 11390 + k % 10))
             _report(f"round {k + 1} ROS 1 C++ (rospy ends)", ref[-1])
