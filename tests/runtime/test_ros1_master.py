@@ -151,3 +151,88 @@ def test_tcpros_headers_are_parsed_within_bounds() -> None:
     with pytest.raises(TcprosError, match="no '='"):
         parse_header(struct.pack("<I", 5) + b"topic")
     assert MAX_HEADER_BYTES <= 1 << 20
+
+
+def _wait(check: Any, timeout_s: float = 10.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not check():
+        assert time.monotonic() < deadline, "not within the time"
+        time.sleep(0.05)
+
+
+def test_nodes_drop_hostile_tcpros_peers_and_go_on(master: tuple[Master, Any]) -> None:
+    """Garbage, an oversized header and a wrong md5sum on a node's TCPROS port, and a
+    publisher that sends a malformed message: each ends its connection; messages still flow."""
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import get_message_type
+
+    m, proxy = master
+    string = get_message_type("std_msgs/msg/String")
+    with Context("ros1", master=m.uri) as talker, Context("ros1", master=m.uri) as listener:
+        pub = talker.create_node("talker").create_publisher(string, "/chatter", 10)
+        got: list[str] = []
+        listener.create_node("listener").create_subscription(
+            string, "/chatter", lambda msg: got.append(msg.data), 10
+        )
+        api = proxy.lookupNode("/x", "/talker")[2]
+        _, _, (_, host, port) = xmlrpc.client.ServerProxy(api).requestTopic(
+            "/x", "/chatter", [["TCPROS"]]
+        )
+        for attack in (
+            b"\x00" * 3,
+            struct.pack("<I", 1 << 30) + b"topic=/chatter",
+            encode_header({"callerid": "/evil", "topic": "/chatter", "md5sum": "0" * 32}),
+        ):
+            with socket.create_connection((host, port), timeout=5) as sock:
+                sock.sendall(attack)
+                sock.shutdown(socket.SHUT_WR)
+                try:
+                    reply = sock.recv(4096)
+                except ConnectionResetError:  # closed with our bytes unread
+                    reply = b""
+                assert reply == b"" or b"error=" in reply
+
+        def heard(text: str) -> bool:
+            pub.publish(string(text))
+            listener.spin_once(0.05)
+            return text in got
+
+        _wait(lambda: heard("hello"))
+        evil = _evil_publisher(proxy)  # a second publisher whose message does not decode
+        try:
+            time.sleep(0.5)
+            got.clear()
+            _wait(lambda: heard("still"))
+            assert all(text in ("hello", "still") for text in got)
+        finally:
+            evil.close()
+
+
+def _evil_publisher(proxy: Any) -> XmlRpcServer:
+    """A fake node that publishes /chatter: its header is right, its message is garbage."""
+    import threading
+
+    from robomodel.runtime.msg import get_message_type
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_type
+
+    kind = ros1_type(get_message_type("std_msgs/msg/String"))
+    server = socket.create_server(("127.0.0.1", 0))
+    tcp_port = server.getsockname()[1]
+
+    def serve() -> None:
+        with server:
+            sock, _ = server.accept()
+            with sock:
+                sock.recv(65536)
+                sock.sendall(
+                    encode_header({"md5sum": kind.md5sum, "type": kind.name, "callerid": "/evil"})
+                )
+                sock.sendall(struct.pack("<I", 8) + struct.pack("<I", 1 << 31) + b"abcd")
+                time.sleep(1.0)
+
+    threading.Thread(target=serve, daemon=True).start()
+    node = XmlRpcServer(
+        "127.0.0.1", 0, {"requestTopic": lambda *a: [1, "", ["TCPROS", "127.0.0.1", tcp_port]]}
+    )
+    proxy.registerPublisher("/evil", "/chatter", kind.name, f"http://127.0.0.1:{node.port}/")
+    return node

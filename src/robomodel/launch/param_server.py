@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import base64
 import json
+import time
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -144,18 +145,34 @@ class RemoteParamServer:
         return None if value is None else str(value)
 
 
-def connect_or_host(context: Any, graph_timeout_s: float = 3.0) -> tuple[Any, bool]:
+def connect_or_host(context: Any, settle_s: float = 1.5) -> tuple[Any, bool]:
     """The domain's parameter server: a remote one if a process already hosts it (its
     ``/rosmaster`` service is in the graph), else a new one hosted (and served) here. Returns
     ``(server, hosted_here)``.
 
-    The graph decides rather than a timed call, and one query of it is enough: the router
-    answers with every token of the domain and says when it is done, which on a loaded machine
-    can take longer than a call's timeout but not longer than ``graph_timeout_s``. A second
-    server would split the launch's parameters in two."""
-    remote = context.transport.name != "inproc"
-    if remote and SERVICE in context.graph(timeout_s=graph_timeout_s).services:
+    The graph decides, not a timed call: a call to a service this session has not yet heard of
+    returns at once. A session linked to a router receives the router's liveliness tokens some
+    milliseconds after opening, longer on a loaded machine; so while the domain looks empty and
+    the session is linked, the graph is asked again for up to ``settle_s``. Once other nodes
+    show, two answers in a row without ``/rosmaster`` decide. A second server would split the
+    launch's parameters in two."""
+    if context.transport.name != "inproc" and _remote_server_found(context, settle_s):
         return RemoteParamServer(context), False
     server = ParamServer()
     server.serve(context)
     return server, True
+
+
+def _remote_server_found(context: Any, settle_s: float) -> bool:
+    linked = getattr(context.transport, "linked", lambda: False)
+    deadline = time.monotonic() + settle_s
+    misses = 0
+    while True:
+        graph = context.graph(timeout_s=0.5)
+        if SERVICE in graph.services:
+            return True
+        if graph.nodes:
+            misses += 1
+        if misses >= 2 or not linked() or time.monotonic() >= deadline:
+            return False
+        time.sleep(0.05)

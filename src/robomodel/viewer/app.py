@@ -53,7 +53,7 @@ class Viewer:
         if not options.sources:
             raise RobomodelError("nothing to view: give at least one description file")
         for source in options.sources:
-            if not os.path.isfile(source.path):
+            if source.topic is None and not os.path.isfile(source.path):
                 raise RobomodelError(f"cannot read '{source.path}': no such file")
         if not 1.0 <= options.frame_rate_hz <= 1000.0:
             raise RobomodelError(f"frame rate must be 1..1000 Hz, got {options.frame_rate_hz}")

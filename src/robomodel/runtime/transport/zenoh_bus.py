@@ -252,7 +252,7 @@ class ZenohTransport(Transport):
         empty at once, which made a second launch miss the first one's parameter server. While
         the session is that young and linked, an answer with none but its own nodes is asked again."""
         graph = read_graph(self.session, self.domain_id, timeout_s)
-        while len(graph.nodes) <= len(self._nodes) and self._young() and self._linked():
+        while len(graph.nodes) <= len(self._nodes) and self._young() and self.linked():
             time.sleep(0.005)
             graph = read_graph(self.session, self.domain_id, timeout_s)
         return graph
@@ -260,7 +260,8 @@ class ZenohTransport(Transport):
     def _young(self) -> bool:
         return time.monotonic() - self._opened_at < DECLARATIONS_SETTLE_S
 
-    def _linked(self) -> bool:
+    def linked(self) -> bool:
+        """Whether this session is linked to a router or another peer."""
         info = self.session.info
         return bool(list(info.routers_zid()) or list(info.peers_zid()))
 
