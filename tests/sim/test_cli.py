@@ -225,7 +225,7 @@ def test_several_robots_need_a_prefix_and_a_pose_each(
 
 
 def test_a_prefixed_diff_drive_names_its_frames_with_the_prefix(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    from robomodel.cli.sim import prefixed_controllers
+    from robomodel.cli._sim_robots import prefixed_controllers
 
     config = prefixed_controllers(str(SIMPLEBOT_YAML), "r1_")
     drive = next(s for s in config.controllers if s.type.endswith("DiffDriveController"))

@@ -28,6 +28,7 @@ from robomodel.cli._common import (
     package_index_from_args,
     split_inputs,
 )
+from robomodel.cli._sim_robots import add_robots, attach
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
@@ -180,126 +181,25 @@ def robot_requests(args: argparse.Namespace) -> tuple[list[RobotRequest], dict[s
     return requests, mappings
 
 
-def prefixed_controllers(path: str, prefix: str) -> Any:
-    """The controller file for a robot with frame prefix ``prefix``.
-
-    A diff drive names its odometry frames itself (``odom_frame_id``, ``base_frame_id``); with a
-    prefix they become ``<prefix>odom`` and ``<prefix>base_link``, so that they meet the
-    simulator's ``world -> <prefix>odom`` and robot_state_publisher's ``<prefix><link>`` in one
-    tree. A file that sets ``tf_frame_prefix`` or ``tf_frame_prefix_enable`` itself is kept.
-    """
-    import dataclasses
-
-    from robomodel.control.config import load_controller_config
-
-    config = load_controller_config(path)
-    if not prefix:
-        return config
-    specs = []
-    for spec in config.controllers:
-        params = dict(spec.params)
-        own = {"tf_frame_prefix", "tf_frame_prefix_enable"} & params.keys()
-        if spec.type.endswith("DiffDriveController") and not own:
-            params["tf_frame_prefix_enable"] = False
-            for key, default in (("odom_frame_id", "odom"), ("base_frame_id", "base_link")):
-                params[key] = prefix + str(params.get(key, default))
-            spec = dataclasses.replace(spec, params=params)
-        specs.append(spec)
-    return dataclasses.replace(config, controllers=tuple(specs))
-
-
-def _cmd_vel(text: str) -> tuple[float, float, float]:
-    try:
-        values = [float(v) for v in text.replace(",", " ").split()]
-    except ValueError:
-        values = []
-    if len(values) != 3 or not all(math.isfinite(v) for v in values):
-        raise RobomodelError(f'--cmd-vel takes "VX VY WZ" (3 numbers), got {text!r}')
-    return values[0], values[1], values[2]
-
-
 def _run(args: argparse.Namespace) -> int:
-    from robomodel.cli.control import _start_viewer
-    from robomodel.description.urdf.writer import urdf_to_string
-    from robomodel.loading import read_description
     from robomodel.runtime import ManualClock
-    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
-    from robomodel.sim import Placement, Simulation, default_world, read_world
+    from robomodel.sim import Simulation, default_world, read_world
     from robomodel.sim.bus import SimBridge
-    from robomodel.sim.scripted import CmdVelDriver, OdomWatcher, diff_drive_controller
 
     world = read_world(args.world) if args.world else default_world()
     factor = parse_rate(args.rate, world.real_time_factor)
     requests, mappings = robot_requests(args)
-    cmd = _cmd_vel(args.cmd_vel) if args.cmd_vel else None
     index = package_index_from_args(args)
     for request in requests:  # every robot's workspace, as colcon's install space would
         index = index.with_workspace_of(request.path)
     sim = Simulation(world, package_index=index)
-    robots = []
-    for request in requests:
-        result, loaded = read_description(request.path, args=mappings, package_index=index)
-        placement = Placement(request.prefix, request.xyz_m, request.rpy_rad)
-        built = sim.add_robot(result.robot, placement=placement, base_dir=loaded.base_dir)
-        robots.append((request, result.robot, built))
-    several = len(robots) > 1
+    robots = add_robots(sim, requests, mappings, index)
     with context_from_args(args, clock=ManualClock()) as context:
-        systems = []
-        watchers: list[Any] = []
-        for request, robot, _built in robots:
-            system = None
-            namespace = request.namespace
-            if request.controllers:
-                system = sim.control(
-                    prefixed_controllers(request.controllers, request.prefix),
-                    prefix=request.prefix,
-                    context=context,
-                    namespace=namespace if several else None,  # one robot: the file's own
-                )
-                namespace = system.manager.namespace
-            systems.append(system)
-            RobotStatePublisher(
-                context,
-                urdf_to_string(robot),
-                namespace=namespace,
-                parameters={"frame_prefix": request.prefix},  # ROS 2 multi-robot: P<link>
-            )
-            watchers.append(OdomWatcher.attach(system, context) if system is not None else None)
-            if cmd is not None and (not several or diff_drive_controller(system) is not None):
-                CmdVelDriver.attach(sim, system, context, cmd, topic=args.cmd_vel_topic)
-                if args.cmd_vel_topic:  # one publisher for the one topic given
-                    cmd = None
+        systems, watchers = attach(args, sim, robots, context)
         bridge = SimBridge(sim, context)
         bridge.paused = args.paused
-        viewer = None
-        if not args.headless:  # RViz's Fixed Frame "world", the world's objects drawn
-            try:
-                from robomodel.sim.scenery import scenery_of
-
-                scenery = scenery_of(world)
-            except ImportError:  # no viewer extra: _start_viewer says so
-                scenery = ()
-            viewer = _start_viewer(
-                args,
-                fixed_frame="world",
-                scenery=scenery,
-                sources=[(r.path, mappings, r.prefix) for r in requests],
-            )
-        names = ", ".join(
-            f"'{robot.name}'" + (f" ({request.prefix})" if request.prefix else "")
-            for request, robot, _ in robots
-        )
-        controllers = [
-            c["name"] for system in systems if system for c in system.manager.list_controllers()
-        ]
-        print(
-            f"robomodel sim: world '{world.name}' at {sim.timestep_s * 1e3:g} ms steps, "
-            f"robot{'s' if several else ''} {names}"
-            + (f", controllers: {', '.join(controllers)}" if controllers else "")
-            + f"; rate {args.rate}; bus {context.transport.name}"
-            + ("" if args.duration else "; Ctrl-C stops"),
-            file=sys.stderr,
-        )
+        viewer = None if args.headless else _sim_viewer(args, world, requests, mappings)
+        _announce(args, sim, world, robots, systems, context)
         wall_s = 0.0
         try:
             with contextlib.suppress(KeyboardInterrupt):
@@ -317,8 +217,52 @@ def _run(args: argparse.Namespace) -> int:
                 for (request, _robot, built), odom in zip(robots, watchers, strict=True)
             ]
             first = {k: v for k, v in reports[0].items() if k != "prefix"}
-            print(json.dumps({**first, "robots": reports} if several else first))
+            print(json.dumps({**first, "robots": reports} if len(robots) > 1 else first))
     return 0
+
+
+def _sim_viewer(args: argparse.Namespace, world: Any, requests: list[Any], mappings: Any) -> Any:
+    """The viewer of a simulation: RViz's Fixed Frame "world", the world's objects drawn."""
+    from robomodel.cli.control import _start_viewer
+
+    try:
+        from robomodel.sim.scenery import scenery_of
+
+        scenery = scenery_of(world)
+    except ImportError:  # no viewer extra: _start_viewer says so
+        scenery = ()
+    return _start_viewer(
+        args,
+        fixed_frame="world",
+        scenery=scenery,
+        sources=[(r.path, mappings, r.prefix) for r in requests],
+    )
+
+
+def _announce(
+    args: argparse.Namespace,
+    sim: Any,
+    world: Any,
+    robots: list[Any],
+    systems: list[Any],
+    context: Any,
+) -> None:
+    several = len(robots) > 1
+    names = ", ".join(
+        f"'{robot.name}'" + (f" ({request.prefix})" if request.prefix else "")
+        for request, robot, _ in robots
+    )
+    controllers = [
+        c["name"] for system in systems if system for c in system.manager.list_controllers()
+    ]
+    print(
+        f"robomodel sim: world '{world.name}' at {sim.timestep_s * 1e3:g} ms steps, "
+        f"robot{'s' if several else ''} {names}"
+        + (f", controllers: {', '.join(controllers)}" if controllers else "")
+        + f"; rate {args.rate}; bus {context.transport.name}"
+        + ("" if args.duration else "; Ctrl-C stops"),
+        file=sys.stderr,
+    )
 
 
 def _loop(sim: Any, bridge: Any, duration_s: float | None, factor: float | None) -> float:
