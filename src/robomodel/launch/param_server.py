@@ -99,6 +99,8 @@ class ParamServer(ParamTree):
             arguments = json.loads(request.arguments or "{}")
         except ValueError:
             return MasterCall_Response(False, "null", "arguments are not JSON")
+        except RecursionError:
+            return MasterCall_Response(False, "null", "arguments are nested too deeply")
         if not isinstance(arguments, dict):
             return MasterCall_Response(False, "null", "arguments must be a JSON object")
         reply = self.handle(request.method, arguments)
@@ -154,7 +156,8 @@ def connect_or_host(context: Any, settle_s: float = 1.5) -> tuple[Any, bool]:
     returns at once. A session linked to a router receives the router's liveliness tokens some
     milliseconds after opening, longer on a loaded machine; so while the domain looks empty and
     the session is linked, the graph is asked again for up to ``settle_s``. Once other nodes
-    show, two answers in a row without ``/rosmaster`` decide. A second server would split the
+    show, the graph must stop changing for three answers before its lack of ``/rosmaster``
+    decides. A second server would split the
     launch's parameters in two."""
     if context.transport.name != "inproc" and _remote_server_found(context, settle_s):
         return RemoteParamServer(context), False
@@ -166,13 +169,17 @@ def connect_or_host(context: Any, settle_s: float = 1.5) -> tuple[Any, bool]:
 def _remote_server_found(context: Any, settle_s: float) -> bool:
     linked = getattr(context.transport, "linked", lambda: False)
     deadline = time.monotonic() + settle_s
-    misses = 0
+    previous: tuple[list[str], list[str]] | None = None
+    stable = 0
     while True:
         graph = context.graph(timeout_s=0.5)
         if SERVICE in graph.services:
             return True
-        if graph.nodes:
-            misses += 1
-        if misses >= 2 or not linked() or time.monotonic() >= deadline:
+        # Liveliness tokens arrive in batches: decide only once the graph has stopped growing
+        # (three answers in a row the same), not on a partial one that lacks /rosmaster yet.
+        snapshot = (sorted(map(str, graph.nodes)), sorted(map(str, graph.services)))
+        stable = stable + 1 if graph.nodes and snapshot == previous else 0
+        previous = snapshot
+        if stable >= 3 or not linked() or time.monotonic() >= deadline:
             return False
-        time.sleep(0.05)
+        time.sleep(0.1)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -61,6 +62,9 @@ _ROUTER = {
     "connect/endpoints": [],
     "listen/endpoints": [DEFAULT_ROUTER],
 }
+
+
+_LINK_WAIT_S = 3.0
 
 
 class ZenohConfigError(RobomodelError):
@@ -197,4 +201,11 @@ def _become_router(zenoh: Any, peer_session: Any, peer_conf: Any, endpoint: str)
         return OpenedSession(zenoh.open(conf), True)
     except Exception:
         log.debug("another process became the router first; joining it", exc_info=True)
-        return OpenedSession(zenoh.open(peer_conf), False)
+    session = zenoh.open(peer_conf)
+    # A router holds the port, so the link comes; on a loaded machine it can take longer than
+    # open() waits, and a session used before then sees an empty graph (a second launch would
+    # host a parameter server of its own).
+    deadline = time.monotonic() + _LINK_WAIT_S
+    while not list(session.info.routers_zid()) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return OpenedSession(session, False)
