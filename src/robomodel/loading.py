@@ -14,7 +14,6 @@ from pathlib import Path
 from robomodel.description.model import Robot
 from robomodel.description.packages import PackageIndex
 from robomodel.description.urdf.reader import ParseResult, read_urdf
-from robomodel.errors import RobomodelError
 
 __all__ = ["LoadedDescription", "expand_description", "is_xacro", "load", "read_description"]
 
@@ -52,10 +51,9 @@ def expand_description(
         if inline:
             return LoadedDescription(text.encode(), None, Path.cwd(), False, ())
         path = Path(text)
-        try:
-            data = path.read_bytes()
-        except OSError as exc:
-            raise RobomodelError(f"cannot read '{text}': {exc.strerror}") from None
+        from robomodel._files import read_user_bytes
+
+        data = read_user_bytes(path, what="robot description")
         return LoadedDescription(data, text, path.resolve().parent, False, ())
     from robomodel import xacro  # not at the top: a plain URDF does not need the xacro layer
 

@@ -18,6 +18,7 @@ from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.control.controllers.registry import CONTROLLER_TYPES
 from robomodel.control.exceptions import ConfigError
 from robomodel.errors import SourceLocation, close_matches
@@ -259,9 +260,9 @@ def _params_file(
     if not path.is_absolute() and config_path is not None:
         path = Path(config_path).parent / path
     try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ConfigError(f"params_file '{file}' of '{name}': {exc.strerror}", where) from None
+        text = read_user_text(path, what="params_file")
+    except UserFileError as exc:
+        raise ConfigError(f"params_file '{file}' of '{name}': {exc}", where) from None
     doc = _Located(str(path))
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
@@ -348,11 +349,9 @@ def load_controller_config(
     path = str(source)
     if text is None:
         try:
-            text = Path(path).read_text(encoding="utf-8")
-        except OSError as exc:
-            raise ConfigError(
-                f"cannot read controller file: {exc.strerror}", SourceLocation(path)
-            ) from None
+            text = read_user_text(path, what="controller file")
+        except UserFileError as exc:
+            raise ConfigError(exc.reason, SourceLocation(path, exc.line, exc.column)) from None
     doc = _Located(path)
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)

@@ -58,8 +58,11 @@ def parse_package_option(text: str) -> tuple[str, Path]:
 
 
 def _manifest_name(manifest: Path) -> str | None:
+    if not manifest.is_file():  # a device or a FIFO named package.xml is not read
+        return None
     try:
-        head = manifest.read_bytes()[:65536]
+        with open(manifest, "rb") as handle:  # only the head: <name> comes first
+            head = handle.read(65536)
     except OSError:
         return None
     match = _NAME_RE.search(head)

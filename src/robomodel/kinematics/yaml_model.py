@@ -26,11 +26,11 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.description.model import Joint, JointType, Limit, Link, Origin, Robot
 from robomodel.description.urdf.writer import urdf_to_string
 from robomodel.errors import InputError, close_matches
@@ -103,9 +103,9 @@ def read_kinematics_yaml(source: str | os.PathLike[str], *, name: str | None = N
     if "\n" not in text and not text.lstrip().startswith("{"):
         path = text
         try:
-            text = Path(path).read_text(encoding="utf-8")
-        except OSError as exc:
-            raise _fail(f"cannot read '{path}': {exc.strerror}", path) from None
+            text = read_user_text(path, what="model file")
+        except UserFileError as exc:
+            raise _fail(exc.reason, path) from None
     try:
         doc = yaml.safe_load(text)
     except yaml.YAMLError as exc:

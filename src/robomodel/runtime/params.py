@@ -12,12 +12,13 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import yaml
 
 from robomodel._atomic import atomic_write_text
+from robomodel._files import UserFileError, read_user_text
+from robomodel._yaml_bounded import load_yaml
 from robomodel.errors import RobomodelError, close_matches
 
 __all__ = [
@@ -85,7 +86,7 @@ def _coerce(name: str, old: Any, new: Any) -> Any:
 def parse_parameter_value(text: str) -> ParameterValue:
     """Parse a command-line value as ``ros2 param set`` does (YAML scalars and lists)."""
     try:
-        value = yaml.safe_load(text)
+        value = load_yaml(text, what="the parameter value")
     except yaml.YAMLError:
         return text
     if value is None:
@@ -212,7 +213,10 @@ def load_parameters_file(path: str | os.PathLike[str], node_fq_name: str) -> dic
     Matches ``/**`` (all nodes), the fully qualified name (``/ns/node``), and the bare node
     name; later, more specific entries override earlier ones.
     """
-    text = Path(path).read_text()
+    try:
+        text = read_user_text(path, what="parameter file")
+    except UserFileError as exc:
+        raise ParameterError(str(exc)) from None
     try:
         data = yaml.safe_load(text) or {}
     except yaml.YAMLError as exc:

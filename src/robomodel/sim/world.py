@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from lxml import etree
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel.sim.exceptions import WorldError
 
 __all__ = [
@@ -93,10 +94,9 @@ def read_world(path: str | os.PathLike[str]) -> World:
     """
     name = os.fspath(path)
     try:
-        with open(name, "rb") as handle:
-            data = handle.read()
-    except OSError as exc:
-        raise WorldError(f"cannot read world file '{name}': {exc.strerror}") from None
+        data = read_user_bytes(name, what="world file")
+    except UserFileError as exc:
+        raise WorldError(str(exc)) from None
     return parse_world(data, path=name)
 
 

@@ -15,6 +15,7 @@ from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
 
 __all__ = ["RvizConfigError", "RvizSettings", "read_rviz_config"]
@@ -63,9 +64,9 @@ def _kind(display: dict[str, Any]) -> str:
 def read_rviz_config(path: str | Path) -> RvizSettings:
     """Read the settings robomodel applies from an RViz config file."""
     try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8")) or {}
-    except OSError as exc:
-        raise RvizConfigError(f"cannot read RViz config '{path}': {exc.strerror}") from None
+        data = yaml.safe_load(read_user_text(path, what="RViz config")) or {}
+    except UserFileError as exc:
+        raise RvizConfigError(str(exc)) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)

@@ -6,6 +6,7 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from robomodel._files import UserFileError
 from robomodel._gc import paused_gc
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import Diagnostic, InputError, RobomodelError
@@ -142,8 +143,8 @@ def process_file(
     with paused_gc():
         try:
             document = read_document(ctx, name)
-        except OSError as exc:
-            raise InputError.at(f"cannot read '{name}': {exc.strerror}", name) from None
+        except UserFileError as exc:
+            raise InputError.at(exc.reason, name) from None
         return _run(ctx, document, name)
 
 

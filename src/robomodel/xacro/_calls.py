@@ -7,6 +7,7 @@ import os
 import re
 from collections.abc import Callable
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel.errors import close_matches
 from robomodel.xacro._context import Context, Frame
 from robomodel.xacro._definitions import Macro
@@ -173,8 +174,7 @@ def import_xml_namespaces(ctx: Context, parent: Element, attributes: dict[str, s
 
 def read_document(ctx: Context, filename: str) -> Document:
     """Read and parse ``filename`` (relative to the root directory)."""
-    with open(os.path.join(ctx.root_dir, filename), "rb") as handle:
-        data = handle.read()
+    data = read_user_bytes(os.path.join(ctx.root_dir, filename), what="xacro file")
     ctx.sources[filename] = data
     return parse_xml(data, filename)
 
@@ -217,12 +217,10 @@ def process_include(
     for filename in _include_files(ctx, spec):
         try:
             document = read_document(ctx, filename)
-        except OSError as exc:
-            if optional:
+        except UserFileError as exc:
+            if optional and exc.errno is not None:  # missing or unreadable, as the reference
                 continue
-            raise ctx.error(
-                f"cannot include '{filename}': {exc.strerror}", elt, "filename"
-            ) from None
+            raise ctx.error(f"cannot include '{filename}': {exc.reason}", elt, "filename") from None
         root = document.root
         if len(ctx.stack) >= ctx.limits.max_macro_depth:
             raise ctx.error(

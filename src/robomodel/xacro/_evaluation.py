@@ -14,6 +14,7 @@ import re
 from collections.abc import Callable
 from types import CodeType
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import InputError, Severity, close_matches
 from robomodel.xacro._context import Context
 from robomodel.xacro._lexer import LexError, Token, TokenKind, tokenize_text
@@ -175,11 +176,10 @@ def _xacro_functions(ctx: Context) -> dict[str, object]:
         path = abs_filename_spec(ctx, filename)
         ctx.filestack.append(path)
         try:
-            with open(path, encoding="utf-8") as handle:
-                text = handle.read()
+            text = read_user_text(path, what="YAML file")
             return load_yaml_text(text, functools.partial(_unit_value, ctx))
-        except OSError as exc:
-            raise ctx.error(f"cannot read YAML file '{path}': {exc.strerror}") from None
+        except UserFileError as exc:
+            raise ctx.error(f"load_yaml('{filename}'): {exc}") from None
         finally:
             ctx.filestack.pop()
             ctx.record_include(path)

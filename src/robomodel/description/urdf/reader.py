@@ -13,11 +13,11 @@ import os
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Protocol, TypeVar
 
 from lxml import etree
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel._gc import paused_gc
 from robomodel.description.model import (
     Link,
@@ -67,25 +67,17 @@ def _load(source: Source, path: str | None, max_bytes: int) -> tuple[bytes, str 
             # An encoding declaration would contradict the UTF-8 bytes we hand to libxml2.
             data = _strip_encoding(data)
     else:
-        file_path = Path(source)
         path = path or str(source)
         try:
-            size = file_path.stat().st_size
-        except OSError as exc:
-            raise InputError.at(f"cannot read file: {exc.strerror}", path, code="io") from None
-        if size > max_bytes:
+            data = read_user_bytes(source, what="file", limit=max_bytes)
+        except UserFileError as exc:
+            too_large = exc.errno is None and "MiB" in exc.reason
             raise InputError.at(
-                f"file is {size / 1e6:.1f} MB, larger than the {max_bytes / 1e6:.0f} MB limit "
-                "for a robot description; this is not a URDF file, or pass max_bytes=...",
+                exc.reason
+                + ("; this is not a URDF file, or pass max_bytes=..." if too_large else ""),
                 path,
-                1,
-                1,
-                code="too-large",
-            )
-        try:
-            data = file_path.read_bytes()
-        except OSError as exc:
-            raise InputError.at(f"cannot read file: {exc.strerror}", path, code="io") from None
+                code="too-large" if too_large else "io",
+            ) from None
     if len(data) > max_bytes:
         raise InputError.at(
             f"document is {len(data) / 1e6:.1f} MB, larger than the "
