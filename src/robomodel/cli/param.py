@@ -9,6 +9,7 @@ from typing import Any
 
 import yaml
 
+from robomodel._yaml_bounded import load_yaml
 from robomodel.cli._bus import (
     add_bus_arguments,
     bus_from_args,
@@ -150,7 +151,7 @@ def run_get(args: argparse.Namespace) -> int:
 
 def run_set(args: argparse.Namespace) -> int:
     if args.value is None:  # rosparam set /name VALUE (YAML)
-        ros1_value = yaml.safe_load(args.name)
+        ros1_value = load_yaml(args.name, what="the parameter value")
         return _server_call(args, lambda server: server.set(args.node, ros1_value) or 0)
     value = parse_parameter_value(args.value)
     with context_from_args(args) as context:

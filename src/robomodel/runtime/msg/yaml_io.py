@@ -13,6 +13,7 @@ from typing import Any, TypeVar
 
 import yaml
 
+from robomodel._yaml_bounded import load_yaml
 from robomodel.runtime.msg._schema import Array, Message, MessageTypeError, Seq, Spec
 
 __all__ = ["message_from_dict", "message_from_yaml", "message_to_dict", "message_to_yaml"]
@@ -108,7 +109,7 @@ def message_from_dict(cls: type[_M], data: dict[str, Any] | None) -> _M:
 def message_from_yaml(cls: type[_M], text: str) -> _M:
     """Parse ``ros2 topic pub``-style YAML (``"data: 1.5"``, ``"{linear: {x: 0.2}}"``)."""
     try:
-        data = yaml.safe_load(text) if text.strip() else None
+        data = load_yaml(text, what="the message") if text.strip() else None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""

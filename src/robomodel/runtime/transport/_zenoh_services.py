@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.cdr import prepare
+from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
 from robomodel.runtime.transport.base import (
     Deferred,
@@ -91,7 +92,7 @@ class ZenohService(ServiceHandle):
         try:
             answer = self.handler(request)
         except Exception as exc:  # the server goes on; the caller learns why
-            log.exception("service %s failed", self.endpoint.topic)
+            log_failure(log, "service %s failed", self.endpoint.topic)
             self._refuse(query, f"service '{self.endpoint.topic}' failed: {exc}")
             return
         if isinstance(answer, Deferred):
@@ -109,7 +110,7 @@ class ZenohService(ServiceHandle):
             reply = encode_attachment(attachment.sequence_number, time.time_ns(), attachment.gid)
             query.reply(self._key, serialize(response), attachment=reply)
         except Exception as exc:
-            log.exception("cannot answer %s", self.endpoint.topic)
+            log_failure(log, "cannot answer %s", self.endpoint.topic)
             query.reply_err(f"service '{self.endpoint.topic}' failed: {exc}")
         finally:
             query.drop()

@@ -15,6 +15,7 @@ from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.qos import Durability, QoSProfile
+from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
@@ -231,7 +232,7 @@ def _run_handler(name: str, handler: ServiceHandler, request: Message) -> Messag
         answer: Message | Deferred = handler(request)
         return answer
     except Exception as exc:  # the server goes on; the caller learns why
-        log.exception("service %s failed", name)
+        log_failure(log, "service %s failed", name)
         raise ServiceCallError(f"service '{name}' failed: {exc}") from None
 
 

@@ -28,6 +28,7 @@ from robomodel.runtime.msg import Message
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
 from robomodel.runtime.qos import QoSProfile
+from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
 from robomodel.runtime.transport._zenoh_graph import read_graph
@@ -281,7 +282,7 @@ def _in_place(name: str, handler: ServiceHandler, request: Message) -> Message:
     try:
         answer: Message | Deferred = handler(request)
     except Exception as exc:
-        log.exception("service %s failed", name)
+        log_failure(log, "service %s failed", name)
         raise ServiceCallError(f"service '{name}' failed: {exc}") from None
     if isinstance(answer, Deferred):
         if answer.response is None:

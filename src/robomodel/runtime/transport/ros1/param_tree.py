@@ -9,10 +9,16 @@ from __future__ import annotations
 
 import copy
 import threading
-from collections.abc import Mapping
 from typing import Any
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.transport.ros1.param_bounds import (
+    MAX_TREE_BYTES,
+    MAX_VALUE_BYTES,
+    ParamBoundError,
+    expand_bounded,
+    tree_size,
+)
 
 __all__ = ["ParamServerError", "ParamTree", "split_name"]
 
@@ -26,27 +32,65 @@ def split_name(name: str) -> list[str]:
 
 
 class ParamTree:
-    """rosmaster's parameter tree (paramserver.py), thread-safe."""
+    """rosmaster's parameter tree (paramserver.py), thread-safe and bounded.
 
-    def __init__(self) -> None:
+    Each value is expanded into a plain tree when set (see param_bounds), at most
+    ``max_value_bytes``; the whole tree holds at most ``max_tree_bytes``. Past either, the set
+    is refused with a ParamServerError that reaches the client.
+    """
+
+    def __init__(
+        self, *, max_value_bytes: int = MAX_VALUE_BYTES, max_tree_bytes: int = MAX_TREE_BYTES
+    ) -> None:
         self._tree: dict[str, Any] = {}
         self._lock = threading.Lock()
+        self._size = 0
+        self._max_value_bytes = max_value_bytes
+        self._max_tree_bytes = max_tree_bytes
 
     def set(self, name: str, value: Any) -> None:
         parts = split_name(name)
+        try:
+            value = expand_bounded(value, what=f"[{name}]", limit=self._max_value_bytes)
+        except ParamBoundError as exc:
+            raise ParamServerError(str(exc)) from None
+        added = tree_size(value)
         with self._lock:
             if not parts:
-                if not isinstance(value, Mapping):
+                if not isinstance(value, dict):
                     raise ParamServerError("cannot set root of parameter tree to non-dictionary")
-                self._tree = copy.deepcopy(dict(value))
+                self._check_total(added - self._size, name)
+                self._tree, self._size = value, added
                 return
+            change = added + 8 + len(parts[-1]) - self._replaced_size(parts)
+            self._check_total(change, name)
             node = self._tree
             for part in parts[:-1]:
                 child = node.get(part)
                 if not isinstance(child, dict):
                     child = node[part] = {}
                 node = child
-            node[parts[-1]] = copy.deepcopy(dict(value)) if isinstance(value, Mapping) else value
+            node[parts[-1]] = value
+            self._size += change
+
+    def _replaced_size(self, parts: list[str]) -> int:
+        """The size of what setting ``parts`` replaces: the old value, or a leaf on the way."""
+        node: Any = self._tree
+        for index, part in enumerate(parts):
+            if part not in node:
+                return 0
+            child = node[part]
+            if not isinstance(child, dict) or index == len(parts) - 1:
+                return tree_size(child) + 8 + len(part)
+            node = child
+        return 0
+
+    def _check_total(self, change: int, name: str) -> None:
+        if self._size + change > self._max_tree_bytes:
+            raise ParamServerError(
+                f"setting [{name}] would make the parameter server hold more than "
+                f"{self._max_tree_bytes / 2**20:.0f} MiB; delete parameters first"
+            )
 
     def get(self, name: str) -> Any:
         node: Any = self._tree
@@ -68,7 +112,7 @@ class ParamTree:
         parts = split_name(name)
         with self._lock:
             if not parts:
-                self._tree = {}
+                self._tree, self._size = {}, 0
                 return
             node = self._tree
             for part in parts[:-1]:
@@ -77,6 +121,8 @@ class ParamTree:
                     raise ParamServerError(f"Parameter [{name}] is not set")
             if parts[-1] not in node:
                 raise ParamServerError(f"Parameter [{name}] is not set")
+            removed = tree_size(node[parts[-1]]) + 8 + len(parts[-1])
+            self._size = max(0, self._size - removed)
             del node[parts[-1]]
 
     def names(self) -> list[str]:

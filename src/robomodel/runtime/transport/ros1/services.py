@@ -18,6 +18,7 @@ import time
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
+from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.base import Deferred, ServiceCallError, ServiceHandler
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
@@ -110,7 +111,7 @@ class ServiceServer:
             try:
                 answer = self.handler(request)
             except Exception as exc:
-                log.exception("service %s failed", self.name)
+                log_failure(log, "service %s failed", self.name)
                 box["error"] = f"service [{self.name}] failed: {exc}"
                 done.set()
                 return
@@ -127,7 +128,7 @@ class ServiceServer:
         try:
             return True, self.kind.response.encode(box["response"])
         except Exception as exc:
-            log.exception("service %s: cannot encode the response", self.name)
+            log_failure(log, "service %s: cannot encode the response", self.name)
             return False, f"service [{self.name}] answered something unencodable: {exc}".encode()
 
 

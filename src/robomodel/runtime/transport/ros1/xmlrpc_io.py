@@ -21,6 +21,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.transport._failures import log_failure
 
 __all__ = [
     "MAX_BODY_BYTES",
@@ -100,12 +101,12 @@ class _Handler(BaseHTTPRequestHandler):
             log.warning("XML-RPC: bad call of %s from %s: %s", method, self.client_address, exc)
             result = [-1, f"Error: bad call arity or arguments: {exc}", 0]
         except Exception as exc:
-            log.exception("XML-RPC: %s failed", method)
+            log_failure(log, "XML-RPC: %s failed", method)
             result = [0, f"Internal failure: {exc}", 0]
         try:
             return xmlrpc.client.dumps((result,), methodresponse=True, allow_none=False)
         except (TypeError, OverflowError) as exc:
-            log.exception("XML-RPC: cannot marshal the answer of %s", method)
+            log_failure(log, "XML-RPC: cannot marshal the answer of %s", method)
             return xmlrpc.client.dumps(([0, f"Internal failure: {exc}", 0],), methodresponse=True)
 
     def _reply(self, text: str) -> None:
