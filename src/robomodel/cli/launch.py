@@ -79,6 +79,11 @@ def register(subparsers: Any) -> None:
         "--duration", type=float, default=None, metavar="S",
         help="stop after S seconds (for scripts; roslaunch runs until Ctrl-C)",
     )  # fmt: skip
+    parser.add_argument(
+        "--command-timeout", type=float, default=60.0, metavar="S",
+        help="the longest a <param command=...> or $(command ...) may run (default 60 s); "
+        "its output is capped at 64 MiB",
+    )  # fmt: skip
     parser.set_defaults(func=run)
 
 
@@ -144,7 +149,9 @@ def run(args: argparse.Namespace) -> int:
             f"{path} is a ROS 1 launch file: --show-args and --print are ros2 launch's; "
             "roslaunch's are --ros-args and --nodes/--dump-params"
         )
-    launch = load_launch(path, args=launch_args, packages=user_index)
+    launch = load_launch(
+        path, args=launch_args, packages=user_index, command_timeout_s=args.command_timeout
+    )
     for warning in launch.warnings:
         print(warning, file=sys.stderr)
     printed = {
@@ -174,7 +181,8 @@ def dialect_of(path: Path) -> str:
     if name.endswith((".py", ".yaml", ".yml")):
         return "ros2"
     if name.endswith(".xml"):
-        head = path.read_bytes()[:1_000_000]
+        with open(path, "rb") as handle:  # a regular file: _resolve_file checked it
+            head = handle.read(1_000_000)
         if any(marker in head for marker in _ROS2_XML_MARKERS):
             return "ros2"
     return "ros1"
@@ -190,7 +198,12 @@ def _run_ros2(path: Path, launch_args: dict[str, str], args: argparse.Namespace,
                 f"{path} is a ROS 2 launch file: --{flag.replace('_', '-')} is roslaunch's; "
                 "ros2 launch has --show-args and --print"
             )
-    launch = load_launch(path, args=launch_args, packages=launch_package_index(index))
+    launch = load_launch(
+        path,
+        args=launch_args,
+        packages=launch_package_index(index),
+        command_timeout_s=args.command_timeout,
+    )
     for warning in launch.warnings:
         print(warning, file=sys.stderr)
     if args.show_args:

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robomodel.launch.model import NodeSpec
+from robomodel.launch.processes import end_group
 
 __all__ = ["ProcessNode", "StepScheduler", "node_of_command"]
 
@@ -57,6 +58,7 @@ class ProcessNode:
             stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,
             text=True,
+            start_new_session=True,  # its own process group, ended as a group (roslaunch)
         )
         self._thread = threading.Thread(target=self._pump, args=(log,), daemon=True)
         self._thread.start()
@@ -67,12 +69,8 @@ class ProcessNode:
             log(line.rstrip("\n"))
 
     def stop(self) -> None:
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(5)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
+        """SIGINT, SIGTERM, then SIGKILL to its whole group, with roslaunch's timeouts."""
+        end_group(self.proc)
 
     def exit_code(self) -> int | None:
         return self.proc.poll()

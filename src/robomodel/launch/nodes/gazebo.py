@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
 from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
@@ -273,9 +274,9 @@ def spawn_model(ctx: NodeContext) -> RunningNode:
     else:
         assert options.file is not None
         try:
-            xml = Path(options.file).read_text(encoding="utf-8")
-        except OSError as exc:
-            raise RobomodelError(f"spawn_model: cannot read {options.file}: {exc}") from None
+            xml = read_user_text(options.file, what="model file")
+        except UserFileError as exc:
+            raise RobomodelError(f"spawn_model: {exc}") from None
     request = SpawnModel_Request(
         model_name=options.model,
         model_xml=xml,

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import threading
 import time
-from pathlib import Path
 from typing import Any
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
 from robomodel.launch.nodes.gazebo import parse_server_args, start_sim_server, world_viewer
@@ -119,9 +119,9 @@ def _description(ctx: NodeContext, options: dict[str, Any], stopping: threading.
         return str(options["string"])
     if "file" in options:
         try:
-            return Path(options["file"]).read_text(encoding="utf-8")
-        except OSError as exc:
-            raise RobomodelError(f"cannot read {options['file']}: {exc.strerror}") from None
+            return read_user_text(options["file"], what="model file")
+        except UserFileError as exc:
+            raise RobomodelError(str(exc)) from None
     from robomodel.launch.nodes.ros2_nodes import robot_description_of
 
     topic = str(options["topic"])

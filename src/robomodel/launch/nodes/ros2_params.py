@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
 from robomodel.launch.model import NodeSpec
 
@@ -56,9 +57,9 @@ def parameters_from_file(path: Path, fqn: str) -> dict[str, Any]:
     import yaml
 
     try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise RobomodelError(f"{path}: cannot read parameter file: {exc.strerror}") from None
+        data = yaml.safe_load(read_user_text(path, what="parameter file"))
+    except UserFileError as exc:
+        raise RobomodelError(str(exc)) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark
         where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)

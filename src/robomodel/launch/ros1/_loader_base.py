@@ -9,9 +9,12 @@ from typing import Any
 
 from lxml import etree
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import PackageNotFoundError, SourceLocation
+from robomodel.launch.bounds import INCLUDE_WORK, MAX_WORK
 from robomodel.launch.model import LaunchError, NodeSpec
+from robomodel.launch.processes import COMMAND_TIMEOUT_S
 from robomodel.launch.ros1.config import MachineSpec, ParamDump
 from robomodel.launch.ros1.context import LoaderContext
 from robomodel.launch.ros1.names import (
@@ -69,9 +72,17 @@ def _float(value: str | None, default: float, label: str) -> float:
 class LoaderBase:
     """What every tag handler of the loader uses."""
 
-    def __init__(self, packages: PackageIndex, environ: Mapping[str, str]) -> None:
+    def __init__(
+        self,
+        packages: PackageIndex,
+        environ: Mapping[str, str],
+        *,
+        command_timeout_s: float = COMMAND_TIMEOUT_S,
+    ) -> None:
         self.packages = packages
         self.environ = environ
+        self.command_timeout_s = command_timeout_s
+        self.work = 0  # elements and includes processed (the fan-out bound)
         self.params: dict[str, Any] = {}
         self.nodes: list[NodeSpec] = []
         self.tests: list[NodeSpec] = []
@@ -109,6 +120,18 @@ class LoaderBase:
             location=self.where(element, ctx.filename, attr),
             include_stack=tuple(self.stack),
         )
+
+    def charge(self, units: int, element: Any, ctx: LoaderContext) -> None:
+        """Count ``units`` of work; past ``MAX_WORK`` the launch is refused."""
+        self.work += units
+        if self.work > MAX_WORK:
+            raise self.error(
+                f"this launch processes more than {MAX_WORK:,} units of work (one per element, "
+                f"{INCLUDE_WORK} per include): includes fan out exponentially? "
+                f"({len(self.files)} files read so far)",
+                element,
+                ctx,
+            )
 
     # -- attributes -----------------------------------------------------------------------
     def subst(self, text: str | None, ctx: LoaderContext) -> str | None:
@@ -167,9 +190,9 @@ class LoaderBase:
     def parse(self, filename: str, element: Any, ctx: LoaderContext | None) -> Any:
         path = Path(filename)
         try:
-            data = path.read_bytes()
-        except OSError as exc:
-            message = f"cannot read launch file '{filename}': {exc.strerror}"
+            data = read_user_bytes(path, what="launch file")
+        except UserFileError as exc:
+            message = str(exc)
             if ctx is None or element is None:
                 raise LaunchError(message, include_stack=tuple(self.stack)) from None
             raise self.error(message, element, ctx, "file") from None

@@ -17,8 +17,10 @@ from typing import Any
 
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import PackageNotFoundError, PathEscapeError, RobomodelError, SourceLocation
+from robomodel.launch.bounds import INCLUDE_WORK
 from robomodel.launch.model import LaunchError
 from robomodel.launch.packages import launch_package_index
+from robomodel.launch.processes import COMMAND_TIMEOUT_S
 from robomodel.launch.ros1._loader_base import (
     _ARG_ATTRS,
     _GROUP_ATTRS,
@@ -50,6 +52,7 @@ class _Loader(NodeTags):
                     f"{self.where(element, ctx.filename)}: unrecognized tag <{element.tag}>"
                 )
                 continue
+            self.charge(1, element, ctx)
             try:
                 if element.tag not in ("group",) and not self.enabled(element, ctx):
                     continue
@@ -125,6 +128,7 @@ class _Loader(NodeTags):
                 element,
                 ctx,
             )
+        self.charge(INCLUDE_WORK, element, ctx)
         self.stack.append(self.where(element, ctx.filename, "file"))
         try:
             root = self.parse(filename, element, ctx)
@@ -186,6 +190,7 @@ def load_launch(
     args: Mapping[str, str] | None = None,
     packages: PackageIndex | None = None,
     environ: Mapping[str, str] | None = None,
+    command_timeout_s: float = COMMAND_TIMEOUT_S,
 ) -> Ros1Launch:
     """Load a ROS 1 launch file as roslaunch 1.16 does (nothing is started).
 
@@ -194,6 +199,7 @@ def load_launch(
         args: Command-line ``name:=value`` args (they set the top-level file's args).
         packages: Where ``$(find pkg)`` looks (robomodel's built-in packages are added last).
         environ: The environment for ``$(env)``/``$(optenv)`` (default: ``os.environ``).
+        command_timeout_s: The longest a ``<param command=...>`` may run.
 
     Raises:
         LaunchError: with the file:line:column of the offending element and the include stack.
@@ -201,7 +207,9 @@ def load_launch(
     source = Path(path)
     index = packages or PackageIndex()
     index = launch_package_index(index.with_workspace_of(source) if source.exists() else index)
-    loader = _Loader(index, os.environ if environ is None else environ)
+    loader = _Loader(
+        index, os.environ if environ is None else environ, command_timeout_s=command_timeout_s
+    )
     try:
         return loader.load(Path(os.path.abspath(source)), dict(args or {}))
     except (PackageNotFoundError, PathEscapeError) as exc:

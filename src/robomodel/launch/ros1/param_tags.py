@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any
 
 from robomodel.errors import SourceLocation
@@ -30,6 +29,7 @@ from robomodel.launch.ros1.params import (
 from robomodel.launch.ros1.substitution import (
     SubstitutionError,
 )
+from robomodel.runtime.transport.ros1.param_bounds import ParamBoundError, expand_bounded
 
 __all__ = ["ParamTags"]
 
@@ -69,7 +69,10 @@ class ParamTags(LoaderBase):
                 return read_binary_file(binfile)
             assert command is not None
             # roslaunch runs the command in its own working directory.
-            return convert_value(run_command(name, command, self.packages), ptype)
+            return convert_value(
+                run_command(name, command, self.packages, timeout_s=self.command_timeout_s),
+                ptype,
+            )
         except ParamValueError as exc:
             error = self.error(f"Invalid <param> tag: {exc}", element, ctx)
             error.notes = exc.notes  # type: ignore[attr-defined]
@@ -97,7 +100,7 @@ class ParamTags(LoaderBase):
         cmd = cmd or "load"
         if cmd not in ("load", "dump", "delete"):
             raise self.error("command must be 'load', 'dump', or 'delete'", element, ctx, "command")
-        if file is not None and cmd == "load" and not os.path.isfile(file):
+        if file is not None and cmd == "load" and not os.path.exists(file):
             raise self.error(f"file does not exist [{file}]", element, ctx, "file")
         if file is not None and cmd == "delete":
             raise self.error(
@@ -110,7 +113,10 @@ class ParamTags(LoaderBase):
         if cmd == "delete":
             self.deletes.append(full)
             return
-        text = Path(file).read_text(encoding="utf-8") if file else (element.text or "")
+        try:
+            text = read_text_file(file, "rosparam file") if file else (element.text or "")
+        except ParamValueError as exc:
+            raise self.error(str(exc), element, ctx, "file") from None
         if substitute:
             try:
                 text = self.subst(text, ctx) or ""
@@ -129,6 +135,10 @@ class ParamTags(LoaderBase):
                     include_stack=(*self.stack, self.where(element, ctx.filename)),
                 )
             raise error from None
+        try:  # aliases expanded once, here, under the server's bound (not on every get)
+            data = expand_bounded(data, what=f"the <rosparam> {file or 'block'}")
+        except ParamBoundError as exc:
+            raise self.error(str(exc), element, ctx, "file" if file else None) from None
         if not param and not isinstance(data, dict):
             raise self.error(
                 "'param' attribute must be set for non-dictionary values", element, ctx

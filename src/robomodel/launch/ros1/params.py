@@ -7,16 +7,16 @@ from __future__ import annotations
 import math
 import os
 import shlex
-import subprocess
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, decode_utf8, read_user_bytes, read_user_text
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import InputError
+from robomodel.launch.processes import COMMAND_TIMEOUT_S, CommandError, run_bounded
 
 __all__ = ["Binary", "ParamValueError", "convert_value", "load_rosparam_yaml", "run_command"]
 
@@ -166,12 +166,20 @@ def _run_xacro(argv: list[str], packages: PackageIndex, cwd: str) -> str:
         raise ParamValueError(exc.diagnostic.format(), notes) from None
 
 
-def run_command(name: str, command: str, packages: PackageIndex, cwd: str | None = None) -> str:
+def run_command(
+    name: str,
+    command: str,
+    packages: PackageIndex,
+    cwd: str | None = None,
+    *,
+    timeout_s: float = COMMAND_TIMEOUT_S,
+) -> str:
     """The output of a ``command=`` parameter.
 
     ``xacro`` (``$(find xacro)/xacro``, ``xacro.py`` or plain ``xacro``) runs robomodel's xacro
     in this process; anything else runs as a subprocess, split with shlex and no shell, as
-    roslaunch does, and must exit 0.
+    roslaunch does, and must exit 0 within ``timeout_s`` and write at most 64 MiB (roslaunch
+    has neither bound; its group is killed when it overruns).
     """
     argv = shlex.split(command)
     if not argv:
@@ -180,7 +188,7 @@ def run_command(name: str, command: str, packages: PackageIndex, cwd: str | None
     if _is_xacro(argv[0]):
         return _run_xacro(argv[1:], packages, where)
     try:
-        proc = subprocess.run(argv, capture_output=True, cwd=where, check=False)
+        proc = run_bounded(argv, cwd=where, timeout_s=timeout_s)
     except FileNotFoundError:
         raise ParamValueError(
             f"Cannot load command parameter [{name}]: no such command [{argv[0]}]"
@@ -189,6 +197,8 @@ def run_command(name: str, command: str, packages: PackageIndex, cwd: str | None
         raise ParamValueError(
             f"Cannot load command parameter [{name}]: [{argv[0]}] is not executable"
         ) from None
+    except CommandError as exc:
+        raise ParamValueError(f"Cannot load command parameter [{name}]: {argv} {exc}") from None
     if proc.returncode != 0:
         stderr = proc.stderr.decode("utf-8", "replace").strip().splitlines()
         raise ParamValueError(
@@ -196,21 +206,24 @@ def run_command(name: str, command: str, packages: PackageIndex, cwd: str | None
             f"[{proc.returncode}]",
             tuple(stderr[-5:]),
         )
-    return proc.stdout.decode("utf-8")
-
-
-def read_text_file(path: str) -> str:
     try:
-        return Path(path).read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ParamValueError(f"cannot read textfile [{path}]: {exc.strerror}") from None
+        return decode_utf8(proc.stdout, f"output of {argv[0]}")
+    except UserFileError as exc:
+        raise ParamValueError(f"Cannot load command parameter [{name}]: {exc}") from None
+
+
+def read_text_file(path: str, what: str = "textfile") -> str:
+    try:
+        return read_user_text(path, what=what)
+    except UserFileError as exc:
+        raise ParamValueError(str(exc)) from None
 
 
 def read_binary_file(path: str) -> Binary:
     try:
-        return Binary(Path(path).read_bytes())
-    except OSError as exc:
-        raise ParamValueError(f"cannot read binfile [{path}]: {exc.strerror}") from None
+        return Binary(read_user_bytes(path, what="binfile"))
+    except UserFileError as exc:
+        raise ParamValueError(str(exc)) from None
 
 
 def flatten_params(name: str, value: Any, out: dict[str, Any], join: Any) -> None:

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robomodel.errors import close_matches
+from robomodel.launch.bounds import value_too_long
 from robomodel.launch.ros1.names import anonymous_name
 from robomodel.xacro._safe_eval import (
     ExpressionError,
@@ -125,7 +126,11 @@ def _pass(text: str, ctx: SubstitutionContext, commands: tuple[str, ...]) -> str
             )
         if splits[0] in commands:
             value = _command(splits[0], splits[1:], a, ctx)
-            resolved = resolved.replace(f"$({a})", value, 1 if splits[0] == "find" else -1)
+            count = 1 if splits[0] == "find" else resolved.count(f"$({a})")
+            problem = value_too_long(len(resolved) + count * (len(value) - len(a) - 3))
+            if problem is not None:
+                raise SubstitutionError(f"$({a}): {problem}")
+            resolved = resolved.replace(f"$({a})", value, count)
     return resolved
 
 
@@ -162,7 +167,11 @@ def _evaluate(expr: str, ctx: SubstitutionContext) -> str:
 
     try:
         code = compile_expression(expr.strip())
-        return str(evaluate(code, lookup, _GUARDS, _GUARDS.functions()))
+        result = str(evaluate(code, lookup, _GUARDS, _GUARDS.functions()))
+        problem = value_too_long(len(result))
+        if problem is not None:
+            raise SubstitutionError(f"$(eval ...): {problem}")
+        return result
     except ExpressionError as exc:
         if exc.name is not None:
             raise ArgNotSet(exc.name, list(ctx.args)) from None

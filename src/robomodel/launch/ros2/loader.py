@@ -11,6 +11,7 @@ from robomodel.description.packages import PackageIndex
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.packages import launch_package_index
+from robomodel.launch.processes import COMMAND_TIMEOUT_S
 from robomodel.launch.ros2.importer import launch_modules
 from robomodel.launch.ros2.model import DeclaredArgument, Ros2Launch
 from robomodel.launch.ros2.printing import describe_entities
@@ -73,6 +74,7 @@ def load_launch(
     args: Mapping[str, str] | None = None,
     packages: PackageIndex | None = None,
     environ: Mapping[str, str] | None = None,
+    command_timeout_s: float = COMMAND_TIMEOUT_S,
 ) -> Ros2Launch:
     """Load a ROS 2 launch file and work out what ``ros2 launch`` would start.
 
@@ -84,6 +86,7 @@ def load_launch(
         packages: Where packages are found (robomodel's shipped ones are added last, and the
             workspace around ``path``).
         environ: The launch environment (default ``os.environ``; never modified).
+        command_timeout_s: The longest a ``$(command ...)`` / ``Command`` may run.
 
     Returns:
         The declared arguments, the steps in start order and the files loaded.
@@ -94,7 +97,10 @@ def load_launch(
     path = Path(os.path.abspath(path))
     env = dict(os.environ if environ is None else environ)
     index = packages if packages is not None else PackageIndex(environ=env)
-    session = Session(packages=launch_package_index(index).with_workspace_of(path))
+    session = Session(
+        packages=launch_package_index(index).with_workspace_of(path),
+        command_timeout_s=command_timeout_s,
+    )
     with launch_modules(), session_scope(session):
         context = LaunchContext(session=session, environ=env)
         try:

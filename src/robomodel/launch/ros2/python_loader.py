@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.shim.action import LaunchDescription, user_error
@@ -21,7 +22,7 @@ def load_python_description(path: Path) -> LaunchDescription:
     if session is not None:
         session.python_files.add(filename)
     try:
-        source = path.read_bytes()
+        source = read_user_bytes(path, what="launch file")
         code = compile(source, filename, "exec")
         namespace: dict[str, Any] = {"__file__": filename, "__name__": "__robomodel_launch__"}
         exec(code, namespace)
@@ -35,6 +36,8 @@ def load_python_description(path: Path) -> LaunchDescription:
         description = generate()
     except LaunchError:
         raise
+    except UserFileError as exc:
+        raise LaunchError(str(exc), location=SourceLocation(filename)) from None
     except OSError as exc:
         raise LaunchError(
             f"cannot read launch file: {exc.strerror}", location=SourceLocation(filename)

@@ -6,6 +6,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.frontend.build import build_description
@@ -31,7 +32,13 @@ def load_xml_description(path: Path) -> LaunchDescription:
     session = current_session()
     stack = tuple(session.include_stack) if session is not None else ()
     try:
-        root = etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
+        data = read_user_bytes(path, what="launch file")
+        parser = etree.XMLParser(
+            remove_comments=True, resolve_entities=False, no_network=True, load_dtd=False
+        )
+        root = etree.fromstring(data, parser)
+    except UserFileError as exc:
+        raise LaunchError(str(exc), include_stack=stack) from None
     except etree.XMLSyntaxError as exc:
         line, column = exc.position if exc.position else (None, None)
         raise LaunchError(

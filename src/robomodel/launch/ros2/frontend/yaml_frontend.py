@@ -7,6 +7,7 @@ from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.frontend.build import build_description
@@ -88,7 +89,13 @@ def load_yaml_description(path: Path) -> LaunchDescription:
     session = current_session()
     stack = tuple(session.include_stack) if session is not None else ()
     try:
-        data = yaml.load(path.read_text(encoding="utf-8"), Loader=_LineLoader)
+        data = yaml.load(read_user_text(path, what="launch file"), Loader=_LineLoader)
+    except UserFileError as exc:
+        raise LaunchError(str(exc), include_stack=stack) from None
+    except RecursionError:
+        raise LaunchError(
+            "YAML nested too deeply", location=SourceLocation(str(path)), include_stack=stack
+        ) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         location = SourceLocation(str(path), mark.line + 1 if mark else None)

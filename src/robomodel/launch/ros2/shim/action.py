@@ -121,6 +121,7 @@ def visit_entities(context: LaunchContext, entities: Iterable[Any]) -> None:
             raise user_error(
                 TypeError(f"expected a launch action or LaunchDescription, got {entity!r}"), None
             )
+        context.session.charge(1, getattr(entity, "location", None))
         context._push_locals()
         try:
             try:

@@ -20,7 +20,7 @@ from robomodel.launch.ros2.shim.configuration_actions import (
     SetLaunchConfiguration,
     UnsetLaunchConfiguration,
 )
-from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure
+from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure, WorkBoundError
 from robomodel.launch.ros2.shim.environment_actions import (
     AppendEnvironmentVariable,
     PopEnvironment,
@@ -160,6 +160,8 @@ class IncludeLaunchDescription(Action):
                 perform_substitutions(context, normalize_to_list_of_substitutions(name))
                 for name, _ in self.launch_arguments
             ]
+        except WorkBoundError:
+            raise
         except Exception:
             return []
 

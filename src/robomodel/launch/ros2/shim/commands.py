@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import math
 import os
-import subprocess
 from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
+from robomodel.launch.processes import CommandError, run_bounded
 from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure, current_session
 from robomodel.launch.ros2.shim.substitutions import (
     Substitution,
@@ -129,31 +129,33 @@ class Command(Substitution):
         if argv and os.path.basename(argv[0]) in ("xacro", "xacro.py"):
             return run_xacro(argv, context)
         try:
-            result = subprocess.run(
+            result = run_bounded(
                 argv,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT if on_stderr == "capture" else subprocess.PIPE,
-                text=True,
                 env=context.environment,
-                check=False,
+                merge_stderr=on_stderr == "capture",
+                timeout_s=context.session.command_timeout_s,
             )
         except (FileNotFoundError, PermissionError) as ex:
             raise SubstitutionFailure(f"file not found: {ex}") from None
+        except CommandError as exc:
+            raise SubstitutionFailure(f"command {command_str!r} {exc}") from None
+        stdout = result.stdout.decode("utf-8", "replace")
+        stderr = result.stderr.decode("utf-8", "replace")
         if result.returncode != 0:
             message = f"executed command failed. Command: {command_str}"
-            if result.stderr:
-                message += f"\nCaptured stderr output: {result.stderr}"
+            if stderr:
+                message += f"\nCaptured stderr output: {stderr}"
             raise SubstitutionFailure(message)
-        if result.stderr:
+        if stderr:
             message = (
                 f"executed command showed stderr output. Command: {command_str}\n"
-                f"Captured stderr output:\n{result.stderr}"
+                f"Captured stderr output:\n{stderr}"
             )
             if on_stderr == "fail":
                 raise SubstitutionFailure(message)
             if on_stderr == "warn":
                 context.session.warn(message)
-        return result.stdout
+        return stdout
 
 
 _ALLOWED_MODULES = {"math"}

@@ -13,9 +13,16 @@ from typing import Any
 
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import SourceLocation
+from robomodel.launch.bounds import INCLUDE_WORK, MAX_WORK
 from robomodel.launch.model import LaunchError
+from robomodel.launch.processes import COMMAND_TIMEOUT_S
 
 __all__ = ["LaunchContext", "Session", "SubstitutionFailure", "caller_location", "current_session"]
+
+
+class WorkBoundError(LaunchError):
+    """The load went past the work bound: never swallowed by the static (``--show-args``)
+    walks that ignore the includes they cannot load."""
 
 
 class SubstitutionFailure(RuntimeError):
@@ -35,6 +42,8 @@ class Session:
         files: Launch files loaded, in order.
         warnings: Soft problems.
         include_stack: Locations of the includes being processed, outermost first.
+        work: Units of work done so far (the fan-out bound).
+        command_timeout_s: The longest a ``Command`` substitution may run.
     """
 
     packages: PackageIndex
@@ -46,6 +55,20 @@ class Session:
     warnings: list[str] = field(default_factory=list)
     include_stack: list[SourceLocation] = field(default_factory=list)
     keep_alive: list[Any] = field(default_factory=list)
+    work: int = 0
+    command_timeout_s: float = COMMAND_TIMEOUT_S
+
+    def charge(self, units: int, location: SourceLocation | None) -> None:
+        """Count ``units`` of work (robomodel.launch.bounds); past the bound, refuse the load."""
+        self.work += units
+        if self.work > MAX_WORK:
+            raise WorkBoundError(
+                f"this launch processes more than {MAX_WORK:,} units of work (one per action, "
+                f"{INCLUDE_WORK} per include): includes fan out exponentially? "
+                f"({len(self.files)} files read so far)",
+                location=location,
+                include_stack=tuple(self.include_stack),
+            )
 
     def warn(self, message: str) -> None:
         """Record a warning once."""

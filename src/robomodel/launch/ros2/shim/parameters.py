@@ -16,6 +16,7 @@ from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, read_user_text
 from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure
 from robomodel.launch.ros2.shim.substitutions import (
     Substitution,
@@ -89,11 +90,9 @@ class ParameterFile:
         if not allow:
             return path, False
         try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise SubstitutionFailure(
-                f"cannot read parameter file '{path}': {exc.strerror}"
-            ) from None
+            text = read_user_text(path, what="parameter file")
+        except UserFileError as exc:
+            raise SubstitutionFailure(str(exc)) from None
         from robomodel.launch.ros2.frontend.substitution_parser import parse_substitution
 
         parsed = perform_substitutions(context, parse_substitution(text))

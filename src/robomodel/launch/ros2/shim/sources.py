@@ -7,8 +7,14 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.errors import SourceLocation
+from robomodel.launch.bounds import INCLUDE_WORK
 from robomodel.launch.ros2.shim.action import LaunchDescription
-from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure, current_session
+from robomodel.launch.ros2.shim.context import (
+    LaunchContext,
+    SubstitutionFailure,
+    WorkBoundError,
+    current_session,
+)
 from robomodel.launch.ros2.shim.substitutions import (
     normalize_to_list_of_substitutions,
     perform_substitutions,
@@ -49,8 +55,11 @@ def load_description_file(path: Path, kind: str, *, record: bool = True) -> Laun
             )
     if not path.is_file():
         raise SubstitutionFailure(f"launch file '{path}' does not exist")
-    if session is not None and record and path not in session.files:
-        session.files.append(path)
+    if session is not None:
+        # every read counts, also the static walks for required arguments (the fan-out bound)
+        session.charge(INCLUDE_WORK, SourceLocation(str(path)))
+        if record and path not in session.files:
+            session.files.append(path)
     if kind == "python":
         from robomodel.launch.ros2.python_loader import load_python_description
 
@@ -90,6 +99,8 @@ class LaunchDescriptionSource:
             context = LaunchContext()
             path = Path(perform_substitutions(context, self.path_subs))
             return load_description_file(path, self.kind, record=False)
+        except WorkBoundError:
+            raise
         except Exception:
             return None
 

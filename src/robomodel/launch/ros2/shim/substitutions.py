@@ -12,6 +12,8 @@ from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, read_user_text
+from robomodel.launch.bounds import value_too_long
 from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure
 
 __all__ = [
@@ -76,7 +78,11 @@ def normalize_to_list_of_substitutions(subs: Any) -> list[Substitution]:
 
 def perform_substitutions(context: LaunchContext, subs: Iterable[Substitution]) -> str:
     """Perform each substitution and concatenate the results."""
-    return "".join(context.perform_substitution(sub) for sub in subs)
+    text = "".join(context.perform_substitution(sub) for sub in subs)
+    problem = value_too_long(len(text))
+    if problem is not None:
+        raise SubstitutionFailure(problem)
+    return text
 
 
 def _describe(subs: Iterable[Substitution]) -> str:
@@ -321,10 +327,9 @@ class FileContent(Substitution):
     def perform(self, context: LaunchContext) -> str:
         path = perform_substitutions(context, self.path)
         try:
-            with open(path, encoding="utf-8") as f:
-                return f.read()
-        except OSError as exc:
-            raise SubstitutionFailure(f"cannot read '{path}': {exc.strerror}") from None
+            return read_user_text(path, what="file")
+        except UserFileError as exc:
+            raise SubstitutionFailure(str(exc)) from None
 
 
 def split_command(text: str) -> list[str]:

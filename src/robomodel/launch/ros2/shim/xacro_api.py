@@ -6,6 +6,7 @@ import os
 from typing import Any
 from xml.dom import minidom
 
+from robomodel._files import UserFileError, read_user_bytes
 from robomodel.errors import RobomodelError
 from robomodel.launch.ros2.shim.context import SubstitutionFailure, current_session
 
@@ -35,8 +36,10 @@ def parse(inp: Any, filename: str | None = None) -> minidom.Document:
     text = str(inp)
     if text.lstrip().startswith("<"):
         return minidom.parseString(text)
-    with open(text, encoding="utf-8") as f:
-        return minidom.parseString(f.read())
+    try:
+        return minidom.parseString(read_user_bytes(text, what="xacro file"))
+    except UserFileError as exc:
+        raise SubstitutionFailure(f"xacro: {exc}") from None
 
 
 def process_doc(doc: minidom.Document, mappings: Any = None, **kwargs: Any) -> None:

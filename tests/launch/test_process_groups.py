@@ -1,0 +1,142 @@
+"""Child processes end as a group, and Ctrl-C works however robomodel was started (issue 23,
+items 9 and 10): roslaunch's SIGINT, SIGTERM, SIGKILL sequence on each child's own process
+group; a SIGTERM during a ``<param command=>`` load ends the command's whole tree; SIGINT
+stops a verb that a script started in the background (SIGINT ignored at start)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import time
+import uuid
+from pathlib import Path
+
+import pytest
+
+from robomodel.launch.processes import CommandError, end_group, run_bounded
+from tests.conftest import ROBOMODEL
+
+
+def _alive(marker: str) -> list[str]:
+    found = subprocess.run(["pgrep", "-f", marker], capture_output=True, text=True)
+    return found.stdout.split()
+
+
+def _wait_gone(marker: str, timeout_s: float = 10.0) -> bool:
+    deadline = time.monotonic() + timeout_s
+    while _alive(marker) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return not _alive(marker)
+
+
+def _wait_alive(marker: str, count: int, timeout_s: float = 30.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while len(_alive(marker)) < count:
+        assert time.monotonic() < deadline, f"{marker} did not start"
+        time.sleep(0.1)
+
+
+def _seconds() -> str:
+    """A sleep duration no other process on the machine uses, to find ours by name."""
+    return f"{900 + uuid.uuid4().int % 99}.{uuid.uuid4().int % 1000:03d}"
+
+
+def test_end_group_ends_background_children_too() -> None:
+    a, b = _seconds(), _seconds()
+    proc = subprocess.Popen(["sh", "-c", f"sleep {a} & sleep {b}"], start_new_session=True)
+    _wait_alive(f"sleep {a}", 1)
+    _wait_alive(f"sleep {b}", 1)
+    end_group(proc, sigint_timeout_s=5, sigterm_timeout_s=2)
+    # the background sleep ignores SIGINT (a non-interactive shell's background job): SIGTERM
+    assert _wait_gone(f"sleep {a}") and _wait_gone(f"sleep {b}")
+
+
+def test_run_bounded_kills_the_tree_on_timeout() -> None:
+    a = _seconds()
+    with pytest.raises(CommandError, match=r"did not finish within 0\.3 s"):
+        run_bounded(["sh", "-c", f"sleep {a} & sleep {a}; echo done"], timeout_s=0.3)
+    assert _wait_gone(f"sleep {a}")
+
+
+def _ros2_launch(tmp_path: Path, a: str, b: str) -> Path:
+    path = tmp_path / "sleepers.launch.xml"
+    path.write_text(
+        "<launch>\n  <let name='x' value='1'/>\n"
+        f"  <executable cmd=\"sh -c 'sleep {a} &amp; sleep {b}'\" output='screen'/>\n"
+        "</launch>\n"
+    )
+    return path
+
+
+@pytest.mark.parametrize("how", ["duration", "SIGINT", "SIGTERM"])
+def test_launch_ends_its_childrens_groups(tmp_path: Path, how: str) -> None:
+    a, b = _seconds(), _seconds()
+    argv = [*ROBOMODEL, "launch", str(_ros2_launch(tmp_path, a, b)), "--headless"]
+    argv += ["--bus", "inproc"] + (["--duration", "3"] if how == "duration" else [])
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        _wait_alive(f"sleep {a}", 1)
+        if how != "duration":
+            proc.send_signal(getattr(signal, how))
+        _, err = proc.communicate(timeout=30)
+        assert "Traceback" not in err
+        assert _wait_gone(f"sleep {a}") and _wait_gone(f"sleep {b}"), "children left running"
+    finally:
+        proc.kill()
+        proc.wait()
+
+
+def test_sigterm_during_a_param_command_ends_the_command_tree(tmp_path: Path) -> None:
+    a = _seconds()
+    path = tmp_path / "slow.launch"
+    path.write_text(
+        f'<launch>\n  <param name="c" command="sh -c \'sleep {a}; echo hi\'"/>\n</launch>\n'
+    )
+    proc = subprocess.Popen(
+        [*ROBOMODEL, "launch", str(path), "--headless", "--bus", "inproc"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        _wait_alive(f"sleep {a}", 1)
+        proc.terminate()
+        _, err = proc.communicate(timeout=20)
+        assert proc.returncode == 143 and "Traceback" not in err
+        assert _wait_gone(f"sleep {a}")
+    finally:
+        proc.kill()
+        proc.wait()
+
+
+def _listening(port: int) -> bool:
+    with socket.socket() as probe:
+        return probe.connect_ex(("127.0.0.1", port)) == 0
+
+
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # what `robomodel ... &` in a script gets
+
+
+def test_ctrl_c_works_when_started_with_sigint_ignored(tmp_path: Path) -> None:
+    port = str(20000 + os.getpid() % 20000)
+    proc = subprocess.Popen(
+        [*ROBOMODEL, "master", "-p", port],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=_ignore_sigint,
+    )
+    try:
+        deadline = time.monotonic() + 30
+        while not _listening(int(port)):  # it is up: its handlers are in place
+            assert proc.poll() is None and time.monotonic() < deadline, "master did not start"
+            time.sleep(0.1)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=20)
+        assert proc.returncode in (0, 130) and "Traceback" not in err
+    finally:
+        proc.kill()
+        proc.wait()
