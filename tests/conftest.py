@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import sysconfig
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -152,3 +154,57 @@ def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., ToolResult]:
         return ToolResult(code, captured.out, captured.err)
 
     return run
+
+
+def _children() -> dict[int, str]:
+    """The live (not zombie) child processes of this process: pid -> command line."""
+    me = str(os.getpid())
+    found: dict[int, str] = {}
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry.name}/stat", "rb") as stat:
+                fields = stat.read().rsplit(b")", 1)[1].split()
+            if fields[1].decode() != me or fields[0] == b"Z":
+                continue
+            with open(f"/proc/{entry.name}/cmdline", "rb") as cmdline:
+                found[int(entry.name)] = cmdline.read().replace(b"\0", b" ").decode().strip()
+        except (OSError, IndexError):
+            continue
+    return found
+
+
+# What a test starts and must end itself. Not the browser of the session-scoped playwright
+# fixture, which lives across tests on purpose.
+_OURS = ("robomodel", "rosmaster", "roscore", "roslaunch", "rostopic", "rosbag", "rviz", "Xvfb",
+         "robot_state_publisher")  # fmt: skip
+
+
+def _end(pid: int) -> None:
+    with contextlib.suppress(OSError):
+        os.killpg(pid, signal.SIGKILL)  # a leader of its own group: everything it started
+    with contextlib.suppress(OSError):
+        os.kill(pid, signal.SIGKILL)
+    with contextlib.suppress(OSError):
+        os.waitpid(pid, 0)
+
+
+@pytest.fixture(autouse=True)
+def _no_process_left_behind() -> Iterator[None]:
+    """A test that fails half-way must not leave its robomodel processes running for good (a
+    ``robomodel topic echo`` did): what a test started and did not end is ended here, with its
+    process group, and reported as a warning."""
+    before = set(_children())
+    yield
+    left = {p: c for p, c in _children().items() if p not in before and any(o in c for o in _OURS)}
+    deadline = time.monotonic() + 2.0
+    while left and time.monotonic() < deadline:  # some are just exiting
+        time.sleep(0.05)
+        left = {pid: cmd for pid, cmd in _children().items() if pid in left}
+    for pid in left:
+        _end(pid)
+    if left:
+        import warnings
+
+        warnings.warn(f"the test left processes running (now killed): {left}", stacklevel=1)

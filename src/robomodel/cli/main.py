@@ -78,6 +78,33 @@ def _report(exc: RobomodelError) -> None:
         print(f"robomodel: error: {exc}", file=sys.stderr)
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the main thread is, so that every verb cleans up as for Ctrl-C."""
+
+
+def _raise_terminated(signum: int, frame: object) -> None:
+    raise Terminated
+
+
+def _install_signal_handlers() -> None:
+    """Ctrl-C and SIGTERM end every verb through its ``finally`` blocks (children, files).
+
+    Python installs its KeyboardInterrupt handler only when SIGINT is not ignored at start, and
+    a script's ``robomodel view ... &`` starts with SIGINT ignored (a non-interactive shell
+    ignores it for background jobs), so it is installed here whatever the start state was.
+    SIGTERM's default action would end the process without cleanup (a ``<param command=>``
+    tree left running): it raises :class:`Terminated` instead. Long-running verbs replace
+    these with their own handlers while they run and put them back after.
+    """
+    import signal
+
+    try:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGTERM, _raise_terminated)
+    except ValueError:  # main() called from another thread: signals are not ours
+        pass
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line and return its exit code."""
     args_list = list(sys.argv[1:] if argv is None else argv)
@@ -92,6 +119,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     func: Callable[[argparse.Namespace], int] = args.func
     from robomodel.errors import RobomodelError  # every verb module has loaded it already
 
+    if argv is None:  # the command line, not a test calling main([...])
+        _install_signal_handlers()
     try:
         return func(args)
     except RobomodelError as exc:
@@ -99,6 +128,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise
         _report(exc)
         return EXIT_INVALID
+    except Terminated:
+        return 143  # 128 + SIGTERM, as a process ended by the signal reports it
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:
