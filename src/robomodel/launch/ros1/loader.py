@@ -24,8 +24,8 @@ from robomodel.launch.ros1._loader_base import (
     _GROUP_ATTRS,
     _INCLUDE_ATTRS,
     _MAX_INCLUDE_DEPTH,
-    _bool,
 )
+from robomodel.launch.ros1.attr_values import strict_bool
 from robomodel.launch.ros1.config import Ros1Launch
 from robomodel.launch.ros1.context import ContextError, LoaderContext
 from robomodel.launch.ros1.node_tags import NodeTags
@@ -90,7 +90,7 @@ class _Loader(NodeTags):
         self.check_attrs(element, ctx, _INCLUDE_ATTRS)
         filename = self.required(element, "file", ctx)
         try:
-            pass_all = _bool(self.attr(element, "pass_all_args", ctx), False, "pass_all_args")
+            pass_all = strict_bool(self.attr(element, "pass_all_args", ctx), False, "pass_all_args")
         except ValueError as exc:
             raise self.error(str(exc), element, ctx, "pass_all_args") from None
         if not os.path.isabs(filename) and ctx.filename:
