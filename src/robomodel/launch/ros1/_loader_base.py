@@ -61,6 +61,7 @@ class LoaderBase:
         self.warnings: list[str] = []
         self.stack: list[SourceLocation] = []
         self.anons: dict[str, str] = {}
+        self.declared_args: dict[str, None] = {}  # every <arg> name of every file, in order
         self.sources: dict[str, list[str]] = {}
         self.root: LoaderContext | None = None
 

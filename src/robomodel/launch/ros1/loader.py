@@ -73,6 +73,7 @@ class _Loader(NodeTags):
             raise self.error(f"arg '{exc.name}' is not defined. {exc}", element, ctx) from None
         if value is not None and default is not None:
             raise self.error("<arg> tag must have one and only one of value/default.", element, ctx)
+        self.declared_args[name] = None
         try:
             ctx.add_arg(name, value=value, default=default, doc=doc)
         except ContextError as exc:
@@ -176,6 +177,7 @@ class _Loader(NodeTags):
             machines=tuple(self.machines),
             files=tuple(self.files),
             arg_docs=docs,
+            declared_args=tuple(self.declared_args),
             warnings=tuple(self.warnings),
         )
 
