@@ -219,15 +219,22 @@ def _run_ros2(path: Path, launch_args: dict[str, str], args: argparse.Namespace,
                 "ros2 launch has --show-args and --print"
             )
     launch = load_launch(path, args=launch_args, packages=launch_package_index(index))
-    for warning in launch.warnings:
-        print(warning, file=sys.stderr)
-    _warn_undeclared(path, launch_args, [a.name for a in launch.arguments])
-    if args.show_args:
-        sys.stdout.write(format_show_args(launch))
-        return 0
-    if args.print_description:
-        sys.stdout.write(format_print(launch))
-        return 0
+    try:
+        for warning in launch.warnings:
+            print(warning, file=sys.stderr)
+        _warn_undeclared(path, launch_args, [a.name for a in launch.arguments])
+        if args.show_args:
+            sys.stdout.write(format_show_args(launch))
+            return 0
+        if args.print_description:
+            sys.stdout.write(format_print(launch))
+            return 0
+        return _run_ros2_nodes(launch, args, index)
+    finally:
+        launch.remove_temporary_files()
+
+
+def _run_ros2_nodes(launch: Any, args: argparse.Namespace, index: Any) -> int:
     from robomodel.launch.runner import LaunchRunner
 
     nodes = [step.node for step in launch.steps if step.node is not None]

@@ -35,6 +35,7 @@ class Session:
         files: Launch files loaded, in order.
         warnings: Soft problems.
         include_stack: Locations of the includes being processed, outermost first.
+        temporary_files: Files written while loading (substituted parameter files).
     """
 
     packages: PackageIndex
@@ -46,6 +47,7 @@ class Session:
     warnings: list[str] = field(default_factory=list)
     include_stack: list[SourceLocation] = field(default_factory=list)
     keep_alive: list[Any] = field(default_factory=list)
+    temporary_files: list[Path] = field(default_factory=list)
 
     def warn(self, message: str) -> None:
         """Record a warning once."""
