@@ -143,11 +143,15 @@ class PackageNotFoundError(RobomodelError):
         hint = close_matches(name, self.available)
         msg = f"package '{name}' not found"
         if hint:
-            msg += f"; did you mean {', '.join(repr(h) for h in hint)}?"
+            msg += f" (did you mean {', '.join(repr(h) for h in hint)}?)"
         if searched:
-            msg += f" (searched: {', '.join(searched)})"
+            msg += f"; searched: {'; '.join(searched)}"
         else:
-            msg += " (no package paths given: use --package-path DIR, --package NAME=DIR, or set ROS_PACKAGE_PATH)"
+            msg += "; no package paths given"
+        msg += (
+            ". Add the folder that holds it with --package-path DIR or ROS_PACKAGE_PATH=DIR "
+            f"(AMENT_PREFIX_PATH for an installed ROS 2 prefix), or name it: --package {name}=DIR"
+        )
         super().__init__(msg)
 
 

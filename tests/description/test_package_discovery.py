@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -67,8 +68,12 @@ def fresh_examples(tmp_path: Path) -> Path:
     return copy
 
 
-def _run(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
-    env = {"PATH": "/usr/bin:/bin", "HOME": str(cwd)}
+def _run(
+    args: list[str], cwd: Path, extra_env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
+    env = {"PATH": "/usr/bin:/bin", "HOME": str(cwd), **(extra_env or {})}
+    if "PYTHONPATH" in os.environ:  # the tree under test, not the installed one
+        env["PYTHONPATH"] = os.environ["PYTHONPATH"]
     return subprocess.run(
         [*ROBOMODEL, *args], capture_output=True, text=True, cwd=cwd, env=env, timeout=120
     )
@@ -111,6 +116,8 @@ def test_sibling_packages_of_the_workspace_are_found(tmp_path: Path) -> None:
 
 
 def test_a_package_path_still_wins_over_the_workspace(tmp_path: Path) -> None:
+    """For the input's neighbours: ``p`` beside the input's package ``top`` loses to the
+    ``--package-path`` one."""
     ws = tmp_path / "ws"
     for root, value in ((ws / "src", "workspace"), (tmp_path / "other", "explicit")):
         (root / "p" / "urdf").mkdir(parents=True)
@@ -118,7 +125,9 @@ def test_a_package_path_still_wins_over_the_workspace(tmp_path: Path) -> None:
         (root / "p" / "urdf" / "v.xacro").write_text(
             f'<r xmlns:xacro="http://www.ros.org/wiki/xacro"><x v="{value}"/></r>'
         )
-    top = ws / "src" / "p" / "urdf" / "top.xacro"
+    (ws / "src" / "top").mkdir()
+    (ws / "src" / "top" / "package.xml").write_text("<package><name>top</name></package>")
+    top = ws / "src" / "top" / "top.xacro"
     top.write_text(
         '<robot name="t" xmlns:xacro="http://www.ros.org/wiki/xacro">'
         '<xacro:include filename="$(find p)/urdf/v.xacro"/></robot>'
@@ -126,6 +135,53 @@ def test_a_package_path_still_wins_over_the_workspace(tmp_path: Path) -> None:
     run = _run(["xacro", str(top), "--package-path", str(tmp_path / "other")], tmp_path)
     assert run.returncode == 0, run.stderr
     assert 'v="explicit"' in run.stdout
+
+
+@pytest.mark.parametrize("where", ["beside", "ROS_PACKAGE_PATH", "--package-path"])
+def test_a_files_own_package_wins(tmp_path: Path, where: str) -> None:
+    """Issue 23.13: a copy of simplebot_description beside the original, with its
+    simplebot_body.xacro broken, is processed with its own (broken) file."""
+    original = tmp_path / "aaa" / "simplebot_description"
+    shutil.copytree(EXAMPLES / "simplebot_description", original)
+    copy = tmp_path / "mine"
+    shutil.copytree(EXAMPLES / "simplebot_description", copy)
+    (copy / "urdf" / "simplebot_body.xacro").write_text("<robot><broken></robot>")
+    args = ["xacro", str(copy / "urdf" / "simplebot.urdf.xacro")]
+    env = {"ROS_PACKAGE_PATH": str(original.parent)} if where == "ROS_PACKAGE_PATH" else {}
+    if where == "--package-path":
+        args += ["--package-path", str(original.parent)]
+    run = _run(args, tmp_path, env)
+    assert run.returncode == 2, run.stdout[:200]
+    assert f"{copy}/urdf/simplebot_body.xacro:1:" in run.stderr
+    # the original is still what a file outside both packages gets
+    (copy / "urdf" / "simplebot_body.xacro").unlink()
+    shutil.copy(EXAMPLES / "simplebot_description/urdf/simplebot_body.xacro", copy / "urdf")
+    run = _run(args, tmp_path, env)
+    assert run.returncode == 0, run.stderr
+
+
+def test_package_not_found_says_where_and_how_in_user_terms(tmp_path: Path) -> None:
+    """Issue 23.14: no internal path, the flags and variables that add a place, did-you-mean."""
+    (tmp_path / "pkgs" / "gripper_description").mkdir(parents=True)
+    (tmp_path / "pkgs" / "gripper_description" / "package.xml").write_text(
+        "<package><name>gripper_description</name></package>"
+    )
+    launch = tmp_path / "t.launch"
+    launch.write_text(
+        '<launch>\n  <param name="x" textfile="$(find grippr_description)/a"/>\n</launch>'
+    )
+    run = _run(["launch", str(launch), "--dump-params"], tmp_path,
+               {"ROS_PACKAGE_PATH": str(tmp_path / "pkgs")})  # fmt: skip
+    assert run.returncode == 2
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in run.stderr, run.stderr
+    line = lines[0]
+    assert line.startswith(f"robomodel: error: {launch}:2:") or f"{launch}:2:" in line
+    assert "did you mean 'gripper_description'" in line
+    assert f"ROS_PACKAGE_PATH {tmp_path / 'pkgs'}" in line
+    assert "robomodel's built-in packages (gazebo_ros, ros_gz_sim, xacro)" in line
+    assert "launch/share" not in line
+    assert "--package-path DIR" in line and "ROS_PACKAGE_PATH=DIR" in line
 
 
 def test_did_you_mean_for_packages_and_frames(fresh_examples: Path) -> None:

@@ -105,11 +105,12 @@ def test_static_transform_publishers_of_ros2_tf2_and_ros1_tf() -> None:
 def test_spawner_command_line() -> None:
     args = parse_ros2_spawner_args(
         ("jsb", "arm", "-c", "/my_ctrl_mgr", "--param-file", "/p.yaml", "--inactive",
+         "-p", "/q.yaml", "--switch-asap",
          "--activate-as-group", "-u", "--controller-manager-timeout=30",
          "--controller-ros-args", "-r /a:=/b", "--ros-args", "-r", "__node:=sp")
     )  # fmt: skip
     assert args.controllers == ("jsb", "arm") and args.controller_manager == "/my_ctrl_mgr"
-    assert args.param_file == "/p.yaml" and args.inactive and args.activate_as_group
+    assert args.param_files == ("/p.yaml", "/q.yaml") and args.inactive and args.activate_as_group
     assert args.unload_on_kill and args.timeout_s == 30.0
     with pytest.raises(RobomodelError, match="unrecognized arguments: --bogus"):
         parse_ros2_spawner_args(("jsb", "--bogus"))
@@ -237,3 +238,84 @@ def test_named_manager_unknown_plugin_and_unknown_controller_type(tmp_path: Path
         "acme_controllers/TeleportController" in text
         and "Failed loading controller mystery" in text
     )
+
+
+_SPAWNER_YAML = """\
+joint_state_broadcaster:
+  ros__parameters:
+    type: joint_state_broadcaster/JointStateBroadcaster
+joint1_position_controller:
+  ros__parameters:
+    type: position_controllers/JointGroupPositionController
+    joints: [joint1]
+"""
+
+
+@pytest.mark.parametrize("how", ["node parameters", "--param-file"])
+def test_jazzy_spawner_gives_its_parameter_files_to_the_controllers(
+    tmp_path: Path, how: str
+) -> None:
+    """Jazzy's spawner adds the node's ``--params-file`` files (and ``--param-file``) to the
+    controllers it loads: a manager that knows no controller types gets them typed and active."""
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+    from robomodel.xacro import process_file
+
+    urdf = process_file(str(ARM / "urdf" / "two_link_arm.urdf.xacro")).toxml()
+    controllers = tmp_path / "controllers.yaml"
+    controllers.write_text(_SPAWNER_YAML)
+    manager_yaml = tmp_path / "manager.yaml"
+    manager_yaml.write_text("controller_manager:\n  ros__parameters:\n    update_rate: 100\n")
+    cm = NodeSpec(
+        "ros2", "controller_manager", "ros2_control_node", None,
+        parameters=(ParamSource(file=manager_yaml), ParamSource(values={"robot_description": urdf})),
+    )  # fmt: skip
+    names = ("joint_state_broadcaster", "joint1_position_controller")
+    if how == "--param-file":
+        spawner = NodeSpec(
+            "ros2", "controller_manager", "spawner", None, args=(*names, "-p", str(controllers))
+        )
+    else:
+        spawner = NodeSpec(
+            "ros2", "controller_manager", "spawner", None, args=names,
+            parameters=(ParamSource(file=controllers),),
+        )  # fmt: skip
+    lines: list[str] = []
+    runner = LaunchRunner(
+        [cm, spawner], RunOptions(bus="inproc", headless=True, duration_s=3.0), log=lines.append
+    )
+    runner.open_bus()
+    try:
+        runner.start_nodes()
+        runner.spin()
+        manager = runner.started[0].handle.system.manager
+        states = {c["name"]: (c["state"], c["type"]) for c in manager.list_controllers()}
+    finally:
+        runner.shutdown()
+    assert states == {
+        "joint_state_broadcaster": ("active", "joint_state_broadcaster/JointStateBroadcaster"),
+        "joint1_position_controller": (
+            "active", "position_controllers/JointGroupPositionController",
+        ),
+    }, "\n".join(lines)  # fmt: skip
+
+
+def test_spawner_with_a_missing_parameter_file_fails_naming_it(tmp_path: Path) -> None:
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+
+    missing = tmp_path / "nope.yaml"
+    spawner = NodeSpec(
+        "ros2", "controller_manager", "spawner", None, args=("jsb", "-p", str(missing))
+    )
+    lines: list[str] = []
+    runner = LaunchRunner(
+        [spawner], RunOptions(bus="inproc", headless=True, duration_s=1.0), log=lines.append
+    )
+    runner.open_bus()
+    try:
+        runner.start_nodes()
+        runner.spin()
+        code = runner.started[0].handle.exit_code()
+    finally:
+        runner.shutdown()
+    assert code == 1
+    assert any(str(missing) in line for line in lines), lines

@@ -378,8 +378,15 @@ def test_yaml_round_trip_and_errors() -> None:
     assert m.message_from_yaml(m.Float64, "data: 1").data == 1.0
     assert m.message_from_yaml(m.Float64MultiArray, "data: [1.0, 2]").data == [1.0, 2.0]
     assert m.message_from_yaml(m.Float64, "") == m.Float64()
-    with pytest.raises(m.MessageTypeError, match="has no field 'dat'; its fields are: data"):
+    with pytest.raises(m.MessageTypeError) as info:
         m.message_from_yaml(m.Float64, "dat: 1.5")
+    # no empty field-path prefix (": std_msgs/...") for a field of the message itself
+    assert str(info.value) == (
+        "std_msgs/msg/Float64 has no field 'dat' (did you mean 'data'?); its fields are: "
+        "data (float64)"
+    )
+    with pytest.raises(m.MessageTypeError, match=r"^linear: geometry_msgs/msg/Vector3 has no"):
+        m.message_from_yaml(m.Twist, "{linear: {xx: 1}}")
     with pytest.raises(m.MessageTypeError, match="expected a number"):
         m.message_from_yaml(m.Float64, "data: abc")
     with pytest.raises(m.MessageTypeError, match="out of range for int32"):

@@ -20,6 +20,7 @@ from robomodel.cli._bus import (
     add_bus_arguments,
     bus_from_args,
     context_from_args,
+    settled_graph,
     wait_for_peers,
 )
 from robomodel.cli._common import (
@@ -133,9 +134,23 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
         try:
             return action(ManagerClient(context, cm, timeout_s=3.0))
         except RobomodelError as exc:
-            raise RobomodelError(
-                f"{exc}; is `robomodel control run` running (controller manager {cm})?"
-            ) from None
+            others = [m for m in _managers_on_the_bus(context) if m != cm]
+            if others:
+                hint = (
+                    f"controller manager {cm} is not on the bus; controller managers that are: "
+                    f"{', '.join(others)} (pass -c {others[0]})"
+                )
+            else:
+                hint = f"is `robomodel control run` running (controller manager {cm})?"
+            raise RobomodelError(f"{exc}; {hint}") from None
+
+
+def _managers_on_the_bus(context: Any) -> list[str]:
+    """The controller managers the graph shows: whatever offers ``<manager>/list_controllers``
+    (ros2_control's and ROS 1 controller_manager's service name)."""
+    suffix = "/list_controllers"
+    services = settled_graph(context, 1.0).services
+    return sorted(name[: -len(suffix)] for name in services if name.endswith(suffix))
 
 
 def _check(ok: bool, what: str) -> None:

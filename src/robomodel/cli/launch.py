@@ -12,12 +12,14 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from robomodel.cli._verbs import verb_help
-from robomodel.errors import RobomodelError
+from robomodel.errors import RobomodelError, close_matches
 
 __all__ = ["dialect_of", "register", "run"]
 
@@ -101,6 +103,9 @@ def _split(inputs: list[str]) -> tuple[list[str], dict[str, str]]:
     return files, args
 
 
+_LAUNCH_NAME = re.compile(r"\.launch$|[._]launch\.(py|xml|yaml|yml)$|^launch.*\.(py|xml)$")
+
+
 def _resolve_file(files: list[str], index: Any) -> Path:
     """PATH, or PKG FILE found anywhere in the package (roslaunch's resolve_launch_arguments)."""
     if len(files) == 1:
@@ -114,15 +119,37 @@ def _resolve_file(files: list[str], index: Any) -> Path:
         )
     package, name = files
     root = index.find(package)
-    matches = sorted(Path(d) / name for d, _subdirs, names in os.walk(root) if name in names)
+    walk = [(Path(d), names) for d, _subdirs, names in os.walk(root)]
+    matches = sorted(d / name for d, names in walk if name in names)
     if not matches:
+        launches = sorted({n for _, names in walk for n in names if _LAUNCH_NAME.search(n)})
+        hint = close_matches(name, launches)
+        mean = f" (did you mean {', '.join(repr(h) for h in hint)}?)" if hint else ""
         raise RobomodelError(
-            f"[{name}] is neither a launch file in package [{package}] nor is [{package}] a launch file name"
+            f"[{name}] is neither a launch file in package [{package}] nor is [{package}] a "
+            f"launch file name{mean}; launch files in {package}: {', '.join(launches) or '(none)'}"
         )
     if len(matches) > 1:
         listing = ", ".join(str(m) for m in matches)
         raise RobomodelError(f"multiple files named [{name}] in package [{package}]: {listing}")
     return matches[0]
+
+
+def _warn_undeclared(path: Path, given: dict[str, str], declared: Sequence[str]) -> None:
+    """roslaunch and ros2 launch ignore a ``name:=value`` no ``<arg>`` declares; a typo then
+    goes unnoticed, so robomodel warns (and runs on, as they do)."""
+    from robomodel.errors import close_matches
+
+    for name in given:
+        if name in declared or name.startswith("_"):
+            continue
+        hint = close_matches(name, declared)
+        mean = f" (did you mean {', '.join(repr(h) for h in hint)}?)" if hint else ""
+        print(
+            f"{path}: warning: launch argument {name}:=... is not declared by the launch file "
+            f"and is ignored{mean}; declared arguments: {', '.join(declared) or '(none)'}",
+            file=sys.stderr,
+        )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -154,6 +181,7 @@ def run(args: argparse.Namespace) -> int:
     )
     for warning in launch.warnings:
         print(warning, file=sys.stderr)
+    _warn_undeclared(path, launch_args, launch.declared_args)
     printed = {
         "dump_params": format_dump_params,
         "nodes": format_nodes,
@@ -204,14 +232,22 @@ def _run_ros2(path: Path, launch_args: dict[str, str], args: argparse.Namespace,
         packages=launch_package_index(index),
         command_timeout_s=args.command_timeout,
     )
-    for warning in launch.warnings:
-        print(warning, file=sys.stderr)
-    if args.show_args:
-        sys.stdout.write(format_show_args(launch))
-        return 0
-    if args.print_description:
-        sys.stdout.write(format_print(launch))
-        return 0
+    try:
+        for warning in launch.warnings:
+            print(warning, file=sys.stderr)
+        _warn_undeclared(path, launch_args, [a.name for a in launch.arguments])
+        if args.show_args:
+            sys.stdout.write(format_show_args(launch))
+            return 0
+        if args.print_description:
+            sys.stdout.write(format_print(launch))
+            return 0
+        return _run_ros2_nodes(launch, args, index)
+    finally:
+        launch.remove_temporary_files()
+
+
+def _run_ros2_nodes(launch: Any, args: argparse.Namespace, index: Any) -> int:
     from robomodel.launch.runner import LaunchRunner
 
     nodes = [step.node for step in launch.steps if step.node is not None]

@@ -105,6 +105,15 @@ def _install_signal_handlers() -> None:
         pass
 
 
+def _unknown_verb(verb: str) -> int:
+    """argparse's "invalid choice" with a did-you-mean (``robomodel lanch``)."""
+    from robomodel.errors import describe_unknown
+
+    message = describe_unknown("unknown command", verb, [v.name for v in VERBS], "commands are")
+    print(f"robomodel: error: {message} (robomodel --help describes them)", file=sys.stderr)
+    return EXIT_INVALID
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line and return its exit code."""
     args_list = list(sys.argv[1:] if argv is None else argv)
@@ -114,6 +123,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(_VERSION_TEXT)
         return 0
     verb = _chosen_verb(args_list)
+    if verb is not None and verb not in _VERB_NAMES:
+        return _unknown_verb(verb)
     parser = build_parser(verb if verb in _VERB_NAMES else "")
     args = parser.parse_args(args_list)
     func: Callable[[argparse.Namespace], int] = args.func

@@ -23,10 +23,11 @@ from robomodel.cli._bus import (
     wait_for_peers,
 )
 from robomodel.cli._verbs import verb_help
-from robomodel.errors import RobomodelError
+from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime import Context
 from robomodel.runtime.msg import message_from_yaml, message_to_yaml
 from robomodel.runtime.msg._schema import Service, get_service_type
+from robomodel.runtime.transport.base import ServiceCallError
 
 __all__ = ["register", "service_type"]
 
@@ -71,10 +72,19 @@ def _run_type(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         info = settled_graph(context).services.get(name)
         if info is None:
-            raise RobomodelError(f"service '{name}' is not offered on the bus")
+            raise RobomodelError(_not_offered(context, name))
         for type_name in sorted(info.types):
             print(type_name)
     return 0
+
+
+def _not_offered(context: Context, name: str) -> str:
+    """ "service 'x' is not offered on the bus (did you mean ...?)" with the offered names."""
+    offered = sorted(settled_graph(context, 0.5).services)
+    hint = close_matches(name, offered)
+    mean = f" (did you mean {', '.join(repr(h) for h in hint)}?)" if hint else ""
+    listing = ", ".join(offered) or "(none found)"
+    return f"service '{name}' is not offered on the bus{mean}; services on the bus: {listing}"
 
 
 def service_type(context: Context, name: str, given: str | None) -> type[Service]:
@@ -83,11 +93,7 @@ def service_type(context: Context, name: str, given: str | None) -> type[Service
         return get_service_type(given)
     info = settled_graph(context).services.get(name)
     if info is None or not info.types:
-        offered = ", ".join(sorted(settled_graph(context, 0.5).services)) or "(none found)"
-        raise RobomodelError(
-            f"service '{name}' is not offered on the bus; give its type to call it anyway "
-            f"(services on the bus: {offered})"
-        )
+        raise RobomodelError(f"{_not_offered(context, name)} (give its type to call it anyway)")
     if len(info.types) > 1:
         raise RobomodelError(
             f"service '{name}' is offered with several types ({', '.join(sorted(info.types))}); "
@@ -108,7 +114,12 @@ def _run_call(args: argparse.Namespace) -> int:
         print(f"requester: making request: {srv_type.Request.__typename__}")
         print(message_to_yaml(request).rstrip() if request.__fields__ else "{}")
         start = time.monotonic()
-        reply = context.call_service(name, srv_type, request, timeout_s=args.timeout)
+        try:
+            reply = context.call_service(name, srv_type, request, timeout_s=args.timeout)
+        except ServiceCallError as exc:
+            if name in settled_graph(context, 0.5).services:
+                raise
+            raise RobomodelError(f"{exc}: {_not_offered(context, name)}") from None
         print(f"\nresponse ({(time.monotonic() - start) * 1e3:.1f} ms):")
         print(message_to_yaml(reply).rstrip() if reply.__fields__ else "{}")
     return 0

@@ -51,17 +51,18 @@ class ManagerClient:
         return list(self.call("list_hardware_components", cm_msgs.ListHardwareComponents).component)
 
     def set_controller_parameters(
-        self, name: str, *, type_name: str | None = None, params_file: str | None = None
+        self, name: str, *, type_name: str | None = None, params_files: Sequence[str] = ()
     ) -> None:
-        """``<name>.type`` and ``<name>.params_file`` on the manager, as the Jazzy spawner's
-        ``--controller-type`` and ``--param-file`` set them before ``load_controller``."""
+        """``<name>.type`` and ``<name>.params_file`` on the manager, as the spawner's
+        ``--controller-type`` (Humble) and ``--param-file`` (Humble, Jazzy: a list) set them
+        before ``load_controller``."""
         from robomodel.runtime.param_client import ParameterClient
 
         values: dict[str, Any] = {}
         if type_name:
             values[f"{name}.type"] = type_name
-        if params_file:
-            values[f"{name}.params_file"] = params_file
+        if params_files:
+            values[f"{name}.params_file"] = list(params_files)
         if values:
             ParameterClient(self.context, self.prefix, timeout_s=self.timeout_s).set(values)
 

@@ -6,8 +6,8 @@ alike.
 As in ros2_control, a refused request answers ``ok: false`` (SwitchController also says why in
 ``message``) and the reason is logged by the manager; the manager's process never raises. A
 controller's type and parameters file may be set, before ``load_controller``, as the manager's
-parameters ``<controller>.type`` and ``<controller>.params_file`` (what the Jazzy spawner's
-``--controller-type`` and ``--param-file`` do).
+parameters ``<controller>.type`` and ``<controller>.params_file`` (what the spawner's
+``--controller-type`` (Humble) and ``--param-file`` do).
 """
 
 from __future__ import annotations

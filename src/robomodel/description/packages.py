@@ -8,7 +8,11 @@ Packages are found the ways ROS finds them, in this priority order (the first ma
 4. ``AMENT_PREFIX_PATH`` entries, where a package lives in ``<prefix>/share/<name>`` and is
    known by ament's resource-index marker ``share/ament_index/resource_index/packages/<name>``
    (or, without a marker, by ``share/<name>/package.xml``);
-5. the workspace of the input file (its own package and the sibling folders of it), last.
+5. the workspace of the input file (the folders around its package), last.
+
+The package that contains the input file is an exception: it always resolves to itself, ahead of
+every search path (only an explicit ``--package NAME=DIR`` names it otherwise), so that a copy
+of a package beside the original uses its own files.
 
 A scanned directory that holds a ``package.xml`` is a package: its name is the manifest's
 ``<name>`` and the scan does not descend further (rospack's rule). Directories holding
@@ -151,7 +155,8 @@ class PackageIndex:
     ) -> None:
         self._explicit = {name: Path(path) for name, path in (packages or {}).items()}
         self._package_paths = tuple(Path(p) for p in package_paths)
-        self._fallback_paths = tuple(Path(p) for p in fallback_paths)
+        self._fallback_paths = tuple((Path(p), f"the folders around {p}") for p in fallback_paths)
+        self._own: tuple[Package, ...] = ()
         env = os.environ if environ is None else environ
         self._ros_package_path = (
             _split_env_paths(env.get("ROS_PACKAGE_PATH")) if use_environment else []
@@ -163,18 +168,20 @@ class PackageIndex:
 
     @property
     def searched(self) -> tuple[str, ...]:
-        """Human-readable list of the places this index looks in."""
-        places = [f"{n}={p}" for n, p in self._explicit.items()]
-        places += [str(p) for p in self._package_paths]
-        places += [f"ROS_PACKAGE_PATH:{p}" for p in self._ros_package_path]
-        places += [f"AMENT_PREFIX_PATH:{p}" for p in self._ament_prefixes]
-        places += [f"workspace of the input:{p}" for p in self._fallback_paths]
-        return tuple(places)
+        """The places this index looks in, as the user names them (flags, variables)."""
+        places = [f"--package {n}={p}" for n, p in self._explicit.items()]
+        places += [f"--package-path {p}" for p in self._package_paths]
+        places += [f"ROS_PACKAGE_PATH {p}" for p in self._ros_package_path]
+        places += [f"AMENT_PREFIX_PATH {p}" for p in self._ament_prefixes]
+        places += [label for _, label in self._fallback_paths]
+        return tuple(dict.fromkeys(places))
 
     def _build(self) -> dict[str, Package]:
         index: dict[str, Package] = {}
         for name, path in self._explicit.items():
             index[name] = Package(name, path, "explicit")
+        for package in self._own:
+            index.setdefault(package.name, package)
         for origin, roots in (
             ("package-path", self._package_paths),
             ("ROS_PACKAGE_PATH", self._ros_package_path),
@@ -187,7 +194,7 @@ class PackageIndex:
         for prefix in self._ament_prefixes:
             for name in _ament_packages(prefix):
                 index.setdefault(name, Package(name, prefix / "share" / name, "AMENT_PREFIX_PATH"))
-        for root in self._fallback_paths:
+        for root, _ in self._fallback_paths:
             found = {}
             _scan_tree(root, found)
             for name, path in found.items():
@@ -199,20 +206,28 @@ class PackageIndex:
 
         The package enclosing ``path`` and its sibling packages are found without any setup,
         as they would be in a sourced ROS workspace: ``robomodel check urdf/robot.xacro`` run
-        inside a package resolves ``$(find that_package)``.
+        inside a package resolves ``$(find that_package)``. The enclosing package itself wins
+        over every search path (a copy beside the original resolves to the copy).
         """
         enclosing = find_enclosing_package(path)
         if enclosing is None:
             return self
-        clone = copy.copy(self)
-        clone._fallback_paths = (*self._fallback_paths, enclosing.parent)
-        clone._index = None
+        name = _manifest_name(enclosing / "package.xml") or enclosing.name
+        clone = self.with_fallback(
+            enclosing.parent, label=f"the folders beside the input's package ({enclosing.parent})"
+        )
+        if name not in {p.name for p in self._own}:
+            clone._own = (*self._own, Package(name, enclosing, "input"))
         return clone
 
-    def with_fallback(self, directory: str | os.PathLike[str]) -> PackageIndex:
-        """This index, also scanning ``directory`` for packages, after every other source."""
+    def with_fallback(
+        self, directory: str | os.PathLike[str], *, label: str | None = None
+    ) -> PackageIndex:
+        """This index, also scanning ``directory`` for packages, after every other source
+        (``label``: how error messages name the place)."""
         clone = copy.copy(self)
-        clone._fallback_paths = (*self._fallback_paths, Path(directory))
+        place = (Path(directory), label or f"the folders around {directory}")
+        clone._fallback_paths = (*self._fallback_paths, place)
         clone._index = None
         return clone
 

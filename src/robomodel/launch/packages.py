@@ -19,4 +19,5 @@ SHARE = Path(__file__).resolve().parent / "share"
 
 def launch_package_index(index: PackageIndex) -> PackageIndex:
     """``index`` with robomodel's built-in launch packages as the last source."""
-    return index.with_fallback(SHARE)
+    names = ", ".join(sorted(p.name for p in SHARE.iterdir() if p.is_dir()))
+    return index.with_fallback(SHARE, label=f"robomodel's built-in packages ({names})")

@@ -9,9 +9,16 @@ from dataclasses import dataclass
 from robomodel._files import UserFileError
 from robomodel._gc import paused_gc
 from robomodel.description.packages import PackageIndex
-from robomodel.errors import Diagnostic, InputError, RobomodelError
+from robomodel.errors import (
+    Diagnostic,
+    InputError,
+    RobomodelError,
+    Severity,
+    SourceLocation,
+    close_matches,
+)
 from robomodel.xacro._calls import read_document
-from robomodel.xacro._context import Context
+from robomodel.xacro._context import ArgValues, Context
 from robomodel.xacro._dom import Document
 from robomodel.xacro._evaluation import build_globals
 from robomodel.xacro._parse import parse_xml
@@ -87,7 +94,7 @@ def _context(
     limits: Limits | None,
 ) -> Context:
     ctx = Context(
-        args={str(k): str(v) for k, v in (mappings or {}).items()},
+        args=ArgValues({str(k): str(v) for k, v in (mappings or {}).items()}),
         package_index=package_index if package_index is not None else PackageIndex(),
         root_dir=os.fspath(root_dir) if root_dir else os.curdir,
         limits=limits or Limits(),
@@ -96,12 +103,30 @@ def _context(
     return ctx
 
 
+def _warn_undeclared(ctx: Context, given: tuple[str, ...], source: str | None) -> None:
+    """A ``name:=value`` no ``xacro:arg`` declares and no ``$(arg)`` reads: xacro ignores it
+    silently, which hides a typo (``robomodel xacro robot.xacro prefx:=left_``)."""
+    declared = sorted(ctx.declared_args)
+    for name in given:
+        if name in ctx.declared_args or name in ctx.args.read or name.startswith("_"):
+            continue
+        hint = close_matches(name, declared)
+        mean = f" (did you mean {', '.join(repr(h) for h in hint)}?)" if hint else ""
+        message = (
+            f'{name}:=... is ignored: no <xacro:arg name="{name}"> declares it{mean}; '
+            f"declared args: {', '.join(declared) or '(none)'}"
+        )
+        ctx.diagnostics.append(Diagnostic(Severity.WARNING, message, SourceLocation(source)))
+
+
 def _run(ctx: Context, document: Document, banner_for: str | None) -> XacroDocument:
+    given = tuple(ctx.args)
     try:
         with paused_gc():
             process_document(ctx, document)
     except RecursionError:
         raise ctx.error("expansion nested too deeply (recursion limit)") from None
+    _warn_undeclared(ctx, given, banner_for)
     return XacroDocument(
         document,
         banner_for,

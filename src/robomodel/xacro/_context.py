@@ -59,6 +59,19 @@ def _short(location: SourceLocation | None) -> str:
     return f"{path}:{location.line}" if location.line else path
 
 
+class ArgValues(dict[str, str]):
+    """``xacro:arg`` values that remember which names ``$(arg name)`` read."""
+
+    def __init__(self, values: Mapping[str, str]) -> None:
+        super().__init__(values)
+        self.read: set[str] = set()
+
+    def __getitem__(self, name: str) -> str:
+        value = super().__getitem__(name)
+        self.read.add(name)
+        return value
+
+
 @dataclass
 class Context:
     """Everything one expansion needs and produces.
@@ -71,7 +84,7 @@ class Context:
         environ: Environment for ``$(env)`` and ``$(optenv)``.
     """
 
-    args: dict[str, str]
+    args: ArgValues
     package_index: PackageIndex
     root_dir: str = os.curdir
     limits: Limits = field(default_factory=Limits)
@@ -89,6 +102,7 @@ class Context:
     base: dict[str, object] = field(init=False)
     globals: dict[str, object] = field(default_factory=dict)
     empty_text: Text = field(init=False)
+    declared_args: set[str] = field(default_factory=set)  # names of the xacro:arg tags seen
 
     def __post_init__(self) -> None:
         self.guards = Guards(self.limits)

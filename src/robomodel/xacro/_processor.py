@@ -61,6 +61,8 @@ def _macro(ctx: Context, node: Element, macros: Scope, symbols: Scope) -> bool:
 
 def _arg(ctx: Context, node: Element, macros: Scope, symbols: Scope) -> bool:
     name, default = check_attrs(ctx, node, ["name", "default"], [])
+    if name is not None:
+        ctx.declared_args.add(name)
     if name is not None and name not in ctx.args:
         ctx.node, ctx.attr = node, "default"
         ctx.args[name] = str(eval_text(ctx, default or "", symbols))

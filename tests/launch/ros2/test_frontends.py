@@ -119,3 +119,33 @@ def test_xml_errors(tmp_path: Path, text: str, message: str) -> None:
     path.write_text(text)
     with pytest.raises(LaunchError, match=message):
         load_launch(path)
+
+
+@pytest.mark.parametrize(
+    "mode", [["--print"], ["--headless", "--bus", "inproc", "--duration", "0.5"]]
+)
+def test_temporary_parameter_files_are_removed_at_exit(tmp_path: Path, mode: list[str]) -> None:
+    """Issue 23.17: the launch_params_*.yaml of ``allow_substs`` are gone when the launch
+    ends (ros2 launch leaves them in /tmp; 11 piled up in one test session)."""
+    import os
+    import subprocess
+
+    from tests.conftest import ROBOMODEL
+
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    env = {**os.environ, "TMPDIR": str(tmp)}
+    run = subprocess.run(
+        [*ROBOMODEL, "launch", str(XML), "--package-path", str(CORPUS), *mode],
+        capture_output=True, text=True, env=env, timeout=60,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert not list(tmp.glob("launch_params_*")), sorted(p.name for p in tmp.iterdir())
+
+
+def test_remove_temporary_files_of_the_python_api(corpus_index: PackageIndex) -> None:
+    launch = load_launch(XML, packages=corpus_index)
+    assert [p.name.startswith("launch_params_") for p in launch.temporary_files] == [True]
+    assert all(p.exists() for p in launch.temporary_files)  # the nodes read them at start
+    launch.remove_temporary_files()
+    assert not any(p.exists() for p in launch.temporary_files)

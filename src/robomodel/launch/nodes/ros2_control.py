@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
@@ -169,11 +170,11 @@ def _not_found(unknown: dict[str, str]) -> Any:
 
 @dataclass(frozen=True, slots=True)
 class Ros2SpawnerArgs:
-    """controller_manager's ``spawner`` command line (Humble and Jazzy)."""
+    """controller_manager's ``spawner`` command line (Humble and Jazzy; ``-p`` may repeat)."""
 
     controllers: tuple[str, ...]
     controller_manager: str = "controller_manager"
-    param_file: str | None = None
+    param_files: tuple[str, ...] = ()
     inactive: bool = False
     load_only: bool = False
     activate_as_group: bool = False
@@ -184,16 +185,16 @@ class Ros2SpawnerArgs:
 
 _VALUED = {
     "-c": "controller_manager", "--controller-manager": "controller_manager",
-    "-p": "param_file", "--param-file": "param_file",
+    "-p": "param_files", "--param-file": "param_files",
     "-t": "controller_type", "--controller-type": "controller_type",
     "--controller-manager-timeout": "timeout", "--switch-timeout": None,
     "--service-call-timeout": None, "-n": None, "--namespace": None,
     "--controller-ros-args": None,
 }  # fmt: skip
-_FLAGS = {
+_FLAGS: dict[str, str | None] = {
     "--inactive": "inactive", "--stopped": "inactive", "--load-only": "load_only",
     "--activate-as-group": "activate_as_group", "-u": "unload_on_kill",
-    "--unload-on-kill": "unload_on_kill",
+    "--unload-on-kill": "unload_on_kill", "--switch-asap": None, "--no-switch-asap": None,
 }  # fmt: skip
 
 
@@ -215,15 +216,20 @@ def parse_ros2_spawner_args(args: tuple[str, ...]) -> Ros2SpawnerArgs:
                 inline = words[i + 1]
                 i += 1
             key = _VALUED[option]
-            if key is not None:
+            if key == "param_files":
+                values[key] = (*values.get(key, ()), inline)
+            elif key is not None:
                 values[key] = inline
         elif word in _FLAGS:
-            values[_FLAGS[word]] = True
+            flag = _FLAGS[word]
+            if flag is not None:
+                values[flag] = True
         elif word.startswith("-"):
             raise RobomodelError(
                 f"spawner: unrecognized arguments: {word} (options: -c/--controller-manager, "
                 "-p/--param-file, --inactive, --load-only, --activate-as-group, "
-                "-u/--unload-on-kill, --controller-manager-timeout, --controller-ros-args)"
+                "-u/--unload-on-kill, --controller-manager-timeout, --controller-ros-args, "
+                "--switch-asap)"
             )
         else:
             names.append(word)
@@ -232,6 +238,23 @@ def parse_ros2_spawner_args(args: tuple[str, ...]) -> Ros2SpawnerArgs:
         raise RobomodelError("spawner: the following arguments are required: controller_names")
     timeout = values.pop("timeout", None)
     return Ros2SpawnerArgs(tuple(names), **values, timeout_s=float(timeout) if timeout else 10.0)
+
+
+def spawner_param_files(spec: NodeSpec, options: Ros2SpawnerArgs) -> tuple[str, ...]:
+    """``--param-file`` files, then the spawner node's own parameter files (what launch_ros
+    passes it as ``--ros-args --params-file``), each once: Jazzy's spawner (ros2_control 4.x,
+    controller_manager/spawner.py) gives them all to every controller it loads. A node's
+    parameters given as a dict (a temporary file in launch_ros) are not passed on."""
+    files = [*options.param_files, *(str(p.file) for p in spec.parameters if p.file is not None)]
+    return tuple(dict.fromkeys(files))
+
+
+def _files_for(files: tuple[str, ...], fqn: str) -> tuple[str, ...]:
+    """The files with parameters for controller ``fqn`` (its name, ``/ns/name``, a ``/**``
+    wildcard), as Jazzy's ``get_params_files_with_controller_parameters`` picks them."""
+    from robomodel.launch.nodes.ros2_params import parameters_from_file
+
+    return tuple(f for f in files if parameters_from_file(Path(f), fqn))
 
 
 def _manager_path(ctx: NodeContext, name: str) -> str:
@@ -263,8 +286,13 @@ def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bo
 def spawner(ctx: NodeContext) -> RunningNode:
     options = parse_ros2_spawner_args(ctx.spec.args)
     path = _manager_path(ctx, options.controller_manager)
+    files = spawner_param_files(ctx.spec, options)
 
     def work(node: ThreadNode) -> int:
+        missing = [f for f in files if not Path(f).is_file()]
+        if missing:
+            ctx.log(f"[Errno 2] No such file or directory: '{missing[0]}'")
+            return 1
         if not _wait(ctx, node, path, options.timeout_s):
             return 1
         client = _client(ctx, path)
@@ -277,7 +305,9 @@ def spawner(ctx: NodeContext) -> RunningNode:
                 loaded.append(name)
                 continue
             client.set_controller_parameters(
-                name, type_name=options.controller_type, params_file=options.param_file
+                name,
+                type_name=options.controller_type,
+                params_files=_files_for(files, f"{ctx.namespace.rstrip('/')}/{name}"),
             )
             if not client.load(name):
                 ctx.log(f"Failed loading controller {name}")

@@ -15,6 +15,7 @@ from robomodel.errors import PackageNotFoundError, SourceLocation
 from robomodel.launch.bounds import INCLUDE_WORK, MAX_WORK
 from robomodel.launch.model import LaunchError, NodeSpec
 from robomodel.launch.processes import COMMAND_TIMEOUT_S
+from robomodel.launch.ros1.attr_values import loose_bool, strict_bool
 from robomodel.launch.ros1.config import MachineSpec, ParamDump
 from robomodel.launch.ros1.context import LoaderContext
 from robomodel.launch.ros1.names import (
@@ -46,29 +47,6 @@ _MACHINE_ATTRS = (
 )  # fmt: skip
 
 
-def _bool(value: str | None, default: bool, label: str) -> bool:
-    if value is None:
-        return default
-    if value.lower() == "true":
-        return True
-    if value.lower() == "false":
-        return False
-    if not value:
-        raise ValueError(f"bool value for {label} must be non-empty")
-    raise ValueError(f"invalid bool value for {label}: {value}")
-
-
-def _float(value: str | None, default: float, label: str) -> float:
-    if value is None:
-        return default
-    if not value:
-        raise ValueError(f"bool value for {label} must be non-empty")
-    try:
-        return float(value)
-    except ValueError:
-        raise ValueError(f"invalid float value for {label}: {value}") from None
-
-
 class LoaderBase:
     """What every tag handler of the loader uses."""
 
@@ -94,6 +72,7 @@ class LoaderBase:
         self.warnings: list[str] = []
         self.stack: list[SourceLocation] = []
         self.anons: dict[str, str] = {}
+        self.declared_args: dict[str, None] = {}  # every <arg> name of every file, in order
         self.sources: dict[str, list[str]] = {}
         self.root: LoaderContext | None = None
 
@@ -173,15 +152,16 @@ class LoaderBase:
                 )
 
     def enabled(self, element: Any, ctx: LoaderContext) -> bool:
-        """roslaunch's ``ifunless``: ``if`` and ``unless`` together is an error."""
+        """roslaunch's ``ifunless``: ``if`` and ``unless`` together is an error; the value is
+        read with the loose bool rule (``1``/``0`` too)."""
         if_value, unless_value = element.get("if"), element.get("unless")
         if if_value is not None and unless_value is not None:
             raise self.error("cannot set both 'if' and 'unless' on the same tag", element, ctx)
         try:
             if if_value is not None:
-                return _bool(self.attr(element, "if", ctx), False, "if")
+                return loose_bool(self.attr(element, "if", ctx) or "", "if")
             if unless_value is not None:
-                return not _bool(self.attr(element, "unless", ctx), False, "unless")
+                return not loose_bool(self.attr(element, "unless", ctx) or "", "unless")
         except ValueError as exc:
             raise self.error(str(exc), element, ctx) from None
         return True
@@ -251,7 +231,7 @@ class LoaderBase:
             raise self.error(str(exc), element, ctx, "ns") from None
         clear = self.attr(element, "clear_params", ctx)
         try:
-            if clear and _bool(clear, False, "clear_params"):
+            if clear and strict_bool(clear, False, "clear_params"):
                 if tag == "node":
                     if not node_name:
                         raise ValueError(

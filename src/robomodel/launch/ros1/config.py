@@ -46,6 +46,7 @@ class Ros1Launch:
         machines: ``<machine>`` tags.
         files: Every launch file loaded (top-level first).
         arg_docs: The top-level file's args as ``--ros-args`` lists them: name -> (doc, default).
+        declared_args: The names of every ``<arg>`` of every file loaded, in order.
         warnings: What roslaunch reports as configuration errors (unknown attributes, ...).
     """
 
@@ -59,6 +60,7 @@ class Ros1Launch:
     machines: tuple[MachineSpec, ...] = ()
     files: tuple[Path, ...] = ()
     arg_docs: Mapping[str, tuple[str | None, str | None]] = field(default_factory=dict)
+    declared_args: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
 
     def node(self, fqn: str) -> NodeSpec:

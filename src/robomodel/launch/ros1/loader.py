@@ -26,8 +26,8 @@ from robomodel.launch.ros1._loader_base import (
     _GROUP_ATTRS,
     _INCLUDE_ATTRS,
     _MAX_INCLUDE_DEPTH,
-    _bool,
 )
+from robomodel.launch.ros1.attr_values import strict_bool
 from robomodel.launch.ros1.config import Ros1Launch
 from robomodel.launch.ros1.context import ContextError, LoaderContext
 from robomodel.launch.ros1.node_tags import NodeTags
@@ -76,6 +76,7 @@ class _Loader(NodeTags):
             raise self.error(f"arg '{exc.name}' is not defined. {exc}", element, ctx) from None
         if value is not None and default is not None:
             raise self.error("<arg> tag must have one and only one of value/default.", element, ctx)
+        self.declared_args[name] = None
         try:
             ctx.add_arg(name, value=value, default=default, doc=doc)
         except ContextError as exc:
@@ -93,7 +94,7 @@ class _Loader(NodeTags):
         self.check_attrs(element, ctx, _INCLUDE_ATTRS)
         filename = self.required(element, "file", ctx)
         try:
-            pass_all = _bool(self.attr(element, "pass_all_args", ctx), False, "pass_all_args")
+            pass_all = strict_bool(self.attr(element, "pass_all_args", ctx), False, "pass_all_args")
         except ValueError as exc:
             raise self.error(str(exc), element, ctx, "pass_all_args") from None
         if not os.path.isabs(filename) and ctx.filename:
@@ -180,6 +181,7 @@ class _Loader(NodeTags):
             machines=tuple(self.machines),
             files=tuple(self.files),
             arg_docs=docs,
+            declared_args=tuple(self.declared_args),
             warnings=tuple(self.warnings),
         )
 

@@ -8,7 +8,8 @@ from typing import Any
 
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
-from robomodel.launch.ros1._loader_base import _PARAM_ATTRS, _ROSPARAM_ATTRS, LoaderBase, _bool
+from robomodel.launch.ros1._loader_base import _PARAM_ATTRS, _ROSPARAM_ATTRS, LoaderBase
+from robomodel.launch.ros1.attr_values import strict_bool
 from robomodel.launch.ros1.config import ParamDump
 from robomodel.launch.ros1.context import LoaderContext
 from robomodel.launch.ros1.names import (
@@ -93,7 +94,7 @@ class ParamTags(LoaderBase):
         self.check_attrs(element, ctx, _ROSPARAM_ATTRS)
         cmd, ns, file, param, subst_value = (self.attr(element, a, ctx) for a in _ROSPARAM_ATTRS)
         try:
-            substitute = _bool(subst_value, False, "subst_value")
+            substitute = strict_bool(subst_value, False, "subst_value")
         except ValueError as exc:
             raise self.error(str(exc), element, ctx, "subst_value") from None
         param = ns_join(ns or "", param or "")

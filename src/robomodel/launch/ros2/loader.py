@@ -101,20 +101,25 @@ def load_launch(
         packages=launch_package_index(index).with_workspace_of(path),
         command_timeout_s=command_timeout_s,
     )
-    with launch_modules(), session_scope(session):
-        context = LaunchContext(session=session, environ=env)
-        try:
-            description = load_description_file(path, "any")
-        except LaunchError:
-            raise
-        except Exception as exc:
-            raise user_error(exc, SourceLocation(str(path))) from None
-        lines = tuple(describe_entities(description.entities))
-        top = IncludeLaunchDescription(
-            _Loaded(path, description), launch_arguments=list((args or {}).items())
-        )
-        visit_entities(context, [top])
-        arguments = _arguments(description, context)
+    try:
+        with launch_modules(), session_scope(session):
+            context = LaunchContext(session=session, environ=env)
+            try:
+                description = load_description_file(path, "any")
+            except LaunchError:
+                raise
+            except Exception as exc:
+                raise user_error(exc, SourceLocation(str(path))) from None
+            lines = tuple(describe_entities(description.entities))
+            top = IncludeLaunchDescription(
+                _Loaded(path, description), launch_arguments=list((args or {}).items())
+            )
+            visit_entities(context, [top])
+            arguments = _arguments(description, context)
+    except BaseException:
+        for temporary in session.temporary_files:  # nothing will read them
+            temporary.unlink(missing_ok=True)
+        raise
     return Ros2Launch(
         path=path,
         arguments=arguments,
@@ -122,4 +127,5 @@ def load_launch(
         files=tuple(session.files),
         warnings=tuple(session.warnings),
         description=lines,
+        temporary_files=tuple(session.temporary_files),
     )

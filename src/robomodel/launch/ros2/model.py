@@ -77,6 +77,9 @@ class Ros2Launch:
         warnings: Soft problems (unsupported handlers, missing parameter files, ...).
         description: The top-level entities as ``ros2 launch --print`` lists them (one string
             per line, indented by four spaces per level, before tree drawing).
+        temporary_files: The ``launch_params_*.yaml`` files written for parameter files with
+            ``allow_substs`` (the nodes read them when they start); remove them with
+            :meth:`remove_temporary_files` once the launch has ended.
     """
 
     path: Path
@@ -85,3 +88,9 @@ class Ros2Launch:
     files: tuple[Path, ...]
     warnings: tuple[str, ...] = ()
     description: tuple[str, ...] = ()
+    temporary_files: tuple[Path, ...] = ()
+
+    def remove_temporary_files(self) -> None:
+        """Delete :attr:`temporary_files` (those already gone are skipped)."""
+        for path in self.temporary_files:
+            path.unlink(missing_ok=True)

@@ -14,6 +14,7 @@ from typing import Any, TypeVar
 import yaml
 
 from robomodel._yaml_bounded import load_yaml
+from robomodel.errors import close_matches
 from robomodel.runtime.msg._schema import Array, Message, MessageTypeError, Seq, Spec
 
 __all__ = ["message_from_dict", "message_from_yaml", "message_to_dict", "message_to_yaml"]
@@ -43,20 +44,27 @@ def _spec_name(spec: Spec) -> str:
     return spec.__typename__
 
 
+def _at(where: str) -> str:
+    """The field path as a message prefix; nothing for the message itself."""
+    return f"{where}: " if where else ""
+
+
 def _convert(spec: Spec, value: Any, where: str) -> Any:
     if isinstance(spec, str):
         return _primitive(spec, value, where)
     if isinstance(spec, (Seq, Array)):
         if not isinstance(value, (list, tuple)):
-            raise MessageTypeError(f"{where}: expected a list ({_spec_name(spec)}), got {value!r}")
+            raise MessageTypeError(
+                f"{_at(where)}expected a list ({_spec_name(spec)}), got {value!r}"
+            )
         if isinstance(spec, Array) and len(value) != spec.size:
-            raise MessageTypeError(f"{where}: expected {spec.size} values, got {len(value)}")
+            raise MessageTypeError(f"{_at(where)}expected {spec.size} values, got {len(value)}")
         return [_convert(spec.item, v, f"{where}[{i}]") for i, v in enumerate(value)]
     if isinstance(value, spec):
         return value
     if not isinstance(value, dict):
         raise MessageTypeError(
-            f"{where}: expected a mapping for {spec.__typename__}, got {value!r}"
+            f"{_at(where)}expected a mapping for {spec.__typename__}, got {value!r}"
         )
     return _fill(spec, value, where)
 
@@ -64,21 +72,21 @@ def _convert(spec: Spec, value: Any, where: str) -> Any:
 def _primitive(name: str, value: Any, where: str) -> Any:
     if name == "string":
         if not isinstance(value, str):
-            raise MessageTypeError(f"{where}: expected a string, got {value!r}")
+            raise MessageTypeError(f"{_at(where)}expected a string, got {value!r}")
         return value
     if name == "bool":
         if not isinstance(value, bool):
-            raise MessageTypeError(f"{where}: expected true or false, got {value!r}")
+            raise MessageTypeError(f"{_at(where)}expected true or false, got {value!r}")
         return value
     if name in ("float32", "float64"):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise MessageTypeError(f"{where}: expected a number ({name}), got {value!r}")
+            raise MessageTypeError(f"{_at(where)}expected a number ({name}), got {value!r}")
         return float(value)
     if isinstance(value, bool) or not isinstance(value, int):
-        raise MessageTypeError(f"{where}: expected an integer ({name}), got {value!r}")
+        raise MessageTypeError(f"{_at(where)}expected an integer ({name}), got {value!r}")
     low, high = _INT_RANGES[name]
     if not low <= value <= high:
-        raise MessageTypeError(f"{where}: {value} is out of range for {name} [{low}, {high}]")
+        raise MessageTypeError(f"{_at(where)}{value} is out of range for {name} [{low}, {high}]")
     return value
 
 
@@ -88,8 +96,11 @@ def _fill(cls: type[_M], data: dict[str, Any], where: str) -> _M:
     for key, value in data.items():
         if key not in specs:
             fields = ", ".join(f"{n} ({_spec_name(s)})" for n, s in cls.__fields__) or "(none)"
+            hint = close_matches(str(key), tuple(specs))
+            mean = f" (did you mean {', '.join(repr(h) for h in hint)}?)" if hint else ""
             raise MessageTypeError(
-                f"{where}: {cls.__typename__} has no field '{key}'; its fields are: {fields}"
+                f"{_at(where)}{cls.__typename__} has no field '{key}'{mean}; "
+                f"its fields are: {fields}"
             )
         values[key] = _convert(specs[key], value, f"{where}.{key}" if where else key)
     return cls(**values)

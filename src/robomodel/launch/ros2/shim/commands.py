@@ -51,10 +51,8 @@ def get_package_share_directory(package_name: str, print_warning: bool = True) -
     """The share directory of a package (its source directory for a source workspace)."""
     try:
         return str(_index().find(package_name))
-    except RobomodelError:
-        raise PackageNotFoundError(
-            f"package '{package_name}' not found, searching: {list(_index().searched)}"
-        ) from None
+    except RobomodelError as exc:
+        raise PackageNotFoundError(str(exc)) from None
 
 
 def get_package_share_path(package_name: str, print_warning: bool = True) -> Path:
@@ -237,12 +235,8 @@ class FindPackage(Substitution):
         name = perform_substitutions(context, self.package)
         try:
             return self.find(name)
-        except PackageNotFoundError:
-            searched = ", ".join(context.session.packages.searched) or "nothing"
-            raise SubstitutionFailure(
-                f"package '{name}' not found (searched: {searched}); add its workspace with "
-                "--package-path or AMENT_PREFIX_PATH"
-            ) from None
+        except PackageNotFoundError as exc:
+            raise SubstitutionFailure(str(exc.args[0])) from None
 
     def __truediv__(self, other: Any) -> Any:
         from robomodel.launch.ros2.shim.substitutions import PathJoinSubstitution

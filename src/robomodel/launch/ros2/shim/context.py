@@ -44,6 +44,7 @@ class Session:
         include_stack: Locations of the includes being processed, outermost first.
         work: Units of work done so far (the fan-out bound).
         command_timeout_s: The longest a ``Command`` substitution may run.
+        temporary_files: Files written while loading (substituted parameter files).
     """
 
     packages: PackageIndex
@@ -69,6 +70,8 @@ class Session:
                 location=location,
                 include_stack=tuple(self.include_stack),
             )
+
+    temporary_files: list[Path] = field(default_factory=list)
 
     def warn(self, message: str) -> None:
         """Record a warning once."""

@@ -103,6 +103,9 @@ class ParameterFile:
                 "The substituted parameter file is not a valid yaml file"
             ) from None
         handle, name = tempfile.mkstemp(prefix="launch_params_", suffix=".yaml")
+        session = getattr(context, "session", None)
+        if session is not None:  # removed when the launch ends (Ros2Launch.temporary_files)
+            session.temporary_files.append(Path(name))
         with os.fdopen(handle, "w", encoding="utf-8") as f:
             f.write(parsed)
         return Path(name), True
