@@ -48,7 +48,7 @@ def _fields_text(cls: type[Message]) -> str:
     for name, spec in cls.__fields__:
         kind, suffix = _spec_text(spec)
         lines.append(f"{kind}{suffix} {name}")
-    return "\n".join(lines) + "\n"
+    return "".join(line + "\n" for line in lines)
 
 
 def ros2msg_definition(cls: type[Message]) -> str:
