@@ -5,7 +5,8 @@ Topics their publishers offered transient local, and /tf_static and /robot_descr
 always, are published latched, with a history as deep as the bag has messages on them (up to
 100), so a late subscriber gets every static transform, not only the last publisher's.
 ``clock_hz`` publishes the playback time on /clock, as ``ros2 bag play --clock``, so nodes
-with ``use_sim_time`` follow the bag's time. Message contents (header stamps included) are
+with ``use_sim_time`` follow the bag's time (a recorded /clock is then not played: two clocks
+would make such nodes jump back and forth). Message contents (header stamps included) are
 published as recorded.
 """
 
@@ -76,7 +77,9 @@ class Player:
             self._clock = self.node.create_publisher(Clock, "/clock")
         self.summary = bag.summary()
         for topic in self.summary.topics:
-            if options.topics is None or topic.name in options.topics:
+            if options.clock_hz and topic.name == "/clock":
+                log.warning("not playing the recorded /clock: --clock publishes the bag's time")
+            elif options.topics is None or topic.name in options.topics:
                 self._add(topic)
 
     def _add(self, topic: TopicSummary) -> None:
