@@ -16,7 +16,13 @@ import robomodel.description as description
 from robomodel.description import Joint, JointType, Origin, Robot
 from robomodel.description.model.pose import quat_xyzw_from_rpy, rpy_from_quat_xyzw
 
-MODULES = ["robomodel", "robomodel.description", "robomodel.description.model", "robomodel.errors"]
+MODULES = [
+    "robomodel",
+    "robomodel.bag",
+    "robomodel.description",
+    "robomodel.description.model",
+    "robomodel.errors",
+]
 
 
 @pytest.mark.parametrize("module_name", MODULES)

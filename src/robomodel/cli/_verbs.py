@@ -40,6 +40,7 @@ VERBS: tuple[Verb, ...] = (
     Verb("fk", "robomodel.cli.fk", "forward kinematics: link poses in the root frame"),
     Verb("ik", "robomodel.cli.ik", "inverse kinematics: joint values for a link pose"),
     Verb("topic", "robomodel.cli.topic", "list, echo, publish and measure topics (ros2 topic)"),
+    Verb("bag", "robomodel.cli.bag", "record, inspect and play bags (ros2 bag, rosbag)"),
     Verb("node", "robomodel.cli.node", "list the nodes and what each offers (ros2 node)"),
     Verb("param", "robomodel.cli.param", "inspect and change node parameters (ros2 param)"),
     Verb("service", "robomodel.cli.service", "list and call services (ros2 service)"),

@@ -12,6 +12,9 @@ SubscriptionData declare them (rmw_publisher_data.cpp, rmw_subscription_data.cpp
 - every sample carries rmw_zenoh's attachment (sequence number from 1, source timestamp,
   the publisher's GID). A sample without a valid attachment is dropped with a bounded warning,
   as rmw_zenoh drops it ("Unable to obtain attachment").
+- a raw subscription (``raw_deliver``, what a recorder uses) gets the CDR payload as it came
+  and a :class:`MessageInfo` (source and receive timestamps, sequence number, GID) instead of
+  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do.
 """
 
 from __future__ import annotations
@@ -28,7 +31,12 @@ from robomodel.runtime.msg.cdr import prepare
 from robomodel.runtime.qos import Durability, Reliability
 from robomodel.runtime.transport._attachment import SequenceTracker
 from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
-from robomodel.runtime.transport.base import Endpoint, PublisherHandle, SubscriptionHandle
+from robomodel.runtime.transport.base import (
+    Endpoint,
+    MessageInfo,
+    PublisherHandle,
+    SubscriptionHandle,
+)
 from robomodel.runtime.transport.rmw_zenoh import (
     EntityKind,
     encode_attachment,
@@ -114,19 +122,22 @@ class ZenohSubscription(SubscriptionHandle):
         bus: ZenohTransport,
         endpoint: Endpoint,
         msg_type: type[Message],
-        deliver: Callable[[Message], None],
+        deliver: Callable[[Message], None] | None,
+        *,
+        raw_deliver: Callable[[bytes, MessageInfo], None] | None = None,
     ) -> None:
         zenoh = import_zenoh()
         self._bus = bus
         self._endpoint = endpoint
         self._type = msg_type
         self._deliver = deliver
+        self._raw_deliver = raw_deliver
         self._sequences = SequenceTracker()
         self._alive = True
         prepare(msg_type)
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
         # the oldest (rmw_zenoh's message queue) instead of falling further behind.
-        self._pending: collections.deque[tuple[bytes, bytes]] = collections.deque(
+        self._pending: collections.deque[tuple[bytes, bytes, int]] = collections.deque(
             maxlen=max(1, endpoint.qos.depth)
         )
         self._pending_lock = threading.Lock()
@@ -159,12 +170,13 @@ class ZenohSubscription(SubscriptionHandle):
         return self._sequences.lost
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
+        received_ns = time.time_ns()
         payload = sample.payload.to_bytes()
         attachment = sample.attachment.to_bytes() if sample.attachment is not None else b""
         with self._pending_lock:
             if len(self._pending) == self._pending.maxlen:
                 self.dropped += 1
-            self._pending.append((payload, attachment))
+            self._pending.append((payload, attachment, received_ns))
             if self._scheduled:
                 return
             self._scheduled = True
@@ -176,13 +188,13 @@ class ZenohSubscription(SubscriptionHandle):
             batch = list(self._pending)
             self._pending.clear()
             self._scheduled = False
-        for payload, attachment in batch:
+        for payload, attachment, received_ns in batch:
             try:
-                self._handle(payload, attachment)
+                self._handle(payload, attachment, received_ns)
             except Exception:  # one bad sample (or callback) never costs the others
                 log.exception("error handling a sample on %s", self._endpoint.topic)
 
-    def _handle(self, payload: bytes, attachment: bytes) -> None:
+    def _handle(self, payload: bytes, attachment: bytes, received_ns: int) -> None:
         if not self._alive:
             return
         parsed = parse_attachment(attachment)
@@ -197,6 +209,12 @@ class ZenohSubscription(SubscriptionHandle):
             return
         if not self._sequences.accept(parsed.gid, parsed.sequence_number):
             return  # already delivered (history replay overlapping live data)
+        if self._raw_deliver is not None:
+            info = MessageInfo(
+                parsed.source_timestamp_ns, received_ns, parsed.sequence_number, parsed.gid
+            )
+            self._raw_deliver(payload, info)
+            return
         try:
             msg = deserialize(payload, self._type)
         except CDRError as exc:
@@ -208,7 +226,8 @@ class ZenohSubscription(SubscriptionHandle):
                 exc,
             )
             return
-        self._deliver(msg)
+        if self._deliver is not None:
+            self._deliver(msg)
 
     def destroy(self) -> None:
         self._alive = False

@@ -27,6 +27,7 @@ __all__ = [
     "Deferred",
     "Endpoint",
     "Graph",
+    "MessageInfo",
     "PublisherHandle",
     "ServiceCallError",
     "ServiceHandle",
@@ -81,6 +82,22 @@ class Endpoint:
     topic: str
     type_name: str
     qos: QoSProfile = QoSProfile()
+
+
+@dataclass(frozen=True, slots=True)
+class MessageInfo:
+    """What a raw subscription learns about a sample besides its payload (rclpy's
+    ``MessageInfo``): when it was published and received, and by whom.
+
+    ``source_timestamp_ns`` is the publisher's clock at publication (rmw_zenoh's attachment
+    carries it) and ``received_timestamp_ns`` this process's clock when the sample arrived,
+    both nanoseconds since the Unix epoch.
+    """
+
+    source_timestamp_ns: int
+    received_timestamp_ns: int
+    publication_sequence_number: int = 0
+    publisher_gid: bytes = b""
 
 
 @dataclass

@@ -38,6 +38,7 @@ from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
     Graph,
+    MessageInfo,
     PublisherHandle,
     ServiceCallError,
     ServiceHandle,
@@ -205,6 +206,20 @@ class ZenohTransport(Transport):
     ) -> SubscriptionHandle:
         endpoint = Endpoint(node, topic, msg_type.__typename__, qos)
         return ZenohSubscription(self, endpoint, msg_type, deliver)
+
+    def create_raw_subscription(
+        self,
+        node: str,
+        topic: str,
+        msg_type: type[Message],
+        qos: QoSProfile,
+        deliver: Callable[[bytes, MessageInfo], None],
+    ) -> SubscriptionHandle:
+        """A subscription that hands over each sample's CDR payload undecoded, with its
+        :class:`MessageInfo` (publish and receive time), on the executor's thread. The
+        payload is not checked against ``msg_type``, which only names the topic's key."""
+        endpoint = Endpoint(node, topic, msg_type.__typename__, qos)
+        return ZenohSubscription(self, endpoint, msg_type, None, raw_deliver=deliver)
 
     # -- services -------------------------------------------------------------------------------
     def create_service(

@@ -1,0 +1,140 @@
+"""rosbag2's ``metadata.yaml`` (version 9, Jazzy's): written beside the storage files, read
+back for the file list, the storage and the offered QoS of each topic.
+
+The layout follows rosbag2_storage's ``yaml.hpp`` (``rosbag2_bagfile_information``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from robomodel._atomic import atomic_write_text
+from robomodel.bag.exceptions import BagFormatError
+from robomodel.bag.model import Storage, TopicSummary
+from robomodel.runtime.qos import Durability, QoSProfile, Reliability
+
+__all__ = ["FileEntry", "read_metadata", "write_metadata"]
+
+VERSION = 9
+_INFINITE = {"sec": 9223372036, "nsec": 854775807}  # rmw's "unspecified" duration
+
+
+@dataclass(frozen=True, slots=True)
+class FileEntry:
+    """One storage file of a rosbag2 folder, with its span and count."""
+
+    path: str
+    start_ns: int
+    end_ns: int
+    message_count: int
+
+
+def _qos_dict(qos: QoSProfile) -> dict[str, Any]:
+    return {
+        "history": "keep_last",
+        "depth": qos.depth,
+        "reliability": qos.reliability.value,
+        "durability": qos.durability.value,
+        "deadline": dict(_INFINITE),
+        "lifespan": dict(_INFINITE),
+        "liveliness": "automatic",
+        "liveliness_lease_duration": dict(_INFINITE),
+        "avoid_ros_namespace_conventions": False,
+    }
+
+
+def qos_from_dict(entry: Mapping[str, Any]) -> QoSProfile:
+    durability = Durability.TRANSIENT_LOCAL
+    if str(entry.get("durability", "")).lower() != "transient_local":
+        durability = Durability.VOLATILE
+    reliability = Reliability.BEST_EFFORT
+    if str(entry.get("reliability", "")).lower() != "best_effort":
+        reliability = Reliability.RELIABLE
+    return QoSProfile(int(entry.get("depth", 10) or 10), durability, reliability)
+
+
+def write_metadata(
+    folder: Path,
+    storage: Storage,
+    files: Sequence[FileEntry],
+    topics: Sequence[tuple[TopicSummary, str]],
+) -> None:
+    """Write ``folder/metadata.yaml`` atomically. ``topics`` pairs a summary with its hash."""
+    start = min((f.start_ns for f in files if f.message_count), default=0)
+    end = max((f.end_ns for f in files if f.message_count), default=start)
+    info = {
+        "version": VERSION,
+        "storage_identifier": storage.value,
+        "duration": {"nanoseconds": end - start},
+        "starting_time": {"nanoseconds_since_epoch": start},
+        "message_count": sum(f.message_count for f in files),
+        "topics_with_message_count": [
+            {
+                "topic_metadata": {
+                    "name": topic.name,
+                    "type": topic.type,
+                    "serialization_format": topic.serialization_format,
+                    "offered_qos_profiles": [_qos_dict(q) for q in topic.offered_qos],
+                    "type_description_hash": digest,
+                },
+                "message_count": topic.count,
+            }
+            for topic, digest in topics
+        ],
+        "compression_format": "",
+        "compression_mode": "",
+        "relative_file_paths": [f.path for f in files],
+        "files": [
+            {
+                "path": f.path,
+                "starting_time": {"nanoseconds_since_epoch": f.start_ns},
+                "duration": {"nanoseconds": f.end_ns - f.start_ns},
+                "message_count": f.message_count,
+            }
+            for f in files
+        ],
+        "custom_data": {},
+        "ros_distro": "jazzy",
+    }
+    text = yaml.safe_dump({"rosbag2_bagfile_information": info}, sort_keys=False)
+    atomic_write_text(folder / "metadata.yaml", text)
+
+
+@dataclass(frozen=True, slots=True)
+class Metadata:
+    storage: Storage
+    files: tuple[str, ...]
+    qos: dict[str, tuple[QoSProfile, ...]]
+    ros_distro: str
+
+
+def _offered(entry: Any) -> tuple[QoSProfile, ...]:
+    if isinstance(entry, str):  # versions before 9 keep the list as a YAML string
+        entry = yaml.safe_load(entry) if entry.strip() else []
+    if not isinstance(entry, list):
+        return ()
+    return tuple(qos_from_dict(q) for q in entry if isinstance(q, dict))
+
+
+def read_metadata(folder: Path) -> Metadata:
+    """The parts of ``folder/metadata.yaml`` a reader needs; BagFormatError if it is bad."""
+    path = folder / "metadata.yaml"
+    try:
+        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+        info = doc["rosbag2_bagfile_information"]
+        storage = Storage(str(info.get("storage_identifier") or "sqlite3"))
+        files = tuple(str(p) for p in info.get("relative_file_paths") or ())
+        qos = {
+            str(t["topic_metadata"]["name"]): _offered(
+                t["topic_metadata"].get("offered_qos_profiles")
+            )
+            for t in info.get("topics_with_message_count") or ()
+        }
+    except (OSError, yaml.YAMLError, KeyError, TypeError, ValueError, AttributeError) as exc:
+        raise BagFormatError(str(path), f"not a rosbag2 metadata file ({exc})") from None
+    return Metadata(storage, files, qos, str(info.get("ros_distro") or ""))
