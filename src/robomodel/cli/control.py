@@ -48,7 +48,12 @@ def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("control", help=verb_help("control"))
     verbs = parser.add_subparsers(dest="control_verb", metavar="VERB")
     verbs.required = True
+    _register_run(verbs)
+    _register_manager_verbs(verbs)
 
+
+def _register_run(verbs: Any) -> None:
+    """``control run``: ros2_control_node with mock hardware, the spawner and a viewer."""
     run_p = verbs.add_parser("run", help="mock hardware + controller manager + controllers")
     add_description_arguments(run_p)
     run_p.add_argument(
@@ -78,6 +83,9 @@ def register(subparsers: Any) -> None:
     add_bus_arguments(run_p)
     run_p.set_defaults(func=_run)
 
+
+def _register_manager_verbs(verbs: Any) -> None:
+    """The verbs that call a running controller manager (``ros2 control ...``)."""
     lc = verbs.add_parser("list-controllers", help="controllers, types and states")
     lc.add_argument("-v", "--verbose", action="store_true", help="also rates and interfaces")
     _cm_argument(lc)

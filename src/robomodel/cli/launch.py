@@ -46,6 +46,13 @@ def register(subparsers: Any) -> None:
         "--package", action="append", default=[], metavar="NAME=DIR",
         help="explicit package location (repeatable)",
     )  # fmt: skip
+    _add_show_options(parser)
+    _add_run_options(parser)
+    parser.set_defaults(func=run)
+
+
+def _add_show_options(parser: Any) -> None:
+    """roslaunch's and ros2 launch's print-and-exit flags (one at a time)."""
     show = parser.add_mutually_exclusive_group()
     show.add_argument("--dump-params", action="store_true", help="print the parameters (YAML)")
     show.add_argument("--nodes", action="store_true", help="print the node names")
@@ -60,6 +67,10 @@ def register(subparsers: Any) -> None:
         "-p", "--print", "--print-description", action="store_true", dest="print_description",
         help="ROS 2: print the launch description (ros2 launch --print)",
     )  # fmt: skip
+
+
+def _add_run_options(parser: Any) -> None:
+    """How the launch runs: viewer, bus, duration, command bounds."""
     parser.add_argument("--headless", action="store_true", help="run no viewer")
     parser.add_argument(
         "--no-browser", action="store_true", help="serve the viewer, open no browser"
@@ -86,7 +97,6 @@ def register(subparsers: Any) -> None:
         help="the longest a <param command=...> or $(command ...) may run (default 60 s); "
         "its output is capped at 64 MiB",
     )  # fmt: skip
-    parser.set_defaults(func=run)
 
 
 def _split(inputs: list[str]) -> tuple[list[str], dict[str, str]]:

@@ -91,13 +91,8 @@ def _limit(entry: Any, where: str, path: str | None) -> tuple[Limit, tuple[float
     return limit, axis
 
 
-def read_kinematics_yaml(source: str | os.PathLike[str], *, name: str | None = None) -> Robot:
-    """Build the robot described by a kinematics YAML file (path) or text.
-
-    Raises:
-        InputError: the YAML is invalid or does not follow the format (the message names the
-            key, e.g. ``links[1].position``).
-    """
+def _load_document(source: str | os.PathLike[str]) -> tuple[Mapping[str, Any], str | None]:
+    """The YAML mapping of a path or text, checked for the three parallel lists."""
     text = os.fspath(source)
     path: str | None = None
     if "\n" not in text and not text.lstrip().startswith("{"):
@@ -124,54 +119,56 @@ def read_kinematics_yaml(source: str | os.PathLike[str], *, name: str | None = N
             f"{len(links)}, {len(joints)})",
             path,
         )
+    return doc, path
+
+
+def _moving_joint(i: int, kind: Any, pose: Any, limits: Any, path: str | None) -> Joint:
+    """Joint ``i`` (1-based) between link_{i-1} and link_i."""
+    joint_type = _TYPES.get(str(kind))
+    if joint_type is None:
+        hint = close_matches(str(kind), _TYPES)
+        extra = f" (did you mean '{hint[0]}'?)" if hint else ""
+        raise _fail(
+            f"types[{i - 1}]: unknown joint type '{kind}'{extra}; types are {', '.join(_TYPES)}",
+            path,
+        )
+    limit, axis = _limit(limits, f"joints[{i - 1}]", path)
+    if joint_type in (JointType.REVOLUTE, JointType.PRISMATIC) and (
+        limit.lower is None or limit.upper is None
+    ):
+        raise _fail(f"joints[{i - 1}]: a {joint_type.value} joint needs lower and upper", path)
+    return Joint(
+        f"joint_{i}",
+        joint_type,
+        f"link_{i - 1}",
+        f"link_{i}",
+        _pose(pose, f"links[{i - 1}]", path),
+        axis=axis,
+        limit=None if joint_type is JointType.FIXED else limit,
+    )
+
+
+def read_kinematics_yaml(source: str | os.PathLike[str], *, name: str | None = None) -> Robot:
+    """Build the robot described by a kinematics YAML file (path) or text.
+
+    Raises:
+        InputError: the YAML is invalid or does not follow the format (the message names the
+            key, e.g. ``links[1].position``).
+    """
+    doc, path = _load_document(source)
+    types, links, joints = doc["types"], doc["links"], doc["joints"]
     robot_links = [
         Link("base"),
         *(Link(f"link_{i}") for i in range(len(types) + 1)),
         Link("end_effector"),
     ]
-    robot_joints = [
-        Joint(
-            "base_offset",
-            JointType.FIXED,
-            "base",
-            "link_0",
-            _pose(doc.get("base", {}), "base", path),
-        )
-    ]
+    base = _pose(doc.get("base", {}), "base", path)
+    robot_joints = [Joint("base_offset", JointType.FIXED, "base", "link_0", base)]
     for i, (kind, pose, limits) in enumerate(zip(types, links, joints, strict=True), start=1):
-        joint_type = _TYPES.get(str(kind))
-        if joint_type is None:
-            hint = close_matches(str(kind), _TYPES)
-            extra = f" (did you mean '{hint[0]}'?)" if hint else ""
-            raise _fail(
-                f"types[{i - 1}]: unknown joint type '{kind}'{extra}; types are {', '.join(_TYPES)}",
-                path,
-            )
-        limit, axis = _limit(limits, f"joints[{i - 1}]", path)
-        if joint_type in (JointType.REVOLUTE, JointType.PRISMATIC) and (
-            limit.lower is None or limit.upper is None
-        ):
-            raise _fail(f"joints[{i - 1}]: a {joint_type.value} joint needs lower and upper", path)
-        robot_joints.append(
-            Joint(
-                f"joint_{i}",
-                joint_type,
-                f"link_{i - 1}",
-                f"link_{i}",
-                _pose(pose, f"links[{i - 1}]", path),
-                axis=axis,
-                limit=None if joint_type is JointType.FIXED else limit,
-            )
-        )
-    robot_joints.append(
-        Joint(
-            "end_effector_offset",
-            JointType.FIXED,
-            f"link_{len(types)}",
-            "end_effector",
-            _pose(doc.get("end_effector", {}), "end_effector", path),
-        )
-    )
+        robot_joints.append(_moving_joint(i, kind, pose, limits, path))
+    tip = _pose(doc.get("end_effector", {}), "end_effector", path)
+    last = f"link_{len(types)}"
+    robot_joints.append(Joint("end_effector_offset", JointType.FIXED, last, "end_effector", tip))
     robot_name = name or str(doc.get("name", "robot"))
     return Robot(robot_name, links=tuple(robot_links), joints=tuple(robot_joints), source_path=path)
 

@@ -90,6 +90,22 @@ class _Loader(NodeTags):
         child.params = list(child.params)  # a group encloses the ~params set inside it
         self.recurse(element, child)
 
+    def _include_children(self, element: Any, ctx: LoaderContext, child: LoaderContext) -> None:
+        """An include's ``<env>`` and ``<arg>`` children, resolved in the parent's file."""
+        child.filename = ctx.filename
+        for sub in element:
+            if not isinstance(sub.tag, str) or not self.enabled(sub, ctx):
+                continue
+            if sub.tag == "env":
+                self.tag_env(sub, child)
+            elif sub.tag == "arg":
+                self.tag_arg(sub, child)
+            else:
+                self.warnings.append(
+                    f"{self.where(sub, ctx.filename)}: WARN: unrecognized '{sub.tag}' tag in "
+                    "<include> tag"
+                )
+
     def tag_include(self, element: Any, ctx: LoaderContext) -> None:
         self.check_attrs(element, ctx, _INCLUDE_ATTRS)
         filename = self.required(element, "file", ctx)
@@ -104,19 +120,7 @@ class _Loader(NodeTags):
             for name, value in ctx.args.items():
                 child.add_arg(name, value=value, default=None, doc=None)
             child.pass_all_args = True
-        child.filename = ctx.filename  # the include's own <arg>s resolve in the parent's file
-        for sub in element:
-            if not isinstance(sub.tag, str) or not self.enabled(sub, ctx):
-                continue
-            if sub.tag == "env":
-                self.tag_env(sub, child)
-            elif sub.tag == "arg":
-                self.tag_arg(sub, child)
-            else:
-                self.warnings.append(
-                    f"{self.where(sub, ctx.filename)}: WARN: unrecognized '{sub.tag}' tag in "
-                    "<include> tag"
-                )
+        self._include_children(element, ctx, child)
         child.filename = filename
         try:
             child.process_include_args()

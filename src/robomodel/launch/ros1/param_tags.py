@@ -90,6 +90,38 @@ class ParamTags(LoaderBase):
         else:
             self.add_param(ns_join(ctx.ns, name), value, element, ctx)
 
+    def _rosparam_data(
+        self, element: Any, ctx: LoaderContext, file: str | None, substitute: bool
+    ) -> Any:
+        """The YAML of a ``<rosparam>`` (its file or its text), substituted if asked, parsed,
+        and expanded apart from its aliases under the parameter server's bound."""
+        try:
+            text = read_text_file(file, "rosparam file") if file else (element.text or "")
+        except ParamValueError as exc:
+            raise self.error(str(exc), element, ctx, "file") from None
+        if substitute:
+            try:
+                text = self.subst(text, ctx) or ""
+            except SubstitutionError as exc:
+                raise self.error(str(exc), element, ctx) from None
+        try:
+            data = load_rosparam_yaml(text)
+        except Exception as exc:
+            where = f"file {file} contains invalid YAML" if file else "Error within YAML block"
+            mark = getattr(exc, "problem_mark", None)
+            error = self.error(f"{where}: {exc}", element, ctx)
+            if file and mark is not None:
+                error = LaunchError(
+                    f"invalid YAML: {getattr(exc, 'problem', exc)}",
+                    location=SourceLocation(file, mark.line + 1, mark.column + 1),
+                    include_stack=(*self.stack, self.where(element, ctx.filename)),
+                )
+            raise error from None
+        try:  # aliases expanded once, here, under the server's bound (not on every get)
+            return expand_bounded(data, what=f"the <rosparam> {file or 'block'}")
+        except ParamBoundError as exc:
+            raise self.error(str(exc), element, ctx, "file" if file else None) from None
+
     def tag_rosparam(self, element: Any, ctx: LoaderContext) -> None:
         self.check_attrs(element, ctx, _ROSPARAM_ATTRS)
         cmd, ns, file, param, subst_value = (self.attr(element, a, ctx) for a in _ROSPARAM_ATTRS)
@@ -114,32 +146,7 @@ class ParamTags(LoaderBase):
         if cmd == "delete":
             self.deletes.append(full)
             return
-        try:
-            text = read_text_file(file, "rosparam file") if file else (element.text or "")
-        except ParamValueError as exc:
-            raise self.error(str(exc), element, ctx, "file") from None
-        if substitute:
-            try:
-                text = self.subst(text, ctx) or ""
-            except SubstitutionError as exc:
-                raise self.error(str(exc), element, ctx) from None
-        try:
-            data = load_rosparam_yaml(text)
-        except Exception as exc:
-            where = f"file {file} contains invalid YAML" if file else "Error within YAML block"
-            mark = getattr(exc, "problem_mark", None)
-            error = self.error(f"{where}: {exc}", element, ctx)
-            if file and mark is not None:
-                error = LaunchError(
-                    f"invalid YAML: {getattr(exc, 'problem', exc)}",
-                    location=SourceLocation(file, mark.line + 1, mark.column + 1),
-                    include_stack=(*self.stack, self.where(element, ctx.filename)),
-                )
-            raise error from None
-        try:  # aliases expanded once, here, under the server's bound (not on every get)
-            data = expand_bounded(data, what=f"the <rosparam> {file or 'block'}")
-        except ParamBoundError as exc:
-            raise self.error(str(exc), element, ctx, "file" if file else None) from None
+        data = self._rosparam_data(element, ctx, file, substitute)
         if not param and not isinstance(data, dict):
             raise self.error(
                 "'param' attribute must be set for non-dictionary values", element, ctx

@@ -68,6 +68,27 @@ def _arguments(
     return tuple(out)
 
 
+def _visit(
+    path: Path, session: Session, env: dict[str, str], args: Mapping[str, str] | None
+) -> tuple[tuple[str, ...], tuple[DeclaredArgument, ...]]:
+    """Load the top file and visit it as ``ros2 launch`` does: (its description's lines, the
+    declared arguments)."""
+    with launch_modules(), session_scope(session):
+        context = LaunchContext(session=session, environ=env)
+        try:
+            description = load_description_file(path, "any")
+        except LaunchError:
+            raise
+        except Exception as exc:
+            raise user_error(exc, SourceLocation(str(path))) from None
+        lines = tuple(describe_entities(description.entities))
+        top = IncludeLaunchDescription(
+            _Loaded(path, description), launch_arguments=list((args or {}).items())
+        )
+        visit_entities(context, [top])
+        return lines, _arguments(description, context)
+
+
 def load_launch(
     path: Path,
     *,
@@ -102,20 +123,7 @@ def load_launch(
         command_timeout_s=command_timeout_s,
     )
     try:
-        with launch_modules(), session_scope(session):
-            context = LaunchContext(session=session, environ=env)
-            try:
-                description = load_description_file(path, "any")
-            except LaunchError:
-                raise
-            except Exception as exc:
-                raise user_error(exc, SourceLocation(str(path))) from None
-            lines = tuple(describe_entities(description.entities))
-            top = IncludeLaunchDescription(
-                _Loaded(path, description), launch_arguments=list((args or {}).items())
-            )
-            visit_entities(context, [top])
-            arguments = _arguments(description, context)
+        lines, arguments = _visit(path, session, env, args)
     except BaseException:
         for temporary in session.temporary_files:  # nothing will read them
             temporary.unlink(missing_ok=True)
