@@ -98,3 +98,15 @@ def test_xacro_include_and_load_yaml_of_dev_zero(tmp_path: Path) -> None:
     done = _run("xacro", str(yaml_user))
     assert done.returncode == 2 and "Traceback" not in done.stderr
     assert "load_yaml('/dev/zero')" in done.stderr and "character device" in done.stderr
+
+
+def test_mesh_loaders_refuse_device_files() -> None:
+    pytest.importorskip("trimesh")
+    from robomodel.sim.build.geoms import _load
+    from robomodel.sim.exceptions import SimulationError
+    from robomodel.viewer.meshes import MeshLoadError, load_mesh_file
+
+    with pytest.raises(MeshLoadError, match="character device"):
+        load_mesh_file(Path("/dev/zero"))
+    with pytest.raises(SimulationError, match="/dev/zero: cannot read mesh file"):
+        _load("/dev/zero", "link 'base'")

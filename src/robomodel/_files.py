@@ -14,7 +14,14 @@ import stat
 
 from robomodel.errors import RobomodelError
 
-__all__ = ["MAX_FILE_BYTES", "UserFileError", "decode_utf8", "read_user_bytes", "read_user_text"]
+__all__ = [
+    "MAX_FILE_BYTES",
+    "UserFileError",
+    "check_user_file",
+    "decode_utf8",
+    "read_user_bytes",
+    "read_user_text",
+]
 
 MAX_FILE_BYTES = 64 * 1024 * 1024
 """The largest file robomodel reads (64 MiB): far above any robot description or launch file."""
@@ -64,15 +71,11 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def read_user_bytes(
+def check_user_file(
     path: str | os.PathLike[str], *, what: str = "file", limit: int = MAX_FILE_BYTES
-) -> bytes:
-    """The bytes of a regular file of at most ``limit`` bytes.
-
-    Args:
-        path: The file, as named by the user (relative to the working directory).
-        what: What the file is, for the message ("launch file", "textfile").
-        limit: The largest size accepted, in bytes.
+) -> None:
+    """Refuse what :func:`read_user_bytes` refuses, for a file a library reads by its path
+    (trimesh, which resolves a mesh's textures and materials next to it).
 
     Raises:
         UserFileError: missing or unreadable, not a regular file, or larger than ``limit``.
@@ -88,6 +91,23 @@ def read_user_bytes(
         )
     if info.st_size > limit:
         raise UserFileError(name, _too_large(what, info.st_size, limit))
+
+
+def read_user_bytes(
+    path: str | os.PathLike[str], *, what: str = "file", limit: int = MAX_FILE_BYTES
+) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes.
+
+    Args:
+        path: The file, as named by the user (relative to the working directory).
+        what: What the file is, for the message ("launch file", "textfile").
+        limit: The largest size accepted, in bytes.
+
+    Raises:
+        UserFileError: missing or unreadable, not a regular file, or larger than ``limit``.
+    """
+    name = os.fspath(path)
+    check_user_file(name, what=what, limit=limit)
     try:
         with open(name, "rb") as handle:
             if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):  # replaced since the stat

@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel._files import UserFileError, check_user_file
 from robomodel.description.packages import PackageIndex
 from robomodel.viewer._deps import import_trimesh
 from robomodel.viewer.errors import MeshLoadError
@@ -104,6 +105,10 @@ def load_mesh_file(path: Path) -> tuple[MeshPart, ...]:
         MeshLoadError: the file cannot be parsed as a mesh or holds no triangles.
     """
     trimesh = import_trimesh()
+    try:
+        check_user_file(path, what="mesh file")
+    except UserFileError as exc:
+        raise MeshLoadError(str(path), exc.reason) from None
     try:
         loaded = trimesh.load(str(path))
     except Exception as exc:  # trimesh raises many unrelated types for bad files

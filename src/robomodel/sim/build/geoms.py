@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from robomodel._files import UserFileError, check_user_file
 from robomodel.description.model import Box, Capsule, Cylinder, Geometry, Mesh, Sphere
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import MissingDependencyError, RobomodelError
@@ -67,6 +68,10 @@ def _load(path: str, where: str) -> tuple[np.ndarray, np.ndarray]:
         trimesh = importlib.import_module("trimesh")
     except ImportError:
         raise MissingDependencyError("trimesh", "sim", "loading mesh files") from None
+    try:
+        check_user_file(path, what="mesh file")
+    except UserFileError as exc:
+        raise SimulationError(str(exc), where=where) from None
     try:
         loaded = trimesh.load(path, force="mesh")
     except Exception as exc:
