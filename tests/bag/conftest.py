@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import json
 import signal
 import subprocess
 import sys
 import textwrap
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -78,3 +80,42 @@ def talker(tmp_path: Path) -> Iterator[Talker]:
     started = Talker(tmp_path)
     yield started
     stop(started.proc)
+
+
+ROSBAGS_READ = textwrap.dedent(
+    """
+    import hashlib, json, sys
+    from rosbags.rosbag2 import Reader
+    from rosbags.typesys import get_typestore, Stores, get_types_from_msg
+    bags = []
+    for folder in sys.argv[1:]:
+        store = get_typestore(Stores.EMPTY)
+        out = {"messages": [], "positions": [], "topics": {}}
+        with Reader(folder) as reader:
+            out["count"] = reader.message_count
+            for conn in reader.connections:
+                store.register(get_types_from_msg(conn.msgdef.data, conn.msgtype))
+                durability = [q.durability.name for q in conn.ext.offered_qos_profiles]
+                out["topics"][conn.topic] = [conn.msgtype, durability]
+            for conn, stamp, data in reader.messages():
+                out["messages"].append([conn.topic, stamp, hashlib.sha256(data).hexdigest()])
+                if conn.topic == "/joint_states":
+                    msg = store.deserialize_cdr(data, conn.msgtype)
+                    out["positions"].append(msg.position.tolist())
+        bags.append(out)
+    print(json.dumps(bags))
+    """
+)
+
+
+def rosbags_read(tmp_path: Path, *folders: Path) -> list[dict[str, Any]]:
+    """What rosbags' rosbag2 reader, in a process of its own, reads from each folder."""
+    script = tmp_path / "rosbags_read.py"
+    script.write_text(ROSBAGS_READ)
+    done = subprocess.run(
+        [sys.executable, str(script), *map(str, folders)],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    result: list[dict[str, Any]] = json.loads(done.stdout)
+    return result

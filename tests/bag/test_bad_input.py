@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from robomodel.bag import McapFolderWriter, Player, PlayOptions, open_bag
+from robomodel.bag import McapFolderWriter, Player, PlayOptions, SplitPolicy, open_bag
 from robomodel.runtime import Context, ManualClock
 from robomodel.runtime.msg import JointState, serialize
 from tests.conftest import ToolResult
@@ -105,3 +105,32 @@ def test_bad_crc_chunk_is_skipped(bag: Path, cli: Callable[..., ToolResult]) -> 
     expected = [float(k) for k in range(CHUNKS * PER_CHUNK) if k // PER_CHUNK != 1]
     assert seen == expected
     assert any("chunk fails its CRC" in str(d) for d in damaged.damage)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        (["-b", "-5"], "--max-bag-size must be 0 (no splitting) or positive, got -5"),
+        (["-d", "nan"], "--max-bag-duration must be 0 (no splitting) or positive, got nan"),
+        (["-d", "inf"], "--max-bag-duration must be 0 (no splitting) or positive, got inf"),
+        (["-s", "sqlite3", "-d", "1"], "--max-bag-size and --max-bag-duration need --storage mcap"),
+    ],
+)
+def test_bad_split_options(
+    tmp_path: Path, cli: Callable[..., ToolResult], options: list[str], message: str
+) -> None:
+    out = tmp_path / "never"
+    result = cli("bag", "record", "-a", "-o", str(out), *options, "--bus", "inproc")
+    assert result.code == 2
+    assert result.err == f"robomodel: error: {message}\n"
+    assert not out.exists()  # refused before anything is created
+
+
+def test_zero_split_limits_mean_no_splitting() -> None:
+    from robomodel.cli.bag import _split_policy
+    from robomodel.cli.main import build_parser
+
+    args = build_parser("bag").parse_args(["bag", "record", "-a", "-b", "0", "-d", "0"])
+    assert not _split_policy(args).splits  # as ros2 bag record's defaults
+    args = build_parser("bag").parse_args(["bag", "record", "-a", "-b", "100", "-d", "0.5"])
+    assert _split_policy(args) == SplitPolicy(100, 500_000_000)

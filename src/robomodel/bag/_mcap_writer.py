@@ -35,6 +35,9 @@ from robomodel.runtime.qos import QoSProfile
 __all__ = ["McapFolderWriter"]
 
 CHUNK_SIZE = 768 * 1024  # rosbag2_storage_mcap's default chunk size
+# A message's bytes in the file besides its data: the Message record (opcode, length, channel,
+# sequence, log and publish time: 31 bytes) and its entry in the chunk's MessageIndex (16).
+MESSAGE_OVERHEAD = 47
 
 
 @dataclass
@@ -54,6 +57,24 @@ class _File:
     first_ns: int | None = None
     last_ns: int = 0
     count: int = 0
+    written: int = 0  # the stream's position when last looked at
+    pending: int = 0  # bytes of messages in the chunk the mcap writer still holds in memory
+
+    @property
+    def size_bytes(self) -> int:
+        """The file's size once the chunk in progress is written (as far as it is known)."""
+        if self.stream.closed:
+            return self.path.stat().st_size
+        return self.stream.tell() + self.pending
+
+    def added(self, data_bytes: int) -> None:
+        """Account for a message just given to the mcap writer, which writes its chunk out
+        (and the stream's position moves) once the chunk is full."""
+        position = self.stream.tell()
+        if position != self.written:
+            self.written, self.pending = position, 0
+        else:
+            self.pending += data_bytes + MESSAGE_OVERHEAD
 
     def entry(self) -> FileEntry:
         return FileEntry(self.path.name, self.first_ns or 0, self.last_ns, self.count)
@@ -94,7 +115,7 @@ class McapFolderWriter(BagWriter):
         )
         writer.start(profile="ros2", library=f"robomodel-{__version__}")
         stream.flush()
-        return _File(path, stream, writer)
+        return _File(path, stream, writer, written=stream.tell())
 
     def add_topic(
         self, topic: str, msg_type: type[Message], offered_qos: tuple[QoSProfile, ...]
@@ -133,12 +154,13 @@ class McapFolderWriter(BagWriter):
         sequence: int = 0,
     ) -> None:
         file = self._file
-        if file.count and self._split.due(file.stream.tell(), file.first_ns, log_time_ns):
+        if file.count and self._split.due(file.size_bytes, file.first_ns, log_time_ns):
             self._rotate()
             file = self._file
         file.writer.add_message(
             self._channel(topic), log_time_ns, cdr, publish_time_ns, sequence & 0xFFFFFFFF
         )
+        file.added(len(cdr))
         if file.first_ns is None:
             file.first_ns = log_time_ns
         file.first_ns = min(file.first_ns, log_time_ns)
@@ -165,6 +187,7 @@ class McapFolderWriter(BagWriter):
         """Close the chunk in progress, write it out and update metadata.yaml."""
         self._last_flush = time.monotonic()
         self._file.writer.flush()
+        self._file.written, self._file.pending = self._file.stream.tell(), 0
         self._write_metadata()
 
     def close(self) -> None:
@@ -184,9 +207,7 @@ class McapFolderWriter(BagWriter):
 
     @property
     def size_bytes(self) -> int:
-        stream = self._file.stream
-        current = self._file.path.stat().st_size if stream.closed else stream.tell()
-        return self._closed_bytes + current
+        return self._closed_bytes + self._file.size_bytes
 
     @property
     def files(self) -> tuple[str, ...]:

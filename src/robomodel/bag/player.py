@@ -73,6 +73,7 @@ class Player:
         self.published = 0
         self._publishers: dict[str, tuple[Publisher[Message], Decoder]] = {}
         self._clock: Publisher[Clock] | None = None
+        self._clock_ns = 0
         if options.clock_hz:
             self._clock = self.node.create_publisher(Clock, "/clock")
         self.summary = bag.summary()
@@ -107,28 +108,37 @@ class Player:
                 return self.published
 
     def _play_once(self, stop: Callable[[], bool]) -> None:
+        """One pass over the bag. Message times are ``log_time`` (receive time); with a clock,
+        /clock is published every ``1 / clock_hz`` s with the bag time of that moment."""
         first: int | None = None
         start = time.monotonic()
-        last_clock = -1.0
-        clock_period = 1.0 / self.options.clock_hz if self.options.clock_hz else 0.0
+        period = 1.0 / self.options.clock_hz if self.options.clock_hz else None
+        next_tick = start
+        self._clock_ns = 0
         for message in self.bag.messages(self._publishers):
             if first is None:
                 first = message.log_time_ns
             due = start + (message.log_time_ns - first) / 1e9 / self.options.rate
-            while (wait := due - time.monotonic()) > 0 and not stop():
-                step = min(wait, clock_period or wait, 0.1)
-                self._tick_clock(message.log_time_ns - round(wait * 1e9 * self.options.rate))
-                self.context.spin(duration_s=step)
+            while not stop():
+                now = time.monotonic()
+                if period is not None and now >= next_tick:
+                    bag_now = first + round((now - start) * self.options.rate * 1e9)
+                    self._tick_clock(min(bag_now, message.log_time_ns))
+                    next_tick += period
+                    next_tick = next_tick if next_tick > now else now + period
+                if now >= due:
+                    break
+                wake = min(due, next_tick) if period is not None else due
+                self.context.spin(duration_s=min(wake - now, 0.1))
             if stop():
                 return
-            if self._clock is not None and time.monotonic() - last_clock >= clock_period:
-                self._tick_clock(message.log_time_ns)
-                last_clock = time.monotonic()
             self._publish(message)
         self.context.spin(duration_s=0.05)  # let the last messages leave
 
     def _tick_clock(self, stamp_ns: int) -> None:
+        """Publish ``stamp_ns`` on /clock, never going back within a pass."""
         if self._clock is not None:
+            stamp_ns = self._clock_ns = max(self._clock_ns, stamp_ns)
             self._clock.publish(Clock(Time(stamp_ns // 1_000_000_000, stamp_ns % 1_000_000_000)))
 
     def _publish(self, message: BagMessage) -> None:

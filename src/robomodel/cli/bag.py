@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import datetime
 import logging
+import math
 import signal
 import sys
 import time
@@ -84,11 +85,24 @@ def _human_size(size: float) -> str:
     return f"{size:.1f} GiB"
 
 
-def _writer(args: argparse.Namespace) -> Any:
-    from robomodel.bag import McapFolderWriter, Ros1BagWriter, SplitPolicy, Sqlite3FolderWriter
+def _split_policy(args: argparse.Namespace) -> Any:
+    """``-b``/``-d`` as ``ros2 bag record`` takes them: 0 (the default) is no splitting."""
+    from robomodel.bag import SplitPolicy
 
-    duration_ns = None if args.max_bag_duration is None else int(args.max_bag_duration * 1e9)
-    split = SplitPolicy(args.max_bag_size, duration_ns)
+    limits = {"--max-bag-size": args.max_bag_size, "--max-bag-duration": args.max_bag_duration}
+    for option, value in limits.items():
+        if value is not None and not 0 <= value < math.inf:
+            raise RobomodelError(f"{option} must be 0 (no splitting) or positive, got {value}")
+    duration_ns = int(args.max_bag_duration * 1e9) if args.max_bag_duration else None
+    split = SplitPolicy(args.max_bag_size or None, duration_ns or None)
+    if split.splits and args.storage == "sqlite3" and not args.ros1:
+        raise RobomodelError("--max-bag-size and --max-bag-duration need --storage mcap")
+    return split
+
+
+def _writer(args: argparse.Namespace, split: Any) -> Any:
+    from robomodel.bag import McapFolderWriter, Ros1BagWriter, Sqlite3FolderWriter
+
     if args.ros1:
         return Ros1BagWriter(Path(args.ros1), split=split)
     stamp = datetime.datetime.now().strftime("%Y_%m_%d-%H_%M_%S")
@@ -103,10 +117,12 @@ def run_record(args: argparse.Namespace) -> int:
 
     if not args.all and not args.topics:
         raise RobomodelError("name the topics to record, or -a for all of them")
+    split = _split_policy(args)
     logging.basicConfig(format="robomodel bag: %(message)s")
     with _stop_on_signals() as stopped, context_from_args(args) as context:
         wait_for_peers(context)
-        recorder = Recorder(context, _writer(args), topics=None if args.all else args.topics)
+        writer = _writer(args, split)
+        recorder = Recorder(context, writer, topics=None if args.all else args.topics)
         try:
             _record_loop(recorder, stopped, args)
         finally:
@@ -136,11 +152,15 @@ def _record_loop(recorder: Any, stopped: Callable[[], bool], args: argparse.Name
                 next_look = time.monotonic() + 1.0
             recorder.context.spin(duration_s=0.1)
             if live is not None:
-                s = recorder.stats()
-                live.update(
-                    f"Recording: {s.messages} messages, {_human_size(s.size_bytes)}, "
-                    f"{s.duration_s:.1f} s, {s.topics} topics"
-                )
+                live.update(format_progress(recorder.stats()))
+
+
+def format_progress(stats: Any) -> str:
+    """The progress line of ``bag record``, from the recorder's :class:`RecorderStats`."""
+    return (
+        f"Recording: {stats.messages} messages, {_human_size(stats.size_bytes)}, "
+        f"{stats.duration_s:.1f} s, {stats.topics} topics"
+    )
 
 
 @contextmanager
