@@ -51,6 +51,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_viewer.py --scaling --socket
 	$(BIN)/python bench/bench_sim.py
 	$(BIN)/python bench/bench_launch.py
+	$(BIN)/python bench/bench_bag.py
 
 clean:
 	rm -rf $(VENV) $(SDK_VENV) build .pytest_cache .mypy_cache .ruff_cache

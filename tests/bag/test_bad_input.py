@@ -3,6 +3,7 @@ traceback; what can be read is still read by ``info`` and ``play``."""
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from pathlib import Path
 
@@ -134,3 +135,25 @@ def test_zero_split_limits_mean_no_splitting() -> None:
     assert not _split_policy(args).splits  # as ros2 bag record's defaults
     args = build_parser("bag").parse_args(["bag", "record", "-a", "-b", "100", "-d", "0.5"])
     assert _split_policy(args) == SplitPolicy(100, 500_000_000)
+
+
+def test_devices_fifos_and_paths_outside_the_folder_are_refused(
+    tmp_path: Path, cli: Callable[..., ToolResult]
+) -> None:
+    fifo = tmp_path / "pipe.mcap"
+    os.mkfifo(fifo)
+    done = cli("bag", "info", str(fifo))
+    assert done.code == 2 and "named pipe (FIFO); only regular files are read" in done.err
+    device = tmp_path / "device"
+    device.mkdir()
+    (device / "metadata.yaml").symlink_to("/dev/zero")
+    done = cli("bag", "info", str(device))
+    assert done.code == 2 and "metadata.yaml: cannot read bag metadata" in done.err
+    escaping = tmp_path / "escaping"
+    escaping.mkdir()
+    (escaping / "metadata.yaml").write_text(
+        "rosbag2_bagfile_information:\n  storage_identifier: mcap\n"
+        "  relative_file_paths: [../../../dev/zero]\n"
+    )
+    done = cli("bag", "info", str(escaping))
+    assert done.code == 2 and "is outside the bag folder" in done.err

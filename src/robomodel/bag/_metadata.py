@@ -14,6 +14,7 @@ from typing import Any
 import yaml
 
 from robomodel._atomic import atomic_write_text
+from robomodel._files import UserFileError, read_user_text
 from robomodel.bag.exceptions import BagFormatError
 from robomodel.bag.model import Storage, TopicSummary
 from robomodel.runtime.qos import Durability, QoSProfile, Reliability
@@ -125,7 +126,7 @@ def read_metadata(folder: Path) -> Metadata:
     """The parts of ``folder/metadata.yaml`` a reader needs; BagFormatError if it is bad."""
     path = folder / "metadata.yaml"
     try:
-        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+        doc = yaml.safe_load(read_user_text(path, what="bag metadata"))
         info = doc["rosbag2_bagfile_information"]
         storage = Storage(str(info.get("storage_identifier") or "sqlite3"))
         files = tuple(str(p) for p in info.get("relative_file_paths") or ())
@@ -135,6 +136,14 @@ def read_metadata(folder: Path) -> Metadata:
             )
             for t in info.get("topics_with_message_count") or ()
         }
+    except UserFileError as exc:
+        raise BagFormatError(str(path), exc.reason) from None
     except (OSError, yaml.YAMLError, KeyError, TypeError, ValueError, AttributeError) as exc:
         raise BagFormatError(str(path), f"not a rosbag2 metadata file ({exc})") from None
+    inside = folder.resolve()
+    for name in files:
+        if not (folder / name).resolve().is_relative_to(inside):
+            raise BagFormatError(
+                str(path), f"file '{name}' is outside the bag folder; a bag lists its own files"
+            )
     return Metadata(storage, files, qos, str(info.get("ros_distro") or ""))

@@ -10,12 +10,14 @@ a bag at all raises :class:`BagFormatError`.
 from __future__ import annotations
 
 import contextlib
+import sys
 from collections.abc import Collection, Iterator
 from pathlib import Path
 from typing import Any
 
 import yaml
 
+from robomodel._files import UserFileError, check_user_file
 from robomodel.bag._deps import require
 from robomodel.bag._mcap_reader import McapChannel, scan_mcap
 from robomodel.bag._metadata import Metadata, qos_from_dict, read_metadata
@@ -30,7 +32,16 @@ MCAP_MAGIC = b"\x89MCAP0\r\n"
 SQLITE_MAGIC = b"SQLite format 3\x00"
 
 
+def _regular(path: Path) -> None:
+    """A bag file must be a regular file (any size): not a FIFO or a device to read forever."""
+    try:
+        check_user_file(path, what="bag file", limit=sys.maxsize)
+    except UserFileError as exc:
+        raise BagFormatError(str(path), exc.reason) from None
+
+
 def _magic(path: Path) -> bytes:
+    _regular(path)
     try:
         with path.open("rb") as handle:
             return handle.read(16)
@@ -44,7 +55,11 @@ def _detect(path: Path) -> tuple[Storage, tuple[Path, ...], Metadata | None]:
     if path.is_dir():
         metadata = read_metadata(path) if (path / "metadata.yaml").exists() else None
         if metadata is not None and metadata.files:
-            return metadata.storage, tuple(path / f for f in metadata.files), metadata
+            pieces = tuple(path / f for f in metadata.files)
+            for piece in pieces:
+                if piece.exists():  # a missing piece is reported by the reader, with the rest
+                    _regular(piece)
+            return metadata.storage, pieces, metadata
         for storage, pattern in ((Storage.MCAP, "*.mcap"), (Storage.SQLITE3, "*.db3")):
             files = tuple(sorted(path.glob(pattern)))
             if files:
