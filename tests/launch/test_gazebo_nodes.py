@@ -241,3 +241,55 @@ def test_gzserver_arguments_as_gazebo_reads_them() -> None:
     # -s takes a system plugin: it is not the world (ROS 2's gzserver.launch.py passes them)
     assert parse_server_args(["w.world", "-s", "libgazebo_ros_init.so"]) == (False, "w.world")
     assert parse_server_args(["-r", "-v", "4", "empty.sdf"]) == (False, "empty.sdf")
+
+
+def test_a_spawn_from_another_thread_waits_for_the_chunk_being_stepped(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """spawn_model calls the spawn service in its own thread while the launch's main thread
+    drives the simulation (make demo crashed on a half-built bridge): the rebuild and the
+    stepping take turns."""
+    import threading
+    import time
+
+    from robomodel.sim.bus import SimBridge
+
+    add_robot = SimBridge._add_robot
+
+    def slow_add_robot(self: Any, *args: Any) -> None:  # widens the window a lidar makes
+        time.sleep(0.02)
+        add_robot(self, *args)
+
+    monkeypatch.setattr(SimBridge, "_add_robot", slow_add_robot)
+    server, context = _server(_loaded_params())
+    errors: list[BaseException] = []
+
+    def spawn_two() -> None:
+        try:
+            server.spawn("rrbot", _rrbot_xml())
+            box = (
+                '<robot name="box"><link name="box"><inertial><mass value="1"/>'
+                '<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+                '<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>'
+                "</link></robot>"
+            )
+            for k in range(3):
+                server.spawn(f"box{k}", box, xyz_m=(1.0 + k, 0.0, 0.5))
+        except BaseException as exc:  # reported by the main thread
+            errors.append(exc)
+
+    try:
+        thread = threading.Thread(target=spawn_two)
+        thread.start()
+        while thread.is_alive():
+            server.drive(0.002)
+        server.drive(0.1)
+        assert not errors, errors
+        assert {entry.model_name for entry in server.robots} == {
+            "rrbot",
+            *(f"box{k}" for k in range(3)),
+        }
+        assert server.sim is not None and server.sim.time_s > 0.0
+    finally:
+        server.close()
+        context.shutdown()

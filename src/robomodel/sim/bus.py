@@ -101,6 +101,9 @@ class SimBridge:
         self.node = context.create_node(node_name)
         self._clock_pub = self.node.create_publisher(Clock, "/clock", 10)
         self._manual = isinstance(context.clock, ManualClock)
+        # every attribute _tick reads exists before it is scheduled: a spawn served on another
+        # thread builds a new bridge while the simulation keeps stepping
+        self._wrench_ends: list[tuple[float, str, str]] = []
         sim.every(clock_rate_hz, self._tick, order=-1)
         self._static_pub: Any = None
         self._static: list[Any] = []
@@ -110,7 +113,6 @@ class SimBridge:
             self._add_robot(built, ground_truth_rate_hz)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
-        self._wrench_ends: list[tuple[float, str, str]] = []
         from robomodel.sim.bus_services import bridge_services
 
         self._unregister = [

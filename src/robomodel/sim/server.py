@@ -19,6 +19,7 @@ The gazebo_msgs services that call into the server are in
 from __future__ import annotations
 
 import dataclasses
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -97,6 +98,10 @@ class SimServer:
         self.sim: Simulation | None = None
         self.bridge: SimBridge | None = None
         self._paused = paused
+        # A spawn or delete served on another thread (an in-process call runs the handler in
+        # the caller's thread: spawn_model's) rebuilds the scene; it waits for the chunk being
+        # stepped, so the drive loop never steps a half-built simulation or bridge.
+        self._scene_lock = threading.RLock()
         self._anchor: tuple[float, float] | None = None
         self.node = context.create_node("gazebo")
         self._rebuild()
@@ -241,6 +246,10 @@ class SimServer:
 
     # -- the scene -------------------------------------------------------------------------------
     def _rebuild(self) -> None:
+        with self._scene_lock:
+            self._rebuild_locked()
+
+    def _rebuild_locked(self) -> None:
         from robomodel.sim.bus import SimBridge
         from robomodel.sim.engine import Simulation
 
@@ -316,30 +325,39 @@ class SimServer:
         assert self.sim is not None and self.bridge is not None
         end = time.perf_counter() + duration_s
         while time.perf_counter() < end:
-            sim, bridge = self.sim, self.bridge
-            self._paused = bridge.paused
-            if bridge.paused:
-                self._anchor = None
-                bridge.poll()
-                if bridge.pending_steps:
-                    steps, bridge.pending_steps = bridge.pending_steps, 0
-                    sim.step(steps)
-                else:
+            with self._scene_lock:
+                sim, paused, stepped = self._chunk()
+            if paused:
+                if not stepped:
                     time.sleep(0.01)
                 continue
-            start = time.perf_counter()
-            if self._anchor is None:
-                self._anchor = (start, sim.time_s)
-            sim.run(_CHUNK_S)
-            self.context.spin_once(0.0)  # service handlers may rebuild: re-read sim next turn
             factor = self.real_time_factor
-            if factor is not None and factor > 0 and self.sim is sim:
-                delay = self._anchor[0] + (sim.time_s - self._anchor[1]) / factor
-                delay -= time.perf_counter()
+            anchor = self._anchor
+            if factor is not None and factor > 0 and self.sim is sim and anchor is not None:
+                delay = anchor[0] + (sim.time_s - anchor[1]) / factor - time.perf_counter()
                 if delay > 0:
                     time.sleep(min(delay, max(0.0, end - time.perf_counter())))
             elif self.sim is not sim:
                 self._anchor = None
+
+    def _chunk(self) -> tuple[Simulation, bool, bool]:
+        """One chunk of physics and bus callbacks (under the scene lock): the simulation it
+        stepped, whether it was paused, whether it stepped (paused: only requested steps)."""
+        sim, bridge = self.sim, self.bridge
+        assert sim is not None and bridge is not None
+        self._paused = paused = bridge.paused
+        if paused:
+            self._anchor = None
+            bridge.poll()
+            steps, bridge.pending_steps = bridge.pending_steps, 0
+            if steps:
+                sim.step(steps)
+            return sim, True, bool(steps)
+        if self._anchor is None:
+            self._anchor = (time.perf_counter(), sim.time_s)
+        sim.run(_CHUNK_S)
+        self.context.spin_once(0.0)  # service handlers may rebuild: re-read sim next turn
+        return sim, False, True
 
     def close(self) -> None:
         self.node.destroy()
