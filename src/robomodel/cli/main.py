@@ -114,6 +114,24 @@ def _unknown_verb(verb: str) -> int:
     return EXIT_INVALID
 
 
+def _parse(parser: argparse.ArgumentParser, args_list: list[str]) -> argparse.Namespace:
+    """``parse_args``, except that ``name:=value`` may also come after options, as roslaunch,
+    ``ros2 launch`` and xacro take it (``robomodel launch PKG FILE --headless gui:=false``):
+    argparse leaves a positional after an option over, and such leftovers join the verb's
+    ``name:=value`` list (``inputs`` or ``mappings``)."""
+    args, extra = parser.parse_known_args(args_list)
+    mappings = [item for item in extra if ":=" in item and not item.startswith("-")]
+    target = next(
+        (n for n in ("inputs", "mappings") if isinstance(getattr(args, n, None), list)), None
+    )
+    rest = [item for item in extra if item not in mappings or target is None]
+    if rest:
+        parser.error(f"unrecognized arguments: {' '.join(rest)}")
+    if mappings and target is not None:
+        getattr(args, target).extend(mappings)
+    return args
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line and return its exit code."""
     args_list = list(sys.argv[1:] if argv is None else argv)
@@ -126,7 +144,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if verb is not None and verb not in _VERB_NAMES:
         return _unknown_verb(verb)
     parser = build_parser(verb if verb in _VERB_NAMES else "")
-    args = parser.parse_args(args_list)
+    args = _parse(parser, args_list)
     func: Callable[[argparse.Namespace], int] = args.func
     from robomodel.errors import RobomodelError  # every verb module has loaded it already
 
