@@ -151,11 +151,17 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
             lambda: topic.input_value() == "/simplebot_controller/cmd_vel",
             what="the diff-drive topic",
         )
-        wait_for(
-            lambda: any("Started controllers" in line for line in errors),
-            timeout_s=60,
-            what="the spawner to start the controllers",
-        )
+        try:
+            wait_for(
+                lambda: any("Started controllers" in line for line in errors),
+                timeout_s=60,
+                what="the spawner to start the controllers",
+            )
+        except BaseException:
+            raise AssertionError(
+                f"the spawner did not start the controllers in 60 s (launch running: "
+                f"{launch.poll() is None}); its output:\n{''.join(errors[-60:])}"
+            ) from None
         before = settle(page)
         box = slider_input(page, "Linear x [m/s]")
         box.fill("0.4")

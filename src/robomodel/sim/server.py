@@ -102,6 +102,10 @@ class SimServer:
         # the caller's thread: spawn_model's) rebuilds the scene; it waits for the chunk being
         # stepped, so the drive loop never steps a half-built simulation or bridge.
         self._scene_lock = threading.RLock()
+        # Rebuilds waiting for the lock: the drive loop lets them in first (a lock is not fair,
+        # and a loop that cannot keep real time would take it again at once, forever)
+        self._waiting = 0
+        self._waiting_lock = threading.Lock()
         self._anchor: tuple[float, float] | None = None
         self.node = context.create_node("gazebo")
         self._rebuild()
@@ -246,8 +250,14 @@ class SimServer:
 
     # -- the scene -------------------------------------------------------------------------------
     def _rebuild(self) -> None:
-        with self._scene_lock:
-            self._rebuild_locked()
+        with self._waiting_lock:
+            self._waiting += 1
+        try:
+            with self._scene_lock:
+                self._rebuild_locked()
+        finally:
+            with self._waiting_lock:
+                self._waiting -= 1
 
     def _rebuild_locked(self) -> None:
         from robomodel.sim.bus import SimBridge
@@ -325,6 +335,8 @@ class SimServer:
         assert self.sim is not None and self.bridge is not None
         end = time.perf_counter() + duration_s
         while time.perf_counter() < end:
+            while self._waiting:  # a spawn from another thread goes first
+                time.sleep(0.001)
             with self._scene_lock:
                 sim, paused, stepped = self._chunk()
             if paused:
