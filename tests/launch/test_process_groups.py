@@ -140,3 +140,25 @@ def test_ctrl_c_works_when_started_with_sigint_ignored(tmp_path: Path) -> None:
     finally:
         proc.kill()
         proc.wait()
+
+
+def test_a_bus_that_hangs_on_close_does_not_keep_the_launch_alive() -> None:
+    """Every node stopped, the Zenoh session's close() blocks (its runtime panicked while peers
+    went away): the launch says so and exits instead of hanging."""
+    script = (
+        "import time\n"
+        "import robomodel.launch.runner as r\n"
+        "r._CLOSE_TIMEOUT_S = 0.5\n"
+        "runner = r.LaunchRunner.__new__(r.LaunchRunner)\n"
+        "runner.started, runner._ros1 = [], None\n"
+        "runner.gui = type('G', (), {'close': lambda self: None})()\n"
+        "runner.context = type('C', (), {'shutdown': lambda self: time.sleep(120)})()\n"
+        "runner.shutdown()\n"
+    )
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=60
+    )
+    assert done.returncode == 0
+    assert "closing the viewer and the bus took over 0.5 s" in done.stderr

@@ -4,6 +4,7 @@ with ``robomodel topic/control/tf`` as ``ros2 topic``/``ros2 control`` would che
 
 from __future__ import annotations
 
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -117,6 +118,9 @@ def test_ctrl_c_stops_a_simulation_launch_within_seconds(tmp_path: Path) -> None
     with _launch(domain, "two_link_arm", "gazebo.launch.py", "gui:=false", log=log) as proc:
         _wait_for_line(log, "Configured and activated joint1_position_controller", proc, 90)
         proc.send_signal(signal.SIGINT)
-        code = proc.wait(30)  # a hang fails here; the bound is generous, not a timing claim
+        try:
+            code = proc.wait(30)  # a hang fails here; the bound is generous, not a timing claim
+        except subprocess.TimeoutExpired:
+            raise AssertionError(f"no exit 30 s after Ctrl-C:\n{log.read_text()[-4000:]}") from None
     assert code == 0, log.read_text()
     assert "Traceback" not in log.read_text()

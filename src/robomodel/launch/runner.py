@@ -295,14 +295,38 @@ class LaunchRunner:
             end = time.monotonic() + _STOP_TIMEOUT_S
             while entry.handle.exit_code() is None and time.monotonic() < end:
                 self.context.spin_once(0.02)
-        self.gui.close()
-        if self.context is not None:
-            self.context.shutdown()
-        if self._ros1 is not None:
-            self._ros1.close()
+        # Every node is stopped: closing the viewer and the bus is all that is left. A Zenoh
+        # session whose runtime panicked while peers went away can block in close() for good;
+        # the launch then ends anyway, after saying so.
+        watchdog = threading.Timer(_CLOSE_TIMEOUT_S, _exit_after_hung_close)
+        watchdog.daemon = True
+        watchdog.start()
+        try:
+            self.gui.close()
+            if self.context is not None:
+                self.context.shutdown()
+            if self._ros1 is not None:
+                self._ros1.close()
+        finally:
+            watchdog.cancel()
 
 
 _STOP_TIMEOUT_S = 5.0
+_CLOSE_TIMEOUT_S = 10.0
+
+
+def _exit_after_hung_close() -> None:
+    import os
+
+    print(
+        f"[launch] closing the viewer and the bus took over {_CLOSE_TIMEOUT_S:g} s; every node "
+        "had stopped: exiting",
+        file=sys.stderr,
+        flush=True,
+    )
+    os._exit(0)
+
+
 _OUTPUT_LOCK = threading.Lock()
 
 
