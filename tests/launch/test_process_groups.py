@@ -162,3 +162,35 @@ def test_a_bus_that_hangs_on_close_does_not_keep_the_launch_alive() -> None:
     )
     assert done.returncode == 0
     assert "closing the viewer and the bus took over 0.5 s" in done.stderr
+
+
+def test_a_zenoh_session_that_never_closes_is_left_behind() -> None:
+    import threading as _threading
+
+    from robomodel.runtime.transport import _zenoh_common
+
+    class Stuck:
+        def close(self) -> None:
+            _threading.Event().wait(30)
+
+    before = _zenoh_common.abandoned_sessions
+    assert not _zenoh_common.close_session(Stuck(), timeout_s=0.2)
+    assert _zenoh_common.abandoned_sessions == before + 1
+    assert _zenoh_common.close_session(type("Fine", (), {"close": lambda self: None})())
+
+
+def test_the_command_line_exits_past_an_abandoned_session() -> None:
+    """What keeps the interpreter from exiting (a thread blocked in a session's close) does
+    not keep the command from ending once its verb has returned."""
+    import sys
+
+    script = (
+        "import threading, time\n"
+        "from robomodel.runtime.transport import _zenoh_common\n"
+        "from robomodel.cli import main\n"
+        "threading.Thread(target=time.sleep, args=(120,)).start()  # not a daemon\n"
+        "_zenoh_common.abandoned_sessions = 1\n"
+        "main._exit_if_a_bus_hangs(7)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=60)
+    assert done.returncode == 7

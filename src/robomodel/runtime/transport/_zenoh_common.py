@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import logging
+import threading
 from typing import Any
 
 from robomodel.errors import MissingDependencyError
 
-__all__ = ["direct", "import_zenoh", "log", "undeclare_all"]
+__all__ = ["CLOSE_TIMEOUT_S", "close_session", "direct", "import_zenoh", "log", "undeclare_all"]
 
 log = logging.getLogger("robomodel.runtime")
 
@@ -41,3 +42,34 @@ def direct(callback: Any) -> Any:
     """
     zenoh = import_zenoh()
     return zenoh.handlers.Callback(callback, indirect=False)
+
+
+CLOSE_TIMEOUT_S = 5.0
+abandoned_sessions = 0  # sessions whose close() did not return (robomodel.cli.main exits hard)
+
+
+def close_session(session: Any, timeout_s: float = CLOSE_TIMEOUT_S) -> bool:
+    """``session.close()``, waited for at most ``timeout_s``; False if it did not return.
+
+    Zenoh's runtime has been seen to panic in a routing task while peers go away (a
+    ``PoisonError`` in its demultiplexer), and ``close()`` then never returns: the process
+    that is ending would hang on Ctrl-C. The close runs on a daemon thread, and a session left
+    behind is counted, so that the command line can exit without waiting for it.
+    """
+    global abandoned_sessions
+    done = threading.Event()
+
+    def run() -> None:
+        try:
+            session.close()
+        except Exception:
+            log.debug("closing the Zenoh session failed", exc_info=True)
+        finally:
+            done.set()
+
+    threading.Thread(target=run, name="robomodel-zenoh-close", daemon=True).start()
+    if done.wait(timeout_s):
+        return True
+    abandoned_sessions += 1
+    log.warning("the Zenoh session did not close within %g s; leaving it", timeout_s)
+    return False

@@ -29,7 +29,7 @@ from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
 from robomodel.runtime.qos import QoSProfile
 from robomodel.runtime.transport._failures import log_failure
-from robomodel.runtime.transport._zenoh_common import log, undeclare_all
+from robomodel.runtime.transport._zenoh_common import close_session, log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
 from robomodel.runtime.transport._zenoh_graph import read_graph
 from robomodel.runtime.transport._zenoh_services import ServiceClient, ZenohService
@@ -290,7 +290,7 @@ class ZenohTransport(Transport):
         for record in self._nodes.values():
             undeclare_all(record.handle)
         self._nodes.clear()
-        self.session.close()
+        close_session(self.session)
 
 
 def _in_place(name: str, handler: ServiceHandler, request: Message) -> Message:
