@@ -47,6 +47,17 @@ TALKER = textwrap.dedent(
 )
 
 
+def flushed_count(folder: Path) -> int:
+    """The message count metadata.yaml says is flushed so far (0 before the first flush)."""
+    import yaml
+
+    try:
+        meta = yaml.safe_load((folder / "metadata.yaml").read_text())
+    except (OSError, yaml.YAMLError):
+        return 0
+    return int(meta["rosbag2_bagfile_information"]["message_count"])
+
+
 def run_cli(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
     return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=timeout)
 

@@ -15,7 +15,7 @@ from pathlib import Path
 from robomodel.runtime.msg import JointState, deserialize
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 
-from .conftest import Talker, run_cli, stop
+from .conftest import Talker, flushed_count, run_cli, stop
 
 RRBOT = EXAMPLES / "rrbot_description/urdf/rrbot.xacro"
 RRBOT_YAML = EXAMPLES / "rrbot_description/config/rrbot_control.yaml"
@@ -139,16 +139,6 @@ def test_ros1_recording_accepted_by_debian_rosbag(tmp_path: Path) -> None:
     )
 
 
-def _flushed_count(folder: Path) -> int:
-    import yaml
-
-    try:
-        meta = yaml.safe_load((folder / "metadata.yaml").read_text())
-    except (OSError, yaml.YAMLError):
-        return 0
-    return int(meta["rosbag2_bagfile_information"]["message_count"])
-
-
 def test_sigkilled_recording_is_read(tmp_path: Path) -> None:
     talker = Talker(tmp_path, period_s=0.005)
     out = tmp_path / "killed"
@@ -158,9 +148,9 @@ def test_sigkilled_recording_is_read(tmp_path: Path) -> None:
     )  # fmt: skip
     try:
         deadline = time.monotonic() + 20
-        while _flushed_count(out) < 50 and time.monotonic() < deadline:
+        while flushed_count(out) < 50 and time.monotonic() < deadline:
             time.sleep(0.05)  # until a flush with messages (metadata.yaml follows each flush)
-        flushed = _flushed_count(out)
+        flushed = flushed_count(out)
         time.sleep(0.5)  # killed between two flushes
     finally:
         stop(rec, signal.SIGKILL)

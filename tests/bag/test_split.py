@@ -17,7 +17,7 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg import JointState, deserialize
 from tests.conftest import ROBOMODEL, unique_domain
 
-from .conftest import Talker, rosbags_read, run_cli, stop
+from .conftest import Talker, flushed_count, rosbags_read, run_cli, stop
 
 MAX_S = 0.6
 MAX_BYTES = 6000
@@ -55,14 +55,6 @@ def _check_metadata(folder: Path) -> list[list[tuple[str, int, bytes]]]:
     states = [t for topic, t, _ in everything if topic == "/joint_states"]
     assert states == sorted(states)  # the pieces follow each other
     return pieces
-
-
-def _flushed_count(folder: Path) -> int:
-    try:
-        meta = yaml.safe_load((folder / "metadata.yaml").read_text())
-    except (OSError, yaml.YAMLError):
-        return 0
-    return int(meta["rosbag2_bagfile_information"]["message_count"])
 
 
 def _record(folder: Path, domain: str, *split: str) -> subprocess.Popen[str]:
@@ -103,7 +95,7 @@ def test_split_by_duration_and_size(tmp_path: Path) -> None:
     ]
     try:
         deadline = time.monotonic() + 40
-        while min(map(_flushed_count, (by_time, by_size))) < 200 and time.monotonic() < deadline:
+        while min(map(flushed_count, (by_time, by_size))) < 200 and time.monotonic() < deadline:
             time.sleep(0.1)  # each recorder's metadata.yaml says what it has written so far
         for proc in recorders:
             stop(proc)  # SIGTERM: the files are closed with their indexes
