@@ -21,6 +21,7 @@ __all__ = [
     "MAX_VALUE_BYTES",
     "ParamBoundError",
     "expand_bounded",
+    "expand_measured",
     "tree_size",
 ]
 
@@ -33,22 +34,11 @@ class ParamBoundError(RobomodelError):
     """A parameter value over the size or nesting bound."""
 
 
-class _Budget:
-    __slots__ = ("left", "limit", "what")
-
-    def __init__(self, limit: int, what: str) -> None:
-        self.left = limit
-        self.limit = limit
-        self.what = what
-
-    def spend(self, units: int) -> None:
-        self.left -= units
-        if self.left < 0:
-            raise ParamBoundError(
-                f"{self.what} is larger than {self.limit / 2**20:.0f} MiB once expanded "
-                "(YAML aliases repeating a block?); parameters are bounded to keep the server's "
-                "memory bounded"
-            )
+def _too_large(what: str, limit: int) -> str:
+    return (
+        f"{what} is larger than {limit / 2**20:.0f} MiB once expanded (YAML aliases repeating "
+        "a block?); parameters are bounded to keep the server's memory bounded"
+    )
 
 
 def _leaf_size(value: Any) -> int:
@@ -60,21 +50,12 @@ def _leaf_size(value: Any) -> int:
     return len(data) if isinstance(data, bytes | bytearray) else 8
 
 
-def _expand(value: Any, budget: _Budget, depth: int) -> Any:
-    if depth > MAX_DEPTH:
-        raise ParamBoundError(
-            f"{budget.what} is nested deeper than {MAX_DEPTH} levels of dictionaries and lists"
-        )
+def _copy(value: Any) -> Any:
+    """A plain tree: shared blocks copied apart, keys as strings, tuples as lists."""
     if isinstance(value, Mapping):
-        out: dict[str, Any] = {}
-        for key, item in value.items():
-            budget.spend(8 + len(str(key)))
-            out[str(key) if not isinstance(key, str) else key] = _expand(item, budget, depth + 1)
-        return out
+        return {str(key): _copy(item) for key, item in value.items()}
     if isinstance(value, list | tuple):
-        budget.spend(8)
-        return [_expand(item, budget, depth + 1) for item in value]
-    budget.spend(_leaf_size(value))
+        return [_copy(item) for item in value]
     return value
 
 
@@ -103,20 +84,29 @@ def _measure(value: Any, memo: dict[int, int], open_ids: set[int], depth: int, w
     return size
 
 
-def expand_bounded(value: Any, *, what: str = "the value", limit: int = MAX_VALUE_BYTES) -> Any:
-    """A plain tree copy of ``value`` (shared references copied apart), or ParamBoundError.
+def expand_measured(
+    value: Any, *, what: str = "the value", limit: int = MAX_VALUE_BYTES
+) -> tuple[Any, int]:
+    """A plain tree copy of ``value`` (shared references copied apart) and its size, or
+    ParamBoundError.
 
-    The expanded size is measured first, each shared block once, so an alias bomb is refused
-    in the time it takes to read it, not to expand it. Dict keys become strings, tuples
-    lists, as XML-RPC and YAML give them.
+    The expanded size (and the nesting) is measured first, each shared block once, so an
+    alias bomb is refused in the time it takes to read it, not to expand it; only a value
+    within the bounds is copied. Dict keys become strings, tuples lists, as XML-RPC and YAML
+    give them.
     """
     try:
         size = _measure(value, {}, set(), 0, what)
-        if size > limit:
-            _Budget(limit, what).spend(size)
-        return _expand(value, _Budget(limit, what), 0)
     except RecursionError:
         raise ParamBoundError(f"{what} is nested too deeply") from None
+    if size > limit:
+        raise ParamBoundError(_too_large(what, limit))
+    return _copy(value), size
+
+
+def expand_bounded(value: Any, *, what: str = "the value", limit: int = MAX_VALUE_BYTES) -> Any:
+    """The plain tree of :func:`expand_measured`, without its size."""
+    return expand_measured(value, what=what, limit=limit)[0]
 
 
 def tree_size(value: Any) -> int:

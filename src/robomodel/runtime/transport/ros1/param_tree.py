@@ -16,7 +16,7 @@ from robomodel.runtime.transport.ros1.param_bounds import (
     MAX_TREE_BYTES,
     MAX_VALUE_BYTES,
     ParamBoundError,
-    expand_bounded,
+    expand_measured,
     tree_size,
 )
 
@@ -51,10 +51,9 @@ class ParamTree:
     def set(self, name: str, value: Any) -> None:
         parts = split_name(name)
         try:
-            value = expand_bounded(value, what=f"[{name}]", limit=self._max_value_bytes)
+            value, added = expand_measured(value, what=f"[{name}]", limit=self._max_value_bytes)
         except ParamBoundError as exc:
             raise ParamServerError(str(exc)) from None
-        added = tree_size(value)
         with self._lock:
             if not parts:
                 if not isinstance(value, dict):
