@@ -9,7 +9,7 @@ out exponentially are refused in about a second; real launch files use well unde
 
 from __future__ import annotations
 
-__all__ = ["INCLUDE_WORK", "MAX_VALUE_CHARS", "MAX_WORK", "value_too_long"]
+__all__ = ["INCLUDE_WORK", "MAX_VALUE_CHARS", "MAX_WORK", "value_too_long", "work_exceeded"]
 
 MAX_VALUE_CHARS = 10_000_000
 MAX_WORK = 200_000
@@ -23,4 +23,18 @@ def value_too_long(length: int) -> str | None:
     return (
         f"a substitution result of {length:,} characters is over the {MAX_VALUE_CHARS:,}-"
         "character limit (does an arg or variable double itself?)"
+    )
+
+
+def work_exceeded(work: int, unit: str, files_read: int) -> str | None:
+    """The error message for ``work`` units done in one load, or None if within the bound.
+
+    ``unit`` is what one unit counts ("element" for roslaunch XML, "action" for ROS 2).
+    """
+    if work <= MAX_WORK:
+        return None
+    return (
+        f"this launch processes more than {MAX_WORK:,} units of work (one per {unit}, "
+        f"{INCLUDE_WORK} per include): includes fan out exponentially? "
+        f"({files_read} files read so far)"
     )

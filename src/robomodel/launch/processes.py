@@ -127,6 +127,12 @@ def run_bounded(
     return CommandOutput(proc.wait(), out, err)
 
 
+def _timed_out(timeout_s: float) -> CommandError:
+    return CommandError(
+        f"did not finish within {timeout_s:g} s (change the limit with --command-timeout SECONDS)"
+    )
+
+
 def _collect(
     proc: subprocess.Popen[bytes], timeout_s: float, max_output_bytes: int
 ) -> tuple[bytes, bytes]:
@@ -141,10 +147,7 @@ def _collect(
         while selector.get_map():
             left = deadline - time.monotonic()
             if left <= 0:
-                raise CommandError(
-                    f"did not finish within {timeout_s:g} s (change the limit with "
-                    "--command-timeout SECONDS)"
-                )
+                raise _timed_out(timeout_s)
             for key, _ in selector.select(min(left, 0.5)):
                 data = os.read(key.fd, 65536)
                 if not data:
@@ -160,10 +163,7 @@ def _collect(
     try:
         proc.wait(max(deadline - time.monotonic(), 0.01))
     except subprocess.TimeoutExpired:  # closed its output but runs on
-        raise CommandError(
-            f"did not finish within {timeout_s:g} s (change the limit with "
-            "--command-timeout SECONDS)"
-        ) from None
+        raise _timed_out(timeout_s) from None
     out = b"".join(chunks.get(proc.stdout, []))
     err = b"".join(chunks.get(proc.stderr, []))
     return out, err

@@ -12,7 +12,7 @@ from lxml import etree
 from robomodel._files import UserFileError, read_user_bytes
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import PackageNotFoundError, SourceLocation
-from robomodel.launch.bounds import INCLUDE_WORK, MAX_WORK
+from robomodel.launch.bounds import work_exceeded
 from robomodel.launch.model import LaunchError, NodeSpec
 from robomodel.launch.processes import COMMAND_TIMEOUT_S
 from robomodel.launch.ros1.attr_values import loose_bool, strict_bool
@@ -101,16 +101,12 @@ class LoaderBase:
         )
 
     def charge(self, units: int, element: Any, ctx: LoaderContext) -> None:
-        """Count ``units`` of work; past ``MAX_WORK`` the launch is refused."""
+        """Count ``units`` of work; past the bound (robomodel.launch.bounds) the launch is
+        refused."""
         self.work += units
-        if self.work > MAX_WORK:
-            raise self.error(
-                f"this launch processes more than {MAX_WORK:,} units of work (one per element, "
-                f"{INCLUDE_WORK} per include): includes fan out exponentially? "
-                f"({len(self.files)} files read so far)",
-                element,
-                ctx,
-            )
+        problem = work_exceeded(self.work, "element", len(self.files))
+        if problem is not None:
+            raise self.error(problem, element, ctx)
 
     # -- attributes -----------------------------------------------------------------------
     def subst(self, text: str | None, ctx: LoaderContext) -> str | None:

@@ -13,7 +13,7 @@ from typing import Any
 
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import SourceLocation
-from robomodel.launch.bounds import INCLUDE_WORK, MAX_WORK
+from robomodel.launch.bounds import work_exceeded
 from robomodel.launch.model import LaunchError
 from robomodel.launch.processes import COMMAND_TIMEOUT_S
 
@@ -58,20 +58,16 @@ class Session:
     keep_alive: list[Any] = field(default_factory=list)
     work: int = 0
     command_timeout_s: float = COMMAND_TIMEOUT_S
+    temporary_files: list[Path] = field(default_factory=list)
 
     def charge(self, units: int, location: SourceLocation | None) -> None:
         """Count ``units`` of work (robomodel.launch.bounds); past the bound, refuse the load."""
         self.work += units
-        if self.work > MAX_WORK:
+        problem = work_exceeded(self.work, "action", len(self.files))
+        if problem is not None:
             raise WorkBoundError(
-                f"this launch processes more than {MAX_WORK:,} units of work (one per action, "
-                f"{INCLUDE_WORK} per include): includes fan out exponentially? "
-                f"({len(self.files)} files read so far)",
-                location=location,
-                include_stack=tuple(self.include_stack),
+                problem, location=location, include_stack=tuple(self.include_stack)
             )
-
-    temporary_files: list[Path] = field(default_factory=list)
 
     def warn(self, message: str) -> None:
         """Record a warning once."""
