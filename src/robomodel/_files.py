@@ -44,6 +44,7 @@ class UserFileError(RobomodelError):
         line: 1-based line of an undecodable byte, else None.
         column: 1-based column of that byte, else None.
         errno: The OS error number when the file could not be opened (ENOENT: missing).
+        too_large: The file is over the size limit.
     """
 
     def __init__(
@@ -54,9 +55,11 @@ class UserFileError(RobomodelError):
         line: int | None = None,
         column: int | None = None,
         errno: int | None = None,
+        too_large: bool = False,
     ) -> None:
         self.path = path
         self.errno = errno
+        self.too_large = too_large
         self.reason = reason
         self.line = line
         self.column = column
@@ -90,7 +93,7 @@ def check_user_file(
             name, f"cannot read {what}: it is {_kind(info.st_mode)}; only regular files are read"
         )
     if info.st_size > limit:
-        raise UserFileError(name, _too_large(what, info.st_size, limit))
+        raise UserFileError(name, _too_large(what, info.st_size, limit), too_large=True)
 
 
 def read_user_bytes(
@@ -116,7 +119,7 @@ def read_user_bytes(
     except OSError as exc:
         raise UserFileError(name, f"cannot read {what}: {exc.strerror}", errno=exc.errno) from None
     if len(data) > limit:  # grew since the stat
-        raise UserFileError(name, _too_large(what, len(data), limit))
+        raise UserFileError(name, _too_large(what, len(data), limit), too_large=True)
     return data
 
 

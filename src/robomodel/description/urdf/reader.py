@@ -71,12 +71,11 @@ def _load(source: Source, path: str | None, max_bytes: int) -> tuple[bytes, str 
         try:
             data = read_user_bytes(source, what="file", limit=max_bytes)
         except UserFileError as exc:
-            too_large = exc.errno is None and "MiB" in exc.reason
             raise InputError.at(
                 exc.reason
-                + ("; this is not a URDF file, or pass max_bytes=..." if too_large else ""),
+                + ("; this is not a URDF file, or pass max_bytes=..." if exc.too_large else ""),
                 path,
-                code="too-large" if too_large else "io",
+                code="too-large" if exc.too_large else "io",
             ) from None
     if len(data) > max_bytes:
         raise InputError.at(
