@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from robomodel.xacro._definitions import parse_macro_arg
@@ -88,12 +88,18 @@ def _reference_tokens(text: str) -> list[tuple[TokenKind, str]]:
 
 @settings(max_examples=500)
 @given(st.text(alphabet="$${}()ab '", max_size=12))
+@example("${{}$(}")  # found by a CI run: the reference fails where robomodel nests
 def test_lexer_matches_reference_without_nesting(text: str) -> None:
     try:
         expected = _reference_tokens(text)
     except xacro.XacroException:
-        with pytest.raises(LexError):
-            tokenize_text(text)
+        try:
+            ours = list(tokenize_text(text))
+        except LexError:
+            return
+        # robomodel matches braces in balance ('${{}$(}' is one expression, '{}$('), where
+        # the reference's regex stops at the first '}' and then fails on the rest: nesting
+        assert any(k is not TokenKind.TEXT and ("{" in v or "(" in v) for k, v in ours), ours
         return
     nested = any(
         k is not TokenKind.TEXT and ("{" in v or "(" in v or "'" in v) for k, v in expected
