@@ -208,3 +208,15 @@ def _no_process_left_behind() -> Iterator[None]:
         import warnings
 
         warnings.warn(f"the test left processes running (now killed): {left}", stacklevel=1)
+
+
+@pytest.fixture(autouse=True)
+def _temporary_files_in_pytest_s_basetemp(
+    tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """What code run in the test process writes with ``tempfile`` (the ``launch_params_*.yaml``
+    files the ROS 2 ``load_launch`` API leaves for the caller's nodes) goes to a folder of
+    pytest's, which pytest cleans up, not to /tmp."""
+    import tempfile
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path_factory.mktemp("tempfile")))
