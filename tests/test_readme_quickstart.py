@@ -1,0 +1,107 @@
+"""The README's quickstart, typed as written: every line of its block runs.
+
+Commands that end (check, xacro, fk) must exit 0; the ones that keep running (launch) must reach
+"N nodes running" and end cleanly on Ctrl-C, as a user sees them do.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import ROOT, unique_domain
+
+_MARKER = "<!-- quickstart: tests/test_readme_quickstart.py runs each line -->"
+_BIN = Path(sys.executable).parent  # the venv the README tells the user to activate
+
+
+def _quickstart_lines() -> list[str]:
+    text = (ROOT / "README.md").read_text()
+    block = text.split(_MARKER, 1)[1].split("```bash\n", 1)[1].split("```", 1)[0]
+    return [line.split("  #", 1)[0].strip() for line in block.splitlines() if line.strip()]
+
+
+def _robomodel_commands() -> list[str]:
+    return [line for line in _quickstart_lines() if line.startswith("robomodel ")]
+
+
+def test_quickstart_sets_up_the_command_and_the_packages() -> None:
+    lines = _quickstart_lines()
+    assert lines[0] == "source .venv/bin/activate"
+    assert lines[1] == "export ROS_PACKAGE_PATH=$PWD/examples"
+    assert (_BIN / "robomodel").exists(), "make demo/test installs the robomodel command"
+    # one command per seed lesson, 000 to 004
+    text = (ROOT / "README.md").read_text().split(_MARKER, 1)[1].split("```", 2)[1]
+    assert set(re.findall(r"# seed (\d{3})", text)) == {"000", "001", "002", "003", "004"}
+
+
+@pytest.fixture
+def workdir(tmp_path: Path) -> Path:
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    return tmp_path
+
+
+def _env(workdir: Path) -> dict[str, str]:
+    env = dict(os.environ)
+    env["PATH"] = f"{_BIN}{os.pathsep}{env.get('PATH', '')}"
+    env["ROS_PACKAGE_PATH"] = str(workdir / "examples")
+    env["ROS_DOMAIN_ID"] = unique_domain()
+    env.pop("ROS_MASTER_URI", None)
+    return env
+
+
+def _run_until_running(argv: list[str], workdir: Path, timeout_s: float) -> None:
+    proc = subprocess.Popen(
+        argv,
+        cwd=workdir,
+        env=_env(workdir),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+    )
+    seen: list[str] = []
+    deadline = time.monotonic() + timeout_s
+    try:
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            seen.append(line)
+            if re.search(r"\d+ nodes? running", line) or time.monotonic() > deadline:
+                break
+        assert any(re.search(r"\d+ nodes? running", s) for s in seen), "".join(seen)
+        assert not any("Traceback" in s for s in seen), "".join(seen)
+        os.killpg(proc.pid, signal.SIGINT)
+        rest, _ = proc.communicate(timeout=60)
+        # 0 once the launch's loop runs; 130 (Ctrl-C) when it comes during start-up
+        assert proc.returncode in (0, 130), "".join(seen) + rest
+        assert "Traceback" not in rest, rest
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+
+
+@pytest.mark.parametrize("command", _robomodel_commands())
+def test_quickstart_command_runs(command: str, workdir: Path) -> None:
+    argv = shlex.split(command)
+    if argv[1] == "launch":
+        _run_until_running(argv, workdir, timeout_s=120)
+        return
+    done = subprocess.run(
+        argv, cwd=workdir, env=_env(workdir), capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    if argv[1] == "check":
+        assert "robot name is: planar_3dof" in done.stdout
+    if argv[1] == "xacro":
+        assert "<robot" in (workdir / "planar_3dof.urdf").read_text()
+    if argv[1] == "fk":
+        assert re.search(r"^ee_link\s+xyz", done.stdout, flags=re.M), done.stdout
