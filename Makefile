@@ -10,14 +10,14 @@ STAMP := $(VENV)/.installed
 SDK_VENV := .venv-ros2sdk
 SDK_STAMP := $(SDK_VENV)/.installed
 
-.PHONY: demo test bench lint typecheck clean
+.PHONY: demo test docs bench lint typecheck clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 $(STAMP): $(BIN)/python pyproject.toml
-	$(BIN)/python -m pip install --quiet -e '.[all,test]'
+	$(BIN)/python -m pip install --quiet -e '.[all,test,docs]'
 	touch $(STAMP)
 
 $(SDK_STAMP):
@@ -35,6 +35,13 @@ test: $(STAMP) $(SDK_STAMP)
 	$(BIN)/ruff format --no-cache --check src tests bench
 	$(BIN)/mypy
 	$(BIN)/python -m pytest -q -n 2 tests
+
+# The documentation site, strict (a broken link or a missing page fails). Its screenshots are the
+# browser tests' (build/viewer-screenshots): tools/docs_screenshots takes the missing ones.
+docs: $(STAMP)
+	tools/system-deps test
+	$(BIN)/python tools/docs_screenshots.py
+	$(BIN)/mkdocs build --strict --site-dir build/site
 
 bench: $(STAMP)
 	tools/system-deps bench

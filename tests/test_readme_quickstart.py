@@ -54,6 +54,7 @@ def _env(workdir: Path) -> dict[str, str]:
     env["PATH"] = f"{_BIN}{os.pathsep}{env.get('PATH', '')}"
     env["ROS_PACKAGE_PATH"] = str(workdir / "examples")
     env["ROS_DOMAIN_ID"] = unique_domain()
+    env["ROBOMODEL_VIEWER_PORT"] = "0"  # any free port: other tests' viewers run beside
     env.pop("ROS_MASTER_URI", None)
     return env
 

@@ -28,6 +28,7 @@ from robomodel.cli._common import (
     add_frame_rate_argument,
     load_from_args,
 )
+from robomodel.cli._ports import add_port_argument
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
@@ -66,9 +67,7 @@ def _register_run(verbs: Any) -> None:
     run_p.add_argument(
         "--no-browser", action="store_true", help="start the viewer but do not open a browser"
     )
-    run_p.add_argument(
-        "--port", type=int, default=8080, help="the viewer's HTTP port (0: any free port)"
-    )
+    add_port_argument(run_p, "the viewer's HTTP port")
     add_frame_rate_argument(run_p)
     run_p.add_argument(
         "--inactive", action="store_true", help="load and configure only (spawner --inactive)"

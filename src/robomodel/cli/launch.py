@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from robomodel.cli._ports import add_port_argument
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, close_matches
 
@@ -75,7 +76,7 @@ def _add_run_options(parser: Any) -> None:
     parser.add_argument(
         "--no-browser", action="store_true", help="serve the viewer, open no browser"
     )
-    parser.add_argument("--port", type=int, default=8080, help="the viewer's HTTP port")
+    add_port_argument(parser, "the viewer's HTTP port")
     parser.add_argument(
         "--bus", choices=("zenoh", "inproc", "ros1"), default=None,
         help="zenoh (rmw_zenoh's wire: ROS 2 nodes and other robomodel commands see the nodes), "

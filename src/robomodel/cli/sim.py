@@ -28,6 +28,7 @@ from robomodel.cli._common import (
     package_index_from_args,
     split_inputs,
 )
+from robomodel.cli._ports import add_port_argument
 from robomodel.cli._sim_robots import add_robots, attach
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
@@ -90,7 +91,7 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("--cmd-vel-topic", default=None, help="topic for --cmd-vel (default: found)")
     p.add_argument("--report", choices=("json",), help="print a JSON summary at the end")
-    p.add_argument("--port", type=int, default=8080, help="the viewer's HTTP port (0: any)")
+    add_port_argument(p, "the viewer's HTTP port")
     add_frame_rate_argument(p)
     add_bus_arguments(p)
     p.set_defaults(func=_run)

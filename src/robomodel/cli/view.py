@@ -22,6 +22,7 @@ from robomodel.cli._common import (
     package_index_from_args,
     split_inputs,
 )
+from robomodel.cli._ports import add_port_argument
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
@@ -58,7 +59,7 @@ def register(subparsers: Any) -> None:
         metavar="P",
         help="frame_prefix of each FILE, in order (repeatable; verbatim, e.g. robot1/)",
     )
-    parser.add_argument("--port", type=int, default=8080, help="HTTP port (default: 8080)")
+    add_port_argument(parser, "HTTP port")
     parser.add_argument(
         "--host", default="127.0.0.1", help="address to serve on (default: 127.0.0.1)"
     )

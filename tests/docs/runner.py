@@ -1,0 +1,223 @@
+"""Runs the documentation's shell blocks as a reader types them.
+
+A fenced block is runnable when the line before it is an HTML comment (invisible on the site):
+
+- ``<!-- run -->``: each line is a command, run in order in the page's working folder (a fresh
+  folder holding a link to ``examples/``), and must exit 0. ``export NAME=VALUE`` sets the
+  variable for the page's later commands (``$PWD`` is the working folder).
+- ``<!-- run: background until "TEXT" -->``: the block's one command keeps running (a second
+  terminal in the text); it must print TEXT, and it is ended with Ctrl-C when the page is done.
+- ``<!-- run: exit N -->``: as ``run``, but each command must exit with N (an error shown).
+- ``<!-- file: NAME -->``: the block is a file the reader saves as NAME (in the working folder).
+- ``<!-- output -->`` before a block: what the previous ``run`` block's last command printed
+  (standard output; for ``run: exit N``, then standard error).
+  Lines must match in order; a line ``...`` stands for any lines, and ``...`` inside a line for
+  any text.
+Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own, any free
+viewer port, no browser tab (``BROWSER=true``), and the ROS 1 master port of the page (when a page sets ``ROS_MASTER_URI`` to
+port 11311, a free port takes its place in every command of that page).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import socket
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(sys.executable).parent
+
+_FENCE = re.compile(r"^```(\w*)[^\n]*\n(.*?)^```\s*$", re.M | re.S)
+_MARK = re.compile(r"<!--\s*(run(?::[^>]*)?|output|file:[^>]*)\s*-->\s*\n$")
+
+
+@dataclass(frozen=True)
+class Block:
+    """One fenced block of a page, with its marker (``run``, ``run: ...``, ``output``)."""
+
+    page: Path
+    line: int
+    marker: str
+    text: str
+
+
+def blocks(page: Path) -> list[Block]:
+    """The marked blocks of a page, in order."""
+    text = page.read_text()
+    found: list[Block] = []
+    for match in _FENCE.finditer(text):
+        before = text[: match.start()]
+        mark = _MARK.search(before[-200:]) if before.endswith("\n") else None
+        if mark is None:
+            continue
+        line = before.count("\n") + 1
+        found.append(Block(page, line, mark.group(1).strip(), match.group(2)))
+    return found
+
+
+def _without_comment(line: str) -> str:
+    """The line up to a ``#`` that starts a shell comment (outside quotes, after a blank)."""
+    quote = ""
+    for index, char in enumerate(line):
+        if quote:
+            quote = "" if char == quote else quote
+        elif char in "'\"":
+            quote = char
+        elif char == "#" and (index == 0 or line[index - 1].isspace()):
+            return line[:index].rstrip()
+    return line.rstrip()
+
+
+def commands(text: str) -> list[str]:
+    """A block's command lines: comments dropped, backslash continuations joined."""
+    out: list[str] = []
+    pending = ""
+    for raw in text.splitlines():
+        line = _without_comment(raw)
+        if not line.strip():
+            continue
+        if line.endswith("\\"):
+            pending += line[:-1] + " "
+            continue
+        out.append((pending + line).strip())
+        pending = ""
+    return out
+
+
+def output_matches(expected: str, actual: str) -> bool:
+    """``expected`` with ``...`` lines (any lines) and ``...`` in lines (any text)."""
+    parts: list[str] = []
+    for line in expected.rstrip("\n").splitlines():
+        if line.strip() == "...":
+            parts.append(r"(?:[^\n]*\n)*?")
+        else:
+            parts.append(".*?".join(re.escape(p) for p in line.rstrip().split("...")) + r"[ \t]*\n")
+    pattern = "".join(parts)
+    text = "\n".join(line.rstrip() for line in actual.rstrip("\n").splitlines()) + "\n"
+    return re.fullmatch(pattern, text, flags=re.S) is not None
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+@dataclass
+class PageRun:
+    """The state of one page being run: its folder, environment and background commands."""
+
+    workdir: Path
+    domain: str
+    env: dict[str, str] = field(default_factory=dict)
+    background: list[tuple[str, subprocess.Popen[str], list[str]]] = field(default_factory=list)
+    master_port: int = field(default_factory=free_port)
+    last_output: str = ""
+
+    def __post_init__(self) -> None:
+        self.env = dict(os.environ)
+        self.env["PATH"] = f"{BIN}{os.pathsep}{self.env.get('PATH', '')}"
+        self.env["ROS_DOMAIN_ID"] = self.domain
+        self.env["ROBOMODEL_VIEWER_PORT"] = "0"
+        self.env["PYTHONUNBUFFERED"] = "1"
+        self.env["BROWSER"] = "true"  # webbrowser.open runs `true URL`: no tab in the tests
+        self.env.pop("ROS_MASTER_URI", None)
+
+    def _typed(self, command: str) -> str:
+        return command.replace(":11311", f":{self.master_port}").replace(
+            "-p 11311", f"-p {self.master_port}"
+        )
+
+    def run(self, command: str, timeout_s: float, *, exit_code: int = 0) -> None:
+        command = self._typed(command)
+        if command == "source .venv/bin/activate":
+            assert (BIN / "robomodel").exists()
+            return
+        export = re.fullmatch(r"export (\w+)=(.*)", command)
+        if export:
+            value = export.group(2).replace("$PWD", str(self.workdir)).strip("'\"")
+            self.env[export.group(1)] = value
+            return
+        done = subprocess.run(
+            ["bash", "-c", command],
+            cwd=self.workdir,
+            env=self.env,
+            capture_output=True,
+            text=True,
+            timeout=timeout_s,
+        )
+        # what a shown output holds: standard output, and standard error for an error shown
+        self.last_output = done.stdout + (done.stderr if exit_code else "")
+        if done.returncode != exit_code:
+            raise AssertionError(
+                f"`{command}` exited {done.returncode}\n{done.stdout}\n{done.stderr}"
+            )
+
+    def start(self, command: str, until: str, timeout_s: float) -> None:
+        command = self._typed(command)
+        proc = subprocess.Popen(
+            ["bash", "-c", f"exec {command}"],
+            cwd=self.workdir,
+            env=self.env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            start_new_session=True,
+        )
+        seen: list[str] = []
+        self.background.append((command, proc, seen))
+        deadline = time.monotonic() + timeout_s
+        assert proc.stdout is not None
+        os.set_blocking(proc.stdout.fileno(), False)
+        while time.monotonic() < deadline:
+            line = proc.stdout.readline()
+            if line:
+                seen.append(line)
+                if until in line:
+                    return
+            elif proc.poll() is not None:
+                break
+            else:
+                time.sleep(0.05)
+        raise AssertionError(f"`{command}` did not print {until!r}:\n{''.join(seen)}")
+
+    def end(self, timeout_s: float) -> list[str]:
+        """Ctrl-C to every background command, newest first; the problems seen."""
+        problems: list[str] = []
+        for command, proc, seen in reversed(self.background):
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGINT)
+            try:
+                proc.wait(timeout=timeout_s)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+                problems.append(f"`{command}` did not end on Ctrl-C")
+            assert proc.stdout is not None
+            os.set_blocking(proc.stdout.fileno(), True)
+            rest = proc.stdout.read()
+            if "Traceback" in "".join(seen) + rest:
+                problems.append(f"`{command}` printed a traceback:\n{''.join(seen)}{rest}")
+        self.background.clear()
+        return problems
+
+
+def expected_exit(marker: str) -> int | None:
+    """N for ``run: exit N``, 0 for ``run``, None for the other markers."""
+    if marker == "run":
+        return 0
+    match = re.fullmatch(r"run:\s*exit\s+(\d+)", marker)
+    return int(match.group(1)) if match else None
+
+
+def background_until(marker: str) -> str:
+    match = re.fullmatch(r'run:\s*background\s+until\s+"([^"]+)"', marker)
+    if match is None:
+        raise AssertionError(f"bad marker {marker!r}: use run: background until \"TEXT\"")
+    return match.group(1)

@@ -1,0 +1,108 @@
+"""The documentation's commands work: runnable blocks run, and every robomodel line parses.
+
+- Each page of docs/ (and README.md) with runnable blocks is one test: its blocks run in order
+  as tests/docs/runner.py describes, and shown output is compared.
+- Every ``robomodel ...`` line in any shell block of the docs, runnable or not, is parsed by
+  robomodel's own parser, so removing or renaming an option that the docs use fails here.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+
+from robomodel.cli.main import _parse, build_parser
+from tests.conftest import unique_domain
+from tests.docs.runner import (
+    ROOT,
+    PageRun,
+    background_until,
+    blocks,
+    commands,
+    expected_exit,
+    output_matches,
+)
+
+PAGES = sorted((ROOT / "docs").rglob("*.md")) + [ROOT / "README.md"]
+RUNNABLE = [page for page in PAGES if any(b.marker.startswith("run") for b in blocks(page))]
+_TIMEOUT_S = 180.0
+
+
+def _name(page: Path) -> str:
+    return str(page.relative_to(ROOT))
+
+
+@pytest.mark.parametrize("page", RUNNABLE, ids=_name)
+def test_page_commands_run(page: Path, tmp_path: Path) -> None:
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    run = PageRun(tmp_path, unique_domain())
+    problems: list[str] = []
+    try:
+        for block in blocks(page):
+            where = f"{_name(page)}:{block.line}"
+            code = expected_exit(block.marker)
+            if code is not None:
+                for command in commands(block.text):
+                    try:
+                        run.run(command, _TIMEOUT_S, exit_code=code)
+                    except AssertionError as exc:
+                        raise AssertionError(f"{where}: {exc}") from None
+            elif block.marker.startswith("run:"):
+                (command,) = commands(block.text)
+                run.start(command, background_until(block.marker), _TIMEOUT_S)
+            elif block.marker.startswith("file:"):
+                target = tmp_path / block.marker.split(":", 1)[1].strip()
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_text(block.text)
+            elif block.marker == "output":
+                assert output_matches(block.text, run.last_output), (
+                    f"{where}: the output shown differs from what the command printed:\n"
+                    f"{run.last_output}"
+                )
+    finally:
+        problems += run.end(timeout_s=60)
+    assert not problems, "\n".join(problems)
+
+
+def _shell_lines() -> list[tuple[str, str]]:
+    """(where, line) for every ``robomodel`` command in the docs' shell blocks."""
+    found: list[tuple[str, str]] = []
+    fence = re.compile(r"^```(bash|sh|console|shell)\n(.*?)^```", re.M | re.S)
+    for page in PAGES:
+        text = page.read_text()
+        for match in fence.finditer(text):
+            line_no = text[: match.start()].count("\n") + 1
+            for line in commands(match.group(2)):
+                line = line.removeprefix("$ ")
+                if line.startswith("robomodel ") and not _is_synopsis(line):
+                    found.append((f"{_name(page)}:{line_no}", line))
+    return found
+
+
+def _is_synopsis(line: str) -> bool:
+    """A usage line with placeholders (``FILE``, ``[--x]``, ``a|b``, ``...``), not a command."""
+    words = shlex.split(line, posix=True) if line.count("'") % 2 == 0 else line.split()
+    return any(
+        re.search(r"[\[\]|]|\.\.\.", word) or re.fullmatch(r"[A-Z][A-Z_]+[A-Z](\.\w+)?", word)
+        for word in words[1:]
+        if "=" not in word and ":" not in word
+    )
+
+
+@pytest.mark.parametrize(("where", "line"), _shell_lines(), ids=[w for w, _ in _shell_lines()])
+def test_documented_command_parses(where: str, line: str) -> None:
+    argv = shlex.split(line)[1:]
+    for index, word in enumerate(argv):
+        if word in ("|", ">", "&&", ";"):
+            argv = argv[:index]
+            break
+    verb = next((a for a in argv if not a.startswith("-")), None)
+    parser = build_parser(verb)
+    try:
+        _parse(parser, argv)  # as main() parses: name:=value may follow options
+    except SystemExit as exc:
+        if exc.code not in (0, None):
+            pytest.fail(f"{where}: `{line}` does not parse (exit {exc.code})")

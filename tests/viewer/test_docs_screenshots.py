@@ -1,0 +1,73 @@
+"""The course robots as the tutorials show them: each drawn, then kept for the documentation.
+
+`make docs` copies build/viewer-screenshots/ into the site, so the tutorials' pictures are what
+these tests saw (tools/docs_screenshots.py runs the tests of any screenshot that is missing).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import pytest
+
+from tests.conftest import EXAMPLES
+from tests.viewer.conftest import (
+    ViewerProcess,
+    changed_fraction,
+    open_viewer,
+    save_shot,
+    settle,
+    slider_input,
+    wait_for,
+)
+
+pytestmark = pytest.mark.browser
+
+
+def _toggle(page: Any, label: str) -> None:
+    page.locator(f"label:text-is('{label}')").click()
+
+
+def _assert_drawn(page: Any) -> None:
+    """The robot covers pixels that hidden visuals leave as background."""
+    drawn = settle(page)
+    _toggle(page, "Visual Enabled")
+    assert changed_fraction(drawn, settle(page)) > 0.0005  # the planar arm is small in view
+    _toggle(page, "Visual Enabled")
+    settle(page)  # drawn again before the picture is taken
+
+
+def test_planar_3dof_with_its_sliders(viewer: Callable[..., ViewerProcess], page: Any) -> None:
+    view = viewer(EXAMPLES / "gripper_description/urdf/planar_3dof.urdf")
+    open_viewer(page, view.url)
+    for joint in ("joint_1", "joint_2", "joint_3"):
+        page.get_by_text(joint, exact=True).first.wait_for()
+    box = slider_input(page, "joint_2")
+    box.fill("0.8")
+    box.press("Enter")
+    wait_for(lambda: abs(float(box.input_value()) - 0.8) < 1e-6, what="joint_2 at 0.8")
+    _assert_drawn(page)
+    save_shot(page, "planar_3dof")
+
+
+def test_planar_3dof_xacro_with_its_sliders(
+    viewer: Callable[..., ViewerProcess], page: Any
+) -> None:
+    view = viewer(EXAMPLES / "gripper_description/urdf/planar_3dof.xacro")
+    open_viewer(page, view.url)
+    page.get_by_text("joint_3", exact=True).first.wait_for()
+    _assert_drawn(page)
+    save_shot(page, "planar_3dof_xacro")
+
+
+def test_ur5(viewer: Callable[..., ViewerProcess], page: Any) -> None:
+    view = viewer(
+        EXAMPLES / "ur5_description/urdf/ur5_robot.urdf.xacro",
+        "--package-path",
+        EXAMPLES,
+    )
+    open_viewer(page, view.url)
+    page.get_by_text("shoulder_lift_joint", exact=True).first.wait_for()
+    _assert_drawn(page)
+    save_shot(page, "ur5")
