@@ -26,7 +26,7 @@ from tests.docs.runner import (
     output_matches,
 )
 
-PAGES = sorted((ROOT / "docs").rglob("*.md")) + [ROOT / "README.md"]
+PAGES = [*sorted((ROOT / "docs").rglob("*.md")), ROOT / "README.md"]
 RUNNABLE = [page for page in PAGES if any(b.marker.startswith("run") for b in blocks(page))]
 _TIMEOUT_S = 180.0
 
