@@ -199,3 +199,58 @@ def test_the_viewer_sliders_move_the_robot_of_their_namespace(tmp_path: Path) ->
         assert run.angle("r1/link_1") == pytest.approx(0.0)
     finally:
         run.close()
+
+
+CONTROLLERS = """/r1/controller_manager:
+  ros__parameters:
+    update_rate: 100
+    joint_state_broadcaster:
+      type: joint_state_broadcaster/JointStateBroadcaster
+    joint1_position_controller:
+      type: position_controllers/JointGroupPositionController
+/r1/joint1_position_controller:
+  ros__parameters:
+    joints: [joint1]
+"""
+
+
+def test_controller_manager_spawners_and_controllers_in_a_namespace(tmp_path: Path) -> None:
+    """ros2_control_node, robot_state_publisher and spawners with ``namespace='r1'``: the
+    spawners' default ``-c controller_manager`` is ``/r1/controller_manager`` (relative, as
+    rclpy resolves it), and the controllers' topics are under /r1."""
+    from robomodel.launch.model import NodeSpec, ParamSource
+    from robomodel.launch.ros2.model import LaunchStep
+    from robomodel.xacro import process_file
+    from tests.conftest import EXAMPLES
+
+    urdf = process_file(str(EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf.xacro")).toxml()
+    config = tmp_path / "controllers.yaml"
+    config.write_text(CONTROLLERS)
+    ns = "/r1/"
+    nodes = [
+        NodeSpec("ros2", "controller_manager", "ros2_control_node", None, namespace=ns,
+                 parameters=(ParamSource(file=config),)),
+        NodeSpec("ros2", "robot_state_publisher", "robot_state_publisher", None, namespace=ns,
+                 parameters=(ParamSource(values={"robot_description": urdf}),)),
+        NodeSpec("ros2", "controller_manager", "spawner", None, namespace=ns,
+                 args=("joint_state_broadcaster", "joint1_position_controller")),
+    ]  # fmt: skip
+    runner = LaunchRunner(
+        nodes,
+        RunOptions(bus="inproc", headless=True),
+        steps=tuple(LaunchStep("node", n) for n in nodes),
+    )
+    runner.open_bus()
+    try:
+        runner.start_nodes()
+        spawner = runner.started[2].handle
+        runner.context.spin(until=lambda: spawner.exit_code() is not None)
+        assert spawner.exit_code() == 0
+        graph = runner.context.graph()
+        assert "/r1/controller_manager/list_controllers" in graph.services
+        assert "/controller_manager/list_controllers" not in graph.services
+        topics = set(graph.topics)
+        assert {"/r1/joint_states", "/r1/joint1_position_controller/commands"} <= topics
+        assert "/joint_states" not in topics
+    finally:
+        runner.shutdown()

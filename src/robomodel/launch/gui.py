@@ -48,7 +48,7 @@ class LaunchGui:
                 JointStatePublisher(
                     self.runner.context,
                     read_urdf(text).robot,
-                    name="joint_state_publisher_gui",
+                    name=robot.slider_node_name,
                     namespace=robot.namespace,
                     remappings={"joint_states": robot.joint_states_topic},
                 )

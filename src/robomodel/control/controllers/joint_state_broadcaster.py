@@ -3,8 +3,8 @@
 ros2_controllers joint_state_broadcaster.cpp: claims all state interfaces unless ``joints``
 and ``interfaces`` are both given; one entry per joint having a position, velocity or effort
 state (renamed through ``map_interface_to_joint_state.*``), NaN where an interface is missing,
-``extra_joints`` appended with zeros; ``/joint_states`` (``~/joint_states`` with
-``use_local_topics``), ``header.frame_id`` = ``frame_id`` (default ``base_link``), published
+``extra_joints`` appended with zeros; ``joint_states`` in the manager's namespace
+(``~/joint_states`` with ``use_local_topics``), ``header.frame_id`` = ``frame_id`` (default ``base_link``), published
 every update (ROS 1's JointStateController ``publish_rate`` maps onto the update rate).
 """
 
@@ -34,8 +34,9 @@ class JointStateBroadcaster(ControllerInterface):
         self.extra_joints = self.param_list("extra_joints", [])
         self.frame_id = str(self.param("frame_id", "base_link"))
         self.use_local_topics = bool(self.param("use_local_topics", False))
-        # robomodel: ROS 1's JointStateController publishes the namespace-relative joint_states
-        self.topic = str(self.param("topic", "/joint_states"))
+        # relative, as ros2_controllers' (topic_name_prefix + "joint_states") and ROS 1's
+        # JointStateController (root_nh "joint_states"): /<manager namespace>/joint_states
+        self.topic = str(self.param("topic", "joint_states"))
         self.mapping = {
             str(self.param(f"map_interface_to_joint_state.{k}", k)): k
             for k in ("position", "velocity", "effort")
@@ -63,7 +64,7 @@ class JointStateBroadcaster(ControllerInterface):
             topic = "~/joint_states" if self.use_local_topics else self.topic
             self._pub = self.node.create_publisher(JointState, topic, 10)
             if self.publish_dynamic_joint_states:
-                dyn = "~/dynamic_joint_states" if self.use_local_topics else "/dynamic_joint_states"
+                dyn = "~/dynamic_joint_states" if self.use_local_topics else "dynamic_joint_states"
                 self._dyn_pub = self.node.create_publisher(DynamicJointState, dyn, 10)
 
     def on_cleanup(self) -> None:

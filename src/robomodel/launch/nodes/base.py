@@ -80,6 +80,7 @@ class ViewerRobot:
     description_param: str | None = None
     frame_prefix: str = ""
     joint_states_topic: str | None = None
+    slider_node_name: str = "joint_state_publisher_gui"  # the launch file's name for it
 
 
 @dataclass

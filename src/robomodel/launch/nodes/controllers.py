@@ -144,8 +144,10 @@ class _Manager:
     def __init__(self, ctx: NodeContext, namespace: str | None) -> None:
         from robomodel.control.client import ManagerClient
 
-        base = ctx.resolve(namespace) if namespace else ctx.spec.namespace
-        self.prefix = base.rstrip("/") + "/controller_manager"
+        # the script's relative ``<namespace/>controller_manager/...``, resolved by rospy in
+        # the spawner's namespace and remaps
+        base = namespace.rstrip("/") + "/" if namespace else ""
+        self.prefix = ctx.resolve_name(base + "controller_manager")
         self.ctx = ctx
         self.client = ManagerClient(ctx.runtime, self.prefix)
 

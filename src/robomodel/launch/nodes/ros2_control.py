@@ -258,9 +258,8 @@ def _files_for(files: tuple[str, ...], fqn: str) -> tuple[str, ...]:
 
 
 def _manager_path(ctx: NodeContext, name: str) -> str:
-    if name.startswith("/"):
-        return name.rstrip("/")
-    return ctx.spec.namespace.rstrip("/") + "/" + name
+    """``-c NAME`` as the spawner's node resolves it (relative: in its namespace; remaps)."""
+    return ctx.resolve_name(name.rstrip("/") or "/")
 
 
 def _client(ctx: NodeContext, path: str) -> ManagerClient:

@@ -150,6 +150,7 @@ def slider_request(ctx: NodeContext, *, description_text: str | None = None) -> 
     request.joint_states_topic = ctx.resolve_name("joint_states")
     robot = request.robot(ctx.namespace)
     robot.joint_states_topic = request.joint_states_topic
+    robot.slider_node_name = ctx.spec.name or ctx.spec.executable
     if description_text is not None:
         robot.description_text = robot.description_text or description_text
         request.robot_description_text = request.robot_description_text or description_text
