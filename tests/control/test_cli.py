@@ -132,6 +132,7 @@ def test_seed_000_workflow_over_zenoh(rrbot_run: str) -> None:
         "joint1_position_controller effort_controllers/JointPositionController     active"
         in listed.stdout
     )
+    assert "joint_state_controller/JointStateController" in listed.stdout  # as the YAML names it
     assert abs(_joint1(domain)) < 0.05
     pub = _cli(
         "topic",

@@ -5,7 +5,10 @@ and ``interfaces`` are both given; one entry per joint having a position, veloci
 state (renamed through ``map_interface_to_joint_state.*``), NaN where an interface is missing,
 ``extra_joints`` appended with zeros; ``joint_states`` in the manager's namespace
 (``~/joint_states`` with ``use_local_topics``), ``header.frame_id`` = ``frame_id`` (default ``base_link``), published
-every update (ROS 1's JointStateController ``publish_rate`` maps onto the update rate).
+every update. ``publish_rate`` [Hz] (ROS 1's JointStateController, required there) limits
+publishing as joint_state_controller.cpp does: publish when ``last_publish_time + 1/rate <
+time``, then advance ``last_publish_time`` by ``1/rate``, so the mean rate is the one asked
+for, not the loop's rate or a divisor of it.
 """
 
 from __future__ import annotations
@@ -44,6 +47,8 @@ class JointStateBroadcaster(ControllerInterface):
         self.publish_dynamic_joint_states = bool(
             self.param("publish_dynamic_joint_states", True)  # humble default (master: false)
         )
+        self.publish_rate_hz = float(self.param("publish_rate", 0.0))
+        self._last_publish_s: float | None = None
         self._pub: Publisher[JointState] | None = None
         self._dyn_pub: Publisher[DynamicJointState] | None = None
         self.msg = JointState()
@@ -75,6 +80,7 @@ class JointStateBroadcaster(ControllerInterface):
         self._dyn_pub = None
 
     def on_activate(self) -> None:
+        self._last_publish_s = None  # starting(time): set at the first update
         names: list[str] = []
         for si in self.state_interfaces:
             if si.interface in self.mapping and si.prefix not in names:
@@ -107,7 +113,22 @@ class JointStateBroadcaster(ControllerInterface):
             ([name for name, _ in items], [slot for _, slot in items]) for items in groups.values()
         ]
 
+    def _due(self, time_s: float) -> bool:
+        """ROS 1's rate limit (see the module docstring); always due without ``publish_rate``."""
+        if self.publish_rate_hz <= 0.0:
+            return True
+        if self._last_publish_s is None:
+            self._last_publish_s = time_s
+            return False
+        interval_s = 1.0 / self.publish_rate_hz
+        if self._last_publish_s + interval_s < time_s:
+            self._last_publish_s += interval_s
+            return True
+        return False
+
     def update(self, time_s: float, period_s: float) -> ReturnType:
+        if not self._due(time_s):
+            return ReturnType.OK
         values = self._values
         for slot, array, k in self._copies:
             array[k] = values[slot]
