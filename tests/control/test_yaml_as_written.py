@@ -4,6 +4,8 @@ and list_controllers names the types the file names."""
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 
 from robomodel.control import ControlSystem, load_controller_config
@@ -57,7 +59,7 @@ def test_publish_rate_is_honoured_by_elapsed_time(rate_hz: float) -> None:
         measured_hz = (len(stamps) - 1) / (stamps[-1] - stamps[0])
         assert measured_hz == pytest.approx(rate_hz, abs=1.0)
         # never more often than the loop, never a gap of more than one extra loop period
-        gaps = [b - a for a, b in zip(stamps, stamps[1:], strict=False)]
+        gaps = [b - a for a, b in itertools.pairwise(stamps)]
         assert min(gaps) >= 0.01 - 1e-6 and max(gaps) <= 1.0 / rate_hz + 0.01 + 1e-6
     finally:
         ctx.shutdown()
