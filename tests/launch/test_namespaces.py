@@ -254,3 +254,23 @@ def test_controller_manager_spawners_and_controllers_in_a_namespace(tmp_path: Pa
         assert "/joint_states" not in topics
     finally:
         runner.shutdown()
+
+
+def test_names_resolve_as_rcl_and_roscpp_do() -> None:
+    """Relative names go in the namespace, ``~`` in the node, ``/x`` stays; remaps match the
+    resolved name (either side may be relative) and give a resolved one."""
+    from robomodel.launch.model import NodeSpec
+    from robomodel.launch.nodes.base import NodeContext, ViewerRequest
+
+    def ctx(namespace: str, remaps: tuple[tuple[str, str], ...] = ()) -> NodeContext:
+        spec = NodeSpec("ros1", "p", "e", "jsp", namespace=namespace, remaps=remaps)
+        return NodeContext(spec, None, None, ViewerRequest(), lambda _line: None)
+
+    assert ctx("/r1/").resolve_name("joint_states") == "/r1/joint_states"
+    assert ctx("/").resolve_name("joint_states") == "/joint_states"
+    assert ctx("/r1/").resolve_name("/tf") == "/tf"
+    assert ctx("/r1/").resolve_name("~/state") == "/r1/jsp/state"
+    remapped = ctx("/r1/", (("joint_states", "states"), ("/tf", "tf_r1")))
+    assert remapped.resolve_name("joint_states") == "/r1/states"
+    assert remapped.resolve_name("/tf") == "/r1/tf_r1"
+    assert ctx("/r1/", (("/r1/joint_states", "/js"),)).resolve_name("joint_states") == "/js"
