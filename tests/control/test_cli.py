@@ -128,10 +128,11 @@ def test_seed_000_workflow_over_zenoh(rrbot_run: str) -> None:
     domain = rrbot_run
     listed = _cli("control", "list-controllers", "--domain-id", domain)
     assert listed.returncode == 0, listed.stderr
-    assert (
-        "joint1_position_controller effort_controllers/JointPositionController     active"
-        in listed.stdout
-    )
+    rows = {tuple(line.split()) for line in listed.stdout.splitlines()}
+    assert {  # the types as the YAML names them
+        ("joint_state_controller", "joint_state_controller/JointStateController", "active"),
+        ("joint1_position_controller", "effort_controllers/JointPositionController", "active"),
+    } <= rows
     assert abs(_joint1(domain)) < 0.05
     pub = _cli(
         "topic",

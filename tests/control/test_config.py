@@ -58,8 +58,9 @@ def test_ros1_format_with_namespace_and_type_mapping() -> None:
     assert cfg.format == "ros1" and cfg.namespace == "/rrbot"
     jsc = cfg.controller("joint_state_controller")
     assert jsc.type == "joint_state_broadcaster/JointStateBroadcaster"
+    assert jsc.original_type == "joint_state_controller/JointStateController"
     assert jsc.params == {
-        "update_rate": 50,
+        "publish_rate": 50,  # by elapsed time, as ROS 1's; not rounded like an update_rate
         "topic": "joint_states",  # ROS 1: relative to the namespace
         "publish_dynamic_joint_states": False,
     }

@@ -56,6 +56,7 @@ class ControllerEntry:
     state_names: tuple[str, ...] = ()
     node: Node | None = None
     extra: dict[str, Any] = field(default_factory=dict)
+    listed_type: str = ""  # the type as the YAML names it (a ROS 1 type robomodel maps)
 
 
 def _rate(name: str, params: Mapping[str, Any], manager_rate_hz: int) -> int:
@@ -135,7 +136,7 @@ def controller_info(entry: ControllerEntry, resources: ResourceManager) -> dict[
     commands, states = required_interfaces(entry.controller, resources)
     return {
         "name": entry.name,
-        "type": entry.type_name,
+        "type": entry.listed_type or entry.type_name,
         "state": entry.controller.state.value,
         "update_rate": entry.update_rate_hz,
         "claimed_interfaces": list(entry.claimed),

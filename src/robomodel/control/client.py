@@ -3,7 +3,8 @@ spawners call), for robomodel's managers and real ros2_control ones alike."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import threading
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import controller_manager_msgs as cm_msgs
@@ -12,11 +13,19 @@ from robomodel.runtime.msg.builtin_interfaces import Duration
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
 
-__all__ = ["ManagerClient"]
+__all__ = ["NO_DEADLINE_S", "AttemptsClient", "ManagerClient"]
+
+# rospy's ServiceProxy call (ROS 1's spawner and controller_manager scripts) has no deadline;
+# a day stands for none, as every transport takes a finite timeout.
+NO_DEADLINE_S = 86400.0
 
 
 class ManagerClient:
-    """The services under ``prefix`` (``/<namespace>/controller_manager``)."""
+    """The services under ``prefix`` (``/<namespace>/controller_manager``).
+
+    Args:
+        timeout_s: How long each call may take [s] (``NO_DEADLINE_S``: as rospy, no deadline).
+    """
 
     def __init__(self, context: Context, prefix: str, *, timeout_s: float = 10.0) -> None:
         self.context = context
@@ -104,3 +113,48 @@ class ManagerClient:
         )
         reply = self.call("switch_controller", cm_msgs.SwitchController, request)
         return bool(reply.ok), str(reply.message)
+
+
+class AttemptsClient(ManagerClient):
+    """Jazzy's spawner calls (controller_manager_services.py ``service_caller``): each call may
+    take ``call_timeout_s``, ``attempts`` times, with a warning after each unanswered attempt.
+
+    rclpy sends the request again at each attempt; here the one request is waited for over
+    all attempts' time, since a second ``load_controller`` would be refused as already loaded
+    when the first was only slow (a loaded machine), which is the case the attempts are for.
+    """
+
+    def __init__(
+        self,
+        context: Context,
+        prefix: str,
+        *,
+        call_timeout_s: float = 10.0,
+        attempts: int = 3,
+        warn: Callable[[str], None] = lambda _line: None,
+    ) -> None:
+        super().__init__(context, prefix, timeout_s=call_timeout_s * attempts)
+        self.call_timeout_s = call_timeout_s
+        self.attempts = attempts
+        self.warn = warn
+
+    def call(
+        self, service: str, srv_type: Any, request: Any = None, timeout_s: float | None = None
+    ) -> Any:
+        answered = threading.Event()
+        name = f"{self.prefix}/{service}"
+
+        def watch() -> None:
+            for attempt in range(1, self.attempts):
+                if answered.wait(self.call_timeout_s):
+                    return
+                self.warn(
+                    f"Failed getting a result from calling {name} in {self.call_timeout_s:g}. "
+                    f"(Attempt {attempt} of {self.attempts}.)"
+                )
+
+        threading.Thread(target=watch, name=f"attempts {name}", daemon=True).start()
+        try:
+            return super().call(service, srv_type, request, timeout_s)
+        finally:
+            answered.set()

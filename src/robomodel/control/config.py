@@ -84,8 +84,8 @@ def _ros1_jtc(kind: str) -> Callable[[dict[str, Any]], tuple[str, dict[str, Any]
 
 
 def _ros1_jsc(p: dict[str, Any]) -> tuple[str, dict[str, Any]]:
-    if "publish_rate" in p:
-        p["update_rate"] = p.pop("publish_rate")
+    # publish_rate stays: the broadcaster limits its publishing by elapsed time, as ROS 1's
+    # JointStateController does (an update_rate would be rounded to a divisor of the loop's)
     p.setdefault("topic", "joint_states")  # relative: /<ns>/joint_states
     p.setdefault("publish_dynamic_joint_states", False)  # not in ROS 1
     return "joint_state_broadcaster/JointStateBroadcaster", p

@@ -154,6 +154,10 @@ class ControllerManager:
             )
         except RobomodelError as exc:
             raise self._located(name, exc) from None
+        if spec is not None and type_name == spec.type:
+            # list_controllers shows the type the file names, as ROS 1's manager lists
+            # joint_state_controller/JointStateController
+            entry.listed_type = spec.original_type
         self.entries[name] = entry
         return entry.controller
 

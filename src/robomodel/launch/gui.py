@@ -11,7 +11,10 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from robomodel.launch.nodes.base import ViewerRobot
 
 __all__ = ["LaunchGui"]
 
@@ -37,20 +40,46 @@ class LaunchGui:
         from robomodel.description import read_urdf
         from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
 
+        publishers = []
+        for robot, text in self._robots():
+            if robot.joint_states_topic is None:
+                continue
+            publishers.append(
+                JointStatePublisher(
+                    self.runner.context,
+                    read_urdf(text).robot,
+                    name=robot.slider_node_name,
+                    namespace=robot.namespace,
+                    remappings={"joint_states": robot.joint_states_topic},
+                )
+            )
+        if publishers:
+            self.runner._extra["headless_sliders"] = publishers
+            self.runner.log(
+                "[launch] headless: the sliders' joint states come from a joint_state_publisher"
+            )
+
+    def _robots(self) -> list[tuple[ViewerRobot, str]]:
+        """The robots to draw with their URDF text: those the launch's robot_state_publishers
+        and slider nodes name (one a namespace); without any, the description rviz or gazebo
+        asked for, at the root."""
+        from robomodel.launch.nodes.base import ViewerRobot
+
+        request = self.runner.request
+        found: list[tuple[ViewerRobot, str]] = []
+        for robot in request.robots:
+            text = robot.description_text
+            param = robot.description_param
+            if text is None and param and self.runner.params is not None:
+                text = str(self.runner.params.get(param)) if self.runner.params.has(param) else None
+            if text is None:
+                self.runner.log(f"[launch] the viewer has no robot to show in {robot.namespace}")
+                continue
+            found.append((robot, text))
+        if found or request.robots:
+            return found
         text = self._description_text()
-        if text is None:
-            return
-        jsp = JointStatePublisher(
-            self.runner.context,
-            read_urdf(text).robot,
-            name="joint_state_publisher_gui",
-            namespace=self.runner.request.namespace,
-            remappings={"joint_states": self.runner.request.joint_states_topic},
-        )
-        self.runner._extra["headless_sliders"] = jsp
-        self.runner.log(
-            "[launch] headless: the sliders' joint states come from a joint_state_publisher"
-        )
+        return [] if text is None else [(ViewerRobot(request.namespace), text)]
 
     def _description_text(self) -> str | None:
         text: str | None = self.runner.request.robot_description_text
@@ -64,17 +93,14 @@ class LaunchGui:
 
     def _start_viewer(self) -> None:
         try:
-            from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+            from robomodel.viewer import Viewer, ViewerOptions
         except ImportError as exc:
             self.runner.log(f"[launch] no viewer: {exc}")
             return
-        text = self._description_text()
-        if text is None:
+        robots = self._robots()
+        if not robots:
             return
-        handle, path = tempfile.mkstemp(prefix="robomodel_launch_", suffix=".urdf")
-        with os.fdopen(handle, "w", encoding="utf-8") as out:
-            out.write(str(text))
-        self.runner._extra["viewer_file"] = path
+        sources = tuple(self._source(robot, text) for robot, text in robots)
         settings = self.runner._extra.get("rviz")
         server = self.runner._extra.get("sim_server")
         scenery: tuple[Any, ...] = ()
@@ -85,11 +111,11 @@ class LaunchGui:
 
         fixed_frame = settings.fixed_frame if settings is not None else None
         options = ViewerOptions(
-            sources=(RobotSource(path),),
+            sources=sources,
             port=self.runner.options.port,
             bus=self.runner.options.bus,
             domain_id=self.runner.options.domain_id,
-            external=not self.runner.request.sliders,
+            external=not any(r.joint_states_topic for r, _ in robots),
             state_publisher=False,  # the launch's robot_state_publisher publishes /tf
             package_index=self.runner.options.package_index or _default_index(),
             tools=self.runner.request.tools or True,
@@ -114,14 +140,29 @@ class LaunchGui:
 
             webbrowser.open(self.viewer.url)
 
+    def _source(self, robot: ViewerRobot, text: str) -> Any:
+        """A viewer source for one robot: its URDF in a temporary file, its frames' prefix,
+        and its sliders' topic (none: its joint states come from the bus)."""
+        from robomodel.viewer import RobotSource
+
+        handle, path = tempfile.mkstemp(prefix="robomodel_launch_", suffix=".urdf")
+        with os.fdopen(handle, "w", encoding="utf-8") as out:
+            out.write(text)
+        self.runner._extra.setdefault("viewer_files", []).append(path)
+        return RobotSource(
+            path,
+            prefix=robot.frame_prefix,
+            namespace=robot.namespace,
+            joint_states_topic=robot.joint_states_topic,
+            external=robot.joint_states_topic is None,
+        )
+
     def close(self) -> None:
         if self.viewer is not None:
             self.viewer.close()
-        sliders = self.runner._extra.get("headless_sliders")
-        if sliders is not None:
+        for sliders in self.runner._extra.get("headless_sliders", ()):
             sliders.node.destroy()
-        path = self.runner._extra.get("viewer_file")
-        if path:
+        for path in self.runner._extra.get("viewer_files", ()):
             Path(path).unlink(missing_ok=True)
 
 

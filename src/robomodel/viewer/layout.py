@@ -29,7 +29,9 @@ def zero_pose_extent_m(robot: Robot) -> float:
 
 def session_namespace(source: RobotSource, number: int, count: int) -> str:
     """The bus namespace of robot ``number`` of ``count``: ``/`` when alone, else its prefix
-    made a valid name (``robot<n>`` when it has none)."""
+    made a valid name (``robot<n>`` when it has none); a launch file's robot keeps its nodes'."""
+    if source.namespace is not None:
+        return source.namespace
     if count == 1:
         return "/"
     cleaned = "".join(c if c.isalnum() or c == "_" else "_" for c in source.prefix.strip("/"))

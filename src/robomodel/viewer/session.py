@@ -44,12 +44,21 @@ __all__ = ["DisplayOptions", "LoadFailure", "RobotSession", "RobotSource"]
 class RobotSource:
     """A description file to view, its xacro arguments and its frame prefix; or, with
     ``topic``, the description another process publishes there (RViz's RobotModel with
-    Description Source: Topic), reloaded whenever a new one arrives."""
+    Description Source: Topic), reloaded whenever a new one arrives.
+
+    ``namespace`` (the bus namespace of the robot's nodes), ``joint_states_topic`` (the resolved
+    topic its sliders publish on) and ``external`` come from a launch file's nodes: a
+    joint_state_publisher_gui in ``/r1`` publishes on ``/r1/joint_states``. None: the
+    viewer's defaults (its options' ``external``, ``joint_states`` in the namespace).
+    """
 
     path: str
     mappings: Mapping[str, str] = field(default_factory=dict)
     prefix: str = ""
     topic: str | None = None
+    namespace: str | None = None
+    joint_states_topic: str | None = None
+    external: bool | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -111,7 +120,9 @@ class RobotSession:
         self.prefix = source.prefix
         self.index = index.with_workspace_of(source.path) if source.path else index
         self.namespace = namespace
-        self.external = external
+        self.external = external if source.external is None else source.external
+        topic = source.joint_states_topic
+        self._remappings = {"joint_states": topic} if topic else {}
         # Sliders without a robot_state_publisher: another node of the process (a launch file's
         # robot_state_publisher) turns their /joint_states into /tf.
         # A description from a topic comes from a robot_state_publisher, which publishes /tf.
@@ -213,10 +224,13 @@ class RobotSession:
                 namespace=self.namespace,
                 # A viewer must not drop slider moves: limit to 1000 Hz, not RSP's 20 Hz default.
                 parameters={"frame_prefix": self.prefix, "publish_frequency": 1000.0},
+                remappings=self._remappings,
             )
         self._publishers_created = True
         if not self.external:
-            self.jsp = JointStatePublisher(self._context, self.robot, namespace=self.namespace)
+            self.jsp = JointStatePublisher(
+                self._context, self.robot, namespace=self.namespace, remappings=self._remappings
+            )
             self.jsp.publish()
 
     def apply_reload(self) -> None:

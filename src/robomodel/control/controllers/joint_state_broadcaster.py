@@ -3,9 +3,12 @@
 ros2_controllers joint_state_broadcaster.cpp: claims all state interfaces unless ``joints``
 and ``interfaces`` are both given; one entry per joint having a position, velocity or effort
 state (renamed through ``map_interface_to_joint_state.*``), NaN where an interface is missing,
-``extra_joints`` appended with zeros; ``/joint_states`` (``~/joint_states`` with
-``use_local_topics``), ``header.frame_id`` = ``frame_id`` (default ``base_link``), published
-every update (ROS 1's JointStateController ``publish_rate`` maps onto the update rate).
+``extra_joints`` appended with zeros; ``joint_states`` in the manager's namespace
+(``~/joint_states`` with ``use_local_topics``), ``header.frame_id`` = ``frame_id`` (default ``base_link``), published
+every update. ``publish_rate`` [Hz] (ROS 1's JointStateController, required there) limits
+publishing as joint_state_controller.cpp does: publish when ``last_publish_time + 1/rate <
+time``, then advance ``last_publish_time`` by ``1/rate``, so the mean rate is the one asked
+for, not the loop's rate or a divisor of it.
 """
 
 from __future__ import annotations
@@ -34,8 +37,9 @@ class JointStateBroadcaster(ControllerInterface):
         self.extra_joints = self.param_list("extra_joints", [])
         self.frame_id = str(self.param("frame_id", "base_link"))
         self.use_local_topics = bool(self.param("use_local_topics", False))
-        # robomodel: ROS 1's JointStateController publishes the namespace-relative joint_states
-        self.topic = str(self.param("topic", "/joint_states"))
+        # relative, as ros2_controllers' (topic_name_prefix + "joint_states") and ROS 1's
+        # JointStateController (root_nh "joint_states"): /<manager namespace>/joint_states
+        self.topic = str(self.param("topic", "joint_states"))
         self.mapping = {
             str(self.param(f"map_interface_to_joint_state.{k}", k)): k
             for k in ("position", "velocity", "effort")
@@ -43,6 +47,8 @@ class JointStateBroadcaster(ControllerInterface):
         self.publish_dynamic_joint_states = bool(
             self.param("publish_dynamic_joint_states", True)  # humble default (master: false)
         )
+        self.publish_rate_hz = float(self.param("publish_rate", 0.0))
+        self._last_publish_s: float | None = None
         self._pub: Publisher[JointState] | None = None
         self._dyn_pub: Publisher[DynamicJointState] | None = None
         self.msg = JointState()
@@ -63,7 +69,7 @@ class JointStateBroadcaster(ControllerInterface):
             topic = "~/joint_states" if self.use_local_topics else self.topic
             self._pub = self.node.create_publisher(JointState, topic, 10)
             if self.publish_dynamic_joint_states:
-                dyn = "~/dynamic_joint_states" if self.use_local_topics else "/dynamic_joint_states"
+                dyn = "~/dynamic_joint_states" if self.use_local_topics else "dynamic_joint_states"
                 self._dyn_pub = self.node.create_publisher(DynamicJointState, dyn, 10)
 
     def on_cleanup(self) -> None:
@@ -74,6 +80,7 @@ class JointStateBroadcaster(ControllerInterface):
         self._dyn_pub = None
 
     def on_activate(self) -> None:
+        self._last_publish_s = None  # starting(time): set at the first update
         names: list[str] = []
         for si in self.state_interfaces:
             if si.interface in self.mapping and si.prefix not in names:
@@ -106,7 +113,22 @@ class JointStateBroadcaster(ControllerInterface):
             ([name for name, _ in items], [slot for _, slot in items]) for items in groups.values()
         ]
 
+    def _due(self, time_s: float) -> bool:
+        """ROS 1's rate limit (see the module docstring); always due without ``publish_rate``."""
+        if self.publish_rate_hz <= 0.0:
+            return True
+        if self._last_publish_s is None:
+            self._last_publish_s = time_s
+            return False
+        interval_s = 1.0 / self.publish_rate_hz
+        if self._last_publish_s + interval_s < time_s:
+            self._last_publish_s += interval_s
+            return True
+        return False
+
     def update(self, time_s: float, period_s: float) -> ReturnType:
+        if not self._due(time_s):
+            return ReturnType.OK
         values = self._values
         for slot, array, k in self._copies:
             array[k] = values[slot]

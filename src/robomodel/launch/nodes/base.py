@@ -19,6 +19,7 @@ __all__ = [
     "RunningNode",
     "ThreadNode",
     "ViewerRequest",
+    "ViewerRobot",
     "factory_for",
     "plot_fields",
     "register",
@@ -65,6 +66,24 @@ class ThreadNode:
 
 
 @dataclass
+class ViewerRobot:
+    """One robot the viewer draws, as the launch's nodes in its namespace describe it.
+
+    ``joint_states_topic`` is set when a joint_state_publisher_gui (or ``use_gui``) runs there:
+    the fully resolved topic its sliders publish on (its namespace and remaps applied, as the
+    real node's ``joint_states`` publisher resolves). ``frame_prefix`` is the robot_state_publisher's
+    (ROS 2 ``frame_prefix``, ROS 1 ``tf_prefix``), so the viewer finds the robot's frames in /tf.
+    """
+
+    namespace: str
+    description_text: str | None = None
+    description_param: str | None = None
+    frame_prefix: str = ""
+    joint_states_topic: str | None = None
+    slider_node_name: str = "joint_state_publisher_gui"  # the launch file's name for it
+
+
+@dataclass
 class ViewerRequest:
     """What the launch's viewer must show (RViz's and the GUIs' roles, merged)."""
 
@@ -83,6 +102,15 @@ class ViewerRequest:
     robot_description_text: str | None = None  # ROS 2: no parameter server to read it from
     plot_fields: list[str] = field(default_factory=list)  # rqt_plot's topic/field arguments
     requested_by: list[str] = field(default_factory=list)
+    robots: list[ViewerRobot] = field(default_factory=list)  # in launch order, one a namespace
+
+    def robot(self, namespace: str) -> ViewerRobot:
+        """The robot of ``namespace`` (``/`` or ``/a/b``), added on first use."""
+        found = next((r for r in self.robots if r.namespace == namespace), None)
+        if found is None:
+            found = ViewerRobot(namespace)
+            self.robots.append(found)
+        return found
 
 
 @dataclass
@@ -123,6 +151,16 @@ class NodeContext:
         if name.startswith("~"):
             return self.spec.fqn + "/" + name[1:]
         return self.spec.namespace.rstrip("/") + "/" + name
+
+    def resolve_name(self, name: str) -> str:
+        """A topic or service name as the node's own client library resolves it: relative
+        names in its namespace, ``~`` in its name, then its remaps (whose sides are resolved
+        the same way), as roscpp's ``names::resolve`` and rcl's expansion and remapping do."""
+        from robomodel.runtime.names import apply_remappings, expand_topic_name
+
+        node_name = self.spec.name or self.spec.executable
+        expanded = expand_topic_name(name, node_name, self.namespace)
+        return apply_remappings(expanded, self.remappings, node_name, self.namespace)
 
     def param(self, name: str, default: Any = None) -> Any:
         key = self.resolve(name)

@@ -117,24 +117,32 @@ def wait_for_manager(
     manager: str,
     timeout_s: float,
     *,
-    call_timeout_s: float = 10.0,
+    call_timeout_s: float | None = None,
     zero_waits_forever: bool = False,
 ) -> bool | None:
     """Poll ``manager``'s ``list_controllers`` until it answers (True), ``timeout_s`` passes
     (False; with ``zero_waits_forever``, a timeout of 0 never passes) or the node is stopped
-    (None), as the spawners wait for their controller manager."""
+    (None), as the spawners wait for their controller manager's services.
+
+    A service that is not offered fails at once; one that is offered but slow to answer (a
+    loaded machine) is waited for until the spawner's own deadline: each poll may take
+    ``call_timeout_s``, by default the time left (10 s a poll when waiting forever).
+    """
     from robomodel.control.client import ManagerClient
 
     client = ManagerClient(ctx.runtime, manager)
+    forever = zero_waits_forever and timeout_s <= 0
     deadline = time.monotonic() + timeout_s
     while not node.stopping.is_set():
+        left_s = deadline - time.monotonic()
+        poll_s = call_timeout_s if call_timeout_s is not None else 10.0 if forever else left_s
         try:
-            client.list_controllers(timeout_s=call_timeout_s)
+            client.list_controllers(timeout_s=max(0.2, poll_s))
             return True
         except RobomodelError:
-            if not (zero_waits_forever and timeout_s <= 0) and time.monotonic() > deadline:
+            if not forever and time.monotonic() > deadline:
                 return False
-            time.sleep(0.2)
+            node.stopping.wait(0.2)
     return None
 
 
@@ -142,16 +150,19 @@ class _Manager:
     """Calls to one controller manager's services, with the spawner scripts' messages."""
 
     def __init__(self, ctx: NodeContext, namespace: str | None) -> None:
-        from robomodel.control.client import ManagerClient
+        from robomodel.control.client import NO_DEADLINE_S, ManagerClient
 
-        base = ctx.resolve(namespace) if namespace else ctx.spec.namespace
-        self.prefix = base.rstrip("/") + "/controller_manager"
+        # the script's relative ``<namespace/>controller_manager/...``, resolved by rospy in
+        # the spawner's namespace and remaps
+        base = namespace.rstrip("/") + "/" if namespace else ""
+        self.prefix = ctx.resolve_name(base + "controller_manager")
         self.ctx = ctx
-        self.client = ManagerClient(ctx.runtime, self.prefix)
+        # the scripts wait for the services up to --timeout, then call them without a deadline
+        self.client = ManagerClient(ctx.runtime, self.prefix, timeout_s=NO_DEADLINE_S)
 
     def wait(self, node: ThreadNode, timeout_s: float) -> bool:
         self.ctx.log(f"Controller Spawner: Waiting for service {self.prefix}/load_controller")
-        ready = wait_for_manager(self.ctx, node, self.prefix, timeout_s, call_timeout_s=2.0)
+        ready = wait_for_manager(self.ctx, node, self.prefix, timeout_s)
         if ready is False:
             self.ctx.log(
                 f"Controller Spawner couldn't find the expected controller_manager ROS "

@@ -14,14 +14,13 @@ manager is named as the launch file names the node (``name="my_ctrl_mgr"``), so 
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from robomodel.errors import RobomodelError
 from robomodel.launch.model import NodeSpec
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
 from robomodel.launch.nodes.controllers import wait_for_manager
+from robomodel.launch.nodes.ros2_spawner_args import Ros2SpawnerArgs, parse_ros2_spawner_args
 
 if TYPE_CHECKING:
     from robomodel.control.client import ManagerClient
@@ -168,78 +167,6 @@ def _not_found(unknown: dict[str, str]) -> Any:
     return source
 
 
-@dataclass(frozen=True, slots=True)
-class Ros2SpawnerArgs:
-    """controller_manager's ``spawner`` command line (Humble and Jazzy; ``-p`` may repeat)."""
-
-    controllers: tuple[str, ...]
-    controller_manager: str = "controller_manager"
-    param_files: tuple[str, ...] = ()
-    inactive: bool = False
-    load_only: bool = False
-    activate_as_group: bool = False
-    unload_on_kill: bool = False
-    controller_type: str | None = None
-    timeout_s: float = 10.0
-
-
-_VALUED = {
-    "-c": "controller_manager", "--controller-manager": "controller_manager",
-    "-p": "param_files", "--param-file": "param_files",
-    "-t": "controller_type", "--controller-type": "controller_type",
-    "--controller-manager-timeout": "timeout", "--switch-timeout": None,
-    "--service-call-timeout": None, "-n": None, "--namespace": None,
-    "--controller-ros-args": None,
-}  # fmt: skip
-_FLAGS: dict[str, str | None] = {
-    "--inactive": "inactive", "--stopped": "inactive", "--load-only": "load_only",
-    "--activate-as-group": "activate_as_group", "-u": "unload_on_kill",
-    "--unload-on-kill": "unload_on_kill", "--switch-asap": None, "--no-switch-asap": None,
-}  # fmt: skip
-
-
-def parse_ros2_spawner_args(args: tuple[str, ...]) -> Ros2SpawnerArgs:
-    """The spawner's options; RobomodelError names an unknown one."""
-    names: list[str] = []
-    values: dict[str, Any] = {}
-    words = list(args)
-    if "--ros-args" in words:
-        words = words[: words.index("--ros-args")]
-    i = 0
-    while i < len(words):
-        word = words[i]
-        option, eq, inline = word.partition("=")
-        if option in _VALUED:
-            if not eq:
-                if i + 1 >= len(words):
-                    raise RobomodelError(f"spawner: {option} needs a value")
-                inline = words[i + 1]
-                i += 1
-            key = _VALUED[option]
-            if key == "param_files":
-                values[key] = (*values.get(key, ()), inline)
-            elif key is not None:
-                values[key] = inline
-        elif word in _FLAGS:
-            flag = _FLAGS[word]
-            if flag is not None:
-                values[flag] = True
-        elif word.startswith("-"):
-            raise RobomodelError(
-                f"spawner: unrecognized arguments: {word} (options: -c/--controller-manager, "
-                "-p/--param-file, --inactive, --load-only, --activate-as-group, "
-                "-u/--unload-on-kill, --controller-manager-timeout, --controller-ros-args, "
-                "--switch-asap)"
-            )
-        else:
-            names.append(word)
-        i += 1
-    if not names:
-        raise RobomodelError("spawner: the following arguments are required: controller_names")
-    timeout = values.pop("timeout", None)
-    return Ros2SpawnerArgs(tuple(names), **values, timeout_s=float(timeout) if timeout else 10.0)
-
-
 def spawner_param_files(spec: NodeSpec, options: Ros2SpawnerArgs) -> tuple[str, ...]:
     """``--param-file`` files, then the spawner node's own parameter files (what launch_ros
     passes it as ``--ros-args --params-file``), each once: Jazzy's spawner (ros2_control 4.x,
@@ -257,20 +184,39 @@ def _files_for(files: tuple[str, ...], fqn: str) -> tuple[str, ...]:
     return tuple(f for f in files if parameters_from_file(Path(f), fqn))
 
 
+def _in_namespace(options: Ros2SpawnerArgs) -> str:
+    """``-c`` under the deprecated ``-n/--namespace`` (Jazzy's spawner puts a relative
+    manager name there instead of in the node's namespace)."""
+    name = options.controller_manager
+    if options.namespace and not name.startswith("/"):
+        return "/" + options.namespace.strip("/") + "/" + name
+    return name
+
+
 def _manager_path(ctx: NodeContext, name: str) -> str:
-    if name.startswith("/"):
-        return name.rstrip("/")
-    return ctx.spec.namespace.rstrip("/") + "/" + name
+    """``-c NAME`` as the spawner's node resolves it (relative: in its namespace; remaps)."""
+    return ctx.resolve_name(name.rstrip("/") or "/")
 
 
-def _client(ctx: NodeContext, path: str) -> ManagerClient:
-    from robomodel.control.client import ManagerClient
+def _client(ctx: NodeContext, path: str, options: Ros2SpawnerArgs) -> ManagerClient:
+    from robomodel.control.client import AttemptsClient
 
-    return ManagerClient(ctx.runtime, path)
+    return AttemptsClient(
+        ctx.runtime, path, call_timeout_s=options.service_call_timeout_s, warn=ctx.log
+    )
 
 
-def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bool:
-    ready = wait_for_manager(ctx, node, path, timeout_s, zero_waits_forever=True)
+def _wait(ctx: NodeContext, node: ThreadNode, path: str, options: Ros2SpawnerArgs) -> bool:
+    """Wait for the manager's services (``--controller-manager-timeout``; 0: for ever)."""
+    timeout_s = options.timeout_s
+    ready = wait_for_manager(
+        ctx,
+        node,
+        path,
+        timeout_s,
+        call_timeout_s=options.service_call_timeout_s,
+        zero_waits_forever=True,
+    )
     if ready is False:
         ctx.log(f"Controller manager not available: {path} (after {timeout_s:g} s)")
     return bool(ready)
@@ -285,7 +231,7 @@ def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bo
 )
 def spawner(ctx: NodeContext) -> RunningNode:
     options = parse_ros2_spawner_args(ctx.spec.args)
-    path = _manager_path(ctx, options.controller_manager)
+    path = _manager_path(ctx, _in_namespace(options))
     files = spawner_param_files(ctx.spec, options)
 
     def work(node: ThreadNode) -> int:
@@ -293,9 +239,9 @@ def spawner(ctx: NodeContext) -> RunningNode:
         if missing:
             ctx.log(f"[Errno 2] No such file or directory: '{missing[0]}'")
             return 1
-        if not _wait(ctx, node, path, options.timeout_s):
+        if not _wait(ctx, node, path, options):
             return 1
-        client = _client(ctx, path)
+        client = _client(ctx, path, options)
         listed = {c.name for c in client.list_controllers()}
         loaded: list[str] = []
         code = 0
@@ -324,7 +270,7 @@ def spawner(ctx: NodeContext) -> RunningNode:
         if not options.inactive:
             groups = [loaded] if options.activate_as_group else [[n] for n in loaded]
             for group in groups:
-                ok, message = client.switch(group, [], 2)
+                ok, message = client.switch(group, [], 2, timeout_s=options.switch_timeout_s)
                 if ok:
                     ctx.log(f"Configured and activated {', '.join(group)}")
                 else:
@@ -348,12 +294,12 @@ def spawner(ctx: NodeContext) -> RunningNode:
 )
 def unspawner(ctx: NodeContext) -> RunningNode:
     options = parse_ros2_spawner_args(ctx.spec.args)
-    path = _manager_path(ctx, options.controller_manager)
+    path = _manager_path(ctx, _in_namespace(options))
 
     def work(node: ThreadNode) -> int:
-        if not _wait(ctx, node, path, options.timeout_s):
+        if not _wait(ctx, node, path, options):
             return 1
-        client = _client(ctx, path)
+        client = _client(ctx, path, options)
         names = list(options.controllers)
         client.switch([], names, 1)
         code = 0

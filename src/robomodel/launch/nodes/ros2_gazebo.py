@@ -146,7 +146,9 @@ def _wait_for_string(
         box.append(msg.data)
         got.set()
 
-    node = ctx.runtime.create_node((ctx.spec.name or "spawn_entity") + "_listener", ctx.namespace)
+    node = ctx.runtime.create_node(
+        (ctx.spec.name or "spawn_entity") + "_listener", ctx.namespace, remappings=ctx.remappings
+    )
     node.create_subscription(String, topic, on_message, latched())
     deadline = time.monotonic() + timeout_s
     try:

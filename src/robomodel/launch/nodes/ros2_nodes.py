@@ -15,7 +15,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, register
-from robomodel.launch.nodes.state import InProcessNode, ViewerPart
+from robomodel.launch.nodes.state import InProcessNode, ViewerPart, slider_request
 from robomodel.launch.nodes.tf_static import parse_static_transform_args
 from robomodel.launch.nodes.viewer import rviz_config_argument
 
@@ -78,6 +78,9 @@ def robot_state_publisher(ctx: NodeContext) -> RunningNode:
     request = ctx.viewer
     if request.robot_description_text is None:
         request.robot_description_text = str(params["robot_description"])
+    robot = request.robot(ctx.namespace)
+    robot.description_text = robot.description_text or str(params["robot_description"])
+    robot.frame_prefix = str(params.get("frame_prefix", ""))
     return InProcessNode(rsp)
 
 
@@ -113,17 +116,14 @@ def joint_state_publisher(ctx: NodeContext) -> RunningNode:
     purpose="the viewer's joint sliders",
 )
 def joint_state_publisher_gui(ctx: NodeContext) -> RunningNode:
-    request = ctx.viewer
-    request.sliders = True
-    request.requested_by.append(ctx.spec.fqn)
-    request.namespace = ctx.namespace
-    topic = ctx.remappings.get("joint_states", ctx.remappings.get("/joint_states"))
-    if topic:
-        request.joint_states_topic = topic
     params = ctx.ros2_parameters(ctx.spec.name or "joint_state_publisher_gui")
-    if request.robot_description_text is None:
-        request.robot_description_text = robot_description_of(ctx, params)
-    return ViewerPart()
+    try:
+        text: str | None = robot_description_of(ctx, params)
+    except RobomodelError:
+        if ctx.viewer.robot_description_text is None:
+            raise
+        text = None  # the real GUI waits for its robot_description; the viewer shows the others
+    return slider_request(ctx, description_text=text)
 
 
 @register("ros2", "rviz2", "rviz2", purpose="the browser viewer; -d FILE.rviz read")

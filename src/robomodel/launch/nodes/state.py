@@ -15,7 +15,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, register
 
-__all__ = ["InProcessNode", "description_of"]
+__all__ = ["InProcessNode", "description_of", "slider_request"]
 
 
 class InProcessNode:
@@ -83,6 +83,9 @@ def robot_state_publisher(ctx: NodeContext) -> RunningNode:
         parameters=parameters,
         remappings=ctx.remappings,
     )
+    robot = ctx.viewer.robot(ctx.namespace)
+    robot.description_param = robot.description_param or ctx.search("robot_description")
+    robot.frame_prefix = str(parameters["frame_prefix"])
     return InProcessNode(rsp)
 
 
@@ -137,18 +140,29 @@ class ViewerPart:
         return self._code
 
 
-def _sliders(ctx: NodeContext) -> RunningNode:
+def slider_request(ctx: NodeContext, *, description_text: str | None = None) -> RunningNode:
+    """joint_state_publisher_gui's role (both dialects): the viewer's sliders for the robot of
+    the node's namespace, publishing on the node's resolved ``joint_states``."""
     request = ctx.viewer
     request.sliders = True
     request.requested_by.append(ctx.spec.fqn)
     request.namespace = ctx.namespace
-    topic = ctx.remappings.get("joint_states", ctx.remappings.get("/joint_states"))
-    if topic:
-        request.joint_states_topic = topic
-    found = ctx.search("robot_description")
+    request.joint_states_topic = ctx.resolve_name("joint_states")
+    robot = request.robot(ctx.namespace)
+    robot.joint_states_topic = request.joint_states_topic
+    robot.slider_node_name = ctx.spec.name or ctx.spec.executable
+    if description_text is not None:
+        robot.description_text = robot.description_text or description_text
+        request.robot_description_text = request.robot_description_text or description_text
+    found = ctx.search("robot_description") if ctx.spec.dialect == "ros1" else None
     if found:
         request.robot_description_param = request.robot_description_param or found
+        robot.description_param = robot.description_param or found
     return ViewerPart()
+
+
+def _sliders(ctx: NodeContext) -> RunningNode:
+    return slider_request(ctx)
 
 
 @register(
