@@ -8,6 +8,8 @@ A fenced block is runnable when the line before it is an HTML comment (invisible
 - ``<!-- run: background until "TEXT" -->``: the block's one command keeps running (a second
   terminal in the text); it must print TEXT, and it is ended with Ctrl-C when the page is done.
 - ``<!-- run: exit N -->``: as ``run``, but each command must exit with N (an error shown).
+- ``<!-- run: python -->``: the block is a Python script, run in the working folder with the
+  venv's Python; it must exit 0, and its output is what a following ``output`` block shows.
 - ``<!-- file: NAME -->``: the block is a file the reader saves as NAME (in the working folder).
 - ``<!-- output -->`` before a block: what the previous ``run`` block's last command printed
   (standard output; for ``run: exit N``, then standard error).
@@ -158,6 +160,11 @@ class PageRun:
             raise AssertionError(
                 f"`{command}` exited {done.returncode}\n{done.stdout}\n{done.stderr}"
             )
+
+    def python(self, script: str, timeout_s: float) -> None:
+        path = self.workdir / "docs_example.py"
+        path.write_text(script)
+        self.run(f"{sys.executable} {path.name}", timeout_s)
 
     def start(self, command: str, until: str, timeout_s: float) -> None:
         command = self._typed(command)

@@ -50,6 +50,11 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
                         run.run(command, _TIMEOUT_S, exit_code=code)
                     except AssertionError as exc:
                         raise AssertionError(f"{where}: {exc}") from None
+            elif block.marker == "run: python":
+                try:
+                    run.python(block.text, _TIMEOUT_S)
+                except AssertionError as exc:
+                    raise AssertionError(f"{where}: {exc}") from None
             elif block.marker.startswith("run:"):
                 (command,) = commands(block.text)
                 run.start(command, background_until(block.marker), _TIMEOUT_S)
