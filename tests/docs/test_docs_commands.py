@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import argparse
 import re
 import shlex
 from pathlib import Path
@@ -73,7 +74,7 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
 
 
 def _shell_lines() -> list[tuple[str, str]]:
-    """(where, line) for every ``robomodel`` command in the docs' shell blocks."""
+    """(where, line) for every ``robomodel`` command in the docs' shell blocks and inline code."""
     found: list[tuple[str, str]] = []
     fence = re.compile(r"^```(bash|sh|console|shell)\n(.*?)^```", re.M | re.S)
     for page in PAGES:
@@ -84,6 +85,18 @@ def _shell_lines() -> list[tuple[str, str]]:
                 line = line.removeprefix("$ ")
                 if line.startswith("robomodel ") and not _is_synopsis(line):
                     found.append((f"{_name(page)}:{line_no}", line))
+    return found
+
+
+def _inline_mentions() -> list[tuple[str, str]]:
+    """(where, text) for inline code that names a robomodel command: `robomodel view --port`."""
+    found: list[tuple[str, str]] = []
+    for page in PAGES:
+        text = page.read_text()
+        for match in re.finditer(r"(?<!`)`(robomodel [^`\n]+)`(?!`)", text):
+            found.append(
+                (f"{_name(page)}:{text[: match.start()].count(chr(10)) + 1}", match.group(1))
+            )
     return found
 
 
@@ -111,3 +124,31 @@ def test_documented_command_parses(where: str, line: str) -> None:
     except SystemExit as exc:
         if exc.code not in (0, None):
             pytest.fail(f"{where}: `{line}` does not parse (exit {exc.code})")
+
+
+@pytest.mark.parametrize(
+    ("where", "text"), _inline_mentions(), ids=[w for w, _ in _inline_mentions()]
+)
+def test_documented_options_exist(where: str, text: str) -> None:
+    """A command named in the text (often incomplete: `robomodel launch --nodes`) names only
+    verbs, sub-verbs and options that exist."""
+    from robomodel.cli._verbs import VERBS
+
+    words = re.sub(r"[\\|\[\]]", " ", text).split()[1:]
+    if not words or words[0] not in {v.name for v in VERBS}:
+        return  # a mistyped verb shown on purpose (`robomodel lanch`), or a path
+    parser = _subparsers(build_parser(words[0]))[words[0]]
+    for word in words[1:]:
+        subs = _subparsers(parser)
+        if word in subs:
+            parser = subs[word]
+        elif word.startswith("-") and not re.fullmatch(r"-\d.*", word):
+            option = word.split("=", 1)[0]
+            assert option in parser._option_string_actions, f"{where}: `{text}`: no {option}"
+
+
+def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return dict(action.choices)
+    return {}
