@@ -41,7 +41,7 @@ test: $(STAMP) $(SDK_STAMP)
 docs: $(STAMP)
 	tools/system-deps test
 	$(BIN)/python tools/docs_screenshots.py
-	$(BIN)/mkdocs build --strict --site-dir build/site
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --site-dir build/site
 
 bench: $(STAMP)
 	tools/system-deps bench
