@@ -23,6 +23,7 @@ __all__ = [
     "http_uri",
     "is_loopback",
     "listen_host",
+    "master_bind_host",
     "master_uri",
     "namespace_of",
     "resolve",
@@ -178,3 +179,14 @@ def bind_host() -> str:
     if os.environ.get("ROS_IP") or os.environ.get("ROS_HOSTNAME"):
         return listen_host(advertised_host())
     return "127.0.0.1"
+
+
+
+def master_bind_host(uri: str) -> str:
+    """Where a master serving ``uri`` listens: as :func:`bind_host`, but without
+    ``ROS_IP``/``ROS_HOSTNAME`` on the loopback address ``uri`` names (``http://[::1]:11311/``
+    needs ::1), still loopback only."""
+    host = split_uri(uri)[0]
+    if os.environ.get("ROS_IP") or os.environ.get("ROS_HOSTNAME") or not is_loopback(host):
+        return bind_host()
+    return listen_host(host)
