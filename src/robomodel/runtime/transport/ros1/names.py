@@ -34,8 +34,11 @@ DEFAULT_MASTER_URI = "http://localhost:11311/"
 # rosmaster and roscpp bound no name; names are short in practice, and a bound keeps a peer's
 # 10 MB topic name out of the master's memory. URIs (caller and service APIs) get the same bound.
 MAX_NAME_BYTES = 1024
-# roscpp's ros::names::validate: a letter, '/' or '~' first, then letters, digits, '_' and '/'.
-_LEGAL_NAME = re.compile(r"[~/A-Za-z][/A-Za-z0-9_]*\Z")
+# rosmaster's validators (valid_name_validator_resolved) refuse ':' and ' ' in a name; roscpp's
+# ros::names::validate is stricter, but rospy and the tools register names it refuses (rosparam's
+# caller_id is /rosparam-PID). robomodel refuses what rosmaster does, all whitespace and control
+# characters too (a name is printed by every listing).
+_ILLEGAL = re.compile(r"[:\s\x00-\x1f\x7f-\x9f]")
 _LOOPBACK_NAMES = {"localhost": "127.0.0.1", "ip6-localhost": "::1", "ip6-loopback": "::1"}
 
 
@@ -44,15 +47,15 @@ class Ros1NameError(RobomodelError):
 
 
 def check_name(name: object, what: str) -> str:
-    """``name`` if it is a legal ROS graph name (roscpp's rule) within ``MAX_NAME_BYTES``."""
+    """``name`` if it is a ROS graph name as rosmaster takes one (no ':', no whitespace; no
+    control characters either) within ``MAX_NAME_BYTES`` characters."""
     if not isinstance(name, str) or not name:
         raise Ros1NameError(f"{what} must be a non-empty string")
     if len(name) > MAX_NAME_BYTES:
         raise Ros1NameError(f"{what} is {len(name)} characters; at most {MAX_NAME_BYTES}")
-    if not _LEGAL_NAME.match(name) or "//" in name.lstrip("/"):
+    if _ILLEGAL.search(name):
         raise Ros1NameError(
-            f"{what} {name[:80]!r} is not a ROS name (a letter, '/' or '~', then letters, "
-            "digits, '_' and '/')"
+            f"{what} {name[:80]!r} is not a ROS name (no ':', whitespace or control characters)"
         )
     return name
 
