@@ -83,9 +83,11 @@ def _name(name: Any, caller_id: str, what: str) -> str:
 
 def _type_name(topic_type: Any) -> str:
     """rosmaster's valid_type_name: ``*`` or ``package/Type``."""
+    if not isinstance(topic_type, str):
+        raise Ros1NameError("topic_type must be '*' or a package/Type name")
     if topic_type == "*":
         return topic_type
-    if not isinstance(topic_type, str) or len(topic_type.split("/")) != 2:
+    if len(topic_type.split("/")) != 2:
         raise Ros1NameError("topic_type must be '*' or a package/Type name")
     for part in topic_type.split("/"):
         check_name(part, "topic_type")
