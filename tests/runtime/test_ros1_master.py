@@ -60,6 +60,7 @@ def test_registrations_lookups_and_system_state(master: tuple[Master, Any]) -> N
     assert subscribers == [["/chatter", ["/ns/listener"]]]
     assert services == [["/srv", ["/talker"]]]
     assert proxy.getPublishedTopics("/x", "")[2] == [["/chatter", "std_msgs/String"]]
+    assert proxy.getPublishedTopics("/x", "/")[2] == [["/chatter", "std_msgs/String"]]  # rosnode
     assert proxy.getTopicTypes("/x")[2] == [["/chatter", "std_msgs/String"]]
     assert proxy.unregisterPublisher("/talker", "/chatter", "http://h:1/")[2] == 1
     assert proxy.unregisterPublisher("/talker", "/chatter", "http://h:1/")[2] == 0

@@ -73,10 +73,11 @@ def _checked(method: Callable[..., Result]) -> Callable[..., Result]:
     return checked
 
 
-def _name(name: Any, caller_id: str, what: str) -> str:
-    """``name`` checked as a ROS name and resolved for ``caller_id`` (rosmaster's is_topic)."""
+def _name(name: Any, caller_id: str, what: str, *, root_ok: bool = False) -> str:
+    """``name`` checked as a ROS name and resolved for ``caller_id`` (rosmaster's is_topic;
+    ``root_ok``: its valid_name, which takes ``/``)."""
     resolved = resolve(check_name(name, what), caller_id)
-    if resolved == "/":
+    if resolved == "/" and not root_ok:
         raise Ros1NameError(f"{what} cannot be the global namespace")
     return check_name(resolved, what)
 
@@ -137,7 +138,7 @@ class MasterApi:
 
     @_checked
     def lookupNode(self, caller_id: str, node_name: str) -> Result:
-        name = _name(node_name, caller_id, "node")
+        name = _name(node_name, caller_id, "node", root_ok=True)
         with self._lock:
             node = self.registry.nodes.get(name)
         return [1, "node api", node.api] if node else [-1, f"unknown node [{name}]", ""]
@@ -200,7 +201,7 @@ class MasterApi:
 
     @_checked
     def getPublishedTopics(self, caller_id: str, subgraph: str) -> Result:
-        prefix = _name(subgraph, caller_id, "subgraph") if subgraph else "/"
+        prefix = _name(subgraph, caller_id, "subgraph", root_ok=True) if subgraph else "/"
         prefix = prefix if prefix.endswith("/") else prefix + "/"
         with self._lock:
             topics = [
