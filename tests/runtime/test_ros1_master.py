@@ -50,7 +50,11 @@ def test_registrations_lookups_and_system_state(master: tuple[Master, Any]) -> N
         "/ns/listener", "/chatter", "std_msgs/String", "http://h:2/"
     )
     assert code == 1 and pubs == ["http://h:1/"]
-    assert proxy.lookupNode("/x", "/talker") == [1, "node api", "http://h:1/"]  # rosmaster's message
+    assert proxy.lookupNode("/x", "/talker") == [
+        1,
+        "node api",
+        "http://h:1/",
+    ]  # rosmaster's message
     assert proxy.lookupNode("/x", "/nobody")[0] == -1
     assert proxy.registerService("/talker", "/srv", "rosrpc://h:3", "http://h:1/")[0] == 1
     assert proxy.lookupService("/x", "/srv")[2] == "rosrpc://h:3"

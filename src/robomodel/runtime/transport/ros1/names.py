@@ -184,7 +184,6 @@ def bind_host() -> str:
     return "127.0.0.1"
 
 
-
 def master_bind_host(uri: str) -> str:
     """Where a master serving ``uri`` listens: as :func:`bind_host`, but without
     ``ROS_IP``/``ROS_HOSTNAME`` on the loopback address ``uri`` names (``http://[::1]:11311/``
