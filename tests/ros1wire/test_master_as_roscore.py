@@ -57,7 +57,8 @@ def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
     seen = []
     pub = ros1.run("/usr/bin/rostopic", "pub", "-1", "/foo", "std_msgs/String", "data: x")
     assert pub.returncode == 0, pub.stderr
-    seen.append(_graph(ros1))
+    info = ros1.run("/usr/bin/rostopic", "info", "/foo")
+    seen.append({**_graph(ros1), "info /foo": [str(info.returncode), info.stdout + info.stderr]})
 
     tmp_path.mkdir(parents=True, exist_ok=True)
     script = tmp_path / "provider.py"
@@ -116,7 +117,8 @@ def test_debian_tools_leave_the_same_graph_on_robomodel_s_master_as_on_roscore(
         ours_graph.close()
     assert ours == theirs
     after_pub, with_provider, after_call, with_killed, after_kill, after_cleanup = ours
-    assert after_pub == {"rosnode": [], "rostopic": [], "rosservice": []}
+    assert after_pub["info /foo"] == ["1", "ERROR: Unknown topic /foo\n"]
+    assert [after_pub[tool] for tool in ("rosnode", "rostopic", "rosservice")] == [[], [], []]
     assert "/trigger" in with_provider["rosservice"] and after_call["rosservice"] == []
     assert "/bar" in with_killed["rostopic"] and with_killed["rosnode"] == ["/rostopic_*"] * 2
     assert after_kill["rosnode"] == ["/rostopic_*"]  # the killed one stays, as on roscore
