@@ -3,9 +3,11 @@ parameter server with subscriptions, served over XML-RPC.
 
 ``robomodel launch`` starts one when no master answers at ``ROS_MASTER_URI``, as roslaunch starts
 a roscore; ``robomodel master`` runs one on its own. Differences from rosmaster, on purpose:
-``shutdown`` from a peer is refused (the master ends with the process that hosts it), and
+``shutdown`` from a peer is refused (the master ends with the process that hosts it);
 notifications (publisherUpdate, paramUpdate) are sent from one worker thread with a bounded
-queue, so a node that does not answer delays only its own updates.
+queue, each waited for at most 2 s, and nothing a peer registers can end that thread; names,
+URIs and registrations are checked and bounded (registrations.py, names.py), a refusal being
+``[-1, message, 0]`` and one log line, as rosmaster's validators answer.
 """
 
 from __future__ import annotations
@@ -119,7 +121,12 @@ class MasterApi:
         return [1, "", os.getpid()]
 
     def shutdown(self, caller_id: str, msg: str = "") -> Result:
-        log.warning("master: %s asked it to shut down (%.200s); refused", caller_id, msg)
+        log_throttled(
+            "master-shutdown",
+            "master: %.200s asked it to shut down (%.200s); refused",
+            caller_id,
+            msg,
+        )
         return [0, "robomodel's master ends with the process that hosts it", 0]
 
     # -- nodes ------------------------------------------------------------------------------
@@ -361,7 +368,12 @@ class Master:
         try:
             self._queue.put_nowait((api, method, args))
         except queue.Full:
-            log.warning("master: notification queue full; dropping %s to %s", method, api)
+            log_throttled(
+                "master-queue",
+                "master: notification queue full; dropping %s to %.200s",
+                method,
+                api,
+            )
 
     def _send(self) -> None:
         while (item := self._queue.get()) is not None:
