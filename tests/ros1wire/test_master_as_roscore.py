@@ -159,13 +159,18 @@ def test_29_1_a_garbage_registration_leaves_rospy_subscribers_receiving(
 def test_29_10_loopback_addresses_bind_loopback_only(
     variable: str, host: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from robomodel.runtime.transport.ros1.names import bind_host, listen_host
+    from robomodel.runtime.transport.ros1.names import bind_host, listen_host, master_bind_host
 
     monkeypatch.delenv("ROS_IP", raising=False)
     monkeypatch.delenv("ROS_HOSTNAME", raising=False)
     monkeypatch.setenv(variable, host)
     assert bind_host() == {"127.0.0.2": "127.0.0.2"}.get(host, "::1")
     assert listen_host("10.1.2.3") == "0.0.0.0" and listen_host("2001:db8::1") == "::"
+    # the master listens where ROS_MASTER_URI points, loopback only for a loopback URI
+    assert master_bind_host("http://localhost:11311/") == "127.0.0.1"
+    assert master_bind_host("http://[::1]:11311/") == "::1"
+    monkeypatch.setenv("ROS_IP", "10.1.2.3")  # an address others use: every interface
+    assert master_bind_host("http://localhost:11311/") == "0.0.0.0"
 
 
 def test_29_10_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> None:

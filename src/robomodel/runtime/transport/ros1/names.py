@@ -185,10 +185,12 @@ def bind_host() -> str:
 
 
 def master_bind_host(uri: str) -> str:
-    """Where a master serving ``uri`` listens: as :func:`bind_host`, but without
-    ``ROS_IP``/``ROS_HOSTNAME`` on the loopback address ``uri`` names (``http://[::1]:11311/``
-    needs ::1), still loopback only."""
-    host = split_uri(uri)[0]
-    if os.environ.get("ROS_IP") or os.environ.get("ROS_HOSTNAME") or not is_loopback(host):
-        return bind_host()
-    return listen_host(host)
+    """Where a master serving ``uri`` listens: every interface when ``ROS_IP``/``ROS_HOSTNAME``
+    name an address others use (as :func:`bind_host`), else where its URI points (peers find it
+    by ``ROS_MASTER_URI``): the loopback address it names (``http://[::1]:11311/`` needs ::1,
+    ``http://localhost:11311/`` 127.0.0.1 even with ``ROS_IP=127.0.0.2``), or every interface
+    for a URI with an address others use."""
+    mine, theirs = bind_host(), listen_host(split_uri(uri)[0])
+    if mine in ("0.0.0.0", "::"):
+        return "::" if ":" in theirs else mine  # "::" takes IPv4 too
+    return theirs
