@@ -66,7 +66,8 @@ def _checked(method: Callable[..., Result]) -> Callable[..., Result]:
     @functools.wraps(method)
     def checked(self: MasterApi, caller_id: Any, *args: Any) -> Result:
         try:
-            check_name(caller_id, "caller_id")
+            if caller_id != "":  # rosmaster takes any string, the empty one too
+                check_name(caller_id, "caller_id")
             return method(self, caller_id, *args)
         except (Ros1NameError, RegistrationBoundError, ParamServerError) as exc:
             log_throttled("master-refused", "master: %s refused: %s", method.__name__, exc)
