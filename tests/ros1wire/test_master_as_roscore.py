@@ -14,6 +14,7 @@ import os
 import re
 import subprocess
 import textwrap
+import xmlrpc.client
 from collections.abc import Callable
 from pathlib import Path
 
@@ -52,6 +53,14 @@ def _graph(ros1: Ros1) -> dict[str, list[str]]:
     return out
 
 
+def _publishers_and_subscribers(ros1: Ros1, topic: str) -> tuple[int, int]:
+    pubs, subs, _ = xmlrpc.client.ServerProxy(ros1.uri).getSystemState("/test")[2]
+    return (
+        sum(len(nodes) for name, nodes in pubs if name == topic),
+        sum(len(nodes) for name, nodes in subs if name == topic),
+    )
+
+
 def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
     """The tool runs, and the graph after each step."""
     seen = []
@@ -79,7 +88,7 @@ def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
     killed = ros1.start(
         ["/usr/bin/rostopic", "pub", "-r", "2", "/bar", "std_msgs/String", "data: y"]
     )
-    ros1.until(lambda: "/bar" in ros1.run("/usr/bin/rostopic", "list").stdout, "/bar")
+    ros1.until(lambda: _publishers_and_subscribers(ros1, "/bar") == (1, 1), "/bar's two ends")
     seen.append(_graph(ros1))
     killed.kill()  # SIGKILL: no unregistering; the master keeps it until `rosnode cleanup`
     killed.wait(30)
@@ -131,8 +140,6 @@ def test_29_1_a_garbage_registration_leaves_rospy_subscribers_receiving(
     """Finding 1 with a launch-hosted master and Debian's rospy: a subscriber started first
     still receives once a publisher starts after the attack (the master's publisherUpdate
     reaches it)."""
-    import xmlrpc.client
-
     log = tmp_path / "launch.log"
     launch = ros1.robomodel(
         "launch", "gripper_description", "display.launch", "--headless", "--ros1-master", ros1.uri,
