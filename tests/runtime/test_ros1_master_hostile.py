@@ -23,7 +23,7 @@ from typing import Any
 import pytest
 
 from robomodel.runtime.transport.ros1.names import MAX_NAME_BYTES
-from robomodel.runtime.transport.ros1.param_bounds import MAX_KEY_DEPTH
+from robomodel.runtime.transport.ros1.param_bounds import DICT_BYTES, MAX_KEY_DEPTH
 from robomodel.runtime.transport.ros1.xmlrpc_io import (
     MAX_BODIES_IN_FLIGHT_BYTES,
     MAX_BODY_BYTES,
@@ -142,12 +142,13 @@ def test_29_4_a_deep_parameter_key_is_refused_and_the_tree_stays_readable(
 def test_29_4_key_bytes_count_in_the_servers_limit_and_walks_are_loops() -> None:
     from robomodel.runtime.transport.ros1.param_tree import ParamServerError, ParamTree
 
-    tree = ParamTree(max_tree_bytes=10_000)
-    levels = "/".join(["n" * 90] * 9)  # 9 namespaces of 90 characters: 882 bytes counted
+    tree = ParamTree(max_tree_bytes=40_000)
+    levels = "/".join(["n" * 90] * 9)  # 9 namespaces of 90 characters
+    per_set = (8 + 2 + DICT_BYTES) + 9 * (8 + 90 + DICT_BYTES) + (8 + 1 + 8)  # /kN, 9 levels, x
     with pytest.raises(ParamServerError, match="would make the parameter server hold more"):
         for index in range(100):  # only 17 bytes each if the namespaces were not counted
             tree.set(f"/k{index}/{levels}/x", 1)
-    assert 8 <= index <= 11
+    assert index == 40_000 // per_set
     for name in tree.names():
         tree.delete("/" + name.split("/")[1])
     assert tree._size == 0  # what a set counts, its delete gives back
@@ -164,6 +165,30 @@ def test_29_4_key_bytes_count_in_the_servers_limit_and_walks_are_loops() -> None
     assert tree.has("/deep/d/d") and tree.get("/")["deep"]["d"]["d"]["d"] is not None
     tree.delete("/deep")
     assert tree.names() == []
+
+
+def _own_rss() -> int:
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) * 1024
+    raise AssertionError("no VmRSS")
+
+
+def test_29_4_deep_names_fill_the_server_to_its_limit_in_memory_too() -> None:
+    """Names of 100 levels, set until the server is full: its memory (RSS) stays near its
+    limit; counted as 8 bytes per namespace they took 20 times the limit."""
+    from robomodel.runtime.transport.ros1.param_tree import ParamServerError, ParamTree
+
+    limit = 16 * MIB
+    tree = ParamTree(max_tree_bytes=limit)
+    levels = "/".join(["a"] * (MAX_KEY_DEPTH - 2))
+    before = _own_rss()
+    with pytest.raises(ParamServerError, match="would make the parameter server hold more"):
+        for index in range(100_000):
+            tree.set(f"/k{index}/{levels}/x", index)
+    assert index > 100  # the limit, not something else, stopped it
+    assert _own_rss() - before < 2 * limit
+    assert len(tree.names()) == index
 
 
 # -- 29.6: XML-RPC bodies ---------------------------------------------------------------------------

@@ -5,7 +5,10 @@ of shared references but is a huge tree: every get would serialise the whole exp
 value is expanded into a plain tree when it is set (or when a ``<rosparam>`` document is
 loaded), under a bound, and refused with a clear error past it; a get then costs what the
 stored tree costs. Sizes are counted as the serialised value would be: the bytes of each string
-or binary, 8 per number, boolean or container entry.
+or binary, 8 per number, boolean or container entry, and ``DICT_BYTES`` more per dictionary:
+a dictionary costs CPython about that much however little it holds, and a parameter name
+``/a/b/c/...`` makes one per level (its namespaces), so counting them is what bounds the
+memory of a deep name.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 
 __all__ = [
+    "DICT_BYTES",
     "MAX_DEPTH",
     "MAX_KEY_DEPTH",
     "MAX_TREE_BYTES",
@@ -32,6 +36,7 @@ MAX_VALUE_BYTES = 32 * 1024 * 1024  # one value (a robot_description is well und
 MAX_TREE_BYTES = 256 * 1024 * 1024  # the whole server
 MAX_DEPTH = 100  # nesting of dicts and lists
 MAX_KEY_DEPTH = 100  # namespaces in a parameter's name (/a/b/c: 3)
+DICT_BYTES = 240  # what CPython's smallest dictionaries cost (sys.getsizeof + GC header)
 
 
 class ParamBoundError(RobomodelError):
@@ -78,7 +83,7 @@ def _measure(value: Any, memo: dict[int, int], open_ids: set[int], depth: int, w
         )
     open_ids.add(key)
     if isinstance(value, Mapping):
-        size = sum(
+        size = DICT_BYTES + sum(
             8 + len(str(k)) + _measure(v, memo, open_ids, depth + 1, what) for k, v in value.items()
         )
     else:
@@ -120,7 +125,7 @@ def tree_size(value: Any) -> int:
     while stack:
         item = stack.pop()
         if isinstance(item, dict):
-            size += sum(8 + len(k) for k in item)
+            size += DICT_BYTES + sum(8 + len(k) for k in item)
             stack.extend(item.values())
         elif isinstance(item, list):
             size += 8

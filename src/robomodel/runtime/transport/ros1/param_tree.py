@@ -13,6 +13,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.transport.ros1.names import MAX_NAME_BYTES
 from robomodel.runtime.transport.ros1.param_bounds import (
+    DICT_BYTES,
     MAX_KEY_DEPTH,
     MAX_TREE_BYTES,
     MAX_VALUE_BYTES,
@@ -96,13 +97,13 @@ class ParamTree:
         node: Any = self._tree
         for index, part in enumerate(parts):
             if part not in node:
-                return sum(8 + len(p) for p in parts[index:-1])
+                return sum(8 + len(p) + DICT_BYTES for p in parts[index:-1])
             child = node[part]
             if index == len(parts) - 1:
                 return -(tree_size(child) + 8 + len(part))
-            if not isinstance(child, dict):
-                created = sum(8 + len(p) for p in parts[index + 1 : -1])
-                return created - tree_size(child)
+            if not isinstance(child, dict):  # the leaf becomes a namespace
+                created = sum(8 + len(p) + DICT_BYTES for p in parts[index + 1 : -1])
+                return created + DICT_BYTES - tree_size(child)
             node = child
         return 0
 
