@@ -50,7 +50,11 @@ def test_registrations_lookups_and_system_state(master: tuple[Master, Any]) -> N
         "/ns/listener", "/chatter", "std_msgs/String", "http://h:2/"
     )
     assert code == 1 and pubs == ["http://h:1/"]
-    assert proxy.lookupNode("/x", "/talker") == [1, "node api for /talker", "http://h:1/"]
+    assert proxy.lookupNode("/x", "/talker") == [
+        1,
+        "node api",
+        "http://h:1/",
+    ]  # rosmaster's message
     assert proxy.lookupNode("/x", "/nobody")[0] == -1
     assert proxy.registerService("/talker", "/srv", "rosrpc://h:3", "http://h:1/")[0] == 1
     assert proxy.lookupService("/x", "/srv")[2] == "rosrpc://h:3"
@@ -60,6 +64,7 @@ def test_registrations_lookups_and_system_state(master: tuple[Master, Any]) -> N
     assert subscribers == [["/chatter", ["/ns/listener"]]]
     assert services == [["/srv", ["/talker"]]]
     assert proxy.getPublishedTopics("/x", "")[2] == [["/chatter", "std_msgs/String"]]
+    assert proxy.getPublishedTopics("/x", "/")[2] == [["/chatter", "std_msgs/String"]]  # rosnode
     assert proxy.getTopicTypes("/x")[2] == [["/chatter", "std_msgs/String"]]
     assert proxy.unregisterPublisher("/talker", "/chatter", "http://h:1/")[2] == 1
     assert proxy.unregisterPublisher("/talker", "/chatter", "http://h:1/")[2] == 0
@@ -236,3 +241,33 @@ def _evil_publisher(proxy: Any) -> XmlRpcServer:
     )
     proxy.registerPublisher("/evil", "/chatter", kind.name, f"http://127.0.0.1:{node.port}/")
     return node
+
+
+def test_27_6_unregistering_forgets_a_node_as_rosmaster_does(master: tuple[Master, Any]) -> None:
+    """rosmaster/registrations.py: unregister* removes exactly the registration named (a
+    service by its rosrpc URI), a node is forgotten with its last registration, and rospy's
+    system.multicall of unregister calls (how a rospy node ends) is served."""
+    _, proxy = master
+    api, other = "http://h:1/", "http://h:2/"
+    proxy.registerPublisher("/pub", "/foo", "std_msgs/String", api)
+    proxy.registerSubscriber("/pub", "/bar", "std_msgs/String", api)
+    proxy.registerService("/pub", "/pub/get_loggers", "rosrpc://h:3", api)
+    assert proxy.unregisterPublisher("/pub", "/foo", other)[2] == 0  # not its API: kept
+    assert proxy.unregisterService("/pub", "/pub/get_loggers", "rosrpc://h:4")[2] == 0
+    multi = xmlrpc.client.MultiCall(proxy)
+    multi.unregisterPublisher("/pub", "/foo", api)
+    multi.unregisterSubscriber("/pub", "/bar", api)
+    multi.noSuchMethod("/pub")
+    answers = multi()
+    assert [answers[0][2], answers[1][2]] == [1, 1]
+    with pytest.raises(xmlrpc.client.Fault, match="not supported"):
+        answers[2]
+    assert proxy.lookupNode("/x", "/pub")[0] == 1  # it still offers a service
+    assert proxy.unregisterService("/pub", "/pub/get_loggers", "rosrpc://h:3")[2] == 1
+    assert proxy.lookupNode("/x", "/pub")[:2] == [-1, "unknown node [/pub]"]
+    assert proxy.getSystemState("/x")[2] == [[], [], []]
+    # a new node of the same name replaces the old: the old registrations go
+    proxy.registerPublisher("/pub", "/foo", "std_msgs/String", api)
+    proxy.registerSubscriber("/pub", "/baz", "std_msgs/String", other)
+    assert proxy.getSystemState("/x")[2] == [[], [["/baz", ["/pub"]]], []]
+    assert proxy.lookupNode("/x", "/pub")[2] == other

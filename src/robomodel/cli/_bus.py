@@ -6,6 +6,7 @@ import argparse
 import os
 import time
 
+from robomodel.errors import RobomodelError
 from robomodel.runtime import BUSES, Context
 from robomodel.runtime.clock import Clock
 from robomodel.runtime.transport.base import Graph
@@ -93,6 +94,14 @@ def _shape(graph: Graph) -> tuple[object, ...]:
     return (tuple(sorted(graph.nodes)), topics, tuple(sorted(graph.services)))
 
 
+def _readable(graph: Graph) -> Graph:
+    """``graph``, or the error that it could not be read (a master answering garbage): a
+    listing must not print an empty graph and exit 0 (exit 2, as every robomodel error)."""
+    if graph.unreadable:
+        raise RobomodelError(graph.unreadable)
+    return graph
+
+
 def settled_graph(context: Context, timeout_s: float = 3.0) -> Graph:
     """The bus graph once discovery has settled, as ``ros2 topic list`` spins before answering.
 
@@ -102,11 +111,11 @@ def settled_graph(context: Context, timeout_s: float = 3.0) -> Graph:
     first, partial (or empty) answer made ``topic list`` miss a running simulator.
     """
     if not wait_for_peers(context, timeout_s):
-        return context.graph(timeout_s=0.5)  # nobody else on this domain
+        return _readable(context.graph(timeout_s=0.5))  # nobody else on this domain
     deadline = time.monotonic() + timeout_s
     previous: tuple[object, ...] | None = None
     while True:
-        graph = context.graph(timeout_s=0.5)
+        graph = _readable(context.graph(timeout_s=0.5))
         shape = _shape(graph)
         if shape == previous and (graph.topics or graph.nodes):
             return graph

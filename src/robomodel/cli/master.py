@@ -34,18 +34,19 @@ def run(args: argparse.Namespace) -> int:
     from robomodel.runtime.transport.ros1.master import Master, master_answers
     from robomodel.runtime.transport.ros1.names import (
         advertised_host,
-        bind_host,
+        http_uri,
+        master_bind_host,
         master_uri,
         split_uri,
     )
 
     uri = master_uri()
     if args.port is not None:
-        uri = f"http://{advertised_host()}:{args.port}/"
+        uri = http_uri(advertised_host(), args.port)
     if master_answers(uri):
         raise RobomodelError(f"a ROS 1 master already answers at {uri}")
     try:
-        master = Master(uri, bind_host())
+        master = Master(uri, master_bind_host(uri))
     except RobomodelError as exc:
         raise RobomodelError(f"cannot start the master: {exc}") from None
     import uuid

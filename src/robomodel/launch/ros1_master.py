@@ -64,14 +64,14 @@ class Ros1Bus:
 def open_ros1(uri: str | None, log: Callable[[str], None]) -> Ros1Bus:
     from robomodel.runtime import Context
     from robomodel.runtime.transport.ros1.master import Master, master_answers
-    from robomodel.runtime.transport.ros1.names import bind_host, master_uri
+    from robomodel.runtime.transport.ros1.names import master_bind_host, master_uri
 
     uri = master_uri(uri)
     master = None
     if master_answers(uri):
         log(f"[launch] ROS 1 master at {uri}")
     else:
-        master = Master(uri, bind_host())
+        master = Master(uri, master_bind_host(uri))
         log(f"[launch] no ROS 1 master answered at {uri}: started one (as roscore)")
     try:
         params = _Params(uri)

@@ -123,6 +123,7 @@ class Graph:
     nodes: set[str] = field(default_factory=set)
     topics: dict[str, TopicInfo] = field(default_factory=dict)
     services: dict[str, ServiceInfo] = field(default_factory=dict)
+    unreadable: str = ""  # why the graph could not be read (it is then empty), else ""
 
     def add(self, kind: str, endpoint: Endpoint) -> None:
         """Record an endpoint; ``kind`` is ``pub``, ``sub``, ``srv`` or ``cli``."""

@@ -32,7 +32,7 @@ from robomodel.runtime.transport.base import (
     Transport,
 )
 from robomodel.runtime.transport.ros1.master import master_answers
-from robomodel.runtime.transport.ros1.names import bind_host, master_uri
+from robomodel.runtime.transport.ros1.names import bind_host, http_uri, master_uri
 from robomodel.runtime.transport.ros1.node_endpoint import NodeEndpoint
 from robomodel.runtime.transport.ros1.publication import Publication
 from robomodel.runtime.transport.ros1.ros1_types import (
@@ -132,7 +132,7 @@ class Ros1Transport(Transport):
                 log.debug("%s %s: %s", method, name, exc)
 
     def _rosrpc(self, endpoint: NodeEndpoint) -> str:
-        return f"rosrpc://{endpoint.host}:{endpoint.tcpros_port}"
+        return http_uri(endpoint.host, endpoint.tcpros_port, "rosrpc")
 
     # -- topics ---------------------------------------------------------------------------------
     def _advertise(
@@ -317,26 +317,17 @@ class Ros1Transport(Transport):
 
     # -- graph and lifetime ---------------------------------------------------------------------
     def graph(self, timeout_s: float = 1.0) -> Graph:
-        graph = Graph()
         try:
-            pubs, subs, services = call(
+            state = call(
                 self.master_uri, "getSystemState", "/robomodel", timeout_s=max(timeout_s, 1.0)
             )
-            types = dict(
-                call(self.master_uri, "getTopicTypes", "/robomodel", timeout_s=max(timeout_s, 1.0))
+            types = call(
+                self.master_uri, "getTopicTypes", "/robomodel", timeout_s=max(timeout_s, 1.0)
             )
-        except (Ros1WireError, TypeError, ValueError) as exc:
-            log.warning("cannot read the ROS 1 graph: %s", exc)
-            return graph
-        for kind, entries in (("pub", pubs), ("sub", subs)):
-            for topic, nodes in entries:
-                type_name = _robomodel_name(str(types.get(topic, "*")))
-                for node in nodes:
-                    graph.add(kind, Endpoint(str(node), str(topic), type_name))
-        for service, nodes in services:
-            for node in nodes:
-                graph.add("srv", Endpoint(str(node), str(service), ""))
-        return graph
+            return _graph_of(state, types)
+        except (Ros1WireError, TypeError, ValueError) as exc:  # garbage from the master
+            log.debug("cannot read the ROS 1 graph: %s", exc)
+            return Graph(unreadable=f"cannot read the ROS 1 graph at {self.master_uri}: {exc}")
 
     def close(self) -> None:
         with self._lock:
@@ -344,6 +335,23 @@ class Ros1Transport(Transport):
         for endpoint in endpoints:
             self._unregister_all(endpoint)
             endpoint.close()
+
+
+def _graph_of(state: Any, topic_types: Any) -> Graph:
+    """The graph of getSystemState's and getTopicTypes' answers; TypeError or ValueError when
+    they do not have the shapes rosmaster gives them."""
+    graph = Graph()
+    pubs, subs, services = state
+    types = dict(topic_types)
+    for kind, entries in (("pub", pubs), ("sub", subs)):
+        for topic, nodes in entries:
+            type_name = _robomodel_name(str(types.get(topic, "*")))
+            for node in nodes:
+                graph.add(kind, Endpoint(str(node), str(topic), type_name))
+    for service, nodes in services:
+        for node in nodes:
+            graph.add("srv", Endpoint(str(node), str(service), ""))
+    return graph
 
 
 def _robomodel_name(ros1_name: str) -> str:

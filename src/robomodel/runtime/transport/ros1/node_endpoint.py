@@ -17,7 +17,7 @@ import socket
 import threading
 from typing import Any
 
-from robomodel.runtime.transport.ros1.names import advertised_host
+from robomodel.runtime.transport.ros1.names import advertised_host, http_uri
 from robomodel.runtime.transport.ros1.publication import Publication
 from robomodel.runtime.transport.ros1.services import ServiceServer
 from robomodel.runtime.transport.ros1.subscription import Subscription
@@ -42,13 +42,17 @@ class NodeEndpoint:
         self.subscriptions: dict[str, list[Subscription]] = {}
         self.services: dict[str, ServiceServer] = {}
         self._slots = threading.BoundedSemaphore(MAX_HANDSHAKES)
-        self._listener = socket.create_server((bind, 0))
+        self._listener = socket.create_server(
+            (bind, 0),
+            family=socket.AF_INET6 if ":" in bind else socket.AF_INET,
+            dualstack_ipv6=bind == "::",
+        )
         self.tcpros_port = int(self._listener.getsockname()[1])
         self._alive = True
         self._accepter = threading.Thread(target=self._accept, name="ros1-tcpros", daemon=True)
         self._accepter.start()
         self._xmlrpc = XmlRpcServer(bind, 0, self._api())
-        self.uri = f"http://{self.host}:{self._xmlrpc.port}/"
+        self.uri = http_uri(self.host, self._xmlrpc.port)
 
     # -- TCPROS ---------------------------------------------------------------------------------
     def _accept(self) -> None:

@@ -5,21 +5,28 @@ of shared references but is a huge tree: every get would serialise the whole exp
 value is expanded into a plain tree when it is set (or when a ``<rosparam>`` document is
 loaded), under a bound, and refused with a clear error past it; a get then costs what the
 stored tree costs. Sizes are counted as the serialised value would be: the bytes of each string
-or binary, 8 per number, boolean or container entry.
+or binary, 8 per number, boolean or container entry, and ``DICT_BYTES`` more per dictionary:
+a dictionary costs CPython about that much however little it holds, and a parameter name
+``/a/b/c/...`` makes one per level (its namespaces), so counting them is what bounds the
+memory of a deep name.
 """
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping
 from typing import Any
 
 from robomodel.errors import RobomodelError
 
 __all__ = [
+    "DICT_BYTES",
     "MAX_DEPTH",
+    "MAX_KEY_DEPTH",
     "MAX_TREE_BYTES",
     "MAX_VALUE_BYTES",
     "ParamBoundError",
+    "copy_tree",
     "expand_bounded",
     "expand_measured",
     "tree_size",
@@ -28,6 +35,8 @@ __all__ = [
 MAX_VALUE_BYTES = 32 * 1024 * 1024  # one value (a robot_description is well under 2 MiB)
 MAX_TREE_BYTES = 256 * 1024 * 1024  # the whole server
 MAX_DEPTH = 100  # nesting of dicts and lists
+MAX_KEY_DEPTH = 100  # namespaces in a parameter's name (/a/b/c: 3)
+DICT_BYTES = 240  # what CPython's smallest dictionaries cost (sys.getsizeof + GC header)
 
 
 class ParamBoundError(RobomodelError):
@@ -74,7 +83,7 @@ def _measure(value: Any, memo: dict[int, int], open_ids: set[int], depth: int, w
         )
     open_ids.add(key)
     if isinstance(value, Mapping):
-        size = sum(
+        size = DICT_BYTES + sum(
             8 + len(str(k)) + _measure(v, memo, open_ids, depth + 1, what) for k, v in value.items()
         )
     else:
@@ -110,9 +119,45 @@ def expand_bounded(value: Any, *, what: str = "the value", limit: int = MAX_VALU
 
 
 def tree_size(value: Any) -> int:
-    """The size of a plain tree (as :func:`expand_bounded` counts it)."""
-    if isinstance(value, dict):
-        return sum(8 + len(k) + tree_size(v) for k, v in value.items())
-    if isinstance(value, list):
-        return 8 + sum(tree_size(v) for v in value)
-    return _leaf_size(value)
+    """The size of a plain tree (as :func:`expand_bounded` counts it). A loop, not a
+    recursion: no tree is too deep for it."""
+    size, stack = 0, [value]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, dict):
+            size += DICT_BYTES + sum(8 + len(k) for k in item)
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            size += 8
+            stack.extend(item)
+        else:
+            size += _leaf_size(item)
+    return size
+
+
+def _copy_leaf(value: Any) -> Any:
+    if isinstance(value, str | bytes | int | float | None):
+        return value  # immutable
+    return copy.deepcopy(value)  # a bytearray, a Binary: flat
+
+
+def copy_tree(value: Any) -> Any:
+    """A copy of a plain tree, as ``copy.deepcopy`` makes it but by a loop, not a recursion."""
+    if not isinstance(value, dict | list):
+        return _copy_leaf(value)
+    root: Any = {} if isinstance(value, dict) else []
+    stack: list[tuple[Any, Any]] = [(value, root)]
+    while stack:
+        source, target = stack.pop()
+        items = source.items() if isinstance(source, dict) else enumerate(source)
+        for key, item in items:
+            child = (
+                {} if isinstance(item, dict) else [] if isinstance(item, list) else _copy_leaf(item)
+            )
+            if isinstance(target, dict):
+                target[key] = child
+            else:
+                target.append(child)
+            if isinstance(item, dict | list):
+                stack.append((item, child))
+    return root

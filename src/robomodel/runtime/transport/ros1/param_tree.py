@@ -7,15 +7,18 @@ the ``/rosmaster`` service (robomodel.launch.param_server).
 
 from __future__ import annotations
 
-import copy
 import threading
 from typing import Any
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.transport.ros1.names import MAX_NAME_BYTES
 from robomodel.runtime.transport.ros1.param_bounds import (
+    DICT_BYTES,
+    MAX_KEY_DEPTH,
     MAX_TREE_BYTES,
     MAX_VALUE_BYTES,
     ParamBoundError,
+    copy_tree,
     expand_measured,
     tree_size,
 )
@@ -31,12 +34,28 @@ def split_name(name: str) -> list[str]:
     return [p for p in name.split("/") if p]
 
 
+def _checked_parts(name: str) -> list[str]:
+    """``name``'s parts, within the name's length and depth bounds."""
+    if len(name) > MAX_NAME_BYTES:
+        raise ParamServerError(
+            f"parameter name [{name[:80]}...] is {len(name)} characters; at most {MAX_NAME_BYTES}"
+        )
+    parts = split_name(name)
+    if len(parts) > MAX_KEY_DEPTH:
+        raise ParamServerError(
+            f"parameter name [{name[:80]}...] has {len(parts)} levels; at most {MAX_KEY_DEPTH}"
+        )
+    return parts
+
+
 class ParamTree:
     """rosmaster's parameter tree (paramserver.py), thread-safe and bounded.
 
     Each value is expanded into a plain tree when set (see param_bounds), at most
-    ``max_value_bytes``; the whole tree holds at most ``max_tree_bytes``. Past either, the set
-    is refused with a ParamServerError that reaches the client.
+    ``max_value_bytes``; the whole tree holds at most ``max_tree_bytes``, the names of the
+    namespaces a set creates included. A name has at most ``MAX_NAME_BYTES`` characters and
+    ``MAX_KEY_DEPTH`` levels. Past any of these, the set is refused with a ParamServerError
+    that reaches the client. Walks over the tree are loops, so no tree is too deep to read.
     """
 
     def __init__(
@@ -49,7 +68,7 @@ class ParamTree:
         self._max_tree_bytes = max_tree_bytes
 
     def set(self, name: str, value: Any) -> None:
-        parts = split_name(name)
+        parts = _checked_parts(name)
         try:
             value, added = expand_measured(value, what=f"[{name}]", limit=self._max_value_bytes)
         except ParamBoundError as exc:
@@ -61,7 +80,7 @@ class ParamTree:
                 self._check_total(added - self._size, name)
                 self._tree, self._size = value, added
                 return
-            change = added + 8 + len(parts[-1]) - self._replaced_size(parts)
+            change = added + 8 + len(parts[-1]) + self._path_change(parts)
             self._check_total(change, name)
             node = self._tree
             for part in parts[:-1]:
@@ -72,15 +91,19 @@ class ParamTree:
             node[parts[-1]] = value
             self._size += change
 
-    def _replaced_size(self, parts: list[str]) -> int:
-        """The size of what setting ``parts`` replaces: the old value, or a leaf on the way."""
+    def _path_change(self, parts: list[str]) -> int:
+        """The size setting ``parts`` adds besides the value and its own key: the namespaces it
+        creates, less what it replaces (the old value, or a leaf on the way)."""
         node: Any = self._tree
         for index, part in enumerate(parts):
             if part not in node:
-                return 0
+                return sum(8 + len(p) + DICT_BYTES for p in parts[index:-1])
             child = node[part]
-            if not isinstance(child, dict) or index == len(parts) - 1:
-                return tree_size(child) + 8 + len(part)
+            if index == len(parts) - 1:
+                return -(tree_size(child) + 8 + len(part))
+            if not isinstance(child, dict):  # the leaf becomes a namespace
+                created = sum(8 + len(p) + DICT_BYTES for p in parts[index + 1 : -1])
+                return created + DICT_BYTES - tree_size(child)
             node = child
         return 0
 
@@ -91,20 +114,24 @@ class ParamTree:
                 f"{self._max_tree_bytes / 2**20:.0f} MiB; delete parameters first"
             )
 
-    def get(self, name: str) -> Any:
+    def _find(self, name: str) -> Any:
         node: Any = self._tree
+        for part in split_name(name):
+            if not isinstance(node, dict) or part not in node:
+                raise ParamServerError(f"Parameter [{name}] is not set")
+            node = node[part]
+        return node
+
+    def get(self, name: str) -> Any:
         with self._lock:
-            for part in split_name(name):
-                if not isinstance(node, dict) or part not in node:
-                    raise ParamServerError(f"Parameter [{name}] is not set")
-                node = node[part]
-            return copy.deepcopy(node)
+            return copy_tree(self._find(name))
 
     def has(self, name: str) -> bool:
-        try:
-            self.get(name)
-        except ParamServerError:
-            return False
+        with self._lock:
+            try:
+                self._find(name)
+            except ParamServerError:
+                return False
         return True
 
     def delete(self, name: str) -> None:
@@ -127,17 +154,14 @@ class ParamTree:
     def names(self) -> list[str]:
         """Every leaf parameter's full name, sorted (rosparam list)."""
         out: list[str] = []
-
-        def walk(prefix: str, node: Any) -> None:
-            if isinstance(node, dict) and node:
-                for key in node:
-                    walk(f"{prefix}/{key}", node[key])
-            else:
-                out.append(prefix)
-
         with self._lock:
-            for key, value in self._tree.items():
-                walk("/" + key, value)
+            stack = [("/" + key, value) for key, value in self._tree.items()]
+            while stack:  # a loop: no tree is too deep for it
+                prefix, node = stack.pop()
+                if isinstance(node, dict) and node:
+                    stack.extend((f"{prefix}/{key}", child) for key, child in node.items())
+                else:
+                    out.append(prefix)
         return sorted(out)
 
     def search(self, namespace: str, key: str) -> str | None:
