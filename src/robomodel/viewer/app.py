@@ -207,6 +207,7 @@ class Viewer:
             frame_rate_hz=self.frame_rate_hz,
             on_frame_rate=lambda hz: setattr(self, "frame_rate_hz", hz),
         )
+        self.options_panel = panel
         self.status = panel.status
         self.fixed_dropdown = panel.fixed_dropdown
         self.frame_rate_number = panel.frame_rate

@@ -10,7 +10,6 @@ is the identity.
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -20,6 +19,8 @@ import yaml
 
 __all__ = ["dump_rviz_yaml"]
 
+# Not printable in a YAML stream (surrogates, BOM, U+FFFE/F), or line breaks (U+2028/9).
+_UNSAFE = re.compile("[\\ud800-\\udfff\\u2028\\u2029\\ufeff\\ufffe\\uffff]")
 # Plain scalars only from characters that cannot start or end a YAML indicator; the rest is
 # double-quoted (yaml-cpp quotes where a plain scalar would read back differently, too).
 _PLAIN = re.compile(r"[A-Za-z0-9_<(./][A-Za-z0-9_ <>()./;,+=-]*")
@@ -52,8 +53,19 @@ def _string_text(value: str) -> str:
                 return value
         except yaml.YAMLError:
             pass
-    # JSON's escapes are YAML's; DEL is not printable for YAML readers.
-    return json.dumps(value, ensure_ascii=True).replace("\x7f", "\\x7f")
+    return '"' + "".join(_escape(c) for c in value) + '"'
+
+
+def _escape(char: str) -> str:
+    """One character of a double-quoted YAML scalar: printable as is, the rest escaped."""
+    if char in ('"', "\\"):
+        return "\\" + char
+    code = ord(char)
+    if 0x20 <= code <= 0x7E or (code >= 0xA0 and not _UNSAFE.match(char)):
+        return char
+    if code < 0x100:
+        return f"\\x{code:02x}"
+    return f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
 
 
 def _scalar(value: Any) -> str:
