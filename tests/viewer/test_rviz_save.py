@@ -8,6 +8,7 @@ import os
 import shutil
 import subprocess
 from collections.abc import Iterator
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -125,3 +126,72 @@ def test_a_launch_whose_rviz_config_is_malformed_says_where(tmp_path: Path) -> N
     )  # fmt: skip
     assert f"{package}/urdf/urdf.rviz:" in result.stderr and "invalid RViz config" in result.stderr
     assert "Traceback" not in result.stderr
+
+
+def test_the_readme_command_opens_a_missing_config_with_one_warning(tmp_path: Path) -> None:
+    """The README's ``robomodel view ... -d urdf.rviz``, run in a fresh folder."""
+    import shlex
+
+    from tests.conftest import ROOT
+
+    readme = (ROOT / "README.md").read_text()
+    [line] = [x for x in readme.splitlines() if x.startswith("robomodel view ") and " -d " in x]
+    argv = [str(ROOT / a) if a.startswith("examples/") else a for a in shlex.split(line)[2:]]
+    result = subprocess.run(
+        [*ROBOMODEL, "view", *argv, "--no-browser", "--port", "0", "--duration", "3"],
+        capture_output=True, text=True, cwd=tmp_path, timeout=120,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert "serving http://" in result.stdout
+    warnings = [x for x in result.stderr.splitlines() if "warning" in x]
+    assert warnings == [
+        "robomodel view: warning: RViz config urdf.rviz does not exist: opening RViz's default "
+        "displays (Grid) with RobotModel and TF; Save Config in the viewer writes it"
+    ], result.stderr
+    assert not (tmp_path / "urdf.rviz").exists()
+    bad = tmp_path / "bad.rviz"
+    bad.write_text("Panels: []\n")
+    argv[argv.index("urdf.rviz")] = str(bad)
+    result = subprocess.run(
+        [*ROBOMODEL, "view", *argv, "--no-browser", "--port", "0", "--duration", "3"],
+        capture_output=True, text=True, cwd=tmp_path, timeout=120,
+    )  # fmt: skip
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert result.stderr.strip().endswith(
+        "no 'Visualization Manager' section (is this a .rviz file?)"
+    )
+
+
+def test_a_ros2_launch_s_rviz2_with_a_missing_config_warns_once_and_runs(tmp_path: Path) -> None:
+    launch = tmp_path / "view.launch.py"
+    missing = tmp_path / "rviz" / "view.rviz"
+    launch.write_text(
+        "from launch import LaunchDescription\n"
+        "from launch_ros.actions import Node\n\n\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([Node(package='rviz2', executable='rviz2',\n"
+        f"                                   arguments=['-d', {str(missing)!r}])])\n"
+    )
+    result = subprocess.run(
+        [*ROBOMODEL, "launch", str(launch), "--headless", "--bus", "inproc", "--duration", "2"],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    warnings = [x for x in result.stderr.splitlines() if "does not exist" in x]
+    assert len(warnings) == 1 and str(missing) in warnings[0], result.stderr
+    assert "failed to start" not in result.stderr
+
+
+def test_a_ros2_document_saves_ros2_class_names(tmp_path: Path) -> None:
+    """What a ROS 2 launch's rviz2 node opens for a missing file saves as RViz 2's classes."""
+    from robomodel.viewer.rviz_state import config_with_state, implied_state
+    from robomodel.viewer.rviz_write import write_rviz_config
+
+    document, _ = open_rviz_document(str(tmp_path / "missing.rviz"), RvizDialect("ros2"))
+    state = replace(implied_state(document), fixed_frame="odom")
+    path = write_rviz_config(tmp_path / "saved.rviz", config_with_state(document, state))
+    saved = read_rviz_file(path)
+    assert saved.fixed_frame == "odom" and saved.dialect is RvizDialect.ROS2
+    robot = saved.displays[1]
+    assert robot.class_name == "rviz_default_plugins/RobotModel"
+    assert robot.settings["Description Topic"]["Value"] == "/robot_description"
