@@ -124,7 +124,11 @@ def test_a_launch_whose_rviz_config_is_malformed_says_where(tmp_path: Path) -> N
          "--bus", "inproc", "--duration", "3"],
         capture_output=True, text=True, env=env, timeout=120,
     )  # fmt: skip
-    assert f"{package}/urdf/urdf.rviz:" in result.stderr and "invalid RViz config" in result.stderr
+    [line] = [x for x in result.stderr.splitlines() if "urdf.rviz" in x]
+    assert line == (
+        f"[/rviz] failed to start: {package}/urdf/urdf.rviz:2:1: invalid RViz config: "
+        "expected the node content, but found '<stream end>'"
+    )
     assert "Traceback" not in result.stderr
 
 

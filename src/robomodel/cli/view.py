@@ -3,6 +3,8 @@
 ``robomodel view FILE [FILE ...] [name:=value ...] [--prefix P ...]`` expands each
 description, runs robot_state_publisher and joint_state_publisher for it, serves the page on
 loopback, prints the URL and opens a browser; saving a file reloads it in the page.
+``-d FILE.rviz`` opens an RViz config (a missing one: RViz's defaults and one warning line);
+the page's File folder saves it.
 """
 
 from __future__ import annotations

@@ -158,7 +158,8 @@ def parse_rviz_text(text: str, where: str) -> RvizConfig:
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         at = f"{where}:{mark.line + 1}:{mark.column + 1}" if mark else where
-        raise RvizConfigError(f"{at}: invalid RViz config: {exc}") from None
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]  # one line
+        raise RvizConfigError(f"{at}: invalid RViz config: {problem}") from None
     return config_from_tree(data, where)
 
 
