@@ -232,3 +232,11 @@ def test_writing_is_atomic_and_a_bad_path_is_a_clear_error(tmp_path: Path) -> No
     blocked.write_text("x")
     with pytest.raises(RvizSaveError, match=f"cannot save RViz config to {blocked}/a.rviz"):
         write_rviz_config(blocked / "a.rviz", config)
+
+
+def test_the_frame_rate_is_saved_only_when_changed() -> None:
+    document, _ = open_rviz_document(None, RvizDialect.ROS1)
+    state = implied_state(document, frame_rate_hz=60.0)
+    assert config_with_state(document, state, frame_rate_hz=60.0).frame_rate_hz is None
+    changed = config_with_state(document, replace(state, frame_rate_hz=30.0), frame_rate_hz=60.0)
+    assert changed.frame_rate_hz == 30.0

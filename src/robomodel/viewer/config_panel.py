@@ -37,12 +37,19 @@ class ConfigPanel:
         server: The viser server.
         document: The config the viewer opened (its ``path`` is Save Config's target).
         state: The page's state to save, given the browser (its camera) that asked.
+        frame_rate_hz: The viewer's Frame Rate when the config gives none.
     """
 
     def __init__(
-        self, server: Any, document: RvizDocument, state: Callable[[Any], ViewerState]
+        self,
+        server: Any,
+        document: RvizDocument,
+        state: Callable[[Any], ViewerState],
+        *,
+        frame_rate_hz: float = 60.0,
     ) -> None:
         self.document = document
+        self._frame_rate_hz = frame_rate_hz
         self._state = state
         self._server = server
         self._lock = threading.Lock()
@@ -74,7 +81,8 @@ class ConfigPanel:
         with self._lock:
             # Without a browser (a script, a test): the page's initial camera.
             camera = client.camera if client is not None else self._server.initial_camera
-            config = config_with_state(self.document, self._state(camera))
+            state = self._state(camera)
+            config = config_with_state(self.document, state, frame_rate_hz=self._frame_rate_hz)
             try:
                 written = write_rviz_config(path, config)
             except RvizSaveError as exc:
@@ -117,4 +125,9 @@ def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
     else:
         dialect = RvizDialect.ROS1 if viewer.options.bus == "ros1" else RvizDialect.ROS2
         document, _ = open_rviz_document(None, dialect)
-    return ConfigPanel(viewer.server, document, lambda camera: viewer_state(panel, camera))
+    return ConfigPanel(
+        viewer.server,
+        document,
+        lambda camera: viewer_state(panel, camera),
+        frame_rate_hz=viewer.options.frame_rate_hz,
+    )

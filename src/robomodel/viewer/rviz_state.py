@@ -163,13 +163,16 @@ def _with_view(config: RvizConfig, document: RvizDocument, camera: OrbitCamera) 
     return replace(config, view=RvizView(view.class_name, MappingProxyType(settings)))
 
 
-def config_with_state(document: RvizDocument, state: ViewerState) -> RvizConfig:
-    """The document's config changed where ``state`` differs from what it implies."""
-    before = implied_state(document, frame_rate_hz=state.frame_rate_hz)
+def config_with_state(
+    document: RvizDocument, state: ViewerState, *, frame_rate_hz: float = 60.0
+) -> RvizConfig:
+    """The document's config changed where ``state`` differs from what it implies
+    (``frame_rate_hz``: the viewer's rate when the document has none)."""
+    before = implied_state(document, frame_rate_hz=frame_rate_hz)
     config = document.config
     if state.fixed_frame != before.fixed_frame:
         config = replace(config, fixed_frame=state.fixed_frame)
-    if state.frame_rate_hz != (document.settings.frame_rate_hz or state.frame_rate_hz):
+    if state.frame_rate_hz != before.frame_rate_hz:
         config = replace(config, frame_rate_hz=state.frame_rate_hz)
     robot = (state.show_visual, state.show_collision, state.alpha)
     if robot != (before.show_visual, before.show_collision, before.alpha):
