@@ -33,17 +33,26 @@ from robomodel.viewer.rviz_yaml import dump_rviz_yaml
 from tests.conftest import EXAMPLES
 
 DEBIAN_DEFAULT = Path("/usr/share/rviz/default.rviz")
-SHIPPED = sorted(EXAMPLES.rglob("*.rviz")) + sorted(
-    (Path(__file__).resolve().parents[2] / "src/robomodel/viewer/rviz_defaults").glob("*.rviz")
-)
+ROOT = Path(__file__).resolve().parents[2]
+SHIPPED = sorted(
+    [*EXAMPLES.rglob("*.rviz"), *(ROOT / "tests").rglob("*.rviz"),
+     *(ROOT / "src/robomodel/viewer/rviz_defaults").glob("*.rviz")]
+)  # fmt: skip
 
 
-def test_rviz_s_own_default_config_is_rewritten_byte_for_byte() -> None:
-    """The writer's layout is RViz's: key order, indentation, quoting, ``{}``, ``~``."""
-    if not DEBIAN_DEFAULT.exists():
-        pytest.fail("Debian's rviz is missing: tools/system-deps test installs it")
-    text = DEBIAN_DEFAULT.read_text()
-    assert rviz_text(parse_rviz_text(text, str(DEBIAN_DEFAULT))) == text
+# Saved by RViz 2: ros-controls/ros2_control_demos (Apache-2.0) at 0d9df42ab19b,
+# ros2_control_demo_description/r6bot/rviz/view_robot.rviz, verbatim.
+RVIZ2_SAVED = Path(__file__).with_name("rviz_files") / "r6bot_view_robot.rviz"
+
+
+@pytest.mark.parametrize("path", [DEBIAN_DEFAULT, RVIZ2_SAVED], ids=["rviz1", "rviz2"])
+def test_files_rviz_wrote_are_rewritten_byte_for_byte(path: Path) -> None:
+    """The writer's layout is RViz's: key order, indentation, quoting, ``{}``, ``~``
+    (RViz 1's default config; an RViz 2 file with RobotModel, TF and per-link settings)."""
+    if not path.exists():
+        pytest.fail(f"{path} is missing: tools/system-deps test installs Debian's rviz")
+    text = path.read_text()
+    assert rviz_text(parse_rviz_text(text, str(path))) == text
 
 
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)

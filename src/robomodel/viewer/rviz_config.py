@@ -118,6 +118,8 @@ def config_from_tree(data: Any, where: str) -> RvizConfig:
             f"{where}: no 'Visualization Manager' section (is this a .rviz file?)"
         )
     other, manager = dict(data), dict(manager)
+    if manager.get("Class", "") == "":  # RViz always writes it so: the writer puts it back
+        manager.pop("Class", None)
     glob = _section(manager, "Global Options", where)
     fixed = glob.pop("Fixed Frame", None)
     rate = glob.pop("Frame Rate", None)
