@@ -249,3 +249,15 @@ def test_the_frame_rate_is_saved_only_when_changed() -> None:
     assert config_with_state(document, state, frame_rate_hz=60.0).frame_rate_hz is None
     changed = config_with_state(document, replace(state, frame_rate_hz=30.0), frame_rate_hz=60.0)
     assert changed.frame_rate_hz == 30.0
+
+
+def test_a_setting_that_is_not_a_number_keeps_the_default() -> None:
+    text = (
+        "Visualization Manager:\n  Displays:\n"
+        "    - Class: rviz/RobotModel\n      Alpha: half\n      Name: RobotModel\n"
+    )
+    document = replace(
+        open_rviz_document(None, RvizDialect.ROS1)[0], config=parse_rviz_text(text, "x")
+    )
+    assert implied_state(document).alpha == 1.0
+    assert rviz_text(document.config).count("Alpha: half") == 1  # kept as written

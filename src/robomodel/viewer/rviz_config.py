@@ -178,6 +178,15 @@ def read_rviz_file(path: str | Path) -> RvizConfig:
     return parse_rviz_text(text, str(path))
 
 
+def _float_or_none(value: Any) -> float | None:
+    """A display setting as a number; None (the default) when absent or not a number, as
+    RViz's FloatProperty keeps its default for text it cannot convert."""
+    try:
+        return None if value is None else float(value)
+    except (TypeError, ValueError):
+        return None
+
+
 def _description(display: RvizDisplay) -> str | None:
     found = display.settings.get("Robot Description") or display.settings.get("Description Topic")
     if isinstance(found, str) and found:
@@ -202,7 +211,7 @@ def settings_of(config: RvizConfig) -> RvizSettings:
         s, kind = display.settings, display.kind
         if kind == "RobotModel":
             values["robot_model_enabled"] = display.enabled
-            values["alpha"] = float(s["Alpha"]) if "Alpha" in s else None
+            values["alpha"] = _float_or_none(s.get("Alpha"))
             values["visual_enabled"] = s.get("Visual Enabled")
             values["collision_enabled"] = s.get("Collision Enabled")
             values["robot_description"] = _description(display) or "robot_description"
@@ -210,8 +219,7 @@ def settings_of(config: RvizConfig) -> RvizSettings:
             values["tf_enabled"] = display.enabled
             values["tf_show_axes"] = s.get("Show Axes")
             values["tf_show_names"] = s.get("Show Names")
-            scale = s.get("Marker Scale")
-            values["tf_marker_scale"] = float(scale) if scale is not None else None
+            values["tf_marker_scale"] = _float_or_none(s.get("Marker Scale"))
         elif kind == "Grid":
             values["grid_enabled"] = display.enabled
         elif kind not in _SUPPORTED and display.class_name not in unsupported:
