@@ -243,6 +243,12 @@ def test_writing_is_atomic_and_a_bad_path_is_a_clear_error(tmp_path: Path) -> No
         write_rviz_config(blocked / "a.rviz", config)
 
 
+def test_without_d_the_view_and_background_stay_robomodel_s() -> None:
+    document, warning = open_rviz_document(None, RvizDialect.ROS2)
+    assert warning is None and document.path is None and document.missing
+    assert implied_state(document).camera is None
+
+
 def test_the_frame_rate_is_saved_only_when_changed() -> None:
     document, _ = open_rviz_document(None, RvizDialect.ROS1)
     state = implied_state(document, frame_rate_hz=60.0)

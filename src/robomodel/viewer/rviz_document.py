@@ -48,8 +48,9 @@ class RvizDocument:
         config: The config read, or the defaults when ``missing``.
         dialect: The class names of displays the viewer adds (the file's own when it has
             any, else the launch's ROS version).
-        missing: ``path`` did not exist when the viewer opened: the view is robomodel's
-            (fitted to the robot), not the defaults' 10 m orbit.
+        missing: No file was read (none given, or ``path`` did not exist when the viewer
+            opened): the view and background are robomodel's (the camera fitted to the
+            robot), not the defaults' 10 m orbit.
     """
 
     path: str | None
@@ -70,7 +71,7 @@ def open_rviz_document(path: str | None, dialect: RvizDialect) -> tuple[RvizDocu
         RvizConfigError: the file exists but cannot be read or is not an RViz config.
     """
     if path is None:
-        return RvizDocument(None, default_rviz_config(dialect), dialect), None
+        return RvizDocument(None, default_rviz_config(dialect), dialect, missing=True), None
     try:
         config = read_rviz_file(path)
     except RvizConfigError as exc:
