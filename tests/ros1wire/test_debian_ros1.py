@@ -256,3 +256,86 @@ def test_rviz_under_xvfb_draws_the_robot_robomodel_publishes(ros1: Ros1, tmp_pat
     kept.parent.mkdir(parents=True, exist_ok=True)
     kept.write_bytes(shot.read_bytes())
     assert _orange_pixels(shot) > 500, f"no orange links in rviz's window ({kept})"
+
+
+def _axis_green_pixels(png: Path) -> int:
+    """Pixels of the TF display's green y axes (nothing else in the scene is green)."""
+    import numpy as np
+    from PIL import Image
+
+    rgb = np.asarray(Image.open(png).convert("RGB")).astype(float)
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    return int(((g > 100) & (r < 0.5 * g) & (b < 0.5 * g)).sum())
+
+
+def _robomodel_saved_config(ros1: Ros1, path: Path) -> None:
+    """``robomodel view`` on the ROS 1 graph, with no -d: the Fixed Frame set, Save Config As
+    ``path`` (what the page's File folder does). The launch runs the robot_state_publisher (a
+    second one of that name would make the master shut the first down)."""
+    from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+    from tests.viewer.conftest import wait_for
+
+    os.environ["ROS_IP"] = "127.0.0.1"
+    viewer = Viewer(
+        ViewerOptions(
+            sources=(RobotSource(str(PLANAR)),), port=0, bus="ros1", master=ros1.uri,
+            external=True, state_publisher=False,
+        )
+    )  # fmt: skip
+    viewer.start()
+    try:
+        wait_for(lambda: viewer.buffer.can_transform("base_link", "gripper"), what="/tf")
+        viewer.fixed_dropdown.value = "base_link"
+        assert viewer.config_panel.save(str(path)), viewer.config_panel.status.content
+    finally:
+        viewer.close()
+        os.environ.pop("ROS_IP", None)
+
+
+def test_rviz_opens_a_config_robomodel_saved_with_its_displays_and_fixed_frame(
+    ros1: Ros1, tmp_path: Path
+) -> None:
+    """Issue 27.1: Debian's ``rviz -d`` opens the file robomodel's viewer saved (ROS 1 class
+    names on a ROS 1 graph): the robot (RobotModel) and its frames' axes (TF) are drawn in the
+    fixed frame, and rviz's log names no unknown display class and no missing frame."""
+    from robomodel.viewer.rviz_config import read_rviz_file
+
+    if not (has("Xvfb") and Path("/usr/bin/rviz").exists()):
+        pytest.fail("rviz and Xvfb are missing: tools/system-deps test installs them")
+    from PIL import ImageGrab
+
+    _launch(ros1, tmp_path / "launch.log", "gripper_description", "display.launch",
+            "--ros1-master", ros1.uri)  # fmt: skip
+    config = tmp_path / "saved.rviz"
+    _robomodel_saved_config(ros1, config)
+    saved = read_rviz_file(config)
+    assert saved.fixed_frame == "base_link"
+    assert [d.class_name for d in saved.displays] == ["rviz/Grid", "rviz/RobotModel", "rviz/TF"]
+    display = f":{90 + free_port() % 400}"
+    ros1.start(["Xvfb", display, "-screen", "0", "1280x900x24", "-nolisten", "tcp"])
+    ros1.until(lambda: Path(f"/tmp/.X11-unix/X{display[1:]}").exists(), "Xvfb")
+    log = tmp_path / "rviz.log"
+    with log.open("w") as out:
+        rviz = subprocess.Popen(
+            ["/usr/bin/rviz", "-d", str(config)],
+            env={**ros1.env, "DISPLAY": display, "LIBGL_ALWAYS_SOFTWARE": "1"},
+            stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
+        )  # fmt: skip
+    ros1.procs.append(rviz)  # type: ignore[arg-type]
+    shot = tmp_path / "rviz.png"
+    deadline = time.monotonic() + 90
+    while True:
+        assert rviz.poll() is None, f"rviz ended: {log.read_text()}"
+        ImageGrab.grab(xdisplay=display).save(shot)
+        drawn = _orange_pixels(shot) > 500 and _axis_green_pixels(shot) > 50
+        if drawn or time.monotonic() > deadline:
+            break
+        time.sleep(1.0)
+    kept = Path(os.environ.get("ROBOMODEL_SCREENSHOTS", str(tmp_path))) / "rviz_saved_config.png"
+    kept.parent.mkdir(parents=True, exist_ok=True)
+    kept.write_bytes(shot.read_bytes())
+    assert _orange_pixels(shot) > 500, f"no robot in rviz's window ({kept})"
+    assert _axis_green_pixels(shot) > 50, f"no TF axes in rviz's window ({kept})"
+    text = log.read_text()
+    for complaint in ("failed to load", "PluginlibFactory", "does not exist", "No transform"):
+        assert complaint not in text, text

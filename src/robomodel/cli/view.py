@@ -3,6 +3,8 @@
 ``robomodel view FILE [FILE ...] [name:=value ...] [--prefix P ...]`` expands each
 description, runs robot_state_publisher and joint_state_publisher for it, serves the page on
 loopback, prints the URL and opens a browser; saving a file reloads it in the page.
+``-d FILE.rviz`` opens an RViz config (a missing one: RViz's defaults and one warning line);
+the page's File folder saves it.
 """
 
 from __future__ import annotations
@@ -68,6 +70,15 @@ def register(subparsers: Any) -> None:
         "--fixed-frame", default=None, metavar="LINK", help="fixed frame (default: root link)"
     )
     parser.add_argument(
+        "-d",
+        "--display-config",
+        default=None,
+        metavar="FILE.rviz",
+        help="RViz config to open (rviz -d): Fixed Frame, RobotModel, TF, Grid, the view; "
+        "a FILE that does not exist yet opens RViz's defaults, and the page's Save Config "
+        "writes it",
+    )
+    parser.add_argument(
         "--joint-states",
         choices=("sliders", "external"),
         default="sliders",
@@ -104,6 +115,20 @@ def _report_meshes(viewer: Any) -> None:
     threading.Thread(target=report, daemon=True).start()
 
 
+def _rviz_document(args: argparse.Namespace) -> Any:
+    """The -d config (None without -d); a missing file is one warning line on stderr."""
+    if args.display_config is None:
+        return None
+    from robomodel.viewer.rviz_document import open_rviz_document
+    from robomodel.viewer.rviz_model import RvizDialect
+
+    dialect = RvizDialect.ROS1 if args.bus == "ros1" else RvizDialect.ROS2
+    document, warning = open_rviz_document(args.display_config, dialect)
+    if warning is not None:
+        print(f"robomodel view: warning: {warning}", file=sys.stderr, flush=True)
+    return document
+
+
 def run(args: argparse.Namespace) -> int:
     from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 
@@ -126,6 +151,7 @@ def run(args: argparse.Namespace) -> int:
             "a description from a topic comes from another process, with its joint states: "
             "add --bus zenoh --joint-states external (or give a FILE)"
         )
+    document = _rviz_document(args)
     prefixes = [*args.prefix, *([""] * (len(files) - len(args.prefix)))]
     sources = [RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=True)]
     if topic is not None:
@@ -144,6 +170,7 @@ def run(args: argparse.Namespace) -> int:
         package_index=package_index_from_args(args),
         tools=not args.no_tools,
         frame_rate_hz=args.frame_rate,
+        rviz=document,
     )
     viewer = Viewer(options)
     try:

@@ -101,7 +101,8 @@ class LaunchGui:
         if not robots:
             return
         sources = tuple(self._source(robot, text) for robot, text in robots)
-        settings = self.runner._extra.get("rviz")
+        document = self.runner._extra.get("rviz")  # the rviz node's -d config
+        settings = document.settings if document is not None else None
         server = self.runner._extra.get("sim_server")
         scenery: tuple[Any, ...] = ()
         scenery_source: Callable[[], tuple[Any, ...]] | None = None
@@ -123,7 +124,7 @@ class LaunchGui:
             scenery=scenery,
             scenery_source=scenery_source,
             frame_rate_hz=(settings.frame_rate_hz or 60.0) if settings is not None else 60.0,
-            rviz=settings,
+            rviz=document,
         )
         self.viewer = Viewer(options)
         self.viewer.start()

@@ -28,6 +28,7 @@ from robomodel.runtime.node import Node
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.tf_listener import TransformListener
 from robomodel.viewer._deps import import_viser
+from robomodel.viewer.config_panel import attach_rviz
 from robomodel.viewer.layout import beside_root_pose, place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
 from robomodel.viewer.link_poses import append_other_frames
@@ -36,7 +37,7 @@ from robomodel.viewer.options import ViewerOptions
 from robomodel.viewer.options_panel import OptionsPanel
 from robomodel.viewer.pacing import page_behind
 from robomodel.viewer.ports import ensure_port_free
-from robomodel.viewer.rviz_apply import apply_rviz_settings
+from robomodel.viewer.rviz_apply import apply_rviz_view
 from robomodel.viewer.scenery import SceneryDisplay
 from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession
 from robomodel.viewer.status import viewer_status
@@ -88,7 +89,8 @@ class Viewer:
         self._status_text = ""
         self.status_note = ""  # appended to the Status (e.g. RViz displays not supported)
         self._frame_options: tuple[str, ...] = ()
-        self.fixed_frame = options.fixed_frame or ""
+        rviz = options.rviz.settings if options.rviz is not None else None
+        self.fixed_frame = options.fixed_frame or (rviz.fixed_frame if rviz else None) or ""
         self.meshes_ready = threading.Event()
         self._missing: dict[int, tuple[str, ...]] = {}
         self._beside: set[int] = set()
@@ -151,6 +153,8 @@ class Viewer:
         """RViz's orbit view, far enough to see the first robot (see :func:`place_camera`)."""
         robot = next((s.robot for s in self.sessions if s.robot is not None), None)
         place_camera(self.server, robot, len(self.sessions), self.options.scenery)
+        if self.options.rviz is not None:  # the -d file's Orbit view, as RViz opens it
+            apply_rviz_view(self.server, self.options.rviz)
 
     def _spawn(self, target: Callable[[], None], name: str) -> None:
         thread = threading.Thread(target=target, name=name, daemon=True)
@@ -203,12 +207,12 @@ class Viewer:
             frame_rate_hz=self.frame_rate_hz,
             on_frame_rate=lambda hz: setattr(self, "frame_rate_hz", hz),
         )
+        self.options_panel = panel
         self.status = panel.status
         self.fixed_dropdown = panel.fixed_dropdown
         self.frame_rate_number = panel.frame_rate
         self.tf_display = panel.tf_display
-        if self.options.rviz is not None:
-            apply_rviz_settings(self, panel, self.options.rviz)
+        self.config_panel = attach_rviz(self, panel)
 
     def _build_tools(self, node: Node) -> None:
         from robomodel.viewer.tools import BusWorker, ToolContext, ToolsPanel

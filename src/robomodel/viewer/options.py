@@ -6,7 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from robomodel.description.packages import PackageIndex
-from robomodel.viewer.rviz_config import RvizSettings
+from robomodel.viewer.rviz_document import RvizDocument
 from robomodel.viewer.scenery import SceneryShape
 from robomodel.viewer.session import RobotSource
 
@@ -38,7 +38,8 @@ class ViewerOptions:
             seen. TF arriving faster (a simulation publishes at 100 Hz and more, a dragged slider
             at the GUI's event rate) is merged into the next update, so a slow browser is never
             flooded.
-        rviz: Settings read from an RViz config (``-d file.rviz``): applied after start.
+        rviz: The RViz config (``-d file.rviz``, or RViz's defaults when that file does not
+            exist yet): applied after start; Save Config writes it.
     """
 
     sources: tuple[RobotSource, ...]
@@ -58,4 +59,4 @@ class ViewerOptions:
     scenery: tuple[SceneryShape, ...] = ()
     scenery_source: Callable[[], tuple[SceneryShape, ...]] | None = None
     frame_rate_hz: float = 60.0
-    rviz: RvizSettings | None = None
+    rviz: RvizDocument | None = None

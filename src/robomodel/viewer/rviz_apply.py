@@ -1,4 +1,4 @@
-"""Apply an RViz configuration's settings to a running viewer's panel and scene."""
+"""An RViz config on a running viewer's panel and scene, and the panel read back as one."""
 
 from __future__ import annotations
 
@@ -6,40 +6,32 @@ from typing import Any
 
 import numpy as np
 
-from robomodel.viewer.rviz_config import RvizSettings
+from robomodel.viewer.rviz_document import RvizDocument
+from robomodel.viewer.rviz_state import OrbitCamera, ViewerState, implied_state
 
-__all__ = ["apply_rviz_settings"]
+__all__ = ["apply_rviz_document", "apply_rviz_view", "viewer_state"]
 
 
-def apply_rviz_settings(viewer: Any, panel: Any, rviz: RvizSettings) -> None:
+def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None:
     """Global Options, RobotModel, TF and Grid settings, as RViz would start with them."""
+    state = implied_state(document, frame_rate_hz=viewer.frame_rate_hz)
     options = viewer.display_options
-    if rviz.alpha is not None:
-        options.alpha = rviz.alpha
-        panel.alpha.value = rviz.alpha
-    if rviz.visual_enabled is not None:
-        options.show_visual = bool(rviz.visual_enabled) and rviz.robot_model_enabled
-        panel.visual.value = options.show_visual
-    elif not rviz.robot_model_enabled:
-        options.show_visual = False
-        panel.visual.value = False
-    if rviz.collision_enabled is not None:
-        options.show_collision = bool(rviz.collision_enabled) and rviz.robot_model_enabled
-        panel.collision.value = options.show_collision
+    options.alpha = panel.alpha.value = state.alpha
+    options.show_visual = panel.visual.value = state.show_visual
+    options.show_collision = panel.collision.value = state.show_collision
     tf = viewer.tf_display
-    show_axes = rviz.tf_enabled and (rviz.tf_show_axes if rviz.tf_show_axes is not None else True)
-    show_names = rviz.tf_enabled and bool(rviz.tf_show_names)
-    tf.set_show_axes(bool(show_axes))
-    panel.show_axes.value = bool(show_axes)
-    tf.set_show_names(show_names)
-    panel.show_names.value = show_names
-    if rviz.tf_marker_scale is not None and rviz.tf_marker_scale > 0:
-        tf.set_marker_scale(rviz.tf_marker_scale)
-        panel.marker_scale.value = rviz.tf_marker_scale
-    if rviz.grid_enabled is not None:
-        panel.grid.visible = rviz.grid_enabled
-        panel.show_grid.value = rviz.grid_enabled
-    if rviz.background_rgb is not None and viewer.server is not None:
+    tf.set_show_axes(state.tf_show_axes)
+    panel.show_axes.value = state.tf_show_axes
+    tf.set_show_names(state.tf_show_names)
+    panel.show_names.value = state.tf_show_names
+    tf.set_marker_scale(state.tf_marker_scale)
+    panel.marker_scale.value = state.tf_marker_scale
+    panel.grid.visible = panel.show_grid.value = state.grid
+    viewer.frame_rate_hz = panel.frame_rate.value = state.frame_rate_hz
+    rviz = document.settings
+    # A file that does not exist yet keeps robomodel's background; the defaults' (RViz's dark
+    # grey) is what the saved file holds and RViz shows.
+    if rviz.background_rgb is not None and viewer.server is not None and not document.missing:
         image = np.empty((4, 4, 3), dtype=np.uint8)
         image[:] = rviz.background_rgb
         viewer.server.scene.set_background_image(image, format="png")
@@ -48,3 +40,32 @@ def apply_rviz_settings(viewer: Any, panel: Any, rviz: RvizSettings) -> None:
             "\n\nRViz displays not drawn (robomodel has RobotModel, TF and Grid): "
             + ", ".join(rviz.unsupported)
         )
+
+
+def apply_rviz_view(server: Any, document: RvizDocument) -> None:
+    """The config's Orbit view as the page's initial camera (robomodel's own when the file
+    did not exist or its view is not an Orbit)."""
+    camera = implied_state(document).camera
+    if camera is not None:
+        server.initial_camera.look_at = camera.focal_point_m
+        server.initial_camera.position = camera.position_m()
+
+
+def viewer_state(panel: Any, camera: Any | None) -> ViewerState:
+    """What the page shows now (``camera``: a browser's, with ``position`` and ``look_at``).
+
+    GUI values are read from the controls, not from the loop's copies, so that a change made
+    just before Save Config is saved even if the loop has not applied it yet.
+    """
+    return ViewerState(
+        fixed_frame=str(panel.fixed_dropdown.value),
+        frame_rate_hz=float(panel.frame_rate.value),
+        show_visual=bool(panel.visual.value),
+        show_collision=bool(panel.collision.value),
+        alpha=float(panel.alpha.value),
+        tf_show_axes=bool(panel.show_axes.value),
+        tf_show_names=bool(panel.show_names.value),
+        tf_marker_scale=float(panel.marker_scale.value),
+        grid=bool(panel.show_grid.value),
+        camera=OrbitCamera.looking(camera.position, camera.look_at) if camera else None,
+    )

@@ -17,7 +17,7 @@ from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, register
 from robomodel.launch.nodes.state import InProcessNode, ViewerPart, slider_request
 from robomodel.launch.nodes.tf_static import parse_static_transform_args
-from robomodel.launch.nodes.viewer import rviz_config_argument
+from robomodel.launch.nodes.viewer import open_rviz_argument
 
 __all__ = ["parse_ros2_static_transform_args", "robot_description_of"]
 
@@ -128,13 +128,9 @@ def joint_state_publisher_gui(ctx: NodeContext) -> RunningNode:
 
 @register("ros2", "rviz2", "rviz2", purpose="the browser viewer; -d FILE.rviz read")
 def rviz2(ctx: NodeContext) -> RunningNode:
-    from robomodel.viewer.rviz_config import read_rviz_config
-
     request = ctx.viewer
     request.requested_by.append(ctx.spec.fqn)
-    config = rviz_config_argument(ctx.spec.args)
-    if config is not None:
-        ctx.extra["rviz"] = read_rviz_config(config)
+    open_rviz_argument(ctx)
     if request.robot_description_text is None:
         # without one, RViz shows no robot until one is published; the runner says so
         with contextlib.suppress(RobomodelError):

@@ -1,17 +1,21 @@
 """rviz, the rqt GUIs: their role is the launch's browser viewer.
 
 ``rviz -d file.rviz`` reads the config (Fixed Frame, Frame Rate, Background Color, RobotModel
-and TF display options; other displays are named in the Status); ``rqt_robot_steering``,
+and TF display options; other displays are named in the Status); a file that does not exist
+yet is one warning, the viewer opens RViz's defaults and its Save Config writes the file, as
+RViz does. ``rqt_robot_steering``,
 ``rqt_plot`` (topics from its arguments), ``rqt_gui`` and ``rqt_reconfigure`` open the viewer's
 tool folders. One viewer serves every such node of the launch, as one screen would.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 from robomodel.launch.nodes.base import NodeContext, RunningNode, plot_fields, register
 from robomodel.launch.nodes.state import ViewerPart
 
-__all__ = ["rviz_config_argument"]
+__all__ = ["open_rviz_argument", "rviz_config_argument"]
 
 
 def rviz_config_argument(args: tuple[str, ...]) -> str | None:
@@ -26,18 +30,26 @@ def rviz_config_argument(args: tuple[str, ...]) -> str | None:
     return None
 
 
+def open_rviz_argument(ctx: NodeContext) -> Any:
+    """The node's ``-d`` config as the viewer's RvizDocument (RViz's defaults, in the launch's
+    ROS version, with one warning line, when the file does not exist; a file that exists but
+    cannot be read is an error)."""
+    from robomodel.viewer.rviz_document import open_rviz_document
+    from robomodel.viewer.rviz_model import RvizDialect
+
+    path = rviz_config_argument(ctx.spec.args)
+    document, warning = open_rviz_document(path, RvizDialect(ctx.spec.dialect))
+    if warning is not None:
+        ctx.log(f"warning: {warning}")
+    ctx.extra["rviz"] = document
+    return document
+
+
 @register("ros1", "rviz", "rviz", purpose="the browser viewer (RViz's RobotModel, TF, Grid)")
 def rviz(ctx: NodeContext) -> RunningNode:
-    from robomodel.viewer.rviz_config import read_rviz_config
-
     request = ctx.viewer
     request.requested_by.append(ctx.spec.fqn)
-    config = rviz_config_argument(ctx.spec.args)
-    description = "robot_description"
-    if config is not None:
-        settings = read_rviz_config(config)
-        ctx.extra["rviz"] = settings
-        description = settings.robot_description
+    description = open_rviz_argument(ctx).settings.robot_description
     found = ctx.search(description)
     if found:
         request.robot_description_param = found

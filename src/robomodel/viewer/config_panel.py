@@ -1,0 +1,133 @@
+"""The page's File folder: RViz's File > Save Config and Save Config As.
+
+Save Config writes the ``-d`` file (RViz's ``display_config_file_``), Save Config As asks for a
+path in a dialog and makes it the file later saves write, as RViz does. What is saved is what
+the page shows (see :mod:`robomodel.viewer.rviz_state`), in RViz's own format, ROS 1 or ROS 2
+class names as the launch or bus is. The outcome is one line in the folder: the path written,
+or why it could not be written.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+from robomodel.viewer.rviz_apply import apply_rviz_document, viewer_state
+from robomodel.viewer.rviz_document import RvizDocument, open_rviz_document
+from robomodel.viewer.rviz_model import RvizDialect
+from robomodel.viewer.rviz_state import ViewerState, config_with_state
+from robomodel.viewer.rviz_write import RvizSaveError, write_rviz_config
+
+__all__ = ["ConfigPanel", "attach_rviz"]
+
+log = logging.getLogger("robomodel.viewer")
+
+
+def _markdown_path(path: str) -> str:
+    return "`" + path.replace("`", "'") + "`"
+
+
+class ConfigPanel:
+    """The File folder.
+
+    Args:
+        server: The viser server.
+        document: The config the viewer opened (its ``path`` is Save Config's target).
+        state: The page's state to save, given the browser (its camera) that asked.
+        frame_rate_hz: The viewer's Frame Rate when the config gives none.
+    """
+
+    def __init__(
+        self,
+        server: Any,
+        document: RvizDocument,
+        state: Callable[[Any], ViewerState],
+        *,
+        frame_rate_hz: float = 60.0,
+    ) -> None:
+        self.document = document
+        self._frame_rate_hz = frame_rate_hz
+        self._state = state
+        self._server = server
+        self._lock = threading.Lock()
+        gui = server.gui
+        with gui.add_folder("File"):
+            self.status = gui.add_markdown(self._opened_text())
+            self.save_button = gui.add_button("Save Config", icon="device-floppy")
+            self.save_as_button = gui.add_button("Save Config As")
+        self.save_button.on_click(lambda event: self._on_save(event.client))
+        self.save_as_button.on_click(lambda event: self.ask_path(event.client))
+
+    def _opened_text(self) -> str:
+        path = self.document.path
+        if path is None:
+            return "RViz config: none (Save Config As writes one)"
+        if self.document.missing:
+            return f"RViz config {_markdown_path(path)} does not exist yet: Save Config writes it"
+        return f"RViz config {_markdown_path(path)}"
+
+    def _on_save(self, client: Any) -> None:
+        if self.document.path is None:
+            self.ask_path(client)
+        else:
+            self.save(self.document.path, client)
+
+    def save(self, path: str, client: Any = None) -> bool:
+        """Write what ``client``'s page shows to ``path``; whether it was written (the folder
+        says where, or why not)."""
+        with self._lock:
+            # Without a browser (a script, a test): the page's initial camera.
+            camera = client.camera if client is not None else self._server.initial_camera
+            state = self._state(camera)
+            config = config_with_state(self.document, state, frame_rate_hz=self._frame_rate_hz)
+            try:
+                written = write_rviz_config(path, config)
+            except RvizSaveError as exc:
+                self.status.content = f"**Not saved**: {exc}"
+                log.warning("%s", exc)
+                return False
+            self.document = replace(self.document, path=str(path), config=config, missing=False)
+            self.status.content = f"Saved RViz config {_markdown_path(str(written))}"
+            log.info("saved RViz config %s", written)
+            return True
+
+    def ask_path(self, client: Any) -> None:
+        """Save Config As: a dialog on ``client``'s page asking for the file."""
+        if client is None:
+            return
+        with client.gui.add_modal("Save Config As") as modal:
+            path = client.gui.add_text("Path", self.document.path or "robomodel.rviz")
+            ok = client.gui.add_button("Save")
+            cancel = client.gui.add_button("Cancel")
+
+        def on_ok(_event: Any) -> None:
+            text = str(path.value).strip()
+            if not text:
+                self.status.content = "**Not saved**: give a file path"
+            else:
+                self.save(text, client)
+            modal.close()
+
+        ok.on_click(on_ok)
+        cancel.on_click(lambda _event: modal.close())
+
+
+def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
+    """Apply the viewer's ``-d`` config (``options.rviz``) to ``panel`` and add the File
+    folder; without one, Save Config As starts from RViz's defaults (ROS 1 class names on a
+    ROS 1 bus, else ROS 2's)."""
+    document = viewer.options.rviz
+    if document is not None:
+        apply_rviz_document(viewer, panel, document)
+    else:
+        dialect = RvizDialect.ROS1 if viewer.options.bus == "ros1" else RvizDialect.ROS2
+        document, _ = open_rviz_document(None, dialect)
+    return ConfigPanel(
+        viewer.server,
+        document,
+        lambda camera: viewer_state(panel, camera),
+        frame_rate_hz=viewer.options.frame_rate_hz,
+    )
