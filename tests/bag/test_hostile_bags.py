@@ -1,0 +1,79 @@
+"""Hostile bag files (issue 29, findings 3, 5 and 15): each is refused or read within its
+bound, in the process that reads it, with one clear line and no traceback."""
+
+from __future__ import annotations
+
+import io
+import struct
+from pathlib import Path
+
+from tests.measured import MIB, run_measured
+
+# ``robomodel bag info`` of a small bag peaks near 100 MiB (Python, numpy, mcap, rosbags); a
+# bomb that got through would add the gigabytes it declares.
+INFO_RSS_BOUND = 400 * MIB
+
+
+def _zstd_rle_bomb(size: int) -> bytes:
+    """A zstd frame of RLE blocks (4 bytes per 128 KiB of zeros) expanding to ``size`` bytes,
+    the content size in its header: 66 KB for 2 GiB, as the reproducer of finding 3."""
+    block = 128 << 10
+    frame = bytearray(struct.pack("<I", 0xFD2FB528) + bytes([0xE0]) + struct.pack("<Q", size))
+    blocks = size // block
+    for k in range(blocks):
+        last = 1 if k == blocks - 1 else 0
+        frame += (block << 3 | 1 << 1 | last).to_bytes(3, "little") + b"\x00"
+    return bytes(frame)
+
+
+def _mcap_with_chunk(compression: str, data: bytes, declared: int) -> bytes:
+    """An MCAP file with one chunk of ``data`` that says it holds ``declared`` bytes."""
+    from mcap.data_stream import RecordBuilder
+    from mcap.records import Chunk, DataEnd, Footer, Header
+
+    builder = RecordBuilder()
+    Header(profile="ros2", library="bomb").write(builder)
+    Chunk(
+        message_start_time=0, message_end_time=0, uncompressed_size=declared,
+        uncompressed_crc=0, compression=compression, data=data,
+    ).write(builder)  # fmt: skip
+    DataEnd(data_section_crc=0).write(builder)
+    Footer(summary_start=0, summary_offset_start=0, summary_crc=0).write(builder)
+    out = io.BytesIO()
+    out.write(b"\x89MCAP0\r\n" + builder.end() + b"\x89MCAP0\r\n")
+    return out.getvalue()
+
+
+def _one_error_line(err: str) -> str:
+    lines = [line for line in err.splitlines() if line.startswith("robomodel: error:")]
+    assert len(lines) == 1 and "Traceback" not in err, err
+    return lines[0]
+
+
+def test_29_3_mcap_decompression_bombs_are_refused_within_the_bound(tmp_path: Path) -> None:
+    """Finding 3: a 66 KB zstd chunk expanding to 2 GiB (RSS went to 4.2 GB), and an lz4 one,
+    declaring their size or lying about it."""
+    import lz4.frame
+
+    bomb = tmp_path / "zstd_bomb.mcap"
+    bomb.write_bytes(_mcap_with_chunk("zstd", _zstd_rle_bomb(2 << 30), 2 << 30))
+    assert bomb.stat().st_size < 70_000
+    result = run_measured("bag", "info", str(bomb))
+    assert result.code == 2
+    assert "a chunk declares 2147483648 bytes uncompressed" in _one_error_line(result.err)
+    assert result.peak_rss_bytes < INFO_RSS_BOUND
+
+    zeros = lz4.frame.compress(bytes(64 * MIB))  # 64 MiB in about 260 KB
+    for declared, expected in ((2 << 30, "a chunk declares"), (MIB, "chunk expands beyond")):
+        liar = tmp_path / f"lz4_{declared}.mcap"
+        liar.write_bytes(_mcap_with_chunk("lz4", zeros, declared))
+        result = run_measured("bag", "info", str(liar))
+        assert result.code == 2 and expected in _one_error_line(result.err)
+        assert result.peak_rss_bytes < INFO_RSS_BOUND
+
+    # the ratio to the file's size: 64 MiB from a 260 KB file is within 1000 times; from a
+    # file a hundred times smaller it is not
+    small = tmp_path / "small.mcap"
+    small.write_bytes(_mcap_with_chunk("zstd", _zstd_rle_bomb(4 * MIB), 4 * MIB))
+    result = run_measured("bag", "info", str(small))
+    assert "times the file's size" in _one_error_line(result.err)
