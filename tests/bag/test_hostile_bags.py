@@ -77,3 +77,44 @@ def test_29_3_mcap_decompression_bombs_are_refused_within_the_bound(tmp_path: Pa
     small.write_bytes(_mcap_with_chunk("zstd", _zstd_rle_bomb(4 * MIB), 4 * MIB))
     result = run_measured("bag", "info", str(small))
     assert "times the file's size" in _one_error_line(result.err)
+
+
+_LAUGHS = "\n".join(
+    ["rosbag2_bagfile_information:", "  storage_identifier: mcap", '  a0: &a0 ["lol"]']
+    + [f"  a{k}: &a{k} [{', '.join([f'*a{k - 1}'] * 9)}]" for k in range(1, 10)]
+    + ["  relative_file_paths: *a9", ""]
+)
+
+
+def test_29_5_metadata_yaml_bombs_are_refused_within_the_bound(tmp_path: Path) -> None:
+    """Finding 5: an alias bomb of about 600 bytes hung ``bag info``, 3 million
+    relative_file_paths hung it too, nesting 50,000 deep gave a RecursionError traceback."""
+    header = "rosbag2_bagfile_information:\n  storage_identifier: mcap\n"
+    cases = {
+        "laughs": (_LAUGHS, "line 4: a YAML alias (*a0); aliases are not accepted here"),
+        "millions": (
+            header + "  relative_file_paths:\n" + "  - a.mcap\n" * 3_000_000,
+            "31.5 MiB; at most 4 MiB of bag metadata is read",
+        ),
+        "many": (
+            header + "  relative_file_paths:\n" + "  - a.mcap\n" * 10_001,
+            "10001 relative_file_paths; a bag has at most 10000",
+        ),
+        # libyaml's own bound (1,000 levels) is met first in flow style; robomodel's (64) in
+        # block style
+        "deep": (header + "  x: " + "[" * 50_000 + "]" * 50_000 + "\n", "maximum nesting depth"),
+        "deep_block": (
+            header + "".join(f"{'  ' * (k + 1)}k:\n" for k in range(100)),
+            "nested more than 64 levels deep",
+        ),
+    }
+    assert len(_LAUGHS) < 700
+    for name, (text, expected) in cases.items():
+        folder = tmp_path / name
+        folder.mkdir()
+        (folder / "metadata.yaml").write_text(text)
+        result = run_measured("bag", "info", str(folder))
+        line = _one_error_line(result.err)
+        assert result.code == 2 and line.startswith(f"robomodel: error: {folder}/metadata.yaml")
+        assert expected in line, line
+        assert result.peak_rss_bytes < INFO_RSS_BOUND
