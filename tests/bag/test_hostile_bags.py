@@ -3,6 +3,7 @@ bound, in the process that reads it, with one clear line and no traceback."""
 
 from __future__ import annotations
 
+import contextlib
 import io
 import struct
 from pathlib import Path
@@ -118,3 +119,63 @@ def test_29_5_metadata_yaml_bombs_are_refused_within_the_bound(tmp_path: Path) -
         assert result.code == 2 and line.startswith(f"robomodel: error: {folder}/metadata.yaml")
         assert expected in line, line
         assert result.peak_rss_bytes < INFO_RSS_BOUND
+
+
+def _sqlite3_bag(folder: Path) -> Path:
+    """A SQLite 3 bag of 5 /joint_states and 5 /s messages; returns its database."""
+    from robomodel.bag import Sqlite3FolderWriter
+    from robomodel.runtime.msg import JointState, String, serialize
+
+    writer = Sqlite3FolderWriter(folder)
+    writer.add_topic("/joint_states", JointState, ())
+    writer.add_topic("/s", String, ())
+    for k in range(5):
+        state = JointState(name=["a"], position=[float(k)])
+        writer.write("/joint_states", serialize(state), 1_000_000_000 + k, k)
+        writer.write("/s", serialize(String("x")), 1_000_000_000 + k, k)
+    writer.close()
+    return next(folder.glob("*.db3"))
+
+
+def _sql(db: Path, statement: str) -> None:
+    import sqlite3
+
+    with contextlib.closing(sqlite3.connect(db)) as connection:
+        connection.execute(statement)
+        connection.commit()
+
+
+def test_29_15_sqlite3_bags_that_cannot_be_played_say_so(tmp_path: Path) -> None:
+    """Finding 15: a SQLite 3 bag with a garbage type or a dangling topic_id played
+    "0 messages", exited 0 and gave no warning."""
+    garbage = tmp_path / "garbage"
+    _sqlite3_bag(garbage)
+    meta = garbage / "metadata.yaml"
+    text = meta.read_text().replace("sensor_msgs/msg/JointState", "garbage")
+    meta.write_text(text.replace("std_msgs/msg/String", "x/y/z"))
+    dangling = tmp_path / "dangling"
+    _sql(_sqlite3_bag(dangling), "UPDATE messages SET topic_id = 999")
+    partly = tmp_path / "partly"
+    _sql(_sqlite3_bag(partly), "UPDATE messages SET topic_id = 999 WHERE topic_id = "
+                               "(SELECT id FROM topics WHERE name = '/s')")  # fmt: skip
+
+    expected = {
+        garbage: ["not playing /joint_states (garbage)", "not playing /s (x/y/z)"],
+        dangling: [
+            "/joint_states: the bag lists 5 messages, its storage holds 0 of them",
+            "/s: the bag lists 5 messages, its storage holds 0 of them",
+        ],
+        partly: ["/s: the bag lists 5 messages, its storage holds 0 of them"],
+    }
+    for bag, warnings in expected.items():
+        result = run_measured("bag", "play", str(bag), "--bus", "inproc", "--delay", "0")
+        said = [line for line in result.err.splitlines() if line.startswith("robomodel bag:")]
+        assert [w for w in warnings if any(w in line for line in said)] == warnings, result.err
+        assert len(said) == len(warnings) and "Traceback" not in result.err, result.err
+        assert result.peak_rss_bytes < INFO_RSS_BOUND
+        if bag is partly:
+            assert result.code == 0 and "played 5 messages" in result.err
+            continue
+        assert result.code == 2
+        line = _one_error_line(result.err)
+        assert line.startswith(f"robomodel: error: {bag}: none of its 10 messages could be played")

@@ -212,6 +212,8 @@ class Bag:
             return
         with self._rosbags_reader() as reader:
             connections = [c for c in reader.connections if wanted is None or c.topic in wanted]
+            if not connections:  # rosbags reads every connection when given none
+                return
             for conn, stamp, data in reader.messages(connections=connections):
                 yield BagMessage(conn.topic, conn.msgtype, bytes(data), stamp, stamp)
 
