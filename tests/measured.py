@@ -28,9 +28,7 @@ class Measured:
     peak_rss_bytes: int
 
 
-def run_measured(
-    *argv: str, env: dict[str, str] | None = None, timeout_s: float = 120
-) -> Measured:
+def run_measured(*argv: str, env: dict[str, str] | None = None, timeout_s: float = 120) -> Measured:
     """Run ``robomodel *argv`` to its end; killed (and the test failed) after ``timeout_s``."""
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         proc = subprocess.Popen([*ROBOMODEL, *argv], stdout=out, stderr=err, env=env, text=True)

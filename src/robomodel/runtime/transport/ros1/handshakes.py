@@ -146,10 +146,15 @@ class HandshakeServer:
             return
         pending.sock.setblocking(True)
         pending.sock.settimeout(HANDSHAKE_TIMEOUT_S)
-        threading.Thread(
-            target=self._dispatch, args=(pending.sock, header, pending.address),
-            name="ros1-tcpros-conn", daemon=True,
-        ).start()  # fmt: skip
+        try:
+            threading.Thread(
+                target=self._dispatch, args=(pending.sock, header, pending.address),
+                name="ros1-tcpros-conn", daemon=True,
+            ).start()  # fmt: skip
+        except RuntimeError as exc:  # no thread left: this connection goes, the port stays
+            log.warning("%s: dropping a TCPROS connection from %s: %s",
+                        self._owner, pending.address, exc)  # fmt: skip
+            pending.sock.close()
 
     def _expire(self) -> None:
         now = time.monotonic()

@@ -9,7 +9,8 @@ malformed message is dropped with a log line, and the connection closed.
 
 Bounds: at most ``MAX_PUBLISHERS`` publishers per subscription (more are ignored, with one
 warning: a ``publisherUpdate`` listing 3,000 dead URIs made 3,000 threads); at most
-``MAX_CONNECTING`` connection attempts at once in a process, each within ``CONNECT_TIMEOUT_S``
+``MAX_CONNECTING`` connection attempts at once per subscription (so dead publishers of one topic
+do not delay another's), each within ``CONNECT_TIMEOUT_S``
 per step (XML-RPC, connect, header); a frame larger than the type's fixed size or than the
 frame budget allows is refused (see :mod:`.tcpros`), with one warning per publisher.
 """
@@ -44,9 +45,8 @@ __all__ = ["Subscription"]
 
 RETRY_MAX_S = 2.0
 MAX_PUBLISHERS = 100  # per subscription; roscpp has no bound, a real graph has a handful
-MAX_CONNECTING = 16  # connection attempts at once, across the process
+MAX_CONNECTING = 16  # connection attempts of one subscription at once
 CONNECT_TIMEOUT_S = 5.0
-_connecting = threading.BoundedSemaphore(MAX_CONNECTING)
 
 
 class _Inbound:
@@ -88,14 +88,14 @@ class _Inbound:
         log.log(level, "%s: closing the connection from %s: %s", self.sub.topic, self.peer, exc)
 
     def _connect(self) -> socket.socket | None:
-        """Ask for the topic and connect, within one of the process's connection slots."""
-        while not _connecting.acquire(timeout=0.5):
+        """Ask for the topic and connect, within one of the subscription's connection slots."""
+        while not self.sub.connecting.acquire(timeout=0.5):
             if not self._alive:
                 return None
         try:
             return self._handshake() if self._alive else None
         finally:
-            _connecting.release()
+            self.sub.connecting.release()
 
     def _handshake(self) -> socket.socket | None:
         sub = self.sub
@@ -175,6 +175,7 @@ class Subscription:
         self.inbound: dict[str, _Inbound] = {}
         self.dropped = 0
         self._warned_publishers = False
+        self.connecting = threading.BoundedSemaphore(MAX_CONNECTING)
 
     def update_publishers(self, uris: Sequence[str]) -> None:
         """Connect to publishers newly listed, drop the ones no longer listed."""

@@ -12,7 +12,8 @@ All the frames a process is reading at once share ``FRAME_BUDGET_BYTES``: a fram
 twice its size (the bytes received, and the copy a message is decoded from) from its length
 prefix until it is decoded, and a frame that does not fit is refused with
 :class:`FrameRefused` (the connection is closed) instead of waiting, so no set of peers can
-make a process hold more. A frame whose bytes stop coming for ``FRAME_STALL_S`` is dropped.
+make a process hold more. A frame must arrive whole within ``FRAME_STALL_S`` plus its size at
+``FRAME_MIN_RATE_BPS``, or its connection is dropped (so a slow peer cannot hold the budget).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import contextlib
 import socket
 import struct
 import threading
+import time
 from collections.abc import Iterator, Mapping
 
 from robomodel.errors import RobomodelError
@@ -45,7 +47,8 @@ __all__ = [
 MAX_HEADER_BYTES = 1 << 20  # a message_definition is a few kB; 1 MiB is generous
 MAX_FRAME_BYTES = 256 << 20  # a 4K RGB image is 25 MB
 FRAME_BUDGET_BYTES = 512 << 20  # one frame of the largest size, charged twice, at a time
-FRAME_STALL_S = 30.0  # between two pieces of one frame; a peer that is sending is faster
+FRAME_STALL_S = 30.0  # a frame must be in within this, plus its size at FRAME_MIN_RATE_BPS
+FRAME_MIN_RATE_BPS = 1 << 20  # a peer slower than 1 MiB/s cannot hold the budget for long
 _U32 = struct.Struct("<I")
 
 
@@ -116,10 +119,18 @@ def parse_header(body: bytes) -> dict[str, str]:
     return fields
 
 
-def recv_exact(sock: socket.socket, size: int) -> bytes:
-    """``size`` bytes from ``sock``; TcprosError if the peer closes first."""
+def recv_exact(sock: socket.socket, size: int, *, within_s: float | None = None) -> bytes:
+    """``size`` bytes from ``sock``; TcprosError if the peer closes first, TimeoutError if
+    they are not all in within ``within_s`` (or the socket's own timeout for one piece)."""
+    deadline = None if within_s is None else time.monotonic() + within_s
+    piece_s = sock.gettimeout()
     chunks = bytearray()
     while len(chunks) < size:
+        if deadline is not None:
+            left_s = deadline - time.monotonic()
+            if left_s <= 0:
+                raise TimeoutError(f"{len(chunks)} of {size} bytes in {within_s:.0f} s")
+            sock.settimeout(left_s if piece_s is None else min(left_s, piece_s))
         chunk = sock.recv(min(size - len(chunks), 1 << 20))
         if not chunk:
             raise TcprosError("connection closed by the peer")
@@ -154,9 +165,8 @@ def receive_frame(sock: socket.socket, limit: int = MAX_FRAME_BYTES) -> Iterator
         )
     try:
         waiting = sock.gettimeout()
-        sock.settimeout(FRAME_STALL_S if waiting is None else min(waiting, FRAME_STALL_S))
         try:
-            data = recv_exact(sock, size)
+            data = recv_exact(sock, size, within_s=FRAME_STALL_S + size / FRAME_MIN_RATE_BPS)
         finally:
             sock.settimeout(waiting)
         yield data
