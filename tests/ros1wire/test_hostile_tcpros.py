@@ -251,3 +251,53 @@ def test_29_12_stalled_handshakes_do_not_keep_a_real_subscriber_out(
     assert api.getPid("/test")[2] == proc.pid
     assert peak_rss_bytes(proc.pid) < BASE_RSS
     _sigterm_ends(proc, log)
+
+
+def test_29_9_the_frame_budget_is_given_back_whatever_happens() -> None:
+    """The budget charged by a frame being read returns to 0 after a decoded frame, a refused
+    one and a peer that closes mid-frame; a frame that does not fit is refused before its
+    bytes are read."""
+    from robomodel.runtime.transport.ros1.tcpros import (
+        FrameRefused,
+        TcprosError,
+        frame_budget_in_use,
+        read_frame,
+        receive_frame,
+    )
+
+    ours, theirs = socket.socketpair()
+    with ours, theirs:
+        theirs.sendall(struct.pack("<I", 5) + b"hello")
+        with receive_frame(ours) as data:
+            assert data == b"hello" and frame_budget_in_use() == 10
+        assert frame_budget_in_use() == 0
+        theirs.sendall(struct.pack("<I", 9) + b"too long!")
+        with pytest.raises(FrameRefused, match="larger than the 8-byte limit"):
+            read_frame(ours, 8)
+        assert frame_budget_in_use() == 0
+
+    big, big_peer = socket.socketpair()
+    small, small_peer = socket.socketpair()
+    with big, big_peer, small, small_peer:
+        half = FRAME_BUDGET_BYTES // 2  # charged twice: the whole budget
+        big_peer.sendall(struct.pack("<I", half) + b"x")
+        small_peer.sendall(struct.pack("<I", 1) + b"y")
+        failed: list[BaseException] = []
+
+        def read_big() -> None:
+            try:
+                read_frame(big)
+            except TcprosError as exc:
+                failed.append(exc)
+
+        reader = threading.Thread(target=read_big)
+        reader.start()
+        while frame_budget_in_use() != FRAME_BUDGET_BYTES and reader.is_alive():
+            reader.join(0.01)
+        assert frame_budget_in_use() == FRAME_BUDGET_BYTES, failed
+        with pytest.raises(FrameRefused, match="does not fit"):
+            read_frame(small)  # 1 byte does not fit while the big frame is read
+        big_peer.shutdown(socket.SHUT_WR)  # the big frame's peer goes away mid-frame
+        reader.join()
+        assert "closed by the peer" in str(failed[0])
+        assert frame_budget_in_use() == 0
