@@ -10,9 +10,9 @@ malformed message is dropped with a log line, and the connection closed.
 Bounds: at most ``MAX_PUBLISHERS`` publishers per subscription (more are ignored, with one
 warning: a ``publisherUpdate`` listing 3,000 dead URIs made 3,000 threads); at most
 ``MAX_CONNECTING`` connection attempts at once per subscription (so dead publishers of one topic
-do not delay another's), each within ``CONNECT_TIMEOUT_S``
-per step (XML-RPC, connect, header); a frame larger than the type's fixed size or than the
-frame budget allows is refused (see :mod:`.tcpros`), with one warning per publisher.
+do not delay another's), each within ``CONNECT_TIMEOUT_S`` per step (XML-RPC, connect, header);
+a frame larger than the type's fixed size or than the frame budget allows is refused (see
+:mod:`.tcpros`), with one warning per publisher.
 """
 
 from __future__ import annotations
@@ -85,7 +85,7 @@ class _Inbound:
         """One warning per publisher; the next refusals (it is asked again) at debug level."""
         level = logging.DEBUG if self._warned else logging.WARNING
         self._warned = True
-        log.log(level, "%s: closing the connection from %s: %s", self.sub.topic, self.peer, exc)
+        log.log(level, "%s: closing the connection from %r: %s", self.sub.topic, self.peer, exc)
 
     def _connect(self) -> socket.socket | None:
         """Ask for the topic and connect, within one of the subscription's connection slots."""
