@@ -136,13 +136,14 @@ def _one_line(exc: yaml.YAMLError) -> str:
 
 
 def _file_list(path: Path, entries: Any) -> tuple[str, ...]:
-    if not isinstance(entries, list) or not all(isinstance(e, str) for e in entries):
+    """The storage files named; a name yaml-cpp wrote unquoted may read back as a number."""
+    if not isinstance(entries, list) or not all(isinstance(e, str | int) for e in entries):
         raise BagFormatError(str(path), "relative_file_paths is not a list of file names")
     if len(entries) > MAX_BAG_FILES:
         raise BagFormatError(
             str(path), f"{len(entries)} relative_file_paths; a bag has at most {MAX_BAG_FILES}"
         )
-    return tuple(entries)
+    return tuple(str(e) for e in entries)
 
 
 def read_metadata(folder: Path) -> Metadata:
