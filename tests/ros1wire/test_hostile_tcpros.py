@@ -104,8 +104,9 @@ def test_29_2_publisher_update_with_3000_dead_uris(
 
 class _FakePublisher:
     """A node that publishes ``topic`` with the right header, then sends ``frame_bytes`` as
-    the size of a message: ``lead`` bytes of it at once, the rest when ``go`` is set. It
-    counts the connections the subscriber closed before the frame was whole."""
+    the size of a message: ``lead`` bytes of it at once, the rest when ``go`` is set, then a
+    small message. It counts the connections the subscriber closed before the frame was
+    whole."""
 
     def __init__(self, md5: str, frame_bytes: int, lead: int, go: threading.Event) -> None:
         self.md5, self.frame_bytes, self.lead, self.go = md5, frame_bytes, lead, go
@@ -131,14 +132,15 @@ class _FakePublisher:
             try:
                 read_header(sock)
                 sock.sendall(encode_header({"md5sum": self.md5, "callerid": "/fake"}))
-                sock.sendall(struct.pack("<I", self.frame_bytes) + b"\x00" * self.lead)
+                size = self.frame_bytes  # a String: its byte count, then its bytes
+                sock.sendall(struct.pack("<II", size, size - 4) + b"\x00" * self.lead)
                 self.go.wait()
-                left = self.frame_bytes - self.lead
+                left = size - 4 - self.lead
                 while left > 0:
                     sent = sock.send(piece[: min(left, len(piece))])
                     left -= sent
+                sock.sendall(struct.pack("<II", 8, 4) + b"done")  # a second, small String
                 self.sent_whole += 1
-                self.go.wait()
                 sock.recv(1)  # until the subscriber goes
             except OSError:
                 self.closed_early += 1
@@ -173,6 +175,8 @@ def test_29_9_large_frames_are_bounded_per_connection_and_in_total(
         assert 2 * big <= FRAME_BUDGET_BYTES < 4 * big
         go.set()
         ros1.until(lambda: sum(f.sent_whole for f in fakes) == 1, "one whole frame sent")
+        # hz gives a rate once it has two messages: the large one was decoded
+        ros1.until(lambda: bool(_log_lines(log, "average rate")), "the two messages received")
         refusals = _log_lines(log, "closing the connection")
         assert len(refusals) == 2 and all("512 MiB budget" in r for r in refusals), refusals
         assert sum(f.closed_early > 0 for f in fakes) == 2
