@@ -14,8 +14,9 @@ import socket
 import struct
 import subprocess
 import threading
+import time
 import xmlrpc.client
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -305,3 +306,47 @@ def test_29_9_the_frame_budget_is_given_back_whatever_happens() -> None:
         reader.join()
         assert "closed by the peer" in str(failed[0])
         assert frame_budget_in_use() == 0
+
+
+def test_29_12_past_the_bound_the_oldest_stalled_handshake_makes_room(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """More stalled connections than handshakes may be in progress: the oldest are dropped
+    (one warning), a real header that arrives among them is handed over, and nothing is
+    left pending once the server closes."""
+    import logging
+
+    from robomodel.runtime.transport.ros1.handshakes import HandshakeServer
+
+    got: list[dict[str, str]] = []
+    listener = socket.create_server(("127.0.0.1", 0), backlog=512)
+    port = listener.getsockname()[1]
+    server = HandshakeServer(listener, lambda sock, header, _: (got.append(header), sock.close()),
+                             "/under_test")  # fmt: skip
+    stalled: list[socket.socket] = []
+    caplog.set_level(logging.DEBUG, logger="robomodel.ros1")
+    try:
+        for _ in range(MAX_HANDSHAKES + 72):
+            sock = socket.create_connection(("127.0.0.1", port), timeout=5)
+            sock.sendall(b"\x10\x00")
+            stalled.append(sock)
+        with socket.create_connection(("127.0.0.1", port), timeout=5) as real:
+            real.sendall(encode_header({"callerid": "/real", "topic": "/chatter"}))
+            _wait_for(lambda: bool(got))
+        assert got == [{"callerid": "/real", "topic": "/chatter"}]
+        assert server.in_progress <= MAX_HANDSHAKES
+        warnings = [r for r in caplog.records if r.levelno >= logging.WARNING]
+        assert len(warnings) == 1 and "too many handshakes at once" in warnings[0].getMessage()
+    finally:
+        server.close()
+        listener.close()
+        for sock in stalled:
+            sock.close()
+    _wait_for(lambda: server.in_progress == 0)
+
+
+def _wait_for(check: Callable[[], bool], timeout_s: float = 60) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not check():
+        assert time.monotonic() < deadline, f"not within {timeout_s} s"
+        time.sleep(0.02)
