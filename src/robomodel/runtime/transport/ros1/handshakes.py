@@ -78,8 +78,8 @@ class HandshakeServer:
                 for key, _ in self._selector.select(self._wait_s()):
                     if key.fileobj is self._listener:
                         self._accept()
-                    else:
-                        self._read(self._pending[key.fileobj])  # type: ignore[index]
+                    elif key.data.sock in self._pending:  # not dropped earlier in this round
+                        self._read(key.data)
                 self._expire()
         except (OSError, ValueError):  # the listener closed under select()
             pass
@@ -108,7 +108,7 @@ class HandshakeServer:
                 self._drop(next(iter(self._pending.values())), "too many handshakes at once")
             pending = _Pending(sock, address, time.monotonic() + HANDSHAKE_TIMEOUT_S)
             self._pending[sock] = pending
-            self._selector.register(sock, selectors.EVENT_READ)
+            self._selector.register(sock, selectors.EVENT_READ, pending)
 
     def _read(self, pending: _Pending) -> None:
         want = 4 - len(pending.data) if pending.size is None else pending.size - len(pending.data)
