@@ -23,6 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.ros1.tcpros import MAX_HEADER_BYTES, TcprosError, parse_header
 from robomodel.runtime.transport.ros1.xmlrpc_io import log
 
@@ -79,7 +80,7 @@ class HandshakeServer:
                     if key.fileobj is self._listener:
                         self._accept()
                     elif key.data.sock in self._pending:  # not dropped earlier in this round
-                        self._read(key.data)
+                        self._read_guarded(key.data)
                 self._expire()
         except (OSError, ValueError):  # the listener closed under select()
             pass
@@ -109,6 +110,13 @@ class HandshakeServer:
             pending = _Pending(sock, address, time.monotonic() + HANDSHAKE_TIMEOUT_S)
             self._pending[sock] = pending
             self._selector.register(sock, selectors.EVENT_READ, pending)
+
+    def _read_guarded(self, pending: _Pending) -> None:
+        try:
+            self._read(pending)
+        except Exception:  # a bug with one peer must not close the port for all of them
+            log_failure(log, "%s: TCPROS handshake from %s", self._owner, pending.address)
+            self._drop(pending, None)
 
     def _read(self, pending: _Pending) -> None:
         want = 4 - len(pending.data) if pending.size is None else pending.size - len(pending.data)
