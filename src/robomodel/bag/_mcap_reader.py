@@ -5,6 +5,11 @@ summary and footer (a recording killed mid-way) is read up to its last complete 
 ``mcap recover`` does. Before each record its header is checked against the file's size, so a
 truncated record is reported with its offset instead of being half-read; each chunk's CRC is
 checked, and a chunk that fails it is skipped (reported) while the following ones are read.
+
+A chunk is decompressed only if the size it declares is at most ``MAX_CHUNK_BYTES`` and at most
+``MAX_CHUNK_RATIO`` times the file's size, and into at most that many bytes (a stream that
+expands further is damage, not a reason to allocate): a 66 KB "zip bomb" chunk declaring 2 GiB
+is refused with one line instead of filling the memory.
 """
 
 from __future__ import annotations
@@ -28,6 +33,8 @@ MAGIC = b"\x89MCAP0\r\n"
 _HEADER = struct.Struct("<BQ")  # opcode, record length
 _OPCODE_FOOTER = 0x02
 _OPCODE_CHUNK = 0x06
+MAX_CHUNK_BYTES = 256 << 20  # as a TCPROS frame; ROS 2 writers make chunks of about 1 MiB
+MAX_CHUNK_RATIO = 1000  # zstd and lz4 reach a few hundred on camera images of one colour
 
 
 @dataclasses.dataclass(frozen=True, slots=True)
@@ -40,16 +47,41 @@ class McapChannel:
     metadata: dict[str, str]
 
 
-def _zstd_decompressed(chunk: Any) -> Any:
-    """A zstd chunk made plain with the zstd module rosbags depends on, when the mcap library
-    lacks its optional ``zstandard`` (bags recorded by ROS are often zstd-compressed)."""
-    for name in ("compression.zstd", "backports.zstd", "zstandard"):  # 3.14, rosbags', mcap's
+def _zstd_bounded(data: bytes, limit: int) -> bytes:
+    """At most ``limit`` bytes of the zstd stream ``data``, with whichever zstd module is
+    there (Python 3.14's, the backport rosbags depends on, or mcap's ``zstandard``)."""
+    for name in ("compression.zstd", "backports.zstd"):
         try:
             zstd = importlib.import_module(name)
         except ImportError:
             continue
-        return dataclasses.replace(chunk, compression="", data=zstd.decompress(chunk.data))
-    raise MissingDependencyError("zstandard", "bag", "reading zstd-compressed MCAP chunks")
+        return bytes(zstd.ZstdDecompressor().decompress(data, max_length=limit))
+    try:
+        zstandard = importlib.import_module("zstandard")
+    except ImportError:
+        raise MissingDependencyError(
+            "zstandard", "bag", "reading zstd-compressed MCAP chunks"
+        ) from None
+    out = bytearray()
+    with zstandard.ZstdDecompressor().stream_reader(data) as stream:
+        while len(out) < limit and (piece := stream.read(min(limit - len(out), 1 << 20))):
+            out += piece
+    return bytes(out)
+
+
+def _lz4_bounded(data: bytes, limit: int) -> bytes:
+    """At most ``limit`` bytes of the lz4 frame ``data``."""
+    frame = require("lz4.frame", "reading lz4-compressed MCAP chunks")
+    return bytes(frame.LZ4FrameDecompressor().decompress(data, max_length=limit))
+
+
+def _decompressed(chunk: Any, limit: int) -> bytes:
+    """The chunk's records, decompressed into at most ``limit`` bytes."""
+    if chunk.compression == "zstd":
+        return _zstd_bounded(chunk.data, limit)
+    if chunk.compression == "lz4":
+        return _lz4_bounded(chunk.data, limit)
+    return bytes(chunk.data[:limit])
 
 
 class _Scan:
@@ -58,8 +90,10 @@ class _Scan:
         path: Path,
         damage: list[Damage],
         on_channel: Callable[[McapChannel], None] | None,
+        file_size: int,
     ) -> None:
         self.path = path
+        self.chunk_limit = min(MAX_CHUNK_BYTES, MAX_CHUNK_RATIO * file_size)
         self.damage = damage
         self.on_channel = on_channel
         self.schemas: dict[int, Any] = {}
@@ -86,8 +120,28 @@ class _Scan:
         if not isinstance(record, self._records.Chunk):
             yield record
             return
-        if record.compression == "zstd":
-            record = _zstd_decompressed(record)
+        declared = int(record.uncompressed_size)
+        if declared > self.chunk_limit:
+            raise BagFormatError(
+                str(self.path),
+                f"a chunk declares {declared} bytes uncompressed; at most {self.chunk_limit} "
+                f"are read ({MAX_CHUNK_BYTES >> 20} MiB, and {MAX_CHUNK_RATIO} times the "
+                "file's size): a decompression bomb or a damaged file",
+                offset=offset,
+            )
+        try:
+            plain = _decompressed(record, declared + 1)
+        except MissingDependencyError:
+            raise
+        except Exception as exc:  # the codecs' errors (ZstdError, lz4's RuntimeError) share none
+            self.note(offset, f"chunk does not decompress ({exc}); its messages are skipped")
+            return
+        if len(plain) != declared:
+            got = "beyond" if len(plain) > declared else f"to only {len(plain)} of"
+            self.note(offset, f"chunk expands {got} the {declared} bytes it declares; its "
+                              "messages are skipped")  # fmt: skip
+            return
+        record = dataclasses.replace(record, compression="", data=plain)
         try:
             inner = self._stream_reader.breakup_chunk(record, validate_crc=True)
         except self._stream_reader.CRCValidationError as exc:
@@ -133,13 +187,13 @@ def scan_mcap(
     """Every readable message of ``path`` in file order; problems are appended to ``damage``.
 
     BagFormatError when ``path`` is not an MCAP file at all."""
-    scan = _Scan(path, damage, on_channel)
     with path.open("rb") as handle:
         head = handle.read(len(MAGIC))
         if head != MAGIC:
             raise BagFormatError(str(path), "not an MCAP file (bad magic)", offset=0)
         handle.seek(0)
         size = os.fstat(handle.fileno()).st_size
+        scan = _Scan(path, damage, on_channel, size)
         reader = scan._stream_reader.StreamReader(handle, emit_chunks=True)
         records = reader.records
         offset = len(MAGIC)

@@ -1,7 +1,9 @@
 """rosbag2's ``metadata.yaml`` (version 9, Jazzy's): written beside the storage files, read
 back for the file list, the storage and the offered QoS of each topic.
 
-The layout follows rosbag2_storage's ``yaml.hpp`` (``rosbag2_bagfile_information``).
+The layout follows rosbag2_storage's ``yaml.hpp`` (``rosbag2_bagfile_information``). A file read
+back is bounded: at most ``MAX_METADATA_BYTES``, no YAML aliases, nesting at most
+``MAX_DATA_DEPTH`` levels, and at most ``MAX_BAG_FILES`` storage files.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import yaml
 
 from robomodel._atomic import atomic_write_text
 from robomodel._files import UserFileError, read_user_text
+from robomodel._yaml_bounded import YamlNestingError, load_yaml_data
 from robomodel.bag.exceptions import BagFormatError
 from robomodel.bag.model import Storage, TopicSummary
 from robomodel.runtime.qos import Durability, QoSProfile, Reliability
@@ -22,6 +25,8 @@ from robomodel.runtime.qos import Durability, QoSProfile, Reliability
 __all__ = ["FileEntry", "read_metadata", "write_metadata"]
 
 VERSION = 9
+MAX_METADATA_BYTES = 4 << 20  # a bag of 1,000 topics and 1,000 files writes about 1 MB
+MAX_BAG_FILES = 10_000  # a day split every 10 s
 _INFINITE = {"sec": 9223372036, "nsec": 854775807}  # rmw's "unspecified" duration
 
 
@@ -116,20 +121,39 @@ class Metadata:
 
 def _offered(entry: Any) -> tuple[QoSProfile, ...]:
     if isinstance(entry, str):  # versions before 9 keep the list as a YAML string
-        entry = yaml.safe_load(entry) if entry.strip() else []
+        entry = load_yaml_data(entry, what="offered_qos_profiles") if entry.strip() else []
     if not isinstance(entry, list):
         return ()
     return tuple(qos_from_dict(q) for q in entry if isinstance(q, dict))
+
+
+def _one_line(exc: yaml.YAMLError) -> str:
+    """A YAML error as one line: where and what (PyYAML's text spans several lines)."""
+    mark = getattr(exc, "problem_mark", None)
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    problem = " ".join(filter(None, (getattr(exc, "context", None), getattr(exc, "problem", None))))
+    return where + " ".join((problem or str(exc)).split())
+
+
+def _file_list(path: Path, entries: Any) -> tuple[str, ...]:
+    """The storage files named; a name yaml-cpp wrote unquoted may read back as a number."""
+    if not isinstance(entries, list) or not all(isinstance(e, str | int) for e in entries):
+        raise BagFormatError(str(path), "relative_file_paths is not a list of file names")
+    if len(entries) > MAX_BAG_FILES:
+        raise BagFormatError(
+            str(path), f"{len(entries)} relative_file_paths; a bag has at most {MAX_BAG_FILES}"
+        )
+    return tuple(str(e) for e in entries)
 
 
 def read_metadata(folder: Path) -> Metadata:
     """The parts of ``folder/metadata.yaml`` a reader needs; BagFormatError if it is bad."""
     path = folder / "metadata.yaml"
     try:
-        doc = yaml.safe_load(read_user_text(path, what="bag metadata"))
-        info = doc["rosbag2_bagfile_information"]
+        text = read_user_text(path, what="bag metadata", limit=MAX_METADATA_BYTES)
+        info = load_yaml_data(text, what=str(path))["rosbag2_bagfile_information"]
         storage = Storage(str(info.get("storage_identifier") or "sqlite3"))
-        files = tuple(str(p) for p in info.get("relative_file_paths") or ())
+        files = _file_list(path, info.get("relative_file_paths") or ())
         qos = {
             str(t["topic_metadata"]["name"]): _offered(
                 t["topic_metadata"].get("offered_qos_profiles")
@@ -137,8 +161,19 @@ def read_metadata(folder: Path) -> Metadata:
             for t in info.get("topics_with_message_count") or ()
         }
     except UserFileError as exc:
-        raise BagFormatError(str(path), exc.reason) from None
-    except (OSError, yaml.YAMLError, KeyError, TypeError, ValueError, AttributeError) as exc:
+        reason = exc.reason
+        if exc.too_large:
+            size_mib = path.stat().st_size / 2**20
+            reason = (
+                f"{size_mib:.1f} MiB; at most {MAX_METADATA_BYTES >> 20} MiB of bag metadata is "
+                "read (rosbag2 writes a few kB)"
+            )
+        raise BagFormatError(str(path), reason) from None
+    except YamlNestingError as exc:
+        raise BagFormatError(str(path), str(exc).removeprefix(f"{path}: ")) from None
+    except yaml.YAMLError as exc:
+        raise BagFormatError(str(path), f"not a rosbag2 metadata file ({_one_line(exc)})") from None
+    except (OSError, KeyError, TypeError, ValueError, AttributeError) as exc:
         raise BagFormatError(str(path), f"not a rosbag2 metadata file ({exc})") from None
     inside = folder.resolve()
     for name in files:

@@ -8,6 +8,10 @@ always, are published latched, with a history as deep as the bag has messages on
 with ``use_sim_time`` follow the bag's time (a recorded /clock is then not played: two clocks
 would make such nodes jump back and forth). Message contents (header stamps included) are
 published as recorded.
+
+What cannot be played is said once per topic: a type robomodel does not know, messages that
+do not decode, and messages the bag lists but its storage does not hold (a SQLite 3 message
+whose ``topic_id`` names no topic) — :meth:`Player.shortfall` after the first pass.
 """
 
 from __future__ import annotations
@@ -71,6 +75,9 @@ class Player:
         self.options = options
         self.node = context.create_node("robomodel_bag_play")
         self.published = 0
+        self._read: dict[str, int] = {}  # messages read per topic in the first pass
+        self._undecodable: set[str] = set()
+        self._passes = 0
         self._publishers: dict[str, tuple[Publisher[Message], Decoder]] = {}
         self._clock: Publisher[Clock] | None = None
         self._clock_ns = 0
@@ -102,10 +109,26 @@ class Player:
     def play(self, stop: Callable[[], bool] = lambda: False) -> int:
         """Publish the bag (again and again with ``loop``) until done or ``stop()``; returns
         the number of messages published."""
-        while True:
+        while self._publishers:
             self._play_once(stop)
-            if not self.options.loop or stop() or not self._publishers:
-                return self.published
+            self._passes += 1
+            if self._passes == 1 and not stop():
+                for line in self.shortfall():
+                    log.warning("%s", line)
+            if not self.options.loop or stop():
+                break
+        return self.published
+
+    def shortfall(self) -> list[str]:
+        """One line per topic played whose messages the first pass read fewer of than the bag
+        lists."""
+        listed = {t.name: t.count for t in self.summary.topics}
+        return [
+            f"{topic}: the bag lists {listed[topic]} messages, its storage holds "
+            f"{self._read.get(topic, 0)} of them"
+            for topic in self._publishers
+            if self._read.get(topic, 0) < listed.get(topic, 0)
+        ]
 
     def _play_once(self, stop: Callable[[], bool]) -> None:
         """One pass over the bag. Message times are ``log_time`` (receive time); with a clock,
@@ -132,6 +155,8 @@ class Player:
                 self.context.spin(duration_s=min(wake - now, 0.1))
             if stop():
                 return
+            if not self._passes:
+                self._read[message.topic] = self._read.get(message.topic, 0) + 1
             self._publish(message)
         self.context.spin(duration_s=0.05)  # let the last messages leave
 
@@ -146,7 +171,10 @@ class Player:
         try:
             msg = decode(message.data)
         except (MessageTypeError, ValueError) as exc:
-            log.warning("skipping a %s message that does not decode: %s", message.topic, exc)
+            level = logging.DEBUG if message.topic in self._undecodable else logging.WARNING
+            self._undecodable.add(message.topic)
+            log.log(level, "skipping %s messages that do not decode (the first: %s)",
+                    message.topic, exc)  # fmt: skip
             return
         publisher.publish(msg)
         self.published += 1

@@ -18,6 +18,7 @@ from typing import Any
 import yaml
 
 from robomodel._files import UserFileError, check_user_file
+from robomodel._yaml_bounded import YamlNestingError, load_yaml_data
 from robomodel.bag._deps import require
 from robomodel.bag._mcap_reader import McapChannel, scan_mcap
 from robomodel.bag._metadata import Metadata, qos_from_dict, read_metadata
@@ -80,8 +81,8 @@ def _detect(path: Path) -> tuple[Storage, tuple[Path, ...], Metadata | None]:
 def _channel_qos(channel: McapChannel) -> tuple[QoSProfile, ...]:
     text = channel.metadata.get("offered_qos_profiles", "")
     try:
-        entries = yaml.safe_load(text) if text.strip() else []
-    except yaml.YAMLError:
+        entries = load_yaml_data(text, what=channel.topic) if text.strip() else []
+    except (yaml.YAMLError, YamlNestingError):
         return ()
     return tuple(qos_from_dict(e) for e in entries or () if isinstance(e, dict))
 
@@ -211,6 +212,8 @@ class Bag:
             return
         with self._rosbags_reader() as reader:
             connections = [c for c in reader.connections if wanted is None or c.topic in wanted]
+            if not connections:  # rosbags reads every connection when given none
+                return
             for conn, stamp, data in reader.messages(connections=connections):
                 yield BagMessage(conn.topic, conn.msgtype, bytes(data), stamp, stamp)
 

@@ -232,4 +232,10 @@ def run_play(args: argparse.Namespace) -> int:
         context.spin(duration_s=max(0.0, args.delay))
         player.play(stopped)
     print(f"played {player.published} messages", file=sys.stderr)
+    listed = sum(t.count for t in player.summary.topics)
+    if not player.published and listed and not stopped():
+        why = "" if player.topics else ": robomodel knows none of their types"
+        print(f"robomodel: error: {args.bag}: none of its {listed} messages could be played"
+              f"{why} (see the warnings above)", file=sys.stderr)  # fmt: skip
+        return EXIT_DAMAGED
     return _report_damage(list(dict.fromkeys(bag.damage, None)))

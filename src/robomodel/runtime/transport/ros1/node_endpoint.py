@@ -6,28 +6,26 @@ The slave API answers the master and other nodes (rospy's masterslave.py): ``req
 ``publisherUpdate``, ``paramUpdate``, ``getBusInfo``, ``getBusStats``, ``getPid``,
 ``getMasterUri``, ``getPublications``, ``getSubscriptions`` and ``shutdown`` (logged; a node of a
 robomodel process ends with its process). The TCPROS server reads each new connection's header
-(within ``HANDSHAKE_TIMEOUT_S``; at most ``MAX_HANDSHAKES`` at once) and hands it to the
-publication or service it names.
+without blocking on any peer (:mod:`.handshakes`) and hands it to the publication or service it
+names.
 """
 
 from __future__ import annotations
 
 import os
 import socket
-import threading
 from typing import Any
 
+from robomodel.runtime.transport.ros1.handshakes import HandshakeServer
 from robomodel.runtime.transport.ros1.names import advertised_host, http_uri
 from robomodel.runtime.transport.ros1.publication import Publication
 from robomodel.runtime.transport.ros1.services import ServiceServer
 from robomodel.runtime.transport.ros1.subscription import Subscription
-from robomodel.runtime.transport.ros1.tcpros import TcprosError, read_header, write_header
+from robomodel.runtime.transport.ros1.tcpros import TcprosError, write_header
 from robomodel.runtime.transport.ros1.xmlrpc_io import XmlRpcServer, log
 
 __all__ = ["NodeEndpoint"]
 
-HANDSHAKE_TIMEOUT_S = 5.0
-MAX_HANDSHAKES = 64
 Result = list[Any]
 
 
@@ -41,43 +39,21 @@ class NodeEndpoint:
         self.publications: dict[str, Publication] = {}
         self.subscriptions: dict[str, list[Subscription]] = {}
         self.services: dict[str, ServiceServer] = {}
-        self._slots = threading.BoundedSemaphore(MAX_HANDSHAKES)
         self._listener = socket.create_server(
             (bind, 0),
             family=socket.AF_INET6 if ":" in bind else socket.AF_INET,
+            backlog=128,
             dualstack_ipv6=bind == "::",
         )
         self.tcpros_port = int(self._listener.getsockname()[1])
-        self._alive = True
-        self._accepter = threading.Thread(target=self._accept, name="ros1-tcpros", daemon=True)
-        self._accepter.start()
+        self._handshakes = HandshakeServer(self._listener, self._serve, caller_id)
         self._xmlrpc = XmlRpcServer(bind, 0, self._api())
         self.uri = http_uri(self.host, self._xmlrpc.port)
 
     # -- TCPROS ---------------------------------------------------------------------------------
-    def _accept(self) -> None:
-        while self._alive:
-            try:
-                sock, address = self._listener.accept()
-            except OSError:
-                return
-            if not self._slots.acquire(blocking=False):
-                log.warning(
-                    "%s: too many TCPROS handshakes at once; dropping %s", self.caller_id, address
-                )
-                sock.close()
-                continue
-            threading.Thread(
-                target=self._handshake, args=(sock, address), name="ros1-tcpros-conn", daemon=True
-            ).start()
-
-    def _handshake(self, sock: socket.socket, address: Any) -> None:
-        handed_over = False
+    def _serve(self, sock: socket.socket, header: dict[str, str], address: Any) -> None:
+        """A connection whose header is in (on a thread of its own)."""
         try:
-            sock.settimeout(HANDSHAKE_TIMEOUT_S)
-            header = read_header(sock)
-            self._slots.release()
-            handed_over = True
             if "service" in header:
                 self._serve_service(sock, header)
             elif "topic" in header:
@@ -90,9 +66,6 @@ class NodeEndpoint:
                 "%s: dropping a TCPROS connection from %s: %s", self.caller_id, address, exc
             )
             sock.close()
-        finally:
-            if not handed_over:
-                self._slots.release()
 
     def _serve_topic(self, sock: socket.socket, header: dict[str, str]) -> None:
         publication = self.publications.get(header["topic"])
@@ -200,7 +173,7 @@ class NodeEndpoint:
         return [1, "shutdown", 0]
 
     def close(self) -> None:
-        self._alive = False
+        self._handshakes.close()
         self._xmlrpc.close()
         self._listener.close()
         for publication in self.publications.values():

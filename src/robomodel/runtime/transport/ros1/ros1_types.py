@@ -30,6 +30,7 @@ from robomodel.runtime.msg._schema import MessageTypeError, Service
 from robomodel.runtime.transport.ros1.ros1_codec import (
     DURATION,
     PLACEHOLDER,
+    PRIMITIVES,
     TIME,
     Decoder,
     Encoder,
@@ -66,6 +67,7 @@ class Ros1Type:
     cls: type[Message]
     _encode: Encoder
     _decode: Decoder
+    fixed_size: int | None = None  # bytes of every message on the wire, if they never vary
 
     def encode(self, msg: Message, seq: int = 0) -> bytes:
         return self._encode(msg, seq)
@@ -163,7 +165,32 @@ def _make_type(key: str, name: str) -> Ros1Type:
         raise Ros1TypeError(f"robomodel has no class for the ROS 1 type {name}")
     definition, md5 = store.generate_msgdef(key, ros_version=1)
     encode, decode = make_codec(key, store.fielddefs, _robomodel_class, special_field)
-    return Ros1Type(name, md5, definition, cls, encode, decode)
+    return Ros1Type(name, md5, definition, cls, encode, decode, _fixed_size(store.fielddefs, key))
+
+
+def _fixed_size(fielddefs: Any, key: str) -> int | None:
+    """The size of every message of ``key`` on ROS 1's wire (std_msgs/Float64: 8), or None when
+    a string or a variable-length array makes it vary. A placeholder field is counted though it
+    is not sent: the result bounds a frame, and too large a bound is harmless."""
+    total = 0
+    for _, desc in fielddefs[key][1]:
+        size = _fixed_field_size(fielddefs, desc)
+        if size is None:
+            return None
+        total += size
+    return total
+
+
+def _fixed_field_size(fielddefs: Any, desc: Any) -> int | None:
+    kind, rest = int(desc[0]), desc[1]
+    if kind == 1:  # a primitive
+        return None if rest[0] == "string" else int(PRIMITIVES[rest[0]][1])
+    if kind == 2:  # a message
+        return 8 if rest in (TIME, DURATION) else _fixed_size(fielddefs, rest)
+    if kind == 3:  # a fixed-length array
+        item = _fixed_field_size(fielddefs, rest[0])
+        return None if item is None else item * int(rest[1])
+    return None
 
 
 @functools.cache

@@ -22,6 +22,8 @@ from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.base import Deferred, ServiceCallError, ServiceHandler
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
+    MAX_FRAME_BYTES,
+    FrameRefused,
     TcprosError,
     read_frame,
     read_header,
@@ -82,9 +84,14 @@ class ServiceServer:
             return
         persistent = header.get("persistent") == "1"
         sock.settimeout(None)
+        limit = self.kind.request.fixed_size or MAX_FRAME_BYTES
         while True:
             try:
-                payload = read_frame(sock)
+                payload = read_frame(sock, limit)
+            except FrameRefused as exc:
+                log.warning("service %s: closing the connection from %r: %s",
+                            self.name, header.get("callerid", "?"), exc)  # fmt: skip
+                return
             except TcprosError:
                 return  # the client is done
             ok, body = self._answer(payload)
@@ -164,7 +171,8 @@ def call_service(
             write_frame(sock, kind.request.encode(request))
             sock.settimeout(max(0.1, deadline - time.monotonic()))
             ok = recv_exact(sock, 1)
-            body = read_frame(sock)
+            fixed = kind.response.fixed_size if ok == b"\x01" else None  # else an error text
+            body = read_frame(sock, fixed or MAX_FRAME_BYTES)
     except (OSError, TcprosError) as exc:
         raise ServiceCallError(f"service '{name}' did not answer: {exc}") from None
     if ok != b"\x01":

@@ -6,12 +6,20 @@ Messages are decoded on the reader thread and handed to the executor through a q
 ``depth`` messages (the oldest dropped when the node falls behind). A publisher that drops the
 connection while it is still registered is asked again after a growing pause (up to 2 s); a
 malformed message is dropped with a log line, and the connection closed.
+
+Bounds: at most ``MAX_PUBLISHERS`` publishers per subscription (more are ignored, with one
+warning: a ``publisherUpdate`` listing 3,000 dead URIs made 3,000 threads); at most
+``MAX_CONNECTING`` connection attempts at once per subscription (so dead publishers of one topic
+do not delay another's), each within ``CONNECT_TIMEOUT_S`` per step (XML-RPC, connect, header);
+a frame larger than the type's fixed size or than the frame budget allows is refused (see
+:mod:`.tcpros`), with one warning per publisher.
 """
 
 from __future__ import annotations
 
 import collections
 import contextlib
+import logging
 import socket
 import threading
 from collections.abc import Callable, Sequence
@@ -20,9 +28,11 @@ from typing import TYPE_CHECKING, Any
 from robomodel.runtime.msg import Message
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
+    MAX_FRAME_BYTES,
+    FrameRefused,
     TcprosError,
-    read_frame,
     read_header,
+    receive_frame,
     write_header,
 )
 from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError, call, log
@@ -34,6 +44,9 @@ if TYPE_CHECKING:
 __all__ = ["Subscription"]
 
 RETRY_MAX_S = 2.0
+MAX_PUBLISHERS = 100  # per subscription; roscpp has no bound, a real graph has a handful
+MAX_CONNECTING = 16  # connection attempts of one subscription at once
+CONNECT_TIMEOUT_S = 5.0
 
 
 class _Inbound:
@@ -45,6 +58,7 @@ class _Inbound:
         self.peer = uri
         self.connected = False
         self._alive = True
+        self._warned = False
         self._sock: socket.socket | None = None
         self._thread = threading.Thread(target=self._run, name="ros1-sub-reader", daemon=True)
         self._thread.start()
@@ -53,7 +67,11 @@ class _Inbound:
         pause_s = 0.1
         while self._alive:
             try:
-                self._connect_and_read()
+                sock = self._connect()
+                if sock is not None:
+                    self._read(sock)
+            except FrameRefused as exc:
+                self._refused(exc)
             except (OSError, TcprosError, Ros1WireError) as exc:
                 if self._alive:
                     log.debug("%s from %s: %s", self.sub.topic, self.uri, exc)
@@ -63,13 +81,32 @@ class _Inbound:
             threading.Event().wait(pause_s)
             pause_s = min(RETRY_MAX_S, pause_s * 2)
 
-    def _connect_and_read(self) -> None:
+    def _refused(self, exc: FrameRefused) -> None:
+        """One warning per publisher; the next refusals (it is asked again) at debug level."""
+        level = logging.DEBUG if self._warned else logging.WARNING
+        self._warned = True
+        log.log(level, "%s: closing the connection from %r: %s", self.sub.topic, self.peer, exc)
+
+    def _connect(self) -> socket.socket | None:
+        """Ask for the topic and connect, within one of the subscription's connection slots."""
+        while not self.sub.connecting.acquire(timeout=0.5):
+            if not self._alive:
+                return None
+        try:
+            return self._handshake() if self._alive else None
+        finally:
+            self.sub.connecting.release()
+
+    def _handshake(self) -> socket.socket | None:
         sub = self.sub
-        answer = call(self.uri, "requestTopic", sub.caller_id, sub.topic, [["TCPROS"]])
+        answer = call(
+            self.uri, "requestTopic", sub.caller_id, sub.topic, [["TCPROS"]],
+            timeout_s=CONNECT_TIMEOUT_S,
+        )  # fmt: skip
         if not (isinstance(answer, list) and len(answer) >= 3 and answer[0] == "TCPROS"):
             raise Ros1WireError(f"{self.uri} offers {sub.topic} over {answer!r:.60}, not TCPROS")
         host, port = str(answer[1]), int(answer[2])
-        sock = socket.create_connection((host, port), timeout=5.0)
+        sock = socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S)
         self._sock = sock
         try:
             write_header(
@@ -84,15 +121,26 @@ class _Inbound:
                 },
             )
             header = read_header(sock)
-            if "error" in header:
-                log.warning("%s: publisher %s refused: %s", sub.topic, self.uri, header["error"])
-                self._alive = False
-                return
-            self.peer = header.get("callerid", self.uri)
+        except BaseException:
+            sock.close()
+            raise
+        if "error" in header:
+            log.warning("%s: publisher %s refused: %s", sub.topic, self.uri, header["error"])
+            self._alive = False
+            sock.close()
+            return None
+        self.peer = header.get("callerid", self.uri)
+        return sock
+
+    def _read(self, sock: socket.socket) -> None:
+        sub = self.sub
+        limit = sub.kind.fixed_size or MAX_FRAME_BYTES
+        try:
             sock.settimeout(None)
             self.connected = True
             while self._alive:
-                sub.receive(read_frame(sock), self)
+                with receive_frame(sock, limit) as data:
+                    sub.receive(data, self)
         finally:
             sock.close()
 
@@ -126,11 +174,13 @@ class Subscription:
         self._alive = True
         self.inbound: dict[str, _Inbound] = {}
         self.dropped = 0
+        self._warned_publishers = False
+        self.connecting = threading.BoundedSemaphore(MAX_CONNECTING)
 
     def update_publishers(self, uris: Sequence[str]) -> None:
         """Connect to publishers newly listed, drop the ones no longer listed."""
         wanted = []
-        for uri in uris:
+        for uri in dict.fromkeys(uris):
             try:
                 split_uri(str(uri))
                 wanted.append(str(uri))
@@ -139,12 +189,27 @@ class Subscription:
         with self._lock:
             if not self._alive:
                 return
+            wanted = self._within_bound(wanted)
             gone = [self.inbound.pop(u) for u in list(self.inbound) if u not in wanted]
             for uri in wanted:
                 if uri not in self.inbound:
                     self.inbound[uri] = _Inbound(self, uri)
         for connection in gone:
             connection.close()
+
+    def _within_bound(self, wanted: list[str]) -> list[str]:
+        """At most MAX_PUBLISHERS of ``wanted``: those already connected first, then in the
+        order listed (the master lists publishers in the order they registered)."""
+        if len(wanted) <= MAX_PUBLISHERS:
+            return wanted
+        if not self._warned_publishers:
+            self._warned_publishers = True
+            log.warning(
+                "%s: %d publishers listed; reading from %d of them, the others are ignored",
+                self.topic, len(wanted), MAX_PUBLISHERS,
+            )  # fmt: skip
+        kept = sorted(wanted, key=lambda uri: uri not in self.inbound)  # a stable sort
+        return kept[:MAX_PUBLISHERS]
 
     def receive(self, data: bytes, connection: Any) -> None:  # a reader thread
         from robomodel.runtime.transport.ros1.ros1_types import Ros1CodecError
