@@ -45,6 +45,7 @@ class RunOptions:
     duration_s: float | None = None
     package_index: Any = None
     master_uri: str | None = None  # the ROS 1 master (bus "ros1"); default ROS_MASTER_URI
+    strict_start: bool = False  # a node whose start fails raises (robomodel run), not logged
 
 
 def unsupported_message(spec: NodeSpec) -> str:
@@ -208,6 +209,8 @@ class LaunchRunner:
         try:
             handle = factory(ctx)
         except (RobomodelError, ValueError) as exc:
+            if self.options.strict_start:
+                raise
             self.log(f"[{spec.fqn}] failed to start: {exc}")
             handle = _Failed()
         self.started.append(_Started(spec, handle, restarts))

@@ -280,6 +280,7 @@ def _wait(ctx: NodeContext, node: ThreadNode, path: str, timeout_s: float) -> bo
     "ros2",
     "controller_manager",
     "spawner",
+    "spawner.py",  # Foxy's name
     purpose="loads, configures and activates controllers (-c, -p, --inactive, --load-only, "
     "--activate-as-group, -u)",
 )
@@ -344,6 +345,7 @@ def spawner(ctx: NodeContext) -> RunningNode:
     "ros2",
     "controller_manager",
     "unspawner",
+    "unspawner.py",  # Foxy's name
     purpose="deactivates and unloads controllers",
 )
 def unspawner(ctx: NodeContext) -> RunningNode:
