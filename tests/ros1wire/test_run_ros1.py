@@ -9,6 +9,7 @@ import os
 import signal
 import subprocess
 import sys
+import urllib.request
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +17,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES
-from tests.ros1wire.conftest import Ros1
+from tests.ros1wire.conftest import Ros1, free_port
 from tests.ros1wire.test_debian_ros1 import PLANAR, _echo, _launch, _transforms
 
 ROSSERVICE = "/usr/bin/rosservice"
@@ -95,7 +96,24 @@ def test_run_state_publishers_with_rosrun_arguments(ros1: Ros1, tmp_path: Path) 
     assert {"link_1", "link_2"} <= set(_transforms(_echo(ros1, "/tf")))
     info = ros1.run("/usr/bin/rostopic", "info", "/planar/joint_states").stdout
     assert "/jsp" in info and "/robot_state_publisher" in info
+    # rviz -d: the browser viewer serves the robot
+    port = free_port()
+    config = EXAMPLES / "gripper_description/urdf/urdf.rviz"
+    rviz = ros1.robomodel("run", "--no-browser", "--port", str(port), "rviz", "rviz", "-d",
+                          str(config))  # fmt: skip
+    ros1.until(lambda: _serves(port) or rviz.poll() is not None, "the viewer serves")
+    assert rviz.poll() is None
+    # 143: SIGTERM came while the viewer was still being set up (ended through its cleanup)
+    assert _terminate(rviz) in (0, 143)
     assert _terminate(jsp) == 0 and _terminate(rsp) == 0
+
+
+def _serves(port: int) -> bool:
+    try:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as reply:
+            return bool(reply.status == 200)
+    except OSError:
+        return False
 
 
 def test_run_xacro_prints_the_expansion_and_unknown_names_get_one_line(ros1: Ros1) -> None:

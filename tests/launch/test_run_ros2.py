@@ -1,0 +1,132 @@
+"""``robomodel run`` on Zenoh with ``ros2 run``'s arguments: seed 003's ros2_control_node from
+``--params-file`` files, the ROS 2 spawner and unspawner, ROS 1's controller_manager script on
+the same manager, static_transform_publisher's flag form renamed and namespaced by
+``--ros-args -r``, robot_state_publisher with ``-p``, tf2_echo; each checked by its effect."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+import yaml
+
+from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+
+ARM = EXAMPLES / "two_link_arm"
+
+
+class _Bus:
+    def __init__(self, tmp_path: Path) -> None:
+        self.domain = unique_domain()
+        self.tmp = tmp_path
+        self.procs: list[subprocess.Popen[str]] = []
+
+    def cli(self, *argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+        command = [*ROBOMODEL, *argv, "--domain-id", self.domain]
+        return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+
+    def run(self, *argv: str, timeout: float = 90) -> subprocess.CompletedProcess[str]:
+        command = [*ROBOMODEL, "run", "--domain-id", self.domain, *argv]
+        return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+
+    def start(self, name: str, *argv: str) -> subprocess.Popen[str]:
+        log = (self.tmp / f"{name}.log").open("w")
+        proc = subprocess.Popen(
+            [*ROBOMODEL, "run", "--domain-id", self.domain, *argv],
+            stdout=log, stderr=subprocess.STDOUT, text=True, start_new_session=True,
+        )  # fmt: skip
+        self.procs.append(proc)
+        return proc
+
+    def log(self, name: str) -> str:
+        return (self.tmp / f"{name}.log").read_text()
+
+    def until(self, check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:
+        deadline = time.monotonic() + timeout_s
+        while not check():
+            assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
+            time.sleep(0.3)
+
+
+@pytest.fixture
+def bus(tmp_path: Path) -> Iterator[_Bus]:
+    graph = _Bus(tmp_path)
+    try:
+        yield graph
+    finally:
+        for proc in graph.procs:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+
+
+def _params_file(path: Path, node: str, values: dict[str, object]) -> Path:
+    path.write_text(yaml.safe_dump({node: {"ros__parameters": values}}))
+    return path
+
+
+def _stop(proc: subprocess.Popen[str]) -> int:
+    os.killpg(proc.pid, signal.SIGINT)
+    return proc.wait(30)
+
+
+def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> None:
+    description = subprocess.run(
+        [*ROBOMODEL, "xacro", str(ARM / "urdf/two_link_arm.urdf.xacro")],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert description.returncode == 0, description.stderr
+    urdf = _params_file(bus.tmp / "urdf.yaml", "/**", {"robot_description": description.stdout})
+    manager = bus.start(
+        "manager", "controller_manager", "ros2_control_node", "--ros-args",
+        "--params-file", str(urdf), "--params-file", str(ARM / "config/position_controllers.yaml"),
+    )  # fmt: skip
+    bus.until(lambda: "controller manager" in bus.log("manager") or manager.poll() is not None,
+              "the controller manager")  # fmt: skip
+    spawned = bus.run("controller_manager", "spawner", "joint_state_broadcaster",
+                      "joint1_position_controller")  # fmt: skip
+    assert spawned.returncode == 0, spawned.stderr
+    listed = bus.run("controller_manager", "controller_manager", "list")
+    assert listed.stdout.splitlines() == [
+        "'joint_state_broadcaster' - 'hardware_interface::JointStateInterface' ( running )",
+        "'joint1_position_controller' - 'hardware_interface::PositionJointInterface' ( running )",
+    ], listed.stderr
+    unspawned = bus.run("controller_manager", "unspawner", "joint1_position_controller")
+    assert unspawned.returncode == 0, unspawned.stderr
+    after = bus.cli("control", "list-controllers")
+    assert "joint_state_broadcaster" in after.stdout
+    assert "joint1_position_controller" not in after.stdout
+    # robot_state_publisher with -p and a remap: the broadcaster's joints become /tf
+    rsp = bus.start(
+        "rsp", "robot_state_publisher", "robot_state_publisher", "--ros-args",
+        "--params-file", str(urdf), "-p", "publish_frequency:=20.0", "-r", "__node:=arm_rsp",
+    )  # fmt: skip
+    bus.until(lambda: "/arm_rsp" in bus.cli("node", "list").stdout.split(), "/arm_rsp listed")
+    tf = bus.cli("topic", "echo", "/tf", "--once", timeout=60)
+    assert tf.returncode == 0 and "link1" in tf.stdout, tf.stderr
+    assert _stop(rsp) == 0 and _stop(manager) == 0
+
+
+def test_static_transform_publisher_flags_with_ros_args_and_tf2_echo(bus: _Bus) -> None:
+    stp = bus.start(
+        "stp", "tf2_ros", "static_transform_publisher", "--x", "1", "--y", "2", "--z", "3",
+        "--yaw", "1.5707963", "--frame-id", "world", "--child-frame-id", "tool",
+        "--ros-args", "-r", "__node:=tool_stp", "-r", "__ns:=/sensors",
+    )  # fmt: skip
+    bus.until(
+        lambda: "/sensors/tool_stp" in bus.cli("node", "list").stdout.split(),
+        "/sensors/tool_stp listed",
+    )
+    echo = bus.start("echo", "tf2_ros", "tf2_echo", "world", "tool")
+    bus.until(lambda: "Translation" in bus.log("echo"), "tf2_echo prints")
+    text = bus.log("echo")
+    assert "- Translation: [1.000, 2.000, 3.000]" in text
+    assert "in RPY (degree) [0.000, -0.000, 90.000]" in text
+    assert _stop(echo) == 0 and _stop(stp) == 0
+    bad = bus.run("tf2_ros", "static_transform_publisher", "--x", "1", "--ros-args", "-x", "y")
+    assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
