@@ -130,3 +130,18 @@ def test_static_transform_publisher_flags_with_ros_args_and_tf2_echo(bus: _Bus) 
     assert _stop(echo) == 0 and _stop(stp) == 0
     bad = bus.run("tf2_ros", "static_transform_publisher", "--x", "1", "--ros-args", "-x", "y")
     assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
+
+
+def test_readme_run_commands(bus: _Bus) -> None:
+    """The two commands of the README's `robomodel run` section, as written (on Zenoh)."""
+    from tests.conftest import ROOT
+
+    text = (ROOT / "README.md").read_text()
+    block = text.split("### `robomodel run PKG EXECUTABLE [ARGS]`", 1)[1].split("```bash\n")[1]
+    commands = [line.split("#")[0].split() for line in block.split("```")[0].splitlines()]
+    assert [c[:3] for c in commands] == [["robomodel", "run", "tf2_ros"]] * 2
+    publisher = bus.start("publisher", *commands[0][2:])
+    echo = bus.start("readme_echo", *commands[1][2:])
+    bus.until(lambda: "Translation" in bus.log("readme_echo"), "tf2_echo prints")
+    assert "- Translation: [1.000, 2.000, 3.000]" in bus.log("readme_echo")
+    assert _stop(echo) == 0 and _stop(publisher) == 0
