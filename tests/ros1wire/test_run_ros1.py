@@ -106,6 +106,16 @@ def test_run_state_publishers_with_rosrun_arguments(ros1: Ros1, tmp_path: Path) 
     # 143: SIGTERM came while the viewer was still being set up (ended through its cleanup)
     assert _terminate(rviz) in (0, 143)
     assert _terminate(jsp) == 0 and _terminate(rsp) == 0
+    # joint_state_publisher_gui: the viewer's sliders publish the joints
+    gui_port = free_port()
+    gui = ros1.robomodel(
+        "run", "--no-browser", "--port", str(gui_port), "joint_state_publisher_gui",
+        "joint_state_publisher_gui",
+    )  # fmt: skip
+    ros1.until(lambda: _serves(gui_port) or gui.poll() is not None, "the sliders are served")
+    assert {"joint_1", "joint_2", "joint_3"} <= set(_echo(ros1, "/joint_states")["name"])
+    assert "/joint_state_publisher" in ros1.run("/usr/bin/rosnode", "list").stdout.split()
+    assert _terminate(gui) in (0, 143)
 
 
 def _serves(port: int) -> bool:
@@ -168,6 +178,21 @@ def _rosservice(ros1: Ros1, generated: Path, *argv: str) -> subprocess.Completed
 def _response(stdout: str) -> Any:
     """The reply block of ``robomodel service call``."""
     return yaml.safe_load(stdout.split("):\n", 1)[1])
+
+
+BOX = """<robot name="box">
+  <link name="box_link">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+    <visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+def _line(text: str, word: str) -> str:
+    return next((line for line in text.splitlines() if word in line), "")
 
 
 _ROS1_STATES = {"active": "running", "inactive": "stopped", "unconfigured": "initialized"}
@@ -251,5 +276,22 @@ def test_controller_manager_script_and_service_call_on_seed_000_rrbot(
     )  # fmt: skip
     assert wrench.returncode == 0, wrench.stderr
     assert "nanosec: 200000000" in wrench.stdout
+    # ROS 1's spawner by run: loads and starts; on SIGINT stops and unloads (its shutdown hook)
+    assert _cm(ros1, "kill", "joint2_position_controller").returncode == 0
+    spawner = ros1.robomodel(
+        "run", "controller_manager", "spawner", "joint2_position_controller", "__ns:=/rrbot"
+    )
+    ros1.until(lambda: "( running )" in _line(_cm(ros1, "list").stdout, "joint2"), "spawned")
+    assert ros1.stop(spawner) == 0
+    assert "joint2" not in _cm(ros1, "list").stdout
+    # gazebo_ros spawn_model: a second model in the world
+    box = tmp_path / "box.urdf"
+    box.write_text(BOX)
+    spawned_box = ros1.robomodel_run(
+        "run", "gazebo_ros", "spawn_model", "-urdf", "-file", str(box), "-model", "box", "-z", "2"
+    )
+    assert spawned_box.returncode == 0, spawned_box.stderr
+    world = ros1.robomodel_run("service", "call", "/gazebo/get_world_properties")
+    assert "box" in _response(world.stdout)["model_names"], world.stdout
     bad = _cm(ros1, "lst")
     assert bad.returncode == 2 and "did you mean 'list'" in bad.stderr
