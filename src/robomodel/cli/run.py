@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import time
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, bus_from_args
@@ -85,6 +86,26 @@ def _refuse(package: str, executable: str) -> None:
     )
 
 
+# The ROS 1 nodes that pick an anonymous name (ros::init_options::AnonymousName, rospy's
+# anonymous=True), so that two of them can run at once: tf2_ros's and tf's
+# static_transform_publisher, tf_echo, tf2_echo, rviz, controller_manager's scripts.
+_ANONYMOUS_ROS1 = {
+    ("tf2_ros", "static_transform_publisher"), ("tf", "static_transform_publisher"),
+    ("tf", "tf_echo"), ("tf2_ros", "tf2_echo"), ("rviz", "rviz"),
+    ("controller_manager", "controller_manager"), ("controller_manager", "spawner"),
+    ("controller_manager", "unspawner"),
+}  # fmt: skip
+
+
+def _default_name(package: str, executable: str, dialect: str) -> str | None:
+    """The name the node gives itself: ROS 2's executables pick their own (None)."""
+    if dialect != "ros1":
+        return None
+    if (package, executable) in _ANONYMOUS_ROS1:
+        return f"{executable}_{os.getpid()}_{int(time.time() * 1000)}"  # rospy's form
+    return executable
+
+
 def _spec(args: argparse.Namespace, dialect: str) -> tuple[Any, dict[str, Any], str | None]:
     """The node's NodeSpec, its ROS 1 private parameters (full names), its ROS 1 master."""
     from robomodel.launch.model import NodeSpec, ParamSource
@@ -108,7 +129,7 @@ def _spec(args: argparse.Namespace, dialect: str) -> tuple[Any, dict[str, Any], 
         dialect,  # type: ignore[arg-type]
         args.package,
         args.executable,
-        parsed.name or (args.executable if dialect == "ros1" else None),
+        parsed.name or _default_name(args.package, args.executable, dialect),
         namespace=namespace,
         args=parsed.args,
         remaps=parsed.remaps,
