@@ -117,6 +117,11 @@ def test_param_errors_are_one_line(ros1: Ros1, tmp_path: Path) -> None:
     assert missing.stderr.strip().splitlines() == [
         f"robomodel: error: param load: file [{tmp_path / 'nope.yaml'}] does not exist"
     ]
+    (tmp_path / "g.yaml").write_text("gain: {p: 1}\n")
+    swapped = ros1.run(*ROBOMODEL, "param", "load", "/", str(tmp_path / "g.yaml"))
+    assert swapped.returncode == 2
+    assert f"did you mean `param load {tmp_path / 'g.yaml'} /`?" in swapped.stderr
+    assert ros1.run(ROSPARAM, "get", "/gain").returncode == 1  # nothing was loaded
     big = ros1.run(*ROBOMODEL, "param", "set", "/big", "4294967296")
     assert big.returncode == 2 and "32-bit" in big.stderr
     assert ros1.run(ROSPARAM, "get", "/big").returncode == 1  # nothing was set

@@ -244,7 +244,12 @@ def load_documents(file: str, namespace: str | None) -> list[tuple[Any, str]]:
         text = sys.stdin.read()
     else:
         if not Path(file).is_file():
-            raise RobomodelError(f"param load: file [{file}] does not exist")
+            swapped = (
+                f" (did you mean `param load {namespace} {file}`?)"
+                if (namespace and Path(namespace).is_file())
+                else ""
+            )
+            raise RobomodelError(f"param load: file [{file}] does not exist{swapped}")
         try:
             text = Path(file).read_text()
         except (OSError, UnicodeDecodeError) as exc:
