@@ -104,11 +104,11 @@ def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> Non
     # robot_state_publisher with -p and a remap: the broadcaster's joints become /tf
     rsp = bus.start(
         "rsp", "robot_state_publisher", "robot_state_publisher", "--ros-args",
-        "--params-file", str(urdf), "-p", "publish_frequency:=20.0", "-r", "__node:=arm_rsp",
+        "--params-file", str(urdf), "-p", "frame_prefix:=arm/", "-r", "__node:=arm_rsp",
     )  # fmt: skip
     bus.until(lambda: "/arm_rsp" in bus.cli("node", "list").stdout.split(), "/arm_rsp listed")
     tf = bus.cli("topic", "echo", "/tf", "--once", timeout=60)
-    assert tf.returncode == 0 and "link1" in tf.stdout, tf.stderr
+    assert tf.returncode == 0 and "child_frame_id: arm/link1" in tf.stdout, tf.stdout
     assert _stop(rsp) == 0 and _stop(manager) == 0
 
 

@@ -241,6 +241,12 @@ def test_controller_manager_script_and_service_call_on_seed_000_rrbot(
         for c in _response(ours.stdout)["controller"]
     }
     assert our_states == their_states
+    claims = {
+        c["name"]: c["claimed_resources"] for c in yaml.safe_load(theirs.stdout)["controller"]
+    }
+    assert claims["joint2_position_controller"] == []  # stopped: ROS 2 claims nothing
+    missing = _cm(ros1, "load", "no_such_controller")
+    assert missing.returncode == 1 and missing.stdout == "Error when loading 'no_such_controller'\n"
     assert their_states["joint2_position_controller"][0] == "stopped"
     assert "joint1_position_controller" not in their_states
     spawned = _cm(ros1, "spawn", "joint1_position_controller")
@@ -256,8 +262,13 @@ def test_controller_manager_script_and_service_call_on_seed_000_rrbot(
     )  # fmt: skip
     assert switch.returncode == 0 and _response(switch.stdout)["ok"] is True, switch.stderr
     running = _rosservice(ros1, generated, "call", "/rrbot/controller_manager/list_controllers")
-    states = {c["name"]: c["state"] for c in yaml.safe_load(running.stdout)["controller"]}
+    controllers = yaml.safe_load(running.stdout)["controller"]
+    states = {c["name"]: c["state"] for c in controllers}
     assert states == dict.fromkeys(states, "running") and len(states) == 3
+    claims = {c["name"]: c["claimed_resources"] for c in controllers}
+    assert claims["joint2_position_controller"] == [
+        {"hardware_interface": "hardware_interface::EffortJointInterface", "resources": ["joint2"]}
+    ]
     # std_srvs/Empty, type looked up by both tools; time fields as secs/nsecs
     assert _rosservice(ros1, generated, "type", "/gazebo/pause_physics").stdout.strip() == (
         "std_srvs/Empty"
