@@ -168,6 +168,8 @@ def run(args: argparse.Namespace) -> int:
         open_browser=not args.no_browser,
         port=args.port,
         strict_start=True,
+        connect=tuple(args.connect),
+        listen=tuple(args.listen),
     )
     runner = LaunchRunner([spec], options, log=_quiet)
     runner.open_bus()
