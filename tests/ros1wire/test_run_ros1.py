@@ -67,6 +67,16 @@ def test_run_static_transform_publisher_both_forms_and_tf_echo(ros1: Ros1, tmp_p
     assert "- Translation: [1.000, 2.000, 3.500]" in (tmp_path / "echo.log").read_text()
     assert _terminate(echo) == 0
     assert _terminate(euler) == 0 and _terminate(quaternion) == 0
+    # tf's static_transform_publisher: x y z qx qy qz qw frame child period_in_ms, on /tf
+    periodic = ros1.robomodel(
+        "run", "tf", "static_transform_publisher", "0", "0", "1", "0", "0", "0", "1",
+        "world", "marker", "50",
+    )  # fmt: skip
+    assert _transforms(_echo(ros1, "/tf"))["marker"] == (
+        "world",
+        pytest.approx((0, 0, 1, 0, 0, 0, 1)),
+    )
+    assert _terminate(periodic) == 0
 
 
 def _robomodel() -> list[str]:
@@ -84,8 +94,8 @@ def test_run_state_publishers_with_rosrun_arguments(ros1: Ros1, tmp_path: Path) 
         "joint_states:=/planar/joint_states", "__name:=jsp",
     )  # fmt: skip
     rsp = ros1.robomodel(
-        "run", "robot_state_publisher", "robot_state_publisher",
-        "joint_states:=/planar/joint_states",
+        "run", "robot_state_publisher", "state_publisher",  # ROS 1's old name
+        "joint_states:=/planar/joint_states", "__name:=robot_state_publisher",
     )  # fmt: skip
     _node_up(ros1, "/jsp", jsp)
     _node_up(ros1, "/robot_state_publisher", rsp)
@@ -129,10 +139,11 @@ def _serves(port: int) -> bool:
 def test_run_xacro_prints_the_expansion_and_unknown_names_get_one_line(ros1: Ros1) -> None:
     _master(ros1)
     source = EXAMPLES / "rrbot_description/urdf/rrbot.xacro"
-    ours = ros1.robomodel_run("run", "xacro", "xacro", str(source))
     reference = ros1.robomodel_run("xacro", str(source))
-    assert ours.returncode == 0, ours.stderr
-    assert ours.stdout == reference.stdout and "<robot" in ours.stdout
+    for executable in ("xacro", "xacro.py"):
+        ours = ros1.robomodel_run("run", "xacro", executable, str(source))
+        assert ours.returncode == 0, ours.stderr
+        assert ours.stdout == reference.stdout and "<robot" in ours.stdout
     for argv, said in (
         (["contrller_manager", "spawner"], "did you mean 'controller_manager'?"),
         (["tf2_ros", "static_transform_publsher"], "did you mean 'static_transform_publisher'"),
@@ -295,6 +306,13 @@ def test_controller_manager_script_and_service_call_on_seed_000_rrbot(
     ros1.until(lambda: "( running )" in _line(_cm(ros1, "list").stdout, "joint2"), "spawned")
     assert ros1.stop(spawner) == 0
     assert "joint2" not in _cm(ros1, "list").stdout
+    # ROS 1's unspawner: the controller is gone while it runs, back when it ends
+    unspawner = ros1.robomodel(
+        "run", "controller_manager", "unspawner", "joint1_position_controller", "__ns:=/rrbot"
+    )
+    ros1.until(lambda: "joint1" not in _cm(ros1, "list").stdout, "unspawned")
+    assert ros1.stop(unspawner) == 0
+    assert "( running )" in _line(_cm(ros1, "list").stdout, "joint1")
     # gazebo_ros spawn_model: a second model in the world
     box = tmp_path / "box.urdf"
     box.write_text(BOX)
