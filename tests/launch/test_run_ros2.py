@@ -46,7 +46,14 @@ class _Bus:
     def log(self, name: str) -> str:
         return (self.tmp / f"{name}.log").read_text()
 
-    def until(self, check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:
+    def listed(self, node: str) -> bool:
+        """``robomodel node list`` shows ``node`` (False while a loaded machine is slow)."""
+        try:
+            return node in self.cli("node", "list", timeout=30).stdout.split()
+        except subprocess.TimeoutExpired:
+            return False
+
+    def until(self, check: Callable[[], bool], what: str, timeout_s: float = 120) -> None:
         deadline = time.monotonic() + timeout_s
         while not check():
             assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
@@ -89,7 +96,7 @@ def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> Non
     bus.until(lambda: "controller manager" in bus.log("manager") or manager.poll() is not None,
               "the controller manager")  # fmt: skip
     spawned = bus.run("controller_manager", "spawner", "joint_state_broadcaster",
-                      "joint1_position_controller")  # fmt: skip
+                      "joint1_position_controller", "--controller-manager-timeout", "120")  # fmt: skip
     assert spawned.returncode == 0, spawned.stderr
     listed = bus.run("controller_manager", "controller_manager", "list")
     assert listed.stdout.splitlines() == [
@@ -106,7 +113,7 @@ def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> Non
         "rsp", "robot_state_publisher", "robot_state_publisher", "--ros-args",
         "--params-file", str(urdf), "-p", "frame_prefix:=arm/", "-r", "__node:=arm_rsp",
     )  # fmt: skip
-    bus.until(lambda: "/arm_rsp" in bus.cli("node", "list").stdout.split(), "/arm_rsp listed")
+    bus.until(lambda: bus.listed("/arm_rsp"), "/arm_rsp listed")
     tf = bus.cli("topic", "echo", "/tf", "--once", timeout=60)
     assert tf.returncode == 0 and "child_frame_id: arm/link1" in tf.stdout, tf.stdout
     assert _stop(rsp) == 0 and _stop(manager) == 0
@@ -118,10 +125,7 @@ def test_static_transform_publisher_flags_with_ros_args_and_tf2_echo(bus: _Bus) 
         "--yaw", "1.5707963", "--frame-id", "world", "--child-frame-id", "tool",
         "--ros-args", "-r", "__node:=tool_stp", "-r", "__ns:=/sensors",
     )  # fmt: skip
-    bus.until(
-        lambda: "/sensors/tool_stp" in bus.cli("node", "list").stdout.split(),
-        "/sensors/tool_stp listed",
-    )
+    bus.until(lambda: bus.listed("/sensors/tool_stp"), "/sensors/tool_stp listed")
     echo = bus.start("echo", "tf2_ros", "tf2_echo", "world", "tool")
     bus.until(lambda: "Translation" in bus.log("echo"), "tf2_echo prints")
     text = bus.log("echo")
