@@ -147,7 +147,9 @@ def probe_service_type(master: str, caller_id: str, name: str, timeout_s: float 
     host, port = _lookup(master, caller_id, name, timeout_s)
     try:
         with socket.create_connection((host, port), timeout=max(0.1, timeout_s)) as sock:
-            write_header(sock, {"callerid": caller_id, "md5sum": "*", "probe": "1", "service": name})
+            write_header(
+                sock, {"callerid": caller_id, "md5sum": "*", "probe": "1", "service": name}
+            )
             header = read_header(sock)
     except (OSError, TcprosError) as exc:
         raise ServiceCallError(f"service '{name}' did not answer a type probe: {exc}") from None
