@@ -322,5 +322,11 @@ def test_controller_manager_script_and_service_call_on_seed_000_rrbot(
     assert spawned_box.returncode == 0, spawned_box.stderr
     world = ros1.robomodel_run("service", "call", "/gazebo/get_world_properties")
     assert "box" in _response(world.stdout)["model_names"], world.stdout
+    # without __ns: ROS 1's script waits for /controller_manager; robomodel says where they are
+    hint = tmp_path / "hint.log"
+    waiting = ros1.robomodel("run", "controller_manager", "controller_manager", "list", log=hint)
+    ros1.until(lambda: "waiting for service" in hint.read_text(), "the waiting line")
+    assert "controller managers on the graph are in: /rrbot (give __ns:=NS)" in hint.read_text()
+    assert ros1.stop(waiting) == 0
     bad = _cm(ros1, "lst")
     assert bad.returncode == 2 and "did you mean 'list'" in bad.stderr

@@ -132,6 +132,22 @@ def _run(script: _Script, command: str, names: list[str]) -> bool:
     return ok
 
 
+def _waiting_hint(ctx: NodeContext, prefix: str) -> str:
+    """Where the script waits, and the controller managers the graph has instead."""
+    suffix = "/controller_manager/list_controllers"
+    try:
+        services = ctx.runtime.graph(timeout_s=1.0).services
+    except Exception:  # the hint is a courtesy: no graph, no list
+        services = {}
+    others = sorted(name[: -len(suffix)] or "/" for name in services if name.endswith(suffix))
+    where = (
+        f"; controller managers on the graph are in: {', '.join(others)} (give __ns:=NS)"
+        if others
+        else "; no controller manager is on the graph yet"
+    )
+    return f"waiting for service {prefix}/list_controllers{where}"
+
+
 @register(
     "ros1",
     "controller_manager",
@@ -156,7 +172,11 @@ def controller_manager(ctx: NodeContext) -> RunningNode:
     def work(node: ThreadNode) -> int:
         from robomodel.launch.nodes.controllers import wait_for_manager
 
-        ready = wait_for_manager(ctx, node, script.prefix, 0.0, zero_waits_forever=True)
+        # ROS 1's script waits for the service without a word; robomodel says where it waits
+        ready = wait_for_manager(ctx, node, script.prefix, 2.0, call_timeout_s=2.0)
+        if ready is False:
+            ctx.log(_waiting_hint(ctx, script.prefix))
+            ready = wait_for_manager(ctx, node, script.prefix, 0.0, zero_waits_forever=True)
         if not ready:
             return 0 if node.stopping.is_set() else 1
         return 0 if _run(script, command, args[1:]) else 1
