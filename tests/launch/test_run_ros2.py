@@ -95,6 +95,7 @@ def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> Non
     )  # fmt: skip
     bus.until(lambda: "controller manager" in bus.log("manager") or manager.poll() is not None,
               "the controller manager")  # fmt: skip
+    assert manager.poll() is None, bus.log("manager")
     spawned = bus.run("controller_manager", "spawner", "joint_state_broadcaster",
                       "joint1_position_controller", "--controller-manager-timeout", "120")  # fmt: skip
     assert spawned.returncode == 0, spawned.stderr
@@ -103,6 +104,15 @@ def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> Non
         "'joint_state_broadcaster' - 'hardware_interface::JointStateInterface' ( running )",
         "'joint1_position_controller' - 'hardware_interface::PositionJointInterface' ( running )",
     ], listed.stderr
+    stopped = bus.run(
+        "controller_manager", "controller_manager", "stop", "joint1_position_controller"
+    )
+    assert stopped.stdout == "Stopped ['joint1_position_controller'] successfully\n", stopped.stderr
+    assert bus.run("controller_manager", "controller_manager", "list").stdout.splitlines()[1] == (
+        "'joint1_position_controller' - 'hardware_interface::PositionJointInterface' ( stopped )"
+    )
+    assert bus.run("controller_manager", "controller_manager", "start",
+                   "joint1_position_controller").returncode == 0  # fmt: skip
     unspawned = bus.run("controller_manager", "unspawner", "joint1_position_controller")
     assert unspawned.returncode == 0, unspawned.stderr
     after = bus.cli("control", "list-controllers")

@@ -33,7 +33,9 @@ def format_controller_line(entry: Any) -> str:
     """One line of ``controller_manager list`` for a ControllerState (ROS 2 fields)."""
     from robomodel.runtime.transport.ros1.ros1_fields import ros1_hardware_interface
 
-    kinds = {str(i).rpartition("/")[2] for i in entry.claimed_interfaces}
+    # ROS 1 reports a controller's claims whatever its state; ROS 2 claims only while active
+    claimed = entry.claimed_interfaces or entry.required_command_interfaces
+    kinds = {str(i).rpartition("/")[2] for i in claimed}
     interfaces = sorted(ros1_hardware_interface(kind) for kind in kinds)
     if not interfaces and "JointState" in entry.type:
         # ROS 1's JointStateController claims the JointStateInterface, without resources
