@@ -73,9 +73,11 @@ class Ros1:
     def robomodel_run(self, *argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
         return self.run(*ROBOMODEL, *argv, timeout=timeout)
 
-    def run(self, *argv: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
+    def run(
+        self, *argv: str, timeout: float = 30, cwd: Path | None = None
+    ) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
-            list(argv), capture_output=True, text=True, env=self.env, timeout=timeout
+            list(argv), capture_output=True, text=True, env=self.env, timeout=timeout, cwd=cwd
         )
 
     def until(self, check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:

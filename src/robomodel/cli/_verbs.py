@@ -69,6 +69,11 @@ VERBS: tuple[Verb, ...] = (
         "simulate a robot (Gazebo's role, on MuJoCo) with its controllers",
     ),
     Verb(
+        "run",
+        "robomodel.cli.run",
+        "run one node as rosrun / ros2 run do (the nodes robomodel launch knows)",
+    ),
+    Verb(
         "launch",
         "robomodel.cli.launch",
         "run a ROS 1 or ROS 2 launch file with robomodel's nodes",

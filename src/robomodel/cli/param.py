@@ -1,6 +1,8 @@
 """``robomodel param``: list, get, set, dump and load node parameters (ros2 param), and the
-ROS 1 parameter server of ``robomodel launch`` (rosparam): ``param get /name``, ``param set
-/name VALUE``, ``param delete /name``, ``param list /``."""
+ROS 1 parameter server: on a ROS 1 master (``--bus ros1``, or ROS_MASTER_URI set) every verb
+takes rosparam's arguments and prints what rosparam prints (:mod:`robomodel.cli._rosparam`);
+on Zenoh, ``param get /name``, ``param set /name VALUE``, ``param delete /name`` and ``param
+list /`` reach the parameter server of a ROS 1 launch that ``robomodel launch`` runs."""
 
 from __future__ import annotations
 
@@ -44,12 +46,15 @@ def register(subparsers: Any) -> None:
     verbs = parser.add_subparsers(dest="param_verb", metavar="VERB")
     verbs.required = True
     specs = {
-        "list": (["node?"], "parameter names of one node or of every node"),
-        "get": (["node", "name?"], "print one parameter (NODE NAME, or /NAME: ROS 1 server)"),
-        "set": (["node", "name", "value?"], "set one parameter (NODE NAME VALUE, or /NAME VALUE)"),
-        "delete": (["node"], "delete a parameter of the ROS 1 parameter server (/NAME)"),
-        "dump": (["node"], "print a node's parameters as a ros__parameters YAML file"),
-        "load": (["node", "file"], "set parameters from a ros__parameters YAML file"),
+        "list": (["node?"], "parameter names of one node or of every node (ROS 1: [NS])"),
+        "get": (["node", "name?"], "print one parameter (NODE NAME; ROS 1: NAME)"),
+        "set": (
+            ["node", "name?", "value?"],
+            "set one parameter (NODE NAME VALUE; ROS 1: NAME VALUE or NAME -t FILE)",
+        ),
+        "delete": (["node"], "delete a parameter of the ROS 1 parameter server (NAME)"),
+        "dump": (["node?", "name?"], "print a node's parameters (NODE; ROS 1: [FILE] [NS])"),
+        "load": (["node", "file?"], "set parameters from YAML (NODE FILE; ROS 1: FILE [NS])"),
     }
     for verb, (positionals, help_text) in specs.items():
         p = verbs.add_parser(verb, help=help_text)
@@ -58,8 +63,40 @@ def register(subparsers: Any) -> None:
                 p.add_argument(positional[:-1], nargs="?")
             else:
                 p.add_argument(positional)
+        _add_rosparam_options(verb, p)
         add_bus_arguments(p)
         p.set_defaults(func=globals()[f"run_{verb}"])
+
+
+def _add_rosparam_options(verb: str, parser: argparse.ArgumentParser) -> None:
+    """rosparam's own options (ROS 1 master only)."""
+    if verb == "set":
+        parser.add_argument(
+            "-t", "--textfile", metavar="FILE", help="ROS 1: set the parameter to FILE's text"
+        )
+        parser.add_argument(
+            "-b", "--binfile", metavar="FILE", help="ROS 1: set the parameter to FILE's bytes"
+        )
+    if verb == "get":
+        parser.add_argument(
+            "-p", dest="pretty", action="store_true", help="ROS 1: rosparam's pretty print"
+        )
+
+
+def _ros1(verb: str, args: argparse.Namespace) -> int | None:
+    """rosparam's command when the bus is a ROS 1 master; None on Zenoh."""
+    if bus_from_args(args) != "ros1":
+        for option in ("textfile", "binfile", "pretty"):
+            if getattr(args, option, None):
+                flag = {"textfile": "-t", "binfile": "-b", "pretty": "-p"}[option]
+                raise RobomodelError(
+                    f"param {verb} {flag} is rosparam's: it needs a ROS 1 master (--bus ros1 "
+                    "or ROS_MASTER_URI)"
+                )
+        return None
+    from robomodel.cli._rosparam import run_rosparam
+
+    return _server_call(args, lambda server: run_rosparam(verb, server, args))
 
 
 def _client(context: Context, node: str) -> ParameterClient:
@@ -67,8 +104,10 @@ def _client(context: Context, node: str) -> ParameterClient:
 
 
 def run_list(args: argparse.Namespace) -> int:
-    ros1 = bus_from_args(args) == "ros1"  # ROS 1 has one parameter tree, no node parameters
-    if ros1 or (args.node is not None and args.node.endswith("/")):  # rosparam list [NS/]
+    code = _ros1("list", args)  # ROS 1 has one parameter tree, no node parameters
+    if code is not None:
+        return code
+    if args.node is not None and args.node.endswith("/"):  # rosparam list [NS/]
         namespace = args.node or "/"
 
         def show_names(server: Any) -> int:
@@ -130,10 +169,16 @@ def _print_value(value: Any) -> int:
 
 
 def run_delete(args: argparse.Namespace) -> int:
+    code = _ros1("delete", args)
+    if code is not None:
+        return code
     return _server_call(args, lambda server: server.delete(args.node) or 0)
 
 
 def run_get(args: argparse.Namespace) -> int:
+    code = _ros1("get", args)
+    if code is not None:
+        return code
     if args.name is None:  # rosparam get /name
         return _server_call(args, lambda server: _print_value(server.get(args.node)))
     with context_from_args(args) as context:
@@ -150,6 +195,11 @@ def run_get(args: argparse.Namespace) -> int:
 
 
 def run_set(args: argparse.Namespace) -> int:
+    code = _ros1("set", args)
+    if code is not None:
+        return code
+    if args.name is None:
+        raise RobomodelError("param set: give NODE NAME VALUE (or /NAME VALUE)")
     if args.value is None:  # rosparam set /name VALUE (YAML)
         ros1_value = load_yaml(args.name, what="the parameter value")
         return _server_call(args, lambda server: server.set(args.node, ros1_value) or 0)
@@ -165,6 +215,11 @@ def run_set(args: argparse.Namespace) -> int:
 
 
 def run_dump(args: argparse.Namespace) -> int:
+    code = _ros1("dump", args)
+    if code is not None:
+        return code
+    if args.node is None or args.name is not None:
+        raise RobomodelError("param dump: give one NODE (ros2 param dump NODE)")
     with context_from_args(args) as context:
         wait_for_peers(context)
         client = _client(context, args.node)
@@ -174,6 +229,11 @@ def run_dump(args: argparse.Namespace) -> int:
 
 
 def run_load(args: argparse.Namespace) -> int:
+    code = _ros1("load", args)
+    if code is not None:
+        return code
+    if args.file is None:
+        raise RobomodelError("param load: give NODE FILE (ros2 param load NODE FILE)")
     node = args.node if args.node.startswith("/") else f"/{args.node}"
     try:
         values = load_parameters_file(args.file, node)

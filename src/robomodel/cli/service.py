@@ -8,6 +8,10 @@ real ROS 2 service answers ``robomodel service call``. The request is YAML, as
     robomodel service call /gazebo/pause_physics std_srvs/srv/Empty
     robomodel service call /controller_manager/list_controllers
     robomodel service call /talker/get_parameters rcl_interfaces/srv/GetParameters "{names: [gain]}"
+
+On a ROS 1 master the master knows no service types: as ``rosservice`` does, the type is asked
+of the service's provider (a TCPROS ``probe=1`` connection), and the request may use ROS 1's
+field names (``secs``/``nsecs``, controller_manager_msgs' ``start_controllers``, ...).
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime import Context
 from robomodel.runtime.msg import message_from_yaml, message_to_yaml
 from robomodel.runtime.msg._schema import Service, get_service_type
+from robomodel.runtime.msg.yaml_io import message_from_dict
 from robomodel.runtime.transport.base import ServiceCallError
 
 __all__ = ["register", "service_type"]
@@ -60,10 +65,38 @@ def register(subparsers: Any) -> None:
     p.set_defaults(func=_run_call)
 
 
+def _types(context: Context, name: str, types: Any) -> list[str]:
+    """The service's types: the graph's, or on ROS 1 the one its provider names."""
+    known = sorted(t for t in types if t)  # ROS 1's master knows none: ""
+    if known or context.transport.name != "ros1":
+        return known
+    try:
+        return [_probed(context, name, 3.0)]
+    except ServiceCallError:
+        return []
+
+
+def _probed(context: Context, name: str, timeout_s: float) -> str:
+    """rosservice's type lookup: the provider's ``type`` header, as robomodel names it."""
+    from robomodel.runtime.transport.ros1.services import probe_service_type
+
+    ros1_name = probe_service_type(
+        context.transport.master_uri,  # type: ignore[attr-defined]
+        "/robomodel_service",
+        name,
+        timeout_s,
+    )
+    package, _, stem = ros1_name.partition("/")
+    return f"{package}/srv/{stem}"
+
+
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         for name, info in sorted(settled_graph(context).services.items()):
-            print(f"{name} [{', '.join(sorted(info.types))}]" if args.show_types else name)
+            if args.show_types:
+                print(f"{name} [{', '.join(_types(context, name, info.types))}]")
+            else:
+                print(name)
     return 0
 
 
@@ -73,7 +106,7 @@ def _run_type(args: argparse.Namespace) -> int:
         info = settled_graph(context).services.get(name)
         if info is None:
             raise RobomodelError(_not_offered(context, name))
-        for type_name in sorted(info.types):
+        for type_name in _types(context, name, info.types):
             print(type_name)
     return 0
 
@@ -92,6 +125,11 @@ def service_type(context: Context, name: str, given: str | None) -> type[Service
     if given:
         return get_service_type(given)
     info = settled_graph(context).services.get(name)
+    if info is not None and not any(info.types) and context.transport.name == "ros1":
+        try:
+            return get_service_type(_probed(context, name, 3.0))
+        except ServiceCallError as exc:
+            raise RobomodelError(f"{exc} (give its type to call it anyway)") from None
     if info is None or not info.types:
         raise RobomodelError(f"{_not_offered(context, name)} (give its type to call it anyway)")
     if len(info.types) > 1:
@@ -102,6 +140,23 @@ def service_type(context: Context, name: str, given: str | None) -> type[Service
     return get_service_type(next(iter(info.types)))
 
 
+def _request(context: Context, srv_type: type[Service], text: str) -> Any:
+    """The request from its YAML; on ROS 1, ROS 1's field names are taken too."""
+    if context.transport.name != "ros1":
+        return message_from_yaml(srv_type.Request, text)
+    import yaml
+
+    from robomodel._yaml_bounded import load_yaml
+    from robomodel.runtime.transport.ros1.ros1_yaml import from_ros1_fields
+
+    try:
+        data = load_yaml(text, what="the request") if text.strip() else None
+    except yaml.YAMLError as exc:
+        reason = " ".join(str(exc).split())
+        raise RobomodelError(f"the request is not valid YAML: {reason}") from None
+    return message_from_dict(srv_type.Request, from_ros1_fields(srv_type.Request, data))
+
+
 def _run_call(args: argparse.Namespace) -> int:
     name = "/" + args.service.lstrip("/")
     given, text = args.type, args.request
@@ -110,7 +165,7 @@ def _run_call(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         wait_for_peers(context)
         srv_type = service_type(context, name, given)
-        request = message_from_yaml(srv_type.Request, text)
+        request = _request(context, srv_type, text)
         print(f"requester: making request: {srv_type.Request.__typename__}")
         print(message_to_yaml(request).rstrip() if request.__fields__ else "{}")
         start = time.monotonic()

@@ -45,6 +45,9 @@ class RunOptions:
     duration_s: float | None = None
     package_index: Any = None
     master_uri: str | None = None  # the ROS 1 master (bus "ros1"); default ROS_MASTER_URI
+    strict_start: bool = False  # a node whose start fails raises (robomodel run), not logged
+    connect: tuple[str, ...] = ()  # Zenoh endpoints to connect to / listen on (robomodel run)
+    listen: tuple[str, ...] = ()
 
 
 def unsupported_message(spec: NodeSpec) -> str:
@@ -120,6 +123,8 @@ class LaunchRunner:
         kwargs: dict[str, Any] = {}
         if self.options.bus == "zenoh" and self.options.domain_id is not None:
             kwargs["domain_id"] = self.options.domain_id
+        if self.options.bus == "zenoh" and (self.options.connect or self.options.listen):
+            kwargs.update(connect=list(self.options.connect), listen=list(self.options.listen))
         self.context = Context(self.options.bus, **kwargs)
         self.params, self.hosted_params = connect_or_host(self.context)
         where = "hosted by this process" if self.hosted_params else "of another robomodel process"
@@ -208,6 +213,8 @@ class LaunchRunner:
         try:
             handle = factory(ctx)
         except (RobomodelError, ValueError) as exc:
+            if self.options.strict_start:
+                raise
             self.log(f"[{spec.fqn}] failed to start: {exc}")
             handle = _Failed()
         self.started.append(_Started(spec, handle, restarts))

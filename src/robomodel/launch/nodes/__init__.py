@@ -1,6 +1,7 @@
 """Node mappings: which robomodel component runs for each ROS node of a launch file."""
 
 from robomodel.launch.nodes import (
+    cm_script,
     controllers,
     gazebo,
     ros2_control,
@@ -8,6 +9,7 @@ from robomodel.launch.nodes import (
     ros2_nodes,
     state,
     tf_static,
+    tools,
     viewer,
 )
 from robomodel.launch.nodes.base import (
@@ -23,6 +25,7 @@ __all__ = [
     "NodeContext",
     "RunningNode",
     "ViewerRequest",
+    "cm_script",
     "controllers",
     "factory_for",
     "gazebo",
@@ -33,5 +36,6 @@ __all__ = [
     "state",
     "supported",
     "tf_static",
+    "tools",
     "viewer",
 ]

@@ -229,48 +229,6 @@ def _shutdown(manager: _Manager, loaded: list[str]) -> None:
         pass  # the manager's process has ended already
 
 
-_COMMANDS = ("load", "unload", "start", "stop", "spawn", "kill", "list", "list-types")
-
-
-@register(
-    "ros1",
-    "controller_manager",
-    "controller_manager",
-    purpose="controller_manager load|unload|start|stop|spawn|kill|list NAME... on robomodel's "
-    "controller manager",
-)
-def controller_manager(ctx: NodeContext) -> RunningNode:
-    args = [a for a in ctx.spec.args if not a.startswith("__")]
-    if not args or args[0] not in _COMMANDS:
-        raise RobomodelError(
-            f"controller_manager: the command must be one of {', '.join(_COMMANDS)}"
-        )
-    command, names = args[0], args[1:]
-    manager = _Manager(ctx, None)
-
-    def work(node: ThreadNode) -> int:
-        if not manager.wait(node, 30.0):
-            return 1
-        ok = True
-        if command == "list":
-            for entry in manager.client.list_controllers():
-                ctx.log(f"{entry.name} - {entry.type} ( {entry.state} )")
-        elif command == "list-types":
-            for name in manager.client.list_types():
-                ctx.log(name)
-        if command in ("load", "spawn"):
-            ok = all(manager.load(n) for n in names)
-        if command in ("start", "spawn"):
-            ok = manager.switch(list(names), []) and ok
-        if command in ("stop", "kill"):
-            ok = manager.switch([], list(names))
-        if command in ("unload", "kill"):
-            ok = all(manager.unload(n) for n in names) and ok
-        return 0 if ok else 1
-
-    return ThreadNode(f"controller_manager {ctx.spec.fqn}", work, ctx.log)
-
-
 @register(
     "ros1",
     "controller_manager",

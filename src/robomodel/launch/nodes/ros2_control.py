@@ -226,6 +226,7 @@ def _wait(ctx: NodeContext, node: ThreadNode, path: str, options: Ros2SpawnerArg
     "ros2",
     "controller_manager",
     "spawner",
+    "spawner.py",  # Foxy's name
     purpose="loads, configures and activates controllers (-c, -p, --inactive, --load-only, "
     "--activate-as-group, -u)",
 )
@@ -290,6 +291,7 @@ def spawner(ctx: NodeContext) -> RunningNode:
     "ros2",
     "controller_manager",
     "unspawner",
+    "unspawner.py",  # Foxy's name
     purpose="deactivates and unloads controllers",
 )
 def unspawner(ctx: NodeContext) -> RunningNode:

@@ -7,7 +7,9 @@ message count; ``time``/``duration`` are builtin_interfaces' Time/Duration).
 - controller_manager_msgs/ControllerState: ROS 1's states ``initialized``/``stopped``/
   ``running`` are ROS 2's ``unconfigured``/``inactive``/``active``; ``claimed_resources``
   (one entry per hardware interface type, its joints as resources) is built from, and read
-  back into, ROS 2's ``claimed_interfaces`` (``joint/type``).
+  back into, ROS 2's ``claimed_interfaces`` (``joint/type``); the interface types are named
+  as ROS 1's hardware_interface classes (``effort`` is
+  ``hardware_interface::EffortJointInterface``).
 - controller_manager_msgs/SwitchController: ROS 1's ``start_controllers``/
   ``stop_controllers``/``start_asap``/``timeout`` (float64 seconds) are ROS 2's
   ``activate_controllers``/``deactivate_controllers``/``activate_asap``/``timeout``
@@ -24,7 +26,7 @@ from typing import Any
 
 from robomodel.runtime.transport.ros1.ros1_codec import Field
 
-__all__ = ["ALIASES", "special_field"]
+__all__ = ["ALIASES", "ros1_hardware_interface", "special_field"]
 
 ALIASES = {"tf/msg/tfMessage": "tf2_msgs/msg/TFMessage"}
 
@@ -32,17 +34,35 @@ _STATES_TO_ROS1 = {"active": "running", "inactive": "stopped", "unconfigured": "
 _STATES_FROM_ROS1 = {v: k for k, v in _STATES_TO_ROS1.items()}
 
 
+# ROS 1's joint command interfaces (hardware_interface/joint_command_interface.h)
+_HARDWARE_INTERFACES = {
+    "position": "hardware_interface::PositionJointInterface",
+    "velocity": "hardware_interface::VelocityJointInterface",
+    "effort": "hardware_interface::EffortJointInterface",
+}
+_INTERFACE_KINDS = {v: k for k, v in _HARDWARE_INTERFACES.items()}
+
+
+def ros1_hardware_interface(kind: str) -> str:
+    """ROS 2's command interface type (``effort``) as ROS 1's hardware interface class."""
+    return _HARDWARE_INTERFACES.get(kind, kind)
+
+
 def _resources(claimed: Any) -> list[types.SimpleNamespace]:
     """``["joint1/position", "joint2/position"]`` -> one resource list per interface type."""
     by_kind: dict[str, list[str]] = {}
     for interface in claimed:
         joint, _, kind = str(interface).rpartition("/")
-        by_kind.setdefault(kind, []).append(joint)
+        by_kind.setdefault(ros1_hardware_interface(kind), []).append(joint)
     return [types.SimpleNamespace(hardware_interface=k, resources=v) for k, v in by_kind.items()]
 
 
 def _interfaces(resources: Any) -> list[str]:
-    return [f"{r}/{entry.hardware_interface}" for entry in resources for r in entry.resources]
+    return [
+        f"{r}/{_INTERFACE_KINDS.get(entry.hardware_interface, entry.hardware_interface)}"
+        for entry in resources
+        for r in entry.resources
+    ]
 
 
 def _seconds(duration: Any) -> float:

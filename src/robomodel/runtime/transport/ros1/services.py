@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from robomodel.runtime.executor import Executor
     from robomodel.runtime.transport.ros1.ros1_types import Ros1ServiceType
 
-__all__ = ["ServiceServer", "call_service"]
+__all__ = ["ServiceServer", "call_service", "probe_service_type"]
 
 HANDLER_TIMEOUT_S = 300.0  # a controller switch or a model spawn can take a while
 
@@ -139,6 +139,33 @@ class ServiceServer:
             return False, f"service [{self.name}] answered something unencodable: {exc}".encode()
 
 
+def _lookup(master: str, caller_id: str, name: str, timeout_s: float) -> tuple[str, int]:
+    try:
+        uri = str(call(master, "lookupService", caller_id, name, timeout_s=timeout_s))
+        return split_uri(uri)
+    except (Ros1WireError, Exception) as exc:
+        raise ServiceCallError(f"service '{name}' is not available: {exc}") from None
+
+
+def probe_service_type(master: str, caller_id: str, name: str, timeout_s: float = 3.0) -> str:
+    """The ROS 1 type of service ``name`` (``std_srvs/Empty``), asked of its provider as
+    rosservice's ``get_service_headers`` asks: a connection with ``probe=1`` and md5sum ``*``,
+    whose reply header names the ``type``. ServiceCallError if no provider answers."""
+    host, port = _lookup(master, caller_id, name, timeout_s)
+    try:
+        with socket.create_connection((host, port), timeout=max(0.1, timeout_s)) as sock:
+            write_header(
+                sock, {"callerid": caller_id, "md5sum": "*", "probe": "1", "service": name}
+            )
+            header = read_header(sock)
+    except (OSError, TcprosError) as exc:
+        raise ServiceCallError(f"service '{name}' did not answer a type probe: {exc}") from None
+    if "error" in header or not header.get("type"):
+        reason = header.get("error", "its header names no type")
+        raise ServiceCallError(f"service '{name}' did not say its type: {reason}")
+    return header["type"]
+
+
 def call_service(
     master: str,
     caller_id: str,
@@ -149,11 +176,7 @@ def call_service(
 ) -> Message:
     """Call ``name`` through the master's registration; ServiceCallError if it fails."""
     deadline = time.monotonic() + timeout_s
-    try:
-        uri = str(call(master, "lookupService", caller_id, name, timeout_s=timeout_s))
-        host, port = split_uri(uri)
-    except (Ros1WireError, Exception) as exc:
-        raise ServiceCallError(f"service '{name}' is not available: {exc}") from None
+    host, port = _lookup(master, caller_id, name, timeout_s)
     try:
         with socket.create_connection((host, port), timeout=max(0.1, timeout_s)) as sock:
             write_header(

@@ -1,0 +1,196 @@
+"""``robomodel run PKG EXECUTABLE [ARGS...]``: one node, as ``rosrun`` and ``ros2 run`` start it.
+
+The node is the one ``robomodel launch`` runs for the same package and executable (the
+registry of :mod:`robomodel.launch.nodes`), started by the same runner, so a command line and
+a launch file's ``<node>`` behave alike. Its arguments are ROS 1's (``__name:=``, ``__ns:=``,
+``_param:=value``, ``from:=to``) on a ROS 1 master, ROS 2's (``--ros-args -r ... -p ...
+--params-file ...``) on Zenoh (:mod:`robomodel.launch.node_args`).
+
+The bus is the other verbs' (a ROS 1 master when ROS_MASTER_URI is set, else Zenoh). A ROS 1
+node needs a running master, as rosrun's do. The command ends when the node ends (its exit
+code) or on Ctrl-C / SIGTERM.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from typing import Any
+
+from robomodel.cli._bus import add_bus_arguments, bus_from_args
+from robomodel.cli._verbs import verb_help
+from robomodel.errors import RobomodelError, describe_unknown
+
+__all__ = ["register", "run"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser(
+        "run",
+        help=verb_help("run"),
+        description=(
+            "Run one node as rosrun / ros2 run do, with the component robomodel launch maps "
+            "PKG/EXECUTABLE onto. Options of robomodel come before PKG; everything after "
+            "EXECUTABLE is the node's (ROS 1: __name:=, __ns:=, _param:=value, from:=to; ROS 2: "
+            "--ros-args -r from:=to -r __ns:=/x -r __node:=n -p name:=value --params-file F)."
+        ),
+    )
+    parser.add_argument("package", metavar="PKG")
+    parser.add_argument("executable", metavar="EXECUTABLE")
+    parser.add_argument("arguments", nargs=argparse.REMAINDER, metavar="ARGS")
+    parser.add_argument("--headless", action="store_true", help="rviz: run no viewer")
+    parser.add_argument(
+        "--no-browser", action="store_true", help="rviz: serve the viewer, open no browser"
+    )
+    parser.add_argument("--port", type=int, default=8080, help="rviz: the viewer's HTTP port")
+    add_bus_arguments(parser)
+    parser.set_defaults(func=run)
+
+
+def _dialect(package: str, executable: str, ros1_bus: bool) -> str:
+    """ROS 1's node on a ROS 1 master, else ROS 2's where robomodel has one, else ROS 1's."""
+    from robomodel.launch.nodes import supported
+
+    known = {d for d in ("ros1", "ros2") if (package, executable) in _executables(supported(d))}
+    if not known:
+        _refuse(package, executable)
+    if ros1_bus and "ros1" in known:
+        return "ros1"
+    return "ros2" if "ros2" in known else "ros1"
+
+
+def _executables(rows: list[tuple[str, str, str]]) -> set[tuple[str, str]]:
+    return {(package, executable) for package, executable, _ in rows}
+
+
+def _refuse(package: str, executable: str) -> None:
+    """One line: the unknown package or executable, a did-you-mean, what there is."""
+    from robomodel.launch.nodes import supported
+
+    known = _executables(supported("ros1")) | _executables(supported("ros2"))
+    packages = sorted({p for p, _ in known})
+    if package not in packages:
+        raise RobomodelError(
+            describe_unknown("robomodel run: unknown package", package, packages, "packages are")
+        )
+    executables = sorted({e for p, e in known if p == package})
+    raise RobomodelError(
+        describe_unknown(
+            f"robomodel run: package '{package}' has no executable",
+            executable,
+            executables,
+            f"{package}'s executables are",
+        )
+    )
+
+
+# The ROS 1 nodes that pick an anonymous name (ros::init_options::AnonymousName, rospy's
+# anonymous=True), so that two of them can run at once: tf2_ros's and tf's
+# static_transform_publisher, tf_echo, tf2_echo, rviz, controller_manager's scripts.
+_ANONYMOUS_ROS1 = {
+    ("tf2_ros", "static_transform_publisher"), ("tf", "static_transform_publisher"),
+    ("tf", "tf_echo"), ("tf2_ros", "tf2_echo"), ("rviz", "rviz"),
+    ("controller_manager", "controller_manager"), ("controller_manager", "spawner"),
+    ("controller_manager", "unspawner"),
+}  # fmt: skip
+
+
+def _default_name(package: str, executable: str, dialect: str) -> str | None:
+    """The name the node gives itself: ROS 2's executables pick their own (None)."""
+    if dialect != "ros1":
+        return None
+    if (package, executable) in _ANONYMOUS_ROS1:
+        return f"{executable}_{os.getpid()}_{int(time.time() * 1000)}"  # rospy's form
+    return executable
+
+
+def _spec(args: argparse.Namespace, dialect: str) -> tuple[Any, dict[str, Any], str | None]:
+    """The node's NodeSpec, its ROS 1 private parameters (full names), its ROS 1 master."""
+    from robomodel.launch.model import NodeSpec, ParamSource
+    from robomodel.launch.node_args import parse_ros1_args, parse_ros2_args
+
+    if dialect == "ros1":
+        parsed = parse_ros1_args(args.arguments)
+    else:
+        parsed = parse_ros2_args(args.arguments, default_name=args.executable)
+    namespace = parsed.namespace or os.environ.get("ROS_NAMESPACE") or "/"
+    namespace = "/" + namespace.strip("/") + "/" if namespace.strip("/") else "/"
+    sources: tuple[ParamSource, ...] = ()
+    if dialect == "ros2":
+        sources = tuple(ParamSource(file=f.resolve()) for f in parsed.params_files)
+        for path in parsed.params_files:
+            if not path.is_file():
+                raise RobomodelError(f"--params-file {path}: no such file")
+        if parsed.params:
+            sources += (ParamSource(values=dict(parsed.params)),)
+    spec = NodeSpec(
+        dialect,  # type: ignore[arg-type]
+        args.package,
+        args.executable,
+        parsed.name or _default_name(args.package, args.executable, dialect),
+        namespace=namespace,
+        args=parsed.args,
+        remaps=parsed.remaps,
+        parameters=sources,
+        required=True,  # the command ends with its node
+        output="screen",
+    )
+    private = {}
+    if dialect == "ros1":
+        private = {f"{spec.fqn}/{name}": value for name, value in parsed.params.items()}
+    return spec, private, parsed.master
+
+
+def _quiet(text: str) -> None:
+    """The runner's log without its launch chatter (rosrun prints none of it)."""
+    chatter = ("started ", "parameter server ", "required node ", "ROS 1 master at ")
+    if text.startswith(tuple(f"[launch] {words}" for words in chatter)):
+        return
+    print(text, file=sys.stderr, flush=True)
+
+
+def run(args: argparse.Namespace) -> int:
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+
+    ros1_bus = bus_from_args(args) == "ros1"
+    dialect = _dialect(args.package, args.executable, ros1_bus)
+    spec, private, master = _spec(args, dialect)
+    bus = "ros1" if (ros1_bus or master) else (args.bus or "zenoh")
+    if bus == "ros1":
+        _require_master(master or args.master)
+    options = RunOptions(
+        bus=bus,
+        master_uri=master or args.master,
+        domain_id=args.domain_id,
+        headless=args.headless,
+        open_browser=not args.no_browser,
+        port=args.port,
+        strict_start=True,
+        connect=tuple(args.connect),
+        listen=tuple(args.listen),
+    )
+    runner = LaunchRunner([spec], options, log=_quiet)
+    runner.open_bus()
+    try:
+        if private:
+            runner.set_params(private)
+        runner.start_nodes()
+        runner.spin()
+        code = runner.started[0].handle.exit_code() if runner.started else 1
+        return 0 if code is None else int(code)
+    finally:
+        runner.shutdown()
+
+
+def _require_master(uri: str | None) -> None:
+    from robomodel.runtime.transport.ros1.master import master_answers
+    from robomodel.runtime.transport.ros1.names import master_uri
+
+    found = master_uri(uri)
+    if not master_answers(found):
+        raise RobomodelError(
+            f"no ROS 1 master answers at {found}: start one first (robomodel master, or "
+            "roscore), or unset ROS_MASTER_URI to run on Zenoh"
+        )
