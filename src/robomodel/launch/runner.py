@@ -45,6 +45,7 @@ class RunOptions:
     duration_s: float | None = None
     package_index: Any = None
     master_uri: str | None = None  # the ROS 1 master (bus "ros1"); default ROS_MASTER_URI
+    launch_file: str | None = None  # the file run (nodes name it in hints)
 
 
 def unsupported_message(spec: NodeSpec) -> str:
@@ -154,6 +155,7 @@ class LaunchRunner:
     def start_nodes(self) -> None:
         self._extra.setdefault("package_index", self.options.package_index or _default_index())
         self._extra["launch_nodes"] = tuple(self.nodes)
+        self._extra["launch_file"] = self.options.launch_file
         if self.steps:
             from robomodel.launch.steps import StepScheduler
 
