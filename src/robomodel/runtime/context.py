@@ -47,6 +47,7 @@ class Context:
         listen: Sequence[str] = (),
         master: str | None = None,
     ) -> None:
+        self.bus = bus
         self.clock = clock or SystemClock()
         self.executor = Executor()
         self.transport: Transport

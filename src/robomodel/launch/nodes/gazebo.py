@@ -97,6 +97,7 @@ def start_sim_server(
         paused=paused,
         real_time_factor=world.real_time_factor,
         spec_source=spec_source,
+        ros_version=1 if ctx.spec.dialect == "ros1" else 2,  # the launch's gazebo_ros
     )
     ctx.extra["sim_server"] = server
     ctx.log(
