@@ -216,7 +216,13 @@ class LaunchRunner:
         self.log(f"[launch] started {spec.fqn} ({spec.package}/{spec.executable})")
 
     def _prefixed(self, spec: NodeSpec) -> Callable[[str], None]:
-        return lambda text: self.log(f"[{spec.fqn}] {text}")
+        from robomodel.runtime.rosout import publish_line
+
+        def log(text: str) -> None:
+            self.log(f"[{spec.fqn}] {text}")
+            publish_line(self.context, spec.fqn, text)  # the node's /rosout, as its process
+
+        return log
 
     def spin(self) -> int:
         """Run until Ctrl-C, ``duration_s``, or a required node ending; the exit code."""

@@ -124,7 +124,7 @@ def set_link_state(bridge: SimBridge, request: gzs.SetLinkState_Request) -> Any:
             "bodies (a floating model's root link, a world object); set its joints with "
             "/gazebo/set_model_configuration",
         )
-    target = _in_world(states, state.pose, state.twist, frame, rotate_twist=False)
+    target = _in_world(states, state.pose, state.twist, frame)
     bridge.queue(lambda: _place(bridge, free, *target))
     return gzs.SetLinkState_Response(True, "SetLinkState: success")
 
@@ -141,11 +141,11 @@ def _free_joint(bridge: SimBridge, body: int | None) -> int | None:
 
 
 def _in_world(
-    states: WorldStates, pose: Any, twist: Any, frame: Entity | None, *, rotate_twist: bool
+    states: WorldStates, pose: Any, twist: Any, frame: Entity | None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """A pose (position, ``xyzw``) and twist given in ``frame`` as world values: the pose
-    composed with the frame's; the twist rotated into the world (set_model_state) or, as
-    gazebo_ros's set_link_state does, less the frame's own velocity."""
+    composed with the frame's, the twist less the frame's own velocity (gazebo_ros's
+    set_link_state)."""
     from robomodel.kinematics.se3 import matrix_from_quat_xyzw, quat_xyzw_from_matrix
 
     p = np.array([pose.position.x, pose.position.y, pose.position.z])
@@ -161,11 +161,8 @@ def _in_world(
     R = matrix_from_quat_xyzw([r.x, r.y, r.z, r.w])
     p0 = np.array([ref_pose.position.x, ref_pose.position.y, ref_pose.position.z])
     q = quat_xyzw_from_matrix(R @ matrix_from_quat_xyzw(q))
-    if rotate_twist:
-        v, w = R @ v, R @ w
-    else:
-        v = v - np.array([ref_twist.linear.x, ref_twist.linear.y, ref_twist.linear.z])
-        w = w - np.array([ref_twist.angular.x, ref_twist.angular.y, ref_twist.angular.z])
+    v = v - np.array([ref_twist.linear.x, ref_twist.linear.y, ref_twist.linear.z])
+    w = w - np.array([ref_twist.angular.x, ref_twist.angular.y, ref_twist.angular.z])
     return p0 + R @ p, q, v, w
 
 
