@@ -143,3 +143,22 @@ def test_service_names_follow_the_ros_version(ros_version: int) -> None:
     finally:
         server.close()
         context.shutdown()
+
+
+def test_the_set_model_state_topic_moves_the_model_as_the_service_does() -> None:
+    server, context = _server(1)
+    try:
+        server.spawn("bot", _xml(SIMPLEBOT), xyz_m=(0.0, 0.0, 0.1))
+        pub = context.create_node("teleop").create_publisher(
+            gz.ModelState, "/gazebo/set_model_state", 10
+        )
+        pub.publish(gz.ModelState("bot", Pose(Point(-1.0, 3.0, 0.2), Quaternion(0, 0, 0, 1))))
+        server.drive(0.05)  # the message is taken, then applied at the next tick
+        server.drive(0.05)
+        got = _call(context, "/gazebo/get_model_state", gz.GetModelState,
+                    gz.GetModelState_Request("bot", "world"))  # fmt: skip
+        p = got.pose.position  # type: ignore[attr-defined]
+        assert (p.x, p.y) == pytest.approx((-1.0, 3.0), abs=0.01)
+    finally:
+        server.close()
+        context.shutdown()
