@@ -57,7 +57,6 @@ class ModelInfo:
     joints: tuple[str, ...] = ()
     geoms: tuple[str, ...] = ()
     is_static: bool = False
-    robot: BuiltRobot | None = None
 
 
 def gazebo_links(built: BuiltRobot) -> tuple[list[str], list[str]]:
@@ -133,7 +132,7 @@ class WorldStates:
         )
         frame = Entity(name, self._body(built.root_body))
         self.models.append(
-            ModelInfo(name, frame, entities, tuple(joints), geoms, built.extensions.static, built)
+            ModelInfo(name, frame, entities, tuple(joints), geoms, built.extensions.static)
         )
 
     def _body(self, name: str) -> int:
