@@ -108,9 +108,16 @@ def test_service_md5sums_of_the_vendored_ros1_packages() -> None:
         "controller_manager_msgs/srv/LoadController": "647e5c54b8d6468952d8d31f1efe96c0",
         "controller_manager_msgs/srv/SwitchController": "b29a7abc673b2c54c14b54e50f8d06a5",
         "gazebo_msgs/srv/SpawnModel": "9ed9c82c96abe1a00c3e8cdaeee24413",
+        "gazebo_msgs/srv/GetLinkState": "09d6c98cce97b35f7ab9bd70300657ab",
+        "gazebo_msgs/srv/SetLinkState": "8a5146eb66ae4d26b0860b08f3f271be",
+        "gazebo_msgs/srv/GetModelProperties": "5717f7bd34ed990fa80e28b3015027a3",
     }
     for name, md5 in expected.items():
         assert ros1_service_type(get_service_type(name)).md5sum == md5, name
+    for name in ("gazebo_msgs/msg/ModelStates", "gazebo_msgs/msg/LinkStates"):
+        assert ros1_type(get_message_type(name)).md5sum == "48c080191eb15c41858319b4d8a609c2"
+    log = ros1_type(get_message_type("rosgraph_msgs/msg/Log"))
+    assert log.md5sum == "acffd30cd6b6de30f120938c17c593fb"  # rosgraph_msgs/Log (noetic)
 
 
 def test_bytes_equal_genpy_both_ways() -> None:

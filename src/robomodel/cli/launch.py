@@ -262,7 +262,7 @@ def _run_ros2_nodes(launch: Any, args: argparse.Namespace, index: Any) -> int:
     from robomodel.launch.runner import LaunchRunner
 
     nodes = [step.node for step in launch.steps if step.node is not None]
-    runner = LaunchRunner(nodes, _options(args, index), steps=launch.steps)
+    runner = LaunchRunner(nodes, _options(args, index, path=launch.path), steps=launch.steps)
     runner.check()
     runner.open_bus()
     try:
@@ -273,7 +273,9 @@ def _run_ros2_nodes(launch: Any, args: argparse.Namespace, index: Any) -> int:
         runner.shutdown()
 
 
-def _options(args: argparse.Namespace, index: Any, *, ros1_launch: bool = False) -> Any:
+def _options(
+    args: argparse.Namespace, index: Any, *, ros1_launch: bool = False, path: Any = None
+) -> Any:
     from robomodel.launch.runner import RunOptions
 
     return RunOptions(
@@ -285,6 +287,7 @@ def _options(args: argparse.Namespace, index: Any, *, ros1_launch: bool = False)
         port=args.port,
         duration_s=args.duration,
         package_index=index,
+        launch_file=str(path) if path is not None else None,
     )
 
 
@@ -300,7 +303,7 @@ def _bus(args: argparse.Namespace, ros1_launch: bool) -> str:
 def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
     from robomodel.launch.runner import LaunchRunner
 
-    runner = LaunchRunner(launch.nodes, _options(args, index, ros1_launch=True))
+    runner = LaunchRunner(launch.nodes, _options(args, index, ros1_launch=True, path=launch.path))
     runner.check()
     runner.open_bus()
     try:

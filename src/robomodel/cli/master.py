@@ -1,4 +1,5 @@
-"""``robomodel master``: a ROS 1 master and parameter server, as ``roscore`` (without rosout).
+"""``robomodel master``: a ROS 1 master and parameter server, as ``roscore``, with roscore's
+``/rosout`` node (it republishes ``/rosout`` on ``/rosout_agg``; no rosout.log is written).
 
 ROS 1 nodes, Debian's rostopic/rosparam/rosnode and ``robomodel launch`` of a ROS 1 launch file
 find it at ``ROS_MASTER_URI`` (default http://localhost:11311/). It listens on loopback unless
@@ -54,6 +55,11 @@ def run(args: argparse.Namespace) -> int:
     master.api.params.set("/run_id", str(uuid.uuid1()))
     master.api.params.set("/rosdistro", ROSDISTRO + "\n")
     master.api.params.set("/rosversion", ROSVERSION + "\n")
+    from robomodel.runtime import Context
+    from robomodel.runtime.nodes.rosout import RosoutAggregator
+
+    context = Context("ros1", master=uri)
+    rosout = RosoutAggregator(context)
     stopped: list[bool] = []  # a flag, not an Event: a second SIGTERM must not wait on a lock
     previous = signal.signal(signal.SIGTERM, lambda *_: stopped.append(True))
     print(
@@ -64,10 +70,12 @@ def run(args: argparse.Namespace) -> int:
     end = None if args.duration is None else time.monotonic() + args.duration
     try:
         while not stopped and (end is None or time.monotonic() < end):
-            time.sleep(0.1)
+            context.spin_once(0.1)
     except KeyboardInterrupt:
         pass
     finally:
         signal.signal(signal.SIGTERM, previous)
+        rosout.close()
+        context.shutdown()
         master.close()
     return 0

@@ -8,7 +8,12 @@ Packages are found the ways ROS finds them, in this priority order (the first ma
 4. ``AMENT_PREFIX_PATH`` entries, where a package lives in ``<prefix>/share/<name>`` and is
    known by ament's resource-index marker ``share/ament_index/resource_index/packages/<name>``
    (or, without a marker, by ``share/<name>/package.xml``);
-5. the workspace of the input file (the folders around its package), last.
+5. the workspace of the input file (the folders around its package);
+6. the robots of PyPI's ``example-robot-data``, where it is installed: each
+   ``robots/<name>_description`` folder is the package ``<name>_description`` (so the UR
+   tutorials' ``package://ur_description/meshes/ur5/visual/base.dae`` resolves), and the
+   wheel's ``share/example-robot-data`` is ``example-robot-data``. Last, so a user's own package
+   of the same name always wins; ``ROBOMODEL_EXAMPLE_ROBOT_DATA=0`` turns it off.
 
 The package that contains the input file is an exception: it always resolves to itself, ahead of
 every search path (only an explicit ``--package NAME=DIR`` names it otherwise), so that a copy
@@ -22,6 +27,7 @@ A scanned directory that holds a ``package.xml`` is a package: its name is the m
 from __future__ import annotations
 
 import copy
+import functools
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
@@ -94,6 +100,33 @@ def _scan_tree(root: Path, found: dict[str, Path], depth: int = 0) -> None:
         _scan_tree(Path(entry.path), found, depth + 1)
 
 
+_ERD_SWITCH = "ROBOMODEL_EXAMPLE_ROBOT_DATA"
+
+
+@functools.lru_cache(maxsize=1)
+def example_robot_data_packages() -> tuple[tuple[str, Path], ...]:
+    """``(name, dir)`` of example-robot-data's description packages, if the wheel is installed.
+
+    The wheel (a cmeel package) has no Python module: its files are found through its
+    distribution metadata, under ``cmeel.prefix/share/example-robot-data``.
+    """
+    from importlib import metadata
+
+    try:
+        dist = metadata.distribution("example-robot-data")
+    except metadata.PackageNotFoundError:
+        return ()
+    share = Path(str(dist.locate_file(Path("cmeel.prefix", "share", "example-robot-data"))))
+    try:
+        robots = sorted(os.scandir(share / "robots"), key=lambda e: e.name)
+    except OSError:
+        return ()
+    found = [
+        (e.name, Path(e.path)) for e in robots if e.is_dir() and e.name.endswith("_description")
+    ]
+    return (("example-robot-data", share), *found)
+
+
 def _split_env_paths(value: str | None) -> list[Path]:
     if not value:
         return []
@@ -142,6 +175,9 @@ class PackageIndex:
         packages: Explicit ``name -> directory`` mappings; they take precedence.
         use_environment: Also read ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``.
         environ: The environment to read (defaults to ``os.environ``).
+        fallback_paths: Directories scanned after every other source.
+        example_robot_data: Offer example-robot-data's robots (last); ``None``: when
+            ``use_environment`` and ``ROBOMODEL_EXAMPLE_ROBOT_DATA`` is not ``0``.
     """
 
     def __init__(
@@ -152,6 +188,7 @@ class PackageIndex:
         use_environment: bool = True,
         environ: Mapping[str, str] | None = None,
         fallback_paths: Iterable[str | os.PathLike[str]] = (),
+        example_robot_data: bool | None = None,
     ) -> None:
         self._explicit = {name: Path(path) for name, path in (packages or {}).items()}
         self._package_paths = tuple(Path(p) for p in package_paths)
@@ -164,6 +201,9 @@ class PackageIndex:
         self._ament_prefixes = (
             _split_env_paths(env.get("AMENT_PREFIX_PATH")) if use_environment else []
         )
+        if example_robot_data is None:
+            example_robot_data = use_environment and env.get(_ERD_SWITCH, "1") != "0"
+        self._bundled = example_robot_data_packages() if example_robot_data else ()
         self._index: dict[str, Package] | None = None
 
     @property
@@ -174,6 +214,8 @@ class PackageIndex:
         places += [f"ROS_PACKAGE_PATH {p}" for p in self._ros_package_path]
         places += [f"AMENT_PREFIX_PATH {p}" for p in self._ament_prefixes]
         places += [label for _, label in self._fallback_paths]
+        if self._bundled:
+            places.append(f"example-robot-data {self._bundled[0][1]}")
         return tuple(dict.fromkeys(places))
 
     def _build(self) -> dict[str, Package]:
@@ -199,6 +241,8 @@ class PackageIndex:
             _scan_tree(root, found)
             for name, path in found.items():
                 index.setdefault(name, Package(name, path, "workspace"))
+        for name, path in self._bundled:
+            index.setdefault(name, Package(name, path, "example-robot-data"))
         return index
 
     def with_workspace_of(self, path: str | os.PathLike[str]) -> PackageIndex:

@@ -3,7 +3,8 @@ roslaunch starts a roscore when none answers.
 
 The launch's parameters then live in that master's parameter server (``rosparam get`` reads
 them), set as ``/roslaunch``; the hosted master also gets roscore's ``/run_id``,
-``/rosdistro`` and ``/rosversion``.
+``/rosdistro`` and ``/rosversion``, and roscore's ``/rosout`` node (``/rosout_agg``), run by
+the launch's loop.
 """
 
 from __future__ import annotations
@@ -55,8 +56,11 @@ class Ros1Bus:
     params: Any
     master: Any  # the hosted Master, or None when another process runs it
     uri: str
+    rosout: Any = None  # roscore's rosout node, beside a hosted master
 
     def close(self) -> None:
+        if self.rosout is not None:
+            self.rosout.close()
         if self.master is not None:
             self.master.close()
 
@@ -80,8 +84,13 @@ def open_ros1(uri: str | None, log: Callable[[str], None]) -> Ros1Bus:
             params.set("/rosdistro", ROSDISTRO + "\n")
             params.set("/rosversion", ROSVERSION + "\n")
         context = Context("ros1", master=uri)
+        rosout = None
+        if master is not None:
+            from robomodel.runtime.nodes.rosout import RosoutAggregator
+
+            rosout = RosoutAggregator(context)
     except Exception:
         if master is not None:
             master.close()
         raise
-    return Ros1Bus(context, params, master, uri)
+    return Ros1Bus(context, params, master, uri, rosout)

@@ -48,6 +48,7 @@ class RunOptions:
     strict_start: bool = False  # a node whose start fails raises (robomodel run), not logged
     connect: tuple[str, ...] = ()  # Zenoh endpoints to connect to / listen on (robomodel run)
     listen: tuple[str, ...] = ()
+    launch_file: str | None = None  # the file run (nodes name it in hints)
 
 
 def unsupported_message(spec: NodeSpec) -> str:
@@ -159,6 +160,7 @@ class LaunchRunner:
     def start_nodes(self) -> None:
         self._extra.setdefault("package_index", self.options.package_index or _default_index())
         self._extra["launch_nodes"] = tuple(self.nodes)
+        self._extra["launch_file"] = self.options.launch_file
         if self.steps:
             from robomodel.launch.steps import StepScheduler
 
@@ -221,7 +223,13 @@ class LaunchRunner:
         self.log(f"[launch] started {spec.fqn} ({spec.package}/{spec.executable})")
 
     def _prefixed(self, spec: NodeSpec) -> Callable[[str], None]:
-        return lambda text: self.log(f"[{spec.fqn}] {text}")
+        from robomodel.runtime.rosout import publish_line
+
+        def log(text: str) -> None:
+            self.log(f"[{spec.fqn}] {text}")
+            publish_line(self.context, spec.fqn, text)  # the node's /rosout, as its process
+
+        return log
 
     def spin(self) -> int:
         """Run until Ctrl-C, ``duration_s``, or a required node ending; the exit code."""

@@ -47,6 +47,7 @@ class Context:
         listen: Sequence[str] = (),
         master: str | None = None,
     ) -> None:
+        self.bus = bus
         self.clock = clock or SystemClock()
         self.executor = Executor()
         self.transport: Transport
@@ -76,6 +77,7 @@ class Context:
         parameter_files: Sequence[str | os.PathLike[str]] = (),
         remappings: Mapping[str, str] | None = None,
         allow_undeclared_parameters: bool = False,
+        enable_rosout: bool = True,
     ) -> Node:
         """Create a node; ``parameters`` and files override declared defaults, as --ros-args."""
         from robomodel.runtime.names import fully_qualified_node_name
@@ -92,6 +94,7 @@ class Context:
             parameter_overrides=overrides,
             remappings=remappings,
             allow_undeclared_parameters=allow_undeclared_parameters,
+            enable_rosout=enable_rosout,
         )
         self.nodes.append(node)
         return node

@@ -98,7 +98,9 @@ class Node:
     """A ROS-style node living in a :class:`~robomodel.runtime.context.Context`.
 
     Create it with ``context.create_node(name, ...)``. Every node declares ``use_sim_time``
-    (default False); when true its clock follows /clock, as in ROS 2.
+    (default False); when true its clock follows /clock, as in ROS 2. Its log lines go to
+    ``/rosout`` (:mod:`robomodel.runtime.rosout`) unless ``enable_rosout`` is False (rclpy's
+    option; ROS 1's rosout node itself runs without).
     """
 
     def __init__(
@@ -110,6 +112,7 @@ class Node:
         parameter_overrides: Mapping[str, Any] | None = None,
         remappings: Mapping[str, str] | None = None,
         allow_undeclared_parameters: bool = False,
+        enable_rosout: bool = True,
     ) -> None:
         self.context = context
         self.name = validate_node_name(name)
@@ -134,6 +137,9 @@ class Node:
         from robomodel.runtime.param_services import ParameterServices
 
         self._parameter_services = ParameterServices(self)
+        from robomodel.runtime.rosout import Rosout
+
+        self.rosout: Rosout | None = Rosout(self) if enable_rosout else None
         use_sim_time = self.declare_parameter("use_sim_time", False)
         self._set_sim_time(bool(use_sim_time))
         self.parameters.add_post_set_callback(self._on_parameters)
@@ -247,6 +253,9 @@ class Node:
 
     # -- lifetime -------------------------------------------------------------------------
     def destroy(self) -> None:
+        if self.rosout is not None:
+            self.rosout.close()
+            self.rosout = None
         for timer in self._timers:
             timer.cancel()
         for publisher in self._publishers:

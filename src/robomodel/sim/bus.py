@@ -15,7 +15,17 @@ says and the ground-truth frame where it really is (Gazebo's model vs. the odome
 
 Services: pause, unpause, reset, step (single-stepping while paused, run by the owner's loop
 via :attr:`SimBridge.pending_steps`), apply a body wrench and set a model's pose, with their
-gazebo_msgs / std_srvs / ros_gz_interfaces types (see :mod:`robomodel.sim.bus_services`).
+gazebo_msgs / std_srvs / ros_gz_interfaces types (see :mod:`robomodel.sim.bus_services`), under
+the names of the graph's ROS version (``ros_version``): ROS 1's gazebo_ros names them
+``/gazebo/...``, ROS 2's gazebo_ros ``/pause_physics``, ``/reset_world``, ...
+
+Model and link states (:mod:`robomodel.sim.states`): ``/gazebo/model_states`` and
+``/gazebo/link_states``, the get/set model and link state services and topics and
+``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`). gazebo_ros publishes the
+states at every world update while someone subscribes (1 kHz with 1 ms steps); robomodel
+publishes them with /clock, at ``clock_rate_hz`` (100 Hz): a callback at every physics step
+would make MuJoCo step one step at a time from Python instead of whole stretches between the
+callbacks that are due (:mod:`robomodel.sim.schedule`), several times slower.
 """
 
 from __future__ import annotations
@@ -23,7 +33,7 @@ from __future__ import annotations
 import logging
 import queue
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from robomodel.description.model.pose import quat_xyzw_from_rpy
@@ -81,6 +91,10 @@ class SimBridge:
         ground_truth_rate_hz: Rate of the ground-truth odometry (0 disables it).
         node_name: The bridge's node (``gazebo``; a :class:`SimServer`, whose own node has
             that name, gives another).
+        ros_version: Whose service names to offer: 1 (gazebo_ros's ``/gazebo/...``) or 2
+            (also ROS 2 gazebo_ros's root-level names); None: 1 on a ROS 1 bus, else 2.
+        model_names: Gazebo model name by robot prefix (a spawned robot's ``-model``); by
+            default a robot's URDF name.
     """
 
     def __init__(
@@ -91,9 +105,13 @@ class SimBridge:
         clock_rate_hz: float = 100.0,
         ground_truth_rate_hz: float = 50.0,
         node_name: str = "gazebo",
+        ros_version: int | None = None,
+        model_names: Mapping[str, str] | None = None,
     ) -> None:
         self.sim = sim
         self.context = context
+        self.ros_version = ros_version or (1 if getattr(context, "bus", "") == "ros1" else 2)
+        self._model_names = dict(model_names or {})
         self.paused = False
         self.pending_steps = 0
         self._last_idle_clock = 0.0
@@ -113,12 +131,37 @@ class SimBridge:
             self._add_robot(built, ground_truth_rate_hz)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
+        self._add_states(clock_rate_hz)
         from robomodel.sim.bus_services import bridge_services
+        from robomodel.sim.state_services import state_services, state_topics
 
         self._unregister = [
             self.node.create_service(srv_type, name, handler).destroy
-            for name, srv_type, handler in bridge_services(self)
+            for name, srv_type, handler in (*bridge_services(self), *state_services(self))
         ]
+        for topic, msg_type, callback in state_topics(self):
+            self.node.create_subscription(msg_type, topic, callback, 10)
+
+    def model_name(self, built: BuiltRobot) -> str:
+        """``built``'s Gazebo model name: as spawned, else its URDF name."""
+        return self._model_names.get(built.prefix, built.robot.name)
+
+    def _add_states(self, rate_hz: float) -> None:
+        """/gazebo/model_states and /gazebo/link_states (see the module docstring): ROS 1's
+        queue of 10, ROS 2's gazebo_ros_state ``KeepLast(1)``."""
+        from robomodel.runtime.msg.gazebo_msgs_states import LinkStates, ModelStates
+        from robomodel.sim.states import WorldStates
+
+        self.states = WorldStates(self.sim, self.model_name)
+        depth = 10 if self.ros_version == 1 else 1
+        models = self.node.create_publisher(ModelStates, "/gazebo/model_states", depth)
+        links = self.node.create_publisher(LinkStates, "/gazebo/link_states", depth)
+
+        def publish(_time_s: float) -> None:
+            models.publish(self.states.model_states())
+            links.publish(self.states.link_states())
+
+        self.sim.every(rate_hz, publish, order=1)
 
     def _add_robot(self, built: BuiltRobot, ground_truth_rate_hz: float) -> None:
         sim = self.sim

@@ -11,6 +11,11 @@ gazebo_ros (ROS 1, ``/gazebo/...``) and of gazebo_ros / Gazebo Sim (ROS 2):
 ``/gazebo/set_model_state``                                gazebo_msgs/srv/SetModelState
 ========================================================  =================================
 
+The ROS 2 names (root-level, and Gazebo Sim's ``/world/default/control``) are offered only on
+ROS 2 graphs (:attr:`SimBridge.ros_version` 2), as only ROS 2's gazebo_ros has them; the
+``/gazebo/...`` names on both (robomodel's viewer and ``robomodel sim`` use them;
+``/gazebo/step`` is robomodel's own).
+
 Requests that change the physics are applied by the simulation loop at its next tick (the
 handlers only check them and queue them), so a service call never races a physics step.
 Models are named as in Gazebo: a robot's URDF name, or its frame prefix without the slash;
@@ -32,7 +37,7 @@ if TYPE_CHECKING:
     from robomodel.sim.build.robot import BuiltRobot
     from robomodel.sim.bus import SimBridge
 
-__all__ = ["bridge_services", "find_robot", "rpy_from_quaternion_xyzw"]
+__all__ = ["bridge_services", "find_robot", "rpy_from_quaternion_xyzw", "set_model_state"]
 
 
 def find_robot(bridge: SimBridge, model_name: str) -> BuiltRobot:
@@ -83,7 +88,7 @@ def _control(bridge: SimBridge, request: rgz.ControlWorld_Request) -> rgz.Contro
 def _wrench(bridge: SimBridge, request: gz.ApplyBodyWrench_Request) -> gz.ApplyBodyWrench_Response:
     model, _, link = request.body_name.rpartition("::")
     try:
-        built = find_robot(bridge, model) if model else _robot_with_link(bridge, link)
+        built = _robot_named(bridge, model) if model else _robot_with_link(bridge, link)
         if request.reference_frame not in ("", "world"):
             raise RobomodelError(
                 f"reference_frame '{request.reference_frame}': only the world frame is supported"
@@ -112,11 +117,15 @@ def _robot_with_link(bridge: SimBridge, link: str) -> BuiltRobot:
     raise RobomodelError(f"no model has a link named '{link}'")
 
 
-def _model_state(bridge: SimBridge, request: gz.SetModelState_Request) -> gz.SetModelState_Response:
+def set_model_state(
+    bridge: SimBridge, request: gz.SetModelState_Request
+) -> gz.SetModelState_Response:
+    """Teleport a robot (world frame; the model at rest), by its Gazebo model name, URDF name
+    or prefix."""
     state = request.model_state
     try:
-        built = find_robot(bridge, state.model_name)
-        if state.reference_frame not in ("", "world"):
+        built = _robot_named(bridge, state.model_name)
+        if state.reference_frame not in ("", "world", "map", "/map"):
             raise RobomodelError(
                 f"reference_frame '{state.reference_frame}': only the world frame is supported"
             )
@@ -126,7 +135,14 @@ def _model_state(bridge: SimBridge, request: gz.SetModelState_Request) -> gz.Set
     rpy = rpy_from_quaternion_xyzw(q.x, q.y, q.z, q.w)
     prefix = built.prefix
     bridge.queue(lambda: bridge.sim.teleport((p.x, p.y, p.z), rpy, prefix=prefix))
-    return gz.SetModelState_Response(True, "")
+    return gz.SetModelState_Response(True, "SetModelState: set model state done")
+
+
+def _robot_named(bridge: SimBridge, model_name: str) -> BuiltRobot:
+    for built in bridge.sim.robots:
+        if bridge.model_name(built) == model_name:
+            return built
+    return find_robot(bridge, model_name)
 
 
 def bridge_services(bridge: SimBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
@@ -144,14 +160,15 @@ def bridge_services(bridge: SimBridge) -> list[tuple[str, Any, Callable[[Any], A
 
     empty = [("pause_physics", pause), ("unpause_physics", unpause), ("reset_world", reset),
              ("reset_simulation", reset)]  # fmt: skip
+    ros2 = bridge.ros_version == 2
     services: list[tuple[str, Any, Callable[[Any], Any]]] = []
     for name, action in empty:
-        for prefix in ("/gazebo/", "/"):
+        for prefix in ("/gazebo/", "/") if ros2 else ("/gazebo/",):
             services.append((prefix + name, std_srvs.Empty, _empty(action)))
-    for name in ("/gazebo/step", "/world/default/control"):
+    for name in ("/gazebo/step", "/world/default/control") if ros2 else ("/gazebo/step",):
         services.append((name, rgz.ControlWorld, lambda r: _control(bridge, r)))
     services.append(("/gazebo/apply_body_wrench", gz.ApplyBodyWrench, lambda r: _wrench(bridge, r)))
     services.append(
-        ("/gazebo/set_model_state", gz.SetModelState, lambda r: _model_state(bridge, r))
+        ("/gazebo/set_model_state", gz.SetModelState, lambda r: set_model_state(bridge, r))
     )
     return services

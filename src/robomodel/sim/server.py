@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 from robomodel.errors import RobomodelError
 from robomodel.sim.build.robot import Placement
 from robomodel.sim.exceptions import SimulationError
+from robomodel.sim.server_control import Controllers, carry_state, namespace_of, start_control
 from robomodel.sim.server_services import service_handlers
 
 if TYPE_CHECKING:
@@ -44,14 +45,6 @@ __all__ = ["SimServer", "SpawnedRobot"]
 
 SpecSource = Callable[[str, str], "ControllerSpec | None"]  # (manager namespace, name)
 _CHUNK_S = 0.01  # physics between two bus spins [s of sim time]
-
-
-@dataclass(frozen=True, slots=True)
-class _Controllers:
-    """What a robot's controller manager held before a recompile."""
-
-    specs: dict[str, ControllerSpec]
-    states: dict[str, str]
 
 
 @dataclass
@@ -77,6 +70,8 @@ class SimServer:
         spec_source: Controller parameters by (manager namespace, controller name), for
             spawners that name controllers the manager was not configured with (a ROS 1
             launch's parameter server).
+        ros_version: Whose gazebo_ros service names to offer (1: ``/gazebo/...`` only; 2: also
+            ROS 2's root-level ones); None: from the bus (see :class:`SimBridge`).
     """
 
     def __init__(
@@ -88,8 +83,10 @@ class SimServer:
         paused: bool = False,
         real_time_factor: float | None = 1.0,
         spec_source: SpecSource | None = None,
+        ros_version: int | None = None,
     ) -> None:
         self.world = world
+        self.ros_version = ros_version or (1 if getattr(context, "bus", "") == "ros1" else 2)
         self.context = context
         self.index = package_index
         self.real_time_factor = real_time_factor
@@ -147,7 +144,7 @@ class SimServer:
         entry = SpawnedRobot(
             model_name, robot, Placement(prefix, xyz_m, rpy_rad), "/" + robot_namespace.strip("/")
         )
-        self._check_namespace(entry)
+        self._checknamespace_of(entry)
         self.robots.append(entry)
         try:
             self._rebuild()
@@ -159,17 +156,17 @@ class SimServer:
             self._set_joints(entry, joint_positions)
         return entry
 
-    def _check_namespace(self, entry: SpawnedRobot) -> None:
+    def _checknamespace_of(self, entry: SpawnedRobot) -> None:
         from robomodel.sim.build.gazebo import read_gazebo
 
         mine = read_gazebo(entry.robot)
         if not mine.ros_control_plugin:
             return
-        namespace = _namespace(mine.plugin_namespace, entry.robot_namespace)
+        namespace = namespace_of(mine.plugin_namespace, entry.robot_namespace)
         for other in self.robots:
             theirs = read_gazebo(other.robot)
             if theirs.ros_control_plugin and (
-                _namespace(theirs.plugin_namespace, other.robot_namespace) == namespace
+                namespace_of(theirs.plugin_namespace, other.robot_namespace) == namespace
             ):
                 raise SimulationError(
                     f"model '{entry.model_name}' would run its controller manager in "
@@ -269,61 +266,28 @@ class SimServer:
             sim.add_robot(entry.robot, placement=entry.placement)
         sim.build()
         if old is not None:
-            _carry_state(old, sim)
-        previous: dict[str, _Controllers] = {}
+            carry_state(old, sim)
+        previous: dict[str, Controllers] = {}
         for entry in self.robots:
             if entry.control is not None:
                 manager = entry.control.manager
                 states = {c["name"]: c["state"] for c in manager.list_controllers()}
-                previous[entry.model_name] = _Controllers(dict(manager.specs), states)
+                previous[entry.model_name] = Controllers(dict(manager.specs), states)
                 manager.close()
                 entry.control = None
         if self.bridge is not None:
             self.bridge.close()
         self.sim = sim
         for entry in self.robots:
-            entry.control = self._control(sim, entry, previous.get(entry.model_name))
-        self.bridge = SimBridge(sim, self.context, node_name="gazebo_physics")
+            entry.control = start_control(self, sim, entry, previous.get(entry.model_name))
+        self.bridge = SimBridge(
+            sim,
+            self.context,
+            node_name="gazebo_physics",
+            ros_version=self.ros_version,
+            model_names={e.placement.prefix: e.model_name for e in self.robots},
+        )
         self.bridge.paused = self._paused
-
-    def _control(
-        self, sim: Simulation, entry: SpawnedRobot, previous: _Controllers | None
-    ) -> ControlSystem | None:
-        """The robot's controller manager, as ``gazebo_ros_control`` (ROS 1) or
-        ``gazebo_ros2_control`` starts one: only for a robot with the plugin or hardware."""
-        from robomodel.control.config import ControllerConfig
-
-        built = sim.robot(entry.placement.prefix)
-        if not built.extensions.ros_control_plugin:
-            return None
-        namespace = _namespace(built.extensions.plugin_namespace, entry.robot_namespace)
-        config = ControllerConfig(namespace=namespace, format="ros1")
-        files = built.extensions.plugin_parameters
-        if files:  # gazebo_ros2_control: the manager's update_rate and controller types
-            from robomodel.control.config import load_controller_config
-
-            loaded = [load_controller_config(f) for f in files]
-            config = dataclasses.replace(
-                loaded[-1],
-                namespace=namespace,
-                controllers=tuple(c for part in loaded for c in part.controllers),
-            )
-        system = sim.control(config, prefix=entry.placement.prefix, context=self.context, spawn=[])
-        manager = system.manager
-        if self.spec_source is not None:
-            source = self.spec_source
-            manager.spec_source = lambda name: source(manager.namespace, name)
-        if previous is not None:
-            manager.specs.update(previous.specs)
-            states = previous.states
-            active = [n for n, s in states.items() if s == "active"]
-            for name, state in states.items():
-                if name not in active:
-                    manager.load_controller(name)
-                    if state == "inactive":
-                        manager.configure_controller(name)
-            manager.spawn(active)
-        return system
 
     # -- running --------------------------------------------------------------------------------
     @property
@@ -378,28 +342,3 @@ class SimServer:
                 entry.control.manager.close()
         if self.bridge is not None:
             self.bridge.close()
-
-
-def _namespace(plugin_namespace: str, robot_namespace: str) -> str:
-    return "/" + (plugin_namespace or robot_namespace).strip("/")
-
-
-def _carry_state(old: Simulation, new: Simulation) -> None:
-    """Joint positions and velocities (by name) and the time from ``old`` into ``new``."""
-    from robomodel.sim._mujoco import mujoco
-
-    mj = mujoco()
-    om, od, nm, nd = old.model, old.data, new.model, new.data
-    widths = {0: (7, 6), 1: (4, 3), 2: (1, 1), 3: (1, 1)}  # free, ball, slide, hinge
-    for jid in range(om.njnt):
-        name = mj.mj_id2name(om, mj.mjtObj.mjOBJ_JOINT, jid)
-        new_id = mj.mj_name2id(nm, mj.mjtObj.mjOBJ_JOINT, name) if name else -1
-        if new_id < 0 or nm.jnt_type[new_id] != om.jnt_type[jid]:
-            continue
-        nq, nv = widths[int(om.jnt_type[jid])]
-        qa, na = om.jnt_qposadr[jid], nm.jnt_qposadr[new_id]
-        nd.qpos[na : na + nq] = od.qpos[qa : qa + nq]
-        va, nva = om.jnt_dofadr[jid], nm.jnt_dofadr[new_id]
-        nd.qvel[nva : nva + nv] = od.qvel[va : va + nv]
-    nd.time = od.time
-    mj.mj_forward(nm, nd)

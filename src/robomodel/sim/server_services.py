@@ -1,6 +1,6 @@
 """The simulation server's world services with their gazebo_msgs types: spawn, delete, model
-configuration and world properties, under gazebo_ros's ROS 1 names (``/gazebo/...``) and its
-ROS 2 names (``/spawn_entity``, ``/delete_entity``, ``/get_model_list``).
+configuration and world properties, under gazebo_ros's ROS 1 names (``/gazebo/...``) and, on a
+ROS 2 graph, its ROS 2 names (``/spawn_entity``, ``/delete_entity``, ``/get_model_list``).
 
 A failure is a reply with ``success: false`` and the reason in ``status_message`` (prefixed
 with the service type, as gazebo_ros words it), never an exception in the server's process.
@@ -120,8 +120,19 @@ def get_model_list(server: SimServer, _request: Any) -> gz.GetModelList_Response
     return gz.GetModelList_Response(Header(), server.model_names(), True)
 
 
+_ROS2_ONLY = ("/spawn_entity", "/delete_entity", "/get_model_list")
+
+
 def service_handlers(server: SimServer) -> list[tuple[str, Any, Handler]]:
-    """(name, type, handler) of the server's services, in the order they are offered."""
+    """(name, type, handler) of the server's services, in the order they are offered; ROS 2
+    gazebo_ros's root-level names only on a ROS 2 graph."""
+    handlers = _handlers(server)
+    if server.ros_version == 1:
+        return [h for h in handlers if h[0] not in _ROS2_ONLY]
+    return handlers
+
+
+def _handlers(server: SimServer) -> list[tuple[str, Any, Handler]]:
     return [
         ("/gazebo/spawn_urdf_model", gz.SpawnModel, lambda r: spawn_model(server, r)),
         ("/gazebo/spawn_sdf_model", gz.SpawnModel, lambda r: spawn_model(server, r)),

@@ -5,6 +5,12 @@ pose changed are sent). Visuals and collisions hang below it at their ``<origin>
 and Collision toggles hide those sub-trees and Alpha sets the opacity of every leaf, as RViz's
 RobotModel display does. Meshes that cannot be found or read are skipped and reported in
 :attr:`RobotModelDisplay.problems`; the rest of the robot is drawn.
+
+A visual mesh whose *package* is not installed is drawn as its link's primitive collision
+geometry (boxes, cylinders, spheres) instead, and recorded in
+:attr:`RobotModelDisplay.substituted` (one status line per missing package). RViz draws
+nothing there; a robot whose meshes come from an optional package (the UR5 example's
+``ur_description``, from example-robot-data) still looks like itself.
 """
 
 from __future__ import annotations
@@ -20,7 +26,7 @@ from numpy.typing import NDArray
 from robomodel.description.model import Box, Capsule, Cylinder, Geometry, Mesh, Robot, Sphere
 from robomodel.description.model.pose import Origin
 from robomodel.description.packages import PackageIndex
-from robomodel.errors import RobomodelError
+from robomodel.errors import PackageNotFoundError, RobomodelError
 from robomodel.viewer._poses import wxyz_xyz_from_matrix
 from robomodel.viewer.materials import DEFAULT_RGBA, material_rgba, rgb255
 from robomodel.viewer.meshes import MeshCache, resolve_mesh_uri
@@ -102,6 +108,8 @@ class RobotModelDisplay:
         self.show_visual = show_visual
         self.show_collision = show_collision
         self.problems: list[GeometryProblem] = []
+        # (missing package, link) of visual meshes drawn as the link's collision primitives
+        self.substituted: list[tuple[str, str]] = []
         self.mesh_nodes: list[str] = []  # scene names of the mesh parts drawn so far
         self.link_names = robot.link_names
         self._links: list[Any] = []
@@ -217,6 +225,10 @@ class RobotModelDisplay:
         try:
             path = resolve_mesh_uri(self.index, uri, self.base_dir)
             parts = self.meshes.get(path)
+        except PackageNotFoundError as exc:
+            if not (item.kind == "visual" and self._substitute(item, exc.name)):
+                self.problems.append(GeometryProblem(item.link, item.kind, uri, str(exc)))
+            return
         except FileNotFoundError:
             self.problems.append(GeometryProblem(item.link, item.kind, uri, "file not found"))
             return
@@ -252,6 +264,28 @@ class RobotModelDisplay:
                     **_NO_SHADOWS,
                 )
                 self._leaves.append(_Leaf(handle, color))
+
+    def _substitute(self, item: _PendingMesh, package: str) -> bool:
+        """Draw ``item``'s link's primitive collision geometry as its visual (see the module
+        docstring); False when the link has none. Once per link."""
+        if any(link == item.link for _, link in self.substituted):
+            self.substituted.append((package, item.link))
+            return True
+        link = self.robot.link(item.link)
+        primitives = [c for c in link.collisions if not isinstance(c.geometry, Mesh)]
+        if not primitives:
+            return False
+        link_node = item.node.rsplit("/", 1)[0]
+        with self._lock:
+            if self._removed:
+                return True
+            for k, collision in enumerate(primitives):
+                self._add_geometry(
+                    f"{link_node}/s{k}", link.name, "visual", collision.geometry,
+                    collision.origin, item.rgba,
+                )  # fmt: skip
+        self.substituted.append((package, item.link))
+        return True
 
     @property
     def pending_meshes(self) -> int:

@@ -27,6 +27,7 @@ class RobotStatus:
     fixed_frame: str
     placed_beside: bool
     pending_meshes: int
+    substituted: tuple[tuple[str, str], ...] = ()  # (missing package, link)
 
 
 def _escape(text: str) -> str:
@@ -54,6 +55,22 @@ def _failure(failure: LoadFailure, base_dir: str) -> str:
     return "\n\n".join(lines)
 
 
+def _substitution_lines(head: str, substituted: Sequence[tuple[str, str]]) -> list[str]:
+    """One line per missing package whose visual meshes were drawn as collision shapes."""
+    links: dict[str, set[str]] = {}
+    for package, link in substituted:
+        links.setdefault(package, set()).add(link)
+    lines = []
+    for package, names in links.items():
+        hint = " (if it is one of example-robot-data's robots: `pip install example-robot-data`)"
+        lines.append(
+            f"{head}: package `{_escape(package)}` not found: {len(names)} link(s) drawn with "
+            "their collision shapes instead of their visual meshes"
+            + (hint if package.endswith("_description") else "")
+        )
+    return lines
+
+
 def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed: str) -> str:
     """Markdown for the status panel ("OK" when there is nothing to report)."""
     parts: list[str] = []
@@ -73,6 +90,7 @@ def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed:
                 for p in robot.problems
             ]
             parts.append(f"{head}: {len(lines)} mesh(es) not drawn:\n\n" + "\n".join(lines))
+        parts.extend(_substitution_lines(head, robot.substituted))
         if robot.pending_meshes:
             parts.append(f"{head}: loading {robot.pending_meshes} mesh(es)...")
         if robot.missing_frames:
@@ -122,6 +140,7 @@ def viewer_status(
                 fixed_frame=fixed_frame,
                 placed_beside=session.number in beside and len(sessions) > 1,
                 pending_meshes=display.pending_meshes if display is not None else 0,
+                substituted=tuple(display.substituted) if display is not None else (),
             )
         )
     known = fixed_frame in buffer.frames or any(fixed_frame == s.root_frame for s in sessions)

@@ -97,25 +97,38 @@ def start_sim_server(
         paused=paused,
         real_time_factor=world.real_time_factor,
         spec_source=spec_source,
+        ros_version=1 if ctx.spec.dialect == "ros1" else 2,  # the launch's gazebo_ros
     )
     ctx.extra["sim_server"] = server
     ctx.log(
         f"world '{world.name}' ({path or 'the default ground and sun'}) at "
         f"{world.timestep_s * 1e3:g} ms steps{', paused' if paused else ''}"
     )
-    return SimServerNode(server)
+    from robomodel.launch.nodes.gazebo_hint import spawn_hint
+
+    return SimServerNode(server, hint=spawn_hint(ctx), log=ctx.log)
 
 
 class SimServerNode:
-    """The running gzserver: the launch loop calls :meth:`drive`."""
+    """The running gzserver: the launch loop calls :meth:`drive`. ``hint`` is logged once if
+    the world is still without robots after a while (:mod:`~robomodel.launch.nodes.gazebo_hint`)."""
 
-    def __init__(self, server: Any) -> None:
+    def __init__(self, server: Any, *, hint: str | None = None, log: Any = None) -> None:
+        from robomodel.launch.nodes.gazebo_hint import HINT_AFTER_S
+
         self.server = server
         self._code: int | None = None
+        self._hint = hint
+        self._hint_at = time.monotonic() + HINT_AFTER_S
+        self._log = log
 
     def drive(self, duration_s: float) -> None:
         if self._code is None:
             self.server.drive(duration_s)
+        if self._hint is not None and (self.server.robots or time.monotonic() >= self._hint_at):
+            if not self.server.robots and self._log is not None:
+                self._log(self._hint)
+            self._hint = None
 
     def stop(self) -> None:
         if self._code is None:

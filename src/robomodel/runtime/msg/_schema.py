@@ -179,7 +179,10 @@ _PACKAGES = {
     "trajectory_msgs": "trajectory_msgs",
     "unique_identifier_msgs": "action_msgs",
 }
-_EXTRA_MODULES = {"control_msgs": ("control_msgs_actions",)}
+_EXTRA_MODULES = {
+    "control_msgs": ("control_msgs_actions",),
+    "gazebo_msgs": ("gazebo_msgs_states",),
+}
 
 
 def _import_package(key: str) -> None:

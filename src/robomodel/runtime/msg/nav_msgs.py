@@ -1,4 +1,4 @@
-"""nav_msgs: Odometry; tf2_msgs: TFMessage; rosgraph_msgs: Clock."""
+"""nav_msgs: Odometry; tf2_msgs: TFMessage; rosgraph_msgs: Clock and (ROS 1) Log."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from robomodel.runtime.msg.geometry_msgs import (
 )
 from robomodel.runtime.msg.std_msgs import Header
 
-__all__ = ["Clock", "Odometry", "TFMessage"]
+__all__ = ["Clock", "Odometry", "RosgraphLog", "TFMessage"]
 
 
 @dataclass(slots=True)
@@ -45,3 +45,32 @@ class Clock(Message):
     clock: Time = field(default_factory=Time)
     __typename__ = "rosgraph_msgs/msg/Clock"
     __fields__ = (("clock", Time),)
+
+
+@dataclass(slots=True)
+class RosgraphLog(Message):
+    """ROS 1's ``rosgraph_msgs/Log`` (/rosout); ROS 2's is ``rcl_interfaces/msg/Log``.
+
+    ``level`` is one of DEBUG 1, INFO 2, WARN 4, ERROR 8, FATAL 16; ``topics`` the node's
+    advertised topics (roscpp fills them).
+    """
+
+    header: Header = field(default_factory=Header)
+    level: int = 0
+    name: str = ""
+    msg: str = ""
+    file: str = ""
+    function: str = ""
+    line: int = 0
+    topics: list[str] = field(default_factory=list)
+    __typename__ = "rosgraph_msgs/msg/Log"
+    __fields__ = (
+        ("header", Header),
+        ("level", "int8"),
+        ("name", "string"),
+        ("msg", "string"),
+        ("file", "string"),
+        ("function", "string"),
+        ("line", "uint32"),
+        ("topics", Seq("string")),
+    )

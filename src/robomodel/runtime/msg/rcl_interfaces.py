@@ -1,5 +1,6 @@
-"""rcl_interfaces (Jazzy): parameter values, descriptors and events, and the six parameter
-services every ROS 2 node offers (``~/get_parameters``, ``~/set_parameters``, ...)."""
+"""rcl_interfaces (Jazzy): parameter values, descriptors and events, the six parameter
+services every ROS 2 node offers (``~/get_parameters``, ``~/set_parameters``, ...), and the
+``/rosout`` Log message."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ __all__ = [
     "IntegerRange",
     "ListParameters",
     "ListParametersResult",
+    "Log",
     "Parameter",
     "ParameterDescriptor",
     "ParameterEvent",
@@ -278,3 +280,27 @@ class GetParameterTypes(Service):
     __typename__ = "rcl_interfaces/srv/GetParameterTypes"
     Request = GetParameterTypes_Request
     Response = GetParameterTypes_Response
+
+
+@dataclass(slots=True)
+class Log(Message):
+    """``rcl_interfaces/msg/Log`` (/rosout): ``level`` DEBUG 10, INFO 20, WARN 30, ERROR 40,
+    FATAL 50."""
+
+    stamp: Time = field(default_factory=Time)
+    level: int = 0
+    name: str = ""
+    msg: str = ""
+    file: str = ""
+    function: str = ""
+    line: int = 0
+    __typename__ = "rcl_interfaces/msg/Log"
+    __fields__ = (
+        ("stamp", Time),
+        ("level", "uint8"),
+        ("name", "string"),
+        ("msg", "string"),
+        ("file", "string"),
+        ("function", "string"),
+        ("line", "uint32"),
+    )

@@ -6,7 +6,8 @@ rosbag and rviz see them and real ROS 1 nodes connect to them. Messages travel i
 serialization with the md5sums of the ROS 1 definitions (:mod:`.ros1.ros1_types`). A latched
 topic is a publisher with transient-local durability. Services without a ROS 1 counterpart (the
 ROS 2 parameter services every robomodel node has, lifecycle and action services) stay inside
-the process. Every node also registers a ``/rosout`` publisher, as roscpp and rospy nodes do.
+the process. A node's ``/rosout`` publisher is its own (:mod:`robomodel.runtime.rosout`), as
+in roscpp and rospy.
 """
 
 from __future__ import annotations
@@ -89,21 +90,7 @@ class Ros1Transport(Transport):
             endpoint = self._nodes.get(node)
             if endpoint is None:
                 endpoint = self._nodes[node] = NodeEndpoint(node, self.master_uri, self._bind)
-                created = True
-            else:
-                created = False
-        if created:
-            self._register_rosout(endpoint)
         return endpoint
-
-    def _register_rosout(self, endpoint: NodeEndpoint) -> None:
-        from robomodel.runtime.msg import get_message_type
-
-        try:
-            log_type = get_message_type("rosgraph_msgs/msg/Log")
-        except Exception:
-            return
-        self._advertise(endpoint, "/rosout", log_type, QoSProfile(depth=100))
 
     def register_node(self, node: str) -> Callable[[], None]:
         endpoint = self._endpoint(node)
