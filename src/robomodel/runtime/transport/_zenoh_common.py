@@ -41,7 +41,29 @@ def direct(callback: Any) -> Any:
     switch on every message. robomodel's callbacks only queue the sample for the executor.
     """
     zenoh = import_zenoh()
-    return zenoh.handlers.Callback(callback, indirect=False)
+    return zenoh.handlers.Callback(passing_interrupts(callback), indirect=False)
+
+
+def passing_interrupts(callback: Any) -> Any:
+    """``callback``, with Ctrl-C and SIGTERM handed back to the main thread.
+
+    Zenoh delivers a local sample on the thread that put it, so a callback can run on the main
+    thread (a launch's simulator publishing /clock); a KeyboardInterrupt raised there would be
+    printed as a "callback error" and swallowed by zenoh-python, and Ctrl-C would not end the
+    command. The signal is raised again, to be handled once Zenoh returns.
+    """
+
+    def run(sample: Any) -> None:
+        try:
+            callback(sample)
+        except KeyboardInterrupt as exc:
+            import _thread
+            import signal
+
+            terminated = type(exc).__name__ == "Terminated"  # robomodel.cli.main's SIGTERM
+            _thread.interrupt_main(signal.SIGTERM if terminated else signal.SIGINT)
+
+    return run
 
 
 CLOSE_TIMEOUT_S = 5.0
