@@ -28,6 +28,7 @@ from robomodel.runtime.msg import Message
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
 from robomodel.runtime.qos import QoSProfile
+from robomodel.runtime.transport._domain_id import domain_id_from_env
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import close_session, log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
@@ -55,18 +56,6 @@ __all__ = ["DECLARATIONS_SETTLE_S", "MAX_WARNINGS", "ZenohTransport", "domain_id
 
 MAX_WARNINGS = 256
 HUMBLE_TYPE_HASH = "TypeHashNotSupported"
-
-
-def domain_id_from_env() -> int:
-    """``ROBOMODEL_DOMAIN_ID``, else ``ROS_DOMAIN_ID``, else 0."""
-    text = os.environ.get("ROBOMODEL_DOMAIN_ID") or os.environ.get("ROS_DOMAIN_ID") or "0"
-    try:
-        value = int(text)
-    except ValueError:
-        raise RobomodelError(f"domain id must be an integer 0..232, got '{text}'") from None
-    if not 0 <= value <= 232:
-        raise RobomodelError(f"domain id must be in 0..232, got {value}")
-    return value
 
 
 def split_node_name(node: str) -> tuple[str, str]:
