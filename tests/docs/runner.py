@@ -219,5 +219,5 @@ def expected_exit(marker: str) -> int | None:
 def background_until(marker: str) -> str:
     match = re.fullmatch(r'run:\s*background\s+until\s+"([^"]+)"', marker)
     if match is None:
-        raise AssertionError(f"bad marker {marker!r}: use run: background until \"TEXT\"")
+        raise AssertionError(f'bad marker {marker!r}: use run: background until "TEXT"')
     return match.group(1)

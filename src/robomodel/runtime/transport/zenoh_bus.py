@@ -97,7 +97,7 @@ class ZenohTransport(Transport):
         self._lock = threading.Lock()
         self._nodes: dict[str, _NodeRecord] = {}
         self._services: dict[str, ZenohService] = {}
-        self._clients: dict[tuple[str | None, str, str], ServiceClient] = {}
+        self._clients: dict[tuple[str, str, str], ServiceClient] = {}
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
 
@@ -241,7 +241,13 @@ class ZenohTransport(Transport):
         ):
             # This thread runs the executor: a query would wait for itself. Run it in place.
             return _in_place(name, local.handler, request)
+        # A caller without a node (a command line, a launch file's helper) is a node of its own
+        # for the graph, as ros2cli's requester node is: its client has an SC token and a GID
+        # derived from it, so ROS 2's graph tools list it.
+        node = node or f"/robomodel_client_{os.getpid()}"
         key = (node, name, srv_type.__typename__)
+        if node not in self._nodes:  # its token first: register_node takes the lock below
+            self._node(node)
         with self._lock:
             client = self._clients.get(key)
             if client is None:
