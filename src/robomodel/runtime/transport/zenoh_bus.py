@@ -263,10 +263,17 @@ class ZenohTransport(Transport):
         empty at once, which made a second launch miss the first one's parameter server. While
         the session is that young and linked, an answer with none but its own nodes is asked again."""
         graph = read_graph(self.session, self.domain_id, timeout_s)
-        while len(graph.nodes) <= len(self._nodes) and self._young() and self.linked():
+        deadline = time.monotonic() + timeout_s
+        while self._stale(graph) and self.linked() and time.monotonic() < deadline:
             time.sleep(0.005)
             graph = read_graph(self.session, self.domain_id, timeout_s)
         return graph
+
+    def _stale(self, graph: Graph) -> bool:
+        """An answer that lacks this process's own nodes (their tokens went to a router in
+        another process and the query overtook them), or only those while young."""
+        own = set(self._nodes)
+        return not own <= graph.nodes or (len(graph.nodes) <= len(own) and self._young())
 
     def _young(self) -> bool:
         return time.monotonic() - self._opened_at < DECLARATIONS_SETTLE_S
