@@ -70,27 +70,32 @@ def endpoint_port(endpoint: str) -> int | None:
 
 
 def listening(endpoint: str) -> bool:
-    """Whether something accepts TCP connections on this loopback endpoint's port."""
+    """Whether something accepts TCP connections at ``tcp/host:port`` (localhost: 127.0.0.1)."""
     port = endpoint_port(endpoint)
-    if port is None:
+    protocol, _, address = endpoint.partition("/")
+    if port is None or protocol != "tcp":
         return False
-    with socket.socket() as probe:
-        probe.settimeout(0.5)
-        return probe.connect_ex(("127.0.0.1", port)) == 0
+    host = address.rpartition(":")[0].strip("[]")
+    host = "127.0.0.1" if host == "localhost" else host
+    try:
+        with socket.create_connection((host, port), timeout=0.5):
+            return True
+    except OSError:
+        return False
 
 
 def _linked(session: Any) -> bool:
     return bool(list(session.info.routers_zid()))
 
 
-def wait_for_router(session: Any, attempts: int, local: list[str]) -> bool:
+def wait_for_router(session: Any, attempts: int, endpoints: list[str]) -> bool:
     """Check ``attempts`` times (0: for ever), one second apart, for a router; a router that
-    already listens on a ``local`` endpoint is given time to link up."""
+    already listens at one of ``endpoints`` is given time to link up."""
     tries = 0
     while True:
         if _linked(session):
             return True
-        if any(listening(e) for e in local):
+        if any(listening(e) for e in endpoints):
             deadline = time.monotonic() + _LINK_WAIT_S
             while time.monotonic() < deadline:
                 if _linked(session):
