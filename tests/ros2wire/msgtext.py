@@ -2,8 +2,8 @@
 independent of robomodel: the SDK reads ``.msg`` / ``.srv`` files and computes every type
 hash itself, so what it is given must not come from robomodel's classes (issue 30.7).
 
-- ``interfaces/<pkg>/{msg,srv}/``: upstream files copied unchanged (``interfaces/README.md``
-  says from which repository, branch and commit);
+- ``interfaces/<pkg>/{msg,srv}/``: upstream files (``interfaces/README.md`` says from which
+  repository, branch and commit), with relative type names qualified by their package;
 - any other message: rosbags' Jazzy type store (``get_typestore(Stores.ROS2_JAZZY)``), its
   parsed definition written back as ``.msg`` text (rosbags parses the upstream files itself).
 
@@ -13,7 +13,6 @@ Messages that a written file uses are written too, recursively.
 from __future__ import annotations
 
 import re
-import shutil
 from pathlib import Path
 from typing import Any
 
@@ -85,6 +84,19 @@ def _used(text: str, package: str) -> set[str]:
     return used
 
 
+def _qualified(text: str, package: str) -> str:
+    """Relative type names (``ParameterValue[] values``) as rosidl resolves them, in the
+    package's own ``msg/`` (``rcl_interfaces/ParameterValue``): the SDK resolves none."""
+    lines = []
+    for line in text.splitlines():
+        words = line.split(None, 1)
+        base = re.split(r"[\[<]", words[0], maxsplit=1)[0] if words else ""
+        relative = base and base[0].isupper() and "/" not in base and not line.startswith("#")
+        owner = "std_msgs" if base == "Header" else package  # rosidl's one special name
+        lines.append(f"{owner}/{line.lstrip()}" if relative else line)
+    return "".join(f"{line}\n" for line in lines)
+
+
 def write_definitions(root: Path, names: list[str]) -> Path:
     """Write the types ``names`` (``pkg/msg/Name`` or ``pkg/srv/Name``) and every message they
     use under ``root/<pkg>/{msg,srv}/``."""
@@ -100,7 +112,7 @@ def write_definitions(root: Path, names: list[str]) -> Path:
         target.parent.mkdir(parents=True, exist_ok=True)
         upstream = UPSTREAM / package / kind / f"{short}.{kind}"
         if upstream.exists():
-            shutil.copyfile(upstream, target)
+            target.write_text(_qualified(upstream.read_text(), package))
         elif kind == "msg" and name in store.fielddefs:
             target.write_text(_from_store(store, name))
         else:
