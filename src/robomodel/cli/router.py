@@ -6,7 +6,7 @@ which serves every later process and ends a minute after the last session left. 
 machines, run one router that the others reach::
 
     robomodel router --listen tcp/[::]:7447          # on the robot (rmw_zenohd's endpoint)
-    ZENOH_CONFIG_OVERRIDE='connect/endpoints=["tcp/robot:7447"]' robomodel view ...   # elsewhere
+    robomodel view ... --connect tcp/robot:7447 --listen tcp/MY_ADDRESS:0   # elsewhere
 
 By default it listens on ``tcp/localhost:7447`` only; ``ZENOH_ROUTER_CONFIG_URI`` and
 ``ZENOH_CONFIG_OVERRIDE`` apply as they do to ``rmw_zenohd``. It runs until Ctrl-C or SIGTERM

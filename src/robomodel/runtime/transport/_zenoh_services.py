@@ -59,7 +59,7 @@ class ZenohService(ServiceHandle):
         self.handler = handler
         prepare(srv_type.Request)
         prepare(srv_type.Response)
-        self._key = bus.data_key(endpoint.topic, srv_type)
+        self.key = self._key = bus.data_key(endpoint.topic, srv_type)
         token = bus.entity_token(endpoint, EntityKind.SERVICE, srv_type)
         self._queryable = bus.session.declare_queryable(
             self._key, direct(self._on_query), complete=True

@@ -97,7 +97,8 @@ class ZenohTransport(Transport):
         self._lock = threading.Lock()
         self._nodes: dict[str, _NodeRecord] = {}
         self._services: dict[str, ZenohService] = {}
-        self._clients: dict[tuple[str, str, str], ServiceClient] = {}
+        self._variants: list[ZenohService] = []  # earlier layouts of offered services
+        self._clients: dict[tuple[str, str, type[Service]], ServiceClient] = {}
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
 
@@ -214,15 +215,25 @@ class ZenohTransport(Transport):
     def create_service(
         self, node: str, name: str, srv_type: type[Service], handler: ServiceHandler
     ) -> ServiceHandle:
-        if name in self._services:
+        offered = self._services.get(name)
+        variant = offered is not None and offered.srv_type.__typename__ == srv_type.__typename__
+        if offered is not None and (not variant or self.data_key(name, srv_type) in self._keys()):
             raise RobomodelError(f"service '{name}' is already offered in this process")
         service = ZenohService(self, Endpoint(node, name, srv_type.__typename__), srv_type, handler)
-        self._services[name] = service
+        if variant:  # another layout of the same type (another hash, so another key)
+            self._variants.append(service)
+        else:
+            self._services[name] = service
         return service
+
+    def _keys(self) -> set[str]:
+        return {s.key for s in [*self._services.values(), *self._variants]}
 
     def forget_service(self, service: ZenohService) -> None:
         if self._services.get(service.endpoint.topic) is service:
             del self._services[service.endpoint.topic]
+        if service in self._variants:
+            self._variants.remove(service)
 
     def call_service(
         self,
@@ -245,7 +256,7 @@ class ZenohTransport(Transport):
         # for the graph, as ros2cli's requester node is: its client has an SC token and a GID
         # derived from it, so ROS 2's graph tools list it.
         node = node or f"/robomodel_client_{os.getpid()}"
-        key = (node, name, srv_type.__typename__)
+        key = (node, name, srv_type)  # the class: layouts of one type name differ in hash
         if node not in self._nodes:  # its token first: register_node takes the lock below
             self._node(node)
         with self._lock:
@@ -284,7 +295,7 @@ class ZenohTransport(Transport):
         return bool(list(info.routers_zid()) or list(info.peers_zid()))
 
     def close(self) -> None:
-        for service in list(self._services.values()):
+        for service in [*self._services.values(), *self._variants]:
             service.destroy()
         for client in self._clients.values():
             client.destroy()
