@@ -7,8 +7,8 @@
   service (``SS``) and client (``SC``), numbered from one counter per session as rmw_zenoh's
   context numbers them; ``graph()`` reads everyone's.
 - Session: rmw_zenoh's configuration and environment (``ZENOH_SESSION_CONFIG_URI``,
-  ``ZENOH_CONFIG_OVERRIDE``, ``ROS_DOMAIN_ID``), the router at ``tcp/localhost:7447``, and this
-  process as that router when none answers (see ``_zenoh_session``).
+  ``ZENOH_CONFIG_OVERRIDE``, ``ROS_DOMAIN_ID``), the router at ``tcp/localhost:7447``, and a
+  detached ``robomodel router`` started there when none answers (see ``_zenoh_session``).
 - ``ROS_DISTRO=humble`` keys types by ``TypeHashNotSupported``, as Humble's rmw_zenoh does
   (Humble has no type hashes).
 """
