@@ -16,7 +16,14 @@ import pytest
 
 from robomodel.runtime.msg import String
 from robomodel.runtime.msg.typehash import dds_type_name, ros_type_name, type_hash
-from robomodel.runtime.qos import Durability, QoSProfile, Reliability, latched, sensor_data
+from robomodel.runtime.qos import (
+    Durability,
+    History,
+    QoSProfile,
+    Reliability,
+    latched,
+    sensor_data,
+)
 from robomodel.runtime.transport._attachment import SequenceTracker
 from robomodel.runtime.transport.rmw_zenoh import (
     ATTACHMENT_SIZE,
@@ -119,12 +126,9 @@ def test_a_parsed_token_says_what_the_graph_needs() -> None:
     "key",
     [
         "@ros2_lv/2/aac3/0/0/NN/%/%",  # too few parts
-        "@ros2_lv/2/aac3/0/0/NN/%/%/listener/extra",  # a node with topic parts
         "@ros2_lv/2/aac3/0/0/XX/%/%/listener",  # unknown entity kind
         "@ros2/2/aac3/0/0/NN/%/%/listener",  # wrong admin space
         "@ros2_lv/two/aac3/0/0/NN/%/%/listener",  # domain not a number
-        "@ros2_lv/2/aac3/0/-1/NN/%/%/listener",
-        "@ros2_lv/2/aac3/0/²/NN/%/%/listener",  # '²'.isdigit() is True
         "@ros2_lv/2//0/0/NN/%/%/listener",  # an empty part
         LISTENER_SUB.replace("::,10:,:,:,,", "::,10:,"),  # QoS of too few fields
         LISTENER_SUB.replace("::,10:", "9::,10:"),  # unknown reliability
@@ -135,12 +139,32 @@ def test_malformed_tokens_are_refused(key: str) -> None:
     assert EntityToken.parse(key) is None
 
 
+@pytest.mark.parametrize(
+    ("key", "node_id", "entity_id"),
+    [
+        ("@ros2_lv/2/aac3/0/0/NN/%/%/listener/extra", 0, 0),  # only parts 0-8 are read
+        ("@ros2_lv/2/aac3/0/-1/NN/%/%/listener", 0, "-1"),  # ids are strings there
+        ("@ros2_lv/2/aac3/0/²/NN/%/%/listener", 0, "²"),
+        ("@ros2_lv/ 2x/aac3/0/0/NN/%/%/listener", 0, 0),  # std::stoul(" 2x") is 2
+    ],
+)
+def test_tokens_entity_make_accepts_are_read(
+    key: str, node_id: int | str, entity_id: int | str
+) -> None:
+    """``Entity::make`` (liveliness_utils.cpp, Jazzy 0.2.10) checks the number of parts (at
+    least, not exactly), the admin space and kind, reads the domain with ``std::stoul`` and
+    keeps ids as strings."""
+    token = EntityToken.parse(key)
+    assert token is not None and token.node == "/listener" and token.domain_id == 2
+    assert (token.node_id, token.entity_id) == (node_id, entity_id)
+
+
 def test_qos_strings_elide_rmw_zenoh_s_defaults() -> None:
     assert qos_to_key(QoSProfile(depth=10)) == "::,10:,:,:,,"  # rclcpp's default
     assert qos_to_key(QoSProfile(depth=42)) == "::,:,:,:,,"  # rmw_zenoh's default depth
     assert qos_to_key(latched()) == ":1:,1:,:,:,,"  # /tf_static, /robot_description
     assert qos_to_key(sensor_data()) == "2::,5:,:,:,,"
-    assert qos_to_key(QoSProfile(depth=3), keep_all=True) == "::2,3:,:,:,,"
+    assert qos_to_key(QoSProfile(depth=3, history=History.KEEP_ALL)) == "::2,3:,:,:,,"
     assert qos_from_key(":1:,1:,:,:,,") == QoSProfile(1, Durability.TRANSIENT_LOCAL)
     assert qos_from_key("2::,5:,:,:,,") == QoSProfile(
         5, Durability.VOLATILE, Reliability.BEST_EFFORT

@@ -82,12 +82,19 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
             with pytest.raises(ServiceCallError, match="did not answer"):
                 ctx.call_service("/calc/check", Trigger, timeout_s=0.5)  # another type: no match
             info = ctx.graph().services["/calc/check"]
-            assert info.types == {"std_srvs/srv/SetBool"} and info.servers[0].node == "/calc"
+            # the Trigger call above left a client of that type (30.8: callers are in the graph)
+            assert [(s.type_name, s.node) for s in info.servers] == [
+                ("std_srvs/srv/SetBool", "/calc")
+            ]
+            assert {c.type_name for c in info.clients} == {
+                "std_srvs/srv/SetBool",
+                "std_srvs/srv/Trigger",
+            }
         cli = [*ROBOMODEL, "service"]
         listed = subprocess.run([*cli, "list", "-t", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
         assert listed.returncode == 0 and "/calc/check [std_srvs/srv/SetBool]" in listed.stdout
         typed = subprocess.run([*cli, "type", "/calc/check", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
-        assert typed.stdout.strip() == "std_srvs/srv/SetBool"
+        assert typed.stdout.strip() == "std_srvs/srv/SetBool", typed.stderr
         called = subprocess.run([*cli, "call", "calc/check", "std_srvs/srv/SetBool", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
         assert called.returncode == 0, called.stderr
         assert "message: checked" in called.stdout and "data: true" in called.stdout

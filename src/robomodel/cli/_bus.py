@@ -15,9 +15,23 @@ __all__ = [
     "add_bus_arguments",
     "bus_from_args",
     "context_from_args",
+    "domain_id_arg",
     "settled_graph",
     "wait_for_peers",
 ]
+
+
+def domain_id_arg(text: str) -> int:
+    """``--domain-id``, read as rcl reads ``ROS_DOMAIN_ID`` (so ``0x2a`` is 42)."""
+    from robomodel.runtime.transport._domain_id import DomainIdError, parse_domain_id
+
+    try:
+        value = parse_domain_id(text, variable="--domain-id")
+    except DomainIdError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    if value is None:
+        raise argparse.ArgumentTypeError("--domain-id needs a number, e.g. 42")
+    return value
 
 
 def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str | None = None) -> None:
@@ -32,9 +46,9 @@ def add_bus_arguments(parser: argparse.ArgumentParser, *, default: str | None = 
     )
     group.add_argument(
         "--domain-id",
-        type=int,
+        type=domain_id_arg,
         default=None,
-        help="keep groups of processes apart (default: ROBOMODEL_DOMAIN_ID or ROS_DOMAIN_ID or 0)",
+        help="keep groups of processes apart (default: ROS_DOMAIN_ID as rcl reads it, else ROBOMODEL_DOMAIN_ID, else 0)",
     )
     group.add_argument(
         "--connect",

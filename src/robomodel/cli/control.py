@@ -157,7 +157,11 @@ def _managers_on_the_bus(context: Any) -> list[str]:
     (ros2_control's and ROS 1 controller_manager's service name)."""
     suffix = "/list_controllers"
     services = settled_graph(context, 1.0).services
-    return sorted(name[: -len(suffix)] for name in services if name.endswith(suffix))
+    return sorted(
+        name[: -len(suffix)]
+        for name, info in services.items()
+        if name.endswith(suffix) and info.servers  # not another caller's client
+    )
 
 
 def _check(ok: bool, what: str) -> None:

@@ -25,6 +25,12 @@ from robomodel.errors import RobomodelError, close_matches
 __all__ = ["dialect_of", "register", "run"]
 
 
+def _domain_id(text: str) -> int:
+    from robomodel.cli._bus import domain_id_arg  # the bus's modules load only when used
+
+    return domain_id_arg(text)
+
+
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser(
         "launch",
@@ -88,7 +94,9 @@ def _add_run_options(parser: Any) -> None:
         help="ROS 1 launch files: join the ROS 1 master at URI (default ROS_MASTER_URI, else "
         "http://localhost:11311/), or start one there if none answers, as roslaunch does",
     )  # fmt: skip
-    parser.add_argument("--domain-id", type=int, default=None, help="ROS_DOMAIN_ID for zenoh")
+    parser.add_argument(
+        "--domain-id", type=_domain_id, default=None, help="ROS_DOMAIN_ID for zenoh"
+    )
     parser.add_argument(
         "--duration", type=float, default=None, metavar="S",
         help="stop after S seconds (for scripts; roslaunch runs until Ctrl-C)",

@@ -113,7 +113,8 @@ def _run_type(args: argparse.Namespace) -> int:
 
 def _not_offered(context: Context, name: str) -> str:
     """ "service 'x' is not offered on the bus (did you mean ...?)" with the offered names."""
-    offered = sorted(settled_graph(context, 0.5).services)
+    services = settled_graph(context, 0.5).services
+    offered = sorted(name for name, info in services.items() if info.servers)  # not callers
     hint = close_matches(name, offered)
     mean = f" (did you mean {', '.join(repr(h) for h in hint)}?)" if hint else ""
     listing = ", ".join(offered) or "(none found)"
@@ -172,7 +173,8 @@ def _run_call(args: argparse.Namespace) -> int:
         try:
             reply = context.call_service(name, srv_type, request, timeout_s=args.timeout)
         except ServiceCallError as exc:
-            if name in settled_graph(context, 0.5).services:
+            info = settled_graph(context, 0.5).services.get(name)
+            if info is not None and info.servers:
                 raise
             raise RobomodelError(f"{exc}: {_not_offered(context, name)}") from None
         print(f"\nresponse ({(time.monotonic() - start) * 1e3:.1f} ms):")

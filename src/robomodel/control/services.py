@@ -229,7 +229,28 @@ SERVICES = (
 def register_services(cm: ControllerManager, node: Node) -> list[Callable[[], None]]:
     """Offer the manager's services on its node; returns the unregister functions."""
     prefix = cm.service_prefix
+    handlers = _handlers(cm)
+    if node.context.transport.name == "zenoh":  # rmw_zenoh keys a service by its type hash
+        handlers += _variant_handlers(cm)
     return [
         node.create_service(srv_type, f"{prefix}/{name}", handler).destroy
-        for name, srv_type, handler in _handlers(cm)
+        for name, srv_type, handler in handlers
     ]
+
+
+def _variant_handlers(cm: ControllerManager) -> list[tuple[str, Any, Callable[[Any], Any]]]:
+    """list_controllers in the layouts of earlier Jazzy ros2_control releases (each its own
+    hash, so an older ``ros2 control list_controllers`` finds the manager too)."""
+    from robomodel.runtime.msg.controller_manager_msgs_variants import (
+        LIST_CONTROLLERS_VARIANTS,
+        ListControllersVariant,
+        downgrade,
+    )
+
+    def handler(variant: ListControllersVariant) -> Callable[[Any], Any]:
+        response: Any = variant.srv_type.Response  # a dataclass with one field, controller
+        return lambda r: response(
+            [downgrade(_controller_state(i), variant) for i in cm.list_controllers()]
+        )
+
+    return [("list_controllers", v.srv_type, handler(v)) for v in LIST_CONTROLLERS_VARIANTS]

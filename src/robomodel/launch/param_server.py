@@ -173,7 +173,8 @@ def _remote_server_found(context: Any, settle_s: float) -> bool:
     stable = 0
     while True:
         graph = context.graph(timeout_s=0.5)
-        if SERVICE in graph.services:
+        info = graph.services.get(SERVICE)
+        if info is not None and info.servers:  # a server, not another launch's client of it
             return True
         # Liveliness tokens arrive in batches: decide only once the graph has stopped growing
         # (three answers in a row the same), not on a partial one that lacks /rosmaster yet.

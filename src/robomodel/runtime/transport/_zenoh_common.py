@@ -41,7 +41,8 @@ def direct(callback: Any) -> Any:
     switch on every message. robomodel's callbacks only queue the sample for the executor.
     """
     zenoh = import_zenoh()
-    return zenoh.handlers.Callback(passing_interrupts(callback), indirect=False)
+    # drop passed explicitly: zenoh-python 1.5 requires it despite its stub's default
+    return zenoh.handlers.Callback(passing_interrupts(callback), None, indirect=False)
 
 
 def passing_interrupts(callback: Any) -> Any:

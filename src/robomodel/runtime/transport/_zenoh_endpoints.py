@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
 from robomodel.runtime.msg.cdr import prepare
-from robomodel.runtime.qos import Durability, Reliability
+from robomodel.runtime.qos import Durability, History, Reliability
 from robomodel.runtime.transport._attachment import SequenceTracker
 from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
 from robomodel.runtime.transport.base import (
@@ -69,8 +69,13 @@ class ZenohPublisher(PublisherHandle):
         token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
         self._gid = entity_gid(token.key())
         key = bus.data_key(endpoint.topic, msg_type)
+        # rmw_publisher_data.cpp (PublisherData::make): BLOCK for RELIABLE + KEEP_ALL, so a
+        # slow link holds the publisher back rather than lose messages; DROP otherwise.
+        keep_all = endpoint.qos.history is History.KEEP_ALL
+        reliable = endpoint.qos.reliability is Reliability.RELIABLE
+        congestion = "BLOCK" if keep_all and reliable else "DROP"
         options: dict[str, Any] = {
-            "congestion_control": zenoh.CongestionControl.DROP,
+            "congestion_control": getattr(zenoh.CongestionControl, congestion),
             "reliability": _reliability(zenoh, endpoint),
         }
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
@@ -136,9 +141,11 @@ class ZenohSubscription(SubscriptionHandle):
         self._alive = True
         prepare(msg_type)
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
-        # the oldest (rmw_zenoh's message queue) instead of falling further behind.
+        # the oldest (rmw_zenoh's message queue) instead of falling further behind. KEEP_ALL
+        # keeps every one (SubscriptionData::add_new_message, rmw_subscription_data.cpp).
+        keep_all = endpoint.qos.history is History.KEEP_ALL
         self._pending: collections.deque[tuple[bytes, bytes, int]] = collections.deque(
-            maxlen=max(1, endpoint.qos.depth)
+            maxlen=None if keep_all else max(1, endpoint.qos.depth)
         )
         self._pending_lock = threading.Lock()
         self._scheduled = False

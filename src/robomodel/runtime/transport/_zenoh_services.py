@@ -59,7 +59,7 @@ class ZenohService(ServiceHandle):
         self.handler = handler
         prepare(srv_type.Request)
         prepare(srv_type.Response)
-        self._key = bus.data_key(endpoint.topic, srv_type)
+        self.key = self._key = bus.data_key(endpoint.topic, srv_type)
         token = bus.entity_token(endpoint, EntityKind.SERVICE, srv_type)
         self._queryable = bus.session.declare_queryable(
             self._key, direct(self._on_query), complete=True
@@ -121,28 +121,25 @@ class ZenohService(ServiceHandle):
 
 
 class ServiceClient:
-    """Calls of one (node, service, type): its GID, its sequence numbers and, for a node's
-    client, its ``SC`` token."""
+    """Calls of one (node, service, type): its ``SC`` token, its GID and sequence numbers.
 
-    def __init__(
-        self, bus: ZenohTransport, name: str, srv_type: type[Service], node: str | None
-    ) -> None:
+    As rmw_zenoh's ``ClientData::make`` (``rmw_client_data.cpp``): the token is the node's
+    entity ``SC`` token (``liveliness_utils.cpp``, ``Entity::make``) and the GID that every
+    request's attachment carries is derived from that token (``Entity::copy_gid``)."""
+
+    def __init__(self, bus: ZenohTransport, name: str, srv_type: type[Service], node: str) -> None:
         self._bus = bus
         self.name = name
         self.srv_type = srv_type
         self._key = bus.data_key(name, srv_type)
         self._numbers = itertools.count(1)
         self._lock = threading.Lock()
-        self._token = None
         prepare(srv_type.Request)
         prepare(srv_type.Response)
-        if node is not None:
-            endpoint = Endpoint(node, name, srv_type.__typename__)
-            token = bus.entity_token(endpoint, EntityKind.CLIENT, srv_type)
-            self.gid = entity_gid(token.key())
-            self._token = bus.session.liveliness().declare_token(token.key())
-        else:  # a one-off caller (a command line): a GID of its own, no graph entry
-            self.gid = entity_gid(f"{bus.zid}/client/{next(bus.ids)}/{name}")
+        endpoint = Endpoint(node, name, srv_type.__typename__)
+        self.token = bus.entity_token(endpoint, EntityKind.CLIENT, srv_type)
+        self.gid = entity_gid(self.token.key())
+        self._token = bus.session.liveliness().declare_token(self.token.key())
 
     def call(self, request: Message, timeout_s: float) -> Message:
         zenoh = import_zenoh()

@@ -7,12 +7,11 @@ file and ``ZENOH_CONFIG_OVERRIDE`` (``key=json5 value;...``) changes keys of it,
 rmw_zenoh's ``zenoh_config.cpp``; robomodel's own ``--connect`` / ``--listen`` endpoints (and
 ``ROBOMODEL_CONNECT`` / ``ROBOMODEL_LISTEN``) are added last.
 
-As ``zenoh_router_check.cpp``, the session then checks that a router answered. When none did
-and the configuration names a router on this machine (a loopback endpoint: by default
-``tcp/localhost:7447``), this process becomes it: the session is reopened in router mode
-listening on that endpoint (loopback only), so that one machine needs no extra command. When that process exits, its peers keep their direct links (gossip)
-and reconnect to the next robomodel process that takes the port, or to ``robomodel router``.
-``ZENOH_ROUTER_CHECK_ATTEMPTS`` below zero skips the check (peers only, as in rmw_zenoh).
+As rmw_zenoh's context, the session then looks for a router as ``ZENOH_ROUTER_CHECK_ATTEMPTS``
+says (see ``_zenoh_router``). When none answers and the configuration names a router on this
+machine (a loopback endpoint: by default ``tcp/localhost:7447``), a detached ``robomodel
+router`` is started there, which outlives this process and ends when no session has used it for
+a minute, so one machine needs no extra command; ``rmw_zenohd`` started first is used instead.
 """
 
 from __future__ import annotations
@@ -26,6 +25,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.transport._zenoh_common import import_zenoh, log
+from robomodel.runtime.transport._zenoh_router import check_attempts, start_router, wait_for_router
 
 __all__ = [
     "DEFAULT_ROUTER",
@@ -64,7 +64,7 @@ _ROUTER = {
 }
 
 
-_LINK_WAIT_S = 3.0
+ROUTER_START_WAIT_S = 10.0
 
 
 class ZenohConfigError(RobomodelError):
@@ -134,21 +134,12 @@ def router_config(listen: Sequence[str] = ()) -> Any:
     conf = _config(zenoh, _ROUTER, "ZENOH_ROUTER_CONFIG_URI")
     if listen:
         conf.insert_json5("listen/endpoints", json.dumps(list(listen)))
+    conf.insert_json5("listen/exit_on_failure", "true")  # as rmw_zenohd: a taken port is an error
     return conf
 
 
 def _env_list(name: str) -> list[str]:
     return [p.strip() for p in os.environ.get(name, "").split(",") if p.strip()]
-
-
-def _check_attempts() -> int:
-    text = os.environ.get("ZENOH_ROUTER_CHECK_ATTEMPTS", "").strip()
-    try:
-        return int(text) if text else 0
-    except ValueError:
-        raise ZenohConfigError(
-            f"ZENOH_ROUTER_CHECK_ATTEMPTS must be an integer, got '{text}'"
-        ) from None
 
 
 @dataclass
@@ -167,17 +158,28 @@ def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> Ope
         session = zenoh.open(conf)
     except Exception as exc:
         raise ZenohConfigError(f"cannot open a Zenoh session: {exc}") from None
-    attempts = _check_attempts()
-    if attempts < 0 or _is_router(conf) or list(session.info.routers_zid()):
+    attempts = check_attempts()
+    if attempts is None or _is_router(conf):
         return OpenedSession(session, _is_router(conf))
-    local = [e for e in _endpoints(conf, "connect/endpoints") if e.startswith(_LOOPBACK_HOSTS)]
+    connect_to = _endpoints(conf, "connect/endpoints")
+    local = [e for e in connect_to if e.startswith(_LOOPBACK_HOSTS)]
+    if wait_for_router(session, attempts, local):
+        return OpenedSession(session, False)
     if not local:
         log.warning(
             "no Zenoh router answers at %s; peers on other machines will not be found",
-            ", ".join(_endpoints(conf, "connect/endpoints")) or "(no connect endpoint)",
+            ", ".join(connect_to) or "(no connect endpoint)",
         )
         return OpenedSession(session, False)
-    return _become_router(zenoh, session, conf, local[0])
+    start_router(local[0])
+    # The session's connect retry (250 ms to 1 s) links it to the new router; a session used
+    # before then sees an empty graph (a second launch would host a parameter server of its own).
+    deadline = time.monotonic() + ROUTER_START_WAIT_S
+    while not list(session.info.routers_zid()) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    if not list(session.info.routers_zid()):
+        log.warning("the Zenoh router started on %s did not answer; see its log", local[0])
+    return OpenedSession(session, False)
 
 
 def _is_router(conf: Any) -> bool:
@@ -185,30 +187,3 @@ def _is_router(conf: Any) -> bool:
         return bool(json.loads(conf.get_json("mode")) == "router")
     except Exception:
         return False
-
-
-def _become_router(zenoh: Any, peer_session: Any, peer_conf: Any, endpoint: str) -> OpenedSession:
-    """Reopen as the router on ``endpoint``; if another process took it first, stay a peer."""
-    conf = zenoh.Config.from_json5(str(peer_conf))
-    conf.insert_json5("mode", '"router"')
-    listen = [e for e in _endpoints(peer_conf, "listen/endpoints") if not e.endswith(":0")]
-    conf.insert_json5("listen/endpoints", json.dumps([endpoint, *listen]))
-    conf.insert_json5("listen/exit_on_failure", "true")
-    connect = [e for e in _endpoints(peer_conf, "connect/endpoints") if e != endpoint]
-    conf.insert_json5("connect/endpoints", json.dumps(connect))
-    try:
-        peer_session.close()
-    except Exception:  # "close operation timed out" on a loaded machine: the peer is dropped
-        log.debug("closing the peer session before becoming the router failed", exc_info=True)
-    try:
-        return OpenedSession(zenoh.open(conf), True)
-    except Exception:
-        log.debug("another process became the router first; joining it", exc_info=True)
-    session = zenoh.open(peer_conf)
-    # A router holds the port, so the link comes; on a loaded machine it can take longer than
-    # open() waits, and a session used before then sees an empty graph (a second launch would
-    # host a parameter server of its own).
-    deadline = time.monotonic() + _LINK_WAIT_S
-    while not list(session.info.routers_zid()) and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return OpenedSession(session, False)

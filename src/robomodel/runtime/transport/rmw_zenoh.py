@@ -24,7 +24,7 @@ import enum
 import struct
 from dataclasses import dataclass, replace
 
-from robomodel.runtime.qos import Durability, QoSProfile, Reliability
+from robomodel.runtime.transport._zenoh_qos import qos_from_key, qos_to_key
 
 __all__ = [
     "ADMIN_SPACE",
@@ -46,12 +46,6 @@ ADMIN_SPACE = "@ros2_lv"
 GID_SIZE = 16
 ATTACHMENT_SIZE = 8 + 8 + 1 + GID_SIZE
 _ATTACHMENT = struct.Struct("<qqB16s")
-
-# rmw's enum values (rmw/types.h) and rmw_zenoh's defaults (qos.cpp)
-_RELIABLE, _BEST_EFFORT = 1, 2
-_TRANSIENT_LOCAL, _VOLATILE = 1, 2
-_KEEP_LAST, _KEEP_ALL = 1, 2
-_DEFAULT_DEPTH = 42
 
 
 class EntityKind(enum.Enum):
@@ -75,51 +69,17 @@ def topic_key(domain_id: int, name: str, dds_type: str, type_hash: str) -> str:
     return f"{domain_id}/{name.strip('/')}/{dds_type}/{type_hash}"
 
 
-# -- QoS ----------------------------------------------------------------------------------------
-
-
-def qos_to_key(qos: QoSProfile, *, keep_all: bool = False) -> str:
-    """``qos_to_keyexpr``: ``reliability:durability:history,depth:deadline:lifespan:liveliness``
-    with every value equal to the default left empty (``::,10:,:,:,,`` is rclcpp's default)."""
-    reliability = "" if qos.reliability is Reliability.RELIABLE else str(_BEST_EFFORT)
-    durability = "" if qos.durability is Durability.VOLATILE else str(_TRANSIENT_LOCAL)
-    history = str(_KEEP_ALL) if keep_all else ""
-    depth = "" if qos.depth == _DEFAULT_DEPTH else str(qos.depth)
-    return f"{reliability}:{durability}:{history},{depth}:,:,:,,"
-
-
-def _number(text: str, default: int) -> int | None:
-    if not text:
-        return default
-    if not text.isascii() or not text.isdigit() or len(text) > 20:
+def _stoul(text: str) -> int | None:
+    """C++'s ``std::stoul`` (``Entity::make`` reads the domain id so): leading blanks, a
+    sign, decimal digits, anything after them ignored; None where it throws."""
+    rest = text.lstrip(" \t\n\v\f\r")
+    negative = rest[:1] == "-"
+    rest = rest[1:] if rest[:1] in ("+", "-") else rest
+    digits = len(rest) - len(rest.lstrip("0123456789"))
+    if digits == 0 or int(rest[:digits]) > 2**64 - 1:
         return None
-    return int(text)
-
-
-def qos_from_key(text: str) -> QoSProfile | None:
-    """``keyexpr_to_qos`` for what robomodel models (reliability, durability, depth); None when
-    the string is not of that form. A depth of 0 reads as the default, as rmw_zenoh adapts it."""
-    parts = text.split(":")
-    if len(parts) < 6:
-        return None
-    history = parts[2].split(",")
-    if len(history) < 2 or len(parts[3].split(",")) < 2 or len(parts[4].split(",")) < 2:
-        return None
-    if len(parts[5].split(",")) < 3:
-        return None
-    reliability = {"": Reliability.RELIABLE, "0": Reliability.RELIABLE, "1": Reliability.RELIABLE,
-                   "2": Reliability.BEST_EFFORT, "4": Reliability.RELIABLE}.get(parts[0])  # fmt: skip
-    durability = {"": Durability.VOLATILE, "0": Durability.VOLATILE, "2": Durability.VOLATILE,
-                  "1": Durability.TRANSIENT_LOCAL, "4": Durability.VOLATILE}.get(parts[1])  # fmt: skip
-    depth = _number(history[1], _DEFAULT_DEPTH)
-    if (
-        reliability is None
-        or durability is None
-        or depth is None
-        or history[0] not in ("", "0", "1", "2")
-    ):
-        return None
-    return QoSProfile(depth or _DEFAULT_DEPTH, durability, reliability)
+    value = int(rest[:digits])
+    return (-value) % 2**64 if negative else value
 
 
 # -- liveliness tokens -------------------------------------------------------------------------
@@ -131,8 +91,8 @@ class EntityToken:
 
     domain_id: int
     zid: str
-    node_id: int
-    entity_id: int
+    node_id: int | str  # rmw_zenoh's are decimal numbers; a peer's are read as they are
+    entity_id: int | str
     kind: EntityKind
     namespace: str
     node_name: str
@@ -165,7 +125,9 @@ class EntityToken:
 
     @classmethod
     def parse(cls, key: str) -> EntityToken | None:
-        """The entity of a token; None for a malformed one (as ``Entity::make`` refuses it)."""
+        """The entity of a token; None where ``Entity::make`` refuses it. As there, parts past
+        the last one used are ignored, node and entity ids are taken as they are (decimal
+        ones as numbers), and the domain id is read by ``std::stoul``."""
         parts = key.split("/")
         if len(parts) < 9 or parts[0] != ADMIN_SPACE or not all(parts):
             return None
@@ -173,15 +135,15 @@ class EntityToken:
             kind = EntityKind(parts[5])
         except ValueError:
             return None
-        numbers = [_number(p, -1) for p in parts[1:2] + parts[3:5]]
-        if any(n is None or n < 0 for n in numbers):
+        domain_id = _stoul(parts[1])
+        if domain_id is None:
             return None
-        domain_id, node_id, entity_id = (int(n) for n in numbers)  # type: ignore[arg-type]
+        node_id, entity_id = (int(p) if p.isascii() and p.isdigit() else p for p in parts[3:5])
         token = cls(domain_id, parts[2], node_id, entity_id, kind, demangle(parts[7]),
                     demangle(parts[8]), demangle(parts[6]))  # fmt: skip
         if kind is EntityKind.NODE:
-            return token if len(parts) == 9 else None
-        if len(parts) != 13 or qos_from_key(parts[12]) is None:
+            return token
+        if len(parts) < 13 or qos_from_key(parts[12]) is None:
             return None
         return replace(token, name=demangle(parts[9]), dds_type=demangle(parts[10]),
                        type_hash=demangle(parts[11]), qos=parts[12])  # fmt: skip

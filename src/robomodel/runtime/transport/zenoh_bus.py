@@ -7,8 +7,8 @@
   service (``SS``) and client (``SC``), numbered from one counter per session as rmw_zenoh's
   context numbers them; ``graph()`` reads everyone's.
 - Session: rmw_zenoh's configuration and environment (``ZENOH_SESSION_CONFIG_URI``,
-  ``ZENOH_CONFIG_OVERRIDE``, ``ROS_DOMAIN_ID``), the router at ``tcp/localhost:7447``, and this
-  process as that router when none answers (see ``_zenoh_session``).
+  ``ZENOH_CONFIG_OVERRIDE``, ``ROS_DOMAIN_ID``), the router at ``tcp/localhost:7447``, and a
+  detached ``robomodel router`` started there when none answers (see ``_zenoh_session``).
 - ``ROS_DISTRO=humble`` keys types by ``TypeHashNotSupported``, as Humble's rmw_zenoh does
   (Humble has no type hashes).
 """
@@ -28,6 +28,7 @@ from robomodel.runtime.msg import Message
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
 from robomodel.runtime.qos import QoSProfile
+from robomodel.runtime.transport._domain_id import domain_id_from_env
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import close_session, log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
@@ -55,18 +56,6 @@ __all__ = ["DECLARATIONS_SETTLE_S", "MAX_WARNINGS", "ZenohTransport", "domain_id
 
 MAX_WARNINGS = 256
 HUMBLE_TYPE_HASH = "TypeHashNotSupported"
-
-
-def domain_id_from_env() -> int:
-    """``ROBOMODEL_DOMAIN_ID``, else ``ROS_DOMAIN_ID``, else 0."""
-    text = os.environ.get("ROBOMODEL_DOMAIN_ID") or os.environ.get("ROS_DOMAIN_ID") or "0"
-    try:
-        value = int(text)
-    except ValueError:
-        raise RobomodelError(f"domain id must be an integer 0..232, got '{text}'") from None
-    if not 0 <= value <= 232:
-        raise RobomodelError(f"domain id must be in 0..232, got {value}")
-    return value
 
 
 def split_node_name(node: str) -> tuple[str, str]:
@@ -108,7 +97,8 @@ class ZenohTransport(Transport):
         self._lock = threading.Lock()
         self._nodes: dict[str, _NodeRecord] = {}
         self._services: dict[str, ZenohService] = {}
-        self._clients: dict[tuple[str | None, str, str], ServiceClient] = {}
+        self._variants: list[ZenohService] = []  # earlier layouts of offered services
+        self._clients: dict[tuple[str, str, type[Service]], ServiceClient] = {}
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
 
@@ -225,15 +215,25 @@ class ZenohTransport(Transport):
     def create_service(
         self, node: str, name: str, srv_type: type[Service], handler: ServiceHandler
     ) -> ServiceHandle:
-        if name in self._services:
+        offered = self._services.get(name)
+        variant = offered is not None and offered.srv_type.__typename__ == srv_type.__typename__
+        if offered is not None and (not variant or self.data_key(name, srv_type) in self._keys()):
             raise RobomodelError(f"service '{name}' is already offered in this process")
         service = ZenohService(self, Endpoint(node, name, srv_type.__typename__), srv_type, handler)
-        self._services[name] = service
+        if variant:  # another layout of the same type (another hash, so another key)
+            self._variants.append(service)
+        else:
+            self._services[name] = service
         return service
+
+    def _keys(self) -> set[str]:
+        return {s.key for s in [*self._services.values(), *self._variants]}
 
     def forget_service(self, service: ZenohService) -> None:
         if self._services.get(service.endpoint.topic) is service:
             del self._services[service.endpoint.topic]
+        if service in self._variants:
+            self._variants.remove(service)
 
     def call_service(
         self,
@@ -252,7 +252,13 @@ class ZenohTransport(Transport):
         ):
             # This thread runs the executor: a query would wait for itself. Run it in place.
             return _in_place(name, local.handler, request)
-        key = (node, name, srv_type.__typename__)
+        # A caller without a node (a command line, a launch file's helper) is a node of its own
+        # for the graph, as ros2cli's requester node is: its client has an SC token and a GID
+        # derived from it, so ROS 2's graph tools list it.
+        node = node or f"/robomodel_client_{os.getpid()}"
+        key = (node, name, srv_type)  # the class: layouts of one type name differ in hash
+        if node not in self._nodes:  # its token first: register_node takes the lock below
+            self._node(node)
         with self._lock:
             client = self._clients.get(key)
             if client is None:
@@ -268,10 +274,17 @@ class ZenohTransport(Transport):
         empty at once, which made a second launch miss the first one's parameter server. While
         the session is that young and linked, an answer with none but its own nodes is asked again."""
         graph = read_graph(self.session, self.domain_id, timeout_s)
-        while len(graph.nodes) <= len(self._nodes) and self._young() and self.linked():
+        deadline = time.monotonic() + timeout_s
+        while self._stale(graph) and self.linked() and time.monotonic() < deadline:
             time.sleep(0.005)
             graph = read_graph(self.session, self.domain_id, timeout_s)
         return graph
+
+    def _stale(self, graph: Graph) -> bool:
+        """An answer that lacks this process's own nodes (their tokens went to a router in
+        another process and the query overtook them), or only those while young."""
+        own = set(self._nodes)
+        return not own <= graph.nodes or (len(graph.nodes) <= len(own) and self._young())
 
     def _young(self) -> bool:
         return time.monotonic() - self._opened_at < DECLARATIONS_SETTLE_S
@@ -282,7 +295,7 @@ class ZenohTransport(Transport):
         return bool(list(info.routers_zid()) or list(info.peers_zid()))
 
     def close(self) -> None:
-        for service in list(self._services.values()):
+        for service in [*self._services.values(), *self._variants]:
             service.destroy()
         for client in self._clients.values():
             client.destroy()
