@@ -64,6 +64,12 @@ def pytest_configure(config: pytest.Config) -> None:
         time.sleep(0.05)
 
 
+def pytest_report_header(config: pytest.Config) -> str:
+    from tests.timing import scale, scale_source
+
+    return f"robomodel test timeout scale: {scale():.2f} ({scale_source()})"
+
+
 def pytest_unconfigure(config: pytest.Config) -> None:
     if _ROUTER is not None:
         _ROUTER.terminate()
@@ -80,11 +86,30 @@ def unique_domain() -> str:
     Tests that start processes on the Zenoh bus must not hear each other: a /gazebo/pause or a
     cmd_vel from a test on the other xdist worker would reach this test's simulator. Each worker
     gets its own block of ids and walks through it, so consecutive tests of one worker differ too.
+    ``ROBOMODEL_TEST_DOMAIN_BASE`` (0..229, default 0) and ``ROBOMODEL_TEST_DOMAIN_COUNT``
+    (default: the rest up to 230) give a run its own block of ids, so that runs on one machine
+    do not hear each other: e.g. ``ROBOMODEL_TEST_DOMAIN_COUNT=115`` for one and
+    ``ROBOMODEL_TEST_DOMAIN_BASE=115`` for the other.
     """
+    base, count = _domain_block()
     workers = max(1, int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1")))
     worker = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw") or 0)
-    span = 230 // workers
-    return str(1 + worker * span + next(_DOMAINS) % span)
+    span = max(1, count // workers)
+    return str(1 + base + (worker * span + next(_DOMAINS) % span) % count)
+
+
+def _domain_block() -> tuple[int, int]:
+    """(base, count) of this run's domain ids, from the environment."""
+    base_text = os.environ.get("ROBOMODEL_TEST_DOMAIN_BASE", "").strip() or "0"
+    if not base_text.isdigit() or int(base_text) > 229:
+        raise ValueError(f"ROBOMODEL_TEST_DOMAIN_BASE must be an integer 0..229, got '{base_text}'")
+    base = int(base_text)
+    count_text = os.environ.get("ROBOMODEL_TEST_DOMAIN_COUNT", "").strip() or str(230 - base)
+    if not count_text.isdigit() or not 1 <= int(count_text) <= 230 - base:
+        raise ValueError(
+            f"ROBOMODEL_TEST_DOMAIN_COUNT must be an integer 1..{230 - base}, got '{count_text}'"
+        )
+    return base, int(count_text)
 
 
 def example_robot_data_dir() -> Path:
