@@ -22,6 +22,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
+from robomodel._escape import escape_name
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
@@ -149,7 +150,8 @@ class ZenohTransport(Transport):
     def warn_once(self, key: tuple[str, ...], fmt: str, *args: object) -> None:
         """Log a warning once per ``key``. Keys come partly from other processes, so at most
         ``MAX_WARNINGS`` are remembered; past that one line says the rest are suppressed, and
-        memory stays bounded however many distinct names a peer sends."""
+        memory stays bounded however many distinct names a peer sends. Text arguments are
+        printed with control characters escaped (``escape_name``): they can be a peer's."""
         if key in self._warned:
             return
         if len(self._warned) >= MAX_WARNINGS:
@@ -160,7 +162,7 @@ class ZenohTransport(Transport):
                 )
             return
         self._warned.add(key)
-        log.warning(fmt, *args)
+        log.warning(fmt, *(escape_name(a) if isinstance(a, str) else a for a in args))
 
     # -- nodes ----------------------------------------------------------------------------------
     def register_node(self, node: str) -> Callable[[], None]:
