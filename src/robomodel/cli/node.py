@@ -7,7 +7,12 @@ import argparse
 from typing import Any
 
 from robomodel._escape import escape_name, escape_names
-from robomodel.cli._bus import add_bus_arguments, context_from_args, settled_graph
+from robomodel.cli._bus import (
+    add_bus_arguments,
+    context_from_args,
+    listing_exit_code,
+    settled_graph,
+)
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime.transport.base import Graph
@@ -30,9 +35,10 @@ def register(subparsers: Any) -> None:
 
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        for name in sorted(settled_graph(context).nodes):
+        graph = settled_graph(context)
+        for name in sorted(graph.nodes):
             print(escape_name(name))
-    return 0
+    return listing_exit_code(graph)
 
 
 def node_info(graph: Graph, node: str) -> str:
@@ -82,4 +88,4 @@ def _run_info(args: argparse.Namespace) -> int:
             f"(nodes: {escape_names(sorted(graph.nodes)) or 'none'})"
         )
     print(node_info(graph, node))
-    return 0
+    return listing_exit_code(graph)

@@ -23,6 +23,9 @@ from robomodel.errors import RobomodelError
 
 __all__ = ["register"]
 
+TRIM_PERIOD_S = 5.0
+"""How often the router returns freed memory to the system (see ``release_freed_memory``)."""
+
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("router", help=verb_help("router"))
@@ -38,7 +41,7 @@ def register(subparsers: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from robomodel.runtime.transport._zenoh_common import import_zenoh
+    from robomodel.runtime.transport._zenoh_common import import_zenoh, release_freed_memory
     from robomodel.runtime.transport._zenoh_session import router_config
 
     zenoh = import_zenoh()
@@ -59,9 +62,13 @@ def run(args: argparse.Namespace) -> int:
         flush=True,
     )
     end = None if args.duration is None else time.monotonic() + args.duration
+    next_trim = time.monotonic() + TRIM_PERIOD_S
     try:
         while not stopped and (end is None or time.monotonic() < end):
             time.sleep(0.1)
+            if time.monotonic() >= next_trim:  # what peers' tokens took goes back when they go
+                release_freed_memory()
+                next_trim = time.monotonic() + TRIM_PERIOD_S
     except KeyboardInterrupt:
         pass
     finally:

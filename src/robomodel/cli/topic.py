@@ -14,6 +14,7 @@ from robomodel._escape import escape_name, escape_names
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
+    listing_exit_code,
     settled_graph,
     wait_for_peers,
 )
@@ -109,7 +110,7 @@ def run_list(args: argparse.Namespace) -> int:
             info = graph.topics[name]
             suffix = f" [{escape_names(sorted(info.types))}]" if args.show_types else ""
             print(f"{escape_name(name)}{suffix}")
-    return 0
+    return listing_exit_code(graph)
 
 
 def run_echo(args: argparse.Namespace) -> int:
@@ -245,4 +246,4 @@ def run_info(args: argparse.Namespace) -> int:
                 print(
                     f"  Node name: {escape_name(endpoint.node)}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
                 )
-    return 0
+    return listing_exit_code(graph)

@@ -327,6 +327,7 @@ class Ros1Transport(Transport):
             )
         except (Ros1WireError, TypeError, ValueError) as exc:
             log.warning("cannot read the ROS 1 graph: %s", exc)
+            graph.complete = False
             return graph
         for kind, entries in (("pub", pubs), ("sub", subs)):
             for topic, nodes in entries:

@@ -32,7 +32,7 @@ from robomodel.runtime.qos import QoSProfile
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import close_session, log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
-from robomodel.runtime.transport._zenoh_graph import read_graph
+from robomodel.runtime.transport._zenoh_graph import GraphCache
 from robomodel.runtime.transport._zenoh_services import ServiceClient, ZenohService
 from robomodel.runtime.transport._zenoh_session import open_session
 from robomodel.runtime.transport.base import (
@@ -112,6 +112,7 @@ class ZenohTransport(Transport):
         self._clients: dict[tuple[str | None, str, str], ServiceClient] = {}
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
+        self._graph = GraphCache(self.session, self.domain_id)
 
     # -- naming ---------------------------------------------------------------------------------
     def type_hash(self, kind: type[Message] | type[Service]) -> str:
@@ -268,12 +269,23 @@ class ZenohTransport(Transport):
         A session that has just linked up with a router has not yet received the router's
         liveliness declarations (some milliseconds), and a query sent before then comes back
         empty at once, which made a second launch miss the first one's parameter server. While
-        the session is that young and linked, an answer with none but its own nodes is asked again."""
-        graph = read_graph(self.session, self.domain_id, timeout_s)
-        while len(graph.nodes) <= len(self._nodes) and self._young() and self.linked():
+        the session is that young and linked, an answer with none but its own nodes is asked
+        again, for at most ``timeout_s``."""
+        deadline = time.monotonic() + timeout_s
+        graph = self._graph.graph()
+        while (
+            len(graph.nodes) <= len(self._nodes)
+            and self._young()
+            and self.linked()
+            and time.monotonic() < deadline
+        ):
             time.sleep(0.005)
-            graph = read_graph(self.session, self.domain_id, timeout_s)
+            graph = self._graph.graph()
         return graph
+
+    def graph_quiet_s(self) -> float:
+        """Seconds since the last token of the domain came or went."""
+        return time.monotonic() - self._graph.changed_at
 
     def _young(self) -> bool:
         return time.monotonic() - self._opened_at < DECLARATIONS_SETTLE_S
@@ -292,6 +304,7 @@ class ZenohTransport(Transport):
         for record in self._nodes.values():
             undeclare_all(record.handle)
         self._nodes.clear()
+        self._graph.close()
         close_session(self.session)
 
 
