@@ -19,6 +19,7 @@ import pytest
 from hypothesis import settings
 
 from robomodel.cli.main import main
+from tests.timing import scaled
 
 # No per-example deadline: timing belongs in bench/, and a loaded CI machine must not fail tests.
 settings.register_profile("robomodel", deadline=None)
@@ -74,7 +75,7 @@ def pytest_unconfigure(config: pytest.Config) -> None:
     if _ROUTER is not None:
         _ROUTER.terminate()
         try:
-            _ROUTER.wait(10)
+            _ROUTER.wait(scaled(10))
         except subprocess.TimeoutExpired:
             _ROUTER.kill()
             _ROUTER.wait()
@@ -160,7 +161,10 @@ def urdfdom6_check_urdf() -> tuple[str, dict[str, str]]:
 def check_urdf() -> Callable[..., ToolResult]:
     """Run a reference check_urdf: Debian's for URDF 1.0, urdfdom 6 for versions 1.1/1.2."""
 
-    def run(path: Path | str, *, urdfdom6: bool = False, timeout: float = 60) -> ToolResult:
+    def run(
+        path: Path | str, *, urdfdom6: bool = False, timeout: float | None = None
+    ) -> ToolResult:
+        timeout = scaled(60) if timeout is None else timeout
         if urdfdom6:
             exe, env = urdfdom6_check_urdf()
             return _run([exe, str(path)], env=env, timeout=timeout)
@@ -223,7 +227,7 @@ def _no_process_left_behind() -> Iterator[None]:
     before = set(_children())
     yield
     left = {p: c for p, c in _children().items() if p not in before and any(o in c for o in _OURS)}
-    deadline = time.monotonic() + 2.0
+    deadline = time.monotonic() + scaled(2.0)
     while left and time.monotonic() < deadline:  # some are just exiting
         time.sleep(0.05)
         left = {pid: cmd for pid, cmd in _children().items() if pid in left}

@@ -82,12 +82,18 @@ def _subscribe(args: argparse.Namespace, domain: int) -> None:
 
     got: list[Any] = []
     done = threading.Event()
+    lock = threading.Lock()
 
     def on_message(msg: Any) -> None:
-        _emit(_plain(msg))
-        got.append(1)
-        if len(got) >= args.count:
-            done.set()
+        # Messages that arrive after the count (before close() returns, which takes long on
+        # a loaded machine) are not printed: 8 came out where 3 were asked for.
+        with lock:
+            if len(got) >= args.count:
+                return
+            _emit(_plain(msg))
+            got.append(1)
+            if len(got) >= args.count:
+                done.set()
 
     sub = ROS2Subscriber(
         topic=args.topic, msg_type=args.type, callback=on_message, domain_id=domain

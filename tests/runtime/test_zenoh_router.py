@@ -18,6 +18,7 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg import String
 from robomodel.runtime.transport._zenoh_session import ZenohConfigError, parse_override
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 
 def _free_port() -> int:
@@ -34,7 +35,7 @@ def _exchange(a: Context, b: Context) -> list[str]:
     got: list[str] = []
     b.create_node("listener").create_subscription(String, "/chatter", lambda m: got.append(m.data))
     pub = a.create_node("talker").create_publisher(String, "/chatter")
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + scaled(10)
     while not got and time.monotonic() < deadline:
         pub.publish(String("hi"))
         b.spin(duration_s=0.1)
@@ -47,12 +48,14 @@ def test_the_first_process_becomes_the_router(monkeypatch: pytest.MonkeyPatch) -
     domain = int(unique_domain())
     with Context("zenoh", domain_id=domain) as first:
         assert first.transport.is_router  # type: ignore[attr-defined]
-        with socket.create_connection(("127.0.0.1", port), timeout=1):
+        with socket.create_connection(("127.0.0.1", port), timeout=scaled(1)):
             pass  # it listens on the router's endpoint
         with Context("zenoh", domain_id=domain) as second:
             assert not second.transport.is_router  # type: ignore[attr-defined]
             info = second.transport.session.info  # type: ignore[attr-defined]
-            deadline = time.monotonic() + 3.0  # the link may finish after open() on a loaded box
+            deadline = time.monotonic() + scaled(
+                3.0
+            )  # the link may finish after open() on a loaded box
             while not list(info.routers_zid()) and time.monotonic() < deadline:
                 time.sleep(0.05)
             assert list(info.routers_zid())
@@ -96,7 +99,7 @@ def test_robomodel_router_serves_peers(monkeypatch: pytest.MonkeyPatch) -> None:
             assert _exchange(a, b)
     finally:
         router.terminate()  # SIGTERM: it closes its session and exits 0
-        assert router.wait(10) == 0
+        assert router.wait(scaled(10)) == 0
 
 
 def test_check_attempts_below_zero_skip_the_router(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -148,7 +151,7 @@ def test_bad_configuration_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> 
         [*ROBOMODEL, "topic", "list"],
         capture_output=True,
         text=True,
-        timeout=20,
+        timeout=scaled(20),
         env={**__import__("os").environ, "ZENOH_SESSION_CONFIG_URI": "/nonexistent/session.json5"},
     )
     assert listed.returncode == 2 and "Traceback" not in listed.stderr
@@ -166,7 +169,9 @@ def test_humble_keys_have_no_type_hash(monkeypatch: pytest.MonkeyPatch) -> None:
         assert _exchange(a, b)
         tokens = [
             str(r.ok.key_expr)
-            for r in b.transport.session.liveliness().get(f"@ros2_lv/{domain}/**", timeout=1.0)  # type: ignore[attr-defined]
+            for r in b.transport.session.liveliness().get(
+                f"@ros2_lv/{domain}/**", timeout=scaled(1.0)
+            )  # type: ignore[attr-defined]
             if r.ok is not None
             and "/MP/" in str(r.ok.key_expr)
             and "%chatter" in str(r.ok.key_expr)

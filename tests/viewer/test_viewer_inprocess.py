@@ -14,6 +14,7 @@ from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 from tests.viewer.conftest import wait_for
 from tests.viewer.robots import write_arm
 
@@ -320,4 +321,4 @@ def test_a_description_from_a_topic_is_drawn_with_the_robot_s_tf(started: list[V
         wait_for(lambda: viewer.status.content == "OK", what="the status to clear")
     finally:
         robot.send_signal(signal.SIGINT)
-        robot.wait(10)
+        robot.wait(scaled(10))
