@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import threading
 import time
@@ -212,9 +213,12 @@ def main() -> int:
         )
 
         ZenohSession.get_instance()  # connect first: discovery reads what the router knows
-        time.sleep(1.0)
+        # the test's timeout scale (tests/timing.py; this runs in the SDK's own venv)
+        scale = float(os.environ.get("ROBOMODEL_TEST_TIMEOUT_SCALE") or 1.0)
+        time.sleep(1.0 * scale)
         lister = get_topic_names_and_types if args.verb == "topics" else get_service_names_and_types
-        _emit([[name, list(types)] for name, types in lister(domain_id=args.domain, timeout=2.0)])
+        found = lister(domain_id=args.domain, timeout=2.0 * scale)
+        _emit([[name, list(types)] for name, types in found])
     else:
         _hash(args, Path(args.messages))
     return 0

@@ -37,7 +37,7 @@ from robomodel.runtime.msg.std_srvs import SetBool, Trigger
 from robomodel.runtime.msg.typehash import type_hash
 from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, unique_domain
 from tests.ros2wire.msgtext import write_definitions
-from tests.timing import scaled
+from tests.timing import scale, scaled
 
 AGENT = Path(__file__).with_name("sdk_agent.py")
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
@@ -87,6 +87,7 @@ def _sdk(definitions: Path, domain: str, *args: str, timeout: float = 40) -> lis
         text=True,
         timeout=scaled(timeout),
         cwd=definitions,
+        env={**os.environ, "ROBOMODEL_TEST_TIMEOUT_SCALE": str(scale())},
     )
     assert proc.returncode == 0, proc.stderr[-2000:]
     return [

@@ -115,6 +115,20 @@ def test_parameters_across_processes(
     assert missing.returncode == 2 and "did not answer" in missing.stderr
 
 
+def _wait_subscribed(domain: str, topic: str) -> None:
+    """Until another process's subscription to ``topic`` is in the graph."""
+    from robomodel.runtime import Context
+
+    with Context("zenoh", domain_id=int(domain)) as ctx:
+        deadline = time.monotonic() + scaled(20)
+        while True:
+            info = ctx.graph().topics.get(topic)
+            if info is not None and info.subscribers:
+                return
+            assert time.monotonic() < deadline, f"no subscription to {topic}"
+            time.sleep(0.05)
+
+
 def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
     domain = _domain(2)
     echo = subprocess.Popen(
@@ -132,7 +146,7 @@ def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(1.0)
+    _wait_subscribed(domain, "/cmd")
     pub = _cli(
         "topic",
         "pub",
@@ -288,10 +302,12 @@ def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
         gid = bytes(range(16))
         session.put(key, b"\x00\x01\x00\x00\x01", attachment=encode_attachment(1, 0, gid))
         session.put(key, b"not cdr at all", attachment=encode_attachment(2, 0, gid))
-        time.sleep(0.3)
         pub = ctx.create_node("good").create_publisher(Float64, "/chatter")
-        time.sleep(0.5)
-        pub.publish(Float64(2.5))
+        deadline = time.monotonic() + scaled(20)
+        while echo.poll() is None:  # echo --once exits at the first good message it gets
+            assert time.monotonic() < deadline, "echo did not print the good message"
+            pub.publish(Float64(2.5))
+            time.sleep(0.2)
         out, err = echo.communicate(timeout=scaled(20))
     assert echo.returncode == 0 and out == "data: 2.5\n---\n"
     assert "dropping a malformed std_msgs/msg/Float64 payload on /chatter" in err

@@ -17,6 +17,7 @@ import pytest
 from robomodel.runtime import Context
 from robomodel.runtime.msg import String
 from robomodel.runtime.transport._zenoh_session import ZenohConfigError, parse_override
+from robomodel.runtime.transport.rmw_zenoh import EntityKind
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.timing import scaled
 
@@ -42,6 +43,17 @@ def _exchange(a: Context, b: Context) -> list[str]:
     return got
 
 
+def _wait_linked(a: Context, b: Context, kind: str) -> None:
+    """Until ``a``'s session lists ``b``'s among its ``kind`` (peers or routers)."""
+    info = a.transport.session.info  # type: ignore[attr-defined]
+    zid = str(b.transport.session.zid())  # type: ignore[attr-defined]
+    listed = info.peers_zid if kind == "peers" else info.routers_zid
+    deadline = time.monotonic() + scaled(10)
+    while zid not in {str(z) for z in listed()}:
+        assert time.monotonic() < deadline, f"{zid} not among the {kind} of {info.zid()}"
+        time.sleep(0.02)
+
+
 def test_the_first_process_becomes_the_router(monkeypatch: pytest.MonkeyPatch) -> None:
     port = _free_port()
     _use_router(monkeypatch, port)
@@ -53,9 +65,8 @@ def test_the_first_process_becomes_the_router(monkeypatch: pytest.MonkeyPatch) -
         with Context("zenoh", domain_id=domain) as second:
             assert not second.transport.is_router  # type: ignore[attr-defined]
             info = second.transport.session.info  # type: ignore[attr-defined]
-            deadline = time.monotonic() + scaled(
-                3.0
-            )  # the link may finish after open() on a loaded box
+            # the link may finish after open() on a loaded box
+            deadline = time.monotonic() + scaled(3.0)
             while not list(info.routers_zid()) and time.monotonic() < deadline:
                 time.sleep(0.05)
             assert list(info.routers_zid())
@@ -71,12 +82,13 @@ def test_peers_keep_talking_when_the_router_process_exits(monkeypatch: pytest.Mo
     b = Context("zenoh", domain_id=domain)
     try:
         assert _exchange(a, b)
-        time.sleep(0.5)  # gossip: a and b link directly
+        _wait_linked(a, b, "peers")  # gossip: a and b link directly
         router.shutdown()
         assert _exchange(a, b)  # still linked without the router
         with Context("zenoh", domain_id=domain) as late:  # the next process takes the port
             assert late.transport.is_router  # type: ignore[attr-defined]
-            time.sleep(1.5)  # a and b reconnect to the new router (retry every <= 1 s)
+            _wait_linked(a, late, "routers")  # a and b reconnect to the new router
+            _wait_linked(b, late, "routers")
             assert _exchange(late, a)
     finally:
         for ctx in (a, b, router):
@@ -167,13 +179,14 @@ def test_humble_keys_have_no_type_hash(monkeypatch: pytest.MonkeyPatch) -> None:
         key = a.transport.data_key("/chatter", String)  # type: ignore[attr-defined]
         assert key == f"{domain}/chatter/std_msgs::msg::dds_::String_/TypeHashNotSupported"
         assert _exchange(a, b)
-        tokens = [
-            str(r.ok.key_expr)
-            for r in b.transport.session.liveliness().get(
-                f"@ros2_lv/{domain}/**", timeout=scaled(1.0)
-            )  # type: ignore[attr-defined]
-            if r.ok is not None
-            and "/MP/" in str(r.ok.key_expr)
-            and "%chatter" in str(r.ok.key_expr)
-        ]
+        deadline = time.monotonic() + scaled(10)
+        while True:  # the tokens b follows (its graph cache), as a's session declared them
+            tokens = [
+                token.key()
+                for token in b.transport._graph.tokens()  # type: ignore[attr-defined]
+                if token.kind is EntityKind.PUBLISHER and token.name == "/chatter"
+            ]
+            if tokens or time.monotonic() > deadline:
+                break
+            time.sleep(0.02)
         assert tokens and tokens[0].endswith("/TypeHashNotSupported/::,10:,:,:,,")

@@ -163,6 +163,11 @@ class GraphCache:
         self._tokens[key] = token
         self._per_peer[token.zid] += 1
 
+    def tokens(self) -> list[EntityToken]:
+        """The tokens kept, as declared."""
+        with self._lock:
+            return list(self._tokens.values())
+
     def graph(self) -> Graph:
         """A snapshot of the entities kept; ``complete`` is False while any are left out."""
         with self._lock:
