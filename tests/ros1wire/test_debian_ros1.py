@@ -27,8 +27,9 @@ from tests.timing import scaled
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
 
 
-def _echo(ros1: Ros1, topic: str, timeout_s: float = 30) -> Any:
+def _echo(ros1: Ros1, topic: str, timeout_s: float | None = None) -> Any:
     """The first message on ``topic`` as Debian's ``rostopic echo -n 1`` prints it."""
+    timeout_s = scaled(30) if timeout_s is None else timeout_s
     deadline = time.monotonic() + timeout_s
     while True:
         echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", topic, timeout=timeout_s)
