@@ -19,6 +19,7 @@ import pytest
 from hypothesis import settings
 
 from robomodel.cli.main import main
+from tests.timing import scaled
 
 # No per-example deadline: timing belongs in bench/, and a loaded CI machine must not fail tests.
 settings.register_profile("robomodel", deadline=None)
@@ -64,11 +65,17 @@ def pytest_configure(config: pytest.Config) -> None:
         time.sleep(0.05)
 
 
+def pytest_report_header(config: pytest.Config) -> str:
+    from tests.timing import scale, scale_source
+
+    return f"robomodel test timeout scale: {scale():.2f} ({scale_source()})"
+
+
 def pytest_unconfigure(config: pytest.Config) -> None:
     if _ROUTER is not None:
         _ROUTER.terminate()
         try:
-            _ROUTER.wait(10)
+            _ROUTER.wait(scaled(10))
         except subprocess.TimeoutExpired:
             _ROUTER.kill()
             _ROUTER.wait()
@@ -80,11 +87,30 @@ def unique_domain() -> str:
     Tests that start processes on the Zenoh bus must not hear each other: a /gazebo/pause or a
     cmd_vel from a test on the other xdist worker would reach this test's simulator. Each worker
     gets its own block of ids and walks through it, so consecutive tests of one worker differ too.
+    ``ROBOMODEL_TEST_DOMAIN_BASE`` (0..229, default 0) and ``ROBOMODEL_TEST_DOMAIN_COUNT``
+    (default: the rest up to 230) give a run its own block of ids, so that runs on one machine
+    do not hear each other: e.g. ``ROBOMODEL_TEST_DOMAIN_COUNT=115`` for one and
+    ``ROBOMODEL_TEST_DOMAIN_BASE=115`` for the other.
     """
+    base, count = _domain_block()
     workers = max(1, int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1")))
     worker = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw") or 0)
-    span = 230 // workers
-    return str(1 + worker * span + next(_DOMAINS) % span)
+    span = max(1, count // workers)
+    return str(1 + base + (worker * span + next(_DOMAINS) % span) % count)
+
+
+def _domain_block() -> tuple[int, int]:
+    """(base, count) of this run's domain ids, from the environment."""
+    base_text = os.environ.get("ROBOMODEL_TEST_DOMAIN_BASE", "").strip() or "0"
+    if not base_text.isdigit() or int(base_text) > 229:
+        raise ValueError(f"ROBOMODEL_TEST_DOMAIN_BASE must be an integer 0..229, got '{base_text}'")
+    base = int(base_text)
+    count_text = os.environ.get("ROBOMODEL_TEST_DOMAIN_COUNT", "").strip() or str(230 - base)
+    if not count_text.isdigit() or not 1 <= int(count_text) <= 230 - base:
+        raise ValueError(
+            f"ROBOMODEL_TEST_DOMAIN_COUNT must be an integer 1..{230 - base}, got '{count_text}'"
+        )
+    return base, int(count_text)
 
 
 def example_robot_data_dir() -> Path:
@@ -135,7 +161,10 @@ def urdfdom6_check_urdf() -> tuple[str, dict[str, str]]:
 def check_urdf() -> Callable[..., ToolResult]:
     """Run a reference check_urdf: Debian's for URDF 1.0, urdfdom 6 for versions 1.1/1.2."""
 
-    def run(path: Path | str, *, urdfdom6: bool = False, timeout: float = 60) -> ToolResult:
+    def run(
+        path: Path | str, *, urdfdom6: bool = False, timeout: float | None = None
+    ) -> ToolResult:
+        timeout = scaled(60) if timeout is None else timeout
         if urdfdom6:
             exe, env = urdfdom6_check_urdf()
             return _run([exe, str(path)], env=env, timeout=timeout)
@@ -198,7 +227,7 @@ def _no_process_left_behind() -> Iterator[None]:
     before = set(_children())
     yield
     left = {p: c for p, c in _children().items() if p not in before and any(o in c for o in _OURS)}
-    deadline = time.monotonic() + 2.0
+    deadline = time.monotonic() + scaled(2.0)
     while left and time.monotonic() < deadline:  # some are just exiting
         time.sleep(0.05)
         left = {pid: cmd for pid, cmd in _children().items() if pid in left}

@@ -12,6 +12,7 @@ import pytest
 
 from robomodel._files import MAX_FILE_BYTES, UserFileError, read_user_bytes, read_user_text
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 
 @pytest.fixture
@@ -69,7 +70,9 @@ def test_non_utf8_is_located(tmp_path: Path) -> None:
 
 
 def _run(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=60, cwd=cwd)
+    return subprocess.run(
+        [*ROBOMODEL, *args], capture_output=True, text=True, timeout=scaled(60), cwd=cwd
+    )
 
 
 @pytest.mark.parametrize("verb", ["xacro", "check"])

@@ -14,6 +14,7 @@ from typing import Any
 import pytest
 
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 TALKER = textwrap.dedent(
     """
@@ -58,7 +59,8 @@ def flushed_count(folder: Path) -> int:
     return int(meta["rosbag2_bagfile_information"]["message_count"])
 
 
-def run_cli(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
+def run_cli(*args: str, timeout: float | None = None) -> subprocess.CompletedProcess[str]:
+    timeout = scaled(30) if timeout is None else timeout
     return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=timeout)
 
 
@@ -66,7 +68,7 @@ def stop(proc: subprocess.Popen[str], sig: int = signal.SIGTERM) -> None:
     if proc.poll() is None:
         proc.send_signal(sig)
         try:
-            proc.wait(10)
+            proc.wait(scaled(10))
         except subprocess.TimeoutExpired:
             proc.kill()
             proc.wait()
@@ -125,7 +127,7 @@ def rosbags_read(tmp_path: Path, *folders: Path) -> list[dict[str, Any]]:
     script.write_text(ROSBAGS_READ)
     done = subprocess.run(
         [sys.executable, str(script), *map(str, folders)],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert done.returncode == 0, done.stderr
     result: list[dict[str, Any]] = json.loads(done.stdout)

@@ -11,6 +11,7 @@ from robomodel.bag import open_bag
 from robomodel.runtime import Context
 from robomodel.runtime.msg import JointState, deserialize, message_to_yaml
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 from .conftest import Talker, run_cli, stop
 
@@ -19,7 +20,7 @@ def _wait_subscribed(domain: str, topic: str, timeout_s: float = 15) -> None:
     with Context("zenoh", domain_id=int(domain)) as context:
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:
-            info = context.graph(timeout_s=0.3).topics.get(topic)
+            info = context.graph(timeout_s=scaled(0.3)).topics.get(topic)
             if info is not None and info.subscribers:
                 return
             time.sleep(0.1)
@@ -55,7 +56,7 @@ def test_play_reproduces_the_joint_states_seen_by_echo(tmp_path: Path) -> None:
         play = run_cli("bag", "play", str(out), "--domain-id", domain)
         elapsed = time.monotonic() - started
         assert play.returncode == 0, play.stderr
-        seen, err = echo.communicate(timeout=30)
+        seen, err = echo.communicate(timeout=scaled(30))
     finally:
         stop(echo)
     assert echo.returncode == 0, err

@@ -16,6 +16,7 @@ from robomodel.bag._mcap_writer import MESSAGE_OVERHEAD
 from robomodel.runtime import Context
 from robomodel.runtime.msg import JointState, deserialize
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 from .conftest import Talker, flushed_count, rosbags_read, run_cli, stop
 
@@ -78,9 +79,9 @@ def _positions_played(folder: Path, expected: int) -> list[float]:
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
         )  # fmt: skip
         try:
-            deadline = time.monotonic() + 30
+            deadline = time.monotonic() + scaled(30)
             context.spin(until=lambda: len(seen) >= expected or time.monotonic() > deadline)
-            assert play.wait(15) == 0
+            assert play.wait(scaled(15)) == 0
         finally:
             stop(play)
     return seen
@@ -94,7 +95,7 @@ def test_split_by_duration_and_size(tmp_path: Path) -> None:
         _record(by_size, talker.domain, "--max-bag-size", str(MAX_BYTES)),
     ]
     try:
-        deadline = time.monotonic() + 40
+        deadline = time.monotonic() + scaled(40)
         while min(map(flushed_count, (by_time, by_size))) < 200 and time.monotonic() < deadline:
             time.sleep(0.1)  # each recorder's metadata.yaml says what it has written so far
         for proc in recorders:

@@ -12,6 +12,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 RUNS = [
     ("rrbot_description/urdf/rrbot.xacro", "rrbot_description/config/rrbot_control.yaml"),
@@ -112,7 +113,7 @@ def rrbot_run() -> Iterator[str]:
     yield domain
     proc.send_signal(signal.SIGINT)
     try:
-        proc.wait(10)
+        proc.wait(scaled(10))
     except subprocess.TimeoutExpired:
         proc.kill()
         proc.wait()
@@ -145,7 +146,7 @@ def test_seed_000_workflow_over_zenoh(rrbot_run: str) -> None:
         domain,
     )
     assert pub.returncode == 0, pub.stderr
-    deadline = time.monotonic() + 15
+    deadline = time.monotonic() + scaled(15)
     position = 0.0
     while time.monotonic() < deadline:
         position = _joint1(domain)
@@ -225,14 +226,14 @@ def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
             domain,
         )
         assert pub.returncode == 0, pub.stderr
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + scaled(10)
         while time.monotonic() < deadline and abs(_joint1(domain) - 1.0) > 1e-9:
             time.sleep(0.3)
         assert _joint1(domain) == 1.0
     finally:
         proc.send_signal(signal.SIGINT)
         try:
-            proc.wait(10)
+            proc.wait(scaled(10))
         except subprocess.TimeoutExpired:
             proc.kill()
             proc.wait()

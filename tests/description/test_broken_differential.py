@@ -15,6 +15,7 @@ import pytest
 
 from tests.conftest import ToolResult
 from tests.description.broken_cases import CASES, Case
+from tests.timing import scaled
 
 _LOC = re.compile(r"^(?P<path>.+?):(?P<line>\d+):(?P<col>\d+): (?P<sev>error|warning): ", re.M)
 
@@ -48,7 +49,7 @@ def test_same_verdict_as_check_urdf(
     ours = cli("check", str(path))
     if case.verdict == "hang":
         with pytest.raises(subprocess.TimeoutExpired):
-            check_urdf(path, timeout=3)
+            check_urdf(path, timeout=scaled(3))
         assert ours.code == 0
         _assert_points_at(case, _locations(ours.out, "warning"))
         return

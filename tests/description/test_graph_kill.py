@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 
 def _chain(path: Path, links: int) -> None:
@@ -51,7 +52,7 @@ def test_killed_graph_leaves_no_temporary_file(tmp_path: Path, sig: signal.Signa
     out.parent.mkdir()
     for _ in range(3):
         proc = subprocess.Popen([*ROBOMODEL, "graph", str(model), "-o", str(out)])
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + scaled(60)
         while not _dot_children_of(proc.pid) and time.monotonic() < deadline:
             if proc.poll() is not None:
                 pytest.fail("graph ended before dot started")
@@ -59,9 +60,9 @@ def test_killed_graph_leaves_no_temporary_file(tmp_path: Path, sig: signal.Signa
         dots = _dot_children_of(proc.pid)
         assert dots, "dot never started"
         os.kill(proc.pid, sig)
-        proc.wait(timeout=30)
+        proc.wait(timeout=scaled(30))
         # dot must not outlive robomodel: it would finish and write its output.
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + scaled(10)
         while any(Path(f"/proc/{d}").exists() for d in dots) and time.monotonic() < deadline:
             time.sleep(0.05)
         assert not any(Path(f"/proc/{d}/cmdline").exists() for d in dots)

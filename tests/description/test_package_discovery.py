@@ -13,6 +13,7 @@ from robomodel import xacro as rx
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import PackageNotFoundError
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.timing import scaled
 
 
 def _ament_prefix_like_xacros_tests(tmp_path: Path, source: Path) -> Path:
@@ -75,7 +76,7 @@ def _run(
     if "PYTHONPATH" in os.environ:  # the tree under test, not the installed one
         env["PYTHONPATH"] = os.environ["PYTHONPATH"]
     return subprocess.run(
-        [*ROBOMODEL, *args], capture_output=True, text=True, cwd=cwd, env=env, timeout=120
+        [*ROBOMODEL, *args], capture_output=True, text=True, cwd=cwd, env=env, timeout=scaled(120)
     )
 
 

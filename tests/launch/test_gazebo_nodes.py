@@ -16,6 +16,7 @@ from robomodel.launch.nodes.controllers import parse_spawner_args, ros1_spec_sou
 from robomodel.launch.nodes.gazebo import parse_spawn_args, resolve_world
 from robomodel.launch.param_server import ParamServer
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 
 pytest.importorskip("mujoco")
 
@@ -186,7 +187,7 @@ def test_shapes_world_launch_runs_the_shapes_world() -> None:
     result = subprocess.run(
         [*ROBOMODEL, "launch", "gazebo_ros", "shapes_world.launch", "--headless",
          "--bus", "inproc", "--duration", "1"],
-        capture_output=True, text=True, timeout=120,
+        capture_output=True, text=True, timeout=scaled(120),
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert "gazebo_ros/worlds/shapes.world" in result.stderr

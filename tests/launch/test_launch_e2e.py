@@ -16,6 +16,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 pytest.importorskip("zenoh")
 
@@ -39,7 +40,7 @@ def _launch(domain: str, *argv: str, log: Path) -> Iterator[subprocess.Popen[str
         finally:
             proc.terminate()
             try:
-                proc.wait(20)
+                proc.wait(scaled(20))
             except subprocess.TimeoutExpired:
                 proc.kill()
                 proc.wait()
@@ -164,7 +165,7 @@ def test_a_launch_error_starts_nothing(tmp_path: Path) -> None:
         capture_output=True,
         text=True,
         env=_env(),
-        timeout=60,
+        timeout=scaled(60),
     )
     assert result.returncode == 2
     assert f"{broken}:2:" in result.stderr and "missing" in result.stderr

@@ -17,6 +17,7 @@ import pytest
 
 from robomodel.launch.processes import CommandError, end_group, run_bounded
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 
 def _alive(marker: str) -> list[str]:
@@ -80,7 +81,7 @@ def test_launch_ends_its_childrens_groups(tmp_path: Path, how: str) -> None:
         _wait_alive(f"sleep {a}", 1)
         if how != "duration":
             proc.send_signal(getattr(signal, how))
-        _, err = proc.communicate(timeout=30)
+        _, err = proc.communicate(timeout=scaled(30))
         assert "Traceback" not in err
         assert _wait_gone(f"sleep {a}") and _wait_gone(f"sleep {b}"), "children left running"
     finally:
@@ -103,7 +104,7 @@ def test_sigterm_during_a_param_command_ends_the_command_tree(tmp_path: Path) ->
     try:
         _wait_alive(f"sleep {a}", 1)
         proc.terminate()
-        _, err = proc.communicate(timeout=20)
+        _, err = proc.communicate(timeout=scaled(20))
         assert proc.returncode == 143 and "Traceback" not in err
         assert _wait_gone(f"sleep {a}")
     finally:
@@ -130,12 +131,12 @@ def test_ctrl_c_works_when_started_with_sigint_ignored(tmp_path: Path) -> None:
         preexec_fn=_ignore_sigint,
     )
     try:
-        deadline = time.monotonic() + 30
+        deadline = time.monotonic() + scaled(30)
         while not _listening(int(port)):  # it is up: its handlers are in place
             assert proc.poll() is None and time.monotonic() < deadline, "master did not start"
             time.sleep(0.1)
         proc.send_signal(signal.SIGINT)
-        _, err = proc.communicate(timeout=20)
+        _, err = proc.communicate(timeout=scaled(20))
         assert proc.returncode in (0, 130) and "Traceback" not in err
     finally:
         proc.kill()
@@ -158,7 +159,7 @@ def test_a_bus_that_hangs_on_close_does_not_keep_the_launch_alive() -> None:
     import sys
 
     done = subprocess.run(
-        [sys.executable, "-c", script], capture_output=True, text=True, timeout=60
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=scaled(60)
     )
     assert done.returncode == 0
     assert "closing the viewer and the bus took over 0.5 s" in done.stderr
@@ -171,10 +172,10 @@ def test_a_zenoh_session_that_never_closes_is_left_behind() -> None:
 
     class Stuck:
         def close(self) -> None:
-            _threading.Event().wait(30)
+            _threading.Event().wait(scaled(30))
 
     before = _zenoh_common.abandoned_sessions
-    assert not _zenoh_common.close_session(Stuck(), timeout_s=0.2)
+    assert not _zenoh_common.close_session(Stuck(), timeout_s=scaled(0.2))
     assert _zenoh_common.abandoned_sessions == before + 1
     assert _zenoh_common.close_session(type("Fine", (), {"close": lambda self: None})())
 
@@ -192,5 +193,5 @@ def test_the_command_line_exits_past_an_abandoned_session() -> None:
         "_zenoh_common.abandoned_sessions = 1\n"
         "main._exit_if_a_bus_hangs(7)\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=60)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=scaled(60))
     assert done.returncode == 7

@@ -11,6 +11,7 @@ import pytest
 
 from tests.conftest import unique_domain
 from tests.launch.test_launch_e2e import _cli, _joint, _launch, _wait_for_line
+from tests.timing import scaled
 
 pytest.importorskip("zenoh")
 
@@ -64,7 +65,7 @@ def test_two_link_arm_gazebo_launch_spawns_and_controls_in_the_simulator(tmp_pat
             "std_msgs/msg/Float64MultiArray", "data: [0.5]",
         )  # fmt: skip
         assert pub.returncode == 0, pub.stderr
-        _joint(domain, "/joint_states", "joint1", 0.5, tolerance=0.05, timeout_s=30)
+        _joint(domain, "/joint_states", "joint1", 0.5, tolerance=0.05, timeout_s=scaled(30))
         clock = _cli(domain, "topic", "echo", "/clock", "--once")
         assert clock.returncode == 0 and "clock" in clock.stdout
 
@@ -91,7 +92,7 @@ def test_show_args_of_a_python_launch_file() -> None:
     result = subprocess.run(
         [*ROBOMODEL, "launch", str(EXAMPLES / "example_description/launch/display.launch.py"),
          "--show-args"],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert "'robot_name':" in result.stdout and "frame prefix of every link" in result.stdout
@@ -119,7 +120,8 @@ def test_ctrl_c_stops_a_simulation_launch_within_seconds(tmp_path: Path) -> None
         _wait_for_line(log, "Configured and activated joint1_position_controller", proc, 90)
         proc.send_signal(signal.SIGINT)
         try:
-            code = proc.wait(30)  # a hang fails here; the bound is generous, not a timing claim
+            # a hang fails here; the bound is generous, not a timing claim
+            code = proc.wait(scaled(30))
         except subprocess.TimeoutExpired:
             raise AssertionError(f"no exit 30 s after Ctrl-C:\n{log.read_text()[-4000:]}") from None
     assert code == 0, log.read_text()

@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.timing import scaled
 
 ROSCORE = "/usr/bin/roscore"
 
@@ -70,17 +71,21 @@ class Ros1:
     def robomodel(self, *argv: str, log: Path | None = None) -> subprocess.Popen[str]:
         return self.start([*ROBOMODEL, *argv], log)
 
-    def robomodel_run(self, *argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
-        return self.run(*ROBOMODEL, *argv, timeout=timeout)
+    def robomodel_run(
+        self, *argv: str, timeout: float | None = None
+    ) -> subprocess.CompletedProcess[str]:
+        return self.run(*ROBOMODEL, *argv, timeout=scaled(60) if timeout is None else timeout)
 
     def run(
-        self, *argv: str, timeout: float = 30, cwd: Path | None = None
+        self, *argv: str, timeout: float | None = None, cwd: Path | None = None
     ) -> subprocess.CompletedProcess[str]:
+        timeout = scaled(30) if timeout is None else timeout
         return subprocess.run(
             list(argv), capture_output=True, text=True, env=self.env, timeout=timeout, cwd=cwd
         )
 
-    def until(self, check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:
+    def until(self, check: Callable[[], bool], what: str, timeout_s: float | None = None) -> None:
+        timeout_s = scaled(60) if timeout_s is None else timeout_s
         deadline = time.monotonic() + timeout_s
         while not check():
             assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
@@ -93,7 +98,8 @@ class Ros1:
         )
         return proc
 
-    def stop(self, proc: subprocess.Popen[str], timeout_s: float = 20) -> int:
+    def stop(self, proc: subprocess.Popen[str], timeout_s: float | None = None) -> int:
+        timeout_s = scaled(20) if timeout_s is None else timeout_s
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGINT)
             try:

@@ -19,14 +19,17 @@ from typing import Any
 import pytest
 import yaml
 
+from robomodel.runtime.msg import JointState
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, free_port, has
+from tests.timing import scaled
 
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
 
 
-def _echo(ros1: Ros1, topic: str, timeout_s: float = 30) -> Any:
+def _echo(ros1: Ros1, topic: str, timeout_s: float | None = None) -> Any:
     """The first message on ``topic`` as Debian's ``rostopic echo -n 1`` prints it."""
+    timeout_s = scaled(30) if timeout_s is None else timeout_s
     deadline = time.monotonic() + timeout_s
     while True:
         echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", topic, timeout=timeout_s)
@@ -126,7 +129,7 @@ def test_rostopic_pub_moves_the_rrbot_joint_of_the_two_terminal_workflow(
         "std_msgs/Float64", "data: 0.8",
     )  # fmt: skip
     assert pub.returncode == 0, pub.stderr
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + scaled(30)
     while True:
         states = _echo(ros1, "/rrbot/joint_states")
         position = states["position"][states["name"].index("joint1")]
@@ -143,6 +146,34 @@ def test_rostopic_pub_moves_the_rrbot_joint_of_the_two_terminal_workflow(
     assert ours.returncode == 0, ours.stderr
 
 
+def _receive_after_recorder_joined(ros1: Ros1, topic: str, msg_type: Any, count: int) -> None:
+    """Once ``rosbag record`` has subscribed to ``topic`` (the master says so), receive
+    ``count`` of its messages here: the recorder, subscribed before, has them too. (A fixed
+    4 s recording had fewer than 20 messages on a loaded machine.)"""
+    import xmlrpc.client
+
+    from robomodel.runtime import Context
+
+    master = xmlrpc.client.ServerProxy(ros1.uri)
+
+    def recorder_subscribed() -> bool:
+        _, _, (_, subscribers, _) = master.getSystemState("/test")
+        return any(
+            t == topic and any(n.startswith("/record") for n in nodes) for t, nodes in subscribers
+        )
+
+    ros1.until(recorder_subscribed, "rosbag record subscribed", timeout_s=scaled(60))
+    got: list[object] = []
+    os.environ["ROS_IP"] = "127.0.0.1"
+    try:
+        with Context("ros1", master=ros1.uri) as ctx:
+            ctx.create_node("count").create_subscription(msg_type, topic, got.append)
+            ctx.spin(duration_s=scaled(60), until=lambda: len(got) >= count)
+    finally:
+        os.environ.pop("ROS_IP", None)
+    assert len(got) >= count, f"{len(got)} messages on {topic}"
+
+
 def test_rosbag_records_robomodel_topics_and_its_playback_drives_a_viewer(
     ros1: Ros1, tmp_path: Path
 ) -> None:
@@ -154,7 +185,7 @@ def test_rosbag_records_robomodel_topics_and_its_playback_drives_a_viewer(
     robot = ros1.robomodel("publish-state", str(PLANAR), "--delta", "0.02", "--bus", "ros1")
     bag = tmp_path / "states.bag"
     record = ros1.start(["/usr/bin/rosbag", "record", "-O", str(bag), "/joint_states"])
-    time.sleep(4)
+    _receive_after_recorder_joined(ros1, "/joint_states", JointState, 40)
     ros1.stop(record)
     ros1.stop(robot)
     info = ros1.run("/usr/bin/rosbag", "info", "--yaml", str(bag))
@@ -173,7 +204,7 @@ def test_rosbag_records_robomodel_topics_and_its_playback_drives_a_viewer(
         ros1.start(["/usr/bin/rosbag", "play", "-l", str(bag)])
         wait_for(lambda: viewer.buffer.can_transform("base_link", "gripper"), what="/tf")
         seen = set()
-        deadline = time.monotonic() + 20
+        deadline = time.monotonic() + scaled(20)
         while len(seen) < 5:
             pose = viewer.buffer.lookup_transform("base_link", "gripper").translation_m
             seen.add(tuple(round(v, 4) for v in pose))
@@ -245,7 +276,7 @@ def test_rviz_under_xvfb_draws_the_robot_robomodel_publishes(ros1: Ros1, tmp_pat
     )
     ros1.procs.append(rviz)  # type: ignore[arg-type]
     shot = tmp_path / "rviz.png"
-    deadline = time.monotonic() + 60
+    deadline = time.monotonic() + scaled(60)
     while True:
         time.sleep(2.0)
         assert rviz.poll() is None, "rviz ended"

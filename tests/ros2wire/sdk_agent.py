@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import threading
 import time
@@ -82,12 +83,18 @@ def _subscribe(args: argparse.Namespace, domain: int) -> None:
 
     got: list[Any] = []
     done = threading.Event()
+    lock = threading.Lock()
 
     def on_message(msg: Any) -> None:
-        _emit(_plain(msg))
-        got.append(1)
-        if len(got) >= args.count:
-            done.set()
+        # Messages that arrive after the count (before close() returns, which takes long on
+        # a loaded machine) are not printed: 8 came out where 3 were asked for.
+        with lock:
+            if len(got) >= args.count:
+                return
+            _emit(_plain(msg))
+            got.append(1)
+            if len(got) >= args.count:
+                done.set()
 
     sub = ROS2Subscriber(
         topic=args.topic, msg_type=args.type, callback=on_message, domain_id=domain
@@ -206,9 +213,12 @@ def main() -> int:
         )
 
         ZenohSession.get_instance()  # connect first: discovery reads what the router knows
-        time.sleep(1.0)
+        # the test's timeout scale (tests/timing.py; this runs in the SDK's own venv)
+        scale = float(os.environ.get("ROBOMODEL_TEST_TIMEOUT_SCALE") or 1.0)
+        time.sleep(1.0 * scale)
         lister = get_topic_names_and_types if args.verb == "topics" else get_service_names_and_types
-        _emit([[name, list(types)] for name, types in lister(domain_id=args.domain, timeout=2.0)])
+        found = lister(domain_id=args.domain, timeout=2.0 * scale)
+        _emit([[name, list(types)] for name, types in found])
     else:
         _hash(args, Path(args.messages))
     return 0

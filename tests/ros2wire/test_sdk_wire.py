@@ -37,6 +37,7 @@ from robomodel.runtime.msg.std_srvs import SetBool, Trigger
 from robomodel.runtime.msg.typehash import type_hash
 from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, unique_domain
 from tests.ros2wire.msgtext import write_definitions
+from tests.timing import scale, scaled
 
 AGENT = Path(__file__).with_name("sdk_agent.py")
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
@@ -85,8 +86,9 @@ def _sdk(definitions: Path, domain: str, *args: str, timeout: float = 40) -> lis
         [_sdk_python(), str(AGENT), "--messages", str(definitions), "--domain", domain, *args],
         capture_output=True,
         text=True,
-        timeout=timeout,
+        timeout=scaled(timeout),
         cwd=definitions,
+        env={**os.environ, "ROBOMODEL_TEST_TIMEOUT_SCALE": str(scale())},
     )
     assert proc.returncode == 0, proc.stderr[-2000:]
     return [
@@ -105,7 +107,7 @@ def state_publisher() -> Iterator[str]:
     assert proc.stderr is not None and "publishing robot" in proc.stderr.readline()
     yield domain
     proc.send_signal(signal.SIGINT)
-    proc.wait(10)
+    proc.wait(scaled(10))
 
 
 @pytest.fixture
@@ -120,7 +122,7 @@ def arm_control() -> Iterator[str]:
     assert proc.stderr is not None and "controller manager" in proc.stderr.readline()
     yield domain
     proc.send_signal(signal.SIGINT)
-    proc.wait(10)
+    proc.wait(scaled(10))
 
 
 def test_type_hashes_agree_with_the_sdk_s(definitions: Path) -> None:
@@ -143,11 +145,19 @@ def test_type_hashes_agree_with_the_sdk_s(definitions: Path) -> None:
 
 
 def test_sdk_receives_joint_states_and_tf(definitions: Path, state_publisher: str) -> None:
-    states = _sdk(definitions, state_publisher, "subscribe", "/joint_states", "sensor_msgs/msg/JointState", "10", "3")  # fmt: skip
+    states = _sdk(definitions, state_publisher, "subscribe", "/joint_states", "sensor_msgs/msg/JointState", str(scaled(10)), "3")  # fmt: skip
     assert len(states) == 3 and states[0]["name"] == ["joint_1", "joint_2", "joint_3"]
     # --delta 0.01: every joint moves by 0.01 rad per /joint_states (the publisher's 10 Hz)
     assert states[1]["position"][0] == pytest.approx(states[0]["position"][0] + 0.01, abs=1e-9)
-    tf = _sdk(definitions, state_publisher, "subscribe", "/tf", "tf2_msgs/msg/TFMessage", "10", "1")
+    tf = _sdk(
+        definitions,
+        state_publisher,
+        "subscribe",
+        "/tf",
+        "tf2_msgs/msg/TFMessage",
+        str(scaled(10)),
+        "1",
+    )
     children = {t["child_frame_id"] for t in tf[0]["transforms"]}
     assert children == {"link_1", "link_2", "gripper"} or {"link_1", "link_2"} <= children
     assert all(t["header"]["frame_id"] for t in tf[0]["transforms"])
@@ -195,7 +205,7 @@ def test_sdk_calls_parameter_and_controller_manager_services(
 def test_sdk_publisher_moves_a_controller_joint(definitions: Path, arm_control: str) -> None:
     command = json.dumps({"data": [0.7]})
     _sdk(definitions, arm_control, "publish", "/joint1_position_controller/commands", "std_msgs/msg/Float64MultiArray", command, "10", "2")  # fmt: skip
-    states = _sdk(definitions, arm_control, "subscribe", "/joint_states", "sensor_msgs/msg/JointState", "10", "1")  # fmt: skip
+    states = _sdk(definitions, arm_control, "subscribe", "/joint_states", "sensor_msgs/msg/JointState", str(scaled(10)), "1")  # fmt: skip
     position = dict(zip(states[0]["name"], states[0]["position"], strict=True))
     assert position["joint1"] == pytest.approx(0.7, abs=1e-6)
 
@@ -211,25 +221,25 @@ def test_robomodel_sees_the_sdk_publisher(definitions: Path) -> None:
         cwd=definitions,
     )  # fmt: skip
     try:
-        deadline = time.monotonic() + 20
+        deadline = time.monotonic() + scaled(20)
         listed = ""
         while time.monotonic() < deadline and "/chatter" not in listed:
             run = subprocess.run([*ROBOMODEL, "topic", "list", "-t", "--domain-id", domain],
-                                 capture_output=True, text=True, timeout=20)  # fmt: skip
+                                 capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
             listed = run.stdout
         assert "/chatter [std_msgs/msg/String]" in listed
         echo = subprocess.run([*ROBOMODEL, "topic", "echo", "/chatter", "--once", "--domain-id", domain],
-                              capture_output=True, text=True, timeout=20)  # fmt: skip
+                              capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert echo.returncode == 0, echo.stderr
         assert echo.stdout.startswith("data: hello from the SDK")
         info = subprocess.run([*ROBOMODEL, "topic", "info", "/chatter", "-v", "--domain-id", domain],
-                              capture_output=True, text=True, timeout=20)  # fmt: skip
+                              capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert "sdk_talker" in info.stdout
         nodes = subprocess.run([*ROBOMODEL, "node", "list", "--domain-id", domain],
-                               capture_output=True, text=True, timeout=20)  # fmt: skip
+                               capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert "/sdk_talker" in nodes.stdout.split()
         about = subprocess.run([*ROBOMODEL, "node", "info", "/sdk_talker", "--domain-id", domain],
-                               capture_output=True, text=True, timeout=20)  # fmt: skip
+                               capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert "  Publishers:\n    /chatter: std_msgs/msg/String" in about.stdout
     finally:
         talker.kill()

@@ -22,6 +22,7 @@ from robomodel.runtime.transport.ros1.param_bounds import (
 )
 from robomodel.runtime.transport.ros1.param_tree import ParamServerError, ParamTree
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 # 9 levels of 10 aliases each: 10**9 leaves once expanded, a few hundred bytes as text
 LAUGHS = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n" + "".join(
@@ -125,7 +126,7 @@ def test_deep_yaml_is_a_clear_error() -> None:
 )
 def test_cli_deep_yaml_exits_2_without_traceback(argv: list[str]) -> None:
     argv = [a if not a.endswith("[" * 3000) else a + "]" * 3000 + "}" for a in argv]
-    done = subprocess.run([*ROBOMODEL, *argv], capture_output=True, text=True, timeout=60)
+    done = subprocess.run([*ROBOMODEL, *argv], capture_output=True, text=True, timeout=scaled(60))
     assert done.returncode == 2 and "Traceback" not in done.stderr
     assert "nested too deeply" in done.stderr
 
@@ -139,7 +140,7 @@ def test_an_alias_bomb_in_a_launch_file_is_refused_at_load(tmp_path: Path) -> No
         [*ROBOMODEL, "launch", str(path), "--dump-params"],
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=scaled(60),
     )
     assert done.returncode == 2 and "Traceback" not in done.stderr
     assert f"{path}:2:" in done.stderr and "once expanded" in done.stderr

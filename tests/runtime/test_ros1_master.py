@@ -22,6 +22,7 @@ from robomodel.runtime.transport.ros1.tcpros import (
 )
 from robomodel.runtime.transport.ros1.xmlrpc_io import MAX_BODY_BYTES, XmlRpcServer
 from tests.ros1wire.conftest import free_port
+from tests.timing import scaled
 
 
 @pytest.fixture
@@ -102,7 +103,7 @@ def test_param_subscribers_get_param_update(master: tuple[Master, Any]) -> None:
         proxy.setParam("/other", "/robot/x", 1)
         proxy.setParam("/node", "/robot/y", 2)  # the changing node itself is not told
         proxy.deleteParam("/other", "/robot")
-        deadline = time.monotonic() + 5
+        deadline = time.monotonic() + scaled(5)
         while len(updates) < 2 and time.monotonic() < deadline:
             time.sleep(0.05)
         assert updates[0] == ("/master", "/robot/", {"x": 1})
@@ -112,7 +113,7 @@ def test_param_subscribers_get_param_update(master: tuple[Master, Any]) -> None:
 
 
 def _post(port: int, body: bytes, length: int | None = None) -> bytes:
-    with socket.create_connection(("127.0.0.1", port), timeout=5) as sock:
+    with socket.create_connection(("127.0.0.1", port), timeout=scaled(5)) as sock:
         head = (
             f"POST / HTTP/1.0\r\nContent-Length: {len(body) if length is None else length}\r\n\r\n"
         )
@@ -188,7 +189,7 @@ def test_nodes_drop_hostile_tcpros_peers_and_go_on(master: tuple[Master, Any]) -
             struct.pack("<I", 1 << 30) + b"topic=/chatter",
             encode_header({"callerid": "/evil", "topic": "/chatter", "md5sum": "0" * 32}),
         ):
-            with socket.create_connection((host, port), timeout=5) as sock:
+            with socket.create_connection((host, port), timeout=scaled(5)) as sock:
                 try:
                     sock.sendall(attack)
                     sock.shutdown(socket.SHUT_WR)

@@ -22,6 +22,7 @@ from robomodel.runtime.transport.ros1.ros1_types import (
     ros1_type,
     ros1_type_named,
 )
+from tests.timing import scaled
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 
@@ -43,7 +44,9 @@ def _genpy(script: str) -> Any:
     """Run ``script`` in Debian's Python (genpy's classes); its JSON output."""
     if not Path(SYSTEM_PYTHON).exists():
         pytest.fail("Debian's python3 with the ROS 1 message packages is missing")
-    done = subprocess.run([SYSTEM_PYTHON, "-c", script], capture_output=True, text=True, timeout=60)
+    done = subprocess.run(
+        [SYSTEM_PYTHON, "-c", script], capture_output=True, text=True, timeout=scaled(60)
+    )
     if done.returncode != 0:
         pytest.fail(f"Debian's ROS 1 message packages: {done.stderr[-400:]}")
     return json.loads(done.stdout)

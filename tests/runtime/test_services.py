@@ -15,6 +15,7 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Request, SetBool_Response, Trigger
 from robomodel.runtime.transport.base import ServiceCallError
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 SERVER = textwrap.dedent(
     """
@@ -78,9 +79,11 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
             with pytest.raises(ServiceCallError, match="data must be true"):
                 ctx.call_service("/calc/check", SetBool, SetBool_Request(False))
             with pytest.raises(ServiceCallError, match="did not answer"):
-                ctx.call_service("/calc/nothing", SetBool, timeout_s=0.5)
+                ctx.call_service("/calc/nothing", SetBool, timeout_s=scaled(0.5))
             with pytest.raises(ServiceCallError, match="did not answer"):
-                ctx.call_service("/calc/check", Trigger, timeout_s=0.5)  # another type: no match
+                ctx.call_service(
+                    "/calc/check", Trigger, timeout_s=scaled(0.5)
+                )  # another type: no match
             info = ctx.graph().services["/calc/check"]
             # the Trigger call above left a client of that type (30.8: callers are in the graph)
             assert [(s.type_name, s.node) for s in info.servers] == [
@@ -91,25 +94,25 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
                 "std_srvs/srv/Trigger",
             }
         cli = [*ROBOMODEL, "service"]
-        listed = subprocess.run([*cli, "list", "-t", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        listed = subprocess.run([*cli, "list", "-t", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert listed.returncode == 0 and "/calc/check [std_srvs/srv/SetBool]" in listed.stdout
-        typed = subprocess.run([*cli, "type", "/calc/check", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        typed = subprocess.run([*cli, "type", "/calc/check", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert typed.stdout.strip() == "std_srvs/srv/SetBool", typed.stderr
-        called = subprocess.run([*cli, "call", "calc/check", "std_srvs/srv/SetBool", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        called = subprocess.run([*cli, "call", "calc/check", "std_srvs/srv/SetBool", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert called.returncode == 0, called.stderr
         assert "message: checked" in called.stdout and "data: true" in called.stdout
-        untyped = subprocess.run([*cli, "call", "/calc/check", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        untyped = subprocess.run([*cli, "call", "/calc/check", "{data: true}", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert untyped.returncode == 0 and "success: true" in untyped.stdout
-        failed = subprocess.run([*cli, "call", "/calc/check", "std_srvs/SetBool", "{data: false}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        failed = subprocess.run([*cli, "call", "/calc/check", "std_srvs/SetBool", "{data: false}", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert failed.returncode == 2 and "data must be true" in failed.stderr
-        wrong = subprocess.run([*cli, "call", "/calc/check", "std_srvs/srv/SetBool", "{dat: 1}", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        wrong = subprocess.run([*cli, "call", "/calc/check", "std_srvs/srv/SetBool", "{dat: 1}", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert wrong.returncode == 2 and "has no field 'dat'" in wrong.stderr
-        missing = subprocess.run([*cli, "call", "/calc/sub", "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+        missing = subprocess.run([*cli, "call", "/calc/sub", "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert missing.returncode == 2
         assert "not offered" in missing.stderr and "/calc/check" in missing.stderr
         # issue 23.15: a mistyped service, with or without its type, gets a did-you-mean
         for typed_args in ([], ["std_srvs/srv/SetBool", "{data: true}"]):
-            typo = subprocess.run([*cli, "call", "/calc/chek", *typed_args, "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=20)  # fmt: skip
+            typo = subprocess.run([*cli, "call", "/calc/chek", *typed_args, "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
             assert typo.returncode == 2 and "Traceback" not in typo.stderr
             assert "did you mean '/calc/check'?" in typo.stderr, typo.stderr
             assert len(typo.stderr.strip().splitlines()) == 1, typo.stderr

@@ -7,6 +7,7 @@ from typing import Any
 
 from robomodel.cli._bus import settled_graph
 from robomodel.runtime.transport.base import Endpoint, Graph
+from tests.timing import scaled
 
 
 def _graph(*topics: str) -> Graph:
@@ -33,12 +34,12 @@ class _Discovering:
 def test_empty_and_partial_answers_are_not_printed() -> None:
     full = _graph("/clock", "/tf", "/odom")
     context = _Discovering([Graph(), _graph("/clock"), full, full])
-    result = settled_graph(context, timeout_s=5.0)  # type: ignore[arg-type]
+    result = settled_graph(context, timeout_s=scaled(5.0))  # type: ignore[arg-type]
     assert sorted(result.topics) == ["/clock", "/odom", "/tf"]
     assert context.queries == 4
 
 
 def test_an_empty_domain_answers_within_the_timeout() -> None:
     context = _Discovering([Graph()])
-    result: Any = settled_graph(context, timeout_s=0.3)  # type: ignore[arg-type]
+    result: Any = settled_graph(context, timeout_s=scaled(0.3))  # type: ignore[arg-type]
     assert result.topics == {}

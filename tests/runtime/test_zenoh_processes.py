@@ -18,6 +18,7 @@ from typing import Any
 import pytest
 
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 TALKER = textwrap.dedent(
     """
@@ -114,6 +115,20 @@ def test_parameters_across_processes(
     assert missing.returncode == 2 and "did not answer" in missing.stderr
 
 
+def _wait_subscribed(domain: str, topic: str) -> None:
+    """Until another process's subscription to ``topic`` is in the graph."""
+    from robomodel.runtime import Context
+
+    with Context("zenoh", domain_id=int(domain)) as ctx:
+        deadline = time.monotonic() + scaled(20)
+        while True:
+            info = ctx.graph().topics.get(topic)
+            if info is not None and info.subscribers:
+                return
+            assert time.monotonic() < deadline, f"no subscription to {topic}"
+            time.sleep(0.05)
+
+
 def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
     domain = _domain(2)
     echo = subprocess.Popen(
@@ -131,7 +146,7 @@ def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(1.0)
+    _wait_subscribed(domain, "/cmd")
     pub = _cli(
         "topic",
         "pub",
@@ -146,7 +161,7 @@ def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
     assert pub.stdout.startswith(
         "publisher: beginning loop\npublishing #1: geometry_msgs.msg.Twist("
     )
-    out, _ = echo.communicate(timeout=20)
+    out, _ = echo.communicate(timeout=scaled(20))
     assert "linear:\n  x: 0.2\n" in out and "angular:\n  x: 0.0\n  y: 0.0\n  z: 0.5\n" in out
 
 
@@ -192,9 +207,9 @@ def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None
     assert first, "topic echo printed no message in 60 s"
     for p in (echo, proc):
         p.send_signal(signal.SIGINT)
-    _out, err = echo.communicate(timeout=10)
+    _out, err = echo.communicate(timeout=scaled(10))
     assert echo.returncode == 0 and "Traceback" not in err
-    t_out, t_err = proc.communicate(timeout=10)
+    t_out, t_err = proc.communicate(timeout=scaled(10))
     assert proc.returncode == 0 and "clean exit" in t_out and "Traceback" not in t_err
 
 
@@ -248,7 +263,7 @@ def test_seed_workflow_three_processes() -> None:
         assert "Broadcaster: default_authority" in frames.stdout
     finally:
         state.send_signal(signal.SIGINT)
-        _, err = state.communicate(timeout=10)
+        _, err = state.communicate(timeout=scaled(10))
     assert state.returncode == 0 and "Traceback" not in err
 
 
@@ -275,9 +290,9 @@ def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
     )
     with Context("zenoh", domain_id=int(domain)) as ctx:
         session = ctx.transport.session  # type: ignore[attr-defined]
-        deadline = time.monotonic() + 20
+        deadline = time.monotonic() + scaled(20)
         while time.monotonic() < deadline:  # until the echo process's subscription is visible
-            info = ctx.graph(timeout_s=0.3).topics.get("/chatter")
+            info = ctx.graph(timeout_s=scaled(0.3)).topics.get("/chatter")
             if info is not None and info.subscribers:
                 break
             time.sleep(0.1)
@@ -287,11 +302,13 @@ def test_malformed_payload_from_a_foreign_peer_is_dropped() -> None:
         gid = bytes(range(16))
         session.put(key, b"\x00\x01\x00\x00\x01", attachment=encode_attachment(1, 0, gid))
         session.put(key, b"not cdr at all", attachment=encode_attachment(2, 0, gid))
-        time.sleep(0.3)
         pub = ctx.create_node("good").create_publisher(Float64, "/chatter")
-        time.sleep(0.5)
-        pub.publish(Float64(2.5))
-        out, err = echo.communicate(timeout=20)
+        deadline = time.monotonic() + scaled(20)
+        while echo.poll() is None:  # echo --once exits at the first good message it gets
+            assert time.monotonic() < deadline, "echo did not print the good message"
+            pub.publish(Float64(2.5))
+            time.sleep(0.2)
+        out, err = echo.communicate(timeout=scaled(20))
     assert echo.returncode == 0 and out == "data: 2.5\n---\n"
     assert "dropping a malformed std_msgs/msg/Float64 payload on /chatter" in err
     assert "Traceback" not in err
@@ -317,7 +334,7 @@ def test_a_slow_subscriber_keeps_the_latest_depth_messages() -> None:
 
         sub_ctx.create_node("slow").create_subscription(Int32, "/count", slow, QoSProfile(5))
         pub = pub_ctx.create_node("fast").create_publisher(Int32, "/count", 10)
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + scaled(10)
         while (
             not pub_ctx.graph().topics.get("/count", None)
             or not pub_ctx.graph().topics["/count"].subscribers
@@ -327,7 +344,7 @@ def test_a_slow_subscriber_keeps_the_latest_depth_messages() -> None:
         time.sleep(0.3)
         for i in range(1, 201):  # 200 messages in well under the 4 s the callback would need
             pub.publish(Int32(i))
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + scaled(10)
         while (not got or got[-1] != 200) and time.monotonic() < deadline:
             sub_ctx.spin_once(0.05)
         assert got and got[-1] == 200
@@ -356,7 +373,7 @@ def test_a_late_subscriber_gets_every_latched_publishers_history() -> None:
         sub_ctx.create_node("late").create_subscription(
             String, "/statics", lambda m: got.append(m.data), latched(depth=100)
         )
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + scaled(10)
         while len(got) < 4 and time.monotonic() < deadline:
             sub_ctx.spin_once(0.05)
         sub_ctx.spin_once(0.3)
@@ -382,7 +399,7 @@ def test_latched_history_reaches_a_subscriber_after_the_first_process_left() -> 
             sub_ctx.create_node("late").create_subscription(
                 String, "/statics", lambda m: got.append(m.data), latched(depth=100)
             )
-            deadline = time.monotonic() + 20
+            deadline = time.monotonic() + scaled(20)
             while not got and time.monotonic() < deadline:
                 sub_ctx.spin_once(0.05)
             assert got == ["world -> odom"]

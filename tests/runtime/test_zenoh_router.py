@@ -28,7 +28,9 @@ from robomodel.runtime.transport._zenoh_router import (
     stop_router,
 )
 from robomodel.runtime.transport._zenoh_session import ZenohConfigError, parse_override
+from robomodel.runtime.transport.rmw_zenoh import EntityKind
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 
 def _free_port() -> int:
@@ -45,11 +47,22 @@ def _exchange(a: Context, b: Context) -> list[str]:
     got: list[str] = []
     b.create_node("listener").create_subscription(String, "/chatter", lambda m: got.append(m.data))
     pub = a.create_node("talker").create_publisher(String, "/chatter")
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + scaled(10)
     while not got and time.monotonic() < deadline:
         pub.publish(String("hi"))
         b.spin(duration_s=0.1)
     return got
+
+
+def _wait_linked(a: Context, b: Context, kind: str) -> None:
+    """Until ``a``'s session lists ``b``'s among its ``kind`` (peers or routers)."""
+    info = a.transport.session.info  # type: ignore[attr-defined]
+    zid = str(b.transport.session.zid())  # type: ignore[attr-defined]
+    listed = info.peers_zid if kind == "peers" else info.routers_zid
+    deadline = time.monotonic() + scaled(10)
+    while zid not in {str(z) for z in listed()}:
+        assert time.monotonic() < deadline, f"{zid} not among the {kind} of {info.zid()}"
+        time.sleep(0.02)
 
 
 @pytest.fixture
@@ -106,7 +119,7 @@ def test_peers_keep_talking_when_the_router_stops(private_router: str) -> None:
     b = Context("zenoh", domain_id=domain)
     try:
         assert _exchange(a, b)
-        time.sleep(0.5)  # gossip: a and b link directly
+        _wait_linked(a, b, "peers")  # gossip: a and b link directly
         old = stop_router(private_router)
         assert old is not None
         assert _exchange(a, b)  # still linked without the router
@@ -198,7 +211,7 @@ def test_robomodel_router_serves_peers(monkeypatch: pytest.MonkeyPatch) -> None:
             assert _exchange(a, b)
     finally:
         router.terminate()  # SIGTERM: it closes its session and exits 0
-        assert router.wait(10) == 0
+        assert router.wait(scaled(10)) == 0
 
 
 def test_check_attempts_below_zero_skip_the_router(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -249,7 +262,7 @@ def test_bad_configuration_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> 
         [*ROBOMODEL, "topic", "list"],
         capture_output=True,
         text=True,
-        timeout=20,
+        timeout=scaled(20),
         env={**__import__("os").environ, "ZENOH_SESSION_CONFIG_URI": "/nonexistent/session.json5"},
     )
     assert listed.returncode == 2 and "Traceback" not in listed.stderr
@@ -266,11 +279,14 @@ def test_humble_keys_have_no_type_hash(
         key = a.transport.data_key("/chatter", String)  # type: ignore[attr-defined]
         assert key == f"{domain}/chatter/std_msgs::msg::dds_::String_/TypeHashNotSupported"
         assert _exchange(a, b)
-        tokens = [
-            str(r.ok.key_expr)
-            for r in b.transport.session.liveliness().get(f"@ros2_lv/{domain}/**", timeout=1.0)  # type: ignore[attr-defined]
-            if r.ok is not None
-            and "/MP/" in str(r.ok.key_expr)
-            and "%chatter" in str(r.ok.key_expr)
-        ]
+        deadline = time.monotonic() + scaled(10)
+        while True:  # the tokens b follows (its graph cache), as a's session declared them
+            tokens = [
+                token.key()
+                for token in b.transport._graph.tokens()  # type: ignore[attr-defined]
+                if token.kind is EntityKind.PUBLISHER and token.name == "/chatter"
+            ]
+            if tokens or time.monotonic() > deadline:
+                break
+            time.sleep(0.02)
         assert tokens and tokens[0].endswith("/TypeHashNotSupported/::,10:,:,:,,")

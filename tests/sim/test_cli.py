@@ -9,6 +9,7 @@ import pytest
 from robomodel.cli.main import main
 from robomodel.cli.sim import parse_rate
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 from .conftest import SIMPLEBOT_LIDAR, SIMPLEBOT_YAML, WALL_WORLD
 
@@ -102,7 +103,9 @@ def test_paused_single_step_and_services_from_another_process() -> None:
     )  # fmt: skip
 
     def run(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run([*cli, *args, *bus], capture_output=True, text=True, timeout=30)
+        return subprocess.run(
+            [*cli, *args, *bus], capture_output=True, text=True, timeout=scaled(30)
+        )
 
     def clock_s() -> float:
         echo = run("topic", "echo", "/clock", "--once", "--timeout", "10")
@@ -126,9 +129,9 @@ def test_paused_single_step_and_services_from_another_process() -> None:
         tf = run("topic", "echo", "/tf_static", "--once", "--timeout", "10")
         assert "left_base_link" in tf.stdout  # prefix:=left_ reached the xacro
         assert run("service", "call", "/gazebo/unpause_physics").returncode == 0
-        time.sleep(0.5)
-        running = clock_s()
-        assert running > 0.5
+        deadline = time.monotonic() + scaled(30)
+        while (running := clock_s()) <= 0.5:  # the clock runs again
+            assert time.monotonic() < deadline, f"/clock stays at {running} s"
         assert run("service", "call", "/gazebo/pause_physics").returncode == 0
         assert run("service", "call", "/gazebo/reset_world").returncode == 0
         assert run("service", "call", "/gazebo/step", step % 3).returncode == 0
@@ -138,7 +141,7 @@ def test_paused_single_step_and_services_from_another_process() -> None:
         assert "world_control (ros_gz_interfaces/msg/WorldControl)" in bad.stderr
     finally:
         sim.terminate()
-        sim.wait(timeout=10)
+        sim.wait(timeout=scaled(10))
 
 
 def test_prefix_runs_through_the_simulator_state_publisher_and_tf() -> None:
@@ -159,18 +162,18 @@ def test_prefix_runs_through_the_simulator_state_publisher_and_tf() -> None:
     try:
         echo = subprocess.run(
             [*cli, "tf", "world", "r1_link3", "--once", "--timeout", "20", *bus],
-            capture_output=True, text=True, timeout=60,
+            capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
         assert echo.returncode == 0, echo.stderr
         assert "Translation: [" in echo.stdout
         unprefixed = subprocess.run(
             [*cli, "tf", "world", "link3", "--once", "--timeout", "2", *bus],
-            capture_output=True, text=True, timeout=60,
+            capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
         assert unprefixed.returncode != 0  # every frame of the robot carries the prefix
     finally:
         sim.terminate()
-        sim.wait(timeout=10)
+        sim.wait(timeout=scaled(10))
 
 
 def test_two_robots_from_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
@@ -266,21 +269,21 @@ def test_two_mobile_robots_are_one_connected_tf_tree() -> None:
         for frame, y in (("r1_left_wheel", 0.0), ("r2_left_wheel", 2.0)):
             echo = subprocess.run(
                 [*cli, "tf", "world", frame, "--once", "--timeout", "20", *bus],
-                capture_output=True, text=True, timeout=60,
+                capture_output=True, text=True, timeout=scaled(60),
             )  # fmt: skip
             assert echo.returncode == 0, echo.stderr[-2000:]
             translation = echo.stdout.split("Translation: [")[1].split("]")[0]
             _x_m, y_m, _z = (float(v) for v in translation.split(","))
             assert y_m == pytest.approx(y + 0.125, abs=0.05)  # the left wheel, 0.125 m to the left
         topics = subprocess.run(
-            [*cli, "topic", "list", *bus], capture_output=True, text=True, timeout=30
+            [*cli, "topic", "list", *bus], capture_output=True, text=True, timeout=scaled(30)
         ).stdout.split()
         assert {"/r1/simplebot_controller/cmd_vel", "/r2/simplebot_controller/cmd_vel"} <= set(
             topics
         )
     finally:
         sim.terminate()
-        sim.wait(timeout=10)
+        sim.wait(timeout=scaled(10))
 
 
 def test_each_robot_gets_its_own_namespace() -> None:

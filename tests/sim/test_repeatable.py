@@ -12,6 +12,7 @@ import json
 import subprocess
 
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 SIMPLEBOT = EXAMPLES / "simplebot_description"
 WALL_CLOCK = ("wall_time_s", "real_time_factor")
@@ -45,7 +46,7 @@ def test_same_command_same_report() -> None:
     ]
     reports = []
     for run in runs:
-        out, err = run.communicate(timeout=300)
+        out, err = run.communicate(timeout=scaled(300))
         assert run.returncode == 0, err.decode()
         report = json.loads(out)
         reports.append({k: v for k, v in report.items() if k not in WALL_CLOCK})

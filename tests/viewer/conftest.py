@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 CHROMIUM_ARGS = [
     "--no-sandbox",
@@ -42,15 +43,17 @@ def chromium_path() -> str:
     return path
 
 
-def wait_for(condition: Callable[[], Any], timeout_s: float = 20.0, what: str = "") -> Any:
-    """Poll ``condition`` until it returns something truthy; fail after ``timeout_s``."""
+def wait_for(condition: Callable[[], Any], timeout_s: float | None = None, what: str = "") -> Any:
+    """Poll ``condition`` until it returns something truthy; fail after ``timeout_s``
+    (default ``scaled(20)``)."""
+    timeout_s = scaled(20.0) if timeout_s is None else timeout_s
     deadline = time.monotonic() + timeout_s
     while True:
         value = condition()
         if value:
             return value
         if time.monotonic() > deadline:
-            pytest.fail(f"timed out after {timeout_s} s waiting for {what or condition}")
+            pytest.fail(f"timed out after {timeout_s:g} s waiting for {what or condition}")
         time.sleep(0.1)
 
 
@@ -79,7 +82,7 @@ class ViewerProcess:
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGINT)
             try:
-                self.proc.wait(timeout=10)
+                self.proc.wait(timeout=scaled(10))
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
@@ -117,6 +120,9 @@ def browser() -> Iterator[Any]:
 @pytest.fixture
 def page(browser: Any) -> Iterator[Any]:
     context = browser.new_context(viewport=VIEWPORT)
+    # playwright's 30 s default (clicks, wait_for, screenshots), scaled with the machine: a
+    # loaded one ran out of it on folder clicks and screenshots (tests/timing.py)
+    context.set_default_timeout(scaled(30_000))
     yield context.new_page()
     context.close()
 
@@ -124,7 +130,7 @@ def page(browser: Any) -> Iterator[Any]:
 def open_viewer(page: Any, url: str) -> None:
     """Load the page and wait until the GUI arrived over the websocket."""
     page.goto(url)
-    page.get_by_text("Fixed Frame", exact=True).wait_for(timeout=30000)
+    page.get_by_text("Fixed Frame", exact=True).wait_for(timeout=scaled(30_000))
 
 
 def screenshot(page: Any) -> np.ndarray:
@@ -147,9 +153,10 @@ def changed_fraction(a: np.ndarray, b: np.ndarray, threshold: int = 30) -> float
     return float((diff > threshold).mean())
 
 
-def settle(page: Any, timeout_s: float = 15.0) -> np.ndarray:
-    """Screenshot once two consecutive shots of the scene agree (rendering has caught up)."""
-    deadline = time.monotonic() + timeout_s
+def settle(page: Any, timeout_s: float | None = None) -> np.ndarray:
+    """Screenshot once two consecutive shots of the scene agree (rendering has caught up),
+    or after ``timeout_s`` (default ``scaled(15)``)."""
+    deadline = time.monotonic() + (scaled(15.0) if timeout_s is None else timeout_s)
     last = scene_region(screenshot(page))
     while time.monotonic() < deadline:
         time.sleep(0.3)
@@ -218,10 +225,10 @@ def start_launch_viewer(
         started.set()
 
     threading.Thread(target=drain, daemon=True).start()
-    started.wait(60)
+    started.wait(scaled(60))
     url = next((x.rsplit(" ", 1)[1].strip() for x in lines if "viewer: serving" in x), None)
     if not url:
         launch.terminate()
-        launch.wait(30)
+        launch.wait(scaled(30))
         raise AssertionError(f"robomodel launch did not start its viewer: {''.join(lines)}")
     return launch, url, lines

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from tests.conftest import EXAMPLES, ROBOMODEL, example_robot_data_dir
+from tests.timing import scaled
 from tests.viewer.conftest import (
     ViewerProcess,
     changed_fraction,
@@ -97,7 +98,7 @@ class TfProbe:
 
     def close(self) -> None:
         self._stop.set()
-        self._thread.join(timeout=5)
+        self._thread.join(timeout=scaled(5))
         self.context.shutdown()
 
 
@@ -160,7 +161,7 @@ def test_reload_keeps_slider_values_and_errors_keep_last_model(
     wide = settle(page)
     path.write_text(path.read_text().replace("</robot>", "<link name='broken'>"))
     error = page.get_by_text("showing the last good model")
-    error.wait_for(timeout=15000)
+    error.wait_for(timeout=scaled(15_000))
     status = page.get_by_text("arm.urdf:").first.locator("xpath=..").inner_text()
     assert "error:" in status and "arm.urdf:" in status
     save_shot(page, "arm_broken")
@@ -181,7 +182,7 @@ def test_missing_mesh_is_listed_and_the_rest_drawn(
     path = write_arm(tmp_path, mesh="meshes/nothere.stl", extra=extra)
     view = viewer(path, "--package", f"simplebot_description={EXAMPLES / 'simplebot_description'}")
     open_viewer(page, view.url)
-    page.get_by_text("2 mesh(es) not drawn").wait_for(timeout=15000)
+    page.get_by_text("2 mesh(es) not drawn").wait_for(timeout=scaled(15_000))
     text = page.get_by_text("2 mesh(es) not drawn").locator("xpath=..").inner_text()
     assert "file not found" in text
     assert "escapes package" in text
@@ -195,7 +196,7 @@ def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], 
     xacro = EXAMPLES / "example_description/urdf/example.urdf.xacro"
     view = viewer(xacro, xacro, "--prefix", "robot1/", "--prefix", "robot2/")
     open_viewer(page, view.url)
-    page.get_by_text("drawn beside it").wait_for(timeout=15000)
+    page.get_by_text("drawn beside it").wait_for(timeout=scaled(15_000))
     dropdown = page.locator("input[value='robot1/base_footprint']")
     assert dropdown.count() >= 1
     page.get_by_text("robot2/example", exact=True).last.wait_for()
@@ -216,7 +217,7 @@ def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any
     open_viewer(page, view.url)
     wait_for(
         lambda: page.locator("text=loading").count() == 0 and page.get_by_text("OK").count(),
-        timeout_s=60,
+        timeout_s=scaled(60),
         what="every mesh to load",
     )
     drawn = settle(page)
@@ -251,7 +252,7 @@ def test_bus_mode_draws_joint_states_from_another_process(
         save_shot(page, "arm_external_joint_states")
     finally:
         publisher.terminate()
-        publisher.wait(timeout=10)
+        publisher.wait(timeout=scaled(10))
 
 
 MIMIC_AND_FLOATING = """
@@ -374,7 +375,7 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
             ],
             capture_output=True,
             text=True,
-            timeout=30,
+            timeout=scaled(30),
         )
         assert pub.returncode == 0, pub.stderr
 
@@ -383,11 +384,11 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
             changed = changed_fraction(before, image)  # settle() crops already
             return (image,) if changed > 0.002 else None  # a tuple: wait_for tests truthiness
 
-        (after,) = wait_for(moved, timeout_s=60, what="rrbot to move in the page")
+        (after,) = wait_for(moved, timeout_s=scaled(60), what="rrbot to move in the page")
         save_shot(page, "rrbot_joint1_1.5")
         # rrbot is small in the default view: a quarter turn of joint1 changes ~0.5 % of the
         # scene; a page that does not move changes none.
         assert changed_fraction(before, after) > 0.002
     finally:
         control.terminate()
-        control.wait(timeout=15)
+        control.wait(timeout=scaled(15))

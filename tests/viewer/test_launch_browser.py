@@ -13,6 +13,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.timing import scaled
 from tests.viewer.conftest import (
     changed_fraction,
     domain_id,
@@ -32,7 +33,7 @@ pytest.importorskip("zenoh")
 def _joint_states(domain: str) -> dict[str, float]:
     echo = subprocess.run(
         [*ROBOMODEL, "topic", "echo", "/joint_states", "--once", "--domain-id", domain],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert echo.returncode == 0, echo.stderr
     msg = yaml.safe_load(echo.stdout.split("---")[0])
@@ -65,12 +66,12 @@ def test_display_launch_sliders_move_the_robot(page: Any) -> None:
         box.press("Enter")
         wait_for(
             lambda: abs(_joint_states(domain).get("joint_2", 0.0) - 1.2) < 1e-6,
-            timeout_s=30,
+            timeout_s=scaled(30),
             what="joint_2 = 1.2 on /joint_states from the slider",
         )
         wait_for(
             lambda: changed_fraction(before, _scene(page)) > 0.002,
-            timeout_s=30,
+            timeout_s=scaled(30),
             what="the arm to move in the page",
         )
         save_shot(page, "launch_display_xacro_slider")
@@ -78,10 +79,10 @@ def test_display_launch_sliders_move_the_robot(page: Any) -> None:
         tf = subprocess.run(
             [*ROBOMODEL, "tf", "link_1", "link_2", "--once", "--timeout", "20",
              "--domain-id", domain],
-            capture_output=True, text=True, timeout=60,
+            capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
         assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
         assert launch.poll() is None
     finally:
         launch.terminate()
-        launch.wait(timeout=30)
+        launch.wait(timeout=scaled(30))

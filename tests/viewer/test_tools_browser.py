@@ -19,6 +19,7 @@ from robomodel.runtime.msg import Header, LaserScan, Twist
 from robomodel.runtime.node import Node
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 from tests.viewer.conftest import (
     changed_fraction,
     gui_row,
@@ -154,7 +155,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         try:
             wait_for(
                 lambda: any("Started controllers" in line for line in errors),
-                timeout_s=60,
+                timeout_s=scaled(60),
                 what="the spawner to start the controllers",
             )
         except BaseException:
@@ -172,7 +173,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
             return (image,) if changed_fraction(before, image) > 0.004 else None
 
         try:
-            wait_for(moved, timeout_s=40, what="the simplebot to drive in the page")
+            wait_for(moved, timeout_s=scaled(40), what="the simplebot to drive in the page")
         except BaseException:
             save_shot(page, "demo_simplebot_not_driving")
             raise AssertionError(
@@ -185,7 +186,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         tf = subprocess.run(
             [*ROBOMODEL, "tf", "world", "base_link", "--once",
              "--timeout", "20", "--domain-id", domain],
-            capture_output=True, text=True, timeout=60,
+            capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
         assert tf.returncode == 0, tf.stderr[-2000:]
         x_m = float(tf.stdout.split("Translation: [")[1].split(",")[0])
@@ -194,7 +195,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         _pause_and_step_from_the_simulation_folder(page)
     finally:
         launch.terminate()
-        launch.wait(timeout=30)
+        launch.wait(timeout=scaled(30))
 
 
 def _pause_and_step_from_the_simulation_folder(page: Any) -> None:

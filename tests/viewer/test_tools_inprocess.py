@@ -13,6 +13,7 @@ from robomodel.runtime.msg import Float64, Twist
 from robomodel.runtime.node import Node
 from robomodel.runtime.params import SetResult
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.timing import scaled
 from tests.viewer.conftest import wait_for
 from tests.viewer.robots import write_arm
 
@@ -35,7 +36,7 @@ def on_loop(viewer: Viewer, work: Callable[[], Any]) -> Any:
         done.set()
 
     viewer._post(run)
-    assert done.wait(10)
+    assert done.wait(scaled(10))
     return box[0]
 
 
@@ -59,7 +60,7 @@ def test_steering_publishes_twist_at_10_hz_and_zero_once(viewer: Viewer) -> None
     wait_for(lambda: twists[-1].linear.x == 0.0, what="the zero command")
     count = len(twists)
     wait_for(lambda: steering.command.zero_sent, what="zero sent")
-    threading.Event().wait(0.35)
+    threading.Event().wait(scaled(0.35))
     assert len(twists) <= count + 1  # zero is sent once, not every tick
 
 

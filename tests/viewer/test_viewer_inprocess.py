@@ -14,6 +14,7 @@ from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 from tests.viewer.conftest import wait_for
 from tests.viewer.robots import write_arm
 
@@ -314,10 +315,14 @@ def test_a_description_from_a_topic_is_drawn_with_the_robot_s_tf(started: list[V
             lambda: viewer.buffer.can_transform("base_link", "gripper"), what="the robot's /tf"
         )
         first = viewer.buffer.lookup_transform("base_link", "gripper")
-        time.sleep(0.5)  # --delta moves every joint: the poses drawn follow the robot's /tf
-        moved = viewer.buffer.lookup_transform("base_link", "gripper")
-        assert first.translation_m != moved.translation_m
+        wait_for(  # --delta moves every joint: the poses drawn follow the robot's /tf
+            lambda: (
+                viewer.buffer.lookup_transform("base_link", "gripper").translation_m
+                != first.translation_m
+            ),
+            what="the gripper to move",
+        )
         wait_for(lambda: viewer.status.content == "OK", what="the status to clear")
     finally:
         robot.send_signal(signal.SIGINT)
-        robot.wait(10)
+        robot.wait(scaled(10))

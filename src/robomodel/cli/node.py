@@ -6,7 +6,13 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from robomodel.cli._bus import add_bus_arguments, context_from_args, settled_graph
+from robomodel._escape import escape_name, escape_names
+from robomodel.cli._bus import (
+    add_bus_arguments,
+    context_from_args,
+    listing_exit_code,
+    settled_graph,
+)
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime.transport.base import Graph
@@ -29,13 +35,14 @@ def register(subparsers: Any) -> None:
 
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
-        for name in sorted(settled_graph(context).nodes):
-            print(name)
-    return 0
+        graph = settled_graph(context)
+        for name in sorted(graph.nodes):
+            print(escape_name(name))
+    return listing_exit_code(graph)
 
 
 def node_info(graph: Graph, node: str) -> str:
-    """``ros2 node info``'s text for ``node``."""
+    """``ros2 node info``'s text for ``node``, names from peers escaped (``escape_name``)."""
     sections: dict[str, list[str]] = {
         "Subscribers": [],
         "Publishers": [],
@@ -49,7 +56,7 @@ def node_info(graph: Graph, node: str) -> str:
         ):
             for endpoint in endpoints:
                 if endpoint.node == node:
-                    sections[title].append(f"{name}: {endpoint.type_name}")
+                    sections[title].append(_entry(name, endpoint.type_name))
     for name, service in sorted(graph.services.items()):
         for title, endpoints in (
             ("Service Servers", service.servers),
@@ -57,12 +64,16 @@ def node_info(graph: Graph, node: str) -> str:
         ):
             for endpoint in endpoints:
                 if endpoint.node == node:
-                    sections[title].append(f"{name}: {endpoint.type_name}")
-    lines = [node]
+                    sections[title].append(_entry(name, endpoint.type_name))
+    lines = [escape_name(node)]
     for title, entries in sections.items():
         lines.append(f"  {title}:")
         lines.extend(f"    {entry}" for entry in sorted(set(entries)))
     return "\n".join(lines)
+
+
+def _entry(name: str, type_name: str) -> str:
+    return f"{escape_name(name)}: {escape_name(type_name)}"
 
 
 def _run_info(args: argparse.Namespace) -> int:
@@ -71,9 +82,10 @@ def _run_info(args: argparse.Namespace) -> int:
         graph = settled_graph(context)
     if node not in graph.nodes:
         hint = close_matches(node, graph.nodes)
-        extra = f"; did you mean {', '.join(hint)}?" if hint else ""
+        extra = f"; did you mean {escape_names(hint)}?" if hint else ""
         raise RobomodelError(
-            f"Unable to find node '{node}'{extra} (nodes: {', '.join(sorted(graph.nodes)) or 'none'})"
+            f"Unable to find node '{escape_name(node)}'{extra} "
+            f"(nodes: {escape_names(sorted(graph.nodes)) or 'none'})"
         )
     print(node_info(graph, node))
-    return 0
+    return listing_exit_code(graph)

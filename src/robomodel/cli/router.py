@@ -29,6 +29,8 @@ from robomodel.errors import RobomodelError
 __all__ = ["register"]
 
 _DEFAULT = "tcp/localhost:7447"
+TRIM_PERIOD_S = 5.0
+"""How often the router returns freed memory to the system (see ``release_freed_memory``)."""
 
 
 def register(subparsers: Any) -> None:
@@ -75,7 +77,7 @@ def _linked(session: Any) -> bool:
 def run(args: argparse.Namespace) -> int:
     if args.stop:
         return _stop(args.listen[0] if args.listen else _DEFAULT)
-    from robomodel.runtime.transport._zenoh_common import import_zenoh
+    from robomodel.runtime.transport._zenoh_common import import_zenoh, release_freed_memory
     from robomodel.runtime.transport._zenoh_router import RouterRecord
     from robomodel.runtime.transport._zenoh_session import router_config
 
@@ -101,9 +103,13 @@ def run(args: argparse.Namespace) -> int:
     )
     end = None if args.duration is None else time.monotonic() + args.duration
     last_used = time.monotonic()
+    next_trim = time.monotonic() + TRIM_PERIOD_S
     try:
         while not stopped and (end is None or time.monotonic() < end):
             time.sleep(0.1)
+            if time.monotonic() >= next_trim:  # what peers' tokens took goes back when they go
+                release_freed_memory()
+                next_trim = time.monotonic() + TRIM_PERIOD_S
             if args.idle_exit is None:
                 continue
             if _linked(session):

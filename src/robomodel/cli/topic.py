@@ -10,9 +10,11 @@ import sys
 import time
 from typing import Any
 
+from robomodel._escape import escape_name, escape_names
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
+    listing_exit_code,
     settled_graph,
     wait_for_peers,
 )
@@ -88,12 +90,14 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
         if info and info.types:
             if len(info.types) > 1:
                 raise RobomodelError(
-                    f"topic {topic} has several types ({', '.join(sorted(info.types))}); give one"
+                    f"topic {escape_name(topic)} has several types "
+                    f"({escape_names(sorted(info.types))}); give one"
                 )
             return get_message_type(next(iter(info.types)))
         if time.monotonic() >= deadline:
             raise RobomodelError(
-                f"could not determine the type of {topic}: no publisher found; pass the type, "
+                f"could not determine the type of {escape_name(topic)}: no publisher found; "
+                "pass the type, "
                 "e.g. robomodel topic echo /x std_msgs/msg/Float64"
             )
         time.sleep(0.1)
@@ -104,9 +108,9 @@ def run_list(args: argparse.Namespace) -> int:
         graph = settled_graph(context)
         for name in sorted(graph.topics):
             info = graph.topics[name]
-            suffix = f" [{', '.join(sorted(info.types))}]" if args.show_types else ""
-            print(f"{name}{suffix}")
-    return 0
+            suffix = f" [{escape_names(sorted(info.types))}]" if args.show_types else ""
+            print(f"{escape_name(name)}{suffix}")
+    return listing_exit_code(graph)
 
 
 def run_echo(args: argparse.Namespace) -> int:
@@ -227,19 +231,19 @@ def run_info(args: argparse.Namespace) -> int:
         graph = settled_graph(context)
         info = graph.topics.get(args.topic)
         if info is None:
-            known = ", ".join(sorted(graph.topics)) or "(none)"
-            raise RobomodelError(f"Unknown topic '{args.topic}'; topics: {known}")
-        print(f"Type: {', '.join(sorted(info.types))}")
+            known = escape_names(sorted(graph.topics)) or "(none)"
+            raise RobomodelError(f"Unknown topic '{escape_name(args.topic)}'; topics: {known}")
+        print(f"Type: {escape_names(sorted(info.types))}")
         print(f"Publisher count: {len(info.publishers)}")
         if args.verbose:
             for endpoint in info.publishers:
                 print(
-                    f"  Node name: {endpoint.node}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
+                    f"  Node name: {escape_name(endpoint.node)}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
                 )
         print(f"Subscription count: {len(info.subscribers)}")
         if args.verbose:
             for endpoint in info.subscribers:
                 print(
-                    f"  Node name: {endpoint.node}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
+                    f"  Node name: {escape_name(endpoint.node)}  QoS depth: {endpoint.qos.depth}  Durability: {endpoint.qos.durability.value}"
                 )
-    return 0
+    return listing_exit_code(graph)

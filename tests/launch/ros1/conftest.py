@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.timing import scaled
+
 CORPUS = Path(__file__).resolve().parent / "corpus"
 ROSLAUNCH = "/usr/bin/roslaunch"
 
@@ -33,7 +35,7 @@ def roslaunch(args: list[str], env: dict[str, str], cwd: Path) -> subprocess.Com
             "Debian's roslaunch is missing: apt-get install python3-roslaunch (make test does)"
         )
     return subprocess.run(
-        [ROSLAUNCH, *args], capture_output=True, text=True, env=env, cwd=cwd, timeout=120
+        [ROSLAUNCH, *args], capture_output=True, text=True, env=env, cwd=cwd, timeout=scaled(120)
     )
 
 

@@ -18,6 +18,7 @@ import pytest
 from robomodel.description.packages import PackageIndex
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros1 import load_launch
+from tests.timing import scaled
 
 _PROBE = """
 import json, sys
@@ -98,7 +99,7 @@ def _reference(cases: list[str]) -> list[list[str] | None]:
         capture_output=True,
         text=True,
         env={"PATH": "/usr/bin:/bin", "ROS_MASTER_URI": "http://localhost:11311"},
-        timeout=120,
+        timeout=scaled(120),
         check=True,
     )
     return json.loads(proc.stdout)  # type: ignore[no-any-return]

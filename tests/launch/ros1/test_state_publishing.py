@@ -19,6 +19,7 @@ from robomodel.description.packages import PackageIndex
 from robomodel.xacro import process_file
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 from tests.launch.ros1.conftest import ROSLAUNCH
+from tests.timing import scaled
 
 pytest.importorskip("zenoh")
 
@@ -67,14 +68,14 @@ def _reference(launch: Path, home: Path) -> tuple[str, str]:
     try:
         outputs = []
         for topic in ("/tf_static", "/tf"):
-            deadline = time.monotonic() + 60
+            deadline = time.monotonic() + scaled(60)
             while True:
                 echo = subprocess.run(
                     ["/usr/bin/rostopic", "echo", "-n", "1", topic],
                     capture_output=True,
                     text=True,
                     env=env,
-                    timeout=60,
+                    timeout=scaled(60),
                 )
                 if echo.returncode == 0 and "transforms" in echo.stdout:
                     outputs.append(echo.stdout)
@@ -85,7 +86,7 @@ def _reference(launch: Path, home: Path) -> tuple[str, str]:
     finally:
         os.killpg(proc.pid, signal.SIGINT)
         try:
-            proc.wait(30)
+            proc.wait(scaled(30))
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
@@ -105,14 +106,14 @@ def _ours(launch: Path) -> tuple[str, str]:
                 [*ROBOMODEL, "topic", "echo", topic, "--once", "--domain-id", domain],
                 capture_output=True,
                 text=True,
-                timeout=90,
+                timeout=scaled(90),
             )
             assert echo.returncode == 0, echo.stderr
             outputs.append(echo.stdout)
         return outputs[0], outputs[1]
     finally:
         proc.terminate()
-        proc.wait(30)
+        proc.wait(scaled(30))
 
 
 def _close(ours: dict[str, Any], reference: dict[str, Any]) -> None:

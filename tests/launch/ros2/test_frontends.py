@@ -9,6 +9,7 @@ import pytest
 from robomodel.description.packages import PackageIndex
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2 import load_launch
+from tests.timing import scaled
 
 from .conftest import CORPUS
 
@@ -137,7 +138,7 @@ def test_temporary_parameter_files_are_removed_at_exit(tmp_path: Path, mode: lis
     env = {**os.environ, "TMPDIR": str(tmp)}
     run = subprocess.run(
         [*ROBOMODEL, "launch", str(XML), "--package-path", str(CORPUS), *mode],
-        capture_output=True, text=True, env=env, timeout=60,
+        capture_output=True, text=True, env=env, timeout=scaled(60),
     )  # fmt: skip
     assert run.returncode == 0, run.stderr
     assert not list(tmp.glob("launch_params_*")), sorted(p.name for p in tmp.iterdir())

@@ -1,15 +1,16 @@
-"""Per-publisher sequence numbers of received samples: lost-message counts and duplicates.
+"""Per-publisher sequence numbers of received samples: lost-message counts.
 
-rmw_zenoh's subscription (``SubscriptionData::add_new_message``) remembers the last sequence
-number of each publisher GID and counts ``|seq - last| - 1`` messages as lost when the jump is
-larger than one. robomodel does the same, with two differences:
+As rmw_zenoh's subscription (``SubscriptionData::add_new_message`` in
+``rmw_zenoh_cpp/src/detail/rmw_subscription_data.cpp``): the last sequence number of each
+publisher GID is remembered, a jump of more than one either way counts ``|seq - last| - 1``
+messages as lost, and the sample is delivered all the same. A sample below the last one is a
+publisher that restarted with the same GID (a fixed Zenoh id, a restarted latched
+``/robot_description``), not a repeat to drop; repeats of a transient-local history are the
+advanced subscriber's business, as in rmw_zenoh. The last number is always updated, so a
+forged huge one cannot silence the real publisher.
 
-- memory is bounded: at most ``max_publishers`` GIDs are remembered (least recently used
-  first out), however many a peer invents;
-- a sample at most ``window`` below the last one delivered from the same GID is a repeat (the
-  history a transient-local subscriber queries can overlap the live samples) and is dropped.
-  One further below is taken as a new start, so a forged huge sequence number cannot silence
-  the real publisher for good.
+One difference: memory is bounded, at most ``max_publishers`` GIDs are remembered (least
+recently used first out), however many a peer invents.
 """
 
 from __future__ import annotations
@@ -20,10 +21,9 @@ __all__ = ["SequenceTracker"]
 
 
 class SequenceTracker:
-    """Decides which samples to deliver and counts the ones lost in between."""
+    """Counts the samples lost between those received, per publisher GID."""
 
-    def __init__(self, *, window: int = 1024, max_publishers: int = 1024) -> None:
-        self._window = window
+    def __init__(self, *, max_publishers: int = 1024) -> None:
         self._max = max_publishers
         self._last: collections.OrderedDict[bytes, int] = collections.OrderedDict()
         self.lost = 0
@@ -31,16 +31,14 @@ class SequenceTracker:
     def __len__(self) -> int:
         return len(self._last)
 
-    def accept(self, gid: bytes, sequence: int) -> bool:
-        """Whether to deliver this sample (and remember it if so)."""
+    def record(self, gid: bytes, sequence: int) -> None:
+        """Record a received sample (which is delivered whatever its number, as rmw_zenoh does)."""
         last = self._last.get(gid)
         if last is not None:
             self._last.move_to_end(gid)
-            if 0 <= last - sequence < self._window:
-                return False
-            if sequence - last > 1:
-                self.lost += sequence - last - 1
+            jump = abs(sequence - last)
+            if jump > 1:
+                self.lost += jump - 1
         self._last[gid] = sequence
         if len(self._last) > self._max:
             self._last.popitem(last=False)
-        return True

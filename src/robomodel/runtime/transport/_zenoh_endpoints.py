@@ -214,8 +214,7 @@ class ZenohSubscription(SubscriptionHandle):
                 attachment[:40],
             )
             return
-        if not self._sequences.accept(parsed.gid, parsed.sequence_number):
-            return  # already delivered (history replay overlapping live data)
+        self._sequences.record(parsed.gid, parsed.sequence_number)
         if self._raw_deliver is not None:
             info = MessageInfo(
                 parsed.source_timestamp_ns, received_ns, parsed.sequence_number, parsed.gid

@@ -118,12 +118,17 @@ class ServiceInfo:
 
 @dataclass
 class Graph:
-    """A snapshot of the nodes, topics and services a transport can see."""
+    """A snapshot of the nodes, topics and services a transport can see.
+
+    ``complete`` is False when the transport knows that entities are missing (the graph could
+    not be read in full, or a bound left some out): a listing of it must not look complete.
+    """
 
     nodes: set[str] = field(default_factory=set)
     topics: dict[str, TopicInfo] = field(default_factory=dict)
     services: dict[str, ServiceInfo] = field(default_factory=dict)
     unreadable: str = ""  # why the graph could not be read (it is then empty), else ""
+    complete: bool = True  # False: entries are missing (a bound cut the listing short)
 
     def add(self, kind: str, endpoint: Endpoint) -> None:
         """Record an endpoint; ``kind`` is ``pub``, ``sub``, ``srv`` or ``cli``."""

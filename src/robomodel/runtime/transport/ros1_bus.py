@@ -314,7 +314,10 @@ class Ros1Transport(Transport):
             return _graph_of(state, types)
         except (Ros1WireError, TypeError, ValueError) as exc:  # garbage from the master
             log.debug("cannot read the ROS 1 graph: %s", exc)
-            return Graph(unreadable=f"cannot read the ROS 1 graph at {self.master_uri}: {exc}")
+            return Graph(
+                unreadable=f"cannot read the ROS 1 graph at {self.master_uri}: {exc}",
+                complete=False,
+            )
 
     def close(self) -> None:
         with self._lock:

@@ -22,6 +22,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
+from robomodel._escape import escape_name
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
@@ -32,7 +33,7 @@ from robomodel.runtime.transport._domain_id import domain_id_from_env
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import close_session, log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
-from robomodel.runtime.transport._zenoh_graph import read_graph
+from robomodel.runtime.transport._zenoh_graph import GraphCache
 from robomodel.runtime.transport._zenoh_services import ServiceClient, ZenohService
 from robomodel.runtime.transport._zenoh_session import open_session
 from robomodel.runtime.transport.base import (
@@ -101,6 +102,7 @@ class ZenohTransport(Transport):
         self._clients: dict[tuple[str, str, type[Service]], ServiceClient] = {}
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
+        self._graph = GraphCache(self.session, self.domain_id)
 
     # -- naming ---------------------------------------------------------------------------------
     def type_hash(self, kind: type[Message] | type[Service]) -> str:
@@ -139,7 +141,8 @@ class ZenohTransport(Transport):
     def warn_once(self, key: tuple[str, ...], fmt: str, *args: object) -> None:
         """Log a warning once per ``key``. Keys come partly from other processes, so at most
         ``MAX_WARNINGS`` are remembered; past that one line says the rest are suppressed, and
-        memory stays bounded however many distinct names a peer sends."""
+        memory stays bounded however many distinct names a peer sends. Text arguments are
+        printed with control characters escaped (``escape_name``): they can be a peer's."""
         if key in self._warned:
             return
         if len(self._warned) >= MAX_WARNINGS:
@@ -150,7 +153,7 @@ class ZenohTransport(Transport):
                 )
             return
         self._warned.add(key)
-        log.warning(fmt, *args)
+        log.warning(fmt, *(escape_name(a) if isinstance(a, str) else a for a in args))
 
     # -- nodes ----------------------------------------------------------------------------------
     def register_node(self, node: str) -> Callable[[], None]:
@@ -272,12 +275,13 @@ class ZenohTransport(Transport):
         A session that has just linked up with a router has not yet received the router's
         liveliness declarations (some milliseconds), and a query sent before then comes back
         empty at once, which made a second launch miss the first one's parameter server. While
-        the session is that young and linked, an answer with none but its own nodes is asked again."""
-        graph = read_graph(self.session, self.domain_id, timeout_s)
+        the session is that young and linked, an answer with none but its own nodes is asked
+        again, for at most ``timeout_s``."""
         deadline = time.monotonic() + timeout_s
+        graph = self._graph.graph()
         while self._stale(graph) and self.linked() and time.monotonic() < deadline:
             time.sleep(0.005)
-            graph = read_graph(self.session, self.domain_id, timeout_s)
+            graph = self._graph.graph()
         return graph
 
     def _stale(self, graph: Graph) -> bool:
@@ -285,6 +289,10 @@ class ZenohTransport(Transport):
         another process and the query overtook them), or only those while young."""
         own = set(self._nodes)
         return not own <= graph.nodes or (len(graph.nodes) <= len(own) and self._young())
+
+    def graph_quiet_s(self) -> float:
+        """Seconds since the last token of the domain came or went."""
+        return time.monotonic() - self._graph.changed_at
 
     def _young(self) -> bool:
         return time.monotonic() - self._opened_at < DECLARATIONS_SETTLE_S
@@ -303,6 +311,7 @@ class ZenohTransport(Transport):
         for record in self._nodes.values():
             undeclare_all(record.handle)
         self._nodes.clear()
+        self._graph.close()
         close_session(self.session)
 
 

@@ -1,0 +1,216 @@
+"""Issue 29.8: a peer flooding the graph with liveliness tokens hides nobody else's entities,
+is bounded with one warning and a non-zero exit, and the memory goes when its tokens go."""
+
+from __future__ import annotations
+
+import logging
+import os
+import socket
+import subprocess
+import sys
+import textwrap
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any
+
+import pytest
+
+from tests.conftest import ROBOMODEL, ROOT, ToolResult, unique_domain
+from tests.timing import scaled
+
+pytest.importorskip("zenoh")
+
+STRING = "std_msgs::msg::dds_::String_/RIHS01_x/::,7:,:,:,,"
+
+
+def _token_keys(domain: str, zid: str, node: str, topics: list[str]) -> list[str]:
+    keys = [f"@ros2_lv/{domain}/{zid}/0/0/NN/%/%/{node}"]
+    keys += [
+        f"@ros2_lv/{domain}/{zid}/0/{i + 1}/MP/%/%/{node}/%{topic}/{STRING}"
+        for i, topic in enumerate(topics)
+    ]
+    return keys
+
+
+@contextmanager
+def _peer(keys: list[str]) -> Iterator[tuple[Any, list[Any]]]:
+    """A Zenoh session of its own (one peer) declaring ``keys`` as liveliness tokens."""
+    from robomodel.runtime.transport._zenoh_common import close_session
+    from robomodel.runtime.transport._zenoh_session import open_session
+
+    session = open_session().session
+    try:
+        tokens = [session.liveliness().declare_token(key) for key in keys]
+        yield session, tokens
+    finally:
+        close_session(session)
+
+
+def _real_graph(domain: str) -> tuple[list[str], list[str]]:
+    """6 nodes and 10 topics of an honest peer (as the issue's reproducer had)."""
+    keys: list[str] = []
+    for n in range(6):
+        topics = [f"real_topic_{t}" for t in range(10) if t % 6 == n]
+        node_keys = _token_keys(domain, "5eed", f"real_{n}", topics)
+        keys += [k.replace("/5eed/0/", f"/5eed/{n}/", 1) for k in node_keys]
+    return keys, [f"/real_topic_{t}" for t in range(10)]
+
+
+def _flood(domain: str, count: int) -> list[str]:
+    return _token_keys(domain, "f100d", "flood", [f"flood_{i}" for i in range(count)])
+
+
+def _cli_env() -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS")}
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "src"), str(ROOT)])
+    return env
+
+
+def _wait(condition: Callable[[], bool], what: str, timeout_s: float = 30.0) -> None:
+    deadline = time.monotonic() + scaled(timeout_s)
+    while not condition():
+        assert time.monotonic() < deadline, f"timed out waiting for {what}"
+        time.sleep(0.02)
+
+
+def test_a_flood_of_tokens_hides_no_entity_of_another_peer() -> None:
+    """2,000 tokens of one peer: ``topic list`` and ``node list`` still show every topic and
+    node of the others, and the flood's (a liveliness query of that many tokens came back
+    empty, and a listing printed before the flood's tokens arrived left them out)."""
+    domain = unique_domain()
+    real_keys, real_topics = _real_graph(domain)
+    with _peer(_flood(domain, 2000)), _peer(real_keys):
+        runs = {
+            verb: subprocess.run(
+                [*ROBOMODEL, verb, "list", "--domain-id", domain],
+                capture_output=True,
+                text=True,
+                env=_cli_env(),
+                timeout=scaled(60),
+            )
+            for verb in ("topic", "node")
+        }
+    topics = runs["topic"].stdout.splitlines()
+    assert runs["topic"].returncode == 0, runs["topic"].stderr
+    assert set(real_topics) <= set(topics)
+    assert len(topics) == 10 + 2000
+    assert runs["node"].returncode == 0, runs["node"].stderr
+    assert runs["node"].stdout.splitlines() == ["/flood", *(f"/real_{n}" for n in range(6))]
+
+
+def test_tokens_past_the_per_peer_bound_are_left_out_with_one_warning_and_exit_1(
+    monkeypatch: pytest.MonkeyPatch,
+    caplog: pytest.LogCaptureFixture,
+    cli: Callable[..., ToolResult],
+) -> None:
+    from robomodel.runtime.transport import _zenoh_graph
+
+    monkeypatch.setattr(_zenoh_graph, "MAX_TOKENS_PER_PEER", 300)
+    domain = unique_domain()
+    real_keys, real_topics = _real_graph(domain)
+    with (
+        _peer(_flood(domain, 500)),
+        _peer(real_keys),
+        caplog.at_level(logging.WARNING, logger="robomodel.runtime"),
+    ):
+        result = cli("topic", "list", "--domain-id", domain)
+    listed = result.out.splitlines()
+    assert result.code == 1
+    assert set(real_topics) <= set(listed)  # the other peer loses nothing
+    # 300 tokens of the flooding peer are kept: its node's and 299 publishers', or 300 of those
+    assert len(listed) - 10 in (299, 300)
+    bounded = [r for r in caplog.records if "more entities than robomodel keeps" in r.getMessage()]
+    assert len(bounded) == 1 and "300 for peer f100d" in bounded[0].getMessage()
+    assert "could not be read completely" in result.err
+
+
+def test_the_graph_is_complete_again_when_the_flood_goes() -> None:
+    """Bounds per peer and in all; the count of tokens left out follows their undeclaration."""
+    from robomodel.runtime.transport._zenoh_common import close_session
+    from robomodel.runtime.transport._zenoh_graph import GraphCache
+    from robomodel.runtime.transport._zenoh_session import open_session
+
+    domain = unique_domain()
+    session = open_session().session
+    cache = GraphCache(session, int(domain), max_tokens=400, max_per_peer=250)
+    try:
+        with _peer(_flood(domain, 399)):
+            _wait(lambda: len(cache) + cache.left_out == 400, "the flood")
+            assert (len(cache), cache.left_out) == (250, 150)
+            assert not cache.graph().complete
+            with _peer(_token_keys(domain, "ab12", "other", [f"o{i}" for i in range(199)])):
+                _wait(lambda: len(cache) + cache.left_out == 600, "the other peer")
+                assert (len(cache), cache.left_out) == (400, 200)  # 150 of the other's kept
+            _wait(lambda: len(cache) + cache.left_out == 400, "the other peer to go")
+            assert (len(cache), cache.left_out) == (250, 150)
+        _wait(lambda: len(cache) + cache.left_out == 0, "the flood to go")
+        assert cache.graph().complete
+    finally:
+        cache.close()
+        close_session(session)
+
+
+def _rss_mib(pid: int) -> float:
+    with open(f"/proc/{pid}/status") as status:
+        for line in status:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024
+    raise AssertionError("no VmRSS")
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+FLOODER = textwrap.dedent(
+    """
+    import sys, zenoh
+    conf = zenoh.Config()
+    conf.insert_json5("mode", '"peer"')
+    conf.insert_json5("connect/endpoints", '["%s"]')
+    conf.insert_json5("scouting/multicast/enabled", "false")
+    session = zenoh.open(conf)
+    tokens = [session.liveliness().declare_token(f"@ros2_lv/9/f100d/0/{i}/MP/%%/%%/flood/%%t{i}/%s")
+              for i in range(int(sys.argv[1]))]
+    print("declared", flush=True)
+    sys.stdin.readline()
+    """
+)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc, trims glibc")
+def test_the_router_gives_back_the_memory_of_tokens_that_went() -> None:
+    """A router's memory grows with a peer's 8,000 tokens (Zenoh's routing tables) and goes
+    back near where it was once they are gone (it kept 75 MiB of a flood before)."""
+    endpoint = f"tcp/127.0.0.1:{_free_port()}"
+    env = {**_cli_env(), "ZENOH_CONFIG_OVERRIDE": ""}
+    router = subprocess.Popen(
+        [*ROBOMODEL, "router", "--listen", endpoint],
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        start_new_session=True,
+    )
+    try:
+        assert router.stderr is not None and "Started Zenoh router" in router.stderr.readline()
+        baseline = _rss_mib(router.pid)
+        flooder = subprocess.Popen(
+            [sys.executable, "-c", FLOODER % (endpoint, STRING), "8000"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
+        assert flooder.stdout is not None and flooder.stdout.readline() == "declared\n"
+        _wait(lambda: _rss_mib(router.pid) > baseline + 10, "the router to hold the tokens")
+        peak = _rss_mib(router.pid)
+        flooder.communicate("\n", timeout=scaled(60))
+        _wait(
+            lambda: _rss_mib(router.pid) < baseline + (peak - baseline) / 3,
+            f"the router's memory to go back (baseline {baseline:.0f} MiB, peak {peak:.0f})",
+        )
+    finally:
+        router.terminate()
+        router.wait(scaled(10))

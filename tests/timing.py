@@ -1,0 +1,73 @@
+"""Test timeouts that scale with the machine: ``scaled(seconds)``.
+
+Every timeout, deadline and bounded wait in the tests goes through :func:`scaled`, so that a
+test that needs 2 s on a quiet machine is given 2 s times the factor on a busy one (a loaded CI
+runner, a laptop building something else, ``taskset -c 0``). The factor is
+
+- ``ROBOMODEL_TEST_TIMEOUT_SCALE`` when set (a number >= 1, e.g. ``4``);
+- else measured once per test process: the larger of the load average per core and how much
+  slower than a quiet reference machine a short piece of pure-Python work runs here (which is
+  what a process pinned to one busy core sees), kept between 1 and ``MAX_SCALE``.
+
+A timeout only bounds how long a failing test waits: scaling it up never makes a passing test
+slower, because each test waits for a condition, not for the time.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import time
+
+__all__ = ["ENVIRONMENT_VARIABLE", "MAX_SCALE", "scale", "scale_source", "scaled"]
+
+ENVIRONMENT_VARIABLE = "ROBOMODEL_TEST_TIMEOUT_SCALE"
+MAX_SCALE = 20.0
+# Seconds the probe below takes on a quiet 2020s x86 core (measured: 14-15 ms); a machine that
+# takes longer is slow or busy in proportion.
+_REFERENCE_PROBE_S = 0.015
+
+
+def _probe_s() -> float:
+    """The best of three runs of a fixed piece of work [s] (the best, so one preemption
+    does not count; a machine busy all the time still shows)."""
+    best = float("inf")
+    for _ in range(3):
+        start = time.perf_counter()
+        sum(i * i for i in range(200_000))
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+@functools.cache
+def _measured() -> tuple[float, str]:
+    text = os.environ.get(ENVIRONMENT_VARIABLE, "").strip()
+    if text:
+        try:
+            value = float(text)
+        except ValueError:
+            raise ValueError(
+                f"{ENVIRONMENT_VARIABLE} must be a number >= 1, got '{text}'"
+            ) from None
+        if not value >= 1.0:
+            raise ValueError(f"{ENVIRONMENT_VARIABLE} must be a number >= 1, got '{text}'")
+        return value, f"{ENVIRONMENT_VARIABLE}={text}"
+    load_per_core = os.getloadavg()[0] / (os.cpu_count() or 1)
+    slowdown = _probe_s() / _REFERENCE_PROBE_S
+    value = min(MAX_SCALE, max(1.0, load_per_core, slowdown))
+    return value, f"measured: load {load_per_core:.2f}/core, probe {slowdown:.2f}x"
+
+
+def scale() -> float:
+    """The factor every test timeout is multiplied by (see the module docstring)."""
+    return _measured()[0]
+
+
+def scale_source() -> str:
+    """Where :func:`scale` came from, for pytest's header."""
+    return _measured()[1]
+
+
+def scaled(seconds: float) -> float:
+    """``seconds`` times the machine's timeout factor."""
+    return seconds * scale()
