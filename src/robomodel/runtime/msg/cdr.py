@@ -178,7 +178,13 @@ def _after_prim_seq(run: _Run, size: int) -> None:
     run.forget(min(size, 4) if size > 1 else 1)
 
 
+def _wire(spec: Spec) -> Spec:
+    """A bounded string (``string<=N``) is a string on the wire."""
+    return "string" if isinstance(spec, str) and spec.startswith("string<=") else spec
+
+
 def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
+    spec = _wire(spec)
     if isinstance(spec, str):
         if spec == "string":
             _flush(g, d, run, True)
@@ -189,7 +195,7 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
         _add_prim(g, d, run, code, size, expr, 1, True)
         return
     if isinstance(spec, (Seq, Array)):
-        item = spec.item
+        item = _wire(spec.item)
         seq = g.name("s")
         if isinstance(spec, Array):
             g_expr = f"_fixed({expr}, {spec.size})"
@@ -234,6 +240,7 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
 def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
     """Emit the decoding of one field; return the expression of its value (valid after the
     run is flushed)."""
+    spec = _wire(spec)
     if isinstance(spec, str):
         var = g.name("f")
         if spec == "string":
@@ -245,7 +252,7 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
         _add_prim(g, d, run, code, size, var, 1, False)
         return var
     if isinstance(spec, (Seq, Array)):
-        item = spec.item
+        item = _wire(spec.item)
         target, count = g.name("f"), g.name("c")
         if isinstance(spec, Array) and isinstance(item, str) and item != "string":
             code, size, _ = PRIMITIVES[item]
