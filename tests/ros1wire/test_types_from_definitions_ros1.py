@@ -1,0 +1,108 @@
+"""Types robomodel has no hand-written class for, on ROS 1's wire against Debian's tools:
+``rostopic pub`` of sensor_msgs/Image to robomodel's master, robomodel echoes it; Debian's
+``rostopic echo`` reads robomodel's publication of the same type; a custom type from an
+interface package on ROS_PACKAGE_PATH goes both ways the same."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pytest
+import yaml
+
+from tests.ros1wire.conftest import Ros1
+
+
+@dataclass
+class _WithPackages(Ros1):
+    """The test graph, with a folder of test interface packages on ROS_PACKAGE_PATH."""
+
+    packages: Path | None = None
+
+    @property
+    def env(self) -> dict[str, str]:
+        return {**Ros1.env.fget(self), "ROS_PACKAGE_PATH": f"{self.packages}:/usr/share"}  # type: ignore[attr-defined]
+
+
+@pytest.fixture
+def custom(ros1: Ros1, tmp_path: Path) -> Iterator[Ros1]:
+    package = tmp_path / "ws" / "my_msgs"
+    (package / "msg").mkdir(parents=True)
+    (package / "package.xml").write_text(
+        '<package format="2"><name>my_msgs</name><version>0.0.0</version>'
+        "<description>d</description><maintainer email='a@b.c'>a</maintainer>"
+        "<license>BSD</license></package>"
+    )
+    (package / "msg" / "Reading.msg").write_text(
+        "Header header\nfloat64 value\nstring unit\nint16[3] raw\n"
+    )
+    graph = _WithPackages(tmp_path / "home", packages=tmp_path / "ws")
+    (tmp_path / "home").mkdir()
+    try:
+        yield graph
+    finally:
+        graph.close()
+
+IMAGE = "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
+
+
+def _master(ros1: Ros1) -> None:
+    ros1.robomodel("master", "-p", str(ros1.port))
+    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+
+
+def _first(text: str) -> Any:
+    return yaml.safe_load(text.split("\n---")[0])
+
+
+def _debian_echo(ros1: Ros1, topic: str, timeout_s: float = 60) -> Any:
+    deadline = time.monotonic() + timeout_s
+    while True:
+        echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", topic, timeout=timeout_s)
+        if echo.returncode == 0 and echo.stdout.strip():
+            return _first(echo.stdout)
+        assert time.monotonic() < deadline, f"rostopic echo {topic}: {echo.stderr}"
+        time.sleep(0.5)
+
+
+def test_image_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Path) -> None:
+    _master(ros1)
+    ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/theirs", "sensor_msgs/Image", IMAGE])
+    echo = ros1.robomodel_run("topic", "echo", "/theirs", "--once", timeout=90)
+    assert echo.returncode == 0, echo.stderr
+    got = _first(echo.stdout)
+    assert (got["height"], got["width"], got["encoding"], got["step"]) == (2, 2, "rgb8", 6)
+    assert got["data"] == list(range(1, 13))
+
+    log = tmp_path / "pub.log"
+    ros1.robomodel("topic", "pub", "/ours", "sensor_msgs/msg/Image", IMAGE, "-r", "5", log=log)
+    theirs = _debian_echo(ros1, "/ours")
+    assert (theirs["height"], theirs["encoding"], theirs["step"]) == (2, "rgb8", 6)
+    # genpy's echo prints uint8[] as a list of numbers
+    assert list(theirs["data"]) == list(range(1, 13))
+
+
+def test_custom_package_type_both_ways(custom: Ros1, tmp_path: Path) -> None:
+    """A ROS 1 message package that only exists in a test folder: Debian's rostopic (genpy
+    generates its class on the fly) and robomodel both read its .msg from ROS_PACKAGE_PATH."""
+    _master(custom)
+    log = tmp_path / "pub.log"
+    proc = custom.robomodel(
+        "topic", "pub", "/reading", "my_msgs/msg/Reading",
+        "{value: 2.5, unit: bar, raw: [1, -2, 3]}", "-r", "5", log=log,
+    )  # fmt: skip
+    theirs = _debian_echo(custom, "/reading")
+    assert proc.poll() is None, log.read_text()
+    assert (theirs["value"], theirs["unit"], list(theirs["raw"])) == (2.5, "bar", [1, -2, 3])
+    custom.start(
+        ["/usr/bin/rostopic", "pub", "-r", "5", "/from_debian", "my_msgs/Reading",
+         "{value: -1.25, unit: psi, raw: [7, 8, -9]}"]
+    )  # fmt: skip
+    echo = custom.robomodel_run("topic", "echo", "/from_debian", "--once", timeout=90)
+    assert echo.returncode == 0, echo.stderr
+    got = _first(echo.stdout)
+    assert (got["value"], got["unit"], got["raw"]) == (-1.25, "psi", [7, 8, -9])
