@@ -34,7 +34,7 @@ def custom(ros1: Ros1, tmp_path: Path) -> Iterator[Ros1]:
     (package / "msg").mkdir(parents=True)
     (package / "package.xml").write_text(
         '<package format="2"><name>my_msgs</name><version>0.0.0</version>'
-        "<description>d</description><maintainer email='a@b.c'>a</maintainer>"
+        "<description>d</description><maintainer email='dev@example.com'>a</maintainer>"
         "<license>BSD</license></package>"
     )
     (package / "msg" / "Reading.msg").write_text(
@@ -86,23 +86,53 @@ def test_image_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Path
     assert list(theirs["data"]) == list(range(1, 13))
 
 
+# Debian's rospy and genpy's dynamic classes (rostopic needs built messages): subscribe with
+# AnyMsg, decode with a class generated from the publisher's message_definition header; publish
+# with a class generated from the .msg text.
+_GENPY = r"""
+import sys, genpy.dynamic, rospy
+from std_msgs.msg import Header
+rospy.init_node("debian_side", anonymous=True)
+if sys.argv[1] == "echo":
+    got = []
+    def seen(raw):
+        header = raw._connection_header
+        cls = genpy.dynamic.generate_dynamic(header["type"], header["message_definition"])
+        got.append(cls[header["type"]]().deserialize(raw._buff))
+    rospy.Subscriber("/reading", rospy.AnyMsg, seen)
+    while not got and not rospy.is_shutdown():
+        rospy.sleep(0.1)
+    m = got[0]
+    print(m.value, m.unit, list(m.raw), flush=True)
+else:
+    text = open(sys.argv[2]).read() + "\n" + "=" * 80 + "\nMSG: std_msgs/Header\n"
+    text += "uint32 seq\ntime stamp\nstring frame_id\n"
+    Reading = genpy.dynamic.generate_dynamic("my_msgs/Reading", text)["my_msgs/Reading"]
+    pub = rospy.Publisher("/from_debian", Reading, queue_size=1)
+    while not rospy.is_shutdown():
+        pub.publish(Reading(value=-1.25, unit="psi", raw=[7, 8, -9]))
+        rospy.sleep(0.2)
+"""
+
+
 def test_custom_package_type_both_ways(custom: Ros1, tmp_path: Path) -> None:
-    """A ROS 1 message package that only exists in a test folder: Debian's rostopic (genpy
-    generates its class on the fly) and robomodel both read its .msg from ROS_PACKAGE_PATH."""
+    """A ROS 1 message package that only exists in a test folder, on ROS_PACKAGE_PATH:
+    robomodel's publication decodes in Debian's rospy by the definition robomodel sends, and
+    robomodel echoes what Debian's rospy publishes."""
     _master(custom)
+    script = tmp_path / "debian_side.py"
+    script.write_text(_GENPY)
     log = tmp_path / "pub.log"
     proc = custom.robomodel(
         "topic", "pub", "/reading", "my_msgs/msg/Reading",
         "{value: 2.5, unit: bar, raw: [1, -2, 3]}", "-r", "5", log=log,
     )  # fmt: skip
-    theirs = _debian_echo(custom, "/reading")
+    echo = custom.run("/usr/bin/python3", str(script), "echo", timeout=90)
     assert proc.poll() is None, log.read_text()
-    assert (theirs["value"], theirs["unit"], list(theirs["raw"])) == (2.5, "bar", [1, -2, 3])
-    custom.start(
-        ["/usr/bin/rostopic", "pub", "-r", "5", "/from_debian", "my_msgs/Reading",
-         "{value: -1.25, unit: psi, raw: [7, 8, -9]}"]
-    )  # fmt: skip
-    echo = custom.robomodel_run("topic", "echo", "/from_debian", "--once", timeout=90)
-    assert echo.returncode == 0, echo.stderr
-    got = _first(echo.stdout)
+    assert echo.stdout.strip() == "2.5 bar [1, -2, 3]", echo.stderr
+    msg = tmp_path / "ws" / "my_msgs" / "msg" / "Reading.msg"
+    custom.start(["/usr/bin/python3", str(script), "pub", str(msg)])
+    ours = custom.robomodel_run("topic", "echo", "/from_debian", "--once", timeout=90)
+    assert ours.returncode == 0, ours.stderr
+    got = _first(ours.stdout)
     assert (got["value"], got["unit"], got["raw"]) == (-1.25, "psi", [7, 8, -9])

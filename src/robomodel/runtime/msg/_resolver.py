@@ -41,6 +41,7 @@ from robomodel.runtime.msg._schema import (
 
 __all__ = [
     "configure",
+    "definitions_outside",
     "distro",
     "learn_definition",
     "package_definitions",
@@ -148,6 +149,29 @@ def _definition(key: str) -> FieldDef | None:
         if key in store.fielddefs:
             return store.fielddefs[key]  # type: ignore[no-any-return]
     return _learned.get(key)
+
+
+def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
+    """The definitions of ``key`` and of the types it uses that ``known`` (a set of names,
+    e.g. the ROS 1 store's) lacks, from the package path and learned definitions; for a bus
+    whose own table of types (ROS 1's) needs them registered."""
+    out: dict[str, FieldDef] = {}
+    pending = [key]
+    while pending:
+        name = pending.pop()
+        if name in out or name in known:
+            continue
+        found = package_definitions(name)
+        definition = found[name] if found is not None else _learned.get(name)
+        if definition is None:
+            continue
+        out[name] = definition
+        for _, desc in definition[1]:
+            while int(desc[0]) in (3, 4):  # arrays and sequences: their item
+                desc = desc[1][0]
+            if int(desc[0]) == 2:
+                pending.append(str(desc[1]))
+    return out
 
 
 def learn_definition(name: str, text: str) -> None:

@@ -157,6 +157,11 @@ def _md5_type(store: Any, desc: Any) -> str:
 def _make_type(key: str, name: str) -> Ros1Type:
     store = _store()
     if key not in store.fielddefs:
+        # A type of the user's interface packages, or learned from a peer: ROS 1 gets it too.
+        from robomodel.runtime.msg._resolver import definitions_outside
+
+        store.register(definitions_outside(key, store.fielddefs))
+    if key not in store.fielddefs:
         raise Ros1TypeError(f"ROS 1 has no type {name}")
     cls = _robomodel_class(key)
     if cls is None:
