@@ -14,7 +14,9 @@ from tests.conftest import ROBOMODEL, unique_domain
 
 from .conftest import flushed_count, stop
 
-IMAGE = "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
+IMAGE = (
+    "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
+)
 
 
 def _package(root: Path) -> Path:

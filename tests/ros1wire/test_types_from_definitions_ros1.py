@@ -47,7 +47,10 @@ def custom(ros1: Ros1, tmp_path: Path) -> Iterator[Ros1]:
     finally:
         graph.close()
 
-IMAGE = "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
+
+IMAGE = (
+    "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
+)
 
 
 def _master(ros1: Ros1) -> None:

@@ -19,15 +19,15 @@ import robomodel.runtime.msg as msg_package
 from robomodel.runtime.msg import (
     Message,
     MessageTypeError,
+    _resolver,
     deserialize,
     get_message_type,
     message_from_dict,
     message_to_dict,
     serialize,
 )
-from robomodel.runtime.msg import _resolver
 from robomodel.runtime.msg._from_definition import build_message_class
-from robomodel.runtime.msg._schema import get_service_type, message_type_names
+from robomodel.runtime.msg._schema import message_type_names
 from robomodel.runtime.msg.typehash import type_hash
 
 typesys = pytest.importorskip("rosbags.typesys")

@@ -98,7 +98,7 @@ def build_message_class(name: str, definition: FieldDef, lookup: Lookup) -> type
         specs.append((field_name, spec_of(desc, lookup, where=f"{name}.{field_name}")))
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
     namespace["__fields__"] = tuple(specs)
-    cls = make_dataclass(
+    cls: type[Message] = make_dataclass(
         name.rsplit("/", 1)[-1],
         [(n, _annotation(s), _field_default(s)) for n, s in specs],
         bases=(Message,),
@@ -115,8 +115,9 @@ def build_service_class(
     name: str, request: type[Message], response: type[Message]
 ) -> type[Service]:
     """A service class ``pkg/srv/Name`` from its request and response message classes."""
-    cls = type(name.rsplit("/", 1)[-1], (Service,), {"Request": request, "Response": response})
+    cls: type[Service] = type(
+        name.rsplit("/", 1)[-1], (Service,), {"Request": request, "Response": response}
+    )
     cls.__typename__ = name
     cls.__module__ = __name__
     return cls
-

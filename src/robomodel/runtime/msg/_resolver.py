@@ -119,7 +119,7 @@ def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
     from rosbags.typesys import TypesysError, get_types_from_msg
 
     try:
-        found: dict[str, FieldDef] = get_types_from_msg(text, name)
+        found: dict[str, FieldDef] = dict(get_types_from_msg(text, name))
     except TypesysError as exc:
         raise MessageTypeError(f"{where}: not a valid message definition: {exc}") from None
     return found
@@ -200,9 +200,7 @@ def searched() -> str:
         if places
         else "no package path (--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH are unset)"
     )
-    return (
-        f"robomodel's own types, rosbags' ROS 2 {distro()} and ROS 1 noetic stores, {packages}"
-    )
+    return f"robomodel's own types, rosbags' ROS 2 {distro()} and ROS 1 noetic stores, {packages}"
 
 
 def _hint(key: str) -> str:
