@@ -139,3 +139,36 @@ def test_custom_package_type_both_ways(custom: Ros1, tmp_path: Path) -> None:
     assert ours.returncode == 0, ours.stderr
     got = _first(ours.stdout)
     assert (got["value"], got["unit"], got["raw"]) == (-1.25, "psi", [7, 8, -9])
+
+
+_UNKNOWN = r"""
+import genpy.dynamic, rospy
+rospy.init_node("debian_unknown", anonymous=True)
+text = "geometry_msgs/Point where\nuint8 level\nstring[] tags\n" + "=" * 80
+text += "\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n"
+Sample = genpy.dynamic.generate_dynamic("lab_msgs/Sample", text)["lab_msgs/Sample"]
+Point = genpy.dynamic.generate_dynamic("geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n")
+pub = rospy.Publisher("/sample", Sample, queue_size=1)
+while not rospy.is_shutdown():
+    pub.publish(Sample(where=Point["geometry_msgs/Point"](1.0, -2.0, 0.5), level=7,
+                       tags=["a", "b"]))
+    rospy.sleep(0.2)
+"""
+
+
+def test_a_type_only_the_publisher_knows_is_learned_from_its_definition(
+    ros1: Ros1, tmp_path: Path
+) -> None:
+    """No package nor store has lab_msgs/Sample: robomodel's echo decodes it by the
+    message_definition of the publisher's TCPROS header, as rostopic echo would."""
+    _master(ros1)
+    script = tmp_path / "unknown.py"
+    script.write_text(_UNKNOWN)
+    ros1.start(["/usr/bin/python3", str(script)])
+    ros1.until(
+        lambda: "/sample" in ros1.run("/usr/bin/rostopic", "list").stdout.split(), "publisher"
+    )
+    echo = ros1.robomodel_run("topic", "echo", "/sample", "--once", timeout=90)
+    assert echo.returncode == 0, echo.stderr
+    got = _first(echo.stdout)
+    assert got == {"where": {"x": 1.0, "y": -2.0, "z": 0.5}, "level": 7, "tags": ["a", "b"]}

@@ -19,7 +19,13 @@ from robomodel.cli._bus import (
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
-from robomodel.runtime.msg import Message, get_message_type, message_from_yaml, message_to_yaml
+from robomodel.runtime.msg import (
+    Message,
+    MessageTypeError,
+    get_message_type,
+    message_from_yaml,
+    message_to_yaml,
+)
 from robomodel.runtime.msg._schema import canonical_type_name
 from robomodel.runtime.qos import Durability, QoSProfile
 
@@ -90,13 +96,26 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
                 raise RobomodelError(
                     f"topic {topic} has several types ({', '.join(sorted(info.types))}); give one"
                 )
-            return get_message_type(next(iter(info.types)))
+            return _type_named(context, topic, next(iter(info.types)))
         if time.monotonic() >= deadline:
             raise RobomodelError(
                 f"could not determine the type of {topic}: no publisher found; pass the type, "
                 "e.g. robomodel topic echo /x std_msgs/msg/Float64"
             )
         time.sleep(0.1)
+
+
+def _type_named(context: Context, topic: str, name: str) -> type[Message]:
+    """The class of ``name``; on ROS 1, a type robomodel does not know is learned from the
+    definition its publisher sends (as rostopic echo decodes any type)."""
+    try:
+        return get_message_type(name)
+    except MessageTypeError:
+        from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+
+        if not learn_topic_type(context.transport, topic):
+            raise
+    return get_message_type(name)
 
 
 def run_list(args: argparse.Namespace) -> int:
