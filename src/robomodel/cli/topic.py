@@ -16,6 +16,7 @@ from robomodel.cli._bus import (
     settled_graph,
     wait_for_peers,
 )
+from robomodel.cli._types import add_type_arguments
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
@@ -40,6 +41,7 @@ def register(subparsers: Any) -> None:
     p = verbs.add_parser("list", help="the topics that exist")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each topic's type")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_list)
 
     p = verbs.add_parser("echo", help="print messages as YAML documents")
@@ -51,6 +53,7 @@ def register(subparsers: Any) -> None:
         "--timeout", type=float, default=None, metavar="S", help="give up after S seconds"
     )
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_echo)
 
     p = verbs.add_parser("pub", help="publish a message given as YAML")
@@ -69,6 +72,7 @@ def register(subparsers: Any) -> None:
         help="wait for N matching subscriptions before publishing (default 1 with --once/--times)",
     )
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_pub)
 
     p = verbs.add_parser("hz", help="print the average publishing rate")
@@ -76,12 +80,14 @@ def register(subparsers: Any) -> None:
     p.add_argument("-w", "--window", type=int, default=10000, help="samples in the window")
     p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S seconds")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_hz)
 
     p = verbs.add_parser("info", help="type and publisher/subscription counts of a topic")
     p.add_argument("topic")
     p.add_argument("-v", "--verbose", action="store_true", help="list every endpoint")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_info)
 
 

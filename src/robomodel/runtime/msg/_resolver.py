@@ -138,7 +138,11 @@ def package_definitions(name: str) -> dict[str, FieldDef] | None:
     halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
     if len(halves) != 2:
         raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
-    return _parse(halves[0 if match[3] == "Request" else 1], name, where=str(path))
+    # rosbags names parsed types pkg/msg/Name: parse the half as that, then rename it.
+    as_message = f"{match[1]}/msg/{match[2]}_{match[3]}"
+    found = _parse(halves[0 if match[3] == "Request" else 1], as_message, where=str(path))
+    found[name] = found.pop(as_message)
+    return found
 
 
 def _definition(key: str) -> FieldDef | None:
@@ -192,7 +196,7 @@ def _canonical(name: str) -> str:
 
 def searched() -> str:
     """Where this resolver looks, as one phrase for an error message."""
-    places = [str(p) for p in _package_paths]
+    places = [f"--package-path {p}" for p in _package_paths]
     for variable in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"):
         places += [f"{variable} {p}" for p in os.environ.get(variable, "").split(os.pathsep) if p]
     packages = (

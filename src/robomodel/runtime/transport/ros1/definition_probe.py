@@ -32,7 +32,7 @@ class PublishedDefinition:
 
 def _publisher_uris(master_uri: str, caller_id: str, topic: str) -> list[str]:
     publishers, _, _ = call(master_uri, "getSystemState", caller_id)
-    nodes = next((n for name, n in publishers if name == topic), [])
+    nodes: list[str] = next((n for name, n in publishers if name == topic), [])
     uris = []
     for node in nodes:
         with contextlib.suppress(Ros1WireError):

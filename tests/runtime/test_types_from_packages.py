@@ -1,0 +1,155 @@
+"""Types of the user's interface packages (msg/ and srv/ files on the package path) and types
+robomodel has no class for, through the verbs in separate processes on the Zenoh bus: topic
+pub/echo/info/hz and service call."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import yaml
+
+from robomodel.runtime.msg import (
+    MessageTypeError,
+    _resolver,
+    get_message_type,
+    message_from_yaml,
+    serialize,
+)
+from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.typehash import type_hash
+from tests.conftest import ROBOMODEL, unique_domain
+
+IMAGE = (
+    "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
+)
+
+
+def make_package(root: Path) -> Path:
+    """``my_msgs`` with a message that uses another of its own, a common one and a
+    constant, and a service."""
+    package = root / "my_msgs"
+    (package / "msg").mkdir(parents=True)
+    (package / "srv").mkdir()
+    (package / "package.xml").write_text(
+        '<package format="3"><name>my_msgs</name><version>0.0.0</version></package>'
+    )
+    (package / "msg" / "Reading.msg").write_text(
+        "uint8 KIND_PRESSURE=1\nstd_msgs/Header header\nfloat64 value\nstring unit\n"
+        "int16[3] raw\nCalibration[] calibrations\n"
+    )
+    (package / "msg" / "Calibration.msg").write_text("string name\nfloat32 gain 1.0\n")
+    (package / "srv" / "Scale.srv").write_text(
+        "float64 value\nfloat64 factor\n---\nfloat64 result\n"
+    )
+    return root
+
+
+@pytest.fixture
+def packages(tmp_path: Path) -> Iterator[Path]:
+    root = make_package(tmp_path / "ws")
+    _resolver.configure(package_paths=(root,))
+    yield root
+    _resolver.configure(package_paths=())
+
+
+def test_package_message_and_service(packages: Path) -> None:
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    reading = get_message_type("my_msgs/Reading")
+    assert reading.KIND_PRESSURE == 1  # type: ignore[attr-defined]
+    msg = message_from_yaml(
+        reading, "{value: 2.5, unit: bar, raw: [1, -2, 3], calibrations: [{name: a, gain: 2.0}]}"
+    )
+    store = get_typestore(Stores.ROS2_JAZZY)
+    for name in ("Reading", "Calibration"):
+        text = (packages / "my_msgs" / "msg" / f"{name}.msg").read_text()
+        store.register(get_types_from_msg(text, f"my_msgs/msg/{name}"))
+    theirs = store.deserialize_cdr(serialize(msg), "my_msgs/msg/Reading")
+    assert (theirs.value, theirs.unit, theirs.raw.tolist()) == (2.5, "bar", [1, -2, 3])
+    assert theirs.calibrations[0].gain == 2.0
+    assert type_hash(reading) == store.hash_rihs01("my_msgs/msg/Reading")
+    scale = get_service_type("my_msgs/srv/Scale")
+    assert scale.Request.field_names() == ("value", "factor")
+    assert scale.Response.field_names() == ("result",)
+    with pytest.raises(MessageTypeError, match=f"--package-path {packages}"):
+        get_message_type("my_msgs/msg/Missing")
+
+
+def test_learned_definition_resolves_what_nothing_else_has() -> None:
+    text = "geometry_msgs/Point where\nuint8 level\n" + "=" * 80 + "\nMSG: geometry_msgs/Point\n"
+    text += "float64 x\nfloat64 y\nfloat64 z\n"
+    with pytest.raises(MessageTypeError):
+        get_message_type("lab_msgs/msg/Probe")
+    _resolver.learn_definition("lab_msgs/Probe", text)
+    probe = get_message_type("lab_msgs/msg/Probe")
+    assert probe.field_names() == ("where", "level")
+    assert probe.__fields__[0][1] is get_message_type("geometry_msgs/msg/Point")  # hand-written
+
+
+SERVER = textwrap.dedent(
+    """
+    import sys
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg._schema import get_service_type
+    Scale = get_service_type("my_msgs/srv/Scale")
+    ctx = Context("zenoh", domain_id=int(sys.argv[1]))
+    node = ctx.create_node("scaler")
+    node.create_service(Scale, "/scale", lambda req: Scale.Response(req.value * req.factor))
+    print("ready", flush=True)
+    ctx.spin()
+    """
+)
+
+
+def _run(env: dict[str, str], *argv: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*ROBOMODEL, *argv], capture_output=True, text=True, timeout=90, env=env)
+
+
+def test_verbs_across_processes(tmp_path: Path) -> None:
+    root = make_package(tmp_path / "ws")
+    env = {**os.environ, "ROS_PACKAGE_PATH": str(root)}
+    domain = unique_domain()
+    bus = ("--domain-id", domain)
+    procs = []
+    try:
+        for topic, kind, value in (
+            ("/img", "sensor_msgs/msg/Image", IMAGE),
+            ("/reading", "my_msgs/msg/Reading", "{value: 2.5, unit: bar, raw: [1, -2, 3]}"),
+        ):
+            procs.append(subprocess.Popen(
+                [*ROBOMODEL, "topic", "pub", topic, kind, value, "-r", "10", *bus], env=env,
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, text=True,
+            ))  # fmt: skip
+        script = tmp_path / "server.py"
+        script.write_text(SERVER)
+        server = subprocess.Popen(
+            [sys.executable, str(script), domain], env=env, stdout=subprocess.PIPE, text=True
+        )
+        procs.append(server)
+        assert server.stdout is not None and server.stdout.readline().strip() == "ready"
+        image = _run(env, "topic", "echo", "/img", "--once", *bus)
+        assert image.returncode == 0, image.stderr
+        got = yaml.safe_load(image.stdout.split("---")[0])
+        assert (got["encoding"], got["data"]) == ("rgb8", list(range(1, 13)))
+        reading = _run(env, "topic", "echo", "/reading", "--once", *bus)
+        assert reading.returncode == 0, reading.stderr
+        got = yaml.safe_load(reading.stdout.split("---")[0])
+        assert (got["value"], got["unit"], got["raw"]) == (2.5, "bar", [1, -2, 3])
+        info = _run(env, "topic", "info", "/reading", *bus)
+        assert "Type: my_msgs/msg/Reading" in info.stdout, info.stderr
+        hz = _run(env, "topic", "hz", "/img", "--duration", "3", *bus)
+        assert hz.returncode == 0 and "average rate" in hz.stdout, hz.stderr
+        call = _run(env, "service", "call", "/scale", "my_msgs/srv/Scale",
+                    "{value: 2.5, factor: 4.0}", "--timeout", "30", *bus)  # fmt: skip
+        assert call.returncode == 0, call.stderr
+        assert "response (" in call.stdout and call.stdout.endswith("result: 10.0\n")
+    finally:
+        for proc in procs:
+            proc.kill()
+            proc.wait()
