@@ -243,3 +243,20 @@ def test_ros1_md5sums_equal_genpy_and_rosbags() -> None:
         key = f"{package}/msg/{typ}"
         ours = ros1_type(get_message_type(key))
         assert ours.md5sum == genpy[name] == NOETIC.generate_msgdef(key, ros_version=1)[1], name
+
+
+def test_uint8_sequences_out_of_range_are_codec_errors() -> None:
+    """uint8[] is packed with bytes() (fast path): a bad value is still a typed error."""
+    from robomodel.runtime.msg import CDRError
+    from robomodel.runtime.transport.ros1.ros1_types import Ros1CodecError, ros1_type
+
+    image = get_message_type("sensor_msgs/msg/Image")
+    for bad in ([256], [-1], ["a"]):
+        msg = image(data=bad)  # type: ignore[call-arg]
+        with pytest.raises(CDRError, match="does not fit"):
+            serialize(msg)
+        with pytest.raises(Ros1CodecError, match="does not fit"):
+            ros1_type(image).encode(msg)
+    good = image(data=[0, 255, 7])  # type: ignore[call-arg]
+    assert deserialize(serialize(good), image) == good
+    assert ros1_type(image).decode(ros1_type(image).encode(good)) == good

@@ -217,7 +217,10 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
                 if size > 1:
                     g.emit(d + 1, f"r = (len(buf) - 4) & {size - 1}")
                     g.emit(d + 1, f"if r: buf += b'\\x00' * ({size} - r)")
-                g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
+                if code == "B":  # uint8[] (images, point clouds): bytes() is 20x faster
+                    g.emit(d + 1, f"buf += bytes({seq})")
+                else:
+                    g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
                 _after_prim_seq(run, size)
                 return
         var = g.name("v")
@@ -276,7 +279,12 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
                 d + 1,
                 f"if o + {count} * {size} > n: raise CDRError(f'payload truncated at offset {{o}}')",
             )
-            g.emit(d + 1, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))")
+            if code == "B":
+                g.emit(d + 1, f"{target} = list(data[o : o + {count}])")
+            else:
+                g.emit(
+                    d + 1, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))"
+                )
             g.emit(d + 1, f"o += {count} * {size}")
             g.emit(d, "else:")
             g.emit(d + 1, f"{target} = []")
@@ -346,7 +354,7 @@ def serialize(msg: Message) -> bytes:
     buf = bytearray(HEADER_LE)
     try:
         _message_encoder(type(msg))(buf, msg)
-    except struct.error as exc:
+    except (struct.error, ValueError, TypeError) as exc:  # bytes() of uint8[]: ValueError
         raise CDRError(f"{type(msg).__typename__}: a value does not fit its field: {exc}") from None
     return bytes(buf)
 
