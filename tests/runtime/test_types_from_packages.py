@@ -43,7 +43,7 @@ def make_package(root: Path) -> Path:
         "uint8 KIND_PRESSURE=1\nstd_msgs/Header header\nfloat64 value\nstring unit\n"
         "int16[3] raw\nCalibration[] calibrations\n"
     )
-    (package / "msg" / "Calibration.msg").write_text("string name\nfloat32 gain 1.0\n")
+    (package / "msg" / "Calibration.msg").write_text("string name\nfloat32 gain\n")
     (package / "srv" / "Scale.srv").write_text(
         "float64 value\nfloat64 factor\n---\nfloat64 result\n"
     )
@@ -90,6 +90,44 @@ def test_learned_definition_resolves_what_nothing_else_has() -> None:
     probe = get_message_type("lab_msgs/msg/Probe")
     assert probe.field_names() == ("where", "level")
     assert probe.__fields__[0][1] is get_message_type("geometry_msgs/msg/Point")  # hand-written
+
+
+GENMSG = textwrap.dedent(
+    """
+    import json, os, sys
+    import genmsg, genmsg.msg_loader as loader
+    from std_msgs.msg import Header
+    root, scratch = sys.argv[1], sys.argv[2]
+    os.makedirs(os.path.join(scratch, "std_msgs", "msg"))
+    with open(os.path.join(scratch, "std_msgs", "msg", "Header.msg"), "w") as out:
+        out.write(Header._full_text)
+    search = {"my_msgs": [os.path.join(root, "my_msgs", "msg")],
+              "std_msgs": [os.path.join(scratch, "std_msgs", "msg")]}
+    ctx = genmsg.MsgContext.create_default()
+    reading = loader.load_msg_by_type(ctx, "my_msgs/Reading", search)
+    loader.load_depends(ctx, reading, search)
+    scale = loader.load_srv_from_file(
+        ctx, os.path.join(root, "my_msgs", "srv", "Scale.srv"), "my_msgs/Scale")
+    loader.load_depends(ctx, scale, search)
+    print(json.dumps([genmsg.compute_md5(ctx, reading), genmsg.compute_md5(ctx, scale)]))
+    """
+)
+
+
+def test_ros1_md5sums_of_package_types_equal_genmsg(packages: Path, tmp_path: Path) -> None:
+    """ROS 1's md5sums of a package's message and service, as Debian's genmsg computes them."""
+    import json
+
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_service_type, ros1_type
+
+    done = subprocess.run(
+        ["/usr/bin/python3", "-c", GENMSG, str(packages), str(tmp_path / "scratch")],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr[-500:]
+    reading_md5, scale_md5 = json.loads(done.stdout)
+    assert ros1_type(get_message_type("my_msgs/msg/Reading")).md5sum == reading_md5
+    assert ros1_service_type(get_service_type("my_msgs/srv/Scale")).md5sum == scale_md5
 
 
 SERVER = textwrap.dedent(

@@ -126,21 +126,24 @@ def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
 
 
 def package_definitions(name: str) -> dict[str, FieldDef] | None:
-    """The definition of message ``pkg/msg/Name`` or of a service half ``pkg/srv/Name_Request``
-    from the package path, None if no package there has it."""
-    match = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name)
-    if match is None:
-        path = _package_files().get(name)
-        return None if path is None else _parse(path.read_text(), name, where=str(path))
-    path = _package_files().get(f"{match[1]}/srv/{match[2]}")
-    if path is None:
+    """The definition of message ``pkg/msg/Name`` or of a service half (``pkg/srv/Name_Request``,
+    or ROS 1's ``pkg/msg/NameRequest``) from the package path; None if no package has it."""
+    files = _package_files()
+    path = files.get(name)
+    if path is not None:
+        return _parse(path.read_text(), name, where=str(path))
+    half = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name) or re.fullmatch(
+        r"(\w+)/msg/(\w+?)(Request|Response)", name
+    )
+    path = files.get(f"{half[1]}/srv/{half[2]}") if half is not None else None
+    if half is None or path is None:
         return None
     halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
     if len(halves) != 2:
         raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
     # rosbags names parsed types pkg/msg/Name: parse the half as that, then rename it.
-    as_message = f"{match[1]}/msg/{match[2]}_{match[3]}"
-    found = _parse(halves[0 if match[3] == "Request" else 1], as_message, where=str(path))
+    as_message = f"{half[1]}/msg/{half[2]}_{half[3]}"
+    found = _parse(halves[0 if half[3] == "Request" else 1], as_message, where=str(path))
     found[name] = found.pop(as_message)
     return found
 
