@@ -191,3 +191,31 @@ def test_verbs_across_processes(tmp_path: Path) -> None:
         for proc in procs:
             proc.kill()
             proc.wait()
+
+
+def test_ament_prefix_path_packages(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An installed ROS 2 package: <prefix>/share/<pkg>/msg/*.msg, found by AMENT_PREFIX_PATH."""
+    make_package(tmp_path / "prefix" / "share")
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "prefix"))
+    _resolver.configure()
+    try:
+        assert get_message_type("my_msgs/msg/Calibration").field_names() == ("name", "gain")
+    finally:
+        monkeypatch.delenv("AMENT_PREFIX_PATH")
+        _resolver.configure()
+
+
+def test_distro_option_of_the_verbs() -> None:
+    """``--distro humble``: Humble's sensor_msgs/msg/Range, which has no ``variance``."""
+    argv = ("topic", "pub", "/range", "sensor_msgs/msg/Range", "{variance: 0.5}", "--once")
+    humble = subprocess.run(
+        [*ROBOMODEL, *argv, "--bus", "inproc", "--distro", "humble"],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert humble.returncode == 2 and "has no field 'variance'" in humble.stderr
+    assert "Traceback" not in humble.stderr
+    jazzy = subprocess.run(
+        [*ROBOMODEL, *argv, "--bus", "inproc", "--distro", "jazzy"],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert jazzy.returncode == 0 and "variance=0.5" in jazzy.stdout, jazzy.stderr
