@@ -172,3 +172,32 @@ def test_a_type_only_the_publisher_knows_is_learned_from_its_definition(
     assert echo.returncode == 0, echo.stderr
     got = _first(echo.stdout)
     assert got == {"where": {"x": 1.0, "y": -2.0, "z": 0.5}, "level": 7, "tags": ["a", "b"]}
+
+
+MARKER = (
+    "{header: {frame_id: map}, ns: path, id: 3, type: 4, action: 0, "
+    "pose: {orientation: {w: 1.0}}, scale: {x: 0.05}, color: {r: 1.0, a: 1.0}, "
+    "points: [{x: 1.0, y: 2.0, z: 0.0}, {x: -1.0, y: 0.5, z: 0.25}], text: hello}"
+)
+
+
+def test_marker_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Path) -> None:
+    """visualization_msgs/Marker: ROS 1's (no texture, mesh_file, uv_coordinates) and Jazzy's
+    class map field by field; what both have goes through."""
+    _master(ros1)
+    ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/their_marker",
+                "visualization_msgs/Marker", MARKER])  # fmt: skip
+    echo = ros1.robomodel_run("topic", "echo", "/their_marker", "--once", timeout=90)
+    assert echo.returncode == 0, echo.stderr
+    got = _first(echo.stdout)
+    assert (got["header"]["frame_id"], got["ns"], got["id"], got["type"]) == ("map", "path", 3, 4)
+    assert got["points"] == [{"x": 1.0, "y": 2.0, "z": 0.0}, {"x": -1.0, "y": 0.5, "z": 0.25}]
+    assert (got["text"], got["scale"]["x"], got["color"]["r"]) == ("hello", 0.05, 1.0)
+
+    log = tmp_path / "pub.log"
+    ros1.robomodel("topic", "pub", "/our_marker", "visualization_msgs/msg/Marker", MARKER,
+                   "-r", "5", log=log)  # fmt: skip
+    theirs = _debian_echo(ros1, "/our_marker")
+    assert (theirs["header"]["frame_id"], theirs["ns"], theirs["id"]) == ("map", "path", 3)
+    assert theirs["points"][1] == {"x": -1.0, "y": 0.5, "z": 0.25}
+    assert theirs["text"] == "hello"
