@@ -201,3 +201,32 @@ def test_marker_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Pat
     assert (theirs["header"]["frame_id"], theirs["ns"], theirs["id"]) == ("map", "path", 3)
     assert theirs["points"][1] == {"x": -1.0, "y": 0.5, "z": 0.25}
     assert theirs["text"] == "hello"
+
+
+def test_bag_record_of_a_learned_type(ros1: Ros1, tmp_path: Path) -> None:
+    """``bag record -a`` on ROS 1 records lab_msgs/Sample, which only its publisher knows: the
+    bag stores the definition, and rosbags reads the messages back from the bag alone."""
+    from rosbags.rosbag2 import Reader
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    _master(ros1)
+    script = tmp_path / "unknown.py"
+    script.write_text(_UNKNOWN)
+    ros1.start(["/usr/bin/python3", str(script)])
+    ros1.until(
+        lambda: "/sample" in ros1.run("/usr/bin/rostopic", "list").stdout.split(), "publisher"
+    )
+    folder = tmp_path / "bag"
+    rec = ros1.robomodel_run("bag", "record", "-a", "-o", str(folder), "--duration", "3")
+    assert rec.returncode == 0, rec.stderr
+    store = get_typestore(Stores.EMPTY)
+    samples = []
+    with Reader(folder) as reader:
+        for conn in reader.connections:
+            store.register(get_types_from_msg(conn.msgdef.data, conn.msgtype))
+        for conn, _, data in reader.messages():
+            if conn.topic == "/sample":
+                samples.append(store.deserialize_cdr(data, conn.msgtype))
+    assert samples, rec.stderr
+    first = samples[0]
+    assert (first.where.x, first.where.y, first.level, first.tags) == (1.0, -2.0, 7, ["a", "b"])
