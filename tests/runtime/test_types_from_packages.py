@@ -8,6 +8,7 @@ import os
 import subprocess
 import sys
 import textwrap
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -219,3 +220,35 @@ def test_distro_option_of_the_verbs() -> None:
         capture_output=True, text=True, timeout=60,
     )  # fmt: skip
     assert jazzy.returncode == 0 and "variance=0.5" in jazzy.stdout, jazzy.stderr
+
+
+def test_a_publishers_other_hash_is_named(tmp_path: Path) -> None:
+    """A publisher of Humble's sensor_msgs/msg/Range (no ``variance``: another RIHS01 hash) on
+    a Jazzy bus and robomodel's Jazzy echo: one warning line naming both hashes (rmw_zenoh
+    keeps them apart). (A Humble bus, ROS_DISTRO=humble, carries no hashes at all.)"""
+    from rosbags.typesys import Stores, get_typestore
+
+    domain = unique_domain()
+    env = {k: v for k, v in os.environ.items() if k != "ROS_DISTRO"}  # a Jazzy bus (hashes)
+    pub = subprocess.Popen(
+        [*ROBOMODEL, "topic", "pub", "/range", "sensor_msgs/msg/Range", "{range: 1.5}",
+         "-r", "10", "--domain-id", domain, "--distro", "humble"],
+        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, text=True,
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + 60
+        while "/range" not in _run(env, "topic", "list", "--domain-id", domain).stdout:
+            assert time.monotonic() < deadline, "the publisher did not appear in 60 s"
+        echo = subprocess.run(
+            [*ROBOMODEL, "topic", "echo", "/range", "--once", "--timeout", "3",
+             "--domain-id", domain, "--distro", "jazzy"],
+            capture_output=True, text=True, timeout=90, env=env,
+        )  # fmt: skip
+    finally:
+        pub.kill()
+        pub.wait()
+    humble = get_typestore(Stores.ROS2_HUMBLE).hash_rihs01("sensor_msgs/msg/Range")
+    jazzy = get_typestore(Stores.ROS2_JAZZY).hash_rihs01("sensor_msgs/msg/Range")
+    warnings = [line for line in echo.stderr.splitlines() if line.startswith("warning: /range")]
+    assert len(warnings) == 1, echo.stderr
+    assert humble in warnings[0] and jazzy in warnings[0]

@@ -102,7 +102,9 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
                 raise RobomodelError(
                     f"topic {topic} has several types ({', '.join(sorted(info.types))}); give one"
                 )
-            return _type_named(context, topic, next(iter(info.types)))
+            found = _type_named(context, topic, next(iter(info.types)))
+            _warn_other_hashes(topic, found, info.publishers)
+            return found
         if time.monotonic() >= deadline:
             raise RobomodelError(
                 f"could not determine the type of {topic}: no publisher found; pass the type, "
@@ -122,6 +124,22 @@ def _type_named(context: Context, topic: str, name: str) -> type[Message]:
         if not learn_topic_type(context.transport, topic):
             raise
     return get_message_type(name)
+
+
+def _warn_other_hashes(topic: str, kind: type[Message], publishers: Any) -> None:
+    """One line per RIHS01 hash a publisher has that robomodel's class of the type has not:
+    a different definition of the same name (another distribution, another package version),
+    which rmw_zenoh keeps apart."""
+    from robomodel.runtime.msg.typehash import type_hash
+
+    ours = type_hash(kind)
+    for theirs in sorted({e.type_hash for e in publishers if e.type_hash.startswith("RIHS01_")}):
+        if theirs != ours:
+            print(
+                f"warning: {topic}: a publisher's {kind.__typename__} has hash {theirs}, "
+                f"robomodel's {ours} (another definition; see --distro and --package-path)",
+                file=sys.stderr,
+            )
 
 
 def run_list(args: argparse.Namespace) -> int:

@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from robomodel.runtime.msg.typehash import ros_type_name
+from robomodel.runtime.qos import QoSProfile
 from robomodel.runtime.transport.base import Endpoint, Graph
 from robomodel.runtime.transport.rmw_zenoh import (
     ADMIN_SPACE,
@@ -37,11 +38,7 @@ def add_token(graph: Graph, token: EntityToken) -> None:
         return
     type_name = ros_type_name(token.dds_type) or token.dds_type
     qos = qos_from_key(token.qos)
-    endpoint = (
-        Endpoint(token.node, token.name, type_name)
-        if qos is None
-        else Endpoint(token.node, token.name, type_name, qos)
-    )
+    endpoint = Endpoint(token.node, token.name, type_name, qos or QoSProfile(), token.type_hash)
     graph.add(_KINDS[token.kind], endpoint)
 
 
