@@ -22,9 +22,8 @@ def add_type_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument(
         "--distro",
         default=None,
-        metavar="NAME",
-        help="the ROS 2 distribution of the common interfaces: humble, jazzy, kilted "
-        "(default: ROS_DISTRO, else jazzy)",
+        choices=("humble", "iron", "jazzy", "kilted", "lyrical"),  # rosbags' ROS 2 stores
+        help="the ROS 2 distribution of the common interfaces (default: ROS_DISTRO, else jazzy)",
     )
 
 
