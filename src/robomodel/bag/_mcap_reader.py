@@ -45,6 +45,7 @@ class McapChannel:
     type: str
     message_encoding: str
     metadata: dict[str, str]
+    definition: str = ""  # the schema's text (ros2msg or ros1msg)
 
 
 def _zstd_bounded(data: bytes, limit: int) -> bytes:
@@ -108,8 +109,9 @@ class _Scan:
         if raw.id in self.channels:  # repeated in the summary, or in every split file
             return
         schema = self.schemas.get(raw.schema_id)
+        text = bytes(schema.data).decode("utf-8", "replace") if schema else ""
         channel = McapChannel(
-            raw.topic, schema.name if schema else "", raw.message_encoding, dict(raw.metadata)
+            raw.topic, schema.name if schema else "", raw.message_encoding, dict(raw.metadata), text
         )
         self.channels[raw.id] = channel
         if self.on_channel is not None:

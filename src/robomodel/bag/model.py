@@ -27,6 +27,7 @@ class TopicSummary:
     count: int
     serialization_format: str = "cdr"
     offered_qos: tuple[QoSProfile, ...] = ()
+    definition: str = ""  # the stored message definition (MCAP schema, rosbag's msgdef)
 
     @property
     def latched(self) -> bool:

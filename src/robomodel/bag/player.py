@@ -49,6 +49,10 @@ class PlayOptions:
 
 def _decoder(topic: TopicSummary) -> tuple[type[Message], Decoder]:
     """The robomodel class of a topic and how to turn its stored bytes into a message."""
+    if topic.definition:  # a type robomodel does not know decodes by the bag's definition
+        from robomodel.runtime.msg._resolver import learn_definition
+
+        learn_definition(topic.type, topic.definition)
     if topic.serialization_format == "ros1":
         from robomodel.runtime.transport.ros1.ros1_types import Ros1TypeError, ros1_type_named
 

@@ -93,6 +93,7 @@ class _Tally:
     def __init__(self) -> None:
         self.types: dict[str, str] = {}
         self.formats: dict[str, str] = {}
+        self.definitions: dict[str, str] = {}
         self.qos: dict[str, tuple[QoSProfile, ...]] = {}
         self.counts: dict[str, int] = {}
         self.start = 0
@@ -102,6 +103,7 @@ class _Tally:
     def channel(self, channel: McapChannel) -> None:
         self.types.setdefault(channel.topic, channel.type)
         self.formats.setdefault(channel.topic, channel.message_encoding)
+        self.definitions.setdefault(channel.topic, channel.definition)
         self.qos.setdefault(channel.topic, _channel_qos(channel))
         self.counts.setdefault(channel.topic, 0)
 
@@ -119,6 +121,7 @@ class _Tally:
                 self.counts[name],
                 self.formats[name],
                 qos.get(name) or self.qos.get(name, ()),
+                self.definitions.get(name, ""),
             )
             for name in self.types
         )
@@ -165,14 +168,17 @@ class Bag:
             counts: dict[str, int] = {}
             types: dict[str, str] = {}
             formats: dict[str, str] = {}
+            definitions: dict[str, str] = {}
             for conn in reader.connections:
                 counts[conn.topic] = counts.get(conn.topic, 0) + conn.msgcount
                 types.setdefault(conn.topic, conn.msgtype)
                 ext_format = getattr(conn.ext, "serialization_format", "ros1")
                 formats.setdefault(conn.topic, ext_format)
+                definitions.setdefault(conn.topic, getattr(conn.msgdef, "data", "") or "")
             qos = self._qos()
             topics = tuple(
-                TopicSummary(t, types[t], counts[t], formats[t], qos.get(t, ())) for t in types
+                TopicSummary(t, types[t], counts[t], formats[t], qos.get(t, ()), definitions[t])
+                for t in types
             )
             total = reader.message_count
             start, end = (reader.start_time, reader.end_time) if total else (0, 0)

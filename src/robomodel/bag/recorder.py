@@ -105,12 +105,24 @@ class Recorder:
         self._skipped.add(name)
         log.warning("not recording %s: %s", name, reason)
 
+    def _type_of(self, topic: str, type_name: str) -> type[Message]:
+        """The class of ``type_name``; on ROS 1, a type robomodel does not know is learned from
+        its publisher's definition, and stored in the bag as rosbag does."""
+        try:
+            return get_message_type(type_name)
+        except MessageTypeError:
+            from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+
+            if not learn_topic_type(self.context.transport, topic):
+                raise
+        return get_message_type(type_name)
+
     def _subscribe(self, name: str, info: TopicInfo) -> None:
         if len(info.types) != 1:
             self._skip(name, f"published with several types ({', '.join(sorted(info.types))})")
             return
         try:
-            msg_type = get_message_type(next(iter(info.types)))
+            msg_type = self._type_of(name, next(iter(info.types)))
         except MessageTypeError as exc:
             self._skip(name, str(exc))
             return

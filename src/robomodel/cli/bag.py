@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._types import add_type_arguments
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
@@ -39,6 +40,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S s")
     p.add_argument("--no-progress", action="store_true", help="no progress line")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_record)
 
     p = verbs.add_parser("info", help="topics, types, counts and duration of a bag")
@@ -59,6 +61,7 @@ def register(subparsers: Any) -> None:
         help="publish /clock at HZ (default 40) with the bag's time",
     )  # fmt: skip
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_play)
 
 

@@ -145,6 +145,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _unknown_verb(verb)
     parser = build_parser(verb if verb in _VERB_NAMES else "")
     args = _parse(parser, args_list)
+    if getattr(args, "type_package_path", None) or getattr(args, "distro", None):
+        from robomodel.cli._types import apply_type_arguments
+
+        apply_type_arguments(args)
     func: Callable[[argparse.Namespace], int] = args.func
     if argv is None:  # the command line, not a test calling main([...])
         _install_signal_handlers()

@@ -26,6 +26,7 @@ from robomodel.cli._bus import (
     settled_graph,
     wait_for_peers,
 )
+from robomodel.cli._types import add_type_arguments
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime import Context
@@ -45,11 +46,13 @@ def register(subparsers: Any) -> None:
     p = verbs.add_parser("list", help="the services offered on the bus")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each one's type")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=_run_list)
 
     p = verbs.add_parser("type", help="the type of a service")
     p.add_argument("service")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=_run_type)
 
     p = verbs.add_parser("call", help="call a service with a YAML request and print the reply")
@@ -62,6 +65,7 @@ def register(subparsers: Any) -> None:
         "--timeout", type=float, default=3.0, metavar="S", help="give up after S s (default 3)"
     )
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=_run_call)
 
 

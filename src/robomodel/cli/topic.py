@@ -18,10 +18,17 @@ from robomodel.cli._bus import (
     settled_graph,
     wait_for_peers,
 )
+from robomodel.cli._types import add_type_arguments
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
-from robomodel.runtime.msg import Message, get_message_type, message_from_yaml, message_to_yaml
+from robomodel.runtime.msg import (
+    Message,
+    MessageTypeError,
+    get_message_type,
+    message_from_yaml,
+    message_to_yaml,
+)
 from robomodel.runtime.msg._schema import canonical_type_name
 from robomodel.runtime.qos import Durability, QoSProfile
 
@@ -36,6 +43,7 @@ def register(subparsers: Any) -> None:
     p = verbs.add_parser("list", help="the topics that exist")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each topic's type")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_list)
 
     p = verbs.add_parser("echo", help="print messages as YAML documents")
@@ -47,6 +55,7 @@ def register(subparsers: Any) -> None:
         "--timeout", type=float, default=None, metavar="S", help="give up after S seconds"
     )
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_echo)
 
     p = verbs.add_parser("pub", help="publish a message given as YAML")
@@ -65,6 +74,7 @@ def register(subparsers: Any) -> None:
         help="wait for N matching subscriptions before publishing (default 1 with --once/--times)",
     )
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_pub)
 
     p = verbs.add_parser("hz", help="print the average publishing rate")
@@ -72,12 +82,14 @@ def register(subparsers: Any) -> None:
     p.add_argument("-w", "--window", type=int, default=10000, help="samples in the window")
     p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S seconds")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_hz)
 
     p = verbs.add_parser("info", help="type and publisher/subscription counts of a topic")
     p.add_argument("topic")
     p.add_argument("-v", "--verbose", action="store_true", help="list every endpoint")
     add_bus_arguments(p)
+    add_type_arguments(p)
     p.set_defaults(func=run_info)
 
 
@@ -93,7 +105,9 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
                     f"topic {escape_name(topic)} has several types "
                     f"({escape_names(sorted(info.types))}); give one"
                 )
-            return get_message_type(next(iter(info.types)))
+            found = _type_named(context, topic, next(iter(info.types)))
+            _warn_other_hashes(topic, found, info.publishers)
+            return found
         if time.monotonic() >= deadline:
             raise RobomodelError(
                 f"could not determine the type of {escape_name(topic)}: no publisher found; "
@@ -101,6 +115,35 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
                 "e.g. robomodel topic echo /x std_msgs/msg/Float64"
             )
         time.sleep(0.1)
+
+
+def _type_named(context: Context, topic: str, name: str) -> type[Message]:
+    """The class of ``name``; on ROS 1, a type robomodel does not know is learned from the
+    definition its publisher sends (as rostopic echo decodes any type)."""
+    try:
+        return get_message_type(name)
+    except MessageTypeError:
+        from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+
+        if not learn_topic_type(context.transport, topic):
+            raise
+    return get_message_type(name)
+
+
+def _warn_other_hashes(topic: str, kind: type[Message], publishers: Any) -> None:
+    """One line per RIHS01 hash a publisher has that robomodel's class of the type has not:
+    a different definition of the same name (another distribution, another package version),
+    which rmw_zenoh keeps apart."""
+    from robomodel.runtime.msg.typehash import type_hash
+
+    ours = type_hash(kind)
+    for theirs in sorted({e.type_hash for e in publishers if e.type_hash.startswith("RIHS01_")}):
+        if theirs != ours:
+            print(
+                f"warning: {topic}: a publisher's {kind.__typename__} has hash {theirs}, "
+                f"robomodel's {ours} (another definition; see --distro and --package-path)",
+                file=sys.stderr,
+            )
 
 
 def run_list(args: argparse.Namespace) -> int:

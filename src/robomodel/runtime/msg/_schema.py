@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar, TypeAlias
 
-from robomodel.errors import RobomodelError, close_matches
+from robomodel.errors import RobomodelError
 
 __all__ = [
     "PRIMITIVES",
@@ -198,18 +198,18 @@ def _import_package(key: str) -> None:
 
 
 def get_message_type(name: str) -> type[Message]:
-    """Look up a message class by ROS name (``pkg/msg/Name`` or ``pkg/Name``)."""
+    """Look up a message class by ROS name (``pkg/msg/Name`` or ``pkg/Name``): robomodel's own
+    class if it has one, else one built from the type's definition (:mod:`._resolver`)."""
     key = canonical_type_name(name)
     if key not in _REGISTRY:
         _import_package(key)
-    try:
-        return _REGISTRY[key]
-    except KeyError:
-        hint = close_matches(key, _REGISTRY)
-        extra = f"; did you mean {', '.join(hint)}?" if hint else ""
-        raise MessageTypeError(
-            f"unknown message type '{name}'{extra} Known types: {', '.join(sorted(_REGISTRY))}"
-        ) from None
+    found = _REGISTRY.get(key)
+    if found is not None:
+        return found
+    # Not hand-written: built from its definition (stores, packages, peers; see _resolver).
+    from robomodel.runtime.msg._resolver import resolve_message
+
+    return resolve_message(key, name)
 
 
 def message_type_names() -> tuple[str, ...]:
@@ -229,14 +229,12 @@ def get_service_type(name: str) -> type[Service]:
     key = canonical_service_name(name)
     if key not in _SERVICES:
         _import_package(key)
-    try:
-        return _SERVICES[key]
-    except KeyError:
-        hint = close_matches(key, _SERVICES)
-        extra = f"; did you mean {', '.join(hint)}?" if hint else ""
-        raise MessageTypeError(
-            f"unknown service type '{name}'{extra} Known types: {', '.join(sorted(_SERVICES))}"
-        ) from None
+    found = _SERVICES.get(key)
+    if found is not None:
+        return found
+    from robomodel.runtime.msg._resolver import resolve_service
+
+    return resolve_service(key, name)
 
 
 def service_type_names() -> tuple[str, ...]:

@@ -178,7 +178,13 @@ def _after_prim_seq(run: _Run, size: int) -> None:
     run.forget(min(size, 4) if size > 1 else 1)
 
 
+def _wire(spec: Spec) -> Spec:
+    """A bounded string (``string<=N``) is a string on the wire."""
+    return "string" if isinstance(spec, str) and spec.startswith("string<=") else spec
+
+
 def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
+    spec = _wire(spec)
     if isinstance(spec, str):
         if spec == "string":
             _flush(g, d, run, True)
@@ -189,7 +195,7 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
         _add_prim(g, d, run, code, size, expr, 1, True)
         return
     if isinstance(spec, (Seq, Array)):
-        item = spec.item
+        item = _wire(spec.item)
         seq = g.name("s")
         if isinstance(spec, Array):
             g_expr = f"_fixed({expr}, {spec.size})"
@@ -211,7 +217,10 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
                 if size > 1:
                     g.emit(d + 1, f"r = (len(buf) - 4) & {size - 1}")
                     g.emit(d + 1, f"if r: buf += b'\\x00' * ({size} - r)")
-                g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
+                if code == "B":  # uint8[] (images, point clouds): bytes() is 20x faster
+                    g.emit(d + 1, f"buf += bytes({seq})")
+                else:
+                    g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
                 _after_prim_seq(run, size)
                 return
         var = g.name("v")
@@ -234,6 +243,7 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
 def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
     """Emit the decoding of one field; return the expression of its value (valid after the
     run is flushed)."""
+    spec = _wire(spec)
     if isinstance(spec, str):
         var = g.name("f")
         if spec == "string":
@@ -245,7 +255,7 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
         _add_prim(g, d, run, code, size, var, 1, False)
         return var
     if isinstance(spec, (Seq, Array)):
-        item = spec.item
+        item = _wire(spec.item)
         target, count = g.name("f"), g.name("c")
         if isinstance(spec, Array) and isinstance(item, str) and item != "string":
             code, size, _ = PRIMITIVES[item]
@@ -269,7 +279,12 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
                 d + 1,
                 f"if o + {count} * {size} > n: raise CDRError(f'payload truncated at offset {{o}}')",
             )
-            g.emit(d + 1, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))")
+            if code == "B":
+                g.emit(d + 1, f"{target} = list(data[o : o + {count}])")
+            else:
+                g.emit(
+                    d + 1, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))"
+                )
             g.emit(d + 1, f"o += {count} * {size}")
             g.emit(d, "else:")
             g.emit(d + 1, f"{target} = []")
@@ -339,7 +354,7 @@ def serialize(msg: Message) -> bytes:
     buf = bytearray(HEADER_LE)
     try:
         _message_encoder(type(msg))(buf, msg)
-    except struct.error as exc:
+    except (struct.error, ValueError, TypeError) as exc:  # bytes() of uint8[]: ValueError
         raise CDRError(f"{type(msg).__typename__}: a value does not fit its field: {exc}") from None
     return bytes(buf)
 

@@ -70,9 +70,12 @@ def _convert(spec: Spec, value: Any, where: str) -> Any:
 
 
 def _primitive(name: str, value: Any, where: str) -> Any:
+    name, _, bound = name.partition("<=")  # string<=N: at most N characters
     if name == "string":
         if not isinstance(value, str):
             raise MessageTypeError(f"{_at(where)}expected a string, got {value!r}")
+        if bound and len(value) > int(bound):
+            raise MessageTypeError(f"{_at(where)}longer than {bound} characters: {value!r}")
         return value
     if name == "bool":
         if not isinstance(value, bool):

@@ -24,6 +24,7 @@ from typing import Any
 
 from robomodel._escape import escape_name
 from robomodel.runtime.msg.typehash import ros_type_name
+from robomodel.runtime.qos import QoSProfile
 from robomodel.runtime.transport._zenoh_common import (
     direct,
     import_zenoh,
@@ -64,11 +65,7 @@ def add_token(graph: Graph, token: EntityToken) -> None:
         return
     type_name = ros_type_name(token.dds_type) or token.dds_type
     qos = qos_from_key(token.qos)
-    endpoint = (
-        Endpoint(token.node, token.name, type_name)
-        if qos is None
-        else Endpoint(token.node, token.name, type_name, qos)
-    )
+    endpoint = Endpoint(token.node, token.name, type_name, qos or QoSProfile(), token.type_hash)
     graph.add(_KINDS[token.kind], endpoint)
 
 

@@ -82,6 +82,7 @@ class Endpoint:
     topic: str
     type_name: str
     qos: QoSProfile = QoSProfile()
+    type_hash: str = ""  # RIHS01, where the bus says it (rmw_zenoh's liveliness tokens)
 
 
 @dataclass(frozen=True, slots=True)

@@ -166,7 +166,10 @@ def _enc_array(g: _Gen, d: int, kind: int, rest: Any, expr: str) -> None:
         g.emit(d, f"buf += struct.pack('<I', len({seq}))")
     if ikind == 1 and irest[0] != "string":
         code = PRIMITIVES[irest[0]][0]
-        g.emit(d, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
+        if code == "B":  # uint8[] (images): bytes() is 20x faster than struct.pack
+            g.emit(d, f"buf += bytes({seq})")
+        else:
+            g.emit(d, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
         return
     var = g.name("v")
     g.emit(d, f"for {var} in {seq}:")
@@ -249,7 +252,10 @@ def _dec(g: _Gen, d: int, desc: Any) -> str:
         g.emit(
             d, f"if o + {count} * {item_size} > n: raise Ros1CodecError(f'truncated at byte {{o}}')"
         )
-        g.emit(d, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))")
+        if code == "B":
+            g.emit(d, f"{target} = list(data[o : o + {count}])")
+        else:
+            g.emit(d, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))")
         g.emit(d, f"o += {count} * {item_size}")
         return target
     g.emit(d, f"{target} = []")
@@ -314,7 +320,7 @@ def make_codec(
     def encode(msg: Message, seq: int = 0) -> bytes:
         try:
             return raw_encode(msg, seq)  # type: ignore[no-any-return]
-        except (struct.error, AttributeError, TypeError, UnicodeEncodeError) as exc:
+        except (struct.error, AttributeError, TypeError, UnicodeEncodeError, ValueError) as exc:
             raise Ros1CodecError(
                 f"{type_name}: a value does not fit ROS 1's field: {exc}"
             ) from None

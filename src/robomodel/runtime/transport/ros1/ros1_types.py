@@ -159,6 +159,11 @@ def _md5_type(store: Any, desc: Any) -> str:
 def _make_type(key: str, name: str) -> Ros1Type:
     store = _store()
     if key not in store.fielddefs:
+        # A type of the user's interface packages, or learned from a peer: ROS 1 gets it too.
+        from robomodel.runtime.msg._resolver import definitions_outside
+
+        store.register(definitions_outside(key, store.fielddefs))
+    if key not in store.fielddefs:
         raise Ros1TypeError(f"ROS 1 has no type {name}")
     cls = _robomodel_class(key)
     if cls is None:
@@ -245,6 +250,12 @@ def _make_service(cls: type[Service]) -> Ros1ServiceType:
     package, kind, name = cls.__typename__.split("/")
     store = _store()
     keys = [f"{package}/msg/{name}{part}" for part in ("Request", "Response")]
+    if kind == "srv" and any(k not in store.fielddefs for k in keys):
+        # A service of the user's interface packages: ROS 1 gets its halves too.
+        from robomodel.runtime.msg._resolver import definitions_outside
+
+        for key in keys:
+            store.register(definitions_outside(key, store.fielddefs))
     if kind != "srv" or any(k not in store.fielddefs for k in keys):
         raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
     request, response = (_make_type(k, k.replace("/msg/", "/")) for k in keys)

@@ -1,0 +1,247 @@
+"""Where robomodel finds the message and service types it has no hand-written class for.
+
+:func:`~._schema.get_message_type` asks here when a name is not one of robomodel's own
+classes. The definition is taken from, in this order:
+
+1. the interface packages on the package path (``--package-path``, ``ROS_PACKAGE_PATH``,
+   ``AMENT_PREFIX_PATH``): a package's ``msg/*.msg`` and ``srv/*.srv`` files, as ROS's own
+   overlays let a workspace's package win;
+2. the common interfaces of the ROS 2 distribution in rosbags' type stores, chosen by
+   ``ROS_DISTRO`` (``jazzy`` when unset, or when it names a ROS 1 distribution);
+3. rosbags' ROS 1 Noetic store, for names only ROS 1 has;
+4. definitions learned at run time: a ROS 1 publisher's ``message_definition`` connection
+   header, a bag's stored schema (:func:`learn_definition`).
+
+rosbags parses the ``.msg`` text (``get_types_from_msg``); :mod:`._from_definition` makes the
+class. Nested types go through :func:`get_message_type` again, so hand-written classes are
+used wherever robomodel has them. rosbags is imported only when a type is first looked for
+here, so that verbs which never need one do not pay for it.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import re
+import threading
+from pathlib import Path
+from typing import Any
+
+from robomodel.runtime.msg._from_definition import (
+    FieldDef,
+    build_message_class,
+    build_service_class,
+)
+from robomodel.runtime.msg._schema import (
+    Message,
+    MessageTypeError,
+    Service,
+    get_message_type,
+)
+
+__all__ = [
+    "configure",
+    "definitions_outside",
+    "distro",
+    "learn_definition",
+    "package_definitions",
+    "resolve_message",
+    "resolve_service",
+]
+
+DEFAULT_DISTRO = "jazzy"
+_ROS2_DISTROS = ("humble", "iron", "jazzy", "kilted", "lyrical")
+
+_lock = threading.RLock()
+_messages: dict[str, type[Message]] = {}
+_services: dict[str, type[Service]] = {}
+_learned: dict[str, FieldDef] = {}
+_package_paths: tuple[Path, ...] = ()
+_distro: str | None = None
+
+
+def configure(
+    *, package_paths: tuple[str | os.PathLike[str], ...] | None = None, distro: str | None = None
+) -> None:
+    """Set the extra package folders (``--package-path``) and the distribution (``--distro``);
+    classes already built from definitions are forgotten."""
+    global _package_paths, _distro
+    with _lock:
+        if package_paths is not None:
+            _package_paths = tuple(Path(p) for p in package_paths)
+        if distro is not None:
+            _distro = distro
+        _messages.clear()
+        _services.clear()
+        _package_files.cache_clear()
+
+
+def distro() -> str:
+    """The ROS 2 distribution whose common interfaces are used (``ROS_DISTRO``, else jazzy)."""
+    name = (_distro or os.environ.get("ROS_DISTRO") or DEFAULT_DISTRO).strip().lower()
+    return name if name in _ROS2_DISTROS else DEFAULT_DISTRO
+
+
+@functools.cache
+def _store(name: str) -> Any:
+    from rosbags.typesys import Stores, get_typestore
+
+    return get_typestore(Stores[name])
+
+
+def _distro_store() -> Any:
+    from rosbags.typesys import Stores
+
+    key = f"ROS2_{distro().upper()}"
+    return _store(key if key in Stores.__members__ else f"ROS2_{DEFAULT_DISTRO.upper()}")
+
+
+def _index() -> Any:
+    from robomodel.description.packages import PackageIndex
+
+    return PackageIndex(package_paths=_package_paths)
+
+
+@functools.cache
+def _package_files() -> dict[str, Path]:
+    """``pkg/msg/Name`` and ``pkg/srv/Name`` -> the ``.msg``/``.srv`` file on the package path."""
+    files: dict[str, Path] = {}
+    index = _index()
+    for package in index.names():
+        root = index.find(package)
+        for kind in ("msg", "srv"):
+            for path in sorted((root / kind).glob(f"*.{kind}")):
+                files.setdefault(f"{package}/{kind}/{path.stem}", path)
+    return files
+
+
+def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
+    from rosbags.typesys import TypesysError, get_types_from_msg
+
+    try:
+        found: dict[str, FieldDef] = dict(get_types_from_msg(text, name))
+    except TypesysError as exc:
+        raise MessageTypeError(f"{where}: not a valid message definition: {exc}") from None
+    return found
+
+
+def package_definitions(name: str) -> dict[str, FieldDef] | None:
+    """The definition of message ``pkg/msg/Name`` or of a service half (``pkg/srv/Name_Request``,
+    or ROS 1's ``pkg/msg/NameRequest``) from the package path; None if no package has it."""
+    files = _package_files()
+    path = files.get(name)
+    if path is not None:
+        return _parse(path.read_text(), name, where=str(path))
+    half = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name) or re.fullmatch(
+        r"(\w+)/msg/(\w+?)(Request|Response)", name
+    )
+    path = files.get(f"{half[1]}/srv/{half[2]}") if half is not None else None
+    if half is None or path is None:
+        return None
+    halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
+    if len(halves) != 2:
+        raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
+    # rosbags names parsed types pkg/msg/Name: parse the half as that, then rename it.
+    as_message = f"{half[1]}/msg/{half[2]}_{half[3]}"
+    found = _parse(halves[0 if half[3] == "Request" else 1], as_message, where=str(path))
+    found[name] = found.pop(as_message)
+    return found
+
+
+def _definition(key: str) -> FieldDef | None:
+    found = package_definitions(key)
+    if found is not None:
+        return found[key]
+    for store in (_distro_store(), _store("ROS1_NOETIC")):
+        if key in store.fielddefs:
+            return store.fielddefs[key]  # type: ignore[no-any-return]
+    return _learned.get(key)
+
+
+def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
+    """The definitions of ``key`` and of the types it uses that ``known`` (a set of names,
+    e.g. the ROS 1 store's) lacks, from the package path and learned definitions; for a bus
+    whose own table of types (ROS 1's) needs them registered."""
+    out: dict[str, FieldDef] = {}
+    pending = [key]
+    while pending:
+        name = pending.pop()
+        if name in out or name in known:
+            continue
+        found = package_definitions(name)
+        definition = found[name] if found is not None else _learned.get(name)
+        if definition is None:
+            continue
+        out[name] = definition
+        for _, desc in definition[1]:
+            while int(desc[0]) in (3, 4):  # arrays and sequences: their item
+                desc = desc[1][0]
+            if int(desc[0]) == 2:
+                pending.append(str(desc[1]))
+    return out
+
+
+def learn_definition(name: str, text: str) -> None:
+    """Remember the types of a full definition (a ROS 1 ``message_definition`` or a bag's
+    ``ros2msg`` schema: the type's fields, then ``===`` / ``MSG: pkg/Name`` sections) so that
+    ``name`` and the types it uses resolve even where no package or store has them."""
+    key = _canonical(name)
+    found = _parse(text, key, where=f"the definition of {name}")
+    with _lock:
+        for type_name, definition in found.items():
+            _learned.setdefault(type_name, definition)
+
+
+def _canonical(name: str) -> str:
+    parts = name.strip().strip("/").split("/")
+    return f"{parts[0]}/msg/{parts[1]}" if len(parts) == 2 else "/".join(parts)
+
+
+def searched() -> str:
+    """Where this resolver looks, as one phrase for an error message."""
+    places = [f"--package-path {p}" for p in _package_paths]
+    for variable in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"):
+        places += [f"{variable} {p}" for p in os.environ.get(variable, "").split(os.pathsep) if p]
+    packages = (
+        f"the msg/ and srv/ folders of the packages under {', '.join(places)}"
+        if places
+        else "no package path (--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH are unset)"
+    )
+    return f"robomodel's own types, rosbags' ROS 2 {distro()} and ROS 1 noetic stores, {packages}"
+
+
+def _hint(key: str) -> str:
+    from robomodel.errors import close_matches
+    from robomodel.runtime.msg._schema import message_type_names
+
+    known = {*message_type_names(), *_distro_store().fielddefs, *_package_files()}
+    hint = close_matches(key, sorted(known))
+    return f" (did you mean {', '.join(hint)}?)" if hint else ""
+
+
+def resolve_message(key: str, name: str) -> type[Message]:
+    """The class of message type ``key`` (``pkg/msg/Name``) from its definition; ``name`` is
+    what the user wrote. MessageTypeError, in one line, if no source has it."""
+    with _lock:
+        found = _messages.get(key)
+        if found is None:
+            definition = _definition(key)
+            if definition is None:
+                raise MessageTypeError(
+                    f"unknown message type '{name}'{_hint(key)}: looked in {searched()}"
+                )
+            found = build_message_class(key, definition, get_message_type)
+            _messages[key] = found
+        return found
+
+
+def resolve_service(key: str, name: str) -> type[Service]:
+    """The class of service type ``key`` (``pkg/srv/Name``) from the package path."""
+    with _lock:
+        found = _services.get(key)
+        if found is None:
+            if key not in _package_files():
+                raise MessageTypeError(f"unknown service type '{name}': looked in {searched()}")
+            halves = [resolve_message(f"{key}_{part}", name) for part in ("Request", "Response")]
+            found = _services[key] = build_service_class(key, *halves)
+        return found
