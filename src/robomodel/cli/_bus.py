@@ -77,13 +77,22 @@ def bus_from_args(args: argparse.Namespace) -> str:
     return "ros1" if master else "zenoh"
 
 
-def context_from_args(args: argparse.Namespace, clock: Clock | None = None) -> Context:
+def context_from_args(
+    args: argparse.Namespace, clock: Clock | None = None, *, announce: str | None = None
+) -> Context:
+    """The context the bus options name. ``announce`` (a long-running verb's name) prints the
+    graph it joined on stderr: master, domain and router are shared machine-wide by default,
+    and a user on a shared machine must see which one their command is in."""
     bus = bus_from_args(args)
     if bus == "ros1":
-        return Context("ros1", clock=clock, master=getattr(args, "master", None))
-    return Context(
-        bus, clock=clock, domain_id=args.domain_id, connect=args.connect, listen=args.listen
-    )
+        context = Context("ros1", clock=clock, master=getattr(args, "master", None))
+    else:
+        context = Context(
+            bus, clock=clock, domain_id=args.domain_id, connect=args.connect, listen=args.listen
+        )
+    if announce is not None:
+        print(f"{announce}: {context.transport.describe()}", file=sys.stderr, flush=True)
+    return context
 
 
 def wait_for_peers(context: Context, timeout_s: float = 1.0) -> bool:

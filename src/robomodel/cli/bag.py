@@ -122,7 +122,10 @@ def run_record(args: argparse.Namespace) -> int:
         raise RobomodelError("name the topics to record, or -a for all of them")
     split = _split_policy(args)
     logging.basicConfig(format="robomodel bag: %(message)s")
-    with _stop_on_signals() as stopped, context_from_args(args) as context:
+    with (
+        _stop_on_signals() as stopped,
+        context_from_args(args, announce="robomodel bag record") as context,
+    ):
         wait_for_peers(context)
         writer = _writer(args, split)
         recorder = Recorder(context, writer, topics=None if args.all else args.topics)
@@ -226,7 +229,10 @@ def run_play(args: argparse.Namespace) -> int:
     logging.basicConfig(format="robomodel bag: %(message)s")
     bag = open_bag(args.bag)
     options = PlayOptions(args.rate, args.loop, args.topics, args.clock)
-    with _stop_on_signals() as stopped, context_from_args(args) as context:
+    with (
+        _stop_on_signals() as stopped,
+        context_from_args(args, announce="robomodel bag play") as context,
+    ):
         wait_for_peers(context)
         player = Player(context, bag, options)
         if bag.damage:

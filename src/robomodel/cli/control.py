@@ -258,7 +258,7 @@ def _run(args: argparse.Namespace) -> int:
     result, _, _ = load_from_args(args)
     robot = result.robot
     config = load_controller_config(args.controllers)
-    with context_from_args(args) as context:
+    with context_from_args(args, announce="robomodel control run") as context:
         system = ControlSystem.build(
             robot,
             config,

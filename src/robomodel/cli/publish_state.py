@@ -40,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     result, loaded, _ = load_from_args(args)
     robot = result.robot
     text = loaded.urdf.decode("utf-8") if not loaded.is_xacro else urdf_to_string(robot)
-    with context_from_args(args) as context:
+    with context_from_args(args, announce="robomodel publish-state") as context:
         RobotStatePublisher(
             context, text, namespace=args.namespace, parameters={"frame_prefix": args.prefix}
         )

@@ -195,7 +195,7 @@ def _run(args: argparse.Namespace) -> int:
         index = index.with_workspace_of(request.path)
     sim = Simulation(world, package_index=index)
     robots = add_robots(sim, requests, mappings, index)
-    with context_from_args(args, clock=ManualClock()) as context:
+    with context_from_args(args, clock=ManualClock(), announce="robomodel sim") as context:
         systems, watchers = attach(args, sim, robots, context)
         bridge = SimBridge(sim, context)
         bridge.paused = args.paused

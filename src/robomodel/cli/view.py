@@ -176,6 +176,9 @@ def run(args: argparse.Namespace) -> int:
     try:
         viewer.start()
         print(f"robomodel view: serving {viewer.url} (Ctrl-C stops)", flush=True)
+        context = getattr(viewer, "context", None)
+        if context is not None:
+            print(f"robomodel view: {context.transport.describe()}", file=sys.stderr, flush=True)
         for session in viewer.sessions:
             if session.failure is not None:
                 for line in session.failure.message.splitlines() + [

@@ -130,6 +130,7 @@ class LaunchRunner:
         self.params, self.hosted_params = connect_or_host(self.context)
         where = "hosted by this process" if self.hosted_params else "of another robomodel process"
         self.log(f"[launch] parameter server {where}")
+        self.log(f"[launch] {self.context.transport.describe()}")
 
     def set_params(
         self,

@@ -146,6 +146,8 @@ def _env_list(name: str) -> list[str]:
 class OpenedSession:
     session: Any
     is_router: bool
+    routers: tuple[str, ...] = ()  # the router endpoints it connects to
+    started_router: bool = False  # a detached router was started for it
 
 
 def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> OpenedSession:
@@ -164,7 +166,7 @@ def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> Ope
     connect_to = _endpoints(conf, "connect/endpoints")
     local = [e for e in connect_to if e.startswith(_LOOPBACK_HOSTS)]
     if wait_for_router(session, attempts, local):
-        return OpenedSession(session, False)
+        return OpenedSession(session, False, tuple(connect_to))
     if not local:
         log.warning(
             "no Zenoh router answers at %s; peers on other machines will not be found",
@@ -179,7 +181,7 @@ def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> Ope
         time.sleep(0.01)
     if not list(session.info.routers_zid()):
         log.warning("the Zenoh router started on %s did not answer; see its log", local[0])
-    return OpenedSession(session, False)
+    return OpenedSession(session, False, tuple(connect_to), started_router=True)
 
 
 def _is_router(conf: Any) -> bool:

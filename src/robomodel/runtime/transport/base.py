@@ -167,6 +167,11 @@ class Transport(ABC):
 
     name: str = ""
 
+    def describe(self) -> str:
+        """The graph this transport joined, for a command's first lines: the master, the domain,
+        the router (shared machine-wide unless chosen otherwise)."""
+        return f"bus: {self.name} (this process only)"
+
     @abstractmethod
     def register_node(self, node: str) -> Callable[[], None]:
         """Make node ``node`` (``/ns/name``) visible in the graph; returns an unregister function."""

@@ -303,6 +303,12 @@ class Ros1Transport(Transport):
         return box["response"]  # type: ignore[no-any-return]
 
     # -- graph and lifetime ---------------------------------------------------------------------
+    def describe(self) -> str:
+        return (
+            f"bus: ros1, master {self.master_uri} (ROS_MASTER_URI or --master; every ROS 1 "
+            "process that names it shares its graph)"
+        )
+
     def graph(self, timeout_s: float = 1.0) -> Graph:
         try:
             state = call(

@@ -91,6 +91,7 @@ class ZenohTransport(Transport):
         opened = open_session(connect, listen)
         self.session = opened.session
         self.is_router = opened.is_router
+        self._opened = opened
         self.zid = str(self.session.zid())
         self._opened_at = time.monotonic()
         self.ids = itertools.count()  # rmw_zenoh: one counter per context, nodes included
@@ -269,6 +270,24 @@ class ZenohTransport(Transport):
         return client.call(request, timeout_s)
 
     # -- graph and lifetime ---------------------------------------------------------------------
+    def describe(self) -> str:
+        opened = self._opened
+        if opened.is_router:
+            where = "this process is the router"
+        elif opened.routers:
+            how = (
+                "started for this process; `robomodel router --stop` ends it"
+                if (opened.started_router)
+                else "running"
+            )
+            where = f"router {', '.join(opened.routers)} ({how})"
+        else:
+            where = "no router"
+        return (
+            f"bus: zenoh (rmw_zenoh), domain {self.domain_id} (ROS_DOMAIN_ID or --domain-id), "
+            f"{where}"
+        )
+
     def graph(self, timeout_s: float = 1.0) -> Graph:
         """Everyone's entities in this domain.
 
