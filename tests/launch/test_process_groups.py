@@ -5,7 +5,6 @@ stops a verb that a script started in the background (SIGINT ignored at start)."
 
 from __future__ import annotations
 
-import os
 import signal
 import socket
 import subprocess
@@ -122,7 +121,9 @@ def _ignore_sigint() -> None:
 
 
 def test_ctrl_c_works_when_started_with_sigint_ignored(tmp_path: Path) -> None:
-    port = str(20000 + os.getpid() % 20000)
+    with socket.socket() as free:  # a port nobody listens on (one derived from the pid could be)
+        free.bind(("127.0.0.1", 0))
+        port = str(free.getsockname()[1])
     proc = subprocess.Popen(
         [*ROBOMODEL, "master", "-p", port],
         stdout=subprocess.PIPE,

@@ -1,4 +1,5 @@
-"""The README's node table names every node robomodel's launch maps (and no other)."""
+"""The launch reference's node tables (docs/reference/launch.md) name every node robomodel's
+launch maps (and no other)."""
 
 from __future__ import annotations
 
@@ -20,12 +21,11 @@ def _listed(section: str) -> set[tuple[str, str]]:
 
 
 def test_readme_node_tables_match_the_registry() -> None:
-    text = (ROOT / "README.md").read_text()
-    section = text.split("## Launch files: `robomodel launch`", 1)[1].split("\n## ", 1)[0]
-    ros1, ros2 = section.split("### ROS 2 launch files", 1)
+    section = (ROOT / "docs/reference/launch.md").read_text()
+    ros1, ros2 = section.split("\n## ROS 2 launch files", 1)
     for dialect, part in (
         ("ros1", ros1),
-        ("ros2", ros2.split("#### The ROS 2 launch language")[0]),
+        ("ros2", ros2.split("### The ROS 2 launch language")[0]),
     ):
         registered = {(package, executable) for package, executable, _ in supported(dialect)}
         assert registered == _listed(part), dialect

@@ -147,11 +147,11 @@ def test_static_transform_publisher_flags_with_ros_args_and_tf2_echo(bus: _Bus) 
 
 
 def test_readme_run_commands(bus: _Bus) -> None:
-    """The two commands of the README's `robomodel run` section, as written (on Zenoh)."""
+    """The two commands of the docs' `robomodel run` section, as written (on Zenoh)."""
     from tests.conftest import ROOT
 
-    text = (ROOT / "README.md").read_text()
-    block = text.split("### `robomodel run PKG EXECUTABLE [ARGS]`", 1)[1].split("```bash\n")[1]
+    text = (ROOT / "docs/reference/commands.md").read_text()
+    block = text.split("## `robomodel run PKG EXECUTABLE [ARGS]`", 1)[1].split("```bash\n")[1]
     commands = [line.split("#")[0].split() for line in block.split("```")[0].splitlines()]
     assert [c[:3] for c in commands] == [["robomodel", "run", "tf2_ros"]] * 2
     publisher = bus.start("publisher", *commands[0][2:])

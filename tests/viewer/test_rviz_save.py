@@ -133,12 +133,12 @@ def test_a_launch_whose_rviz_config_is_malformed_says_where(tmp_path: Path) -> N
 
 
 def test_the_readme_command_opens_a_missing_config_with_one_warning(tmp_path: Path) -> None:
-    """The README's ``robomodel view ... -d urdf.rviz``, run in a fresh folder."""
+    """The viewer reference's ``robomodel view ... -d urdf.rviz``, run in a fresh folder."""
     import shlex
 
     from tests.conftest import ROOT
 
-    readme = (ROOT / "README.md").read_text()
+    readme = (ROOT / "docs/reference/viewer.md").read_text()
     [line] = [x for x in readme.splitlines() if x.startswith("robomodel view ") and " -d " in x]
     argv = [str(ROOT / a) if a.startswith("examples/") else a for a in shlex.split(line)[2:]]
     result = subprocess.run(

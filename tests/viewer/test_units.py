@@ -164,7 +164,7 @@ def test_floating_and_planar_joint_transforms() -> None:
 
 
 def test_examples_parse_for_the_viewer() -> None:
-    # The robots the README and the tests view exist and parse.
+    # The robots the docs and the tests view exist and parse.
     text = (EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf").read_text()
     assert read_urdf(text).robot.links
 

@@ -82,8 +82,24 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised where the main thread is, so that every verb cleans up as for Ctrl-C."""
 
 
+def _in_zenoh_callback(signum: int, frame: object) -> bool:
+    """Whether the signal landed on a Zenoh callback's wrapper frame, where a raised exception
+    would be swallowed by zenoh-python: it is then deferred until the callback returns."""
+    zenoh_common = sys.modules.get("robomodel.runtime.transport._zenoh_common")
+    if zenoh_common is None or getattr(frame, "f_code", None) is not zenoh_common.CALLBACK_CODE:
+        return False
+    zenoh_common.defer_signal(signum)
+    return True
+
+
+def _raise_interrupt(signum: int, frame: object) -> None:
+    if not _in_zenoh_callback(signum, frame):
+        raise KeyboardInterrupt
+
+
 def _raise_terminated(signum: int, frame: object) -> None:
-    raise Terminated
+    if not _in_zenoh_callback(signum, frame):
+        raise Terminated
 
 
 def _install_signal_handlers() -> None:
@@ -99,7 +115,7 @@ def _install_signal_handlers() -> None:
     import signal
 
     try:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGINT, _raise_interrupt)
         signal.signal(signal.SIGTERM, _raise_terminated)
     except ValueError:  # main() called from another thread: signals are not ours
         pass

@@ -31,14 +31,28 @@ def register(subparsers: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from robomodel.launch.ros1_master import ROSDISTRO, ROSVERSION
+    # Ctrl-C and SIGTERM set a flag from here on, start-up included: a KeyboardInterrupt raised
+    # while the master and its /rosout node come up escaped the cleanup (exit -2, the master's
+    # threads left half-started).
+    stopped: list[bool] = []  # a flag, not an Event: a second signal must not wait on a lock
+    previous = {
+        sig: signal.signal(sig, lambda *_: stopped.append(True))
+        for sig in (signal.SIGINT, signal.SIGTERM)
+    }
+    try:
+        return _serve(args, stopped)
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+def _serve(args: argparse.Namespace, stopped: list[bool]) -> int:
     from robomodel.runtime.transport.ros1.master import Master, master_answers
     from robomodel.runtime.transport.ros1.names import (
         advertised_host,
         http_uri,
         master_bind_host,
         master_uri,
-        split_uri,
     )
 
     uri = master_uri()
@@ -50,32 +64,34 @@ def run(args: argparse.Namespace) -> int:
         master = Master(uri, master_bind_host(uri))
     except RobomodelError as exc:
         raise RobomodelError(f"cannot start the master: {exc}") from None
+    try:
+        return _run_master(args, master, uri, stopped)
+    finally:
+        master.close()
+
+
+def _run_master(args: argparse.Namespace, master: Any, uri: str, stopped: list[bool]) -> int:
     import uuid
+
+    from robomodel.launch.ros1_master import ROSDISTRO, ROSVERSION
+    from robomodel.runtime import Context
+    from robomodel.runtime.nodes.rosout import RosoutAggregator
+    from robomodel.runtime.transport.ros1.names import split_uri
 
     master.api.params.set("/run_id", str(uuid.uuid1()))
     master.api.params.set("/rosdistro", ROSDISTRO + "\n")
     master.api.params.set("/rosversion", ROSVERSION + "\n")
-    from robomodel.runtime import Context
-    from robomodel.runtime.nodes.rosout import RosoutAggregator
-
-    context = Context("ros1", master=uri)
-    rosout = RosoutAggregator(context)
-    stopped: list[bool] = []  # a flag, not an Event: a second SIGTERM must not wait on a lock
-    previous = signal.signal(signal.SIGTERM, lambda *_: stopped.append(True))
-    print(
-        f"started ROS 1 master at {uri} (port {split_uri(uri)[1]}); Ctrl-C stops",
-        file=sys.stderr,
-        flush=True,
-    )
-    end = None if args.duration is None else time.monotonic() + args.duration
-    try:
-        while not stopped and (end is None or time.monotonic() < end):
-            context.spin_once(0.1)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-        rosout.close()
-        context.shutdown()
-        master.close()
+    with Context("ros1", master=uri) as context:
+        rosout = RosoutAggregator(context)
+        print(
+            f"started ROS 1 master at {uri} (port {split_uri(uri)[1]}); Ctrl-C stops",
+            file=sys.stderr,
+            flush=True,
+        )
+        end = None if args.duration is None else time.monotonic() + args.duration
+        try:
+            while not stopped and (end is None or time.monotonic() < end):
+                context.spin_once(0.1)
+        finally:
+            rosout.close()
     return 0

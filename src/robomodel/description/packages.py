@@ -107,16 +107,23 @@ _ERD_SWITCH = "ROBOMODEL_EXAMPLE_ROBOT_DATA"
 def example_robot_data_packages() -> tuple[tuple[str, Path], ...]:
     """``(name, dir)`` of example-robot-data's description packages, if the wheel is installed.
 
-    The wheel (a cmeel package) has no Python module: its files are found through its
-    distribution metadata, under ``cmeel.prefix/share/example-robot-data``.
+    The wheel (a cmeel package) has no Python module: its files are under
+    ``cmeel.prefix/share/example-robot-data`` of the site-packages folder it was installed
+    into, looked for on ``sys.path`` (``importlib.metadata`` would cost every command the
+    ``email`` package's import).
     """
-    from importlib import metadata
+    import sys
 
-    try:
-        dist = metadata.distribution("example-robot-data")
-    except metadata.PackageNotFoundError:
+    share = next(
+        (
+            Path(entry, "cmeel.prefix", "share", "example-robot-data")
+            for entry in sys.path
+            if entry and os.path.isdir(os.path.join(entry, "cmeel.prefix"))
+        ),
+        None,
+    )
+    if share is None:
         return ()
-    share = Path(str(dist.locate_file(Path("cmeel.prefix", "share", "example-robot-data"))))
     try:
         robots = sorted(os.scandir(share / "robots"), key=lambda e: e.name)
     except OSError:

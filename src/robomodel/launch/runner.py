@@ -239,13 +239,18 @@ class LaunchRunner:
             if self.options.duration_s is not None
             else None
         )
-        previous = signal.getsignal(signal.SIGTERM)
+        previous: dict[signal.Signals, Any] = {}
         try:
             # A plain flag: Event.set takes a lock, and a second SIGTERM arriving inside it
-            # (timeout, then pkill) would wait for that lock forever.
-            signal.signal(signal.SIGTERM, lambda *_: setattr(self, "_terminated", True))
+            # (timeout, then pkill) would wait for that lock forever. Ctrl-C sets it too: a
+            # KeyboardInterrupt raised inside a Zenoh callback (run on this thread for a local
+            # sample) was swallowed by zenoh-python, and the launch did not end.
+            for signum in (signal.SIGINT, signal.SIGTERM):
+                previous[signum] = signal.signal(
+                    signum, lambda *_: setattr(self, "_terminated", True)
+                )
         except ValueError:  # not the main thread
-            previous = None
+            pass
         code = 0
         try:
             while not (self._stop.is_set() or self._terminated):
@@ -265,8 +270,8 @@ class LaunchRunner:
         except KeyboardInterrupt:
             code = 0
         finally:
-            if previous is not None:
-                signal.signal(signal.SIGTERM, previous)
+            for signum, handler in previous.items():
+                signal.signal(signum, handler)
         return code
 
     def _driver(self) -> Any:

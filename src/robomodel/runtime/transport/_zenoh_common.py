@@ -6,6 +6,7 @@ import ctypes
 import functools
 import logging
 import threading
+import time
 from typing import Any
 
 from robomodel.errors import MissingDependencyError
@@ -81,20 +82,57 @@ def passing_interrupts(callback: Any) -> Any:
     Zenoh delivers a local sample on the thread that put it, so a callback can run on the main
     thread (a launch's simulator publishing /clock); a KeyboardInterrupt raised there would be
     printed as a "callback error" and swallowed by zenoh-python, and Ctrl-C would not end the
-    command. The signal is raised again, to be handled once Zenoh returns.
+    command. A signal that arrives in the callback is raised again once Zenoh returns: the
+    command line's handlers (robomodel.cli.main) defer one that lands on this wrapper's own
+    frame (``deferred_signal``), and one raised further in is caught here.
     """
 
     def run(sample: Any) -> None:
         try:
             callback(sample)
         except KeyboardInterrupt as exc:
-            import _thread
-            import signal
-
-            terminated = type(exc).__name__ == "Terminated"  # robomodel.cli.main's SIGTERM
-            _thread.interrupt_main(signal.SIGTERM if terminated else signal.SIGINT)
+            defer_signal(_signal_of(exc))
+        finally:
+            _redeliver()
 
     return run
+
+
+CALLBACK_CODE = passing_interrupts(print).__code__
+"""The code of every Zenoh callback's wrapper: a signal handler that finds it running defers."""
+_deferred: list[int] = []
+
+
+def _signal_of(exc: BaseException) -> int:
+    import signal
+
+    terminated = type(exc).__name__ == "Terminated"  # robomodel.cli.main's SIGTERM
+    return int(signal.SIGTERM if terminated else signal.SIGINT)
+
+
+def defer_signal(signum: int) -> None:
+    """Deliver ``signum`` to the main thread after the current Zenoh callback."""
+    if signum not in _deferred:
+        _deferred.append(signum)
+
+
+def _redeliver() -> None:
+    """Raise the deferred signals again, from a helper thread a moment later: raised at once,
+    they would land in this wrapper's frame again."""
+    if not _deferred:
+        return
+    import _thread
+    import signal
+
+    signums = [signal.Signals(s) for s in _deferred]
+    _deferred.clear()
+
+    def later() -> None:
+        time.sleep(0.01)
+        for signum in signums:
+            _thread.interrupt_main(signum)
+
+    threading.Thread(target=later, name="robomodel-signal", daemon=True).start()
 
 
 CLOSE_TIMEOUT_S = 5.0
