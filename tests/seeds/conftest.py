@@ -16,6 +16,7 @@ loaded machine may take.
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import os
 import shutil
 import subprocess
@@ -33,6 +34,10 @@ from tests.ros1wire.conftest import ROSCORE, Ros1
 
 TIMEOUT_S = 90.0
 """The longest any step may take to show what it should (a launch to start, a joint to arrive)."""
+
+LINE_TIMEOUT_S = 30.0
+"""The longest a launch may take to print a line that comes with its start (a hint, a warning)
+once it runs: shorter, so that a test marked xfail for a missing line ends soon."""
 
 _ATTEMPT_S = 10.0  # one try of a command that waits for a peer (rostopic echo)
 
@@ -78,14 +83,19 @@ def box_stl(size_xyz_m: tuple[float, float, float]) -> bytes:
     return ("\n".join(lines) + "\n").encode()
 
 
-def until(check: Callable[[], Any], what: str, timeout_s: float = TIMEOUT_S) -> Any:
-    """Poll ``check`` until it returns a true value; fail naming ``what`` after ``timeout_s``."""
+def until(
+    check: Callable[[], Any], what: str, timeout_s: float = TIMEOUT_S, *, log: Path | None = None
+) -> Any:
+    """Poll ``check`` until it returns a true value; fail naming ``what`` (and showing ``log``)
+    after ``timeout_s``."""
     deadline = time.monotonic() + timeout_s
     while True:
         value = check()
         if value:
             return value
-        assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
+        if time.monotonic() > deadline:
+            shown = f"\n{log.name}:\n{log.read_text()[-4000:]}" if log is not None else ""
+            raise AssertionError(f"{what}: not within {timeout_s} s{shown}")
         time.sleep(0.3)
 
 
@@ -105,6 +115,7 @@ class SeedRos1(Ros1):
         until(
             lambda: wait_for in log.read_text() or proc.poll() is not None,
             f"'{wait_for}' in {log.name}",
+            log=log,
         )
         assert proc.poll() is None, log.read_text()
         return proc
@@ -158,6 +169,15 @@ def start_master(graph: SeedRos1, which: str) -> None:
         graph.roscore()
 
 
+def session_domain() -> str:
+    """A Zenoh domain id for one test: :func:`unique_domain`'s, moved by an offset of this test
+    session's own, so that two pytest sessions on one machine (each walking ids from 1) do not
+    hear each other; the workers of one xdist session share the offset and keep apart."""
+    session = os.environ.get("PYTEST_XDIST_TESTRUNUID") or str(os.getpid())
+    offset = int(hashlib.sha256(session.encode()).hexdigest(), 16) % 230
+    return str(1 + (int(unique_domain()) - 1 + offset) % 230)
+
+
 @dataclass
 class Ros2Workspace:
     """A colcon workspace (``~/ros2_ws``): packages under ``src``, ``colcon build`` copying
@@ -165,7 +185,7 @@ class Ros2Workspace:
     ``. install/setup.bash`` (``AMENT_PREFIX_PATH``), on a Zenoh domain of their own."""
 
     root: Path
-    domain: str = field(default_factory=unique_domain)
+    domain: str = field(default_factory=session_domain)
     prefixes: list[Path] = field(default_factory=list)
     procs: list[subprocess.Popen[str]] = field(default_factory=list)
 
@@ -205,6 +225,13 @@ class Ros2Workspace:
             capture_output=True, text=True, env=self.env, cwd=self.root, timeout=timeout,
         )  # fmt: skip
 
+    def robomodel_plain(self, *argv: str) -> subprocess.CompletedProcess[str]:
+        """A verb that takes no bus options (``check``, ``xacro``), from the workspace's root."""
+        return subprocess.run(
+            [*ROBOMODEL, *argv],
+            capture_output=True, text=True, env=self.env, cwd=self.root, timeout=TIMEOUT_S,
+        )  # fmt: skip
+
     def start(self, log: Path, *argv: str) -> subprocess.Popen[str]:
         with log.open("w") as out:
             proc = subprocess.Popen(
@@ -220,6 +247,7 @@ class Ros2Workspace:
         until(
             lambda: wait_for in log.read_text() or proc.poll() is not None,
             f"'{wait_for}' in {log.name}",
+            log=log,
         )
         assert proc.poll() is None, log.read_text()
         return proc
