@@ -36,8 +36,9 @@ TIMEOUT_S = 90.0
 """The longest any step may take to show what it should (a launch to start, a joint to arrive)."""
 
 LINE_TIMEOUT_S = 30.0
-"""The longest a launch may take to print a line that comes with its start (a hint, a warning)
-once it runs: shorter, so that a test marked xfail for a missing line ends soon."""
+"""The longest a launch that runs may take to show what comes with its start (a hint line, a
+node's topic once another node of it is seen): shorter, so that a test marked xfail for a
+missing line or topic ends soon."""
 
 _ATTEMPT_S = 10.0  # one try of a command that waits for a peer (rostopic echo)
 
@@ -252,12 +253,27 @@ class Ros2Workspace:
         assert proc.poll() is None, log.read_text()
         return proc
 
-    def echo(self, topic: str) -> Any:
+    def wait_for_topics(self, *topics: str, timeout_s: float = TIMEOUT_S) -> set[str]:
+        """``robomodel topic list`` until it lists ``topics``; returns the list."""
+
+        def listed() -> set[str] | None:
+            names = set(self.robomodel("topic", "list").stdout.split())
+            return names if set(topics) <= names else None
+
+        found: set[str] = until(listed, f"{', '.join(topics)} listed", timeout_s)
+        return found
+
+    def echo(self, topic: str, *, timeout_s: float = TIMEOUT_S) -> Any:
+        """The first message of ``robomodel topic echo TOPIC --once``, as YAML; fails at once
+        when a process this workspace started has ended."""
+
         def once() -> Any:
-            out = self.robomodel("topic", "echo", topic, "--once")
+            ended = [p.args for p in self.procs if p.poll() is not None]
+            assert not ended, f"ended before {topic} had a message: {ended}"
+            out = self.robomodel("topic", "echo", topic, "--once", "--timeout", str(_ATTEMPT_S))
             return yaml.safe_load(out.stdout.split("---")[0]) if out.returncode == 0 else None
 
-        return until(once, f"robomodel topic echo {topic}")
+        return until(once, f"robomodel topic echo {topic}", timeout_s)
 
     def close(self) -> None:
         for proc in reversed(self.procs):
