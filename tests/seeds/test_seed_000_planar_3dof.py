@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import shutil
 import signal
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -377,7 +378,7 @@ _PARAM_STEPS = [
 
 @pytest.mark.parametrize(("steps", "tool"), _PARAM_STEPS)
 def test_rosparam_steps_on_the_launch_s_master(
-    graph: SeedRos1, tmp_path: Path, steps: object, tool: str
+    graph: SeedRos1, tmp_path: Path, steps: Callable[[SeedRos1, Path, list[str]], None], tool: str
 ) -> None:
     """The seed's parameter-server lines against the master ``robomodel launch`` hosts, with
     Debian's rosparam and with ``robomodel param`` (checked by Debian's rosparam)."""
@@ -387,7 +388,7 @@ def test_rosparam_steps_on_the_launch_s_master(
         wait_for="nodes running",
     )  # fmt: skip
     argv = [ROSPARAM] if tool == "rosparam" else [*ROBOMODEL, "param"]
-    steps(graph, urdf_dir, argv)  # type: ignore[operator]
+    steps(graph, urdf_dir, argv)
 
 
 def test_use_gui_set_by_hand(graph: SeedRos1, tmp_path: Path) -> None:

@@ -430,7 +430,17 @@ def _controllers_launch(graph: SeedRos1, tmp_path: Path) -> Path:
     return log
 
 
-@pytest.mark.parametrize("master", MASTERS)
+# Beside a real roscore the spawner, started before Gazebo has spawned the robot, sees the
+# manager's list_controllers answer and then calls load_controller before the manager has
+# registered that service with roscore ("lookupService: no provider"): a race, so not strict.
+_SPAWNER_RACE = pytest.mark.xfail(
+    strict=False,
+    reason="issue 27 item 11: the ROS 1 spawner waits for list_controllers, not for "
+    "load_controller as rospy.wait_for_service does; on a real roscore it can call too early",
+)
+
+
+@pytest.mark.parametrize("master", [MASTERS[0], pytest.param(MASTERS[1], marks=_SPAWNER_RACE)])
 def test_the_robot_drives_on_cmd_vel_and_odom_follows(
     ros1_graph: SeedRos1, tmp_path: Path, master: str
 ) -> None:
