@@ -172,3 +172,26 @@ def test_humble_keys_have_no_type_hash(monkeypatch: pytest.MonkeyPatch) -> None:
             and "%chatter" in str(r.ok.key_expr)
         ]
         assert tokens and tokens[0].endswith("/TypeHashNotSupported/::,10:,:,:,,")
+
+
+def test_a_peer_session_whose_close_times_out_still_becomes_the_router() -> None:
+    """On a loaded machine the peer session's close() raised "close operation timed out" and
+    ``robomodel launch`` ended with a traceback; now the session is left behind and the router
+    opens (issue 27's seed runs)."""
+    zenoh = pytest.importorskip("zenoh")
+    from robomodel.runtime.transport._zenoh_session import _become_router
+
+    class _Stuck:
+        closed = False
+
+        def close(self) -> None:
+            self.closed = True
+            raise zenoh.ZError("close operation timed out!")
+
+    peer = _Stuck()
+    endpoint = f"tcp/127.0.0.1:{_free_port()}"
+    opened = _become_router(zenoh, peer, zenoh.Config(), endpoint)
+    try:
+        assert peer.closed and opened.is_router
+    finally:
+        opened.session.close()

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.transport._zenoh_common import import_zenoh, log
+from robomodel.runtime.transport._zenoh_common import close_session, import_zenoh, log
 
 __all__ = [
     "DEFAULT_ROUTER",
@@ -196,7 +196,9 @@ def _become_router(zenoh: Any, peer_session: Any, peer_conf: Any, endpoint: str)
     conf.insert_json5("listen/exit_on_failure", "true")
     connect = [e for e in _endpoints(peer_conf, "connect/endpoints") if e != endpoint]
     conf.insert_json5("connect/endpoints", json.dumps(connect))
-    peer_session.close()
+    # close() raises when it times out on a loaded machine (seen as a traceback of `robomodel
+    # launch`): the peer session is left behind, as at exit, and the router opens anyway
+    close_session(peer_session)
     try:
         return OpenedSession(zenoh.open(conf), True)
     except Exception:
