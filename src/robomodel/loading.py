@@ -54,7 +54,7 @@ def expand_description(
         from robomodel._files import read_user_bytes
 
         data = read_user_bytes(path, what="robot description")
-        return LoadedDescription(data, text, path.resolve().parent, False, ())
+        return LoadedDescription(data, text, Path(os.path.abspath(path)).parent, False, ())
     from robomodel import xacro  # not at the top: a plain URDF does not need the xacro layer
 
     if inline:
@@ -63,7 +63,7 @@ def expand_description(
     index = index.with_workspace_of(text)
     result = xacro.expand(text, mappings=dict(args or {}), package_index=index)
     return LoadedDescription(
-        result.text.encode(), text, Path(text).resolve().parent, True, result.includes
+        result.text.encode(), text, Path(os.path.abspath(text)).parent, True, result.includes
     )
 
 

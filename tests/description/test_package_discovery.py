@@ -139,9 +139,13 @@ def test_a_package_path_still_wins_over_the_workspace(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("where", ["beside", "ROS_PACKAGE_PATH", "--package-path"])
-def test_a_files_own_package_wins(tmp_path: Path, where: str) -> None:
+def test_a_files_own_package_wins_where_the_search_paths_know_none(
+    tmp_path: Path, where: str
+) -> None:
     """Issue 23.13: a copy of simplebot_description beside the original, with its
-    simplebot_body.xacro broken, is processed with its own (broken) file."""
+    simplebot_body.xacro broken, is processed with its own (broken) file. Issue 27.12: with the
+    original on ROS_PACKAGE_PATH or --package-path, ROS's search finds the original, whichever
+    file asks, and so does robomodel."""
     original = tmp_path / "aaa" / "simplebot_description"
     shutil.copytree(EXAMPLES / "simplebot_description", original)
     copy = tmp_path / "mine"
@@ -152,13 +156,12 @@ def test_a_files_own_package_wins(tmp_path: Path, where: str) -> None:
     if where == "--package-path":
         args += ["--package-path", str(original.parent)]
     run = _run(args, tmp_path, env)
-    assert run.returncode == 2, run.stdout[:200]
-    assert f"{copy}/urdf/simplebot_body.xacro:1:" in run.stderr
-    # the original is still what a file outside both packages gets
-    (copy / "urdf" / "simplebot_body.xacro").unlink()
-    shutil.copy(EXAMPLES / "simplebot_description/urdf/simplebot_body.xacro", copy / "urdf")
-    run = _run(args, tmp_path, env)
-    assert run.returncode == 0, run.stderr
+    if where == "beside":
+        assert run.returncode == 2, run.stdout[:200]
+        assert f"{copy}/urdf/simplebot_body.xacro:1:" in run.stderr
+    else:
+        assert run.returncode == 0, run.stderr
+        assert "simplebot" in run.stdout
 
 
 def test_package_not_found_says_where_and_how_in_user_terms(tmp_path: Path) -> None:

@@ -8,16 +8,19 @@ Packages are found the ways ROS finds them, in this priority order (the first ma
 4. ``AMENT_PREFIX_PATH`` entries, where a package lives in ``<prefix>/share/<name>`` and is
    known by ament's resource-index marker ``share/ament_index/resource_index/packages/<name>``
    (or, without a marker, by ``share/<name>/package.xml``);
-5. the workspace of the input file (the folders around its package);
-6. the robots of PyPI's ``example-robot-data``, where it is installed: each
+5. the package that contains the input file (the nearest ``package.xml`` above it);
+6. the workspace of the input file (the folders around its package);
+7. the robots of PyPI's ``example-robot-data``, where it is installed: each
    ``robots/<name>_description`` folder is the package ``<name>_description`` (so the UR
    tutorials' ``package://ur_description/meshes/ur5/visual/base.dae`` resolves), and the
    wheel's ``share/example-robot-data`` is ``example-robot-data``. Last, so a user's own package
    of the same name always wins; ``ROBOMODEL_EXAMPLE_ROBOT_DATA=0`` turns it off.
 
-The package that contains the input file is an exception: it always resolves to itself, ahead of
-every search path (only an explicit ``--package NAME=DIR`` names it otherwise), so that a copy
-of a package beside the original uses its own files.
+The input file's own package thus applies only where ROS would find no package of that name at
+all; ahead of the folders around it, so that a copy of a package beside the original uses its
+own files. Paths are kept as given, never replaced by a symlink's target: in a ``colcon build
+--symlink-install`` prefix, a launch file that is a symlink into the source tree still finds its
+package in ``<prefix>/share/<name>``, as ``ros2 launch`` and ``rospack`` do.
 
 A scanned directory that holds a ``package.xml`` is a package: its name is the manifest's
 ``<name>`` and the scan does not descend further (rospack's rule). Directories holding
@@ -229,8 +232,6 @@ class PackageIndex:
         index: dict[str, Package] = {}
         for name, path in self._explicit.items():
             index[name] = Package(name, path, "explicit")
-        for package in self._own:
-            index.setdefault(package.name, package)
         for origin, roots in (
             ("package-path", self._package_paths),
             ("ROS_PACKAGE_PATH", self._ros_package_path),
@@ -243,6 +244,8 @@ class PackageIndex:
         for prefix in self._ament_prefixes:
             for name in _ament_packages(prefix):
                 index.setdefault(name, Package(name, prefix / "share" / name, "AMENT_PREFIX_PATH"))
+        for package in self._own:  # issue 27.12: only where the search paths know no such name
+            index.setdefault(package.name, package)
         for root, _ in self._fallback_paths:
             found = {}
             _scan_tree(root, found)
@@ -257,8 +260,9 @@ class PackageIndex:
 
         The package enclosing ``path`` and its sibling packages are found without any setup,
         as they would be in a sourced ROS workspace: ``robomodel check urdf/robot.xacro`` run
-        inside a package resolves ``$(find that_package)``. The enclosing package itself wins
-        over every search path (a copy beside the original resolves to the copy).
+        inside a package resolves ``$(find that_package)``. The enclosing package comes after
+        the search paths and before the folders around it (a copy beside the original resolves
+        to the copy; one on ``ROS_PACKAGE_PATH`` wins, as in ROS).
         """
         enclosing = find_enclosing_package(path)
         if enclosing is None:
@@ -347,8 +351,12 @@ def _join_inside(root: Path, relative: str, uri: str, package: str) -> Path:
 
 
 def find_enclosing_package(path: str | os.PathLike[str]) -> Path | None:
-    """The nearest directory at or above ``path`` holding a ``package.xml``."""
-    current = Path(path).resolve()
+    """The nearest directory at or above ``path`` holding a ``package.xml``.
+
+    The path is made absolute as given, not resolved: a symlinked file of an install prefix
+    belongs to the prefix's package, not to the source folder its target is in.
+    """
+    current = Path(os.path.abspath(path))
     if current.is_file() or not current.exists():
         current = current.parent
     for directory in (current, *current.parents):

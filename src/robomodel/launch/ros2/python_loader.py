@@ -3,6 +3,7 @@ call ``generate_launch_description()``."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -18,7 +19,9 @@ __all__ = ["load_python_description"]
 def load_python_description(path: Path) -> LaunchDescription:
     """Run the file and return its LaunchDescription (errors as LaunchError at file:line)."""
     session = current_session()
-    filename = str(path.resolve())
+    # as given, like launch's SourceFileLoader: in a --symlink-install prefix, __file__ is the
+    # prefix's path and not the source file the symlink points at (issue 27.12)
+    filename = os.path.abspath(path)
     if session is not None:
         session.python_files.add(filename)
     try:
