@@ -16,9 +16,17 @@ from robomodel.launch.nodes.controllers import wait_for_manager
 class _Runtime:
     """Answers ``list_controllers`` from the ``answer_after``-th call on; refuses before."""
 
-    def __init__(self, answer_after: int | None) -> None:
+    def __init__(self, answer_after: int | None, offered_after: int = 0) -> None:
         self.answer_after = answer_after
+        self.offered_after = offered_after  # graph reads before load/switch_controller appear
+        self.graphs = 0
         self.calls: list[tuple[str, float]] = []
+
+    def graph(self, timeout_s: float) -> Any:
+        self.graphs += 1
+        names = ("list_controllers", "load_controller", "switch_controller")
+        offered = names if self.graphs > self.offered_after else names[:1]
+        return SimpleNamespace(services={f"/ns/controller_manager/{n}": None for n in offered})
 
     def call_service(self, name: str, srv_type: Any, request: Any, timeout_s: float) -> Any:
         self.calls.append((name, timeout_s))
@@ -37,6 +45,14 @@ def test_ready_once_list_controllers_answers() -> None:
     runtime = _Runtime(answer_after=3)
     assert _wait(runtime, 5.0, call_timeout_s=2.0) is True
     assert runtime.calls == [("/ns/controller_manager/list_controllers", 2.0)] * 3
+
+
+def test_ready_only_once_load_and_switch_controller_are_offered_too() -> None:
+    """A manager registers its services one by one: on a real roscore a spawner that called
+    load_controller as soon as list_controllers answered found no provider yet."""
+    runtime = _Runtime(answer_after=1, offered_after=2)
+    assert _wait(runtime, 5.0, call_timeout_s=2.0) is True
+    assert runtime.graphs == 3 and len(runtime.calls) == 3
 
 
 def test_times_out_without_a_manager() -> None:
@@ -64,6 +80,10 @@ class _SlowManager:
         self.calls: list[tuple[str, float]] = []
         self.load_seen = threading.Event()
         self.release = threading.Event()
+
+    def graph(self, timeout_s: float) -> Any:
+        names = ("list_controllers", "load_controller", "switch_controller")
+        return SimpleNamespace(services={f"/controller_manager/{n}": None for n in names})
 
     def call_service(self, name: str, srv_type: Any, request: Any, timeout_s: float) -> Any:
         service = name.rsplit("/", 1)[1]

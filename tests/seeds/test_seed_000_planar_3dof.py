@@ -279,9 +279,6 @@ def test_urdf_to_graphviz_writes_the_pdf(graph: SeedRos1) -> None:
 # --- "Testing URDF in Rviz" -----------------------------------------------------------------
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 1: a missing -d .rviz file ends the required rviz node"
-)
 def test_first_display_launch_runs_before_urdf_rviz_exists(graph: SeedRos1, tmp_path: Path) -> None:
     """ "Firstly, rviz config file (urdf.rviz) is not available": the launch keeps running."""
     gripper_description(_src(graph), with_rviz=False)
@@ -363,16 +360,15 @@ def _rosparam_dump_load_steps(graph: SeedRos1, urdf_dir: Path, tool: list[str]) 
     assert yaml.safe_load(graph.tool(ROSPARAM, "get", "/gain/p").stdout) == 10
 
 
-_ITEM4 = pytest.mark.xfail(strict=True, reason="issue 27 item 4: rosparam's arguments")
 _PARAM_STEPS = [
     pytest.param(_rosparam_steps, "rosparam", id="list-get-delete-set-rosparam"),
     pytest.param(_rosparam_steps, "robomodel", id="list-get-delete-set-robomodel"),
     pytest.param(_rosparam_file_steps, "rosparam", id="set-t-file-rosparam"),
-    pytest.param(_rosparam_file_steps, "robomodel", id="set-t-file-robomodel", marks=_ITEM4),
+    pytest.param(_rosparam_file_steps, "robomodel", id="set-t-file-robomodel"),
     pytest.param(_rosparam_namespace_steps, "rosparam", id="set-namespace-rosparam"),
     pytest.param(_rosparam_namespace_steps, "robomodel", id="set-namespace-robomodel"),
     pytest.param(_rosparam_dump_load_steps, "rosparam", id="dump-load-rosparam"),
-    pytest.param(_rosparam_dump_load_steps, "robomodel", id="dump-load-robomodel", marks=_ITEM4),
+    pytest.param(_rosparam_dump_load_steps, "robomodel", id="dump-load-robomodel"),
 ]
 
 
@@ -512,11 +508,6 @@ def test_rrbot_controllers_are_loaded_and_running(graph: SeedRos1, tmp_path: Pat
     assert {state for _, state in controllers.values()} == {"active"}
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 27 item 10: list-controllers shows joint_state_broadcaster/"
-    "JointStateBroadcaster for the YAML's joint_state_controller/JointStateController",
-)
 def test_rrbot_list_controllers_shows_the_yaml_s_types(graph: SeedRos1, tmp_path: Path) -> None:
     _rrbot_two_terminals(graph, tmp_path)
     assert _list_controllers(graph)["joint_state_controller"][0] == (
@@ -524,9 +515,6 @@ def test_rrbot_list_controllers_shows_the_yaml_s_types(graph: SeedRos1, tmp_path
     )
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 7: `robomodel service call` needs the type on ROS 1"
-)
 def test_service_call_without_a_type_on_ros1(graph: SeedRos1, tmp_path: Path) -> None:
     """``rosservice call /rrbot/controller_manager/list_controllers`` → ``robomodel service call
     ...``: the type is looked up as rosservice does."""
@@ -536,9 +524,6 @@ def test_service_call_without_a_type_on_ros1(graph: SeedRos1, tmp_path: Path) ->
     assert "joint1_position_controller" in run.stdout
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 3: no `robomodel run controller_manager controller_manager`"
-)
 def test_controller_manager_commands(graph: SeedRos1, tmp_path: Path) -> None:
     """``controller_manager <command> <controller_name>`` (the seed's ``roslaunch`` is rosrun's
     job: ``rosrun controller_manager controller_manager``) → ``robomodel run controller_manager
@@ -552,14 +537,13 @@ def test_controller_manager_commands(graph: SeedRos1, tmp_path: Path) -> None:
     assert stop.returncode == 0, stop.stderr
     line = next(
         x for x in graph.tool(*cm, "list", "__ns:=/rrbot").stdout.splitlines()
-        if x.startswith("joint1_position_controller")
+        if x.startswith("'joint1_position_controller'")  # Noetic quotes the names
     )  # fmt: skip
     assert "stopped" in line
     start = graph.tool(*cm, "start", "joint1_position_controller", "__ns:=/rrbot")
     assert start.returncode == 0, start.stderr
 
 
-@pytest.mark.xfail(strict=True, reason="issue 27 item 5: no /rosout, /rosout_agg")
 def test_rrbot_graph_has_rosout(graph: SeedRos1, tmp_path: Path) -> None:
     """What ``rostopic list`` shows on any ROS 1 graph: /rosout and /rosout_agg."""
     _rrbot_two_terminals(graph, tmp_path)

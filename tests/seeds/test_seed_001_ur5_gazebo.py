@@ -189,11 +189,6 @@ def test_rostopic_list_shows_the_controllers_topics(ros1_graph: SeedRos1, tmp_pa
     assert topics >= SEED_TOPICS - ITEM_5_TOPICS - RECONFIGURE_TOPICS
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 27 item 5: /gazebo/link_states, /gazebo/model_states, /gazebo/set_*_state, "
-    "/rosout, /rosout_agg",
-)
 def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(
     ros1_graph: SeedRos1, tmp_path: Path
 ) -> None:
@@ -252,10 +247,6 @@ _SEED_BASE_LINK = """<?xml version="1.0"?>
 """
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 27 item 9: package://ur_description/meshes/ur5/... from example-robot-data",
-)
 def test_ur_meshes_resolve_without_setup(tmp_path: Path) -> None:
     """The official UR meshes the seed copies (``package://ur_description/meshes/ur5/visual/
     base.dae``) resolve where example-robot-data is installed."""

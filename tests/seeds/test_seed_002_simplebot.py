@@ -367,9 +367,6 @@ def test_the_fixed_xacro_expands_to_the_seed_s_robot(ros1_graph: SeedRos1) -> No
     assert "root Link: base_link has 2 child(ren)" in check.stdout
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 1: a missing -d .rviz file ends the required rviz node"
-)
 def test_view_urdf_launch_runs_before_view_urdf_rviz_exists(
     ros1_graph: SeedRos1, tmp_path: Path
 ) -> None:
@@ -430,17 +427,7 @@ def _controllers_launch(graph: SeedRos1, tmp_path: Path) -> Path:
     return log
 
 
-# Beside a real roscore the spawner, started before Gazebo has spawned the robot, sees the
-# manager's list_controllers answer and then calls load_controller before the manager has
-# registered that service with roscore ("lookupService: no provider"): a race, so not strict.
-_SPAWNER_RACE = pytest.mark.xfail(
-    strict=False,
-    reason="issue 27 item 11: the ROS 1 spawner waits for list_controllers, not for "
-    "load_controller as rospy.wait_for_service does; on a real roscore it can call too early",
-)
-
-
-@pytest.mark.parametrize("master", [MASTERS[0], pytest.param(MASTERS[1], marks=_SPAWNER_RACE)])
+@pytest.mark.parametrize("master", MASTERS)
 def test_the_robot_drives_on_cmd_vel_and_odom_follows(
     ros1_graph: SeedRos1, tmp_path: Path, master: str
 ) -> None:
@@ -467,9 +454,6 @@ def test_the_robot_drives_on_cmd_vel_and_odom_follows(
     assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 10: publish_rate 80 gives 100 Hz (a divisor of the loop)"
-)
 def test_joint_states_at_the_yaml_s_publish_rate(ros1_graph: SeedRos1, tmp_path: Path) -> None:
     """``publish_rate : 80``: /joint_states stamps 1/80 s apart (simulated time)."""
     _controllers_launch(ros1_graph, tmp_path)
@@ -483,10 +467,6 @@ def test_joint_states_at_the_yaml_s_publish_rate(ros1_graph: SeedRos1, tmp_path:
     assert rate_hz == pytest.approx(80, abs=1)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 27 item 10: list-controllers shows robomodel's types, not the YAML's",
-)
 def test_list_controllers_shows_the_yaml_s_types(ros1_graph: SeedRos1, tmp_path: Path) -> None:
     _controllers_launch(ros1_graph, tmp_path)
     run = ros1_graph.tool(*ROBOMODEL, "control", "list-controllers")

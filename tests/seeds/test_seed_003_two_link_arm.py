@@ -15,8 +15,6 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
-import pytest
-
 from tests.conftest import debian_check_urdf
 from tests.seeds.conftest import (
     LINE_TIMEOUT_S,
@@ -355,9 +353,6 @@ def test_control_launch_then_load_controllers_and_command(
     )
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 8: no hint that gazebo.launch.py spawns no entity"
-)
 def test_gazebo_launch_says_the_world_is_empty(ros2_ws: Ros2Workspace, tmp_path: Path) -> None:
     """``ros2 launch urdf_cpp_demo gazebo.launch.py``: Gazebo with ground and sun, but the
     seed's file never spawns the arm; robomodel says so in one line."""

@@ -14,8 +14,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-
 from tests.seeds.conftest import (
     LINE_TIMEOUT_S,
     Ros2Workspace,
@@ -207,9 +205,6 @@ def test_frame_prefix_puts_the_namespace_on_the_static_description(
     assert "/robot_description" not in topics
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 2: joint_state_publisher_gui ignores its namespace"
-)
 def test_one_robot_in_a_namespace(ros2_ws: Ros2Workspace, tmp_path: Path) -> None:
     """``ros2 launch example_description display.launch.py``: /r1/joint_states, and /tf with
     r1/ frames (link_1 0.2 m above base)."""
@@ -222,9 +217,6 @@ def test_one_robot_in_a_namespace(ros2_ws: Ros2Workspace, tmp_path: Path) -> Non
     assert tf.returncode == 0 and "[0.000, 0.000, 0.200]" in tf.stdout, tf.stdout + tf.stderr
 
 
-@pytest.mark.xfail(
-    strict=True, reason="issue 27 item 2: joint_state_publisher_gui ignores its namespace"
-)
 def test_two_robots_with_frame_prefixes(ros2_ws: Ros2Workspace, tmp_path: Path) -> None:
     """The display twice, namespaces r1 and r2: two trees in one /tf, r1/ and r2/ frames."""
     example_description(ros2_ws)

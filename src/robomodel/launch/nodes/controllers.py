@@ -138,12 +138,24 @@ def wait_for_manager(
         poll_s = call_timeout_s if call_timeout_s is not None else 10.0 if forever else left_s
         try:
             client.list_controllers(timeout_s=max(0.2, poll_s))
-            return True
+            if _offers(ctx, manager, _SPAWNER_SERVICES):
+                return True
         except RobomodelError:
             if not forever and time.monotonic() > deadline:
                 return False
             node.stopping.wait(0.2)
     return None
+
+
+_SPAWNER_SERVICES = ("load_controller", "switch_controller")
+"""What a spawner calls after list_controllers: a manager registers its services one by one, and
+on a ROS 1 master a spawner that called load_controller as soon as list_controllers answered
+found no provider yet (rospy's spawner waits for load_controller itself)."""
+
+
+def _offers(ctx: NodeContext, manager: str, services: tuple[str, ...]) -> bool:
+    offered = ctx.runtime.graph(timeout_s=1.0).services
+    return all(f"{manager}/{name}" in offered for name in services)
 
 
 class _Manager:
