@@ -21,11 +21,11 @@ from __future__ import annotations
 import contextlib
 import socket
 import struct
-import threading
 import time
 from collections.abc import Iterator, Mapping
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.transport.ros1.budget import ByteBudget
 
 __all__ = [
     "FRAME_BUDGET_BYTES",
@@ -60,27 +60,7 @@ class FrameRefused(TcprosError):
     """A frame over its size limit, or over what the frame budget has left."""
 
 
-class _Budget:
-    """Bytes charged by the frames being read in this process, at most ``total``."""
-
-    def __init__(self, total: int) -> None:
-        self.total = total
-        self.used = 0
-        self._lock = threading.Lock()
-
-    def take(self, size: int) -> bool:
-        with self._lock:
-            if self.used + size > self.total:
-                return False
-            self.used += size
-            return True
-
-    def give(self, size: int) -> None:
-        with self._lock:
-            self.used -= size
-
-
-_BUDGET = _Budget(FRAME_BUDGET_BYTES)
+_BUDGET = ByteBudget(FRAME_BUDGET_BYTES)
 
 
 def frame_budget_in_use() -> int:

@@ -31,6 +31,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.transport._failures import log_failure
+from robomodel.runtime.transport.ros1.budget import ByteBudget
 
 __all__ = [
     "MAX_BODIES_IN_FLIGHT_BYTES",
@@ -75,27 +76,7 @@ def log_throttled(kind: str, message: str, *args: object) -> None:
     log.warning(message + suffix, *args)
 
 
-class _Budget:
-    """Bytes of request bodies in flight in this process, at most ``limit``."""
-
-    def __init__(self, limit: int) -> None:
-        self.limit = limit
-        self.used = 0
-        self._lock = threading.Lock()
-
-    def take(self, size: int) -> bool:
-        with self._lock:
-            if self.used + size > self.limit:
-                return False
-            self.used += size
-            return True
-
-    def give(self, size: int) -> None:
-        with self._lock:
-            self.used -= size
-
-
-BODIES = _Budget(MAX_BODIES_IN_FLIGHT_BYTES)
+BODIES = ByteBudget(MAX_BODIES_IN_FLIGHT_BYTES)
 _BUSY = b"HTTP/1.0 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\n\r\n"
 
 
