@@ -68,9 +68,9 @@ def _ns_join(ns: str, name: str) -> str:
 
 def _printable(text: str) -> str:
     """A name from the master with control characters escaped (a terminal runs them)."""
-    if all(ch.isprintable() for ch in text):
-        return text
-    return "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in text)
+    from robomodel._escape import escape_name
+
+    return escape_name(text)
 
 
 def _yaml_value(text: str, where: str) -> Any:

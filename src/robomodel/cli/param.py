@@ -11,6 +11,7 @@ from typing import Any
 
 import yaml
 
+from robomodel._escape import escape_name
 from robomodel._yaml_bounded import load_yaml
 from robomodel.cli._bus import (
     add_bus_arguments,
@@ -113,7 +114,7 @@ def run_list(args: argparse.Namespace) -> int:
         def show_names(server: Any) -> int:
             for name in server.names():
                 if name.startswith(namespace) or namespace == "/":
-                    print(name)
+                    print(escape_name(name))
             return 0
 
         return _server_call(args, show_names)
@@ -125,9 +126,9 @@ def run_list(args: argparse.Namespace) -> int:
             nodes = sorted(settled_graph(context).nodes)
         for node in nodes:
             names = _client(context, node).list_names()
-            print(f"{node if node.startswith('/') else '/' + node}:")
+            print(escape_name(f"{node if node.startswith('/') else '/' + node}:"))
             for name in names:
-                print(f"  {name}")
+                print(f"  {escape_name(name)}")
     return 0
 
 

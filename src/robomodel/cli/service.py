@@ -20,6 +20,7 @@ import argparse
 import time
 from typing import Any
 
+from robomodel._escape import escape_name
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
@@ -97,10 +98,12 @@ def _probed(context: Context, name: str, timeout_s: float) -> str:
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         for name, info in sorted(settled_graph(context).services.items()):
+            shown = escape_name(name)  # a peer's name: control characters escaped
             if args.show_types:
-                print(f"{name} [{', '.join(_types(context, name, info.types))}]")
+                types = ", ".join(escape_name(t) for t in _types(context, name, info.types))
+                print(f"{shown} [{types}]")
             else:
-                print(name)
+                print(shown)
     return 0
 
 
@@ -111,7 +114,7 @@ def _run_type(args: argparse.Namespace) -> int:
         if info is None:
             raise RobomodelError(_not_offered(context, name))
         for type_name in _types(context, name, info.types):
-            print(type_name)
+            print(escape_name(type_name))
     return 0
 
 

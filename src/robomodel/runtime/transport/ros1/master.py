@@ -19,6 +19,7 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
+from robomodel._escape import escape_name
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.ros1.names import (
     MAX_NAME_BYTES,
@@ -140,7 +141,8 @@ class MasterApi:
         old = self.registry.register(kind, key, caller_id, caller_api, service_api)
         if old is not None:
             log.info(
-                "master: new node registered with the name %s; shutting down the old", caller_id
+                "master: new node registered with the name %s; shutting down the old",
+                escape_name(caller_id),
             )
             self._notify(old, "shutdown", (_MASTER, "new node registered with same name"))
 

@@ -25,6 +25,7 @@ import threading
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
+from robomodel._escape import escape_name
 from robomodel.runtime.msg import Message
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
@@ -125,7 +126,9 @@ class _Inbound:
             sock.close()
             raise
         if "error" in header:
-            log.warning("%s: publisher %s refused: %s", sub.topic, self.uri, header["error"])
+            log.warning(  # the peer's words: control characters escaped
+                "%s: publisher %s refused: %s", sub.topic, self.uri, escape_name(header["error"])
+            )
             self._alive = False
             sock.close()
             return None
@@ -185,7 +188,7 @@ class Subscription:
                 split_uri(str(uri))
                 wanted.append(str(uri))
             except Exception:
-                log.warning("%s: ignoring publisher URI %r", self.topic, uri)
+                log.warning("%s: ignoring publisher URI %s", self.topic, escape_name(repr(uri)))
         with self._lock:
             if not self._alive:
                 return
