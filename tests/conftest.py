@@ -14,6 +14,7 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import settings
@@ -111,6 +112,15 @@ def _domain_block() -> tuple[int, int]:
             f"ROBOMODEL_TEST_DOMAIN_COUNT must be an integer 1..{230 - base}, got '{count_text}'"
         )
     return base, int(count_text)
+
+
+def past_the_bus_line(stream: Any) -> str:
+    """The first line a long-running verb writes after the line naming the graph it joined
+    (``robomodel sim: bus: zenoh ...``), which every such verb prints first."""
+    line = stream.readline()
+    if ": bus: " in line:
+        line = stream.readline()
+    return str(line)
 
 
 def example_robot_data_dir() -> Path:

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 from robomodel.runtime.msg import JointState, deserialize
-from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, past_the_bus_line, unique_domain
 from tests.timing import scaled
 
 from .conftest import Talker, flushed_count, run_cli, stop
@@ -75,7 +75,7 @@ def test_simulation_run_read_back_by_mcap_and_rosbags(tmp_path: Path) -> None:
     )  # fmt: skip
     out = tmp_path / "run"
     try:
-        assert sim.stderr is not None and "robomodel sim: world" in sim.stderr.readline()
+        assert sim.stderr is not None and "robomodel sim: world" in past_the_bus_line(sim.stderr)
         rec = run_cli(
             "bag", "record", "-a", "-o", str(out), "--duration", "3", "--domain-id", domain
         )

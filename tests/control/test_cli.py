@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, past_the_bus_line, unique_domain
 from tests.timing import scaled
 
 RUNS = [
@@ -108,7 +108,7 @@ def rrbot_run() -> Iterator[str]:
         text=True,
     )
     assert proc.stderr is not None
-    line = proc.stderr.readline()
+    line = past_the_bus_line(proc.stderr)
     assert "controller manager" in line, line + proc.stderr.read()
     yield domain
     proc.send_signal(signal.SIGINT)
@@ -209,7 +209,7 @@ def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
         text=True,
     )
     try:
-        assert proc.stderr is not None and "controller manager" in proc.stderr.readline()
+        assert proc.stderr is not None and "controller manager" in past_the_bus_line(proc.stderr)
         for name in ("joint_state_broadcaster", "joint1_position_controller"):
             load = _cli("control", "load", "--set-state", "start", name, "--domain-id", domain)
             assert load.returncode == 0, load.stderr

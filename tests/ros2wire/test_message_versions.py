@@ -21,7 +21,7 @@ from robomodel.runtime.msg import controller_manager_msgs
 from robomodel.runtime.msg._schema import Message, Service
 from robomodel.runtime.msg.controller_manager_msgs_variants import LIST_CONTROLLERS_VARIANTS
 from robomodel.runtime.msg.typehash import type_hash
-from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, past_the_bus_line, unique_domain
 
 typesys = pytest.importorskip("rosbags.typesys")
 
@@ -76,7 +76,7 @@ def arm_control() -> Iterator[str]:
          "--no-view", "--domain-id", domain],
         stderr=subprocess.PIPE, text=True,
     )  # fmt: skip
-    assert proc.stderr is not None and "controller manager" in proc.stderr.readline()
+    assert proc.stderr is not None and "controller manager" in past_the_bus_line(proc.stderr)
     yield domain
     proc.send_signal(signal.SIGINT)
     proc.wait(10)

@@ -35,7 +35,7 @@ from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.service_msgs import ServiceEventInfo
 from robomodel.runtime.msg.std_srvs import SetBool, Trigger
 from robomodel.runtime.msg.typehash import type_hash
-from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, past_the_bus_line, unique_domain
 from tests.ros2wire.msgtext import write_definitions
 from tests.timing import scale, scaled
 
@@ -104,7 +104,7 @@ def state_publisher() -> Iterator[str]:
         stderr=subprocess.PIPE,
         text=True,
     )
-    assert proc.stderr is not None and "publishing robot" in proc.stderr.readline()
+    assert proc.stderr is not None and "publishing robot" in past_the_bus_line(proc.stderr)
     yield domain
     proc.send_signal(signal.SIGINT)
     proc.wait(scaled(10))
@@ -119,7 +119,7 @@ def arm_control() -> Iterator[str]:
         stderr=subprocess.PIPE,
         text=True,
     )  # fmt: skip
-    assert proc.stderr is not None and "controller manager" in proc.stderr.readline()
+    assert proc.stderr is not None and "controller manager" in past_the_bus_line(proc.stderr)
     yield domain
     proc.send_signal(signal.SIGINT)
     proc.wait(scaled(10))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import socket
 import subprocess
 import time
@@ -93,8 +94,10 @@ def _free_port() -> int:
 def ros1_master(tmp_path: Path) -> Iterator[str]:
     port = _free_port()
     env = {**_cli_env(), "ROS_HOME": str(tmp_path)}
+    # Debian's rosmaster: it registers names holding controls, which robomodel's own master
+    # refuses (issue 29.13), so that what a listing prints of them can be seen
     proc = subprocess.Popen(
-        [*ROBOMODEL, "master", "-p", str(port)],
+        ["/usr/bin/roscore", "-p", str(port)],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         env=env,
@@ -110,8 +113,12 @@ def ros1_master(tmp_path: Path) -> Iterator[str]:
             time.sleep(0.05)
         yield uri
     finally:
-        proc.terminate()
-        proc.wait(scaled(10))
+        os.killpg(proc.pid, signal.SIGINT)  # roscore and its rosmaster and rosout
+        try:
+            proc.wait(scaled(20))
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
 
 
 def test_hostile_ros1_names_are_escaped_in_listings(ros1_master: str) -> None:
@@ -124,7 +131,7 @@ def test_hostile_ros1_names_are_escaped_in_listings(ros1_master: str) -> None:
         master.registerPublisher(f"/{HOSTILE}", "/t", "std_msgs/String", "http://127.0.0.1:1/")
     for tail in ("\r", "\n/forged", "\x9b31m", "\u202e"):
         code, _, _ = master.registerPublisher(
-            f"/evil{tail}", f"/t{tail}", f"std_msgs/String{tail}", "http://127.0.0.1:1/"
+            f"/evil{tail}", f"/t{tail}", "std_msgs/String", "http://127.0.0.1:1/"
         )
         assert code == 1
     env = {**_cli_env(), "ROS_MASTER_URI": ros1_master}
@@ -132,12 +139,12 @@ def test_hostile_ros1_names_are_escaped_in_listings(ros1_master: str) -> None:
     topics = _run("topic", "list", "-t", env=env)
     assert nodes.returncode == 0 and topics.returncode == 0, (nodes, topics)
     # XML turns a raw carriage return into a newline; both arrive as one line each
-    assert nodes.stdout.splitlines() == [
+    assert [n for n in nodes.stdout.splitlines() if n != "/rosout"] == [
         "/evil\\x0a",
         "/evil\\x0a/forged",
         "/evil\\x9b31m",
         "/evil\\u202e",
     ]
-    assert "/t\\x9b31m [std_msgs/String\\x9b31m]" in topics.stdout.splitlines()
+    assert "/t\\x9b31m [std_msgs/msg/String]" in topics.stdout.splitlines()
     for result in (nodes, topics):
         _assert_no_raw_controls(result)

@@ -8,7 +8,7 @@ import pytest
 
 from robomodel.cli.main import main
 from robomodel.cli.sim import parse_rate
-from tests.conftest import ROBOMODEL, unique_domain
+from tests.conftest import ROBOMODEL, past_the_bus_line, unique_domain
 from tests.timing import scaled
 
 from .conftest import SIMPLEBOT_LIDAR, SIMPLEBOT_YAML, WALL_WORLD
@@ -115,7 +115,7 @@ def test_paused_single_step_and_services_from_another_process() -> None:
         return sec + nanosec * 1e-9
 
     try:
-        assert sim.stderr is not None and "robomodel sim: world" in sim.stderr.readline()
+        assert sim.stderr is not None and "robomodel sim: world" in past_the_bus_line(sim.stderr)
         for _ in range(50):  # the simulator's services appear in the graph
             listed = run("service", "list")
             if "/gazebo/step" in listed.stdout:

@@ -13,7 +13,7 @@ import pytest
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, past_the_bus_line
 from tests.timing import scaled
 from tests.viewer.conftest import wait_for
 from tests.viewer.robots import write_arm
@@ -299,7 +299,7 @@ def test_a_description_from_a_topic_is_drawn_with_the_robot_s_tf(started: list[V
         text=True,
     )  # fmt: skip
     try:
-        assert robot.stderr is not None and "publishing robot" in robot.stderr.readline()
+        assert robot.stderr is not None and "publishing robot" in past_the_bus_line(robot.stderr)
         viewer = _start(
             started,
             RobotSource("", topic="/robot_description"),

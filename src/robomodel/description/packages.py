@@ -137,6 +137,11 @@ def example_robot_data_packages() -> tuple[tuple[str, Path], ...]:
     return (("example-robot-data", share), *found)
 
 
+def _absolute(path: Path) -> Path:
+    """``path`` made absolute against the working folder, symlinks kept (``os.path.abspath``)."""
+    return path if path.is_absolute() else Path(os.path.abspath(path))
+
+
 def _split_env_paths(value: str | None) -> list[Path]:
     if not value:
         return []
@@ -229,26 +234,29 @@ class PackageIndex:
         return tuple(dict.fromkeys(places))
 
     def _build(self) -> dict[str, Package]:
+        # Paths made absolute (not resolved: a symlink stays as given), so that a package found
+        # through a relative `--package-path examples` does not resolve includes relative to
+        # the including file's folder a second time.
         index: dict[str, Package] = {}
         for name, path in self._explicit.items():
-            index[name] = Package(name, path, "explicit")
+            index[name] = Package(name, _absolute(path), "explicit")
         for origin, roots in (
             ("package-path", self._package_paths),
             ("ROS_PACKAGE_PATH", self._ros_package_path),
         ):
             for root in roots:
                 found: dict[str, Path] = {}
-                _scan_tree(root, found)
+                _scan_tree(_absolute(root), found)
                 for name, path in found.items():
                     index.setdefault(name, Package(name, path, origin))
-        for prefix in self._ament_prefixes:
+        for prefix in map(_absolute, self._ament_prefixes):
             for name in _ament_packages(prefix):
                 index.setdefault(name, Package(name, prefix / "share" / name, "AMENT_PREFIX_PATH"))
         for package in self._own:  # issue 27.12: only where the search paths know no such name
             index.setdefault(package.name, package)
         for root, _ in self._fallback_paths:
             found = {}
-            _scan_tree(root, found)
+            _scan_tree(_absolute(root), found)
             for name, path in found.items():
                 index.setdefault(name, Package(name, path, "workspace"))
         for name, path in self._bundled:
