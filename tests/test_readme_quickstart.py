@@ -90,11 +90,40 @@ def _run_until_running(argv: list[str], workdir: Path, timeout_s: float) -> None
             proc.wait()
 
 
+def _topic_list_beside_a_launch(argv: list[str], workdir: Path) -> None:
+    first = next(shlex.split(c) for c in _robomodel_commands() if c.split()[1] == "launch")
+    env = _env(workdir)
+    launch = subprocess.Popen(
+        first, cwd=workdir, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+        text=True, start_new_session=True,
+    )  # fmt: skip
+    try:
+        assert launch.stdout is not None
+        for line in launch.stdout:
+            if re.search(r"\d+ nodes? running", line):
+                break
+        listed = subprocess.run(
+            argv, cwd=workdir, env=env, capture_output=True, text=True, timeout=120
+        )
+        assert listed.returncode == 0, listed.stderr
+        assert {"/joint_states", "/tf", "/robot_description"} <= set(listed.stdout.split())
+    finally:
+        os.killpg(launch.pid, signal.SIGINT)
+        try:
+            launch.wait(60)
+        except subprocess.TimeoutExpired:
+            os.killpg(launch.pid, signal.SIGKILL)
+            launch.wait()
+
+
 @pytest.mark.parametrize("command", _robomodel_commands())
 def test_quickstart_command_runs(command: str, workdir: Path) -> None:
     argv = shlex.split(command)
     if argv[1] == "launch":
         _run_until_running(argv, workdir, timeout_s=120)
+        return
+    if argv[1:3] == ["topic", "list"]:  # "in a second terminal while a launch runs"
+        _topic_list_beside_a_launch(argv, workdir)
         return
     done = subprocess.run(
         argv, cwd=workdir, env=_env(workdir), capture_output=True, text=True, timeout=120
