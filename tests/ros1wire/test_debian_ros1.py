@@ -21,7 +21,7 @@ import yaml
 
 from robomodel.runtime.msg import JointState
 from tests.conftest import EXAMPLES
-from tests.ros1wire.conftest import Ros1, free_port, has
+from tests.ros1wire.conftest import Ros1, has
 from tests.timing import scaled
 
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
@@ -254,14 +254,29 @@ Window Geometry:
 """
 
 
+def _xvfb(ros1: Ros1, size: str) -> str:
+    """A virtual screen on a display number Xvfb chooses itself (``-displayfd``): a number of
+    our own choosing could be one another test's Xvfb already holds."""
+    read, write = os.pipe()
+    proc = subprocess.Popen(
+        ["Xvfb", "-displayfd", str(write), "-screen", "0", size, "-nolisten", "tcp"],
+        pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )  # fmt: skip
+    os.close(write)
+    ros1.procs.append(proc)
+    with os.fdopen(read) as numbers:
+        number = numbers.readline().strip()  # written once the screen accepts clients
+    assert number.isdigit(), "Xvfb did not start"
+    return f":{number}"
+
+
 def test_rviz_under_xvfb_draws_the_robot_robomodel_publishes(ros1: Ros1, tmp_path: Path) -> None:
     if not (has("Xvfb") and Path("/usr/bin/rviz").exists()):
         pytest.fail("rviz and Xvfb are missing: tools/system-deps test installs them")
     from PIL import ImageGrab
 
-    display = f":{90 + free_port() % 400}"
-    ros1.start(["Xvfb", display, "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-    time.sleep(1.0)
+    display = _xvfb(ros1, "1024x768x24")
     log = tmp_path / "launch.log"
     _launch(ros1, log, "gripper_description", "display.launch", "--ros1-master", ros1.uri)
     config = tmp_path / "robot.rviz"
@@ -342,9 +357,7 @@ def test_rviz_opens_a_config_robomodel_saved_with_its_displays_and_fixed_frame(
     saved = read_rviz_file(config)
     assert saved.fixed_frame == "base_link"
     assert [d.class_name for d in saved.displays] == ["rviz/Grid", "rviz/RobotModel", "rviz/TF"]
-    display = f":{90 + free_port() % 400}"
-    ros1.start(["Xvfb", display, "-screen", "0", "1280x900x24", "-nolisten", "tcp"])
-    ros1.until(lambda: Path(f"/tmp/.X11-unix/X{display[1:]}").exists(), "Xvfb")
+    display = _xvfb(ros1, "1280x900x24")
     log = tmp_path / "rviz.log"
     with log.open("w") as out:
         rviz = subprocess.Popen(

@@ -11,7 +11,7 @@ from robomodel.runtime import Context, ManualClock
 from robomodel.runtime.msg.sensor_msgs import Imu, LaserScan
 from robomodel.sim import Placement, Simulation, parse_world
 from robomodel.sim.bus import SimBridge
-from robomodel.sim.sensors.msgs import ContactsState, Range
+from robomodel.sim.sensors.msgs import ContactsState, range_type
 
 BOX = """<robot name="box">
   <link name="base">
@@ -60,7 +60,7 @@ def test_imu_contact_and_sonar_publish_and_unknown_types_are_skipped() -> None:
     got: dict[str, list[object]] = {"imu": [], "bumper": [], "sonar": []}
     node.create_subscription(Imu, "/imu/data", got["imu"].append)
     node.create_subscription(ContactsState, "/bumper", got["bumper"].append)
-    node.create_subscription(Range, "/sonar", got["sonar"].append)
+    node.create_subscription(range_type(), "/sonar", got["sonar"].append)
     sim.step(1000)
     assert len(got["imu"]) == pytest.approx(100, abs=1)
     imu = got["imu"][-1]
@@ -76,7 +76,7 @@ def test_imu_contact_and_sonar_publish_and_unknown_types_are_skipped() -> None:
     total = sum(s.total_wrench_force.z for s in bumper.states)  # type: ignore[attr-defined]
     assert abs(total) == pytest.approx(9.81, rel=0.05)  # the box's weight
     sonar = got["sonar"][-1]
-    assert isinstance(sonar, Range)
+    assert isinstance(sonar, range_type())
     assert sonar.range == pytest.approx(1.5 - 0.1, abs=0.01)  # block face at 1.5 m, sonar at 0.1
     assert sonar.field_of_view == pytest.approx(2 * math.atan2(0.2, 3.0))
 

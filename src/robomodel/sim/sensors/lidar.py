@@ -18,7 +18,7 @@ from robomodel.runtime.msg._schema import Message
 from robomodel.runtime.msg.sensor_msgs import LaserScan
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.sensors.base import SimSensor
-from robomodel.sim.sensors.msgs import Range
+from robomodel.sim.sensors.msgs import range_type
 from robomodel.sim.sensors.spec import RaySpec, SensorSpec
 
 __all__ = ["Lidar"]
@@ -42,8 +42,9 @@ class Lidar(SimSensor):
         self._local = np.stack([np.cos(self.angles), np.sin(self.angles), np.zeros(n)], axis=1)
         self._geomid = np.zeros(n, dtype=np.int32)
         self._dist = np.zeros(n, dtype=float)
-        if self.ray.output == "Range":
-            self.message_type = Range
+        self._sonar = self.ray.output == "Range"
+        if self._sonar:
+            self.message_type = range_type()
 
     def ranges(self) -> np.ndarray:
         """The current scan [m], REP-117 (see the module docstring)."""
@@ -69,16 +70,18 @@ class Lidar(SimSensor):
     def measure(self, time_s: float) -> Message:
         ray = self.ray
         ranges = self.ranges()
-        if self.message_type is Range:
+        if self._sonar:
             finite = ranges[np.isfinite(ranges)]
             value = float(finite.min()) if len(finite) else math.inf
-            return Range(
+            built: Any = self.message_type  # a class built from its definition
+            sonar: Message = built(
                 header=self.header(time_s),
                 field_of_view=ray.max_angle_rad - ray.min_angle_rad,
                 min_range=ray.range_min_m,
                 max_range=ray.range_max_m,
                 range=value,
             )
+            return sonar
         rate = self.spec.update_rate_hz
         return LaserScan(
             header=self.header(time_s),

@@ -1,5 +1,6 @@
-"""Messages the simulator publishes that the runtime does not define: sensor_msgs/Range and
-gazebo_msgs/ContactsState (field names as the ROS definitions)."""
+"""Messages the simulator publishes that the runtime does not define: gazebo_msgs/ContactsState
+(field names as the ROS definition). sensor_msgs/Range is built from its definition for the
+chosen distribution (Jazzy's has a ``variance`` that Humble's lacks): :func:`range_type`."""
 
 from __future__ import annotations
 
@@ -9,28 +10,7 @@ from robomodel.runtime.msg._schema import Message, Seq
 from robomodel.runtime.msg.geometry_msgs import Vector3
 from robomodel.runtime.msg.std_msgs import Header
 
-__all__ = ["ContactState", "ContactsState", "Range"]
-
-
-@dataclass(slots=True)
-class Range(Message):
-    """One range reading [m] of a sonar/IR sensor with a field of view [rad]."""
-
-    header: Header = field(default_factory=Header)
-    radiation_type: int = 0  # ULTRASOUND
-    field_of_view: float = 0.0
-    min_range: float = 0.0
-    max_range: float = 0.0
-    range: float = 0.0
-    __typename__ = "sensor_msgs/msg/Range"
-    __fields__ = (
-        ("header", Header),
-        ("radiation_type", "uint8"),
-        ("field_of_view", "float32"),
-        ("min_range", "float32"),
-        ("max_range", "float32"),
-        ("range", "float32"),
-    )
+__all__ = ["ContactState", "ContactsState", "range_type"]
 
 
 @dataclass(slots=True)
@@ -60,3 +40,10 @@ class ContactsState(Message):
     states: list[ContactState] = field(default_factory=list)
     __typename__ = "gazebo_msgs/msg/ContactsState"
     __fields__ = (("header", Header), ("states", Seq(ContactState)))
+
+
+def range_type() -> type[Message]:
+    """``sensor_msgs/msg/Range`` of the distribution in use (``ROS_DISTRO``, default Jazzy)."""
+    from robomodel.runtime.msg._schema import get_message_type
+
+    return get_message_type("sensor_msgs/msg/Range")
