@@ -16,7 +16,6 @@ loaded machine may take.
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import os
 import shutil
 import subprocess
@@ -171,12 +170,11 @@ def start_master(graph: SeedRos1, which: str) -> None:
 
 
 def session_domain() -> str:
-    """A Zenoh domain id for one test: :func:`unique_domain`'s, moved by an offset of this test
-    session's own, so that two pytest sessions on one machine (each walking ids from 1) do not
-    hear each other; the workers of one xdist session share the offset and keep apart."""
-    session = os.environ.get("PYTEST_XDIST_TESTRUNUID") or str(os.getpid())
-    offset = int(hashlib.sha256(session.encode()).hexdigest(), 16) % 230
-    return str(1 + (int(unique_domain()) - 1 + offset) % 230)
+    """A Zenoh domain id for one test: :func:`unique_domain`'s (an offset of this module's own
+    moved the ids of one xdist worker into the other's block, and a seed's controller manager
+    answered another test's spawner). Two sessions on one machine keep apart with
+    ``ROBOMODEL_TEST_DOMAIN_BASE`` / ``_COUNT`` (tests/conftest.py)."""
+    return unique_domain()
 
 
 @dataclass

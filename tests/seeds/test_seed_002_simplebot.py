@@ -457,7 +457,8 @@ def test_the_robot_drives_on_cmd_vel_and_odom_follows(
 def test_joint_states_at_the_yaml_s_publish_rate(ros1_graph: SeedRos1, tmp_path: Path) -> None:
     """``publish_rate : 80``: /joint_states stamps 1/80 s apart (simulated time)."""
     _controllers_launch(ros1_graph, tmp_path)
-    run = ros1_graph.tool(ROSTOPIC, "echo", "-n", "41", "/joint_states")
+    # 2 s of messages: one lost on the way moves the measured rate by only 0.5 Hz
+    run = ros1_graph.tool(ROSTOPIC, "echo", "-n", "161", "/joint_states")
     stamps = [
         m["header"]["stamp"]["secs"] + m["header"]["stamp"]["nsecs"] * 1e-9
         for m in yaml.safe_load_all(run.stdout.replace("\n---\n", "\n---\n"))
