@@ -169,14 +169,6 @@ def start_master(graph: SeedRos1, which: str) -> None:
         graph.roscore()
 
 
-def session_domain() -> str:
-    """A Zenoh domain id for one test: :func:`unique_domain`'s (an offset of this module's own
-    moved the ids of one xdist worker into the other's block, and a seed's controller manager
-    answered another test's spawner). Two sessions on one machine keep apart with
-    ``ROBOMODEL_TEST_DOMAIN_BASE`` / ``_COUNT`` (tests/conftest.py)."""
-    return unique_domain()
-
-
 @dataclass
 class Ros2Workspace:
     """A colcon workspace (``~/ros2_ws``): packages under ``src``, ``colcon build`` copying
@@ -184,7 +176,7 @@ class Ros2Workspace:
     ``. install/setup.bash`` (``AMENT_PREFIX_PATH``), on a Zenoh domain of their own."""
 
     root: Path
-    domain: str = field(default_factory=session_domain)
+    domain: str = field(default_factory=unique_domain)  # keeps xdist workers apart
     prefixes: list[Path] = field(default_factory=list)
     procs: list[subprocess.Popen[str]] = field(default_factory=list)
 
