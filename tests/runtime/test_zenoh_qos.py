@@ -12,12 +12,15 @@ subscription's queue in ``SubscriptionData::add_new_message``
 
 from __future__ import annotations
 
+import time
+
 import pytest
 
 from robomodel.runtime.msg import Int32
 from robomodel.runtime.qos import Durability, History, Liveliness, QoSProfile, Reliability
 from robomodel.runtime.transport.rmw_zenoh import EntityToken, qos_from_key, qos_to_key
 from tests.conftest import unique_domain
+from tests.timing import scaled
 
 S = 10**9
 FULL = QoSProfile(
@@ -98,10 +101,17 @@ def test_a_publisher_s_token_carries_its_full_qos() -> None:
         node = ctx.create_node("qos_probe")
         node.create_publisher(Int32, "/counted", FULL)
         session = ctx.transport.session  # type: ignore[attr-defined]
-        keys = [
-            str(r.ok.key_expr) for r in session.liveliness().get(f"@ros2_lv/{domain}/**") if r.ok
-        ]
-        [key] = [k for k in keys if "/MP/" in k and "%counted" in k]
+
+        def publisher_tokens() -> list[str]:
+            replies = session.liveliness().get(f"@ros2_lv/{domain}/**")
+            keys = [str(r.ok.key_expr) for r in replies if r.ok]
+            return [k for k in keys if "/MP/" in k and "%counted" in k]
+
+        # the token reaches the router, which answers the query, only after a moment (CI, busy)
+        deadline = time.monotonic() + scaled(10.0)
+        while not (found := publisher_tokens()) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        [key] = found
         assert key.endswith("/2:1:2,5:1,500000000:2,0:3,3,0")
         token = EntityToken.parse(key)
         assert token is not None and qos_from_key(token.qos) == FULL

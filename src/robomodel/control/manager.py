@@ -63,6 +63,9 @@ class ControllerManager:
         name: The manager's node name; services are ``/<namespace>/<name>/list_controllers``...
         namespace: The namespace of the manager and its controllers.
         parameters: The manager node's parameters (``use_sim_time``, ...) from the YAML.
+        serve: Offer the services now; False: once :meth:`serve` is called, after the
+            configuration is set (a spawner calling ``load_controller`` in between would find
+            no controller types).
     """
 
     def __init__(
@@ -75,6 +78,7 @@ class ControllerManager:
         name: str = "controller_manager",
         namespace: str = "/",
         parameters: Mapping[str, Any] | None = None,
+        serve: bool = True,
     ) -> None:
         if update_rate_hz <= 0:
             raise ControlError(f"update_rate must be positive, got {update_rate_hz}")
@@ -100,7 +104,8 @@ class ControllerManager:
             self.node = context.create_node(
                 name, namespace, parameters=params, allow_undeclared_parameters=True
             )
-            self._register_services()
+            if serve:
+                self.serve()
 
     # -- configuration ------------------------------------------------------------------------
     def set_config(self, config: ControllerConfig) -> None:
@@ -361,11 +366,12 @@ class ControllerManager:
         """``list_controllers``: name, type, state, update rate and interfaces of each."""
         return [controller_info(e, self.resources) for e in self.entries.values()]
 
-    def _register_services(self) -> None:
+    def serve(self) -> None:
+        """Offer the manager's services on its node (once; nothing without a bus)."""
         from robomodel.control.services import register_services
 
-        assert self.node is not None
-        self._unregister.extend(register_services(self, self.node))
+        if self.node is not None and not self._unregister:
+            self._unregister.extend(register_services(self, self.node))
 
     def shutdown(self) -> None:
         self.stop()

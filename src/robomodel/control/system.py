@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -41,6 +41,7 @@ class ControlSystem:
         update_rate_hz: int | None = None,
         name: str = "controller_manager",
         unknown_hardware_as_mock: bool = False,
+        prepare: Callable[[ControllerManager], None] | None = None,
     ) -> ControlSystem:
         """Build the hardware of ``robot``, load ``controllers`` and spawn them (all by default).
 
@@ -69,8 +70,12 @@ class ControlSystem:
             name=name,
             namespace=config.namespace,
             parameters=config.manager_params,
+            serve=False,
         )
         manager.set_config(config)
         names = [s.name for s in config.controllers] if spawn is None else list(spawn)
         manager.spawn(names)
+        if prepare is not None:  # before the services: a spawner finds the manager ready
+            prepare(manager)
+        manager.serve()
         return cls(resources, manager, config)

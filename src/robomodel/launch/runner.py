@@ -91,6 +91,7 @@ class LaunchRunner:
     _terminated: bool = False
     _scheduler: Any = None
     _ros1: Any = None
+    _node_log: Any = None  # NodeLogToLaunch, while the bus is open
     gui: LaunchGui = field(init=False)
 
     def __post_init__(self) -> None:
@@ -111,8 +112,12 @@ class LaunchRunner:
                 )
 
     def open_bus(self) -> None:
+        from robomodel.launch.node_log import NodeLogToLaunch
         from robomodel.launch.param_server import connect_or_host
         from robomodel.runtime import Context
+
+        self._node_log = NodeLogToLaunch(self.log)
+        self._node_log.attach()
 
         if self.options.bus == "ros1":
             from robomodel.launch.ros1_master import open_ros1
@@ -330,6 +335,8 @@ class LaunchRunner:
                 self._ros1.close()
         finally:
             watchdog.cancel()
+            if self._node_log is not None:
+                self._node_log.detach()
 
 
 _STOP_TIMEOUT_S = 5.0

@@ -11,13 +11,14 @@ write, with the period in sim time.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from robomodel.control import ControlSystem
     from robomodel.control.config import ControllerConfig
+    from robomodel.control.manager import ControllerManager
     from robomodel.runtime.context import Context
     from robomodel.sim.build.robot import BuiltRobot
     from robomodel.sim.hardware import SimSystem
@@ -76,8 +77,10 @@ def control_cycle(
     spawn: Sequence[str] | None,
     update_rate_hz: int | None,
     namespace: str | None,
+    prepare: Callable[[ControllerManager], None] | None = None,
 ) -> ControlCycle:
-    """The controller manager over ``components`` with ``config``'s controllers spawned."""
+    """The controller manager over ``components`` with ``config``'s controllers spawned, then
+    ``prepare`` run on it, before its services are offered."""
     from robomodel.control import ControlSystem
     from robomodel.control.hardware import ResourceManager
     from robomodel.control.manager import ControllerManager
@@ -92,9 +95,13 @@ def control_cycle(
         update_rate_hz=rate,
         namespace=namespace if namespace is not None else config.namespace,
         parameters={**config.manager_params, "use_sim_time": True},
+        serve=False,
     )
     manager.set_config(config)
     manager.spawn([s.name for s in config.controllers] if spawn is None else list(spawn))
+    if prepare is not None:
+        prepare(manager)
+    manager.serve()
     period = steps * timestep_s
 
     def cycle(time_s: float) -> None:

@@ -30,6 +30,7 @@ from robomodel.sim.world import World, default_world
 if TYPE_CHECKING:
     from robomodel.control import ControlSystem
     from robomodel.control.config import ControllerConfig
+    from robomodel.control.manager import ControllerManager
     from robomodel.description.model import Robot
     from robomodel.description.packages import PackageIndex
     from robomodel.runtime.context import Context
@@ -170,10 +171,11 @@ class Simulation:
         spawn: Sequence[str] | None = None,
         update_rate_hz: int | None = None,
         namespace: str | None = None,
+        prepare: Callable[[ControllerManager], None] | None = None,
     ) -> ControlSystem:
         """Hardware + controller manager for the robot with ``prefix``, stepped with the physics
         (see :mod:`robomodel.sim.control_loop`: simulator plugins act on the MuJoCo state, mock
-        hardware does not)."""
+        hardware does not). ``prepare`` runs on the manager before its services are offered."""
         from robomodel.control.config import ControllerConfig, load_controller_config
         from robomodel.sim.control_loop import control_cycle, simulated_components
 
@@ -194,6 +196,7 @@ class Simulation:
             spawn=spawn,
             update_rate_hz=update_rate_hz,
             namespace=namespace,
+            prepare=prepare,
         )
         self._controls.append(loop.system)
         self._schedule.add(ScheduledCallback(loop.every_steps, loop.callback, 0))

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from robomodel.control import ControlSystem
     from robomodel.control.config import ControllerSpec
+    from robomodel.control.manager import ControllerManager
     from robomodel.sim.engine import Simulation
     from robomodel.sim.server import SimServer, SpawnedRobot
 
@@ -46,21 +47,26 @@ def start_control(
             namespace=namespace,
             controllers=tuple(c for part in loaded for c in part.controllers),
         )
-    system = sim.control(config, prefix=entry.placement.prefix, context=server.context, spawn=[])
-    manager = system.manager
-    if server.spec_source is not None:
-        source = server.spec_source
-        manager.spec_source = lambda name: source(manager.namespace, name)
-    if previous is not None:
-        manager.specs.update(previous.specs)
-        states = previous.states
-        active = [n for n, s in states.items() if s == "active"]
-        for name, state in states.items():
-            if name not in active:
-                manager.load_controller(name)
-                if state == "inactive":
-                    manager.configure_controller(name)
-        manager.spawn(active)
+    source = server.spec_source
+
+    def prepare(manager: ControllerManager) -> None:
+        # before the services are offered: a spawner's load_controller must find the
+        # parameter server's controllers, and the controllers of the previous scene running
+        if source is not None:
+            manager.spec_source = lambda name: source(manager.namespace, name)
+        if previous is not None:
+            manager.specs.update(previous.specs)
+            active = [n for n, s in previous.states.items() if s == "active"]
+            for name, state in previous.states.items():
+                if name not in active:
+                    manager.load_controller(name)
+                    if state == "inactive":
+                        manager.configure_controller(name)
+            manager.spawn(active)
+
+    system = sim.control(
+        config, prefix=entry.placement.prefix, context=server.context, spawn=[], prepare=prepare
+    )
     return system
 
 

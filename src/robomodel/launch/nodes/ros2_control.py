@@ -13,7 +13,6 @@ manager is named as the launch file names the node (``name="my_ctrl_mgr"``), so 
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -79,36 +78,18 @@ def controller_config_text(spec: NodeSpec, manager_name: str) -> str:
     return yaml.safe_dump(doc, sort_keys=False)
 
 
-class _ToLaunchLog(logging.Handler):
-    """The manager node's warnings and errors in the launch's output, as ros2 launch shows a
-    ros2_control_node's ``[ERROR] [controller_manager]: ...`` lines."""
-
-    def __init__(self, log: Any) -> None:
-        super().__init__(logging.WARNING)
-        self._log = log
-
-    def emit(self, record: logging.LogRecord) -> None:
-        self._log(f"[{record.levelname}] {record.getMessage()}")
-
-
 class ManagerNode:
-    """A running ros2_control_node; its node's log goes to the launch's output."""
+    """A running ros2_control_node (its node's warnings reach the launch's output through
+    :mod:`robomodel.launch.node_log`)."""
 
-    def __init__(self, system: Any, log: Any) -> None:
+    def __init__(self, system: Any) -> None:
         self.system = system
         self._code: int | None = None
-        node = system.manager.node
-        self._logger = node.logger if node is not None else None
-        self._handler = _ToLaunchLog(log)
-        if self._logger is not None:
-            self._logger.addHandler(self._handler)
 
     def stop(self) -> None:
         if self._code is None:
             self._code = 0
             self.system.manager.close()
-            if self._logger is not None:
-                self._logger.removeHandler(self._handler)
 
     def exit_code(self) -> int | None:
         return self._code
@@ -134,6 +115,12 @@ def ros2_control_node(ctx: NodeContext) -> RunningNode:
     import dataclasses
 
     config = dataclasses.replace(config, namespace=ctx.namespace)
+    unknown = unknown_types(ctx.spec, name)
+
+    def prepare(manager: Any) -> None:
+        if unknown:
+            manager.spec_source = _not_found(unknown)
+
     system = ControlSystem.build(
         robot,
         config,
@@ -141,16 +128,14 @@ def ros2_control_node(ctx: NodeContext) -> RunningNode:
         spawn=[],
         name=name,
         unknown_hardware_as_mock=True,
+        prepare=prepare,
     )
-    unknown = unknown_types(ctx.spec, name)
-    if unknown:
-        system.manager.spec_source = _not_found(unknown)
     system.manager.start()
     ctx.log(
         f"controller manager {system.manager.service_prefix} at {system.manager.update_rate_hz} "
         f"Hz on {', '.join(c.name for c in system.resources.components)}"
     )
-    return ManagerNode(system, ctx.log)
+    return ManagerNode(system)
 
 
 def _not_found(unknown: dict[str, str]) -> Any:
