@@ -5,7 +5,7 @@ test that needs 2 s on a quiet machine is given 2 s times the factor on a busy o
 runner, a laptop building something else, ``taskset -c 0``). The factor is
 
 - ``ROBOMODEL_TEST_TIMEOUT_SCALE`` when set (a number >= 1, e.g. ``4``);
-- else measured once per test process: the larger of the load average per core and how much
+- else measured in each test process (again every 20 s): the larger of the load average per core and how much
   slower than a quiet reference machine a short piece of pure-Python work runs here (which is
   what a process pinned to one busy core sees), kept between 1 and ``MAX_SCALE``.
 
@@ -15,7 +15,6 @@ slower, because each test waits for a condition, not for the time.
 
 from __future__ import annotations
 
-import functools
 import os
 import time
 
@@ -39,8 +38,22 @@ def _probe_s() -> float:
     return best
 
 
-@functools.cache
+_REMEASURE_AFTER_S = 20.0
+_last: tuple[float, tuple[float, str]] | None = None  # (monotonic time, measurement)
+
+
 def _measured() -> tuple[float, str]:
+    """The factor and its source; measured again every ``_REMEASURE_AFTER_S``: a run that
+    began on a quiet machine keeps up when the machine gets busy later (a test process lives
+    for the whole run, and a factor taken at its start held 1.0 while the load reached 15)."""
+    global _last
+    now = time.monotonic()
+    if _last is None or now - _last[0] > _REMEASURE_AFTER_S:
+        _last = (now, _measure())
+    return _last[1]
+
+
+def _measure() -> tuple[float, str]:
     text = os.environ.get(ENVIRONMENT_VARIABLE, "").strip()
     if text:
         try:

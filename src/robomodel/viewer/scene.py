@@ -116,6 +116,7 @@ class RobotModelDisplay:
         self._groups: dict[Kind, list[Any]] = {"visual": [], "collision": []}
         self._leaves: list[_Leaf] = []
         self._pending: list[_PendingMesh] = []
+        self._loading = 0  # meshes taken from _pending, not drawn yet
         self._deferred: list[_PendingMesh] = []
         self._lock = threading.Lock()
         self._last_wxyz = np.full((len(self.link_names), 4), np.nan)
@@ -218,7 +219,12 @@ class RobotModelDisplay:
                 if item.kind == "collision" and not self.show_collision:
                     self._deferred.append(item)
                     continue
-            self._add_mesh(item)
+                self._loading += 1  # still pending until drawn (pending_meshes)
+            try:
+                self._add_mesh(item)
+            finally:
+                with self._lock:
+                    self._loading -= 1
 
     def _add_mesh(self, item: _PendingMesh) -> None:
         uri = item.geometry.filename
@@ -289,8 +295,9 @@ class RobotModelDisplay:
 
     @property
     def pending_meshes(self) -> int:
+        """Meshes not drawn yet: queued, or being read and added."""
         with self._lock:
-            return len(self._pending)
+            return len(self._pending) + self._loading
 
     # -- display options ------------------------------------------------------------------------
     def _opacity(self, rgba: Rgba) -> float | None:
