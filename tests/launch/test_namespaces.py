@@ -196,6 +196,8 @@ def test_the_viewer_sliders_move_the_robot_of_their_namespace(tmp_path: Path) ->
         sessions["/r2"].jsp.set_positions({"joint_1": 1.0})
         sessions["/r2"].jsp.publish_now()
         _wait(lambda: abs((run.angle("r2/link_1") or 0.0) - 1.0) < 1e-6, "r2/link_1 at 1 rad")
+        # r1's publisher may not have sent its first /tf yet on a busy machine
+        _wait(lambda: run.angle("r1/link_1") is not None, "r1/link_1 on /tf")
         assert run.angle("r1/link_1") == pytest.approx(0.0)
     finally:
         run.close()
