@@ -30,6 +30,7 @@ from robomodel.runtime.transport.base import (
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
+    from robomodel.runtime.type_descriptions import TypeDescriptionService
 
 __all__ = ["Client", "Node", "Publisher", "ServiceServer", "Subscription"]
 
@@ -136,6 +137,11 @@ class Node:
         self._unregister = context.transport.register_node(self.fully_qualified_name)
         from robomodel.runtime.param_services import ParameterServices
 
+        self._type_cache: TypeDescriptionService | None = None
+        if getattr(context, "bus", "") != "ros1":  # rcl's, not on a ROS 1 graph
+            from robomodel.runtime.type_descriptions import TypeDescriptionService
+
+            self._type_cache = TypeDescriptionService(self)
         self._parameter_services = ParameterServices(self)
         from robomodel.runtime.rosout import Rosout
 
@@ -160,6 +166,7 @@ class Node:
             self.fully_qualified_name, name, msg_type, profile
         )
         publisher = Publisher(name, msg_type, profile, handle)
+        self._uses(msg_type)
         self._publishers.append(publisher)
         return publisher
 
@@ -180,6 +187,7 @@ class Node:
             callback,  # type: ignore[arg-type]
         )
         subscription = Subscription(name, msg_type, profile, handle)
+        self._uses(msg_type)
         self._subscriptions.append(subscription)
         return subscription
 
@@ -192,11 +200,19 @@ class Node:
             self.fully_qualified_name, resolved, srv_type, handler
         )
         server = ServiceServer(resolved, srv_type, handle)
+        self._uses(srv_type)
         self._services.append(server)
         return server
 
     def create_client(self, srv_type: type[Service], name: str) -> Client:
+        self._uses(srv_type)
         return Client(self, self.resolve_topic_name(name), srv_type)
+
+    def _uses(self, kind: type[Message] | type[Service]) -> None:
+        """Enter ``kind`` in the node's type cache, which ``~/get_type_description`` answers
+        from (rcl registers the type of every publisher, subscription, service and client)."""
+        if self._type_cache is not None:
+            self._type_cache.register(kind)
 
     def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
         """Call ``callback`` every ``period_s`` seconds of this node's clock."""
