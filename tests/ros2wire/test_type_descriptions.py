@@ -130,3 +130,22 @@ def test_robomodel_echoes_and_records_a_type_learned_from_the_peer(
         assert connection.msgtype == GEO
         messages = [reader.deserialize(raw, GEO) for _, _, raw in reader.messages([connection])]
     assert messages and messages[0].pose.position.longitude == pytest.approx(2.2945)
+
+
+def test_a_type_no_publisher_describes_is_one_line(definitions: Path) -> None:
+    domain = unique_domain()
+    talker = subprocess.Popen(
+        [_sdk_python(), str(AGENT), "--messages", str(definitions), "--domain", domain,
+         "publish", "/geo", GEO, json.dumps(GEO_MESSAGE), "10", str(scaled(40))],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=definitions,
+    )  # fmt: skip
+    try:
+        echo = subprocess.run([*ROBOMODEL, "topic", "echo", "/geo", "--once", "--domain-id", domain],
+                              capture_output=True, text=True, timeout=scaled(30))  # fmt: skip
+    finally:
+        talker.kill()
+        talker.wait()
+    assert echo.returncode == 2 and echo.stdout == ""
+    [line] = echo.stderr.splitlines()
+    assert f"unknown message type '{GEO}'" in line
+    assert line.endswith("and no publisher of /geo described it")

@@ -123,11 +123,13 @@ def _type_named(context: Context, topic: str, name: str, publishers: Any) -> typ
     description a ROS 2 publisher's node gives (``~/get_type_description``)."""
     try:
         return get_message_type(name)
-    except MessageTypeError:
+    except MessageTypeError as exc:
         from robomodel.runtime.type_learning import learn_topic_type
 
         if not learn_topic_type(context, topic, list(publishers)):
-            raise
+            raise MessageTypeError(
+                f"{exc}; and no publisher of {escape_name(topic)} described it"
+            ) from None
     return get_message_type(name)
 
 

@@ -105,14 +105,17 @@ def learn_topic_type(
         from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type as probe
 
         return probe(context.transport, topic)
+    graph = context.graph(timeout_s=1.0)
     if publishers is None:
-        info = context.graph(timeout_s=1.0).topics.get(topic)
+        info = graph.topics.get(topic)
         publishers = list(info.publishers) if info is not None else []
     from robomodel.runtime.msg._resolver import learn_fielddefs
 
     for endpoint in publishers:
         if not endpoint.type_hash.startswith("RIHS01_"):
-            continue
+            continue  # Humble's wire has no hashes, and no node answers for one
+        if f"{endpoint.node.rstrip('/')}/get_type_description" not in graph.services:
+            continue  # a peer without the service (rcl's can be turned off): no timeout
         description = _ask(context, endpoint, timeout_s)
         if description is not None:
             learn_fielddefs(fielddefs_of(description))
