@@ -55,7 +55,14 @@ def test_a_node_describes_the_types_it_uses_by_hash_alone() -> None:
             False,
             "Type not currently in use by this node",
         )
-        for bad in ("RIHS02_" + "0" * 64, "RIHS01_" + "0" * 63, "RIHS01_" + "g" * 64, ""):
+        bad_hashes = (
+            "RIHS02_" + "0" * 64,
+            "RIHS01_" + "0" * 63,
+            "RIHS01_" + "g" * 64,
+            "RIHS01_" + " 0" * 32,
+            "",
+        )
+        for bad in bad_hashes:
             assert _call(ctx, bad).failure_reason == "Failed to parse type hash"
 
 

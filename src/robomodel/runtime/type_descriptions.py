@@ -25,6 +25,7 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
+import re
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
@@ -43,6 +44,7 @@ __all__ = [
 ]
 
 log = logging.getLogger("robomodel.runtime")
+_HEX = re.compile(r"[0-9a-fA-F]{64}")
 Kind = type[Message] | type[Service]
 
 
@@ -148,12 +150,9 @@ def _parse_hash(text: str) -> bytes | None:
     """rosidl_parse_type_hash_string: ``RIHS``, version 01 in hex, 32 bytes in hex."""
     if len(text) < 7 or not text.startswith("RIHS") or text[4:6].lower() != "01":
         return None
-    if len(text) != 7 + 64:
+    if len(text) != 7 + 64 or _HEX.fullmatch(text, 7) is None:
         return None
-    try:
-        return bytes.fromhex(text[7:])
-    except ValueError:
-        return None
+    return bytes.fromhex(text[7:])
 
 
 class TypeDescriptionService:
@@ -175,7 +174,7 @@ class TypeDescriptionService:
         self._kinds.setdefault(kind)
 
     def _find(self, wanted: bytes) -> Kind | None:
-        for kind in self._kinds:
+        for kind in tuple(self._kinds):  # a thread may be adding one
             if bytes.fromhex(type_hash(kind)[7:]) == wanted:
                 return kind
         return None
