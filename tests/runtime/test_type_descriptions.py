@@ -110,3 +110,16 @@ def test_a_description_that_does_not_hash_to_the_token_s_is_refused() -> None:
         )
         liar = Endpoint("/liar", "/chatter", "std_msgs/msg/String", type_hash=string_hash)
         assert _ask(ctx, liar, 2.0) is None
+
+
+def test_a_type_leaves_the_cache_with_the_last_entity_using_it() -> None:
+    wanted = STORE.hash_rihs01("sensor_msgs/msg/Image")
+    image = get_message_type("sensor_msgs/msg/Image")
+    with Context() as ctx:
+        node = ctx.create_node("talker", "/arm")
+        first = node.create_publisher(image, "camera")
+        second = node.create_subscription(image, "other", lambda _: None)
+        first.destroy()
+        assert _call(ctx, wanted).successful  # the subscription still uses it
+        second.destroy()
+        assert _call(ctx, wanted).failure_reason == "Type not currently in use by this node"

@@ -45,12 +45,16 @@ class Publisher(Generic[M]):
     msg_type: type[M]
     qos: QoSProfile
     _handle: PublisherHandle
+    _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
     def publish(self, msg: M) -> None:
         self._handle.publish(msg)
 
     def destroy(self) -> None:
         self._handle.destroy()
+        if self._release is not None:
+            self._release()
+            self._release = None
 
 
 @dataclass(eq=False)
@@ -59,9 +63,13 @@ class Subscription(Generic[M]):
     msg_type: type[M]
     qos: QoSProfile
     _handle: SubscriptionHandle
+    _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
     def destroy(self) -> None:
         self._handle.destroy()
+        if self._release is not None:
+            self._release()
+            self._release = None
 
 
 @dataclass(eq=False)
@@ -71,9 +79,13 @@ class ServiceServer:
     name: str
     srv_type: type[Service]
     _handle: ServiceHandle
+    _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
     def destroy(self) -> None:
         self._handle.destroy()
+        if self._release is not None:
+            self._release()
+            self._release = None
 
 
 @dataclass(eq=False)
@@ -165,8 +177,7 @@ class Node:
         handle = self.context.transport.create_publisher(
             self.fully_qualified_name, name, msg_type, profile
         )
-        publisher = Publisher(name, msg_type, profile, handle)
-        self._uses(msg_type)
+        publisher = Publisher(name, msg_type, profile, handle, self._uses(msg_type))
         self._publishers.append(publisher)
         return publisher
 
@@ -186,8 +197,7 @@ class Node:
             profile,
             callback,  # type: ignore[arg-type]
         )
-        subscription = Subscription(name, msg_type, profile, handle)
-        self._uses(msg_type)
+        subscription = Subscription(name, msg_type, profile, handle, self._uses(msg_type))
         self._subscriptions.append(subscription)
         return subscription
 
@@ -199,8 +209,7 @@ class Node:
         handle = self.context.transport.create_service(
             self.fully_qualified_name, resolved, srv_type, handler
         )
-        server = ServiceServer(resolved, srv_type, handle)
-        self._uses(srv_type)
+        server = ServiceServer(resolved, srv_type, handle, self._uses(srv_type))
         self._services.append(server)
         return server
 
@@ -208,11 +217,13 @@ class Node:
         self._uses(srv_type)
         return Client(self, self.resolve_topic_name(name), srv_type)
 
-    def _uses(self, kind: type[Message] | type[Service]) -> None:
+    def _uses(self, kind: type[Message] | type[Service]) -> Callable[[], None] | None:
         """Enter ``kind`` in the node's type cache, which ``~/get_type_description`` answers
-        from (rcl registers the type of every publisher, subscription, service and client)."""
-        if self._type_cache is not None:
-            self._type_cache.register(kind)
+        from (rcl registers the type of every publisher, subscription, service and client, and
+        unregisters it when the last of them is destroyed); returns the unregistering call."""
+        if self._type_cache is None:
+            return None
+        return self._type_cache.register(kind)
 
     def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
         """Call ``callback`` every ``period_s`` seconds of this node's clock."""

@@ -26,6 +26,7 @@ import hashlib
 import json
 import logging
 import re
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
@@ -159,7 +160,8 @@ class TypeDescriptionService:
     """One node's type cache and its ``~/get_type_description`` service."""
 
     def __init__(self, node: Node) -> None:
-        self._kinds: dict[Kind, None] = {tdi.GetTypeDescription: None}  # an ordered set
+        # how many of the node's entities use each type (rcl's num_registrations)
+        self._kinds: dict[Kind, int] = {tdi.GetTypeDescription: 1}
         self.server: ServiceServer | None = None
         try:
             self.server = node.create_service(
@@ -169,9 +171,19 @@ class TypeDescriptionService:
             log.debug("%s: ~/get_type_description is offered by another node of this name",
                       node.fully_qualified_name)  # fmt: skip
 
-    def register(self, kind: Kind) -> None:
-        """A publisher, subscription, service or client of the node uses ``kind``."""
-        self._kinds.setdefault(kind)
+    def register(self, kind: Kind) -> Callable[[], None]:
+        """A publisher, subscription, service or client of the node uses ``kind``; the call
+        returned says it no longer does (``rcl_node_type_cache_unregister_type``)."""
+        self._kinds[kind] = self._kinds.get(kind, 0) + 1
+
+        def unregister() -> None:
+            left = self._kinds.get(kind, 0) - 1
+            if left > 0:
+                self._kinds[kind] = left
+            else:
+                self._kinds.pop(kind, None)
+
+        return unregister
 
     def _find(self, wanted: bytes) -> Kind | None:
         for kind in tuple(self._kinds):  # a thread may be adding one
