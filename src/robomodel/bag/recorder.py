@@ -105,15 +105,17 @@ class Recorder:
         self._skipped.add(name)
         log.warning("not recording %s: %s", name, reason)
 
-    def _type_of(self, topic: str, type_name: str) -> type[Message]:
-        """The class of ``type_name``; on ROS 1, a type robomodel does not know is learned from
-        its publisher's definition, and stored in the bag as rosbag does."""
+    def _type_of(self, topic: str, info: TopicInfo) -> type[Message]:
+        """The class of the topic's type; a type robomodel does not know is learned from its
+        publishers (a ROS 1 publisher's definition, a ROS 2 node's type description), and
+        stored in the bag as rosbag does."""
+        type_name = next(iter(info.types))
         try:
             return get_message_type(type_name)
         except MessageTypeError:
-            from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+            from robomodel.runtime.type_learning import learn_topic_type
 
-            if not learn_topic_type(self.context.transport, topic):
+            if not learn_topic_type(self.context, topic, list(info.publishers)):
                 raise
         return get_message_type(type_name)
 
@@ -122,7 +124,7 @@ class Recorder:
             self._skip(name, f"published with several types ({', '.join(sorted(info.types))})")
             return
         try:
-            msg_type = self._type_of(name, next(iter(info.types)))
+            msg_type = self._type_of(name, info)
         except MessageTypeError as exc:
             self._skip(name, str(exc))
             return

@@ -44,7 +44,9 @@ __all__ = [
     "definitions_outside",
     "distro",
     "learn_definition",
+    "learn_fielddefs",
     "package_definitions",
+    "package_source",
     "resolve_message",
     "resolve_service",
 ]
@@ -190,6 +192,20 @@ def learn_definition(name: str, text: str) -> None:
     with _lock:
         for type_name, definition in found.items():
             _learned.setdefault(type_name, definition)
+
+
+def learn_fielddefs(found: dict[str, FieldDef]) -> None:
+    """Remember definitions already parsed (a peer's ``GetTypeDescription`` answer, see
+    :mod:`robomodel.runtime.type_descriptions`), as :func:`learn_definition` does for text."""
+    with _lock:
+        for type_name, definition in found.items():
+            _learned.setdefault(type_name, definition)
+
+
+def package_source(key: str) -> Path | None:
+    """The ``.msg``/``.srv`` file of ``pkg/msg/Name`` or ``pkg/srv/Name`` on the package path,
+    if robomodel read the type from one (a type description's source text)."""
+    return _package_files().get(key)
 
 
 def _canonical(name: str) -> str:

@@ -177,6 +177,7 @@ _PACKAGES = {
     "std_srvs": "std_srvs",
     "tf2_msgs": "nav_msgs",
     "trajectory_msgs": "trajectory_msgs",
+    "type_description_interfaces": "type_description_interfaces",
     "unique_identifier_msgs": "action_msgs",
 }
 _EXTRA_MODULES = {
