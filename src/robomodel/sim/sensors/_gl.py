@@ -1,0 +1,78 @@
+"""A headless OpenGL context for MuJoCo's offscreen renderer: EGL, else OSMesa.
+
+``MUJOCO_GL`` chooses as in MuJoCo (``egl``, ``osmesa``, ``glfw``); unset, EGL is tried, then
+OSMesa. MuJoCo fixes its own choice when it is imported (``mujoco.gl_context``), before any
+camera exists, and its default there is GLFW, which needs a display: robomodel makes the context
+itself from ``mujoco.egl`` / ``mujoco.osmesa``. PyOpenGL binds one platform per process, so a
+failed EGL attempt is forgotten (its ``OpenGL`` modules dropped) before OSMesa is tried.
+"""
+
+from __future__ import annotations
+
+import ctypes.util
+import importlib
+import os
+import sys
+from typing import Any
+
+from robomodel.sim.exceptions import SimulationError
+
+__all__ = ["RenderingUnavailableError", "gl_context"]
+
+# backend -> (the library it loads, the Debian packages that provide a software renderer)
+_BACKENDS = {"egl": ("EGL", "libegl1 libegl-mesa0"), "osmesa": ("OSMesa", "libosmesa6")}
+_chosen: str | None = None
+
+
+class RenderingUnavailableError(SimulationError):
+    """No offscreen OpenGL works in this process (the message names what to install)."""
+
+
+def _forget_opengl(platform_was_set: bool) -> None:
+    for name in [m for m in sys.modules if m == "OpenGL" or m.startswith(("OpenGL.", "mujoco.egl", "mujoco.osmesa"))]:  # fmt: skip
+        del sys.modules[name]
+    if not platform_was_set:
+        os.environ.pop("PYOPENGL_PLATFORM", None)
+
+
+def _try(backend: str, width: int, height: int) -> Any:
+    if backend in _BACKENDS and ctypes.util.find_library(_BACKENDS[backend][0]) is None:
+        raise OSError(f"lib{_BACKENDS[backend][0]} not found")
+    if backend in _BACKENDS:
+        module = importlib.import_module(f"mujoco.{backend}")
+        context = module.GLContext(width, height)
+    else:  # glfw and the like: MuJoCo's own choice from MUJOCO_GL
+        import mujoco
+
+        context = mujoco.GLContext(width, height)
+    context.make_current()
+    return context
+
+
+def gl_context(width: int, height: int) -> Any:
+    """A new offscreen GL context, current on this thread (see the module docstring).
+
+    Raises:
+        RenderingUnavailableError: No backend works; the message names the packages.
+    """
+    global _chosen
+    asked = os.environ.get("MUJOCO_GL", "").strip().lower()
+    candidates = [_chosen] if _chosen else ([asked] if asked else ["egl", "osmesa"])
+    reasons: list[str] = []
+    for backend in candidates:
+        platform_was_set = "PYOPENGL_PLATFORM" in os.environ
+        try:
+            context = _try(backend, width, height)
+        except Exception as exc:  # ImportError, OSError, PyOpenGL's errors: try the next
+            reasons.append(f"{backend}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
+            if backend != candidates[-1]:
+                _forget_opengl(platform_was_set)
+            continue
+        _chosen = backend
+        return context
+    packages = " or ".join(_BACKENDS[b][1] for b in candidates if b in _BACKENDS)
+    raise RenderingUnavailableError(
+        "simulated cameras need offscreen OpenGL and none works here "
+        f"({'; '.join(reasons)}): install Debian's {packages or 'libegl1 libegl-mesa0'}"
+        " (or set MUJOCO_GL to a backend that works)"
+    )
