@@ -17,7 +17,7 @@ from typing import Any
 
 from robomodel.sim.exceptions import SimulationError
 
-__all__ = ["RenderingUnavailableError", "gl_context"]
+__all__ = ["RenderingUnavailableError", "check_rendering", "gl_context"]
 
 # backend -> (the library it loads, the Debian packages that provide a software renderer)
 _BACKENDS = {"egl": ("EGL", "libegl1 libegl-mesa0"), "osmesa": ("OSMesa", "libosmesa6")}
@@ -28,8 +28,9 @@ class RenderingUnavailableError(SimulationError):
     """No offscreen OpenGL works in this process (the message names what to install)."""
 
 
-def _forget_opengl(platform_was_set: bool) -> None:
-    for name in [m for m in sys.modules if m == "OpenGL" or m.startswith(("OpenGL.", "mujoco.egl", "mujoco.osmesa"))]:  # fmt: skip
+def _forget_opengl(loaded_before: set[str], platform_was_set: bool) -> None:
+    """Drop the modules a failed attempt imported (PyOpenGL bound to its platform)."""
+    for name in set(sys.modules) - loaded_before:
         del sys.modules[name]
     if not platform_was_set:
         os.environ.pop("PYOPENGL_PLATFORM", None)
@@ -61,12 +62,14 @@ def gl_context(width: int, height: int) -> Any:
     reasons: list[str] = []
     for backend in candidates:
         platform_was_set = "PYOPENGL_PLATFORM" in os.environ
+        loaded_before = set(sys.modules)
         try:
             context = _try(backend, width, height)
         except Exception as exc:  # ImportError, OSError, PyOpenGL's errors: try the next
-            reasons.append(f"{backend}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
+            first_line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            reasons.append(f"{backend}: {first_line}")
             if backend != candidates[-1]:
-                _forget_opengl(platform_was_set)
+                _forget_opengl(loaded_before, platform_was_set)
             continue
         _chosen = backend
         return context
@@ -76,3 +79,10 @@ def gl_context(width: int, height: int) -> Any:
         f"({'; '.join(reasons)}): install Debian's {packages or 'libegl1 libegl-mesa0'}"
         " (or set MUJOCO_GL to a backend that works)"
     )
+
+
+def check_rendering() -> None:
+    """Choose the backend now (once per process), so that a simulation with cameras fails
+    when it is built, with the message of :func:`gl_context`, not in its stepping loop."""
+    if _chosen is None:
+        gl_context(1, 1).free()  # free() also releases it from this thread

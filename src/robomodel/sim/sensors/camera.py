@@ -25,7 +25,7 @@ import numpy as np
 
 from robomodel.runtime.msg._schema import Message, get_message_type
 from robomodel.sim._mujoco import mujoco
-from robomodel.sim.sensors._gl import gl_context
+from robomodel.sim.sensors._gl import check_rendering, gl_context
 from robomodel.sim.sensors.base import SimSensor
 from robomodel.sim.sensors.camera_spec import CameraSpec, CameraTopics
 from robomodel.sim.sensors.spec import SensorSpec
@@ -97,6 +97,7 @@ class CameraSensor(SimSensor):
         self.field_type = get_message_type("sensor_msgs/msg/PointField")
         self.message_type = self.image_type
         self._gl: Any = None
+        check_rendering()
 
     def _open(self) -> None:
         """The GL context, MuJoCo's scene and render context (on first use, on the thread
