@@ -122,7 +122,10 @@ def test_the_wall_is_where_its_geometry_puts_it_in_the_image(scene: Scene) -> No
     image = scene.got["/camera/rgb/image_raw"][-1]
     info = scene.got["/camera/rgb/camera_info"][-1]
     assert (image.encoding, image.step, image.header.frame_id) == (
-        "rgb8", 3 * image.width, "camera_optical_link")
+        "rgb8",
+        3 * image.width,
+        "camera_optical_link",
+    )
     rgb = np.frombuffer(image.data, np.uint8).reshape(image.height, image.width, 3)
     wall, sky, _ = _wall_pixels(scene, info.k[0], image.width, image.height)
     assert wall.sum() > 0.3 * wall.size and sky.sum() > 0.05 * sky.size  # both in view
@@ -194,7 +197,10 @@ def test_topic_names_of_the_ros2_plugin_with_namespace_and_remappings() -> None:
       </plugin></sensor>""")
     t = camera_topics(parse_camera(camera, "camera1", False, "x"), "camera1", ros_version=2)
     assert (t.image, t.camera_info, t.points) == (
-        "/demo_cam/camera1/image_raw", "/demo_cam/camera1/camera_info", "")
+        "/demo_cam/camera1/image_raw",
+        "/demo_cam/camera1/camera_info",
+        "",
+    )
 
 
 def test_topic_names_of_the_ros1_plugins() -> None:

@@ -191,7 +191,9 @@ class SimBridge:
         elif not built.floating:
             self._add_weld_tf(built)
 
-    def _add_camera(self, built: BuiltRobot, spec: SensorSpec, prefix_topic: str, seed: int) -> None:
+    def _add_camera(
+        self, built: BuiltRobot, spec: SensorSpec, prefix_topic: str, seed: int
+    ) -> None:
         """A camera or depth sensor: one render per update, published on every topic of its
         plugin (:mod:`robomodel.sim.sensors.camera`), ROS 1's queue of 2 as gazebo_ros."""
         from robomodel.sim.sensors.camera import CameraSensor

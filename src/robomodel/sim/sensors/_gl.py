@@ -43,9 +43,9 @@ def _try(backend: str, width: int, height: int) -> Any:
         module = importlib.import_module(f"mujoco.{backend}")
         context = module.GLContext(width, height)
     else:  # glfw and the like: MuJoCo's own choice from MUJOCO_GL
-        import mujoco
+        from robomodel.sim._mujoco import mujoco
 
-        context = mujoco.GLContext(width, height)
+        context = mujoco().GLContext(width, height)
     context.make_current()
     return context
 

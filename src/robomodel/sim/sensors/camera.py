@@ -142,7 +142,7 @@ class CameraSensor(SimSensor):
         far = m.vis.map.zfar * m.stat.extent
         z = self._zbuffer[::-1].astype(np.float64)
         with np.errstate(divide="ignore"):
-            depth = near / (1.0 - z * (1.0 - near / far))
+            depth: np.ndarray = near / (1.0 - z * (1.0 - near / far))
         depth[(z >= 1.0) | (depth >= self.camera.far_m)] = math.inf
         depth[depth < self.camera.near_m] = -math.inf
         return depth
@@ -165,7 +165,7 @@ class CameraSensor(SimSensor):
         if encoding == "bgr8":
             return np.ascontiguousarray(frame.rgb[..., ::-1])
         if encoding == "mono8":  # ITU-R 601 luma
-            luma = frame.rgb @ np.array([0.299, 0.587, 0.114])
+            luma: np.ndarray = frame.rgb @ np.array([0.299, 0.587, 0.114])
             return luma.round().astype(np.uint8)[..., None]
         return np.ascontiguousarray(frame.rgb)
 
