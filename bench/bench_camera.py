@@ -58,7 +58,9 @@ def _scene(camera: bool):  # type: ignore[no-untyped-def]
         from robomodel.runtime.msg._schema import get_message_type
 
         image = get_message_type("sensor_msgs/msg/Image")
-        context.create_node("sub").create_subscription(image, "/camera/rgb/image_raw", frames.append)
+        context.create_node("sub").create_subscription(
+            image, "/camera/rgb/image_raw", frames.append
+        )
     return sim, context, bridge, frames
 
 
@@ -73,7 +75,14 @@ def _run(camera: bool, seconds: float) -> tuple[float, int, object]:
     return time.perf_counter() - start, len(frames), (sim, bridge)
 
 
-def _bare(scene: object, frames: int) -> float:
+def _gl_renderer() -> str:
+    """The current GL context's renderer (llvmpipe: Mesa's software rasteriser)."""
+    from OpenGL import GL
+
+    return bytes(GL.glGetString(GL.GL_RENDERER)).decode()
+
+
+def _bare(scene: object, frames: int) -> tuple[float, str]:
     import mujoco
 
     sim, bridge = scene  # type: ignore[misc]
@@ -86,8 +95,9 @@ def _bare(scene: object, frames: int) -> float:
         renderer.update_scene(sim.data, camera=camera.camera_id)
         renderer.render()
     elapsed = time.perf_counter() - start
+    name = _gl_renderer()
     renderer.close()
-    return elapsed / frames
+    return elapsed / frames, name
 
 
 def main() -> None:
@@ -101,9 +111,11 @@ def main() -> None:
         without, _, _ = _run(False, args.seconds)
         per_frame.append((with_camera - without) / frames)
         counts.append(frames)
-        bare.append(_bare(scene, frames))
+        seconds, renderer = _bare(scene, frames)
+        bare.append(seconds)
     ours, base = statistics.median(per_frame), statistics.median(bare)
-    print(f"MUJOCO_GL={os.environ['MUJOCO_GL']}, {args.rounds} rounds of {args.seconds} s sim")
+    print(f"MUJOCO_GL={os.environ['MUJOCO_GL']} ({renderer}), {args.rounds} rounds of "
+          f"{args.seconds} s sim")  # fmt: skip
     print(f"frames per round (30 Hz):        {statistics.median(counts):.0f}")
     print(f"simulated camera, per frame:     {ours * 1e3:.1f} ms")
     print(f"bare MuJoCo render, per frame:   {base * 1e3:.1f} ms")
