@@ -248,3 +248,65 @@ def test_no_offscreen_opengl_names_the_debian_packages(monkeypatch: pytest.Monke
     assert "\n" not in message
     assert "egl: libEGL not found; osmesa: libOSMesa not found" in message
     assert "libegl1 libegl-mesa0 or libosmesa6" in message
+
+
+BOX = """<robot name="box">
+  <link name="base">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <gazebo reference="base">
+    <sensor type="depth" name="cam"><update_rate>20</update_rate><pose>0.1 0 0.4 0 0 0</pose>
+      <camera><horizontal_fov>1.2</horizontal_fov><image><width>64</width><height>48</height>
+        <format>B8G8R8</format></image><clip><near>0.05</near><far>10</far></clip></camera>
+      <plugin name="p" filename="libgazebo_ros_camera.so"><ros><namespace>robot</namespace>
+        <remapping>cam/points:=cam/cloud</remapping></ros>
+        <frame_name>cam_optical</frame_name><max_depth>2.0</max_depth></plugin>
+    </sensor>
+  </gazebo>
+</robot>"""
+
+
+def test_a_ros2_depth_camera_on_the_bus_with_its_range_as_inf() -> None:
+    from robomodel.description.urdf.reader import read_urdf
+
+    sim = Simulation(read_world(WALL_WORLD))
+    sim.add_robot(read_urdf(BOX.encode()).robot, placement=Placement(xyz_m=(0.0, 0.0, 0.1)))
+    context = Context(clock=ManualClock())
+    SimBridge(sim, context, ros_version=2)
+    topics = {"/robot/cam/image_raw": IMAGE, "/robot/cam/camera_info": INFO,
+              "/robot/cam/depth/image_raw": IMAGE, "/robot/cam/depth/camera_info": INFO,
+              "/robot/cam/cloud": CLOUD}  # fmt: skip
+    got: dict[str, list[Any]] = {topic: [] for topic in topics}
+    node = context.create_node("test")
+    for topic, msg_type in topics.items():
+        node.create_subscription(msg_type, topic, got[topic].append)
+    while min(len(v) for v in got.values()) < 2:
+        sim.step(10)
+        context.advance(0.0)
+    image = got["/robot/cam/image_raw"][-1]
+    assert (image.encoding, image.width, image.height, image.step) == ("bgr8", 64, 48, 192)
+    depth_msg = got["/robot/cam/depth/image_raw"][-1]
+    depth = np.frombuffer(depth_msg.data, "<f4").reshape(48, 64)
+    # the wall's face is 2.1 m ahead, beyond max_depth 2.0: +inf as ROS 2's plugin; the floor
+    # near the bottom rows is nearer
+    assert depth[24, 32] == math.inf and np.isfinite(depth[-1]).all()
+    assert depth_msg.header.frame_id == "cam_optical"
+    cloud = got["/robot/cam/cloud"][-1]
+    xyz = np.frombuffer(cloud.data, np.uint8).reshape(48, 64, 32)[..., :12].copy().view("<f4")
+    assert (xyz[24, 32] == math.inf).all() and not cloud.is_dense
+    bgr = np.frombuffer(image.data, np.uint8).reshape(48, 64, 3)
+    rgb_bytes = np.frombuffer(cloud.data, np.uint8).reshape(48, 64, 32)[..., 16:19]
+    assert (rgb_bytes == bgr).all()  # the image's bytes, in its own order, as gazebo_ros
+
+
+def test_camera_info_crosses_the_ros1_wire_with_k() -> None:
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_type
+
+    wire = ros1_type(INFO)
+    assert wire.md5sum == "c9a58c1b0b154e0e6da7578cb991d214"  # Debian's sensor_msgs/CameraInfo
+    info: Any = INFO
+    sent = info(height=2, width=3, d=[0.1] * 5, k=[float(i) for i in range(9)],
+                r=[1.0] * 9, p=[2.0] * 12)  # fmt: skip
+    back: Any = wire.decode(wire.encode(sent))
+    assert (list(back.d), list(back.k), list(back.p)) == (list(sent.d), list(sent.k), [2.0] * 12)
