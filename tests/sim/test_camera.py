@@ -310,3 +310,30 @@ def test_camera_info_crosses_the_ros1_wire_with_k() -> None:
                 r=[1.0] * 9, p=[2.0] * 12)  # fmt: skip
     back: Any = wire.decode(wire.encode(sent))
     assert (list(back.d), list(back.k), list(back.p)) == (list(sent.d), list(sent.k), [2.0] * 12)
+
+
+FALLBACK = """
+from robomodel.sim.sensors import _gl
+from robomodel.sim.sensors.camera import CameraSensor
+from tests.sim.test_camera import Scene
+scene = Scene()
+scene.wait_for(1)
+print(_gl._chosen, scene.got["/camera/rgb/image_raw"][-1].width)
+"""
+
+
+def test_without_a_working_egl_osmesa_renders() -> None:
+    import os
+    import subprocess
+    import sys
+
+    from .conftest import EXAMPLES
+
+    env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/nonexistent.json")  # glvnd: no EGL
+    env.pop("MUJOCO_GL", None)
+    env.pop("PYOPENGL_PLATFORM", None)
+    run = subprocess.run([sys.executable, "-c", FALLBACK], env=env, capture_output=True,
+                         text=True, cwd=EXAMPLES.parent, check=False)  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split() == ["osmesa", "320"]
+    assert "Exception ignored" not in run.stderr  # contexts freed before PyOpenGL goes

@@ -4,15 +4,19 @@
 OSMesa. MuJoCo fixes its own choice when it is imported (``mujoco.gl_context``), before any
 camera exists, and its default there is GLFW, which needs a display: robomodel makes the context
 itself from ``mujoco.egl`` / ``mujoco.osmesa``. PyOpenGL binds one platform per process, so a
-failed EGL attempt is forgotten (its ``OpenGL`` modules dropped) before OSMesa is tried.
+failed EGL attempt is forgotten (its ``OpenGL`` modules dropped) before OSMesa is tried, and the
+choice is written to ``MUJOCO_GL`` for MuJoCo's C side (and for child processes).
 """
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import ctypes.util
 import importlib
 import os
 import sys
+import weakref
 from typing import Any
 
 from robomodel.sim.exceptions import SimulationError
@@ -22,6 +26,16 @@ __all__ = ["RenderingUnavailableError", "check_rendering", "gl_context"]
 # backend -> (the library it loads, the Debian packages that provide a software renderer)
 _BACKENDS = {"egl": ("EGL", "libegl1 libegl-mesa0"), "osmesa": ("OSMesa", "libosmesa6")}
 _chosen: str | None = None
+_live: weakref.WeakSet[Any] = weakref.WeakSet()
+
+
+@atexit.register
+def _free_all() -> None:
+    """Free the contexts still open while PyOpenGL can (MuJoCo's OSMesa context, left to its
+    ``__del__`` at interpreter shutdown, prints an ignored ctypes error)."""
+    for context in list(_live):
+        with contextlib.suppress(Exception):  # exiting anyway
+            context.free()
 
 
 class RenderingUnavailableError(SimulationError):
@@ -72,6 +86,10 @@ def gl_context(width: int, height: int) -> Any:
                 _forget_opengl(loaded_before, platform_was_set)
             continue
         _chosen = backend
+        _live.add(context)
+        # MuJoCo's C side loads the GL functions by MUJOCO_GL too (else the first of
+        # OSMesa/EGL/GLX found in the process: EGL after a failed EGL attempt)
+        os.environ.setdefault("MUJOCO_GL", backend)
         return context
     packages = " or ".join(_BACKENDS[b][1] for b in candidates if b in _BACKENDS)
     raise RenderingUnavailableError(
