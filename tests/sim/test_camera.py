@@ -61,6 +61,7 @@ class Scene:
     def wait_for(self, count: int) -> None:
         """Step until every topic has ``count`` messages (sim time: no wall clock)."""
         while min(len(v) for v in self.got.values()) < count:
+            assert self.sim.time_s < 10.0, {t: len(v) for t, v in self.got.items()}
             self.sim.step(10)
             self.context.advance(0.0)
 
@@ -282,6 +283,7 @@ def test_a_ros2_depth_camera_on_the_bus_with_its_range_as_inf() -> None:
     for topic, msg_type in topics.items():
         node.create_subscription(msg_type, topic, got[topic].append)
     while min(len(v) for v in got.values()) < 2:
+        assert sim.time_s < 5.0, {t: len(v) for t, v in got.items()}
         sim.step(10)
         context.advance(0.0)
     image = got["/robot/cam/image_raw"][-1]
@@ -337,3 +339,65 @@ def test_without_a_working_egl_osmesa_renders() -> None:
     assert run.returncode == 0, run.stderr
     assert run.stdout.split() == ["osmesa", "320"]
     assert "Exception ignored" not in run.stderr  # contexts freed before PyOpenGL goes
+
+
+# gazebo_plugins/worlds/gazebo_ros_camera_demo.world (ros2 d52f7c4): its camera_model as
+# written, comments dropped; a wall 2.2 m behind it (the camera looks along -x, yaw 3.14)
+DEMO_WORLD = """<sdf version="1.6"><world name="default">
+  <include><uri>model://sun</uri></include>
+  <model name="wall"><static>true</static><pose>-2.25 0 0.5 0 0 0</pose>
+    <link name="link"><collision name="c"><geometry><box><size>0.1 4 1</size></box></geometry>
+    </collision></link></model>
+  <model name="camera_model">
+    <pose>0 0 0.5 0 0 3.14</pose>
+    <static>true</static>
+    <link name="camera_link">
+      <sensor type="camera" name="camera1">
+        <update_rate>60</update_rate>
+        <visualize>true</visualize>
+        <camera name="head">
+          <horizontal_fov>1.3962634</horizontal_fov>
+          <image><width>640</width><height>480</height><format>R8G8B8</format></image>
+          <clip><near>0.02</near><far>300</far></clip>
+          <noise><type>gaussian</type><mean>0.0</mean><stddev>0.007</stddev></noise>
+        </camera>
+        <plugin name="camera_controller" filename="libgazebo_ros_camera.so">
+          <ros>
+            <namespace>demo_cam</namespace>
+            <remapping>image_raw:=image_demo</remapping>
+            <remapping>camera_info:=camera_info_demo</remapping>
+          </ros>
+        </plugin>
+      </sensor>
+    </link>
+  </model>
+</world></sdf>"""
+
+
+def test_a_camera_of_an_sdf_world_model_publishes_what_the_wall_looks_like() -> None:
+    from robomodel.sim import parse_world
+
+    sim = Simulation(parse_world(DEMO_WORLD))
+    context = Context(clock=ManualClock())
+    SimBridge(sim, context, ros_version=2)
+    images: list[Any] = []
+    infos: list[Any] = []
+    node = context.create_node("test")
+    node.create_subscription(IMAGE, "/demo_cam/camera1/image_raw", images.append)
+    node.create_subscription(INFO, "/demo_cam/camera1/camera_info", infos.append)
+    while not images or not infos:
+        assert sim.time_s < 5.0, "no image within 5 s of sim time"
+        sim.step(10)
+        context.advance(0.0)
+    image = images[-1]
+    assert (image.width, image.height, image.header.frame_id) == (640, 480, "camera_link")
+    rgb = np.frombuffer(image.data, np.uint8).reshape(480, 640, 3)
+    f = infos[-1].k[0]
+    # the wall's top edge (z 1 m) seen from 0.5 m up, 2.2 m away: the row (h - 1) / 2 - f 0.5 / 2.2
+    top = (480 - 1) / 2 - f * (1.0 - 0.5) / 2.2
+    bottom = (480 - 1) / 2 + f * 0.5 / 2.2  # and its foot (z 0; no ground plane in this world)
+    rows = np.arange(480)
+    assert (rgb[rows < top - 1.5] == 0).all()
+    lit = rgb[(rows > top + 1.5) & (rows < bottom - 1.5)].max(axis=2)
+    assert (lit > 40).all()
+    assert (rgb[rows > bottom + 1.5] == 0).all()

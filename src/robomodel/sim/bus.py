@@ -130,6 +130,8 @@ class SimBridge:
         self.ground_truth: list[GroundTruth] = []
         for built in sim.robots:
             self._add_robot(built, ground_truth_rate_hz)
+        for i, mounted in enumerate(sim.world.sensors):  # the world's own (a camera on a pole)
+            self._add_sensor(mounted.spec, "", "", 1000 + i, site=mounted.site)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
         self._add_states(clock_rate_hz)
@@ -169,15 +171,7 @@ class SimBridge:
         ns = robot_namespace(built)
         prefix_topic = "" if ns == "/" else ns
         for i, spec in enumerate(built.extensions.sensors):
-            if spec.camera is not None:
-                self._add_camera(built, spec, prefix_topic, i)
-                continue
-            sensor = _SENSORS[spec.kind](spec, sim.model, sim.data, prefix=built.prefix, seed=i)
-            publisher = self.node.create_publisher(
-                sensor.message_type, prefix_topic + spec.topic, 10
-            )
-            sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
-            self.sensors.append(sensor)
+            self._add_sensor(spec, built.prefix, prefix_topic, i)
         if ground_truth_rate_hz > 0 and built.floating:  # a welded base has no pose to report
             truth = GroundTruth(
                 sim.model, sim.data, built.root_body, built.prefix + built.robot.tree().root
@@ -191,8 +185,22 @@ class SimBridge:
         elif not built.floating:
             self._add_weld_tf(built)
 
+    def _add_sensor(
+        self, spec: SensorSpec, prefix: str, prefix_topic: str, seed: int, site: str = ""
+    ) -> None:
+        """One sensor of a robot (frames prefixed ``prefix``, topics under ``prefix_topic``) or
+        of the world (MuJoCo ``site``)."""
+        if spec.camera is not None:
+            self._add_camera(spec, prefix, prefix_topic, seed, site)
+            return
+        kind = _SENSORS[spec.kind]
+        sensor = kind(spec, self.sim.model, self.sim.data, prefix=prefix, seed=seed, site=site)
+        publisher = self.node.create_publisher(sensor.message_type, prefix_topic + spec.topic, 10)
+        self.sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
+        self.sensors.append(sensor)
+
     def _add_camera(
-        self, built: BuiltRobot, spec: SensorSpec, prefix_topic: str, seed: int
+        self, spec: SensorSpec, prefix: str, prefix_topic: str, seed: int, site: str
     ) -> None:
         """A camera or depth sensor: one render per update, published on every topic of its
         plugin (:mod:`robomodel.sim.sensors.camera`), ROS 1's queue of 2 as gazebo_ros."""
@@ -202,7 +210,7 @@ class SimBridge:
         assert spec.camera is not None
         topics = camera_topics(spec.camera, spec.name, self.ros_version)
         sensor = CameraSensor(
-            spec, self.sim.model, self.sim.data, prefix=built.prefix, seed=seed, topics=topics
+            spec, self.sim.model, self.sim.data, prefix=prefix, seed=seed, site=site, topics=topics
         )
         depth = 2 if self.ros_version == 1 else 5
 

@@ -85,12 +85,13 @@ class CameraSensor(SimSensor):
         *,
         prefix: str = "",
         seed: int = 0,
+        site: str = "",
         topics: CameraTopics | None = None,
     ) -> None:
-        super().__init__(spec, model, data, prefix=prefix, seed=seed)
+        super().__init__(spec, model, data, prefix=prefix, seed=seed, site=site)
         self.camera: CameraSpec = spec.camera or CameraSpec()
         self.topics = topics
-        self.camera_id = int(model.camera(prefix + spec.name).id)
+        self.camera_id = int(model.camera(self.site_name).id)
         self.image_type = get_message_type("sensor_msgs/msg/Image")
         self.info_type = get_message_type("sensor_msgs/msg/CameraInfo")
         self.cloud_type = get_message_type("sensor_msgs/msg/PointCloud2")
