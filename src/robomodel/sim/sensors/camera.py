@@ -11,8 +11,9 @@ A frame is rendered once per update and every message of the sensor is built fro
 step 32 as ``PointCloud2Modifier::setPointCloud2FieldsByString(2, "xyz", "rgb")``, the colour
 bytes copied from the image in its own order as gazebo_ros does) and the CameraInfo (plumb_bob,
 no distortion, ``K`` from the focal length ``width / (2 tan(hfov / 2))`` and the centre
-``((width + 1) / 2, (height + 1) / 2)``). Not modelled: image noise, lens distortion, and the
-clip planes for the colour image (the depth image and the cloud do honour them).
+``((width + 1) / 2, (height + 1) / 2)``). A gaussian ``<noise>`` is Gazebo's: one sample per
+pixel and frame, added to each of its channels in [0, 1]. Not modelled: lens distortion, depth
+noise, and the clip planes for the colour image (the depth image and the cloud honour them).
 """
 
 from __future__ import annotations
@@ -133,7 +134,16 @@ class CameraSensor(SimSensor):
         depth = self._zbuffer if self.camera.depth else None
         mj.mjr_readPixels(self._rgb, depth, self._viewport, self._context)
         rgb = self._rgb[::-1]  # OpenGL's rows are bottom to top
+        if self.camera.noise_stddev > 0 or self.camera.noise_mean != 0:
+            rgb = self._noisy(rgb)
         return Frame(time_s, rgb, self._depth_m() if self.camera.depth else None)
+
+    def _noisy(self, rgb: np.ndarray) -> np.ndarray:
+        """Gazebo's camera noise (see the module docstring), in 8-bit steps, clamped."""
+        cam = self.camera
+        h, w = rgb.shape[:2]
+        noise = self.rng.normal(cam.noise_mean * 255.0, cam.noise_stddev * 255.0, (h, w, 1))
+        return np.clip(rgb + noise, 0, 255).round().astype(np.uint8)
 
     def _depth_m(self) -> np.ndarray:
         """Linear z depth from the depth buffer (MuJoCo's near and far planes), clipped to the

@@ -50,6 +50,8 @@ class CameraSpec:
     """``<camera>`` with the plugin's settings (what the messages need).
 
     Attributes:
+        noise_mean: Gaussian ``<noise>`` of the colour image (and ``noise_stddev``), in [0, 1]
+            of a channel; 0 for none.
         plugin: The plugin's child elements as (tag, text), ``ros/namespace`` and
             ``ros/remapping`` included (a remapping may repeat).
         ros_version: The plugin's form: 1 (camelCase tags or a ROS 1-only plugin), 2 (a ``<ros>``
@@ -63,6 +65,8 @@ class CameraSpec:
     near_m: float = 0.1
     far_m: float = 100.0
     depth: bool = False
+    noise_mean: float = 0.0
+    noise_stddev: float = 0.0
     plugin: tuple[tuple[str, str], ...] = ()
     ros_version: int = 0
 
@@ -147,6 +151,8 @@ def parse_camera(el: etree._Element, name: str, depth: bool, where: str) -> Came
             where=where,
         )
     plugin, version = _plugin(el)
+    noise = cam.find("noise")
+    gaussian = noise is not None and (noise.findtext("type") or "").strip() == "gaussian"
     spec = CameraSpec(
         horizontal_fov_rad=_number(cam.findtext("horizontal_fov"), 1.047, "horizontal_fov", where),
         width_px=int(_number(cam.findtext("image/width"), 320, "width", where)),
@@ -155,6 +161,10 @@ def parse_camera(el: etree._Element, name: str, depth: bool, where: str) -> Came
         near_m=_number(cam.findtext("clip/near"), 0.1, "near", where),
         far_m=_number(cam.findtext("clip/far"), 100.0, "far", where),
         depth=depth,
+        noise_mean=_number(cam.findtext("noise/mean"), 0.0, "mean", where) if gaussian else 0.0,
+        noise_stddev=_number(cam.findtext("noise/stddev"), 0.0, "stddev", where)
+        if gaussian
+        else 0.0,
         plugin=plugin,
         ros_version=version,
     )
