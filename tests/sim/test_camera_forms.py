@@ -263,3 +263,23 @@ def test_a_camera_of_an_sdf_world_model_publishes_what_the_wall_looks_like() -> 
     change = rgb[wall].astype(int) - before[wall]
     assert (change[..., 0] == change[..., 1]).all() and (change[..., 1] == change[..., 2]).all()
     assert change[..., 0].std() == pytest.approx(math.sqrt(2) * stddev, rel=0.1)
+
+
+def test_robomodel_sim_without_the_asked_opengl_is_one_error_line_and_exit_2() -> None:
+    import os
+    import subprocess
+
+    from tests.conftest import ROBOMODEL
+
+    from .conftest import SIMPLEBOT_CAMERA
+
+    env = dict(os.environ, MUJOCO_GL="egl", __EGL_VENDOR_LIBRARY_FILENAMES="/nonexistent.json")
+    run = subprocess.run(
+        [*ROBOMODEL, "sim", str(SIMPLEBOT_CAMERA), "--world", str(WALL_WORLD), "--headless",
+         "--rate", "max", "--duration", "0.5", "--bus", "inproc"],
+        env=env, capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert run.returncode == 2, run.stderr
+    errors = [line for line in run.stderr.splitlines() if "error" in line]
+    assert len(errors) == 1 and "Traceback" not in run.stderr
+    assert "egl: " in errors[0] and "install Debian's libegl1 libegl-mesa0" in errors[0]

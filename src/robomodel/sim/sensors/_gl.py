@@ -80,7 +80,7 @@ def gl_context(width: int, height: int) -> Any:
         try:
             context = _try(backend, width, height)
         except Exception as exc:  # ImportError, OSError, PyOpenGL's errors: try the next
-            first_line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            first_line = str(exc).splitlines()[0].rstrip(".") if str(exc) else type(exc).__name__
             reasons.append(f"{backend}: {first_line}")
             if backend != candidates[-1]:
                 _forget_opengl(loaded_before, platform_was_set)
