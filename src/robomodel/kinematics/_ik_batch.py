@@ -34,7 +34,8 @@ F64 = NDArray[np.float64]
 
 @dataclass(frozen=True, slots=True)
 class IKBatchResult:
-    """The outcome of a batched solve: one row per target (see :class:`IKResult`)."""
+    """The outcome of a batched solve: one row per target (see
+    :class:`~robomodel.kinematics.ik.IKResult`)."""
 
     q: F64
     success: NDArray[np.bool_]
