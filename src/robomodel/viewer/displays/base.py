@@ -273,6 +273,9 @@ class DisplayContext:
         topic_types: Returns the types the graph shows for a topic (empty when unknown).
         post: Runs a callable on the loop thread (from a GUI callback).
         now_ns: The bus's current time [ns] (marker lifetimes, decay times).
+        load_mesh: Reads a mesh URI (``package://``, ``file://``, a path) into
+            :class:`~robomodel.viewer.meshes.MeshPart` s, cached; raises
+            :class:`~robomodel.errors.RobomodelError` (None: no meshes in this viewer).
     """
 
     scene: Any
@@ -281,6 +284,7 @@ class DisplayContext:
     topic_types: Callable[[str], frozenset[str]]
     post: Callable[[Callable[[], object]], None]
     now_ns: Callable[[], int]
+    load_mesh: Callable[[str], tuple[Any, ...]] | None = None
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9_.\-]")
