@@ -47,6 +47,7 @@ __all__ = [
 ]
 
 _LOADED: list[bool] = []
+_NOT_DISPLAYS = ("attach", "base", "manager", "panel", "rviz_io")
 
 
 def load_builtin_displays() -> None:
@@ -55,5 +56,5 @@ def load_builtin_displays() -> None:
         return
     _LOADED.append(True)
     for info in pkgutil.iter_modules(__path__):
-        if not info.name.startswith("_") and info.name not in ("base", "manager", "panel"):
+        if not info.name.startswith("_") and info.name not in _NOT_DISPLAYS:
             importlib.import_module(f"{__name__}.{info.name}")
