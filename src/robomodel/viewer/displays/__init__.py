@@ -23,6 +23,7 @@ from robomodel.viewer.displays.base import (
     UnknownDisplayError,
     display_class,
     display_classes,
+    is_rviz_display,
     register_display,
     stamp_ns,
 )
@@ -41,6 +42,7 @@ __all__ = [
     "UnknownDisplayError",
     "display_class",
     "display_classes",
+    "is_rviz_display",
     "load_builtin_displays",
     "register_display",
     "stamp_ns",

@@ -57,6 +57,7 @@ __all__ = [
     "UnknownDisplayError",
     "display_class",
     "display_classes",
+    "is_rviz_display",
     "register_display",
     "stamp_ns",
 ]
@@ -323,6 +324,7 @@ class Display:
                 self.values[key] = self.option_spec(key).coerce(value)
         self.messages_received = 0
         self.status = DisplayStatus.ok()
+        self.config_entry: Any = None  # the .rviz entry it was read from (None: added here)
         self._nodes: dict[str, Any] = {}
 
     # -- options -------------------------------------------------------------------------------
@@ -443,6 +445,8 @@ class Display:
 
 
 _REGISTRY: dict[str, type[Display]] = {}
+# RViz's own display plugins (ROS 1, ROS 2); another package's "Marker" is not RViz's
+_RVIZ_PACKAGES = ("", "rviz", "rviz_default_plugins")
 D = TypeVar("D", bound=type[Display])
 
 
@@ -462,6 +466,14 @@ def display_classes() -> Mapping[str, type[Display]]:
     return MappingProxyType(dict(sorted(_REGISTRY.items())))
 
 
+def is_rviz_display(class_name: str, kinds: tuple[str, ...] | None = None) -> bool:
+    """Whether ``class_name`` is RViz's own display of one of ``kinds`` (None: any robomodel
+    has)."""
+    package, _, kind = class_name.rpartition("/")
+    known = display_classes() if kinds is None else kinds
+    return package in _RVIZ_PACKAGES and kind in known
+
+
 def display_class(class_name: str) -> type[Display]:
     """The display for ``Marker``, ``rviz/Marker`` or ``rviz_default_plugins/Marker``.
 
@@ -469,8 +481,8 @@ def display_class(class_name: str) -> type[Display]:
         UnknownDisplayError: robomodel has no such display.
     """
     classes = display_classes()
-    kind = class_name.rsplit("/", 1)[-1]
-    if kind not in classes:
+    package, _, kind = class_name.rpartition("/")
+    if kind not in classes or package not in _RVIZ_PACKAGES:
         raise UnknownDisplayError(
             f"robomodel has no display '{class_name}'; it has: {', '.join(classes)}"
         )
