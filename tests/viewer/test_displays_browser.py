@@ -35,9 +35,8 @@ RED_CUBE = (
 @pytest.fixture
 def zenoh_viewer() -> Iterator[tuple[Viewer, str]]:
     domain = unique_domain()
-    viewer = Viewer(
-        ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, bus="zenoh", domain_id=int(domain))  # fmt: skip
-    )
+    source = RobotSource(str(PLANAR))
+    viewer = Viewer(ViewerOptions(sources=(source,), port=0, bus="zenoh", domain_id=int(domain)))
     viewer.start()
     yield viewer, domain
     viewer.close()
