@@ -88,9 +88,8 @@ def test_rviz_opens_the_displays_saved_from_the_page(ros1: Ros1, tmp_path: Path,
     saved = read_rviz_file(config)
     assert [d.class_name for d in saved.displays][-2:] == ["rviz/Marker", "rviz/MarkerArray"]
     assert saved.displays[-2].settings["Marker Topic"] == "/visualization_marker"
-    publisher = ros1.start(
-        ["/usr/bin/rostopic", "pub", "-r", "5", "/visualization_marker", "visualization_msgs/Marker", RED_CUBE]  # fmt: skip
-    )
+    pub = ["/usr/bin/rostopic", "pub", "-r", "5", "/visualization_marker"]
+    publisher = ros1.start([*pub, "visualization_msgs/Marker", RED_CUBE])
     display = _xvfb(ros1, "1280x900x24")
     log = tmp_path / "rviz.log"
     with log.open("w") as out:
