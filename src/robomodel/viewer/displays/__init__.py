@@ -49,7 +49,7 @@ __all__ = [
 ]
 
 _LOADED: list[bool] = []
-_NOT_DISPLAYS = ("attach", "base", "manager", "panel", "rviz_io")
+_NOT_DISPLAYS = ("attach", "base", "manager", "options", "panel", "rviz_io")
 
 
 def load_builtin_displays() -> None:
