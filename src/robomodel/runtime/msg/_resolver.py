@@ -4,8 +4,11 @@
 classes. The definition is taken from, in this order:
 
 1. the interface packages on the package path (``--package-path``, ``ROS_PACKAGE_PATH``,
-   ``AMENT_PREFIX_PATH``): a package's ``msg/*.msg`` and ``srv/*.srv`` files, as ROS's own
-   overlays let a workspace's package win;
+   ``AMENT_PREFIX_PATH``): a package's ``msg/*.msg``, ``srv/*.srv`` and ``action/*.action``
+   files, as ROS's own overlays let a workspace's package win. An action gives the types
+   rosidl derives from it (:mod:`.action`: ``pkg/action/Name_Goal``, ``_SendGoal``,
+   ``_FeedbackMessage``, ...) and those ROS 1's genaction derives (``pkg/NameGoal``,
+   ``pkg/NameActionGoal``, ``pkg/NameActionFeedback``, ...: :mod:`._actions`);
 2. the common interfaces of the ROS 2 distribution in rosbags' type stores, chosen by
    ``ROS_DISTRO`` (``jazzy`` when unset, or when it names a ROS 1 distribution);
 3. rosbags' ROS 1 Noetic store, for names only ROS 1 has;
@@ -27,12 +30,14 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from robomodel.runtime.msg._actions import action_part, action_parts, ros1_wrapper_text
 from robomodel.runtime.msg._from_definition import (
     FieldDef,
     build_message_class,
     build_service_class,
 )
 from robomodel.runtime.msg._schema import (
+    Action,
     Message,
     MessageTypeError,
     Service,
@@ -45,6 +50,7 @@ __all__ = [
     "distro",
     "learn_definition",
     "package_definitions",
+    "resolve_action",
     "resolve_message",
     "resolve_service",
 ]
@@ -55,6 +61,7 @@ _ROS2_DISTROS = ("humble", "iron", "jazzy", "kilted", "lyrical")
 _lock = threading.RLock()
 _messages: dict[str, type[Message]] = {}
 _services: dict[str, type[Service]] = {}
+_actions: dict[str, type[Action]] = {}
 _learned: dict[str, FieldDef] = {}
 _package_paths: tuple[Path, ...] = ()
 _distro: str | None = None
@@ -73,6 +80,7 @@ def configure(
             _distro = distro
         _messages.clear()
         _services.clear()
+        _actions.clear()
         _package_files.cache_clear()
 
 
@@ -104,12 +112,13 @@ def _index() -> Any:
 
 @functools.cache
 def _package_files() -> dict[str, Path]:
-    """``pkg/msg/Name`` and ``pkg/srv/Name`` -> the ``.msg``/``.srv`` file on the package path."""
+    """``pkg/msg/Name``, ``pkg/srv/Name`` and ``pkg/action/Name`` -> the ``.msg``/``.srv``/
+    ``.action`` file on the package path."""
     files: dict[str, Path] = {}
     index = _index()
     for package in index.names():
         root = index.find(package)
-        for kind in ("msg", "srv"):
+        for kind in ("msg", "srv", "action"):
             for path in sorted((root / kind).glob(f"*.{kind}")):
                 files.setdefault(f"{package}/{kind}/{path.stem}", path)
     return files
@@ -126,12 +135,22 @@ def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
 
 
 def package_definitions(name: str) -> dict[str, FieldDef] | None:
-    """The definition of message ``pkg/msg/Name`` or of a service half (``pkg/srv/Name_Request``,
-    or ROS 1's ``pkg/msg/NameRequest``) from the package path; None if no package has it."""
+    """The definition of message ``pkg/msg/Name``, of a service half (``pkg/srv/Name_Request``,
+    or ROS 1's ``pkg/msg/NameRequest``) or of an action part (``pkg/action/Name_Goal``, or
+    ROS 1's ``pkg/msg/NameGoal`` and ``pkg/msg/NameActionGoal``) from the package path; None
+    if no package has it."""
     files = _package_files()
     path = files.get(name)
     if path is not None:
         return _parse(path.read_text(), name, where=str(path))
+    part = action_part(name, files)
+    if part is not None:
+        action, index, ros1 = part
+        path = files[action]
+        text = action_parts(path.read_text(), where=str(path))[index]
+        if ros1 is not None:
+            text = ros1_wrapper_text(name, text, ros1)
+        return _parse_as(text, name, where=str(path))
     half = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name) or re.fullmatch(
         r"(\w+)/msg/(\w+?)(Request|Response)", name
     )
@@ -141,14 +160,24 @@ def package_definitions(name: str) -> dict[str, FieldDef] | None:
     halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
     if len(halves) != 2:
         raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
-    # rosbags names parsed types pkg/msg/Name: parse the half as that, then rename it.
-    as_message = f"{half[1]}/msg/{half[2]}_{half[3]}"
-    found = _parse(halves[0 if half[3] == "Request" else 1], as_message, where=str(path))
-    found[name] = found.pop(as_message)
+    return _parse_as(halves[0 if half[3] == "Request" else 1], name, where=str(path))
+
+
+def _parse_as(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
+    """Parse ``text`` as type ``name``, which may be a service or action part: rosbags names
+    parsed types ``pkg/msg/Name`` (and resolves relative names in that package), so parse it
+    as that, then rename it."""
+    package, _, short = name.split("/")
+    as_message = f"{package}/msg/{short}"
+    found = _parse(text, as_message, where=where)
+    if as_message != name:
+        found[name] = found.pop(as_message)
     return found
 
 
 def _definition(key: str) -> FieldDef | None:
+    if _DERIVED.fullmatch(key):
+        return None  # derived from an action's parts by make_action, never parsed
     found = package_definitions(key)
     if found is not None:
         return found[key]
@@ -203,7 +232,7 @@ def searched() -> str:
     for variable in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"):
         places += [f"{variable} {p}" for p in os.environ.get(variable, "").split(os.pathsep) if p]
     packages = (
-        f"the msg/ and srv/ folders of the packages under {', '.join(places)}"
+        f"the msg/, srv/ and action/ folders of the packages under {', '.join(places)}"
         if places
         else "no package path (--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH are unset)"
     )
@@ -222,6 +251,11 @@ def _hint(key: str) -> str:
 def resolve_message(key: str, name: str) -> type[Message]:
     """The class of message type ``key`` (``pkg/msg/Name``) from its definition; ``name`` is
     what the user wrote. MessageTypeError, in one line, if no source has it."""
+    derived = _DERIVED.fullmatch(key)
+    if derived is not None and (derived[3] == "FeedbackMessage") == (derived[4] is None):
+        action = resolve_action(f"{derived[1]}/action/{derived[2]}", name)
+        kind = getattr(action, derived[3])
+        return kind if derived[4] is None else getattr(kind, derived[4])  # type: ignore[no-any-return]
     with _lock:
         found = _messages.get(key)
         if found is None:
@@ -237,6 +271,10 @@ def resolve_message(key: str, name: str) -> type[Message]:
 
 def resolve_service(key: str, name: str) -> type[Service]:
     """The class of service type ``key`` (``pkg/srv/Name``) from the package path."""
+    derived = _DERIVED.fullmatch(f"{key}_Service")
+    if derived is not None and derived[3] in ("SendGoal", "GetResult"):
+        action = resolve_action(f"{derived[1]}/action/{derived[2]}", name)
+        return getattr(action, derived[3])  # type: ignore[no-any-return]
     with _lock:
         found = _services.get(key)
         if found is None:
@@ -244,4 +282,31 @@ def resolve_service(key: str, name: str) -> type[Service]:
                 raise MessageTypeError(f"unknown service type '{name}': looked in {searched()}")
             halves = [resolve_message(f"{key}_{part}", name) for part in ("Request", "Response")]
             found = _services[key] = build_service_class(key, *halves)
+        return found
+
+
+# The types rosidl derives from an action (rosidl_parser's Action): the two services, their
+# halves and the feedback message. "_Service" is appended by resolve_service to tell a service
+# from a message of the same name.
+_DERIVED = re.compile(
+    r"(\w+)/action/(\w+?)_(SendGoal|GetResult|FeedbackMessage)(?:_(Request|Response|Service))?"
+)
+
+
+def resolve_action(key: str, name: str) -> type[Action]:
+    """The action ``key`` (``pkg/action/Name``): robomodel's own if it has it, else the one
+    built from the package path's ``.action`` file, with the types rosidl derives from it."""
+    from robomodel.runtime.msg._schema import _import_package
+    from robomodel.runtime.msg.action import _ACTIONS, make_action
+
+    _import_package(key)
+    with _lock:
+        found = _ACTIONS.get(key) or _actions.get(key)
+        if found is None:
+            if key not in _package_files():
+                raise MessageTypeError(f"unknown action type '{name}': looked in {searched()}")
+            goal, result, feedback = (
+                resolve_message(f"{key}_{part}", name) for part in ("Goal", "Result", "Feedback")
+            )
+            found = _actions[key] = make_action(key, goal, result, feedback, register=False)
         return found
