@@ -241,3 +241,25 @@ MIXINS = {
 }
 # Types read from a ROS 1 store (they exist in ROS 1 only).
 ROS1_ONLY = {"rosgraph_msgs/msg/Log"}
+
+# Earlier layouts of a type (one module each): the class name, the release folder under
+# tools/interface_versions/ and the type. Their classes are named as the real type but not
+# registered, so the registry keeps the current layout.
+VARIANTS: dict[str, tuple[str, tuple[tuple[str, str, str], ...]]] = {
+    "controller_manager_msgs_layouts": (
+        "controller_manager_msgs' ControllerState in the layouts of earlier Jazzy ros2_control "
+        "releases (4.0-4.12 and 4.13-4.27), for controller_manager_msgs_variants.",
+        (
+            (
+                "ControllerState_4_0",
+                "ros2_control-4.12.0",
+                "controller_manager_msgs/msg/ControllerState",
+            ),
+            (
+                "ControllerState_4_13",
+                "ros2_control-4.13.0",
+                "controller_manager_msgs/msg/ControllerState",
+            ),
+        ),
+    ),
+}

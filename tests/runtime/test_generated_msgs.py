@@ -16,7 +16,7 @@ from robomodel.runtime.msg.typehash import type_hash
 ROOT = Path(__file__).resolve().parents[2]
 MSG = ROOT / "src" / "robomodel" / "runtime" / "msg"
 sys.path.insert(0, str(ROOT / "tools"))
-from gen_msgs_modules import MODULES, ROS1_ONLY  # noqa: E402
+from gen_msgs_modules import MODULES, ROS1_ONLY, VARIANTS  # noqa: E402
 
 
 def _check(*argv: str) -> subprocess.CompletedProcess[str]:
@@ -30,7 +30,7 @@ def test_checked_in_modules_are_the_generators_output() -> None:
 
 
 def test_check_names_a_module_that_differs(tmp_path: Path) -> None:
-    for module in MODULES:
+    for module in (*MODULES, *VARIANTS):
         shutil.copy(MSG / f"{module}.py", tmp_path)
     edited = tmp_path / "geometry_msgs.py"
     edited.write_text(edited.read_text().replace("w: float = 1.0", "w: float = 0.0"))
@@ -62,3 +62,15 @@ def test_generated_store_types_hash_as_rosbags() -> None:
     assert len(in_store) > 40
     for key in in_store:
         assert type_hash(get_message_type(key)) == store.hash_rihs01(key), key
+
+
+def test_earlier_layouts_are_not_registered() -> None:
+    """The generated ControllerState of ros2_control 4.0-4.12 is named as the type but the
+    registry keeps the current layout (with is_async and update_rate, 4.28 on)."""
+    from robomodel.runtime.msg.controller_manager_msgs_layouts import ControllerState_4_0
+
+    current = get_message_type("controller_manager_msgs/msg/ControllerState")
+    assert ControllerState_4_0.__typename__ == current.__typename__
+    assert current is not ControllerState_4_0
+    assert "is_async" in current.field_names()
+    assert "exported_state_interfaces" not in ControllerState_4_0.field_names()
