@@ -187,3 +187,51 @@ def test_action_topics_and_services_across_processes(tmp_path: Path) -> None:
     finally:
         server.kill()
         server.wait()
+
+
+def test_action_feedback_recorded_read_by_rosbags_and_played(tmp_path: Path) -> None:
+    """bag record -a --include-hidden-topics stores an action's feedback with its definition;
+    rosbags decodes it from the bag alone; bag play without the package path republishes it
+    from that definition under the same type hash (echo, which has the package, warns of none)."""
+    from rosbags.rosbag2 import Reader
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    root = make_packages(tmp_path / "ws")
+    env = {**os.environ, "ROS_PACKAGE_PATH": str(root)}
+    bare = {k: v for k, v in env.items() if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
+    bus = ("--domain-id", unique_domain())
+    kind, topic = "my_msgs/action/Fibonacci_FeedbackMessage", "/fib/_action/feedback"
+    value = "{feedback: {partial_sequence: [1, 2, 3], last: {value: 4.5}}}"
+    procs = [subprocess.Popen([*ROBOMODEL, "topic", "pub", topic, kind, value, "-r", "10", *bus],
+                              env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]  # fmt: skip
+    try:
+        bag = tmp_path / "bag"
+        record = subprocess.run(
+            [*ROBOMODEL, "bag", "record", "-a", "--include-hidden-topics", "-o", str(bag),
+             "--duration", str(scaled(4)), *bus],
+            env=env, capture_output=True, text=True, timeout=scaled(90),
+        )  # fmt: skip
+        assert record.returncode == 0, record.stderr
+        procs[0].kill()
+        store = get_typestore(Stores.ROS2_JAZZY)
+        with Reader(bag) as reader:
+            (conn,) = [c for c in reader.connections if c.topic == topic]
+            assert conn.msgtype == kind
+            store.register(get_types_from_msg(conn.msgdef.data, kind))
+            raw = next(raw for c, _, raw in reader.messages([conn]))
+        theirs = store.deserialize_cdr(raw, kind)
+        assert theirs.feedback.partial_sequence.tolist() == [1, 2, 3]
+        assert theirs.feedback.last.value == 4.5
+        procs.append(subprocess.Popen([*ROBOMODEL, "bag", "play", str(bag), "--loop", *bus],
+                                      env=bare, stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.DEVNULL))  # fmt: skip
+        echo = subprocess.run([*ROBOMODEL, "topic", "echo", topic, "--once", *bus], env=env,
+                              capture_output=True, text=True, timeout=scaled(90))  # fmt: skip
+        assert echo.returncode == 0, echo.stderr
+        assert "hash" not in echo.stderr.lower(), echo.stderr
+        got = yaml.safe_load(echo.stdout.split("---")[0])
+        assert got["feedback"] == {"partial_sequence": [1, 2, 3], "last": {"value": 4.5}}
+    finally:
+        for proc in procs:
+            proc.kill()
+            proc.wait()

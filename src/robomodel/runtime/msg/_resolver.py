@@ -177,7 +177,8 @@ def _parse_as(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
 
 def _definition(key: str) -> FieldDef | None:
     if _DERIVED.fullmatch(key):
-        return None  # derived from an action's parts by make_action, never parsed
+        # derived from an action's parts by make_action, unless a bag's schema taught it
+        return _learned.get(key)
     found = package_definitions(key)
     if found is not None:
         return found[key]
@@ -252,7 +253,11 @@ def resolve_message(key: str, name: str) -> type[Message]:
     """The class of message type ``key`` (``pkg/msg/Name``) from its definition; ``name`` is
     what the user wrote. MessageTypeError, in one line, if no source has it."""
     derived = _DERIVED.fullmatch(key)
-    if derived is not None and (derived[3] == "FeedbackMessage") == (derived[4] is None):
+    if (
+        derived is not None
+        and (derived[3] == "FeedbackMessage") == (derived[4] is None)
+        and _action_known(f"{derived[1]}/action/{derived[2]}")
+    ):
         action = resolve_action(f"{derived[1]}/action/{derived[2]}", name)
         kind = getattr(action, derived[3])
         return kind if derived[4] is None else getattr(kind, derived[4])  # type: ignore[no-any-return]
@@ -291,6 +296,15 @@ def resolve_service(key: str, name: str) -> type[Service]:
 _DERIVED = re.compile(
     r"(\w+)/action/(\w+?)_(SendGoal|GetResult|FeedbackMessage)(?:_(Request|Response|Service))?"
 )
+
+
+def _action_known(key: str) -> bool:
+    """Whether action ``key`` is robomodel's own or on the package path."""
+    from robomodel.runtime.msg._schema import _import_package
+    from robomodel.runtime.msg.action import _ACTIONS
+
+    _import_package(key)
+    return key in _ACTIONS or key in _package_files()
 
 
 def resolve_action(key: str, name: str) -> type[Action]:
