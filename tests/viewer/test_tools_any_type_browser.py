@@ -66,7 +66,7 @@ def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS")}
         master = subprocess.Popen(
             [*ROBOMODEL, "master", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-            stderr=subprocess.PIPE, text=True, start_new_session=True,
+            stderr=subprocess.DEVNULL, text=True, start_new_session=True,
         )  # fmt: skip
         bus["master"] = f"http://127.0.0.1:{port}/"
         wait_for(lambda: _answers(bus["master"]), timeout_s=scaled(30), what="the ROS 1 master")
@@ -147,3 +147,50 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
     assert type(received[0]).__typename__ == "my_msgs/msg/Reading"
     page.get_by_text("publishing my_msgs/msg/Reading").first.wait_for()
     save_shot(page, f"tools_any_type_{viewer.options.bus}")
+
+
+# A type no package or store has: only its (Debian rospy) publisher knows it, and sends its
+# definition in the TCPROS header (as in tests/ros1wire/test_types_from_definitions_ros1.py).
+_UNKNOWN = r"""
+import genpy.dynamic, rospy
+rospy.init_node("debian_unknown", anonymous=True)
+text = "geometry_msgs/Point where\nuint8 level\n" + "=" * 80
+text += "\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n"
+Sample = genpy.dynamic.generate_dynamic("lab_msgs/Sample", text)["lab_msgs/Sample"]
+Point = genpy.dynamic.generate_dynamic("geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n")
+pub = rospy.Publisher("/sample", Sample, queue_size=1)
+while not rospy.is_shutdown():
+    pub.publish(Sample(where=Point["geometry_msgs/Point"](1.0, -2.0, 0.5), level=7))
+    rospy.sleep(0.1)
+"""
+
+
+@pytest.mark.parametrize("viewer", ["ros1"], indirect=True)
+def test_plot_takes_a_type_only_its_ros1_publisher_knows(
+    viewer: Viewer, page: Any, tmp_path: Path
+) -> None:
+    """The viewer learns lab_msgs/Sample from the publisher's definition, as topic echo does."""
+    if not Path("/usr/lib/python3/dist-packages/genpy").is_dir():
+        pytest.skip("Debian's python3-genpy is not installed (tools/system-deps test)")
+    script = tmp_path / "unknown.py"
+    script.write_text(_UNKNOWN)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS") and k != "PYTHONPATH"}
+    env |= {"ROS_MASTER_URI": str(viewer.options.master), "ROS_IP": "127.0.0.1",
+            "ROS_HOME": str(tmp_path / ".ros")}  # fmt: skip
+    debian = subprocess.Popen(["/usr/bin/python3", str(script)], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)  # fmt: skip
+    try:
+        tools = viewer.tools.tools
+        wait_for(lambda: "/sample" in tools.topic_types(), timeout_s=scaled(60),
+                 what="lab_msgs/Sample learned from its publisher")  # fmt: skip
+        open_viewer(page, viewer.url)
+        page.get_by_text("Plot", exact=True).click()
+        _type(page, "Field", "/sample/where/y")
+        page.get_by_text("Add series", exact=True).click()
+        page.get_by_text("/sample/where/y").first.wait_for()
+        series = viewer.tools.plot.data.series
+        wait_for(lambda: series and len(series[0].values) > 3, what="samples of /sample/where/y")
+        assert set(series[0].values) == {-2.0}
+    finally:
+        debian.kill()
+        debian.wait()
