@@ -184,6 +184,12 @@ def test_action_topics_and_services_across_processes(tmp_path: Path) -> None:
         assert got["feedback"]["last"] == {"value": 0.0}
         info = run("topic", "info", "/fib/_action/feedback")
         assert "Type: my_msgs/action/Fibonacci_FeedbackMessage" in info.stdout, info.stderr
+        topics = run("topic", "list", "-t")
+        line = "/fib/_action/feedback [my_msgs/action/Fibonacci_FeedbackMessage]"
+        assert line in topics.stdout.splitlines(), topics.stdout + topics.stderr
+        services = run("service", "list", "-t")
+        line = "/fib/_action/send_goal [my_msgs/action/Fibonacci_SendGoal]"
+        assert line in services.stdout.splitlines(), services.stdout + services.stderr
     finally:
         server.kill()
         server.wait()
