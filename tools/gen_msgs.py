@@ -11,7 +11,8 @@ by hand:
   ``rosgraph_msgs/msg/Log`` (ROS 1's /rosout) from its ROS 1 Noetic store;
 - the packages rosbags has no store of, and every service and action (rosbags' stores hold
   messages only), from the upstream ``.msg``/``.srv``/``.action`` files in
-  ``tools/interfaces/`` (their origins in tools/interfaces/README.md).
+  ``src/robomodel/runtime/msg/interfaces/`` (their origins in its README.md), which the
+  resolver also reads at run time for the types robomodel has no class of.
 
 rosbags' stores keep no default values, so the one non-zero default of these types is given
 here (``geometry_msgs/msg/Quaternion``'s ``float64 w 1``, common_interfaces' Quaternion.msg).
@@ -41,8 +42,8 @@ from gen_msgs_modules import DEFAULTS, MIXINS, MODULES, PY_NAMES, ROS1_ONLY, VAR
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "src" / "robomodel" / "runtime" / "msg"
-INTERFACES = Path(__file__).resolve().parent / "interfaces"
-VERSIONS = Path(__file__).resolve().parent / "interface_versions"
+INTERFACES = OUT / "interfaces"
+VERSIONS = OUT / "interface_versions"
 
 MSG_SCHEMA = "robomodel.runtime.msg._schema"
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
@@ -70,13 +71,13 @@ def _parse(text: str, name: str) -> dict[str, Any]:
 
 
 def _file_parts(key: str) -> dict[str, tuple[Any, str]] | None:
-    """The message definitions of ``pkg/kind/Name`` from tools/interfaces, by type name."""
+    """The message definitions of ``pkg/kind/Name`` from interfaces/, by type name."""
     package, kind, short = key.split("/")
     path = INTERFACES / package / kind / f"{short}.{kind}"
     if not path.is_file():
         return None
     text = path.read_text()
-    where = f"tools/interfaces/{package}/{kind}/{short}.{kind}"
+    where = f"interfaces/{package}/{kind}/"
     if kind == "msg":
         return {key: (_parse(text, key)[key], where)}
     lines = text.splitlines()
@@ -93,7 +94,7 @@ def _file_parts(key: str) -> dict[str, tuple[Any, str]] | None:
 
 
 class Sources:
-    """Definitions by type name: tools/interfaces first, then rosbags' Jazzy (Noetic) store."""
+    """Definitions by type name: interfaces/ first, then rosbags' Jazzy (Noetic) store."""
 
     def __init__(self) -> None:
         from rosbags.typesys import Stores, get_typestore
@@ -108,11 +109,11 @@ class Sources:
         if parts is None and "/msg/" in key:
             store, label = (self.noetic, "noetic") if key in ROS1_ONLY else (self.jazzy, "jazzy")
             if key not in store:
-                raise SystemExit(f"{key}: in neither tools/interfaces nor rosbags' {label} store")
+                raise SystemExit(f"{key}: in neither interfaces/ nor rosbags' {label} store")
             ros = "ROS 1" if label == "noetic" else "ROS 2"
             parts = {key: (store[key], f"rosbags' {ros} {label} store")}
         if parts is None:
-            raise SystemExit(f"{key}: no file in tools/interfaces (rosbags has no {key})")
+            raise SystemExit(f"{key}: no file in interfaces/ (rosbags has no {key})")
         for name, ((constants, fields), where) in parts.items():
             self.found[name] = Definition(name, tuple(constants), tuple(fields), where)
         return list(parts)
@@ -252,7 +253,7 @@ def generate() -> dict[str, str]:
             package, kind, short = key.split("/")
             path = VERSIONS / release / package / kind / f"{short}.{kind}"
             constants, fields = _parse(path.read_text(), key)[key]
-            source = f"tools/{path.relative_to(VERSIONS.parent)}"
+            source = f"{path.parent.relative_to(VERSIONS.parent)}/"
             defn = Definition(key, tuple(constants), tuple(fields), source)
             _message(defn, mod, where, py_name=py_name)
         texts[module] = _render(mod, doc)

@@ -243,7 +243,7 @@ MIXINS = {
 ROS1_ONLY = {"rosgraph_msgs/msg/Log"}
 
 # Earlier layouts of a type (one module each): the class name, the release folder under
-# tools/interface_versions/ and the type. Their classes are named as the real type but not
+# runtime/msg/interface_versions/ and the type. Their classes are named as the real type but not
 # registered, so the registry keeps the current layout.
 VARIANTS: dict[str, tuple[str, tuple[tuple[str, str, str], ...]]] = {
     "controller_manager_msgs_layouts": (

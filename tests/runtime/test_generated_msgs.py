@@ -1,5 +1,5 @@
 """robomodel's typed message modules are what tools/gen_msgs.py generates from the types'
-definitions (rosbags' Jazzy store, tools/interfaces), and stay so."""
+definitions (rosbags' Jazzy store, runtime/msg/interfaces/), and stay so."""
 
 from __future__ import annotations
 

@@ -9,6 +9,8 @@ classes. The definition is taken from, in this order:
    rosidl derives from it (:mod:`.action`: ``pkg/action/Name_Goal``, ``_SendGoal``,
    ``_FeedbackMessage``, ...) and those ROS 1's genaction derives (``pkg/NameGoal``,
    ``pkg/NameActionGoal``, ``pkg/NameActionFeedback``, ...: :mod:`._actions`);
+   Then robomodel's copies of the common interfaces rosbags' stores lack (their services and
+   actions, control_msgs, ...: ``runtime/msg/interfaces/``, Jazzy's);
 2. the common interfaces of the ROS 2 distribution in rosbags' type stores, chosen by
    ``ROS_DISTRO`` (``jazzy`` when unset, or when it names a ROS 1 distribution);
 3. rosbags' ROS 1 Noetic store, for names only ROS 1 has;
@@ -56,6 +58,7 @@ __all__ = [
 ]
 
 DEFAULT_DISTRO = "jazzy"
+SHIPPED = Path(__file__).parent / "interfaces"  # see its README.md
 _ROS2_DISTROS = ("humble", "iron", "jazzy", "kilted", "lyrical")
 
 _lock = threading.RLock()
@@ -111,13 +114,17 @@ def _index() -> Any:
 
 
 @functools.cache
-def _package_files() -> dict[str, Path]:
+def _package_files(shipped: bool = True) -> dict[str, Path]:
     """``pkg/msg/Name``, ``pkg/srv/Name`` and ``pkg/action/Name`` -> the ``.msg``/``.srv``/
     ``.action`` file on the package path."""
     files: dict[str, Path] = {}
     index = _index()
-    for package in index.names():
-        root = index.find(package)
+    roots = [(package, index.find(package)) for package in index.names()]
+    # Then robomodel's copies of the common interfaces rosbags' stores lack (services, actions,
+    # control_msgs, ...): a workspace's own package of the same name wins.
+    if shipped:
+        roots += [(root.name, root) for root in sorted(SHIPPED.iterdir()) if root.is_dir()]
+    for package, root in roots:
         for kind in ("msg", "srv", "action"):
             for path in sorted((root / kind).glob(f"*.{kind}")):
                 files.setdefault(f"{package}/{kind}/{path.stem}", path)
@@ -134,12 +141,12 @@ def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
     return found
 
 
-def package_definitions(name: str) -> dict[str, FieldDef] | None:
+def package_definitions(name: str, *, shipped: bool = True) -> dict[str, FieldDef] | None:
     """The definition of message ``pkg/msg/Name``, of a service half (``pkg/srv/Name_Request``,
     or ROS 1's ``pkg/msg/NameRequest``) or of an action part (``pkg/action/Name_Goal``, or
     ROS 1's ``pkg/msg/NameGoal`` and ``pkg/msg/NameActionGoal``) from the package path; None
-    if no package has it."""
-    files = _package_files()
+    if no package has it (``shipped``: or robomodel's copies of the common interfaces)."""
+    files = _package_files(shipped)
     path = files.get(name)
     if path is not None:
         return _parse(path.read_text(), name, where=str(path))
@@ -198,7 +205,9 @@ def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
         name = pending.pop()
         if name in out or name in known:
             continue
-        found = package_definitions(name)
+        # Not robomodel's copies of ROS 2's common interfaces: a ROS 2-only type (rcl_interfaces,
+        # controller_manager_msgs' services) has no ROS 1 counterpart and stays in the process.
+        found = package_definitions(name, shipped=False)
         definition = found[name] if found is not None else _learned.get(name)
         if definition is None:
             continue
@@ -237,7 +246,10 @@ def searched() -> str:
         if places
         else "no package path (--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH are unset)"
     )
-    return f"robomodel's own types, rosbags' ROS 2 {distro()} and ROS 1 noetic stores, {packages}"
+    return (
+        f"robomodel's own types and copies of the common services and actions, rosbags' ROS 2 "
+        f"{distro()} and ROS 1 noetic stores, {packages}"
+    )
 
 
 def _hint(key: str) -> str:
