@@ -130,7 +130,9 @@ SERVER = textwrap.dedent(
     import sys
     from robomodel.runtime import Context
     from robomodel.runtime.action_server import ActionServer
+    from robomodel.runtime.msg import get_message_type
     from robomodel.runtime.msg._resolver import resolve_action
+    from robomodel.runtime.msg._schema import get_service_type
     Fibonacci = resolve_action("my_msgs/action/Fibonacci", "my_msgs/action/Fibonacci")
 
     class Running:  # never ends: feedback on every monitor tick
@@ -148,6 +150,9 @@ SERVER = textwrap.dedent(
     ctx = Context("zenoh", domain_id=int(sys.argv[1]))
     node = ctx.create_node("fibonacci")
     ActionServer(node, Fibonacci, "/fib", lambda goal: Running(goal.order))
+    GetState = get_service_type("lifecycle_msgs/srv/GetState")  # a shipped common service
+    node.create_service(GetState, "/fib/get_state", lambda request: GetState.Response(
+        current_state=get_message_type("lifecycle_msgs/msg/State")(id=3, label="active")))
     print("ready", flush=True)
     ctx.spin()
     """
@@ -184,6 +189,10 @@ def test_action_topics_and_services_across_processes(tmp_path: Path) -> None:
         assert got["feedback"]["last"] == {"value": 0.0}
         info = run("topic", "info", "/fib/_action/feedback")
         assert "Type: my_msgs/action/Fibonacci_FeedbackMessage" in info.stdout, info.stderr
+        state = run("service", "call", "/fib/get_state", "lifecycle_msgs/srv/GetState",
+                    "--timeout", str(scaled(30)))  # fmt: skip
+        assert state.returncode == 0, state.stderr
+        assert "label: active" in state.stdout and "id: 3" in state.stdout, state.stdout
         topics = run("topic", "list", "-t")
         line = "/fib/_action/feedback [my_msgs/action/Fibonacci_FeedbackMessage]"
         assert line in topics.stdout.splitlines(), topics.stdout + topics.stderr
