@@ -119,7 +119,10 @@ def test_ros1_genaction_types_equal_noetic(packages: Path) -> None:
 def test_bad_and_unknown_actions(packages: Path) -> None:
     with pytest.raises(MessageTypeError, match=r"Broken\.action: an action needs .* \(found 1\)"):
         get_message_type("my_msgs/action/Broken_Goal")
-    with pytest.raises(MessageTypeError, match="unknown action type 'my_msgs/action/Nope_Send"):
+    with pytest.raises(
+        MessageTypeError,
+        match="unknown action type 'my_msgs/action/Nope' \\(of 'my_msgs/action/Nope_SendGoal'\\)",
+    ):
         get_service_type("my_msgs/action/Nope_SendGoal")
     with pytest.raises(MessageTypeError, match="unknown message type"):
         get_message_type("my_msgs/action/Fibonacci_SendGoal")  # a service, not a message

@@ -330,7 +330,8 @@ def resolve_action(key: str, name: str) -> type[Action]:
         found = _ACTIONS.get(key) or _actions.get(key)
         if found is None:
             if key not in _package_files():
-                raise MessageTypeError(f"unknown action type '{name}': looked in {searched()}")
+                of = "" if name == key else f" (of '{name}')"
+                raise MessageTypeError(f"unknown action type '{key}'{of}: looked in {searched()}")
             goal, result, feedback = (
                 resolve_message(f"{key}_{part}", name) for part in ("Goal", "Result", "Feedback")
             )
