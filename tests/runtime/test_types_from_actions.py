@@ -196,12 +196,16 @@ def test_action_topics_and_services_across_processes(tmp_path: Path) -> None:
                     "--timeout", str(scaled(30)))  # fmt: skip
         assert state.returncode == 0, state.stderr
         assert "label: active" in state.stdout and "id: 3" in state.stdout, state.stdout
-        topics = run("topic", "list", "-t")
+        # Hidden names (a part starting with _) only when asked for, as ros2 topic/service list.
+        topics = run("topic", "list", "-t", "--include-hidden-topics")
         line = "/fib/_action/feedback [my_msgs/action/Fibonacci_FeedbackMessage]"
         assert line in topics.stdout.splitlines(), topics.stdout + topics.stderr
-        services = run("service", "list", "-t")
+        assert "/fib/_action/" not in run("topic", "list").stdout
+        services = run("service", "list", "-t", "--include-hidden-services")
         line = "/fib/_action/send_goal [my_msgs/action/Fibonacci_SendGoal]"
         assert line in services.stdout.splitlines(), services.stdout + services.stderr
+        listed = run("service", "list").stdout.splitlines()
+        assert "/fib/get_state" in listed and not any("/_action/" in n for n in listed)
     finally:
         server.kill()
         server.wait()
