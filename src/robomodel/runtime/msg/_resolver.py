@@ -1,4 +1,5 @@
-"""Where robomodel finds the message and service types it has no hand-written class for.
+"""Where robomodel finds the message, service and action types it has no class of its own
+for (its own are generated into modules by tools/gen_msgs.py).
 
 :func:`~._schema.get_message_type` asks here when a name is not one of robomodel's own
 classes. The definition is taken from, in this order:
@@ -18,7 +19,7 @@ classes. The definition is taken from, in this order:
    header, a bag's stored schema (:func:`learn_definition`).
 
 rosbags parses the ``.msg`` text (``get_types_from_msg``); :mod:`._from_definition` makes the
-class. Nested types go through :func:`get_message_type` again, so hand-written classes are
+class. Nested types go through :func:`get_message_type` again, so robomodel's own classes are
 used wherever robomodel has them. rosbags is imported only when a type is first looked for
 here, so that verbs which never need one do not pay for it.
 """

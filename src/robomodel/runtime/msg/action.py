@@ -9,7 +9,7 @@ from. Transcribed from rosidl_parser's ``Action`` (github:ros2/rosidl
 rosidl_parser/rosidl_parser/definition.py, ``Action.__init__`` and the ``ACTION_*_SUFFIX``
 constants, commit 95739d5).
 
-Hand-written actions (control_msgs_actions) register their classes by name; actions built
+robomodel's own actions (control_msgs_actions) register their classes by name; actions built
 from an ``.action`` file (:mod:`._resolver`) are made with ``register=False``, so a package
 path's definitions are forgotten when the package path changes.
 """
@@ -27,7 +27,7 @@ __all__ = ["make_action"]
 
 
 def _named(cls: Any, typename: str, register: bool) -> Any:
-    """``cls`` named ``typename``; entered in the registry of hand-written types if
+    """``cls`` named ``typename``; entered in the registry of robomodel's own types if
     ``register`` (the base classes' ``__init_subclass__`` registers a class that has its
     ``__typename__`` when it is created, so an unregistered one gets it afterwards)."""
     cls.__typename__ = typename
@@ -71,7 +71,7 @@ def make_action(
     register: bool = True,
 ) -> type[Action]:
     """The action ``typename`` (``pkg/action/Name``) of these Goal, Result and Feedback; its
-    derived types are entered in the registry of hand-written types if ``register``."""
+    derived types are entered in the registry of robomodel's own types if ``register``."""
     base, r = typename, register
     send_goal = _service(
         f"{base}_SendGoal",
