@@ -60,6 +60,8 @@ __all__ = [
 
 DEFAULT_DISTRO = "jazzy"
 SHIPPED = Path(__file__).parent / "interfaces"  # see its README.md
+# Packages of SHIPPED whose services ROS 1 defines alike (common_interfaces' noetic-devel).
+ROS1_SHARED = frozenset({"nav_msgs", "sensor_msgs"})
 _ROS2_DISTROS = ("humble", "iron", "jazzy", "kilted", "lyrical")
 
 _lock = threading.RLock()
@@ -206,9 +208,11 @@ def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
         name = pending.pop()
         if name in out or name in known:
             continue
-        # Not robomodel's copies of ROS 2's common interfaces: a ROS 2-only type (rcl_interfaces,
-        # controller_manager_msgs' services) has no ROS 1 counterpart and stays in the process.
-        found = package_definitions(name, shipped=False)
+        # robomodel's copies of ROS 2's common interfaces only for the packages whose services
+        # ROS 1 has the same: a ROS 2-only type (rcl_interfaces, lifecycle_msgs, the
+        # controller_manager_msgs services) has no ROS 1 counterpart and stays in the process.
+        shared = name.split("/", 1)[0] in ROS1_SHARED
+        found = package_definitions(name, shipped=shared)
         definition = found[name] if found is not None else _learned.get(name)
         if definition is None:
             continue
