@@ -219,6 +219,12 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
             "gazebo_msgs/srv/GetModelProperties",
         ),
     ),
+    "robomodel_interfaces": (
+        "robomodel_interfaces: robomodel's own service types, for what ROS has no type for "
+        "(MasterCall: a call of the ROS 1 parameter server robomodel launch hosts on the Zenoh "
+        "bus, on /rosmaster).",
+        ("robomodel_interfaces/srv/MasterCall",),
+    ),
     "ros_gz_interfaces": (
         "ros_gz_interfaces (ros_gz): ControlWorld, Gazebo Sim's pause / step / reset request.",
         (
@@ -231,8 +237,13 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
 
 # Python names that differ from the ROS name (rcl_interfaces has a Log of its own).
 PY_NAMES = {"rosgraph_msgs/msg/Log": "RosgraphLog"}
-# Non-zero defaults of the .msg files, which rosbags' stores do not keep.
-DEFAULTS = {("geometry_msgs/msg/Quaternion", "w"): 1.0}
+# Defaults of the definitions (other than zero), which rosbags does not keep.
+DEFAULTS: dict[tuple[str, str], object] = {
+    ("geometry_msgs/msg/Quaternion", "w"): 1.0,
+    # robomodel's own MasterCall.srv (``string arguments "{}"``, ``string result "null"``)
+    ("robomodel_interfaces/srv/MasterCall_Request", "arguments"): "{}",
+    ("robomodel_interfaces/srv/MasterCall_Response", "result"): "null",
+}
 # Helpers (robomodel.runtime.msg._methods) mixed into a generated class.
 MIXINS = {
     "builtin_interfaces/msg/Time": "TimeMethods",
