@@ -42,9 +42,7 @@ def cli_reference() -> str:
 
     lines = ["```text", build_parser().format_help().rstrip(), "```", ""]
     for verb in VERBS:
-        lines += _sections(
-            _subparsers(build_parser(verb.name))[verb.name], f"robomodel {verb.name}", 2
-        )
+        lines += _sections(_subparsers(build_parser(verb.name))[verb.name], f"robomodel {verb.name}", 2)
     return "\n".join(lines)
 
 
@@ -56,5 +54,7 @@ def on_page_markdown(markdown: str, page: Any, config: Any, files: Files) -> str
 
 def on_files(files: Files, config: Any) -> Files:
     for shot in sorted(SHOTS.glob("*.png")):
-        files.append(File.generated(config, f"screenshots/{shot.name}", abs_src_path=str(shot)))
+        files.append(
+            File.generated(config, f"screenshots/{shot.name}", abs_src_path=str(shot))
+        )
     return files
