@@ -56,7 +56,8 @@ def _subscription_qos(publishers: Sequence[Endpoint]) -> QoSProfile:
 
 
 class Recorder:
-    """Records ``topics`` (None: every topic, hidden ones aside) of ``context``'s bus."""
+    """Records ``topics`` (None: every topic, hidden ones aside unless ``include_hidden``, as
+    ros2 bag record's ``--include-hidden-topics``) of ``context``'s bus."""
 
     def __init__(
         self,
@@ -65,11 +66,13 @@ class Recorder:
         *,
         topics: Sequence[str] | None = None,
         node_name: str = "robomodel_bag_record",
+        include_hidden: bool = False,
     ) -> None:
         self.context = context
         self.writer = writer
         self.node = context.create_node(node_name)
         self._wanted = None if topics is None else {self.node.resolve_topic_name(t) for t in topics}
+        self._include_hidden = include_hidden
         self._subscribed: dict[str, object] = {}
         self._skipped: set[str] = set()
         self._topic_count = 0
@@ -95,7 +98,8 @@ class Recorder:
             if name in self._subscribed or name in self._skipped or not info.publishers:
                 continue
             if self._wanted is None:
-                if any(part.startswith("_") for part in name.split("/")):
+                hidden = any(part.startswith("_") for part in name.split("/"))
+                if hidden and not self._include_hidden:
                     continue  # hidden topics, as ros2 bag record -a leaves them
             elif name not in self._wanted:
                 continue

@@ -14,6 +14,7 @@ from robomodel._escape import escape_name, escape_names
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
+    hides,
     listing_exit_code,
     settled_graph,
     wait_for_peers,
@@ -42,6 +43,11 @@ def register(subparsers: Any) -> None:
 
     p = verbs.add_parser("list", help="the topics that exist")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each topic's type")
+    p.add_argument(
+        "--include-hidden-topics",
+        action="store_true",
+        help="also topics with a part starting with _ (an action's feedback), as ros2 topic list",
+    )
     add_bus_arguments(p)
     add_type_arguments(p)
     p.set_defaults(func=run_list)
@@ -153,6 +159,8 @@ def run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         graph = settled_graph(context)
         for name in sorted(graph.topics):
+            if hides(context, name, args.include_hidden_topics):
+                continue
             info = graph.topics[name]
             suffix = f" [{escape_names(sorted(info.types))}]" if args.show_types else ""
             print(f"{escape_name(name)}{suffix}")

@@ -207,7 +207,7 @@ def get_message_type(name: str) -> type[Message]:
     found = _REGISTRY.get(key)
     if found is not None:
         return found
-    # Not hand-written: built from its definition (stores, packages, peers; see _resolver).
+    # Not one of robomodel's own: built from its definition (stores, packages, peers; see _resolver).
     from robomodel.runtime.msg._resolver import resolve_message
 
     return resolve_message(key, name)
