@@ -225,6 +225,24 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
         "bus, on /rosmaster).",
         ("robomodel_interfaces/srv/MasterCall",),
     ),
+    "type_description_interfaces": (
+        "type_description_interfaces (REP-2011): type descriptions, and GetTypeDescription, "
+        "which every node on a ROS 2 bus answers.",
+        (
+            *(
+                f"type_description_interfaces/msg/{n}"
+                for n in (
+                    "FieldType",
+                    "Field",
+                    "IndividualTypeDescription",
+                    "TypeDescription",
+                    "TypeSource",
+                    "KeyValue",
+                )
+            ),
+            "type_description_interfaces/srv/GetTypeDescription",
+        ),
+    ),
     "ros_gz_interfaces": (
         "ros_gz_interfaces (ros_gz): ControlWorld, Gazebo Sim's pause / step / reset request.",
         (
