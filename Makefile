@@ -57,6 +57,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_viewer.py
 	$(BIN)/python bench/bench_viewer.py --scaling --socket
 	$(BIN)/python bench/bench_sim.py
+	$(BIN)/python bench/bench_camera.py --seconds 1 --rounds 3
 	$(BIN)/python bench/bench_launch.py
 	$(BIN)/python bench/bench_bag.py
 

@@ -303,6 +303,14 @@ def main() -> None:
                 f"robot_state_publisher + master CPU per message "
                 f"{med((r['cpu_b'] + r['cpu_master']) / r['sent'] for r in runs) * 1e6:.0f} us"
             )
+    if ours and ref:  # issue 30: the target is a p99 below ROS 1's C++ pipeline's
+        for q, label in ((0.5, "p50"), (0.99, "p99")):
+            mine = statistics.median(_percentile(r["latencies"], q) for r in ours)
+            theirs = statistics.median(_percentile(r["latencies"], q) for r in ref)
+            print(
+                f"{label}: robomodel {mine * 1e3:.3f} ms / ROS 1 C++ {theirs * 1e3:.3f} ms = "
+                f"{mine / theirs:.2f}x (target for p99: < 1.00x)"
+            )
 
 
 if __name__ == "__main__":

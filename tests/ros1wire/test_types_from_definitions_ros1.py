@@ -230,3 +230,31 @@ def test_bag_record_of_a_learned_type(ros1: Ros1, tmp_path: Path) -> None:
     assert samples, rec.stderr
     first = samples[0]
     assert (first.where.x, first.where.y, first.level, first.tags) == (1.0, -2.0, 7, ["a", "b"])
+
+
+def test_genaction_types_of_a_package_action(custom: Ros1, tmp_path: Path) -> None:
+    """An action of a ROS 1 package (action/Fibonacci.action) gives genaction's messages: the
+    feedback topic's my_msgs/FibonacciActionFeedback goes from robomodel's pub to its echo,
+    and the master (Debian's rostopic type) holds the ROS 1 type name."""
+    action = tmp_path / "ws" / "my_msgs" / "action"
+    action.mkdir()
+    (action / "Fibonacci.action").write_text("int32 order\n---\nint32[] sequence\n---\n"
+                                             "int32[] partial_sequence\n")  # fmt: skip
+    _master(custom)
+    log = tmp_path / "pub.log"
+    custom.robomodel("topic", "pub", "/fib/feedback", "my_msgs/FibonacciActionFeedback",
+                     "{status: {status: 1, text: going}, feedback: {partial_sequence: [0, 1, 1]}}",
+                     "-r", "5", "--bus", "ros1", log=log)  # fmt: skip
+    custom.until(
+        lambda: (
+            custom.run("/usr/bin/rostopic", "type", "/fib/feedback").stdout.strip()
+            == "my_msgs/FibonacciActionFeedback"
+        ),
+        "the feedback topic on the master",
+    )
+    echo = custom.robomodel_run("topic", "echo", "/fib/feedback", "--once", "--bus", "ros1",
+                                timeout=90)  # fmt: skip
+    assert echo.returncode == 0, echo.stderr + log.read_text()
+    got = _first(echo.stdout)
+    assert got["status"]["text"] == "going" and got["status"]["status"] == 1
+    assert got["feedback"] == {"partial_sequence": [0, 1, 1]}

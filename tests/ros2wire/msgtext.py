@@ -2,7 +2,7 @@
 independent of robomodel: the SDK reads ``.msg`` / ``.srv`` files and computes every type
 hash itself, so what it is given must not come from robomodel's classes (issue 30.7).
 
-- ``interfaces/<pkg>/{msg,srv}/``: upstream files (``interfaces/README.md`` says from which
+- ``interfaces/<pkg>/{msg,srv}/`` and ``custom_interfaces/``: upstream files (``interfaces/README.md`` says from which
   repository, branch and commit), with relative type names qualified by their package;
 - any other message: rosbags' Jazzy type store (``get_typestore(Stores.ROS2_JAZZY)``), its
   parsed definition written back as ``.msg`` text (rosbags parses the upstream files itself).
@@ -19,6 +19,7 @@ from typing import Any
 __all__ = ["write_definitions"]
 
 UPSTREAM = Path(__file__).with_name("interfaces")
+CUSTOM = Path(__file__).with_name("custom_interfaces")  # types robomodel has no class of
 _PRIMITIVES = frozenset(
     [
         "bool",
@@ -111,6 +112,8 @@ def write_definitions(root: Path, names: list[str]) -> Path:
         target = root / package / kind / f"{short}.{kind}"
         target.parent.mkdir(parents=True, exist_ok=True)
         upstream = UPSTREAM / package / kind / f"{short}.{kind}"
+        if not upstream.exists():
+            upstream = CUSTOM / package / kind / f"{short}.{kind}"
         if upstream.exists():
             target.write_text(_qualified(upstream.read_text(), package))
         elif kind == "msg" and name in store.fielddefs:

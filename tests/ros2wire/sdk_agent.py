@@ -4,7 +4,8 @@
 
 Commands (each prints JSON lines on stdout, then exits):
     subscribe TOPIC TYPE SECONDS COUNT   messages received (as dicts), up to COUNT
-    publish TOPIC TYPE JSON RATE SECONDS publish the message JSON at RATE Hz
+    publish TOPIC TYPE JSON RATE SECONDS publish the message JSON at RATE Hz; with --describe,
+                                         its node answers ~/get_type_description too
     call SERVICE TYPE JSON               the response of one call (as a dict), or {"error": ...}
     topics                               [[name, [types]], ...] from the SDK's discovery
     services                             likewise for services
@@ -103,12 +104,102 @@ def _subscribe(args: argparse.Namespace, domain: int) -> None:
     sub.close()
 
 
+# type_description_interfaces/msg/FieldType.msg (rcl_interfaces, jazzy): the ids of the base
+# types (as rosbags names them), plus 48 for T[N], 96 for T[<=N], 144 for T[]; 1 is a nested type.
+_FIELD_TYPE_IDS = {"int8": 2, "uint8": 3, "int16": 4, "uint16": 5, "int32": 6, "uint32": 7,
+                   "int64": 8, "uint64": 9, "float32": 10, "float64": 11, "bool": 15,
+                   "octet": 16, "string": 17}  # fmt: skip
+
+
+def _described_field(name: str, desc: Any, used: list[str]) -> dict[str, Any]:
+    """One Field of a TypeDescription, as rosidl_generator_type_description's ``field_type``
+    writes it (ros2/rosidl ``rosidl_generator_type_description/__init__.py``)."""
+    kind, rest = desc
+    offset, capacity = 0, 0
+    if kind in (3, 4):  # ARRAY, SEQUENCE: their item, with the offset of the container
+        (item_kind, item), size = rest
+        offset = 48 if kind == 3 else (96 if size else 144)
+        kind, rest, capacity = item_kind, item, size
+    nested, string_capacity = "", 0
+    if kind == 2:  # NAME
+        type_id, nested = 1, str(rest)
+        used.append(nested)
+    elif rest[0] == "string" and rest[1]:
+        type_id, string_capacity = 21, int(rest[1])
+    else:
+        type_id = _FIELD_TYPE_IDS[rest[0]]
+    return {"name": name, "default_value": "",
+            "type": {"type_id": type_id + offset, "capacity": capacity,
+                     "string_capacity": string_capacity, "nested_type_name": nested}}  # fmt: skip
+
+
+def _type_description(store: Any, typename: str) -> dict[str, Any]:
+    """The TypeDescription of ``typename`` from the SDK's store: the type, then the types it
+    references (recursively), sorted by name (REP-2011, rosidl_generator_type_description)."""
+    individuals: dict[str, Any] = {}
+    pending = [typename]
+    while pending:
+        name = pending.pop()
+        if name in individuals:
+            continue
+        used: list[str] = []
+        fields = store.fielddefs[name][1] or [
+            ("structure_needs_at_least_one_member", (1, ("uint8", 0)))
+        ]
+        individuals[name] = {"type_name": name,
+                             "fields": [_described_field(n, d, used) for n, d in fields]}  # fmt: skip
+        pending.extend(used)
+    top = individuals.pop(typename)
+    return {"type_description": top,
+            "referenced_type_descriptions": [individuals[n] for n in sorted(individuals)]}  # fmt: skip
+
+
+def _serve_descriptions(args: argparse.Namespace, domain: int, pub: Any) -> Any:
+    """``/sdk_talker/get_type_description`` for the publisher's type, answered as rcl's
+    ``rcl_node_type_description_service_handle_request`` (ros2/rcl ``node.c``): by hash, with
+    the sources (the ``.msg`` files) only when asked."""
+    from zenoh_ros2_sdk import ROS2ServiceServer
+
+    srv = "type_description_interfaces/srv/GetTypeDescription"
+    request_text, _, response_text = (
+        (Path(args.messages) / "type_description_interfaces/srv/GetTypeDescription.srv")
+        .read_text()
+        .partition("---\n")
+    )
+    _register_messages(pub.session_mgr, Path(args.messages))
+    store = pub.session_mgr.store
+    holder: dict[str, Any] = {}
+
+    def answer(request: Any) -> Any:
+        if request.type_hash != pub.type_hash:
+            data: dict[str, Any] = {"failure_reason": "Type not currently in use by this node"}
+        else:
+            description = _type_description(store, args.type)
+            names = [description["type_description"]["type_name"]]
+            names += [d["type_name"] for d in description["referenced_type_descriptions"]]
+            sources = []
+            for name in names if request.include_type_sources else []:
+                package, _, short = name.split("/")
+                text = (Path(args.messages) / package / "msg" / f"{short}.msg").read_text()
+                sources.append({"type_name": name, "encoding": "msg", "raw_file_contents": text})
+            data = {"successful": True, "type_description": description, "type_sources": sources}
+        return _build(store, holder["server"].response_store_type, data)
+
+    holder["server"] = ROS2ServiceServer(
+        "/sdk_talker/get_type_description", srv, callback=answer,
+        request_definition=request_text, response_definition=response_text,
+        node_name="sdk_talker", domain_id=domain,
+    )  # fmt: skip
+    return holder["server"]
+
+
 def _publish(args: argparse.Namespace, domain: int) -> None:
     from zenoh_ros2_sdk import ROS2Publisher
 
     pub = ROS2Publisher(
         topic=args.topic, msg_type=args.type, domain_id=domain, node_name="sdk_talker"
     )
+    server = _serve_descriptions(args, domain, pub) if args.describe else None
     store = pub.session_mgr.store
     message = _build(store, args.type, json.loads(args.json))
     fields = {k: getattr(message, k) for k in message.__dataclass_fields__ if k != "__msgtype__"}
@@ -119,7 +210,16 @@ def _publish(args: argparse.Namespace, domain: int) -> None:
         sent += 1
         time.sleep(1.0 / args.rate)
     pub.close()
+    if server is not None:
+        server.close()
     _emit({"sent": sent})
+
+
+def _register_messages(session: Any, directory: Path) -> None:
+    """Every message of ``directory`` in the session's store: a response's nested types
+    (TypeDescription's) are not always registered with it."""
+    for path in sorted(directory.glob("*/msg/*.msg")):
+        session.register_message_type(path.read_text(), f"{path.parts[-3]}/msg/{path.stem}")
 
 
 def _call(args: argparse.Namespace, domain: int) -> None:
@@ -138,6 +238,7 @@ def _call(args: argparse.Namespace, domain: int) -> None:
         timeout=10.0,
         type_hash=args.type_hash or None,
     )
+    _register_messages(client.session_mgr, Path(args.messages))
     store = client.session_mgr.store
     request = _build(store, client.request_store_type, json.loads(args.json))
     fields = {k: getattr(request, k) for k in request.__dataclass_fields__ if k != "__msgtype__"}
@@ -184,6 +285,7 @@ def main() -> int:
     p.add_argument("topic"); p.add_argument("type"); p.add_argument("seconds", type=float); p.add_argument("count", type=int)  # fmt: skip  # noqa: E702
     p = verbs.add_parser("publish")
     p.add_argument("topic"); p.add_argument("type"); p.add_argument("json"); p.add_argument("rate", type=float); p.add_argument("seconds", type=float)  # fmt: skip  # noqa: E702
+    p.add_argument("--describe", action="store_true")
     p = verbs.add_parser("call")
     p.add_argument("service"); p.add_argument("type"); p.add_argument("json")  # fmt: skip  # noqa: E702
     p.add_argument("--type-hash", default="")
@@ -196,7 +298,7 @@ def main() -> int:
     from zenoh_ros2_sdk.message_registry import get_registry
 
     registry = get_registry(args.messages)  # before anything creates the registry without it
-    if args.verb == "call":  # the response's nested types, which the SDK loads only to hash
+    if args.verb in ("call", "publish"):  # nested types, which the SDK loads only to hash
         for path in sorted(Path(args.messages).glob("*/msg/*.msg")):
             registry.load_message_type(f"{path.parts[-3]}/msg/{path.stem}")
     if args.verb == "subscribe":

@@ -119,10 +119,11 @@ def test_graph_and_parameter_service() -> None:
     graph = ctx.graph()
     assert "/arm/jsp" in graph.nodes
     assert graph.topics["/arm/joint_states"].types == {"std_msgs/msg/Float64"}
-    # rclcpp's ParameterService: six rcl_interfaces services under the node's name
+    # rclcpp's ParameterService (six rcl_interfaces services) and rcl's get_type_description
     assert {s for s in graph.services if s.startswith("/arm/jsp/")} == {
         f"/arm/jsp/{name}"
         for name in (
+            "get_type_description",
             "describe_parameters",
             "get_parameter_types",
             "get_parameters",

@@ -35,7 +35,7 @@ BOX = """<robot name="box">
       <update_rate>10</update_rate>
       <sonar><min>0.02</min><max>3</max><radius>0.2</radius></sonar>
     </sensor>
-    <sensor type="camera" name="cam"/>
+    <sensor type="altimeter" name="alt"/>
   </gazebo>
 </robot>"""
 
@@ -48,7 +48,7 @@ WORLD = """<sdf version="1.6"><world name="w">
 
 
 def test_imu_contact_and_sonar_publish_and_unknown_types_are_skipped() -> None:
-    with pytest.warns(UserWarning, match=r"sensor 'cam' has type 'camera'.*skipped"):
+    with pytest.warns(UserWarning, match=r"sensor 'alt' has type 'altimeter'.*skipped"):
         sim = Simulation(parse_world(WORLD))
         sim.add_robot(
             read_urdf(BOX.encode(), path="box.urdf").robot,
@@ -83,7 +83,7 @@ def test_imu_contact_and_sonar_publish_and_unknown_types_are_skipped() -> None:
 
 def test_lidar_noise_and_range_limits() -> None:
     text = BOX.replace(
-        '<sensor type="camera" name="cam"/>',
+        '<sensor type="altimeter" name="alt"/>',
         """<sensor type="gpu_ray" name="laser"><update_rate>0</update_rate>
       <ray><scan><horizontal><samples>5</samples><min_angle>-0.1</min_angle><max_angle>0.1</max_angle></horizontal></scan>
         <range><min>0.05</min><max>1.0</max></range>

@@ -18,6 +18,7 @@ from tests.xacro.conftest import EXAMPLES, REPO, example_index, reference_deps, 
 EXAMPLE_RUNS: list[tuple[str, dict[str, str]]] = [
     ("simplebot_description/urdf/simplebot.urdf.xacro", {}),
     ("simplebot_description/urdf/simplebot_lidar.urdf.xacro", {}),
+    ("simplebot_description/urdf/simplebot_camera.urdf.xacro", {}),
     ("rrbot_description/urdf/rrbot.xacro", {}),
     ("ur5_description/urdf/ur5.urdf.xacro", {}),
     ("ur5_description/urdf/ur5.urdf.xacro", {"prefix": "left_"}),

@@ -56,7 +56,8 @@ def _subscription_qos(publishers: Sequence[Endpoint]) -> QoSProfile:
 
 
 class Recorder:
-    """Records ``topics`` (None: every topic, hidden ones aside) of ``context``'s bus."""
+    """Records ``topics`` (None: every topic, hidden ones aside unless ``include_hidden``, as
+    ros2 bag record's ``--include-hidden-topics``) of ``context``'s bus."""
 
     def __init__(
         self,
@@ -65,11 +66,13 @@ class Recorder:
         *,
         topics: Sequence[str] | None = None,
         node_name: str = "robomodel_bag_record",
+        include_hidden: bool = False,
     ) -> None:
         self.context = context
         self.writer = writer
         self.node = context.create_node(node_name)
         self._wanted = None if topics is None else {self.node.resolve_topic_name(t) for t in topics}
+        self._include_hidden = include_hidden
         self._subscribed: dict[str, object] = {}
         self._skipped: set[str] = set()
         self._topic_count = 0
@@ -95,7 +98,8 @@ class Recorder:
             if name in self._subscribed or name in self._skipped or not info.publishers:
                 continue
             if self._wanted is None:
-                if any(part.startswith("_") for part in name.split("/")):
+                hidden = any(part.startswith("_") for part in name.split("/"))
+                if hidden and not self._include_hidden:
                     continue  # hidden topics, as ros2 bag record -a leaves them
             elif name not in self._wanted:
                 continue
@@ -105,15 +109,17 @@ class Recorder:
         self._skipped.add(name)
         log.warning("not recording %s: %s", name, reason)
 
-    def _type_of(self, topic: str, type_name: str) -> type[Message]:
-        """The class of ``type_name``; on ROS 1, a type robomodel does not know is learned from
-        its publisher's definition, and stored in the bag as rosbag does."""
+    def _type_of(self, topic: str, info: TopicInfo) -> type[Message]:
+        """The class of the topic's type; a type robomodel does not know is learned from its
+        publishers (a ROS 1 publisher's definition, a ROS 2 node's type description), and
+        stored in the bag as rosbag does."""
+        type_name = next(iter(info.types))
         try:
             return get_message_type(type_name)
         except MessageTypeError:
-            from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+            from robomodel.runtime.type_learning import learn_topic_type
 
-            if not learn_topic_type(self.context.transport, topic):
+            if not learn_topic_type(self.context, topic, list(info.publishers)):
                 raise
         return get_message_type(type_name)
 
@@ -122,7 +128,7 @@ class Recorder:
             self._skip(name, f"published with several types ({', '.join(sorted(info.types))})")
             return
         try:
-            msg_type = self._type_of(name, next(iter(info.types)))
+            msg_type = self._type_of(name, info)
         except MessageTypeError as exc:
             self._skip(name, str(exc))
             return

@@ -19,9 +19,13 @@ _SEPARATOR = "=" * 80
 
 
 def _short(typename: str) -> str:
-    """``geometry_msgs/msg/Vector3`` -> ``geometry_msgs/Vector3``, as ``.msg`` files say it."""
-    package, _, name = typename.rpartition("/")
-    return f"{package.split('/')[0]}/{name}"
+    """``geometry_msgs/msg/Vector3`` -> ``geometry_msgs/Vector3``, as ``.msg`` files say it.
+
+    The parts of an action or a service (``pkg/action/Name_Feedback``) keep their full name:
+    no ``.msg`` file names them, and ``pkg/Name_Feedback`` would be read back as a message of
+    another name (and RIHS01 hash)."""
+    package, kind, name = typename.split("/")
+    return f"{package}/{name}" if kind == "msg" else typename
 
 
 def _spec_text(spec: Spec) -> tuple[str, str]:

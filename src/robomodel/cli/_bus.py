@@ -17,6 +17,7 @@ __all__ = [
     "bus_from_args",
     "context_from_args",
     "domain_id_arg",
+    "hides",
     "listing_exit_code",
     "settled_graph",
     "wait_for_peers",
@@ -170,3 +171,12 @@ def listing_exit_code(graph: Graph) -> int:
         file=sys.stderr,
     )
     return 1
+
+
+def hides(context: Context, name: str, include_hidden: bool) -> bool:
+    """Whether a listing leaves ``name`` out: on ROS 2 buses a hidden name (a part starting
+    with ``_``, e.g. ``/fib/_action/feedback``) unless asked for, as ``ros2 topic list`` and
+    ``ros2 service list`` (rclpy's ``include_hidden_topics``); ROS 1's listings hide nothing."""
+    if include_hidden or context.transport.name == "ros1":
+        return False
+    return any(part.startswith("_") for part in name.split("/"))

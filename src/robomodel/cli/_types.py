@@ -16,7 +16,7 @@ def add_type_arguments(parser: argparse.ArgumentParser) -> None:
         action="append",
         default=[],
         metavar="DIR",
-        help="also find interface packages (msg/, srv/) under DIR (besides ROS_PACKAGE_PATH "
+        help="also find interface packages (msg/, srv/, action/) under DIR (besides ROS_PACKAGE_PATH "
         "and AMENT_PREFIX_PATH)",
     )
     group.add_argument(

@@ -45,6 +45,11 @@ VERBS: tuple[Verb, ...] = (
     Verb("param", "robomodel.cli.param", "inspect and change node parameters (ros2 param)"),
     Verb("service", "robomodel.cli.service", "list and call services (ros2 service)"),
     Verb(
+        "log",
+        "robomodel.cli.log",
+        "the nodes' log lines from /rosout, filtered by node and severity (rqt_console)",
+    ),
+    Verb(
         "router",
         "robomodel.cli.router",
         "run a Zenoh router for ROS 2 (ros2 run rmw_zenoh_cpp rmw_zenohd)",

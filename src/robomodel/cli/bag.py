@@ -32,6 +32,11 @@ def register(subparsers: Any) -> None:
     p = verbs.add_parser("record", help="record topics to a bag (ros2 bag record)")
     p.add_argument("topics", nargs="*", metavar="TOPIC", help="topics to record")
     p.add_argument("-a", "--all", action="store_true", help="record every topic")
+    p.add_argument(
+        "--include-hidden-topics",
+        action="store_true",
+        help="with -a, also hidden topics (a part starting with _, e.g. an action's feedback)",
+    )
     p.add_argument("-o", "--output", help="output folder (default: rosbag2_YYYY_MM_DD-HH_MM_SS)")
     p.add_argument("-s", "--storage", choices=("mcap", "sqlite3"), default="mcap")
     p.add_argument("--ros1", metavar="FILE.bag", help="write a ROS 1 bag instead")
@@ -128,7 +133,12 @@ def run_record(args: argparse.Namespace) -> int:
     ):
         wait_for_peers(context)
         writer = _writer(args, split)
-        recorder = Recorder(context, writer, topics=None if args.all else args.topics)
+        recorder = Recorder(
+            context,
+            writer,
+            topics=None if args.all else args.topics,
+            include_hidden=args.include_hidden_topics,
+        )
         try:
             _record_loop(recorder, stopped, args)
         finally:

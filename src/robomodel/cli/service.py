@@ -24,6 +24,7 @@ from robomodel._escape import escape_name
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
+    hides,
     settled_graph,
     wait_for_peers,
 )
@@ -46,6 +47,11 @@ def register(subparsers: Any) -> None:
 
     p = verbs.add_parser("list", help="the services offered on the bus")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each one's type")
+    p.add_argument(
+        "--include-hidden-services",
+        action="store_true",
+        help="also services with a part starting with _ (an action's), as ros2 service list",
+    )
     add_bus_arguments(p)
     add_type_arguments(p)
     p.set_defaults(func=_run_list)
@@ -98,6 +104,8 @@ def _probed(context: Context, name: str, timeout_s: float) -> str:
 def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         for name, info in sorted(settled_graph(context).services.items()):
+            if hides(context, name, args.include_hidden_services):
+                continue
             shown = escape_name(name)  # a peer's name: control characters escaped
             if args.show_types:
                 types = ", ".join(escape_name(t) for t in _types(context, name, info.types))

@@ -14,6 +14,7 @@ from robomodel._escape import escape_name, escape_names
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
+    hides,
     listing_exit_code,
     settled_graph,
     wait_for_peers,
@@ -42,6 +43,11 @@ def register(subparsers: Any) -> None:
 
     p = verbs.add_parser("list", help="the topics that exist")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each topic's type")
+    p.add_argument(
+        "--include-hidden-topics",
+        action="store_true",
+        help="also topics with a part starting with _ (an action's feedback), as ros2 topic list",
+    )
     add_bus_arguments(p)
     add_type_arguments(p)
     p.set_defaults(func=run_list)
@@ -105,7 +111,7 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
                     f"topic {escape_name(topic)} has several types "
                     f"({escape_names(sorted(info.types))}); give one"
                 )
-            found = _type_named(context, topic, next(iter(info.types)))
+            found = _type_named(context, topic, next(iter(info.types)), info.publishers)
             _warn_other_hashes(topic, found, info.publishers)
             return found
         if time.monotonic() >= deadline:
@@ -117,16 +123,19 @@ def _topic_type(context: Context, topic: str, given: str | None, wait_s: float) 
         time.sleep(0.1)
 
 
-def _type_named(context: Context, topic: str, name: str) -> type[Message]:
-    """The class of ``name``; on ROS 1, a type robomodel does not know is learned from the
-    definition its publisher sends (as rostopic echo decodes any type)."""
+def _type_named(context: Context, topic: str, name: str, publishers: Any) -> type[Message]:
+    """The class of ``name``; a type robomodel does not know is learned from its publishers:
+    the definition a ROS 1 publisher sends (as rostopic echo decodes any type), or the type
+    description a ROS 2 publisher's node gives (``~/get_type_description``)."""
     try:
         return get_message_type(name)
-    except MessageTypeError:
-        from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+    except MessageTypeError as exc:
+        from robomodel.runtime.type_learning import learn_topic_type
 
-        if not learn_topic_type(context.transport, topic):
-            raise
+        if not learn_topic_type(context, topic, list(publishers)):
+            raise MessageTypeError(
+                f"{exc}; and no publisher of {escape_name(topic)} described it"
+            ) from None
     return get_message_type(name)
 
 
@@ -150,6 +159,8 @@ def run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         graph = settled_graph(context)
         for name in sorted(graph.topics):
+            if hides(context, name, args.include_hidden_topics):
+                continue
             info = graph.topics[name]
             suffix = f" [{escape_names(sorted(info.types))}]" if args.show_types else ""
             print(f"{escape_name(name)}{suffix}")

@@ -4,7 +4,8 @@ before applying it, and activating or deactivating one controller."""
 from __future__ import annotations
 
 import logging
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from robomodel.control._entry import ControllerEntry, required_interfaces
@@ -22,30 +23,23 @@ __all__ = ["activate_entry", "deactivate_entry", "plan_switch"]
 log = logging.getLogger("robomodel.control")
 
 
-def plan_switch(
-    cm: ControllerManager,
-    activate: Sequence[str],
-    deactivate: Sequence[str],
-    *,
-    strict: bool,
-) -> tuple[list[str], list[str]]:
-    """The controllers to activate and to deactivate after checking the request.
+@dataclass(frozen=True, slots=True)
+class _Refuse:
+    """What to do with a problem in a switch request: raise (STRICT) or warn (BEST_EFFORT)."""
 
-    STRICT raises :class:`ControlError` on the first problem (nothing has changed yet);
-    BEST_EFFORT drops the offending entry with a warning. Problems: unknown names, a controller
-    in the wrong state (activating one that is active, unconfigured or finalized; deactivating
-    one that is not active), a missing state or command interface, a command interface claimed
-    by a controller that stays active, or two controllers of the request claiming one interface.
-    """
-    entries = cm.entries
-    to_activate: list[str] = []
-    to_deactivate: list[str] = []
+    strict: bool
 
-    def refuse(message: str) -> None:
-        if strict:
+    def __call__(self, message: str) -> None:
+        if self.strict:
             raise ControlError(f"switch refused: {message}")
         log.warning("switch: %s; ignored (best effort)", message)
 
+
+def _deactivations(
+    entries: Mapping[str, ControllerEntry], deactivate: Sequence[str], refuse: _Refuse
+) -> list[str]:
+    """The requested deactivations of known, active controllers."""
+    to_deactivate: list[str] = []
     for name in deactivate:
         if name not in entries:
             refuse(str(UnknownControllerError(name, tuple(entries))))
@@ -53,6 +47,18 @@ def plan_switch(
             refuse(f"controller '{name}' is not active")
         else:
             to_deactivate.append(name)
+    return to_deactivate
+
+
+def _activations(
+    entries: Mapping[str, ControllerEntry],
+    activate: Sequence[str],
+    to_deactivate: Sequence[str],
+    refuse: _Refuse,
+) -> list[str]:
+    """The requested activations of known controllers in a state that can become active (an
+    active one only if the same request deactivates it: a restart)."""
+    to_activate: list[str] = []
     for name in activate:
         if name not in entries:
             refuse(str(UnknownControllerError(name, tuple(entries))))
@@ -66,11 +72,19 @@ def plan_switch(
             refuse(f"controller '{name}' is finalized")
         else:
             to_activate.append(name)
-    # interface availability, counting what the deactivations release
+    return to_activate
+
+
+def _with_interfaces(
+    cm: ControllerManager, to_activate: list[str], to_deactivate: Sequence[str], refuse: _Refuse
+) -> list[str]:
+    """The activations whose interfaces are available, counting what the deactivations
+    release, and that claim no command interface another activation of the request claims."""
     resources = cm.resources
-    releasing = {i for n in to_deactivate for i in entries[n].claimed}
+    releasing = {i for n in to_deactivate for i in cm.entries[n].claimed}
     taken: dict[str, str] = {}
-    for name in list(to_activate):
+    kept = list(to_activate)
+    for name in to_activate:
         commands, states = cm.required_interfaces(name)
         try:
             resources.check_states(states)
@@ -86,8 +100,29 @@ def plan_switch(
             resources.check_commands([i for i in commands if i not in resources.claimed], name)
         except RobomodelError as exc:
             refuse(f"cannot activate '{name}': {exc}")
-            to_activate.remove(name)
-    return to_activate, to_deactivate
+            kept.remove(name)
+    return kept
+
+
+def plan_switch(
+    cm: ControllerManager,
+    activate: Sequence[str],
+    deactivate: Sequence[str],
+    *,
+    strict: bool,
+) -> tuple[list[str], list[str]]:
+    """The controllers to activate and to deactivate after checking the request.
+
+    STRICT raises :class:`ControlError` on the first problem (nothing has changed yet);
+    BEST_EFFORT drops the offending entry with a warning. Problems: unknown names, a controller
+    in the wrong state (activating one that is active, unconfigured or finalized; deactivating
+    one that is not active), a missing state or command interface, a command interface claimed
+    by a controller that stays active, or two controllers of the request claiming one interface.
+    """
+    refuse = _Refuse(strict)
+    to_deactivate = _deactivations(cm.entries, deactivate, refuse)
+    to_activate = _activations(cm.entries, activate, to_deactivate, refuse)
+    return _with_interfaces(cm, to_activate, to_deactivate, refuse), to_deactivate
 
 
 def activate_entry(entry: ControllerEntry, rm: ResourceManager) -> None:

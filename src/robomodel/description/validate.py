@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Iterator
+from dataclasses import dataclass
 
 from robomodel.description.model import (
     Box,
@@ -238,6 +239,39 @@ def validate(robot: Robot) -> list[Diagnostic]:
     return found
 
 
+@dataclass(frozen=True, slots=True)
+class _MeshUse:
+    """One ``<mesh>`` of a link's visual or collision, with where it is written."""
+
+    link: str
+    filename: str
+    span: SourceSpan | None
+
+
+def _mesh_uses(robot: Robot) -> Iterator[_MeshUse]:
+    """Every mesh of the robot, link by link, visuals before collisions."""
+    for link in robot.links:
+        elements: tuple[Visual | Collision, ...] = (*link.visuals, *link.collisions)
+        for element in elements:
+            if isinstance(element.geometry, Mesh):
+                yield _MeshUse(link.name, element.geometry.filename, element.span)
+
+
+def _more_uses_of_unknown_packages(
+    robot: Robot, spans_by_package: dict[str, list[SourceSpan | None]]
+) -> Iterator[Diagnostic]:
+    """One warning per unknown package used more than once, at its second use (the first
+    use has its own warning): a missing package is one problem, not one per mesh."""
+    for name, spans in spans_by_package.items():
+        if len(spans) > 1:
+            yield _warn(
+                robot,
+                spans[1],
+                f"{len(spans) - 1} more meshes use the unknown package '{name}'",
+                "mesh",
+            )
+
+
 def validate_resources(
     robot: Robot, packages: PackageIndex, base_dir: str | os.PathLike[str] | None
 ) -> list[Diagnostic]:
@@ -247,56 +281,25 @@ def validate_resources(
     """
     found: list[Diagnostic] = []
     missing_packages: dict[str, list[SourceSpan | None]] = {}
-    checked: dict[str, str | None] = {}
-    for link in robot.links:
-        elements: tuple[Visual | Collision, ...] = (*link.visuals, *link.collisions)
-        for element in elements:
-            mesh = element.geometry
-            if not isinstance(mesh, Mesh):
-                continue
-            try:
-                path = packages.resolve(mesh.filename, base_dir=base_dir)
-            except PackageNotFoundError as exc:
-                missing_packages.setdefault(exc.name, []).append(element.span)
-                if len(missing_packages[exc.name]) == 1:
-                    found.append(
-                        _warn(
-                            robot,
-                            element.span,
-                            f"link '{link.name}': mesh '{mesh.filename}' does not resolve: {exc}",
-                            "mesh",
-                        )
-                    )
-                continue
-            except RobomodelError as exc:
-                found.append(
-                    _warn(
-                        robot,
-                        element.span,
-                        f"link '{link.name}': mesh '{mesh.filename}': {exc}",
-                        "mesh",
-                    )
-                )
-                continue
-            if mesh.filename not in checked:
-                checked[mesh.filename] = None if path.is_file() else str(path)
-            if checked[mesh.filename] is not None:
-                found.append(
-                    _warn(
-                        robot,
-                        element.span,
-                        f"link '{link.name}': mesh file '{mesh.filename}' does not exist ({path})",
-                        "mesh",
-                    )
-                )
-    for name, spans in missing_packages.items():
-        if len(spans) > 1:
-            found.append(
-                _warn(
-                    robot,
-                    spans[1],
-                    f"{len(spans) - 1} more meshes use the unknown package '{name}'",
-                    "mesh",
-                )
-            )
+    missing_file: dict[str, bool] = {}  # by filename: each file is looked for once
+    for use in _mesh_uses(robot):
+        where = f"link '{use.link}': mesh"
+        try:
+            path = packages.resolve(use.filename, base_dir=base_dir)
+        except PackageNotFoundError as exc:
+            spans = missing_packages.setdefault(exc.name, [])
+            spans.append(use.span)
+            if len(spans) == 1:
+                message = f"{where} '{use.filename}' does not resolve: {exc}"
+                found.append(_warn(robot, use.span, message, "mesh"))
+            continue
+        except RobomodelError as exc:
+            found.append(_warn(robot, use.span, f"{where} '{use.filename}': {exc}", "mesh"))
+            continue
+        if use.filename not in missing_file:
+            missing_file[use.filename] = not path.is_file()
+        if missing_file[use.filename]:
+            message = f"{where} file '{use.filename}' does not exist ({path})"
+            found.append(_warn(robot, use.span, message, "mesh"))
+    found.extend(_more_uses_of_unknown_packages(robot, missing_packages))
     return found

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from robomodel.kinematics._chain import make_chain
+from robomodel.kinematics._chain import Chain, make_chain
 from robomodel.kinematics._compile import REVOLUTE, CompiledModel
 from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import fk_batch, fk_single, make_single_plan
@@ -94,9 +94,9 @@ def _unit(v: F64) -> F64:
     return result
 
 
-def ur_geometry(model: CompiledModel, link: int) -> URGeometry:
-    """Measure the UR parameters of the chain to ``link`` (``NotAnalyticError`` if not UR)."""
-    chain = make_chain(model, link)
+def _check_ur_chain(model: CompiledModel, link: int, chain: Chain) -> None:
+    """Refuse chains the UR solver cannot represent: its ``q`` has six independent revolute
+    values, one per joint, with no mimic scale or offset."""
     sub = chain.model
     movable = chain.movable.tolist()
     if len(movable) != 6 or not all(sub.kind[k] == REVOLUTE for k in movable):
@@ -108,61 +108,115 @@ def ur_geometry(model: CompiledModel, link: int) -> URGeometry:
         raise NotAnalyticError("the UR solver does not handle mimic joints on the chain")
     if len(set(sub.q_index[movable].tolist())) != 6:
         raise NotAnalyticError("the chain's joints are not independent")
+
+
+def _dh_z_axes(u_root: list[F64]) -> tuple[list[F64], list[float]]:
+    """The DH z axes (root frame) and the sign of each joint's value along them.
+
+    UR's twists are ``alpha = 0`` between joints 2, 3 and 4, so their z axes share one
+    direction; a URDF axis pointing the other way turns with sign -1.
+    """
+    z = [u_root[0], u_root[1]]
+    sign = [1.0, 1.0]
+    for k in (2, 3):  # alpha = 0: same direction as the previous z
+        if abs(abs(float(u_root[k] @ z[1])) - 1.0) > _TOL:
+            raise NotAnalyticError(f"axes 2 and {k + 1} are not parallel")
+        sign.append(1.0 if float(u_root[k] @ z[1]) > 0 else -1.0)
+        z.append(sign[-1] * u_root[k])
+    z.extend([u_root[4], u_root[5]])
+    sign.extend([1.0, 1.0])
+    return z, sign
+
+
+@dataclass(frozen=True, slots=True)
+class _DHFrames:
+    """Origins ``O`` and x axes of DH frames 1 to 5, in the root frame, and the arm lengths.
+
+    Attributes:
+        O1, O3, O4, O5: Frame origins [m] (frame 2's is only a step towards frame 3's).
+        x1, x2, x3, x4, x5: Unit x axes, each the common normal of its z and the next.
+        a2, a3: Upper arm and forearm lengths [m].
+    """
+
+    O1: F64
+    O3: F64
+    O4: F64
+    O5: F64
+    x1: F64
+    x2: F64
+    x3: F64
+    x4: F64
+    x5: F64
+    a2: float
+    a3: float
+
+
+def _dh_frames(u_root: list[F64], c_root: list[F64], z: list[F64]) -> _DHFrames:
+    """Build the DH frames on the joint axes (lines through ``c_root`` along ``u_root``),
+    checking that they meet as UR's do."""
+    O1 = _meet_at_right_angle(c_root[0], u_root[0], c_root[1], u_root[1], "joints 1 and 2")
+    # Parallel axes 2, 3, 4: common normals through O1 (d2 = d3 = 0).
+    w2 = c_root[2] - O1 - float((c_root[2] - O1) @ z[1]) * z[1]
+    a2 = float(np.linalg.norm(w2))
+    O2 = O1 + w2
+    w3 = c_root[3] - O2 - float((c_root[3] - O2) @ z[1]) * z[1]
+    a3 = float(np.linalg.norm(w3))
+    if a2 < 1e-6 or a3 < 1e-6:
+        raise NotAnalyticError("the upper arm or forearm has zero length")
+    return _DHFrames(
+        O1=O1,
+        O3=O2 + w3,
+        O4=_meet_at_right_angle(c_root[3], u_root[3], c_root[4], u_root[4], "joints 4 and 5"),
+        O5=_meet_at_right_angle(c_root[4], u_root[4], c_root[5], u_root[5], "joints 5 and 6"),
+        x1=_unit(np.cross(z[0], z[1])),
+        x2=w2 / a2,
+        x3=w3 / a3,
+        x4=_unit(np.cross(z[3], z[4])),
+        x5=_unit(np.cross(z[5], z[4])),
+        a2=a2,
+        a3=a3,
+    )
+
+
+def _frame(x_root: F64, z_root: F64, origin_root: F64) -> F64:
+    """``T_root_frame`` of the frame with these x and z axes and origin."""
+    T_root_frame = np.eye(4)
+    T_root_frame[:3, :3] = np.column_stack([x_root, np.cross(z_root, x_root), z_root])
+    T_root_frame[:3, 3] = origin_root
+    return T_root_frame
+
+
+def ur_geometry(model: CompiledModel, link: int) -> URGeometry:
+    """Measure the UR parameters of the chain to ``link`` (``NotAnalyticError`` if not UR)."""
+    chain = make_chain(model, link)
+    _check_ur_chain(model, link, chain)
+    sub = chain.model
+    movable = chain.movable.tolist()
     Ts0 = fk_single(sub, make_single_plan(sub), np.zeros(sub.n_q))
     u = [_unit(Ts0[k, :3, :3] @ sub.axis[k]) for k in movable]
     c = [Ts0[k, :3, 3] for k in movable]
-    z = [u[0], u[1]]
-    sign = [1.0, 1.0]
-    for k in (2, 3):  # alpha = 0: same direction as the previous z
-        if abs(abs(float(u[k] @ z[1])) - 1.0) > _TOL:
-            raise NotAnalyticError(f"axes 2 and {k + 1} are not parallel")
-        sign.append(1.0 if float(u[k] @ z[1]) > 0 else -1.0)
-        z.append(sign[-1] * u[k])
-    z.extend([u[4], u[5]])
-    sign.extend([1.0, 1.0])
-    O1 = _meet_at_right_angle(c[0], u[0], c[1], u[1], "joints 1 and 2")
-    x1 = _unit(np.cross(z[0], z[1]))
-    # Parallel axes 2, 3, 4: common normals through O1 (d2 = d3 = 0).
-    w2 = c[2] - O1 - float((c[2] - O1) @ z[1]) * z[1]
-    a2 = float(np.linalg.norm(w2))
-    O2 = O1 + w2
-    w3 = c[3] - O2 - float((c[3] - O2) @ z[1]) * z[1]
-    a3 = float(np.linalg.norm(w3))
-    O3 = O2 + w3
-    if a2 < 1e-6 or a3 < 1e-6:
-        raise NotAnalyticError("the upper arm or forearm has zero length")
-    x2, x3 = w2 / a2, w3 / a3
-    O4 = _meet_at_right_angle(c[3], u[3], c[4], u[4], "joints 4 and 5")
-    x4 = _unit(np.cross(z[3], z[4]))
-    O5 = _meet_at_right_angle(c[4], u[4], c[5], u[5], "joints 5 and 6")
-    x5 = _unit(np.cross(z[5], z[4]))
-    d4 = float((O4 - O3) @ z[3])
-    d5 = float((O5 - O4) @ z[4])
+    z, sign = _dh_z_axes(u)
+    f = _dh_frames(u, c, z)
     offset = [
         0.0,
-        _angle_about(x1, x2, z[1]),
-        _angle_about(x2, x3, z[2]),
-        _angle_about(x3, x4, z[3]),
-        _angle_about(x4, x5, z[4]),
+        _angle_about(f.x1, f.x2, z[1]),
+        _angle_about(f.x2, f.x3, z[2]),
+        _angle_about(f.x3, f.x4, z[3]),
+        _angle_about(f.x4, f.x5, z[4]),
         0.0,
     ]
-    T_root_base = np.eye(4)
-    T_root_base[:3, :3] = np.column_stack([x1, np.cross(z[0], x1), z[0]])
-    T_root_base[:3, 3] = O1
-    T_root_tool = np.eye(4)
-    T_root_tool[:3, :3] = np.column_stack([x5, np.cross(z[5], x5), z[5]])
-    T_root_tool[:3, 3] = O5
+    T_root_tool = _frame(f.x5, z[5], f.O5)
     geometry = URGeometry(
-        a2=a2,
-        a3=a3,
-        d4=d4,
-        d5=d5,
-        d1=float(O1 @ z[0]),
+        a2=f.a2,
+        a3=f.a3,
+        d4=float((f.O4 - f.O3) @ z[3]),
+        d5=float((f.O5 - f.O4) @ z[4]),
+        d1=float(f.O1 @ z[0]),
         d6=float(inverse_transform(T_root_tool)[2] @ np.append(Ts0[-1, :3, 3], 1.0)),
         sign=np.array(sign),
         offset=np.array(offset),
         q_index=sub.q_index[movable].astype(np.int64),
-        T_root_base=T_root_base,
+        T_root_base=_frame(f.x1, z[0], f.O1),
         T_tool_link=inverse_transform(T_root_tool) @ Ts0[-1],
     )
     _verify(model, link, geometry)

@@ -30,6 +30,7 @@ from robomodel.runtime.transport.base import (
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
+    from robomodel.runtime.type_descriptions import TypeDescriptionService
 
 __all__ = ["Client", "Node", "Publisher", "ServiceServer", "Subscription"]
 
@@ -44,12 +45,16 @@ class Publisher(Generic[M]):
     msg_type: type[M]
     qos: QoSProfile
     _handle: PublisherHandle
+    _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
     def publish(self, msg: M) -> None:
         self._handle.publish(msg)
 
     def destroy(self) -> None:
         self._handle.destroy()
+        if self._release is not None:
+            self._release()
+            self._release = None
 
 
 @dataclass(eq=False)
@@ -58,9 +63,13 @@ class Subscription(Generic[M]):
     msg_type: type[M]
     qos: QoSProfile
     _handle: SubscriptionHandle
+    _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
     def destroy(self) -> None:
         self._handle.destroy()
+        if self._release is not None:
+            self._release()
+            self._release = None
 
 
 @dataclass(eq=False)
@@ -70,9 +79,13 @@ class ServiceServer:
     name: str
     srv_type: type[Service]
     _handle: ServiceHandle
+    _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
     def destroy(self) -> None:
         self._handle.destroy()
+        if self._release is not None:
+            self._release()
+            self._release = None
 
 
 @dataclass(eq=False)
@@ -136,6 +149,11 @@ class Node:
         self._unregister = context.transport.register_node(self.fully_qualified_name)
         from robomodel.runtime.param_services import ParameterServices
 
+        self._type_cache: TypeDescriptionService | None = None
+        if getattr(context, "bus", "") != "ros1":  # rcl's, not on a ROS 1 graph
+            from robomodel.runtime.type_descriptions import TypeDescriptionService
+
+            self._type_cache = TypeDescriptionService(self)
         self._parameter_services = ParameterServices(self)
         from robomodel.runtime.rosout import Rosout
 
@@ -159,7 +177,7 @@ class Node:
         handle = self.context.transport.create_publisher(
             self.fully_qualified_name, name, msg_type, profile
         )
-        publisher = Publisher(name, msg_type, profile, handle)
+        publisher = Publisher(name, msg_type, profile, handle, self._uses(msg_type))
         self._publishers.append(publisher)
         return publisher
 
@@ -179,7 +197,7 @@ class Node:
             profile,
             callback,  # type: ignore[arg-type]
         )
-        subscription = Subscription(name, msg_type, profile, handle)
+        subscription = Subscription(name, msg_type, profile, handle, self._uses(msg_type))
         self._subscriptions.append(subscription)
         return subscription
 
@@ -191,12 +209,21 @@ class Node:
         handle = self.context.transport.create_service(
             self.fully_qualified_name, resolved, srv_type, handler
         )
-        server = ServiceServer(resolved, srv_type, handle)
+        server = ServiceServer(resolved, srv_type, handle, self._uses(srv_type))
         self._services.append(server)
         return server
 
     def create_client(self, srv_type: type[Service], name: str) -> Client:
+        self._uses(srv_type)
         return Client(self, self.resolve_topic_name(name), srv_type)
+
+    def _uses(self, kind: type[Message] | type[Service]) -> Callable[[], None] | None:
+        """Enter ``kind`` in the node's type cache, which ``~/get_type_description`` answers
+        from (rcl registers the type of every publisher, subscription, service and client, and
+        unregisters it when the last of them is destroyed); returns the unregistering call."""
+        if self._type_cache is None:
+            return None
+        return self._type_cache.register(kind)
 
     def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
         """Call ``callback`` every ``period_s`` seconds of this node's clock."""

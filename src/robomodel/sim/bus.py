@@ -54,11 +54,12 @@ from robomodel.sim.sensors.contact import ContactSensor
 from robomodel.sim.sensors.ground_truth import GroundTruth
 from robomodel.sim.sensors.imu import ImuSensor
 from robomodel.sim.sensors.lidar import Lidar
-from robomodel.sim.sensors.spec import SensorKind
+from robomodel.sim.sensors.spec import SensorKind, SensorSpec
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
     from robomodel.sim.engine import Simulation
+    from robomodel.sim.sensors.camera import Frame
 
 __all__ = ["SimBridge", "robot_namespace"]
 
@@ -129,6 +130,8 @@ class SimBridge:
         self.ground_truth: list[GroundTruth] = []
         for built in sim.robots:
             self._add_robot(built, ground_truth_rate_hz)
+        for i, mounted in enumerate(sim.world.sensors):  # the world's own (a camera on a pole)
+            self._add_sensor(mounted.spec, "", "", 1000 + i, site=mounted.site)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
         self._add_states(clock_rate_hz)
@@ -168,12 +171,7 @@ class SimBridge:
         ns = robot_namespace(built)
         prefix_topic = "" if ns == "/" else ns
         for i, spec in enumerate(built.extensions.sensors):
-            sensor = _SENSORS[spec.kind](spec, sim.model, sim.data, prefix=built.prefix, seed=i)
-            publisher = self.node.create_publisher(
-                sensor.message_type, prefix_topic + spec.topic, 10
-            )
-            sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
-            self.sensors.append(sensor)
+            self._add_sensor(spec, built.prefix, prefix_topic, i)
         if ground_truth_rate_hz > 0 and built.floating:  # a welded base has no pose to report
             truth = GroundTruth(
                 sim.model, sim.data, built.root_body, built.prefix + built.robot.tree().root
@@ -186,6 +184,59 @@ class SimBridge:
             self._add_truth_tf(built, truth, ground_truth_rate_hz)
         elif not built.floating:
             self._add_weld_tf(built)
+
+    def _add_sensor(
+        self, spec: SensorSpec, prefix: str, prefix_topic: str, seed: int, site: str = ""
+    ) -> None:
+        """One sensor of a robot (frames prefixed ``prefix``, topics under ``prefix_topic``) or
+        of the world (MuJoCo ``site``)."""
+        if spec.camera is not None:
+            self._add_camera(spec, prefix, prefix_topic, seed, site)
+            return
+        kind = _SENSORS[spec.kind]
+        sensor = kind(spec, self.sim.model, self.sim.data, prefix=prefix, seed=seed, site=site)
+        publisher = self.node.create_publisher(sensor.message_type, prefix_topic + spec.topic, 10)
+        self.sim.every(spec.update_rate_hz, _publishing(sensor, publisher), order=1)
+        self.sensors.append(sensor)
+
+    def _add_camera(
+        self, spec: SensorSpec, prefix: str, prefix_topic: str, seed: int, site: str
+    ) -> None:
+        """A camera or depth sensor: one render per update, published on every topic of its
+        plugin (:mod:`robomodel.sim.sensors.camera`), ROS 1's queue of 2 as gazebo_ros."""
+        from robomodel.sim.sensors.camera import CameraSensor
+        from robomodel.sim.sensors.camera_spec import camera_topics
+
+        assert spec.camera is not None
+        topics = camera_topics(spec.camera, spec.name, self.ros_version)
+        sensor = CameraSensor(
+            spec, self.sim.model, self.sim.data, prefix=prefix, seed=seed, site=site, topics=topics
+        )
+        depth = 2 if self.ros_version == 1 else 5
+
+        def advertise(msg_type: Any, topic: str) -> Any:
+            return self.node.create_publisher(msg_type, prefix_topic + topic, depth)
+
+        image = advertise(sensor.image_type, topics.image)
+        info = advertise(sensor.info_type, topics.camera_info)
+        extra: list[tuple[Any, Callable[[Frame], Any]]] = []
+        if spec.camera.depth:
+            extra = [
+                (advertise(sensor.image_type, topics.depth_image), sensor.depth_image),
+                (advertise(sensor.info_type, topics.depth_camera_info),
+                 lambda frame: sensor.camera_info(frame.time_s)),
+                (advertise(sensor.cloud_type, topics.points), sensor.points),
+            ]  # fmt: skip
+
+        def publish(time_s: float) -> None:
+            frame = sensor.render(time_s)
+            image.publish(sensor.image(frame))
+            info.publish(sensor.camera_info(time_s))
+            for publisher, build in extra:
+                publisher.publish(build(frame))
+
+        self.sim.every(spec.update_rate_hz, publish, order=1)
+        self.sensors.append(sensor)
 
     def _add_moving_shapes(self, rate_hz: float) -> None:
         """TF ``world -> <model>_<i>`` for the world's objects that move (mass > 0), so that

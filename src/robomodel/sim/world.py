@@ -5,7 +5,9 @@ and ``model://sun``; ``<gravity>``; ``<physics><max_step_size>``, ``<real_time_f
 ``<model>`` with ``<static>``, ``<pose>`` and links whose ``<collision>`` geometry is a
 ``<box><size>``, ``<cylinder><radius><length>``, ``<sphere><radius>`` or ``<plane>`` (walls,
 obstacles, floors). Models that are not static become free bodies with their ``<inertial>``
-mass (1 kg by default). Anything else is warned about and skipped.
+mass (1 kg by default). ``<sensor>`` elements of a static model's links (a camera on a pole, as
+gazebo_ros's camera demo worlds have) become :class:`WorldSensor` (those of moving models are
+skipped with a warning). Anything else is warned about and skipped.
 """
 
 from __future__ import annotations
@@ -21,11 +23,13 @@ from lxml import etree
 
 from robomodel._files import UserFileError, read_user_bytes
 from robomodel.sim.exceptions import WorldError
+from robomodel.sim.sensors.spec import SensorSpec, parse_sensor
 
 __all__ = [
     "Shape",
     "ShapeKind",
     "World",
+    "WorldSensor",
     "default_world",
     "model_shapes",
     "parse_world",
@@ -61,6 +65,20 @@ class Shape:
 
 
 @dataclass(frozen=True, slots=True)
+class WorldSensor:
+    """A sensor of a static world model: ``spec.pose`` is in its link, placed at ``link_pose``
+    (x, y, z, roll, pitch, yaw [m, rad]) in the world; MuJoCo names it ``site``."""
+
+    model: str
+    link_pose: tuple[float, float, float, float, float, float]
+    spec: SensorSpec
+
+    @property
+    def site(self) -> str:
+        return f"{self.model}::{self.spec.link}::{self.spec.name}"
+
+
+@dataclass(frozen=True, slots=True)
 class World:
     """A world: physics settings, a ground plane, a light and static shapes.
 
@@ -78,6 +96,7 @@ class World:
     ground_friction: float = 100.0
     sun: bool = True
     shapes: tuple[Shape, ...] = ()
+    sensors: tuple[WorldSensor, ...] = ()
     source: str = ""
 
 
@@ -181,6 +200,7 @@ def _read(world: etree._Element, path: str) -> World:
     gravity = _floats(world.find("gravity"), 3, path, (0.0, 0.0, -9.81))
     ground = sun = False
     shapes: list[Shape] = []
+    sensors: list[WorldSensor] = []
     for el in world:
         if not isinstance(el.tag, str):
             continue
@@ -196,6 +216,7 @@ def _read(world: etree._Element, path: str) -> World:
                 )
         elif el.tag == "model":
             shapes.extend(_model(el, path))
+            sensors.extend(_sensors(el, path))
         elif el.tag == "light":
             sun = True
         elif el.tag not in (
@@ -223,6 +244,7 @@ def _read(world: etree._Element, path: str) -> World:
         ground_plane=ground,
         sun=sun,
         shapes=tuple(shapes),
+        sensors=tuple(sensors),
         source=path,
     )
 
@@ -276,6 +298,27 @@ def _model(model: etree._Element, path: str) -> list[Shape]:
                 )
             )
     return shapes
+
+
+def _sensors(model: etree._Element, path: str) -> list[WorldSensor]:
+    name = model.get("name", "model")
+    static = (model.findtext("static") or "false").strip().lower() in ("1", "true")
+    model_pose = _floats(model.find("pose"), 6, path, (0.0,) * 6)
+    found: list[WorldSensor] = []
+    for link in model.iterfind("link"):
+        link_pose = _compose(model_pose, _floats(link.find("pose"), 6, path, (0.0,) * 6))
+        for el in link.iterfind("sensor"):
+            if not static:
+                warnings.warn(
+                    f"{_at(path, el)}: model '{name}': sensors of moving world models are not "
+                    "supported; skipped",
+                    stacklevel=4,
+                )
+                continue
+            spec = parse_sensor(el, link.get("name", "link"), _at(path, el))
+            if spec is not None:
+                found.append(WorldSensor(name, link_pose, spec))
+    return found
 
 
 def _geometry(

@@ -39,6 +39,41 @@ def _strip(frame: str) -> str:
     return frame[1:] if frame.startswith("/") else frame
 
 
+def _rejections(parent: str, child: str, values: tuple[float, ...], authority: str) -> list[str]:
+    """tf2's reasons to ignore a transform (``BufferCore::setTransformImpl``), in its order
+    and words; ``values`` is the translation then the rotation (xyzw)."""
+    problems = []
+    if child == parent:
+        problems.append(
+            f'TF_SELF_TRANSFORM: Ignoring transform from authority "{authority}" with '
+            f'frame_id and  child_frame_id "{child}" because they are the same'
+        )
+    if not child:
+        problems.append(
+            f'TF_NO_CHILD_FRAME_ID: Ignoring transform from authority "{authority}" because '
+            "child_frame_id not set "
+        )
+    if not parent:
+        problems.append(
+            f'TF_NO_FRAME_ID: Ignoring transform with child_frame_id "{child}"  from '
+            f'authority "{authority}" because frame_id not set'
+        )
+    # One addition flags a NaN among the seven (the exact test runs only then: inf - inf).
+    if math.isnan(sum(values)) and any(math.isnan(v) for v in values):
+        problems.append(
+            f'TF_NAN_INPUT: Ignoring transform for child_frame_id "{child}" from authority '
+            f'"{authority}" because of a nan value in the transform'
+        )
+    x, y, z, w = values[3:]
+    if not abs(x * x + y * y + z * z + w * w - 1.0) < _QUATERNION_TOLERANCE:
+        problems.append(
+            f'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "{child}" '
+            f'from authority "{authority}" because of an invalid quaternion in the '
+            f"transform ({x:f} {y:f} {z:f} {w:f})"
+        )
+    return problems
+
+
 class BufferCore:
     """Stores transforms between frames over time and answers lookups between any two.
 
@@ -74,37 +109,19 @@ class BufferCore:
         if child[:1] == "/":
             child = child[1:]
         values = (*transform.translation_m, *transform.rotation_xyzw)
-        problems = []
-        if child == parent:
-            problems.append(
-                f'TF_SELF_TRANSFORM: Ignoring transform from authority "{authority}" with '
-                f'frame_id and  child_frame_id "{child}" because they are the same'
-            )
-        if not child:
-            problems.append(
-                f'TF_NO_CHILD_FRAME_ID: Ignoring transform from authority "{authority}" because '
-                "child_frame_id not set "
-            )
-        if not parent:
-            problems.append(
-                f'TF_NO_FRAME_ID: Ignoring transform with child_frame_id "{child}"  from '
-                f'authority "{authority}" because frame_id not set'
-            )
-        # One addition flags a NaN among the seven (the exact test runs only then: inf - inf).
-        if math.isnan(sum(values)) and any(math.isnan(v) for v in values):
-            problems.append(
-                f'TF_NAN_INPUT: Ignoring transform for child_frame_id "{child}" from authority '
-                f'"{authority}" because of a nan value in the transform'
-            )
         x, y, z, w = transform.rotation_xyzw
-        if not abs(x * x + y * y + z * z + w * w - 1.0) < _QUATERNION_TOLERANCE:
-            problems.append(
-                f'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "{child}" '
-                f'from authority "{authority}" because of an invalid quaternion in the '
-                f"transform ({x:f} {y:f} {z:f} {w:f})"
-            )
-        if problems:
-            return self._ignore("\n".join(problems))
+        # The cheap tests in one condition: this is the hot path, and the messages are built
+        # (and the tests made exactly) only for a transform that may be rejected.
+        if (
+            child == parent
+            or not child
+            or not parent
+            or math.isnan(sum(values))
+            or not abs(x * x + y * y + z * z + w * w - 1.0) < _QUATERNION_TOLERANCE
+        ):
+            problems = _rejections(parent, child, values, authority)
+            if problems:
+                return self._ignore("\n".join(problems))
         known = self._known
         if child not in known:
             self._number(child)

@@ -25,7 +25,6 @@ from robomodel.control.controllers.base import (
     ReturnType,
 )
 from robomodel.control.controllers.exceptions import ControllerError
-from robomodel.control.controllers.joint_position import shortest_angular_distance
 from robomodel.control.controllers.joint_trajectory_goal import (
     GoalHandle,
     GoalStatus,
@@ -35,7 +34,13 @@ from robomodel.control.controllers.joint_trajectory_services import (
     offer,
     publish_state,
 )
-from robomodel.control.controllers.trajectory import Trajectory, TrajectoryPoint
+from robomodel.control.controllers.joint_trajectory_tolerances import (
+    goal_reached,
+    goal_time_s,
+    path_violation,
+    position_errors,
+)
+from robomodel.control.controllers.trajectory import Sample, Trajectory, TrajectoryPoint
 from robomodel.control.pid import Gains, Pid
 from robomodel.runtime.msg import JointTrajectory, JointTrajectoryControllerState
 
@@ -268,12 +273,6 @@ class JointTrajectoryController(ControllerInterface):
         )
         self._holding = True
 
-    def _tolerance(self, joint: str, default: float, overrides: dict[str, float]) -> float:
-        value = overrides.get(joint, 0.0)
-        if value > 0.0:
-            return value
-        return 0.0 if value == -1.0 else default
-
     # -- the cycle ------------------------------------------------------------------------------
     def update(self, time_s: float, period_s: float) -> ReturnType:
         self._now_s = time_s
@@ -289,13 +288,7 @@ class JointTrajectoryController(ControllerInterface):
             return ReturnType.OK
         pos = self._measured("position")
         vel = self._measured("velocity")
-        n = len(self.joints)
-        errors = [
-            shortest_angular_distance(pos[i], sample.positions[i])
-            if self.wraparound[i]
-            else sample.positions[i] - pos[i]
-            for i in range(n)
-        ]
+        errors = position_errors(sample.positions, pos, self.wraparound)
         if (
             self.cmd_timeout_s > 0.0
             and not self._holding
@@ -303,58 +296,69 @@ class JointTrajectoryController(ControllerInterface):
         ):
             self._hold(time_s)  # humble: after the end + cmd_timeout, hold position
             return self.update(time_s, period_s)
-        before_end = sample.segment < len(traj.points)
-        if not self._holding:
-            goal = self.goal
-            if before_end:
-                for i, j in enumerate(self.joints):
-                    tol = self._tolerance(
-                        j, self.path_tolerance[j], goal.path_tolerance if goal else {}
-                    )
-                    if tol > 0.0 and abs(errors[i]) > tol:
-                        log.warning("%s: path tolerance violated on %s", self.name, j)
-                        self._finish(GoalStatus.ABORTED, -4, f"path tolerance violated on {j}")
-                        self._hold(time_s)
-                        return self.update(time_s, period_s)
-            else:
-                ok = True
-                for i, j in enumerate(self.joints):
-                    tol = self._tolerance(
-                        j, self.goal_tolerance[j], goal.goal_tolerance if goal else {}
-                    )
-                    if tol > 0.0 and abs(errors[i]) > tol:
-                        ok = False
-                    # goal velocity tolerance = stopped_velocity_tolerance (tolerances.hpp),
-                    # on the velocity error, whatever the position tolerance
-                    if (
-                        vel
-                        and self.stopped_velocity_tolerance > 0.0
-                        and abs(sample.velocities[i] - vel[i]) > self.stopped_velocity_tolerance
-                    ):
-                        ok = False
-                goal_time = self.goal_time_s
-                if (
-                    goal is not None
-                    and goal.goal_time_tolerance_s is not None
-                    and goal.goal_time_tolerance_s != 0.0
-                ):
-                    goal_time = max(goal.goal_time_tolerance_s, 0.0)
-                if ok:
-                    self._finish(GoalStatus.SUCCEEDED, 0, "")
-                    self._holding = True  # set_success_trajectory_point: keep the last waypoint
-                elif goal_time > 0.0 and time_s - traj.end_s > goal_time:
-                    log.warning("%s: goal tolerance violated", self.name)
-                    self._finish(GoalStatus.ABORTED, -5, "goal tolerance violated")
-                    self._hold(time_s)
-                    return self.update(time_s, period_s)
+        if not self._holding and self._aborted_on_tolerance(time_s, traj, sample, errors, vel):
+            return self.update(time_s, period_s)  # now holding the measured position
         self._write(
             sample.positions, sample.velocities, sample.accelerations, errors, vel, period_s
         )
+        self._publish_state_when_due(time_s, sample, pos, vel, errors)
+        return ReturnType.OK
+
+    def _aborted_on_tolerance(
+        self,
+        time_s: float,
+        traj: Trajectory,
+        sample: Sample,
+        errors: Sequence[float],
+        vel: Sequence[float],
+    ) -> bool:
+        """Check the path tolerances before the trajectory's end and the goal tolerances after
+        (humble ``update``); True when the goal was aborted and the controller holds."""
+        goal = self.goal
+        if sample.segment < len(traj.points):
+            overrides = goal.path_tolerance if goal else {}
+            joint = path_violation(self.joints, self.path_tolerance, overrides, errors)
+            if joint is None:
+                return False
+            log.warning("%s: path tolerance violated on %s", self.name, joint)
+            self._finish(GoalStatus.ABORTED, -4, f"path tolerance violated on {joint}")
+            self._hold(time_s)
+            return True
+        overrides = goal.goal_tolerance if goal else {}
+        reached = goal_reached(
+            self.joints,
+            self.goal_tolerance,
+            overrides,
+            errors,
+            self.stopped_velocity_tolerance,
+            sample.velocities,
+            vel,
+        )
+        if reached:
+            self._finish(GoalStatus.SUCCEEDED, 0, "")
+            self._holding = True  # set_success_trajectory_point: keep the last waypoint
+            return False
+        goal_time = goal_time_s(self.goal_time_s, goal)
+        if goal_time > 0.0 and time_s - traj.end_s > goal_time:
+            log.warning("%s: goal tolerance violated", self.name)
+            self._finish(GoalStatus.ABORTED, -5, "goal tolerance violated")
+            self._hold(time_s)
+            return True
+        return False
+
+    def _publish_state_when_due(
+        self,
+        time_s: float,
+        sample: Sample,
+        pos: Sequence[float],
+        vel: Sequence[float],
+        errors: Sequence[float],
+    ) -> None:
+        """Publish ``~/controller_state`` every update, or at ``state_publish_rate``."""
         if self._state_pub is not None and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
             if self.state_publish_rate_hz > 0.0:
                 self._next_state_s = time_s + 1.0 / self.state_publish_rate_hz
             publish_state(self, time_s, sample, pos, vel, errors)
-        return ReturnType.OK
 
     def _write(
         self,

@@ -146,7 +146,11 @@ def read_joint(ctx: ParseContext, element: etree._Element) -> Joint:
         ctx.fatal(exc.message, exc.element if exc.element is not None else element, "joint")
 
 
-def _read_joint(ctx: ParseContext, element: etree._Element, name: str) -> Joint:
+def _split_children(
+    ctx: ParseContext, element: etree._Element
+) -> tuple[dict[str, etree._Element], tuple[RawElement, ...]]:
+    """The first child of each known tag (urdfdom reads only the first), and the unknown
+    children kept raw so that a write gives them back."""
     first: dict[str, etree._Element] = {}
     extra: list[RawElement] = []
     for child in element:
@@ -157,14 +161,11 @@ def _read_joint(ctx: ParseContext, element: etree._Element, name: str) -> Joint:
             first.setdefault(tag, child)
         else:
             extra.append(raw(ctx, child))
-    try:
-        origin = ctx.origin(first.get("origin"))
-    except ElementError as exc:
-        raise ElementError(
-            f"Malformed parent origin element for joint [{name}]: {exc.message}", exc.element
-        ) from None
-    parent = first["parent"].get("link", "") if "parent" in first else ""
-    child = first["child"].get("link", "") if "child" in first else ""
+    return first, tuple(extra)
+
+
+def _joint_type(element: etree._Element, name: str) -> JointType:
+    """The joint's ``type`` attribute, which must be one of :class:`JointType`'s values."""
     type_text = element.get("type")
     if type_text is None:
         raise ElementError(
@@ -176,43 +177,73 @@ def _read_joint(ctx: ParseContext, element: etree._Element, name: str) -> Joint:
             f"Joint [{name}] has no known type [{type_text}]; valid types are " + ", ".join(_TYPES),
             element,
         )
-    axis = (1.0, 0.0, 0.0)
-    axis_el = first.get("axis")
-    if axis_el is not None:
-        xyz = axis_el.get("xyz")
-        if xyz is None:
-            axis = (0.0, 0.0, 0.0)
-        else:
-            try:
-                ax, ay, az = ctx.vector(xyz, axis_el)
-                axis = (ax, ay, az)
-            except ElementError as exc:
-                if jtype in (JointType.FIXED, JointType.FLOATING):
-                    # urdfdom never reads the axis of fixed and floating joints.
-                    ctx.warn(
-                        f"ignoring malformed axis of {jtype.value} joint [{name}]: {exc.message}",
-                        axis_el,
-                        "axis",
-                    )
-                else:
-                    raise ElementError(
-                        f"Malformed axis element for joint [{name}]: {exc.message}", axis_el
-                    ) from None
-    limit = None
-    if "limit" in first:
-        limit = _limit(ctx, first["limit"], name, jtype)
-    elif jtype is JointType.REVOLUTE:
+    return jtype
+
+
+def _axis(
+    ctx: ParseContext, axis_el: etree._Element | None, name: str, jtype: JointType
+) -> tuple[float, float, float]:
+    """The joint axis: x when ``<axis>`` is absent, zero when it has no ``xyz`` (as urdfdom)."""
+    if axis_el is None:
+        return (1.0, 0.0, 0.0)
+    xyz = axis_el.get("xyz")
+    if xyz is None:
+        return (0.0, 0.0, 0.0)
+    try:
+        ax, ay, az = ctx.vector(xyz, axis_el)
+    except ElementError as exc:
+        if jtype not in (JointType.FIXED, JointType.FLOATING):
+            raise ElementError(
+                f"Malformed axis element for joint [{name}]: {exc.message}", axis_el
+            ) from None
+        # urdfdom never reads the axis of fixed and floating joints.
+        ctx.warn(
+            f"ignoring malformed axis of {jtype.value} joint [{name}]: {exc.message}",
+            axis_el,
+            "axis",
+        )
+        return (1.0, 0.0, 0.0)
+    return (ax, ay, az)
+
+
+def _joint_limit(
+    ctx: ParseContext,
+    limit_el: etree._Element | None,
+    element: etree._Element,
+    name: str,
+    jtype: JointType,
+) -> Limit | None:
+    """The ``<limit>``, which revolute and prismatic joints must have."""
+    if limit_el is not None:
+        return _limit(ctx, limit_el, name, jtype)
+    if jtype is JointType.REVOLUTE:
         raise ElementError(
             f"Joint [{name}] is of type REVOLUTE but it does not specify limits; add "
             '<limit lower="..." upper="..." effort="..." velocity="..."/>',
             element,
         )
-    elif jtype is JointType.PRISMATIC:
+    if jtype is JointType.PRISMATIC:
         raise ElementError(
             f"Joint [{name}] is of type PRISMATIC without limits; add "
             '<limit lower="..." upper="..." effort="..." velocity="..."/>',
             element,
         )
+    return None
+
+
+def _read_joint(ctx: ParseContext, element: etree._Element, name: str) -> Joint:
+    first, extra = _split_children(ctx, element)
+    try:
+        origin = ctx.origin(first.get("origin"))
+    except ElementError as exc:
+        raise ElementError(
+            f"Malformed parent origin element for joint [{name}]: {exc.message}", exc.element
+        ) from None
+    parent = first["parent"].get("link", "") if "parent" in first else ""
+    child = first["child"].get("link", "") if "child" in first else ""
+    jtype = _joint_type(element, name)
+    axis = _axis(ctx, first.get("axis"), name, jtype)
+    limit = _joint_limit(ctx, first.get("limit"), element, name, jtype)
     safety = _safety(ctx, first["safety_controller"]) if "safety_controller" in first else None
     calibration = _calibration(ctx, first["calibration"]) if "calibration" in first else None
     mimic = _mimic(ctx, first["mimic"]) if "mimic" in first else None
@@ -229,6 +260,6 @@ def _read_joint(ctx: ParseContext, element: etree._Element, name: str) -> Joint:
         mimic,
         safety,
         calibration,
-        tuple(extra),
+        extra,
         ctx.span(element),
     )

@@ -7,6 +7,8 @@ warning with its location (``--strict`` turns these into errors).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from lxml import etree
 
 from robomodel.description.model import (
@@ -114,60 +116,81 @@ def _read_geometry(
             element,
         )
     kind = local_tag(shape)
-    if kind == "box":
-        size = shape.get("size")
-        if size is None:
-            raise ElementError('Box shape has no size attribute; expected size="x y z"', shape)
-        x, y, z = ctx.vector(size, shape)
-        geometry: Geometry = Box((x, y, z))
-    elif kind == "cylinder":
-        length, radius = shape.get("length"), shape.get("radius")
-        if length is None or radius is None:
-            raise ElementError("Cylinder shape must have both length and radius attributes", shape)
-        geometry = Cylinder(
-            ctx.number(radius, "radius", shape), ctx.number(length, "length", shape)
+    reader = _SHAPE_READERS.get(kind)
+    if reader is None:
+        raise ElementError(
+            f"Unknown geometry type '{kind}'; expected box, cylinder, sphere, mesh"
+            + (" or capsule" if ctx.at_least(1, 1) else ""),
+            shape,
         )
-    elif kind == "sphere":
-        radius = shape.get("radius")
-        if radius is None:
-            raise ElementError("Sphere shape must have a radius attribute", shape)
-        geometry = Sphere(ctx.number(radius, "radius", shape))
-    elif kind == "mesh":
-        filename = shape.get("filename")
-        if filename is None:
-            raise ElementError("Mesh must contain a filename attribute", shape)
-        scale_text = shape.get("scale")
-        scale = None
-        if scale_text is not None:
-            try:
-                sx, sy, sz = ctx.vector(scale_text, shape)
-            except ElementError as exc:
-                raise ElementError(
-                    f"Mesh scale was specified, but could not be parsed: {exc.message}", shape
-                ) from None
-            scale = (sx, sy, sz)
-        geometry = Mesh(filename, scale)
-    elif kind == "capsule" and ctx.at_least(1, 1):
-        length, radius = shape.get("length"), shape.get("radius")
-        if length is None or radius is None:
-            raise ElementError("Capsule shape must have both length and radius attributes", shape)
-        geometry = Capsule(ctx.number(radius, "radius", shape), ctx.number(length, "length", shape))
-    elif kind == "capsule":
+    geometry = reader(ctx, shape)
+    if ctx.at_least(1, 2):
+        _check_positive(geometry, shape)
+    return geometry
+
+
+def _read_box(ctx: ParseContext, shape: etree._Element) -> Geometry:
+    size = shape.get("size")
+    if size is None:
+        raise ElementError('Box shape has no size attribute; expected size="x y z"', shape)
+    x, y, z = ctx.vector(size, shape)
+    return Box((x, y, z))
+
+
+def _radius_and_length(ctx: ParseContext, shape: etree._Element, kind: str) -> tuple[float, float]:
+    """A cylinder's or capsule's radius and length [m], both required."""
+    length, radius = shape.get("length"), shape.get("radius")
+    if length is None or radius is None:
+        raise ElementError(f"{kind} shape must have both length and radius attributes", shape)
+    return ctx.number(radius, "radius", shape), ctx.number(length, "length", shape)
+
+
+def _read_cylinder(ctx: ParseContext, shape: etree._Element) -> Geometry:
+    return Cylinder(*_radius_and_length(ctx, shape, "Cylinder"))
+
+
+def _read_capsule(ctx: ParseContext, shape: etree._Element) -> Geometry:
+    """A capsule, which URDF 1.1 introduced (urdfdom ignores it in older documents)."""
+    if not ctx.at_least(1, 1):
         raise ElementError(
             "Ignoring capsule attribute minimum required version URDF version 1.1 since "
             f'specified version is {ctx.version[0]}.{ctx.version[1]}; set version="1.1" on '
             "<robot>",
             shape,
         )
-    else:
+    return Capsule(*_radius_and_length(ctx, shape, "Capsule"))
+
+
+def _read_sphere(ctx: ParseContext, shape: etree._Element) -> Geometry:
+    radius = shape.get("radius")
+    if radius is None:
+        raise ElementError("Sphere shape must have a radius attribute", shape)
+    return Sphere(ctx.number(radius, "radius", shape))
+
+
+def _read_mesh(ctx: ParseContext, shape: etree._Element) -> Geometry:
+    filename = shape.get("filename")
+    if filename is None:
+        raise ElementError("Mesh must contain a filename attribute", shape)
+    scale_text = shape.get("scale")
+    if scale_text is None:
+        return Mesh(filename, None)
+    try:
+        sx, sy, sz = ctx.vector(scale_text, shape)
+    except ElementError as exc:
         raise ElementError(
-            f"Unknown geometry type '{kind}'; expected box, cylinder, sphere, mesh"
-            + (" or capsule" if ctx.at_least(1, 1) else ""),
-            shape,
-        )
-    if ctx.at_least(1, 2):
-        _check_positive(geometry, shape)
-    return geometry
+            f"Mesh scale was specified, but could not be parsed: {exc.message}", shape
+        ) from None
+    return Mesh(filename, (sx, sy, sz))
+
+
+_SHAPE_READERS: dict[str, Callable[[ParseContext, etree._Element], Geometry]] = {
+    "box": _read_box,
+    "cylinder": _read_cylinder,
+    "sphere": _read_sphere,
+    "mesh": _read_mesh,
+    "capsule": _read_capsule,
+}
 
 
 def _check_positive(geometry: Geometry, shape: etree._Element) -> None:

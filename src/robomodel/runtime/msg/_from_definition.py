@@ -1,13 +1,13 @@
-"""Message and service classes built from a definition instead of written by hand.
+"""Message and service classes built from a definition at run time.
 
 A definition is what rosbags' type system makes of ``.msg`` text, an IDL file or its type
 stores: per type, its constants and its fields as ``(name, (node type, details))``. The class
-built here is of the same kind as the hand-written ones (a ``@dataclass(slots=True)``
+built here is of the same kind as robomodel's own (generated) ones (a ``@dataclass(slots=True)``
 :class:`Message` with ``__typename__`` and ``__fields__``), so the generated CDR and ROS 1
 codecs, YAML, RIHS01 hashes and bag schemas work on it unchanged.
 
-The classes are not entered in the registry of hand-written types: the resolver keeps them
-(:mod:`._resolver`), so a hand-written class always wins over one built from a definition.
+The classes are not entered in the registry of robomodel's own types: the resolver keeps them
+(:mod:`._resolver`), so robomodel's own class always wins over one built from a definition.
 """
 
 from __future__ import annotations
@@ -84,7 +84,7 @@ def _field_default(spec: Spec) -> Any:
 def build_message_class(name: str, definition: FieldDef, lookup: Lookup) -> type[Message]:
     """A message class for type ``name`` (``pkg/msg/Name``) from its rosbags definition.
 
-    Nested types are taken from ``lookup`` (hand-written classes where robomodel has them, so
+    Nested types are taken from ``lookup`` (robomodel's own classes where it has them, so
     that a generated ``sensor_msgs/msg/Image`` holds robomodel's own ``std_msgs/msg/Header``).
     Constants become class attributes, as rosidl's Python classes have them.
     """
@@ -105,7 +105,7 @@ def build_message_class(name: str, definition: FieldDef, lookup: Lookup) -> type
         namespace=namespace,
         slots=True,
     )
-    # Set after creation: Message.__init_subclass__ registers only hand-written classes.
+    # Set after creation: Message.__init_subclass__ registers only robomodel's own classes.
     cls.__typename__ = name
     cls.__module__ = __name__
     return cls

@@ -1,11 +1,17 @@
-"""Where robomodel finds the message and service types it has no hand-written class for.
+"""Where robomodel finds the message, service and action types it has no class of its own
+for (its own are generated into modules by tools/gen_msgs.py).
 
 :func:`~._schema.get_message_type` asks here when a name is not one of robomodel's own
 classes. The definition is taken from, in this order:
 
 1. the interface packages on the package path (``--package-path``, ``ROS_PACKAGE_PATH``,
-   ``AMENT_PREFIX_PATH``): a package's ``msg/*.msg`` and ``srv/*.srv`` files, as ROS's own
-   overlays let a workspace's package win;
+   ``AMENT_PREFIX_PATH``): a package's ``msg/*.msg``, ``srv/*.srv`` and ``action/*.action``
+   files, as ROS's own overlays let a workspace's package win. An action gives the types
+   rosidl derives from it (:mod:`.action`: ``pkg/action/Name_Goal``, ``_SendGoal``,
+   ``_FeedbackMessage``, ...) and those ROS 1's genaction derives (``pkg/NameGoal``,
+   ``pkg/NameActionGoal``, ``pkg/NameActionFeedback``, ...: :mod:`._actions`);
+   Then robomodel's copies of the common interfaces rosbags' stores lack (their services and
+   actions, control_msgs, ...: ``runtime/msg/interfaces/``, Jazzy's);
 2. the common interfaces of the ROS 2 distribution in rosbags' type stores, chosen by
    ``ROS_DISTRO`` (``jazzy`` when unset, or when it names a ROS 1 distribution);
 3. rosbags' ROS 1 Noetic store, for names only ROS 1 has;
@@ -13,7 +19,7 @@ classes. The definition is taken from, in this order:
    header, a bag's stored schema (:func:`learn_definition`).
 
 rosbags parses the ``.msg`` text (``get_types_from_msg``); :mod:`._from_definition` makes the
-class. Nested types go through :func:`get_message_type` again, so hand-written classes are
+class. Nested types go through :func:`get_message_type` again, so robomodel's own classes are
 used wherever robomodel has them. rosbags is imported only when a type is first looked for
 here, so that verbs which never need one do not pay for it.
 """
@@ -27,12 +33,14 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from robomodel.runtime.msg._actions import action_part, action_parts, ros1_wrapper_text
 from robomodel.runtime.msg._from_definition import (
     FieldDef,
     build_message_class,
     build_service_class,
 )
 from robomodel.runtime.msg._schema import (
+    Action,
     Message,
     MessageTypeError,
     Service,
@@ -44,17 +52,24 @@ __all__ = [
     "definitions_outside",
     "distro",
     "learn_definition",
+    "learn_fielddefs",
     "package_definitions",
+    "package_source",
+    "resolve_action",
     "resolve_message",
     "resolve_service",
 ]
 
 DEFAULT_DISTRO = "jazzy"
+SHIPPED = Path(__file__).parent / "interfaces"  # see its README.md
+# Packages of SHIPPED whose services ROS 1 defines alike (common_interfaces' noetic-devel).
+ROS1_SHARED = frozenset({"nav_msgs", "sensor_msgs"})
 _ROS2_DISTROS = ("humble", "iron", "jazzy", "kilted", "lyrical")
 
 _lock = threading.RLock()
 _messages: dict[str, type[Message]] = {}
 _services: dict[str, type[Service]] = {}
+_actions: dict[str, type[Action]] = {}
 _learned: dict[str, FieldDef] = {}
 _package_paths: tuple[Path, ...] = ()
 _distro: str | None = None
@@ -73,6 +88,7 @@ def configure(
             _distro = distro
         _messages.clear()
         _services.clear()
+        _actions.clear()
         _package_files.cache_clear()
 
 
@@ -103,13 +119,18 @@ def _index() -> Any:
 
 
 @functools.cache
-def _package_files() -> dict[str, Path]:
-    """``pkg/msg/Name`` and ``pkg/srv/Name`` -> the ``.msg``/``.srv`` file on the package path."""
+def _package_files(shipped: bool = True) -> dict[str, Path]:
+    """``pkg/msg/Name``, ``pkg/srv/Name`` and ``pkg/action/Name`` -> the ``.msg``/``.srv``/
+    ``.action`` file on the package path."""
     files: dict[str, Path] = {}
     index = _index()
-    for package in index.names():
-        root = index.find(package)
-        for kind in ("msg", "srv"):
+    roots = [(package, index.find(package)) for package in index.names()]
+    # Then robomodel's copies of the common interfaces rosbags' stores lack (services, actions,
+    # control_msgs, ...): a workspace's own package of the same name wins.
+    if shipped:
+        roots += [(root.name, root) for root in sorted(SHIPPED.iterdir()) if root.is_dir()]
+    for package, root in roots:
+        for kind in ("msg", "srv", "action"):
             for path in sorted((root / kind).glob(f"*.{kind}")):
                 files.setdefault(f"{package}/{kind}/{path.stem}", path)
     return files
@@ -125,13 +146,23 @@ def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
     return found
 
 
-def package_definitions(name: str) -> dict[str, FieldDef] | None:
-    """The definition of message ``pkg/msg/Name`` or of a service half (``pkg/srv/Name_Request``,
-    or ROS 1's ``pkg/msg/NameRequest``) from the package path; None if no package has it."""
-    files = _package_files()
+def package_definitions(name: str, *, shipped: bool = True) -> dict[str, FieldDef] | None:
+    """The definition of message ``pkg/msg/Name``, of a service half (``pkg/srv/Name_Request``,
+    or ROS 1's ``pkg/msg/NameRequest``) or of an action part (``pkg/action/Name_Goal``, or
+    ROS 1's ``pkg/msg/NameGoal`` and ``pkg/msg/NameActionGoal``) from the package path; None
+    if no package has it (``shipped``: or robomodel's copies of the common interfaces)."""
+    files = _package_files(shipped)
     path = files.get(name)
     if path is not None:
         return _parse(path.read_text(), name, where=str(path))
+    part = action_part(name, files)
+    if part is not None:
+        action, index, ros1 = part
+        path = files[action]
+        text = action_parts(path.read_text(), where=str(path))[index]
+        if ros1 is not None:
+            text = ros1_wrapper_text(name, text, ros1)
+        return _parse_as(text, name, where=str(path))
     half = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name) or re.fullmatch(
         r"(\w+)/msg/(\w+?)(Request|Response)", name
     )
@@ -141,14 +172,25 @@ def package_definitions(name: str) -> dict[str, FieldDef] | None:
     halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
     if len(halves) != 2:
         raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
-    # rosbags names parsed types pkg/msg/Name: parse the half as that, then rename it.
-    as_message = f"{half[1]}/msg/{half[2]}_{half[3]}"
-    found = _parse(halves[0 if half[3] == "Request" else 1], as_message, where=str(path))
-    found[name] = found.pop(as_message)
+    return _parse_as(halves[0 if half[3] == "Request" else 1], name, where=str(path))
+
+
+def _parse_as(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
+    """Parse ``text`` as type ``name``, which may be a service or action part: rosbags names
+    parsed types ``pkg/msg/Name`` (and resolves relative names in that package), so parse it
+    as that, then rename it."""
+    package, _, short = name.split("/")
+    as_message = f"{package}/msg/{short}"
+    found = _parse(text, as_message, where=where)
+    if as_message != name:
+        found[name] = found.pop(as_message)
     return found
 
 
 def _definition(key: str) -> FieldDef | None:
+    if _DERIVED.fullmatch(key):
+        # derived from an action's parts by make_action, unless a bag's schema taught it
+        return _learned.get(key)
     found = package_definitions(key)
     if found is not None:
         return found[key]
@@ -168,7 +210,11 @@ def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
         name = pending.pop()
         if name in out or name in known:
             continue
-        found = package_definitions(name)
+        # robomodel's copies of ROS 2's common interfaces only for the packages whose services
+        # ROS 1 has the same: a ROS 2-only type (rcl_interfaces, lifecycle_msgs, the
+        # controller_manager_msgs services) has no ROS 1 counterpart and stays in the process.
+        shared = name.split("/", 1)[0] in ROS1_SHARED
+        found = package_definitions(name, shipped=shared)
         definition = found[name] if found is not None else _learned.get(name)
         if definition is None:
             continue
@@ -192,6 +238,20 @@ def learn_definition(name: str, text: str) -> None:
             _learned.setdefault(type_name, definition)
 
 
+def learn_fielddefs(found: dict[str, FieldDef]) -> None:
+    """Remember definitions already parsed (a peer's ``GetTypeDescription`` answer, see
+    :mod:`robomodel.runtime.type_descriptions`), as :func:`learn_definition` does for text."""
+    with _lock:
+        for type_name, definition in found.items():
+            _learned.setdefault(type_name, definition)
+
+
+def package_source(key: str) -> Path | None:
+    """The ``.msg``/``.srv`` file of ``pkg/msg/Name`` or ``pkg/srv/Name`` on the package path,
+    if robomodel read the type from one (a type description's source text)."""
+    return _package_files().get(key)
+
+
 def _canonical(name: str) -> str:
     parts = name.strip().strip("/").split("/")
     return f"{parts[0]}/msg/{parts[1]}" if len(parts) == 2 else "/".join(parts)
@@ -203,11 +263,14 @@ def searched() -> str:
     for variable in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"):
         places += [f"{variable} {p}" for p in os.environ.get(variable, "").split(os.pathsep) if p]
     packages = (
-        f"the msg/ and srv/ folders of the packages under {', '.join(places)}"
+        f"the msg/, srv/ and action/ folders of the packages under {', '.join(places)}"
         if places
         else "no package path (--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH are unset)"
     )
-    return f"robomodel's own types, rosbags' ROS 2 {distro()} and ROS 1 noetic stores, {packages}"
+    return (
+        f"robomodel's own types and copies of the common services and actions, rosbags' ROS 2 "
+        f"{distro()} and ROS 1 noetic stores, {packages}"
+    )
 
 
 def _hint(key: str) -> str:
@@ -222,6 +285,15 @@ def _hint(key: str) -> str:
 def resolve_message(key: str, name: str) -> type[Message]:
     """The class of message type ``key`` (``pkg/msg/Name``) from its definition; ``name`` is
     what the user wrote. MessageTypeError, in one line, if no source has it."""
+    derived = _DERIVED.fullmatch(key)
+    if (
+        derived is not None
+        and (derived[3] == "FeedbackMessage") == (derived[4] is None)
+        and _action_known(f"{derived[1]}/action/{derived[2]}")
+    ):
+        action = resolve_action(f"{derived[1]}/action/{derived[2]}", name)
+        kind = getattr(action, derived[3])
+        return kind if derived[4] is None else getattr(kind, derived[4])  # type: ignore[no-any-return]
     with _lock:
         found = _messages.get(key)
         if found is None:
@@ -237,6 +309,10 @@ def resolve_message(key: str, name: str) -> type[Message]:
 
 def resolve_service(key: str, name: str) -> type[Service]:
     """The class of service type ``key`` (``pkg/srv/Name``) from the package path."""
+    derived = _DERIVED.fullmatch(f"{key}_Service")
+    if derived is not None and derived[3] in ("SendGoal", "GetResult"):
+        action = resolve_action(f"{derived[1]}/action/{derived[2]}", name)
+        return getattr(action, derived[3])  # type: ignore[no-any-return]
     with _lock:
         found = _services.get(key)
         if found is None:
@@ -244,4 +320,41 @@ def resolve_service(key: str, name: str) -> type[Service]:
                 raise MessageTypeError(f"unknown service type '{name}': looked in {searched()}")
             halves = [resolve_message(f"{key}_{part}", name) for part in ("Request", "Response")]
             found = _services[key] = build_service_class(key, *halves)
+        return found
+
+
+# The types rosidl derives from an action (rosidl_parser's Action): the two services, their
+# halves and the feedback message. "_Service" is appended by resolve_service to tell a service
+# from a message of the same name.
+_DERIVED = re.compile(
+    r"(\w+)/action/(\w+?)_(SendGoal|GetResult|FeedbackMessage)(?:_(Request|Response|Service))?"
+)
+
+
+def _action_known(key: str) -> bool:
+    """Whether action ``key`` is robomodel's own or on the package path."""
+    from robomodel.runtime.msg._schema import _import_package
+    from robomodel.runtime.msg.action import _ACTIONS
+
+    _import_package(key)
+    return key in _ACTIONS or key in _package_files()
+
+
+def resolve_action(key: str, name: str) -> type[Action]:
+    """The action ``key`` (``pkg/action/Name``): robomodel's own if it has it, else the one
+    built from the package path's ``.action`` file, with the types rosidl derives from it."""
+    from robomodel.runtime.msg._schema import _import_package
+    from robomodel.runtime.msg.action import _ACTIONS, make_action
+
+    _import_package(key)
+    with _lock:
+        found = _ACTIONS.get(key) or _actions.get(key)
+        if found is None:
+            if key not in _package_files():
+                of = "" if name == key else f" (of '{name}')"
+                raise MessageTypeError(f"unknown action type '{key}'{of}: looked in {searched()}")
+            goal, result, feedback = (
+                resolve_message(f"{key}_{part}", name) for part in ("Goal", "Result", "Feedback")
+            )
+            found = _actions[key] = make_action(key, goal, result, feedback, register=False)
         return found

@@ -177,6 +177,7 @@ _PACKAGES = {
     "std_srvs": "std_srvs",
     "tf2_msgs": "nav_msgs",
     "trajectory_msgs": "trajectory_msgs",
+    "type_description_interfaces": "type_description_interfaces",
     "unique_identifier_msgs": "action_msgs",
 }
 _EXTRA_MODULES = {
@@ -206,7 +207,7 @@ def get_message_type(name: str) -> type[Message]:
     found = _REGISTRY.get(key)
     if found is not None:
         return found
-    # Not hand-written: built from its definition (stores, packages, peers; see _resolver).
+    # Not one of robomodel's own: built from its definition (stores, packages, peers; see _resolver).
     from robomodel.runtime.msg._resolver import resolve_message
 
     return resolve_message(key, name)

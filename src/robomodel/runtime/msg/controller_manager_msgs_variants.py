@@ -11,8 +11,10 @@ ros2_control, ``controller_manager_msgs/msg/ControllerState.msg`` at the tags):
 
 Each layout has its own RIHS01 hash, so rmw_zenoh keys each under its own service key: a
 ``ros2 control list_controllers`` of an older install only finds a server of its layout. The
-controller manager offers every variant (one queryable each). These classes are not
-registered by type name (the name is the current layout's); they are reached from here only.
+controller manager offers every variant (one queryable each). The earlier ControllerState
+classes are generated from the releases' ``.msg`` files (:mod:`.controller_manager_msgs_layouts`,
+tools/gen_msgs.py); like the services here, they are not registered by type name (the name is
+the current layout's) and are reached from here only.
 """
 
 from __future__ import annotations
@@ -20,65 +22,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from robomodel.runtime.msg._schema import Message, Seq, Service
-from robomodel.runtime.msg.controller_manager_msgs import ChainConnection, ControllerState
+from robomodel.runtime.msg.controller_manager_msgs import ControllerState
+from robomodel.runtime.msg.controller_manager_msgs_layouts import (
+    ControllerState_4_0,
+    ControllerState_4_13,
+)
 
 __all__ = ["LIST_CONTROLLERS_VARIANTS", "ListControllersVariant", "downgrade"]
-
-_STATE = "controller_manager_msgs/msg/ControllerState"
-
-
-@dataclass(slots=True)
-class _ControllerState_4_0(Message):
-    name: str = ""
-    state: str = ""
-    type: str = ""
-    claimed_interfaces: list[str] = field(default_factory=list)
-    required_command_interfaces: list[str] = field(default_factory=list)
-    required_state_interfaces: list[str] = field(default_factory=list)
-    is_chainable: bool = False
-    is_chained: bool = False
-    reference_interfaces: list[str] = field(default_factory=list)
-    chain_connections: list[ChainConnection] = field(default_factory=list)
-    __fields__ = (
-        ("name", "string"),
-        ("state", "string"),
-        ("type", "string"),
-        ("claimed_interfaces", Seq("string")),
-        ("required_command_interfaces", Seq("string")),
-        ("required_state_interfaces", Seq("string")),
-        ("is_chainable", "bool"),
-        ("is_chained", "bool"),
-        ("reference_interfaces", Seq("string")),
-        ("chain_connections", Seq(ChainConnection)),
-    )
-
-
-@dataclass(slots=True)
-class _ControllerState_4_13(Message):
-    name: str = ""
-    state: str = ""
-    type: str = ""
-    claimed_interfaces: list[str] = field(default_factory=list)
-    required_command_interfaces: list[str] = field(default_factory=list)
-    required_state_interfaces: list[str] = field(default_factory=list)
-    is_chainable: bool = False
-    is_chained: bool = False
-    exported_state_interfaces: list[str] = field(default_factory=list)
-    reference_interfaces: list[str] = field(default_factory=list)
-    chain_connections: list[ChainConnection] = field(default_factory=list)
-    __fields__ = (
-        ("name", "string"),
-        ("state", "string"),
-        ("type", "string"),
-        ("claimed_interfaces", Seq("string")),
-        ("required_command_interfaces", Seq("string")),
-        ("required_state_interfaces", Seq("string")),
-        ("is_chainable", "bool"),
-        ("is_chained", "bool"),
-        ("exported_state_interfaces", Seq("string")),
-        ("reference_interfaces", Seq("string")),
-        ("chain_connections", Seq(ChainConnection)),
-    )
 
 
 def _service(state: type[Message], tag: str) -> type[Service]:
@@ -106,10 +56,6 @@ def _service(state: type[Message], tag: str) -> type[Service]:
     return ListControllers
 
 
-for _cls in (_ControllerState_4_0, _ControllerState_4_13):
-    _cls.__typename__ = _STATE
-
-
 @dataclass(frozen=True, slots=True)
 class ListControllersVariant:
     """One earlier layout: the ros2_control releases that use it, and its service type."""
@@ -120,9 +66,9 @@ class ListControllersVariant:
 
 
 LIST_CONTROLLERS_VARIANTS = (
-    ListControllersVariant("4.0-4.12", _service(_ControllerState_4_0, "4_0"), _ControllerState_4_0),
+    ListControllersVariant("4.0-4.12", _service(ControllerState_4_0, "4_0"), ControllerState_4_0),
     ListControllersVariant(
-        "4.13-4.27", _service(_ControllerState_4_13, "4_13"), _ControllerState_4_13
+        "4.13-4.27", _service(ControllerState_4_13, "4_13"), ControllerState_4_13
     ),
 )
 

@@ -267,6 +267,10 @@ def add_robot(
         bodies[sensor.link].add_site(
             name=prefix + sensor.name, pos=[x, y, z], quat=quat_wxyz_from_rpy(r, p, yaw)
         )
+        if sensor.camera is not None:
+            from robomodel.sim.sensors.camera import add_mujoco_camera
+
+            add_mujoco_camera(spec, bodies[sensor.link], prefix + sensor.name, sensor)
     built.joints = tuple(joints)
     return built
 

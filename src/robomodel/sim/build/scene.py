@@ -6,7 +6,7 @@ from typing import Any
 
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.build.robot import BuiltRobot, quat_wxyz_from_rpy
-from robomodel.sim.world import Shape, ShapeKind, World
+from robomodel.sim.world import Shape, ShapeKind, World, WorldSensor
 
 __all__ = ["WORLD_BIT", "add_world", "apply_min_friction", "new_spec", "shape_body_name"]
 
@@ -43,6 +43,23 @@ def add_world(spec: Any, world: World) -> None:
         spec.worldbody.add_light(name="sun", pos=[0, 0, 10], dir=[0.5, 0.1, -0.9])
     for i, shape in enumerate(world.shapes):
         _add_shape(spec, shape, i)
+    for sensor in world.sensors:
+        _add_sensor_mount(spec, sensor)
+
+
+def _add_sensor_mount(spec: Any, sensor: WorldSensor) -> None:
+    """A world sensor's link as a static body of its own (not the world body, which a ray
+    sensor would exclude whole), with the sensor's site (and camera) on it."""
+    x, y, z, r, p, yaw = sensor.link_pose
+    body = spec.worldbody.add_body(
+        name=sensor.site, pos=[x, y, z], quat=quat_wxyz_from_rpy(r, p, yaw)
+    )
+    sx, sy, sz, sr, sp, syaw = sensor.spec.pose
+    body.add_site(name=sensor.site, pos=[sx, sy, sz], quat=quat_wxyz_from_rpy(sr, sp, syaw))
+    if sensor.spec.camera is not None:
+        from robomodel.sim.sensors.camera import add_mujoco_camera
+
+        add_mujoco_camera(spec, body, sensor.site, sensor.spec)
 
 
 def shape_body_name(shape: Shape, index: int) -> str:

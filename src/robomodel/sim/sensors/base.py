@@ -24,19 +24,28 @@ class SimSensor(ABC):
         data: The state.
         prefix: The robot's frame prefix (also prefixes ``frame_id``).
         seed: Seed of the noise generator (runs are reproducible).
+        site: The MuJoCo site (and camera) name, if not ``prefix + spec.name`` (world sensors).
     """
 
     message_type: type[Message]
 
     def __init__(
-        self, spec: SensorSpec, model: Any, data: Any, *, prefix: str = "", seed: int = 0
+        self,
+        spec: SensorSpec,
+        model: Any,
+        data: Any,
+        *,
+        prefix: str = "",
+        seed: int = 0,
+        site: str = "",
     ) -> None:
         self.spec = spec
         self.model = model
         self.data = data
         self.prefix = prefix
         self.frame_id = prefix + spec.frame
-        self.site = int(model.site(prefix + spec.name).id)
+        self.site_name = site or prefix + spec.name
+        self.site = int(model.site(self.site_name).id)
         self.body = int(model.site_bodyid[self.site])
         self.rng = np.random.default_rng(seed)
 

@@ -33,9 +33,16 @@ class Lidar(SimSensor):
     message_type: type[Message] = LaserScan
 
     def __init__(
-        self, spec: SensorSpec, model: Any, data: Any, *, prefix: str = "", seed: int = 0
+        self,
+        spec: SensorSpec,
+        model: Any,
+        data: Any,
+        *,
+        prefix: str = "",
+        seed: int = 0,
+        site: str = "",
     ) -> None:
-        super().__init__(spec, model, data, prefix=prefix, seed=seed)
+        super().__init__(spec, model, data, prefix=prefix, seed=seed, site=site)
         self.ray: RaySpec = spec.ray or RaySpec()
         n = self.ray.count
         self.angles = self.ray.min_angle_rad + self.ray.angle_increment_rad * np.arange(n)

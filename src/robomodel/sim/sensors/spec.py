@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 from lxml import etree
 
 from robomodel.sim.exceptions import SimulationError
+from robomodel.sim.sensors.camera_spec import CameraSpec, parse_camera
 
 __all__ = ["Noise", "RaySpec", "SensorKind", "SensorSpec", "parse_sensor"]
 
@@ -24,6 +25,8 @@ class SensorKind(enum.Enum):
     SONAR = "sonar"
     IMU = "imu"
     CONTACT = "contact"
+    CAMERA = "camera"
+    DEPTH = "depth"  # depth, depth_camera, rgbd_camera: an image, a depth image and a cloud
 
 
 _KINDS = {
@@ -34,6 +37,10 @@ _KINDS = {
     "sonar": SensorKind.SONAR,
     "imu": SensorKind.IMU,
     "contact": SensorKind.CONTACT,
+    "camera": SensorKind.CAMERA,
+    "depth": SensorKind.DEPTH,
+    "depth_camera": SensorKind.DEPTH,
+    "rgbd_camera": SensorKind.DEPTH,
 }
 
 
@@ -81,6 +88,8 @@ class SensorSpec:
         pose: ``<pose>`` as (x, y, z, roll, pitch, yaw) [m, rad] in the link frame.
         frame: The ``frame_id`` of the messages (plugin ``frameName``/``frame_name`` or the link).
         collision: For a contact sensor, the collision name it watches (unused: the whole link).
+        camera: For a camera or depth sensor, its image and plugin (topics are resolved by
+            :func:`~robomodel.sim.sensors.camera_spec.camera_topics`, not ``topic``).
     """
 
     name: str
@@ -92,6 +101,7 @@ class SensorSpec:
     pose: tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     ray: RaySpec | None = None
     noise: Noise = Noise()
+    camera: CameraSpec | None = None
     where: str = ""
 
 
@@ -186,7 +196,10 @@ def parse_sensor(el: etree._Element, link: str, where: str) -> SensorSpec | None
         topic = "/" + topic
     ray: RaySpec | None = None
     noise = Noise()
-    if kind is SensorKind.RAY:
+    camera: CameraSpec | None = None
+    if kind in (SensorKind.CAMERA, SensorKind.DEPTH):
+        camera = parse_camera(el, name, kind is SensorKind.DEPTH, where)
+    elif kind is SensorKind.RAY:
         ray = _ray(el, where)
         if output in ("Range",):
             ray = replace(ray, output="Range")
@@ -209,5 +222,6 @@ def parse_sensor(el: etree._Element, link: str, where: str) -> SensorSpec | None
         pose=pose,
         ray=ray,
         noise=noise,
+        camera=camera,
         where=where,
     )

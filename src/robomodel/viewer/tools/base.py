@@ -106,6 +106,7 @@ class ToolContext:
     topics: dict[str, set[str]] = field(default_factory=dict)
     nodes: set[str] = field(default_factory=set)
     services: set[str] = field(default_factory=set)
+    _asked: set[tuple[str, ...]] = field(default_factory=set)
 
     def topic_types(self) -> dict[str, type[Message]]:
         """Topics with one known message type, as classes."""
@@ -117,6 +118,21 @@ class ToolContext:
                 except MessageTypeError:
                     continue
         return out
+
+    def learn_unknown_types(self) -> None:
+        """On the ROS 1 bus, learn the types of topics no package or store has from their
+        publishers' definitions (as ``topic echo`` does), so the plot takes them too; each
+        topic is asked once (bus worker thread: a probe may take seconds)."""
+        from robomodel.runtime.transport.ros1.definition_probe import learn_topic_type
+
+        for name, types in list(self.topics.items()):
+            if len(types) != 1 or (name, *types) in self._asked:
+                continue
+            try:
+                get_message_type(next(iter(types)))
+            except MessageTypeError:
+                self._asked.add((name, *types))
+                learn_topic_type(self.node.context.transport, name)
 
     def topics_of_type(self, type_name: str) -> list[str]:
         return sorted(n for n, types in list(self.topics.items()) if type_name in types)

@@ -58,6 +58,7 @@ class ToolsPanel:
             self.tools.topics = {name: set(info.types) for name, info in graph.topics.items()}
             self.tools.nodes = set(graph.nodes)
             self.tools.services = set(graph.services)
+            self.tools.learn_unknown_types()
             self.parameters.update_nodes(self.tools.nodes)
             self.steering.follow_graph(self.tools.topics)
             self.graph_updates += 1

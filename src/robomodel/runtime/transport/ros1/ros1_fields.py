@@ -16,6 +16,7 @@ message count; ``time``/``duration`` are builtin_interfaces' Time/Duration).
   (a Duration). The strictness values are the same (BEST_EFFORT 1, STRICT 2).
 - control_msgs/JointTrajectoryControllerState: ROS 1's ``desired``/``actual``/``error`` are
   Jazzy's ``reference``/``feedback``/``error``.
+- sensor_msgs/CameraInfo: ROS 1's ``D``/``K``/``R``/``P`` are ROS 2's ``d``/``k``/``r``/``p``.
 """
 
 from __future__ import annotations
@@ -97,6 +98,7 @@ _SPECIAL = {
     ),
     ("control_msgs/msg/JointTrajectoryControllerState", "desired"): Field("reference"),
     ("control_msgs/msg/JointTrajectoryControllerState", "actual"): Field("feedback"),
+    **{("sensor_msgs/msg/CameraInfo", name): Field(name.lower()) for name in "DKRP"},
 }
 
 

@@ -1,0 +1,243 @@
+"""Latency against the floor (issue 30): robomodel publish -> subscription callback between two
+processes, beside raw zenoh-python put -> callback with the same payload, in the same run.
+
+Run: ``.venv/bin/python bench/bench_latency.py [--seconds 5] [--rate 1000] [--rounds 2]``.
+
+The payload is talos' /joint_states (a ``sensor_msgs/msg/JointState`` of 32 joints, 1.2 kB of
+CDR). robomodel: a node's publisher in process A, a node's subscription in process B, over the
+Zenoh bus (serialisation, rmw_zenoh's attachment, the executor's hand-over to the main thread,
+deserialisation). Raw: ``session.declare_publisher(key).put(bytes)`` in A and a
+``declare_subscriber`` callback in B, on sessions opened with robomodel's own Zenoh
+configuration (the same router and peer links), the CDR bytes made once and only their stamp
+patched per message. Both stamp the message with ``time.monotonic_ns()`` (one clock for every
+process of a Linux machine) and the callback subtracts it. Rounds alternate raw and robomodel, so
+the shared machine's load falls on both alike. Target: robomodel's median within 1.5x raw's.
+
+``--profile FILE`` writes a cProfile of robomodel's subscriber process (B) to FILE;
+``--decompose`` adds a third variant per round, raw put -> callback -> a queue -> the main thread
+(robomodel's executor hand-over without the codecs), to tell the two costs apart.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import struct
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _common import example_robot_data, paced_sends
+
+ROBOT = "talos_data/robots/talos_full_v2.urdf"
+TOPIC = "/bench_latency"
+_STAMP_OFFSET = 4  # CDR: 4-byte encapsulation header, then header.stamp.sec, .nanosec
+
+
+def _message(names: list[str], stamp_ns: int) -> Any:
+    from robomodel.runtime.msg import Header, JointState, Time
+
+    stamp = Time(stamp_ns // 1_000_000_000, stamp_ns % 1_000_000_000)
+    return JointState(Header(stamp, "base_link"), names, [0.1] * len(names), [0.0] * len(names))
+
+
+def _raw_key(domain: int) -> str:
+    from robomodel.runtime.msg import JointState
+    from robomodel.runtime.msg.typehash import dds_type_name, type_hash
+    from robomodel.runtime.transport.rmw_zenoh import topic_key
+
+    return topic_key(domain, TOPIC, dds_type_name(JointState.__typename__), type_hash(JointState))
+
+
+def _stamp_ns(payload: bytes) -> int:
+    sec, nanosec = struct.unpack_from("<iI", payload, _STAMP_OFFSET)
+    return sec * 1_000_000_000 + nanosec
+
+
+def sink_raw(domain: int, seconds: float, *, hop: bool = False) -> list[float]:
+    """Raw zenoh-python's callback; with ``hop``, each payload is handed to the main thread
+    through a queue first (what robomodel's executor does, without decoding)."""
+    import queue
+
+    from robomodel.runtime.transport._zenoh_session import open_session
+
+    latencies: list[float] = []
+    handed: queue.SimpleQueue[bytes] = queue.SimpleQueue()
+    opened = open_session()
+
+    def on_sample(sample: Any) -> None:
+        if hop:
+            handed.put(sample.payload.to_bytes())
+            return
+        now = time.monotonic_ns()
+        latencies.append((now - _stamp_ns(sample.payload.to_bytes())) * 1e-9)
+
+    sub = opened.session.declare_subscriber(_raw_key(domain), on_sample)
+    print("ready", flush=True)
+    end = time.monotonic() + seconds
+    while hop and time.monotonic() < end:
+        try:
+            payload = handed.get(timeout=0.1)
+        except queue.Empty:
+            continue
+        latencies.append((time.monotonic_ns() - _stamp_ns(payload)) * 1e-9)
+    time.sleep(max(0.0, end - time.monotonic()))
+    sub.undeclare()
+    opened.session.close()
+    return latencies
+
+
+def sink_robomodel(domain: int, seconds: float) -> list[float]:
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import JointState
+
+    latencies: list[float] = []
+    with Context("zenoh", domain_id=domain) as ctx:
+
+        def on_states(msg: JointState) -> None:
+            now = time.monotonic_ns()
+            stamp = msg.header.stamp
+            latencies.append((now - (stamp.sec * 1_000_000_000 + stamp.nanosec)) * 1e-9)
+
+        ctx.create_node("sink").create_subscription(JointState, TOPIC, on_states, 1000)
+        print("ready", flush=True)
+        ctx.spin(duration_s=seconds)
+    return latencies
+
+
+def _start_sink(kind: str, domain: int, seconds: float, profile: str | None) -> Any:
+    cmd = [sys.executable, __file__, "--role", kind, "--domain", str(domain)]
+    cmd += ["--seconds", str(seconds)] + (["--profile", profile] if profile else [])
+    sink = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True)
+    assert sink.stdout is not None and sink.stdout.readline().strip() == "ready"
+    return sink
+
+
+def run_raw(
+    names: list[str], domain: int, seconds: float, rate: float, sink_role: str = "sink-raw"
+) -> dict[str, Any]:
+    from robomodel.runtime.msg.cdr import serialize
+    from robomodel.runtime.transport._zenoh_session import open_session
+
+    sink = _start_sink(sink_role, domain, seconds + 4.0, None)
+    opened = open_session()
+    pub = opened.session.declare_publisher(_raw_key(domain))
+    template = bytearray(serialize(_message(names, 0)))
+    time.sleep(1.0)  # the sink's subscription reaches this session
+
+    def send(_: int) -> None:
+        now = time.monotonic_ns()
+        struct.pack_into("<iI", template, _STAMP_OFFSET, now // 1_000_000_000, now % 1_000_000_000)
+        pub.put(bytes(template))
+
+    sent, elapsed = paced_sends(seconds, rate, send)
+    latencies = json.loads(sink.communicate(timeout=60)[0].strip().splitlines()[-1])
+    pub.undeclare()
+    opened.session.close()
+    return {"sent": sent, "elapsed": elapsed, "latencies": latencies, "bytes": len(template)}
+
+
+def run_robomodel(
+    names: list[str], domain: int, seconds: float, rate: float, profile: str | None
+) -> dict[str, Any]:
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import JointState
+    from robomodel.runtime.msg.cdr import serialize
+
+    sink = _start_sink("sink-robomodel", domain, seconds + 4.0, profile)
+    with Context("zenoh", domain_id=domain) as ctx:
+        pub = ctx.create_node("driver").create_publisher(JointState, TOPIC, 1000)
+        time.sleep(1.0)  # the sink's subscription reaches this session
+        size = len(serialize(_message(names, 0)))
+
+        def send(_: int) -> None:
+            pub.publish(_message(names, time.monotonic_ns()))
+
+        sent, elapsed = paced_sends(seconds, rate, send)
+    latencies = json.loads(sink.communicate(timeout=60)[0].strip().splitlines()[-1])
+    return {"sent": sent, "elapsed": elapsed, "latencies": latencies, "bytes": size}
+
+
+def _percentile(values: list[float], q: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
+
+
+def _summary(run: dict[str, Any]) -> str:
+    lat = run["latencies"]
+    return (
+        f"sent {run['sent']}, received {len(lat)}; latency p50 {statistics.median(lat) * 1e6:.0f} "
+        f"us, p99 {_percentile(lat, 0.99) * 1e6:.0f} us, max {max(lat) * 1e6:.0f} us"
+    )
+
+
+def _sink_main(args: argparse.Namespace) -> None:
+    roles = {
+        "sink-raw": sink_raw,
+        "sink-raw-hop": lambda domain, seconds: sink_raw(domain, seconds, hop=True),
+        "sink-robomodel": sink_robomodel,
+    }
+    role = roles[args.role]
+    if args.profile:
+        import cProfile
+
+        profiler = cProfile.Profile()
+        latencies = profiler.runcall(role, args.domain, args.seconds)
+        profiler.dump_stats(args.profile)
+    else:
+        latencies = role(args.domain, args.seconds)
+    print(json.dumps(latencies), flush=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--seconds", type=float, default=5.0)
+    parser.add_argument("--rate", type=float, default=1000.0)
+    parser.add_argument("--rounds", type=int, default=2)
+    parser.add_argument("--domain", type=int, default=78)
+    parser.add_argument("--profile", default=None, metavar="FILE")
+    parser.add_argument(
+        "--decompose",
+        action="store_true",
+        help="also raw put -> callback -> queue -> main thread (robomodel's hand-over, no codec)",
+    )
+    parser.add_argument(
+        "--role",
+        choices=("driver", "sink-raw", "sink-raw-hop", "sink-robomodel"),
+        default="driver",
+    )
+    args = parser.parse_args()
+    if args.role != "driver":
+        _sink_main(args)
+        return
+    from robomodel.description import read_urdf
+    from robomodel.kinematics import Kinematics
+
+    names = list(Kinematics(read_urdf(example_robot_data(ROBOT)).robot).joint_names)
+    raw: list[dict[str, Any]] = []
+    ours: list[dict[str, Any]] = []
+    for k in range(args.rounds):
+        raw.append(run_raw(names, args.domain, args.seconds, args.rate))
+        print(f"round {k + 1} raw zenoh put ({raw[-1]['bytes']} B): {_summary(raw[-1])}")
+        if args.decompose:
+            hop = run_raw(names, args.domain, args.seconds, args.rate, "sink-raw-hop")
+            print(f"round {k + 1} raw put, handed to the main thread: {_summary(hop)}")
+        ours.append(run_robomodel(names, args.domain, args.seconds, args.rate, args.profile))
+        print(f"round {k + 1} robomodel ({ours[-1]['bytes']} B CDR): {_summary(ours[-1])}")
+    med = statistics.median
+    for q, label in ((0.5, "p50"), (0.99, "p99")):
+        theirs = med(_percentile(r["latencies"], q) for r in raw)
+        mine = med(_percentile(r["latencies"], q) for r in ours)
+        print(
+            f"{label} median over rounds: robomodel {mine * 1e6:.0f} us, raw zenoh "
+            f"{theirs * 1e6:.0f} us, ratio {mine / theirs:.2f}x (target <= 1.5x)"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,152 @@
+"""``robomodel log``: the nodes' log lines from ``/rosout``, as rqt_console shows them.
+
+One line per record with rqt_console's columns (time, severity, node, message, location
+``file:line``), from any node on the bus: ``rcl_interfaces/msg/Log`` on ROS 2 (levels 10 to 50,
+subscribed transient local as rcl publishes it, so lines a node logged before this command
+started come too) and ``rosgraph_msgs/Log`` on ROS 1 (levels 1 to 16). Names and messages come
+from other processes and are printed with control characters escaped, so a multi-line message
+stays one line. Runs until Ctrl-C or SIGTERM (or ``--count`` lines, ``--timeout`` seconds).
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import signal
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any
+
+from robomodel._escape import escape_name
+from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._verbs import verb_help
+from robomodel.errors import RobomodelError
+
+__all__ = ["LogLine", "format_line", "register"]
+
+# rqt_console's severities; ROS 2's rcl_interfaces/msg/Log levels and ROS 1's rosgraph_msgs/Log.
+SEVERITIES = ("debug", "info", "warn", "error", "fatal")
+_ROS2_LEVELS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
+_ROS1_LEVELS = {1: "debug", 2: "info", 4: "warn", 8: "error", 16: "fatal"}
+
+
+def register(subparsers: Any) -> None:
+    p = subparsers.add_parser(
+        "log",
+        help=verb_help("log"),
+        description="Print the log lines every node publishes on /rosout, one per line: time, "
+        "severity, node, message, file:line (rqt_console's columns).",
+    )
+    p.add_argument(
+        "--node",
+        action="append",
+        default=[],
+        metavar="GLOB",
+        help="only lines of nodes whose name matches GLOB (repeatable; e.g. '/robot_*'; "
+        "ROS 2 logger names such as ns.talker also match as /ns/talker)",
+    )
+    p.add_argument(
+        "--level",
+        choices=SEVERITIES,
+        default="debug",
+        help="only lines of this severity and above (default: debug, every line)",
+    )
+    p.add_argument("-n", "--count", type=int, default=None, help="stop after N lines")
+    p.add_argument("--timeout", type=float, default=None, metavar="S", help="stop after S s")
+    add_bus_arguments(p)
+    p.set_defaults(func=run_log)
+
+
+@dataclass(frozen=True, slots=True)
+class LogLine:
+    """One /rosout record, whichever bus it came from."""
+
+    stamp_ns: int
+    severity: str  # one of SEVERITIES, or the number a peer sent when it is none of them
+    node: str
+    message: str
+    file: str
+    line: int
+
+
+def _from_message(msg: Any, ros1: bool) -> LogLine:
+    levels = _ROS1_LEVELS if ros1 else _ROS2_LEVELS
+    stamp = msg.header.stamp if ros1 else msg.stamp
+    stamp_ns = int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+    severity = levels.get(int(msg.level), str(int(msg.level)))
+    return LogLine(stamp_ns, severity, msg.name, msg.msg, msg.file, int(msg.line))
+
+
+def _node_forms(name: str) -> tuple[str, ...]:
+    """The name as sent, and as a node path (rcl's logger ``ns.talker`` is node /ns/talker)."""
+    path = "/" + name.lstrip("/").replace(".", "/")
+    return (name, path) if path != name else (name,)
+
+
+def matches(line: LogLine, globs: list[str], level: str) -> bool:
+    """Whether ``line`` passes the ``--node`` globs and the ``--level`` minimum."""
+    if line.severity in SEVERITIES and SEVERITIES.index(line.severity) < SEVERITIES.index(level):
+        return False
+    if not globs:
+        return True
+    return any(fnmatch.fnmatchcase(form, g) for form in _node_forms(line.node) for g in globs)
+
+
+def format_line(line: LogLine, node_width: int = 0) -> str:
+    """``sec.nanosec  SEVERITY  node  message  file:line``, text from peers escaped."""
+    stamp = f"{line.stamp_ns // 1_000_000_000}.{line.stamp_ns % 1_000_000_000:09d}"
+    location = f"  {escape_name(line.file)}:{line.line}" if line.file else ""
+    node = escape_name(line.node).ljust(node_width)
+    return f"{stamp}  {line.severity.upper():<5}  {node}  {escape_name(line.message)}{location}"
+
+
+@contextmanager
+def _stop_on_signals() -> Iterator[Callable[[], bool]]:
+    """SIGINT and SIGTERM set a flag the loop checks, so the command ends cleanly (exit 0)."""
+    stopped: list[bool] = []  # a flag, not an Event: a second signal must not wait on a lock
+    handlers = {
+        sig: signal.signal(sig, lambda *_: stopped.append(True))
+        for sig in (signal.SIGINT, signal.SIGTERM)
+    }
+    try:
+        yield lambda: bool(stopped)
+    finally:
+        for sig, previous in handlers.items():
+            signal.signal(sig, previous)
+
+
+def run_log(args: argparse.Namespace) -> int:
+    from robomodel.runtime.rosout import ROSOUT_QOS
+
+    if args.count is not None and args.count < 1:
+        raise RobomodelError(f"--count {args.count}: give a positive number of lines, e.g. -n 10")
+    printed = [0]
+    width = [0]
+    with _stop_on_signals() as stopped, context_from_args(args, announce="robomodel log") as ctx:
+        ros1 = ctx.bus == "ros1"
+        if ros1:
+            from robomodel.runtime.msg.nav_msgs import RosgraphLog as kind
+        else:
+            from robomodel.runtime.msg.rcl_interfaces import Log as kind  # type: ignore[assignment]
+        wait_for_peers(ctx)
+        node = ctx.create_node("robomodel_log", enable_rosout=False)
+
+        def show(msg: Any) -> None:
+            line = _from_message(msg, ros1)
+            if (args.count is not None and printed[0] >= args.count) or not matches(
+                line, args.node, args.level
+            ):
+                return
+            width[0] = max(width[0], len(escape_name(line.node)))
+            sys.stdout.write(format_line(line, width[0]) + "\n")
+            sys.stdout.flush()
+            printed[0] += 1
+
+        node.create_subscription(kind, "/rosout", show, 100 if ros1 else ROSOUT_QOS)
+        ctx.spin(
+            duration_s=args.timeout,
+            until=lambda: stopped() or (args.count is not None and printed[0] >= args.count),
+        )
+    return 0
