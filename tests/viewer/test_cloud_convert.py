@@ -76,7 +76,9 @@ def test_rgb8_cloud_known_points_and_colours_through_cdr() -> None:
     # x y z, 4 bytes padding, rgb packed in a float32 as PCL does, then 4 bytes padding
     rgbs = [0xFF0000, 0x00FF00, 0x0000FF]
     pts = [(1.0, 2.0, 3.0), (-1.0, 0.5, 0.0), (0.0, 0.0, -2.5)]
-    rows = [(*p, struct.unpack("<f", struct.pack("<I", c))[0]) for p, c in zip(pts, rgbs)]
+    rows = [
+        (*p, struct.unpack("<f", struct.pack("<I", c))[0]) for p, c in zip(pts, rgbs, strict=True)
+    ]
     msg = make_cloud(rows, [*XYZ, ("rgb", 16, FLOAT32)], "fff4xf", point_step=24)
     msg = deserialize(serialize(msg), PointCloud2)  # what a subscription hands over
     assert default_color_transformer(msg) == "RGB8"
@@ -88,7 +90,7 @@ def test_rgb8_cloud_known_points_and_colours_through_cdr() -> None:
 
 def test_big_endian_with_padding_and_double_fields_matches_struct_reference() -> None:
     rng = np.random.default_rng(3)
-    rows = [tuple(rng.normal(size=3)) + (float(rng.integers(0, 1000)),) for _ in range(50)]
+    rows = [(*rng.normal(size=3), float(rng.integers(0, 1000))) for _ in range(50)]
     fields = [("x", 0, FLOAT64), ("y", 8, FLOAT64), ("z", 16, FLOAT64), ("intensity", 28, UINT16)]
     msg = make_cloud([(*r[:3], int(r[3])) for r in rows], fields, "ddd4xH", point_step=32, big_endian=True)  # fmt: skip
     cloud = decode_cloud(msg, CloudColorOptions(use_rainbow=False))

@@ -146,7 +146,8 @@ def cloud_records(msg: Any) -> np.ndarray:
             f"Data size ({len(data)} bytes) does not match width ({msg.width}) times height "
             f"({msg.height}) times point_step ({msg.point_step}).  Dropping message."
         )
-    return np.frombuffer(data, dtype=np.dtype(dtype_fields), count=n)
+    record: Any = dtype_fields  # numpy's stubs do not type the dict form of a dtype
+    return np.frombuffer(data, dtype=np.dtype(record), count=n)
 
 
 def color_transformers_for(msg: Any) -> tuple[str, ...]:

@@ -111,7 +111,8 @@ def _yuv(msg: Any, order: tuple[int, int, int, int]) -> NDArray[np.uint8]:
 
 def _div(a: NDArray[np.int32], b: int) -> NDArray[np.int32]:
     """C++'s integer division (towards zero), not numpy's floor division."""
-    return np.sign(a) * (np.abs(a) // b)
+    out: NDArray[np.int32] = np.sign(a) * (np.abs(a) // b)
+    return out
 
 
 def image_rgb(
@@ -143,8 +144,8 @@ def image_rgb(
         grey = _rows(msg, 1)
     elif enc in _SCALED:
         kind = _SCALED[enc]
-        order = ">" if msg.is_bigendian else "<"
-        values = _rows(msg, int(kind[1])).copy().view(order + kind).reshape(h, w)
+        byte_order = ">" if msg.is_bigendian else "<"
+        values = _rows(msg, int(kind[1])).copy().view(byte_order + kind).reshape(h, w)
         grey = _scaled(values, normalize, min_value, max_value, normalizer)
     elif enc in _YUV:
         return _yuv(msg, _YUV[enc])
