@@ -29,6 +29,7 @@ from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.tf_listener import TransformListener
 from robomodel.viewer._deps import import_viser
 from robomodel.viewer.config_panel import attach_rviz
+from robomodel.viewer.displays.attach import attach_displays
 from robomodel.viewer.layout import beside_root_pose, place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
 from robomodel.viewer.link_poses import append_other_frames
@@ -95,6 +96,9 @@ class Viewer:
         self._missing: dict[int, tuple[str, ...]] = {}
         self._beside: set[int] = set()
         self.tools: Any = None
+        self.displays: Any = None  # the DisplayManager (loop thread), once started
+        self.displays_panel: Any = None
+        self._node: Node | None = None
         self.scenery: SceneryDisplay | None = None
 
     # -- lifecycle ----------------------------------------------------------------------------
@@ -130,6 +134,7 @@ class Viewer:
         )
         for session in self.sessions:
             session.start_nodes(self.context, node)
+        self._node = node
         with contextlib.redirect_stdout(io.StringIO()):  # viser prints its own banner
             self.server = viser.ViserServer(
                 host=opts.host, port=opts.port, label="robomodel view", verbose=False
@@ -168,6 +173,8 @@ class Viewer:
     def close(self) -> None:
         if self.tools is not None:
             self.tools.close()
+        if self.displays_panel is not None:
+            self.displays_panel.close()
         self._stop.set()
         for thread in self._threads:
             if thread is not threading.current_thread():
@@ -212,6 +219,8 @@ class Viewer:
         self.fixed_dropdown = panel.fixed_dropdown
         self.frame_rate_number = panel.frame_rate
         self.tf_display = panel.tf_display
+        self.displays_panel = attach_displays(self, self._node)
+        self.displays = self.displays_panel.manager
         self.config_panel = attach_rviz(self, panel)
 
     def _build_tools(self, node: Node) -> None:

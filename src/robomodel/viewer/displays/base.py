@@ -1,0 +1,477 @@
+"""The display plug-in family: RViz's displays (Marker, LaserScan, PointCloud2, ...) in the page.
+
+The contract, for anyone writing a display type:
+
+- A display is a subclass of :class:`Display` decorated with :func:`register_display`. Its
+  ``class_name`` is RViz's class without the plugin prefix (``"Marker"``: ``rviz/Marker`` in
+  ROS 1, ``rviz_default_plugins/Marker`` in ROS 2), ``message_types`` the ROS 2 type names its
+  ``Topic`` takes (the first is used when the graph does not tell), ``options`` its property
+  table with RViz's names and defaults (``Topic``, ``Queue Size``, ``Size (m)``, ...). Option
+  values live in ``self.values`` (name -> value) and are read with :meth:`Display.option`.
+- Threading: every method is called on the viewer's loop thread (the one that owns the nodes,
+  see :mod:`robomodel.viewer.tools.base`), so a display needs no locks. GUI callbacks post.
+- Messages: the :class:`~robomodel.viewer.displays.manager.DisplayManager` subscribes the
+  viewer's node to what :meth:`Display.subscriptions` returns (by default one subscription to
+  the ``Topic`` option with ``Queue Size`` as depth) and re-subscribes when that changes. The
+  callback is :meth:`Display.receive`, which counts the message and calls :meth:`on_message`.
+  Message classes come from :func:`robomodel.runtime.msg.get_message_type` (built from the
+  type's definition); never write one by hand.
+- Drawing: :meth:`Display.draw` is called about 10 times a second with a
+  :data:`FrameLookup`; it places its data through TF in the fixed frame (with the message's
+  stamp where the frame moves) and returns a :class:`DisplayStatus`, shown in the Displays
+  panel (a frame without a transform gives RViz's "No transform from [x] to [y]").
+- Scene nodes go below :attr:`Display.root` (``/displays/<display name>``), best through
+  :meth:`Display.add_node` so that disabling, renaming and closing remove them.
+- Enable/disable (:meth:`set_enabled`), option changes (:meth:`set_option`, which calls
+  :meth:`on_option_changed`), reset (:meth:`reset`) and :meth:`close` are handled by the base;
+  override the ``on_*`` hooks for more.
+- A display that needs page controls (an image) overrides :meth:`build_panel`.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any, ClassVar, TypeVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+from robomodel.errors import RobomodelError
+
+__all__ = [
+    "Display",
+    "DisplayContext",
+    "DisplayOptionError",
+    "DisplayStatus",
+    "FrameLookup",
+    "Option",
+    "OptionKind",
+    "Placement",
+    "StatusLevel",
+    "SubscriptionSpec",
+    "UnknownDisplayError",
+    "display_class",
+    "display_classes",
+    "register_display",
+    "stamp_ns",
+]
+
+
+class StatusLevel(enum.Enum):
+    """RViz's status levels (``rviz::StatusProperty``)."""
+
+    OK = "ok"
+    WARN = "warn"
+    ERROR = "error"
+
+
+@dataclass(frozen=True, slots=True)
+class DisplayStatus:
+    """A display's status line (``level``, ``text``), as RViz's Status row shows it."""
+
+    level: StatusLevel
+    text: str
+
+    @classmethod
+    def ok(cls, text: str = "OK") -> DisplayStatus:
+        return cls(StatusLevel.OK, text)
+
+    @classmethod
+    def warn(cls, text: str) -> DisplayStatus:
+        return cls(StatusLevel.WARN, text)
+
+    @classmethod
+    def error(cls, text: str) -> DisplayStatus:
+        return cls(StatusLevel.ERROR, text)
+
+    def worst(self, other: DisplayStatus) -> DisplayStatus:
+        """The more severe of the two (self when equal)."""
+        order = (StatusLevel.OK, StatusLevel.WARN, StatusLevel.ERROR)
+        return other if order.index(other.level) > order.index(self.level) else self
+
+
+class DisplayOptionError(RobomodelError):
+    """An option value a display cannot take (the message names the option and what is valid)."""
+
+
+class UnknownDisplayError(RobomodelError):
+    """A display class robomodel does not have (the message lists those it has)."""
+
+
+class OptionKind(enum.Enum):
+    """How an option is edited and stored in a config."""
+
+    BOOL = "bool"
+    INT = "int"
+    FLOAT = "float"
+    TEXT = "text"
+    CHOICE = "choice"  # one of Option.choices
+    COLOR = "color"  # RViz's "255; 0; 0" text
+    TOPIC = "topic"  # a topic name; the panel offers the graph's topics of message_types
+    MAP = "map"  # a nested map kept as read (Marker's Namespaces: {ns: true})
+
+
+@dataclass(frozen=True, slots=True)
+class Option:
+    """One row of a display's property table.
+
+    Attributes:
+        name: RViz's property name (``"Topic"``, ``"Queue Size"``, ``"Size (m)"``).
+        default: RViz's default value.
+        kind: How it is edited and checked.
+        choices: The values of a CHOICE option.
+        minimum: The least value of an INT or FLOAT option.
+        maximum: The greatest value of an INT or FLOAT option.
+        help: RViz's description of the property.
+    """
+
+    name: str
+    default: Any
+    kind: OptionKind
+    choices: tuple[str, ...] = ()
+    minimum: float | None = None
+    maximum: float | None = None
+    help: str = ""
+
+    def coerce(self, value: Any) -> Any:
+        """``value`` as this option stores it.
+
+        Raises:
+            DisplayOptionError: it is of the wrong kind or out of range.
+        """
+        try:
+            out = _COERCE[self.kind](value)
+        except (TypeError, ValueError):
+            raise DisplayOptionError(
+                f"option '{self.name}' takes a {self.kind.value} value, not {value!r}"
+            ) from None
+        if self.kind is OptionKind.CHOICE and self.choices and out not in self.choices:
+            raise DisplayOptionError(
+                f"option '{self.name}' is one of {', '.join(self.choices)}; not {out!r}"
+            )
+        if isinstance(out, float | int) and not isinstance(out, bool):
+            low, high = self.minimum, self.maximum
+            if (low is not None and out < low) or (high is not None and out > high):
+                raise DisplayOptionError(
+                    f"option '{self.name}' must be in [{low}, {high}], not {out}"
+                )
+        return out
+
+
+def _bool(value: Any) -> bool:
+    if isinstance(value, str):
+        if value.strip().lower() in ("true", "1", "yes", "on"):
+            return True
+        if value.strip().lower() in ("false", "0", "no", "off"):
+            return False
+        raise ValueError(value)
+    return bool(value)
+
+
+def _float(value: Any) -> float:
+    if isinstance(value, bool):
+        raise TypeError(value)
+    out = float(value)
+    if not math.isfinite(out):
+        raise ValueError(value)
+    return out
+
+
+def _int(value: Any) -> int:
+    out = _float(value)
+    if not out.is_integer():
+        raise ValueError(value)
+    return int(out)
+
+
+def _color(value: Any) -> str:
+    """RViz's ``"r; g; b"`` (0..255 each) from that text or a 3-sequence."""
+    parts = value.replace(",", ";").split(";") if isinstance(value, str) else list(value)
+    rgb = [round(float(p)) for p in parts]
+    if len(rgb) != 3 or not all(0 <= c <= 255 for c in rgb):
+        raise ValueError(value)
+    return "; ".join(str(c) for c in rgb)
+
+
+def _map(value: Any) -> Mapping[str, Any]:
+    if value is None:
+        return MappingProxyType({})
+    if not isinstance(value, Mapping):
+        raise TypeError(value)
+    return MappingProxyType(dict(value))
+
+
+_COERCE: dict[OptionKind, Callable[[Any], Any]] = {
+    OptionKind.BOOL: _bool,
+    OptionKind.INT: _int,
+    OptionKind.FLOAT: _float,
+    OptionKind.TEXT: lambda v: "" if v is None else str(v),
+    OptionKind.CHOICE: str,
+    OptionKind.COLOR: _color,
+    OptionKind.TOPIC: lambda v: "" if v is None else str(v).strip(),
+    OptionKind.MAP: _map,
+}
+
+
+def color_rgb(text: str) -> tuple[int, int, int]:
+    """A COLOR option's value as ``(r, g, b)``, 0..255 each."""
+    r, g, b = (int(p) for p in text.split(";"))
+    return r, g, b
+
+
+@dataclass(frozen=True, slots=True)
+class Placement:
+    """Where a frame is in the fixed frame: ``T_fixed_frame`` (4x4) or why it has none."""
+
+    T_fixed_frame: NDArray[np.float64] | None
+    reason: str = ""
+
+    @property
+    def found(self) -> bool:
+        return self.T_fixed_frame is not None
+
+
+FrameLookup = Callable[[str, int], Placement]
+"""``lookup(frame_id, stamp_ns)``: the frame's pose in the fixed frame at ``stamp_ns`` (0:
+the latest), or the reason (RViz's "No transform from [frame] to [fixed]")."""
+
+
+def stamp_ns(stamp: Any) -> int:
+    """A message's ``header.stamp`` [ns] (ROS 2 ``sec``/``nanosec``; ROS 1 ``secs``/``nsecs``)."""
+    sec = getattr(stamp, "sec", getattr(stamp, "secs", 0))
+    nanosec = getattr(stamp, "nanosec", getattr(stamp, "nsecs", 0))
+    return int(sec) * 1_000_000_000 + int(nanosec)
+
+
+@dataclass(frozen=True, slots=True)
+class SubscriptionSpec:
+    """A subscription a display wants: ``callback`` gets each message of ``type_name`` on
+    ``topic`` (``depth``: the queue size; ``transient_local``: latched, as RViz's Durability
+    Policy "Transient Local")."""
+
+    topic: str
+    type_name: str
+    callback: Callable[[Any], None] = field(compare=False)
+    depth: int = 10
+    transient_local: bool = False
+    key: str = "Topic"  # which subscription of the display, for specs that equal otherwise
+
+
+@dataclass
+class DisplayContext:
+    """What a display gets from the viewer.
+
+    Attributes:
+        scene: viser's scene API (``server.scene``).
+        gui: viser's GUI API (``server.gui``), for displays with page controls.
+        fixed_frame: Returns the current Fixed Frame.
+        topic_types: Returns the types the graph shows for a topic (empty when unknown).
+        post: Runs a callable on the loop thread (from a GUI callback).
+        now_ns: The bus's current time [ns] (marker lifetimes, decay times).
+        load_mesh: Reads a mesh URI (``package://``, ``file://``, a path) into
+            :class:`~robomodel.viewer.meshes.MeshPart` s, cached; raises
+            :class:`~robomodel.errors.RobomodelError` (None: no meshes in this viewer).
+    """
+
+    scene: Any
+    gui: Any
+    fixed_frame: Callable[[], str]
+    topic_types: Callable[[str], frozenset[str]]
+    post: Callable[[Callable[[], object]], None]
+    now_ns: Callable[[], int]
+    load_mesh: Callable[[str], tuple[Any, ...]] | None = None
+
+
+_SAFE = re.compile(r"[^A-Za-z0-9_.\-]")
+
+
+class Display:
+    """An RViz display in the page (see the module docstring for the contract).
+
+    Args:
+        name: The display's name in the panel (RViz's ``Name``).
+        context: The viewer's parts a display uses.
+        values: Option values (missing ones get their defaults).
+        enabled: Whether it starts enabled.
+    """
+
+    class_name: ClassVar[str] = ""
+    message_types: ClassVar[tuple[str, ...]] = ()
+    options: ClassVar[tuple[Option, ...]] = ()
+    ros1_keys: ClassVar[Mapping[str, str]] = MappingProxyType({})
+    """Option name -> ROS 1 config key where RViz 1 names it otherwise (``Marker Topic``)."""
+
+    def __init__(
+        self,
+        name: str,
+        context: DisplayContext,
+        values: Mapping[str, Any] | None = None,
+        *,
+        enabled: bool = True,
+    ) -> None:
+        self.name = name
+        self.context = context
+        self.enabled = enabled
+        self.values: dict[str, Any] = {o.name: o.coerce(o.default) for o in self.options}
+        for key, value in (values or {}).items():
+            if key in self.values:
+                self.values[key] = self.option_spec(key).coerce(value)
+        self.messages_received = 0
+        self.status = DisplayStatus.ok()
+        self._nodes: dict[str, Any] = {}
+
+    # -- options -------------------------------------------------------------------------------
+    @classmethod
+    def option_spec(cls, name: str) -> Option:
+        for option in cls.options:
+            if option.name == name:
+                return option
+        known = ", ".join(o.name for o in cls.options) or "none"
+        raise DisplayOptionError(f"{cls.class_name} has no option '{name}'; options: {known}")
+
+    def option(self, name: str) -> Any:
+        return self.values[name]
+
+    def set_option(self, name: str, value: Any) -> None:
+        """Set an option (loop thread). Raises :class:`DisplayOptionError` for a bad value."""
+        new = self.option_spec(name).coerce(value)
+        if new == self.values[name]:
+            return
+        self.values[name] = new
+        self.on_option_changed(name)
+
+    def on_option_changed(self, name: str) -> None:
+        """Hook: an option changed (the manager re-subscribes on its own). Default: redraw."""
+        self.reset()
+
+    # -- messages ------------------------------------------------------------------------------
+    @property
+    def topic(self) -> str:
+        return str(self.values.get("Topic", ""))
+
+    def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
+        """What to subscribe to now; default: ``Topic`` with ``Queue Size`` as depth, typed
+        as the graph shows it when that type is one of ``message_types``."""
+        if not self.enabled or not self.message_types or not self.topic:
+            return ()
+        known = self.context.topic_types(self.topic)
+        type_name = next((t for t in self.message_types if t in known), self.message_types[0])
+        depth = int(self.values.get("Queue Size", 10))
+        return (SubscriptionSpec(self.topic, type_name, self.receive, max(1, depth)),)
+
+    def receive(self, msg: Any) -> None:
+        self.messages_received += 1
+        self.on_message(msg)
+
+    def on_message(self, msg: Any) -> None:
+        """Hook: a message arrived (loop thread). Keep it cheap; draw in :meth:`draw`."""
+
+    def topic_status(self) -> DisplayStatus | None:
+        """RViz's Topic status: a warning until the first message (None: not subscribed)."""
+        if not self.message_types or not self.enabled:
+            return None
+        if not self.topic:
+            return DisplayStatus.error("Error subscribing: Empty topic name")
+        if self.messages_received == 0:
+            return DisplayStatus.warn("No messages received")
+        return None
+
+    # -- drawing -------------------------------------------------------------------------------
+    def draw(self, lookup: FrameLookup) -> DisplayStatus:
+        """Bring the scene up to date (loop thread, ~10 Hz); the display's status."""
+        return self.topic_status() or DisplayStatus.ok()
+
+    @property
+    def root(self) -> str:
+        """The scene path all of this display's nodes go below."""
+        return f"/displays/{_SAFE.sub('_', self.name) or '_'}"
+
+    def add_node(self, key: str, kind: str, **kwargs: Any) -> Any:
+        """``scene.add_<kind>(root/key, **kwargs)``, replacing an earlier node of that key."""
+        self.remove_node(key)
+        handle = getattr(self.context.scene, f"add_{kind}")(f"{self.root}/{key}", **kwargs)
+        self._nodes[key] = handle
+        return handle
+
+    def node(self, key: str) -> Any:
+        return self._nodes.get(key)
+
+    def remove_node(self, key: str) -> None:
+        handle = self._nodes.pop(key, None)
+        if handle is not None:
+            handle.remove()
+
+    def remove_nodes(self) -> None:
+        for key in list(self._nodes):
+            self.remove_node(key)
+
+    # -- lifecycle -----------------------------------------------------------------------------
+    def set_enabled(self, enabled: bool) -> None:
+        if enabled == self.enabled:
+            return
+        self.enabled = enabled
+        if not enabled:
+            self.reset()
+        self.on_enabled_changed()
+
+    def on_enabled_changed(self) -> None:
+        """Hook: after :meth:`set_enabled`."""
+
+    def rename(self, name: str) -> None:
+        """A new name: the nodes move (they are drawn again below the new root)."""
+        self.remove_nodes()
+        self.name = name
+        self.on_renamed()
+
+    def on_renamed(self) -> None:
+        """Hook: after :meth:`rename` (drop anything keyed on the old scene paths)."""
+
+    def reset(self) -> None:
+        """RViz's Reset: forget what was drawn (the scene nodes go)."""
+        self.remove_nodes()
+
+    def build_panel(self, gui: Any) -> None:
+        """Hook: add page controls inside the display's folder (an image panel)."""
+
+    def close(self) -> None:
+        self.remove_nodes()
+
+
+_REGISTRY: dict[str, type[Display]] = {}
+D = TypeVar("D", bound=type[Display])
+
+
+def register_display(cls: D) -> D:
+    """Class decorator: make ``cls`` addable by its ``class_name``."""
+    if not cls.class_name:
+        raise TypeError(f"{cls.__name__} has no class_name")
+    _REGISTRY[cls.class_name] = cls
+    return cls
+
+
+def display_classes() -> Mapping[str, type[Display]]:
+    """Every registered display class by ``class_name`` (the package's modules loaded)."""
+    from robomodel.viewer.displays import load_builtin_displays
+
+    load_builtin_displays()
+    return MappingProxyType(dict(sorted(_REGISTRY.items())))
+
+
+def display_class(class_name: str) -> type[Display]:
+    """The display for ``Marker``, ``rviz/Marker`` or ``rviz_default_plugins/Marker``.
+
+    Raises:
+        UnknownDisplayError: robomodel has no such display.
+    """
+    classes = display_classes()
+    kind = class_name.rsplit("/", 1)[-1]
+    if kind not in classes:
+        raise UnknownDisplayError(
+            f"robomodel has no display '{class_name}'; it has: {', '.join(classes)}"
+        )
+    return classes[kind]
