@@ -6,6 +6,7 @@ from __future__ import annotations
 import struct
 
 import numpy as np
+import pytest
 
 from robomodel.runtime.msg import get_message_type
 from robomodel.viewer.displays import display_class
@@ -80,5 +81,88 @@ def test_point_cloud2_bad_cloud_is_an_error_status_and_config_transformer_kept()
     status = display.draw(lookup_from({"map": np.eye(4)}))
     assert status.level.value == "error" and "Data size (60 bytes)" in status.text
     display.receive(three_point_cloud(frame="map"))
-    assert display.draw(lookup_from({"map": np.eye(4)})).text == "Showing [3] points from [1] messages"
+    assert (
+        display.draw(lookup_from({"map": np.eye(4)})).text == "Showing [3] points from [1] messages"
+    )
     assert display.option("Color Transformer") == "Intensity"  # the config's choice kept
+
+
+Image = get_message_type("sensor_msgs/msg/Image")
+CameraInfo = get_message_type("sensor_msgs/msg/CameraInfo")
+OccupancyGrid = get_message_type("nav_msgs/msg/OccupancyGrid")
+BOARD = np.indices((4, 4)).sum(axis=0) % 2 == 0
+
+
+def checkerboard(encoding: str = "rgb8", frame: str = "camera_optical") -> object:
+    rgb = np.where(BOARD[..., None], (255, 0, 0), (0, 0, 255)).astype(np.uint8)
+    msg = Image(height=4, width=4, encoding=encoding, step=12, data=list(rgb.tobytes()))
+    msg.header.frame_id = frame
+    return msg
+
+
+def test_image_display_converts_the_newest_and_reports_bad_encodings() -> None:
+    display = display_class("Image")("img", fake_context(FakeScene()), {"Topic": "/camera/image"})
+    assert display.draw(lookup_from({})).text == "No messages received"
+    display.receive(checkerboard())
+    assert display.draw(lookup_from({})).text == "1 images received; showing 4x4"
+    assert display.rgb is not None
+    np.testing.assert_array_equal(display.rgb[0, 0], (255, 0, 0))
+    np.testing.assert_array_equal(display.rgb[0, 1], (0, 0, 255))
+    display.receive(checkerboard("rgb16"))
+    status = display.draw(lookup_from({}))
+    assert status.level.value == "error" and "Unsupported image encoding [rgb16]" in status.text
+    specs = display.subscriptions()
+    assert [s.type_name for s in specs] == ["sensor_msgs/msg/Image"]
+
+
+def test_camera_display_frustum_from_camera_info_through_tf() -> None:
+    scene = FakeScene()
+    display = display_class("Camera")("cam", fake_context(scene), {"Topic": "/camera/image_raw"})
+    assert [s.topic for s in display.subscriptions()] == ["/camera/image_raw", "/camera/camera_info"]  # fmt: skip
+    display.receive(checkerboard())
+    status = display.draw(lookup_from({"camera_optical": shifted(1.0)}))
+    assert status.text == "No CameraInfo received on [/camera/camera_info]. Topic may not exist."
+    info = CameraInfo(height=4, width=4)
+    info.p = [2.0, 0, 2, 0, 0, 2.0, 2, 0, 0, 0, 1, 0]
+    display.subscriptions()[1].callback(info)
+    status = display.draw(lookup_from({"camera_optical": shifted(1.0)}))
+    assert status.level.value == "warn" and "not rendered over the image" in status.text
+    (node,) = scene.visible("/displays/cam").values()
+    assert node.kind == "camera_frustum" and node.position == (1.0, 0.0, 0.0)
+    assert node.kwargs["fov"] == pytest.approx(2 * np.arctan(4 / (2 * 2.0)))
+    assert node.kwargs["aspect"] == 1.0
+    np.testing.assert_array_equal(node.kwargs["image"], display.rgb)
+    status = display.draw(lookup_from({}))
+    assert "No transform from [camera_optical] to [map]" in status.text
+
+
+def occupancy(frame: str = "map") -> object:
+    msg = OccupancyGrid()
+    msg.header.frame_id = frame
+    msg.info.resolution, msg.info.width, msg.info.height = 0.5, 2, 2
+    msg.info.origin.position.x = -1.0
+    msg.info.origin.orientation.w = 1.0
+    msg.data = [0, 100, -1, 50]
+    return msg
+
+
+def test_map_display_texture_placement_and_status() -> None:
+    scene = FakeScene()
+    display = display_class("Map")("map", fake_context(scene), {"Topic": "/map"})
+    assert display.subscriptions()[0].transient_local  # a latched map_server map arrives
+    display.receive(occupancy("odom"))
+    status = display.draw(lookup_from({}))
+    assert status.text == "No transform from [odom] to [map]" and not scene.visible()
+    status = display.draw(lookup_from({"odom": shifted(3.0)}))
+    assert status.text == "Map OK: 2 X 2 map @ 0.5 m/pix"
+    (node,) = scene.visible("/displays/map").values()
+    assert node.kind == "image" and node.position == (2.5, 0.5, 0.0)  # 3 - 1 + 0.5, 0.5
+    assert (node.kwargs["render_width"], node.kwargs["render_height"]) == (1.0, 1.0)
+    image = node.kwargs["image"]
+    np.testing.assert_array_equal(image[1, 0], (255, 255, 255, 178))  # free, bottom-left
+    np.testing.assert_array_equal(image[1, 1], (0, 0, 0, 178))
+    bad = occupancy()
+    bad.data = [0]
+    display.receive(bad)
+    status = display.draw(lookup_from({}))
+    assert status.level.value == "error" and "data size = 1" in status.text
