@@ -1,4 +1,4 @@
-"""OccupancyGrid -> RGBA (displays.grid) and the pose-like displays' geometry (displays.geometry)
+"""OccupancyGrid -> RGBA (displays.occupancy) and the pose-like displays' geometry (displays.geometry)
 against RViz's palettes and shapes."""
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from robomodel.viewer.displays.geometry import (
     quaternion_angular_distance,
     wrench_shapes,
 )
-from robomodel.viewer.displays.grid import GridError, grid_rgba, grid_texture_pose, map_palette
+from robomodel.viewer.displays.occupancy import GridError, grid_rgba, grid_texture_pose, map_palette
 
 OccupancyGrid = get_message_type("nav_msgs/msg/OccupancyGrid")
 

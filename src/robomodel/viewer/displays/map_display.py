@@ -1,6 +1,6 @@
 """RViz's Map display: a nav_msgs/OccupancyGrid as a textured plane (map_display.cpp).
 
-The texture uses RViz's palettes (:mod:`.grid`); the plane is the map's origin pose in its
+The texture uses RViz's palettes (:mod:`.occupancy`); the plane is the map's origin pose in its
 ``header.frame_id``, placed through TF at the current time (RViz's "Use Timestamp" false) or
 the map's stamp, and re-placed at every draw so that a moving map frame carries it along. The
 map topic is subscribed with durability Transient Local so that a latched map (map_server) is
@@ -24,7 +24,12 @@ from robomodel.viewer.displays.base import (
     register_display,
     stamp_ns,
 )
-from robomodel.viewer.displays.grid import COLOR_SCHEMES, GridError, grid_rgba, grid_texture_pose
+from robomodel.viewer.displays.occupancy import (
+    COLOR_SCHEMES,
+    GridError,
+    grid_rgba,
+    grid_texture_pose,
+)
 
 __all__ = ["MapDisplay"]
 
