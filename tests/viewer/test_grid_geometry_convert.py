@@ -20,7 +20,13 @@ from robomodel.viewer.displays.geometry import (
     quaternion_angular_distance,
     wrench_shapes,
 )
-from robomodel.viewer.displays.occupancy import GridError, grid_rgba, grid_texture_pose, map_palette
+from robomodel.viewer.displays.image import nearest_upscale
+from robomodel.viewer.displays.occupancy import (
+    GridError,
+    grid_rgba,
+    grid_texture_pose,
+    map_palette,
+)
 
 OccupancyGrid = get_message_type("nav_msgs/msg/OccupancyGrid")
 
@@ -44,10 +50,14 @@ def test_map_scheme_free_occupied_unknown_cells_and_row_order() -> None:
     # row 0 is y = 0 (the map's bottom): free, occupied; row 1: unknown, half
     rgba = grid_rgba(make_grid([[0, 100], [-1, 50]]), alpha=1.0)
     assert rgba.shape == (2, 2, 4)
-    np.testing.assert_array_equal(rgba[1, 0], (255, 255, 255, 255))  # free, bottom-left
-    np.testing.assert_array_equal(rgba[1, 1], (0, 0, 0, 255))  # occupied
-    np.testing.assert_array_equal(rgba[0, 0], (*UNKNOWN, 255))  # unknown, top-left
-    np.testing.assert_array_equal(rgba[0, 1], (128, 128, 128, 255))  # 255 - 255*50/100
+    np.testing.assert_array_equal(rgba[0, 0], (255, 255, 255, 255))  # free, (x0, y0)
+    np.testing.assert_array_equal(rgba[0, 1], (0, 0, 0, 255))  # occupied
+    np.testing.assert_array_equal(rgba[1, 0], (*UNKNOWN, 255))  # unknown
+    np.testing.assert_array_equal(rgba[1, 1], (128, 128, 128, 255))  # 255 - 255*50/100
+    big = nearest_upscale(rgba)
+    assert big.shape == (256, 256, 4)
+    np.testing.assert_array_equal(big[127, 128], rgba[0, 1])
+    np.testing.assert_array_equal(big[128, 127], rgba[1, 0])
     assert grid_rgba(make_grid([[0]]))[0, 0, 3] == int(255 * 0.7)  # RViz's Alpha default
 
 

@@ -70,7 +70,9 @@ class CameraDisplay(ImageDisplay):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.camera_info: Any = None
-        self._frustum_key: tuple[Any, ...] = ()
+        self._frustum_key: tuple[float, float] | None = None
+        self._frustum_image = -1
+        self._frustum_pose: tuple[Any, ...] = ()
 
     def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
         image = super().subscriptions()
@@ -92,7 +94,24 @@ class CameraDisplay(ImageDisplay):
         super().on_option_changed(name)
         if name == "Topic":
             self.camera_info = None
-        self._frustum_key = ()
+        self._frustum_key = None
+
+    def _show_frustum(self, shape: tuple[float, float], T_fixed_camera: Any) -> None:
+        """The frustum with the newest image; updated in place (a re-added node would flicker
+        and, re-added faster than the page decodes its image, never show it)."""
+        node = self.node("frustum")
+        if node is None or self._frustum_key != shape:
+            self._frustum_key, self._frustum_pose = shape, ()
+            node = self.add_node("frustum", "camera_frustum", fov=shape[0], aspect=shape[1],
+                                 scale=0.3, image=self.rgb, format="jpeg")  # fmt: skip
+            self._frustum_image = self.shown
+        elif self._frustum_image != self.shown:
+            node.image = self.rgb
+            self._frustum_image = self.shown
+        pose = pose_kwargs(T_fixed_camera)
+        if (pose["wxyz"], pose["position"]) != self._frustum_pose:
+            self._frustum_pose = (pose["wxyz"], pose["position"])
+            node.wxyz, node.position = pose["wxyz"], pose["position"]
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
         status = super().draw(lookup)
@@ -111,18 +130,7 @@ class CameraDisplay(ImageDisplay):
         placement = place(lookup, self.header)
         if placement.T_fixed_frame is None:
             self.remove_node("frustum")
+            self._frustum_pose = ()
             return combine(None, [placement.reason], "")
-        key = (self.shown, shape, placement.T_fixed_frame.tobytes())
-        if key != self._frustum_key:
-            self._frustum_key = key
-            self.add_node(
-                "frustum",
-                "camera_frustum",
-                fov=shape[0],
-                aspect=shape[1],
-                scale=0.3,
-                image=self.rgb,
-                format="jpeg",
-                **pose_kwargs(placement.T_fixed_frame),
-            )
+        self._show_frustum(shape, placement.T_fixed_frame)
         return DisplayStatus.warn(f"{status.text}; {NO_OVERLAY}")

@@ -31,6 +31,7 @@ __all__ = [
     "RangeNormalizer",
     "compressed_image_rgb",
     "image_rgb",
+    "nearest_upscale",
     "scale_to_mono8",
 ]
 
@@ -67,6 +68,17 @@ class RangeNormalizer:
         if keep <= 1:
             return lo, hi
         return statistics.median_high(self._mins), statistics.median_high(self._maxs)
+
+
+def nearest_upscale(image: NDArray[np.uint8], *, min_side: int = 256, max_side: int = 2048) -> NDArray[np.uint8]:  # fmt: skip
+    """``image`` with each pixel repeated so that its longer side reaches ``min_side`` (never
+    past ``max_side``): the browser filters textures linearly, RViz's map texture is sampled
+    nearest (TFO_NONE), so cells must stay sharp squares."""
+    longest = max(image.shape[0], image.shape[1])
+    factor = max(1, min(min_side // max(longest, 1), max_side // max(longest, 1)))
+    if factor == 1:
+        return image
+    return np.repeat(np.repeat(image, factor, axis=0), factor, axis=1)
 
 
 def scale_to_mono8(values: NDArray[Any], lo: float, hi: float) -> NDArray[np.uint8]:

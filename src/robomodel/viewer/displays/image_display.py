@@ -27,6 +27,7 @@ from robomodel.viewer.displays.image import (
     RangeNormalizer,
     compressed_image_rgb,
     image_rgb,
+    nearest_upscale,
 )
 
 __all__ = ["ImageDisplay", "message_rgb"]
@@ -122,7 +123,8 @@ class ImageDisplay(Display):
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
         if self.convert_pending() and self._panel_image is not None and self.rgb is not None:
-            self._panel_image.image = self.rgb
+            # a small image is shown at its own size: repeat its pixels to fill the panel
+            self._panel_image.image = nearest_upscale(self.rgb, min_side=320)
         if self._error:
             return DisplayStatus.error(self._error)
         waiting = self.topic_status()

@@ -24,6 +24,7 @@ from robomodel.viewer.displays.base import (
     register_display,
     stamp_ns,
 )
+from robomodel.viewer.displays.image import nearest_upscale
 from robomodel.viewer.displays.occupancy import (
     COLOR_SCHEMES,
     GridError,
@@ -59,6 +60,7 @@ class MapDisplay(Display):
         self._error = ""
         self._placed: bytes = b""
         self._T_frame_centre = np.eye(4)
+        self._texture_key: tuple[Any, ...] = ()
 
     def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
         specs = super().subscriptions()
@@ -73,6 +75,7 @@ class MapDisplay(Display):
         if name == "Topic":
             self.map, self.messages_received = None, 0
         self.remove_nodes()
+        self._texture_key = ()
         self._new = self.map is not None
 
     def reset(self) -> None:
@@ -86,28 +89,41 @@ class MapDisplay(Display):
             return self.topic_status() or DisplayStatus.warn("No map received")
         if self._new:
             self._new = False
-            self._placed = b""
-            try:
-                rgba = grid_rgba(
-                    msg,
-                    color_scheme=str(self.values["Color Scheme"]),
-                    binary=bool(self.values["Binary representation"]),
-                    threshold=int(self.values["Binary threshold"]),
-                    alpha=float(self.values["Alpha"]),
-                )
-            except GridError as exc:
-                self._error = str(exc)
-                self.remove_nodes()
-                return DisplayStatus.error(self._error)
-            self._error = ""
-            T_frame_centre, width_m, height_m = grid_texture_pose(msg)
-            self._T_frame_centre = T_frame_centre
-            self.add_node("map", "image", image=rgba, render_width=width_m,
-                          render_height=height_m, format="png", cast_shadow=False,
-                          receive_shadow=False, visible=False)  # fmt: skip
+            problem = self._texture(msg)
+            if problem:
+                return DisplayStatus.error(problem)
         if self._error:
             return DisplayStatus.error(self._error)
         return self._place(lookup, msg)
+
+    def _texture(self, msg: Any) -> str:
+        """Send the map's texture when its content changed (a map republished unchanged, as
+        map_server's latched map often is, is not sent again); the error, if any."""
+        v = self.values
+        info, origin = msg.info, msg.info.origin
+        key = (str(msg.header.frame_id), info.width, info.height, info.resolution,
+               origin.position.x, origin.position.y, origin.position.z, origin.orientation.x,
+               origin.orientation.y, origin.orientation.z, origin.orientation.w,
+               bytes(np.asarray(msg.data, dtype=np.int8)),
+               v["Color Scheme"], v["Binary representation"], v["Binary threshold"], v["Alpha"])  # fmt: skip
+        if key == self._texture_key and self.node("map") is not None:
+            return ""
+        self._texture_key = key
+        self._placed = b""
+        try:
+            rgba = grid_rgba(msg, color_scheme=str(v["Color Scheme"]),
+                             binary=bool(v["Binary representation"]),
+                             threshold=int(v["Binary threshold"]), alpha=float(v["Alpha"]))  # fmt: skip
+        except GridError as exc:
+            self._error = str(exc)
+            self.remove_nodes()
+            return self._error
+        self._error = ""
+        self._T_frame_centre, width_m, height_m = grid_texture_pose(msg)
+        self.add_node("map", "image", image=nearest_upscale(rgba), render_width=width_m,
+                      render_height=height_m, format="png", cast_shadow=False,
+                      receive_shadow=False, visible=False)  # fmt: skip
+        return ""
 
     def _place(self, lookup: FrameLookup, msg: Any) -> DisplayStatus:
         node = self.node("map")

@@ -92,8 +92,8 @@ def grid_rgba(
     threshold: int = 100,
     alpha: float = 0.7,
 ) -> NDArray[np.uint8]:
-    """The grid as an image (height, width, 4) RGBA uint8, row 0 at the top: the map's last
-    row (largest y) first, so that the image's up is the map's +y.
+    """The grid as an image (height, width, 4) RGBA uint8 in the map's own row order: row 0
+    is the map's y = 0 edge, which viser's image plane puts at its -y side.
 
     Args:
         msg: A nav_msgs/OccupancyGrid.
@@ -123,7 +123,7 @@ def grid_rgba(
             f"data size = {flat.size}"
         )
     cells = flat.reshape(h, w)
-    rgba = map_palette(color_scheme, binary, int(threshold))[cells[::-1]]
+    rgba = map_palette(color_scheme, binary, int(threshold))[cells]
     rgba[..., 3] = (rgba[..., 3].astype(np.float32) * min(max(alpha, 0.0), 1.0)).astype(np.uint8)
     return rgba
 
