@@ -15,15 +15,22 @@ from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
+from robomodel.viewer.displays.attach import config_with_displays, open_config_displays
 from robomodel.viewer.rviz_apply import apply_rviz_document, viewer_state
 from robomodel.viewer.rviz_document import RvizDocument, open_rviz_document
-from robomodel.viewer.rviz_model import RvizDialect
+from robomodel.viewer.rviz_model import RvizConfig, RvizDialect
 from robomodel.viewer.rviz_state import ViewerState, config_with_state
 from robomodel.viewer.rviz_write import RvizSaveError, write_rviz_config
 
 __all__ = ["ConfigPanel", "attach_rviz"]
 
+DisplaysHook = Callable[[RvizConfig, RvizDialect], tuple[RvizConfig, Callable[[], None]]]
+
 log = logging.getLogger("robomodel.viewer")
+
+
+def _nothing() -> None:
+    pass
 
 
 def _markdown_path(path: str) -> str:
@@ -38,6 +45,9 @@ class ConfigPanel:
         document: The config the viewer opened (its ``path`` is Save Config's target).
         state: The page's state to save, given the browser (its camera) that asked.
         frame_rate_hz: The viewer's Frame Rate when the config gives none.
+        displays: Puts the Displays panel's displays into a config; returns it and what to
+            call once it is written (see :func:`~robomodel.viewer.displays.attach.
+            config_with_displays`).
     """
 
     def __init__(
@@ -47,8 +57,10 @@ class ConfigPanel:
         state: Callable[[Any], ViewerState],
         *,
         frame_rate_hz: float = 60.0,
+        displays: DisplaysHook | None = None,
     ) -> None:
         self.document = document
+        self._displays = displays
         self._frame_rate_hz = frame_rate_hz
         self._state = state
         self._server = server
@@ -83,6 +95,9 @@ class ConfigPanel:
             camera = client.camera if client is not None else self._server.initial_camera
             state = self._state(camera)
             config = config_with_state(self.document, state, frame_rate_hz=self._frame_rate_hz)
+            saved: Callable[[], None] = _nothing
+            if self._displays is not None:
+                config, saved = self._displays(config, self.document.dialect)
             try:
                 written = write_rviz_config(path, config)
             except RvizSaveError as exc:
@@ -90,6 +105,7 @@ class ConfigPanel:
                 log.warning("%s", exc)
                 return False
             self.document = replace(self.document, path=str(path), config=config, missing=False)
+            saved()
             self.status.content = f"Saved RViz config {_markdown_path(str(written))}"
             log.info("saved RViz config %s", written)
             return True
@@ -116,12 +132,16 @@ class ConfigPanel:
 
 
 def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
-    """Apply the viewer's ``-d`` config (``options.rviz``) to ``panel`` and add the File
-    folder; without one, Save Config As starts from RViz's defaults (ROS 1 class names on a
+    """Apply the viewer's ``-d`` config (``options.rviz``) to ``panel`` and its other displays
+    to the Displays panel, and add the File folder; without one, Save Config As starts from RViz's defaults (ROS 1 class names on a
     ROS 1 bus, else ROS 2's)."""
     document = viewer.options.rviz
+    displays = viewer.displays_panel
     if document is not None:
         apply_rviz_document(viewer, panel, document)
+        if displays is not None and not document.missing:
+            for problem in open_config_displays(displays, document):
+                log.warning("RViz config %s: %s", document.path, problem)
     else:
         dialect = RvizDialect.ROS1 if viewer.options.bus == "ros1" else RvizDialect.ROS2
         document, _ = open_rviz_document(None, dialect)
@@ -130,4 +150,9 @@ def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
         document,
         lambda camera: viewer_state(panel, camera),
         frame_rate_hz=viewer.options.frame_rate_hz,
+        displays=None
+        if displays is None
+        else lambda config, dialect: config_with_displays(
+            list(displays.manager.displays), config, dialect
+        ),
     )

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from robomodel.viewer.displays.base import display_classes
 from robomodel.viewer.rviz_document import RvizDocument
 from robomodel.viewer.rviz_state import OrbitCamera, ViewerState, implied_state
 
@@ -36,9 +37,9 @@ def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None
         image[:] = rviz.background_rgb
         viewer.server.scene.set_background_image(image, format="png")
     if rviz.unsupported:
-        viewer.status_note = (
-            "\n\nRViz displays not drawn (robomodel has RobotModel, TF and Grid): "
-            + ", ".join(rviz.unsupported)
+        have = ", ".join(["RobotModel", "TF", "Grid", *display_classes()])
+        viewer.status_note = f"\n\nRViz displays not drawn (robomodel has {have}): " + ", ".join(
+            rviz.unsupported
         )
 
 

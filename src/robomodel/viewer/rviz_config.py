@@ -4,8 +4,9 @@
 RvizConfig`; :func:`settings_of` picks what the viewer applies: Global Options (Fixed Frame,
 Frame Rate, Background Color), the RobotModel display (Enabled, Alpha, Visual Enabled,
 Collision Enabled, Robot Description), the TF display (Enabled, Show Axes, Show Names, Marker
-Scale), the Grid display (Enabled). Every other display class is named once in the viewer's
-Status as not supported. Both RViz 1 (``rviz/RobotModel``) and RViz 2
+Scale), the Grid display (Enabled). The other displays robomodel has (Marker, ...) are read by
+:mod:`robomodel.viewer.displays.rviz_io`; every other display class is named once in the
+viewer's Status as not supported. Both RViz 1 (``rviz/RobotModel``) and RViz 2
 (``rviz_default_plugins/RobotModel``) class names are read.
 """
 
@@ -21,6 +22,7 @@ import yaml
 
 from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
+from robomodel.viewer.displays.base import is_rviz_display
 from robomodel.viewer.rviz_model import RvizConfig, RvizDisplay, RvizView, freeze
 
 __all__ = [
@@ -222,7 +224,11 @@ def settings_of(config: RvizConfig) -> RvizSettings:
             values["tf_marker_scale"] = _float_or_none(s.get("Marker Scale"))
         elif kind == "Grid":
             values["grid_enabled"] = display.enabled
-        elif kind not in _SUPPORTED and display.class_name not in unsupported:
+        elif (
+            kind not in _SUPPORTED
+            and not is_rviz_display(display.class_name)
+            and display.class_name not in unsupported
+        ):
             unsupported.append(display.class_name or "?")
     return RvizSettings(unsupported=tuple(unsupported), **values)
 

@@ -23,6 +23,7 @@ from robomodel.viewer.displays.base import (
     UnknownDisplayError,
     display_class,
     display_classes,
+    is_rviz_display,
     register_display,
     stamp_ns,
 )
@@ -41,13 +42,14 @@ __all__ = [
     "UnknownDisplayError",
     "display_class",
     "display_classes",
+    "is_rviz_display",
     "load_builtin_displays",
     "register_display",
     "stamp_ns",
 ]
 
 _LOADED: list[bool] = []
-_NOT_DISPLAYS = ("attach", "base", "manager", "panel", "rviz_io")
+_NOT_DISPLAYS = ("attach", "base", "manager", "options", "panel", "rviz_io")
 
 
 def load_builtin_displays() -> None:

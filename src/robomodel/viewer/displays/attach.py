@@ -1,18 +1,31 @@
-"""The Displays panel on a running viewer: its manager, the context displays get, the timer."""
+"""The Displays panel on a running viewer (its manager, the context displays get, the timer),
+and the displays of its RViz config: opened into the panel, saved from it."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.viewer.displays.base import DisplayContext
+from robomodel.viewer.displays.base import (
+    Display,
+    DisplayContext,
+    DisplayStatus,
+    FrameLookup,
+    display_class,
+    is_rviz_display,
+)
 from robomodel.viewer.displays.manager import DisplayManager
 from robomodel.viewer.displays.panel import DisplaysPanel
+from robomodel.viewer.displays.rviz_io import display_entry, display_values
 from robomodel.viewer.meshes import resolve_mesh_uri
+from robomodel.viewer.rviz_document import RvizDocument
+from robomodel.viewer.rviz_model import RvizConfig, RvizDialect, RvizDisplay
 from robomodel.viewer.tools.base import BusWorker
 
-__all__ = ["attach_displays"]
+__all__ = ["MissingDisplay", "attach_displays", "config_with_displays", "open_config_displays"]
 
 _DRAW_PERIOD_S = 0.1  # RViz updates displays every frame; 10 Hz keeps the page's load low
 
@@ -46,3 +59,80 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
     panel = DisplaysPanel(viewer.server.gui, manager, viewer._post, BusWorker(node.context))
     node.create_timer(_DRAW_PERIOD_S, manager.update)
     return panel
+
+
+_BUILTIN = ("RobotModel", "TF", "Grid")  # the viewer's own folders (options_panel.py)
+
+
+class MissingDisplay(Display):
+    """A display of a class robomodel lacks: listed with RViz's status for a plugin it cannot
+    load, its settings kept for saving."""
+
+    def __init__(self, entry: RvizDisplay, context: DisplayContext) -> None:
+        super().__init__(entry.name, context, enabled=entry.enabled)
+        self.config_entry = entry
+
+    def draw(self, lookup: FrameLookup) -> DisplayStatus:
+        # rviz::FailedDisplay's description
+        return DisplayStatus.error(
+            f"The class required for this display, '{self.config_entry.class_name}', could "
+            "not be loaded."
+        )
+
+
+def open_config_displays(panel: DisplaysPanel, document: RvizDocument) -> list[str]:
+    """Add the document's displays other than RobotModel, TF and Grid to ``panel`` (before
+    the loop runs, or on it); one line per option value that could not be taken."""
+    problems: list[str] = []
+    for entry in document.config.displays:
+        if is_rviz_display(entry.class_name, _BUILTIN):
+            continue
+        if not is_rviz_display(entry.class_name):
+            missing = MissingDisplay(entry, panel.manager.context)
+            missing.name = panel.manager.unique_name(entry.name)
+            panel.manager.displays.append(missing)
+            panel.add_row(missing)
+            continue
+        cls = display_class(entry.class_name)
+        values, skipped = display_values(cls, entry.settings, document.dialect)
+        problems += [f"{entry.name}: {line}" for line in skipped]
+        display = panel.add(entry.class_name, name=entry.name, values=values, enabled=entry.enabled)  # fmt: skip
+        if display is not None:
+            display.config_entry = entry
+    return problems
+
+
+def config_with_displays(
+    displays: list[Display], config: RvizConfig, dialect: RvizDialect
+) -> tuple[RvizConfig, Callable[[], None]]:
+    """``config`` with the panel's displays in place of those it was read with (RobotModel,
+    TF and Grid kept as they are), new ones at the end; and what to call once it is saved
+    (the displays then remember the entries written)."""
+    by_entry = {id(d.config_entry): d for d in displays if d.config_entry is not None}
+    out: list[RvizDisplay] = []
+    written: list[tuple[Display, RvizDisplay]] = []
+    for entry in config.displays:
+        display = by_entry.get(id(entry))
+        if display is None:
+            if is_rviz_display(entry.class_name, _BUILTIN):
+                out.append(entry)
+            continue  # a display removed in the page
+        out.append(_entry(display, dialect, entry))
+        written.append((display, out[-1]))
+    for display in displays:
+        if display.config_entry is None:
+            out.append(_entry(display, dialect, None))
+            written.append((display, out[-1]))
+
+    def saved() -> None:
+        for display, entry in written:
+            display.config_entry = entry
+
+    return replace(config, displays=tuple(out)), saved
+
+
+def _entry(display: Display, dialect: RvizDialect, base: RvizDisplay | None) -> RvizDisplay:
+    if isinstance(display, MissingDisplay):
+        entry = display.config_entry
+        return RvizDisplay(entry.class_name, display.name, display.enabled, entry.settings)
+    return display_entry(display, dialect, base)

@@ -1,0 +1,114 @@
+"""The Displays panel in a real browser (headless Chromium, real time), the viewer in this process.
+
+Another process (``robomodel topic pub``) publishes a red cube marker 1 m ahead of base_link on
+the Zenoh bus; the page adds a Marker display from the live graph ("Add by topic"), and the
+screenshot must show red where the camera sees that point (its projection through the page's
+camera) and not where the mirror point is. The display's status line says Ok; switching the
+namespace off in the page hides the cube.
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.timing import scaled
+from tests.viewer.conftest import gui_row, open_viewer, save_shot, screenshot, wait_for
+
+pytestmark = pytest.mark.browser
+
+PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
+RED_CUBE = (
+    "{header: {frame_id: base_link}, ns: cubes, id: 1, type: 1, action: 0, "
+    "pose: {position: {x: 1.0, y: 0.0, z: 0.0}, orientation: {w: 1.0}}, "
+    "scale: {x: 0.3, y: 0.3, z: 0.3}, color: {r: 1.0, g: 0.0, b: 0.0, a: 1.0}}"
+)
+
+
+@pytest.fixture
+def zenoh_viewer() -> Iterator[tuple[Viewer, str]]:
+    domain = unique_domain()
+    source = RobotSource(str(PLANAR))
+    viewer = Viewer(ViewerOptions(sources=(source,), port=0, bus="zenoh", domain_id=int(domain)))
+    viewer.start()
+    yield viewer, domain
+    viewer.close()
+
+
+@pytest.fixture
+def red_cube_publisher(zenoh_viewer: tuple[Viewer, str]) -> Iterator[subprocess.Popen[str]]:
+    _viewer, domain = zenoh_viewer
+    argv = ["topic", "pub", "-r", "5", "/visualization_marker", "visualization_msgs/msg/Marker"]
+    proc = subprocess.Popen(
+        [*ROBOMODEL, *argv, RED_CUBE, "--bus", "zenoh", "--domain-id", domain],
+        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, start_new_session=True,
+    )  # fmt: skip
+    yield proc
+    proc.terminate()
+    proc.wait(scaled(10))
+
+
+def project(camera: Any, point: np.ndarray, width: float, height: float) -> tuple[float, float]:
+    """Where three.js's perspective camera (vertical ``fov``, +z up) draws ``point`` [px]."""
+    position, look_at = np.asarray(camera.position), np.asarray(camera.look_at)
+    forward = (look_at - position) / np.linalg.norm(look_at - position)
+    right = np.cross(forward, (0.0, 0.0, 1.0))
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    d = point - position
+    depth, half = float(d @ forward), math.tan(camera.fov / 2)
+    x_ndc = float(d @ right) / (depth * half * width / height)
+    y_ndc = float(d @ up) / (depth * half)
+    return (x_ndc + 1) / 2 * width, (1 - y_ndc) / 2 * height
+
+
+def red_fraction(image: np.ndarray, x: float, y: float, radius: int = 6) -> float:
+    patch = image[int(y) - radius : int(y) + radius, int(x) - radius : int(x) + radius].astype(int)
+    r, g, b = patch[..., 0], patch[..., 1], patch[..., 2]
+    return float(((r > 100) & (r > 2 * g) & (r > 2 * b)).mean())
+
+
+def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_it(
+    zenoh_viewer: tuple[Viewer, str], red_cube_publisher: subprocess.Popen[str], page: Any
+) -> None:
+    viewer, _domain = zenoh_viewer
+    viewer.fixed_dropdown.value = "base_link"
+    # The camera looks along +y from 4 m: base_link's +x is to the right of the centre.
+    viewer.server.initial_camera.look_at = (0.0, 0.0, 0.0)
+    viewer.server.initial_camera.position = (0.0, -4.0, 1.0)
+    open_viewer(page, viewer.url)
+    page.get_by_text("Add display", exact=True).click()
+    entry = "/visualization_marker (Marker)"
+    wait_for(lambda: entry in viewer.displays_panel.topic_dropdown.options, what="the topic")
+    gui_row(page, "Topic").locator("input:not([type=hidden])").first.click()
+    page.get_by_role("option", name=entry, exact=True).click()
+    page.get_by_role("button", name="Add by topic", exact=True).click()
+    wait_for(lambda: viewer.displays.displays, what="the display added")
+    display = viewer.displays.displays[0]
+    assert (display.class_name, display.name, display.topic) == ("Marker", "/visualization_marker", "/visualization_marker")  # fmt: skip
+    client = next(iter(viewer.server.get_clients().values()))
+    canvas = page.locator("canvas").first.bounding_box()
+    wait_for(lambda: np.allclose(client.camera.position, (0, -4, 1), atol=1e-3), what="camera")
+    x, y = project(client.camera, np.array([1.0, 0.0, 0.0]), canvas["width"], canvas["height"])
+    mx, my = project(client.camera, np.array([-1.0, 0.0, 0.0]), canvas["width"], canvas["height"])
+    x, y, mx, my = x + canvas["x"], y + canvas["y"], mx + canvas["x"], my + canvas["y"]
+
+    wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="red where the cube is")
+    shot = screenshot(page)
+    save_shot(page, "marker_red_cube")
+    assert red_fraction(shot, mx, my) == 0.0  # not mirrored, not everywhere
+    page.get_by_text("/visualization_marker", exact=True).click()  # the display's folder
+    wait_for(lambda: "✓ Ok" in page.content() and "messages received" in page.content(), what="status")  # fmt: skip
+    # Namespaces: switching "cubes" off hides the cube.
+    page.get_by_text("Namespaces", exact=True).click()
+    page.get_by_text("cubes", exact=True).click()
+    wait_for(lambda: red_fraction(screenshot(page), x, y) == 0.0, what="the cube hidden")
+    save_shot(page, "marker_namespace_off")
+    assert display.option("Namespaces") == {"cubes": False}
