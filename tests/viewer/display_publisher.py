@@ -4,7 +4,7 @@
 second until interrupted: a 3-point cloud on /cloud (red, green and blue points, rgb field),
 a 4x4 red/blue checkerboard on /camera/image_raw with its /camera/camera_info, a 4x4
 occupancy grid on /map (free, occupied and unknown cells), a PoseStamped on /pose in a frame
-TF does not have, and /tf placing ``camera_optical`` 1 m above (2, -2.5) in ``map``, looking down.
+TF does not have, an Odometry pose on /odom and a Path on /path, and /tf placing ``camera_optical`` 1 m above (2, -2.5) in ``map``, looking down.
 """
 
 from __future__ import annotations
@@ -27,6 +27,8 @@ MAP_CELLS = np.array(
     [[0, 100, -1, 0], [100, 0, 0, -1], [-1, -1, 100, 100], [0, 0, 0, 100]], dtype=np.int8
 )
 BOARD = np.indices((4, 4)).sum(axis=0) % 2 == 0  # red where True, blue elsewhere
+ODOM_XY = (-2.5, -1.0)  # an arrow from here along +x (RViz's default: 1.3 m long)
+PATH_XY = ((-3.0, -2.0), (-1.0, -2.0))
 
 
 def cloud(msg_types: dict[str, type]) -> object:
@@ -63,16 +65,37 @@ def occupancy(msg_types: dict[str, type]) -> object:
     return msg
 
 
+def odometry(msg_types: dict[str, type]) -> object:
+    msg = msg_types["Odometry"]()
+    msg.header.frame_id = "map"
+    msg.pose.pose.position.x, msg.pose.pose.position.y = ODOM_XY
+    msg.pose.pose.orientation.w = 1.0
+    return msg
+
+
+def path(msg_types: dict[str, type]) -> object:
+    msg = msg_types["Path"]()
+    msg.header.frame_id = "map"
+    for x, y in PATH_XY:
+        pose = msg_types["PoseStamped"]()
+        pose.pose.position.x, pose.pose.position.y = x, y
+        pose.pose.orientation.w = 1.0
+        msg.poses.append(pose)
+    return msg
+
+
 def main(domain: int) -> None:
     names = {"PointCloud2": "sensor_msgs", "PointField": "sensor_msgs", "Image": "sensor_msgs",
-             "CameraInfo": "sensor_msgs", "OccupancyGrid": "nav_msgs", "PoseStamped": "geometry_msgs"}  # fmt: skip
+             "CameraInfo": "sensor_msgs", "OccupancyGrid": "nav_msgs", "PoseStamped": "geometry_msgs",
+             "Odometry": "nav_msgs", "Path": "nav_msgs"}  # fmt: skip
     types = {n: get_message_type(f"{pkg}/msg/{n}") for n, pkg in names.items()}
     context = Context("zenoh", domain_id=domain)
     node = context.create_node("display_publisher")
     pubs = {topic: node.create_publisher(t, topic, 10) for topic, t in (
         ("/cloud", types["PointCloud2"]), ("/camera/image_raw", types["Image"]),
         ("/camera/camera_info", types["CameraInfo"]), ("/map", types["OccupancyGrid"]),
-        ("/pose", types["PoseStamped"]), ("/tf", TFMessage))}  # fmt: skip
+        ("/pose", types["PoseStamped"]), ("/tf", TFMessage), ("/odom", types["Odometry"]),
+        ("/path", types["Path"]))}  # fmt: skip
     pose = types["PoseStamped"]()
     pose.header.frame_id = "nowhere"
     pose.pose.orientation.w = 1.0
@@ -82,7 +105,8 @@ def main(domain: int) -> None:
     lift.transform.translation.z = 1.0
     lift.transform.rotation.x, lift.transform.rotation.w = 1.0, 0.0  # looking down
     messages = {"/cloud": cloud(types), "/camera/image_raw": image(types), "/pose": pose,
-                "/camera/camera_info": camera_info(types), "/map": occupancy(types)}  # fmt: skip
+                "/camera/camera_info": camera_info(types), "/map": occupancy(types),
+                "/odom": odometry(types), "/path": path(types)}  # fmt: skip
 
     def publish() -> None:
         now = node.get_clock().now_ns()

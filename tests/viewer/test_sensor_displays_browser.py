@@ -125,6 +125,8 @@ def test_cloud_map_image_camera_and_pose_displays(fed_viewer: Viewer, page: Any)
         "Image": ("Image", {"Topic": "/camera/image_raw"}),
         "Camera": ("Camera", {"Topic": "/camera/image_raw"}),
         "Pose": ("Pose", {"Topic": "/pose"}),
+        "Odometry": ("Odometry", {"Topic": "/odom", "Covariance": False}),
+        "Path": ("Path", {"Topic": "/path"}),
     }
     for name, (kind, values) in adds.items():
         on_loop(viewer, lambda k=kind, n=name, v=values: viewer.displays_panel.add(k, name=n, values=v))  # fmt: skip
@@ -132,6 +134,7 @@ def test_cloud_map_image_camera_and_pose_displays(fed_viewer: Viewer, page: Any)
         "Cloud": "Showing [3] points from [1] messages",
         "Map": "Map OK: 4 X 4 map @ 0.5 m/pix",
         "Pose": "Frame [nowhere] does not exist",
+        "Odometry": "1 arrows kept",
     }
     wait_for(
         lambda: all(_statuses(viewer).get(n) == t for n, t in expected.items()),
@@ -151,13 +154,20 @@ def test_cloud_map_image_camera_and_pose_displays(fed_viewer: Viewer, page: Any)
     palette = {0: (255, 255, 255), 100: (0, 0, 0), -1: (0x70, 0x89, 0x86)}
     cell_colours = [palette[int(v)] for v in published.MAP_CELLS.ravel()]
 
+    (odom_shaft, path_middle) = _project(camera, canvas, np.array([
+        (published.ODOM_XY[0] + 0.5, published.ODOM_XY[1], 0.0),
+        ((published.PATH_XY[0][0] + published.PATH_XY[1][0]) / 2, published.PATH_XY[0][1], 0.0),
+    ]))  # fmt: skip
+
     def all_seen() -> bool:
         shot = screenshot(page)
+        # arrows are lit (shaded): RViz's 255; 25; 0 as a red hue, the path's 25; 255; 0 green
+        if not (_hue_near(shot, odom_shaft, 0) and _hue_near(shot, path_middle, 1)):
+            return False
         cloud_ok = all(_colour_near(shot, uv, c) for uv, c in zip(_project(camera, canvas, points), colours, strict=True))  # fmt: skip
         map_ok = all(_colour_near(shot, uv, c, 2) for uv, c in zip(_project(camera, canvas, cells), cell_colours, strict=True))  # fmt: skip
         return cloud_ok and map_ok
 
-    save_shot(page, "displays_cloud_map_first")
     where = {"points": _project(camera, canvas, points).round().tolist(), "canvas": canvas,
              "camera": (camera.position.tolist(), camera.wxyz.tolist(), camera.fov)}  # fmt: skip
     wait_for(all_seen, what=f"the cloud's points and the map's cells at their pixels {where}")
@@ -167,6 +177,14 @@ def test_cloud_map_image_camera_and_pose_displays(fed_viewer: Viewer, page: Any)
     page.get_by_text("Image", exact=True).first.click()  # the Image display's folder
     wait_for(lambda: _checkerboard_seen(_panel_image(page)), what="the checkerboard in the panel")
     save_shot(page, "displays_image_panel")
+
+
+def _hue_near(image: np.ndarray, uv: np.ndarray, channel: int, radius: int = 3) -> bool:
+    """Whether some pixel within ``radius`` of ``uv`` is dominated by ``channel`` (R=0, G=1)."""
+    u, v = round(float(uv[0])), round(float(uv[1]))
+    patch = image[v - radius : v + radius + 1, u - radius : u + radius + 1].astype(int)
+    others = np.delete(patch, channel, axis=2).max(axis=2)
+    return bool(((patch[..., channel] > 120) & (patch[..., channel] - others > 40)).any())
 
 
 def _panel_image(page: Any) -> Any:

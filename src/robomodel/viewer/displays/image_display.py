@@ -94,7 +94,9 @@ class ImageDisplay(Display):
         placeholder = np.full((48, 64, 3), 40, dtype=np.uint8)  # RViz's empty texture: dark
         # JPEG as RViz's image_transport "compressed" would: PNG of a 640x480 camera image
         # is ~10x larger and slower to encode
-        self._panel_image = gui.add_image(placeholder, label=self.name, format="jpeg", jpeg_quality=90)
+        self._panel_image = gui.add_image(
+            placeholder, label=self.name, format="jpeg", jpeg_quality=90
+        )
 
     def on_option_changed(self, name: str) -> None:
         if name == "Topic":
