@@ -1,5 +1,5 @@
-"""PointCloud2, Map, Image, Camera and Pose displays in headless Chromium, fed from another
-process (tests/viewer/display_publisher.py) over the Zenoh bus.
+"""PointCloud2, Map, Image, Camera, Pose, Odometry and Path displays in headless Chromium, fed
+from another process (tests/viewer/display_publisher.py) over the Zenoh bus.
 
 The page's camera is set to look down at the fixed frame's origin; each cloud point and map
 cell is projected with that camera (viser's OpenCV convention) and its pixel in the
