@@ -1,7 +1,8 @@
 """A publisher process for bench_displays.py: ``_display_feed.py KIND DOMAIN RATE_HZ SECONDS``.
 
 KIND ``cloud``: a 100,000-point PointCloud2 (x, y, z, intensity float32; 16-byte points) on
-/bench/cloud; ``image``: a 640x480 rgb8 Image on /bench/image (three frames in turn). Messages are built once and
+/bench/cloud; ``image``: a 640x480 rgb8 Image on /bench/image (seven frames in turn); ``noise``: the
+same with random pixels. Messages are built once and
 re-stamped; sends follow ``paced_sends`` (never accumulated). Prints ``ready`` when its
 publisher exists, then ``sent N`` at the end.
 """
@@ -37,11 +38,19 @@ def cloud_message() -> object:
     return msg
 
 
-def image_data() -> list[bytes]:
-    """Three different 640x480 rgb8 frames (the viewer does not resend an unchanged image)."""
-    rng = np.random.default_rng(0)
-    pixels = rng.integers(0, 256, (480, 640, 3), dtype=np.uint8)
-    return [np.roll(pixels, 40 * k, axis=1).tobytes() for k in range(3)]
+def image_data(noise: bool = False) -> list[bytes]:
+    """Seven different 640x480 rgb8 frames (an unchanged image is not sent to the page again,
+    and the viewer draws at 10 Hz: with three frames every third would look the same): a
+    camera-like scene (gradients and a bar that moves, ~40 kB as JPEG) or, with ``noise``,
+    random pixels (the worst case for JPEG: ~280 kB)."""
+    if noise:
+        base = np.random.default_rng(0).integers(0, 256, (480, 640, 3), dtype=np.uint8)
+    else:
+        y, x = np.mgrid[0:480, 0:640]
+        base = np.stack([x * 255 // 639, y * 255 // 479, (x + y) * 255 // 1118], axis=2)
+        base = base.astype(np.uint8)
+        base[200:280, 100:140] = (255, 255, 255)
+    return [np.roll(base, 40 * k, axis=1).tobytes() for k in range(7)]
 
 
 def image_message() -> object:
@@ -54,10 +63,10 @@ def image_message() -> object:
 def main() -> None:
     kind, domain, rate_hz, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])  # fmt: skip
     msg = cloud_message() if kind == "cloud" else image_message()
-    frames = [msg.data] if kind == "cloud" else image_data()  # type: ignore[attr-defined]
+    frames = [msg.data] if kind == "cloud" else image_data(kind == "noise")  # type: ignore[attr-defined]
     context = Context("zenoh", domain_id=domain)
     node = context.create_node("bench_feed")
-    pub = node.create_publisher(type(msg), f"/bench/{kind}", 10)
+    pub = node.create_publisher(type(msg), f"/bench/{'cloud' if kind == 'cloud' else 'image'}", 10)
     print("ready", flush=True)
     sys.stdin.readline()  # the bench says when the viewer listens
 

@@ -55,7 +55,8 @@ def _on_loop(viewer: Any, work: Any) -> Any:
 
 def run(kind: str, rate_hz: float, seconds: float, page: Any, viewer: Any, frames: list[tuple[float, int, bytes]]) -> dict[str, float]:  # fmt: skip
     display_class, name = ("PointCloud2", "Cloud") if kind == "cloud" else ("Image", "Image")
-    display = _on_loop(viewer, lambda: viewer.displays_panel.add(display_class, name=name, values={"Topic": f"/bench/{kind}"}))  # fmt: skip
+    topic = "/bench/cloud" if kind == "cloud" else "/bench/image"
+    display = _on_loop(viewer, lambda: viewer.displays_panel.add(display_class, name=name, values={"Topic": topic}))  # fmt: skip
     feed_args = [kind, str(DOMAIN), str(rate_hz), str(seconds)]
     feed = subprocess.Popen(
         [sys.executable, str(ROOT / "bench" / "_display_feed.py"), *feed_args],
@@ -85,7 +86,8 @@ def run(kind: str, rate_hz: float, seconds: float, page: Any, viewer: Any, frame
     feed.wait(10)
     received = display.messages_received
     marker = b"PointCloudMessage" if kind == "cloud" else b"GuiUpdateMessage"
-    shown = [t for t, size, meta in frames if marker in meta and size > 50_000]
+    least = 50_000 if kind == "cloud" else 5_000  # a frame with the points, or the image
+    shown = [t for t, size, meta in frames if marker in meta and size > least]
     _on_loop(viewer, lambda: viewer.displays_panel.remove(viewer.displays_panel.rows[-1]))
     return {
         "sent": float(sent_line.split()[1]),
@@ -163,7 +165,7 @@ def main() -> None:
         page.wait_for_timeout(seconds * 1000)
         idle = (_cpu_s() - cpu0) / (time.perf_counter() - t0)
         print(f"idle viewer: {idle:.3f} cores")
-        for kind, rate in (("cloud", 10.0), ("image", 30.0)):
+        for kind, rate in (("cloud", 10.0), ("image", 30.0), ("noise", 30.0)):
             result = run(kind, rate, seconds, page, viewer, frames)
             print(f"{kind} at {rate:g} Hz: " + ", ".join(f"{k} {v:.3g}" for k, v in result.items()))  # fmt: skip
         browser.close()
