@@ -15,8 +15,8 @@ from robomodel.viewer.displays.cloud import (
     color_transformers_for,
     decode_cloud,
     default_color_transformer,
-    rainbow,
 )
+from robomodel.viewer.displays.laser_scan import rainbow
 
 PointCloud2 = get_message_type("sensor_msgs/msg/PointCloud2")
 PointField = get_message_type("sensor_msgs/msg/PointField")
@@ -66,10 +66,10 @@ def get_rainbow_color(value: float) -> tuple[float, float, float]:
 
 def test_rainbow_matches_rviz_transcription() -> None:
     values = np.linspace(-0.2, 1.2, 141)
-    ours = rainbow(values)
-    theirs = np.array([get_rainbow_color(float(v)) for v in values])
-    np.testing.assert_allclose(ours, theirs, atol=1e-6)
-    np.testing.assert_allclose(rainbow(np.array([0.0, 1.0])), [[1, 0, 1], [1, 0, 0]])
+    ours = rainbow(values)  # shared with the LaserScan display
+    theirs = np.round(np.array([get_rainbow_color(float(v)) for v in values]) * 255)
+    np.testing.assert_allclose(ours, theirs, atol=1)
+    np.testing.assert_array_equal(rainbow(np.array([0.0, 1.0])), [[255, 0, 255], [255, 0, 0]])
 
 
 def test_rgb8_cloud_known_points_and_colours_through_cdr() -> None:

@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel.viewer.displays.laser_scan import rainbow  # RViz's getRainbowColor
 from robomodel.viewer.errors import ViewerError
 
 __all__ = [
@@ -30,7 +31,6 @@ __all__ = [
     "decode_cloud",
     "default_color_transformer",
     "message_bytes",
-    "rainbow",
 ]
 
 # sensor_msgs/PointField datatypes -> numpy kinds (PointField.msg: INT8 = 1 ... FLOAT64 = 8)
@@ -167,25 +167,6 @@ def default_color_transformer(msg: Any) -> str:
     return "RGB8" if "RGB8" in color_transformers_for(msg) else "Intensity"
 
 
-def rainbow(values: NDArray[np.floating[Any]]) -> NDArray[np.float32]:
-    """RViz's ``getRainbowColor`` for an array of values in [0, 1] (clipped): RGB in [0, 1].
-
-    An HSV palette with hue from 0 to 0.8333: 0 is magenta, then blue, cyan, green, yellow,
-    and 1 is red (point_cloud_helpers.hpp).
-    """
-    v = np.clip(np.asarray(values, dtype=np.float32), 0.0, 1.0)
-    h = v * 5.0 + 1.0
-    i = np.floor(h).astype(np.int32)
-    f = h - i
-    f = np.where(i % 2 == 0, 1.0 - f, f)
-    n = (1.0 - f).astype(np.float32)
-    zero, one = np.zeros_like(n), np.ones_like(n)
-    r = np.select([i <= 1, i == 2, i == 3, i == 4], [n, zero, zero, n], one)
-    g = np.select([i <= 1, i == 2, i == 3, i == 4], [zero, n, one, one], n)
-    b = np.select([i <= 1, i == 2, i == 3, i == 4], [one, one, n, zero], zero)
-    return np.stack([r, g, b], axis=-1).astype(np.float32)
-
-
 def _to_uint8(rgb01: NDArray[np.floating[Any]]) -> NDArray[np.uint8]:
     return np.asarray(np.clip(rgb01, 0.0, 1.0) * 255.0 + 0.5, dtype=np.float32).astype(np.uint8)
 
@@ -214,7 +195,7 @@ def _intensity_colors(records: np.ndarray, opts: CloudColorOptions) -> tuple[NDA
     diff = hi - lo if hi != lo else 1e20  # equal bounds: one predictable colour (RViz)
     if opts.use_rainbow:
         value = 1.0 - (values - lo) / diff
-        return _to_uint8(rainbow(1.0 - value if opts.invert_rainbow else value)), (lo, hi)
+        return rainbow(1.0 - value if opts.invert_rainbow else value), (lo, hi)
     t = np.clip((values - lo) / diff, 0.0, 1.0)[:, None]
     lo_rgb = np.asarray(opts.min_color, dtype=np.float64) / 255.0
     hi_rgb = np.asarray(opts.max_color, dtype=np.float64) / 255.0
@@ -231,7 +212,7 @@ def _axis_colors(points_m: NDArray[np.float32], opts: CloudColorOptions, T_fixed
         values = points_m[:, k].astype(np.float64)
     lo, hi = _bounds(values, opts.autocompute_value_bounds, opts.min_value, opts.max_value)
     span = hi - lo if hi != lo else 0.001
-    return _to_uint8(rainbow(1.0 - (values - lo) / span)), (lo, hi)
+    return rainbow(1.0 - (values - lo) / span), (lo, hi)
 
 
 def _rgb8_colors(records: np.ndarray, big_endian: bool) -> NDArray[np.uint8]:
