@@ -83,7 +83,7 @@ def test_pose_with_covariance_ellipsoid() -> None:
     assert ellipsoid.kind == "icosphere" and ellipsoid.kwargs["position"] == (2.0, 2.0, 0.0)
     assert sorted(ellipsoid.kwargs["scale"]) == [0.5, 1.0, 2.0]
     assert ellipsoid.kwargs["opacity"] == 0.3 and ellipsoid.kwargs["color"] == (204, 51, 204)
-    display.set_option("Covariance", False)
+    display.set_option("Covariance/Value", False)
     display.draw(lookup_from({"odom": shifted(1.0)}))
     assert "/displays/d/covariance" not in scene.nodes
 
@@ -96,7 +96,7 @@ def odom(x: float, yaw: float = 0.0) -> object:
 
 
 def test_odometry_keeps_arrows_by_tolerance_and_keep() -> None:
-    display, scene = start("Odometry", Keep=3, **{"Covariance": False})
+    display, scene = start("Odometry", Keep=3, **{"Covariance/Value": False})
     lookup = lookup_from({"odom": np.eye(4)})
     for x in (0.0, 0.05, 0.2, 0.4, 0.6, 0.8):  # 0.05 is within the 0.1 m tolerance
         display.receive(odom(x))
@@ -157,3 +157,58 @@ def test_wrench_arrows_nan_refused_and_history() -> None:
 def test_rviz_defaults(class_name: str, option: str, default: object) -> None:
     display, _ = start(class_name)
     assert display.option(option) == default
+
+
+# An Odometry display as RViz 2 saves it (nav2_bringup's nav2_default_view.rviz form):
+# properties with children are maps with their own value under "Value".
+ODOMETRY_ROS2 = {
+    "Angle Tolerance": 0.1,
+    "Covariance": {
+        "Position": {"Alpha": 0.3, "Color": "204; 51; 204", "Scale": 2, "Value": True},
+        "Value": False,
+    },
+    "Keep": 50,
+    "Position Tolerance": 0.1,
+    "Shape": {
+        "Alpha": 1,
+        "Axes Length": 1,
+        "Axes Radius": 0.1,
+        "Color": "0; 25; 255",
+        "Head Length": 0.3,
+        "Head Radius": 0.1,
+        "Shaft Length": 1,
+        "Shaft Radius": 0.05,
+        "Value": "Axes",
+    },
+    "Topic": {
+        "Depth": 5,
+        "Durability Policy": "Volatile",
+        "History Policy": "Keep Last",
+        "Reliability Policy": "Reliable",
+        "Value": "/odom",
+    },
+}
+
+
+def test_odometry_reads_and_writes_rviz2_nested_properties() -> None:
+    from robomodel.viewer.displays.rviz_io import display_entry, display_values
+    from robomodel.viewer.rviz_model import RvizDialect, RvizDisplay, freeze
+
+    cls = display_class("Odometry")
+    values, skipped = display_values(cls, ODOMETRY_ROS2, RvizDialect.ROS2)
+    assert skipped == []
+    assert values["Shape/Value"] == "Axes" and values["Shape/Color"] == "0; 25; 255"
+    assert values["Covariance/Value"] is False and values["Covariance/Position/Scale"] == 2
+    assert values["Keep"] == 50 and values["Topic"] == "/odom"
+    display, scene = start("Odometry", **values)
+    display.receive(odom(1.0))
+    display.draw(lookup_from({"odom": np.eye(4)}))
+    (node,) = scene.visible().values()
+    assert node.kind == "batched_axes"  # Shape: Axes from the file
+    base = RvizDisplay("rviz_default_plugins/Odometry", "d", True, freeze(ODOMETRY_ROS2))
+    entry = display_entry(display, RvizDialect.ROS2, base)
+    assert entry.settings["Shape"]["Value"] == "Axes"
+    assert entry.settings["Covariance"]["Position"]["Scale"] == 2
+    fresh = display_entry(display_class("Odometry")("o", display.context), RvizDialect.ROS2)
+    assert fresh.settings["Shape"]["Value"] == "Arrow" and fresh.settings["Shape"]["Color"] == "255; 25; 0"  # fmt: skip
+    assert fresh.settings["Covariance"]["Value"] is True

@@ -125,7 +125,7 @@ def test_cloud_map_image_camera_and_pose_displays(fed_viewer: Viewer, page: Any)
         "Image": ("Image", {"Topic": "/camera/image_raw"}),
         "Camera": ("Camera", {"Topic": "/camera/image_raw"}),
         "Pose": ("Pose", {"Topic": "/pose"}),
-        "Odometry": ("Odometry", {"Topic": "/odom", "Covariance": False}),
+        "Odometry": ("Odometry", {"Topic": "/odom", "Covariance/Value": False}),
         "Path": ("Path", {"Topic": "/path"}),
     }
     for name, (kind, values) in adds.items():

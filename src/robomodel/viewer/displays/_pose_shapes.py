@@ -5,7 +5,8 @@ The option tables here are RViz's: pose_display.cpp, pose_with_covariance_displa
 odometry_display.cpp name them "Shape", "Color", "Alpha", "Shaft Length", "Shaft Radius",
 "Head Length", "Head Radius", "Axes Length", "Axes Radius" (defaults: red-orange 255; 25; 0,
 shaft 1 x 0.05, head 0.3 x 0.1, axes 1 x 0.1); covariance_property.cpp gives "Covariance",
-"Position" (colour 204; 51; 204, alpha 0.3, scale 1). Alpha is kept for the config; viser's
+"Position" (colour 204; 51; 204, alpha 0.3, scale 1), saved nested as RViz 2 does
+(``Covariance: {Value: true, Position: {Value: true, Color: ...}}``). Alpha is kept for the config; viser's
 arrows are opaque.
 """
 
@@ -38,8 +39,9 @@ ARROW_OPTIONS = (
     Option("Axes Radius", 0.1, OptionKind.FLOAT, minimum=0.0),
 )
 COVARIANCE_OPTIONS = (
-    Option("Covariance", True, OptionKind.BOOL, help="Whether to show the covariances."),
-    Option("Covariance/Position", True, OptionKind.BOOL),
+    # RViz 2 saves a property with children as {Value: ..., <child>: ...}
+    Option("Covariance/Value", True, OptionKind.BOOL, help="Whether to show the covariances."),
+    Option("Covariance/Position/Value", True, OptionKind.BOOL),
     Option("Covariance/Position/Color", "204; 51; 204", OptionKind.COLOR),
     Option("Covariance/Position/Alpha", 0.3, OptionKind.FLOAT, minimum=0.0, maximum=1.0),
     Option("Covariance/Position/Scale", 1.0, OptionKind.FLOAT, minimum=0.0),
@@ -73,7 +75,7 @@ def draw_poses(display: Display, key: str, Ts: NDArray[np.float64], values: dict
 def draw_covariance(display: Display, key: str, T_fixed_frame: NDArray[np.float64], position_m: NDArray[np.float64], covariance: Any, values: dict[str, Any]) -> None:  # fmt: skip
     """The position covariance's ellipsoid at ``position_m`` (in the message frame, whose pose
     in the fixed frame is ``T_fixed_frame``); the covariance is in the message frame."""
-    if not (values["Covariance"] and values["Covariance/Position"]):
+    if not (values["Covariance/Value"] and values["Covariance/Position/Value"]):
         display.remove_node(key)
         return
     R, radii = covariance_ellipsoid(covariance, float(values["Covariance/Position/Scale"]))

@@ -34,9 +34,10 @@ __all__ = ["OdometryDisplay"]
 
 
 def _nested(option: Option) -> Option:
-    if option.name == "Shape":
-        return option
-    return Option(f"Shape/{option.name}", option.default, option.kind, option.choices,
+    """``Shape`` -> ``Shape/Value``, ``Color`` -> ``Shape/Color``: RViz 2's Odometry saves
+    ``Shape: {Value: Arrow, Color: ..., ...}``."""
+    name = "Shape/Value" if option.name == "Shape" else f"Shape/{option.name}"
+    return Option(name, option.default, option.kind, option.choices,
                   option.minimum, option.maximum, option.help)  # fmt: skip
 
 
@@ -88,7 +89,9 @@ class OdometryDisplay(Display):
         self._covariances.clear()
 
     def _shape_values(self) -> dict[str, Any]:
-        return {k.removeprefix("Shape/"): v for k, v in self.values.items()}
+        values = {k.removeprefix("Shape/"): v for k, v in self.values.items()}
+        values["Shape"] = values["Value"]
+        return values
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
         pending, self._pending = self._pending, []
