@@ -113,6 +113,7 @@ def test_image_display_converts_the_newest_and_reports_bad_encodings() -> None:
     assert status.level.value == "error" and "Unsupported image encoding [rgb16]" in status.text
     specs = display.subscriptions()
     assert [s.type_name for s in specs] == ["sensor_msgs/msg/Image"]
+    assert display_class("Camera").ros1_keys["Topic"] == "Image Topic"  # RViz 1's key
 
 
 def test_camera_display_frustum_from_camera_info_through_tf() -> None:

@@ -9,6 +9,7 @@ older ones are skipped, as RViz shows the newest at each render.
 
 from __future__ import annotations
 
+from types import MappingProxyType
 from typing import Any, ClassVar
 
 import numpy as np
@@ -76,6 +77,8 @@ class ImageDisplay(Display):
         Option("Queue Size", 5, OptionKind.INT, minimum=0, help="Incoming message queue"),
         *IMAGE_OPTIONS,
     )
+    # RViz 1's ImageDisplayBase (rviz/image/image_display_base.cpp) names it "Image Topic"
+    ros1_keys = MappingProxyType({"Topic": "Image Topic"})
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
