@@ -112,3 +112,50 @@ def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_i
     wait_for(lambda: red_fraction(screenshot(page), x, y) == 0.0, what="the cube hidden")
     save_shot(page, "marker_namespace_off")
     assert display.option("Namespaces") == {"cubes": False}
+
+
+def _cube_seen(page: Any, viewer: Viewer) -> tuple[float, float]:
+    """Where the red cube must be on the page (the page's camera as set by the fixture)."""
+    client = next(iter(viewer.server.get_clients().values()))
+    canvas = page.locator("canvas").first.bounding_box()
+    wait_for(lambda: np.allclose(client.camera.position, (0, -4, 1), atol=1e-3), what="camera")
+    x, y = project(client.camera, np.array([1.0, 0.0, 0.0]), canvas["width"], canvas["height"])
+    return x + canvas["x"], y + canvas["y"]
+
+
+def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
+    zenoh_viewer: tuple[Viewer, str], red_cube_publisher: subprocess.Popen[str], page: Any
+) -> None:
+    viewer, _domain = zenoh_viewer
+    viewer.fixed_dropdown.value = "base_link"
+    viewer.server.initial_camera.look_at = (0.0, 0.0, 0.0)
+    viewer.server.initial_camera.position = (0.0, -4.0, 1.0)
+    open_viewer(page, viewer.url)
+    page.get_by_text("Add display", exact=True).click()
+    gui_row(page, "Display type").locator("input:not([type=hidden])").first.click()
+    page.get_by_role("option", name="Marker", exact=True).click()
+    page.get_by_role("button", name="Add by type", exact=True).click()
+    wait_for(lambda: viewer.displays.displays, what="the display added")
+    display = viewer.displays.displays[0]
+    x, y = _cube_seen(page, viewer)
+    wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="the cube")
+    page.get_by_text("Marker", exact=True).first.click()  # the folder (then the list's option)
+    gui_row(page, "Enabled").locator("input").first.click()
+    wait_for(lambda: red_fraction(screenshot(page), x, y) == 0.0, what="the cube hidden")
+    assert not display.enabled and "Disabled" in page.content()
+    gui_row(page, "Enabled").locator("input").first.click()
+    wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="the cube back")
+    name = gui_row(page, "Name").locator("input:not([type=hidden])").first
+    name.fill("Cubes")
+    name.press("Enter")
+    page.get_by_text("Cubes", exact=True).wait_for()
+    assert display.name == "Cubes" and display.root == "/displays/Cubes"
+    topic = gui_row(page, "Topic").locator("input:not([type=hidden])").last
+    topic.fill("/nothing_here")
+    topic.press("Enter")
+    wait_for(lambda: "No messages received" in page.content(), what="the new topic's status")
+    assert red_fraction(screenshot(page), x, y) == 0.0
+    save_shot(page, "marker_display_retargeted")
+    page.get_by_role("button", name="Remove", exact=True).click()
+    wait_for(lambda: not viewer.displays.displays, what="the display removed")
+    wait_for(lambda: page.get_by_text("Cubes", exact=True).count() == 0, what="its folder gone")

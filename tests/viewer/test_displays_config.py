@@ -214,3 +214,30 @@ def test_a_real_config_opens_with_every_display_it_names_and_saves_unchanged(
     saved = tmp_path / "rrbot.rviz"
     assert viewer.config_panel.save(str(saved))
     assert saved.read_text() == rviz_text(config)
+
+
+def test_open_config_replaces_the_displays_and_the_fixed_frame(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    first = tmp_path / "first.rviz"
+    first.write_text(ROS2_CONFIG)
+    second = tmp_path / "second.rviz"
+    second.write_text(
+        ROS2_CONFIG.replace("Fixed Frame: base_link", "Fixed Frame: link_1").replace(
+            "Name: Obstacles", "Name: Walls"
+        )
+    )
+    viewer = _viewer(started, first)
+    panel = viewer.config_panel
+    assert not panel.open(str(tmp_path / "none.rviz"))
+    assert "**Not opened**" in panel.status.content and "does not exist" in panel.status.content
+    assert panel.open(str(second))
+    wait_for(
+        lambda: [d.name for d in viewer.displays.displays] == ["Walls", "Depth", "Plans", "Imu"],
+        what="the second file's displays",
+    )
+    assert viewer.fixed_frame == "link_1" and viewer.fixed_dropdown.value == "link_1"
+    assert [r.folder.label for r in viewer.displays_panel.rows] == ["Walls", "Depth", "Plans", "Imu"]  # fmt: skip
+    assert panel.document.path == str(second)
+    assert panel.save(str(second))  # Save Config now writes the file opened
+    assert read_rviz_file(second).fixed_frame == "link_1"

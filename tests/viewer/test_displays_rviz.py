@@ -52,8 +52,8 @@ def _add_by_type(page: Any, class_name: str) -> None:
 
 
 def _save_from_the_page(ros1: Ros1, config: Path, page: Any) -> list[dict[str, Any]]:  # noqa: F811
-    """The page on a ROS 1 graph adds Marker and MarkerArray and saves ``config``; the
-    displays' option values."""
+    """The page on a ROS 1 graph adds Marker (which receives the red cube) and MarkerArray and
+    saves ``config``; the displays' option values."""
     os.environ["ROS_IP"] = "127.0.0.1"
     document, _ = open_rviz_document(str(config), RvizDialect.ROS1)
     source = RobotSource(str(PLANAR))
@@ -68,6 +68,9 @@ def _save_from_the_page(ros1: Ros1, config: Path, page: Any) -> list[dict[str, A
         wait_for(lambda: len(viewer.displays.displays) == 1, what="the Marker display")
         _add_by_type(page, "MarkerArray")
         wait_for(lambda: len(viewer.displays.displays) == 2, what="the MarkerArray display")
+        marker = viewer.displays.displays[0]  # robomodel's display hears rostopic pub too
+        wait_for(lambda: marker.store.markers, what="the red cube over ROS 1's wire")
+        wait_for(lambda: marker.status.text.endswith("messages received"), what="Ok status")
         page.get_by_role("button", name="Save Config", exact=True).click()
         wait_for(config.exists, what=f"{config} written")
         save_shot(page, "displays_saved_for_rviz")
@@ -83,13 +86,13 @@ def test_rviz_opens_the_displays_saved_from_the_page(ros1: Ros1, tmp_path: Path,
     from PIL import ImageGrab
 
     ros1.roscore()
+    pub = ["/usr/bin/rostopic", "pub", "-r", "5", "/visualization_marker"]
+    publisher = ros1.start([*pub, "visualization_msgs/Marker", RED_CUBE])
     config = tmp_path / "markers.rviz"
     values = _save_from_the_page(ros1, config, page)
     saved = read_rviz_file(config)
     assert [d.class_name for d in saved.displays][-2:] == ["rviz/Marker", "rviz/MarkerArray"]
     assert saved.displays[-2].settings["Marker Topic"] == "/visualization_marker"
-    pub = ["/usr/bin/rostopic", "pub", "-r", "5", "/visualization_marker"]
-    publisher = ros1.start([*pub, "visualization_msgs/Marker", RED_CUBE])
     display = _xvfb(ros1, "1280x900x24")
     log = tmp_path / "rviz.log"
     with log.open("w") as out:

@@ -1,4 +1,4 @@
-"""The page's File folder: RViz's File > Save Config and Save Config As.
+"""The page's File folder: RViz's File > Open Config, Save Config and Save Config As.
 
 Save Config writes the ``-d`` file (RViz's ``display_config_file_``), Save Config As asks for a
 path in a dialog and makes it the file later saves write, as RViz does. What is saved is what
@@ -17,8 +17,10 @@ from typing import Any
 
 from robomodel.viewer.displays.attach import config_with_displays, open_config_displays
 from robomodel.viewer.rviz_apply import apply_rviz_document, viewer_state
+from robomodel.viewer.rviz_config import RvizConfigError
 from robomodel.viewer.rviz_document import RvizDocument, open_rviz_document
 from robomodel.viewer.rviz_model import RvizConfig, RvizDialect
+from robomodel.viewer.rviz_open import reopen_rviz_document
 from robomodel.viewer.rviz_state import ViewerState, config_with_state
 from robomodel.viewer.rviz_write import RvizSaveError, write_rviz_config
 
@@ -48,6 +50,7 @@ class ConfigPanel:
         displays: Puts the Displays panel's displays into a config; returns it and what to
             call once it is written (see :func:`~robomodel.viewer.displays.attach.
             config_with_displays`).
+        reopen: Applies a document opened with Open Config to the viewer (None: no Open).
     """
 
     def __init__(
@@ -58,9 +61,11 @@ class ConfigPanel:
         *,
         frame_rate_hz: float = 60.0,
         displays: DisplaysHook | None = None,
+        reopen: Callable[[RvizDocument], None] | None = None,
     ) -> None:
         self.document = document
         self._displays = displays
+        self._reopen = reopen
         self._frame_rate_hz = frame_rate_hz
         self._state = state
         self._server = server
@@ -70,8 +75,12 @@ class ConfigPanel:
             self.status = gui.add_markdown(self._opened_text())
             self.save_button = gui.add_button("Save Config", icon="device-floppy")
             self.save_as_button = gui.add_button("Save Config As")
+            self.open_button = gui.add_button("Open Config", visible=reopen is not None)
         self.save_button.on_click(lambda event: self._on_save(event.client))
         self.save_as_button.on_click(lambda event: self.ask_path(event.client))
+        self.open_button.on_click(
+            lambda event: self.ask_path(event.client, title="Open Config", action=self.open)
+        )
 
     def _opened_text(self) -> str:
         path = self.document.path
@@ -110,21 +119,44 @@ class ConfigPanel:
             log.info("saved RViz config %s", written)
             return True
 
-    def ask_path(self, client: Any) -> None:
-        """Save Config As: a dialog on ``client``'s page asking for the file."""
+    def open(self, path: str, client: Any = None) -> bool:
+        """Open Config: read ``path`` and apply it to the viewer (on its loop thread); whether
+        it was read (the folder says which file, or why not)."""
+        if self._reopen is None:
+            return False
+        with self._lock:
+            try:
+                document, _ = open_rviz_document(path, self.document.dialect)
+            except RvizConfigError as exc:
+                self.status.content = f"**Not opened**: {exc}"
+                return False
+            if document.missing:
+                self.status.content = f"**Not opened**: {_markdown_path(path)} does not exist"
+                return False
+            self.document = document
+            self._reopen(document)
+            self.status.content = f"Opened RViz config {_markdown_path(path)}"
+            log.info("opened RViz config %s", path)
+            return True
+
+    def ask_path(self, client: Any, *, title: str = "Save Config As", action: Any = None) -> None:
+        """A dialog on ``client``'s page asking for the file to save (or to open, with the
+        ``action`` ``open``)."""
         if client is None:
             return
-        with client.gui.add_modal("Save Config As") as modal:
+        act = self.save if action is None else action
+        verb = title.split()[0]
+        with client.gui.add_modal(title) as modal:
             path = client.gui.add_text("Path", self.document.path or "robomodel.rviz")
-            ok = client.gui.add_button("Save")
+            ok = client.gui.add_button(verb)
             cancel = client.gui.add_button("Cancel")
 
         def on_ok(_event: Any) -> None:
             text = str(path.value).strip()
             if not text:
-                self.status.content = "**Not saved**: give a file path"
+                self.status.content = f"**Not {'opened' if verb == 'Open' else 'saved'}**: give a file path"  # fmt: skip
             else:
-                self.save(text, client)
+                act(text, client)
             modal.close()
 
         ok.on_click(on_ok)
@@ -133,8 +165,8 @@ class ConfigPanel:
 
 def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
     """Apply the viewer's ``-d`` config (``options.rviz``) to ``panel`` and its other displays
-    to the Displays panel, and add the File folder; without one, Save Config As starts from RViz's defaults (ROS 1 class names on a
-    ROS 1 bus, else ROS 2's)."""
+    to the Displays panel, and add the File folder; without one, Save Config As starts from
+    RViz's defaults (ROS 1 class names on a ROS 1 bus, else ROS 2's)."""
     document = viewer.options.rviz
     displays = viewer.displays_panel
     if document is not None:
@@ -155,4 +187,5 @@ def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
         else lambda config, dialect: config_with_displays(
             list(displays.manager.displays), config, dialect
         ),
+        reopen=lambda document: viewer._post(lambda: reopen_rviz_document(viewer, panel, document)),
     )

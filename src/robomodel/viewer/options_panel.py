@@ -1,4 +1,5 @@
-"""The page's option folders: Status, Global Options (Fixed Frame, Frame Rate), RobotModel, TF.
+"""The page's option folders: Status, Global Options (Fixed Frame, Frame Rate), and RobotModel
+and TF in the Displays folder.
 
 Property names are RViz's (Visual Enabled, Collision Enabled, Alpha, Show Axes, Show Names,
 Marker Scale), so that a user of RViz finds them where expected. Changes are posted to the
@@ -58,13 +59,15 @@ class OptionsPanel:
                 "Frame Rate", frame_rate_hz, min=1.0, max=1000.0, step=1.0
             )
         self.tf_display = TFDisplay(server.scene)
-        with gui.add_folder("RobotModel"):
+        # RViz's Displays tree: RobotModel and TF first, the Displays panel adds the others.
+        self.displays_folder = gui.add_folder("Displays")
+        with self.displays_folder, gui.add_folder("RobotModel"):
             visual = gui.add_checkbox("Visual Enabled", options.show_visual)
             collision = gui.add_checkbox("Collision Enabled", options.show_collision)
             alpha = gui.add_slider(
                 "Alpha", min=0.0, max=1.0, step=0.01, initial_value=options.alpha
             )
-        with gui.add_folder("TF", expand_by_default=False):
+        with self.displays_folder, gui.add_folder("TF", expand_by_default=False):
             axes = gui.add_checkbox("Show Axes", True)
             names = gui.add_checkbox("Show Names", False)
             scale = gui.add_number("Marker Scale", 1.0, min=0.01, max=100.0, step=0.1)

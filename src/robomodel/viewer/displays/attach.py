@@ -56,7 +56,10 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
         load_mesh=load_mesh,
     )
     manager = DisplayManager(context, node, viewer.buffer)
-    panel = DisplaysPanel(viewer.server.gui, manager, viewer._post, BusWorker(node.context))
+    folder = getattr(getattr(viewer, "options_panel", None), "displays_folder", None)
+    panel = DisplaysPanel(
+        viewer.server.gui, manager, viewer._post, BusWorker(node.context), folder=folder
+    )
     node.create_timer(_DRAW_PERIOD_S, manager.update)
     return panel
 

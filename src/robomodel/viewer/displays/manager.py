@@ -79,6 +79,9 @@ class DisplayManager:
         self.buffer = buffer
         self.displays: list[Display] = []
         self._subscribed: dict[tuple[int, str], tuple[SubscriptionSpec, Any]] = {}
+        # specs whose type could not be found: not asked for again until the spec changes
+        # (finding a type may ask the bus's peers, too slow for every update)
+        self._failed: dict[tuple[int, str], tuple[SubscriptionSpec, DisplayStatus]] = {}
         self.listeners: list[Callable[[], None]] = []  # told after each update
         self.updates = 0
 
@@ -161,10 +164,15 @@ class DisplayManager:
         for key, spec in wanted.items():
             if (id(display), key) in self._subscribed:
                 continue
+            failed = self._failed.get((id(display), key))
+            if failed is not None and failed[0] == spec:
+                problem = failed[1]
+                continue
             try:
                 msg_type = get_message_type(spec.type_name)
             except MessageTypeError as exc:
                 problem = DisplayStatus.error(f"Error subscribing: {exc}")
+                self._failed[(id(display), key)] = (spec, problem)
                 continue
             durability = Durability.TRANSIENT_LOCAL if spec.transient_local else Durability.VOLATILE
             qos = QoSProfile(spec.depth, durability)
@@ -173,6 +181,8 @@ class DisplayManager:
         return problem
 
     def _unsubscribe(self, display: Display) -> None:
+        for failed in [k for k in self._failed if k[0] == id(display)]:
+            del self._failed[failed]
         for (owner, key), (_spec, sub) in list(self._subscribed.items()):
             if owner == id(display):
                 sub.destroy()

@@ -137,6 +137,7 @@ class DisplaysPanel:
         manager: The displays (loop thread).
         post: Runs a callable on the loop thread.
         bus: The worker that asks the graph for its topics (None: no "Add by topic" list).
+        folder: The Displays folder to fill (None: a new one).
     """
 
     def __init__(
@@ -145,12 +146,13 @@ class DisplaysPanel:
         manager: DisplayManager,
         post: Callable[[Callable[[], object]], None],
         bus: BusWorker | None = None,
+        folder: Any = None,
     ) -> None:
         self.gui, self.manager, self.post, self.bus = gui, manager, post, bus
         self.rows: list[_Row] = []
         self.topics: dict[str, frozenset[str]] = {}
         self._choices: dict[str, tuple[str, str]] = {}
-        self.folder = gui.add_folder("Displays")
+        self.folder = gui.add_folder("Displays") if folder is None else folder
         with self.folder, gui.add_folder("Add display", expand_by_default=False):
             names = tuple(display_classes())
             self.type_dropdown = gui.add_dropdown("Display type", names, initial_value=names[0])  # fmt: skip
