@@ -10,6 +10,7 @@ import pytest
 
 from robomodel.runtime.msg import get_message_type
 from robomodel.viewer.displays import display_class
+from robomodel.viewer.displays.camera import camera_info_topic
 from tests.viewer.fake_scene import FakeClock, FakeScene, fake_context, lookup_from
 
 PointCloud2 = get_message_type("sensor_msgs/msg/PointCloud2")
@@ -120,6 +121,8 @@ def test_camera_display_frustum_from_camera_info_through_tf() -> None:
     scene = FakeScene()
     display = display_class("Camera")("cam", fake_context(scene), {"Topic": "/camera/image_raw"})
     assert [s.topic for s in display.subscriptions()] == ["/camera/image_raw", "/camera/camera_info"]  # fmt: skip
+    assert camera_info_topic("/cam/image_raw/compressed") == "/cam/camera_info"
+    assert camera_info_topic("image") == "/camera_info"
     display.receive(checkerboard())
     status = display.draw(lookup_from({"camera_optical": shifted(1.0)}))
     assert status.text == "No CameraInfo received on [/camera/camera_info]. Topic may not exist."

@@ -35,8 +35,12 @@ NO_OVERLAY = (
 
 
 def camera_info_topic(image_topic: str) -> str:
-    """image_transport::getCameraInfoTopic: ``camera_info`` beside the image topic."""
-    return posixpath.join(posixpath.dirname(image_topic.rstrip("/")) or "/", "camera_info")
+    """image_transport::getCameraInfoTopic: ``camera_info`` beside the image topic (beside
+    the base topic for a transport's ``.../image_raw/compressed``)."""
+    base = image_topic.rstrip("/")
+    for transport in ("/compressed", "/compressedDepth", "/theora"):
+        base = base.removesuffix(transport)
+    return posixpath.join(posixpath.dirname(base) or "/", "camera_info")
 
 
 def frustum_fov(info: Any, zoom: float = 1.0) -> tuple[float, float] | None:
