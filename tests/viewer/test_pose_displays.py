@@ -212,3 +212,11 @@ def test_odometry_reads_and_writes_rviz2_nested_properties() -> None:
     fresh = display_entry(display_class("Odometry")("o", display.context), RvizDialect.ROS2)
     assert fresh.settings["Shape"]["Value"] == "Arrow" and fresh.settings["Shape"]["Color"] == "255; 25; 0"  # fmt: skip
     assert fresh.settings["Covariance"]["Value"] is True
+
+
+def test_wrench_is_rviz_1_s_wrench_stamped() -> None:
+    from robomodel.viewer.displays import UnknownDisplayError
+
+    assert display_class("rviz/WrenchStamped") is display_class("rviz_default_plugins/Wrench")
+    with pytest.raises(UnknownDisplayError):
+        display_class("rviz_default_plugins/WrenchStamped")  # RViz 2 has no such class

@@ -37,6 +37,7 @@ class WrenchDisplay(Display):
     """RViz's Wrench display with its options and defaults."""
 
     class_name = "Wrench"
+    ros1_class_name = "WrenchStamped"  # rviz/WrenchStamped in RViz 1's plugin_description.xml
     message_types = ("geometry_msgs/msg/WrenchStamped",)
     options = (
         Option("Topic", "", OptionKind.TOPIC),
