@@ -182,6 +182,8 @@ class Display:
     options: ClassVar[tuple[Option, ...]] = ()
     ros1_keys: ClassVar[Mapping[str, str]] = MappingProxyType({})
     """Option name -> ROS 1 config key where RViz 1 names it otherwise (``Marker Topic``)."""
+    ros1_class_name: ClassVar[str] = ""
+    """RViz 1's class where it differs (Wrench is ``rviz/WrenchStamped`` in ROS 1)."""
 
     def __init__(
         self,
@@ -347,7 +349,16 @@ def is_rviz_display(class_name: str, kinds: tuple[str, ...] | None = None) -> bo
     has)."""
     package, _, kind = class_name.rpartition("/")
     known = display_classes() if kinds is None else kinds
-    return package in _RVIZ_PACKAGES and kind in known
+    return package in _RVIZ_PACKAGES and _ros1_kind(package, kind) in known
+
+
+def _ros1_kind(package: str, kind: str) -> str:
+    """robomodel's class name for RViz 1's ``rviz/<kind>`` (``WrenchStamped`` -> ``Wrench``)."""
+    if package == "rviz":
+        for cls in display_classes().values():
+            if cls.ros1_class_name == kind:
+                return cls.class_name
+    return kind
 
 
 def display_class(class_name: str) -> type[Display]:
@@ -358,6 +369,7 @@ def display_class(class_name: str) -> type[Display]:
     """
     classes = display_classes()
     package, _, kind = class_name.rpartition("/")
+    kind = _ros1_kind(package, kind)
     if kind not in classes or package not in _RVIZ_PACKAGES:
         raise UnknownDisplayError(
             f"robomodel has no display '{class_name}'; it has: {', '.join(classes)}"

@@ -94,7 +94,10 @@ def display_entry(
     changed, or, for a new display, every option (as RViz writes all its properties)."""
     cls = type(display)
     prefix = "rviz" if dialect is RvizDialect.ROS1 else "rviz_default_plugins"
-    class_name = base.class_name if base is not None else f"{prefix}/{cls.class_name}"
+    kind = (
+        (cls.ros1_class_name or cls.class_name) if dialect is RvizDialect.ROS1 else cls.class_name
+    )
+    class_name = base.class_name if base is not None else f"{prefix}/{kind}"
     tree: dict[str, Any] = thaw(base.settings) if base is not None else {}
     before = _implied(cls, base.settings, dialect) if base is not None else None
     for option in cls.options:

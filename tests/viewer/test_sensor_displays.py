@@ -1,0 +1,172 @@
+"""The PointCloud2, Image, Camera and Map displays on a fake scene (no browser): what they
+draw, where, and their statuses."""
+
+from __future__ import annotations
+
+import struct
+
+import numpy as np
+import pytest
+
+from robomodel.runtime.msg import get_message_type
+from robomodel.viewer.displays import display_class
+from robomodel.viewer.displays.camera import camera_info_topic
+from tests.viewer.fake_scene import FakeClock, FakeScene, fake_context, lookup_from
+
+PointCloud2 = get_message_type("sensor_msgs/msg/PointCloud2")
+PointField = get_message_type("sensor_msgs/msg/PointField")
+
+
+def three_point_cloud(frame: str = "lidar", stamp_s: int = 0) -> object:
+    """Red at (1, 0, 0), green at (0, 1, 0), blue at (0, 0, 1), rgb packed as PCL does."""
+    rows = [((1.0, 0.0, 0.0), 0xFF0000), ((0.0, 1.0, 0.0), 0x00FF00), ((0.0, 0.0, 1.0), 0x0000FF)]
+    data = b"".join(struct.pack("<fff4xI", *p, c) for p, c in rows)
+    msg = PointCloud2(height=1, width=3, point_step=20, row_step=60, data=list(data), is_dense=True)
+    msg.fields = [PointField(name=n, offset=o, datatype=d, count=1)
+                  for n, o, d in (("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("rgb", 16, 7))]  # fmt: skip
+    msg.header.frame_id = frame
+    msg.header.stamp.sec = stamp_s
+    return msg
+
+
+def shifted(x: float) -> np.ndarray:
+    T = np.eye(4)
+    T[0, 3] = x
+    return T
+
+
+def test_point_cloud2_places_points_through_tf_with_rgb_and_status() -> None:
+    scene = FakeScene()
+    display = display_class("PointCloud2")("cloud", fake_context(scene), {"Topic": "/points"})
+    status = display.draw(lookup_from({}))
+    assert status.text == "No messages received"
+    display.receive(three_point_cloud())
+    status = display.draw(lookup_from({}))
+    assert status.level.value == "error" and "No transform from [lidar] to [map]" in status.text
+    assert not scene.visible("/displays/cloud")
+    status = display.draw(lookup_from({"lidar": shifted(2.0)}))
+    assert status.text == "Showing [3] points from [1] messages"
+    (node,) = scene.visible("/displays/cloud").values()
+    assert node.kind == "point_cloud" and node.position == (2.0, 0.0, 0.0)
+    np.testing.assert_array_equal(node.kwargs["colors"], [[255, 0, 0], [0, 255, 0], [0, 0, 255]])
+    np.testing.assert_array_equal(node.kwargs["points"], np.eye(3, dtype=np.float32))
+    assert node.kwargs["point_size"] == 0.01
+    assert display.option("Color Transformer") == "RGB8"  # chosen for a cloud with rgb
+
+
+def test_point_cloud2_decay_time_keeps_recent_clouds() -> None:
+    scene, clock = FakeScene(), FakeClock()
+    values = {"Topic": "/points", "Decay Time": 1.0, "Size (m)": 0.2}
+    display = display_class("PointCloud2")("cloud", fake_context(scene, clock=clock), values)
+    lookup = lookup_from({"lidar": np.eye(4)})
+    for _ in range(3):
+        display.receive(three_point_cloud())
+        display.draw(lookup)
+        clock.ns += 300_000_000
+    assert display.draw(lookup).text == "Showing [9] points from [3] messages"
+    clock.ns += 200_000_000  # the first is now 1.1 s old
+    assert display.draw(lookup).text == "Showing [6] points from [2] messages"
+    display.set_option("Decay Time", 0.0)
+    display.receive(three_point_cloud())
+    assert display.draw(lookup).text == "Showing [3] points from [1] messages"
+    assert len(scene.visible("/displays/cloud")) == 1
+    assert next(iter(scene.nodes.values())).kwargs["point_size"] == 0.2
+
+
+def test_point_cloud2_bad_cloud_is_an_error_status_and_config_transformer_kept() -> None:
+    scene = FakeScene()
+    display = display_class("PointCloud2")("c", fake_context(scene), {"Topic": "/p", "Color Transformer": "Intensity"})  # fmt: skip
+    bad = three_point_cloud(frame="map")
+    bad.width = 4
+    display.receive(bad)
+    status = display.draw(lookup_from({"map": np.eye(4)}))
+    assert status.level.value == "error" and "Data size (60 bytes)" in status.text
+    display.receive(three_point_cloud(frame="map"))
+    assert (
+        display.draw(lookup_from({"map": np.eye(4)})).text == "Showing [3] points from [1] messages"
+    )
+    assert display.option("Color Transformer") == "Intensity"  # the config's choice kept
+
+
+Image = get_message_type("sensor_msgs/msg/Image")
+CameraInfo = get_message_type("sensor_msgs/msg/CameraInfo")
+OccupancyGrid = get_message_type("nav_msgs/msg/OccupancyGrid")
+BOARD = np.indices((4, 4)).sum(axis=0) % 2 == 0
+
+
+def checkerboard(encoding: str = "rgb8", frame: str = "camera_optical") -> object:
+    rgb = np.where(BOARD[..., None], (255, 0, 0), (0, 0, 255)).astype(np.uint8)
+    msg = Image(height=4, width=4, encoding=encoding, step=12, data=list(rgb.tobytes()))
+    msg.header.frame_id = frame
+    return msg
+
+
+def test_image_display_converts_the_newest_and_reports_bad_encodings() -> None:
+    display = display_class("Image")("img", fake_context(FakeScene()), {"Topic": "/camera/image"})
+    assert display.draw(lookup_from({})).text == "No messages received"
+    display.receive(checkerboard())
+    assert display.draw(lookup_from({})).text == "1 images received; showing 4x4"
+    assert display.rgb is not None
+    np.testing.assert_array_equal(display.rgb[0, 0], (255, 0, 0))
+    np.testing.assert_array_equal(display.rgb[0, 1], (0, 0, 255))
+    display.receive(checkerboard("rgb16"))
+    status = display.draw(lookup_from({}))
+    assert status.level.value == "error" and "Unsupported image encoding [rgb16]" in status.text
+    specs = display.subscriptions()
+    assert [s.type_name for s in specs] == ["sensor_msgs/msg/Image"]
+    assert display_class("Camera").ros1_keys["Topic"] == "Image Topic"  # RViz 1's key
+
+
+def test_camera_display_frustum_from_camera_info_through_tf() -> None:
+    scene = FakeScene()
+    display = display_class("Camera")("cam", fake_context(scene), {"Topic": "/camera/image_raw"})
+    assert [s.topic for s in display.subscriptions()] == ["/camera/image_raw", "/camera/camera_info"]  # fmt: skip
+    assert camera_info_topic("/cam/image_raw/compressed") == "/cam/camera_info"
+    assert camera_info_topic("image") == "/camera_info"
+    display.receive(checkerboard())
+    status = display.draw(lookup_from({"camera_optical": shifted(1.0)}))
+    assert status.text == "No CameraInfo received on [/camera/camera_info]. Topic may not exist."
+    info = CameraInfo(height=4, width=4)
+    info.p = [2.0, 0, 2, 0, 0, 2.0, 2, 0, 0, 0, 1, 0]
+    display.subscriptions()[1].callback(info)
+    status = display.draw(lookup_from({"camera_optical": shifted(1.0)}))
+    assert status.level.value == "warn" and "not rendered over the image" in status.text
+    (node,) = scene.visible("/displays/cam").values()
+    assert node.kind == "camera_frustum" and node.position == (1.0, 0.0, 0.0)
+    assert node.kwargs["fov"] == pytest.approx(2 * np.arctan(4 / (2 * 2.0)))
+    assert node.kwargs["aspect"] == 1.0
+    np.testing.assert_array_equal(node.kwargs["image"], display.rgb)
+    status = display.draw(lookup_from({}))
+    assert "No transform from [camera_optical] to [map]" in status.text
+
+
+def occupancy(frame: str = "map") -> object:
+    msg = OccupancyGrid()
+    msg.header.frame_id = frame
+    msg.info.resolution, msg.info.width, msg.info.height = 0.5, 2, 2
+    msg.info.origin.position.x = -1.0
+    msg.info.origin.orientation.w = 1.0
+    msg.data = [0, 100, -1, 50]
+    return msg
+
+
+def test_map_display_texture_placement_and_status() -> None:
+    scene = FakeScene()
+    display = display_class("Map")("map", fake_context(scene), {"Topic": "/map"})
+    assert display.subscriptions()[0].transient_local  # a latched map_server map arrives
+    display.receive(occupancy("odom"))
+    status = display.draw(lookup_from({}))
+    assert status.text == "No transform from [odom] to [map]" and not scene.visible()
+    status = display.draw(lookup_from({"odom": shifted(3.0)}))
+    assert status.text == "Map OK: 2 X 2 map @ 0.5 m/pix"
+    (node,) = scene.visible("/displays/map").values()
+    assert node.kind == "image" and node.position == (2.5, 0.5, 0.0)  # 3 - 1 + 0.5, 0.5
+    assert (node.kwargs["render_width"], node.kwargs["render_height"]) == (1.0, 1.0)
+    image = node.kwargs["image"][::128, ::128]  # cells upscaled to 128 x 128 texels
+    np.testing.assert_array_equal(image[0, 0], (255, 255, 255, 178))  # free, first cell
+    np.testing.assert_array_equal(image[0, 1], (0, 0, 0, 178))
+    bad = occupancy()
+    bad.data = [0]
+    display.receive(bad)
+    status = display.draw(lookup_from({}))
+    assert status.level.value == "error" and "data size = 1" in status.text
