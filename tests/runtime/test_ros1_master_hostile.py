@@ -31,6 +31,7 @@ from robomodel.runtime.transport.ros1.xmlrpc_io import (
     XmlRpcServer,
 )
 from tests.conftest import ROBOMODEL
+from tests.measured import thread_count
 from tests.ros1wire.conftest import free_port
 from tests.timing import scaled
 
@@ -227,6 +228,7 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
         for sock in open_:
             sock.close()
     assert master.answers()
+    threads = thread_count(master.proc.pid)  # a body's thread may still be ending: not fewer
     flood = [
         socket.create_connection(("127.0.0.1", master.port), timeout=scaled(30))
         for _ in range(MAX_CONCURRENT + 3)
@@ -240,6 +242,8 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
         # holds the whole flood, so none of it waits seconds for the kernel to take its SYN)
         statuses = [_status(sock) for sock in answered]
         assert len(statuses) >= 3 and all(b"503" in s for s in statuses), statuses
+        # a thread per request served (the cap), and the one that drains refused connections
+        assert thread_count(master.proc.pid) <= threads + MAX_CONCURRENT + 1
     finally:
         for sock in flood:
             sock.close()
