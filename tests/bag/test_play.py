@@ -18,7 +18,7 @@ from .conftest import Talker, run_cli, stop
 
 def _wait_subscribed(domain: str, topic: str, timeout_s: float = 15) -> None:
     with Context("zenoh", domain_id=int(domain)) as context:
-        deadline = time.monotonic() + timeout_s
+        deadline = time.monotonic() + scaled(timeout_s)
         while time.monotonic() < deadline:
             info = context.graph(timeout_s=scaled(0.3)).topics.get(topic)
             if info is not None and info.subscribers:

@@ -30,6 +30,7 @@ from robomodel.runtime.msg import (
 )
 from robomodel.runtime.qos import QoSProfile, latched
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 from .conftest import stop
 
@@ -79,7 +80,7 @@ class _Probe:
         self.node.create_subscription(cls, topic, lambda m: got.append((time.monotonic(), m)), qos)
 
     def wait(self, done: Callable[[], bool], timeout_s: float = 30) -> None:
-        deadline = time.monotonic() + timeout_s
+        deadline = time.monotonic() + scaled(timeout_s)
         self.context.spin(until=lambda: done() or time.monotonic() > deadline)
         counts = {t: len(v) for t, v in self.seen.items()}
         assert done(), f"timed out; seen {counts}"

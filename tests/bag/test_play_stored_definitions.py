@@ -13,6 +13,7 @@ from robomodel.bag import open_bag
 from robomodel.bag.player import _decoder
 from robomodel.runtime.msg import message_to_dict
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 DEFINITION = (
     "geometry_msgs/Point where\nuint8 level\nstring[] tags\n" + "=" * 80 + "\n"
@@ -43,6 +44,6 @@ def test_play_decodes_by_the_bags_definition(tmp_path: Path, plugin: str) -> Non
     }  # fmt: skip
     assert cls.__typename__ == "lab_msgs/msg/Sample"
     info = subprocess.run(
-        [*ROBOMODEL, "bag", "info", str(folder)], capture_output=True, text=True, timeout=60
+        [*ROBOMODEL, "bag", "info", str(folder)], capture_output=True, text=True, timeout=scaled(60)
     )
     assert info.returncode == 0 and "lab_msgs/msg/Sample" in info.stdout, info.stderr

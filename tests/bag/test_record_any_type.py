@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 from .conftest import flushed_count, stop
 
@@ -51,10 +52,10 @@ def test_record_all_stores_definitions_rosbags_reads_back(tmp_path: Path) -> Non
     folder = tmp_path / "bag"
     record = start("bag", "record", "-a", "-o", str(folder))
     try:
-        deadline = time.monotonic() + 120
+        deadline = time.monotonic() + scaled(120)
         while flushed_count(folder) < 10:  # until messages of both topics are in the bag
             assert record.poll() is None, record.communicate()[1]
-            assert time.monotonic() < deadline, "no messages recorded in 120 s"
+            assert time.monotonic() < deadline, f"no messages recorded in {scaled(120):.0f} s"
             time.sleep(0.3)
     finally:
         stop(record, signal.SIGINT)
@@ -77,5 +78,5 @@ def test_record_all_stores_definitions_rosbags_reads_back(tmp_path: Path) -> Non
     assert types["/img"] == "sensor_msgs/msg/Image"
     assert hashes["/img"] == jazzy.hash_rihs01("sensor_msgs/msg/Image")
     info = subprocess.run([*ROBOMODEL, "bag", "info", str(folder)], env=env, text=True,
-                          capture_output=True, timeout=60)  # fmt: skip
+                          capture_output=True, timeout=scaled(60))  # fmt: skip
     assert info.returncode == 0 and "my_msgs/msg/Reading" in info.stdout, info.stderr

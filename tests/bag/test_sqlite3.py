@@ -12,6 +12,7 @@ from pathlib import Path
 from robomodel.bag import RecorderStats
 from robomodel.cli.bag import format_progress
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 from .conftest import rosbags_read, stop
 
@@ -30,7 +31,7 @@ GATED_TALKER = textwrap.dedent(
     def recorders():
         info = ctx.graph(timeout_s=0.3).topics.get("/joint_states")
         return len(info.subscribers) if info else 0
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + float(sys.argv[3])  # scaled by the test
     while recorders() < 2 and time.monotonic() < deadline:
         ctx.spin(duration_s=0.1)
     ctx.spin(duration_s=0.5)
@@ -71,7 +72,9 @@ def test_sqlite3_recording_reads_as_the_mcap_one(tmp_path: Path) -> None:
     script = tmp_path / "talker.py"
     script.write_text(GATED_TALKER)
     talker = subprocess.Popen(
-        [sys.executable, str(script), domain, str(COUNT)], stdout=subprocess.PIPE, text=True
+        [sys.executable, str(script), domain, str(COUNT), str(scaled(30))],
+        stdout=subprocess.PIPE,
+        text=True,
     )
     mcap, sqlite = tmp_path / "mcap", tmp_path / "sqlite"
     forced = {**os.environ, "TTY_COMPATIBLE": "1"}  # rich's switch: draw as on a terminal

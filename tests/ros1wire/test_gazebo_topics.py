@@ -157,8 +157,9 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
     own there, republishing every line on /rosout_agg."""
     ros1.robomodel("master", "--port", str(ros1.port))
     ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
-    # as roscore's rosout process, the node registers a moment after the master answers
-    ros1.until(lambda: ros1.run("/usr/bin/rosnode", "list").stdout.split() != [], "rosout node")
+    # /run_id is set before the /rosout node registers (roslaunch sets it before it starts
+    # rosout too): wait for the node, then nothing but it is there
+    ros1.until(lambda: "/rosout" in ros1.run("/usr/bin/rosnode", "list").stdout, "/rosout")
     assert ros1.run("/usr/bin/rosnode", "list").stdout.split() == ["/rosout"]
     info = ros1.run("/usr/bin/rostopic", "info", "/rosout").stdout
     assert "Publishers: None" in info and " * /rosout (" in info

@@ -32,6 +32,7 @@ from robomodel.runtime.transport.ros1.tcpros import (
 from robomodel.runtime.transport.ros1.xmlrpc_io import XmlRpcServer
 from tests.measured import MIB, peak_rss_bytes, thread_count
 from tests.ros1wire.conftest import Ros1
+from tests.timing import scaled
 
 STRING_MD5 = "992ce8a1687cec8c8bd883ec73ca41d1"
 FLOAT64_MD5 = "fdb28210bfa9d7c91146260178d9a584"
@@ -72,7 +73,7 @@ def _log_lines(log: Path, word: str) -> list[str]:
 
 def _sigterm_ends(proc: subprocess.Popen[str], log: Path) -> None:
     proc.send_signal(signal.SIGTERM)
-    proc.wait(60)  # a node with thousands of threads did not end at all
+    proc.wait(scaled(60))  # a node with thousands of threads did not end at all
     assert "Traceback" not in log.read_text(), log.read_text()
 
 
@@ -211,7 +212,7 @@ def _stall(port: int, count: int, stop: threading.Event, opened: list[int]) -> N
     selector = selectors.DefaultSelector()
 
     def open_one() -> None:
-        sock = socket.create_connection(("127.0.0.1", port), timeout=5)
+        sock = socket.create_connection(("127.0.0.1", port), timeout=scaled(5))
         sock.sendall(b"\x10\x00")
         selector.register(sock, selectors.EVENT_READ)
         opened[0] += 1
@@ -244,7 +245,7 @@ def test_29_12_stalled_handshakes_do_not_keep_a_real_subscriber_out(
     staller.start()
     try:
         ros1.until(lambda: opened[0] >= 100, "100 stalled connections")
-        echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", "/chatter", timeout=60)
+        echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", "/chatter", timeout=scaled(60))
         assert echo.returncode == 0 and 'data: "hi"' in echo.stdout, echo.stderr
         assert thread_count(proc.pid) < 40  # no thread per pending handshake
         ros1.until(lambda: opened[0] > 100, "the node drops a stalled connection")
@@ -327,10 +328,10 @@ def test_29_12_past_the_bound_the_oldest_stalled_handshake_makes_room(
     caplog.set_level(logging.DEBUG, logger="robomodel.ros1")
     try:
         for _ in range(MAX_HANDSHAKES + 72):
-            sock = socket.create_connection(("127.0.0.1", port), timeout=5)
+            sock = socket.create_connection(("127.0.0.1", port), timeout=scaled(5))
             sock.sendall(b"\x10\x00")
             stalled.append(sock)
-        with socket.create_connection(("127.0.0.1", port), timeout=5) as real:
+        with socket.create_connection(("127.0.0.1", port), timeout=scaled(5)) as real:
             real.sendall(encode_header({"callerid": "/real", "topic": "/chatter"}))
             _wait_for(lambda: bool(got))
         assert got == [{"callerid": "/real", "topic": "/chatter"}]
@@ -346,7 +347,8 @@ def test_29_12_past_the_bound_the_oldest_stalled_handshake_makes_room(
 
 
 def _wait_for(check: Callable[[], bool], timeout_s: float = 60) -> None:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while not check():
-        assert time.monotonic() < deadline, f"not within {timeout_s} s"
+        assert time.monotonic() < deadline, f"not within {timeout_s:.0f} s"
         time.sleep(0.02)

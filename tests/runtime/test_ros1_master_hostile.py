@@ -31,15 +31,18 @@ from robomodel.runtime.transport.ros1.xmlrpc_io import (
     XmlRpcServer,
 )
 from tests.conftest import ROBOMODEL
+from tests.measured import thread_count
 from tests.ros1wire.conftest import free_port
+from tests.timing import scaled
 
 MIB = 1 << 20
 
 
 def _until(check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while not check():
-        assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
+        assert time.monotonic() < deadline, f"{what}: not within {timeout_s:.0f} s"
         time.sleep(0.05)
 
 
@@ -67,7 +70,14 @@ class MasterProcess:
         return [line for line in self.stderr.read_text().splitlines() if line.strip()][1:]
 
     def answers(self) -> bool:
-        return bool(self.proxy().getPid("/probe")[0] == 1)
+        """Whether the master serves a request; False for a 503 (right after a flood closes,
+        its threads have not all seen the close and given their request slots back)."""
+        try:
+            return bool(self.proxy().getPid("/probe")[0] == 1)
+        except xmlrpc.client.ProtocolError as exc:
+            if exc.errcode == 503:
+                return False
+            raise
 
 
 @pytest.fixture
@@ -86,7 +96,7 @@ def master(tmp_path: Path) -> Iterator[MasterProcess]:
         yield m
     finally:
         proc.terminate()
-        proc.wait(30)
+        proc.wait(scaled(30))
     assert "Traceback" not in stderr.read_text(), stderr.read_text()
 
 
@@ -194,7 +204,7 @@ def test_29_4_deep_names_fill_the_server_to_its_limit_in_memory_too() -> None:
 # -- 29.6: XML-RPC bodies ---------------------------------------------------------------------------
 def _announce(port: int, size: int, first: bytes = b"<") -> socket.socket:
     """A POST announcing ``size`` bytes, of which it sends one."""
-    sock = socket.create_connection(("127.0.0.1", port), timeout=30)
+    sock = socket.create_connection(("127.0.0.1", port), timeout=scaled(30))
     sock.sendall(b"POST / HTTP/1.0\r\nContent-Length: %d\r\n\r\n" % size + first)
     return sock
 
@@ -206,12 +216,6 @@ def _status(sock: socket.socket) -> bytes:
         return b""
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="issue 29.6, open: past the 64-request cap the flood's connections are sometimes "
-    "reset without the 503 and without the 'at once' log line (about one quiet run in two, "
-    "seen after the merges of this session); the body budget part holds",
-)
 def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
     master: MasterProcess,
 ) -> None:
@@ -231,8 +235,9 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
         for sock in open_:
             sock.close()
     assert master.answers()
+    threads = thread_count(master.proc.pid)  # a body's thread may still be ending: not fewer
     flood = [
-        socket.create_connection(("127.0.0.1", master.port), timeout=30)
+        socket.create_connection(("127.0.0.1", master.port), timeout=scaled(30))
         for _ in range(MAX_CONCURRENT + 3)
     ]
     try:  # connections that send nothing hold a request slot each, up to the cap
@@ -240,12 +245,12 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
         answered = select.select(flood, [], [], 0.5)[0]
         # at least the 3 past the cap; on a loaded machine a slot of the bodies closed above can
         # still be held when the flood comes, so more may be refused, but every answer is a 503
-        # (an idle connection within the cap is not dropped before 10 s)
+        # (an idle connection within the cap is not dropped before 10 s: the listen backlog
+        # holds the whole flood, so none of it waits seconds for the kernel to take its SYN)
         statuses = [_status(sock) for sock in answered]
-        # past the cap: a 503, or the connection reset before its answer could be read (seen
-        # on about one run in two); never a request served past the cap (the log line below
-        # says the cap was reached)
-        assert len(statuses) >= 3 and all(b"503" in s or s == b"" for s in statuses), statuses
+        assert len(statuses) >= 3 and all(b"503" in s for s in statuses), statuses
+        # a thread per request served (the cap), and the one that drains refused connections
+        assert thread_count(master.proc.pid) <= threads + MAX_CONCURRENT + 1
     finally:
         for sock in flood:
             sock.close()
@@ -277,22 +282,23 @@ def test_29_11_peers_that_leave_mid_request_cost_a_line_not_a_traceback(
 
 
 def test_29_11_a_slowloris_is_dropped_at_the_request_deadline(
-    caplog: pytest.LogCaptureFixture,
+    caplog: pytest.LogCaptureFixture, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    from robomodel.runtime.transport.ros1 import xmlrpc_io
+
+    monkeypatch.setattr(xmlrpc_io, "_throttled", {})  # lines of earlier tests held none back
     server = XmlRpcServer("127.0.0.1", 0, {"getPid": lambda c: [1, "", 1]}, request_timeout_s=2)
     try:
-        sock = socket.create_connection(("127.0.0.1", server.port), timeout=30)
+        sock = socket.create_connection(("127.0.0.1", server.port), timeout=scaled(30))
         sock.sendall(b"POST / HTTP/1.0\r\nX-Slow: ")
-        for _ in range(600):  # one byte every 50 ms: never idle for the 10 s idle timeout
-            if _readable(sock):  # the server closed it
-                break
-            try:
+        deadline = time.monotonic() + scaled(30)
+        while not _readable(sock):  # until the server closes it
+            assert time.monotonic() < deadline, "the server still reads a slowloris"
+            try:  # one byte every 50 ms: never idle for the 10 s idle timeout
                 sock.sendall(b"a")
             except OSError:
                 break
             time.sleep(0.05)
-        else:
-            pytest.fail("the server still reads a slowloris after 600 bytes (30 s)")
         sock.close()
         proxy = xmlrpc.client.ServerProxy(f"http://127.0.0.1:{server.port}/")
         assert proxy.getPid("/x") == [1, "", 1]
@@ -369,7 +375,7 @@ def test_29_14_a_master_answering_garbage_makes_list_exit_2(verb: str) -> None:
     env["ROS_MASTER_URI"] = f"http://127.0.0.1:{fake.port}/"
     try:
         run = subprocess.run(
-            [*ROBOMODEL, verb, "list"], capture_output=True, text=True, env=env, timeout=120
+            [*ROBOMODEL, verb, "list"], capture_output=True, text=True, env=env, timeout=scaled(120)
         )
     finally:
         fake.close()

@@ -21,7 +21,7 @@ from robomodel.runtime.transport.ros1.names import advertised_host, http_uri
 from robomodel.runtime.transport.ros1.publication import Publication
 from robomodel.runtime.transport.ros1.services import ServiceServer
 from robomodel.runtime.transport.ros1.subscription import Subscription
-from robomodel.runtime.transport.ros1.tcpros import TcprosError, write_header
+from robomodel.runtime.transport.ros1.tcpros import TcprosError, refuse
 from robomodel.runtime.transport.ros1.xmlrpc_io import XmlRpcServer, log
 
 __all__ = ["NodeEndpoint"]
@@ -59,8 +59,7 @@ class NodeEndpoint:
             elif "topic" in header:
                 self._serve_topic(sock, header)
             else:
-                write_header(sock, {"error": "header has neither 'topic' nor 'service'"})
-                sock.close()
+                refuse(sock, "header has neither 'topic' nor 'service'")
         except (OSError, TcprosError) as exc:
             log.warning(
                 "%s: dropping a TCPROS connection from %s: %s", self.caller_id, address, exc
@@ -70,23 +69,17 @@ class NodeEndpoint:
     def _serve_topic(self, sock: socket.socket, header: dict[str, str]) -> None:
         publication = self.publications.get(header["topic"])
         if publication is None:
-            write_header(sock, {"error": f"{self.caller_id} does not publish {header['topic']}"})
-            sock.close()
+            refuse(sock, f"{self.caller_id} does not publish {header['topic']}")
             return
         sock.settimeout(None)
         publication.accept(sock, header)
 
     def _serve_service(self, sock: socket.socket, header: dict[str, str]) -> None:
         server = self.services.get(header["service"])
-        try:
-            if server is None:
-                write_header(
-                    sock, {"error": f"{self.caller_id} does not offer {header['service']}"}
-                )
-            else:
-                server.serve(sock, header)
-        finally:
-            sock.close()
+        if server is None:
+            refuse(sock, f"{self.caller_id} does not offer {header['service']}")
+        else:
+            server.serve(sock, header)
 
     # -- the slave API --------------------------------------------------------------------------
     def _api(self) -> dict[str, Any]:

@@ -9,14 +9,13 @@ topic is not latched.
 from __future__ import annotations
 
 import collections
-import contextlib
 import itertools
 import socket
 import threading
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
-from robomodel.runtime.transport.ros1.tcpros import TcprosError, write_frame, write_header
+from robomodel.runtime.transport.ros1.tcpros import refuse, write_frame, write_header
 from robomodel.runtime.transport.ros1.xmlrpc_io import log
 
 if TYPE_CHECKING:
@@ -118,7 +117,7 @@ class Publication:
                 f"[{self.kind.name}/{self.kind.md5sum}]. Dropping connection."
             )
             log.warning("%s", reason)
-            _refuse(sock, reason)
+            refuse(sock, reason)
             return
         write_header(
             sock,
@@ -150,9 +149,3 @@ class Publication:
             connections, self.connections = self.connections, []
         for connection in connections:
             connection.close()
-
-
-def _refuse(sock: socket.socket, reason: str) -> None:
-    with contextlib.suppress(OSError, TcprosError):
-        write_header(sock, {"error": reason})
-    sock.close()

@@ -28,6 +28,7 @@ from robomodel.runtime.transport.ros1.tcpros import (
     read_frame,
     read_header,
     recv_exact,
+    refuse,
     write_frame,
     write_header,
 )
@@ -69,7 +70,7 @@ class ServiceServer:
         }
 
     def serve(self, sock: socket.socket, header: dict[str, str]) -> None:
-        """Serve one client connection (on its own thread) until it closes."""
+        """Serve one client connection (on its own thread) until it closes; then close it."""
         md5 = header.get("md5sum", "*")
         if md5 not in ("*", self.kind.md5sum):
             reason = (
@@ -77,8 +78,14 @@ class ServiceServer:
                 f"[{md5}] vs. [{self.kind.md5sum}]"
             )
             log.warning("service %s: %s", self.name, reason)
-            write_header(sock, {"error": reason})
+            refuse(sock, reason)  # a request sent with the header is not read
             return
+        try:
+            self._serve_calls(sock, header)
+        finally:
+            sock.close()
+
+    def _serve_calls(self, sock: socket.socket, header: dict[str, str]) -> None:
         write_header(sock, self._reply_header())
         if header.get("probe") == "1":
             return

@@ -14,6 +14,9 @@ prefix until it is decoded, and a frame that does not fit is refused with
 :class:`FrameRefused` (the connection is closed) instead of waiting, so no set of peers can
 make a process hold more. A frame must arrive whole within ``FRAME_STALL_S`` plus its size at
 ``FRAME_MIN_RATE_BPS``, or its connection is dropped (so a slow peer cannot hold the budget).
+
+A connection refused with an error header (:func:`refuse`) is closed by lingering
+(:mod:`.linger`): a peer that sent frames after its header reads the error, not a reset.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from collections.abc import Iterator, Mapping
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.transport.ros1.budget import ByteBudget
+from robomodel.runtime.transport.ros1.linger import close_after_answer
 
 __all__ = [
     "FRAME_BUDGET_BYTES",
@@ -40,6 +44,7 @@ __all__ = [
     "read_header",
     "receive_frame",
     "recv_exact",
+    "refuse",
     "write_frame",
     "write_header",
 ]
@@ -131,6 +136,15 @@ def read_header(sock: socket.socket) -> dict[str, str]:
 
 def write_header(sock: socket.socket, fields: Mapping[str, str]) -> None:
     sock.sendall(encode_header(fields))
+
+
+def refuse(sock: socket.socket, reason: str) -> None:
+    """Answer a connection with an ``error`` header (rospy's and roscpp's refusal) and close it
+    without a reset, whatever the peer sent after its header; ``sock`` is the caller's no
+    longer."""
+    with contextlib.suppress(OSError):
+        write_header(sock, {"error": reason})
+    close_after_answer(sock)
 
 
 @contextlib.contextmanager

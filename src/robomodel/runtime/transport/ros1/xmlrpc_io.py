@@ -5,7 +5,12 @@
   servers do (rospy unregisters through it when a node ends). A request body above
   ``MAX_BODY_BYTES``, or one that would take the bodies in flight in this process above
   ``MAX_BODIES_IN_FLIGHT_BYTES``, gets an HTTP error (413, 503) and one log line; so does a
-  request past ``MAX_CONCURRENT`` at once on one server (503). A body that is not XML-RPC, an
+  request past ``MAX_CONCURRENT`` at once on one server (503). The listen backlog holds a
+  burst of connections past the cap, so that each is accepted and refused at once (a backlog
+  of 5 made the kernel drop SYNs and the flood's clients retry for seconds). A connection
+  answered before its request was read whole is closed by :mod:`.linger` (its writing side
+  shut down, what the peer still sends read and discarded within a bound), so that the peer
+  reads its answer instead of a reset. A body that is not XML-RPC, an
   unknown method or a wrong argument count gets an error answer. A peer that sends nothing for
   ``IDLE_TIMEOUT_S``, or has not sent its whole request within ``REQUEST_TIMEOUT_S`` (a
   slowloris), is dropped. A peer that goes away mid-request costs one log line, no traceback;
@@ -32,6 +37,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.ros1.budget import ByteBudget
+from robomodel.runtime.transport.ros1.linger import close_after_answer
 
 __all__ = [
     "MAX_BODIES_IN_FLIGHT_BYTES",
@@ -49,6 +55,7 @@ log = logging.getLogger("robomodel.ros1")
 MAX_BODY_BYTES = 64 << 20  # a robot_description with inlined meshes stays far below
 MAX_BODIES_IN_FLIGHT_BYTES = 128 << 20  # every server of this process together
 MAX_CONCURRENT = 64  # requests served at once, per server
+LISTEN_BACKLOG = 2 * MAX_CONCURRENT  # connections waiting to be accepted (and maybe refused)
 IDLE_TIMEOUT_S = 10.0
 REQUEST_TIMEOUT_S = 30.0  # the whole request: 64 MiB needs > 2 MiB/s
 THROTTLE_S = 5.0
@@ -83,6 +90,7 @@ _BUSY = b"HTTP/1.0 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: c
 class _Server(ThreadingHTTPServer):
     daemon_threads = True
     allow_reuse_address = True
+    request_queue_size = LISTEN_BACKLOG
 
     def __init__(
         self,
@@ -114,15 +122,26 @@ class _Server(ThreadingHTTPServer):
                 request.sendall(_BUSY)
             except OSError:
                 pass
-            self.shutdown_request(request)
+            close_after_answer(request)  # its request, sent or coming, is not read
             return
         super().process_request(request, client_address)
 
     def process_request_thread(self, request: Any, client_address: Any) -> None:
+        """ThreadingMixIn's, but a request answered before it was read whole (an error) is
+        closed by lingering, and the slot is given back either way."""
+        answered_early = False
         try:
-            super().process_request_thread(request, client_address)
+            answered_early = _Handler(request, client_address, self).answered_early
+        except Exception:
+            self.handle_error(request, client_address)
         finally:
-            self.slots.release()
+            try:
+                if answered_early:
+                    close_after_answer(request)
+                else:
+                    self.shutdown_request(request)
+            finally:
+                self.slots.release()
 
     def handle_error(self, request: Any, client_address: Any) -> None:
         """One line instead of socketserver's traceback: a peer that closes mid-request."""
@@ -157,6 +176,11 @@ class _DeadlineReader(io.RawIOBase):
 class _Handler(BaseHTTPRequestHandler):
     server: _Server
     timeout = IDLE_TIMEOUT_S
+    answered_early = False  # an error answer, written before the request was read whole
+
+    def send_error(self, code: int, message: str | None = None, explain: str | None = None) -> None:
+        self.answered_early = True
+        super().send_error(code, message, explain)
 
     def setup(self) -> None:
         super().setup()
