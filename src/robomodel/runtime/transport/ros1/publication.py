@@ -4,6 +4,12 @@ behind, as roscpp's publisher queue drops), and the latched message new subscrib
 
 A message is serialized once per publish, and not at all while nobody is connected and the
 topic is not latched.
+
+Bound: at most ``MAX_SUBSCRIBER_CONNECTIONS`` subscriber connections (so writer threads) at once
+in one process, across its nodes and topics; past it a new subscriber is refused with an error
+header and one throttled log line. A connection gives its slot back when it ends: when a write
+fails, or when its subscriber closes (a writer with nothing to write looks every
+``PEER_CHECK_S`` whether its peer is gone, since a subscriber sends nothing after its header).
 """
 
 from __future__ import annotations
@@ -15,19 +21,43 @@ import threading
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
+from robomodel.runtime.transport.ros1.budget import ByteBudget
 from robomodel.runtime.transport.ros1.tcpros import refuse, write_frame, write_header
-from robomodel.runtime.transport.ros1.xmlrpc_io import log
+from robomodel.runtime.transport.ros1.xmlrpc_io import log, log_throttled
 
 if TYPE_CHECKING:
     from robomodel.runtime.transport.ros1.ros1_types import Ros1Type
 
-__all__ = ["Publication"]
+__all__ = ["MAX_SUBSCRIBER_CONNECTIONS", "Publication", "subscriber_connections"]
 
+# A robomodel process publishes a few tens of topics (joint states, tf, tf_static, the robot
+# description, controller and simulation topics), each read by a handful of nodes (RViz,
+# rosbag, rostopic, robot_state_publisher): tens of connections. 256 is ten times that, and 256
+# writer threads cost a few MiB.
+MAX_SUBSCRIBER_CONNECTIONS = 256
+PEER_CHECK_S = 1.0  # how soon an idle writer notices that its subscriber closed
+_SLOTS = ByteBudget(MAX_SUBSCRIBER_CONNECTIONS)  # counts connections, one unit each
 _connection_ids = itertools.count(1)
 
 
+def subscriber_connections() -> int:
+    """Subscriber connections of this process now (each with its writer thread)."""
+    return _SLOTS.used
+
+
+def _peer_closed(sock: socket.socket) -> bool:
+    """True once the subscriber closed its end; what it sent (nothing, in TCPROS) is discarded."""
+    try:
+        return sock.recv(1 << 12, socket.MSG_DONTWAIT) == b""
+    except (BlockingIOError, InterruptedError):
+        return False
+    except OSError:
+        return True
+
+
 class _Outbound:
-    """One subscriber's connection: a writer thread draining a bounded queue."""
+    """One subscriber's connection: a writer thread draining a bounded queue. It holds one of
+    the process's subscriber slots, given back (by ``on_close``) when it closes."""
 
     def __init__(self, sock: socket.socket, peer: str, queue_size: int, on_close: Any) -> None:
         self.sock = sock
@@ -36,6 +66,7 @@ class _Outbound:
         self._queue: collections.deque[bytes] = collections.deque(maxlen=max(1, queue_size))
         self._ready = threading.Condition()
         self._open = True
+        self._closed = False
         self._on_close = on_close
         self.dropped = 0
         self._thread = threading.Thread(target=self._write, name="ros1-pub-writer", daemon=True)
@@ -53,7 +84,9 @@ class _Outbound:
             while True:
                 with self._ready:
                     while self._open and not self._queue:
-                        self._ready.wait()
+                        if not self._ready.wait(PEER_CHECK_S) and _peer_closed(self.sock):
+                            log.debug("subscriber %s closed its connection", self.peer)
+                            return
                     if not self._open:
                         return
                     batch = list(self._queue)
@@ -67,8 +100,9 @@ class _Outbound:
 
     def close(self) -> None:
         with self._ready:
-            if not self._open and self.sock.fileno() < 0:
+            if self._closed:  # on_close runs once: it gives the slot back
                 return
+            self._closed = True
             self._open = False
             self._ready.notify()
         try:
@@ -119,6 +153,38 @@ class Publication:
             log.warning("%s", reason)
             refuse(sock, reason)
             return
+        if not _SLOTS.take(1):
+            self._refuse_past_cap(sock, peer)
+            return
+        try:
+            connection = self._connect(sock, header, peer)
+        except BaseException:
+            _SLOTS.give(1)
+            raise
+        with self._lock:
+            self.connections.append(connection)
+            latched = self._latched
+        if latched is not None:
+            connection.push(latched)
+
+    def _refuse_past_cap(self, sock: socket.socket, peer: str) -> None:
+        log_throttled(
+            "tcpros-subscribers",
+            "TCPROS: more than %d subscriber connections at once in this process "
+            "(MAX_SUBSCRIBER_CONNECTIONS); refusing %r on %s",
+            MAX_SUBSCRIBER_CONNECTIONS,
+            peer,
+            self.topic,
+        )
+        refuse(
+            sock,
+            f"{self.caller_id} has {MAX_SUBSCRIBER_CONNECTIONS} subscriber connections "
+            f"already (its process's limit); try again later",
+        )
+
+    def _connect(self, sock: socket.socket, header: dict[str, str], peer: str) -> _Outbound:
+        """The reply header written and the writer started (the slot taken is the caller's
+        to give back if this fails)."""
         write_header(
             sock,
             {
@@ -132,14 +198,10 @@ class Publication:
         )
         if header.get("tcp_nodelay") == "1":
             sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-        connection = _Outbound(sock, peer, self.queue_size, self._forget)
-        with self._lock:
-            self.connections.append(connection)
-            latched = self._latched
-        if latched is not None:
-            connection.push(latched)
+        return _Outbound(sock, peer, self.queue_size, self._forget)
 
     def _forget(self, connection: _Outbound) -> None:
+        _SLOTS.give(1)
         with self._lock:
             if connection in self.connections:
                 self.connections.remove(connection)

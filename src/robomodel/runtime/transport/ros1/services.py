@@ -6,6 +6,11 @@ frame is answered with an ok byte and the response (1), or the error text (0). T
 on the executor's thread, as every robomodel callback; a :class:`Deferred` answer is written
 when it resolves.
 
+Bound: at most ``MAX_SERVICE_CONNECTIONS`` client connections at once in one process, across its
+nodes and services, each served on a thread of its own for its lifetime; past it a new one is
+refused with an error header and one throttled log line, and its slot is given back when it
+closes.
+
 Client: the master's ``lookupService`` gives ``rosrpc://host:port``; one connection per call
 (``persistent=0``).
 """
@@ -20,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 from robomodel.runtime.msg import Message
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.base import Deferred, ServiceCallError, ServiceHandler
+from robomodel.runtime.transport.ros1.budget import ByteBudget
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
     MAX_FRAME_BYTES,
@@ -32,15 +38,31 @@ from robomodel.runtime.transport.ros1.tcpros import (
     write_frame,
     write_header,
 )
-from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError, call, log
+from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError, call, log, log_throttled
 
 if TYPE_CHECKING:
     from robomodel.runtime.executor import Executor
     from robomodel.runtime.transport.ros1.ros1_types import Ros1ServiceType
 
-__all__ = ["ServiceServer", "call_service", "probe_service_type"]
+__all__ = [
+    "MAX_SERVICE_CONNECTIONS",
+    "ServiceServer",
+    "call_service",
+    "probe_service_type",
+    "service_connections",
+]
 
 HANDLER_TIMEOUT_S = 300.0  # a controller switch or a model spawn can take a while
+# Clients connect once per call (rosservice, rospy and roscpp without persistent=1) and the
+# handlers of a process run one at a time on its executor, so more connections at once only
+# wait; 64 is what the XML-RPC server serves at once, for the same reason.
+MAX_SERVICE_CONNECTIONS = 64
+_SLOTS = ByteBudget(MAX_SERVICE_CONNECTIONS)  # counts connections, one unit each
+
+
+def service_connections() -> int:
+    """Service client connections being served in this process now (one thread each)."""
+    return _SLOTS.used
 
 
 class ServiceServer:
@@ -80,9 +102,25 @@ class ServiceServer:
             log.warning("service %s: %s", self.name, reason)
             refuse(sock, reason)  # a request sent with the header is not read
             return
+        if not _SLOTS.take(1):
+            log_throttled(
+                "tcpros-services",
+                "TCPROS: more than %d service connections at once in this process "
+                "(MAX_SERVICE_CONNECTIONS); refusing %r on %s",
+                MAX_SERVICE_CONNECTIONS,
+                header.get("callerid", "?"),
+                self.name,
+            )
+            refuse(
+                sock,
+                f"{self.caller_id} serves {MAX_SERVICE_CONNECTIONS} service connections "
+                f"already (its process's limit); try again later",
+            )
+            return
         try:
             self._serve_calls(sock, header)
         finally:
+            _SLOTS.give(1)
             sock.close()
 
     def _serve_calls(self, sock: socket.socket, header: dict[str, str]) -> None:
