@@ -23,6 +23,7 @@ import pytest
 
 from robomodel.runtime.transport.ros1.handshakes import MAX_HANDSHAKES
 from robomodel.runtime.transport.ros1.master import Master
+from robomodel.runtime.transport.ros1.publication import MAX_SUBSCRIBER_CONNECTIONS
 from robomodel.runtime.transport.ros1.subscription import MAX_PUBLISHERS
 from robomodel.runtime.transport.ros1.tcpros import (
     FRAME_BUDGET_BYTES,
@@ -256,6 +257,46 @@ def test_29_12_stalled_handshakes_do_not_keep_a_real_subscriber_out(
     assert len(_log_lines(log, "dropping a TCPROS connection")) == 1, log.read_text()
     assert api.getPid("/test")[2] == proc.pid
     assert peak_rss_bytes(proc.pid) < BASE_RSS
+    _sigterm_ends(proc, log)
+
+
+def test_29_subscriber_connections_past_the_cap_are_refused_and_rostopic_echo_still_reads(
+    ros1: Ros1, master: Master, tmp_path: Path
+) -> None:
+    """Each subscriber connection holds a writer thread: cap + 3 connections with valid headers
+    to a ``robomodel topic pub`` process get 3 error headers and one log line naming the cap,
+    the process's threads stay within the cap plus a few, and once the flood closes Debian's
+    ``rostopic echo`` gets its message."""
+    log = tmp_path / "pub.log"
+    proc = ros1.robomodel("topic", "pub", "/chatter", "std_msgs/String", "data: hi", "-r", "5",
+                          log=log)  # fmt: skip
+    api = xmlrpc.client.ServerProxy(_node_api(ros1, "/chatter", "pub"))
+    _, _, (_, _, port) = api.requestTopic("/test", "/chatter", [["TCPROS"]])
+    header = encode_header({"callerid": "/flood", "topic": "/chatter", "md5sum": STRING_MD5,
+                            "type": "std_msgs/String"})  # fmt: skip
+    flood: list[socket.socket] = []
+    try:
+        refused = []
+        for _ in range(MAX_SUBSCRIBER_CONNECTIONS + 3):
+            sock = socket.create_connection(("127.0.0.1", port), timeout=scaled(30))
+            flood.append(sock)
+            sock.sendall(header)
+            answer = read_header(sock)
+            if "error" in answer:
+                refused.append(answer["error"])
+        assert len(refused) == 3 and all("limit" in e for e in refused), refused
+        threads = thread_count(proc.pid)
+        assert threads < MAX_SUBSCRIBER_CONNECTIONS + 40, threads
+        assert len(api.getBusInfo("/test")[2]) == MAX_SUBSCRIBER_CONNECTIONS
+    finally:
+        for sock in flood:
+            sock.close()
+    ros1.until(lambda: not api.getBusInfo("/test")[2], "the flood's slots given back")
+    echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", "/chatter", timeout=scaled(60))
+    assert echo.returncode == 0 and 'data: "hi"' in echo.stdout, echo.stderr
+    lines = _log_lines(log, "MAX_SUBSCRIBER_CONNECTIONS")
+    assert len(lines) == 1 and f"more than {MAX_SUBSCRIBER_CONNECTIONS}" in lines[0], lines
+    assert api.getPid("/test")[2] == proc.pid
     _sigterm_ends(proc, log)
 
 
