@@ -72,6 +72,10 @@ class _Outbound:
         self._thread = threading.Thread(target=self._write, name="ros1-pub-writer", daemon=True)
         self._thread.start()
 
+    @property
+    def closed(self) -> bool:
+        return self._closed
+
     def push(self, data: bytes) -> None:
         with self._ready:
             if len(self._queue) == self._queue.maxlen:
@@ -85,7 +89,7 @@ class _Outbound:
                 with self._ready:
                     while self._open and not self._queue:
                         if not self._ready.wait(PEER_CHECK_S) and _peer_closed(self.sock):
-                            log.debug("subscriber %s closed its connection", self.peer)
+                            log.debug("subscriber %r closed its connection", self.peer)
                             return
                     if not self._open:
                         return
@@ -162,7 +166,8 @@ class Publication:
             _SLOTS.give(1)
             raise
         with self._lock:
-            self.connections.append(connection)
+            if not connection.closed:  # a writer that failed at once has given its slot back
+                self.connections.append(connection)
             latched = self._latched
         if latched is not None:
             connection.push(latched)
