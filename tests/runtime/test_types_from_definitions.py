@@ -295,3 +295,11 @@ def test_uint8_arrays_decode_as_bytes_from_any_byte_container() -> None:
     parsed = message_from_yaml(image, "{data: [0, 255, 7, 128]}")
     assert parsed == deserialize(wire, image)
     assert message_to_yaml(parsed).endswith("data:\n- 0\n- 255\n- 7\n- 128\n")
+
+
+def test_topic_pub_shows_uint8_arrays_as_ros2_topic_pub() -> None:
+    """rosidl's __repr__ strips array('B', ...): ``publishing #1: ...(data=[0, 255])``."""
+    from robomodel.cli.topic import _fields
+
+    image = get_message_type("sensor_msgs/msg/Image")
+    assert _fields(image(data=b"\x00\xff")).endswith(", data=[0, 255]")  # type: ignore[call-arg]

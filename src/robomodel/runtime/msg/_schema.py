@@ -16,6 +16,7 @@ from typing import Any, ClassVar, TypeAlias
 from robomodel.errors import RobomodelError
 
 __all__ = [
+    "BYTE_ITEMS",
     "PRIMITIVES",
     "Action",
     "Array",
@@ -24,13 +25,12 @@ __all__ = [
     "Seq",
     "Service",
     "Spec",
-    "BYTE_ITEMS",
     "canonical_service_name",
     "canonical_type_name",
     "default_for",
-    "is_byte_array",
     "get_message_type",
     "get_service_type",
+    "is_byte_array",
     "message_type_names",
     "service_type_names",
 ]
