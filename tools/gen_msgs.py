@@ -155,6 +155,12 @@ def _field(
         return cls, f"field(default_factory={cls})", cls
     item_ann, item_default, item_spec = _field(rest[0], owner, where, key, "")
     size = int(rest[1])
+    if item_spec in ('"uint8"', '"byte"', '"char"'):  # held as bytes (msg._schema.BYTE_ITEMS)
+        kind_name = "Array" if kind == _ARRAY else "Seq"
+        owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add(kind_name)
+        if kind == _ARRAY:
+            return "bytes", f"bytes({size})", f"Array({item_spec}, {size})"
+        return "bytes", 'b""', f"Seq({item_spec}, {size})" if size else f"Seq({item_spec})"
     if kind == _ARRAY:
         owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add("Array")
         if int(rest[0][0]) == _NAME:

@@ -258,5 +258,48 @@ def test_uint8_sequences_out_of_range_are_codec_errors() -> None:
         with pytest.raises(Ros1CodecError, match="does not fit"):
             ros1_type(image).encode(msg)
     good = image(data=[0, 255, 7])  # type: ignore[call-arg]
-    assert deserialize(serialize(good), image) == good
-    assert ros1_type(image).decode(ros1_type(image).encode(good)) == good
+    held = image(data=b"\x00\xff\x07")  # type: ignore[call-arg]
+    assert deserialize(serialize(good), image) == held
+    assert ros1_type(image).decode(ros1_type(image).encode(good)) == held
+
+
+def test_uint8_arrays_decode_as_bytes_from_any_byte_container() -> None:
+    """uint8[] and uint8[N] decode as bytes (as rospy gives them), on both wires; encoding
+    takes lists, tuples, bytes, bytearray, memoryview, array('B') and numpy uint8 arrays
+    alike; int8[] stays a list of ints; YAML input gives the decoded value, YAML output the
+    list of ints ``ros2 topic echo`` prints."""
+    import array
+
+    import numpy as np
+
+    from robomodel.runtime.msg import message_from_yaml, message_to_yaml
+    from robomodel.runtime.msg.action_msgs import UUID
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_type
+
+    image = get_message_type("sensor_msgs/msg/Image")
+    values = [0, 255, 7, 128]
+    wire = serialize(image(data=values))  # type: ignore[call-arg]
+    for data in (tuple(values), bytes(values), bytearray(values), memoryview(bytes(values)),
+                 array.array("B", values), np.array(values, dtype=np.uint8)):  # fmt: skip
+        msg = image(data=data)  # type: ignore[call-arg]
+        assert serialize(msg) == wire, type(data)
+        assert type(deserialize(serialize(msg), image).data) is bytes
+        assert ros1_type(image).decode(ros1_type(image).encode(msg)).data == bytes(values)
+    assert deserialize(serialize(image()), image).data == b""
+    assert ros1_type(image).decode(ros1_type(image).encode(image())).data == b""
+    uuid = UUID(list(range(16)))
+    assert deserialize(serialize(uuid), UUID).uuid == bytes(range(16))
+    grid = get_message_type("nav_msgs/msg/OccupancyGrid")
+    cells = grid(data=[-1, 0, 100])  # type: ignore[call-arg]
+    assert deserialize(serialize(cells), grid).data == [-1, 0, 100]
+    parsed = message_from_yaml(image, "{data: [0, 255, 7, 128]}")
+    assert parsed == deserialize(wire, image)
+    assert message_to_yaml(parsed).endswith("data:\n- 0\n- 255\n- 7\n- 128\n")
+
+
+def test_topic_pub_shows_uint8_arrays_as_ros2_topic_pub() -> None:
+    """rosidl's __repr__ strips array('B', ...): ``publishing #1: ...(data=[0, 255])``."""
+    from robomodel.cli.topic import _fields
+
+    image = get_message_type("sensor_msgs/msg/Image")
+    assert _fields(image(data=b"\x00\xff")).endswith(", data=[0, 255]")  # type: ignore[call-arg]

@@ -17,6 +17,7 @@ from robomodel.runtime.msg import (
     LaserScan,
     Odometry,
     Twist,
+    get_message_type,
 )
 from robomodel.viewer.tools import (
     Expression,
@@ -93,6 +94,11 @@ def test_set_field_builds_messages_with_defaults_elsewhere() -> None:
     assert isinstance(integer, Int32) and integer.data == 3
     with pytest.raises(FieldPathError):
         set_field(Twist, ("linear",), 1.0)
+    image_type = get_message_type("sensor_msgs/msg/Image")
+    image = set_field(image_type, ("data", 2), 7.2)  # uint8[] is bytes: grown all the same
+    assert bytes(image.data) == b"\x00\x00\x07"  # type: ignore[attr-defined]
+    with pytest.raises(FieldPathError, match="out of range"):
+        set_field(image_type, ("data", 0), 256.0)
 
 
 def test_seed_expression_as_rqt_publisher() -> None:

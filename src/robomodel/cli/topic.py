@@ -239,7 +239,12 @@ def run_pub(args: argparse.Namespace) -> int:
 
 
 def _fields(msg: Message) -> str:
-    return ", ".join(f"{name}={getattr(msg, name)!r}" for name in msg.field_names())
+    return ", ".join(f"{name}={_field_repr(getattr(msg, name))}" for name in msg.field_names())
+
+
+def _field_repr(value: object) -> str:
+    # rosidl's __repr__ strips array('B', ...) off a uint8[]: ros2 topic pub shows [1, 2, 3]
+    return repr(list(value)) if isinstance(value, bytes) else repr(value)
 
 
 def run_hz(args: argparse.Namespace) -> int:

@@ -110,7 +110,7 @@ class ParameterServices:
     def _types(self, request: rcl.GetParameterTypes_Request) -> rcl.GetParameterTypes_Response:
         store = self._store
         return rcl.GetParameterTypes_Response(
-            [type_code(store.get(n)) if store.has(n) else 0 for n in request.names]
+            bytes(type_code(store.get(n)) if store.has(n) else 0 for n in request.names)
         )
 
     def _describe(self, request: rcl.DescribeParameters_Request) -> rcl.DescribeParameters_Response:

@@ -47,7 +47,7 @@ def to_parameter_value(value: Any) -> ParameterValue:
     elif code == _T.PARAMETER_STRING:
         msg.string_value = str(value)
     elif code == _T.PARAMETER_BYTE_ARRAY:
-        msg.byte_array_value = list(bytes(value))
+        msg.byte_array_value = bytes(value)
     elif code == _T.PARAMETER_BOOL_ARRAY:
         msg.bool_array_value = [bool(v) for v in value]
     elif code == _T.PARAMETER_INTEGER_ARRAY:

@@ -26,6 +26,7 @@ from robomodel.runtime.msg._schema import (
     Service,
     Spec,
     default_for,
+    is_byte_array,
 )
 
 __all__ = ["FieldDef", "build_message_class", "build_service_class", "spec_of"]
@@ -68,6 +69,8 @@ def spec_of(desc: Any, lookup: Lookup, *, where: str) -> Spec:
 
 
 def _annotation(spec: Spec) -> Any:
+    if is_byte_array(spec):
+        return bytes
     if isinstance(spec, (Seq, Array)):
         return list[Any]
     if isinstance(spec, str):

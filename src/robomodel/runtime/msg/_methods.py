@@ -63,4 +63,4 @@ class UUIDMethods(_Fields):
 
     @classmethod
     def random(cls) -> Self:
-        return cls(list(uuid.uuid4().bytes))
+        return cls(uuid.uuid4().bytes)

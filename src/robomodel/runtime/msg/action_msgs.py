@@ -28,7 +28,7 @@ __all__ = [
 
 @dataclass(slots=True)
 class UUID(UUIDMethods, Message):
-    uuid: list[int] = field(default_factory=lambda: [0] * 16)
+    uuid: bytes = bytes(16)
     __typename__ = "unique_identifier_msgs/msg/UUID"
     __fields__ = (("uuid", Array("uint8", 16)),)
 

@@ -213,14 +213,15 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
             _flush(g, d, run, True)
             if isinstance(item, str) and item != "string":
                 code, size, _ = PRIMITIVES[item]
+                if code == "B":  # uint8[] (images, point clouds): bytes() is 20x faster
+                    g.emit(d, f"buf += bytes({seq})")  # no `if seq`: numpy has no truth value
+                    _after_prim_seq(run, size)
+                    return
                 g.emit(d, f"if {seq}:")
                 if size > 1:
                     g.emit(d + 1, f"r = (len(buf) - 4) & {size - 1}")
                     g.emit(d + 1, f"if r: buf += b'\\x00' * ({size} - r)")
-                if code == "B":  # uint8[] (images, point clouds): bytes() is 20x faster
-                    g.emit(d + 1, f"buf += bytes({seq})")
-                else:
-                    g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
+                g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
                 _after_prim_seq(run, size)
                 return
         var = g.name("v")
@@ -259,6 +260,8 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
         target, count = g.name("f"), g.name("c")
         if isinstance(spec, Array) and isinstance(item, str) and item != "string":
             code, size, _ = PRIMITIVES[item]
+            if code == "B":  # uint8[N]: bytes, as uint8[] below
+                return _dec_fixed_bytes(g, d, run, target, spec.size)
             if not spec.size:
                 return "[]"
             _add_prim(g, d, run, code, size, target, spec.size, False)
@@ -279,15 +282,15 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
                 d + 1,
                 f"if o + {count} * {size} > n: raise CDRError(f'payload truncated at offset {{o}}')",
             )
-            if code == "B":
-                g.emit(d + 1, f"{target} = list(data[o : o + {count}])")
+            if code == "B":  # bytes, as rospy gives uint8[]: no list of ints to build
+                g.emit(d + 1, f"{target} = bytes(data[o : o + {count}])")
             else:
                 g.emit(
                     d + 1, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))"
                 )
             g.emit(d + 1, f"o += {count} * {size}")
             g.emit(d, "else:")
-            g.emit(d + 1, f"{target} = []")
+            g.emit(d + 1, f"{target} = " + ("b''" if code == "B" else "[]"))
             _after_prim_seq(run, size)
             return target
         g.emit(d, f"{target} = []")
@@ -303,6 +306,16 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
         return f"{g.ref(spec, 'T')}()"
     args = [_dec_field(g, d, run, field_spec) for _, field_spec in spec.__fields__]
     return f"{g.ref(spec, 'T')}({', '.join(args)})"
+
+
+def _dec_fixed_bytes(g: _Gen, d: int, run: _Run, target: str, size: int) -> str:
+    """Emit the decoding of a ``uint8[size]`` array as one slice of the payload."""
+    _flush(g, d, run, False)
+    g.emit(d, f"if o + {size} > n: raise CDRError(f'payload truncated at offset {{o}}')")
+    g.emit(d, f"{target} = bytes(data[o : o + {size}])")
+    g.emit(d, f"o += {size}")
+    run.r = (run.r + size) % run.m  # bytes need no alignment: the offset stays known
+    return target
 
 
 def _message_encoder(cls: type[Message]) -> _Encoder:

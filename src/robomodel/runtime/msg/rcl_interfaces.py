@@ -53,7 +53,7 @@ class ParameterValue(Message):
     integer_value: int = 0
     double_value: float = 0.0
     string_value: str = ""
-    byte_array_value: list[int] = field(default_factory=list)
+    byte_array_value: bytes = b""
     bool_array_value: list[bool] = field(default_factory=list)
     integer_array_value: list[int] = field(default_factory=list)
     double_array_value: list[float] = field(default_factory=list)
@@ -280,7 +280,7 @@ class GetParameterTypes_Request(Message):
 
 @dataclass(slots=True)
 class GetParameterTypes_Response(Message):
-    types: list[int] = field(default_factory=list)
+    types: bytes = b""
     __typename__ = "rcl_interfaces/srv/GetParameterTypes_Response"
     __fields__ = (("types", Seq("uint8")),)
 

@@ -25,7 +25,7 @@ class ServiceEventInfo(Message):
 
     event_type: int = 0
     stamp: Time = field(default_factory=Time)
-    client_gid: list[int] = field(default_factory=lambda: [0] * 16)
+    client_gid: bytes = bytes(16)
     sequence_number: int = 0
     __typename__ = "service_msgs/msg/ServiceEventInfo"
     __fields__ = (

@@ -15,7 +15,14 @@ import yaml
 
 from robomodel._yaml_bounded import load_yaml
 from robomodel.errors import close_matches
-from robomodel.runtime.msg._schema import Array, Message, MessageTypeError, Seq, Spec
+from robomodel.runtime.msg._schema import (
+    Array,
+    Message,
+    MessageTypeError,
+    Seq,
+    Spec,
+    is_byte_array,
+)
 
 __all__ = ["message_from_dict", "message_from_yaml", "message_to_dict", "message_to_yaml"]
 
@@ -53,13 +60,16 @@ def _convert(spec: Spec, value: Any, where: str) -> Any:
     if isinstance(spec, str):
         return _primitive(spec, value, where)
     if isinstance(spec, (Seq, Array)):
+        if is_byte_array(spec) and isinstance(value, (bytes, bytearray)):
+            value = list(value)
         if not isinstance(value, (list, tuple)):
             raise MessageTypeError(
                 f"{_at(where)}expected a list ({_spec_name(spec)}), got {value!r}"
             )
         if isinstance(spec, Array) and len(value) != spec.size:
             raise MessageTypeError(f"{_at(where)}expected {spec.size} values, got {len(value)}")
-        return [_convert(spec.item, v, f"{where}[{i}]") for i, v in enumerate(value)]
+        items = [_convert(spec.item, v, f"{where}[{i}]") for i, v in enumerate(value)]
+        return bytes(items) if is_byte_array(spec) else items  # as the codecs decode them
     if isinstance(value, spec):
         return value
     if not isinstance(value, dict):

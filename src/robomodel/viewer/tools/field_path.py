@@ -162,7 +162,10 @@ def set_field(msg_type: type[Message], steps: tuple[Step, ...], value: float) ->
                 holder.append(_zero(specs.item))
             specs = specs.item
             if last:
-                holder[step] = _cast(specs, value)
+                cast = _cast(specs, value)
+                if isinstance(holder, bytearray) and not 0 <= cast <= 255:
+                    raise FieldPathError(f"{value} is out of range for {specs} [0, 255]")
+                holder[step] = cast
             else:
                 holder = holder[step]
         else:
@@ -171,7 +174,11 @@ def set_field(msg_type: type[Message], steps: tuple[Step, ...], value: float) ->
             if last:
                 setattr(holder, step, _cast(specs, value))
             else:
-                holder = getattr(holder, step)
+                child = getattr(holder, step)
+                if isinstance(child, bytes):  # uint8[] is held as bytes: written as a bytearray
+                    child = bytearray(child)
+                    setattr(holder, step, child)
+                holder = child
     return msg
 
 

@@ -252,8 +252,8 @@ def _dec(g: _Gen, d: int, desc: Any) -> str:
         g.emit(
             d, f"if o + {count} * {item_size} > n: raise Ros1CodecError(f'truncated at byte {{o}}')"
         )
-        if code == "B":
-            g.emit(d, f"{target} = list(data[o : o + {count}])")
+        if code == "B":  # uint8[]/char[]: bytes, as rospy (genpy) gives them
+            g.emit(d, f"{target} = bytes(data[o : o + {count}])")
         else:
             g.emit(d, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))")
         g.emit(d, f"o += {count} * {item_size}")
