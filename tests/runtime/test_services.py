@@ -78,9 +78,9 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
             # a handler's exception comes back as an error answer, not a dead server
             with pytest.raises(ServiceCallError, match="data must be true"):
                 ctx.call_service("/calc/check", SetBool, SetBool_Request(False))
-            with pytest.raises(ServiceCallError, match="did not answer"):
+            with pytest.raises(ServiceCallError, match=r"did not answer|has no server on the bus"):
                 ctx.call_service("/calc/nothing", SetBool, timeout_s=scaled(0.5))
-            with pytest.raises(ServiceCallError, match="did not answer"):
+            with pytest.raises(ServiceCallError, match=r"did not answer|has no server on the bus"):
                 ctx.call_service(
                     "/calc/check", Trigger, timeout_s=scaled(0.5)
                 )  # another type: no match

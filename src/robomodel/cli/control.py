@@ -133,13 +133,22 @@ def _register_manager_verbs(verbs: Any) -> None:
 
 def _with_manager(args: argparse.Namespace, action: Any) -> Any:
     """``action(client)`` against the controller manager the arguments name."""
-    from robomodel.control.client import ManagerClient
+    from robomodel.control.client import AttemptsClient
 
     cm = "/" + args.controller_manager.strip("/")
     with context_from_args(args) as context:
         wait_for_peers(context)
+        # ros2controlcli's service_caller: 10 s per attempt, 3 attempts, a warning after each
+        # (a busy manager answers late; a missing one is refused at once by the bus)
+        client = AttemptsClient(
+            context,
+            cm,
+            call_timeout_s=10.0,
+            attempts=3,
+            warn=lambda line: print(line, file=sys.stderr),
+        )
         try:
-            return action(ManagerClient(context, cm, timeout_s=3.0))
+            return action(client)
         except RobomodelError as exc:
             others = [m for m in _managers_on_the_bus(context) if m != cm]
             if others:

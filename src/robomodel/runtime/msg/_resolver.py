@@ -82,10 +82,11 @@ def configure(
     classes already built from definitions are forgotten."""
     global _package_paths, _distro
     with _lock:
-        if package_paths is not None:
-            _package_paths = tuple(Path(p) for p in package_paths)
-        if distro is not None:
-            _distro = distro
+        paths = _package_paths if package_paths is None else tuple(Path(p) for p in package_paths)
+        wanted = _distro if distro is None else distro
+        if (paths, wanted) == (_package_paths, _distro) and (package_paths, distro) != (None, None):
+            return  # nothing changes: the classes built so far stay (one class per type)
+        _package_paths, _distro = paths, wanted
         _messages.clear()
         _services.clear()
         _actions.clear()

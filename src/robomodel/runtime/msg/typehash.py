@@ -28,6 +28,7 @@ from robomodel.runtime.msg._schema import Array, Message, Seq, Service, Spec
 __all__ = [
     "dds_type_name",
     "ros_type_name",
+    "same_type",
     "type_description",
     "type_hash",
 ]
@@ -170,3 +171,10 @@ def ros_type_name(dds_name: str) -> str | None:
     if not all(parts[:2]):
         return None
     return f"{parts[0]}/{parts[1]}/{parts[3][:-1]}"
+
+
+def same_type(a: type[Message] | type[Service], b: type[Message] | type[Service]) -> bool:
+    """Whether two classes are one ROS type: the same name and RIHS01 hash. Classes built from
+    definitions are built again when the type sources change (``--package-path``,
+    ``--distro``), so a class held from before is another object for the same type."""
+    return a is b or (a.__typename__ == b.__typename__ and type_hash(a) == type_hash(b))

@@ -145,6 +145,7 @@ class ServiceClient:
         zenoh = import_zenoh()
         with self._lock:
             number = next(self._numbers)
+        started = time.monotonic()
         replies = self._bus.session.get(
             self._key,
             payload=serialize(request),
@@ -171,6 +172,11 @@ class ServiceClient:
                 errors.append(f"malformed response: {exc}")
         if errors:
             raise ServiceCallError(f"service '{self.name}': {'; '.join(errors)}")
+        if time.monotonic() - started < timeout_s * 0.9:  # the query ended: nobody serves it
+            raise ServiceCallError(
+                f"service '{self.name}' ({self.srv_type.__typename__}) has no server on the "
+                "bus (is its process running?)"
+            )
         raise ServiceCallError(
             f"service '{self.name}' ({self.srv_type.__typename__}) did not answer within "
             f"{timeout_s:g} s (is its process running?)"

@@ -97,7 +97,9 @@ class InprocTransport(Transport):
         self._services: dict[str, _Srv] = {}
 
     def _compatible(self, pub_type: type[Message], sub: _Sub, topic: str) -> bool:
-        if pub_type is sub.msg_type:
+        from robomodel.runtime.msg.typehash import same_type
+
+        if same_type(pub_type, sub.msg_type):
             return True
         key = (topic, pub_type.__typename__, sub.msg_type.__typename__)
         if key not in self._warned:

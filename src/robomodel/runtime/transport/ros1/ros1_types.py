@@ -27,6 +27,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message, get_message_type
 from robomodel.runtime.msg._schema import MessageTypeError, Service
+from robomodel.runtime.msg.typehash import same_type
 from robomodel.runtime.transport.ros1.ros1_codec import (
     DURATION,
     PLACEHOLDER,
@@ -232,7 +233,7 @@ def ros1_type(cls: type[Message]) -> Ros1Type:
     if found is None:
         key = _ros1_name_of(cls)
         found = _make_type(key, key.replace("/msg/", "/"))
-        if found.cls is not cls:
+        if not same_type(found.cls, cls):
             raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
         _TYPES[cls] = found
     return found
