@@ -65,6 +65,33 @@ def _decode_string(data: bytes, o: int) -> tuple[str, int]:
         raise CDRError("string is not valid UTF-8") from None
 
 
+def _decode_strings(data: bytes, o: int, count: int) -> tuple[list[str], int]:
+    """``count`` strings from ``o`` (a ``string[]``'s items): one loop with local names, not a
+    call per string (a JointState's 32 names were half its decode time)."""
+    out: list[str] = []
+    append = out.append
+    n = len(data)
+    unpack = _UINT32.unpack_from
+    try:
+        for _ in range(count):
+            o += (-(o - 4)) & 3
+            if o + 4 > n:
+                raise CDRError(f"payload truncated: string length at offset {o}")
+            (length,) = unpack(data, o)
+            o += 4
+            end = o + length
+            if end > n:
+                raise CDRError(f"payload truncated: string of {length} bytes at offset {o}")
+            append(data[o : end - 1].decode("utf-8") if length else "")
+            o = end
+    except UnicodeDecodeError:
+        raise CDRError("string is not valid UTF-8") from None
+    return out, o
+
+
+_UINT32 = struct.Struct("<I")
+
+
 def _count(data: bytes, o: int) -> tuple[int, int]:
     o += (-(o - 4)) & 3
     if o + 4 > len(data):
@@ -95,6 +122,7 @@ class _Gen:
             "CDRError": CDRError,
             "_encode_string": _encode_string,
             "_decode_string": _decode_string,
+            "_decode_strings": _decode_strings,
             "_count": _count,
             "_fixed": _fixed,
         }
@@ -292,6 +320,10 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
             g.emit(d, "else:")
             g.emit(d + 1, f"{target} = " + ("b''" if code == "B" else "[]"))
             _after_prim_seq(run, size)
+            return target
+        if item == "string":
+            g.emit(d, f"{target}, o = _decode_strings(data, o, {count})")
+            run.forget()
             return target
         g.emit(d, f"{target} = []")
         g.emit(d, f"for _ in range({count}):")
