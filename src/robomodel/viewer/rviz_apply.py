@@ -37,7 +37,7 @@ def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None
         image[:] = rviz.background_rgb
         viewer.server.scene.set_background_image(image, format="png")
     if rviz.unsupported:
-        have = ", ".join(["RobotModel", "TF", "Grid", *display_classes()])
+        have = ", ".join(dict.fromkeys(["RobotModel", "TF", "Grid", *display_classes()]))
         viewer.status_note = f"\n\nRViz displays not drawn (robomodel has {have}): " + ", ".join(
             rviz.unsupported
         )
