@@ -105,12 +105,13 @@ def test_every_display_of_a_file_opens_in_the_panel(started: list[Viewer], tmp_p
     path.write_text(ROS2_CONFIG)
     viewer = _viewer(started, path)
     shown = [(d.class_name or "", d.name, d.enabled) for d in viewer.displays.displays]
-    assert [(n, e) for _c, n, e in shown] == [("Obstacles", True), ("Depth", True), ("Plans", False), ("Imu", True)]  # fmt: skip
-    obstacles, depth, plans, imu = viewer.displays.displays
+    assert [(n, e) for _c, n, e in shown] == [("Grid", True), ("Obstacles", True), ("Depth", True), ("Plans", False), ("Imu", True)]  # fmt: skip
+    grid, obstacles, depth, plans, imu = viewer.displays.displays
+    assert grid.class_name == "Grid" and grid.values["Plane Cell Count"] == 10
     assert obstacles.class_name == "Marker" and plans.class_name == "MarkerArray"
     assert obstacles.values["Topic"] == "/obstacles" and obstacles.values["Queue Size"] == 7
     assert dict(plans.option("Namespaces")) == {"path": False}
-    assert [r.folder.label for r in viewer.displays_panel.rows] == ["Obstacles", "Depth", "Plans", "Imu"]  # fmt: skip
+    assert [r.folder.label for r in viewer.displays_panel.rows] == ["Grid", "Obstacles", "Depth", "Plans", "Imu"]  # fmt: skip
     wait_for(lambda: viewer.displays.updates > 1, what="a display update")
     for missing, class_name in ((depth, "rviz_default_plugins/DepthCloud"), (imu, "rviz_plugin_tutorials/Imu")):  # fmt: skip
         assert missing.status.level is StatusLevel.ERROR
@@ -139,7 +140,7 @@ def test_displays_changed_added_removed_and_renamed_are_saved_and_read_back(
     panel = viewer.displays_panel
 
     def edit() -> None:
-        obstacles, depth, plans, _imu = panel.rows
+        _grid, obstacles, depth, plans, _imu = panel.rows
         obstacles.display.set_option("Topic", "/walls")
         panel.rename(plans, "Plan markers")
         plans.display.set_enabled(True)
@@ -185,8 +186,9 @@ def test_ros1_files_use_rviz_1_s_keys(started: list[Viewer], tmp_path: Path) -> 
         "Namespaces": {}, "Queue Size": 100, "Value": True,
     }  # fmt: skip
     again = _viewer(started, path, RvizDialect.ROS1)
-    (display,) = again.displays.displays
-    assert display.values == viewer.displays.displays[0].values
+    grid, display = again.displays.displays  # RViz's default Grid, then the one added
+    assert grid.class_name == "Grid" and grid.enabled
+    assert display.values == viewer.displays.displays[1].values
 
 
 # Saved by RViz 2: ros-controls/ros2_control_demos (Apache-2.0) at 0d9df42ab19b,
@@ -204,7 +206,8 @@ def test_a_real_config_opens_with_every_display_it_names_and_saves_unchanged(
     config = read_rviz_file(EXAMPLE_4)
     others = [d for d in config.displays if d.kind not in ("Grid", "RobotModel", "TF")]
     assert [d.class_name for d in others] == ["rviz_default_plugins/Wrench"]
-    (wrench,) = viewer.displays.displays
+    grid, wrench = viewer.displays.displays
+    assert grid.class_name == "Grid" and grid.config_entry == config.displays[0]
     assert wrench.name == "Wrench" and wrench.config_entry == others[0]
     wait_for(lambda: viewer.displays.updates > 1, what="a display update")
     if isinstance(wrench, MissingDisplay):  # a status line, not an error, until robomodel has it
@@ -233,11 +236,13 @@ def test_open_config_replaces_the_displays_and_the_fixed_frame(
     assert "**Not opened**" in panel.status.content and "does not exist" in panel.status.content
     assert panel.open(str(second))
     wait_for(
-        lambda: [d.name for d in viewer.displays.displays] == ["Walls", "Depth", "Plans", "Imu"],
+        lambda: (
+            [d.name for d in viewer.displays.displays] == ["Grid", "Walls", "Depth", "Plans", "Imu"]
+        ),
         what="the second file's displays",
     )
     assert viewer.fixed_frame == "link_1" and viewer.fixed_dropdown.value == "link_1"
-    assert [r.folder.label for r in viewer.displays_panel.rows] == ["Walls", "Depth", "Plans", "Imu"]  # fmt: skip
+    assert [r.folder.label for r in viewer.displays_panel.rows] == ["Grid", "Walls", "Depth", "Plans", "Imu"]  # fmt: skip
     assert panel.document.path == str(second)
     assert panel.save(str(second))  # Save Config now writes the file opened
     assert read_rviz_file(second).fixed_frame == "link_1"

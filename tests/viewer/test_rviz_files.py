@@ -183,13 +183,12 @@ def test_saving_a_changed_state_writes_what_the_viewer_shows() -> None:
     camera = OrbitCamera((0.1, 0.2, 0.3), 3.0, 1.0, 0.5)
     state = _state(
         document, fixed_frame="link_1", tf_show_axes=False, tf_show_names=False,
-        show_collision=True, alpha=0.4, grid=False, frame_rate_hz=20.0, camera=camera,
+        show_collision=True, alpha=0.4, frame_rate_hz=20.0, camera=camera,
     )  # fmt: skip
     config = config_with_state(document, state)
     assert config.fixed_frame == "link_1" and config.frame_rate_hz == 20.0
     by_kind = {d.kind: d for d in config.displays}
     assert not by_kind["TF"].enabled and by_kind["TF"].settings["Show Axes"] is True  # kept
-    assert not by_kind["Grid"].enabled
     robot = by_kind["RobotModel"].settings
     assert robot["Collision Enabled"] is True and robot["Alpha"] == 0.4
     assert config.view is not None and config.view.settings["Distance"] == 3.0

@@ -45,10 +45,6 @@ class OptionsPanel:
         gui = server.gui
         gui.configure_theme(control_width="large")  # room for file:line errors and mesh paths
         server.scene.set_up_direction("+z")
-        # RViz's default grid: 10 cells of 1 m.
-        self.grid = server.scene.add_grid(
-            "/grid", width=10.0, height=10.0, cell_size=1.0, section_size=1.0
-        )
         with gui.add_folder("Status"):
             self.status = gui.add_markdown("loading...")
         with gui.add_folder("Global Options"):
@@ -71,15 +67,9 @@ class OptionsPanel:
             axes = gui.add_checkbox("Show Axes", True)
             names = gui.add_checkbox("Show Names", False)
             scale = gui.add_number("Marker Scale", 1.0, min=0.01, max=100.0, step=0.1)
-            grid = gui.add_checkbox("Grid", True)
         # Kept so that an RViz config (-d file.rviz) can set them after start.
         self.visual, self.collision, self.alpha = visual, collision, alpha
-        self.show_axes, self.show_names, self.marker_scale, self.show_grid = (
-            axes,
-            names,
-            scale,
-            grid,
-        )
+        self.show_axes, self.show_names, self.marker_scale = axes, names, scale
 
         def each(action: Callable[[RobotModelDisplay], None]) -> Callable[[], None]:
             def run() -> None:
@@ -118,4 +108,3 @@ class OptionsPanel:
         axes.on_update(lambda _e: post(lambda: tf.set_show_axes(bool(axes.value))))
         names.on_update(lambda _e: post(lambda: tf.set_show_names(bool(names.value))))
         scale.on_update(lambda _e: post(lambda: tf.set_marker_scale(float(scale.value))))
-        grid.on_update(lambda _e: setattr(self.grid, "visible", bool(grid.value)))

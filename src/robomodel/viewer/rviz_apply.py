@@ -14,7 +14,7 @@ __all__ = ["apply_rviz_document", "apply_rviz_view", "viewer_state"]
 
 
 def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None:
-    """Global Options, RobotModel, TF and Grid settings, as RViz would start with them."""
+    """Global Options, RobotModel and TF settings, as RViz would start with them."""
     state = implied_state(document, frame_rate_hz=viewer.frame_rate_hz)
     options = viewer.display_options
     options.alpha = panel.alpha.value = state.alpha
@@ -27,7 +27,6 @@ def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None
     panel.show_names.value = state.tf_show_names
     tf.set_marker_scale(state.tf_marker_scale)
     panel.marker_scale.value = state.tf_marker_scale
-    panel.grid.visible = panel.show_grid.value = state.grid
     viewer.frame_rate_hz = panel.frame_rate.value = state.frame_rate_hz
     rviz = document.settings
     # A file that does not exist yet keeps robomodel's background; the defaults' (RViz's dark
@@ -37,7 +36,7 @@ def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None
         image[:] = rviz.background_rgb
         viewer.server.scene.set_background_image(image, format="png")
     if rviz.unsupported:
-        have = ", ".join(dict.fromkeys(["RobotModel", "TF", "Grid", *display_classes()]))
+        have = ", ".join(["RobotModel", "TF", *display_classes()])
         viewer.status_note = f"\n\nRViz displays not drawn (robomodel has {have}): " + ", ".join(
             rviz.unsupported
         )
@@ -67,6 +66,5 @@ def viewer_state(panel: Any, camera: Any | None) -> ViewerState:
         tf_show_axes=bool(panel.show_axes.value),
         tf_show_names=bool(panel.show_names.value),
         tf_marker_scale=float(panel.marker_scale.value),
-        grid=bool(panel.show_grid.value),
         camera=OrbitCamera.looking(camera.position, camera.look_at) if camera else None,
     )

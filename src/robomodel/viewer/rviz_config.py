@@ -4,7 +4,7 @@
 RvizConfig`; :func:`settings_of` picks what the viewer applies: Global Options (Fixed Frame,
 Frame Rate, Background Color), the RobotModel display (Enabled, Alpha, Visual Enabled,
 Collision Enabled, Robot Description), the TF display (Enabled, Show Axes, Show Names, Marker
-Scale), the Grid display (Enabled). The other displays robomodel has (Marker, ...) are read by
+Scale). The other displays robomodel has (Grid, Marker, ...) are read by
 :mod:`robomodel.viewer.displays.rviz_io`; every other display class is named once in the
 viewer's Status as not supported. Both RViz 1 (``rviz/RobotModel``) and RViz 2
 (``rviz_default_plugins/RobotModel``) class names are read.
@@ -34,7 +34,7 @@ __all__ = [
     "settings_of",
 ]
 
-_SUPPORTED = {"RobotModel", "TF", "Grid"}
+_SUPPORTED = {"RobotModel", "TF"}
 _GLOBAL_KEYS = ("Fixed Frame", "Frame Rate", "Background Color")
 
 
@@ -66,7 +66,6 @@ class RvizSettings:
     tf_show_axes: bool | None = None
     tf_show_names: bool | None = None
     tf_marker_scale: float | None = None
-    grid_enabled: bool | None = None
     unsupported: tuple[str, ...] = field(default_factory=tuple)
 
 
@@ -206,7 +205,6 @@ def settings_of(config: RvizConfig) -> RvizSettings:
         "background_rgb": config.background_rgb,
         "robot_model_enabled": False,
         "tf_enabled": False,
-        "grid_enabled": False,
     }
     unsupported: list[str] = []
     for display in config.displays:
@@ -222,8 +220,6 @@ def settings_of(config: RvizConfig) -> RvizSettings:
             values["tf_show_axes"] = s.get("Show Axes")
             values["tf_show_names"] = s.get("Show Names")
             values["tf_marker_scale"] = _float_or_none(s.get("Marker Scale"))
-        elif kind == "Grid":
-            values["grid_enabled"] = display.enabled
         elif (
             kind not in _SUPPORTED
             and not is_rviz_display(display.class_name)

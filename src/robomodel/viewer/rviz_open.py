@@ -1,6 +1,6 @@
 """RViz's File > Open Config on a running viewer: everything the file holds, applied again.
 
-Global Options (Fixed Frame, Frame Rate, background), RobotModel, TF and Grid as
+Global Options (Fixed Frame, Frame Rate, background), RobotModel and TF as
 :func:`~robomodel.viewer.rviz_apply.apply_rviz_document` applies them at start, the Displays
 panel emptied and filled with the file's displays, and the file's Orbit view on every page
 (RViz's ``VisualizationFrame::loadDisplayConfig`` replaces all of it likewise).

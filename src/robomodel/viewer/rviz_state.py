@@ -106,7 +106,6 @@ class ViewerState:
     tf_show_axes: bool = True
     tf_show_names: bool = False
     tf_marker_scale: float = 1.0
-    grid: bool = True
     camera: OrbitCamera | None = None
 
 
@@ -124,7 +123,6 @@ def implied_state(document: RvizDocument, *, frame_rate_hz: float = 60.0) -> Vie
         tf_show_axes=tf and (s.tf_show_axes is None or bool(s.tf_show_axes)),
         tf_show_names=tf and bool(s.tf_show_names),
         tf_marker_scale=scale if scale is not None and scale > 0 else 1.0,
-        grid=s.grid_enabled is not False,
         camera=None if document.missing else orbit_of(document.config.view),
     )
 
@@ -190,8 +188,6 @@ def config_with_state(
         if shown:
             changes.update({"Show Axes": state.tf_show_axes, "Show Names": state.tf_show_names})
         config = _set(config, document, "TF", changes, enabled=shown)
-    if state.grid != before.grid:
-        config = _set(config, document, "Grid", {}, enabled=state.grid)
     if state.camera is not None and not state.camera.close_to(before.camera):
         config = _with_view(config, document, state.camera)
     return config

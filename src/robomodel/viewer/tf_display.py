@@ -1,4 +1,4 @@
-"""The TF display: axes for every frame (one batched node), optional names, and the grid.
+"""The TF display: axes for every frame (one batched node) and optional names.
 
 As RViz's TF display: Show Axes, Show Names, Marker Scale; frames are drawn where they are in
 the fixed frame, and frames with no transform to it are not drawn.

@@ -64,7 +64,7 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
     return panel
 
 
-_BUILTIN = ("RobotModel", "TF", "Grid")  # the viewer's own folders (options_panel.py)
+_BUILTIN = ("RobotModel", "TF")  # the viewer's own folders (options_panel.py)
 
 
 class MissingDisplay(Display):
@@ -84,7 +84,7 @@ class MissingDisplay(Display):
 
 
 def open_config_displays(panel: DisplaysPanel, document: RvizDocument) -> list[str]:
-    """Add the document's displays other than RobotModel, TF and Grid to ``panel`` (before
+    """Add the document's displays other than RobotModel and TF to ``panel`` (before
     the loop runs, or on it); one line per option value that could not be taken."""
     problems: list[str] = []
     for entry in document.config.displays:
@@ -108,8 +108,8 @@ def open_config_displays(panel: DisplaysPanel, document: RvizDocument) -> list[s
 def config_with_displays(
     displays: list[Display], config: RvizConfig, dialect: RvizDialect
 ) -> tuple[RvizConfig, Callable[[], None]]:
-    """``config`` with the panel's displays in place of those it was read with (RobotModel,
-    TF and Grid kept as they are), new ones at the end; and what to call once it is saved
+    """``config`` with the panel's displays in place of those it was read with (RobotModel
+    and TF kept as they are), new ones at the end; and what to call once it is saved
     (the displays then remember the entries written)."""
     by_entry = {id(d.config_entry): d for d in displays if d.config_entry is not None}
     out: list[RvizDisplay] = []
