@@ -46,8 +46,9 @@ def test_save_config_writes_the_missing_rviz_file_of_display_launch(
         assert len(warnings) == 1, "".join(lines)
         open_viewer(page, url)
         wait_for(lambda: "does not exist yet" in page.content(), what="the File folder's note")
-        page.get_by_text("TF", exact=True).click()  # the TF folder (collapsed) holds Grid
-        wait_for(lambda: _checked(page, "Show Axes") and _checked(page, "Grid"), what="TF, Grid")
+        page.get_by_text("Grid", exact=True).first.wait_for()  # RViz's default Grid display
+        page.get_by_text("TF", exact=True).click()  # the TF folder (collapsed)
+        wait_for(lambda: _checked(page, "Show Axes"), what="TF's Show Axes")
         assert _checked(page, "Visual Enabled")  # RobotModel
         page.locator("input[value='base_link']:not([type=hidden])").click()
         page.get_by_role("option", name="link_1", exact=True).click()
