@@ -140,12 +140,13 @@ def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
     x, y = _cube_seen(page, viewer)
     wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="the cube")
     page.get_by_text("Marker", exact=True).first.click()  # the folder (then the list's option)
-    gui_row(page, "Enabled").locator("input").first.click()
+    gui_row(page, "Enabled").locator("input:visible").first.click()
     wait_for(lambda: red_fraction(screenshot(page), x, y) == 0.0, what="the cube hidden")
     assert not display.enabled and "Disabled" in page.content()
-    gui_row(page, "Enabled").locator("input").first.click()
+    gui_row(page, "Enabled").locator("input:visible").first.click()
     wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="the cube back")
-    name = gui_row(page, "Name").locator("input:not([type=hidden])").first
+    # :visible: the Grid display's folder (collapsed) has its own Enabled and Name rows
+    name = gui_row(page, "Name").locator("input:not([type=hidden]):visible").first
     name.fill("Cubes")
     name.press("Enter")
     page.get_by_text("Cubes", exact=True).wait_for()
