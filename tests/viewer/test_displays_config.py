@@ -219,6 +219,32 @@ def test_a_real_config_opens_with_every_display_it_names_and_saves_unchanged(
     assert saved.read_text() == rviz_text(config)
 
 
+# Saved by RViz 2: UniversalRobots/Universal_Robots_ROS2_Description (BSD-3-Clause) at
+# 2221ec0f720fb1af99339eb891639b499b62f1da, rviz/view_robot.rviz, verbatim (Grid, RobotModel).
+UR_VIEW_ROBOT = Path(__file__).with_name("rviz_files") / "ur_description_view_robot.rviz"
+
+
+def test_the_ur_description_config_opens_its_grid_and_robot_model_and_saves_unchanged(
+    started: list[Viewer], tmp_path: Path
+) -> None:
+    from robomodel.viewer.rviz_write import rviz_text
+
+    config = read_rviz_file(UR_VIEW_ROBOT)
+    assert [d.class_name for d in config.displays] == [
+        "rviz_default_plugins/Grid", "rviz_default_plugins/RobotModel",
+    ]  # fmt: skip
+    viewer = _viewer(started, UR_VIEW_ROBOT)
+    (grid,) = viewer.displays.displays  # RobotModel is the viewer's own folder
+    assert grid.class_name == "Grid" and grid.config_entry == config.displays[0]
+    assert grid.values["Line Style/Line Width"] == pytest.approx(0.03)  # RViz's float32 0.03
+    assert grid.values["Plane"] == "XY" and grid.values["Plane Cell Count"] == 10
+    wait_for(lambda: grid.status.text == "Transform OK: base_link", what="the Grid's status")
+    assert "not drawn" not in viewer.status_note
+    saved = tmp_path / "view_robot.rviz"
+    assert viewer.config_panel.save(str(saved))
+    assert saved.read_text() == rviz_text(config) == UR_VIEW_ROBOT.read_text()
+
+
 def test_open_config_replaces_the_displays_and_the_fixed_frame(
     started: list[Viewer], tmp_path: Path
 ) -> None:
