@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 import signal
 import subprocess
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -22,6 +23,7 @@ from robomodel.runtime.msg._schema import Message, Service
 from robomodel.runtime.msg.controller_manager_msgs_variants import LIST_CONTROLLERS_VARIANTS
 from robomodel.runtime.msg.typehash import type_hash
 from tests.conftest import EXAMPLES, ROBOMODEL, past_the_bus_line, unique_domain
+from tests.timing import scaled
 
 typesys = pytest.importorskip("rosbags.typesys")
 
@@ -87,6 +89,15 @@ def test_every_layout_is_answered_in_its_own(arm_control: str) -> None:
 
     with Context("zenoh", domain_id=int(arm_control)) as ctx:
         wait_for_peers(ctx)
+        # the peers are seen before every queryable of theirs is (a busy machine)
+        deadline = time.monotonic() + scaled(20)
+        while time.monotonic() < deadline:
+            offered = ctx.graph(timeout_s=scaled(2)).services.get(
+                "/controller_manager/list_controllers"
+            )
+            if offered is not None and len(offered.servers) == 3:
+                break
+            time.sleep(0.1)
         for tag, srv_type in LAYOUTS:
             reply = ctx.call_service("/controller_manager/list_controllers", srv_type, timeout_s=10)
             assert isinstance(reply, srv_type.Response), tag

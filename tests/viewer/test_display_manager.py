@@ -65,6 +65,23 @@ def test_displays_hear_their_topic_and_follow_a_new_one(context: Context) -> Non
     assert display.messages_received == 1 and manager.displays == []
 
 
+def test_a_message_of_the_old_topic_queued_before_a_change_does_not_count(
+    context: Context,
+) -> None:
+    """The page changes the Topic between two of the manager's ticks while a message of the
+    old topic waits in the executor: it is dropped, as RViz's reset on a topic change."""
+    manager, _scene = _manager(context)
+    display = manager.add("Marker", values={"Topic": "/a"})
+    on_a = context.create_node("pub").create_publisher(Marker, "/a", 10)
+    manager.update()
+    on_a.publish(_cube())  # queued, not yet delivered
+    display.set_option("Topic", "/nothing_here")
+    context.spin_once(0.0)
+    manager.update()
+    assert display.messages_received == 0
+    assert display.status.text == "No messages received"
+
+
 def test_the_fixed_frame_and_tf_place_markers(context: Context) -> None:
     manager, scene = _manager(context)
     display = manager.add("Marker")

@@ -111,7 +111,7 @@ def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_i
     page.get_by_text("cubes", exact=True).click()
     wait_for(lambda: red_fraction(screenshot(page), x, y) == 0.0, what="the cube hidden")
     save_shot(page, "marker_namespace_off")
-    assert display.option("Namespaces") == {"cubes": False}
+    wait_for(lambda: display.option("Namespaces") == {"cubes": False}, what="the option stored")
 
 
 def _cube_seen(page: Any, viewer: Viewer) -> tuple[float, float]:
@@ -154,6 +154,7 @@ def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
     topic = gui_row(page, "Topic").locator("input:not([type=hidden])").last
     topic.fill("/nothing_here")
     topic.press("Enter")
+    # a message of the old topic already queued must not count for the new one
     wait_for(lambda: "No messages received" in page.content(), what="the new topic's status")
     assert red_fraction(screenshot(page), x, y) == 0.0
     save_shot(page, "marker_display_retargeted")

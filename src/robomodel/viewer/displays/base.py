@@ -201,6 +201,7 @@ class Display:
             if key in self.values:
                 self.values[key] = self.option_spec(key).coerce(value)
         self.messages_received = 0
+        self.option_listeners: list[Callable[[Display], object]] = []
         self.status = DisplayStatus.ok()
         self.config_entry: Any = None  # the .rviz entry it was read from (None: added here)
         self._nodes: dict[str, Any] = {}
@@ -224,6 +225,8 @@ class Display:
             return
         self.values[name] = new
         self.on_option_changed(name)
+        for listener in self.option_listeners:  # the manager: re-subscribe now, not at its tick
+            listener(self)
 
     def on_option_changed(self, name: str) -> None:
         """Hook: an option changed (the manager re-subscribes on its own). Default: redraw."""

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -112,6 +113,7 @@ class DisplayManager:
         display = cls(
             self.unique_name(name or cls.class_name), self.context, values, enabled=enabled
         )
+        display.option_listeners.append(self._subscribe)
         self.displays.append(display)
         return display
 
@@ -159,7 +161,7 @@ class DisplayManager:
         problem = None
         for (owner, key), (spec, sub) in list(self._subscribed.items()):
             if owner == id(display) and wanted.get(key) != spec:
-                sub.destroy()
+                _end(sub)
                 del self._subscribed[(owner, key)]
         for key, spec in wanted.items():
             if (id(display), key) in self._subscribed:
@@ -176,8 +178,9 @@ class DisplayManager:
                 continue
             durability = Durability.TRANSIENT_LOCAL if spec.transient_local else Durability.VOLATILE
             qos = QoSProfile(spec.depth, durability)
-            sub = self.node.create_subscription(msg_type, spec.topic, spec.callback, qos)
-            self._subscribed[(id(display), key)] = (spec, sub)
+            delivery = _Delivery(spec.callback)
+            sub = self.node.create_subscription(msg_type, spec.topic, delivery, qos)
+            self._subscribed[(id(display), key)] = (spec, _Live(sub, delivery))
         return problem
 
     def _unsubscribe(self, display: Display) -> None:
@@ -185,5 +188,32 @@ class DisplayManager:
             del self._failed[failed]
         for (owner, key), (_spec, sub) in list(self._subscribed.items()):
             if owner == id(display):
-                sub.destroy()
+                _end(sub)
                 del self._subscribed[(owner, key)]
+
+
+class _Delivery:
+    """A subscription's callback that stops at once when the subscription is replaced: a
+    message of the old topic already queued must not count for the new one (RViz resets a
+    display when its topic changes)."""
+
+    def __init__(self, callback: Callable[[Any], object]) -> None:
+        self.callback = callback
+        self.live = True
+
+    def __call__(self, msg: Any) -> None:
+        if self.live:
+            self.callback(msg)
+
+
+@dataclass(frozen=True, slots=True)
+class _Live:
+    """A display's subscription and the callback that ends with it."""
+
+    subscription: Any
+    delivery: _Delivery
+
+
+def _end(live: _Live) -> None:
+    live.delivery.live = False
+    live.subscription.destroy()
