@@ -203,6 +203,35 @@ def test_marker_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Pat
     assert theirs["text"] == "hello"
 
 
+def test_bag_record_of_rostopic_pub_s_image_and_marker(ros1: Ros1, tmp_path: Path) -> None:
+    """Issue 28 on ROS 1: what Debian's ``rostopic pub`` sends as sensor_msgs/Image and
+    visualization_msgs/Marker, ``bag record`` records, and rosbags reads back from the bag's
+    own definitions equal to what was sent."""
+    from rosbags.highlevel import AnyReader
+
+    _master(ros1)
+    ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/img", "sensor_msgs/Image", IMAGE])
+    ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/mk", "visualization_msgs/Marker",
+                MARKER])  # fmt: skip
+    ros1.until(
+        lambda: {"/img", "/mk"} <= set(ros1.run("/usr/bin/rostopic", "list").stdout.split()),
+        "publishers",
+    )
+    folder = tmp_path / "bag"
+    rec = ros1.robomodel_run("bag", "record", "/img", "/mk", "-o", str(folder), "--duration", "4")
+    assert rec.returncode == 0, rec.stderr
+    got: dict[str, Any] = {}
+    with AnyReader([folder]) as reader:
+        for conn, _, data in reader.messages():
+            got.setdefault(conn.topic, reader.deserialize(data, conn.msgtype))
+    assert set(got) == {"/img", "/mk"}, rec.stderr
+    image, marker = got["/img"], got["/mk"]
+    assert (image.width, image.height, image.encoding) == (2, 2, "rgb8")
+    assert image.data.tolist() == list(range(1, 13))
+    assert (marker.header.frame_id, marker.ns, marker.id, marker.type) == ("map", "path", 3, 4)
+    assert [(p.x, p.y, p.z) for p in marker.points] == [(1.0, 2.0, 0.0), (-1.0, 0.5, 0.25)]
+
+
 def test_bag_record_of_a_learned_type(ros1: Ros1, tmp_path: Path) -> None:
     """``bag record -a`` on ROS 1 records lab_msgs/Sample, which only its publisher knows: the
     bag stores the definition, and rosbags reads the messages back from the bag alone."""
