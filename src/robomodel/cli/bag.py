@@ -6,7 +6,6 @@ import argparse
 import datetime
 import logging
 import math
-import signal
 import sys
 import time
 from collections.abc import Callable, Iterator
@@ -15,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._types import add_type_arguments
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
@@ -70,21 +70,6 @@ def register(subparsers: Any) -> None:
     p.set_defaults(func=run_play)
 
 
-@contextmanager
-def _stop_on_signals() -> Iterator[Callable[[], bool]]:
-    """SIGINT and SIGTERM set a flag that the loops check, so files are closed cleanly."""
-    stopped: list[bool] = []  # a flag, not an Event: a second signal must not wait on a lock
-    handlers = {
-        sig: signal.signal(sig, lambda *_: stopped.append(True))
-        for sig in (signal.SIGINT, signal.SIGTERM)
-    }
-    try:
-        yield lambda: bool(stopped)
-    finally:
-        for sig, previous in handlers.items():
-            signal.signal(sig, previous)
-
-
 def _human_size(size: float) -> str:
     for unit in ("B", "KiB", "MiB", "GiB"):
         if size < 1024 or unit == "GiB":
@@ -128,7 +113,7 @@ def run_record(args: argparse.Namespace) -> int:
     split = _split_policy(args)
     logging.basicConfig(format="robomodel bag: %(message)s")
     with (
-        _stop_on_signals() as stopped,
+        stop_on_signals() as stopped,
         context_from_args(args, announce="robomodel bag record") as context,
     ):
         wait_for_peers(context)
@@ -240,7 +225,7 @@ def run_play(args: argparse.Namespace) -> int:
     bag = open_bag(args.bag)
     options = PlayOptions(args.rate, args.loop, args.topics, args.clock)
     with (
-        _stop_on_signals() as stopped,
+        stop_on_signals() as stopped,
         context_from_args(args, announce="robomodel bag play") as context,
     ):
         wait_for_peers(context)

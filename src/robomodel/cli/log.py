@@ -12,15 +12,13 @@ from __future__ import annotations
 
 import argparse
 import fnmatch
-import signal
 import sys
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
 from robomodel._escape import escape_name
 from robomodel.cli._bus import add_bus_arguments, context_from_args, wait_for_peers
+from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
@@ -102,21 +100,6 @@ def format_line(line: LogLine, node_width: int = 0) -> str:
     return f"{stamp}  {line.severity.upper():<5}  {node}  {escape_name(line.message)}{location}"
 
 
-@contextmanager
-def _stop_on_signals() -> Iterator[Callable[[], bool]]:
-    """SIGINT and SIGTERM set a flag the loop checks, so the command ends cleanly (exit 0)."""
-    stopped: list[bool] = []  # a flag, not an Event: a second signal must not wait on a lock
-    handlers = {
-        sig: signal.signal(sig, lambda *_: stopped.append(True))
-        for sig in (signal.SIGINT, signal.SIGTERM)
-    }
-    try:
-        yield lambda: bool(stopped)
-    finally:
-        for sig, previous in handlers.items():
-            signal.signal(sig, previous)
-
-
 def run_log(args: argparse.Namespace) -> int:
     from robomodel.runtime.rosout import ROSOUT_QOS
 
@@ -124,7 +107,7 @@ def run_log(args: argparse.Namespace) -> int:
         raise RobomodelError(f"--count {args.count}: give a positive number of lines, e.g. -n 10")
     printed = [0]
     width = [0]
-    with _stop_on_signals() as stopped, context_from_args(args, announce="robomodel log") as ctx:
+    with stop_on_signals() as stopped, context_from_args(args, announce="robomodel log") as ctx:
         ros1 = ctx.bus == "ros1"
         if ros1:
             from robomodel.runtime.msg.nav_msgs import RosgraphLog as kind
