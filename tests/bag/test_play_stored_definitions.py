@@ -27,13 +27,13 @@ def test_play_decodes_by_the_bags_definition(tmp_path: Path, plugin: str) -> Non
     from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
     store = get_typestore(Stores.ROS2_JAZZY)
-    store.register(get_types_from_msg(DEFINITION, "lab_msgs/msg/Sample"))
-    sample = store.types["lab_msgs/msg/Sample"]
+    store.register(get_types_from_msg(DEFINITION, "bag_msgs/msg/Sample"))
+    sample = store.types["bag_msgs/msg/Sample"]
     point = store.types["geometry_msgs/msg/Point"]
 
     folder = tmp_path / "bag"
     with Writer(folder, version=9, storage_plugin=StoragePlugin[plugin]) as writer:
-        conn = writer.add_connection("/sample", "lab_msgs/msg/Sample", typestore=store)
+        conn = writer.add_connection("/sample", "bag_msgs/msg/Sample", typestore=store)
         data = store.serialize_cdr(sample(point(1.0, -2.0, 0.5), 7, ["a", "b"]), conn.msgtype)
         writer.write(conn, 42, data)
     topic = next(t for t in open_bag(folder).summary().topics if t.name == "/sample")
@@ -42,8 +42,8 @@ def test_play_decodes_by_the_bags_definition(tmp_path: Path, plugin: str) -> Non
     assert message_to_dict(decode(stored.data)) == {
         "where": {"x": 1.0, "y": -2.0, "z": 0.5}, "level": 7, "tags": ["a", "b"]
     }  # fmt: skip
-    assert cls.__typename__ == "lab_msgs/msg/Sample"
+    assert cls.__typename__ == "bag_msgs/msg/Sample"
     info = subprocess.run(
         [*ROBOMODEL, "bag", "info", str(folder)], capture_output=True, text=True, timeout=scaled(60)
     )
-    assert info.returncode == 0 and "lab_msgs/msg/Sample" in info.stdout, info.stderr
+    assert info.returncode == 0 and "bag_msgs/msg/Sample" in info.stdout, info.stderr

@@ -252,3 +252,19 @@ def test_a_publishers_other_hash_is_named(tmp_path: Path) -> None:
     warnings = [line for line in echo.stderr.splitlines() if line.startswith("warning: /range")]
     assert len(warnings) == 1, echo.stderr
     assert humble in warnings[0] and jazzy in warnings[0]
+
+
+def test_a_later_different_definition_is_refused_with_one_warning(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """The first definition learned of a name stays: classes built from it may be in use."""
+    _resolver.learn_definition("lab_msgs/Twice", "float64 first\n")
+    kind = get_message_type("lab_msgs/msg/Twice")
+    with caplog.at_level("WARNING", logger="robomodel.msg"):
+        _resolver.learn_definition("lab_msgs/Twice", "string other\n")
+        _resolver.learn_definition("lab_msgs/Twice", "string other\n")
+        _resolver.learn_definition("lab_msgs/Twice", "float64 first\n")  # the same: no warning
+    warnings = [r.getMessage() for r in caplog.records if "lab_msgs/msg/Twice" in r.getMessage()]
+    assert len(warnings) == 1 and "earlier one stays" in warnings[0], warnings
+    assert get_message_type("lab_msgs/msg/Twice") is kind
+    assert kind.field_names() == ("first",)

@@ -156,7 +156,7 @@ import genpy.dynamic, rospy
 rospy.init_node("debian_unknown", anonymous=True)
 text = "geometry_msgs/Point where\nuint8 level\n" + "=" * 80
 text += "\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n"
-Sample = genpy.dynamic.generate_dynamic("lab_msgs/Sample", text)["lab_msgs/Sample"]
+Sample = genpy.dynamic.generate_dynamic("plot_msgs/Sample", text)["plot_msgs/Sample"]
 Point = genpy.dynamic.generate_dynamic("geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n")
 pub = rospy.Publisher("/sample", Sample, queue_size=1)
 while not rospy.is_shutdown():
@@ -169,7 +169,7 @@ while not rospy.is_shutdown():
 def test_plot_takes_a_type_only_its_ros1_publisher_knows(
     viewer: Viewer, page: Any, tmp_path: Path
 ) -> None:
-    """The viewer learns lab_msgs/Sample from the publisher's definition, as topic echo does."""
+    """The viewer learns plot_msgs/Sample from the publisher's definition, as topic echo does."""
     if not Path("/usr/lib/python3/dist-packages/genpy").is_dir():
         pytest.skip("Debian's python3-genpy is not installed (tools/system-deps test)")
     script = tmp_path / "unknown.py"
@@ -182,7 +182,7 @@ def test_plot_takes_a_type_only_its_ros1_publisher_knows(
     try:
         tools = viewer.tools.tools
         wait_for(lambda: "/sample" in tools.topic_types(), timeout_s=scaled(60),
-                 what="lab_msgs/Sample learned from its publisher")  # fmt: skip
+                 what="plot_msgs/Sample learned from its publisher")  # fmt: skip
         open_viewer(page, viewer.url)
         page.get_by_text("Plot", exact=True).click()
         _type(page, "Field", "/sample/where/y")

@@ -27,6 +27,7 @@ here, so that verbs which never need one do not pay for it.
 from __future__ import annotations
 
 import functools
+import logging
 import os
 import re
 import threading
@@ -71,6 +72,8 @@ _messages: dict[str, type[Message]] = {}
 _services: dict[str, type[Service]] = {}
 _actions: dict[str, type[Action]] = {}
 _learned: dict[str, FieldDef] = {}
+_conflicts: set[str] = set()
+_log = logging.getLogger("robomodel.msg")
 _package_paths: tuple[Path, ...] = ()
 _distro: str | None = None
 
@@ -233,18 +236,29 @@ def learn_definition(name: str, text: str) -> None:
     ``ros2msg`` schema: the type's fields, then ``===`` / ``MSG: pkg/Name`` sections) so that
     ``name`` and the types it uses resolve even where no package or store has them."""
     key = _canonical(name)
-    found = _parse(text, key, where=f"the definition of {name}")
-    with _lock:
-        for type_name, definition in found.items():
-            _learned.setdefault(type_name, definition)
+    _remember(_parse(text, key, where=f"the definition of {name}"))
 
 
 def learn_fielddefs(found: dict[str, FieldDef]) -> None:
     """Remember definitions already parsed (a peer's ``GetTypeDescription`` answer, see
     :mod:`robomodel.runtime.type_descriptions`), as :func:`learn_definition` does for text."""
+    _remember(found)
+
+
+def _remember(found: dict[str, FieldDef]) -> None:
+    """The first definition learned of a name stays for the process's life: its classes and
+    codecs may be in use. A different one learned later (a publisher rebuilt with a changed
+    ``.msg``) is refused with one warning per name, as ROS 1 refuses a mismatched md5sum."""
     with _lock:
         for type_name, definition in found.items():
-            _learned.setdefault(type_name, definition)
+            known = _learned.setdefault(type_name, definition)
+            if known != definition and type_name not in _conflicts:
+                _conflicts.add(type_name)
+                _log.warning(
+                    "%s: a peer or bag defines it differently from the definition learned "
+                    "earlier in this process; the earlier one stays (restart to use the new one)",
+                    type_name,
+                )
 
 
 def package_source(key: str) -> Path | None:
