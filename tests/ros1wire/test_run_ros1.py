@@ -19,6 +19,7 @@ import yaml
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, free_port
 from tests.ros1wire.test_debian_ros1 import PLANAR, _echo, _launch, _transforms
+from tests.timing import scaled
 
 ROSSERVICE = "/usr/bin/rosservice"
 DEFINITIONS = Path(__file__).parents[2] / "src/robomodel/runtime/transport/ros1/definitions"
@@ -39,7 +40,7 @@ def _node_up(ros1: Ros1, name: str, proc: subprocess.Popen[str]) -> None:
 
 def _terminate(proc: subprocess.Popen[str]) -> int:
     os.killpg(proc.pid, signal.SIGTERM)
-    return proc.wait(30)
+    return proc.wait(scaled(30))
 
 
 def test_run_static_transform_publisher_both_forms_and_tf_echo(ros1: Ros1, tmp_path: Path) -> None:

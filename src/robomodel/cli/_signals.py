@@ -1,4 +1,4 @@
-"""Ctrl-C and SIGTERM as a flag for the verbs whose loops end cleanly (bag, log)."""
+"""Ctrl-C and SIGTERM as a flag for the verbs whose loops end cleanly (bag, log, master, run)."""
 
 from __future__ import annotations
 

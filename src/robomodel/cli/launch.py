@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.cli._ports import add_port_argument
+from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, close_matches
 
@@ -272,13 +273,16 @@ def _run_ros2_nodes(launch: Any, args: argparse.Namespace, index: Any) -> int:
     nodes = [step.node for step in launch.steps if step.node is not None]
     runner = LaunchRunner(nodes, _options(args, index, path=launch.path), steps=launch.steps)
     runner.check()
-    runner.open_bus()
-    try:
-        runner.start_nodes()
-        print(f"[launch] {launch.path}: {len(runner.started)} nodes running", file=sys.stderr)
-        return runner.spin()
-    finally:
-        runner.shutdown()
+    # Ctrl-C and SIGTERM are a flag from here on: one that came while the nodes started
+    # would otherwise raise inside a node's start-up and could leave a lock held.
+    with stop_on_signals() as stopped:
+        runner.open_bus()
+        try:
+            runner.start_nodes()
+            print(f"[launch] {launch.path}: {len(runner.started)} nodes running", file=sys.stderr)
+            return runner.spin(stopped)
+        finally:
+            runner.shutdown()
 
 
 def _options(
@@ -313,16 +317,19 @@ def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
 
     runner = LaunchRunner(launch.nodes, _options(args, index, ros1_launch=True, path=launch.path))
     runner.check()
-    runner.open_bus()
-    try:
-        runner.set_params(
-            dict(launch.params),
-            clear=launch.clear_params,
-            deletes=launch.param_deletes,
-            dumps=launch.param_dumps,
-        )
-        runner.start_nodes()
-        print(f"[launch] {launch.path}: {len(runner.started)} nodes running", file=sys.stderr)
-        return runner.spin()
-    finally:
-        runner.shutdown()
+    # Ctrl-C and SIGTERM are a flag from here on: one that came while the nodes started
+    # would otherwise raise inside a node's start-up and could leave a lock held.
+    with stop_on_signals() as stopped:
+        runner.open_bus()
+        try:
+            runner.set_params(
+                dict(launch.params),
+                clear=launch.clear_params,
+                deletes=launch.param_deletes,
+                dumps=launch.param_dumps,
+            )
+            runner.start_nodes()
+            print(f"[launch] {launch.path}: {len(runner.started)} nodes running", file=sys.stderr)
+            return runner.spin(stopped)
+        finally:
+            runner.shutdown()

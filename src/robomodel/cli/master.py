@@ -9,11 +9,12 @@ find it at ``ROS_MASTER_URI`` (default http://localhost:11311/). It listens on l
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 import time
+from collections.abc import Callable
 from typing import Any
 
+from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
@@ -34,19 +35,11 @@ def run(args: argparse.Namespace) -> int:
     # Ctrl-C and SIGTERM set a flag from here on, start-up included: a KeyboardInterrupt raised
     # while the master and its /rosout node come up escaped the cleanup (exit -2, the master's
     # threads left half-started).
-    stopped: list[bool] = []  # a flag, not an Event: a second signal must not wait on a lock
-    previous = {
-        sig: signal.signal(sig, lambda *_: stopped.append(True))
-        for sig in (signal.SIGINT, signal.SIGTERM)
-    }
-    try:
+    with stop_on_signals() as stopped:
         return _serve(args, stopped)
-    finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
 
 
-def _serve(args: argparse.Namespace, stopped: list[bool]) -> int:
+def _serve(args: argparse.Namespace, stopped: Callable[[], bool]) -> int:
     from robomodel.runtime.transport.ros1.master import Master, master_answers
     from robomodel.runtime.transport.ros1.names import (
         advertised_host,
@@ -70,7 +63,9 @@ def _serve(args: argparse.Namespace, stopped: list[bool]) -> int:
         master.close()
 
 
-def _run_master(args: argparse.Namespace, master: Any, uri: str, stopped: list[bool]) -> int:
+def _run_master(
+    args: argparse.Namespace, master: Any, uri: str, stopped: Callable[[], bool]
+) -> int:
     import uuid
 
     from robomodel.launch.ros1_master import ROSDISTRO, ROSVERSION
@@ -90,7 +85,7 @@ def _run_master(args: argparse.Namespace, master: Any, uri: str, stopped: list[b
         )
         end = None if args.duration is None else time.monotonic() + args.duration
         try:
-            while not stopped and (end is None or time.monotonic() < end):
+            while not stopped() and (end is None or time.monotonic() < end):
                 context.spin_once(0.1)
         finally:
             rosout.close()

@@ -20,6 +20,7 @@ import time
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, bus_from_args
+from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, describe_unknown
 
@@ -172,16 +173,18 @@ def run(args: argparse.Namespace) -> int:
         listen=tuple(args.listen),
     )
     runner = LaunchRunner([spec], options, log=_quiet)
-    runner.open_bus()
-    try:
-        if private:
-            runner.set_params(private)
-        runner.start_nodes()
-        runner.spin()
-        code = runner.started[0].handle.exit_code() if runner.started else 1
-        return 0 if code is None else int(code)
-    finally:
-        runner.shutdown()
+    # Ctrl-C and SIGTERM are a flag from the start, as for a launch (cli/launch.py)
+    with stop_on_signals() as stopped:
+        runner.open_bus()
+        try:
+            if private:
+                runner.set_params(private)
+            runner.start_nodes()
+            runner.spin(stopped)
+            code = runner.started[0].handle.exit_code() if runner.started else 1
+            return 0 if code is None else int(code)
+        finally:
+            runner.shutdown()
 
 
 def _require_master(uri: str | None) -> None:

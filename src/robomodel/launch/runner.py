@@ -237,8 +237,9 @@ class LaunchRunner:
 
         return log
 
-    def spin(self) -> int:
-        """Run until Ctrl-C, ``duration_s``, or a required node ending; the exit code."""
+    def spin(self, stopped: Callable[[], bool] = lambda: False) -> int:
+        """Run until Ctrl-C, ``duration_s``, a required node ending or ``stopped()`` (a signal
+        the caller caught while the nodes started); the exit code."""
         deadline = (
             time.monotonic() + self.options.duration_s
             if self.options.duration_s is not None
@@ -258,7 +259,7 @@ class LaunchRunner:
             pass
         code = 0
         try:
-            while not (self._stop.is_set() or self._terminated):
+            while not (self._stop.is_set() or self._terminated or stopped()):
                 if deadline is not None and time.monotonic() >= deadline:
                     break
                 driver = self._driver()
