@@ -43,9 +43,13 @@ def chromium_path() -> str:
     return path
 
 
-def wait_for(condition: Callable[[], Any], timeout_s: float | None = None, what: str = "") -> Any:
+def wait_for(
+    condition: Callable[[], Any],
+    timeout_s: float | None = None,
+    what: str | Callable[[], str] = "",
+) -> Any:
     """Poll ``condition`` until it returns something truthy; fail after ``timeout_s``
-    (default ``scaled(20)``)."""
+    (default ``scaled(20)``), saying ``what`` (or what ``what()`` says then)."""
     timeout_s = scaled(20.0) if timeout_s is None else timeout_s
     deadline = time.monotonic() + timeout_s
     while True:
@@ -53,7 +57,8 @@ def wait_for(condition: Callable[[], Any], timeout_s: float | None = None, what:
         if value:
             return value
         if time.monotonic() > deadline:
-            pytest.fail(f"timed out after {timeout_s:g} s waiting for {what or condition}")
+            label = what() if callable(what) else what
+            pytest.fail(f"timed out after {timeout_s:g} s waiting for {label or condition}")
         time.sleep(0.1)
 
 

@@ -212,7 +212,9 @@ def _pause_and_step_from_the_simulation_folder(page: Any) -> None:
 
     wait_for(sim_time, what="the sim time in the Simulation folder")
     page.get_by_role("button", name="Pause").click()
-    wait_for(lambda: "paused" in status.first.inner_text(), what="the paused status")
+    shown = page.get_by_text(re.compile("real-time factor|/gazebo/pause_physics"))
+    wait_for(lambda: "paused" in shown.first.inner_text(),
+             what=lambda: f"the paused status (shown: {shown.first.inner_text()!r})")  # fmt: skip
     held = sim_time()
     assert held is not None
     _type(page, "Steps", "500")

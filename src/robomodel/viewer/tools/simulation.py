@@ -26,6 +26,7 @@ UNPAUSE = "/gazebo/unpause_physics"
 STEP = "/gazebo/step"
 RESET = "/gazebo/reset_world"
 _WINDOW_S = 1.0
+_CALL_TIMEOUT_S = 10.0  # a simulator stepping on a loaded machine answers late, not never
 
 
 class RealTimeFactor:
@@ -107,7 +108,7 @@ class SimulationTool:
             context = self.tools.node.context
             try:
                 self.last_reply = self.tools.bus.query(
-                    lambda: context.call_service(service, srv_type, request, 2.0)
+                    lambda: context.call_service(service, srv_type, request, _CALL_TIMEOUT_S)
                 )
                 self.last_error = ""
             except RobomodelError as exc:
