@@ -108,10 +108,7 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
     """
     links: dict[str, LinkSurface] = {}
     sensors: list[SensorSpec] = []
-    static = False
-    plugin = False
-    namespace = ""
-    parameters: list[str] = []
+    model = _ModelBlocks()
     for block in robot.gazebo:
         try:
             root = etree.fromstring(block.xml.encode())
@@ -121,19 +118,7 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
             ) from None
         ref = block.reference
         if ref is None:
-            for el in root:
-                if el.tag == "static":
-                    static = _bool(el)
-                elif el.tag == "plugin" and (el.get("filename") or "") in _CONTROL_PLUGINS:
-                    plugin = True
-                    ns = el.find("robotNamespace")
-                    if ns is None:
-                        ns = el.find("ros/namespace")  # gazebo_ros2_control
-                    if ns is not None and ns.text:
-                        namespace = ns.text.strip()
-                    parameters += [
-                        (p.text or "").strip() for p in el.findall("parameters") if p.text
-                    ]
+            model.read(root)
             continue
         if not robot.has_link(ref):
             if not robot.has_joint(ref):
@@ -142,26 +127,56 @@ def read_gazebo(robot: Robot) -> GazeboExtensions:
                     stacklevel=2,
                 )
             continue
-        surface = links.get(ref, _DEFAULT_SURFACE)
+        links[ref] = _read_link(root, block, links.get(ref, _DEFAULT_SURFACE), sensors)
+    return GazeboExtensions(
+        links, tuple(sensors), model.static, model.plugin, model.namespace, tuple(model.parameters)
+    )
+
+
+@dataclass
+class _ModelBlocks:
+    """What the ``<gazebo>`` blocks without a reference say of the whole model."""
+
+    static: bool = False
+    plugin: bool = False  # a ros_control / ros2_control plugin
+    namespace: str = ""
+    parameters: list[str] = field(default_factory=list)
+
+    def read(self, root: etree._Element) -> None:
         for el in root:
-            tag = el.tag
-            if tag == "mu1":
-                surface = replace(surface, mu1=_float(el, block))
-            elif tag == "mu2":
-                surface = replace(surface, mu2=_float(el, block))
-            elif tag == "kp":
-                surface = replace(surface, kp=_float(el, block))
-            elif tag == "kd":
-                surface = replace(surface, kd=_float(el, block))
-            elif tag == "material":
-                surface = replace(surface, material=(el.text or "").strip())
-            elif tag == "selfCollide":
-                surface = replace(surface, self_collide=_bool(el))
-            elif tag == "turnGravityOff":
-                surface = replace(surface, gravity=not _bool(el))
-            elif tag == "sensor":
-                spec = parse_sensor(el, ref, _line(block, el))
-                if spec is not None:
-                    sensors.append(spec)
-        links[ref] = surface
-    return GazeboExtensions(links, tuple(sensors), static, plugin, namespace, tuple(parameters))
+            if el.tag == "static":
+                self.static = _bool(el)
+            elif el.tag == "plugin" and (el.get("filename") or "") in _CONTROL_PLUGINS:
+                self.plugin = True
+                ns = el.find("robotNamespace")
+                if ns is None:
+                    ns = el.find("ros/namespace")  # gazebo_ros2_control
+                if ns is not None and ns.text:
+                    self.namespace = ns.text.strip()
+                self.parameters += [
+                    (p.text or "").strip() for p in el.findall("parameters") if p.text
+                ]
+
+
+_SURFACE_FLOATS = frozenset({"mu1", "mu2", "kp", "kd"})  # LinkSurface fields of the same names
+
+
+def _read_link(
+    root: etree._Element, block: GazeboBlock, surface: LinkSurface, sensors: list[SensorSpec]
+) -> LinkSurface:
+    """A ``<gazebo reference="link">`` block: the link's surface, and its sensors appended."""
+    for el in root:
+        tag = el.tag
+        if tag in _SURFACE_FLOATS:
+            surface = replace(surface, **{tag: _float(el, block)})  # type: ignore[arg-type]
+        elif tag == "material":
+            surface = replace(surface, material=(el.text or "").strip())
+        elif tag == "selfCollide":
+            surface = replace(surface, self_collide=_bool(el))
+        elif tag == "turnGravityOff":
+            surface = replace(surface, gravity=not _bool(el))
+        elif tag == "sensor":
+            spec = parse_sensor(el, block.reference or "", _line(block, el))
+            if spec is not None:
+                sensors.append(spec)
+    return surface

@@ -209,24 +209,42 @@ def add_robot(
     Raises:
         SimulationError: non-physical inertia, missing meshes, unsupported joints.
     """
-    mj = mujoco()
     ext = read_gazebo(robot)
     moving = _moving_groups(robot, ext.static)
     _check_inertials(robot, moving)
-    extras = read_joint_extras(robot)
     tree = robot.tree()
-    prefix = placement.prefix
     built = BuiltRobot(robot, placement, ext, "", moving[tree.root], ())
     built.root_body = built.body(tree.root)
-    bodies: dict[str, Any] = {}
+    bodies, joints = _add_bodies(spec, robot, built, read_joint_extras(robot))
+    for link in robot.links:
+        body = bodies[link.name]
+        _set_inertial(body, link)
+        if not ext.surface(link.name).gravity:
+            body.gravcomp = 1.0
+        _add_collisions(spec, body, link, built, bit, loader)
+        if include_visuals:
+            _add_visuals(spec, body, link, built, loader)
+    _add_actuation(spec, robot, joints, placement.prefix)
+    _add_sensor_sites(spec, ext, bodies, placement.prefix)
+    built.joints = tuple(joints)
+    return built
+
+
+def _add_bodies(
+    spec: Any, robot: Robot, built: BuiltRobot, extras: dict[str, JointExtras]
+) -> tuple[dict[str, Any], list[str]]:
+    """One body per link, placed by its joint's origin (the root at the placement, free unless
+    fixed to the world); the movable joints' names in tree order."""
+    tree = robot.tree()
+    placement = built.placement
     root = spec.worldbody.add_body(
         name=built.root_body,
         pos=list(placement.xyz_m),
         quat=quat_wxyz_from_rpy(*placement.rpy_rad),
     )
     if built.floating:
-        root.add_freejoint(name=prefix + tree.root + "_free")
-    bodies[tree.root] = root
+        root.add_freejoint(name=placement.prefix + tree.root + "_free")
+    bodies: dict[str, Any] = {tree.root: root}
     joints: list[str] = []
     for _, joint in tree.walk():
         body = bodies[joint.parent].add_body(
@@ -234,17 +252,14 @@ def add_robot(
         )
         bodies[joint.child] = body
         if joint.type is not JointType.FIXED:
-            _add_joint(body, joint, prefix + joint.name, extras.get(joint.name))
+            _add_joint(body, joint, placement.prefix + joint.name, extras.get(joint.name))
             joints.append(joint.name)
-    for link in robot.links:
-        body = bodies[link.name]
-        _set_inertial(body, link)
-        surface = ext.surface(link.name)
-        if not surface.gravity:
-            body.gravcomp = 1.0
-        _add_collisions(spec, body, link, built, bit, loader)
-        if include_visuals:
-            _add_visuals(spec, body, link, built, loader)
+    return bodies, joints
+
+
+def _add_actuation(spec: Any, robot: Robot, joints: list[str], prefix: str) -> None:
+    """A velocity servo per driven joint; a mimic joint follows its leader by an equality."""
+    mj = mujoco()
     for joint_name in joints:
         joint = robot.joint(joint_name)
         if joint.mimic is None and joint.type is not JointType.PLANAR:
@@ -262,6 +277,12 @@ def add_robot(
                 0,
                 0,
             ]
+
+
+def _add_sensor_sites(
+    spec: Any, ext: GazeboExtensions, bodies: dict[str, Any], prefix: str
+) -> None:
+    """A site per Gazebo sensor at its pose; a camera sensor gets a MuJoCo camera too."""
     for sensor in ext.sensors:
         x, y, z, r, p, yaw = sensor.pose
         bodies[sensor.link].add_site(
@@ -271,8 +292,6 @@ def add_robot(
             from robomodel.sim.sensors.camera import add_mujoco_camera
 
             add_mujoco_camera(spec, bodies[sensor.link], prefix + sensor.name, sensor)
-    built.joints = tuple(joints)
-    return built
 
 
 def velocity_actuator_name(joint: str) -> str:
