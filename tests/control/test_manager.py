@@ -192,3 +192,19 @@ def test_per_controller_rate() -> None:
     # humble: run when (counter % 100) % 3 == 0 -> 99, 100 (wraps to 0), 102, ...
     assert runs[:3] == [9, 12, 15] and 100 in runs and 99 in runs
     assert cm.load_controller("fast", FCC, {**POS, "update_rate": 500}).update_rate_hz == 100
+
+
+def test_best_effort_drops_a_controller_without_reserving_its_interfaces() -> None:
+    """A controller dropped from a BEST_EFFORT request (one of its interfaces is missing)
+    claims nothing: another controller of the same request may take what it would have."""
+    cm = arm_manager()
+    cm.load_controller("wide", FCC, {"joints": ["joint1", "joint9"], "interface_name": "position"})
+    cm.load_controller("b", FCC, {"joints": ["joint1"], "interface_name": "position"})
+    for n in ("wide", "b"):
+        cm.configure_controller(n)
+    with pytest.raises(ControlError, match="joint9/position"):
+        cm.switch_controllers(activate=["wide", "b"])
+    cm.switch_controllers(activate=["wide", "b"], strictness=Strictness.BEST_EFFORT)
+    assert cm.entries["wide"].controller.state is ControllerState.INACTIVE
+    assert cm.entries["b"].controller.state is ControllerState.ACTIVE
+    assert cm.resources.claimed.get("joint1/position") == "b"

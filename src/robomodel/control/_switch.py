@@ -96,11 +96,13 @@ def _with_interfaces(
                     raise ControlError(
                         f"controllers '{taken[iface]}' and '{name}' both claim '{iface}'"
                     )
-                taken[iface] = name
             resources.check_commands([i for i in commands if i not in resources.claimed], name)
         except RobomodelError as exc:
             refuse(f"cannot activate '{name}': {exc}")
             kept.remove(name)
+            continue
+        # only a kept activation claims: one dropped (best effort) reserves nothing
+        taken.update(dict.fromkeys(commands, name))
     return kept
 
 
