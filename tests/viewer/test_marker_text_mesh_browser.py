@@ -177,3 +177,44 @@ def test_a_mesh_resource_marker_shows_its_texture_or_the_marker_colour(
     wait_for(drawn, what=f"the checker and the yellow cube (seen {seen})")
     save_shot(page, "marker_mesh_texture")
     assert _statuses(viewer)["Meshes"].endswith("messages received")
+
+
+def test_pose_with_covariance_draws_the_position_ellipsoid_and_orientation_discs(
+    marker_viewer: Viewer, page: Any
+) -> None:
+    """RGB colour style: the roll disc (1.6 m along x) red, pitch (y) green, yaw (z) blue;
+    the position ellipsoid (1 m along x) purple; Orientation off hides the discs."""
+    viewer = marker_viewer
+    open_viewer(page, viewer.url)
+    values = {"Topic": "/pose_cov", "Covariance/Position/Alpha": 1.0,
+              "Covariance/Orientation/Color Style": "RGB", "Covariance/Orientation/Alpha": 1.0,
+              "Covariance/Orientation/Offset": 1.6}  # fmt: skip
+    on_loop(viewer, lambda: viewer.displays_panel.add("PoseWithCovariance", name="Cov", values=values))  # fmt: skip
+    wait_for(lambda: "messages received" in _statuses(viewer).get("Cov", ""), what="status")
+    camera = _look_at_origin(viewer, (6.0, -6.0, 4.0))
+    canvas = page.locator("canvas").first.bounding_box()
+    where = _project(camera, canvas, np.array([(1.6, 0, 0), (0, 1.6, 0), (0, 0, 1.6), (-0.6, 0, 0)]))  # fmt: skip
+
+    def hue(shot: np.ndarray, uv: np.ndarray) -> str:
+        r, g, b = (float(np.median(shot[_box(uv, 2)][..., k])) for k in range(3))
+        if r > 100 and b > 100 and g < 0.6 * min(r, b):
+            return "purple"
+        for name, (c, others) in {"red": (r, (g, b)), "green": (g, (r, b)), "blue": (b, (r, g))}.items():  # fmt: skip
+            if c > 60 and c > 1.8 * max(others):
+                return name
+        return "other"
+
+    seen: list[list[str]] = []
+
+    def shown(expected: list[str]) -> bool:
+        shot = screenshot(page)
+        seen[:] = [[hue(shot, uv) for uv in where]]
+        return seen[0] == expected
+
+    try:
+        wait_for(lambda: shown(["red", "green", "blue", "purple"]), what="discs and ellipsoid")
+    finally:
+        save_shot(page, "pose_covariance")
+        print("seen", seen, "at", where.round().tolist())
+    on_loop(viewer, lambda: viewer.displays.displays[-1].set_option("Covariance/Orientation/Value", False))  # fmt: skip
+    wait_for(lambda: shown(["other", "other", "other", "purple"]), what=f"discs hidden ({seen})")
