@@ -1,7 +1,7 @@
 """A publisher process for bench_displays.py: ``_display_feed.py KIND DOMAIN RATE_HZ SECONDS``.
 
 KIND ``cloud``: a 100,000-point PointCloud2 (x, y, z, intensity float32; 16-byte points) on
-/bench/cloud; ``image``: a 640x480 rgb8 Image on /bench/image (seven frames in turn); ``noise``: the
+/bench/cloud (seven different clouds in turn); ``image``: a 640x480 rgb8 Image on /bench/image (seven frames in turn); ``noise``: the
 same with random pixels. Messages are built once and
 re-stamped; sends follow ``paced_sends`` (never accumulated). Prints ``ready`` when its
 publisher exists, then ``sent N`` at the end.
@@ -22,18 +22,23 @@ from robomodel.runtime.context import Context
 from robomodel.runtime.msg import get_message_type
 
 
+def cloud_data(seed: int = 0, n: int = 100_000) -> bytes:
+    """``n`` points (x, y, z, intensity float32) uniform in a 10 m cube, intensity 0-100."""
+    rng = np.random.default_rng(seed)
+    xyzi = np.concatenate([rng.uniform(-5, 5, (n, 3)), rng.uniform(0, 100, (n, 1))], axis=1)
+    return xyzi.astype(np.float32).tobytes()
+
+
 def cloud_message() -> object:
     PointCloud2 = get_message_type("sensor_msgs/msg/PointCloud2")
     PointField = get_message_type("sensor_msgs/msg/PointField")
     n = 100_000
-    rng = np.random.default_rng(0)
-    xyzi = np.concatenate([rng.uniform(-5, 5, (n, 3)), rng.uniform(0, 100, (n, 1))], axis=1)
     msg = PointCloud2(height=1, width=n, point_step=16, row_step=16 * n, is_dense=True)
     msg.fields = [
         PointField(name=name, offset=4 * i, datatype=7, count=1)
         for i, name in enumerate(("x", "y", "z", "intensity"))
     ]
-    msg.data = xyzi.astype(np.float32).tobytes()
+    msg.data = cloud_data(0, n)
     msg.header.frame_id = "map"
     return msg
 
@@ -63,7 +68,9 @@ def image_message() -> object:
 def main() -> None:
     kind, domain, rate_hz, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])  # fmt: skip
     msg = cloud_message() if kind == "cloud" else image_message()
-    frames = [msg.data] if kind == "cloud" else image_data(kind == "noise")  # type: ignore[attr-defined]
+    # seven different clouds in turn, as a lidar's differ (the same one again would not be
+    # sent to the page again: viser skips a node update that changes nothing)
+    frames = [cloud_data(k) for k in range(7)] if kind == "cloud" else image_data(kind == "noise")
     context = Context("zenoh", domain_id=domain)
     node = context.create_node("bench_feed")
     pub = node.create_publisher(type(msg), f"/bench/{'cloud' if kind == 'cloud' else 'image'}", 10)

@@ -2,20 +2,25 @@
 30 Hz, from another process over Zenoh, reaching a headless browser; the viewer's CPU per
 message.
 
-Run: ``.venv/bin/python bench/bench_displays.py [SECONDS]`` (needs Debian's chromium; about
-3 x SECONDS + 20 s, default SECONDS 6).
+Run: ``.venv/bin/python bench/bench_displays.py [SECONDS] [FEED ...]`` (needs Debian's
+chromium; about 3 x SECONDS + 20 s, default SECONDS 6; FEED: cloud, image, noise, default all).
 
 For each feed the viewer runs in this process with one display (PointCloud2 on /bench/cloud,
 Image on /bench/image), headless Chromium has the page open, and ``_display_feed.py`` publishes
 for SECONDS. Counted: messages sent, messages the display received, what reached Chromium
-(websocket frames carrying a new point cloud, or a new panel image), and the drain: how long
+(websocket frames carrying a new point cloud or new points for a cloud's node, or a new panel
+image; for the cloud also how many
+clouds the display drew, each one scene update), and the drain: how long
 after the last send the last of those frames arrived (a backlog shows as a drain of seconds).
-CPU: this process's user + system time during the feed (the viewer; Chromium and the
-publisher are other processes), per message received, and an idle viewer's for comparison.
+CPU: this process's user + system time during the feed less its main thread's (the viewer's
+threads; the main thread runs the bench and playwright's client, which decodes every frame
+Chromium reports; Chromium and the publisher are other processes), per message received, and
+an idle viewer's for comparison.
 """
 
 from __future__ import annotations
 
+import os
 import resource
 import subprocess
 import sys
@@ -26,12 +31,14 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
-DOMAIN = 139
+DOMAIN = int(os.environ.get("ROBOMODEL_BENCH_DOMAIN", "139"))  # another run at once: another domain
 
 
 def _cpu_s() -> float:
+    """The viewer's CPU time [s]: this process's, less the main thread's (the bench and
+    playwright's client, which decodes every websocket frame Chromium reports)."""
     usage = resource.getrusage(resource.RUSAGE_SELF)
-    return usage.ru_utime + usage.ru_stime
+    return usage.ru_utime + usage.ru_stime - time.thread_time()
 
 
 def _viewer(tmp: Path) -> Any:
@@ -85,13 +92,21 @@ def run(kind: str, rate_hz: float, seconds: float, page: Any, viewer: Any, frame
     page.wait_for_timeout(3000)  # frames still coming after the last send are the backlog
     feed.wait(10)
     received = display.messages_received
-    marker = b"PointCloudMessage" if kind == "cloud" else b"GuiUpdateMessage"
+    drawn = getattr(display, "_seq", 0)  # clouds put in the scene (PointCloud2Display)
     least = 50_000 if kind == "cloud" else 5_000  # a frame with the points, or the image
-    shown = [t for t, size, meta in frames if marker in meta and size > least]
+
+    def new_state(meta: bytes) -> bool:
+        if kind != "cloud":
+            return b"GuiUpdateMessage" in meta
+        # a new cloud node, or new points for the node a cloud took over
+        return b"PointCloudMessage" in meta or (b"SceneNodeUpdateMessage" in meta and b"points" in meta)  # fmt: skip
+
+    shown = [t for t, size, meta in frames if new_state(meta) and size > least]
     _on_loop(viewer, lambda: viewer.displays_panel.remove(viewer.displays_panel.rows[-1]))
     return {
         "sent": float(sent_line.split()[1]),
         "received": float(received),
+        **({"drawn": float(drawn)} if kind == "cloud" else {}),
         "reached_browser": float(len(shown)),
         "browser_per_s": len([t for t in shown if wall0 <= t <= end]) / (end - wall0),
         "drain_s": (max(shown) - end) if shown else float("nan"),
@@ -136,6 +151,7 @@ def main() -> None:
 
     codec_costs()
     seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 6.0
+    feeds = sys.argv[2:] or ["cloud", "image", "noise"]
     frames: list[tuple[float, int, bytes]] = []
 
     def on_frame(payload: bytes | str) -> None:
@@ -150,7 +166,8 @@ def main() -> None:
             except Exception as exc:
                 meta = repr(exc).encode()
             # only what the bench looks for: a frame may carry megabytes of image data
-            found = b" ".join(m for m in (b"PointCloudMessage", b"GuiUpdateMessage") if m in meta)
+            tokens = (b"PointCloudMessage", b"GuiUpdateMessage", b"SceneNodeUpdateMessage", b"points")  # fmt: skip
+            found = b" ".join(m for m in tokens if m in meta)
             frames.append((time.perf_counter(), len(payload), found))
 
     with tempfile.TemporaryDirectory() as tmp, sync_playwright() as pw:
@@ -165,7 +182,7 @@ def main() -> None:
         page.wait_for_timeout(seconds * 1000)
         idle = (_cpu_s() - cpu0) / (time.perf_counter() - t0)
         print(f"idle viewer: {idle:.3f} cores")
-        for kind, rate in (("cloud", 10.0), ("image", 30.0), ("noise", 30.0)):
+        for kind, rate in ((k, r) for k, r in (("cloud", 10.0), ("image", 30.0), ("noise", 30.0)) if k in feeds):  # fmt: skip
             result = run(kind, rate, seconds, page, viewer, frames)
             print(f"{kind} at {rate:g} Hz: " + ", ".join(f"{k} {v:.3g}" for k, v in result.items()))  # fmt: skip
         browser.close()

@@ -18,6 +18,12 @@ class FakeNode:
         self.position = kwargs.get("position", (0.0, 0.0, 0.0))
         self.wxyz = kwargs.get("wxyz", (1.0, 0.0, 0.0, 0.0))
 
+    def __setattr__(self, name: str, value: Any) -> None:
+        # a prop set on the handle (viser sends it as an update) is kept with the others
+        object.__setattr__(self, name, value)
+        if name not in ("scene", "name", "kind", "kwargs") and "kwargs" in self.__dict__:
+            self.kwargs[name] = value
+
     def remove(self) -> None:
         self.scene.nodes.pop(self.name, None)
 

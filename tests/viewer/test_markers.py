@@ -191,7 +191,7 @@ def test_every_marker_type_is_drawn(type_: int) -> None:
         "ARROW": "mesh_simple", "CUBE": "mesh_simple", "SPHERE": "mesh_simple",
         "CYLINDER": "mesh_simple", "LINE_STRIP": "line_segments", "LINE_LIST": "line_segments",
         "CUBE_LIST": "mesh_trimesh", "SPHERE_LIST": "mesh_trimesh", "POINTS": "point_cloud",
-        "TEXT_VIEW_FACING": "label", "MESH_RESOURCE": "mesh_simple",
+        "TEXT_VIEW_FACING": "image", "MESH_RESOURCE": "mesh_simple",
         "TRIANGLE_LIST": "mesh_trimesh",
     }  # fmt: skip
     assert drawable.kind == expected[MARKER_TYPES[type_]]
@@ -200,8 +200,10 @@ def test_every_marker_type_is_drawn(type_: int) -> None:
     if type_ == 5:  # LINE_LIST: 3 pairs, each point's colour
         assert drawable.kwargs["points"].shape == (3, 2, 3)
         assert drawable.kwargs["colors"][0].tolist() == [[255, 0, 0], [0, 255, 0]]
-    if type_ == 9:
-        assert drawable.kwargs["text"] == "hello" and drawable.kwargs["font_scene_height"] == 0.2
+    if type_ == 9:  # red text (the marker's colour) with a transparent background
+        rgba = drawable.kwargs["image"]
+        assert drawable.view_facing and (rgba[..., :3] == (255, 0, 0)).all()
+        assert rgba[..., 3].max() == 255 and rgba[0, 0, 3] == 0
     if type_ == 10:  # the mesh scaled by scale
         assert drawable.kwargs["vertices"].max() == pytest.approx(0.2)
 
@@ -226,3 +228,59 @@ def test_a_triangle_list_of_the_wrong_length_is_refused() -> None:
     display.receive(_with_points(marker(type_=11), [(0, 0, 0), (1, 0, 0)]))
     status = display.draw(lookup_from({"base_link": np.eye(4)}))
     assert status.level is StatusLevel.ERROR and "not a multiple of 3" in status.text
+
+
+def test_text_is_in_the_marker_s_colour_alpha_and_height_and_faces_the_camera() -> None:
+    scene = FakeScene()
+    context = fake_context(scene)
+    view = (0.5, -0.5, 0.5, -0.5)
+    context.view_wxyz = lambda: view
+    display = display_class("Marker")("M", context)
+    m = marker(type_=9, rgb=(0.0, 1.0, 0.0))
+    m.text, m.color.a, m.scale.z = "two\nlines", 0.5, 0.3
+    m.pose.orientation.z, m.pose.orientation.w = 1.0, 0.0  # ignored: the text faces the camera
+    display.receive(m)
+    display.draw(lookup_from({"base_link": np.eye(4)}))
+    (node,) = scene.visible().values()
+    rgba = node.kwargs["image"]
+    assert (rgba[..., :3] == (0, 255, 0)).all() and rgba[..., 3].max() == 128  # alpha 0.5
+    ink_rows = np.flatnonzero(rgba[..., 3].max(axis=1) > 0)
+    metres_per_px = node.kwargs["render_height"] / rgba.shape[0]
+    # two lines of 0.3 m: the ink spans more than one line and less than two
+    assert 0.3 < (ink_rows[-1] - ink_rows[0] + 1) * metres_per_px < 0.6
+    assert tuple(node.wxyz) == view and tuple(node.position) == pytest.approx((1.0, 0.0, 0.0))
+    view = (1.0, 0.0, 0.0, 0.0)
+    display.draw(lookup_from({"base_link": np.eye(4)}))
+    assert tuple(node.wxyz) == view
+
+
+def test_a_textured_mesh_resource_keeps_its_texture_only_with_embedded_materials(tmp_path) -> None:
+    from robomodel.viewer.meshes import load_mesh_file
+    from tests.viewer.textured import write_textured_cube
+
+    parts = load_mesh_file(write_textured_cube(tmp_path))
+    m = marker(type_=10, rgb=(1.0, 1.0, 0.0))
+    m.mesh_resource, m.mesh_use_embedded_materials = "file:///cube.dae", True
+    m.scale.x, m.scale.y, m.scale.z = 1.0, 2.0, 3.0
+    (textured,) = marker_drawables(m, lambda uri: parts)
+    assert textured.kind == "glb" and textured.kwargs["glb_data"] == parts[0].glb
+    assert textured.kwargs["scale"] == (1.0, 2.0, 3.0)
+    m.mesh_use_embedded_materials = False
+    (plain,) = marker_drawables(m, lambda uri: parts)
+    assert plain.kind == "mesh_simple" and plain.kwargs["color"] == (255, 255, 0)
+
+
+def test_a_marker_sent_again_keeps_its_nodes_and_is_placed_anew(setup) -> None:
+    scene, _clock, display = setup
+    lookup = lookup_from({"base_link": np.eye(4)})
+    display.receive(marker(x=1.0))
+    display.draw(lookup)
+    (first,) = scene.visible().values()
+    display.receive(marker(x=2.0))  # moved: the same node, placed anew
+    display.draw(lookup)
+    (again,) = scene.visible().values()
+    assert again is first and again.position[0] == pytest.approx(2.0)
+    display.receive(marker(x=2.0, rgb=(0.0, 0.0, 1.0)))  # another colour: a new node
+    display.draw(lookup)
+    (recoloured,) = scene.visible().values()
+    assert recoloured is not first and recoloured.kwargs["color"] == (0, 0, 255)

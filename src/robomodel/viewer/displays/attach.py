@@ -54,6 +54,7 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
         post=viewer._post,
         now_ns=lambda: node.get_clock().now_ns(),
         load_mesh=load_mesh,
+        view_wxyz=_track_view(viewer.server),
     )
     manager = DisplayManager(context, node, viewer.buffer)
     folder = getattr(getattr(viewer, "options_panel", None), "displays_folder", None)
@@ -62,6 +63,22 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
     )
     node.create_timer(_DRAW_PERIOD_S, manager.update)
     return panel
+
+
+def _track_view(server: Any) -> Callable[[], tuple[float, float, float, float] | None]:
+    """The orientation of the page camera that moved last (viser calls camera updates on its
+    own thread; the tuple is swapped whole, so a reader sees one camera's)."""
+    latest: list[tuple[float, float, float, float] | None] = [None]
+
+    def moved(camera: Any) -> None:
+        w, x, y, z = (float(v) for v in camera.wxyz)
+        latest[0] = (w, x, y, z)
+
+    def connected(client: Any) -> None:
+        client.camera.on_update(moved)
+
+    server.on_client_connect(connected)
+    return lambda: latest[0]
 
 
 _BUILTIN = ("RobotModel", "TF")  # the viewer's own folders (options_panel.py)

@@ -153,6 +153,8 @@ class DisplayContext:
         load_mesh: Reads a mesh URI (``package://``, ``file://``, a path) into
             :class:`~robomodel.viewer.meshes.MeshPart` s, cached; raises
             :class:`~robomodel.errors.RobomodelError` (None: no meshes in this viewer).
+        view_wxyz: The page's camera orientation in the fixed frame (the last one moved;
+            None before a page connects), for view-facing text (None: no page).
     """
 
     scene: Any
@@ -162,6 +164,7 @@ class DisplayContext:
     post: Callable[[Callable[[], object]], None]
     now_ns: Callable[[], int]
     load_mesh: Callable[[str], tuple[Any, ...]] | None = None
+    view_wxyz: Callable[[], tuple[float, float, float, float] | None] | None = None
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9_.\-]")

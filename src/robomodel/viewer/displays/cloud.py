@@ -257,7 +257,8 @@ def decode_cloud(
     opts = options or CloudColorOptions()
     records = cloud_records(msg)
     xyz = np.stack([_scalar(records, c) for c in "xyz"], axis=1).astype(np.float32)
-    valid = np.isfinite(xyz).all(axis=1)
+    finite = np.isfinite(xyz)
+    valid = finite[:, 0] & finite[:, 1] & finite[:, 2]  # faster than .all(axis=1) on (n, 3)
     dropped = int(valid.size - np.count_nonzero(valid))
     if dropped:
         records, xyz = records[valid], xyz[valid]

@@ -35,19 +35,36 @@ _TRANSFORMERS = ("Intensity", "AxisColor", "FlatColor")
 _MAX_SCANS = 1000  # RViz keeps every scan within the decay time; this bounds a long decay
 
 
+def _rainbow_table() -> NDArray[np.uint8]:
+    """Row ``256 * i + q``: the colour of segment ``i`` (1..6 of ``h = 5 v + 1``) at
+    ``q = round(255 n)``. Per segment each channel is 0, 255 or ``n`` (getRainbowColor)."""
+    q = np.arange(256, dtype=np.uint8)
+    zero, full = np.zeros(256, np.uint8), np.full(256, 255, np.uint8)
+    segments = [(full, zero, full), (q, zero, full), (zero, q, full), (zero, full, q),
+                (q, full, zero), (full, q, zero), (full, q, zero)]  # fmt: skip
+    table = np.concatenate([np.stack(rgb, axis=1) for rgb in segments])
+    table.setflags(write=False)
+    return table
+
+
+_RAINBOW = _rainbow_table()
+
+
 def rainbow(values: NDArray[np.float64]) -> NDArray[np.uint8]:
     """RViz's getRainbowColor (point_cloud_helpers.hpp) for values in [0, 1]: magenta, blue,
-    cyan, green, yellow, red; ``(n, 3)`` RGB."""
-    h = np.clip(values, 0.0, 1.0) * 5.0 + 1.0
-    i = np.floor(h)
-    f = h - i
-    f = np.where(i % 2 == 0, 1.0 - f, f)
-    n = 1.0 - f
-    zero, one = np.zeros_like(n), np.ones_like(n)
-    r = np.select([i <= 1, i == 2, i == 3, i == 4], [n, zero, zero, n], one)
-    g = np.select([i <= 1, i == 2, i == 3, i == 4], [zero, n, one, one], n)
-    b = np.select([i <= 1, i == 2, i == 3, i == 4], [one, one, n, zero], zero)
-    return (np.stack([r, g, b], axis=1) * 255).round().astype(np.uint8)
+    cyan, green, yellow, red; ``(n, 3)`` RGB (NaN: red, as 1). One table lookup per value:
+    a 100,000-point cloud is coloured in a few milliseconds."""
+    h = np.nan_to_num(np.asarray(values, dtype=np.float64), nan=1.0)  # a copy, then in place
+    np.clip(h, 0.0, 1.0, out=h)
+    h *= 5.0
+    h += 1.0
+    i = h.astype(np.intp)  # floor: h >= 1
+    h -= i  # f
+    n = np.abs((i & 1) - h)  # odd segments 1 - f, even f (f flipped, then n = 1 - f)
+    n *= 255.0
+    index = np.rint(n).astype(np.intp)
+    index += i * 256
+    return _RAINBOW[index]
 
 
 def _normalized(values: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -52,12 +52,30 @@ def pose_matrix(pose: Any) -> NDArray[np.float64]:
     return T
 
 
+# What places a marker rather than shapes it (RViz's MarkerBase::transform reads these)
+_PLACEMENT_FIELDS = frozenset({"header", "pose", "lifetime", "frame_locked", "action"})
+
+
+def _same_shape(a: Any, b: Any) -> bool:
+    """Whether two markers of one key draw the same nodes (they may be placed elsewhere)."""
+    names = a.field_names() if hasattr(a, "field_names") else ()
+    return (
+        type(a) is type(b)
+        and bool(names)
+        and all(
+            getattr(a, name) == getattr(b, name) for name in names if name not in _PLACEMENT_FIELDS
+        )
+    )
+
+
 @dataclass
 class _Drawn:
     """A marker on the page: its version, nodes and where it was placed."""
 
     version: int
+    msg: Any
     keys: tuple[str, ...]
+    facing: tuple[str, ...] = ()  # nodes turned to the camera (view-facing text)
     T_fixed_marker: NDArray[np.float64] | None = None
     fixed_frame: str = ""
     error: str = ""  # why it cannot be drawn (RViz's marker status)
@@ -118,15 +136,34 @@ class MarkerDisplay(Display):
         if new:
             self.values["Namespaces"] = MappingProxyType({**self.option("Namespaces"), **new})
         shown = self.store.shown()
-        for key in [k for k, d in self._drawn.items() if k not in shown or shown[k].version != d.version]:  # fmt: skip
-            self._undraw(key)
+        for key, drawn in list(self._drawn.items()):
+            entry = shown.get(key)
+            if entry is not None and entry.version != drawn.version and _same_shape(entry.msg, drawn.msg):  # fmt: skip
+                # the same marker sent again: placed anew, its nodes kept (a re-sent mesh or
+                # text is not loaded again, so it does not flicker)
+                drawn.version, drawn.msg, drawn.T_fixed_marker = entry.version, entry.msg, None
+            elif entry is None or entry.version != drawn.version:
+                self._undraw(key)
         problems: list[str] = [*self.store.errors]
         fixed = self.context.fixed_frame()
         for key, entry in shown.items():
             problem = self._draw_marker(key, entry, lookup, fixed)
             if problem:
                 problems.append(f"{key[0]}/{key[1]}: {problem}")
+        self._face_camera()
         return self._status(problems)
+
+    def _face_camera(self) -> None:
+        """Turn view-facing text to the page's camera: an image node with the camera's
+        orientation lies in the screen's plane, upright (viser's camera: +z forward, -y up)."""
+        view = self.context.view_wxyz() if self.context.view_wxyz is not None else None
+        if view is None:
+            return
+        for drawn in self._drawn.values():
+            for node_key in drawn.facing:
+                node = self.node(node_key)
+                if node is not None and not np.allclose(node.wxyz, view, atol=1e-6):
+                    node.wxyz = view
 
     def _status(self, problems: list[str]) -> DisplayStatus:
         waiting = self.topic_status()
@@ -144,13 +181,14 @@ class MarkerDisplay(Display):
             try:
                 drawables = marker_drawables(msg, self.context.load_mesh)
             except (MarkerShapeError, RobomodelError) as exc:
-                self._drawn[key] = _Drawn(entry.version, (), error=str(exc))
+                self._drawn[key] = _Drawn(entry.version, msg, (), error=str(exc))
                 return str(exc)
             prefix = self._node_prefix(key)
             keys = tuple(f"{prefix}/{i}" for i in range(len(drawables)))
             for node_key, drawable in zip(keys, drawables, strict=True):
                 self.add_node(node_key, drawable.kind, visible=False, **drawable.kwargs)
-            drawn = self._drawn[key] = _Drawn(entry.version, keys)
+            facing = tuple(k for k, d in zip(keys, drawables, strict=True) if d.view_facing)
+            drawn = self._drawn[key] = _Drawn(entry.version, msg, keys, facing)
         if drawn.error:
             return drawn.error
         if drawn.T_fixed_marker is None or msg.frame_locked or drawn.fixed_frame != fixed:
@@ -164,7 +202,9 @@ class MarkerDisplay(Display):
             wxyz, xyz = wxyz_xyz_from_matrix(drawn.T_fixed_marker)
             for node_key in drawn.keys:
                 node = self.node(node_key)
-                node.wxyz, node.position = wxyz, xyz
+                node.position = xyz
+                if node_key not in drawn.facing:
+                    node.wxyz = wxyz
         self._show(drawn, True)
         return ""
 

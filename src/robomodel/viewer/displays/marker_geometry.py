@@ -10,9 +10,14 @@ Shapes and sizes follow RViz's marker classes (rviz_default_plugins ``markers/*.
 - LINE_STRIP (4), LINE_LIST (5): ``scale.x`` wide [m]; ``colors`` per point when given.
 - CUBE_LIST (6), SPHERE_LIST (7): one shape of ``scale`` at each point.
 - POINTS (8): squares ``scale.x`` wide.
-- TEXT_VIEW_FACING (9): ``text`` ``scale.z`` high, facing the camera.
+- TEXT_VIEW_FACING (9): ``text`` in ``color``, lines ``scale.z`` high, centred, facing the
+  camera (text_view_facing_marker.cpp): an image of the text (:mod:`.text_image`), turned to
+  the page's camera by the display (``Drawable.view_facing``).
 - MESH_RESOURCE (10): ``mesh_resource`` scaled by ``scale``, in ``color`` unless
-  ``mesh_use_embedded_materials`` and the mesh has its own.
+  ``mesh_use_embedded_materials`` and the mesh has its own material (its colour, or its
+  texture: the part's binary glTF); parts without one take ``color``
+  (mesh_resource_marker.cpp useClonedMaterials). RViz 2 tints embedded materials with a
+  non-zero ``color``; viser cannot tint a glTF, so they are drawn as the file gives them.
 - TRIANGLE_LIST (11): every three ``points`` a triangle.
 
 Each builder returns :class:`Drawable` s: a scene method (``mesh_simple``, ``line_segments``,
@@ -30,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robomodel.viewer._deps import import_trimesh
+from robomodel.viewer.displays.text_image import text_image
 
 __all__ = ["MARKER_TYPES", "Drawable", "MarkerShapeError", "marker_drawables"]
 
@@ -46,10 +52,12 @@ class MarkerShapeError(ValueError):
 
 @dataclass(frozen=True, slots=True)
 class Drawable:
-    """``scene.add_<kind>(name, **kwargs)`` in the marker's frame."""
+    """``scene.add_<kind>(name, **kwargs)`` in the marker's frame (``view_facing``: turned
+    to the camera instead of the marker's orientation)."""
 
     kind: str
     kwargs: dict[str, Any]
+    view_facing: bool = False
 
 
 Mesh = tuple[NDArray[np.float32], NDArray[np.uint32]]
@@ -215,7 +223,10 @@ def _points_marker(msg: Any, _load: Any) -> list[Drawable]:
 
 
 def _text(msg: Any, _load: Any) -> list[Drawable]:
-    return [Drawable("label", {"text": str(msg.text), "font_size_mode": "scene", "font_scene_height": max(float(msg.scale.z), 1e-3), "anchor": "center-center"})]  # fmt: skip
+    rgb, alpha = _rgb_alpha(msg.color)
+    image = text_image(str(msg.text), rgb, alpha, max(float(msg.scale.z), 1e-3))
+    kwargs = {"image": image.rgba, "render_width": image.width_m, "render_height": image.height_m, "format": "png", "cast_shadow": False, "receive_shadow": False}  # fmt: skip
+    return [Drawable("image", kwargs, view_facing=True)]
 
 
 def _triangles(msg: Any, _load: Any) -> list[Drawable]:
@@ -237,9 +248,13 @@ def _mesh_resource(msg: Any, load: Any) -> list[Drawable]:
     scale = np.array([msg.scale.x, msg.scale.y, msg.scale.z], np.float32)
     out = []
     for part in load(str(msg.mesh_resource)):
-        color = msg.color
-        if msg.mesh_use_embedded_materials and part.rgba is not None:
-            color = _Rgba(*part.rgba)
+        embedded = bool(msg.mesh_use_embedded_materials)
+        if embedded and part.glb is not None:  # its texture, as the file gives it
+            kwargs = {"glb_data": part.glb, "scale": tuple(float(v) for v in scale), "cast_shadow": False, "receive_shadow": False}  # fmt: skip
+            out.append(Drawable("glb", kwargs))
+            continue
+        # RViz: a part without a material of its own gets the marker's colour
+        color = _Rgba(*part.rgba) if embedded and part.rgba is not None else msg.color
         out.append(_solid((np.asarray(part.vertices) * scale, np.asarray(part.faces)), color))
     return out
 

@@ -11,8 +11,6 @@ from __future__ import annotations
 import collections
 from typing import Any
 
-import numpy as np
-
 from robomodel.viewer.displays._placed import place
 from robomodel.viewer.displays._pose_shapes import (
     ARROW_OPTIONS,
@@ -114,19 +112,21 @@ class OdometryDisplay(Display):
         pose = msg.pose.pose
         xyz = (pose.position.x, pose.position.y, pose.position.z)
         o = pose.orientation
-        T = placement.T_fixed_frame @ poses_from_msgs([pose])[0]
-        if not self.trail.offer(xyz, (o.x, o.y, o.z, o.w), T):
+        T_frame_pose = poses_from_msgs([pose])[0]
+        if not self.trail.offer(xyz, (o.x, o.y, o.z, o.w), placement.T_fixed_frame @ T_frame_pose):
             return False
         self._seq += 1
         key = f"covariance{self._seq}"
-        draw_covariance(self, key, placement.T_fixed_frame, np.array(xyz), msg.pose.covariance, self.values)  # fmt: skip
+        draw_covariance(self, key, placement.T_fixed_frame, T_frame_pose, msg.pose.covariance, self.values)  # fmt: skip
         self._covariances.append(key)
         self._trim_covariances()
         return True
 
     def _trim_covariances(self) -> None:
         while len(self._covariances) > len(self.trail.poses):
-            self.remove_node(self._covariances.popleft())
+            key = self._covariances.popleft()
+            for node_key in (key, *(f"{key}_orientation{i}" for i in range(3))):
+                self.remove_node(node_key)
 
     def _draw_arrows(self) -> None:
         draw_poses(self, "arrows", self.trail.matrices(), self._shape_values())

@@ -3,7 +3,10 @@
 A cloud is placed once, through TF at its stamp, when it is first drawn, and stays there (as
 RViz's CloudInfo); "Decay Time" keeps the clouds received in the last that many seconds (0:
 only the newest). Each kept cloud is one scene node posed at its frame, so the points are
-sent as they are in the message and never transformed on the CPU. Sizes are in metres: a
+sent as they are in the message and never transformed on the CPU; a new cloud takes the node
+of the one it replaces (its points, colours and pose updated: cheaper than a new node, in
+this process and in the browser). Positions go as float16 where that moves no point by more
+than half its size (:func:`wire_precision`), FlatColor as one colour. Sizes are in metres: a
 browser point's size is a world size, so the "Points" style, whose size RViz gives in pixels,
 is drawn with "Size (m)" too. "Alpha" and "Selectable" are kept for the config only.
 """
@@ -12,7 +15,7 @@ from __future__ import annotations
 
 import collections
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,15 +34,17 @@ from robomodel.viewer.displays.cloud import (
     COLOR_TRANSFORMERS,
     CloudColorOptions,
     CloudError,
+    DecodedCloud,
     color_transformers_for,
     decode_cloud,
     default_color_transformer,
 )
 
-__all__ = ["PointCloud2Display"]
+__all__ = ["PointCloud2Display", "wire_precision"]
 
 _STYLES = ("Points", "Squares", "Flat Squares", "Spheres", "Boxes", "Tiles")
 _SHAPES = {"Points": "circle", "Spheres": "circle"}  # the others are squares
+_FRAME_NS = 1_000_000_000 // 30  # RViz's default frame rate
 
 
 @dataclass
@@ -96,9 +101,19 @@ class PointCloud2Display(Display):
         self._clouds: collections.deque[_Cloud] = collections.deque()
         self._seq = 0
         self._message_error = ""  # RViz's "Message" status: the last cloud that failed
+        self._last_lookup: tuple[str, FrameLookup] | None = None  # (fixed frame, lookup)
+        self._drawn_ns = 0  # when a cloud was last put in the scene [ns, bus time]
 
     def on_message(self, msg: Any) -> None:
-        self._clouds.append(_Cloud(msg, self.context.now_ns()))
+        now = self.context.now_ns()
+        self._clouds.append(_Cloud(msg, now))
+        # RViz draws a new cloud at its next render (30 fps); the page's displays are drawn
+        # at 10 Hz, so a 10 Hz cloud would often wait behind the next one and be dropped.
+        # Drawn at once instead (with the last draw's TF lookup, for the same fixed frame),
+        # at most at RViz's frame rate.
+        last = self._last_lookup
+        if last is not None and last[0] == self.context.fixed_frame() and now - self._drawn_ns >= _FRAME_NS:  # fmt: skip
+            self.draw(last[1])
 
     def on_option_changed(self, name: str) -> None:
         if name == "Color Transformer":
@@ -147,12 +162,15 @@ class PointCloud2Display(Display):
             self._auto_color = False
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
-        self._expire()
+        self._last_lookup = (self.context.fixed_frame(), lookup)
+        spare = self._expire()
         problems: list[str] = []
         for cloud in [c for c in self._clouds if not c.key]:
-            problem = self._place(cloud, lookup)
+            problem = self._place(cloud, lookup, spare)
             if problem:
                 problems.append(problem)
+        for key in spare:
+            self.remove_node(key)
         # a cloud that could not be placed is dropped once a newer one is shown (RViz)
         newest = self._clouds[-1] if self._clouds else None
         self._clouds = collections.deque(
@@ -165,16 +183,19 @@ class PointCloud2Display(Display):
         ok = f"Showing [{total}] points from [{len(shown)}] messages"
         return combine(self.topic_status(), problems, ok)
 
-    def _expire(self) -> None:
-        """Drop clouds older than "Decay Time", keeping the newest (cloudInfoIsDecayed)."""
+    def _expire(self) -> list[str]:
+        """Drop clouds older than "Decay Time", keeping the newest (cloudInfoIsDecayed); the
+        keys of their scene nodes, for the new clouds to take (removed if none does)."""
         decay_ns = float(self.values["Decay Time"]) * 1e9
         now = self.context.now_ns()
+        spare = []
         while len(self._clouds) > 1 and now - self._clouds[0].received_ns > decay_ns:
             old = self._clouds.popleft()
             if old.key:
-                self.remove_node(old.key)
+                spare.append(old.key)
+        return spare
 
-    def _place(self, cloud: _Cloud, lookup: FrameLookup) -> str:
+    def _place(self, cloud: _Cloud, lookup: FrameLookup, spare: list[str]) -> str:
         placement = place(lookup, cloud.msg.header)
         if placement.T_fixed_frame is None:
             return placement.reason
@@ -187,21 +208,34 @@ class PointCloud2Display(Display):
             return ""
         self._message_error = ""
         self._remember_bounds(decoded.transformer, decoded.bounds)
-        self._seq += 1
-        cloud.key, cloud.points = f"cloud{self._seq}", int(decoded.points_m.shape[0])
-        self.add_node(
-            cloud.key,
-            "point_cloud",
-            points=_at_least_one(decoded.points_m),
-            colors=_at_least_one(decoded.colors),
-            point_size=float(self.values["Size (m)"]),
-            point_shape=_SHAPES.get(str(self.values["Style"]), "square"),
-            point_shading="flat",
-            precision="float32",
-            visible=cloud.points > 0,
-            **pose_kwargs(placement.T_fixed_frame),
-        )
+        self._show(cloud, decoded, placement.T_fixed_frame, spare)
         return ""
+
+    def _show(self, cloud: _Cloud, decoded: DecodedCloud, T_fixed_cloud: NDArray[np.float64], spare: list[str]) -> None:  # fmt: skip
+        """Put a decoded cloud in the scene: in a spare node (a dropped cloud's) or a new one."""
+        self._seq += 1
+        self._drawn_ns = self.context.now_ns()
+        cloud.points = int(decoded.points_m.shape[0])
+        size_m = float(self.values["Size (m)"])
+        points = _at_least_one(decoded.points_m)
+        node = {
+            "precision": wire_precision(points, size_m),  # before points: their dtype
+            "points": points,
+            "colors": _wire_colors(decoded),
+            "point_size": size_m,
+            "point_shape": _SHAPES.get(str(self.values["Style"]), "square"),
+            "point_shading": "flat",
+            "visible": cloud.points > 0,
+            **pose_kwargs(T_fixed_cloud),
+        }
+        handle = self.node(spare[-1]) if spare else None
+        if handle is not None:  # the node of a cloud just dropped: its props updated
+            cloud.key = spare.pop()
+            for name, value in node.items():
+                setattr(handle, name, value)
+        else:
+            cloud.key = f"cloud{self._seq}"
+            self.add_node(cloud.key, "point_cloud", **node)
 
     def _remember_bounds(self, transformer: str, bounds: tuple[float, float] | None) -> None:
         """RViz writes the computed bounds into Min/Max (Intensity or Value) as it goes."""
@@ -211,6 +245,24 @@ class PointCloud2Display(Display):
             self.values["Min Intensity"], self.values["Max Intensity"] = bounds
         elif transformer == "AxisColor" and self.values["Autocompute Value Bounds"]:
             self.values["Min Value"], self.values["Max Value"] = bounds
+
+
+def wire_precision(points_m: NDArray[np.float32], size_m: float) -> Literal["float16", "float32"]:
+    """float16 (half the bytes to the page) when rounding to it moves no point by more than
+    half a point's size: a float16 is within ``|x| / 2048`` of ``x`` (10-bit fraction), so
+    when every coordinate is within ``1024 * size_m``; else float32."""
+    if points_m.size == 0:
+        return "float16"
+    largest = max(-float(points_m.min()), float(points_m.max()))
+    return "float16" if largest <= 1024.0 * size_m else "float32"
+
+
+def _wire_colors(decoded: DecodedCloud) -> NDArray[np.uint8] | tuple[int, int, int]:
+    """FlatColor as one colour (3 bytes to the page instead of 3 per point), else per point."""
+    if decoded.transformer == "FlatColor" and decoded.colors.shape[0] > 0:
+        r, g, b = (int(c) for c in decoded.colors[0])
+        return (r, g, b)
+    return _at_least_one(decoded.colors)
 
 
 def _at_least_one(array: NDArray[Any]) -> NDArray[Any]:

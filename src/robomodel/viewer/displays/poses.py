@@ -97,17 +97,16 @@ class PoseDisplay(_LatestPoseDisplay):
 @register_display
 class PoseWithCovarianceDisplay(_LatestPoseDisplay):
     """RViz's PoseWithCovariance display (geometry_msgs/PoseWithCovarianceStamped): the
-    pose and its position covariance's ellipsoid (the orientation part is not drawn)."""
+    pose, its position covariance's ellipsoid and its orientation covariance's discs."""
 
     class_name = "PoseWithCovariance"
     message_types = ("geometry_msgs/msg/PoseWithCovarianceStamped",)
     options = (_TOPIC, _QUEUE, *ARROW_OPTIONS, *COVARIANCE_OPTIONS)
 
     def draw_message(self, msg: Any, T_fixed_frame: np.ndarray) -> None:
-        pose = msg.pose.pose
-        draw_poses(self, "pose", T_fixed_frame @ poses_from_msgs([pose]), self.values)
-        position = np.array([pose.position.x, pose.position.y, pose.position.z])
-        draw_covariance(self, "covariance", T_fixed_frame, position, msg.pose.covariance, self.values)  # fmt: skip
+        T_frame_pose = poses_from_msgs([msg.pose.pose])[0]
+        draw_poses(self, "pose", (T_fixed_frame @ T_frame_pose)[None], self.values)
+        draw_covariance(self, "covariance", T_fixed_frame, T_frame_pose, msg.pose.covariance, self.values)  # fmt: skip
 
 
 @register_display

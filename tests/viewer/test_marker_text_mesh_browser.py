@@ -1,0 +1,220 @@
+"""Text and mesh-resource markers in headless Chromium, fed from another process
+(tests/viewer/marker_publisher.py) over the Zenoh bus.
+
+RViz draws a TEXT_VIEW_FACING marker in the marker's colour and alpha, ``scale.z`` high,
+turned to the camera; a MESH_RESOURCE marker with ``mesh_use_embedded_materials`` in the
+mesh's own texture, and without it in the marker's colour. The screenshot is checked at the
+pixels where the page's camera sees each one.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.conftest import unique_domain
+from tests.timing import scaled
+from tests.viewer import marker_publisher as published
+from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.test_sensor_displays_browser import EMPTY_ROBOT, _look_at_origin, _project
+from tests.viewer.test_tools_inprocess import on_loop
+
+pytestmark = pytest.mark.browser
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture
+def marker_viewer(tmp_path: Path) -> Iterator[Viewer]:
+    domain = unique_domain()
+    urdf = tmp_path / "frame_only.urdf"
+    urdf.write_text(EMPTY_ROBOT)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
+    publisher = subprocess.Popen(
+        [sys.executable, "-m", "tests.viewer.marker_publisher", domain, str(tmp_path)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env,
+    )  # fmt: skip
+    assert publisher.stdout is not None
+    assert "publishing" in publisher.stdout.readline()
+    viewer = Viewer(
+        ViewerOptions(
+            sources=(RobotSource(str(urdf)),), port=0, bus="zenoh", domain_id=int(domain),
+            fixed_frame="map", tools=False,
+        )
+    )  # fmt: skip
+    viewer.start()
+    try:
+        yield viewer
+    finally:
+        viewer.close()
+        publisher.send_signal(signal.SIGINT)
+        try:
+            publisher.wait(scaled(10))
+        except subprocess.TimeoutExpired:
+            publisher.kill()
+            publisher.wait()
+
+
+def _statuses(viewer: Viewer) -> dict[str, str]:
+    return on_loop(viewer, lambda: {d.name: d.status.text for d in viewer.displays.displays})
+
+
+def _box(uv: np.ndarray, half_px: float) -> tuple[slice, slice]:
+    u, v, h = round(float(uv[0])), round(float(uv[1])), round(half_px)
+    return slice(v - h, v + h + 1), slice(u - h, u + h + 1)
+
+
+def _pure(patch: np.ndarray, rgb: tuple[int, int, int], tolerance: int = 30) -> np.ndarray:
+    return np.abs(patch.astype(int) - np.array(rgb)).max(axis=2) < tolerance
+
+
+def _text_ink(shot: np.ndarray, camera: Any, canvas: dict[str, float], xyz: tuple[float, float, float]) -> tuple[int, int, float]:  # fmt: skip
+    """The green text's ink around ``xyz``: its height and width [px], and the projected
+    height of ``TEXT_HEIGHT_M`` there [px]."""
+    h = published.TEXT_HEIGHT_M
+    top, bottom = _project(camera, canvas, np.asarray(xyz) + np.array([[0, 0, h / 2], [0, 0, -h / 2]]))  # fmt: skip
+    line_px = float(np.linalg.norm(top - bottom))
+    centre = (top + bottom) / 2
+    rows, cols = _box(centre, 2 * line_px)
+    ink = _pure(shot[rows, cols], (0, 255, 0))
+    if not ink.any():
+        return 0, 0, line_px
+    r, c = np.flatnonzero(ink.any(axis=1)), np.flatnonzero(ink.any(axis=0))
+    return int(r[-1] - r[0] + 1), int(c[-1] - c[0] + 1), line_px
+
+
+def test_text_markers_are_drawn_in_their_colour_alpha_and_height_facing_the_camera(
+    marker_viewer: Viewer, page: Any
+) -> None:
+    viewer = marker_viewer
+    open_viewer(page, viewer.url)
+    on_loop(viewer, lambda: viewer.displays_panel.add("Marker", name="Text", values={"Topic": "/text"}))  # fmt: skip
+    wait_for(lambda: "messages received" in _statuses(viewer).get("Text", ""), what="text status")
+
+    def ink_seen(camera: Any) -> tuple[int, int, float]:
+        canvas = page.locator("canvas").first.bounding_box()
+        found: list[tuple[int, int, float]] = []
+
+        def seen() -> bool:
+            found[:] = [_text_ink(screenshot(page), camera, canvas, published.GREEN_TEXT_XYZ)]
+            return found[0][0] > 0.4 * found[0][2]
+
+        wait_for(seen, what=f"green text at {published.GREEN_TEXT_XYZ} ({found})")
+        return found[0]
+
+    camera = _look_at_origin(viewer, (0.0, -6.0, 1.0))
+    height_px, width_px, line_px = ink_seen(camera)
+    shot = screenshot(page)
+    save_shot(page, "marker_text_front")
+    # An "H" is the font's cap height: below the line height scale.z, above half of it.
+    assert 0.5 * line_px < height_px < line_px, (height_px, line_px)
+    assert width_px > 0.5 * line_px  # "HH" read face-on
+    # Half-transparent red over the page's light background: red, lighter than pure red.
+    canvas = page.locator("canvas").first.bounding_box()
+    (red_uv,) = _project(camera, canvas, np.array([published.RED_TEXT_XYZ]))
+
+    def half_red() -> bool:
+        patch = screenshot(page)[_box(red_uv, line_px)].astype(int)
+        blended = (patch[..., 0] > 200) & (patch[..., 1] < 190) & (patch[..., 1] > 60)
+        return bool(blended.sum() > 10 and not _pure(patch, (255, 0, 0)).any())
+
+    wait_for(half_red, what=f"half-transparent red text at {red_uv}")
+    assert not (
+        shot[_box(red_uv, 3 * line_px)].max(axis=2) < 60
+    ).any()  # no black text (viser's labels)
+
+    # From the side the text still faces the camera: as wide as before, for its distance
+    # (text fixed in one plane would be seen edge-on).
+    camera = _look_at_origin(viewer, (-6.0, 0.0, 1.0))
+    side_height_px, side_width_px, side_line_px = ink_seen(camera)
+    save_shot(page, "marker_text_side")
+    assert side_width_px / side_line_px > 0.8 * width_px / line_px, (side_width_px, width_px)
+    assert side_height_px < side_line_px
+
+
+def test_a_mesh_resource_marker_shows_its_texture_or_the_marker_colour(
+    marker_viewer: Viewer, page: Any
+) -> None:
+    viewer = marker_viewer
+    open_viewer(page, viewer.url)
+    on_loop(viewer, lambda: viewer.displays_panel.add("MarkerArray", name="Meshes", values={"Topic": "/meshes"}))  # fmt: skip
+    camera = _look_at_origin(viewer, (0.0, -6.0, 0.0))
+    canvas = page.locator("canvas").first.bounding_box()
+    half = 0.2 * published.MESH_SCALE  # the cube's half width [m]
+    # the textured cube's face towards the camera: a 2 x 2 checker, red at top left
+    x0, _, z0 = published.TEXTURED_XYZ
+    quadrants = np.array([(x0 + sx * half / 2, -half, z0 + sz * half / 2)
+                          for sx, sz in ((-1, 1), (1, 1), (-1, -1), (1, -1))])  # fmt: skip
+    yellow = np.array([published.YELLOW_XYZ]) + np.array([0.0, -half, 0.0])
+
+    def hue(patch: np.ndarray) -> str:
+        r, g, b = (float(np.median(patch[..., k])) for k in range(3))
+        if r > 80 and g > 80 and b < 0.5 * min(r, g):
+            return "yellow"
+        if r > 60 and r > 2 * max(g, b):
+            return "red"
+        if b > 60 and b > 2 * max(r, g):
+            return "blue"
+        return "other"
+
+    seen: list[list[str]] = []
+
+    def drawn() -> bool:
+        shot = screenshot(page)
+        points = _project(camera, canvas, np.vstack([quadrants, yellow]))
+        seen[:] = [[hue(shot[_box(uv, 4)]) for uv in points]]
+        return seen[0] == ["red", "blue", "blue", "red", "yellow"]
+
+    wait_for(drawn, what=f"the checker and the yellow cube (seen {seen})")
+    save_shot(page, "marker_mesh_texture")
+    assert _statuses(viewer)["Meshes"].endswith("messages received")
+
+
+def test_pose_with_covariance_draws_the_position_ellipsoid_and_orientation_discs(
+    marker_viewer: Viewer, page: Any
+) -> None:
+    """RGB colour style: the roll disc (1.6 m along x) red, pitch (y) green, yaw (z) blue;
+    the position ellipsoid (1 m along x) purple; Orientation off hides the discs."""
+    viewer = marker_viewer
+    open_viewer(page, viewer.url)
+    values = {"Topic": "/pose_cov", "Covariance/Position/Alpha": 1.0,
+              "Covariance/Orientation/Color Style": "RGB", "Covariance/Orientation/Alpha": 1.0,
+              "Covariance/Orientation/Offset": 1.6}  # fmt: skip
+    on_loop(viewer, lambda: viewer.displays_panel.add("PoseWithCovariance", name="Cov", values=values))  # fmt: skip
+    wait_for(lambda: "messages received" in _statuses(viewer).get("Cov", ""), what="status")
+    camera = _look_at_origin(viewer, (6.0, -6.0, 4.0))
+    canvas = page.locator("canvas").first.bounding_box()
+    where = _project(camera, canvas, np.array([(1.6, 0, 0), (0, 1.6, 0), (0, 0, 1.6), (-0.6, 0, 0)]))  # fmt: skip
+
+    def hue(shot: np.ndarray, uv: np.ndarray) -> str:
+        r, g, b = (float(np.median(shot[_box(uv, 2)][..., k])) for k in range(3))
+        if r > 100 and b > 100 and g < 0.6 * min(r, b):
+            return "purple"
+        for name, (c, others) in {"red": (r, (g, b)), "green": (g, (r, b)), "blue": (b, (r, g))}.items():  # fmt: skip
+            if c > 60 and c > 1.8 * max(others):
+                return name
+        return "other"
+
+    seen: list[list[str]] = []
+
+    def shown(expected: list[str]) -> bool:
+        shot = screenshot(page)
+        seen[:] = [[hue(shot, uv) for uv in where]]
+        return seen[0] == expected
+
+    try:
+        wait_for(lambda: shown(["red", "green", "blue", "purple"]), what="discs and ellipsoid")
+    finally:
+        save_shot(page, "pose_covariance")
+        print("seen", seen, "at", where.round().tolist())
+    on_loop(viewer, lambda: viewer.displays.displays[-1].set_option("Covariance/Orientation/Value", False))  # fmt: skip
+    wait_for(lambda: shown(["other", "other", "other", "purple"]), what=f"discs hidden ({seen})")
