@@ -4,7 +4,8 @@ A fenced block is runnable when the line before it is an HTML comment (invisible
 
 - ``<!-- run -->``: each line is a command, run in order in the page's working folder (a fresh
   folder holding a link to ``examples/``), and must exit 0. ``export NAME=VALUE`` sets the
-  variable for the page's later commands (``$PWD`` is the working folder).
+  variable for the page's later commands (``$PWD`` is the working folder); ``unset NAME``
+  removes it.
 - ``<!-- run: background until "TEXT" -->``: the block's one command keeps running (a second
   terminal in the text); it must print TEXT, and it is ended with Ctrl-C when the page is done.
 - ``<!-- run: exit N -->``: as ``run``, but each command must exit with N (an error shown).
@@ -12,10 +13,19 @@ A fenced block is runnable when the line before it is an HTML comment (invisible
   venv's Python; it must exit 0, and its output is what a following ``output`` block shows.
 - ``<!-- file: NAME -->``: the block is a file the reader saves as NAME (in the working folder).
 - ``<!-- output -->`` before a block: what the previous ``run`` block's last command printed
-  (standard output; for ``run: exit N``, then standard error).
+  (standard output; for ``run: exit N``, then standard error), or, after a ``background`` block,
+  what that command printed up to and including its TEXT line.
   Lines must match in order; a line ``...`` stands for any lines, and ``...`` inside a line for
   any text.
-Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own, any free
+- ``<!-- output: figures vary -->``: as ``output``, but each number shown stands for any number
+  (a count, a size, a time; a month's name for any month): the reader sees real figures, the
+  test checks everything else.
+- ``<!-- ctrl-c -->`` on a line of its own: the reader ends what runs in the background (the
+  text says so); every background command is ended with Ctrl-C and must end cleanly.
+- ``<!-- not run: REASON -->``: a shell block no test can run as typed here (a second machine,
+  ``make demo``, a ROS 2 install); REASON says why, or which test covers it instead.
+Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own (shown as
+0, the reader's default, in what it prints), any free
 viewer port, no browser tab (``BROWSER=true``), and the ROS 1 master port of the page (when a page sets ``ROS_MASTER_URI`` to
 port 11311, a free port takes its place in every command of that page).
 """
@@ -36,7 +46,12 @@ ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent
 
 _FENCE = re.compile(r"^```(\w*)[^\n]*\n(.*?)^```\s*$", re.M | re.S)
-_MARK = re.compile(r"<!--\s*(run(?::[^>]*)?|output|file:[^>]*)\s*-->\s*\n$")
+_MARK = re.compile(
+    r"<!--\s*(run(?::[^>]*)?|output(?::[^>]*)?|file:[^>]*|not run:[^>]*)\s*-->\s*\n$"
+)
+_CTRL_C = re.compile(r"^<!--\s*ctrl-c\s*-->\s*$", re.M)
+_NUMBER = re.compile(r"(\d+(?:\.\d+)?|Jan|Feb|Mar|Apr|May|Jun|Jul|Aug|Sep|Oct|Nov|Dec)")
+_FIGURE = r"(?:\d+(?:\.\d+)?|Jan|Feb|Mar|Apr|May|Jun|Jul|Aug|Sep|Oct|Nov|Dec)"
 
 
 @dataclass(frozen=True)
@@ -60,7 +75,9 @@ def blocks(page: Path) -> list[Block]:
             continue
         line = before.count("\n") + 1
         found.append(Block(page, line, mark.group(1).strip(), match.group(2)))
-    return found
+    for match in _CTRL_C.finditer(text):  # the reader stops what runs, between two blocks
+        found.append(Block(page, text[: match.start()].count("\n") + 1, "ctrl-c", ""))
+    return sorted(found, key=lambda block: block.line)
 
 
 def _without_comment(line: str) -> str:
@@ -92,14 +109,26 @@ def commands(text: str) -> list[str]:
     return out
 
 
-def output_matches(expected: str, actual: str) -> bool:
-    """``expected`` with ``...`` lines (any lines) and ``...`` in lines (any text)."""
+def _literal(text: str, *, any_numbers: bool) -> str:
+    """A pattern for ``text`` as shown; with ``any_numbers``, each number matches any number."""
+    if not any_numbers:
+        return re.escape(text)
+    pieces = _NUMBER.split(text)  # literal, number, literal, ...
+    return "".join(_FIGURE if index % 2 else re.escape(piece) for index, piece in enumerate(pieces))
+
+
+def output_matches(expected: str, actual: str, *, any_numbers: bool = False) -> bool:
+    """``expected`` with ``...`` lines (any lines) and ``...`` in lines (any text); with
+    ``any_numbers``, every number shown matches any number."""
     parts: list[str] = []
     for line in expected.rstrip("\n").splitlines():
         if line.strip() == "...":
             parts.append(r"(?:[^\n]*\n)*?")
         else:
-            parts.append(".*?".join(re.escape(p) for p in line.rstrip().split("...")) + r"[ \t]*\n")
+            pieces = line.rstrip().split("...")
+            parts.append(
+                ".*?".join(_literal(p, any_numbers=any_numbers) for p in pieces) + r"[ \t]*\n"
+            )
     pattern = "".join(parts)
     text = "\n".join(line.rstrip() for line in actual.rstrip("\n").splitlines()) + "\n"
     return re.fullmatch(pattern, text, flags=re.S) is not None
@@ -136,6 +165,12 @@ class PageRun:
             "-p 11311", f"-p {self.master_port}"
         )
 
+    def _as_typed(self, output: str) -> str:
+        """Output as the reader sees it: the page's master port is 11311 again, and its Zenoh
+        domain the default, 0."""
+        output = output.replace(f":{self.master_port}", ":11311")
+        return output.replace(f"domain {self.domain} (", "domain 0 (")
+
     def run(self, command: str, timeout_s: float, *, exit_code: int = 0) -> None:
         command = self._typed(command)
         if command == "source .venv/bin/activate":
@@ -146,6 +181,10 @@ class PageRun:
             value = export.group(2).replace("$PWD", str(self.workdir)).strip("'\"")
             self.env[export.group(1)] = value
             return
+        unset = re.fullmatch(r"unset (\w+)", command)
+        if unset:
+            self.env.pop(unset.group(1), None)
+            return
         done = subprocess.run(
             ["bash", "-c", command],
             cwd=self.workdir,
@@ -155,7 +194,7 @@ class PageRun:
             timeout=timeout_s,
         )
         # what a shown output holds: standard output, and standard error for an error shown
-        self.last_output = done.stdout + (done.stderr if exit_code else "")
+        self.last_output = self._as_typed(done.stdout + (done.stderr if exit_code else ""))
         if done.returncode != exit_code:
             raise AssertionError(
                 f"`{command}` exited {done.returncode}\n{done.stdout}\n{done.stderr}"
@@ -187,6 +226,7 @@ class PageRun:
             if line:
                 seen.append(line)
                 if until in line:
+                    self.last_output = self._as_typed("".join(seen))  # an ``output`` block
                     return
             elif proc.poll() is not None:
                 break
