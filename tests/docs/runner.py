@@ -24,8 +24,8 @@ A fenced block is runnable when the line before it is an HTML comment (invisible
   text says so); every background command is ended with Ctrl-C and must end cleanly.
 - ``<!-- not run: REASON -->``: a shell block no test can run as typed here (a second machine,
   ``make demo``, a ROS 2 install); REASON says why, or which test covers it instead.
-Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own (shown as
-0, the reader's default, in what it prints), any free
+Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own (a page's
+``export ROS_DOMAIN_ID=N`` keeps it, and what is printed shows N, or 0, the default), any free
 viewer port, no browser tab (``BROWSER=true``), and the ROS 1 master port of the page (when a page sets ``ROS_MASTER_URI`` to
 port 11311, a free port takes its place in every command of that page).
 """
@@ -70,7 +70,7 @@ def blocks(page: Path) -> list[Block]:
     found: list[Block] = []
     for match in _FENCE.finditer(text):
         before = text[: match.start()]
-        mark = _MARK.search(before[-200:]) if before.endswith("\n") else None
+        mark = _MARK.search(before[-400:]) if before.endswith("\n") else None
         if mark is None:
             continue
         line = before.count("\n") + 1
@@ -149,6 +149,7 @@ class PageRun:
     env: dict[str, str] = field(default_factory=dict)
     background: list[tuple[str, subprocess.Popen[str], list[str]]] = field(default_factory=list)
     master_port: int = field(default_factory=free_port)
+    shown_domain: str = "0"  # the domain the reader has: the default, or what the page exports
     last_output: str = ""
 
     def __post_init__(self) -> None:
@@ -167,9 +168,9 @@ class PageRun:
 
     def _as_typed(self, output: str) -> str:
         """Output as the reader sees it: the page's master port is 11311 again, and its Zenoh
-        domain the default, 0."""
+        domain the reader's."""
         output = output.replace(f":{self.master_port}", ":11311")
-        return output.replace(f"domain {self.domain} (", "domain 0 (")
+        return output.replace(f"domain {self.domain} (", f"domain {self.shown_domain} (")
 
     def run(self, command: str, timeout_s: float, *, exit_code: int = 0) -> None:
         command = self._typed(command)
@@ -179,6 +180,9 @@ class PageRun:
         export = re.fullmatch(r"export (\w+)=(.*)", command)
         if export:
             value = export.group(2).replace("$PWD", str(self.workdir)).strip("'\"")
+            if export.group(1) == "ROS_DOMAIN_ID":  # the tests' own domain, kept apart
+                self.shown_domain = value
+                return
             self.env[export.group(1)] = value
             return
         unset = re.fullmatch(r"unset (\w+)", command)
