@@ -18,15 +18,20 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import ROOT, unique_domain
+from tests.docs.runner import commands
 
 _MARKER = "<!-- quickstart: tests/test_readme_quickstart.py runs each line -->"
 _BIN = Path(sys.executable).parent  # the venv the README tells the user to activate
 
 
+def _quickstart_blocks() -> list[str]:
+    """The README's blocks marked as quickstart (the five commands, one per lesson)."""
+    parts = (ROOT / "README.md").read_text().split(_MARKER)[1:]
+    return [part.split("```bash\n", 1)[1].split("```", 1)[0] for part in parts]
+
+
 def _quickstart_lines() -> list[str]:
-    text = (ROOT / "README.md").read_text()
-    block = text.split(_MARKER, 1)[1].split("```bash\n", 1)[1].split("```", 1)[0]
-    return [line.split("  #", 1)[0].strip() for line in block.splitlines() if line.strip()]
+    return [line for block in _quickstart_blocks() for line in commands(block)]
 
 
 def _robomodel_commands() -> list[str]:
@@ -34,13 +39,15 @@ def _robomodel_commands() -> list[str]:
 
 
 def test_quickstart_sets_up_the_command_and_the_packages() -> None:
-    lines = _quickstart_lines()
+    quickstart, per_lesson = _quickstart_blocks()
+    lines = commands(quickstart)
+    assert len(lines) == 5  # issue 32: a five-command quickstart
     assert lines[0] == "source .venv/bin/activate"
     assert lines[1] == "export ROS_PACKAGE_PATH=$PWD/examples"
+    assert lines[-1] == "robomodel topic list"
     assert (_BIN / "robomodel").exists(), "make demo/test installs the robomodel command"
-    # one command per seed lesson, 000 to 004
-    text = (ROOT / "README.md").read_text().split(_MARKER, 1)[1].split("```", 2)[1]
-    assert set(re.findall(r"# seed (\d{3})", text)) == {"000", "001", "002", "003", "004"}
+    # then one command per seed lesson, 000 to 004
+    assert set(re.findall(r"# seed (\d{3})", per_lesson)) == {"000", "001", "002", "003", "004"}
 
 
 @pytest.fixture

@@ -4,12 +4,15 @@
   from robomodel's own parsers, so the reference cannot drift from the command.
 - ``build/viewer-screenshots/*.png`` (saved by the browser tests) become ``screenshots/*.png``
   in the site; tools/docs_screenshots.py takes the missing ones before the build.
+- A block marked ``<!-- output ... -->`` (what a command printed, compared by tests/docs) gets
+  the class ``output``, so that the reader tells it from a command (docs/stylesheets/extra.css).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import re
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +53,13 @@ def on_page_markdown(markdown: str, page: Any, config: Any, files: Files) -> str
     if MARKER in markdown:
         return markdown.replace(MARKER, cli_reference())
     return markdown
+
+
+_OUTPUT = re.compile(r'<!-- output[^>]*-->\s*<div class="highlight">')
+
+
+def on_page_content(html: str, page: Any, config: Any, files: Files) -> str:
+    return _OUTPUT.sub('<div class="highlight output">', html)
 
 
 def on_files(files: Files, config: Any) -> Files:

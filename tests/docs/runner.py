@@ -4,7 +4,8 @@ A fenced block is runnable when the line before it is an HTML comment (invisible
 
 - ``<!-- run -->``: each line is a command, run in order in the page's working folder (a fresh
   folder holding a link to ``examples/``), and must exit 0. ``export NAME=VALUE`` sets the
-  variable for the page's later commands (``$PWD`` is the working folder).
+  variable for the page's later commands (``$PWD`` is the working folder); ``unset NAME``
+  removes it.
 - ``<!-- run: background until "TEXT" -->``: the block's one command keeps running (a second
   terminal in the text); it must print TEXT, and it is ended with Ctrl-C when the page is done.
 - ``<!-- run: exit N -->``: as ``run``, but each command must exit with N (an error shown).
@@ -12,10 +13,19 @@ A fenced block is runnable when the line before it is an HTML comment (invisible
   venv's Python; it must exit 0, and its output is what a following ``output`` block shows.
 - ``<!-- file: NAME -->``: the block is a file the reader saves as NAME (in the working folder).
 - ``<!-- output -->`` before a block: what the previous ``run`` block's last command printed
-  (standard output; for ``run: exit N``, then standard error).
+  (standard output; for ``run: exit N``, then standard error), or, after a ``background`` block,
+  what that command printed up to and including its TEXT line.
   Lines must match in order; a line ``...`` stands for any lines, and ``...`` inside a line for
   any text.
-Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own, any free
+- ``<!-- output: figures vary -->``: as ``output``, but each number shown stands for any number
+  (a count, a size, a time; a month's name for any month): the reader sees real figures, the
+  test checks everything else.
+- ``<!-- ctrl-c -->`` on a line of its own: the reader ends what runs in the background (the
+  text says so); every background command is ended with Ctrl-C and must end cleanly.
+- ``<!-- not run: REASON -->``: a shell block no test can run as typed here (a second machine,
+  ``make demo``, a ROS 2 install); REASON says why, or which test covers it instead.
+Every command runs with the venv's ``bin/`` first on PATH, a Zenoh domain of its own (a page's
+``export ROS_DOMAIN_ID=N`` keeps it, and what is printed shows N, or 0, the default), any free
 viewer port, no browser tab (``BROWSER=true``), and the ROS 1 master port of the page (when a page sets ``ROS_MASTER_URI`` to
 port 11311, a free port takes its place in every command of that page).
 """
@@ -36,7 +46,12 @@ ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent
 
 _FENCE = re.compile(r"^```(\w*)[^\n]*\n(.*?)^```\s*$", re.M | re.S)
-_MARK = re.compile(r"<!--\s*(run(?::[^>]*)?|output|file:[^>]*)\s*-->\s*\n$")
+_MARK = re.compile(
+    r"<!--\s*(run(?::[^>]*)?|output(?::[^>]*)?|file:[^>]*|not run:[^>]*)\s*-->\s*\n$"
+)
+_CTRL_C = re.compile(r"^<!--\s*ctrl-c\s*-->\s*$", re.M)
+_NUMBER = re.compile(r"(\d+(?:\.\d+)?|Jan|Feb|Mar|Apr|May|Jun|Jul|Aug|Sep|Oct|Nov|Dec)")
+_FIGURE = r"(?:\d+(?:\.\d+)?|Jan|Feb|Mar|Apr|May|Jun|Jul|Aug|Sep|Oct|Nov|Dec)"
 
 
 @dataclass(frozen=True)
@@ -55,12 +70,14 @@ def blocks(page: Path) -> list[Block]:
     found: list[Block] = []
     for match in _FENCE.finditer(text):
         before = text[: match.start()]
-        mark = _MARK.search(before[-200:]) if before.endswith("\n") else None
+        mark = _MARK.search(before[-400:]) if before.endswith("\n") else None
         if mark is None:
             continue
         line = before.count("\n") + 1
         found.append(Block(page, line, mark.group(1).strip(), match.group(2)))
-    return found
+    for match in _CTRL_C.finditer(text):  # the reader stops what runs, between two blocks
+        found.append(Block(page, text[: match.start()].count("\n") + 1, "ctrl-c", ""))
+    return sorted(found, key=lambda block: block.line)
 
 
 def _without_comment(line: str) -> str:
@@ -92,14 +109,26 @@ def commands(text: str) -> list[str]:
     return out
 
 
-def output_matches(expected: str, actual: str) -> bool:
-    """``expected`` with ``...`` lines (any lines) and ``...`` in lines (any text)."""
+def _literal(text: str, *, any_numbers: bool) -> str:
+    """A pattern for ``text`` as shown; with ``any_numbers``, each number matches any number."""
+    if not any_numbers:
+        return re.escape(text)
+    pieces = _NUMBER.split(text)  # literal, number, literal, ...
+    return "".join(_FIGURE if index % 2 else re.escape(piece) for index, piece in enumerate(pieces))
+
+
+def output_matches(expected: str, actual: str, *, any_numbers: bool = False) -> bool:
+    """``expected`` with ``...`` lines (any lines) and ``...`` in lines (any text); with
+    ``any_numbers``, every number shown matches any number."""
     parts: list[str] = []
     for line in expected.rstrip("\n").splitlines():
         if line.strip() == "...":
             parts.append(r"(?:[^\n]*\n)*?")
         else:
-            parts.append(".*?".join(re.escape(p) for p in line.rstrip().split("...")) + r"[ \t]*\n")
+            pieces = line.rstrip().split("...")
+            parts.append(
+                ".*?".join(_literal(p, any_numbers=any_numbers) for p in pieces) + r"[ \t]*\n"
+            )
     pattern = "".join(parts)
     text = "\n".join(line.rstrip() for line in actual.rstrip("\n").splitlines()) + "\n"
     return re.fullmatch(pattern, text, flags=re.S) is not None
@@ -120,6 +149,7 @@ class PageRun:
     env: dict[str, str] = field(default_factory=dict)
     background: list[tuple[str, subprocess.Popen[str], list[str]]] = field(default_factory=list)
     master_port: int = field(default_factory=free_port)
+    shown_domain: str = "0"  # the domain the reader has: the default, or what the page exports
     last_output: str = ""
 
     def __post_init__(self) -> None:
@@ -136,6 +166,12 @@ class PageRun:
             "-p 11311", f"-p {self.master_port}"
         )
 
+    def _as_typed(self, output: str) -> str:
+        """Output as the reader sees it: the page's master port is 11311 again, and its Zenoh
+        domain the reader's."""
+        output = output.replace(f":{self.master_port}", ":11311")
+        return output.replace(f"domain {self.domain} (", f"domain {self.shown_domain} (")
+
     def run(self, command: str, timeout_s: float, *, exit_code: int = 0) -> None:
         command = self._typed(command)
         if command == "source .venv/bin/activate":
@@ -144,7 +180,14 @@ class PageRun:
         export = re.fullmatch(r"export (\w+)=(.*)", command)
         if export:
             value = export.group(2).replace("$PWD", str(self.workdir)).strip("'\"")
+            if export.group(1) == "ROS_DOMAIN_ID":  # the tests' own domain, kept apart
+                self.shown_domain = value
+                return
             self.env[export.group(1)] = value
+            return
+        unset = re.fullmatch(r"unset (\w+)", command)
+        if unset:
+            self.env.pop(unset.group(1), None)
             return
         done = subprocess.run(
             ["bash", "-c", command],
@@ -155,7 +198,7 @@ class PageRun:
             timeout=timeout_s,
         )
         # what a shown output holds: standard output, and standard error for an error shown
-        self.last_output = done.stdout + (done.stderr if exit_code else "")
+        self.last_output = self._as_typed(done.stdout + (done.stderr if exit_code else ""))
         if done.returncode != exit_code:
             raise AssertionError(
                 f"`{command}` exited {done.returncode}\n{done.stdout}\n{done.stderr}"
@@ -187,6 +230,7 @@ class PageRun:
             if line:
                 seen.append(line)
                 if until in line:
+                    self.last_output = self._as_typed("".join(seen))  # an ``output`` block
                     return
             elif proc.poll() is not None:
                 break

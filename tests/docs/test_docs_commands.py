@@ -59,18 +59,50 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
             elif block.marker.startswith("run:"):
                 (command,) = commands(block.text)
                 run.start(command, background_until(block.marker), _TIMEOUT_S)
+            elif block.marker == "ctrl-c":
+                problems += run.end(timeout_s=60)
             elif block.marker.startswith("file:"):
                 target = tmp_path / block.marker.split(":", 1)[1].strip()
                 target.parent.mkdir(parents=True, exist_ok=True)
                 target.write_text(block.text)
-            elif block.marker == "output":
-                assert output_matches(block.text, run.last_output), (
+            elif block.marker.startswith("output"):
+                any_numbers = block.marker == "output: figures vary"
+                assert output_matches(block.text, run.last_output, any_numbers=any_numbers), (
                     f"{where}: the output shown differs from what the command printed:\n"
                     f"{run.last_output}"
                 )
     finally:
         problems += run.end(timeout_s=60)
     assert not problems, "\n".join(problems)
+
+
+# The pages a newcomer follows: each of their shell blocks is run, or says why it is not.
+NEWCOMER_PAGES = [
+    ROOT / "README.md",
+    ROOT / "docs" / "getting-started.md",
+    *sorted((ROOT / "docs" / "tutorials").glob("*.md")),
+    *sorted((ROOT / "docs" / "howto").glob("*.md")),
+]
+_SHELL = ("bash", "sh", "console", "shell")
+
+
+@pytest.mark.parametrize("page", NEWCOMER_PAGES, ids=_name)
+def test_newcomer_page_shell_blocks_are_run(page: Path) -> None:
+    """Every shell block of the getting-started path is run by a test (``<!-- run... -->``, the
+    README's quickstart) or says why not (``<!-- not run: REASON -->``)."""
+    text = page.read_text()
+    marked = {block.line for block in blocks(page)}
+    unmarked = [
+        f"{_name(page)}:{text[: match.start()].count(chr(10)) + 1}"
+        for match in re.finditer(r"^```(\w+)[^\n]*\n", text, flags=re.M)
+        if match.group(1) in _SHELL
+        and text[: match.start()].count("\n") + 1 not in marked
+        and "<!-- quickstart:" not in text[max(0, match.start() - 100) : match.start()]
+    ]
+    assert not unmarked, f"shell blocks neither run nor marked `not run: REASON`: {unmarked}"
+    for block in blocks(page):
+        if block.marker.startswith("not run"):
+            assert block.marker.split(":", 1)[1].strip(), f"{_name(page)}:{block.line}: no reason"
 
 
 def _shell_lines() -> list[tuple[str, str]]:

@@ -97,7 +97,7 @@ def _run_live(args: argparse.Namespace) -> int:
 
     if not args.rate > 0:
         raise RobomodelError(f"Failed to convert rate argument '{args.rate}' to a positive rate")
-    with context_from_args(args) as context:
+    with context_from_args(args, announce=None if args.once else "robomodel tf") as context:
         node = context.create_node("tf2_echo")
         buffer = TransformListener(node).buffer
         deadline = None if args.timeout is None else time.monotonic() + args.timeout

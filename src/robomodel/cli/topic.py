@@ -169,7 +169,9 @@ def run_list(args: argparse.Namespace) -> int:
 
 def run_echo(args: argparse.Namespace) -> int:
     limit = 1 if args.once else args.count
-    with context_from_args(args) as context:
+    # until Ctrl-C: say which graph it listens to (issue 32); a counted echo prints only messages
+    announce = "robomodel topic echo" if limit is None else None
+    with context_from_args(args, announce=announce) as context:
         wait_for_peers(context)
         node = context.create_node("robomodel_topic_echo")
         msg_type = _topic_type(context, node.resolve_topic_name(args.topic), args.type, 5.0)
@@ -211,7 +213,7 @@ def run_pub(args: argparse.Namespace) -> int:
     times = 1 if args.once else args.times
     if not args.rate > 0 or not math.isfinite(args.rate):
         raise RobomodelError(f"--rate must be a positive number of Hz, got {args.rate}")
-    with context_from_args(args) as context:
+    with context_from_args(args, announce=None if times else "robomodel topic pub") as context:
         wait_for_peers(context)
         node = context.create_node("robomodel_topic_pub")
         publisher = node.create_publisher(msg_type, args.topic)
@@ -248,7 +250,7 @@ def _field_repr(value: object) -> str:
 
 
 def run_hz(args: argparse.Namespace) -> int:
-    with context_from_args(args) as context:
+    with context_from_args(args, announce="robomodel topic hz") as context:
         wait_for_peers(context)
         node = context.create_node("robomodel_topic_hz")
         msg_type = _topic_type(context, node.resolve_topic_name(args.topic), None, 10.0)
