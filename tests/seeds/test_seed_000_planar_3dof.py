@@ -331,7 +331,7 @@ def test_view_frames_draws_the_tree(graph: SeedRos1, tmp_path: Path) -> None:
     run = graph.tool(*ROBOMODEL, "run", "tf", "view_frames", cwd=folder)
     assert run.returncode == 0, run.stderr
     lines = run.stdout.splitlines()
-    assert lines[:2] == ["Listening to /tf for 5.000000 seconds", "Done Listening"]
+    assert lines[:2] == ["Listening to /tf for 5.0 seconds", "Done Listening"]
     assert lines[-1] == "frames.pdf generated"
     text = (folder / "frames.gv").read_text()
     for parent, child in (("base_link", "link_1"), ("link_1", "link_2"), ("link_2", "gripper")):

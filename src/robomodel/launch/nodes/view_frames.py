@@ -4,17 +4,20 @@ Seed 000's "Tree of tf: ``roslaunch tf view_frames``" is ``rosrun tf view_frames
 ``robomodel run tf view_frames``. Three scripts, each transcribed for its printed lines and the
 files it writes into the current folder:
 
-- ROS 1 ``tf view_frames`` (ros/geometry, tf/scripts/view_frames): ``Listening to /tf for
-  5.000000 seconds``, ``Done Listening``, ``frames.gv``, then ``dot -V``'s line, ``Detected dot
-  version X`` and ``frames.pdf generated`` (``--node`` polls a node's ``tf_frames`` service,
-  which no robomodel node offers: one line says so).
+- ROS 1 ``tf view_frames`` (Debian's tf-tools 1.13.2, /usr/lib/tf/view_frames): ``Listening
+  to /tf for 5.0 seconds``, ``Done Listening``, ``frames.gv`` in tf's ``allFramesAsDot`` form,
+  then ``dot -V``'s line, ``Detected dot version X`` and ``frames.pdf generated``. Debian's
+  script ends there in a TypeError under Python 3 (it matches a text pattern against dot's
+  bytes) and writes no pdf; robomodel writes it. (``--node`` polls a node's ``tf_frames``
+  service, which no robomodel node offers: one line says so.)
 - ROS 1 ``tf2_tools view_frames.py``: ``frames.gv`` and ``frames.pdf``.
 - ROS 2 ``tf2_tools view_frames`` (ros2/geometry2, tf2_tools/view_frames.py): ``-t/--wait-time``
   (5 s), ``-o/--output`` (``OUT.gv`` and ``OUT.pdf``, else ``frames_<date_time>``).
 
-The graph is tf2_tools' ``generate_dot`` (:func:`robomodel.tf.frames_dot`) for all three; tf's
-own ``allFramesAsDot`` labels the same edges in another order. The listening time counts once
-the node's session has linked up with the others, as ``robomodel frames --live`` does.
+tf2_tools' graph is ``generate_dot`` (:func:`robomodel.tf.frames_dot`). The broadcaster is
+robomodel's listener's ``default_authority`` (ROS 1's names the publishing node). The listening
+time counts once the node's session has linked up with the others, as ``robomodel frames
+--live`` does.
 """
 
 from __future__ import annotations
@@ -108,7 +111,7 @@ def _write(plan: _Plan, text: str) -> int:
 
 def _view_frames(ctx: NodeContext) -> RunningNode:
     from robomodel.runtime.tf_listener import TransformListener
-    from robomodel.tf import frames_dot
+    from robomodel.tf.view_frames import frames_dot, tf_frames_dot
 
     plan = _plan(ctx)
     node = ctx.runtime.create_node(
@@ -122,7 +125,7 @@ def _view_frames(ctx: NodeContext) -> RunningNode:
         try:
             wait_for_peers(ctx.runtime, timeout_s=5.0)
             if plan.script == "tf":
-                print(f"Listening to /tf for {plan.wait_s:f} seconds", flush=True)
+                print(f"Listening to /tf for {plan.wait_s} seconds", flush=True)
             else:
                 print(f"Listening to tf data for {plan.wait_s} seconds...", flush=True)
             if thread.stopping.wait(plan.wait_s):
@@ -131,6 +134,8 @@ def _view_frames(ctx: NodeContext) -> RunningNode:
                 print("Done Listening", flush=True)
             else:
                 print(f"Generating graph in {plan.pdf_path} file...", flush=True)
+            if plan.script == "tf":
+                return _write(plan, tf_frames_dot(buffer, current_time_s=time.time()))
             return _write(plan, frames_dot(buffer, recorded_time_s=time.time()))
         finally:
             node.destroy()
