@@ -126,6 +126,11 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
         "std_srvs: Empty, Trigger and SetBool.",
         ("std_srvs/srv/Empty", "std_srvs/srv/Trigger", "std_srvs/srv/SetBool"),
     ),
+    "roscpp": (
+        "roscpp (ROS 1): the logger services every roscpp and rospy node offers, GetLoggers and "
+        "SetLoggerLevel, with their Logger.",
+        ("roscpp/msg/Logger", "roscpp/srv/GetLoggers", "roscpp/srv/SetLoggerLevel"),
+    ),
     "control_msgs": (
         "control_msgs: DynamicJointState, InterfaceValue, JointControllerState and "
         "JointTrajectoryControllerState.",

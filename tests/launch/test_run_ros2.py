@@ -159,3 +159,33 @@ def test_readme_run_commands(bus: _Bus) -> None:
     bus.until(lambda: "Translation" in bus.log("readme_echo"), "tf2_echo prints")
     assert "- Translation: [1.000, 2.000, 3.000]" in bus.log("readme_echo")
     assert _stop(echo) == 0 and _stop(publisher) == 0
+
+
+def test_tf2_tools_view_frames_writes_the_tree(bus: _Bus) -> None:
+    """``ros2 run tf2_tools view_frames -t 2 -o tree``: tree.gv with the static transform's edge
+    (frame names from the bus, so a buffer that heard nothing fails), tree.pdf; its lines."""
+    stp = bus.start(
+        "stp", "tf2_ros", "static_transform_publisher", "--x", "1", "--frame-id", "world",
+        "--child-frame-id", "tool",
+    )  # fmt: skip
+    bus.until(lambda: bus.listed("/static_transform_publisher"), "the publisher listed")
+    run = subprocess.run(
+        [*ROBOMODEL, "run", "--domain-id", bus.domain, "tf2_tools", "view_frames", "-t", "2",
+         "-o", "tree"],
+        capture_output=True, text=True, timeout=90, cwd=bus.tmp,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.splitlines() == [
+        "Listening to tf data for 2.0 seconds...", "Generating graph in tree.pdf file...",
+    ]  # fmt: skip
+    assert '"world" -> "tool"' in (bus.tmp / "tree.gv").read_text()
+    assert (bus.tmp / "tree.pdf").read_bytes().startswith(b"%PDF")
+    assert _stop(stp) == 0
+    for argv, said in (
+        (["view_frames", "--wait", "x"], "view_frames: argument --wait-time/-t: invalid float"),
+        (["view_frames", "--bogus"], "view_frames: unrecognized arguments: --bogus"),
+    ):
+        bad = bus.run("tf2_tools", *argv)
+        errors = [x for x in bad.stderr.splitlines() if "error" in x]
+        assert bad.returncode == 2 and len(errors) == 1 and said in errors[0], bad.stderr
+        assert "Traceback" not in bad.stderr

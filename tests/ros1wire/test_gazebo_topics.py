@@ -163,6 +163,22 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
     assert ros1.run("/usr/bin/rosnode", "list").stdout.split() == ["/rosout"]
     info = ros1.run("/usr/bin/rostopic", "info", "/rosout").stdout
     assert "Publishers: None" in info and " * /rosout (" in info
+    # roscpp's logger services, as roscore's rosout answers them (Debian's rosservice)
+    assert ros1.run("/usr/bin/rosservice", "list").stdout.split() == [
+        "/rosout/get_loggers", "/rosout/set_logger_level",
+    ]  # fmt: skip
+    assert ros1.run("/usr/bin/rosservice", "type", "/rosout/get_loggers").stdout.strip() == (
+        "roscpp/GetLoggers"
+    )
+    set_level = ros1.run("/usr/bin/rosservice", "call", "/rosout/set_logger_level",
+                         "ros.rosout", "DEBUG")  # fmt: skip
+    assert set_level.returncode == 0, set_level.stderr
+    bogus = ros1.run("/usr/bin/rosservice", "call", "/rosout/set_logger_level", "ros", "loud")
+    assert bogus.returncode == 2 and "responded with an error" in bogus.stdout + bogus.stderr
+    loggers = yaml.safe_load(ros1.run("/usr/bin/rosservice", "call", "/rosout/get_loggers").stdout)
+    assert loggers["loggers"] == [
+        {"name": "ros", "level": "info"}, {"name": "ros.rosout", "level": "debug"},
+    ]  # fmt: skip
     agg = ros1.start(["/usr/bin/rostopic", "echo", "-n", "1", "/rosout_agg"], tmp_path / "agg.log")
     ros1.until(
         lambda: "/rostopic_" in ros1.run("/usr/bin/rostopic", "info", "/rosout_agg").stdout,

@@ -2,10 +2,10 @@
 item 6, issue 29 findings 1 and 10).
 
 The same sequence of tool runs goes to a real ``roscore`` and to ``robomodel master``; after
-each step ``rosnode list``, ``rostopic list`` and ``rosservice list`` must agree. roscore runs a
-``/rosout`` node (``/rosout``, ``/rosout_agg`` and its logger services) that ``robomodel
-master`` does not, so entries about /rosout are left out of the comparison; anonymous node
-names (``/rostopic_PID_TIME``) are compared without their numbers.
+each step ``rosnode list``, ``rostopic list`` and ``rosservice list`` must agree, roscore's
+``/rosout`` node (``/rosout``, ``/rosout_agg``, its logger services) included: ``robomodel
+master`` runs one too. Anonymous node names (``/rostopic_PID_TIME``) are compared without their
+numbers.
 """
 
 from __future__ import annotations
@@ -22,7 +22,12 @@ import pytest
 
 from tests.ros1wire.conftest import Ros1, free_port
 
-ROSOUT = re.compile(r"^/rosout(_agg)?(/.*)?$")
+# what roscore's /rosout node alone puts on the graph
+ROSOUT = {
+    "rosnode": ["/rosout"],
+    "rostopic": ["/rosout", "/rosout_agg"],
+    "rosservice": ["/rosout/get_loggers", "/rosout/set_logger_level"],
+}
 ANONYMOUS = re.compile(r"_\d+_\d+(?=/|$)")
 
 # A Debian rospy node offering /trigger (std_srvs/Trigger) that ends after its first call, as
@@ -48,7 +53,7 @@ def _graph(ros1: Ros1) -> dict[str, list[str]]:
     for tool in ("rosnode", "rostopic", "rosservice"):
         run = ros1.run(f"/usr/bin/{tool}", "list")
         assert run.returncode == 0, (tool, run.stderr)
-        names = [ANONYMOUS.sub("_*", n) for n in run.stdout.split() if not ROSOUT.match(n)]
+        names = [ANONYMOUS.sub("_*", n) for n in run.stdout.split()]
         out[tool] = sorted(names)
     return out
 
@@ -127,11 +132,13 @@ def test_debian_tools_leave_the_same_graph_on_robomodel_s_master_as_on_roscore(
     assert ours == theirs
     after_pub, with_provider, after_call, with_killed, after_kill, after_cleanup = ours
     assert after_pub["info /foo"] == ["1", "ERROR: Unknown topic /foo\n"]
-    assert [after_pub[tool] for tool in ("rosnode", "rostopic", "rosservice")] == [[], [], []]
-    assert "/trigger" in with_provider["rosservice"] and after_call["rosservice"] == []
-    assert "/bar" in with_killed["rostopic"] and with_killed["rosnode"] == ["/rostopic_*"] * 2
-    assert after_kill["rosnode"] == ["/rostopic_*"]  # the killed one stays, as on roscore
-    assert after_cleanup == {"rosnode": [], "rostopic": [], "rosservice": []}
+    assert {tool: after_pub[tool] for tool in ROSOUT} == ROSOUT
+    assert "/trigger" in with_provider["rosservice"]
+    assert after_call["rosservice"] == ROSOUT["rosservice"]
+    assert "/bar" in with_killed["rostopic"]
+    assert with_killed["rosnode"] == ["/rosout", "/rostopic_*", "/rostopic_*"]
+    assert after_kill["rosnode"] == ["/rosout", "/rostopic_*"]  # the killed one stays
+    assert after_cleanup == ROSOUT
 
 
 def test_29_1_a_garbage_registration_leaves_rospy_subscribers_receiving(

@@ -122,6 +122,11 @@ def test_param_errors_are_one_line(ros1: Ros1, tmp_path: Path) -> None:
     assert swapped.returncode == 2
     assert f"did you mean `param load {tmp_path / 'g.yaml'} /`?" in swapped.stderr
     assert ros1.run(ROSPARAM, "get", "/gain").returncode == 1  # nothing was loaded
+    folder = ros1.run(*ROBOMODEL, "param", "dump", "/")  # rosparam: IsADirectoryError
+    assert folder.returncode == 2 and folder.stderr.strip().splitlines() == [
+        "robomodel: error: param dump: '/' is a folder; dump takes a FILE first, then the "
+        "namespace: `param dump params.yaml /` (or `param dump` to print them all)"
+    ]
     big = ros1.run(*ROBOMODEL, "param", "set", "/big", "4294967296")
     assert big.returncode == 2 and "32-bit" in big.stderr
     assert ros1.run(ROSPARAM, "get", "/big").returncode == 1  # nothing was set

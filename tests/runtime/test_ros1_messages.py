@@ -35,9 +35,11 @@ MESSAGES = {
     "tf2_msgs/TFMessage": "tf2_msgs/msg/TFMessage",
     "rosgraph_msgs/Clock": "rosgraph_msgs/msg/Clock",
     "geometry_msgs/Twist": "geometry_msgs/msg/Twist",
+    "roscpp/Logger": "roscpp/msg/Logger",
 }
 SERVICES = {"std_srvs/Empty": "std_srvs/srv/Empty", "std_srvs/Trigger": "std_srvs/srv/Trigger",
-            "std_srvs/SetBool": "std_srvs/srv/SetBool"}  # fmt: skip
+            "std_srvs/SetBool": "std_srvs/srv/SetBool", "roscpp/GetLoggers": "roscpp/srv/GetLoggers",
+            "roscpp/SetLoggerLevel": "roscpp/srv/SetLoggerLevel"}  # fmt: skip
 
 
 def _genpy(script: str) -> Any:
@@ -59,7 +61,7 @@ def reference() -> Any:
         "import json, importlib\n"
         f"out = {{}}\nfor name in {names}:\n"
         "    pkg, typ = name.split('/')\n"
-        "    kind = 'srv' if pkg == 'std_srvs' else 'msg'\n"
+        f"    kind = 'srv' if name in {json.dumps(list(SERVICES))} else 'msg'\n"
         "    cls = getattr(importlib.import_module(pkg + '.' + kind), typ)\n"
         "    entry = {'md5': cls._md5sum}\n"
         "    if kind == 'msg':\n"

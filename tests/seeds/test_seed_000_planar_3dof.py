@@ -315,6 +315,30 @@ def test_display_launch_publishes_state_and_tf(
     assert "[1.000, 0.000, 0.000]" in tf.stdout
 
 
+def test_view_frames_draws_the_tree(graph: SeedRos1, tmp_path: Path) -> None:
+    """ "Tree of tf: ``roslaunch tf view_frames``" (rosrun's job) → ``robomodel run tf
+    view_frames``: tf's lines, frames.gv with robot_state_publisher's three edges, frames.pdf."""
+    if shutil.which("dot") is None:
+        pytest.skip("Graphviz's dot renders the pdf")
+    gripper_description(_src(graph), with_rviz=True)
+    graph.launch(
+        tmp_path / "display.log", "gripper_description", "display.launch", "--ros1-master",
+        wait_for="nodes running",
+    )  # fmt: skip
+    graph.echo("/tf")  # robot_state_publisher is publishing
+    folder = tmp_path / "frames"
+    folder.mkdir()
+    run = graph.tool(*ROBOMODEL, "run", "tf", "view_frames", cwd=folder)
+    assert run.returncode == 0, run.stderr
+    lines = run.stdout.splitlines()
+    assert lines[:2] == ["Listening to /tf for 5.0 seconds", "Done Listening"]
+    assert lines[-1] == "frames.pdf generated"
+    text = (folder / "frames.gv").read_text()
+    for parent, child in (("base_link", "link_1"), ("link_1", "link_2"), ("link_2", "gripper")):
+        assert f'"{parent}" -> "{child}"' in text
+    assert (folder / "frames.pdf").read_bytes().startswith(b"%PDF")
+
+
 # --- "robot_description as parameter" -------------------------------------------------------
 
 
@@ -527,21 +551,47 @@ def test_service_call_without_a_type_on_ros1(graph: SeedRos1, tmp_path: Path) ->
 def test_controller_manager_commands(graph: SeedRos1, tmp_path: Path) -> None:
     """``controller_manager <command> <controller_name>`` (the seed's ``roslaunch`` is rosrun's
     job: ``rosrun controller_manager controller_manager``) → ``robomodel run controller_manager
-    controller_manager``, in /rrbot: list, stop, start, with ROS 1's words."""
+    controller_manager``, in /rrbot: the seed's load, unload, start, stop, spawn and kill, with
+    ROS 1's printed words and states (a loaded controller is ``initialized`` until started),
+    then list-types (ROS 1's type names) and reload-libraries --restore."""
     _rrbot_two_terminals(graph, tmp_path)
-    cm = [*ROBOMODEL, "run", "controller_manager", "controller_manager"]
-    listed = graph.tool(*cm, "list", "__ns:=/rrbot")
-    assert listed.returncode == 0, listed.stderr
-    assert "joint1_position_controller" in listed.stdout and "running" in listed.stdout
-    stop = graph.tool(*cm, "stop", "joint1_position_controller", "__ns:=/rrbot")
-    assert stop.returncode == 0, stop.stderr
-    line = next(
-        x for x in graph.tool(*cm, "list", "__ns:=/rrbot").stdout.splitlines()
-        if x.startswith("'joint1_position_controller'")  # Noetic quotes the names
-    )  # fmt: skip
-    assert "stopped" in line
-    start = graph.tool(*cm, "start", "joint1_position_controller", "__ns:=/rrbot")
-    assert start.returncode == 0, start.stderr
+    j1, j2 = "joint1_position_controller", "joint2_position_controller"
+
+    def cm(*argv: str) -> str:
+        run = graph.tool(*ROBOMODEL, "run", "controller_manager", "controller_manager", *argv,
+                         "__ns:=/rrbot")  # fmt: skip
+        assert run.returncode == 0, run.stdout + run.stderr
+        return run.stdout
+
+    def states() -> dict[str, str]:  # Noetic quotes the names: 'name' - 'interfaces' ( state )
+        rows = [line.split(" - ") for line in cm("list").splitlines()]
+        return {name.strip("'"): rest.rsplit("( ", 1)[1].rstrip(" )") for name, rest in rows}
+
+    assert states() == {"joint_state_controller": "running", j1: "running", j2: "running"}
+    assert cm("stop", j1) == f"Stopped ['{j1}'] successfully\n"
+    assert states()[j1] == "stopped"
+    assert cm("start", j1) == f"Started ['{j1}'] successfully\n"
+    assert states()[j1] == "running"
+    assert cm("kill", j2).splitlines() == [
+        f"Stopped ['{j2}'] successfully", f"Unloaded '{j2}' successfully",
+    ]  # fmt: skip
+    assert j2 not in states()
+    assert cm("load", j2) == f"Loaded '{j2}'\n"
+    assert states()[j2] == "initialized"
+    assert cm("unload", j2) == f"Unloaded '{j2}' successfully\n"
+    assert j2 not in states()
+    assert cm("spawn", j2).splitlines() == [f"Loaded '{j2}'", f"Started ['{j2}'] successfully"]
+    assert states()[j2] == "running"
+    types = cm("list-types").split()
+    assert {"effort_controllers/JointPositionController",
+            "joint_state_controller/JointStateController"} <= set(types)  # fmt: skip
+    assert "joint_state_broadcaster/JointStateBroadcaster" not in types  # ROS 2's name
+    assert cm("stop", j1) == f"Stopped ['{j1}'] successfully\n"
+    assert cm("reload-libraries", "--restore").splitlines() == [
+        "Restore: True", "Successfully reloaded libraries", "Controllers restored to original state",
+    ]  # fmt: skip
+    # as ros_control's script restores: every controller loaded again, the running ones started
+    assert states() == {"joint_state_controller": "running", j1: "initialized", j2: "running"}
 
 
 def test_rrbot_graph_has_rosout(graph: SeedRos1, tmp_path: Path) -> None:

@@ -190,8 +190,11 @@ def test_rostopic_list_shows_the_controllers_topics(ros1_graph: SeedRos1, tmp_pa
 
 
 def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(
-    ros1_graph: SeedRos1, tmp_path: Path
+    graph_and_master: tuple[SeedRos1, str], tmp_path: Path
 ) -> None:
+    """Gazebo's state topics and services and /rosout, /rosout_agg: from the launch's own
+    master's /rosout node, or from a real roscore's."""
+    ros1_graph, _ = graph_and_master
     _two_launches(ros1_graph, tmp_path)
     assert set(ros1_graph.tool(ROSTOPIC, "list").stdout.split()) >= ITEM_5_TOPICS
     services = set(ros1_graph.tool(ROSSERVICE, "list").stdout.split())

@@ -222,6 +222,11 @@ def cmd_delete(server: ParamServer, name: str | None) -> int:
 def cmd_dump(server: ParamServer, file: str | None, namespace: str | None) -> int:
     from robomodel._atomic import atomic_write_text
 
+    if file and os.path.isdir(file):  # `param dump /`: rosparam ends in IsADirectoryError
+        raise RobomodelError(
+            f"param dump: '{file}' is a folder; dump takes a FILE first, then the namespace: "
+            f"`param dump params.yaml {file}` (or `param dump` to print them all)"
+        )
     text = _dump(server.get(script_resolve_name(namespace or "")))
     if file:
         try:

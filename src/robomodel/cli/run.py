@@ -89,10 +89,11 @@ def _refuse(package: str, executable: str) -> None:
 
 # The ROS 1 nodes that pick an anonymous name (ros::init_options::AnonymousName, rospy's
 # anonymous=True), so that two of them can run at once: tf2_ros's and tf's
-# static_transform_publisher, tf_echo, tf2_echo, rviz, controller_manager's scripts.
+# static_transform_publisher, tf_echo, tf2_echo, tf's view_frames, rviz, controller_manager's
+# scripts.
 _ANONYMOUS_ROS1 = {
     ("tf2_ros", "static_transform_publisher"), ("tf", "static_transform_publisher"),
-    ("tf", "tf_echo"), ("tf2_ros", "tf2_echo"), ("rviz", "rviz"),
+    ("tf", "tf_echo"), ("tf2_ros", "tf2_echo"), ("tf", "view_frames"), ("rviz", "rviz"),
     ("controller_manager", "controller_manager"), ("controller_manager", "spawner"),
     ("controller_manager", "unspawner"),
 }  # fmt: skip

@@ -138,6 +138,7 @@ def controller_info(entry: ControllerEntry, resources: ResourceManager) -> dict[
         "name": entry.name,
         "type": entry.listed_type or entry.type_name,
         "state": entry.controller.state.value,
+        "started": bool(entry.extra.get("started")),  # ever active since it was loaded
         "update_rate": entry.update_rate_hz,
         "claimed_interfaces": list(entry.claimed),
         "required_command_interfaces": commands,

@@ -258,6 +258,8 @@ class ControllerManager:
         self._active = [
             e for e in self.entries.values() if e.controller.state is ControllerState.ACTIVE
         ]
+        for entry in self._active:  # ROS 1 lists a loaded, never started one as initialized
+            entry.extra["started"] = True
         self._run = [(e.controller.update, e.factor, e) for e in self._active]
 
     # -- spawner --------------------------------------------------------------------------------

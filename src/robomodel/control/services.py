@@ -50,10 +50,17 @@ def _guarded(cm: ControllerManager, action: Callable[[], object], what: str) -> 
     return None
 
 
-def _controller_state(info: dict[str, Any]) -> cm_msgs.ControllerState:
+def _controller_state(info: dict[str, Any], ros1: bool = False) -> cm_msgs.ControllerState:
+    """One controller of ``list_controllers``. On a ROS 1 graph, a controller loaded and never
+    started is ``unconfigured``, which the ROS 1 wire says as ROS 1's ``initialized``
+    (controller_manager.cpp ``listControllerSrv``: ``isInitialized()`` before ``isStopped()``);
+    ROS 1's load initialises it, so robomodel's manager holds it ``inactive``."""
+    state = info["state"]
+    if ros1 and state == "inactive" and not info.get("started"):
+        state = "unconfigured"
     return cm_msgs.ControllerState(
         name=info["name"],
-        state=info["state"],
+        state=state,
         type=info["type"],
         update_rate=int(info["update_rate"]),
         claimed_interfaces=list(info["claimed_interfaces"]),
@@ -187,14 +194,26 @@ def _reload(
     )
 
 
-def _handlers(cm: ControllerManager) -> list[tuple[str, Any, Callable[[Any], Any]]]:
+def _types(ros1: bool) -> cm_msgs.ListControllerTypes_Response:
+    """The types a controller file may name: on a ROS 1 graph ros_controllers' names (what ROS
+    1's ``controller_manager list-types`` prints, base class ``controller_interface::
+    ControllerBase``), elsewhere ros2_control's (``controller_interface::ControllerInterface``)."""
+    from robomodel.control.config import ROS1_TYPES
+
+    types = sorted(ROS1_TYPES if ros1 else CONTROLLER_TYPES)
+    base = "controller_interface::" + ("ControllerBase" if ros1 else "ControllerInterface")
+    return cm_msgs.ListControllerTypes_Response(types, [base] * len(types))
+
+
+def _handlers(
+    cm: ControllerManager, ros1: bool = False
+) -> list[tuple[str, Any, Callable[[Any], Any]]]:
     m = cm_msgs
     return [
         ("list_controllers", m.ListControllers,
-         lambda r: m.ListControllers_Response([_controller_state(i) for i in cm.list_controllers()])),
-        ("list_controller_types", m.ListControllerTypes,
-         lambda r: m.ListControllerTypes_Response(
-             sorted(CONTROLLER_TYPES), ["controller_interface::ControllerInterface"] * len(CONTROLLER_TYPES))),
+         lambda r: m.ListControllers_Response(
+             [_controller_state(i, ros1) for i in cm.list_controllers()])),
+        ("list_controller_types", m.ListControllerTypes, lambda r: _types(ros1)),
         ("list_hardware_interfaces", m.ListHardwareInterfaces, lambda r: _interfaces(cm)),
         ("list_hardware_components", m.ListHardwareComponents, lambda r: _components(cm)),
         ("load_controller", m.LoadController, lambda r: _load(cm, r)),
@@ -229,7 +248,7 @@ SERVICES = (
 def register_services(cm: ControllerManager, node: Node) -> list[Callable[[], None]]:
     """Offer the manager's services on its node; returns the unregister functions."""
     prefix = cm.service_prefix
-    handlers = _handlers(cm)
+    handlers = _handlers(cm, ros1=node.context.transport.name == "ros1")
     if node.context.transport.name == "zenoh":  # rmw_zenoh keys a service by its type hash
         handlers += _variant_handlers(cm)
     return [

@@ -10,6 +10,7 @@ from robomodel.launch.nodes import (
     state,
     tf_static,
     tools,
+    view_frames,
     viewer,
 )
 from robomodel.launch.nodes.base import (
@@ -37,5 +38,6 @@ __all__ = [
     "supported",
     "tf_static",
     "tools",
+    "view_frames",
     "viewer",
 ]

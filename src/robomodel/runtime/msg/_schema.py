@@ -184,6 +184,7 @@ _PACKAGES = {
     "rcl_interfaces": "rcl_interfaces",
     "robomodel_interfaces": "robomodel_interfaces",
     "ros_gz_interfaces": "ros_gz_interfaces",
+    "roscpp": "roscpp",
     "rosgraph_msgs": "nav_msgs",
     "sensor_msgs": "sensor_msgs",
     "service_msgs": "service_msgs",
