@@ -215,6 +215,9 @@ def _message(
     if py_name is None:
         out.append(f'    __typename__ = "{defn.name}"')
     out.append(f"    __fields__ = ({', '.join(specs)}{',' if len(specs) == 1 else ''})")
+    if defn.constants:  # (name, type, value), for the definition text bags store
+        constants = ", ".join(repr((n, t, v)) for n, t, v in defn.constants)
+        out.append(f"    __constants__ = ({constants}{',' if len(defn.constants) == 1 else ''})")
     if py_name is not None:
         out += ["", "", f'{name}.__typename__ = "{defn.name}"']
     owner.lines += out

@@ -48,7 +48,8 @@ def _nested(spec: Spec) -> type[Message] | None:
 
 
 def _fields_text(cls: type[Message]) -> str:
-    lines = []
+    # constants first, as rosidl's and rosbags' definitions give them
+    lines = [f"{c_type} {c_name}={value}" for c_name, c_type, value in cls.__constants__]
     for name, spec in cls.__fields__:
         kind, suffix = _spec_text(spec)
         lines.append(f"{kind}{suffix} {name}")

@@ -101,6 +101,9 @@ def build_message_class(name: str, definition: FieldDef, lookup: Lookup) -> type
         specs.append((field_name, spec_of(desc, lookup, where=f"{name}.{field_name}")))
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
     namespace["__fields__"] = tuple(specs)
+    namespace["__constants__"] = tuple(
+        (c_name, c_type, value) for c_name, c_type, value in constants
+    )
     cls: type[Message] = make_dataclass(
         name.rsplit("/", 1)[-1],
         [(n, _annotation(s), _field_default(s)) for n, s in specs],

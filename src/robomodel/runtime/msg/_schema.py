@@ -98,6 +98,8 @@ class Message:
     __slots__ = ()
     __fields__: ClassVar[tuple[tuple[str, Spec], ...]] = ()
     __typename__: ClassVar[str] = ""
+    # the definition's constants as (name, type, value): ``int8 STATUS_UNKNOWN=0``
+    __constants__: ClassVar[tuple[tuple[str, str, Any], ...]] = ()
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)

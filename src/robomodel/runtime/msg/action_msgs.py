@@ -55,6 +55,15 @@ class GoalStatus(Message):
     status: int = 0
     __typename__ = "action_msgs/msg/GoalStatus"
     __fields__ = (("goal_info", GoalInfo), ("status", "int8"))
+    __constants__ = (
+        ("STATUS_UNKNOWN", "int8", 0),
+        ("STATUS_ACCEPTED", "int8", 1),
+        ("STATUS_EXECUTING", "int8", 2),
+        ("STATUS_CANCELING", "int8", 3),
+        ("STATUS_SUCCEEDED", "int8", 4),
+        ("STATUS_CANCELED", "int8", 5),
+        ("STATUS_ABORTED", "int8", 6),
+    )
 
 
 @dataclass(slots=True)
@@ -82,6 +91,12 @@ class CancelGoal_Response(Message):
     goals_canceling: list[GoalInfo] = field(default_factory=list)
     __typename__ = "action_msgs/srv/CancelGoal_Response"
     __fields__ = (("return_code", "int8"), ("goals_canceling", Seq(GoalInfo)))
+    __constants__ = (
+        ("ERROR_NONE", "int8", 0),
+        ("ERROR_REJECTED", "int8", 1),
+        ("ERROR_UNKNOWN_GOAL_ID", "int8", 2),
+        ("ERROR_GOAL_TERMINATED", "int8", 3),
+    )
 
 
 class CancelGoal(Service):

@@ -71,6 +71,13 @@ class JointComponentTolerance(Message):
         ("velocity", "float64"),
         ("acceleration", "float64"),
     )
+    __constants__ = (
+        ("X_AXIS", "uint16", 1),
+        ("Y_AXIS", "uint16", 2),
+        ("Z_AXIS", "uint16", 3),
+        ("TRANSLATION", "uint16", 4),
+        ("ROTATION", "uint16", 5),
+    )
 
 
 @dataclass(slots=True)
@@ -133,6 +140,14 @@ class FollowJointTrajectory_Result(Message):
     error_string: str = ""
     __typename__ = "control_msgs/action/FollowJointTrajectory_Result"
     __fields__ = (("error_code", "int32"), ("error_string", "string"))
+    __constants__ = (
+        ("SUCCESSFUL", "int32", 0),
+        ("INVALID_GOAL", "int32", -1),
+        ("INVALID_JOINTS", "int32", -2),
+        ("OLD_HEADER_TIMESTAMP", "int32", -3),
+        ("PATH_TOLERANCE_VIOLATED", "int32", -4),
+        ("GOAL_TOLERANCE_VIOLATED", "int32", -5),
+    )
 
 
 @dataclass(slots=True)

@@ -279,6 +279,12 @@ class SwitchController_Request(Message):
         ("activate_asap", "bool"),
         ("timeout", Duration),
     )
+    __constants__ = (
+        ("BEST_EFFORT", "int32", 1),
+        ("STRICT", "int32", 2),
+        ("AUTO", "int32", 3),
+        ("FORCE_AUTO", "int32", 4),
+    )
 
 
 @dataclass(slots=True)

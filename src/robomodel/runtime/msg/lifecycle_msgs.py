@@ -33,3 +33,16 @@ class State(Message):
     label: str = ""
     __typename__ = "lifecycle_msgs/msg/State"
     __fields__ = (("id", "uint8"), ("label", "string"))
+    __constants__ = (
+        ("PRIMARY_STATE_UNKNOWN", "uint8", 0),
+        ("PRIMARY_STATE_UNCONFIGURED", "uint8", 1),
+        ("PRIMARY_STATE_INACTIVE", "uint8", 2),
+        ("PRIMARY_STATE_ACTIVE", "uint8", 3),
+        ("PRIMARY_STATE_FINALIZED", "uint8", 4),
+        ("TRANSITION_STATE_CONFIGURING", "uint8", 10),
+        ("TRANSITION_STATE_CLEANINGUP", "uint8", 11),
+        ("TRANSITION_STATE_SHUTTINGDOWN", "uint8", 12),
+        ("TRANSITION_STATE_ACTIVATING", "uint8", 13),
+        ("TRANSITION_STATE_DEACTIVATING", "uint8", 14),
+        ("TRANSITION_STATE_ERRORPROCESSING", "uint8", 15),
+    )

@@ -78,3 +78,10 @@ class RosgraphLog(Message):
         ("line", "uint32"),
         ("topics", Seq("string")),
     )
+    __constants__ = (
+        ("DEBUG", "byte", 1),
+        ("INFO", "byte", 2),
+        ("WARN", "byte", 4),
+        ("ERROR", "byte", 8),
+        ("FATAL", "byte", 16),
+    )

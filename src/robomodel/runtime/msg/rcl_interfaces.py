@@ -113,6 +113,18 @@ class ParameterType(Message):
     PARAMETER_STRING_ARRAY: ClassVar[int] = 9
     __typename__ = "rcl_interfaces/msg/ParameterType"
     __fields__ = ()
+    __constants__ = (
+        ("PARAMETER_NOT_SET", "uint8", 0),
+        ("PARAMETER_BOOL", "uint8", 1),
+        ("PARAMETER_INTEGER", "uint8", 2),
+        ("PARAMETER_DOUBLE", "uint8", 3),
+        ("PARAMETER_STRING", "uint8", 4),
+        ("PARAMETER_BYTE_ARRAY", "uint8", 5),
+        ("PARAMETER_BOOL_ARRAY", "uint8", 6),
+        ("PARAMETER_INTEGER_ARRAY", "uint8", 7),
+        ("PARAMETER_DOUBLE_ARRAY", "uint8", 8),
+        ("PARAMETER_STRING_ARRAY", "uint8", 9),
+    )
 
 
 @dataclass(slots=True)
@@ -196,6 +208,13 @@ class Log(Message):
         ("function", "string"),
         ("line", "uint32"),
     )
+    __constants__ = (
+        ("DEBUG", "uint8", 10),
+        ("INFO", "uint8", 20),
+        ("WARN", "uint8", 30),
+        ("ERROR", "uint8", 40),
+        ("FATAL", "uint8", 50),
+    )
 
 
 @dataclass(slots=True)
@@ -248,6 +267,7 @@ class ListParameters_Request(Message):
     depth: int = 0
     __typename__ = "rcl_interfaces/srv/ListParameters_Request"
     __fields__ = (("prefixes", Seq("string")), ("depth", "uint64"))
+    __constants__ = (("DEPTH_RECURSIVE", "uint64", 0),)
 
 
 @dataclass(slots=True)

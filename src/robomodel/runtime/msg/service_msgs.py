@@ -34,3 +34,9 @@ class ServiceEventInfo(Message):
         ("client_gid", Array("char", 16)),
         ("sequence_number", "int64"),
     )
+    __constants__ = (
+        ("REQUEST_SENT", "uint8", 0),
+        ("REQUEST_RECEIVED", "uint8", 1),
+        ("RESPONSE_SENT", "uint8", 2),
+        ("RESPONSE_RECEIVED", "uint8", 3),
+    )
