@@ -55,16 +55,19 @@ Fielddefs = dict[str, tuple[Any, list[tuple[str, Any]]]]
 Lookup = Callable[[str, str], "Field | None"]  # (ros1 type, ros1 field) -> special mapping
 
 
+_UINT32 = struct.Struct("<I")  # compiled once: a TFMessage has two strings per transform
+
+
 def _encode_string(buf: bytearray, value: str) -> None:
     data = value.encode()
-    buf += struct.pack("<I", len(data))
+    buf += _UINT32.pack(len(data))
     buf += data
 
 
 def _decode_string(data: bytes, o: int) -> tuple[str, int]:
     if o + 4 > len(data):
         raise Ros1CodecError(f"truncated at byte {o}: a string's length is cut off")
-    (size,) = struct.unpack_from("<I", data, o)
+    (size,) = _UINT32.unpack_from(data, o)
     o += 4
     if size > len(data) - o:
         raise Ros1CodecError(f"a string of {size} bytes at byte {o} overruns the message")
