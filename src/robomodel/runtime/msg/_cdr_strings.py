@@ -1,5 +1,5 @@
-"""CDR ``string`` and ``string[]`` coding for the generated codecs (:mod:`.cdr`), with a memo
-for the ``string[]`` that repeats from one message to the next.
+"""CDR ``string[]`` coding for the generated codecs (:mod:`.cdr`, which codes a lone ``string``
+inline), with a memo for the ``string[]`` that repeats from one message to the next.
 
 A ``string[]`` is most often the same list message after message: a JointState's joint names
 (32 for talos, half of its encode and decode time), a controller's joints. Each ``string[]``
@@ -10,7 +10,7 @@ decode side) instead of a loop over the strings. What goes on the wire, and what
 returns, is the same with or without the memo: CDR's padding of a string depends only on its
 offset modulo 4, which is part of the memo's key, and a decoded list is a new list each time
 (str values are immutable, so sharing them is safe). Only ``string[]`` of at most
-``MEMO_MAX_BYTES`` are remembered, so a memo holds a few kilobytes at most.
+``MEMO_MAX_BYTES`` (16 KiB) are remembered, so a memo holds at most twice that.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from collections.abc import Sequence
 
 from robomodel.runtime.msg._schema import MessageTypeError
 
-__all__ = ["MEMO_MAX_BYTES", "StringsMemo", "decode_string", "encode_string"]
+__all__ = ["MEMO_MAX_BYTES", "CDRError", "StringsMemo", "decode_strings", "encode_strings"]
 
 MEMO_MAX_BYTES = 16 * 1024
 _UINT32 = struct.Struct("<I")
@@ -31,17 +31,9 @@ class CDRError(MessageTypeError):
     """A payload that is not a valid CDR encoding of the expected type."""
 
 
-def encode_string(buf: bytearray, value: str) -> None:
-    """Append ``value`` as a CDR string: aligned uint32 length with the NUL, bytes, NUL."""
-    data = value.encode("utf-8")
-    buf += _PAD[len(buf) & 3]  # the header is 4 bytes: offset & 3 == len(buf) & 3
-    buf += _UINT32.pack(len(data) + 1)
-    buf += data
-    buf.append(0)
-
-
 def encode_strings(buf: bytearray, values: Sequence[str]) -> None:
-    """Append each of ``values`` as :func:`encode_string` does, in one loop."""
+    """Append each of ``values`` as a CDR string (aligned uint32 length with the NUL, the
+    bytes, the NUL), in one loop."""
     pack = _UINT32.pack
     for value in values:
         data = value.encode("utf-8")
@@ -49,23 +41,6 @@ def encode_strings(buf: bytearray, values: Sequence[str]) -> None:
         buf += pack(len(data) + 1)
         buf += data
         buf.append(0)
-
-
-def decode_string(data: bytes, o: int) -> tuple[str, int]:
-    """The CDR string at ``o`` (padding first) and the offset after it."""
-    o += (-(o - 4)) & 3
-    if o + 4 > len(data):
-        raise CDRError(f"payload truncated: string length at offset {o}")
-    (length,) = _UINT32.unpack_from(data, o)
-    o += 4
-    if o + length > len(data):
-        raise CDRError(f"payload truncated: string of {length} bytes at offset {o}")
-    if length == 0:
-        return "", o
-    try:
-        return data[o : o + length - 1].decode("utf-8"), o + length
-    except UnicodeDecodeError:
-        raise CDRError("string is not valid UTF-8") from None
 
 
 def decode_strings(data: bytes, o: int, count: int) -> tuple[list[str], int]:

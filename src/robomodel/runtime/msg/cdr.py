@@ -22,9 +22,7 @@ from typing import Any, TypeVar
 from robomodel.runtime.msg._cdr_strings import (
     CDRError,
     StringsMemo,
-    decode_string,
     decode_strings,
-    encode_string,
     encode_strings,
 )
 from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, Seq, Spec
@@ -71,9 +69,7 @@ class _Gen:
         self.env: dict[str, Any] = {
             "struct": struct,
             "CDRError": CDRError,
-            "_encode_string": encode_string,
             "_encode_strings": encode_strings,
-            "_decode_string": decode_string,
             "_decode_strings": decode_strings,
             "_count": _count,
             "_fixed": _fixed,
@@ -166,9 +162,13 @@ def _wire(spec: Spec) -> Spec:
 def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
     spec = _wire(spec)
     if isinstance(spec, str):
-        if spec == "string":
+        if spec == "string":  # inline: its length joins the run before it
+            data = g.name("b")
+            g.emit(d, f"{data} = {expr}.encode('utf-8')")
+            _add_prim(g, d, run, "I", 4, f"len({data}) + 1", 1, True)
             _flush(g, d, run, True)
-            g.emit(d, f"_encode_string(buf, {expr})")
+            g.emit(d, f"buf += {data}")
+            g.emit(d, "buf.append(0)")
             run.forget()
             return
         code, size, _ = PRIMITIVES[spec]
@@ -242,9 +242,17 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
     spec = _wire(spec)
     if isinstance(spec, str):
         var = g.name("f")
-        if spec == "string":
+        if spec == "string":  # inline: its length joins the run before it
+            length, end = g.name("z"), g.name("e")
+            _add_prim(g, d, run, "I", 4, length, 1, False)
             _flush(g, d, run, False)
-            g.emit(d, f"{var}, o = _decode_string(data, o)")
+            g.emit(d, f"{end} = o + {length}")
+            truncated = (
+                f"CDRError(f'payload truncated: string of {{{length}}} bytes at offset {{o}}')"
+            )
+            g.emit(d, f"if {end} > n: raise {truncated}")
+            g.emit(d, f"{var} = data[o : {end} - 1].decode('utf-8')")  # length 0: '' as well
+            g.emit(d, f"o = {end}")
             run.forget()
             return var
         code, size, _ = PRIMITIVES[spec]
@@ -387,4 +395,6 @@ def deserialize(payload: bytes | bytearray | memoryview, cls: type[_M]) -> _M:
         msg, _ = _message_decoder(cls)(data, 4)
     except struct.error as exc:
         raise CDRError(f"malformed {cls.__typename__} payload: {exc}") from None
+    except UnicodeDecodeError:  # the generated code decodes strings inline
+        raise CDRError("string is not valid UTF-8") from None
     return msg  # type: ignore[no-any-return]

@@ -1,6 +1,7 @@
-"""The generated codecs' ``string[]`` memo: a repeated list is coded from the memo, and what
-goes on the wire or comes out of a decoder is the same as without it (bytes checked against
-pycdr2, an independent implementation).
+"""CDR strings: the generated codecs code a ``string`` field inline (its length packed with
+the fixed-size values before it) and a ``string[]`` through a memo (a repeated list is coded
+from the memo). What goes on the wire or comes out of a decoder is the same as without them:
+bytes checked against pycdr2, an independent implementation.
 
 No ``from __future__ import annotations`` here: pycdr2 reads the real annotation objects.
 """
@@ -109,3 +110,19 @@ def test_large_lists_are_not_remembered() -> None:
     small = ["a", "b"]
     memo.encode(bytearray(b"\x00\x01\x00\x00"), small)
     assert memo._encoded is not None and memo._encoded[0] == ("a", "b")
+
+
+def test_strings_decoded_inline_refuse_bad_bytes_with_a_cdr_error() -> None:
+    good = m.serialize(m.String("abc"))  # header, uint32 4, "abc\0"
+    assert m.deserialize(good, m.String) == m.String("abc")
+    with pytest.raises(m.CDRError, match="UTF-8"):
+        m.deserialize(good[:8] + b"\xff\xfe\xfd\x00", m.String)
+    with pytest.raises(m.CDRError, match="truncated"):
+        m.deserialize(good[:-1], m.String)
+    with pytest.raises(m.CDRError, match="truncated"):
+        m.deserialize(good[:6], m.String)
+    # a length of 0 (no NUL) is read as the empty string, as before
+    assert m.deserialize(b"\x00\x01\x00\x00" + b"\x00" * 4, m.String) == m.String("")
+    named = m.serialize(Named(1, ["é"]))
+    with pytest.raises(m.CDRError, match="UTF-8"):
+        m.deserialize(named.replace("é".encode(), b"\xff\xfe"), Named)
