@@ -6,16 +6,20 @@ Run: ``.venv/bin/python bench/bench_latency.py [--seconds 5] [--rate 1000] [--ro
 The payload is talos' /joint_states (a ``sensor_msgs/msg/JointState`` of 32 joints, 1.2 kB of
 CDR). robomodel: a node's publisher in process A, a node's subscription in process B, over the
 Zenoh bus (serialisation, rmw_zenoh's attachment, the executor's hand-over to the main thread,
-deserialisation). Raw: ``session.declare_publisher(key).put(bytes)`` in A and a
-``declare_subscriber`` callback in B, on sessions opened with robomodel's own Zenoh
+deserialisation). Raw: ``session.declare_publisher(key, reliability=RELIABLE).put(bytes)`` in
+A (the options robomodel's publisher declares for ROS's default QoS; zenoh-python's default is
+best effort) and a ``declare_subscriber`` callback in B, on sessions opened with robomodel's own Zenoh
 configuration (the same router and peer links), the CDR bytes made once and only their stamp
-patched per message. Both stamp the message with ``time.monotonic_ns()`` (one clock for every
-process of a Linux machine) and the callback subtracts it. Rounds alternate raw and robomodel, so
-the shared machine's load falls on both alike. Target: robomodel's median within 1.5x raw's.
+patched per message; robomodel's side likewise publishes one JointState whose ``header.stamp``
+alone is set per message (serialisation is measured, building the message is the caller's).
+Both stamp the message with ``time.monotonic_ns()`` (one clock for every process of a Linux
+machine) and the callback subtracts it. Rounds alternate raw and robomodel, so the shared
+machine's load falls on both alike. Target: robomodel's median within 1.5x raw's.
 
 ``--profile FILE`` writes a cProfile of robomodel's subscriber process (B) to FILE;
 ``--decompose`` adds a third variant per round, raw put -> callback -> a queue -> the main thread
-(robomodel's executor hand-over without the codecs), to tell the two costs apart.
+(robomodel's executor hand-over without the codecs), to tell the two costs apart;
+``--best-effort`` adds raw put with zenoh-python's default options (best effort).
 """
 
 from __future__ import annotations
@@ -119,14 +123,28 @@ def _start_sink(kind: str, domain: int, seconds: float, profile: str | None) -> 
 
 
 def run_raw(
-    names: list[str], domain: int, seconds: float, rate: float, sink_role: str = "sink-raw"
+    names: list[str],
+    domain: int,
+    seconds: float,
+    rate: float,
+    sink_role: str = "sink-raw",
+    *,
+    reliable: bool = True,
 ) -> dict[str, Any]:
+    import zenoh
+
     from robomodel.runtime.msg.cdr import serialize
     from robomodel.runtime.transport._zenoh_session import open_session
 
     sink = _start_sink(sink_role, domain, seconds + 4.0, None)
     opened = open_session()
-    pub = opened.session.declare_publisher(_raw_key(domain))
+    # robomodel's publisher's Zenoh options for its QoS (RELIABLE, KEEP_LAST: DROP), not
+    # zenoh-python's defaults (BEST_EFFORT): the same delivery on both sides
+    pub = opened.session.declare_publisher(
+        _raw_key(domain),
+        reliability=zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.DEFAULT,
+        congestion_control=zenoh.CongestionControl.DROP,
+    )
     template = bytearray(serialize(_message(names, 0)))
     time.sleep(1.0)  # the sink's subscription reaches this session
 
@@ -153,10 +171,14 @@ def run_robomodel(
     with Context("zenoh", domain_id=domain) as ctx:
         pub = ctx.create_node("driver").create_publisher(JointState, TOPIC, 1000)
         time.sleep(1.0)  # the sink's subscription reaches this session
-        size = len(serialize(_message(names, 0)))
+        template = _message(names, 0)  # as raw's: made once, only the stamp set per message
+        size = len(serialize(template))
+        stamp = template.header.stamp
 
         def send(_: int) -> None:
-            pub.publish(_message(names, time.monotonic_ns()))
+            now = time.monotonic_ns()
+            stamp.sec, stamp.nanosec = now // 1_000_000_000, now % 1_000_000_000
+            pub.publish(template)
 
         sent, elapsed = paced_sends(seconds, rate, send)
     latencies = json.loads(sink.communicate(timeout=60)[0].strip().splitlines()[-1])
@@ -207,6 +229,11 @@ def main() -> None:
         help="also raw put -> callback -> queue -> main thread (robomodel's hand-over, no codec)",
     )
     parser.add_argument(
+        "--best-effort",
+        action="store_true",
+        help="also raw put with zenoh-python's default options (best effort)",
+    )
+    parser.add_argument(
         "--role",
         choices=("driver", "sink-raw", "sink-raw-hop", "sink-robomodel"),
         default="driver",
@@ -224,6 +251,9 @@ def main() -> None:
     for k in range(args.rounds):
         raw.append(run_raw(names, args.domain, args.seconds, args.rate))
         print(f"round {k + 1} raw zenoh put ({raw[-1]['bytes']} B): {_summary(raw[-1])}")
+        if args.best_effort:
+            loose = run_raw(names, args.domain, args.seconds, args.rate, reliable=False)
+            print(f"round {k + 1} raw put, best effort: {_summary(loose)}")
         if args.decompose:
             hop = run_raw(names, args.domain, args.seconds, args.rate, "sink-raw-hop")
             print(f"round {k + 1} raw put, handed to the main thread: {_summary(hop)}")

@@ -19,7 +19,13 @@ import struct
 from collections.abc import Callable
 from typing import Any, TypeVar
 
-from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, MessageTypeError, Seq, Spec
+from robomodel.runtime.msg._cdr_strings import (
+    CDRError,
+    StringsMemo,
+    decode_strings,
+    encode_strings,
+)
+from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, Seq, Spec
 
 __all__ = ["CDRError", "deserialize", "prepare", "serialize"]
 
@@ -32,64 +38,7 @@ _encoders: dict[type[Message], _Encoder] = {}
 _decoders: dict[type[Message], _Decoder] = {}
 
 
-class CDRError(MessageTypeError):
-    """A payload that is not a valid CDR encoding of the expected type."""
-
-
 # -- runtime helpers used by the generated code ----------------------------------------------
-
-
-def _encode_string(buf: bytearray, value: str) -> None:
-    data = value.encode("utf-8")
-    rem = (len(buf) - 4) & 3
-    if rem:
-        buf += b"\x00" * (4 - rem)
-    buf += (len(data) + 1).to_bytes(4, "little")
-    buf += data
-    buf.append(0)
-
-
-def _decode_string(data: bytes, o: int) -> tuple[str, int]:
-    o += (-(o - 4)) & 3
-    if o + 4 > len(data):
-        raise CDRError(f"payload truncated: string length at offset {o}")
-    length = int.from_bytes(data[o : o + 4], "little")
-    o += 4
-    if o + length > len(data):
-        raise CDRError(f"payload truncated: string of {length} bytes at offset {o}")
-    if length == 0:
-        return "", o
-    try:
-        return data[o : o + length - 1].decode("utf-8"), o + length
-    except UnicodeDecodeError:
-        raise CDRError("string is not valid UTF-8") from None
-
-
-def _decode_strings(data: bytes, o: int, count: int) -> tuple[list[str], int]:
-    """``count`` strings from ``o`` (a ``string[]``'s items): one loop with local names, not a
-    call per string (a JointState's 32 names were half its decode time)."""
-    out: list[str] = []
-    append = out.append
-    n = len(data)
-    unpack = _UINT32.unpack_from
-    try:
-        for _ in range(count):
-            o += (-(o - 4)) & 3
-            if o + 4 > n:
-                raise CDRError(f"payload truncated: string length at offset {o}")
-            (length,) = unpack(data, o)
-            o += 4
-            end = o + length
-            if end > n:
-                raise CDRError(f"payload truncated: string of {length} bytes at offset {o}")
-            append(data[o : end - 1].decode("utf-8") if length else "")
-            o = end
-    except UnicodeDecodeError:
-        raise CDRError("string is not valid UTF-8") from None
-    return out, o
-
-
-_UINT32 = struct.Struct("<I")
 
 
 def _count(data: bytes, o: int) -> tuple[int, int]:
@@ -120,9 +69,8 @@ class _Gen:
         self.env: dict[str, Any] = {
             "struct": struct,
             "CDRError": CDRError,
-            "_encode_string": _encode_string,
-            "_decode_string": _decode_string,
-            "_decode_strings": _decode_strings,
+            "_encode_strings": encode_strings,
+            "_decode_strings": decode_strings,
             "_count": _count,
             "_fixed": _fixed,
         }
@@ -214,9 +162,13 @@ def _wire(spec: Spec) -> Spec:
 def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
     spec = _wire(spec)
     if isinstance(spec, str):
-        if spec == "string":
+        if spec == "string":  # inline: its length joins the run before it
+            data = g.name("b")
+            g.emit(d, f"{data} = {expr}.encode('utf-8')")
+            _add_prim(g, d, run, "I", 4, f"len({data}) + 1", 1, True)
             _flush(g, d, run, True)
-            g.emit(d, f"_encode_string(buf, {expr})")
+            g.emit(d, f"buf += {data}")
+            g.emit(d, "buf.append(0)")
             run.forget()
             return
         code, size, _ = PRIMITIVES[spec]
@@ -225,6 +177,9 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
     if isinstance(spec, (Seq, Array)):
         item = _wire(spec.item)
         seq = g.name("s")
+        if item == "string":
+            _enc_strings(g, d, run, spec, expr)
+            return
         if isinstance(spec, Array):
             g_expr = f"_fixed({expr}, {spec.size})"
             if isinstance(item, str) and item != "string":
@@ -269,15 +224,35 @@ def _enc_field(g: _Gen, d: int, run: _Run, spec: Spec, expr: str) -> None:
         _enc_field(g, d, run, field_spec, f"{local}.{name}")
 
 
+def _enc_strings(g: _Gen, d: int, run: _Run, spec: Seq | Array, expr: str) -> None:
+    """Emit the encoding of a ``string[]`` (through its memo) or a ``string[N]``."""
+    _flush(g, d, run, True)
+    if isinstance(spec, Array):
+        g.emit(d, f"_encode_strings(buf, _fixed({expr}, {spec.size}))")
+    else:
+        g.emit(d, "r = (len(buf) - 4) & 3")  # the count's alignment; the memo writes it
+        g.emit(d, "if r: buf += b'\\x00' * (4 - r)")
+        g.emit(d, f"{g.ref(StringsMemo(), 'sm')}.encode(buf, {expr})")
+    run.forget()
+
+
 def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
     """Emit the decoding of one field; return the expression of its value (valid after the
     run is flushed)."""
     spec = _wire(spec)
     if isinstance(spec, str):
         var = g.name("f")
-        if spec == "string":
+        if spec == "string":  # inline: its length joins the run before it
+            length, end = g.name("z"), g.name("e")
+            _add_prim(g, d, run, "I", 4, length, 1, False)
             _flush(g, d, run, False)
-            g.emit(d, f"{var}, o = _decode_string(data, o)")
+            g.emit(d, f"{end} = o + {length}")
+            truncated = (
+                f"CDRError(f'payload truncated: string of {{{length}}} bytes at offset {{o}}')"
+            )
+            g.emit(d, f"if {end} > n: raise {truncated}")
+            g.emit(d, f"{var} = data[o : {end} - 1].decode('utf-8')")  # length 0: '' as well
+            g.emit(d, f"o = {end}")
             run.forget()
             return var
         code, size, _ = PRIMITIVES[spec]
@@ -322,7 +297,7 @@ def _dec_field(g: _Gen, d: int, run: _Run, spec: Spec) -> str:
             _after_prim_seq(run, size)
             return target
         if item == "string":
-            g.emit(d, f"{target}, o = _decode_strings(data, o, {count})")
+            g.emit(d, f"{target}, o = {g.ref(StringsMemo(), 'sm')}.decode(data, o, {count})")
             run.forget()
             return target
         g.emit(d, f"{target} = []")
@@ -420,4 +395,6 @@ def deserialize(payload: bytes | bytearray | memoryview, cls: type[_M]) -> _M:
         msg, _ = _message_decoder(cls)(data, 4)
     except struct.error as exc:
         raise CDRError(f"malformed {cls.__typename__} payload: {exc}") from None
+    except UnicodeDecodeError:  # the generated code decodes strings inline
+        raise CDRError("string is not valid UTF-8") from None
     return msg  # type: ignore[no-any-return]

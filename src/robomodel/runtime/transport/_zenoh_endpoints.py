@@ -178,12 +178,13 @@ class ZenohSubscription(SubscriptionHandle):
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
         received_ns = time.time_ns()
-        payload = sample.payload.to_bytes()
-        attachment = sample.attachment.to_bytes() if sample.attachment is not None else b""
+        attached = sample.attachment  # each access builds a new ZBytes: read it once
+        item = (sample.payload.to_bytes(), b"" if attached is None else attached.to_bytes(),
+                received_ns)  # fmt: skip
         with self._pending_lock:
             if len(self._pending) == self._pending.maxlen:
                 self.dropped += 1
-            self._pending.append((payload, attachment, received_ns))
+            self._pending.append(item)
             if self._scheduled:
                 return
             self._scheduled = True

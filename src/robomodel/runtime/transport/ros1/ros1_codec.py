@@ -55,22 +55,6 @@ Fielddefs = dict[str, tuple[Any, list[tuple[str, Any]]]]
 Lookup = Callable[[str, str], "Field | None"]  # (ros1 type, ros1 field) -> special mapping
 
 
-def _encode_string(buf: bytearray, value: str) -> None:
-    data = value.encode()
-    buf += struct.pack("<I", len(data))
-    buf += data
-
-
-def _decode_string(data: bytes, o: int) -> tuple[str, int]:
-    if o + 4 > len(data):
-        raise Ros1CodecError(f"truncated at byte {o}: a string's length is cut off")
-    (size,) = struct.unpack_from("<I", data, o)
-    o += 4
-    if size > len(data) - o:
-        raise Ros1CodecError(f"a string of {size} bytes at byte {o} overruns the message")
-    return data[o : o + size].decode("utf-8", "replace"), o + size
-
-
 def _count(data: bytes, o: int, item_size: int) -> tuple[int, int]:
     if o + 4 > len(data):
         raise Ros1CodecError(f"truncated at byte {o}: an array's length is cut off")
@@ -94,8 +78,8 @@ class _Gen:
         self.special = special
         self.lines: list[str] = []
         self.env: dict[str, Any] = {
-            "struct": struct, "Ros1CodecError": Ros1CodecError, "_es": _encode_string,
-            "_ds": _decode_string, "_count": _count, "_fixed": _fixed, "NS": types.SimpleNamespace,
+            "struct": struct, "Ros1CodecError": Ros1CodecError, "_count": _count,
+            "_fixed": _fixed, "NS": types.SimpleNamespace,
         }  # fmt: skip
         self.fmt: list[str] = []
         self.items: list[str] = []
@@ -143,9 +127,12 @@ def _enc(g: _Gen, d: int, desc: Any, expr: str, top: bool) -> None:
     kind, rest = _kind(desc)
     if kind == 1:  # base
         name = rest[0]
-        if name == "string":
+        if name == "string":  # inline: its length joins the run of fixed-size values
+            data = g.name("b")
+            g.emit(d, f"{data} = {expr}.encode()")
+            g.prim("I", f"len({data})")
             g.flush(d, True)
-            g.emit(d, f"_es(buf, {expr})")
+            g.emit(d, f"buf += {data}")
         else:
             g.prim(PRIMITIVES[name][0], expr)
     elif kind == 2:  # a message type
@@ -229,9 +216,14 @@ def _dec(g: _Gen, d: int, desc: Any) -> str:
     kind, rest = _kind(desc)
     if kind == 1:
         var = g.name("f")
-        if rest[0] == "string":
+        if rest[0] == "string":  # inline: its length joins the run of fixed-size values
+            size = g.name("z")
+            g.prim("I", size)
             g.flush(d, False)
-            g.emit(d, f"{var}, o = _ds(data, o)")
+            overrun = f"f'a string of {{{size}}} bytes at byte {{o}} overruns the message'"
+            g.emit(d, f"if {size} > n - o: raise Ros1CodecError({overrun})")
+            g.emit(d, f"{var} = data[o : o + {size}].decode('utf-8', 'replace')")
+            g.emit(d, f"o += {size}")
         else:
             g.prim(PRIMITIVES[rest[0]][0], var)
         return var
