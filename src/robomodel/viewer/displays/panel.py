@@ -64,7 +64,7 @@ class _Row:
         gui, post = panel.gui, panel.post
         self._post = post
         self.namespaces: dict[str, Any] = {}
-        self._clicked: set[str] = set()  # namespace boxes clicked, not yet stored (loop thread)
+        self._shown: dict[str, bool] = {}  # the option's value last written to each box
         with panel.folder:
             self.folder = gui.add_folder(display.name, expand_by_default=False)
         with self.folder:
@@ -123,22 +123,18 @@ class _Row:
                 with self.controls[name]:
                     box = self.namespaces[key] = gui.add_checkbox(str(key) or "(empty)", bool(on))  # fmt: skip
                 box.on_update(lambda _e, k=key, b=box: self._changed_map(name, k, bool(b.value)))
-            elif bool(box.value) != bool(on) and key not in self._clicked:
+            elif bool(on) != self._shown.get(key):
                 box.value = bool(on)  # its update callback sees the option's value: no change
+            # Only a change of the option is written to the box: a box that merely differs may
+            # hold a click whose callback has not run yet (viser sets the value first).
+            self._shown[key] = bool(on)
 
     def _changed_map(self, name: str, key: str, on: bool) -> None:
         # A click, or this panel writing the option's value back (viser calls the callbacks
-        # then too): only a value that differs from the option is the user's. Until the loop
-        # thread stores it, the refresh must not write the old value over the click.
+        # then too): only a value that differs from the option is the user's.
         if on == bool(self.display.option(name).get(key, True)):
             return
-        self._clicked.add(key)
-
-        def store() -> None:
-            self._clicked.discard(key)
-            self._set(name, {**self.display.option(name), key: on})
-
-        self._post(store)
+        self._post(lambda: self._set(name, {**self.display.option(name), key: on}))
 
 
 class DisplaysPanel:
