@@ -41,7 +41,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.viewer.displays.options import DisplayOptionError, Option, OptionKind, color_rgb
+from robomodel.viewer.displays.topic_qos import QOS_OPTION_NAMES, qos_options, topic_qos
 
 __all__ = [
     "Display",
@@ -128,15 +130,22 @@ def stamp_ns(stamp: Any) -> int:
 @dataclass(frozen=True, slots=True)
 class SubscriptionSpec:
     """A subscription a display wants: ``callback`` gets each message of ``type_name`` on
-    ``topic`` (``depth``: the queue size; ``transient_local``: latched, as RViz's Durability
-    Policy "Transient Local")."""
+    ``topic`` with ``qos`` (its depth is the queue size; RViz 2's policies, see
+    :mod:`~robomodel.viewer.displays.topic_qos`)."""
 
     topic: str
     type_name: str
     callback: Callable[[Any], None] = field(compare=False)
-    depth: int = 10
-    transient_local: bool = False
+    qos: QoSProfile = QoSProfile()
     key: str = "Topic"  # which subscription of the display, for specs that equal otherwise
+
+    @property
+    def depth(self) -> int:
+        return self.qos.depth
+
+    @property
+    def transient_local(self) -> bool:
+        return self.qos.durability is Durability.TRANSIENT_LOCAL
 
 
 @dataclass
@@ -184,6 +193,21 @@ class Display:
     """Option name -> ROS 1 config key where RViz 1 names it otherwise (``Marker Topic``)."""
     ros1_class_name: ClassVar[str] = ""
     """RViz 1's class where it differs (Wrench is ``rviz/WrenchStamped`` in ROS 1)."""
+    ros2_only: ClassVar[frozenset[str]] = frozenset()
+    """Options RViz 1 does not have: not read from or written to ROS 1 configs."""
+    topic_qos_defaults: ClassVar[Mapping[str, str]] = MappingProxyType({})
+    """RViz 2 policies (``"Durability Policy": "Transient Local"``) other than rclcpp's default
+    for this display's ``Topic``."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        """A display with a ``Topic`` gets RViz 2's QoS policies below it (every
+        ``RosTopicDisplay`` has them), unless it declares them itself."""
+        super().__init_subclass__(**kwargs)
+        names = {o.name for o in cls.options}
+        if any(o.name == "Topic" and o.kind is OptionKind.TOPIC for o in cls.options):
+            if not names & set(QOS_OPTION_NAMES):
+                cls.options = (*cls.options, *qos_options(cls.topic_qos_defaults))
+            cls.ros2_only = cls.ros2_only | set(QOS_OPTION_NAMES)
 
     def __init__(
         self,
@@ -238,14 +262,18 @@ class Display:
         return str(self.values.get("Topic", ""))
 
     def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
-        """What to subscribe to now; default: ``Topic`` with ``Queue Size`` as depth, typed
-        as the graph shows it when that type is one of ``message_types``."""
+        """What to subscribe to now; default: ``Topic`` with :meth:`topic_qos`, typed as the
+        graph shows it when that type is one of ``message_types``."""
         if not self.enabled or not self.message_types or not self.topic:
             return ()
         known = self.context.topic_types(self.topic)
         type_name = next((t for t in self.message_types if t in known), self.message_types[0])
-        depth = int(self.values.get("Queue Size", 10))
-        return (SubscriptionSpec(self.topic, type_name, self.receive, max(1, depth)),)
+        return (SubscriptionSpec(self.topic, type_name, self.receive, self.topic_qos()),)
+
+    def topic_qos(self) -> QoSProfile:
+        """The ``Topic`` subscription's QoS: ``Queue Size`` as depth and the policies."""
+        depth = max(1, int(self.values.get("Queue Size", 10)))
+        return topic_qos(self.values, depth)
 
     def receive(self, msg: Any) -> None:
         self.messages_received += 1

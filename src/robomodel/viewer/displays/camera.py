@@ -14,6 +14,7 @@ import math
 import posixpath
 from typing import Any
 
+from robomodel.runtime.qos import QoSProfile
 from robomodel.viewer.displays._placed import combine, place, pose_kwargs
 from robomodel.viewer.displays.base import (
     DisplayStatus,
@@ -86,7 +87,7 @@ class CameraDisplay(ImageDisplay):
             camera_info_topic(self.topic),
             "sensor_msgs/msg/CameraInfo",
             self._on_camera_info,
-            depth=1,
+            QoSProfile(1),
             key="camera_info",
         )
         return (*image, info)
