@@ -32,6 +32,8 @@ def reopen_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> Non
         dropdown.value = frame
     displays = viewer.displays_panel
     if displays is not None:
+        if displays.follower is not None:  # the file says what to show, as in RViz
+            displays.follower.stop()
         for row in list(displays.rows):
             displays.remove(row)
         for problem in open_config_displays(displays, document):

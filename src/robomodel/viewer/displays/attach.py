@@ -17,6 +17,7 @@ from robomodel.viewer.displays.base import (
     display_class,
     is_rviz_display,
 )
+from robomodel.viewer.displays.follow import GraphFollower
 from robomodel.viewer.displays.manager import DisplayManager
 from robomodel.viewer.displays.panel import DisplaysPanel
 from robomodel.viewer.displays.rviz_io import display_entry, display_values
@@ -32,7 +33,9 @@ _DRAW_PERIOD_S = 0.1  # RViz updates displays every frame; 10 Hz keeps the page'
 
 def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
     """The Displays folder of ``viewer`` (``viewer.server``, ``.buffer``, ``.meshes``,
-    ``.options``, ``.fixed_frame``, ``._post``), drawing on ``node``'s timer (loop thread)."""
+    ``.options``, ``.fixed_frame``, ``._post``), drawing on ``node``'s timer (loop thread);
+    with the rqt tools and no config file, its ``follower`` adds displays for the graph's
+    scans and odometry (:mod:`~robomodel.viewer.displays.follow`)."""
     panel: DisplaysPanel | None = None
 
     def topic_types(topic: str) -> frozenset[str]:
@@ -60,6 +63,10 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
     panel = DisplaysPanel(
         viewer.server.gui, manager, viewer._post, BusWorker(node.context), folder=folder
     )
+    document = getattr(viewer.options, "rviz", None)
+    if getattr(viewer.options, "tools", False) and (document is None or document.missing):
+        panel.follower = GraphFollower(panel)  # no config: the graph's scans and odometry
+        manager.listeners.append(panel.follower)
     node.create_timer(_DRAW_PERIOD_S, manager.update)
     return panel
 

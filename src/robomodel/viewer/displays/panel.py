@@ -162,6 +162,7 @@ class DisplaysPanel:
     ) -> None:
         self.gui, self.manager, self.post, self.bus = gui, manager, post, bus
         self.rows: list[_Row] = []
+        self.follower: Any = None  # adds displays for the graph's topics (displays/follow.py)
         self.topics: dict[str, frozenset[str]] = {}
         self._choices: dict[str, tuple[str, str]] = {}
         self.folder = gui.add_folder("Displays") if folder is None else folder
