@@ -8,6 +8,7 @@ A description that fails to load leaves the last good model in place and records
 
 from __future__ import annotations
 
+import posixpath
 import random
 import threading
 from collections.abc import Mapping
@@ -158,6 +159,14 @@ class RobotSession:
             else (self.source.topic or Path(self.source.path).name)
         )
         return f"{self.prefix}{name}" if self.prefix else name
+
+    @property
+    def description_topic(self) -> str:
+        """Where the robot's description is published: its topic, or ``robot_description`` in
+        its namespace (robot_state_publisher's; RViz's RobotModel's Description Topic)."""
+        if self.source.topic is not None:
+            return "/" + self.source.topic.strip("/")
+        return posixpath.join("/", self.namespace.strip("/"), "robot_description")
 
     @property
     def root_frame(self) -> str | None:

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import enum
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, ClassVar, TypeVar
@@ -162,6 +162,8 @@ class DisplayContext:
         load_mesh: Reads a mesh URI (``package://``, ``file://``, a path) into
             :class:`~robomodel.viewer.meshes.MeshPart` s, cached; raises
             :class:`~robomodel.errors.RobomodelError` (None: no meshes in this viewer).
+        robots: The viewer's robots (its :class:`~robomodel.viewer.session.RobotSession` s),
+            for the RobotModel display (None: a viewer without robots).
     """
 
     scene: Any
@@ -171,6 +173,7 @@ class DisplayContext:
     post: Callable[[Callable[[], object]], None]
     now_ns: Callable[[], int]
     load_mesh: Callable[[str], tuple[Any, ...]] | None = None
+    robots: Callable[[], Sequence[Any]] | None = None
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9_.\-]")
@@ -241,6 +244,12 @@ class Display:
 
     def option(self, name: str) -> Any:
         return self.values[name]
+
+    def map_entries(self, name: str) -> Mapping[str, Any]:
+        """The entries of a MAP option the panel shows as checkboxes (default: its value; TF
+        adds every frame seen, which its option holds only once switched)."""
+        entries: Mapping[str, Any] = self.values[name]
+        return entries
 
     def set_option(self, name: str, value: Any) -> None:
         """Set an option (loop thread). Raises :class:`DisplayOptionError` for a bad value."""

@@ -56,6 +56,13 @@ def topic_choices(topics: Mapping[str, frozenset[str]]) -> dict[str, tuple[str, 
     return out
 
 
+def _entry_on(value: Any) -> bool:
+    """A MAP option's entry as a checkbox: a bool, or RViz's ``{Value: bool}`` (TF's Frames)."""
+    if isinstance(value, Mapping):
+        return bool(value.get("Value", True))
+    return bool(value)
+
+
 class _Row:
     """One display's folder and controls."""
 
@@ -116,8 +123,9 @@ class _Row:
                 self._refresh_map(gui, option.name)
 
     def _refresh_map(self, gui: Any, name: str) -> None:
-        entries = self.display.option(name)
-        for key, on in entries.items():
+        entries = self.display.map_entries(name)
+        for key, value in entries.items():
+            on = _entry_on(value)
             box = self.namespaces.get(key)
             if box is None:
                 with self.controls[name]:
@@ -130,13 +138,15 @@ class _Row:
         # A click, or this panel writing the option's value back (viser calls the callbacks
         # then too): only a value that differs from the option is the user's. Until the loop
         # thread stores it, the refresh must not write the old value over the click.
-        if on == bool(self.display.option(name).get(key, True)):
+        if on == _entry_on(self.display.map_entries(name).get(key, True)):
             return
         self._clicked.add(key)
 
         def store() -> None:
             self._clicked.discard(key)
-            self._set(name, {**self.display.option(name), key: on})
+            old = self.display.map_entries(name).get(key)
+            value = {**old, "Value": on} if isinstance(old, Mapping) else on  # keep its form
+            self._set(name, {**self.display.option(name), key: value})
 
         self._post(store)
 

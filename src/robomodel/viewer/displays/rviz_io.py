@@ -68,7 +68,8 @@ def display_values(
             continue
         raw = _get(settings, _key(cls, option.name, dialect))
         if option.kind is OptionKind.TOPIC and isinstance(raw, Mapping):
-            if "Queue Size" not in values and raw.get("Depth") is not None:
+            has_queue = any(o.name == "Queue Size" for o in cls.options)
+            if has_queue and "Queue Size" not in values and raw.get("Depth") is not None:
                 values["Queue Size"] = raw["Depth"]
             raw = raw.get("Value")
         if option.name == "Queue Size" and raw is None:
