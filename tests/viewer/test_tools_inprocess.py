@@ -169,7 +169,8 @@ def test_the_graph_s_scan_odometry_and_ground_truth_get_displays_in_the_fixed_fr
     _node, odom, scan, truth = on_loop(viewer, create)
     wait_for(lambda: len(panel.follower.added) == 3, what="the displays for the graph's topics")
     shown = {d.name: (d.class_name, d.topic) for d in viewer.displays.displays}
-    assert shown == {"Grid": ("Grid", ""), "LaserScan": ("LaserScan", "/scan"),
+    assert shown == {"Grid": ("Grid", ""), "RobotModel": ("RobotModel", ""), "TF": ("TF", ""),
+                     "LaserScan": ("LaserScan", "/scan"),
                      "Odometry": ("Odometry", "/odom"),
                      "Ground truth": ("Odometry", "/ground_truth/odom")}  # fmt: skip
     wait_for(lambda: len(viewer.displays._subscribed) == 3, what="their subscriptions")
@@ -208,7 +209,8 @@ def test_the_graph_s_scan_odometry_and_ground_truth_get_displays_in_the_fixed_fr
     on_loop(viewer, lambda: context.create_node("more").create_publisher(LaserScan, "/scan2", 1))
     wait_for(lambda: "/scan2" in panel.topics, what="/scan2 in the graph")
     on_loop(viewer, panel.follower)
-    assert [d.name for d in viewer.displays.displays] == ["Grid", "Odometry", "Ground truth"]
+    names = [d.name for d in viewer.displays.displays]
+    assert names == ["Grid", "RobotModel", "TF", "Odometry", "Ground truth"]
 
 
 def test_stamped_steering_refused_expression_and_no_tools(viewer: Viewer, tmp_path: Path) -> None:
