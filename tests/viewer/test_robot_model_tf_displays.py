@@ -114,6 +114,12 @@ def test_a_frame_older_than_the_frame_timeout_is_not_drawn_and_static_ones_never
     assert tf.shown == ("map",)
     tf.set_enabled(False)
     assert scene.nodes == {}
+    tf.set_enabled(True)
+    now[0] += 61 * 10**9
+    tf.show_frames(frames, *args)
+    assert scene.nodes and tf.shown == ("map", "static")
+    tf.close()  # removed from the panel
+    assert scene.nodes == {}
 
 
 class _Buffer:

@@ -98,6 +98,10 @@ class TFDisplay(Display):
     def on_renamed(self) -> None:
         self.reset()
 
+    def close(self) -> None:
+        super().close()
+        self.markers.remove()  # drawn below root, not through add_node
+
     def on_option_changed(self, name: str) -> None:
         if name == "Frames":  # a frame switched on or off: drawn again at the next update
             self._follow_all_enabled()
