@@ -35,20 +35,22 @@ CHOSEN = {
 
 def test_every_topic_display_has_rviz_2_s_policies_with_its_defaults() -> None:
     scan = display_class("LaserScan")("scan", fake_context(FakeScene()), {"Topic": "/scan"})
-    assert scan.subscriptions()[0].qos == QoSProfile(10)  # RViz 2: keep last, reliable, volatile
+    assert scan.subscriptions()[0].qos_profile == QoSProfile(
+        10
+    )  # RViz 2: keep last, reliable, volatile
     assert scan.option("Topic/Reliability Policy") == "Reliable"
     chosen = display_class("LaserScan")("scan", fake_context(FakeScene()), CHOSEN)
-    assert chosen.subscriptions()[0].qos == QoSProfile(
+    assert chosen.subscriptions()[0].qos_profile == QoSProfile(
         3, Durability.TRANSIENT_LOCAL, Reliability.BEST_EFFORT, History.KEEP_ALL
     )
     # "System Default" is rmw's default profile (QosProfileProperty::updateQosProfile)
     chosen.set_option("Topic/Reliability Policy", "System Default")
-    assert chosen.subscriptions()[0].qos.reliability is Reliability.RELIABLE
+    assert chosen.subscriptions()[0].qos_profile.reliability is Reliability.RELIABLE
     # the Map starts Transient Local (map_server's latched map), a choice it keeps in configs
     grid = display_class("Map")("map", fake_context(FakeScene()), {"Topic": "/map"})
-    assert grid.subscriptions()[0].qos == QoSProfile(5, Durability.TRANSIENT_LOCAL)
+    assert grid.subscriptions()[0].qos_profile == QoSProfile(5, Durability.TRANSIENT_LOCAL)
     grid.set_option("Topic/Durability Policy", "Volatile")
-    assert grid.subscriptions()[0].qos == QoSProfile(5)
+    assert grid.subscriptions()[0].qos_profile == QoSProfile(5)
 
 
 def test_policies_are_read_from_and_written_to_ros_2_topic_maps_only() -> None:

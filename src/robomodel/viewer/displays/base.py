@@ -130,22 +130,25 @@ def stamp_ns(stamp: Any) -> int:
 @dataclass(frozen=True, slots=True)
 class SubscriptionSpec:
     """A subscription a display wants: ``callback`` gets each message of ``type_name`` on
-    ``topic`` with ``qos`` (its depth is the queue size; RViz 2's policies, see
+    ``topic`` (``depth``: the queue size; ``transient_local``: latched, as RViz's Durability
+    Policy "Transient Local"), or with ``qos`` when given (RViz 2's policies, see
     :mod:`~robomodel.viewer.displays.topic_qos`)."""
 
     topic: str
     type_name: str
     callback: Callable[[Any], None] = field(compare=False)
-    qos: QoSProfile = QoSProfile()
+    depth: int = 10
+    transient_local: bool = False
     key: str = "Topic"  # which subscription of the display, for specs that equal otherwise
+    qos: QoSProfile | None = None
 
     @property
-    def depth(self) -> int:
-        return self.qos.depth
-
-    @property
-    def transient_local(self) -> bool:
-        return self.qos.durability is Durability.TRANSIENT_LOCAL
+    def qos_profile(self) -> QoSProfile:
+        """The profile subscribed with: ``qos``, else ``depth`` and the durability."""
+        if self.qos is not None:
+            return self.qos
+        durability = Durability.TRANSIENT_LOCAL if self.transient_local else Durability.VOLATILE
+        return QoSProfile(self.depth, durability)
 
 
 @dataclass
@@ -277,7 +280,9 @@ class Display:
             return ()
         known = self.context.topic_types(self.topic)
         type_name = next((t for t in self.message_types if t in known), self.message_types[0])
-        return (SubscriptionSpec(self.topic, type_name, self.receive, self.topic_qos()),)
+        qos = self.topic_qos()
+        latched = qos.durability is Durability.TRANSIENT_LOCAL
+        return (SubscriptionSpec(self.topic, type_name, self.receive, qos.depth, latched, qos=qos),)
 
     def topic_qos(self) -> QoSProfile:
         """The ``Topic`` subscription's QoS: ``Queue Size`` as depth and the policies."""

@@ -14,7 +14,6 @@ import math
 import posixpath
 from typing import Any
 
-from robomodel.runtime.qos import QoSProfile
 from robomodel.viewer.displays._placed import combine, place, pose_kwargs
 from robomodel.viewer.displays.base import (
     DisplayStatus,
@@ -87,7 +86,7 @@ class CameraDisplay(ImageDisplay):
             camera_info_topic(self.topic),
             "sensor_msgs/msg/CameraInfo",
             self._on_camera_info,
-            QoSProfile(1),
+            depth=1,
             key="camera_info",
         )
         return (*image, info)

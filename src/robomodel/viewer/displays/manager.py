@@ -176,7 +176,7 @@ class DisplayManager:
                 self._failed[(id(display), key)] = (spec, problem)
                 continue
             delivery = _Delivery(spec.callback)
-            sub = self.node.create_subscription(msg_type, spec.topic, delivery, spec.qos)
+            sub = self.node.create_subscription(msg_type, spec.topic, delivery, spec.qos_profile)
             self._subscribed[(id(display), key)] = (spec, _Live(sub, delivery))
         return problem
 
