@@ -154,7 +154,7 @@ class _Drawing:
 
 
 def _robot(topic: str, path: str = "/nowhere.urdf") -> Any:
-    return SimpleNamespace(description_topic=topic, source=SimpleNamespace(path=path),
+    return SimpleNamespace(description_topic=topic, description_names=(topic,), source=SimpleNamespace(path=path),
                            display=_Drawing(), prefix="", label=topic, failure=None,
                            robot=object())  # fmt: skip
 
@@ -251,3 +251,19 @@ def test_without_a_config_each_robot_has_its_robot_model(started: list[Viewer]) 
     on_loop(viewer, lambda: models[1].set_option("Visual Enabled", False))
     wait_for(lambda: not viewer.sessions[1].display.show_visual, what="robot2's visuals hidden")
     assert viewer.sessions[0].display.show_visual
+
+
+def test_a_ros_1_launch_s_robot_answers_to_the_parameter_it_was_read_from() -> None:
+    """A robot_state_publisher in /r1 that read /robot_description (roscpp's searchParam):
+    RViz 1's RobotModel with Robot Description ``robot_description`` draws it, and so does one
+    naming the namespace's topic; another parameter does not."""
+    from robomodel.description.packages import PackageIndex
+    from robomodel.viewer.session import RobotSession
+
+    source = RobotSource(str(PLANAR), namespace="/r1", description_name="robot_description")
+    session = RobotSession(0, source, index=PackageIndex(), namespace="/r1")
+    assert session.description_names == ("/r1/robot_description", "/robot_description")
+    context = fake_context(FakeScene())
+    for name, drawn in (("robot_description", True), ("/r1/robot_description", True),
+                        ("other_description", False)):  # fmt: skip
+        assert RobotModel("R", context, {"Description Topic": name}).describes(session) is drawn

@@ -51,6 +51,8 @@ class RobotSource:
     topic its sliders publish on) and ``external`` come from a launch file's nodes: a
     joint_state_publisher_gui in ``/r1`` publishes on ``/r1/joint_states``. None: the
     viewer's defaults (its options' ``external``, ``joint_states`` in the namespace).
+    ``description_name`` is the ROS 1 parameter a launch read the description from (an RViz 1
+    RobotModel's Robot Description names it).
     """
 
     path: str
@@ -60,6 +62,7 @@ class RobotSource:
     namespace: str | None = None
     joint_states_topic: str | None = None
     external: bool | None = None
+    description_name: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -167,6 +170,15 @@ class RobotSession:
         if self.source.topic is not None:
             return "/" + self.source.topic.strip("/")
         return posixpath.join("/", self.namespace.strip("/"), "robot_description")
+
+    @property
+    def description_names(self) -> tuple[str, ...]:
+        """The names an RViz RobotModel may give the description: its topic and, from a ROS 1
+        launch, the parameter it was read from (global names)."""
+        names = [self.description_topic]
+        if self.source.description_name:
+            names.append("/" + self.source.description_name.strip("/"))
+        return tuple(dict.fromkeys(names))
 
     @property
     def root_frame(self) -> str | None:

@@ -75,7 +75,7 @@ class RobotModelDisplay(Display):
                 return bool(path) and os.path.samefile(path, session.source.path)
             except OSError:
                 return False
-        return topic_name(str(self.option("Description Topic"))) == str(session.description_topic)
+        return topic_name(str(self.option("Description Topic"))) in session.description_names
 
     def _robots(self) -> Sequence[Any]:
         robots = self.context.robots
