@@ -38,8 +38,8 @@ class FakeScene:
         if not attr.startswith("add_"):
             raise AttributeError(attr)
 
-        def add(name: str, **kwargs: Any) -> FakeNode:
-            node = FakeNode(self, name, attr[4:], kwargs)
+        def add(name: str, *args: Any, **kwargs: Any) -> FakeNode:
+            node = FakeNode(self, name, attr[4:], {**kwargs, "args": args} if args else kwargs)
             self.nodes[name] = node
             return node
 

@@ -21,6 +21,7 @@ from tests.viewer.conftest import (
     ViewerProcess,
     changed_fraction,
     domain_id,
+    gui_row,
     open_viewer,
     save_shot,
     settle,
@@ -33,8 +34,13 @@ from tests.viewer.robots import write_arm
 pytestmark = pytest.mark.browser
 
 
-def _toggle(page: Any, label: str) -> None:
-    page.locator(f"label:text-is('{label}')").click()
+def _toggle(page: Any, label: str, folder: str = "RobotModel") -> None:
+    """Click the checkbox ``label`` of the display ``folder`` (opened first: the Displays
+    panel's folders start collapsed, as RViz's tree)."""
+    box = page.locator(f"label:text-is('{label}')").filter(visible=True)
+    if box.count() == 0:
+        page.get_by_text(folder, exact=True).filter(visible=True).first.click()
+    box.first.click()
 
 
 def test_simplebot_is_drawn_with_sliders_and_frames(
@@ -202,7 +208,11 @@ def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], 
     page.get_by_text("robot2/example", exact=True).last.wait_for()
     both = settle(page)
     save_shot(page, "two_robots")
-    _toggle(page, "Visual Enabled")
+    # one RobotModel display per robot (each on its namespace's description topic)
+    page.get_by_text("RobotModel", exact=True).filter(visible=True).first.click()
+    page.get_by_text("RobotModel (2)", exact=True).filter(visible=True).first.click()
+    page.locator("label:text-is('Visual Enabled')").nth(0).click()
+    page.locator("label:text-is('Visual Enabled')").nth(1).click()
     hidden = settle(page)
     # robot1 at the fixed frame (centre), robot2 beside it (to the left): both are drawn.
     half = both.shape[1] // 2
@@ -295,7 +305,7 @@ def test_display_options_mimic_and_floating_controls(
     with_collision = settle(page)
     assert changed_fraction(moved, with_collision) > 0.001
     _toggle(page, "Collision Enabled")
-    alpha = slider_input(page, "Alpha")
+    alpha = gui_row(page, "Alpha").locator("input:not([type=hidden]):visible").first  # RobotModel's
     alpha.fill("0.2")
     alpha.press("Enter")
     faded = settle(page)
@@ -304,9 +314,8 @@ def test_display_options_mimic_and_floating_controls(
     # Names of the TF frames, and another Fixed Frame: the drawing moves with it.
     alpha.fill("1")
     alpha.press("Enter")
-    page.get_by_text("TF", exact=True).click()
     no_names = settle(page)
-    _toggle(page, "Show Names")  # labels are drawn in the 3D view (not page text)
+    _toggle(page, "Show Names", "TF")  # labels are drawn in the 3D view (not page text)
     before = settle(page)
     save_shot(page, "arm_names")
     assert changed_fraction(no_names, before) > 0.0005

@@ -90,8 +90,11 @@ def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_i
     gui_row(page, "Topic").locator("input:not([type=hidden])").first.click()
     page.get_by_role("option", name=entry, exact=True).click()
     page.get_by_role("button", name="Add by topic", exact=True).click()
-    wait_for(lambda: len(viewer.displays.displays) == 2, what="the display added (after Grid)")
-    display = viewer.displays.displays[1]
+    wait_for(
+        lambda: len(viewer.displays.displays) == 4,
+        what="the display added (after Grid, RobotModel, TF)",
+    )
+    display = viewer.displays.displays[3]
     assert (display.class_name, display.name, display.topic) == ("Marker", "/visualization_marker", "/visualization_marker")  # fmt: skip
     client = next(iter(viewer.server.get_clients().values()))
     canvas = page.locator("canvas").first.bounding_box()
@@ -135,8 +138,11 @@ def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
     gui_row(page, "Display type").locator("input:not([type=hidden])").first.click()
     page.get_by_role("option", name="Marker", exact=True).click()
     page.get_by_role("button", name="Add by type", exact=True).click()
-    wait_for(lambda: len(viewer.displays.displays) == 2, what="the display added (after Grid)")
-    display = viewer.displays.displays[1]
+    wait_for(
+        lambda: len(viewer.displays.displays) == 4,
+        what="the display added (after Grid, RobotModel, TF)",
+    )
+    display = viewer.displays.displays[3]
     x, y = _cube_seen(page, viewer)
     wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="the cube")
     page.get_by_text("Marker", exact=True).first.click()  # the folder (then the list's option)
@@ -145,7 +151,8 @@ def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
     assert not display.enabled and "Disabled" in page.content()
     gui_row(page, "Enabled").locator("input:visible").first.click()
     wait_for(lambda: red_fraction(screenshot(page), x, y) > 0.8, what="the cube back")
-    # :visible: the Grid display's folder (collapsed) has its own Enabled and Name rows
+    # :visible: the Grid and TF displays' folders (collapsed) have their own Enabled and Name
+    # rows, and the RobotModel's (open) its Name row above
     name = gui_row(page, "Name").locator("input:not([type=hidden]):visible").first
     name.fill("Cubes")
     name.press("Enter")
@@ -159,5 +166,7 @@ def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
     assert red_fraction(screenshot(page), x, y) == 0.0
     save_shot(page, "marker_display_retargeted")
     page.get_by_role("button", name="Remove", exact=True).click()
-    wait_for(lambda: len(viewer.displays.displays) == 1, what="the display removed (Grid kept)")
+    wait_for(
+        lambda: len(viewer.displays.displays) == 3, what="the display removed (the defaults kept)"
+    )
     wait_for(lambda: page.get_by_text("Cubes", exact=True).count() == 0, what="its folder gone")

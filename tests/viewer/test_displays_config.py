@@ -186,13 +186,14 @@ def test_ros1_files_use_rviz_1_s_keys(started: list[Viewer], tmp_path: Path) -> 
         "Namespaces": {}, "Queue Size": 100, "Value": True,
     }  # fmt: skip
     again = _viewer(started, path, RvizDialect.ROS1)
-    grid, display = again.displays.displays  # RViz's default Grid, then the one added
-    assert grid.class_name == "Grid" and grid.enabled
-    assert display.values == viewer.displays.displays[1].values
+    grid, robot, tf, display = again.displays.displays  # the defaults, then the one added
+    assert [d.class_name for d in (grid, robot, tf)] == ["Grid", "RobotModel", "TF"]
+    assert grid.enabled and robot.enabled and tf.enabled
+    assert display.values == viewer.displays.displays[3].values
 
 
 # Saved by RViz 2: ros-controls/ros2_control_demos (Apache-2.0) at 0d9df42ab19b,
-# example_4/description/rviz/rrbot.rviz, verbatim (Grid, RobotModel, TF and a Wrench display).
+# example_4/description/rviz/rrbot.rviz, verbatim (Grid, RobotModel and a Wrench display).
 EXAMPLE_4 = Path(__file__).with_name("rviz_files") / "ros2_control_demos_example_4_rrbot.rviz"
 
 
@@ -206,8 +207,9 @@ def test_a_real_config_opens_with_every_display_it_names_and_saves_unchanged(
     config = read_rviz_file(EXAMPLE_4)
     others = [d for d in config.displays if d.kind not in ("Grid", "RobotModel", "TF")]
     assert [d.class_name for d in others] == ["rviz_default_plugins/Wrench"]
-    grid, wrench = viewer.displays.displays
+    grid, robot, wrench = viewer.displays.displays
     assert grid.class_name == "Grid" and grid.config_entry == config.displays[0]
+    assert (robot.class_name, robot.config_entry) == ("RobotModel", config.displays[1])
     assert wrench.name == "Wrench" and wrench.config_entry == others[0]
     wait_for(lambda: viewer.displays.updates > 1, what="a display update")
     if isinstance(wrench, MissingDisplay):  # a status line, not an error, until robomodel has it
@@ -234,8 +236,9 @@ def test_the_ur_description_config_opens_its_grid_and_robot_model_and_saves_unch
         "rviz_default_plugins/Grid", "rviz_default_plugins/RobotModel",
     ]  # fmt: skip
     viewer = _viewer(started, UR_VIEW_ROBOT)
-    (grid,) = viewer.displays.displays  # RobotModel is the viewer's own folder
+    grid, robot = viewer.displays.displays  # no TF display: no frames drawn, as in RViz
     assert grid.class_name == "Grid" and grid.config_entry == config.displays[0]
+    assert robot.class_name == "RobotModel" and robot.config_entry == config.displays[1]
     assert grid.values["Line Style/Line Width"] == pytest.approx(0.03)  # RViz's float32 0.03
     assert grid.values["Plane"] == "XY" and grid.values["Plane Cell Count"] == 10
     wait_for(lambda: grid.status.text == "Transform OK: base_link", what="the Grid's status")

@@ -65,10 +65,10 @@ def _save_from_the_page(ros1: Ros1, config: Path, page: Any) -> list[dict[str, A
         open_viewer(page, viewer.url)
         page.get_by_text("Add display", exact=True).click()
         _add_by_type(page, "Marker")
-        wait_for(lambda: len(viewer.displays.displays) == 2, what="the Marker display")
+        wait_for(lambda: len(viewer.displays.displays) == 4, what="the Marker display")
         _add_by_type(page, "MarkerArray")
-        wait_for(lambda: len(viewer.displays.displays) == 3, what="the MarkerArray display")
-        marker = viewer.displays.displays[1]  # after the Grid; it hears rostopic pub too
+        wait_for(lambda: len(viewer.displays.displays) == 5, what="the MarkerArray display")
+        marker = viewer.displays.displays[3]  # after Grid, RobotModel, TF; it hears rostopic pub
         wait_for(lambda: marker.store.markers, what="the red cube over ROS 1's wire")
         wait_for(lambda: marker.status.text.endswith("messages received"), what="Ok status")
         page.get_by_role("button", name="Save Config", exact=True).click()

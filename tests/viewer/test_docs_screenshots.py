@@ -25,8 +25,13 @@ from tests.viewer.conftest import (
 pytestmark = pytest.mark.browser
 
 
-def _toggle(page: Any, label: str) -> None:
-    page.locator(f"label:text-is('{label}')").click()
+def _toggle(page: Any, label: str, folder: str = "RobotModel") -> None:
+    """Click the checkbox ``label`` of the display ``folder`` (opened first: the Displays
+    panel's folders start collapsed, as RViz's tree)."""
+    box = page.locator(f"label:text-is('{label}')").filter(visible=True)
+    if box.count() == 0:
+        page.get_by_text(folder, exact=True).filter(visible=True).first.click()
+    box.first.click()
 
 
 def _assert_drawn(page: Any) -> None:

@@ -19,6 +19,9 @@ import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from robomodel.viewer.displays import display_class
+from robomodel.viewer.displays.attach import config_with_displays
+from robomodel.viewer.displays.rviz_io import display_values
 from robomodel.viewer.rviz_config import RvizConfigError, parse_rviz_text, read_rviz_file
 from robomodel.viewer.rviz_document import default_rviz_config, open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
@@ -31,6 +34,7 @@ from robomodel.viewer.rviz_state import (
 from robomodel.viewer.rviz_write import RvizSaveError, rviz_text, write_rviz_config
 from robomodel.viewer.rviz_yaml import dump_rviz_yaml
 from tests.conftest import EXAMPLES
+from tests.viewer.fake_scene import FakeScene, fake_context
 
 DEBIAN_DEFAULT = Path("/usr/share/rviz/default.rviz")
 ROOT = Path(__file__).resolve().parents[2]
@@ -166,14 +170,34 @@ def _state(document: Any, **changes: Any) -> ViewerState:
     return replace(implied_state(document), **changes)
 
 
+def _displays(document: Any) -> list[Any]:
+    """The document's displays as the Displays panel opens them (RobotModel and TF too)."""
+    out = []
+    for entry in document.config.displays:
+        cls = display_class(entry.class_name)
+        values, _ = display_values(cls, entry.settings, document.dialect)
+        display = cls(entry.name, fake_context(FakeScene()), values, enabled=entry.enabled)
+        display.config_entry = entry
+        out.append(display)
+    return out
+
+
+def _saved(document: Any, displays: list[Any], state: ViewerState | None = None) -> Any:
+    config = config_with_state(document, state or implied_state(document))
+    return config_with_displays(displays, config, document.dialect)[0]
+
+
 def test_saving_the_implied_state_changes_nothing() -> None:
     document, _ = open_rviz_document(
         str(EXAMPLES / "gripper_description/urdf/urdf.rviz"), RvizDialect.ROS1
     )
     state = implied_state(document)
-    assert state.fixed_frame == "base_link" and state.tf_marker_scale == 0.5
+    assert state.fixed_frame == "base_link"
     assert state.camera is not None and state.camera.distance_m == 2.5
-    assert config_with_state(document, state) == document.config
+    displays = _displays(document)
+    tf = next(d for d in displays if d.class_name == "TF")
+    assert tf.option("Marker Scale") == 0.5
+    assert _saved(document, displays, state) == document.config
 
 
 def test_saving_a_changed_state_writes_what_the_viewer_shows() -> None:
@@ -181,21 +205,27 @@ def test_saving_a_changed_state_writes_what_the_viewer_shows() -> None:
         str(EXAMPLES / "gripper_description/urdf/urdf.rviz"), RvizDialect.ROS1
     )
     camera = OrbitCamera((0.1, 0.2, 0.3), 3.0, 1.0, 0.5)
-    state = _state(
-        document, fixed_frame="link_1", tf_show_axes=False, tf_show_names=False,
-        show_collision=True, alpha=0.4, frame_rate_hz=20.0, camera=camera,
-    )  # fmt: skip
-    config = config_with_state(document, state)
+    state = _state(document, fixed_frame="link_1", frame_rate_hz=20.0, camera=camera)
+    displays = _displays(document)
+    by_kind = {d.class_name: d for d in displays}
+    by_kind["TF"].set_enabled(False)
+    by_kind["RobotModel"].set_option("Collision Enabled", True)
+    by_kind["RobotModel"].set_option("Alpha", 0.4)
+    config = _saved(document, displays, state)
     assert config.fixed_frame == "link_1" and config.frame_rate_hz == 20.0
-    by_kind = {d.kind: d for d in config.displays}
-    assert not by_kind["TF"].enabled and by_kind["TF"].settings["Show Axes"] is True  # kept
-    robot = by_kind["RobotModel"].settings
+    saved = {d.kind: d for d in config.displays}
+    assert not saved["TF"].enabled and saved["TF"].settings["Show Axes"] is True  # kept
+    robot = saved["RobotModel"].settings
     assert robot["Collision Enabled"] is True and robot["Alpha"] == 0.4
+    assert robot["Robot Description"] == "robot_description"  # RViz 1's key, kept
     assert config.view is not None and config.view.settings["Distance"] == 3.0
     assert config.view.settings["Focal Point"] == {"X": 0.1, "Y": 0.2, "Z": 0.3}
     assert config.displays[0].settings["Cell Size"] == 1  # what the viewer has not, kept
     reread = replace(document, config=parse_rviz_text(rviz_text(config), "saved"))
     assert implied_state(reread) == state
+    again = {d.class_name: d for d in _displays(reread)}
+    assert again["RobotModel"].values == by_kind["RobotModel"].values
+    assert not again["TF"].enabled
 
 
 def test_a_display_the_file_lacks_is_added_in_the_file_s_dialect() -> None:
@@ -208,11 +238,17 @@ def test_a_display_the_file_lacks_is_added_in_the_file_s_dialect() -> None:
         config=parse_rviz_text(text, "grid-only"),
     )
     assert default_document.dialect is RvizDialect.ROS2
-    state = implied_state(document)
-    assert not state.show_visual and not state.tf_show_axes  # RViz draws neither
-    config = config_with_state(document, replace(state, show_visual=True, tf_show_axes=True))
+    displays = _displays(document)
+    assert [d.class_name for d in displays] == ["Grid"]  # no robot, no frames: as RViz
+    context = fake_context(FakeScene())
+    displays += [display_class("RobotModel")("RobotModel", context), display_class("TF")("TF", context)]  # fmt: skip
+    config = _saved(document, displays)
     classes = [d.class_name for d in config.displays]
     assert classes == [f"rviz_default_plugins/{k}" for k in ("Grid", "RobotModel", "TF")]
+    robot, tf = config.displays[1].settings, config.displays[2].settings
+    assert robot["Description Topic"]["Value"] == "/robot_description"
+    assert robot["Description Source"] == "Topic" and robot["Visual Enabled"] is True
+    assert tf["Frames"] == {"All Enabled": True} and tf["Frame Timeout"] == 15.0
 
 
 def test_the_orbit_camera_is_rviz_s() -> None:
@@ -264,5 +300,9 @@ def test_a_setting_that_is_not_a_number_keeps_the_default() -> None:
     document = replace(
         open_rviz_document(None, RvizDialect.ROS1)[0], config=parse_rviz_text(text, "x")
     )
-    assert implied_state(document).alpha == 1.0
-    assert rviz_text(document.config).count("Alpha: half") == 1  # kept as written
+    entry = document.config.displays[0]
+    values, skipped = display_values(display_class("RobotModel"), entry.settings, RvizDialect.ROS1)
+    assert "Alpha" not in values and "half" in skipped[0]  # the display keeps 1.0
+    (robot,) = _displays(document)
+    assert robot.option("Alpha") == 1.0
+    assert rviz_text(_saved(document, [robot])).count("Alpha: half") == 1  # kept as written

@@ -18,6 +18,8 @@ from robomodel.viewer.rviz_config import read_rviz_file
 from robomodel.viewer.rviz_document import open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.viewer.conftest import wait_for
+from tests.viewer.test_tools_inprocess import on_loop
 
 pytest.importorskip("viser")
 
@@ -50,7 +52,11 @@ def test_the_seed_step_add_robot_model_and_tf_set_the_fixed_frame_save(
     viewer = _viewer(started, path, RvizDialect.ROS1)
     panel = viewer.config_panel
     assert "does not exist yet" in panel.status.content
-    assert viewer.tf_display.show_axes and viewer.display_options.show_visual
+    shown = {d.class_name: d for d in viewer.displays.displays}
+    assert list(shown) == ["Grid", "RobotModel", "TF"]
+    assert shown["TF"].option("Show Axes") and shown["RobotModel"].option("Visual Enabled")
+    assert shown["RobotModel"].option("Description Topic") == "robot_description"  # RViz 1's
+    wait_for(lambda: viewer.sessions[0].display.shown, what="the robot drawn")
     viewer.fixed_dropdown.value = "link_1"
     assert panel.save(str(path)), panel.status.content
     assert str(path) in panel.status.content
@@ -82,7 +88,8 @@ def test_save_config_as_and_an_unwritable_path(started: list[Viewer], tmp_path: 
     assert not panel.save(str(blocked / "x.rviz"))
     assert "Not saved" in panel.status.content and str(blocked / "x.rviz") in panel.status.content
     other = tmp_path / "other.rviz"
-    viewer.options_panel.show_names.value = True  # TF > Show Names ticked in the page
+    tf = next(d for d in viewer.displays.displays if d.class_name == "TF")
+    on_loop(viewer, lambda: tf.set_option("Show Names", True))  # TF > Show Names ticked
     assert panel.save(str(other))
     assert panel.document.path == str(other)  # later saves go there, as RViz's do
     displays = read_rviz_file(other).displays

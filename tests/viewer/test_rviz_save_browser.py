@@ -47,7 +47,9 @@ def test_save_config_writes_the_missing_rviz_file_of_display_launch(
         open_viewer(page, url)
         wait_for(lambda: "does not exist yet" in page.content(), what="the File folder's note")
         page.get_by_text("Grid", exact=True).first.wait_for()  # RViz's default Grid display
-        page.get_by_text("TF", exact=True).click()  # the TF folder (collapsed)
+        page.get_by_text("TF", exact=True).filter(
+            visible=True
+        ).click()  # not the type list's  # the TF folder (collapsed)
         wait_for(lambda: _checked(page, "Show Axes"), what="TF's Show Axes")
         assert _checked(page, "Visual Enabled")  # RobotModel
         page.locator("input[value='base_link']:not([type=hidden])").click()

@@ -19,6 +19,7 @@ from robomodel.runtime.msg import (
     Twist,
     get_message_type,
 )
+from robomodel.viewer.displays.laser_scan import scan_points
 from robomodel.viewer.tools import (
     Expression,
     ExpressionError,
@@ -31,7 +32,6 @@ from robomodel.viewer.tools import (
     resolve_field_path,
     set_field,
 )
-from robomodel.viewer.tools.overlays import path_segments, scan_points
 
 TOPICS = {
     "/joint_states": JointState,
@@ -192,7 +192,7 @@ def test_plot_window_interpolates_series_on_one_time_axis() -> None:
     assert x.tolist() == [2.0, 2.5, 3.0]
 
 
-def test_scan_points_drop_invalid_ranges_and_path_segments() -> None:
+def test_scan_points_drop_invalid_ranges() -> None:
     scan = LaserScan(
         angle_min=0.0,
         angle_increment=math.pi / 2,
@@ -202,8 +202,6 @@ def test_scan_points_drop_invalid_ranges_and_path_segments() -> None:
     )
     points = scan_points(scan)
     assert points == pytest.approx(np.array([[1.0, 0.0, 0.0], [-2.0, 0.0, 0.0]]), abs=1e-12)
-    segments = path_segments(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0]]))
-    assert segments.shape == (2, 2, 3) and segments[1].tolist() == [[1, 0, 0], [1, 1, 0]]
 
 
 def test_messages_are_shown_literally_in_markdown() -> None:

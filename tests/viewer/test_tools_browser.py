@@ -1,7 +1,8 @@
 """The rqt tools through the page (headless Chromium) on a viewer in this process.
 
 The steering pad publishes a Twist, the plot draws a series, the parameter editor changes a
-parameter of another node, and a LaserScan published here is drawn in the scene.
+parameter of another node, and a LaserScan published here is drawn in the scene (by the
+LaserScan display the viewer adds for the graph's scan topic).
 """
 
 from __future__ import annotations
@@ -123,8 +124,14 @@ def test_parameter_editor_and_laser_scan_in_the_scene(simplebot: Viewer, page: A
         range_max=10.0,
         ranges=ranges,
     )
-    on_loop(simplebot, lambda: scan_pub.publish(scan))
-    wait_for(lambda: simplebot.tools.overlays.scans_drawn > 0, what="the scan drawn")
+    wait_for(lambda: "LaserScan" in simplebot.displays_panel.follower.added, what="the display")
+    laser = simplebot.displays_panel.follower.added["LaserScan"]
+
+    def drawn() -> bool:  # published until the display has subscribed and drawn it
+        on_loop(simplebot, lambda: scan_pub.publish(scan))
+        return laser.node("points") is not None
+
+    wait_for(drawn, what="the scan drawn")
     after = settle(page)
     save_shot(page, "tools_laser_scan")
     assert changed_fraction(before, after) > 0.002

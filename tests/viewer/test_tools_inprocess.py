@@ -119,8 +119,12 @@ def test_publisher_plot_and_parameters_on_the_bus(viewer: Viewer) -> None:
     assert tools.parameters.controls["gain"].value == 4.0  # the old value is back
 
 
-def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> None:
-    """Poses in odom and a scan in laser go through TF into the fixed frame (base_link)."""
+def test_the_graph_s_scan_odometry_and_ground_truth_get_displays_in_the_fixed_frame(
+    viewer: Viewer,
+) -> None:
+    """Without a config the viewer adds a LaserScan, an Odometry and a Ground truth display
+    for the graph's topics (what its Overlays folder did), once each, placed through TF in
+    the fixed frame (base_link): odometry blue, ground truth orange."""
     import numpy as np
 
     from robomodel.runtime.msg import (
@@ -136,7 +140,7 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
 
     assert viewer.context is not None
     context = viewer.context
-    overlays = viewer.tools.overlays
+    panel = viewer.displays_panel
 
     def create() -> tuple[Any, Any, Any]:
         node = context.create_node("odometry")
@@ -163,20 +167,19 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
         )
 
     _node, odom, scan, truth = on_loop(viewer, create)
-    wait_for(
-        lambda: (
-            overlays.odom.subscription is not None
-            and overlays.scan.subscription is not None
-            and overlays.truth.subscription is not None
-        ),
-        what="the overlays to follow /odom, /scan and /ground_truth/odom from the graph",
-    )
-    assert (overlays.odom.topic, overlays.truth.topic) == ("/odom", "/ground_truth/odom")
+    wait_for(lambda: len(panel.follower.added) == 3, what="the displays for the graph's topics")
+    shown = {d.name: (d.class_name, d.topic) for d in viewer.displays.displays}
+    assert shown == {"Grid": ("Grid", ""), "RobotModel": ("RobotModel", ""), "TF": ("TF", ""),
+                     "LaserScan": ("LaserScan", "/scan"),
+                     "Odometry": ("Odometry", "/odom"),
+                     "Ground truth": ("Odometry", "/ground_truth/odom")}  # fmt: skip
+    wait_for(lambda: len(viewer.displays._subscribed) == 3, what="their subscriptions")
 
     def publish() -> None:
-        for x, y in ((0.0, 0.0), (1.0, 0.0), (1.0, 0.005), (1.0, 1.0)):
+        for x, y in ((0.0, 0.0), (1.0, 0.0), (1.0, 0.05), (1.0, 1.0)):
             msg = Odometry(Header(frame_id="odom"), "base_link")
             msg.pose.pose.position.x, msg.pose.pose.position.y = x, y
+            msg.pose.pose.orientation.w = 1.0
             odom.publish(msg)
         scan.publish(
             LaserScan(Header(frame_id="laser"), range_min=0.1, range_max=5.0, ranges=[1.0])
@@ -184,21 +187,30 @@ def test_odometry_path_and_scan_are_drawn_in_the_fixed_frame(viewer: Viewer) -> 
         for x in (0.0, 0.5):  # the ground truth, in odom too here
             msg = Odometry(Header(frame_id="odom"), "base_link")
             msg.pose.pose.position.x = x
+            msg.pose.pose.orientation.w = 1.0
             truth.publish(msg)
 
     on_loop(viewer, publish)
-    path = overlays.odom_path
-    wait_for(lambda: path.node is not None, what="the odometry path drawn")
-    assert list(path.points) == [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0)]  # 1 cm rule
-    segments = np.asarray(path.node.points)
-    assert segments.shape == (2, 2, 3)
-    assert segments[:, :, 2] == pytest.approx(1.0)  # odom is 1 m above base_link
-    wait_for(lambda: overlays.truth_path.node is not None, what="the ground-truth path drawn")
-    assert list(overlays.truth_path.points) == [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0)]
-    wait_for(lambda: overlays.scans_drawn > 0, what="the scan drawn")
-    assert np.asarray(overlays._scan_node.points) == pytest.approx(
+    odometry, ground_truth = panel.follower.added["Odometry"], panel.follower.added["Ground truth"]
+    wait_for(lambda: len(odometry.trail.poses) == 3, what="the odometry arrows")
+    # RViz's Position Tolerance (0.1 m) skips the 5 cm step; odom is 1 m above base_link
+    xyz = np.array([T[:3, 3] for T in odometry.trail.matrices()])
+    assert xyz == pytest.approx(np.array([[0, 0, 1], [1, 0, 1], [1, 1, 1.0]]))
+    wait_for(lambda: len(ground_truth.trail.poses) == 2, what="the ground-truth arrows")
+    assert (odometry.option("Shape/Color"), ground_truth.option("Shape/Color")) == (
+        "40; 200; 255", "255; 150; 0")  # fmt: skip
+    laser = panel.follower.added["LaserScan"]
+    wait_for(lambda: laser.node("points") is not None, what="the scan drawn")
+    assert np.asarray(laser.node("points").points) == pytest.approx(
         np.array([[3.0, 0.0, 0.0]]), abs=1e-3
     )
+    # a display removed stays removed; a topic already shown is not added again
+    on_loop(viewer, lambda: panel.remove(panel.rows[[r.display for r in panel.rows].index(laser)]))
+    on_loop(viewer, lambda: context.create_node("more").create_publisher(LaserScan, "/scan2", 1))
+    wait_for(lambda: "/scan2" in panel.topics, what="/scan2 in the graph")
+    on_loop(viewer, panel.follower)
+    names = [d.name for d in viewer.displays.displays]
+    assert names == ["Grid", "RobotModel", "TF", "Odometry", "Ground truth"]
 
 
 def test_stamped_steering_refused_expression_and_no_tools(viewer: Viewer, tmp_path: Path) -> None:

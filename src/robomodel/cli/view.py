@@ -88,7 +88,8 @@ def register(subparsers: Any) -> None:
     parser.add_argument(
         "--no-tools",
         action="store_true",
-        help="hide the rqt tools (robot steering, plot, topic publisher, parameters, overlays)",
+        help="hide the rqt tools (robot steering, plot, topic publisher, parameters) and add no "
+        "displays for the graph's scans and odometry",
     )
     add_package_options(parser, mappings=False)
     parser.add_argument(

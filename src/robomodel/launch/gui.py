@@ -79,7 +79,8 @@ class LaunchGui:
         if found or request.robots:
             return found
         text = self._description_text()
-        return [] if text is None else [(ViewerRobot(request.namespace), text)]
+        param = request.robot_description_param
+        return [] if text is None else [(ViewerRobot(request.namespace, description_param=param), text)]  # fmt: skip
 
     def _description_text(self) -> str | None:
         text: str | None = self.runner.request.robot_description_text
@@ -156,6 +157,7 @@ class LaunchGui:
             namespace=robot.namespace,
             joint_states_topic=robot.joint_states_topic,
             external=robot.joint_states_topic is None,
+            description_name=robot.description_param,
         )
 
     def close(self) -> None:

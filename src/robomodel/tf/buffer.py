@@ -168,6 +168,16 @@ class BufferCore:
             suggestion = f"Did you mean {', '.join(repr(h) for h in hint)}?" if hint else ""
             raise LookupError(f'"{frame}" passed to {argument} does not exist. {suggestion}')
 
+    def latest_parent(self, frame: str) -> tuple[int | None, str | None]:
+        """The parent of ``frame`` in its newest transform and that transform's stamp [ns]
+        (None for a static transform, which never ages); ``(None, None)`` for a root or an
+        unknown frame. RViz's TF display draws arrows to parents and ages frames by it."""
+        cache = self._caches.get(frame)
+        if cache is None:
+            return None, None
+        stamp, parent = cache.latest()
+        return (None if cache.is_static else stamp), parent
+
     def _parent(self, frame: str) -> tuple[int, str | None]:
         cache = self._caches.get(frame)
         return (0, None) if cache is None else cache.latest()

@@ -30,6 +30,8 @@ from robomodel.runtime.tf_listener import TransformListener
 from robomodel.viewer._deps import import_viser
 from robomodel.viewer.config_panel import attach_rviz
 from robomodel.viewer.displays.attach import attach_displays
+from robomodel.viewer.displays.robot_model import show_robots
+from robomodel.viewer.displays.tf import TFDisplay
 from robomodel.viewer.layout import beside_root_pose, place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
 from robomodel.viewer.link_poses import append_other_frames
@@ -149,6 +151,7 @@ class Viewer:
             )
             session.build_panel(self.server.gui, self._post)
             session.publish_bodies()
+        show_robots(self.displays.displays, self.sessions)  # as the config's RobotModels say
         if opts.tools:
             self._build_tools(node)
         self._spawn(self._loop, "robomodel-view-loop")
@@ -207,9 +210,7 @@ class Viewer:
         panel = OptionsPanel(
             self.server,
             fixed_frame=self.fixed_frame,
-            options=self.display_options,
             post=self._post,
-            displays=lambda: [s.display for s in self.sessions if s.display is not None],
             on_fixed_frame=lambda frame: setattr(self, "fixed_frame", frame),
             frame_rate_hz=self.frame_rate_hz,
             on_frame_rate=lambda hz: setattr(self, "frame_rate_hz", hz),
@@ -218,7 +219,6 @@ class Viewer:
         self.status = panel.status
         self.fixed_dropdown = panel.fixed_dropdown
         self.frame_rate_number = panel.frame_rate
-        self.tf_display = panel.tf_display
         self.displays_panel = attach_displays(self, self._node)
         self.displays = self.displays_panel.manager
         self.config_panel = attach_rviz(self, panel)
@@ -304,6 +304,7 @@ class Viewer:
                     self.server.scene, self.meshes, self.display_options, load_meshes=True
                 )
                 session.build_panel(self.server.gui, self._post)
+                show_robots(self.displays.displays, self.sessions)
                 self._extent_m.pop(session.number, None)
                 self.reloads += 1
             self._dirty = True
@@ -356,17 +357,21 @@ class Viewer:
             if self.scenery is not None:
                 self.scenery.update(self.buffer, self.fixed_frame)
             if frames:
-                self.tf_display.update(
-                    tuple(frames),
-                    np.concatenate(wxyzs),
-                    np.concatenate(xyzs),
-                    np.concatenate(shown),
-                )
+                self._show_frames(tuple(frames), wxyzs, xyzs, shown)
         self.server.flush()
         self.updates_sent += 1
         if buffer is not None:
             self._last_push_ids = (first_id, buffer.message_counter - 1)
             self._last_push_s = time.monotonic()
+
+    def _show_frames(self, frames: tuple[str, ...], wxyzs: list[np.ndarray], xyzs: list[np.ndarray], shown: list[np.ndarray]) -> None:  # fmt: skip
+        """Every frame's pose in the fixed frame to the TF displays (loop thread)."""
+        tf_displays = [d for d in self.displays.displays if isinstance(d, TFDisplay)]
+        if not tf_displays:
+            return
+        wxyz, xyz, visible = np.concatenate(wxyzs), np.concatenate(xyzs), np.concatenate(shown)
+        for display in tf_displays:
+            display.show_frames(frames, wxyz, xyz, visible, self.buffer)
 
     def _refresh_scenery(self) -> None:
         """Redraw the scenery when its source has other shapes (a model spawned or deleted)."""

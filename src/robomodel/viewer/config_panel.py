@@ -164,9 +164,10 @@ class ConfigPanel:
 
 
 def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
-    """Apply the viewer's ``-d`` config (``options.rviz``) to ``panel`` and its other displays
-    to the Displays panel, and add the File folder; without one, RViz's defaults (its Grid;
-    ROS 1 class names on a ROS 1 bus, else ROS 2's), which Save Config As starts from."""
+    """Apply the viewer's ``-d`` config (``options.rviz``) to ``panel`` and its displays to the
+    Displays panel, and add the File folder; without one, RViz's defaults (its Grid) with
+    RobotModel (one per robot) and TF (ROS 1 class names on a ROS 1 bus, else ROS 2's), which
+    Save Config As starts from."""
     document = viewer.options.rviz
     displays = viewer.displays_panel
     if document is not None:
@@ -174,8 +175,8 @@ def attach_rviz(viewer: Any, panel: Any) -> ConfigPanel:
     else:
         dialect = RvizDialect.ROS1 if viewer.options.bus == "ros1" else RvizDialect.ROS2
         document, _ = open_rviz_document(None, dialect)
-    if displays is not None:  # a missing file's are RViz's defaults: its Grid
-        for problem in open_config_displays(displays, document):
+    if displays is not None:  # a missing file's are the defaults: Grid, RobotModel, TF
+        for problem in open_config_displays(displays, document, viewer.sessions):
             log.warning("RViz config %s: %s", document.path, problem)
     return ConfigPanel(
         viewer.server,

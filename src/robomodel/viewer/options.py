@@ -27,7 +27,8 @@ class ViewerOptions:
         state_publisher: With ``external``, run a robot_state_publisher per robot (turning
             /joint_states from the bus into /tf); off when that process runs its own.
         reload_period_s: How often the description files are polled for changes.
-        tools: Show the rqt tools (steering, plot, publisher, parameters, overlays).
+        tools: Show the rqt tools (steering, plot, publisher, parameters); without a config,
+            also add displays for the graph's scans and odometry (displays/follow.py).
         scenery: Shapes that belong to no robot, drawn in their TF frames (a world's walls).
         scenery_source: For scenery that changes while the viewer runs (a simulator's world
             gaining or losing models, as gzclient shows ``spawn_model -sdf``): called a few

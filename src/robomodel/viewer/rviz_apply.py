@@ -14,19 +14,9 @@ __all__ = ["apply_rviz_document", "apply_rviz_view", "viewer_state"]
 
 
 def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None:
-    """Global Options, RobotModel and TF settings, as RViz would start with them."""
+    """Global Options (Frame Rate, background) as RViz would start with them; the displays,
+    RobotModel and TF among them, are the Displays panel's (displays/attach.py)."""
     state = implied_state(document, frame_rate_hz=viewer.frame_rate_hz)
-    options = viewer.display_options
-    options.alpha = panel.alpha.value = state.alpha
-    options.show_visual = panel.visual.value = state.show_visual
-    options.show_collision = panel.collision.value = state.show_collision
-    tf = viewer.tf_display
-    tf.set_show_axes(state.tf_show_axes)
-    panel.show_axes.value = state.tf_show_axes
-    tf.set_show_names(state.tf_show_names)
-    panel.show_names.value = state.tf_show_names
-    tf.set_marker_scale(state.tf_marker_scale)
-    panel.marker_scale.value = state.tf_marker_scale
     viewer.frame_rate_hz = panel.frame_rate.value = state.frame_rate_hz
     rviz = document.settings
     # A file that does not exist yet keeps robomodel's background; the defaults' (RViz's dark
@@ -36,7 +26,7 @@ def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None
         image[:] = rviz.background_rgb
         viewer.server.scene.set_background_image(image, format="png")
     if rviz.unsupported:
-        have = ", ".join(["RobotModel", "TF", *display_classes()])
+        have = ", ".join(display_classes())
         viewer.status_note = f"\n\nRViz displays not drawn (robomodel has {have}): " + ", ".join(
             rviz.unsupported
         )
@@ -60,11 +50,5 @@ def viewer_state(panel: Any, camera: Any | None) -> ViewerState:
     return ViewerState(
         fixed_frame=str(panel.fixed_dropdown.value),
         frame_rate_hz=float(panel.frame_rate.value),
-        show_visual=bool(panel.visual.value),
-        show_collision=bool(panel.collision.value),
-        alpha=float(panel.alpha.value),
-        tf_show_axes=bool(panel.show_axes.value),
-        tf_show_names=bool(panel.show_names.value),
-        tf_marker_scale=float(panel.marker_scale.value),
         camera=OrbitCamera.looking(camera.position, camera.look_at) if camera else None,
     )

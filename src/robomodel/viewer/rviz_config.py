@@ -2,11 +2,10 @@
 
 :func:`read_rviz_file` reads the whole file into an :class:`~robomodel.viewer.rviz_model.
 RvizConfig`; :func:`settings_of` picks what the viewer applies: Global Options (Fixed Frame,
-Frame Rate, Background Color), the RobotModel display (Enabled, Alpha, Visual Enabled,
-Collision Enabled, Robot Description), the TF display (Enabled, Show Axes, Show Names, Marker
-Scale). The other displays robomodel has (Grid, Marker, ...) are read by
-:mod:`robomodel.viewer.displays.rviz_io`; every other display class is named once in the
-viewer's Status as not supported. Both RViz 1 (``rviz/RobotModel``) and RViz 2
+Frame Rate, Background Color) and the RobotModel's Robot Description (which a launch's rviz
+node names for the robot to show). The displays robomodel has (RobotModel, TF, Grid, Marker,
+...) are read by :mod:`robomodel.viewer.displays.rviz_io`; every other display class is named
+once in the viewer's Status as not supported. Both RViz 1 (``rviz/RobotModel``) and RViz 2
 (``rviz_default_plugins/RobotModel``) class names are read.
 """
 
@@ -34,7 +33,6 @@ __all__ = [
     "settings_of",
 ]
 
-_SUPPORTED = {"RobotModel", "TF"}
 _GLOBAL_KEYS = ("Fixed Frame", "Frame Rate", "Background Color")
 
 
@@ -57,15 +55,7 @@ class RvizSettings:
     fixed_frame: str | None = None
     frame_rate_hz: float | None = None
     background_rgb: tuple[int, int, int] | None = None
-    robot_model_enabled: bool = True
     robot_description: str = "robot_description"
-    alpha: float | None = None
-    visual_enabled: bool | None = None
-    collision_enabled: bool | None = None
-    tf_enabled: bool = True
-    tf_show_axes: bool | None = None
-    tf_show_names: bool | None = None
-    tf_marker_scale: float | None = None
     unsupported: tuple[str, ...] = field(default_factory=tuple)
 
 
@@ -179,15 +169,6 @@ def read_rviz_file(path: str | Path) -> RvizConfig:
     return parse_rviz_text(text, str(path))
 
 
-def _float_or_none(value: Any) -> float | None:
-    """A display setting as a number; None (the default) when absent or not a number, as
-    RViz's FloatProperty keeps its default for text it cannot convert."""
-    try:
-        return None if value is None else float(value)
-    except (TypeError, ValueError):
-        return None
-
-
 def _description(display: RvizDisplay) -> str | None:
     found = display.settings.get("Robot Description") or display.settings.get("Description Topic")
     if isinstance(found, str) and found:
@@ -203,28 +184,12 @@ def settings_of(config: RvizConfig) -> RvizSettings:
         "fixed_frame": config.fixed_frame,
         "frame_rate_hz": config.frame_rate_hz,
         "background_rgb": config.background_rgb,
-        "robot_model_enabled": False,
-        "tf_enabled": False,
     }
     unsupported: list[str] = []
     for display in config.displays:
-        s, kind = display.settings, display.kind
-        if kind == "RobotModel":
-            values["robot_model_enabled"] = display.enabled
-            values["alpha"] = _float_or_none(s.get("Alpha"))
-            values["visual_enabled"] = s.get("Visual Enabled")
-            values["collision_enabled"] = s.get("Collision Enabled")
+        if display.kind == "RobotModel":
             values["robot_description"] = _description(display) or "robot_description"
-        elif kind == "TF":
-            values["tf_enabled"] = display.enabled
-            values["tf_show_axes"] = s.get("Show Axes")
-            values["tf_show_names"] = s.get("Show Names")
-            values["tf_marker_scale"] = _float_or_none(s.get("Marker Scale"))
-        elif (
-            kind not in _SUPPORTED
-            and not is_rviz_display(display.class_name)
-            and display.class_name not in unsupported
-        ):
+        elif not is_rviz_display(display.class_name) and display.class_name not in unsupported:
             unsupported.append(display.class_name or "?")
     return RvizSettings(unsupported=tuple(unsupported), **values)
 

@@ -1,8 +1,8 @@
 """RViz's File > Open Config on a running viewer: everything the file holds, applied again.
 
-Global Options (Fixed Frame, Frame Rate, background), RobotModel and TF as
+Global Options (Fixed Frame, Frame Rate, background) as
 :func:`~robomodel.viewer.rviz_apply.apply_rviz_document` applies them at start, the Displays
-panel emptied and filled with the file's displays, and the file's Orbit view on every page
+panel emptied and filled with the file's displays (RobotModel and TF among them), and the file's Orbit view on every page
 (RViz's ``VisualizationFrame::loadDisplayConfig`` replaces all of it likewise).
 """
 
@@ -32,9 +32,11 @@ def reopen_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> Non
         dropdown.value = frame
     displays = viewer.displays_panel
     if displays is not None:
+        if displays.follower is not None:  # the file says what to show, as in RViz
+            displays.follower.stop()
         for row in list(displays.rows):
             displays.remove(row)
-        for problem in open_config_displays(displays, document):
+        for problem in open_config_displays(displays, document, viewer.sessions):
             log.warning("RViz config %s: %s", document.path, problem)
     apply_rviz_view(viewer.server, document)
     camera = viewer.server.initial_camera

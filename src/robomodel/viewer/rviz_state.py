@@ -96,55 +96,22 @@ def orbit_of(view: RvizView | None) -> OrbitCamera | None:
 
 @dataclass(frozen=True, slots=True)
 class ViewerState:
-    """What the viewer shows that an RViz config holds (camera None: robomodel's own)."""
+    """What the viewer shows that an RViz config holds outside its displays (camera None:
+    robomodel's own); the displays are the Displays panel's (displays/attach.py)."""
 
     fixed_frame: str | None
     frame_rate_hz: float
-    show_visual: bool = True
-    show_collision: bool = False
-    alpha: float = 1.0
-    tf_show_axes: bool = True
-    tf_show_names: bool = False
-    tf_marker_scale: float = 1.0
     camera: OrbitCamera | None = None
 
 
 def implied_state(document: RvizDocument, *, frame_rate_hz: float = 60.0) -> ViewerState:
     """What ``document`` makes the viewer show (``frame_rate_hz``: without a Frame Rate)."""
     s = document.settings
-    robot, tf = s.robot_model_enabled, s.tf_enabled
-    scale = s.tf_marker_scale
     return ViewerState(
         fixed_frame=s.fixed_frame,
         frame_rate_hz=s.frame_rate_hz or frame_rate_hz,
-        show_visual=robot and (s.visual_enabled is None or bool(s.visual_enabled)),
-        show_collision=robot and bool(s.collision_enabled),
-        alpha=1.0 if s.alpha is None else s.alpha,
-        tf_show_axes=tf and (s.tf_show_axes is None or bool(s.tf_show_axes)),
-        tf_show_names=tf and bool(s.tf_show_names),
-        tf_marker_scale=scale if scale is not None and scale > 0 else 1.0,
         camera=None if document.missing else orbit_of(document.config.view),
     )
-
-
-def _set(
-    config: RvizConfig,
-    document: RvizDocument,
-    kind: str,
-    changes: Mapping[str, Any],
-    *,
-    enabled: bool,
-) -> RvizConfig:
-    """``config`` with the last ``kind`` display changed (added from the defaults if none)."""
-    index = config.last(kind)
-    displays = list(config.displays)
-    if index is None:
-        defaults = default_rviz_config(document.dialect)
-        template = defaults.displays[defaults.last(kind) or 0]
-        displays.append(template)
-        index = len(displays) - 1
-    displays[index] = displays[index].with_settings(changes, enabled=enabled)
-    return replace(config, displays=tuple(displays))
 
 
 def _with_view(config: RvizConfig, document: RvizDocument, camera: OrbitCamera) -> RvizConfig:
@@ -172,22 +139,6 @@ def config_with_state(
         config = replace(config, fixed_frame=state.fixed_frame)
     if state.frame_rate_hz != before.frame_rate_hz:
         config = replace(config, frame_rate_hz=state.frame_rate_hz)
-    robot = (state.show_visual, state.show_collision, state.alpha)
-    if robot != (before.show_visual, before.show_collision, before.alpha):
-        shown = state.show_visual or state.show_collision
-        changes: dict[str, Any] = {"Alpha": state.alpha}
-        if shown:  # a hidden RobotModel keeps what it shows when enabled again
-            changes.update(
-                {"Visual Enabled": state.show_visual, "Collision Enabled": state.show_collision}
-            )
-        config = _set(config, document, "RobotModel", changes, enabled=shown)
-    tf = (state.tf_show_axes, state.tf_show_names, state.tf_marker_scale)
-    if tf != (before.tf_show_axes, before.tf_show_names, before.tf_marker_scale):
-        shown = state.tf_show_axes or state.tf_show_names
-        changes = {"Marker Scale": state.tf_marker_scale}
-        if shown:
-            changes.update({"Show Axes": state.tf_show_axes, "Show Names": state.tf_show_names})
-        config = _set(config, document, "TF", changes, enabled=shown)
     if state.camera is not None and not state.camera.close_to(before.camera):
         config = _with_view(config, document, state.camera)
     return config

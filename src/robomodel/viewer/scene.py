@@ -107,6 +107,8 @@ class RobotModelDisplay:
         self.alpha = alpha
         self.show_visual = show_visual
         self.show_collision = show_collision
+        self.shown = True  # a RobotModel display shows it (its root node's visibility)
+        self._root: Any = None
         self.problems: list[GeometryProblem] = []
         # (missing package, link) of visual meshes drawn as the link's collision primitives
         self.substituted: list[tuple[str, str]] = []
@@ -127,7 +129,7 @@ class RobotModelDisplay:
     # -- building -----------------------------------------------------------------------------
     def build(self) -> None:
         """Add link nodes and primitives now; meshes wait for :meth:`load_meshes`."""
-        self.scene.add_frame(self.root, show_axes=False)
+        self._root = self.scene.add_frame(self.root, show_axes=False, visible=self.shown)
         for i, link in enumerate(self.robot.links):
             node = f"{self.root}/l{i}"
             self._links.append(self.scene.add_frame(node, show_axes=False, visible=False))
@@ -310,6 +312,13 @@ class RobotModelDisplay:
         with self._lock:
             for leaf in self._leaves:
                 leaf.handle.opacity = self._opacity(leaf.rgba)
+
+    def set_shown(self, shown: bool) -> None:
+        """Whether the robot is drawn at all (a RobotModel display that describes it is
+        enabled); its links keep their own visibility below."""
+        self.shown = shown
+        if self._root is not None:
+            self._root.visible = shown
 
     def set_visual_enabled(self, enabled: bool) -> None:
         self.show_visual = enabled

@@ -8,6 +8,7 @@ A description that fails to load leaves the last good model in place and records
 
 from __future__ import annotations
 
+import posixpath
 import random
 import threading
 from collections.abc import Mapping
@@ -50,6 +51,8 @@ class RobotSource:
     topic its sliders publish on) and ``external`` come from a launch file's nodes: a
     joint_state_publisher_gui in ``/r1`` publishes on ``/r1/joint_states``. None: the
     viewer's defaults (its options' ``external``, ``joint_states`` in the namespace).
+    ``description_name`` is the ROS 1 parameter a launch read the description from (an RViz 1
+    RobotModel's Robot Description names it).
     """
 
     path: str
@@ -59,6 +62,7 @@ class RobotSource:
     namespace: str | None = None
     joint_states_topic: str | None = None
     external: bool | None = None
+    description_name: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -158,6 +162,23 @@ class RobotSession:
             else (self.source.topic or Path(self.source.path).name)
         )
         return f"{self.prefix}{name}" if self.prefix else name
+
+    @property
+    def description_topic(self) -> str:
+        """Where the robot's description is published: its topic, or ``robot_description`` in
+        its namespace (robot_state_publisher's; RViz's RobotModel's Description Topic)."""
+        if self.source.topic is not None:
+            return "/" + self.source.topic.strip("/")
+        return posixpath.join("/", self.namespace.strip("/"), "robot_description")
+
+    @property
+    def description_names(self) -> tuple[str, ...]:
+        """The names an RViz RobotModel may give the description: its topic and, from a ROS 1
+        launch, the parameter it was read from (global names)."""
+        names = [self.description_topic]
+        if self.source.description_name:
+            names.append("/" + self.source.description_name.strip("/"))
+        return tuple(dict.fromkeys(names))
 
     @property
     def root_frame(self) -> str | None:

@@ -108,6 +108,17 @@ class TFDisplay:
             label.position = self._xyz[i]
             label.visible = bool(self._visible[i])
 
+    def remove(self) -> None:
+        """Take the axes and names out of the scene (drawn again by the next update)."""
+        if self._axes is not None:
+            self._axes.remove()
+            self._axes = None
+        for label in self._labels.values():
+            label.remove()
+        self._labels = {}
+        self.frames = ()
+        self._dirty = True
+
     def set_show_axes(self, show: bool) -> None:
         self.show_axes = show
         self._send_axes()

@@ -3,7 +3,7 @@ and the displays of its RViz config: opened into the panel, saved from it."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -17,8 +17,10 @@ from robomodel.viewer.displays.base import (
     display_class,
     is_rviz_display,
 )
+from robomodel.viewer.displays.follow import GraphFollower
 from robomodel.viewer.displays.manager import DisplayManager
 from robomodel.viewer.displays.panel import DisplaysPanel
+from robomodel.viewer.displays.robot_model import show_robots, topic_name
 from robomodel.viewer.displays.rviz_io import display_entry, display_values
 from robomodel.viewer.meshes import resolve_mesh_uri
 from robomodel.viewer.rviz_document import RvizDocument
@@ -32,7 +34,9 @@ _DRAW_PERIOD_S = 0.1  # RViz updates displays every frame; 10 Hz keeps the page'
 
 def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
     """The Displays folder of ``viewer`` (``viewer.server``, ``.buffer``, ``.meshes``,
-    ``.options``, ``.fixed_frame``, ``._post``), drawing on ``node``'s timer (loop thread)."""
+    ``.options``, ``.fixed_frame``, ``._post``), drawing on ``node``'s timer (loop thread);
+    with the rqt tools and no config file, its ``follower`` adds displays for the graph's
+    scans and odometry (:mod:`~robomodel.viewer.displays.follow`)."""
     panel: DisplaysPanel | None = None
 
     def topic_types(topic: str) -> frozenset[str]:
@@ -55,12 +59,18 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
         now_ns=lambda: node.get_clock().now_ns(),
         load_mesh=load_mesh,
         view_wxyz=_track_view(viewer.server),
+        robots=lambda: viewer.sessions,
     )
     manager = DisplayManager(context, node, viewer.buffer)
     folder = getattr(getattr(viewer, "options_panel", None), "displays_folder", None)
     panel = DisplaysPanel(
         viewer.server.gui, manager, viewer._post, BusWorker(node.context), folder=folder
     )
+    document = getattr(viewer.options, "rviz", None)
+    if getattr(viewer.options, "tools", False) and (document is None or document.missing):
+        panel.follower = GraphFollower(panel)  # no config: the graph's scans and odometry
+        manager.listeners.append(panel.follower)
+    manager.listeners.append(lambda: show_robots(manager.displays, viewer.sessions))
     node.create_timer(_DRAW_PERIOD_S, manager.update)
     return panel
 
@@ -81,9 +91,6 @@ def _track_view(server: Any) -> Callable[[], tuple[float, float, float, float] |
     return lambda: latest[0]
 
 
-_BUILTIN = ("RobotModel", "TF")  # the viewer's own folders (options_panel.py)
-
-
 class MissingDisplay(Display):
     """A display of a class robomodel lacks: listed with RViz's status for a plugin it cannot
     load, its settings kept for saving."""
@@ -100,12 +107,18 @@ class MissingDisplay(Display):
         )
 
 
-def open_config_displays(panel: DisplaysPanel, document: RvizDocument) -> list[str]:
-    """Add the document's displays other than RobotModel and TF to ``panel`` (before
-    the loop runs, or on it); one line per option value that could not be taken."""
+def open_config_displays(
+    panel: DisplaysPanel, document: RvizDocument, robots: Sequence[Any] = ()
+) -> list[str]:
+    """Add the document's displays to ``panel`` (before the loop runs, or on it); one line
+    per option value that could not be taken. Without a config file (``document.missing``:
+    RViz's defaults), the defaults' RobotModel becomes one per robot of ``robots`` (the
+    viewer's sessions), each on its robot's description topic: a user who views files
+    without a config sees every robot."""
     problems: list[str] = []
     for entry in document.config.displays:
-        if is_rviz_display(entry.class_name, _BUILTIN):
+        if document.missing and entry.kind == "RobotModel" and robots:
+            problems += _robot_models(panel, document, entry, robots)
             continue
         if not is_rviz_display(entry.class_name):
             missing = MissingDisplay(entry, panel.manager.context)
@@ -122,20 +135,35 @@ def open_config_displays(panel: DisplaysPanel, document: RvizDocument) -> list[s
     return problems
 
 
+def _robot_models(
+    panel: DisplaysPanel, document: RvizDocument, entry: RvizDisplay, robots: Sequence[Any]
+) -> list[str]:
+    """The defaults' RobotModel ``entry`` as one display per robot (the first is the entry)."""
+    cls = display_class(entry.class_name)
+    values, skipped = display_values(cls, entry.settings, document.dialect)
+    for number, robot in enumerate(robots):
+        topic = robot.description_topic
+        if topic_name(str(values.get("Description Topic", ""))) != topic:
+            values["Description Topic"] = topic
+        values["TF Prefix"] = robot.prefix.strip("/")
+        display = panel.add(entry.class_name, name=entry.name, values=values, enabled=entry.enabled)  # fmt: skip
+        if display is not None and number == 0:
+            display.config_entry = entry
+    return [f"{entry.name}: {line}" for line in skipped]
+
+
 def config_with_displays(
     displays: list[Display], config: RvizConfig, dialect: RvizDialect
 ) -> tuple[RvizConfig, Callable[[], None]]:
-    """``config`` with the panel's displays in place of those it was read with (RobotModel
-    and TF kept as they are), new ones at the end; and what to call once it is saved
-    (the displays then remember the entries written)."""
+    """``config`` with the panel's displays in place of those it was read with, new ones at
+    the end; and what to call once it is saved (the displays then remember the entries
+    written)."""
     by_entry = {id(d.config_entry): d for d in displays if d.config_entry is not None}
     out: list[RvizDisplay] = []
     written: list[tuple[Display, RvizDisplay]] = []
     for entry in config.displays:
         display = by_entry.get(id(entry))
         if display is None:
-            if is_rviz_display(entry.class_name, _BUILTIN):
-                out.append(entry)
             continue  # a display removed in the page
         out.append(_entry(display, dialect, entry))
         written.append((display, out[-1]))

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import enum
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, ClassVar, TypeVar
@@ -41,7 +41,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.viewer.displays.options import DisplayOptionError, Option, OptionKind, color_rgb
+from robomodel.viewer.displays.topic_qos import QOS_OPTION_NAMES, qos_options, topic_qos
 
 __all__ = [
     "Display",
@@ -129,7 +131,8 @@ def stamp_ns(stamp: Any) -> int:
 class SubscriptionSpec:
     """A subscription a display wants: ``callback`` gets each message of ``type_name`` on
     ``topic`` (``depth``: the queue size; ``transient_local``: latched, as RViz's Durability
-    Policy "Transient Local")."""
+    Policy "Transient Local"), or with ``qos`` when given (RViz 2's policies, see
+    :mod:`~robomodel.viewer.displays.topic_qos`)."""
 
     topic: str
     type_name: str
@@ -137,6 +140,15 @@ class SubscriptionSpec:
     depth: int = 10
     transient_local: bool = False
     key: str = "Topic"  # which subscription of the display, for specs that equal otherwise
+    qos: QoSProfile | None = None
+
+    @property
+    def qos_profile(self) -> QoSProfile:
+        """The profile subscribed with: ``qos``, else ``depth`` and the durability."""
+        if self.qos is not None:
+            return self.qos
+        durability = Durability.TRANSIENT_LOCAL if self.transient_local else Durability.VOLATILE
+        return QoSProfile(self.depth, durability)
 
 
 @dataclass
@@ -155,6 +167,8 @@ class DisplayContext:
             :class:`~robomodel.errors.RobomodelError` (None: no meshes in this viewer).
         view_wxyz: The page's camera orientation in the fixed frame (the last one moved;
             None before a page connects), for view-facing text (None: no page).
+        robots: The viewer's robots (its :class:`~robomodel.viewer.session.RobotSession` s),
+            for the RobotModel display (None: a viewer without robots).
     """
 
     scene: Any
@@ -165,6 +179,7 @@ class DisplayContext:
     now_ns: Callable[[], int]
     load_mesh: Callable[[str], tuple[Any, ...]] | None = None
     view_wxyz: Callable[[], tuple[float, float, float, float] | None] | None = None
+    robots: Callable[[], Sequence[Any]] | None = None
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9_.\-]")
@@ -187,6 +202,21 @@ class Display:
     """Option name -> ROS 1 config key where RViz 1 names it otherwise (``Marker Topic``)."""
     ros1_class_name: ClassVar[str] = ""
     """RViz 1's class where it differs (Wrench is ``rviz/WrenchStamped`` in ROS 1)."""
+    ros2_only: ClassVar[frozenset[str]] = frozenset()
+    """Options RViz 1 does not have: not read from or written to ROS 1 configs."""
+    topic_qos_defaults: ClassVar[Mapping[str, str]] = MappingProxyType({})
+    """RViz 2 policies (``"Durability Policy": "Transient Local"``) other than rclcpp's default
+    for this display's ``Topic``."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        """A display with a ``Topic`` gets RViz 2's QoS policies below it (every
+        ``RosTopicDisplay`` has them), unless it declares them itself."""
+        super().__init_subclass__(**kwargs)
+        names = {o.name for o in cls.options}
+        if any(o.name == "Topic" and o.kind is OptionKind.TOPIC for o in cls.options):
+            if not names & set(QOS_OPTION_NAMES):
+                cls.options = (*cls.options, *qos_options(cls.topic_qos_defaults))
+            cls.ros2_only = cls.ros2_only | set(QOS_OPTION_NAMES)
 
     def __init__(
         self,
@@ -221,6 +251,12 @@ class Display:
     def option(self, name: str) -> Any:
         return self.values[name]
 
+    def map_entries(self, name: str) -> Mapping[str, Any]:
+        """The entries of a MAP option the panel shows as checkboxes (default: its value; TF
+        adds every frame seen, which its option holds only once switched)."""
+        entries: Mapping[str, Any] = self.values[name]
+        return entries
+
     def set_option(self, name: str, value: Any) -> None:
         """Set an option (loop thread). Raises :class:`DisplayOptionError` for a bad value."""
         new = self.option_spec(name).coerce(value)
@@ -241,14 +277,20 @@ class Display:
         return str(self.values.get("Topic", ""))
 
     def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
-        """What to subscribe to now; default: ``Topic`` with ``Queue Size`` as depth, typed
-        as the graph shows it when that type is one of ``message_types``."""
+        """What to subscribe to now; default: ``Topic`` with :meth:`topic_qos`, typed as the
+        graph shows it when that type is one of ``message_types``."""
         if not self.enabled or not self.message_types or not self.topic:
             return ()
         known = self.context.topic_types(self.topic)
         type_name = next((t for t in self.message_types if t in known), self.message_types[0])
-        depth = int(self.values.get("Queue Size", 10))
-        return (SubscriptionSpec(self.topic, type_name, self.receive, max(1, depth)),)
+        qos = self.topic_qos()
+        latched = qos.durability is Durability.TRANSIENT_LOCAL
+        return (SubscriptionSpec(self.topic, type_name, self.receive, qos.depth, latched, qos=qos),)
+
+    def topic_qos(self) -> QoSProfile:
+        """The ``Topic`` subscription's QoS: ``Queue Size`` as depth and the policies."""
+        depth = max(1, int(self.values.get("Queue Size", 10)))
+        return topic_qos(self.values, depth)
 
     def receive(self, msg: Any) -> None:
         self.messages_received += 1

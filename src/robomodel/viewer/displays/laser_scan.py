@@ -1,7 +1,7 @@
 """RViz's LaserScan display: a scan's returns as points, placed through TF at the scan's stamp.
 
 Returns outside ``[range_min, range_max]`` or not finite are dropped (laser_geometry's
-projection, as :func:`~robomodel.viewer.tools.overlays.scan_points`). Each scan is put in the
+projection, :func:`scan_points`). Each scan is put in the
 fixed frame at its ``header.stamp``; with a Decay Time above 0 the scans of that many seconds
 stay drawn where they were, as RViz's point cloud common keeps them. Colour Transformers:
 Intensity (RViz's rainbow over the intensities, bounds computed from the data, the lowest
@@ -26,9 +26,8 @@ from robomodel.viewer.displays.base import (
     register_display,
     stamp_ns,
 )
-from robomodel.viewer.tools.overlays import scan_points
 
-__all__ = ["LaserScanDisplay", "rainbow"]
+__all__ = ["LaserScanDisplay", "rainbow", "scan_points"]
 
 _STYLES = ("Points", "Squares", "Flat Squares", "Spheres", "Boxes")
 _TRANSFORMERS = ("Intensity", "AxisColor", "FlatColor")
@@ -48,6 +47,15 @@ def _rainbow_table() -> NDArray[np.uint8]:
 
 
 _RAINBOW = _rainbow_table()
+
+
+def scan_points(scan: Any) -> NDArray[np.float64]:
+    """The scan's valid returns as ``(n, 3)`` points in its frame [m]."""
+    ranges = np.asarray(scan.ranges, dtype=np.float64)
+    angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
+    valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
+    r, a = ranges[valid], angles[valid]
+    return np.stack([r * np.cos(a), r * np.sin(a), np.zeros_like(r)], axis=1)
 
 
 def rainbow(values: NDArray[np.float64]) -> NDArray[np.uint8]:

@@ -17,7 +17,6 @@ import numpy as np
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import MessageTypeError, get_message_type
-from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.tf.exceptions import ExtrapolationError, TransformError
 from robomodel.viewer.displays.base import (
     Display,
@@ -176,10 +175,8 @@ class DisplayManager:
                 problem = DisplayStatus.error(f"Error subscribing: {exc}")
                 self._failed[(id(display), key)] = (spec, problem)
                 continue
-            durability = Durability.TRANSIENT_LOCAL if spec.transient_local else Durability.VOLATILE
-            qos = QoSProfile(spec.depth, durability)
             delivery = _Delivery(spec.callback)
-            sub = self.node.create_subscription(msg_type, spec.topic, delivery, qos)
+            sub = self.node.create_subscription(msg_type, spec.topic, delivery, spec.qos_profile)
             self._subscribed[(id(display), key)] = (spec, _Live(sub, delivery))
         return problem
 

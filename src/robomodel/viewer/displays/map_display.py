@@ -3,12 +3,13 @@
 The texture uses RViz's palettes (:mod:`.occupancy`); the plane is the map's origin pose in its
 ``header.frame_id``, placed through TF at the current time (RViz's "Use Timestamp" false) or
 the map's stamp, and re-placed at every draw so that a moving map frame carries it along. The
-map topic is subscribed with durability Transient Local so that a latched map (map_server) is
+map topic's Durability Policy starts as Transient Local so that a latched map (map_server) is
 received; map_msgs/OccupancyGridUpdate ("Update Topic") is kept in the config only.
 """
 
 from __future__ import annotations
 
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -20,7 +21,6 @@ from robomodel.viewer.displays.base import (
     FrameLookup,
     Option,
     OptionKind,
-    SubscriptionSpec,
     register_display,
     stamp_ns,
 )
@@ -52,6 +52,9 @@ class MapDisplay(Display):
         Option("Binary representation", False, OptionKind.BOOL),
         Option("Binary threshold", 100, OptionKind.INT, minimum=0, maximum=100),
     )
+    # RViz 2's Map is Volatile, so a map_server map (latched) shows only once the user picks
+    # Transient Local; robomodel starts with it, so that the map everyone publishes shows.
+    topic_qos_defaults = MappingProxyType({"Durability Policy": "Transient Local"})
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -61,12 +64,6 @@ class MapDisplay(Display):
         self._placed: bytes = b""
         self._T_frame_centre = np.eye(4)
         self._texture_key: tuple[Any, ...] = ()
-
-    def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
-        specs = super().subscriptions()
-        return tuple(
-            SubscriptionSpec(s.topic, s.type_name, s.callback, s.depth, True, s.key) for s in specs
-        )
 
     def on_message(self, msg: Any) -> None:
         self.map, self._new = msg, True

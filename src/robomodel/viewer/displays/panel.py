@@ -56,6 +56,13 @@ def topic_choices(topics: Mapping[str, frozenset[str]]) -> dict[str, tuple[str, 
     return out
 
 
+def _entry_on(value: Any) -> bool:
+    """A MAP option's entry as a checkbox: a bool, or RViz's ``{Value: bool}`` (TF's Frames)."""
+    if isinstance(value, Mapping):
+        return bool(value.get("Value", True))
+    return bool(value)
+
+
 class _Row:
     """One display's folder and controls."""
 
@@ -116,8 +123,9 @@ class _Row:
                 self._refresh_map(gui, option.name)
 
     def _refresh_map(self, gui: Any, name: str) -> None:
-        entries = self.display.option(name)
-        for key, on in entries.items():
+        entries = self.display.map_entries(name)
+        for key, value in entries.items():
+            on = _entry_on(value)
             box = self.namespaces.get(key)
             if box is None:
                 with self.controls[name]:
@@ -132,9 +140,15 @@ class _Row:
     def _changed_map(self, name: str, key: str, on: bool) -> None:
         # A click, or this panel writing the option's value back (viser calls the callbacks
         # then too): only a value that differs from the option is the user's.
-        if on == bool(self.display.option(name).get(key, True)):
+        if on == _entry_on(self.display.map_entries(name).get(key, True)):
             return
-        self._post(lambda: self._set(name, {**self.display.option(name), key: on}))
+
+        def store() -> None:
+            old = self.display.map_entries(name).get(key)
+            value = {**old, "Value": on} if isinstance(old, Mapping) else on  # keep its form
+            self._set(name, {**self.display.option(name), key: value})
+
+        self._post(store)
 
 
 class DisplaysPanel:
@@ -158,6 +172,7 @@ class DisplaysPanel:
     ) -> None:
         self.gui, self.manager, self.post, self.bus = gui, manager, post, bus
         self.rows: list[_Row] = []
+        self.follower: Any = None  # adds displays for the graph's topics (displays/follow.py)
         self.topics: dict[str, frozenset[str]] = {}
         self._choices: dict[str, tuple[str, str]] = {}
         self.folder = gui.add_folder("Displays") if folder is None else folder

@@ -33,6 +33,11 @@ def _key(cls: type[Display], name: str, dialect: RvizDialect) -> tuple[str, ...]
     return tuple(key.split("/"))
 
 
+def _in(cls: type[Display], name: str, dialect: RvizDialect) -> bool:
+    """Whether the option is in ``dialect``'s configs (RViz 1 has no QoS policies)."""
+    return dialect is RvizDialect.ROS2 or name not in cls.ros2_only
+
+
 def _get(settings: Mapping[str, Any], path: tuple[str, ...]) -> Any:
     node: Any = settings
     for part in path:
@@ -59,9 +64,12 @@ def display_values(
     values: dict[str, Any] = {}
     skipped: list[str] = []
     for option in cls.options:
+        if not _in(cls, option.name, dialect):
+            continue
         raw = _get(settings, _key(cls, option.name, dialect))
         if option.kind is OptionKind.TOPIC and isinstance(raw, Mapping):
-            if "Queue Size" not in values and raw.get("Depth") is not None:
+            has_queue = any(o.name == "Queue Size" for o in cls.options)
+            if has_queue and "Queue Size" not in values and raw.get("Depth") is not None:
                 values["Queue Size"] = raw["Depth"]
             raw = raw.get("Value")
         if option.name == "Queue Size" and raw is None:
@@ -102,6 +110,8 @@ def display_entry(
     before = _implied(cls, base.settings, dialect) if base is not None else None
     for option in cls.options:
         value = display.values[option.name]
+        if not _in(cls, option.name, dialect):
+            continue
         if before is not None and before[option.name] == value:
             continue
         _write(tree, cls, option.name, value, dialect, display)

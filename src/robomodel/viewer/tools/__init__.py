@@ -1,4 +1,4 @@
-"""rqt in the viewer: robot steering, plot, topic publisher, parameters and scene overlays.
+"""rqt in the viewer: robot steering, plot, topic publisher and parameters.
 
 One module per tool; each builds its controls in a collapsed folder of the page and does its
 bus work on the viewer's loop thread (publishers, subscriptions, timers) or on the bus worker

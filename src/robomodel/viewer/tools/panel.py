@@ -5,7 +5,6 @@ from __future__ import annotations
 import threading
 
 from robomodel.viewer.tools.base import ToolContext
-from robomodel.viewer.tools.overlays import OverlayTool
 from robomodel.viewer.tools.params import ParameterTool
 from robomodel.viewer.tools.plot import PlotTool
 from robomodel.viewer.tools.publisher import PublisherTool
@@ -33,8 +32,6 @@ class ToolsPanel:
             self.publisher = PublisherTool(tools)
         with gui.add_folder("Parameters", expand_by_default=False) as folder:
             self.parameters = ParameterTool(tools, folder)
-        with gui.add_folder("Overlays", expand_by_default=False):
-            self.overlays = OverlayTool(tools)
         self.graph_updates = 0
         self._stop = threading.Event()
         self._pending = threading.Event()

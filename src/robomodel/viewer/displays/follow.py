@@ -1,0 +1,83 @@
+"""Displays the viewer adds for the graph's scans and odometry when no RViz config says what
+to show (what its Overlays folder did before the displays existed).
+
+``robomodel view``, ``sim`` and ``control run`` without a ``-d`` file (or with one that does
+not exist yet) add, once each, a LaserScan display for the first ``sensor_msgs/LaserScan``
+topic the graph shows, an Odometry display for the first ``nav_msgs/Odometry`` topic that is
+not a simulator's ground truth, and a "Ground truth" Odometry display for the first one that
+is (Gazebo's p3d, ``.../ground_truth/odom``), in orange beside the odometry's blue so that
+odometry drift shows as two trails parting. A topic a display already shows is not added
+again, and a display the user removes stays removed. A config the user opened (``-d``, Open
+Config) is shown as RViz shows it: nothing is added.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+__all__ = ["FOLLOWED", "Followed", "GraphFollower"]
+
+
+def _is_ground_truth(topic: str) -> bool:
+    return "ground_truth" in topic
+
+
+@dataclass(frozen=True, slots=True)
+class Followed:
+    """One display added for the first topic of ``type_name`` that ``accepts`` takes."""
+
+    name: str
+    class_name: str
+    type_name: str
+    accepts: Callable[[str], bool]
+    values: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
+
+
+FOLLOWED = (
+    Followed("LaserScan", "LaserScan", "sensor_msgs/msg/LaserScan", lambda _topic: True),
+    Followed("Odometry", "Odometry", "nav_msgs/msg/Odometry",
+             lambda topic: not _is_ground_truth(topic),
+             MappingProxyType({"Shape/Color": "40; 200; 255"})),
+    Followed("Ground truth", "Odometry", "nav_msgs/msg/Odometry", _is_ground_truth,
+             MappingProxyType({"Shape/Color": "255; 150; 0"})),
+)  # fmt: skip
+
+
+class GraphFollower:
+    """Adds :data:`FOLLOWED` displays to a Displays panel as their topics appear (called on
+    the loop thread after each of the manager's updates).
+
+    Args:
+        panel: The :class:`~robomodel.viewer.displays.panel.DisplaysPanel` (its ``topics``
+            are the graph's, refreshed by its own thread; ``add`` adds a display and its row).
+        followed: What to follow.
+    """
+
+    def __init__(self, panel: Any, followed: tuple[Followed, ...] = FOLLOWED) -> None:
+        self.panel = panel
+        self.waiting = list(followed)
+        self.added: dict[str, Any] = {}  # name -> the display added
+
+    def stop(self) -> None:
+        """Add nothing more (a config was opened)."""
+        self.waiting.clear()
+
+    def __call__(self) -> None:
+        if not self.waiting:
+            return
+        topics: Mapping[str, frozenset[str]] = self.panel.topics
+        for followed in list(self.waiting):
+            found = sorted(t for t, types in topics.items()
+                           if followed.type_name in types and followed.accepts(t))  # fmt: skip
+            if not found:
+                continue
+            self.waiting.remove(followed)
+            if any(d.topic in found for d in self.panel.manager.displays):
+                continue  # already shown (by the user or another rule)
+            values = {"Topic": found[0], **followed.values}
+            display = self.panel.add(followed.class_name, name=followed.name, values=values)
+            if display is not None:
+                self.added[followed.name] = display

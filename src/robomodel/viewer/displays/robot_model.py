@@ -1,0 +1,134 @@
+"""RViz's RobotModel display: which of the viewer's robots are drawn, and how.
+
+The viewer loads its robots itself (the files on its command line, a launch's descriptions, or
+a description topic) and runs their robot_state_publishers; a RobotModel display draws the
+robots its description names, as RViz's draws the robot of its Description Topic (RViz 2,
+``rviz_default_plugins/RobotModel``) or of its Robot Description parameter (RViz 1,
+``rviz/RobotModel``: the option is written under that key; robot_state_publisher publishes the
+parameter's text on the topic of the same name, so one name serves both). A robot no enabled
+RobotModel display names is not drawn, as in RViz; when several name it, the last one's
+options count (later displays draw over earlier ones). Description Source ``File`` names a
+description file instead, matched against the files the viewer loaded.
+
+Options and defaults are RViz 2's (robot_model_display.cpp): Alpha, Visual Enabled, Collision
+Enabled, TF Prefix, Update Interval, Description Source / File / Topic. robomodel draws each
+robot at its own frames (a launch's ``frame_prefix``): a TF Prefix that differs is named in the
+status. Update Interval is kept for the config; links are placed at the viewer's Frame Rate.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from types import MappingProxyType
+from typing import Any
+
+from robomodel.viewer.displays.base import (
+    Display,
+    DisplayStatus,
+    FrameLookup,
+    Option,
+    OptionKind,
+    register_display,
+)
+
+__all__ = ["RobotModelDisplay", "show_robots", "topic_name"]
+
+
+def topic_name(name: str) -> str:
+    """A description topic or parameter name as a global name (relative names resolve in the
+    root namespace, where the viewer's node is)."""
+    return "/" + name.strip().strip("/")
+
+
+@register_display
+class RobotModelDisplay(Display):
+    """RViz's RobotModel display with its options and defaults."""
+
+    class_name = "RobotModel"
+    options = (
+        Option("Alpha", 1.0, OptionKind.FLOAT, minimum=0.0, maximum=1.0,
+               help="Amount of transparency to apply to the links."),
+        Option("Collision Enabled", False, OptionKind.BOOL,
+               help="Whether to display the collision representation of the robot."),
+        Option("Description File", "", OptionKind.TEXT, help="Path to the robot description."),
+        Option("Description Source", "Topic", OptionKind.CHOICE, choices=("Topic", "File")),
+        Option("Description Topic", "/robot_description", OptionKind.TOPIC,
+               help="Topic (RViz 1: parameter) holding the robot description"),
+        Option("TF Prefix", "", OptionKind.TEXT,
+               help="Robot Model normally assumes the link name is the same as the tf frame name. "
+               "This option allows you to set a prefix."),
+        Option("Update Interval", 0.0, OptionKind.FLOAT, minimum=0.0,
+               help="Interval at which to update the links, in seconds. 0 means to update every "
+               "update cycle."),
+        Option("Visual Enabled", True, OptionKind.BOOL,
+               help="Whether to display the visual representation of the robot."),
+    )  # fmt: skip
+    ros1_keys = MappingProxyType({"Description Topic": "Robot Description"})
+    ros2_only = frozenset({"Description File", "Description Source"})
+
+    def describes(self, session: Any) -> bool:
+        """Whether this display names ``session``'s robot (its topic or its file)."""
+        if self.option("Description Source") == "File":
+            path = str(self.option("Description File"))
+            try:
+                return bool(path) and os.path.samefile(path, session.source.path)
+            except OSError:
+                return False
+        return topic_name(str(self.option("Description Topic"))) in session.description_names
+
+    def _robots(self) -> Sequence[Any]:
+        robots = self.context.robots
+        return tuple(robots()) if robots is not None else ()
+
+    def draw(self, lookup: FrameLookup) -> DisplayStatus:
+        sessions = self._robots()
+        mine = [s for s in sessions if self.describes(s)]
+        if not mine:
+            return DisplayStatus.warn(self._nothing_text(sessions))
+        failed = [s for s in mine if s.failure is not None]
+        if failed:
+            return DisplayStatus.error(f"URDF: {failed[0].failure.message}")
+        if any(s.robot is None for s in mine):
+            return DisplayStatus.warn(f"Waiting for the robot description on {self._source()}")
+        prefix = str(self.option("TF Prefix")).strip("/")
+        other = [s for s in mine if prefix and prefix != s.prefix.strip("/")]
+        if other:
+            have = other[0].prefix.strip("/") or "none"
+            return DisplayStatus.warn(
+                f"TF Prefix '{prefix}': the robot's frames are prefixed '{have}' (drawn there)"
+            )
+        return DisplayStatus.ok(f"Showing {', '.join(s.label for s in mine)}")
+
+    def _source(self) -> str:
+        if self.option("Description Source") == "File":
+            return f"file [{self.option('Description File')}]"
+        return f"[{topic_name(str(self.option('Description Topic')))}]"
+
+    def _nothing_text(self, sessions: Sequence[Any]) -> str:
+        have = ", ".join(sorted({s.description_topic for s in sessions})) or "none"
+        return (
+            f"No robot described on {self._source()}; the viewer's robots are described on {have}"
+        )
+
+
+def show_robots(displays: Sequence[Display], sessions: Sequence[Any]) -> None:
+    """Draw each robot as the last enabled RobotModel display that names it says (Alpha,
+    Visual and Collision Enabled), and hide the robots none names (loop thread)."""
+    models = [d for d in displays if isinstance(d, RobotModelDisplay) and d.enabled]
+    for session in sessions:
+        drawing = session.display
+        if drawing is None:
+            continue
+        owner = next((d for d in reversed(models) if d.describes(session)), None)
+        if drawing.shown != (owner is not None):
+            drawing.set_shown(owner is not None)
+        if owner is None:
+            continue
+        alpha = float(owner.option("Alpha"))
+        if drawing.alpha != alpha:
+            drawing.set_alpha(alpha)
+        if drawing.show_visual != owner.option("Visual Enabled"):
+            drawing.set_visual_enabled(bool(owner.option("Visual Enabled")))
+        if drawing.show_collision != owner.option("Collision Enabled"):
+            drawing.set_collision_enabled(bool(owner.option("Collision Enabled")))

@@ -1,0 +1,176 @@
+"""Displays subscribe with their RViz 2 QoS: Depth (Queue Size), History, Reliability and
+Durability Policy, read from and written to ``Topic`` in ROS 2 configs (none in ROS 1's), and
+applied on the Zenoh bus (rmw_zenoh's tokens show them; a latched message reaches only a
+Transient Local display; Keep Last drops all but the newest ``depth``, Keep All none)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from types import MappingProxyType
+
+import pytest
+
+from robomodel.runtime.context import Context
+from robomodel.runtime.msg import get_message_type
+from robomodel.runtime.qos import Durability, History, QoSProfile, Reliability, latched
+from robomodel.tf.buffer import BufferCore
+from robomodel.viewer.displays import display_class
+from robomodel.viewer.displays.manager import DisplayManager
+from robomodel.viewer.displays.rviz_io import display_entry, display_values
+from robomodel.viewer.rviz_model import RvizDialect
+from tests.conftest import unique_domain
+from tests.timing import scaled
+from tests.viewer.fake_scene import FakeScene, fake_context
+
+Marker = get_message_type("visualization_msgs/msg/Marker")
+
+CHOSEN = {
+    "Topic": "/scan",
+    "Queue Size": 3,
+    "Topic/Reliability Policy": "Best Effort",
+    "Topic/Durability Policy": "Transient Local",
+    "Topic/History Policy": "Keep All",
+}
+
+
+def test_every_topic_display_has_rviz_2_s_policies_with_its_defaults() -> None:
+    scan = display_class("LaserScan")("scan", fake_context(FakeScene()), {"Topic": "/scan"})
+    assert scan.subscriptions()[0].qos_profile == QoSProfile(
+        10
+    )  # RViz 2: keep last, reliable, volatile
+    assert scan.option("Topic/Reliability Policy") == "Reliable"
+    chosen = display_class("LaserScan")("scan", fake_context(FakeScene()), CHOSEN)
+    assert chosen.subscriptions()[0].qos_profile == QoSProfile(
+        3, Durability.TRANSIENT_LOCAL, Reliability.BEST_EFFORT, History.KEEP_ALL
+    )
+    # "System Default" is rmw's default profile (QosProfileProperty::updateQosProfile)
+    chosen.set_option("Topic/Reliability Policy", "System Default")
+    assert chosen.subscriptions()[0].qos_profile.reliability is Reliability.RELIABLE
+    # the Map starts Transient Local (map_server's latched map), a choice it keeps in configs
+    grid = display_class("Map")("map", fake_context(FakeScene()), {"Topic": "/map"})
+    assert grid.subscriptions()[0].qos_profile == QoSProfile(5, Durability.TRANSIENT_LOCAL)
+    grid.set_option("Topic/Durability Policy", "Volatile")
+    assert grid.subscriptions()[0].qos_profile == QoSProfile(5)
+
+
+def test_policies_are_read_from_and_written_to_ros_2_topic_maps_only() -> None:
+    cls = display_class("LaserScan")
+    topic = {"Value": "/scan", "Depth": 3, "Reliability Policy": "Best Effort",
+             "Durability Policy": "Transient Local", "History Policy": "Keep All"}  # fmt: skip
+    values, skipped = display_values(cls, {"Topic": topic}, RvizDialect.ROS2)
+    assert skipped == [] and values == CHOSEN
+    display = cls("scan", fake_context(FakeScene()), values)
+    written = display_entry(display, RvizDialect.ROS2).settings["Topic"]
+    assert dict(written) == topic
+    # ROS 1: Topic is a name and Queue Size its own key; RViz 1 has no policies
+    ros1 = display_entry(display, RvizDialect.ROS1).settings
+    assert ros1["Topic"] == "/scan" and ros1["Queue Size"] == 3
+    assert not any("Policy" in key for key in ros1)
+    values, _ = display_values(cls, {"Topic": "/scan", "Queue Size": 3}, RvizDialect.ROS1)
+    assert values == {"Topic": "/scan", "Queue Size": 3}
+    # an unknown policy keeps the default and is named, as for any option RViz would not take
+    values, skipped = display_values(cls, {"Topic": {**topic, "History Policy": "Keep Some"}},
+                                     RvizDialect.ROS2)  # fmt: skip
+    assert "Topic/History Policy" not in values and "Keep Some" in skipped[0]
+
+
+def test_a_changed_policy_of_a_read_display_is_written_into_its_topic_map() -> None:
+    cls = display_class("LaserScan")
+    topic = MappingProxyType({"Value": "/scan", "Depth": 5, "Reliability Policy": "Reliable"})
+    settings = MappingProxyType({"Topic": topic})
+    display = cls("scan", fake_context(FakeScene()), display_values(cls, settings, RvizDialect.ROS2)[0])  # fmt: skip
+    from robomodel.viewer.rviz_model import RvizDisplay
+
+    base = RvizDisplay("rviz_default_plugins/LaserScan", "scan", True, settings)
+    assert display_entry(display, RvizDialect.ROS2, base).settings == settings  # unchanged
+    display.set_option("Topic/Reliability Policy", "Best Effort")
+    written = display_entry(display, RvizDialect.ROS2, base).settings["Topic"]
+    assert dict(written) == {"Value": "/scan", "Depth": 5, "Reliability Policy": "Best Effort"}
+
+
+@pytest.fixture
+def zenoh_pair() -> Iterator[tuple[Context, Context]]:
+    domain = int(unique_domain())
+    with Context("zenoh", domain_id=domain) as viewer, Context("zenoh", domain_id=domain) as peer:
+        yield viewer, peer
+
+
+def _until(check: object, what: str, *contexts: Context) -> None:
+    import time
+
+    deadline = time.monotonic() + scaled(20.0)
+    while not check():  # type: ignore[operator]
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        for context in contexts:
+            context.spin_once(0.02)
+
+
+def _cube(marker_id: int) -> object:
+    m = Marker()
+    m.header.frame_id, m.type, m.id = "base_link", 1, marker_id
+    m.scale.x = m.scale.y = m.scale.z = m.color.a = 1.0
+    return m
+
+
+def test_the_zenoh_bus_sees_and_applies_the_display_s_qos(
+    zenoh_pair: tuple[Context, Context],
+) -> None:
+    viewer, peer = zenoh_pair
+    manager = DisplayManager(fake_context(FakeScene(), fixed="base_link"), viewer.create_node("viewer"), BufferCore())  # fmt: skip
+    publisher = peer.create_node("pub").create_publisher(Marker, "/latched", latched(1))
+    publisher.publish(_cube(7))  # before anyone subscribes
+    volatile = manager.add("Marker", "volatile", {"Topic": "/latched"})
+    durable = manager.add("Marker", "durable", {"Topic": "/latched", "Queue Size": 2,
+                                                "Topic/Durability Policy": "Transient Local",
+                                                "Topic/Reliability Policy": "Best Effort"})  # fmt: skip
+    manager.update()
+
+    def subscribers() -> list[QoSProfile]:
+        info = peer.graph(timeout_s=1.0).topics.get("/latched")
+        return sorted((e.qos for e in info.subscribers), key=lambda q: q.depth) if info else []
+
+    _until(lambda: len(subscribers()) == 2, "the two subscriptions in the graph", viewer)
+    assert subscribers() == [
+        QoSProfile(2, Durability.TRANSIENT_LOCAL, Reliability.BEST_EFFORT),
+        QoSProfile(100),  # the Marker's Queue Size, RViz 2's policies
+    ]
+    _until(lambda: durable.messages_received == 1, "the latched marker", viewer)
+    publisher.publish(_cube(8))  # now both hear it: the volatile one only this one
+    _until(lambda: volatile.messages_received == 1 and durable.messages_received == 2,
+           "the new marker on both", viewer)  # fmt: skip
+    assert volatile.messages_received == 1
+
+
+@pytest.mark.parametrize(("history", "expected"), [("Keep Last", 3), ("Keep All", 12)])
+def test_keep_last_keeps_the_newest_depth_messages_and_keep_all_every_one(
+    zenoh_pair: tuple[Context, Context], history: str, expected: int
+) -> None:
+    """Twelve markers arrive while the viewer's loop is busy: the display sees the newest
+    three with Keep Last and depth 3, all twelve with Keep All (rmw_zenoh's queue)."""
+    viewer, peer = zenoh_pair
+    manager = DisplayManager(fake_context(FakeScene(), fixed="base_link"), viewer.create_node("viewer"), BufferCore())  # fmt: skip
+    display = manager.add("Marker", values={"Topic": "/m", "Queue Size": 3,
+                                            "Topic/History Policy": history})  # fmt: skip
+    seen: list[int] = []
+    display.on_message = lambda msg: seen.append(msg.id)  # type: ignore[method-assign]
+    manager.update()
+    publisher = peer.create_node("pub").create_publisher(Marker, "/m", 20)
+
+    def handshake() -> bool:  # until the subscription hears the publisher
+        publisher.publish(_cube(0))
+        viewer.spin_once(0.1)
+        return bool(seen)
+
+    _until(handshake, "the first marker", viewer)
+    (live,) = [sub for _spec, sub in manager._subscribed.values()]
+    handle = live.subscription._handle
+    _until(lambda: not handle._pending, "the handshake's markers", viewer)
+    del seen[:]
+    dropped = handle.dropped
+    for marker_id in range(1, 13):
+        publisher.publish(_cube(marker_id))
+    # not spinning: the samples wait in the subscription's queue (or were dropped from it)
+    _until(lambda: handle.dropped - dropped + len(handle._pending) == 12, "the twelve samples")
+    _until(lambda: seen[-1:] == [12], "the newest marker", viewer)
+    assert seen == list(range(13 - expected, 13))
