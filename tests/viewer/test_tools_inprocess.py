@@ -199,6 +199,9 @@ def test_the_graph_s_scan_odometry_and_ground_truth_get_displays_in_the_fixed_fr
     wait_for(lambda: len(ground_truth.trail.poses) == 2, what="the ground-truth arrows")
     assert (odometry.option("Shape/Color"), ground_truth.option("Shape/Color")) == (
         "40; 200; 255", "255; 150; 0")  # fmt: skip
+    # the trails only: no covariance shapes (a diff drive's 1e6 variances span a kilometre)
+    assert not odometry.option("Covariance/Value") and not ground_truth.option("Covariance/Value")
+    assert not any(key.startswith("covariance") for key in odometry._nodes)
     laser = panel.follower.added["LaserScan"]
     wait_for(lambda: laser.node("points") is not None, what="the scan drawn")
     assert np.asarray(laser.node("points").points) == pytest.approx(
