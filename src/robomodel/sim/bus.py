@@ -58,6 +58,7 @@ from robomodel.sim.sensors.spec import SensorKind, SensorSpec
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
+    from robomodel.runtime.node import Publisher
     from robomodel.sim.engine import Simulation
     from robomodel.sim.sensors.camera import Frame
 
@@ -66,6 +67,8 @@ __all__ = ["SimBridge", "robot_namespace"]
 log = logging.getLogger("robomodel.sim")
 
 _IDLE_CLOCK_PERIOD_S = 0.1  # /clock while paused [s of wall time]
+GAZEBO_ROS_STATE_RATE_HZ = 100.0
+"""ROS 2's gazebo_ros_state ``update_rate`` default (gazebo_ros_state.cpp, ros2 branch)."""
 
 _SENSORS: dict[SensorKind, type[SimSensor]] = {
     SensorKind.RAY: Lidar,
@@ -134,7 +137,7 @@ class SimBridge:
             self._add_sensor(mounted.spec, "", "", 1000 + i, site=mounted.site)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
-        self._add_states(clock_rate_hz)
+        self._add_states()
         from robomodel.sim.bus_services import bridge_services
         from robomodel.sim.state_services import state_services, state_topics
 
@@ -149,7 +152,7 @@ class SimBridge:
         """``built``'s Gazebo model name: as spawned, else its URDF name."""
         return self._model_names.get(built.prefix, built.robot.name)
 
-    def _add_states(self, rate_hz: float) -> None:
+    def _add_states(self) -> None:
         """/gazebo/model_states and /gazebo/link_states (see the module docstring): ROS 1's
         queue of 10, ROS 2's gazebo_ros_state ``KeepLast(1)``."""
         from robomodel.runtime.msg.gazebo_msgs_states import LinkStates, ModelStates
@@ -159,12 +162,24 @@ class SimBridge:
         depth = 10 if self.ros_version == 1 else 1
         models = self.node.create_publisher(ModelStates, "/gazebo/model_states", depth)
         links = self.node.create_publisher(LinkStates, "/gazebo/link_states", depth)
+        if self.ros_version == 1:  # every world update, each topic while it has subscribers
+            for pub, state in (
+                (models, self.states.model_states),
+                (links, self.states.link_states),
+            ):
+                self.sim.every(
+                    0.0,
+                    _publishing_state(pub, state),
+                    order=1,
+                    active=_has_subscribers(pub),
+                )
+            return
 
         def publish(_time_s: float) -> None:
             models.publish(self.states.model_states())
             links.publish(self.states.link_states())
 
-        self.sim.every(rate_hz, publish, order=1)
+        self.sim.every(GAZEBO_ROS_STATE_RATE_HZ, publish, order=1)
 
     def _add_robot(self, built: BuiltRobot, ground_truth_rate_hz: float) -> None:
         sim = self.sim
@@ -369,3 +384,17 @@ def _publishing(source: Any, publisher: Any) -> Callable[[float], None]:
         publisher.publish(source.measure(time_s))
 
     return publish
+
+
+def _publishing_state(publisher: Any, state: Callable[[], Any]) -> Callable[[float], None]:
+    def publish(_time_s: float) -> None:
+        publisher.publish(state())
+
+    return publish
+
+
+def _has_subscribers(publisher: Publisher[Any]) -> Callable[[], bool]:
+    def active() -> bool:
+        return publisher.get_subscription_count() > 0
+
+    return active
