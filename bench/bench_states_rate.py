@@ -29,8 +29,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import ros1_env  # noqa: E402
-from bench_sim import HOME, JOINTS, UR5_PID_YAML, _ur5_effort  # noqa: E402
+from _common import ros1_env
+from bench_sim import HOME, JOINTS, UR5_PID_YAML, _ur5_effort
 
 TOPICS = ("/gazebo/model_states", "/gazebo/link_states")
 
