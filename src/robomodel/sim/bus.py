@@ -21,11 +21,16 @@ the names of the graph's ROS version (``ros_version``): ROS 1's gazebo_ros names
 
 Model and link states (:mod:`robomodel.sim.states`): ``/gazebo/model_states`` and
 ``/gazebo/link_states``, the get/set model and link state services and topics and
-``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`). gazebo_ros publishes the
-states at every world update while someone subscribes (1 kHz with 1 ms steps); robomodel
-publishes them with /clock, at ``clock_rate_hz`` (100 Hz): a callback at every physics step
-would make MuJoCo step one step at a time from Python instead of whole stretches between the
-callbacks that are due (:mod:`robomodel.sim.schedule`), several times slower.
+``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`). On a ROS 1 graph each
+states topic is published at every physics step while it has subscribers and not at all while
+it has none, as gazebo_ros does (gazebo_ros_api_plugin.cpp, noetic-devel: the world-update
+callback is connected on a topic's first subscriber and disconnected on its last). The callback
+is gated by the publisher's cached ``get_subscription_count()``: a callback at every step makes
+MuJoCo step one step at a time from Python instead of whole stretches between due callbacks
+(:mod:`robomodel.sim.schedule`), so unsubscribed it must not run or break up the stretches
+(bench/bench_states_rate.py: the UR5 at 15x real time unsubscribed, about 4x subscribed). On
+a ROS 2 graph they come at ``GAZEBO_ROS_STATE_RATE_HZ``, subscribed or not, as ROS 2's
+gazebo_ros_state publishes them (gazebo_ros_state.cpp, ros2 branch: ``update_rate``, 100 Hz).
 """
 
 from __future__ import annotations
