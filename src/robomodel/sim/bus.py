@@ -28,7 +28,7 @@ callback is connected on a topic's first subscriber and disconnected on its last
 is gated by the publisher's cached ``get_subscription_count()``: a callback at every step makes
 MuJoCo step one step at a time from Python instead of whole stretches between due callbacks
 (:mod:`robomodel.sim.schedule`), so unsubscribed it must not run or break up the stretches
-(bench/bench_states_rate.py: the UR5 at 15x real time unsubscribed, about 4x subscribed). On
+(bench/bench_states_rate.py: the UR5 at 15-50x real time unsubscribed, about 4x subscribed). On
 a ROS 2 graph they come at ``GAZEBO_ROS_STATE_RATE_HZ``, subscribed or not, as ROS 2's
 gazebo_ros_state publishes them (gazebo_ros_state.cpp, ros2 branch: ``update_rate``, 100 Hz).
 """
