@@ -21,7 +21,8 @@ the names of the graph's ROS version (``ros_version``): ROS 1's gazebo_ros names
 
 Model and link states (:mod:`robomodel.sim.states`): ``/gazebo/model_states`` and
 ``/gazebo/link_states``, the get/set model and link state services and topics and
-``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`). On a ROS 1 graph each
+``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`), published by
+:mod:`robomodel.sim.state_publishers`. On a ROS 1 graph each
 states topic is published at every physics step while it has subscribers and not at all while
 it has none, as gazebo_ros does (gazebo_ros_api_plugin.cpp, noetic-devel: the world-update
 callback is connected on a topic's first subscriber and disconnected on its last). The callback
@@ -29,8 +30,8 @@ is gated by the publisher's cached ``get_subscription_count()``: a callback at e
 MuJoCo step one step at a time from Python instead of whole stretches between due callbacks
 (:mod:`robomodel.sim.schedule`), so unsubscribed it must not run or break up the stretches
 (bench/bench_states_rate.py: the UR5 at 15-50x real time unsubscribed, about 4x subscribed). On
-a ROS 2 graph they come at ``GAZEBO_ROS_STATE_RATE_HZ``, subscribed or not, as ROS 2's
-gazebo_ros_state publishes them (gazebo_ros_state.cpp, ros2 branch: ``update_rate``, 100 Hz).
+a ROS 2 graph they come at 100 Hz, subscribed or not, as ROS 2's gazebo_ros_state publishes
+them (gazebo_ros_state.cpp, ros2 branch: its ``update_rate`` default).
 """
 
 from __future__ import annotations
@@ -63,7 +64,6 @@ from robomodel.sim.sensors.spec import SensorKind, SensorSpec
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
-    from robomodel.runtime.node import Publisher
     from robomodel.sim.engine import Simulation
     from robomodel.sim.sensors.camera import Frame
 
@@ -72,8 +72,6 @@ __all__ = ["SimBridge", "robot_namespace"]
 log = logging.getLogger("robomodel.sim")
 
 _IDLE_CLOCK_PERIOD_S = 0.1  # /clock while paused [s of wall time]
-GAZEBO_ROS_STATE_RATE_HZ = 100.0
-"""ROS 2's gazebo_ros_state ``update_rate`` default (gazebo_ros_state.cpp, ros2 branch)."""
 
 _SENSORS: dict[SensorKind, type[SimSensor]] = {
     SensorKind.RAY: Lidar,
@@ -158,33 +156,12 @@ class SimBridge:
         return self._model_names.get(built.prefix, built.robot.name)
 
     def _add_states(self) -> None:
-        """/gazebo/model_states and /gazebo/link_states (see the module docstring): ROS 1's
-        queue of 10, ROS 2's gazebo_ros_state ``KeepLast(1)``."""
-        from robomodel.runtime.msg.gazebo_msgs_states import LinkStates, ModelStates
+        """/gazebo/model_states and /gazebo/link_states (see the module docstring)."""
+        from robomodel.sim.state_publishers import publish_states
         from robomodel.sim.states import WorldStates
 
         self.states = WorldStates(self.sim, self.model_name)
-        depth = 10 if self.ros_version == 1 else 1
-        models = self.node.create_publisher(ModelStates, "/gazebo/model_states", depth)
-        links = self.node.create_publisher(LinkStates, "/gazebo/link_states", depth)
-        if self.ros_version == 1:  # every world update, each topic while it has subscribers
-            for pub, state in (
-                (models, self.states.model_states),
-                (links, self.states.link_states),
-            ):
-                self.sim.every(
-                    0.0,
-                    _publishing_state(pub, state),
-                    order=1,
-                    active=_has_subscribers(pub),
-                )
-            return
-
-        def publish(_time_s: float) -> None:
-            models.publish(self.states.model_states())
-            links.publish(self.states.link_states())
-
-        self.sim.every(GAZEBO_ROS_STATE_RATE_HZ, publish, order=1)
+        publish_states(self.sim, self.node, self.states, ros_version=self.ros_version)
 
     def _add_robot(self, built: BuiltRobot, ground_truth_rate_hz: float) -> None:
         sim = self.sim
@@ -389,17 +366,3 @@ def _publishing(source: Any, publisher: Any) -> Callable[[float], None]:
         publisher.publish(source.measure(time_s))
 
     return publish
-
-
-def _publishing_state(publisher: Any, state: Callable[[], Any]) -> Callable[[float], None]:
-    def publish(_time_s: float) -> None:
-        publisher.publish(state())
-
-    return publish
-
-
-def _has_subscribers(publisher: Publisher[Any]) -> Callable[[], bool]:
-    def active() -> bool:
-        return publisher.get_subscription_count() > 0
-
-    return active
