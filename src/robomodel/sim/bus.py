@@ -29,7 +29,7 @@ callback is connected on a topic's first subscriber and disconnected on its last
 is gated by the publisher's cached ``get_subscription_count()``: a callback at every step makes
 MuJoCo step one step at a time from Python instead of whole stretches between due callbacks
 (:mod:`robomodel.sim.schedule`), so unsubscribed it must not run or break up the stretches
-(bench/bench_states_rate.py: the UR5 at 15-50x real time unsubscribed, about 4x subscribed). On
+(bench/bench_states_rate.py: the UR5 at about 45x real time unsubscribed, 4-5x subscribed). On
 a ROS 2 graph they come at 100 Hz, subscribed or not, as ROS 2's gazebo_ros_state publishes
 them (gazebo_ros_state.cpp, ros2 branch: its ``update_rate`` default).
 """
