@@ -193,3 +193,28 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
     text = (tmp_path / "agg.log").read_text()
     line = yaml.safe_load(text[text.index("header:") :].split("\n---")[0])
     assert (line["level"], line["name"], line["msg"]) == (4, "/somebody", "careful")
+
+
+def test_seed_001_model_states_at_the_physics_rate(ros1: Ros1, tmp_path: Path) -> None:
+    """gazebo_ros publishes the states at every world update while subscribed (1 kHz with
+    Gazebo's 1 ms steps): Debian's ``rostopic hz`` sees about the physics rate, far above the
+    100 Hz of /clock. (That nothing is built while nobody subscribes is
+    tests/sim/test_model_states.py's.)"""
+    _launch_seed_001(ros1, tmp_path)
+    env = {**ros1.env, "PYTHONPATH": str(gazebo_msgs_python(tmp_path))}
+    log = tmp_path / "hz.log"
+    with log.open("w") as out:
+        hz = subprocess.Popen(
+            ["/usr/bin/rostopic", "hz", "-w", "2000", "/gazebo/model_states"],
+            stdout=out, stderr=subprocess.STDOUT, text=True, env=env, start_new_session=True,
+        )  # fmt: skip
+    ros1.procs.append(hz)
+
+    def rates() -> list[float]:
+        return [float(line.split(":")[1]) for line in log.read_text().splitlines()
+                if line.startswith("average rate:")]  # fmt: skip
+
+    ros1.until(lambda: len(rates()) >= 4 or hz.poll() is not None, "rostopic hz's rates")
+    assert hz.poll() is None, log.read_text()
+    # rostopic hz's first reports cover its start-up; the later ones the steady rate
+    assert max(rates()[2:]) > 400.0, log.read_text()

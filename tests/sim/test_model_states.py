@@ -162,3 +162,69 @@ def test_the_set_model_state_topic_moves_the_model_as_the_service_does() -> None
     finally:
         server.close()
         context.shutdown()
+
+
+def _count_calls(monkeypatch: pytest.MonkeyPatch) -> dict[str, int]:
+    """How often the bridge builds each states message (it publishes each one it builds)."""
+    from robomodel.sim.states import WorldStates
+
+    calls = {"model_states": 0, "link_states": 0}
+    for name in calls:
+        original = getattr(WorldStates, name)
+
+        def counted(self: WorldStates, _name: str = name, _original: object = original) -> object:
+            calls[_name] += 1
+            return _original(self)  # type: ignore[operator]
+
+        monkeypatch.setattr(WorldStates, name, counted)
+    return calls
+
+
+def _drain(context: Context) -> None:
+    while context.spin_once(0.0):
+        pass
+
+
+def test_ros1_states_at_every_step_while_subscribed_and_none_without(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """gazebo_ros (gazebo_ros_api_plugin.cpp, noetic-devel): each topic is published at every
+    world update from its first subscriber on, and not at all after its last one leaves."""
+    calls = _count_calls(monkeypatch)
+    server, context = _server(1)
+    try:
+        server.spawn("robot", _xml(UR5), xyz_m=(0.0, 0.0, 0.1))
+        assert server.sim is not None
+        sim = server.sim
+        sim.step(100)
+        assert calls == {"model_states": 0, "link_states": 0}
+        got: list[object] = []
+        sub = context.create_node("listener").create_subscription(
+            gzs.ModelStates, "/gazebo/model_states", got.append, 10
+        )
+        sim.step(100)
+        _drain(context)
+        assert calls == {"model_states": 100, "link_states": 0}  # link_states: nobody
+        assert len(got) == 100
+        sub.destroy()
+        sim.step(100)
+        assert calls == {"model_states": 100, "link_states": 0}
+    finally:
+        server.close()
+        context.shutdown()
+
+
+def test_ros2_states_at_gazebo_ros_state_s_100_hz(monkeypatch: pytest.MonkeyPatch) -> None:
+    """ROS 2's gazebo_ros_state publishes at its ``update_rate`` (default 100 Hz), subscribed or
+    not (gazebo_ros_state.cpp, ros2 branch)."""
+    calls = _count_calls(monkeypatch)
+    server, context = _server(2)
+    try:
+        server.spawn("robot", _xml(UR5), xyz_m=(0.0, 0.0, 0.1))
+        assert server.sim is not None
+        assert server.sim.timestep_s == pytest.approx(0.001)
+        server.sim.step(100)  # 0.1 s
+        assert calls == {"model_states": 10, "link_states": 10}
+    finally:
+        server.close()
+        context.shutdown()

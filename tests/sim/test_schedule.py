@@ -81,3 +81,22 @@ def test_batched_stepping_equals_single_steps_bit_for_bit() -> None:
     assert sim.data.time == ref.time
     assert (sim.data.qpos == ref.qpos).all() and (sim.data.qvel == ref.qvel).all()
     assert abs(sim.data.qpos - start).min() > 0.05  # the arm moved: not a trivial equality
+
+
+def test_a_gated_callback_runs_and_shortens_the_stretches_only_while_active() -> None:
+    schedule = StepSchedule()
+    active = [False]
+    calls: list[int] = []
+    step = [0]
+    schedule.add(ScheduledCallback(10, lambda t: None))
+    schedule.add(ScheduledCallback(1, lambda t: calls.append(step[0]), active=lambda: active[0]))
+    assert not schedule.runs_every_step  # gated: not for good
+    assert schedule.steps_to_next_due(3) == 7  # inactive: the whole stretch to step 10
+    for step[0] in range(5):
+        schedule.run_due(step[0], 0.0)
+    assert calls == []
+    active[0] = True
+    assert schedule.steps_to_next_due(3) == 1
+    for step[0] in range(5, 8):
+        schedule.run_due(step[0], 0.0)
+    assert calls == [5, 6, 7]

@@ -50,6 +50,12 @@ class Publisher(Generic[M]):
     def publish(self, msg: M) -> None:
         self._handle.publish(msg)
 
+    def get_subscription_count(self) -> int:
+        """Subscriptions matched now (rclpy's name; rospy's ``get_num_connections()``): this
+        process's on the in-process bus, the graph's subscription tokens of the topic and
+        type on Zenoh (as rmw_zenoh counts them), the TCPROS connections on ROS 1."""
+        return self._handle.subscription_count()
+
     def destroy(self) -> None:
         self._handle.destroy()
         if self._release is not None:

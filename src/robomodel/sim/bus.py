@@ -21,11 +21,17 @@ the names of the graph's ROS version (``ros_version``): ROS 1's gazebo_ros names
 
 Model and link states (:mod:`robomodel.sim.states`): ``/gazebo/model_states`` and
 ``/gazebo/link_states``, the get/set model and link state services and topics and
-``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`). gazebo_ros publishes the
-states at every world update while someone subscribes (1 kHz with 1 ms steps); robomodel
-publishes them with /clock, at ``clock_rate_hz`` (100 Hz): a callback at every physics step
-would make MuJoCo step one step at a time from Python instead of whole stretches between the
-callbacks that are due (:mod:`robomodel.sim.schedule`), several times slower.
+``/gazebo/get_model_properties`` (:mod:`robomodel.sim.state_services`), published by
+:mod:`robomodel.sim.state_publishers`. On a ROS 1 graph each
+states topic is published at every physics step while it has subscribers and not at all while
+it has none, as gazebo_ros does (gazebo_ros_api_plugin.cpp, noetic-devel: the world-update
+callback is connected on a topic's first subscriber and disconnected on its last). The callback
+is gated by the publisher's cached ``get_subscription_count()``: a callback at every step makes
+MuJoCo step one step at a time from Python instead of whole stretches between due callbacks
+(:mod:`robomodel.sim.schedule`), so unsubscribed it must not run or break up the stretches
+(bench/bench_states_rate.py: the UR5 at about 45x real time unsubscribed, 4-5x subscribed). On
+a ROS 2 graph they come at 100 Hz, subscribed or not, as ROS 2's gazebo_ros_state publishes
+them (gazebo_ros_state.cpp, ros2 branch: its ``update_rate`` default).
 """
 
 from __future__ import annotations
@@ -134,7 +140,7 @@ class SimBridge:
             self._add_sensor(mounted.spec, "", "", 1000 + i, site=mounted.site)
         if ground_truth_rate_hz > 0:
             self._add_moving_shapes(ground_truth_rate_hz)
-        self._add_states(clock_rate_hz)
+        self._add_states()
         from robomodel.sim.bus_services import bridge_services
         from robomodel.sim.state_services import state_services, state_topics
 
@@ -149,22 +155,13 @@ class SimBridge:
         """``built``'s Gazebo model name: as spawned, else its URDF name."""
         return self._model_names.get(built.prefix, built.robot.name)
 
-    def _add_states(self, rate_hz: float) -> None:
-        """/gazebo/model_states and /gazebo/link_states (see the module docstring): ROS 1's
-        queue of 10, ROS 2's gazebo_ros_state ``KeepLast(1)``."""
-        from robomodel.runtime.msg.gazebo_msgs_states import LinkStates, ModelStates
+    def _add_states(self) -> None:
+        """/gazebo/model_states and /gazebo/link_states (see the module docstring)."""
+        from robomodel.sim.state_publishers import publish_states
         from robomodel.sim.states import WorldStates
 
         self.states = WorldStates(self.sim, self.model_name)
-        depth = 10 if self.ros_version == 1 else 1
-        models = self.node.create_publisher(ModelStates, "/gazebo/model_states", depth)
-        links = self.node.create_publisher(LinkStates, "/gazebo/link_states", depth)
-
-        def publish(_time_s: float) -> None:
-            models.publish(self.states.model_states())
-            links.publish(self.states.link_states())
-
-        self.sim.every(rate_hz, publish, order=1)
+        publish_states(self.sim, self.node, self.states, ros_version=self.ros_version)
 
     def _add_robot(self, built: BuiltRobot, ground_truth_rate_hz: float) -> None:
         sim = self.sim

@@ -24,7 +24,12 @@ from robomodel.sim.build.geoms import MeshLoader
 from robomodel.sim.build.robot import BuiltRobot, Placement, add_robot
 from robomodel.sim.build.scene import add_world, apply_min_friction, new_spec
 from robomodel.sim.exceptions import SimulationError
-from robomodel.sim.schedule import ScheduledCallback, StepCallback, StepSchedule
+from robomodel.sim.schedule import (
+    ActivePredicate,
+    ScheduledCallback,
+    StepCallback,
+    StepSchedule,
+)
 from robomodel.sim.world import World, default_world
 
 if TYPE_CHECKING:
@@ -202,14 +207,23 @@ class Simulation:
         self._schedule.add(ScheduledCallback(loop.every_steps, loop.callback, 0))
         return loop.system
 
-    def every(self, rate_hz: float, callback: StepCallback, *, order: int = 0) -> None:
+    def every(
+        self,
+        rate_hz: float,
+        callback: StepCallback,
+        *,
+        order: int = 0,
+        active: ActivePredicate | None = None,
+    ) -> None:
         """Call ``callback(time_s)`` every ``1 / rate_hz`` of sim time (0: every step).
 
         Within a step, callbacks run by ``order`` (the bus tick -1, controller managers 0,
-        sensors 1), then by registration.
+        sensors 1), then by registration. With ``active``, only while ``active()`` is True
+        (asked at every due step: keep it cheap); an inactive callback does not break up the
+        stretches MuJoCo steps in one call (:mod:`robomodel.sim.schedule`).
         """
         steps = 1 if rate_hz <= 0 else max(1, round(1.0 / (rate_hz * self.timestep_s)))
-        self._schedule.add(ScheduledCallback(steps, callback, order))
+        self._schedule.add(ScheduledCallback(steps, callback, order, active))
 
     # -- stepping -------------------------------------------------------------------------------
     def step(self, n: int = 1) -> None:

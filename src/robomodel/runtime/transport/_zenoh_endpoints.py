@@ -68,6 +68,8 @@ class ZenohPublisher(PublisherHandle):
         prepare(msg_type)
         token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
         self._gid = entity_gid(token.key())
+        self._graph = bus.graph_cache
+        self._match = (token.name, token.dds_type)
         key = bus.data_key(endpoint.topic, msg_type)
         # rmw_publisher_data.cpp (PublisherData::make): BLOCK for RELIABLE + KEEP_ALL, so a
         # slow link holds the publisher back rather than lose messages; DROP otherwise.
@@ -114,6 +116,9 @@ class ZenohPublisher(PublisherHandle):
             self._seq += 1
             attachment = encode_attachment(self._seq, time.time_ns(), self._gid)
             self._pub.put(payload, attachment=attachment)
+
+    def subscription_count(self) -> int:
+        return 0 if self._destroyed else self._graph.subscription_count(*self._match)
 
     def destroy(self) -> None:
         with self._lock:

@@ -90,6 +90,8 @@ class GraphCache:
         self._lock = threading.Lock()
         self._tokens: dict[str, EntityToken] = {}
         self._per_peer: collections.Counter[str] = collections.Counter()
+        # subscriptions by (topic, DDS type name): what a publisher's matched count reads
+        self._subscriptions: collections.Counter[tuple[str, str]] = collections.Counter()
         # hashes of the keys left out (so that their undeclaration is told from a stranger's),
         # then a count of those past the set's own bound
         self._left_out: set[int] = set()
@@ -132,6 +134,11 @@ class GraphCache:
             self._per_peer[token.zid] -= 1
             if not self._per_peer[token.zid]:
                 del self._per_peer[token.zid]
+            if token.kind is EntityKind.SUBSCRIPTION:
+                topic = (token.name, token.dds_type)
+                self._subscriptions[topic] -= 1
+                if not self._subscriptions[topic]:
+                    del self._subscriptions[topic]
         elif hash(key) in self._left_out:  # a token that was left out went away
             self._left_out.discard(hash(key))
         elif self._left_out_untracked:
@@ -159,6 +166,16 @@ class GraphCache:
             return
         self._tokens[key] = token
         self._per_peer[token.zid] += 1
+        if token.kind is EntityKind.SUBSCRIPTION:
+            self._subscriptions[(token.name, token.dds_type)] += 1
+
+    def subscription_count(self, topic: str, dds_type: str) -> int:
+        """Live subscriptions of ``topic`` with type ``dds_type``, as rmw_zenoh's
+        ``GraphCache::publisher_count_matched_subscriptions`` counts a publisher's matches
+        (graph_cache.cpp: the topic's subscriptions of the publisher's type whose QoS is not
+        incompatible, and rmw_zenoh's ``rmw_qos_profile_check_compatible`` finds none so).
+        Kept up to date as tokens come and go: reading it is a dict look-up."""
+        return self._subscriptions.get((topic, dds_type), 0)
 
     def tokens(self) -> list[EntityToken]:
         """The tokens kept, as declared."""

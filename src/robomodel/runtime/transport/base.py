@@ -151,6 +151,12 @@ class PublisherHandle(ABC):
     @abstractmethod
     def destroy(self) -> None: ...
 
+    @abstractmethod
+    def subscription_count(self) -> int:
+        """Subscriptions this publisher reaches now, as rclpy's
+        ``Publisher.get_subscription_count()`` (rospy: ``get_num_connections()``). Cheap
+        enough to ask at every physics step: no graph round trip."""
+
 
 class SubscriptionHandle(ABC):
     @abstractmethod

@@ -65,6 +65,11 @@ class _Pub(PublisherHandle):
                 self.history.popleft()
         self.transport._dispatch(self, msg)
 
+    def subscription_count(self) -> int:
+        """The subscriptions that :meth:`publish` delivers to (those of a compatible type)."""
+        subs = self.transport._subs.get(self.endpoint.topic, ())
+        return sum(self.transport._compatible(self.msg_type, s, self.endpoint.topic) for s in subs)
+
     def destroy(self) -> None:
         pubs = self.transport._pubs.get(self.endpoint.topic, [])
         if self in pubs:

@@ -51,15 +51,22 @@ __all__ = ["Ros1Transport"]
 
 class _Handle(PublisherHandle, SubscriptionHandle, ServiceHandle):
     def __init__(
-        self, destroy: Callable[[], None], publish: Callable[[Message], None] | None = None
+        self,
+        destroy: Callable[[], None],
+        publish: Callable[[Message], None] | None = None,
+        count: Callable[[], int] | None = None,
     ) -> None:
         self._destroy = destroy
         self._publish = publish
+        self._count = count
         self._done = False
 
     def publish(self, msg: Message) -> None:
         if self._publish is not None and not self._done:
             self._publish(msg)
+
+    def subscription_count(self) -> int:
+        return 0 if self._count is None or self._done else self._count()
 
     def destroy(self) -> None:
         if not self._done:
@@ -157,7 +164,7 @@ class Ros1Transport(Transport):
             except Ros1WireError as exc:
                 log.debug("unregisterPublisher %s: %s", topic, exc)
 
-        return _Handle(destroy, publication.publish)
+        return _Handle(destroy, publication.publish, publication.subscriber_count)
 
     def create_subscription(
         self,
@@ -203,7 +210,9 @@ class Ros1Transport(Transport):
             for deliver in list(self._local_topics.get((topic, msg_type), [])):
                 self.executor.post(functools.partial(deliver, msg))
 
-        return _Handle(lambda: None, publish)
+        return _Handle(
+            lambda: None, publish, lambda: len(self._local_topics.get((topic, msg_type), ()))
+        )
 
     def _local_subscription(
         self, topic: str, msg_type: type[Message], deliver: Callable[[Message], None]

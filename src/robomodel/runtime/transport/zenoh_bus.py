@@ -309,6 +309,11 @@ class ZenohTransport(Transport):
         own = set(self._nodes)
         return not own <= graph.nodes or (len(graph.nodes) <= len(own) and self._young())
 
+    @property
+    def graph_cache(self) -> GraphCache:
+        """The domain's tokens as they come and go (what publishers count matches in)."""
+        return self._graph
+
     def graph_quiet_s(self) -> float:
         """Seconds since the last token of the domain came or went."""
         return time.monotonic() - self._graph.changed_at

@@ -132,6 +132,11 @@ class Publication:
         self._lock = threading.Lock()
         self.connections: list[_Outbound] = []
 
+    def subscriber_count(self) -> int:
+        """Subscriber connections now (rospy's ``get_num_connections()``): updated as they
+        are accepted and as they end, so reading it costs nothing."""
+        return len(self.connections)
+
     def publish(self, msg: Message) -> None:
         with self._lock:
             connections = list(self.connections)
