@@ -175,15 +175,25 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _exit_if_a_bus_hangs(code: int) -> None:
-    """A Zenoh session whose close() never returned (robomodel.runtime.transport.
-    _zenoh_common.close_session) would keep the interpreter from exiting: exit without it."""
+    """End a process that loaded Zenoh without the interpreter's teardown, once its exit
+    handlers have run: a Zenoh session whose close() never returned
+    (robomodel.runtime.transport._zenoh_common.close_session) would keep it from exiting, and
+    Zenoh's runtime threads, still running while the interpreter tears its statics down, can
+    panic on the way out ("thread 'net-0' panicked ... static_init ... AccessError", seen once
+    in a CI run after a one-line error), printing a Rust backtrace under the error."""
     zenoh_common = sys.modules.get("robomodel.runtime.transport._zenoh_common")
-    if zenoh_common is not None and vars(zenoh_common).get("abandoned_sessions", 0):
-        import os
+    abandoned = zenoh_common is not None and vars(zenoh_common).get("abandoned_sessions", 0)
+    if "zenoh" not in sys.modules and not abandoned:
+        return
+    import atexit
+    import contextlib
+    import os
 
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(code)
+    atexit._run_exitfuncs()  # logging's flush, the GL contexts' release, ...
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a closed pipe: nothing more to write
+            stream.flush()
+    os._exit(code)
 
 
 def _run_verb(func: Callable[[argparse.Namespace], int], args: argparse.Namespace) -> int:
