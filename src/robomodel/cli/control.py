@@ -252,10 +252,14 @@ def _switch(args: argparse.Namespace) -> int:
     return 0
 
 
+# ros2controlcli's words: "Successfully cleaned up controller X" (cleanup_controller.py)
+_DONE = {"configure": "configured", "cleanup": "cleaned up", "unload": "unloaded"}
+
+
 def _simple(args: argparse.Namespace) -> int:
     verb = args.service.split("_")[0]
     _check(_with_manager(args, lambda c: getattr(c, verb)(args.name)), f"{verb} of {args.name}")
-    print(f"Successfully {verb}ed controller {args.name}".replace("eed ", "ed "))
+    print(f"Successfully {_DONE[verb]} controller {args.name}")
     return 0
 
 
