@@ -288,3 +288,5 @@ def _lifecycle_verbs(domain: str, name: str) -> None:
         assert state() == after, verb
     again = _cli("control", "configure", name, "--domain-id", domain)
     assert again.returncode == 2 and again.stderr.count("\n") == 1, again.stderr
+    assert "the controller manager's log says why" in again.stderr
+    assert "is `robomodel control run` running" not in again.stderr  # it answered: it runs

@@ -150,7 +150,10 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
         try:
             return action(client)
         except RobomodelError as exc:
-            others = [m for m in _managers_on_the_bus(context) if m != cm]
+            managers = _managers_on_the_bus(context)
+            if cm in managers:  # it answered, refusing: asking whether it runs would mislead
+                raise
+            others = [m for m in managers if m != cm]
             if others:
                 hint = (
                     f"controller manager {cm} is not on the bus; controller managers that are: "
