@@ -230,6 +230,7 @@ def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
         while time.monotonic() < deadline and abs(_joint1(domain) - 1.0) > 1e-9:
             time.sleep(0.3)
         assert _joint1(domain) == 1.0
+        _lifecycle_verbs(domain, "joint1_position_controller")
     finally:
         proc.send_signal(signal.SIGINT)
         try:
@@ -262,3 +263,30 @@ def test_controller_parameter_error_points_at_the_yaml(
     )
     assert result.code == 2  # type: ignore[attr-defined]
     assert f"{bad}:4:7: controller 'fwd': 'interface_name' is required" in result.err  # type: ignore[attr-defined]
+
+
+def _lifecycle_verbs(domain: str, name: str) -> None:
+    """cleanup, configure and unload walk the controller through its states, each saying so in
+    ros2controlcli's words (cleanup_controller.py: "Successfully cleaned up controller X")."""
+
+    def state() -> str:
+        listed = _cli("control", "list-controllers", "--domain-id", domain)
+        rows = {line.split()[0]: line.split()[-1] for line in listed.stdout.splitlines()}
+        return rows.get(name, "gone")
+
+    switch = _cli("control", "switch", "--deactivate", name, "--domain-id", domain)
+    assert switch.returncode == 0, switch.stderr
+    assert state() == "inactive"
+    for verb, said, after in (
+        ("cleanup", "cleaned up", "unconfigured"),
+        ("configure", "configured", "inactive"),
+        ("unload", "unloaded", "gone"),
+    ):
+        done = _cli("control", verb, name, "--domain-id", domain)
+        assert done.returncode == 0, done.stderr
+        assert done.stdout == f"Successfully {said} controller {name}\n"
+        assert state() == after, verb
+    again = _cli("control", "configure", name, "--domain-id", domain)
+    assert again.returncode == 2 and again.stderr.count("\n") == 1, again.stderr
+    assert "the controller manager's log says why" in again.stderr
+    assert "is `robomodel control run` running" not in again.stderr  # it answered: it runs

@@ -76,20 +76,14 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
     assert not problems, "\n".join(problems)
 
 
-# The pages a newcomer follows: each of their shell blocks is run, or says why it is not.
-NEWCOMER_PAGES = [
-    ROOT / "README.md",
-    ROOT / "docs" / "getting-started.md",
-    *sorted((ROOT / "docs" / "tutorials").glob("*.md")),
-    *sorted((ROOT / "docs" / "howto").glob("*.md")),
-]
 _SHELL = ("bash", "sh", "console", "shell")
 
 
-@pytest.mark.parametrize("page", NEWCOMER_PAGES, ids=_name)
-def test_newcomer_page_shell_blocks_are_run(page: Path) -> None:
-    """Every shell block of the getting-started path is run by a test (``<!-- run... -->``, the
-    README's quickstart) or says why not (``<!-- not run: REASON -->``)."""
+@pytest.mark.parametrize("page", PAGES, ids=_name)
+def test_page_shell_blocks_are_run(page: Path) -> None:
+    """Every shell block of every page (the README, the newcomer pages and the reference) is run
+    by a test (``<!-- run... -->``, the README's quickstart) or says why not (``<!-- not run:
+    REASON -->``)."""
     text = page.read_text()
     marked = {block.line for block in blocks(page)}
     unmarked = [

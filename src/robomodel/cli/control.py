@@ -150,7 +150,10 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
         try:
             return action(client)
         except RobomodelError as exc:
-            others = [m for m in _managers_on_the_bus(context) if m != cm]
+            managers = _managers_on_the_bus(context)
+            if cm in managers:  # it answered, refusing: asking whether it runs would mislead
+                raise
+            others = [m for m in managers if m != cm]
             if others:
                 hint = (
                     f"controller manager {cm} is not on the bus; controller managers that are: "
@@ -252,10 +255,14 @@ def _switch(args: argparse.Namespace) -> int:
     return 0
 
 
+# ros2controlcli's words: "Successfully cleaned up controller X" (cleanup_controller.py)
+_DONE = {"configure": "configured", "cleanup": "cleaned up", "unload": "unloaded"}
+
+
 def _simple(args: argparse.Namespace) -> int:
     verb = args.service.split("_")[0]
     _check(_with_manager(args, lambda c: getattr(c, verb)(args.name)), f"{verb} of {args.name}")
-    print(f"Successfully {verb}ed controller {args.name}".replace("eed ", "ed "))
+    print(f"Successfully {_DONE[verb]} controller {args.name}")
     return 0
 
 

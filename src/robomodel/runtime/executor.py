@@ -7,8 +7,8 @@ that raises is logged and the executor goes on: a bad message never kills a node
 
 from __future__ import annotations
 
+import collections
 import logging
-import queue
 import threading
 import time
 from collections.abc import Callable
@@ -64,16 +64,22 @@ class Executor:
     """Runs posted callbacks and due timers."""
 
     def __init__(self) -> None:
-        # A C-implemented queue: producers never take a Python-level lock, and the spinning
-        # thread blocks in get() with the GIL released until work (or a wake-up) arrives.
-        self._queue: queue.SimpleQueue[Callable[[], None]] = queue.SimpleQueue()
+        # Producers append (atomic under the GIL) and ring the bell only when it is not rung
+        # already. The spinning thread waits on the bell, never in queue.SimpleQueue.get with a
+        # timeout: on CPython 3.11/3.12 that get blocks forever once a signal handler (Ctrl-C's)
+        # runs past its deadline (tests/runtime/test_executor_signals.py), where Event.wait
+        # (lock.acquire) checks the deadline again.
+        self._queue: collections.deque[Callable[[], None]] = collections.deque()
+        self._bell = threading.Event()
         self._timers: list[Timer] = []
         self._stopped = False
         self.spinner: int | None = None  # the ident of the thread that spins, once one did
 
     # -- producers (any thread) ----------------------------------------------------------
     def post(self, callback: Callable[[], None]) -> None:
-        self._queue.put(callback)
+        self._queue.append(callback)
+        if not self._bell.is_set():  # a stale True is harmless: the waiter clears, then looks
+            self._bell.set()
 
     def answer(
         self,
@@ -98,7 +104,7 @@ class Executor:
         return box["reply"] if done.wait(timeout_s) else None
 
     def _wake(self) -> None:
-        self._queue.put(_noop)
+        self.post(_noop)
 
     def add_timer(self, period_s: float, callback: Callable[[], None], clock: Clock) -> Timer:
         if not period_s > 0:
@@ -128,8 +134,8 @@ class Executor:
         count = 0
         while True:
             try:
-                callback = self._queue.get_nowait()
-            except queue.Empty:
+                callback = self._queue.popleft()
+            except IndexError:
                 return count
             self._run(callback)
             count += 1
@@ -156,12 +162,10 @@ class Executor:
         live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
         if live:
             wait = min(wait, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
-        try:
-            callback = self._queue.get(timeout=wait) if wait > 0 else self._queue.get_nowait()
-        except queue.Empty:
-            return self.run_due_timers()
-        self._run(callback)
-        return 1 + self.run_pending() + self.run_due_timers()
+        self._bell.clear()  # then look: a post after this rings the bell again
+        if not self._queue and wait > 0:
+            self._bell.wait(wait)
+        return self.run_pending() + self.run_due_timers()
 
     def spin(
         self, *, duration_s: float | None = None, until: Callable[[], bool] | None = None
