@@ -151,8 +151,9 @@ def test_readme_run_commands(bus: _Bus) -> None:
     from tests.conftest import ROOT
 
     text = (ROOT / "docs/reference/commands.md").read_text()
-    block = text.split("## `robomodel run PKG EXECUTABLE [ARGS]`", 1)[1].split("```bash\n")[1]
-    commands = [line.split("#")[0].split() for line in block.split("```")[0].splitlines()]
+    section = text.split("## `robomodel run PKG EXECUTABLE [ARGS]`", 1)[1].split("\n## ")[0]
+    blocks = [part.split("```")[0] for part in section.split("```bash\n")[1:]]
+    commands = [line.split("#")[0].split() for block in blocks for line in block.splitlines()]
     assert [c[:3] for c in commands] == [["robomodel", "run", "tf2_ros"]] * 2
     publisher = bus.start("publisher", *commands[0][2:])
     echo = bus.start("readme_echo", *commands[1][2:])

@@ -271,7 +271,9 @@ def test_open_config_replaces_the_displays_and_the_fixed_frame(
         what="the second file's displays",
     )
     assert viewer.fixed_frame == "link_1" and viewer.fixed_dropdown.value == "link_1"
-    assert [r.folder.label for r in viewer.displays_panel.rows] == ["Grid", "Walls", "Depth", "Plans", "Imu"]  # fmt: skip
+    # the panel's rows follow the displays on the loop thread
+    wait_for(lambda: [r.folder.label for r in viewer.displays_panel.rows] == ["Grid", "Walls", "Depth", "Plans", "Imu"],
+             what="the panel's rows")  # fmt: skip
     assert panel.document.path == str(second)
     assert panel.save(str(second))  # Save Config now writes the file opened
     assert read_rviz_file(second).fixed_frame == "link_1"

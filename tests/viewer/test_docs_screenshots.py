@@ -36,7 +36,13 @@ def _toggle(page: Any, label: str, folder: str = "RobotModel") -> None:
 
 def _assert_drawn(page: Any) -> None:
     """The robot covers pixels that hidden visuals leave as background."""
-    drawn = settle(page)
+
+    # the robot's meshes may reach the page after the sliders: wait for something drawn
+    def something_drawn() -> Any:
+        image = settle(page)
+        return (image,) if (image < 200).any() else None
+
+    (drawn,) = wait_for(something_drawn, what="the robot drawn")
     _toggle(page, "Visual Enabled")
     assert changed_fraction(drawn, settle(page)) > 0.0005  # the planar arm is small in view
     _toggle(page, "Visual Enabled")
