@@ -207,9 +207,12 @@ def test_the_router_gives_back_the_memory_of_tokens_that_went() -> None:
         _wait(lambda: _rss_mib(router.pid) > baseline + 10, "the router to hold the tokens")
         peak = _rss_mib(router.pid)
         flooder.communicate("\n", timeout=scaled(60))
+        # Half the growth back: the allocator returns freed pages when it trims, not at once
+        # (a third was missed once in a quiet run); the leak this guards kept all of it.
         _wait(
-            lambda: _rss_mib(router.pid) < baseline + (peak - baseline) / 3,
+            lambda: _rss_mib(router.pid) < baseline + (peak - baseline) / 2,
             f"the router's memory to go back (baseline {baseline:.0f} MiB, peak {peak:.0f})",
+            timeout_s=60.0,
         )
     finally:
         router.terminate()
