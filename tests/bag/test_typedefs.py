@@ -7,14 +7,12 @@ import pytest
 
 from robomodel.bag.typedefs import rihs01, ros2msg_definition
 from robomodel.runtime.msg._schema import (
-    Array,
-    Message,
-    Seq,
     get_message_type,
     get_service_type,
     message_type_names,
     service_type_names,
 )
+from tests.runtime.char_fields import has_char
 
 
 def _jazzy() -> object:
@@ -33,20 +31,6 @@ def _known() -> list[str]:
     return sorted(names)
 
 
-def _has_char(kind: type[Message], seen: set[str] | None = None) -> bool:
-    """rosbags hashes ``char`` as ROS 1 does, rosidl as uint8 (tests/runtime/test_type_hashes)."""
-    seen = set() if seen is None else seen
-    if kind.__typename__ in seen:
-        return False
-    seen.add(kind.__typename__)
-    for _, spec in kind.__fields__:
-        while isinstance(spec, (Seq, Array)):
-            spec = spec.item
-        if spec == "char" or (not isinstance(spec, str) and _has_char(spec, seen)):
-            return True
-    return False
-
-
 STORE = _jazzy()
 SHARED = [n for n in _known() if n in STORE.fielddefs]  # type: ignore[attr-defined]
 
@@ -60,5 +44,5 @@ def test_definition_and_hash_match_rosbags(name: str) -> None:
     cls = get_message_type(name)
     definition, _ = STORE.generate_msgdef(name, ros_version=2)  # type: ignore[attr-defined]
     assert ros2msg_definition(cls) == definition
-    if not _has_char(cls):
+    if not has_char(cls):
         assert rihs01(cls) == STORE.hash_rihs01(name)  # type: ignore[attr-defined]

@@ -27,6 +27,7 @@ from robomodel.runtime.msg._schema import (
     service_type_names,
 )
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
+from tests.runtime.char_fields import has_char
 
 typesys = pytest.importorskip("rosbags.typesys")
 Nodetype = pytest.importorskip("rosbags.typesys.base").Nodetype
@@ -85,20 +86,6 @@ def _ours(spec: Spec) -> str:
         inner = _ours(spec.item)
         return f"{inner}[<={spec.bound}]" if spec.bound else f"{inner}[]"
     return spec.__typename__
-
-
-def _has_char(kind: type[Message], seen: set[str] | None = None) -> bool:
-    """rosbags hashes ``char`` as ROS 1 does (int8) where rosidl makes it uint8."""
-    seen = set() if seen is None else seen
-    if kind.__typename__ in seen:
-        return False
-    seen.add(kind.__typename__)
-    for _, spec in kind.__fields__:
-        while isinstance(spec, (Seq, Array)):
-            spec = spec.item
-        if spec == "char" or (not isinstance(spec, str) and _has_char(spec, seen)):
-            return True
-    return False
 
 
 def _all_message_types() -> list[type[Message]]:
@@ -181,7 +168,7 @@ def test_fields_and_hash_match_ros2_jazzy(kind: type[Message]) -> None:
     _, fields = STORE.fielddefs[kind.__typename__]
     ours = [(n, _ours(s)) for n, s in kind.__fields__] or [EMPTY_MEMBER]
     assert ours == [(n, _theirs(d)) for n, d in fields]
-    if not _has_char(kind):
+    if not has_char(kind):
         assert type_hash(kind) == STORE.hash_rihs01(kind.__typename__)
 
 
@@ -190,7 +177,7 @@ def test_char_is_uint8_as_rosidl_has_it() -> None:
     char of its own), so the two disagree on types with a char field; ServiceEventInfo's hash,
     cited above, and every service hash built on it say rosidl's mapping is the one on the wire."""
     kind = get_message_type("service_msgs/msg/ServiceEventInfo")
-    assert _has_char(kind)
+    assert has_char(kind)
     assert type_hash(kind) == dict(CITED)["service_msgs/msg/ServiceEventInfo"]
     assert type_hash(kind) != STORE.hash_rihs01("service_msgs/msg/ServiceEventInfo")
     assert dds_type_name(kind.__typename__) == "service_msgs::msg::dds_::ServiceEventInfo_"
