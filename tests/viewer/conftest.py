@@ -128,8 +128,13 @@ def page(browser: Any) -> Iterator[Any]:
     # playwright's 30 s default (clicks, wait_for, screenshots), scaled with the machine: a
     # loaded one ran out of it on folder clicks and screenshots (tests/timing.py)
     context.set_default_timeout(scaled(30_000))
-    yield context.new_page()
+    page = context.new_page()
+    said: list[str] = []  # the page's console and crashes, printed with a failure's report
+    page.on("console", lambda message: said.append(f"console {message.type}: {message.text}"))
+    page.on("crash", lambda _page: said.append("the page crashed"))
+    yield page
     context.close()
+    print("\n".join(said))
 
 
 def open_viewer(page: Any, url: str) -> None:
@@ -158,18 +163,41 @@ def changed_fraction(a: np.ndarray, b: np.ndarray, threshold: int = 30) -> float
     return float((diff > threshold).mean())
 
 
+def drawn(image: np.ndarray) -> bool:
+    """Whether the scene shows anything (the grid's lines at least): a canvas that has not
+    painted its first frame yet is one flat colour."""
+    return bool((np.abs(image.astype(np.int16) - image[0, 0]).max(axis=2) > 30).any())
+
+
 def settle(page: Any, timeout_s: float | None = None) -> np.ndarray:
-    """Screenshot once two consecutive shots of the scene agree (rendering has caught up),
-    or after ``timeout_s`` (default ``scaled(15)``)."""
+    """Screenshot once the scene shows something and two consecutive shots of it agree
+    (rendering has caught up), or after ``timeout_s`` (default ``scaled(15)``)."""
     deadline = time.monotonic() + (scaled(15.0) if timeout_s is None else timeout_s)
     last = scene_region(screenshot(page))
     while time.monotonic() < deadline:
         time.sleep(0.3)
         current = scene_region(screenshot(page))
-        if changed_fraction(last, current) < 0.0005:
+        if changed_fraction(last, current) < 0.0005 and drawn(current):
             return current
         last = current
+    if not drawn(last):  # for the failure's reader: the whole page as it was
+        print(
+            f"settle: nothing drawn; the page is in {save_shot(page, f'nothing_drawn_{os.getpid()}')}"
+        )
     return last
+
+
+def changed_view(
+    page: Any, before: np.ndarray, at_least: float = 0.002, what: str = "the scene to change"
+) -> np.ndarray:
+    """The settled scene once it differs from ``before`` in more than ``at_least`` of its
+    pixels: an action's effect reaches the canvas after a websocket round trip, which a
+    loaded machine can make longer than the 0.3 s between two agreeing shots of settle()."""
+    (image,) = wait_for(
+        lambda: (shot,) if changed_fraction(before, shot := settle(page, 5)) > at_least else None,
+        what=what,
+    )
+    return image  # type: ignore[no-any-return]
 
 
 def gui_row(page: Any, label: str) -> Any:
@@ -180,6 +208,26 @@ def gui_row(page: Any, label: str) -> Any:
         page.locator("label")
         .filter(has_text=exact)
         .locator("xpath=ancestor::div[.//input[not(@type='hidden')]][1]")
+    )
+
+
+def type_into(page: Any, label: str, text: str, server: Any = None) -> None:
+    """Type ``text`` into the text box ``label`` and press Enter; with ``server`` (the
+    in-process viewer's ``viser.ViserServer``), wait until the server holds the value.
+
+    viser's page (1.1.1, ``makeThrottledMessageSender`` in ``WebsocketUtils.ts``) sends every
+    GUI update of a panel through one 50 ms throttle that keeps only the latest message: a value
+    typed less than 50 ms before another control's update never reaches the server. A person is
+    slower than that; a test that goes on to the next control waits for the server instead."""
+    box = gui_row(page, label).locator("input:not([type=hidden])").first
+    box.fill(text)
+    box.press("Enter")
+    if server is None:
+        return
+    handles = server.gui._gui_input_handle_from_uuid.values()  # viser keeps no public index
+    wait_for(
+        lambda: any(h.label == label and str(h.value) == text for h in list(handles)),
+        what=f"the server to hold {label} = {text!r}",
     )
 
 

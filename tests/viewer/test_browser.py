@@ -20,6 +20,7 @@ from tests.timing import scaled
 from tests.viewer.conftest import (
     ViewerProcess,
     changed_fraction,
+    changed_view,
     domain_id,
     gui_row,
     open_viewer,
@@ -53,9 +54,8 @@ def test_simplebot_is_drawn_with_sliders_and_frames(
     with_robot = settle(page)
     save_shot(page, "simplebot")
     _toggle(page, "Visual Enabled")
-    without = settle(page)
     # The robot covers pixels that are background (or grid) when its visuals are hidden.
-    assert changed_fraction(with_robot, without) > 0.002
+    changed_view(page, with_robot, what="the robot's visuals hidden")
     # Randomize moves the sliders (and the wheels); Center brings them back to zero.
     _toggle(page, "Visual Enabled")
     page.get_by_text("Randomize").click()
@@ -137,9 +137,8 @@ def test_slider_moves_drawing_and_published_tf(
     box.fill("1.2")
     box.press("Enter")
     probe.wait_angle(1.2)
-    after = settle(page)
+    changed_view(page, before, what="the arm drawn at joint1 = 1.2")
     save_shot(page, "arm_joint1_1.2")
-    assert changed_fraction(before, after) > 0.002
     # The slider's thumb moved too: keyboard End takes it to the upper limit (2 rad).
     slider_thumb(page, "joint1").focus()
     page.keyboard.press("End")
@@ -195,7 +194,7 @@ def test_missing_mesh_is_listed_and_the_rest_drawn(
     drawn = settle(page)
     save_shot(page, "arm_missing_mesh")
     _toggle(page, "Visual Enabled")
-    assert changed_fraction(drawn, settle(page)) > 0.002
+    changed_view(page, drawn, what="the visuals hidden")
 
 
 def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], page: Any) -> None:
@@ -213,11 +212,15 @@ def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], 
     page.get_by_text("RobotModel (2)", exact=True).filter(visible=True).first.click()
     page.locator("label:text-is('Visual Enabled')").nth(0).click()
     page.locator("label:text-is('Visual Enabled')").nth(1).click()
-    hidden = settle(page)
     # robot1 at the fixed frame (centre), robot2 beside it (to the left): both are drawn.
     half = both.shape[1] // 2
-    assert changed_fraction(both[:, :half], hidden[:, :half]) > 0.002
-    assert changed_fraction(both[:, half:], hidden[:, half:]) > 0.002
+
+    def both_hidden() -> bool:
+        hidden = settle(page, 5)
+        halves = ((both[:, :half], hidden[:, :half]), (both[:, half:], hidden[:, half:]))
+        return all(changed_fraction(a, b) > 0.002 for a, b in halves)
+
+    wait_for(both_hidden, what="each half of the scene to lose its robot")
 
 
 def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any) -> None:
@@ -233,7 +236,7 @@ def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any
     drawn = settle(page)
     save_shot(page, "talos")
     _toggle(page, "Visual Enabled")
-    assert changed_fraction(drawn, settle(page)) > 0.01
+    changed_view(page, drawn, 0.01, what="talos's visuals hidden")
 
 
 def test_bus_mode_draws_joint_states_from_another_process(
@@ -297,33 +300,28 @@ def test_display_options_mimic_and_floating_controls(
     x_box = page.locator(f"[id='{for_id}']")
     x_box.fill("0.8")
     x_box.press("Tab")
-    moved = settle(page)
+    moved = changed_view(page, start, 0.001, what="the ball moved")
     save_shot(page, "arm_floating_moved")
-    assert changed_fraction(start, moved) > 0.001
     # Collision geometry appears; Alpha fades everything.
     _toggle(page, "Collision Enabled")
-    with_collision = settle(page)
-    assert changed_fraction(moved, with_collision) > 0.001
+    changed_view(page, moved, 0.001, what="the collision geometry drawn")
     _toggle(page, "Collision Enabled")
     alpha = gui_row(page, "Alpha").locator("input:not([type=hidden]):visible").first  # RobotModel's
     alpha.fill("0.2")
     alpha.press("Enter")
-    faded = settle(page)
+    changed_view(page, moved, what="the robot faded")
     save_shot(page, "arm_alpha_0.2")
-    assert changed_fraction(moved, faded) > 0.002
     # Names of the TF frames, and another Fixed Frame: the drawing moves with it.
     alpha.fill("1")
     alpha.press("Enter")
     no_names = settle(page)
     _toggle(page, "Show Names", "TF")  # labels are drawn in the 3D view (not page text)
-    before = settle(page)
+    before = changed_view(page, no_names, 0.0005, what="the frames' names drawn")
     save_shot(page, "arm_names")
-    assert changed_fraction(no_names, before) > 0.0005
     page.locator("input[value='base_link']:not([type=hidden])").click()
     page.get_by_role("option", name="ball", exact=True).click()
-    after = settle(page)
+    changed_view(page, before, what="the drawing moved with the fixed frame")
     save_shot(page, "arm_fixed_frame_ball")
-    assert changed_fraction(before, after) > 0.002
 
 
 def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:

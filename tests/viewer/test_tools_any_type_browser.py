@@ -20,7 +20,7 @@ from robomodel.runtime.node import Node
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 from tests.timing import scaled
-from tests.viewer.conftest import gui_row, open_viewer, save_shot, wait_for
+from tests.viewer.conftest import gui_row, open_viewer, save_shot, type_into, wait_for
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = pytest.mark.browser
@@ -83,12 +83,6 @@ def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
             master.wait(scaled(10))
 
 
-def _type(page: Any, label: str, text: str) -> None:
-    box = gui_row(page, label).locator("input:not([type=hidden])").first
-    box.fill(text)
-    box.press("Enter")
-
-
 def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, page: Any) -> None:
     assert viewer.context is not None
     context = viewer.context
@@ -123,7 +117,7 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
     open_viewer(page, viewer.url)
     page.get_by_text("Plot", exact=True).click()
     for path in ("/reading/raw[1]", "/cam/data[0]"):
-        _type(page, "Field", path)
+        type_into(page, "Field", path, viewer.server)
         page.get_by_text("Add series", exact=True).click()
         page.get_by_text(path).first.wait_for()
     plot = viewer.tools.plot
@@ -134,11 +128,11 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
     page.locator(".uplot canvas").first.wait_for()
     # The publisher: a field of the package's type, from an expression.
     page.get_by_text("Topic Publisher", exact=True).click()
-    _type(page, "Pub topic", "/out")
-    _type(page, "Pub type", "my_msgs/msg/Reading")
-    _type(page, "Pub field", "raw[2]")
-    _type(page, "Expression", "i * 2")
-    _type(page, "Variables", "")
+    type_into(page, "Pub topic", "/out", viewer.server)
+    type_into(page, "Pub type", "my_msgs/msg/Reading", viewer.server)
+    type_into(page, "Pub field", "raw[2]", viewer.server)
+    type_into(page, "Expression", "i * 2", viewer.server)
+    type_into(page, "Variables", "", viewer.server)
     gui_row(page, "Publishing").locator("input[type=checkbox]").first.click()
     wait_for(lambda: len(received) >= 3, timeout_s=scaled(30), what="the page's publications")
     values = [list(m.raw) for m in received[:3]]  # i = 0, 1, 2, ... (ROS 1 may miss the first)
@@ -185,7 +179,7 @@ def test_plot_takes_a_type_only_its_ros1_publisher_knows(
                  what="plot_msgs/Sample learned from its publisher")  # fmt: skip
         open_viewer(page, viewer.url)
         page.get_by_text("Plot", exact=True).click()
-        _type(page, "Field", "/sample/where/y")
+        type_into(page, "Field", "/sample/where/y", viewer.server)
         page.get_by_text("Add series", exact=True).click()
         page.get_by_text("/sample/where/y").first.wait_for()
         series = viewer.tools.plot.data.series
