@@ -418,15 +418,15 @@ def test_registry_and_field_order() -> None:
 
 def test_publishers_and_subscriptions_generate_their_codecs_when_created() -> None:
     """The first message does not pay for code generation (it held up the ones behind it)."""
-    from robomodel.runtime.msg import cdr
+    from robomodel.runtime.msg import _cdr_decode, _cdr_encode, cdr
 
-    cdr._encoders.pop(m.Imu, None)
-    cdr._decoders.pop(m.Imu, None)
+    _cdr_encode.encoders.pop(m.Imu, None)
+    _cdr_decode.decoders.pop(m.Imu, None)
     cdr.prepare(m.Imu)
-    encode, decode = cdr._encoders[m.Imu], cdr._decoders[m.Imu]
+    encode, decode = _cdr_encode.encoders[m.Imu], _cdr_decode.decoders[m.Imu]
     msg = m.Imu(m.Header(m.Time(3, 4), "imu_link"))
     assert cdr.deserialize(cdr.serialize(msg), m.Imu) == msg
-    assert cdr._encoders[m.Imu] is encode and cdr._decoders[m.Imu] is decode  # not made again
+    assert _cdr_encode.encoders[m.Imu] is encode and _cdr_decode.decoders[m.Imu] is decode
 
 
 def test_an_empty_message_is_one_byte_on_the_wire() -> None:
