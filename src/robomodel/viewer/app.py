@@ -44,6 +44,7 @@ from robomodel.viewer.rviz_apply import apply_rviz_view
 from robomodel.viewer.scenery import SceneryDisplay
 from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession
 from robomodel.viewer.status import viewer_status
+from robomodel.viewer.topic_robots import TopicRobots
 
 __all__ = ["Viewer", "ViewerOptions"]
 
@@ -102,6 +103,7 @@ class Viewer:
         self.displays_panel: Any = None
         self._node: Node | None = None
         self.scenery: SceneryDisplay | None = None
+        self.topic_robots: TopicRobots | None = None  # robots RobotModel displays load
 
     # -- lifecycle ----------------------------------------------------------------------------
     @property
@@ -141,7 +143,10 @@ class Viewer:
             self.server = viser.ViserServer(
                 host=opts.host, port=opts.port, label="robomodel view", verbose=False
             )
+        robots = self.topic_robots = TopicRobots(self, node, self._forget)
         self._build_gui()
+        # before show_robots: a RobotModel naming a topic no robot is described on loads one
+        self.displays.listeners.insert(0, lambda: robots.sync(self.displays.displays))
         self._place_camera()
         if opts.scenery:
             self.scenery = SceneryDisplay(self.server.scene, opts.scenery)
@@ -176,6 +181,8 @@ class Viewer:
     def close(self) -> None:
         if self.tools is not None:
             self.tools.close()
+        if self.topic_robots is not None:
+            self.topic_robots.close()
         if self.displays_panel is not None:
             self.displays_panel.close()
         self._stop.set()
@@ -239,6 +246,13 @@ class Viewer:
         )
 
     # -- the loop -------------------------------------------------------------------------------
+    def _forget(self, number: int) -> None:
+        """Drop what was kept about robot ``number`` (removed from the viewer)."""
+        self._extent_m.pop(number, None)
+        self._missing.pop(number, None)
+        self._beside.discard(number)
+        self._dirty = True
+
     def _on_tf(self, _msg: TFMessage) -> None:
         self._dirty = True
 

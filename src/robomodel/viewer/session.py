@@ -433,3 +433,12 @@ class RobotSession:
             self.display.remove()
         if self.panel is not None:
             self.panel.remove()
+
+    def close_nodes(self) -> None:
+        """End the description subscription and the /tf publisher (a robot from a description
+        topic that the viewer drops while it runs: its RobotModel display removed)."""
+        if isinstance(self.watcher, TopicWatcher):
+            self.watcher.unsubscribe()
+        if self._tf_pub is not None:
+            self._tf_pub.destroy()
+            self._tf_pub = None

@@ -1,0 +1,93 @@
+"""A RobotModel display naming a description the viewer did not load loads that robot, as
+RViz's does (issue 31): RViz 2 subscribes to its Description Topic (std_msgs/String, transient
+local); the robot is drawn from TF like the viewer's own, and goes with its display."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+from robomodel.runtime.msg import String, TFMessage
+from robomodel.runtime.qos import latched
+from robomodel.runtime.tf_listener import to_msg
+from robomodel.tf import TransformStamped
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from robomodel.viewer.displays.base import StatusLevel
+from tests.conftest import EXAMPLES
+from tests.viewer.conftest import wait_for
+from tests.viewer.test_tools_inprocess import on_loop
+
+PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
+MAST = """<robot name="mast">
+  <link name="mast_base"><visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual></link>
+  <link name="mast_top"><visual><geometry><sphere radius="0.1"/></geometry></visual></link>
+  <joint name="lift" type="fixed">
+    <parent link="mast_base"/><child link="mast_top"/><origin xyz="0 0 1"/>
+  </joint>
+</robot>"""
+
+
+@pytest.fixture
+def viewer() -> Iterator[Viewer]:
+    viewer = Viewer(
+        ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, reload_period_s=0.05)
+    )
+    viewer.start()
+    yield viewer
+    viewer.close()
+
+
+def _static(parent: str, child: str, xyz: tuple[float, float, float]) -> object:
+    T = np.eye(4)
+    T[:3, 3] = xyz
+    return to_msg(TransformStamped.from_matrix(parent, child, T, 0))
+
+
+def _link_xyz(viewer: Viewer, robot: str, link: str) -> np.ndarray | None:
+    """Where the page draws ``link`` of the robot named ``robot`` (None: not drawn)."""
+    session = next((s for s in viewer.sessions if s.robot is not None and s.robot.name == robot), None)  # fmt: skip
+    if session is None or session.display is None:
+        return None
+    drawing = session.display
+    handle = drawing._links[drawing.link_names.index(link)]
+    return np.asarray(handle.position) if handle.visible else None
+
+
+def test_a_robot_model_on_another_topic_loads_draws_and_drops_that_robot(viewer: Viewer) -> None:
+    assert viewer.context is not None
+    node = on_loop(viewer, lambda: viewer.context.create_node("mast_publisher"))
+    description = on_loop(viewer, lambda: node.create_publisher(String, "/r2/robot_description", latched()))  # fmt: skip
+    statics = on_loop(viewer, lambda: node.create_publisher(TFMessage, "/tf_static", latched(10)))
+    tree = TFMessage([_static("base_link", "mast_base", (0.0, 2.0, 0.0)),
+                      _static("mast_base", "mast_top", (0.0, 0.0, 1.0))])  # fmt: skip
+    on_loop(viewer, lambda: statics.publish(tree))
+    assert description.get_subscription_count() == 0  # the viewer did not load it
+    panel = viewer.displays_panel
+    model = on_loop(viewer, lambda: panel.add("RobotModel", name="Mast",
+                                              values={"Description Topic": "r2/robot_description"}))  # fmt: skip
+    wait_for(lambda: model.status.text == "Waiting for the robot description on [/r2/robot_description]",
+             what="the waiting status")  # fmt: skip
+    assert model.status.level is StatusLevel.WARN
+    assert description.get_subscription_count() == 1  # transient local: RViz 2's QoS
+    on_loop(viewer, lambda: description.publish(String("<robot name='mast'><link name='a'/>")))
+    wait_for(lambda: model.status.level is StatusLevel.ERROR, what="the URDF error")
+    assert model.status.text.startswith("URDF: ")
+    on_loop(viewer, lambda: description.publish(String(MAST)))
+    wait_for(lambda: (p := _link_xyz(viewer, "mast", "mast_top")) is not None and np.allclose(p, (0, 2, 1)),
+             what="the mast's top drawn from TF at (0, 2, 1)")  # fmt: skip
+    wait_for(lambda: model.status.text == "Showing mast", what="its status")
+    mast = next(s for s in viewer.sessions if s.robot is not None and s.robot.name == "mast")
+    assert mast.display is not None and mast.display.shown
+    assert mast.rsp is None and mast.jsp is None  # RViz publishes nothing for its robot
+    own = viewer.sessions[0]
+    assert own.robot is not None and own.robot.name == "planar_3dof" and own.display is not None
+    root = mast.display.root
+    assert root in viewer.server.scene._handle_from_node_name  # viser 1.1's table of nodes
+
+    on_loop(viewer, lambda: panel.remove(panel.rows[-1]))  # the display removed: the robot goes
+    wait_for(lambda: mast not in viewer.sessions, what="the mast dropped")
+    wait_for(lambda: description.get_subscription_count() == 0, what="its subscription ended")
+    assert root not in viewer.server.scene._handle_from_node_name  # viser 1.1's table of nodes
+    assert viewer.sessions == [own] and own.display.shown
