@@ -16,6 +16,7 @@ from robomodel.tf import TransformStamped
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.displays.base import StatusLevel
 from tests.conftest import EXAMPLES
+from tests.ros1wire.conftest import Ros1, ros1  # noqa: F401  (the fixture)
 from tests.viewer.conftest import wait_for
 from tests.viewer.test_tools_inprocess import on_loop
 
@@ -91,3 +92,29 @@ def test_a_robot_model_on_another_topic_loads_draws_and_drops_that_robot(viewer:
     wait_for(lambda: description.get_subscription_count() == 0, what="its subscription ended")
     assert root not in viewer.server.scene._handle_from_node_name  # viser 1.1's table of nodes
     assert viewer.sessions == [own] and own.display.shown
+
+
+def test_on_ros_1_the_robot_comes_from_the_master_s_parameter(ros1: Ros1, monkeypatch: pytest.MonkeyPatch) -> None:  # noqa: F811  # fmt: skip
+    """RViz 1's RobotModel reads its Robot Description parameter from the master, asking again
+    every second until it is set (here by Debian's rosparam, after the display was added)."""
+    monkeypatch.setenv("ROS_IP", "127.0.0.1")
+    ros1.roscore()
+    options = ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, bus="ros1",
+                            master=ros1.uri, reload_period_s=0.05)  # fmt: skip
+    viewer = Viewer(options)
+    viewer.start()
+    try:
+        panel = viewer.displays_panel
+        model = on_loop(viewer, lambda: panel.add("rviz/RobotModel", values={"Description Topic": "/r2/robot_description"}))  # fmt: skip
+        wait_for(lambda: model.status.text.startswith("Waiting for the robot description"),
+                 what="the waiting status")  # fmt: skip
+        assert ros1.run("/usr/bin/rosparam", "set", "/r2/robot_description", MAST).returncode == 0
+        wait_for(lambda: model.status.text == "Showing mast", what="the robot from the parameter")
+        mast = next(s for s in viewer.sessions if s.robot is not None and s.robot.name == "mast")
+        assert mast.display is not None and mast.display.shown
+        on_loop(viewer, lambda: model.set_option("Description Topic", "/r3/robot_description"))
+        wait_for(lambda: mast not in viewer.sessions, what="the mast dropped with its topic")
+        wait_for(lambda: model.status.text.startswith("Waiting for the robot description on [/r3/"),
+                 what="the new parameter awaited")  # fmt: skip
+    finally:
+        viewer.close()
