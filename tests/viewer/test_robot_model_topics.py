@@ -109,12 +109,45 @@ def test_on_ros_1_the_robot_comes_from_the_master_s_parameter(ros1: Ros1, monkey
         wait_for(lambda: model.status.text.startswith("Waiting for the robot description"),
                  what="the waiting status")  # fmt: skip
         assert ros1.run("/usr/bin/rosparam", "set", "/r2/robot_description", MAST).returncode == 0
-        wait_for(lambda: model.status.text == "Showing mast", what="the robot from the parameter")
+        # loaded from the parameter; its TF is not on this graph: RViz's status for its links
+        wait_for(lambda: model.status.text == "No transform from [mast_base] to [base_link]",
+                 what="the robot from the parameter")  # fmt: skip
         mast = next(s for s in viewer.sessions if s.robot is not None and s.robot.name == "mast")
         assert mast.display is not None and mast.display.shown
         on_loop(viewer, lambda: model.set_option("Description Topic", "/r3/robot_description"))
         wait_for(lambda: mast not in viewer.sessions, what="the mast dropped with its topic")
         wait_for(lambda: model.status.text.startswith("Waiting for the robot description on [/r3/"),
                  what="the new parameter awaited")  # fmt: skip
+    finally:
+        viewer.close()
+
+
+def test_tf_prefix_places_link_l_at_prefix_slash_l() -> None:
+    """RViz looks link L up at ``<TF Prefix>/L`` (rviz_default_plugins
+    robot/tf_link_updater.cpp): a robot_state_publisher with frame_prefix ``r1/`` is drawn by a
+    RobotModel whose TF Prefix is ``r1``; another prefix gives RViz's status for its links."""
+    from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
+
+    options = ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, fixed_frame="r1/mast_base")  # fmt: skip
+    viewer = Viewer(options)
+    viewer.start()
+    try:
+        assert viewer.context is not None
+        on_loop(viewer, lambda: RobotStatePublisher(viewer.context, MAST, namespace="/r2",
+                                                    parameters={"frame_prefix": "r1/"}))  # fmt: skip
+        panel = viewer.displays_panel
+        values = {"Description Topic": "/r2/robot_description", "TF Prefix": "r1"}
+        model = on_loop(viewer, lambda: panel.add("RobotModel", values=values))
+        wait_for(lambda: (p := _link_xyz(viewer, "mast", "mast_top")) is not None and np.allclose(p, (0, 0, 1)),
+                 what="the mast's top at r1/mast_top")  # fmt: skip
+        wait_for(lambda: model.status.text == "Showing mast", what="its status")
+        on_loop(viewer, lambda: model.set_option("TF Prefix", "r9"))
+        wait_for(lambda: model.status.text == "No transform from [r9/mast_base] to [r1/mast_base]",
+                 what="RViz's status for a frame TF lacks")  # fmt: skip
+        assert model.status.level is StatusLevel.ERROR
+        wait_for(lambda: _link_xyz(viewer, "mast", "mast_top") is None, what="the top not drawn")
+        on_loop(viewer, lambda: model.set_option("TF Prefix", "r1/"))
+        wait_for(lambda: model.status.text == "Showing mast", what="drawn again at r1/")
+        wait_for(lambda: _link_xyz(viewer, "mast", "mast_top") is not None, what="the top again")
     finally:
         viewer.close()
