@@ -15,6 +15,7 @@ from robomodel.runtime.tf_listener import to_msg
 from robomodel.tf import TransformStamped
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.displays.base import StatusLevel
+from robomodel.viewer.displays.robot_model import LinkUpdates
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, ros1  # noqa: F401  (the fixture)
 from tests.viewer.conftest import wait_for
@@ -151,3 +152,43 @@ def test_tf_prefix_places_link_l_at_prefix_slash_l() -> None:
         wait_for(lambda: _link_xyz(viewer, "mast", "mast_top") is not None, what="the top again")
     finally:
         viewer.close()
+
+
+def test_link_updates_follow_rviz_s_update_interval() -> None:
+    """RViz's RobotModel ``update``: every cycle below 0.0001 s, else once the interval passed
+    since the last placement; at once for a new fixed frame or a new drawing."""
+    updates = LinkUpdates()
+    assert updates.due(0.0, "map")
+    updates.placed(0.0, "map")
+    assert updates.due(0.001, "map")  # Update Interval 0: every cycle
+    updates.interval_s = 0.5
+    updates.placed(10.0, "map")
+    assert not updates.due(10.49, "map") and updates.next_s() == 10.5
+    assert updates.due(10.5, "map")
+    assert updates.due(10.1, "odom")  # RViz's fixedFrameChanged
+    updates.reset()
+    assert updates.due(10.1, "map")  # a new drawing
+    assert updates.placements == 2
+
+
+def test_links_are_placed_at_most_once_per_update_interval(viewer: Viewer) -> None:
+    """With an Update Interval of an hour, a joint that moves (its /tf in the viewer's buffer,
+    scene updates sent since) leaves the drawn links where they were; at 0 they follow."""
+    session = viewer.sessions[0]
+    model = next(d for d in viewer.displays.displays if d.class_name == "RobotModel")
+    wait_for(lambda: _link_xyz(viewer, "planar_3dof", "gripper") is not None, what="the arm")
+    start = _link_xyz(viewer, "planar_3dof", "gripper")
+    on_loop(viewer, lambda: model.set_option("Update Interval", 3600.0))
+    wait_for(lambda: session.link_updates.interval_s == 3600.0, what="the interval taken")
+    placements = session.link_updates.placements
+    session.queue_positions({"joint_1": np.pi / 2})
+    wait_for(lambda: viewer.buffer.lookup_transform("base_link", "gripper").translation_m[1] > 0.5,
+             what="the gripper's new /tf")  # fmt: skip
+    sent = viewer.updates_sent
+    wait_for(lambda: viewer.updates_sent > sent + 2, what="scene updates after the move")
+    assert session.link_updates.placements == placements  # not placed again within the hour
+    assert np.allclose(_link_xyz(viewer, "planar_3dof", "gripper"), start)  # type: ignore[arg-type]
+    on_loop(viewer, lambda: model.set_option("Update Interval", 0.0))
+    wait_for(lambda: (p := _link_xyz(viewer, "planar_3dof", "gripper")) is not None and p[1] > 0.5,
+             what="the gripper drawn where /tf has it")  # fmt: skip
+    assert session.link_updates.placements > placements
