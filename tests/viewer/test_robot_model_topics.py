@@ -5,6 +5,7 @@ local); the robot is drawn from TF like the viewer's own, and goes with its disp
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -192,3 +193,44 @@ def test_links_are_placed_at_most_once_per_update_interval(viewer: Viewer) -> No
     wait_for(lambda: (p := _link_xyz(viewer, "planar_3dof", "gripper")) is not None and p[1] > 0.5,
              what="the gripper drawn where /tf has it")  # fmt: skip
     assert session.link_updates.placements > placements
+
+
+def test_a_robot_of_another_process_on_the_zenoh_bus(tmp_path: Path) -> None:
+    """Over rmw_zenoh's wire: another process (robomodel publish-state, robot_state_publisher
+    in /r2 with frame_prefix r1/) publishes its description and TF; a viewer of another robot
+    draws it once a RobotModel names /r2/robot_description with TF Prefix r1."""
+    import signal
+    import subprocess
+
+    from tests.conftest import ROBOMODEL, past_the_bus_line, unique_domain
+    from tests.timing import scaled
+    from tests.viewer.robots import write_arm
+
+    domain = unique_domain()
+    robot = subprocess.Popen(
+        [*ROBOMODEL, "publish-state", str(PLANAR), "--namespace", "r2", "--prefix", "r1/",
+         "--domain-id", domain],
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+    options = ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), port=0, bus="zenoh",
+                            domain_id=int(domain), fixed_frame="r1/base_link")  # fmt: skip
+    viewer = Viewer(options)
+    try:
+        assert robot.stderr is not None and "publishing robot" in past_the_bus_line(robot.stderr)
+        viewer.start()
+        panel = viewer.displays_panel
+        values = {"Description Topic": "/r2/robot_description", "TF Prefix": "r1"}
+        model = on_loop(viewer, lambda: panel.add("RobotModel", name="R2", values=values))
+        wait_for(lambda: model.status.text == "Showing planar_3dof", what="the other robot")
+        wait_for(lambda: viewer.buffer.can_transform("r1/base_link", "r1/gripper"), what="its TF")
+        expected = viewer.buffer.lookup_transform("r1/base_link", "r1/gripper").translation_m
+        wait_for(lambda: (p := _link_xyz(viewer, "planar_3dof", "gripper")) is not None and np.allclose(p, expected),
+                 what="its gripper where its TF puts r1/gripper")  # fmt: skip
+        assert [s.robot.name for s in viewer.sessions if s.robot] == ["arm", "planar_3dof"]
+        on_loop(viewer, lambda: panel.remove(panel.rows[-1]))
+        wait_for(lambda: len(viewer.sessions) == 1, what="the other robot dropped")
+    finally:
+        viewer.close()
+        robot.send_signal(signal.SIGINT)
+        robot.wait(scaled(10))
