@@ -234,3 +234,45 @@ def test_a_robot_of_another_process_on_the_zenoh_bus(tmp_path: Path) -> None:
         viewer.close()
         robot.send_signal(signal.SIGINT)
         robot.wait(scaled(10))
+
+
+MAST_CONFIG = """Visualization Manager:
+  Class: ""
+  Displays:
+    - Class: rviz_default_plugins/RobotModel
+      Enabled: true
+      Name: Mast
+      Description Source: Topic
+      Description Topic:
+        Value: /r2/robot_description
+  Global Options:
+    Fixed Frame: base_link
+"""
+
+
+def test_a_config_s_robot_model_on_another_topic_loads_that_robot(tmp_path: Path) -> None:
+    """The same from a .rviz file: RViz 2 opens it and draws the robot published there (and
+    not the viewer's own, which no RobotModel of the file names)."""
+    from robomodel.viewer.rviz_document import open_rviz_document
+    from robomodel.viewer.rviz_model import RvizDialect
+
+    path = tmp_path / "mast.rviz"
+    path.write_text(MAST_CONFIG)
+    document, _ = open_rviz_document(str(path), RvizDialect.ROS2)
+    viewer = Viewer(ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, rviz=document))
+    viewer.start()
+    try:
+        assert viewer.context is not None
+        node = on_loop(viewer, lambda: viewer.context.create_node("mast_publisher"))
+        description = on_loop(viewer, lambda: node.create_publisher(String, "/r2/robot_description", latched()))  # fmt: skip
+        on_loop(viewer, lambda: description.publish(String(MAST)))
+        model = viewer.displays.get("Mast")
+        wait_for(lambda: any(s.robot is not None and s.robot.name == "mast" and s.display is not None
+                             for s in viewer.sessions), what="the mast loaded")  # fmt: skip
+        mast = next(s for s in viewer.sessions if s.robot is not None and s.robot.name == "mast")
+        wait_for(lambda: mast.display.shown, what="the mast shown")  # type: ignore[union-attr]
+        assert viewer.sessions[0].display is not None and not viewer.sessions[0].display.shown
+        wait_for(lambda: model.status.text == "No transform from [mast_base] to [base_link]",
+                 what="RViz's status: no TF for the mast yet")  # fmt: skip
+    finally:
+        viewer.close()
