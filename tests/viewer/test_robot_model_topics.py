@@ -86,6 +86,12 @@ def test_a_robot_model_on_another_topic_loads_draws_and_drops_that_robot(viewer:
     assert mast.rsp is None and mast.jsp is None  # RViz publishes nothing for its robot
     own = viewer.sessions[0]
     assert own.robot is not None and own.robot.name == "planar_3dof" and own.display is not None
+    on_loop(viewer, lambda: model.set_enabled(False))  # RViz's onDisable: unsubscribe, clear
+    wait_for(lambda: mast not in viewer.sessions, what="the mast dropped while disabled")
+    on_loop(viewer, lambda: model.set_enabled(True))  # the latched description comes again
+    wait_for(lambda: model.status.text == "Showing mast", what="the mast back")
+    mast = next(s for s in viewer.sessions if s.robot is not None and s.robot.name == "mast")
+    assert mast.display is not None
     root = mast.display.root
     assert root in viewer.server.scene._handle_from_node_name  # viser 1.1's table of nodes
 
