@@ -15,7 +15,7 @@ import yaml
 
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.displays import display_class
-from robomodel.viewer.displays.robot_model import show_robots
+from robomodel.viewer.displays.robot_model import LinkUpdates, show_robots
 from robomodel.viewer.displays.rviz_io import display_entry, display_values
 from robomodel.viewer.rviz_document import default_rviz_config, open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
@@ -156,7 +156,7 @@ class _Drawing:
 def _robot(topic: str, path: str = "/nowhere.urdf") -> Any:
     return SimpleNamespace(description_topic=topic, description_names=(topic,), source=SimpleNamespace(path=path),
                            display=_Drawing(), prefix="", label=topic, failure=None,
-                           robot=object())  # fmt: skip
+                           robot=object(), last_poses=None, link_updates=LinkUpdates())  # fmt: skip
 
 
 def test_each_robot_is_drawn_as_the_last_enabled_robot_model_naming_it_says(tmp_path: Path) -> None:

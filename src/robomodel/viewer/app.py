@@ -34,7 +34,7 @@ from robomodel.viewer.displays.robot_model import show_robots
 from robomodel.viewer.displays.tf import TFDisplay
 from robomodel.viewer.layout import beside_root_pose, place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
-from robomodel.viewer.link_poses import append_other_frames
+from robomodel.viewer.link_poses import LinkPoses, append_other_frames
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.options import ViewerOptions
 from robomodel.viewer.options_panel import OptionsPanel
@@ -44,6 +44,7 @@ from robomodel.viewer.rviz_apply import apply_rviz_view
 from robomodel.viewer.scenery import SceneryDisplay
 from robomodel.viewer.session import DisplayOptions, LoadFailure, RobotSession
 from robomodel.viewer.status import viewer_status
+from robomodel.viewer.topic_robots import TopicRobots
 
 __all__ = ["Viewer", "ViewerOptions"]
 
@@ -97,11 +98,13 @@ class Viewer:
         self.meshes_ready = threading.Event()
         self._missing: dict[int, tuple[str, ...]] = {}
         self._beside: set[int] = set()
+        self._due_s = float("inf")  # when a robot held back by its Update Interval is due
         self.tools: Any = None
         self.displays: Any = None  # the DisplayManager (loop thread), once started
         self.displays_panel: Any = None
         self._node: Node | None = None
         self.scenery: SceneryDisplay | None = None
+        self.topic_robots: TopicRobots | None = None  # robots RobotModel displays load
 
     # -- lifecycle ----------------------------------------------------------------------------
     @property
@@ -141,7 +144,10 @@ class Viewer:
             self.server = viser.ViserServer(
                 host=opts.host, port=opts.port, label="robomodel view", verbose=False
             )
+        robots = self.topic_robots = TopicRobots(self, node, self._forget)
         self._build_gui()
+        # before show_robots: a RobotModel naming a topic no robot is described on loads one
+        self.displays.listeners.insert(0, lambda: robots.sync(self.displays.displays))
         self._place_camera()
         if opts.scenery:
             self.scenery = SceneryDisplay(self.server.scene, opts.scenery)
@@ -176,6 +182,8 @@ class Viewer:
     def close(self) -> None:
         if self.tools is not None:
             self.tools.close()
+        if self.topic_robots is not None:
+            self.topic_robots.close()
         if self.displays_panel is not None:
             self.displays_panel.close()
         self._stop.set()
@@ -239,6 +247,13 @@ class Viewer:
         )
 
     # -- the loop -------------------------------------------------------------------------------
+    def _forget(self, number: int) -> None:
+        """Drop what was kept about robot ``number`` (removed from the viewer)."""
+        self._extent_m.pop(number, None)
+        self._missing.pop(number, None)
+        self._beside.discard(number)
+        self._dirty = True
+
     def _on_tf(self, _msg: TFMessage) -> None:
         self._dirty = True
 
@@ -273,7 +288,8 @@ class Viewer:
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()
-            if self._dirty and now >= next_push and not self._page_behind(now):
+            due = self._dirty or now >= self._due_s  # TF moved, or an Update Interval passed
+            if due and now >= next_push and not self._page_behind(now):
                 # On the schedule, not from now: the loop's own latency does not lower the rate.
                 next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
                 self._dirty = False
@@ -326,12 +342,23 @@ class Viewer:
         wxyzs: list[np.ndarray] = []
         xyzs: list[np.ndarray] = []
         shown: list[np.ndarray] = []
-        self._missing = {}
-        self._beside = set()
+        missing, beside = self._missing, self._beside
+        self._missing, self._beside = {}, set()
+        self._due_s = float("inf")
+        now_s = time.monotonic()
         buffer = self._broadcast_buffer()
         first_id = buffer.message_counter if buffer is not None else 0
         with self.server.atomic():
             for session in self.sessions:
+                updates = session.link_updates
+                if not updates.due(now_s, self.fixed_frame):
+                    # within its RobotModel's Update Interval: left where it is until then
+                    self._due_s = min(self._due_s, updates.next_s())
+                    if session.number in missing:
+                        self._missing[session.number] = missing[session.number]
+                    if session.number in beside:
+                        self._beside.add(session.number)
+                    continue
                 poses = session.link_poses(
                     self.buffer,
                     self.fixed_frame,
@@ -340,13 +367,8 @@ class Viewer:
                 if poses is None or session.display is None:
                     continue
                 session.display.set_poses(poses.wxyz, poses.xyz, poses.visible)
-                if session.number not in self._extent_m and poses.visible.all():
-                    self._extent_m[session.number] = float(
-                        np.linalg.norm(poses.xyz - poses.xyz[0], axis=1).max(initial=0.0)
-                    )
-                self._missing[session.number] = poses.missing
-                if not poses.connected:
-                    self._beside.add(session.number)
+                updates.placed(now_s, self.fixed_frame)
+                self._note_placed(session.number, poses)
                 frames.extend(session.link_frames())
                 wxyzs.append(poses.wxyz)
                 xyzs.append(poses.xyz)
@@ -363,6 +385,17 @@ class Viewer:
         if buffer is not None:
             self._last_push_ids = (first_id, buffer.message_counter - 1)
             self._last_push_s = time.monotonic()
+
+    def _note_placed(self, number: int, poses: LinkPoses) -> None:
+        """Robot ``number``'s extent once all of it is placed; its frames without a transform
+        and whether it was drawn beside the fixed frame's tree (for the status)."""
+        if number not in self._extent_m and poses.visible.all():
+            self._extent_m[number] = float(
+                np.linalg.norm(poses.xyz - poses.xyz[0], axis=1).max(initial=0.0)
+            )
+        self._missing[number] = poses.missing
+        if not poses.connected:
+            self._beside.add(number)
 
     def _show_frames(self, frames: tuple[str, ...], wxyzs: list[np.ndarray], xyzs: list[np.ndarray], shown: list[np.ndarray]) -> None:  # fmt: skip
         """Every frame's pose in the fixed frame to the TF displays (loop thread)."""

@@ -22,13 +22,18 @@ __all__ = ["LinkPoseSolver", "LinkPoses", "append_other_frames"]
 
 @dataclass(frozen=True, slots=True)
 class LinkPoses:
-    """Every link of a robot in the fixed frame (``link_names`` order)."""
+    """Every link of a robot in the fixed frame (``link_names`` order).
+
+    ``connected``: the root has a transform to the fixed frame; else it was placed beside it,
+    and ``root_in_tf`` says whether TF has the root frame at all.
+    """
 
     wxyz: NDArray[np.float64]
     xyz: NDArray[np.float64]
     visible: NDArray[np.bool_]
     connected: bool
     missing: tuple[str, ...]
+    root_in_tf: bool = True
 
 
 def _qmul_xyzw(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -63,6 +68,7 @@ class LinkPoseSolver:
     def __init__(self, robot: Robot, prefix: str, link_names: tuple[str, ...]) -> None:
         tree = robot.tree()
         self.robot = robot
+        self.prefix = prefix
         self.link_names = link_names
         self._root = tree.root
         self._root_frame = prefix + tree.root
@@ -124,20 +130,21 @@ def _in_fixed_frame(
     visible = np.array([row is not None for row in rows], dtype=bool)
     t = np.array([row[0] if row is not None else (0.0, 0.0, 0.0) for row in rows]).reshape(-1, 3)
     q = np.array([row[1] if row is not None else identity_xyzw for row in rows]).reshape(-1, 4)
-    connected = True
+    connected = root_in_tf = True
     try:
         base = buffer.lookup_transform(fixed_frame, root)
         t0 = np.asarray(base.translation_m)
         q0 = np.asarray(base.rotation_xyzw)
     except TransformError:
         connected = fixed_frame == root
+        root_in_tf = connected or root in buffer.frames
         t0 = T_fixed_root_default[:3, 3].copy()
         q0 = np.array([0.0, 0.0, 0.0, 1.0])
     xyz = t0 + _rotate_xyzw(np.broadcast_to(q0, q.shape), t)
     q_fixed = _qmul_xyzw(np.broadcast_to(q0, q.shape), q)
     wxyz = np.concatenate([q_fixed[:, 3:4], q_fixed[:, :3]], axis=1)
     wxyz *= np.where(wxyz[:, :1] < 0, -1.0, 1.0)
-    return LinkPoses(wxyz, xyz, visible, connected, missing)
+    return LinkPoses(wxyz, xyz, visible, connected, missing, root_in_tf)
 
 
 def append_other_frames(

@@ -69,6 +69,7 @@ class TopicWatcher:
         self.text: str | None = None
         self._new = False
         self._lock = threading.Lock()
+        self._subscription: Any = None
 
     @property
     def paths(self) -> tuple[str, ...]:
@@ -78,7 +79,15 @@ class TopicWatcher:
         from robomodel.runtime.msg import String
         from robomodel.runtime.qos import latched
 
-        node.create_subscription(String, self.topic, self._on_description, latched())
+        self._subscription = node.create_subscription(
+            String, self.topic, self._on_description, latched()
+        )
+
+    def unsubscribe(self) -> None:
+        """End the subscription (a robot removed from the viewer)."""
+        if self._subscription is not None:
+            self._subscription.destroy()
+            self._subscription = None
 
     def _on_description(self, msg: Any) -> None:
         with self._lock:
@@ -95,3 +104,46 @@ class TopicWatcher:
         with self._lock:
             new, self._new = self._new, False
         return (self.topic,) if new else ()
+
+
+class ParamWatcher(TopicWatcher):
+    """The robot description in a ROS 1 master's parameter ``name``, as RViz 1's RobotModel
+    reads its Robot Description: read once it exists, asked again every second until then
+    (robot_model_display.cpp, ``load``). A thread asks, so the viewer's loop never waits on
+    the master.
+
+    Args:
+        name: The parameter's global name.
+        master_uri: The master's XML-RPC URI.
+        period_s: How long to wait before asking again.
+    """
+
+    def __init__(self, name: str, master_uri: str, period_s: float = 1.0) -> None:
+        super().__init__(name)
+        self.master_uri = master_uri
+        self.period_s = period_s
+        self._stop = threading.Event()
+
+    def subscribe(self, node: Any) -> None:
+        thread = threading.Thread(target=self._read, name=f"param {self.topic}", daemon=True)
+        thread.start()
+
+    def _read(self) -> None:
+        from types import SimpleNamespace
+
+        from robomodel.runtime.transport.ros1.param_client import MasterParams
+        from robomodel.runtime.transport.ros1.param_tree import ParamServerError
+
+        params = MasterParams(self.master_uri, caller_id="/robomodel_viewer")
+        while not self._stop.is_set():
+            try:
+                text = params.get(self.topic)
+            except ParamServerError:  # not (yet) set, or the master does not answer
+                text = None
+            if isinstance(text, str):
+                self._on_description(SimpleNamespace(data=text))
+                return
+            self._stop.wait(self.period_s)
+
+    def unsubscribe(self) -> None:
+        self._stop.set()

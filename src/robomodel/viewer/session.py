@@ -32,6 +32,7 @@ from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
 from robomodel.runtime.tf_listener import to_msg
 from robomodel.tf import BufferCore, TransformStamped
 from robomodel.viewer.bodies import body_transform
+from robomodel.viewer.displays.robot_model import LinkUpdates
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
 from robomodel.viewer.link_poses import LinkPoses, LinkPoseSolver
 from robomodel.viewer.meshes import MeshCache
@@ -122,6 +123,10 @@ class RobotSession:
         self.number = number
         self.source = source
         self.prefix = source.prefix
+        # the TF Prefix of the RobotModel display that draws it (None: none does); set by
+        # show_robots, read by frame_prefix
+        self.tf_prefix: str | None = None
+        self.link_updates = LinkUpdates()  # its Update Interval
         self.index = index.with_workspace_of(source.path) if source.path else index
         self.namespace = namespace
         self.external = external if source.external is None else source.external
@@ -142,6 +147,7 @@ class RobotSession:
         self.jsp: JointStatePublisher | None = None
         self.display: RobotModelDisplay | None = None
         self._pose_solver: LinkPoseSolver | None = None
+        self.last_poses: LinkPoses | None = None  # at the last placement
         self.panel: JointPanel | None = None
         self.bodies: dict[str, BodyPose] = {}
         self.stale_frames: set[str] = set()
@@ -181,15 +187,27 @@ class RobotSession:
         return tuple(dict.fromkeys(names))
 
     @property
+    def frame_prefix(self) -> str:
+        """What the robot's link names are prefixed with in TF where it is drawn: its RobotModel
+        display's TF Prefix and a slash, as RViz looks link L up at ``<TF Prefix>/L``
+        (rviz_default_plugins robot/tf_link_updater.cpp); the robot's own frame prefix when
+        that is empty or names the same prefix (``robot1`` for ``robot1/``, ``r1_`` for
+        ``r1_``: where the viewer's own robot_state_publisher puts it)."""
+        tf_prefix = (self.tf_prefix or "").strip("/")
+        if not tf_prefix or tf_prefix == self.prefix.strip("/"):
+            return self.prefix
+        return tf_prefix + "/"
+
+    @property
     def root_frame(self) -> str | None:
         if self.robot is None:
             return None
-        return self.prefix + self.robot.tree().root
+        return self.frame_prefix + self.robot.tree().root
 
     def link_frames(self) -> tuple[str, ...]:
         if self.robot is None:
             return ()
-        return tuple(self.prefix + name for name in self.robot.link_names)
+        return tuple(self.frame_prefix + name for name in self.robot.link_names)
 
     def try_load(self) -> bool:
         """Expand and parse the description; on failure keep the last model and the error."""
@@ -280,6 +298,8 @@ class RobotSession:
         if self.display is not None:
             self.display.remove()
             self.display = None
+        self.last_poses = None
+        self.link_updates.reset()  # a new drawing is placed at once, as RViz's load does
         if self.robot is None or self.loaded is None:
             return
         self.display = RobotModelDisplay(
@@ -419,17 +439,29 @@ class RobotSession:
         if self.robot is None or self.display is None:
             return None
         solver = self._pose_solver
+        prefix = self.frame_prefix
         if (
             solver is None
             or solver.robot is not self.robot
             or solver.link_names is not self.display.link_names
+            or solver.prefix != prefix
         ):
-            solver = LinkPoseSolver(self.robot, self.prefix, self.display.link_names)
+            solver = LinkPoseSolver(self.robot, prefix, self.display.link_names)
             self._pose_solver = solver
-        return solver.solve(buffer, fixed_frame, T_fixed_root_default)
+        self.last_poses = solver.solve(buffer, fixed_frame, T_fixed_root_default)
+        return self.last_poses
 
     def close(self) -> None:
         if self.display is not None:
             self.display.remove()
         if self.panel is not None:
             self.panel.remove()
+
+    def close_nodes(self) -> None:
+        """End the description subscription and the /tf publisher (a robot from a description
+        topic that the viewer drops while it runs: its RobotModel display removed)."""
+        if isinstance(self.watcher, TopicWatcher):
+            self.watcher.unsubscribe()
+        if self._tf_pub is not None:
+            self._tf_pub.destroy()
+            self._tf_pub = None

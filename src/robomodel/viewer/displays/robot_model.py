@@ -5,15 +5,16 @@ a description topic) and runs their robot_state_publishers; a RobotModel display
 robots its description names, as RViz's draws the robot of its Description Topic (RViz 2,
 ``rviz_default_plugins/RobotModel``) or of its Robot Description parameter (RViz 1,
 ``rviz/RobotModel``: the option is written under that key; robot_state_publisher publishes the
-parameter's text on the topic of the same name, so one name serves both). A robot no enabled
-RobotModel display names is not drawn, as in RViz; when several name it, the last one's
-options count (later displays draw over earlier ones). Description Source ``File`` names a
-description file instead, matched against the files the viewer loaded.
+parameter's text on the topic of the same name, so one name serves both). A topic no robot of
+the viewer's is described on is followed for the display (:mod:`robomodel.viewer.topic_robots`).
+A robot no enabled RobotModel display names is not drawn, as in RViz; when several name it,
+the last one's options count (later displays draw over earlier ones). Description Source
+``File`` names a description file instead, matched against the files the viewer loaded.
 
 Options and defaults are RViz 2's (robot_model_display.cpp): Alpha, Visual Enabled, Collision
-Enabled, TF Prefix, Update Interval, Description Source / File / Topic. robomodel draws each
-robot at its own frames (a launch's ``frame_prefix``): a TF Prefix that differs is named in the
-status. Update Interval is kept for the config; links are placed at the viewer's Frame Rate.
+Enabled, TF Prefix, Update Interval, Description Source / File / Topic. Link ``L`` is placed
+at TF frame ``<TF Prefix>/L`` (see ``RobotSession.frame_prefix``), at most once per Update
+Interval (:class:`LinkUpdates`).
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ from robomodel.viewer.displays.base import (
     register_display,
 )
 
-__all__ = ["RobotModelDisplay", "show_robots", "topic_name"]
+__all__ = ["LinkUpdates", "RobotModelDisplay", "show_robots", "topic_name"]
 
 
 def topic_name(name: str) -> str:
@@ -91,13 +92,11 @@ class RobotModelDisplay(Display):
             return DisplayStatus.error(f"URDF: {failed[0].failure.message}")
         if any(s.robot is None for s in mine):
             return DisplayStatus.warn(f"Waiting for the robot description on {self._source()}")
-        prefix = str(self.option("TF Prefix")).strip("/")
-        other = [s for s in mine if prefix and prefix != s.prefix.strip("/")]
-        if other:
-            have = other[0].prefix.strip("/") or "none"
-            return DisplayStatus.warn(
-                f"TF Prefix '{prefix}': the robot's frames are prefixed '{have}' (drawn there)"
-            )
+        for session in mine:
+            frame = _unplaced_frame(session)
+            if frame is not None:  # rviz_default_plugins robot/tf_link_updater.cpp's status
+                fixed = self.context.fixed_frame()
+                return DisplayStatus.error(f"No transform from [{frame}] to [{fixed}]")
         return DisplayStatus.ok(f"Showing {', '.join(s.label for s in mine)}")
 
     def _source(self) -> str:
@@ -112,15 +111,68 @@ class RobotModelDisplay(Display):
         )
 
 
+def _unplaced_frame(session: Any) -> str | None:
+    """The first link frame of ``session`` that TF could not place at its last placement: its
+    root when TF lacks it, else the first link missing below it. (A tree TF has that is not
+    connected to the fixed frame is drawn beside it, named in the viewer's status.)"""
+    poses = session.last_poses
+    if poses is None:
+        return None
+    if not poses.root_in_tf:
+        return str(session.root_frame)
+    return str(poses.missing[0]) if poses.missing else None
+
+
+class LinkUpdates:
+    """When a robot's links are placed again, as RViz's RobotModel updates them
+    (robot_model_display.cpp, ``update``): every update cycle at an Update Interval of 0
+    (below 0.0001 s), else once the interval has passed since the last placement, and at once
+    for a new fixed frame or a new drawing (RViz's ``has_new_transforms_``).
+
+    Attributes:
+        interval_s: The Update Interval [s] of the display that draws the robot.
+        placements: How many times the links were placed.
+    """
+
+    def __init__(self) -> None:
+        self.interval_s = 0.0
+        self.placements = 0
+        self._last_s: float | None = None
+        self._fixed_frame: str | None = None
+
+    def due(self, now_s: float, fixed_frame: str) -> bool:
+        """Whether to place the links at ``now_s`` (a monotonic clock [s])."""
+        if self.interval_s < 0.0001 or self._last_s is None or fixed_frame != self._fixed_frame:
+            return True
+        return now_s - self._last_s >= self.interval_s
+
+    def next_s(self) -> float:
+        """When the links are next due [s] (after a placement)."""
+        return (self._last_s or 0.0) + self.interval_s
+
+    def placed(self, now_s: float, fixed_frame: str) -> None:
+        self._last_s, self._fixed_frame = now_s, fixed_frame
+        self.placements += 1
+
+    def reset(self) -> None:
+        """Place the links at the next update (a new drawing of the robot)."""
+        self._last_s = None
+
+
 def show_robots(displays: Sequence[Display], sessions: Sequence[Any]) -> None:
     """Draw each robot as the last enabled RobotModel display that names it says (Alpha,
-    Visual and Collision Enabled), and hide the robots none names (loop thread)."""
+    Visual and Collision Enabled, TF Prefix, Update Interval), and hide the robots none names
+    (loop thread)."""
     models = [d for d in displays if isinstance(d, RobotModelDisplay) and d.enabled]
     for session in sessions:
+        owner = next((d for d in reversed(models) if d.describes(session)), None)
+        session.tf_prefix = str(owner.option("TF Prefix")) if owner is not None else None
+        session.link_updates.interval_s = (
+            float(owner.option("Update Interval")) if owner is not None else 0.0
+        )
         drawing = session.display
         if drawing is None:
             continue
-        owner = next((d for d in reversed(models) if d.describes(session)), None)
         if drawing.shown != (owner is not None):
             drawing.set_shown(owner is not None)
         if owner is None:
