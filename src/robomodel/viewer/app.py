@@ -19,8 +19,6 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-import numpy as np
-
 from robomodel.errors import RobomodelError
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage
@@ -31,14 +29,14 @@ from robomodel.viewer._deps import import_viser
 from robomodel.viewer.config_panel import attach_rviz
 from robomodel.viewer.displays.attach import attach_displays
 from robomodel.viewer.displays.robot_model import show_robots
-from robomodel.viewer.displays.tf import TFDisplay
-from robomodel.viewer.layout import beside_root_pose, place_camera, session_namespace
+from robomodel.viewer.layout import place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
-from robomodel.viewer.link_poses import LinkPoses, append_other_frames
+from robomodel.viewer.link_poses import append_other_frames
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.options import ViewerOptions
 from robomodel.viewer.options_panel import OptionsPanel
 from robomodel.viewer.pacing import page_behind
+from robomodel.viewer.placement import Placement
 from robomodel.viewer.ports import ensure_port_free
 from robomodel.viewer.rviz_apply import apply_rviz_view
 from robomodel.viewer.scenery import SceneryDisplay
@@ -89,16 +87,13 @@ class Viewer:
         self._stop = threading.Event()
         self._dirty = True
         self._threads: list[threading.Thread] = []
-        self._extent_m: dict[int, float] = {}
+        self.placement = Placement()  # what the last scene updates found, robot by robot
         self._status_text = ""
         self.status_note = ""  # appended to the Status (e.g. RViz displays not supported)
         self._frame_options: tuple[str, ...] = ()
         rviz = options.rviz.settings if options.rviz is not None else None
         self.fixed_frame = options.fixed_frame or (rviz.fixed_frame if rviz else None) or ""
         self.meshes_ready = threading.Event()
-        self._missing: dict[int, tuple[str, ...]] = {}
-        self._beside: set[int] = set()
-        self._due_s = float("inf")  # when a robot held back by its Update Interval is due
         self.tools: Any = None
         self.displays: Any = None  # the DisplayManager (loop thread), once started
         self.displays_panel: Any = None
@@ -249,9 +244,7 @@ class Viewer:
     # -- the loop -------------------------------------------------------------------------------
     def _forget(self, number: int) -> None:
         """Drop what was kept about robot ``number`` (removed from the viewer)."""
-        self._extent_m.pop(number, None)
-        self._missing.pop(number, None)
-        self._beside.discard(number)
+        self.placement.forget(number)
         self._dirty = True
 
     def _on_tf(self, _msg: TFMessage) -> None:
@@ -288,7 +281,9 @@ class Viewer:
             if now >= next_reload:
                 next_reload = now + self.options.reload_period_s
                 self._check_reload()
-            due = self._dirty or now >= self._due_s  # TF moved, or an Update Interval passed
+            due = (
+                self._dirty or now >= self.placement.due_s
+            )  # TF moved, or an Update Interval passed
             if due and now >= next_push and not self._page_behind(now):
                 # On the schedule, not from now: the loop's own latency does not lower the rate.
                 next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
@@ -321,7 +316,7 @@ class Viewer:
                 )
                 session.build_panel(self.server.gui, self._post)
                 show_robots(self.displays.displays, self.sessions)
-                self._extent_m.pop(session.number, None)
+                self.placement.extent_m.pop(session.number, None)
                 self.reloads += 1
             self._dirty = True
             self._refresh_status()
@@ -338,73 +333,22 @@ class Viewer:
 
     def _push(self) -> None:
         """Send the poses that changed, as one atomic batch, flushed immediately."""
-        frames: list[str] = []
-        wxyzs: list[np.ndarray] = []
-        xyzs: list[np.ndarray] = []
-        shown: list[np.ndarray] = []
-        missing, beside = self._missing, self._beside
-        self._missing, self._beside = {}, set()
-        self._due_s = float("inf")
-        now_s = time.monotonic()
         buffer = self._broadcast_buffer()
         first_id = buffer.message_counter if buffer is not None else 0
         with self.server.atomic():
-            for session in self.sessions:
-                updates = session.link_updates
-                if not updates.due(now_s, self.fixed_frame):
-                    # within its RobotModel's Update Interval: left where it is until then
-                    self._due_s = min(self._due_s, updates.next_s())
-                    if session.number in missing:
-                        self._missing[session.number] = missing[session.number]
-                    if session.number in beside:
-                        self._beside.add(session.number)
-                    continue
-                poses = session.link_poses(
-                    self.buffer,
-                    self.fixed_frame,
-                    beside_root_pose(session, self.sessions, self.fixed_frame, self._extent_m),
-                )
-                if poses is None or session.display is None:
-                    continue
-                session.display.set_poses(poses.wxyz, poses.xyz, poses.visible)
-                updates.placed(now_s, self.fixed_frame)
-                self._note_placed(session.number, poses)
-                frames.extend(session.link_frames())
-                wxyzs.append(poses.wxyz)
-                xyzs.append(poses.xyz)
-                shown.append(poses.visible)
-            append_other_frames(
-                self.buffer, self.fixed_frame, self.sessions, frames, wxyzs, xyzs, shown
+            placed = self.placement.place(
+                self.sessions, self.buffer, self.fixed_frame, time.monotonic()
             )
+            append_other_frames(self.buffer, self.fixed_frame, self.sessions, placed.frames,
+                                placed.wxyzs, placed.xyzs, placed.shown)  # fmt: skip
             if self.scenery is not None:
                 self.scenery.update(self.buffer, self.fixed_frame)
-            if frames:
-                self._show_frames(tuple(frames), wxyzs, xyzs, shown)
+            placed.show_in(self.displays.displays, self.buffer)
         self.server.flush()
         self.updates_sent += 1
         if buffer is not None:
             self._last_push_ids = (first_id, buffer.message_counter - 1)
             self._last_push_s = time.monotonic()
-
-    def _note_placed(self, number: int, poses: LinkPoses) -> None:
-        """Robot ``number``'s extent once all of it is placed; its frames without a transform
-        and whether it was drawn beside the fixed frame's tree (for the status)."""
-        if number not in self._extent_m and poses.visible.all():
-            self._extent_m[number] = float(
-                np.linalg.norm(poses.xyz - poses.xyz[0], axis=1).max(initial=0.0)
-            )
-        self._missing[number] = poses.missing
-        if not poses.connected:
-            self._beside.add(number)
-
-    def _show_frames(self, frames: tuple[str, ...], wxyzs: list[np.ndarray], xyzs: list[np.ndarray], shown: list[np.ndarray]) -> None:  # fmt: skip
-        """Every frame's pose in the fixed frame to the TF displays (loop thread)."""
-        tf_displays = [d for d in self.displays.displays if isinstance(d, TFDisplay)]
-        if not tf_displays:
-            return
-        wxyz, xyz, visible = np.concatenate(wxyzs), np.concatenate(xyzs), np.concatenate(shown)
-        for display in tf_displays:
-            display.show_frames(frames, wxyz, xyz, visible, self.buffer)
 
     def _refresh_scenery(self) -> None:
         """Redraw the scenery when its source has other shapes (a model spawned or deleted)."""
@@ -436,7 +380,13 @@ class Viewer:
 
     def _refresh_status(self) -> None:
         text = (
-            viewer_status(self.sessions, self.buffer, self.fixed_frame, self._missing, self._beside)
+            viewer_status(
+                self.sessions,
+                self.buffer,
+                self.fixed_frame,
+                self.placement.missing,
+                self.placement.beside,
+            )
             + self.status_note
         )
         if text != self._status_text:

@@ -9,10 +9,7 @@ A description that fails to load leaves the last good model in place and records
 from __future__ import annotations
 
 import posixpath
-import random
 import threading
-from collections.abc import Mapping
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -22,82 +19,27 @@ from numpy.typing import NDArray
 from robomodel.description.model import JointType, Robot
 from robomodel.description.packages import PackageIndex
 from robomodel.description.urdf.writer import urdf_to_string
-from robomodel.errors import Diagnostic, InputError, RobomodelError
+from robomodel.errors import RobomodelError
 from robomodel.loading import LoadedDescription, read_description
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage
 from robomodel.runtime.node import Node
 from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
 from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
-from robomodel.runtime.tf_listener import to_msg
-from robomodel.tf import BufferCore, TransformStamped
-from robomodel.viewer.bodies import body_transform
+from robomodel.tf import BufferCore
 from robomodel.viewer.displays.robot_model import LinkUpdates
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
 from robomodel.viewer.link_poses import LinkPoses, LinkPoseSolver
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.reload import FileWatcher, TopicWatcher
+from robomodel.viewer.robot_source import DisplayOptions, LoadFailure, RobotSource
 from robomodel.viewer.scene import RobotModelDisplay
+from robomodel.viewer.session_controls import JointControls
 
 __all__ = ["DisplayOptions", "LoadFailure", "RobotSession", "RobotSource"]
 
 
-@dataclass(frozen=True, slots=True)
-class RobotSource:
-    """A description file to view, its xacro arguments and its frame prefix; or, with
-    ``topic``, the description another process publishes there (RViz's RobotModel with
-    Description Source: Topic), reloaded whenever a new one arrives.
-
-    ``namespace`` (the bus namespace of the robot's nodes), ``joint_states_topic`` (the resolved
-    topic its sliders publish on) and ``external`` come from a launch file's nodes: a
-    joint_state_publisher_gui in ``/r1`` publishes on ``/r1/joint_states``. None: the
-    viewer's defaults (its options' ``external``, ``joint_states`` in the namespace).
-    ``description_name`` is the ROS 1 parameter a launch read the description from (an RViz 1
-    RobotModel's Robot Description names it).
-    """
-
-    path: str
-    mappings: Mapping[str, str] = field(default_factory=dict)
-    prefix: str = ""
-    topic: str | None = None
-    namespace: str | None = None
-    joint_states_topic: str | None = None
-    external: bool | None = None
-    description_name: str | None = None
-
-
-@dataclass(frozen=True, slots=True)
-class LoadFailure:
-    """Why the last load failed: the error and the include/macro stack notes.
-
-    ``diagnostics`` holds the located error first, then its notes (empty for errors without a
-    location, whose text is ``message``).
-    """
-
-    message: str
-    diagnostics: tuple[Diagnostic, ...] = ()
-
-    @property
-    def path(self) -> str | None:
-        return self.diagnostics[0].location.path if self.diagnostics else None
-
-    @classmethod
-    def from_error(cls, exc: RobomodelError) -> LoadFailure:
-        if isinstance(exc, InputError):
-            return cls(exc.diagnostic.format(), (exc.diagnostic, *exc.notes))
-        return cls(str(exc))
-
-
-@dataclass(slots=True)
-class DisplayOptions:
-    """RViz's RobotModel properties, shared by every robot."""
-
-    alpha: float = 1.0
-    show_visual: bool = True
-    show_collision: bool = False
-
-
-class RobotSession:
+class RobotSession(JointControls):
     """Loads, publishes, draws and controls one robot.
 
     Args:
@@ -316,120 +258,6 @@ class RobotSession:
         self.display.build()
         if load_meshes:
             self.display.load_meshes()
-
-    def build_panel(self, gui: Any, post: Any) -> None:
-        """(Re)create the joint panel; ``post`` runs a callable on the executor thread."""
-        if self.panel is not None:
-            self.panel.remove()
-            self.panel = None
-        if self.robot is None:
-            return
-        if self.jsp is None:
-            self.panel = JointPanel(
-                gui,
-                self.label,
-                (),
-                mimic={},
-                bodies=(),
-                on_change=lambda _p: None,
-                on_randomize=lambda: None,
-                on_center=lambda: None,
-                on_body=lambda _n, _p: None,
-                note="joint states come from the bus (`--joint-states external`)",
-            )
-            return
-        jsp = self.jsp
-        bodies = tuple(
-            j for j in self.robot.joints if j.type in (JointType.FLOATING, JointType.PLANAR)
-        )
-        mimic = {n: d.parent for n, d in jsp.dependent_joints.items()}
-        self.panel = JointPanel(
-            gui,
-            self.label,
-            tuple(jsp.free_joints.values()),
-            mimic=mimic,
-            bodies=bodies,
-            on_change=self.queue_positions,
-            on_randomize=lambda: post(lambda: self.randomize()),
-            on_center=lambda: post(lambda: self.center()),
-            on_body=lambda name, pose: post(lambda: self.set_body(name, pose)),
-            units={j.name: "m" for j in self.robot.joints if j.type is JointType.PRISMATIC},
-        )
-
-    # -- controls (run on the executor thread) --------------------------------------------------
-    def queue_positions(self, values: Mapping[str, float]) -> None:
-        """From any thread: joint values to apply at the loop's next turn (merged, so a fast
-        slider drag costs one joint_state_publisher message per turn, not one per event)."""
-        with self._pending_lock:
-            self._pending.update(values)
-
-    def apply_queued(self) -> bool:
-        """Apply queued joint values (loop thread); True if there were any."""
-        with self._pending_lock:
-            pending, self._pending = self._pending, {}
-        if pending:
-            self.set_positions(pending)
-        return bool(pending)
-
-    def set_positions(self, values: Mapping[str, float]) -> None:
-        if self.jsp is None:
-            return
-        known = {k: v for k, v in values.items() if k in self.jsp.free_joints}
-        self.jsp.set_positions(known)
-        self.jsp.publish_now()
-
-    def randomize(self, rng: random.Random | None = None) -> None:
-        if self.jsp is None:
-            return
-        self.jsp.randomize(rng)
-        self.jsp.publish_now()
-        self._sync_sliders()
-
-    def center(self) -> None:
-        if self.jsp is None:
-            return
-        self.jsp.center()
-        self.jsp.publish_now()
-        self._sync_sliders()
-
-    def _sync_sliders(self) -> None:
-        if self.panel is not None and self.jsp is not None:
-            self.panel.set_values(
-                {n: j.position for n, j in self.jsp.free_joints.items() if j.position is not None}
-            )
-
-    def _body_joint(self, name: str) -> Any:
-        if self.robot is None or not self.robot.has_joint(name):
-            return None
-        joint = self.robot.joint(name)
-        return joint if joint.type in (JointType.FLOATING, JointType.PLANAR) else None
-
-    def set_body(self, name: str, pose: BodyPose) -> None:
-        self.bodies[name] = pose
-        self.publish_bodies()
-
-    def publish_bodies(self) -> None:
-        """Publish floating and planar joints on /tf (robot_state_publisher does not)."""
-        if self.robot is None or self._node is None or self.external or not self._has_bodies:
-            return
-        stamp = self._node.now()
-        transforms = []
-        for joint in self.robot.joints:
-            if joint.type not in (JointType.FLOATING, JointType.PLANAR):
-                continue
-            T = body_transform(joint, self.bodies.get(joint.name, BodyPose()))
-            transforms.append(
-                to_msg(
-                    TransformStamped.from_matrix(
-                        self.prefix + joint.parent,
-                        self.prefix + joint.child,
-                        T,
-                        stamp.to_nanoseconds(),
-                    )
-                )
-            )
-        if transforms:
-            self._tf_pub.publish(TFMessage(transforms))
 
     # -- poses --------------------------------------------------------------------------------
     def link_poses(
