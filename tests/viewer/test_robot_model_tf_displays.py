@@ -129,6 +129,13 @@ class _Buffer:
     def latest_parent(self, frame: str) -> tuple[int | None, str | None]:
         return self.parents.get(frame, (None, None))
 
+    def latest_common_time_ns(self, _fixed: str, frame: str | None) -> int:
+        stamps = []  # the newest stamps up to the root (the fixed frame's, in these tests)
+        while frame is not None:
+            stamp, frame = self.latest_parent(frame)
+            stamps.append(stamp or 0)
+        return min((s for s in stamps if s), default=0)
+
 
 def _entry_of(settings: Any) -> Any:
     from robomodel.viewer.rviz_model import RvizDisplay

@@ -8,6 +8,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from robomodel.tf.buffer import BufferCore
+from robomodel.tf.message import TransformStamped
 from robomodel.viewer.displays import display_class
 from robomodel.viewer.displays.tf_fade import AXES_RGBA, GREY_RGBA, HEAD_RGBA, SHAFT_RGBA, aged_rgba
 from tests.viewer.fake_scene import FakeScene, fake_context
@@ -43,14 +45,6 @@ def test_over_the_last_third_grey_fades_out_and_is_gone_at_the_timeout() -> None
     assert np.all(np.diff(alpha) <= 0) and alpha[0] == 1.0  # never comes back
 
 
-class _Buffer:
-    def __init__(self) -> None:
-        self.parents: dict[str, tuple[int | None, str | None]] = {}
-
-    def latest_parent(self, frame: str) -> tuple[int | None, str | None]:
-        return self.parents.get(frame, (None, None))
-
-
 def _instance_colors(scene: FakeScene, axis: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     node = scene.nodes[f"/displays/TF/axes/{axis}"]
     kwargs = node.kwargs
@@ -59,47 +53,53 @@ def _instance_colors(scene: FakeScene, axis: str) -> tuple[np.ndarray, np.ndarra
 
 
 def test_the_display_draws_a_frame_half_a_timeout_old_greyed_and_one_past_it_not_at_all() -> None:
+    """``moving`` is published once; ``laser`` is static below it and ages with it (RViz asks
+    for the latest common time with the fixed frame); ``static`` never ages."""
     now = [1000 * S]
     scene = FakeScene()
     tf = TF("TF", fake_context(scene, clock=lambda: now[0]), {"Frame Timeout": 6.0})
-    buffer = _Buffer()
-    buffer.parents = {"map": (None, None), "static": (None, "map"), "moving": (now[0], "map")}
-    frames = ("map", "static", "moving")
-    xyz = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    buffer = BufferCore()
+    buffer.set_transform(TransformStamped("map", "static", (1.0, 0, 0)), "test", is_static=True)
+    buffer.set_transform(TransformStamped("map", "moving", (0, 1.0, 0), stamp_ns=now[0]), "test")
+    buffer.set_transform(TransformStamped("moving", "laser", (0, 0, 1.0)), "test", is_static=True)
+    frames = ("map", "static", "moving", "laser")
+    xyz = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 1, 1]])
 
     def show() -> None:
-        tf.show_frames(frames, np.tile([1.0, 0, 0, 0], (3, 1)), xyz, np.ones(3, bool), buffer)
+        tf.show_frames(frames, np.tile([1.0, 0, 0, 0], (4, 1)), xyz, np.ones(4, bool), buffer)
 
-    show()  # "moving" published now: all three as RViz draws fresh frames
+    show()  # "moving" published now: all as RViz draws fresh frames
     positions, colors, opacities = _instance_colors(scene, "x")
-    assert colors.tolist() == [[255, 0, 0]] * 3 and opacities.tolist() == [1.0] * 3
+    assert colors.tolist() == [[255, 0, 0]] * 4 and opacities.tolist() == [1.0] * 4
     assert not tf.fading()
     now[0] += 3 * S  # half the timeout, nothing published since
     assert tf.fading()  # the viewer redraws though nothing moved
     show()
     positions, colors, opacities = _instance_colors(scene, "x")
     np.testing.assert_allclose(positions, xyz)
-    assert colors.tolist() == [[255, 0, 0], [255, 0, 0], [217, 89, 89]]  # (1, 0, 0) half grey
+    half_grey_red = [217, 89, 89]  # (1, 0, 0) and (0.7, 0.7, 0.7), half each
+    assert colors.tolist() == [[255, 0, 0], [255, 0, 0], half_grey_red, half_grey_red]
     assert _instance_colors(scene, "z")[1].tolist()[2] == [89, 89, 217]
-    assert opacities.tolist() == [1.0, 1.0, 1.0]
+    assert opacities.tolist() == [1.0] * 4
     arrows = scene.nodes["/displays/TF/arrows"].kwargs
-    np.testing.assert_allclose(arrows["points"], [[[1, 0, 0], [0, 0, 0]], [[0, 1, 0], [0, 0, 0]]])
-    assert arrows["colors"].tolist() == [
+    np.testing.assert_allclose(arrows["points"][:2], [[[1, 0, 0], [0, 0, 0]], [[0, 1, 0], [0, 0, 0]]])  # fmt: skip
+    assert arrows["colors"][:2].tolist() == [
         [[204, 204, 77], [255, 26, 153]],  # static's: fresh
-        [[191, 191, 128], [217, 102, 166]],
-    ]  # moving's: greyed
+        [[191, 191, 128], [217, 102, 166]],  # moving's: greyed
+    ]
     now[0] += int(1.5 * S)  # three quarters: grey, alpha (6 - 4.5) / 2
     show()
     _, colors, opacities = _instance_colors(scene, "y")
     assert colors.tolist()[2] == [179, 179, 179] and opacities[2] == pytest.approx(0.75, abs=1e-5)
-    now[0] += 2 * S  # past the timeout: gone, with its arrow
+    now[0] += 2 * S  # past the timeout: gone, with its arrow and its static child
     show()
     assert tf.shown == ("map", "static")
     positions, colors, _ = _instance_colors(scene, "x")
     np.testing.assert_allclose(positions, xyz[:2])
     assert len(scene.nodes["/displays/TF/arrows"].kwargs["points"]) == 1
     assert not tf.fading()  # nothing left to fade: no more redraws
-    buffer.parents["moving"] = (now[0] - 100 * S, "map")  # published again (an old stamp)
+    old = 1001 * S  # published again, stamped 5.5 s before the clock (a clock behind ours)
+    buffer.set_transform(TransformStamped("map", "moving", (0, 1.0, 0), stamp_ns=old), "test")
     show()
     assert tf.shown == frames  # its age counts from when the stamp changed, as RViz's
     assert _instance_colors(scene, "x")[1].tolist()[2] == [255, 0, 0]

@@ -4,8 +4,9 @@ Options and defaults are RViz's (rviz_default_plugins/displays/tf/tf_display.cpp
 f7112b1; RViz 1's are the same): Show Names, Show Axes, Show Arrows, Marker Scale (axes
 0.1 m long at 1), Update Interval (0: every update), Frame Timeout (a frame looks as usual
 for the first third of it, fades to grey over the second and out over the last, and is not
-drawn once older: :mod:`.tf_fade`; static transforms never age) and Frames (``All Enabled`` and one entry per frame seen, false hides
-that frame; written as RViz does, ``Frames: {All Enabled: true, base_link: {Value: true}}``).
+drawn once older: :mod:`.tf_fade`; static transforms never age) and Frames (``All
+Enabled`` and one entry per frame seen, false hides that frame; written as RViz does,
+``Frames: {All Enabled: true, base_link: {Value: true}}``).
 Arrows go from each frame to its parent, shaft yellow and head pink at the parent
 (``FrameInfo::ARROW_SHAFT_COLOR``, ``ARROW_HEAD_COLOR``).
 
@@ -22,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel.tf.exceptions import TransformError
 from robomodel.viewer.displays.base import (
     Display,
     DisplayStatus,
@@ -46,6 +48,16 @@ def frame_enabled(frames: Mapping[str, Any], frame: str) -> bool:
     if isinstance(entry, Mapping):
         entry = entry.get("Value", True)
     return bool(entry)
+
+
+def _latest_time_ns(buffer: Any, fixed_frame: str, frame: str) -> int | None:
+    """The newest time ``frame`` is known at in the fixed frame (tf2's latest common time, as
+    TFDisplay::updateFrame asks it: a static frame below a moving one ages with it); None if
+    only static transforms join them (never ages) or nothing does (not drawn anyway)."""
+    try:
+        return int(buffer.latest_common_time_ns(fixed_frame, frame)) or None
+    except TransformError:
+        return None
 
 
 @register_display
@@ -147,7 +159,8 @@ class TFDisplay(Display):
         self.seen.update(dict.fromkeys(frames))
         parents = {f: buffer.latest_parent(f) for f in frames}
         timeout_s = float(self.option("Frame Timeout"))
-        age_s = np.array([self._age_s(f, parents[f][0], now_ns) for f in frames], dtype=float)
+        fixed = self.context.fixed_frame()
+        age_s = np.array([self._age_s(f, _latest_time_ns(buffer, fixed, f), now_ns) for f in frames])  # fmt: skip
         enabled = [frame_enabled(self.option("Frames"), f) for f in frames]
         drawn = np.asarray(visible, dtype=bool) & (age_s <= timeout_s) & np.array(enabled, bool)
         self.markers.update(frames, wxyz, xyz, drawn, aged_rgba(AXES_RGBA, age_s, timeout_s))
@@ -174,7 +187,7 @@ class TFDisplay(Display):
         return MappingProxyType({**entries, **seen})
 
     def _age_s(self, frame: str, stamp_ns: int | None, now_ns: int) -> float:
-        """Seconds since ``frame``'s newest stamp changed; 0 for a static transform (None)."""
+        """Seconds since ``frame``'s newest stamp changed; 0 for static transforms (None)."""
         if stamp_ns is None:
             self._last_update.pop(frame, None)
             return 0.0

@@ -6,9 +6,10 @@ tf/frame_info.cpp, ``FrameInfo::updateColorForAge`` (lines 172-207): with ``thir
 ``2 * third`` each colour is ``lerpColor(default, grey, t) = default * t + grey * (1 - t)``
 with ``t = (2 * third - age) / third`` (grey = (0.7, 0.7, 0.7, 1)); past that it is grey with
 alpha ``max(0, (frame_timeout - age) / third)``. ``TFDisplay::updateFrame`` (tf_display.cpp
-lines 466-472) hides a frame older than Frame Timeout; its age is the time since the newest
-transform's stamp last changed, and a static transform (stamp zero) never ages
-(``FrameInfo::setLastUpdate``, frame_info.cpp lines 163-170).
+lines 466-472) hides a frame older than Frame Timeout; its age is the time since its latest
+common time with the fixed frame (tf_display.cpp lines 449-464) last changed, and a frame
+joined to it by static transforms only (time zero) never ages (``FrameInfo::setLastUpdate``,
+frame_info.cpp lines 163-170).
 """
 
 from __future__ import annotations
