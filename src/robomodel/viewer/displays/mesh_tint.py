@@ -77,7 +77,7 @@ def tinted_rgb(rgb: ArrayLike, tint: Tint) -> NDArray[np.float64]:
     return (np.asarray(tint.rgb) * w + m * a * (1.0 - w)) / tint.opacity
 
 
-@functools.lru_cache(maxsize=32)
+@functools.lru_cache(maxsize=8)  # a marker re-sent is not re-encoded; the keys are the cached parts
 def tinted_glb(glb: bytes, tint: Tint) -> bytes:
     """A binary glTF with every material's base colour (its texture's texels, or its factor)
     tinted, and the tint's opacity; the mesh and UVs as they were."""
