@@ -9,7 +9,7 @@ alpha ``max(0, (frame_timeout - age) / third)``. ``TFDisplay::updateFrame`` (tf_
 lines 466-472) hides a frame older than Frame Timeout; its age is the time since its latest
 common time with the fixed frame (tf_display.cpp lines 449-464) last changed, and a frame
 joined to it by static transforms only (time zero) never ages (``FrameInfo::setLastUpdate``,
-frame_info.cpp lines 163-170).
+frame_info.cpp lines 164-170).
 """
 
 from __future__ import annotations
