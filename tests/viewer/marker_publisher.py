@@ -6,8 +6,9 @@ interrupted (fixed frame ``map``):
 
 - /text (Marker): TEXT_VIEW_FACING markers, "HH" in opaque green and "HH" in half-transparent
   red, ``TEXT_HEIGHT_M`` high;
-- /meshes (MarkerArray): the textured cube with ``mesh_use_embedded_materials`` (its red/blue
-  checker) and the same file without (the marker's yellow);
+- /meshes (MarkerArray): the textured cube with ``mesh_use_embedded_materials`` and an
+  all-zero colour (its red/blue checker), the same with blue (0, 0, 1, 1), which RViz 2 draws
+  half over the texture (red turns purple), and the same file without (the marker's yellow);
 - /pose_cov (PoseWithCovarianceStamped): a pose with a known position and orientation
   covariance.
 """
@@ -27,6 +28,7 @@ GREEN_TEXT_XYZ = (-1.5, 0.0, 0.6)
 RED_TEXT_XYZ = (-1.5, 0.0, -0.6)
 TEXTURED_XYZ = (-1.5, 0.0, 0.0)
 YELLOW_XYZ = (0.0, 0.0, 0.0)
+TINTED_XYZ = (0.0, 0.0, 1.2)
 MESH_SCALE = 2.0  # the 0.4 m cube drawn 0.8 m wide
 COVARIANCE_XYZ = (0.0, 0.0, 0.0)
 # position variances (x, y, z) [m^2] and orientation variances (roll, pitch, yaw) [rad^2]
@@ -55,8 +57,10 @@ def texts(types: dict[str, type]) -> list[object]:
 
 def meshes(types: dict[str, type], dae: Path) -> object:
     array = types["MarkerArray"]()
-    for id_, xyz, embedded in ((0, TEXTURED_XYZ, True), (1, YELLOW_XYZ, False)):
-        m = _marker(types, id_, 10, xyz, (1.0, 1.0, 0.0, 1.0))
+    for id_, xyz, embedded, rgba in ((0, TEXTURED_XYZ, True, (0.0, 0.0, 0.0, 0.0)),
+                                     (1, YELLOW_XYZ, False, (1.0, 1.0, 0.0, 1.0)),
+                                     (2, TINTED_XYZ, True, (0.0, 0.0, 1.0, 1.0))):  # fmt: skip
+        m = _marker(types, id_, 10, xyz, rgba)
         m.mesh_resource, m.mesh_use_embedded_materials = dae.as_uri(), embedded
         m.scale.x = m.scale.y = m.scale.z = MESH_SCALE
         array.markers.append(m)

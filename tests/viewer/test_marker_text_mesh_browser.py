@@ -3,7 +3,8 @@
 
 RViz draws a TEXT_VIEW_FACING marker in the marker's colour and alpha, ``scale.z`` high,
 turned to the camera; a MESH_RESOURCE marker with ``mesh_use_embedded_materials`` in the
-mesh's own texture, and without it in the marker's colour. The screenshot is checked at the
+mesh's own texture (tinted by a non-zero colour, as RViz 2 does), and without it in the
+marker's colour. The screenshot is checked at the
 pixels where the page's camera sees each one.
 """
 
@@ -141,7 +142,7 @@ def test_text_markers_are_drawn_in_their_colour_alpha_and_height_facing_the_came
     assert side_height_px < side_line_px
 
 
-def test_a_mesh_resource_marker_shows_its_texture_or_the_marker_colour(
+def test_a_mesh_resource_marker_shows_its_texture_tinted_or_the_marker_colour(
     marker_viewer: Viewer, page: Any
 ) -> None:
     viewer = marker_viewer
@@ -155,11 +156,16 @@ def test_a_mesh_resource_marker_shows_its_texture_or_the_marker_colour(
     quadrants = np.array([(x0 + sx * half / 2, -half, z0 + sz * half / 2)
                           for sx, sz in ((-1, 1), (1, 1), (-1, -1), (1, -1))])  # fmt: skip
     yellow = np.array([published.YELLOW_XYZ]) + np.array([0.0, -half, 0.0])
+    # the blue-tinted copy: RViz 2's tint pass (alpha min(1, 0.5)) over red is (0.5, 0, 0.5)
+    x1, _, z1 = published.TINTED_XYZ
+    tinted = np.array([(x1 + sx * half / 2, -half, z1 + sz * half / 2) for sx, sz in ((-1, 1), (1, 1))])  # fmt: skip
 
     def hue(patch: np.ndarray) -> str:
         r, g, b = (float(np.median(patch[..., k])) for k in range(3))
         if r > 80 and g > 80 and b < 0.5 * min(r, g):
             return "yellow"
+        if r > 50 and b > 50 and g < 0.3 * min(r, b) and 0.6 < r / b < 1.6:
+            return "purple"
         if r > 60 and r > 2 * max(g, b):
             return "red"
         if b > 60 and b > 2 * max(r, g):
@@ -170,11 +176,11 @@ def test_a_mesh_resource_marker_shows_its_texture_or_the_marker_colour(
 
     def drawn() -> bool:
         shot = screenshot(page)
-        points = _project(camera, canvas, np.vstack([quadrants, yellow]))
+        points = _project(camera, canvas, np.vstack([quadrants, yellow, tinted]))
         seen[:] = [[hue(shot[_box(uv, 4)]) for uv in points]]
-        return seen[0] == ["red", "blue", "blue", "red", "yellow"]
+        return seen[0] == ["red", "blue", "blue", "red", "yellow", "purple", "blue"]
 
-    wait_for(drawn, what=f"the checker and the yellow cube (seen {seen})")
+    wait_for(drawn, what=f"the checker, the yellow cube and the tinted checker (seen {seen})")
     save_shot(page, "marker_mesh_texture")
     assert _statuses(viewer)["Meshes"].endswith("messages received")
 

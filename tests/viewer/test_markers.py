@@ -259,13 +259,15 @@ def test_a_textured_mesh_resource_keeps_its_texture_only_with_embedded_materials
     from tests.viewer.textured import write_textured_cube
 
     parts = load_mesh_file(write_textured_cube(tmp_path))
-    m = marker(type_=10, rgb=(1.0, 1.0, 0.0))
+    m = marker(type_=10, rgb=(0.0, 0.0, 0.0))
+    m.color.a = 0.0  # an all-zero colour: no tint (test_marker_mesh_tint.py tints)
     m.mesh_resource, m.mesh_use_embedded_materials = "file:///cube.dae", True
     m.scale.x, m.scale.y, m.scale.z = 1.0, 2.0, 3.0
     (textured,) = marker_drawables(m, lambda uri: parts)
     assert textured.kind == "glb" and textured.kwargs["glb_data"] == parts[0].glb
     assert textured.kwargs["scale"] == (1.0, 2.0, 3.0)
     m.mesh_use_embedded_materials = False
+    m.color.r, m.color.g, m.color.a = 1.0, 1.0, 1.0
     (plain,) = marker_drawables(m, lambda uri: parts)
     assert plain.kind == "mesh_simple" and plain.kwargs["color"] == (255, 255, 0)
 

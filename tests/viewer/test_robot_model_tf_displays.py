@@ -78,12 +78,12 @@ def test_tf_frames_are_read_switched_and_written_as_rviz_does() -> None:
     xyz = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
     tf.show_frames(frames, np.tile([1.0, 0, 0, 0], (3, 1)), xyz, np.ones(3, bool), buffer)
     assert tf.shown == ("base_link", "laser")  # odom switched off in the file
-    axes = scene.nodes["/displays/TF/axes"]
+    axes = scene.nodes["/displays/TF/axes/x"]
     np.testing.assert_allclose(axes.kwargs["batched_positions"], [[0, 0, 0], [0, 1, 0]])
-    assert axes.kwargs["axes_length"] == pytest.approx(0.05)  # 0.1 m at Marker Scale 0.5
+    assert axes.kwargs["args"][0][:, 0].max() == pytest.approx(0.05)  # 0.1 m at Marker Scale 0.5
     arrows = scene.nodes["/displays/TF/arrows"].kwargs
     np.testing.assert_allclose(arrows["points"], [[[0, 1, 0], [0, 0, 0]]])  # laser -> parent
-    assert arrows["colors"].tolist() == [[[204, 204, 77], [255, 25, 153]]]  # shaft, head
+    assert arrows["colors"].tolist() == [[[204, 204, 77], [255, 26, 153]]]  # shaft, head
     assert {"base_link", "laser"} <= set(tf.map_entries("Frames"))  # listed, as RViz lists them
     assert set(tf.option("Frames")) == {"All Enabled", "odom"}
     written = display_entry(tf, RvizDialect.ROS1, _entry_of(settings)).settings
@@ -128,6 +128,13 @@ class _Buffer:
 
     def latest_parent(self, frame: str) -> tuple[int | None, str | None]:
         return self.parents.get(frame, (None, None))
+
+    def latest_common_time_ns(self, _fixed: str, frame: str | None) -> int:
+        stamps = []  # the newest stamps up to the root (the fixed frame's, in these tests)
+        while frame is not None:
+            stamp, frame = self.latest_parent(frame)
+            stamps.append(stamp or 0)
+        return min((s for s in stamps if s), default=0)
 
 
 def _entry_of(settings: Any) -> Any:

@@ -294,6 +294,8 @@ class Viewer:
                 self._refresh_scenery()
                 self._refresh_frames()
                 self._refresh_status()
+                if any(isinstance(d, TFDisplay) and d.fading() for d in self.displays.displays):
+                    self._dirty = True  # an old frame greys and fades though no /tf arrives
             if now >= next_bodies:
                 # Republished like joint_state_publisher's joint states (10 Hz), so that lookups
                 # through a floating joint never need data older than the TF cache holds.

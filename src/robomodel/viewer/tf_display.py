@@ -1,7 +1,10 @@
 """The TF display: axes for every frame (one batched node) and optional names.
 
 As RViz's TF display: Show Axes, Show Names, Marker Scale; frames are drawn where they are in
-the fixed frame, and frames with no transform to it are not drawn.
+the fixed frame, and frames with no transform to it are not drawn. The axes are three batched
+cylinder meshes (x, y, z), so that each frame's axes take their own colour and opacity as the
+frame ages (viser's batched axes take neither); viser's labels take no colour or opacity, so a
+frame's name is drawn as it is until the frame is hidden.
 """
 
 from __future__ import annotations
@@ -16,6 +19,18 @@ __all__ = ["TFDisplay"]
 # RViz's TF axes are 0.1 m long at Marker Scale 1 (rviz_rendering::Axes(…, 0.1, 0.01)).
 _AXES_LENGTH_M = 0.1
 _AXES_RADIUS_M = 0.004
+_AXIS_NAMES = ("x", "y", "z")
+_FRESH_AXES_RGBA = np.array([[1.0, 0, 0, 1], [0, 1.0, 0, 1], [0, 0, 1.0, 1]])
+
+
+def _axis_mesh(axis: int, length_m: float, radius_m: float) -> tuple[NDArray[np.float64], NDArray[np.int64]]:  # fmt: skip
+    """A cylinder from the origin along ``axis`` (0, 1, 2: x, y, z): vertices and faces."""
+    import trimesh
+
+    cylinder = trimesh.creation.cylinder(radius=radius_m, height=length_m, sections=12)
+    vertices = np.asarray(cylinder.vertices) + np.array([0.0, 0.0, length_m / 2])  # base at 0
+    vertices = np.roll(vertices, axis + 1, axis=1)  # z -> x (roll 1), z -> y (roll 2)
+    return vertices, np.asarray(cylinder.faces)
 
 
 class TFDisplay:
@@ -36,11 +51,12 @@ class TFDisplay:
         self.show_names = show_names
         self.marker_scale = marker_scale
         self.frames: tuple[str, ...] = ()
-        self._axes: Any = None
+        self._axes: list[Any] = []  # the x, y and z cylinders' batched meshes
         self._labels: dict[str, Any] = {}
         self._wxyz = np.zeros((0, 4))
         self._xyz = np.zeros((0, 3))
         self._visible = np.zeros(0, dtype=bool)
+        self._axes_rgba = np.zeros((0, 3, 4))
         self._dirty = True
         self._axes_count = 0
 
@@ -50,8 +66,15 @@ class TFDisplay:
         wxyz: NDArray[np.float64],
         xyz: NDArray[np.float64],
         visible: NDArray[np.bool_],
+        axes_rgba: NDArray[np.float64] | None = None,
     ) -> None:
-        """Draw ``frames`` at the given poses in the fixed frame; send only when changed."""
+        """Draw ``frames`` at the given poses in the fixed frame; send only when changed.
+
+        ``axes_rgba``: shape (n, 3, 4), each frame's x, y and z axis colour (RGBA, 0..1);
+        None: red, green and blue, opaque.
+        """
+        if axes_rgba is None:
+            axes_rgba = np.broadcast_to(_FRESH_AXES_RGBA, (len(frames), 3, 4))
         if frames != self.frames:
             self._rebuild_labels(frames)
             self.frames = frames
@@ -60,10 +83,12 @@ class TFDisplay:
             np.array_equal(visible, self._visible)
             and np.allclose(wxyz, self._wxyz, atol=1e-7)
             and np.allclose(xyz, self._xyz, atol=1e-6)
+            and np.allclose(axes_rgba, self._axes_rgba, atol=1e-3)
         )
         if not changed:
             return
         self._wxyz, self._xyz, self._visible = wxyz.copy(), xyz.copy(), visible.copy()
+        self._axes_rgba = np.array(axes_rgba, dtype=np.float64)
         self._dirty = False
         self._send_axes()
         if self.show_names:
@@ -72,23 +97,35 @@ class TFDisplay:
     def _send_axes(self, *, recreate: bool = False) -> None:
         shown = self._visible & self.show_axes
         count = int(shown.sum())
-        if self._axes is not None and (recreate or count != self._axes_count):
-            self._axes.remove()
-            self._axes = None
+        if self._axes and (recreate or count != self._axes_count):
+            self._remove_axes()
         if count == 0:
             return
-        if self._axes is None:
-            self._axes = self.scene.add_batched_axes(
-                f"{self.root}/axes",
-                batched_wxyzs=self._wxyz[shown],
-                batched_positions=self._xyz[shown],
-                axes_length=_AXES_LENGTH_M * self.marker_scale,
-                axes_radius=_AXES_RADIUS_M * self.marker_scale,
-            )
+        rgba = self._axes_rgba[shown]
+        colors = np.floor(rgba[..., :3] * 255 + 0.5).astype(np.uint8)
+        opacities = rgba[..., 3].astype(np.float32)
+        if not self._axes:
+            length_m, radius_m = _AXES_LENGTH_M * self.marker_scale, _AXES_RADIUS_M * self.marker_scale  # fmt: skip
+            for axis, name in enumerate(_AXIS_NAMES):
+                vertices, faces = _axis_mesh(axis, length_m, radius_m)
+                self._axes.append(self.scene.add_batched_meshes_simple(
+                    f"{self.root}/axes/{name}", vertices, faces,
+                    batched_wxyzs=self._wxyz[shown], batched_positions=self._xyz[shown],
+                    batched_colors=colors[:, axis], batched_opacities=opacities[:, axis],
+                    lod="off", cast_shadow=False, receive_shadow=False,
+                ))  # fmt: skip
             self._axes_count = count
-        else:
-            self._axes.batched_wxyzs = self._wxyz[shown]
-            self._axes.batched_positions = self._xyz[shown]
+            return
+        for axis, handle in enumerate(self._axes):
+            handle.batched_wxyzs = self._wxyz[shown]
+            handle.batched_positions = self._xyz[shown]
+            handle.batched_colors = colors[:, axis]
+            handle.batched_opacities = opacities[:, axis]
+
+    def _remove_axes(self) -> None:
+        for handle in self._axes:
+            handle.remove()
+        self._axes = []
 
     def _rebuild_labels(self, frames: tuple[str, ...]) -> None:
         for label in self._labels.values():
@@ -110,9 +147,7 @@ class TFDisplay:
 
     def remove(self) -> None:
         """Take the axes and names out of the scene (drawn again by the next update)."""
-        if self._axes is not None:
-            self._axes.remove()
-            self._axes = None
+        self._remove_axes()
         for label in self._labels.values():
             label.remove()
         self._labels = {}

@@ -14,10 +14,10 @@ Shapes and sizes follow RViz's marker classes (rviz_default_plugins ``markers/*.
   camera (text_view_facing_marker.cpp): an image of the text (:mod:`.text_image`), turned to
   the page's camera by the display (``Drawable.view_facing``).
 - MESH_RESOURCE (10): ``mesh_resource`` scaled by ``scale``, in ``color`` unless
-  ``mesh_use_embedded_materials`` and the mesh has its own material (its colour, or its
-  texture: the part's binary glTF); parts without one take ``color``
-  (mesh_resource_marker.cpp useClonedMaterials). RViz 2 tints embedded materials with a
-  non-zero ``color``; viser cannot tint a glTF, so they are drawn as the file gives them.
+  ``mesh_use_embedded_materials``: then the mesh's own materials (its colour, or its texture:
+  the part's binary glTF) tinted by a non-zero ``color`` as RViz 2 tints them, and parts
+  without one in RViz's default material (:mod:`.mesh_tint`; mesh_resource_marker.cpp
+  useClonedMaterials, updateMaterialColor).
 - TRIANGLE_LIST (11): every three ``points`` a triangle.
 
 Each builder returns :class:`Drawable` s: a scene method (``mesh_simple``, ``line_segments``,
@@ -35,6 +35,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robomodel.viewer._deps import import_trimesh
+from robomodel.viewer.displays.mesh_tint import (
+    embedded_tint,
+    tinted_glb,
+    tinted_rgb,
+    without_material,
+)
 from robomodel.viewer.displays.text_image import text_image
 
 __all__ = ["MARKER_TYPES", "Drawable", "MarkerShapeError", "marker_drawables"]
@@ -246,15 +252,22 @@ def _mesh_resource(msg: Any, load: Any) -> list[Drawable]:
     if load is None:
         raise MarkerShapeError("Mesh resources are not loaded in this viewer")
     scale = np.array([msg.scale.x, msg.scale.y, msg.scale.z], np.float32)
+    embedded = bool(msg.mesh_use_embedded_materials)
+    c = msg.color
+    tint = embedded_tint(float(c.r), float(c.g), float(c.b), float(c.a))
     out = []
     for part in load(str(msg.mesh_resource)):
-        embedded = bool(msg.mesh_use_embedded_materials)
-        if embedded and part.glb is not None:  # its texture, as the file gives it
-            kwargs = {"glb_data": part.glb, "scale": tuple(float(v) for v in scale), "cast_shadow": False, "receive_shadow": False}  # fmt: skip
+        if embedded and part.glb is not None:  # its texture, tinted
+            kwargs = {"glb_data": tinted_glb(part.glb, tint), "scale": tuple(float(v) for v in scale), "cast_shadow": False, "receive_shadow": False}  # fmt: skip
             out.append(Drawable("glb", kwargs))
             continue
-        # RViz: a part without a material of its own gets the marker's colour
-        color = _Rgba(*part.rgba) if embedded and part.rgba is not None else msg.color
+        color = msg.color
+        if embedded and part.rgba is not None:
+            r, g, b = (float(v) for v in tinted_rgb(part.rgba[:3], tint))
+            color = _Rgba(r, g, b, tint.opacity)
+        elif embedded:  # RViz's default material stands in for a missing one
+            rgb, opacity = without_material(float(c.r), float(c.g), float(c.b), float(c.a))
+            color = _Rgba(*rgb, opacity)
         out.append(_solid((np.asarray(part.vertices) * scale, np.asarray(part.faces)), color))
     return out
 

@@ -2,10 +2,11 @@
 
 Options and defaults are RViz's (rviz_default_plugins/displays/tf/tf_display.cpp, ros2/rviz at
 f7112b1; RViz 1's are the same): Show Names, Show Axes, Show Arrows, Marker Scale (axes
-0.1 m long at 1), Update Interval (0: every update), Frame Timeout (a frame whose newest
-transform is older than this is no longer drawn: RViz fades it out over that time; static
-transforms never age) and Frames (``All Enabled`` and one entry per frame seen, false hides
-that frame; written as RViz does, ``Frames: {All Enabled: true, base_link: {Value: true}}``).
+0.1 m long at 1), Update Interval (0: every update), Frame Timeout (a frame looks as usual
+for the first third of it, fades to grey over the second and out over the last, and is not
+drawn once older: :mod:`.tf_fade`; static transforms never age) and Frames (``All
+Enabled`` and one entry per frame seen, false hides that frame; written as RViz does,
+``Frames: {All Enabled: true, base_link: {Value: true}}``).
 Arrows go from each frame to its parent, shaft yellow and head pink at the parent
 (``FrameInfo::ARROW_SHAFT_COLOR``, ``ARROW_HEAD_COLOR``).
 
@@ -22,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel.tf.exceptions import TransformError
 from robomodel.viewer.displays.base import (
     Display,
     DisplayStatus,
@@ -30,12 +32,12 @@ from robomodel.viewer.displays.base import (
     OptionKind,
     register_display,
 )
+from robomodel.viewer.displays.tf_fade import AXES_RGBA, HEAD_RGBA, SHAFT_RGBA, aged_rgba, rgb8
 from robomodel.viewer.tf_display import TFDisplay as FrameMarkers
 
 __all__ = ["TFDisplay", "frame_enabled"]
 
-_SHAFT_RGB = (204, 204, 77)  # ARROW_SHAFT_COLOR (0.8, 0.8, 0.3)
-_HEAD_RGB = (255, 25, 153)  # ARROW_HEAD_COLOR (1.0, 0.1, 0.6)
+_ARROW_RGBA = (SHAFT_RGBA, HEAD_RGBA)  # from the child to the parent
 _ALL = "All Enabled"
 
 
@@ -46,6 +48,16 @@ def frame_enabled(frames: Mapping[str, Any], frame: str) -> bool:
     if isinstance(entry, Mapping):
         entry = entry.get("Value", True)
     return bool(entry)
+
+
+def _latest_time_ns(buffer: Any, fixed_frame: str, frame: str) -> int | None:
+    """The newest time ``frame`` is known at in the fixed frame (tf2's latest common time, as
+    TFDisplay::updateFrame asks it: a static frame below a moving one ages with it); None if
+    only static transforms join them (never ages) or nothing does (not drawn anyway)."""
+    try:
+        return int(buffer.latest_common_time_ns(fixed_frame, frame)) or None
+    except TransformError:
+        return None
 
 
 @register_display
@@ -80,6 +92,10 @@ class TFDisplay(Display):
         self._arrows_key: bytes = b""
         self._all_enabled = frame_enabled(self.option("Frames"), _ALL)
         self.seen: dict[str, None] = {}  # every frame shown so far, in order
+        # frame -> (its newest stamp [ns], when that stamp was first seen [ns]): the frame's
+        # age is the time since (FrameInfo::setLastUpdate). Kept through resets: RViz would
+        # draw a long dead frame again for a Frame Timeout after a reset, a quirk not copied.
+        self._last_update: dict[str, tuple[int, int]] = {}
 
     def _new_markers(self) -> FrameMarkers:
         v = self.values
@@ -142,11 +158,24 @@ class TFDisplay(Display):
         self._last_update_ns = now_ns
         self.seen.update(dict.fromkeys(frames))
         parents = {f: buffer.latest_parent(f) for f in frames}
-        drawn = np.array([self._alive(f, parents[f][0], now_ns) for f in frames], dtype=bool)
-        drawn &= np.asarray(visible, dtype=bool)
-        self.markers.update(frames, wxyz, xyz, drawn)
+        timeout_s = float(self.option("Frame Timeout"))
+        fixed = self.context.fixed_frame()
+        age_s = np.array([self._age_s(f, _latest_time_ns(buffer, fixed, f), now_ns) for f in frames])  # fmt: skip
+        enabled = [frame_enabled(self.option("Frames"), f) for f in frames]
+        drawn = np.asarray(visible, dtype=bool) & (age_s <= timeout_s) & np.array(enabled, bool)
+        self.markers.update(frames, wxyz, xyz, drawn, aged_rgba(AXES_RGBA, age_s, timeout_s))
         self.shown = tuple(f for f, on in zip(frames, drawn, strict=True) if on)
-        self._draw_arrows(frames, xyz, drawn, {f: p[1] for f, p in parents.items()})
+        arrows_rgba = aged_rgba(_ARROW_RGBA, age_s, timeout_s)
+        self._draw_arrows(frames, xyz, drawn, {f: p[1] for f, p in parents.items()}, arrows_rgba)
+
+    def fading(self) -> bool:
+        """Whether a frame drawn at the last update is now older than a third of Frame Timeout
+        (it greys, fades and goes as time passes): the viewer then updates the scene though
+        nothing moved."""
+        if not self.enabled:
+            return False
+        since_ns = self.context.now_ns() - float(self.option("Frame Timeout")) * 1e9 / 3
+        return any(self._last_update[f][1] < since_ns for f in self.shown if f in self._last_update)
 
     def map_entries(self, name: str) -> Mapping[str, Any]:
         """Frames lists every frame seen (as RViz's tree does); the option holds only the
@@ -157,13 +186,20 @@ class TFDisplay(Display):
         seen = {f: {"Value": frame_enabled(entries, f)} for f in self.seen if f not in entries}
         return MappingProxyType({**entries, **seen})
 
-    def _alive(self, frame: str, stamp_ns: int | None, now_ns: int) -> bool:
-        if not frame_enabled(self.option("Frames"), frame):
-            return False
-        timeout_ns = float(self.option("Frame Timeout")) * 1e9
-        return stamp_ns is None or now_ns - stamp_ns <= timeout_ns
+    def _age_s(self, frame: str, stamp_ns: int | None, now_ns: int) -> float:
+        """Seconds since ``frame``'s newest stamp changed; 0 for static transforms (None)."""
+        if stamp_ns is None:
+            self._last_update.pop(frame, None)
+            return 0.0
+        seen = self._last_update.get(frame)
+        if seen is None or seen[0] != stamp_ns:
+            seen = self._last_update[frame] = (stamp_ns, now_ns)
+        return max(0.0, (now_ns - seen[1]) / 1e9)
 
-    def _draw_arrows(self, frames: tuple[str, ...], xyz: NDArray[np.float64], drawn: NDArray[np.bool_], parents: Mapping[str, str | None]) -> None:  # fmt: skip
+    def _draw_arrows(self, frames: tuple[str, ...], xyz: NDArray[np.float64], drawn: NDArray[np.bool_], parents: Mapping[str, str | None], rgba: NDArray[np.float64]) -> None:  # fmt: skip
+        """Arrows from each drawn frame to its drawn parent, in the child's ``rgba`` (shape
+        (n, 2, 4): shaft and head; viser's line segments take no alpha, so a frame's arrow
+        stays opaque grey over the last third of its Frame Timeout)."""
         index = {f: i for i, f in enumerate(frames) if drawn[i]}
         pairs = [(index[f], index[p]) for f, p in parents.items()
                  if f in index and p is not None and p in index]  # fmt: skip
@@ -172,10 +208,11 @@ class TFDisplay(Display):
             self._arrows_key = b""
             return
         points = np.array([[xyz[c], xyz[p]] for c, p in pairs], dtype=np.float32)
-        if points.tobytes() == self._arrows_key and self.node("arrows") is not None:
+        colors = rgb8(rgba[[c for c, _ in pairs]])
+        key = points.tobytes() + colors.tobytes()
+        if key == self._arrows_key and self.node("arrows") is not None:
             return
-        self._arrows_key = points.tobytes()
-        colors = np.array([[_SHAFT_RGB, _HEAD_RGB]] * len(pairs), dtype=np.uint8)
+        self._arrows_key = key
         self.add_node("arrows", "line_segments", points=points, colors=colors,
                       thickness=2.0 * float(self.option("Marker Scale")),
                       thickness_units="screen")  # fmt: skip

@@ -1,0 +1,92 @@
+"""A TF frame that is no longer published, in headless Chromium: its axes are drawn in their
+colours, then grey, then not at all (RViz's Frame Timeout, :mod:`.tf_fade`), with no /tf
+arriving meanwhile (the viewer redraws a fading frame by itself)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.test_sensor_displays_browser import EMPTY_ROBOT, _look_at_origin, _project
+from tests.viewer.test_tools_inprocess import on_loop
+
+pytestmark = pytest.mark.browser
+
+PROBE_XYZ = (0.0, 0.0, 1.5)  # where the probe frame is published, above the grid
+SCALE = 8.0  # Marker Scale: axes 0.8 m long
+
+
+@pytest.fixture
+def viewer(tmp_path: Path) -> Iterator[Viewer]:
+    urdf = tmp_path / "frame_only.urdf"
+    urdf.write_text(EMPTY_ROBOT)
+    options = ViewerOptions(sources=(RobotSource(str(urdf)),), port=0, fixed_frame="map", tools=False)  # fmt: skip
+    viewer = Viewer(options)
+    viewer.start()
+    yield viewer
+    viewer.close()
+
+
+def _publish_probe_once(viewer: Viewer) -> Any:
+    from robomodel.runtime.msg import get_message_type
+
+    TFMessage = get_message_type("tf2_msgs/msg/TFMessage")
+    Stamped = get_message_type("geometry_msgs/msg/TransformStamped")
+    assert viewer.context is not None
+    context = viewer.context
+
+    def publish() -> Any:
+        node = context.create_node("probe")
+        tf = Stamped()
+        stamp_ns = node.get_clock().now_ns()
+        tf.header.frame_id, tf.child_frame_id = "map", "probe"
+        tf.header.stamp.sec, tf.header.stamp.nanosec = divmod(stamp_ns, 10**9)
+        tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = PROBE_XYZ  # fmt: skip
+        tf.transform.rotation.w = 1.0
+        node.create_publisher(TFMessage, "/tf", 10).publish(TFMessage(transforms=[tf]))
+        return node
+
+    return on_loop(viewer, publish)
+
+
+def test_a_frame_no_longer_published_turns_grey_then_goes(viewer: Viewer, page: Any) -> None:
+    open_viewer(page, viewer.url)
+    (tf,) = (d for d in viewer.displays.displays if d.class_name == "TF")
+    on_loop(viewer, lambda: tf.set_option("Marker Scale", SCALE))
+    on_loop(viewer, lambda: tf.set_option("Frame Timeout", 12.0))  # grey from 4 s, gone at 12 s
+    camera = _look_at_origin(viewer, (0.0, -6.0, 0.0))
+    canvas = page.locator("canvas").first.bounding_box()
+    # the middle of the probe's x axis
+    (uv,) = _project(camera, canvas, np.array([PROBE_XYZ]) + np.array([[0.05 * SCALE, 0.0, 0.0]]))
+    u, v = round(float(uv[0])), round(float(uv[1]))
+
+    def colour() -> tuple[float, float, float]:
+        patch = screenshot(page)[v - 1 : v + 2, u - 1 : u + 2].astype(float)
+        r, g, b = (float(np.median(patch[..., k])) for k in range(3))
+        return r, g, b
+
+    seen: list[tuple[float, float, float]] = []
+
+    def looks(test: Any) -> bool:
+        seen[:] = [colour()]
+        return bool(test(*seen[0]))
+
+    _node = _publish_probe_once(viewer)
+    wait_for(lambda: looks(lambda r, g, b: r > 100 and r > 2.5 * max(g, b)), what=lambda: f"red x axis ({seen})")  # fmt: skip
+    save_shot(page, "tf_frame_fresh")
+    grey = wait_for(
+        lambda: looks(lambda r, g, b: max(r, g, b) - min(r, g, b) < 20 and 90 < r < 215),
+        timeout_s=30.0, what=lambda: f"the x axis greyed ({seen})",
+    )  # fmt: skip
+    assert grey
+    save_shot(page, "tf_frame_grey")
+    wait_for(lambda: "probe" not in tf.shown, timeout_s=30.0, what="the probe past its timeout")
+    # the page's white where the axis was (the last of the fade, alpha near 0, is lighter grey)
+    wait_for(lambda: looks(lambda r, g, b: min(r, g, b) > 250), what=lambda: f"the axis gone ({seen})")  # fmt: skip
+    save_shot(page, "tf_frame_gone")
