@@ -29,6 +29,7 @@ from robomodel.viewer._deps import import_viser
 from robomodel.viewer.config_panel import attach_rviz
 from robomodel.viewer.displays.attach import attach_displays
 from robomodel.viewer.displays.robot_model import show_robots
+from robomodel.viewer.displays.tf import TFDisplay
 from robomodel.viewer.layout import place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
 from robomodel.viewer.link_poses import append_other_frames
