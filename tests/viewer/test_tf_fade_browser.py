@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.timing import scaled
 from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
 from tests.viewer.test_sensor_displays_browser import EMPTY_ROBOT, _look_at_origin, _project
 from tests.viewer.test_tools_inprocess import on_loop
@@ -33,7 +34,9 @@ def viewer(tmp_path: Path) -> Iterator[Viewer]:
     viewer.close()
 
 
-def _publish_probe_once(viewer: Viewer) -> Any:
+def _publish_probe(viewer: Viewer) -> Any:
+    """Publish the probe frame at 10 Hz, freshly stamped; returns the timer (cancel it: the
+    frame then ages)."""
     from robomodel.runtime.msg import get_message_type
 
     TFMessage = get_message_type("tf2_msgs/msg/TFMessage")
@@ -41,25 +44,33 @@ def _publish_probe_once(viewer: Viewer) -> Any:
     assert viewer.context is not None
     context = viewer.context
 
-    def publish() -> Any:
+    def start() -> Any:
         node = context.create_node("probe")
-        tf = Stamped()
-        stamp_ns = node.get_clock().now_ns()
-        tf.header.frame_id, tf.child_frame_id = "map", "probe"
-        tf.header.stamp.sec, tf.header.stamp.nanosec = divmod(stamp_ns, 10**9)
-        tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = PROBE_XYZ  # fmt: skip
-        tf.transform.rotation.w = 1.0
-        node.create_publisher(TFMessage, "/tf", 10).publish(TFMessage(transforms=[tf]))
-        return node
+        publisher = node.create_publisher(TFMessage, "/tf", 10)
 
-    return on_loop(viewer, publish)
+        def publish() -> None:
+            tf = Stamped()
+            stamp_ns = node.get_clock().now_ns()
+            tf.header.frame_id, tf.child_frame_id = "map", "probe"
+            tf.header.stamp.sec, tf.header.stamp.nanosec = divmod(stamp_ns, 10**9)
+            tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = PROBE_XYZ  # fmt: skip
+            tf.transform.rotation.w = 1.0
+            publisher.publish(TFMessage(transforms=[tf]))
+
+        publish()
+        return node.create_timer(0.1, publish)
+
+    return on_loop(viewer, start)
 
 
 def test_a_frame_no_longer_published_turns_grey_then_goes(viewer: Viewer, page: Any) -> None:
     open_viewer(page, viewer.url)
     (tf,) = (d for d in viewer.displays.displays if d.class_name == "TF")
     on_loop(viewer, lambda: tf.set_option("Marker Scale", SCALE))
-    on_loop(viewer, lambda: tf.set_option("Frame Timeout", 12.0))  # grey from 4 s, gone at 12 s
+    # grey from a third of it, gone at its end: scaled, so that a loaded machine's screenshots
+    # still land inside the grey third
+    timeout_s = scaled(12.0)
+    on_loop(viewer, lambda: tf.set_option("Frame Timeout", timeout_s))
     camera = _look_at_origin(viewer, (0.0, -6.0, 0.0))
     canvas = page.locator("canvas").first.bounding_box()
     # the middle of the probe's x axis
@@ -77,16 +88,17 @@ def test_a_frame_no_longer_published_turns_grey_then_goes(viewer: Viewer, page: 
         seen[:] = [colour()]
         return bool(test(*seen[0]))
 
-    _node = _publish_probe_once(viewer)
+    timer = _publish_probe(viewer)  # fresh until its red was seen, however long the page takes
     wait_for(lambda: looks(lambda r, g, b: r > 100 and r > 2.5 * max(g, b)), what=lambda: f"red x axis ({seen})")  # fmt: skip
     save_shot(page, "tf_frame_fresh")
+    on_loop(viewer, timer.cancel)  # no longer published: it ages from here
     grey = wait_for(
         lambda: looks(lambda r, g, b: max(r, g, b) - min(r, g, b) < 20 and 90 < r < 215),
-        timeout_s=30.0, what=lambda: f"the x axis greyed ({seen})",
+        timeout_s=timeout_s + scaled(10.0), what=lambda: f"the x axis greyed ({seen})",
     )  # fmt: skip
     assert grey
     save_shot(page, "tf_frame_grey")
-    wait_for(lambda: "probe" not in tf.shown, timeout_s=30.0, what="the probe past its timeout")
+    wait_for(lambda: "probe" not in tf.shown, timeout_s=timeout_s + scaled(10.0), what="the probe past its timeout")  # fmt: skip
     # the page's white where the axis was (the last of the fade, alpha near 0, is lighter grey)
     wait_for(lambda: looks(lambda r, g, b: min(r, g, b) > 250), what=lambda: f"the axis gone ({seen})")  # fmt: skip
     save_shot(page, "tf_frame_gone")
