@@ -15,6 +15,7 @@ from typing import Any
 __all__ = ["FileWatcher", "TopicWatcher"]
 
 _Stamp = tuple[int, int] | None
+_UNREAD: _Stamp = (-1, -1)  # no file has it: a baseline that any state differs from
 
 
 def _stamp(path: str) -> _Stamp:
@@ -45,6 +46,12 @@ class FileWatcher:
         for path in paths:
             full = os.path.abspath(path)
             self._stamps.setdefault(full, _stamp(full))
+
+    def unread(self) -> None:
+        """Forget the baselines: the next :meth:`changed` reports every file, even one that
+        does not exist (a description not read yet is read, or its error shown, by the
+        viewer's next reload check)."""
+        self._stamps = dict.fromkeys(self._stamps, _UNREAD)
 
     def changed(self) -> tuple[str, ...]:
         """Files that changed (or appeared or vanished) since the last call; updates baselines."""

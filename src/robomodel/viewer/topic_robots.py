@@ -1,4 +1,5 @@
-"""Robots that a RobotModel display names and the viewer did not load: loaded from the bus.
+"""Robots that a RobotModel display names and the viewer did not load: loaded from the bus
+or from their file.
 
 RViz's RobotModel display draws the robot of its Description Topic: RViz 2 subscribes to it
 (``std_msgs/msg/String``, transient local, as robot_state_publisher publishes it; RViz 2's
@@ -10,23 +11,35 @@ it (the session of ``view --description-topic``: reloaded when a new description
 drawn from TF like the other robots, no publishers of its own) and closes it when no enabled
 RobotModel display names that topic any more (removed, disabled, or another topic), as RViz
 unsubscribes and clears its robot.
+
+Description Source ``File`` likewise: RViz 2 reads its Description File when the display is
+enabled or the file's name set (robot_model_display.cpp, ``load_urdf_from_file``) and draws
+its links where TF has them, publishing nothing. For a file the viewer did not load, the same
+kind of session opens on that file (its FileWatcher reads it at the viewer's next reload check
+and again whenever it or a file it includes changes; RViz 2 reads it only then). robomodel's
+loader reads URDF or xacro, as ``view`` does (RViz 2: URDF only); a load error is the
+display's status with the file:line the loader gives, a missing file's "No such file or
+directory" among them (RViz 2 says "URDF is empty" or "URDF failed Model parse").
 """
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Sequence
 from typing import Any
 
 from robomodel.viewer.displays.base import Display
 from robomodel.viewer.displays.robot_model import RobotModelDisplay, topic_name
-from robomodel.viewer.reload import ParamWatcher
+from robomodel.viewer.reload import FileWatcher, ParamWatcher
 from robomodel.viewer.session import RobotSession, RobotSource
 
 __all__ = ["TopicRobots"]
 
+_Key = tuple[str, str]  # ("Topic", global name) or ("File", absolute path)
+
 
 class TopicRobots:
-    """The sessions opened for RobotModel displays' topics (loop thread).
+    """The sessions opened for RobotModel displays' topics and files (loop thread).
 
     Args:
         viewer: The viewer (its ``sessions`` list is replaced, never changed in place, as
@@ -39,53 +52,71 @@ class TopicRobots:
         self._viewer = viewer
         self._node = node
         self._forget = forget
-        self.sessions: dict[str, RobotSession] = {}
+        self.sessions: dict[_Key, RobotSession] = {}
         self._next_number = len(viewer.sessions)
 
     def sync(self, displays: Sequence[Display]) -> None:
-        """Open a session for each topic an enabled RobotModel display names that no robot of
-        the viewer's is described on; close those no display names any more."""
+        """Open a session for each topic or file an enabled RobotModel display names that no
+        robot of the viewer's is described on; close those no display names any more."""
         mine = set(map(id, self.sessions.values()))
         own = [s for s in self._viewer.sessions if id(s) not in mine]
-        wanted: set[str] = set()
+        wanted: set[_Key] = set()
         for display in displays:
-            if not isinstance(display, RobotModelDisplay) or not display.enabled:
-                continue
-            if display.option("Description Source") != "Topic":
-                continue
-            name = topic_name(str(display.option("Description Topic")))
-            if name != "/" and not any(name in s.description_names for s in own):
-                wanted.add(name)
-        for topic in sorted(set(self.sessions) - wanted):
-            self._close(topic)
-        for topic in sorted(wanted - set(self.sessions)):
-            self._open(topic)
+            if isinstance(display, RobotModelDisplay) and display.enabled:
+                key = _wanted(display, own)
+                if key is not None:
+                    wanted.add(key)
+        for key in sorted(set(self.sessions) - wanted):
+            self._close(key)
+        for key in sorted(wanted - set(self.sessions)):
+            self._open(key)
 
-    def _open(self, topic: str) -> None:
+    def _open(self, key: _Key) -> None:
         viewer = self._viewer
+        kind, name = key
+        source = (
+            RobotSource(name, external=True)
+            if kind == "File"
+            else RobotSource("", topic=name, external=True)
+        )
         # external: RViz publishes nothing for its robot; the description's own nodes do
         session = RobotSession(
             self._next_number,
-            RobotSource("", topic=topic, external=True),
+            source,
             index=viewer.options.package_index,
             external=True,
             state_publisher=False,
         )
         self._next_number += 1
         master_uri = getattr(viewer.context.transport, "master_uri", None)
-        if viewer.options.bus == "ros1" and master_uri is not None:
-            session.watcher = ParamWatcher(topic, master_uri)
+        if isinstance(session.watcher, FileWatcher):
+            session.watcher.unread()  # read (or its error shown) at the next reload check
+        elif viewer.options.bus == "ros1" and master_uri is not None:
+            session.watcher = ParamWatcher(name, master_uri)
         session.start_nodes(viewer.context, self._node)
-        self.sessions[topic] = session
+        self.sessions[key] = session
         viewer.sessions = [*viewer.sessions, session]
 
-    def _close(self, topic: str) -> None:
-        session = self.sessions.pop(topic)
+    def _close(self, key: _Key) -> None:
+        session = self.sessions.pop(key)
         session.close()
         session.close_nodes()
         self._viewer.sessions = [s for s in self._viewer.sessions if s is not session]
         self._forget(session.number)
 
     def close(self) -> None:
-        for topic in list(self.sessions):
-            self.sessions.pop(topic).close_nodes()
+        for key in list(self.sessions):
+            self.sessions.pop(key).close_nodes()
+
+
+def _wanted(display: RobotModelDisplay, own: Sequence[RobotSession]) -> _Key | None:
+    """The topic or file ``display`` names when none of the viewer's robots ``own`` is
+    described there (None: one is, or it names nothing)."""
+    if any(display.describes(s) for s in own):
+        return None
+    if display.option("Description Source") == "File":
+        path = str(display.option("Description File"))
+        # RViz 2's load_urdf: an empty Description File loads nothing
+        return ("File", os.path.abspath(path)) if path.strip() else None
+    name = topic_name(str(display.option("Description Topic")))
+    return ("Topic", name) if name != "/" else None

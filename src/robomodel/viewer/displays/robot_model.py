@@ -9,7 +9,8 @@ parameter's text on the topic of the same name, so one name serves both). A topi
 the viewer's is described on is followed for the display (:mod:`robomodel.viewer.topic_robots`).
 A robot no enabled RobotModel display names is not drawn, as in RViz; when several name it,
 the last one's options count (later displays draw over earlier ones). Description Source
-``File`` names a description file instead, matched against the files the viewer loaded.
+``File`` names a description file instead: one the viewer loaded, or another that is then
+loaded for the display (:mod:`robomodel.viewer.topic_robots`).
 
 Options and defaults are RViz 2's (robot_model_display.cpp): Alpha, Visual Enabled, Collision
 Enabled, TF Prefix, Update Interval, Description Source / File / Topic. Link ``L`` is placed
@@ -71,11 +72,13 @@ class RobotModelDisplay(Display):
     def describes(self, session: Any) -> bool:
         """Whether this display names ``session``'s robot (its topic or its file)."""
         if self.option("Description Source") == "File":
-            path = str(self.option("Description File"))
-            try:
-                return bool(path) and os.path.samefile(path, session.source.path)
-            except OSError:
+            path, theirs = str(self.option("Description File")), str(session.source.path)
+            if not path.strip() or not theirs:  # a robot from a topic has no file
                 return False
+            try:
+                return os.path.samefile(path, theirs)
+            except OSError:  # a file missing (yet): the same name, so its error is shown here
+                return os.path.abspath(path) == os.path.abspath(theirs)
         return topic_name(str(self.option("Description Topic"))) in session.description_names
 
     def _robots(self) -> Sequence[Any]:
