@@ -49,13 +49,18 @@ def _static(parent: str, child: str, xyz: tuple[float, float, float]) -> object:
 
 
 def _link_xyz(viewer: Viewer, robot: str, link: str) -> np.ndarray | None:
-    """Where the page draws ``link`` of the robot named ``robot`` (None: not drawn)."""
-    session = next((s for s in viewer.sessions if s.robot is not None and s.robot.name == robot), None)  # fmt: skip
-    if session is None or session.display is None:
-        return None
-    drawing = session.display
-    handle = drawing._links[drawing.link_names.index(link)]
-    return np.asarray(handle.position) if handle.visible else None
+    """Where the page draws ``link`` of the robot named ``robot`` (None: not drawn); read on
+    the loop thread, which rebuilds a drawing when its description changes."""
+
+    def read() -> np.ndarray | None:
+        session = next((s for s in viewer.sessions if s.robot is not None and s.robot.name == robot), None)  # fmt: skip
+        if session is None or session.display is None:
+            return None
+        drawing = session.display
+        handle = drawing._links[drawing.link_names.index(link)]
+        return np.asarray(handle.position) if handle.visible else None
+
+    return on_loop(viewer, read)  # type: ignore[no-any-return]
 
 
 def test_a_robot_model_on_another_topic_loads_draws_and_drops_that_robot(viewer: Viewer) -> None:
