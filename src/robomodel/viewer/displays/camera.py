@@ -174,12 +174,14 @@ class CameraDisplay(ImageDisplay):
             node = self.add_node(key, "image", image=image, render_width=size[0],
                                  render_height=size[1], format="png" if alpha is not None else "jpeg",
                                  cast_shadow=False, receive_shadow=False)  # fmt: skip
-        elif shown != self.shown:
-            node.image = image
+        elif shown != self.shown and not np.array_equal(node.image, image):
+            node.image = image  # an unchanged image is not sent again (the page reloads it)
         self._quads[key] = (self.shown, size)
         axis = np.subtract(view.look_at, view.position)  # look_at is on the optical axis
         position = np.asarray(view.position) + depth_m * axis / np.linalg.norm(axis)
-        node.wxyz, node.position = view.wxyz, tuple(float(v) for v in position)
+        pose = (view.wxyz, tuple(float(v) for v in position))
+        if (tuple(node.wxyz), tuple(node.position)) != pose:  # unmoved: nothing sent
+            node.wxyz, node.position = pose
 
     def _show_view(self, rgb: Any, T_fixed_camera: Any) -> DisplayStatus:
         view = camera_view(T_fixed_camera, self.camera_info, float(self.values["Zoom Factor"]))
