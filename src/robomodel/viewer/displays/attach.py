@@ -60,6 +60,7 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
         load_mesh=load_mesh,
         view_wxyz=_track_view(viewer.server),
         robots=lambda: viewer.sessions,
+        clients=lambda: tuple(viewer.server.get_clients().values()),
     )
     manager = DisplayManager(context, node, viewer.buffer)
     folder = getattr(getattr(viewer, "options_panel", None), "displays_folder", None)

@@ -169,6 +169,8 @@ class DisplayContext:
             None before a page connects), for view-facing text (None: no page).
         robots: The viewer's robots (its :class:`~robomodel.viewer.session.RobotSession` s),
             for the RobotModel display (None: a viewer without robots).
+        clients: The connected pages (viser clients), whose cameras the Camera display
+            moves (None: no page).
     """
 
     scene: Any
@@ -180,6 +182,7 @@ class DisplayContext:
     load_mesh: Callable[[str], tuple[Any, ...]] | None = None
     view_wxyz: Callable[[], tuple[float, float, float, float] | None] | None = None
     robots: Callable[[], Sequence[Any]] | None = None
+    clients: Callable[[], Sequence[Any]] | None = None
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9_.\-]")

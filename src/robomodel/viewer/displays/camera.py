@@ -4,8 +4,13 @@ RViz's Camera display (camera_display.cpp) renders the scene from the camera's p
 image behind ("background") or over it ("overlay"). viser's page has one 3D view, so here the
 image is shown in the display's panel, and in the 3D scene on the camera's frustum, placed
 through TF at the image's stamp and shaped by its CameraInfo (``image_transport``'s
-``<image topic's namespace>/camera_info``). The status says that the scene is not drawn over
-the image. Options keep RViz's names and defaults for the config.
+``<image topic's namespace>/camera_info``); the status says that the scene is not drawn over
+the image. The panel's "View through the camera" (robomodel's own control, not an RViz option:
+not written to configs) turns the page's 3D view into RViz's Camera view: the page camera
+follows the camera frame, and the image is drawn behind and/or over the scene as "Image
+Rendering" says, at "Overlay Alpha" (:mod:`~robomodel.viewer.displays.camera_view`, which
+says what differs from RViz); the frustum is hidden meanwhile, and turning the control off
+gives each page its camera back. Options keep RViz's names and defaults for the config.
 """
 
 from __future__ import annotations
@@ -13,6 +18,8 @@ from __future__ import annotations
 import math
 import posixpath
 from typing import Any
+
+import numpy as np
 
 from robomodel.viewer.displays._placed import combine, place, pose_kwargs
 from robomodel.viewer.displays.base import (
@@ -23,15 +30,29 @@ from robomodel.viewer.displays.base import (
     SubscriptionSpec,
     register_display,
 )
+from robomodel.viewer.displays.camera_view import (
+    BACKGROUND_DEPTH_M,
+    OVERLAY_DEPTH_M,
+    CameraView,
+    PageCameras,
+    camera_view,
+)
 from robomodel.viewer.displays.image_display import IMAGE_OPTIONS, ImageDisplay
 
-__all__ = ["CameraDisplay", "camera_info_topic", "frustum_fov"]
+__all__ = ["VIEW_THROUGH", "CameraDisplay", "camera_info_topic", "frustum_fov"]
 
 _RENDERING = ("background", "overlay", "background and overlay")
 NO_OVERLAY = (
     "the scene is not rendered over the image in the page: the image is in the panel and "
     "on the camera's frustum in the 3D view"
 )
+VIEW_THROUGH = "View through the camera"
+VIEWING = "the 3D view looks through the camera"
+
+
+def context_clients(context: Any) -> Any:
+    """The context's connected pages (none for a context without pages)."""
+    return context.clients if context.clients is not None else tuple
 
 
 def camera_info_topic(image_topic: str) -> str:
@@ -77,6 +98,10 @@ class CameraDisplay(ImageDisplay):
         self._frustum_key: tuple[float, float] | None = None
         self._frustum_image = -1
         self._frustum_pose: tuple[Any, ...] = ()
+        self.viewing = False  # "View through the camera"
+        self._view_checkbox: Any = None
+        self._pages = PageCameras(context_clients(self.context))
+        self._quads: dict[str, tuple[int, tuple[float, float]]] = {}  # key -> (image, size)
 
     def subscriptions(self) -> tuple[SubscriptionSpec, ...]:
         image = super().subscriptions()
@@ -99,6 +124,82 @@ class CameraDisplay(ImageDisplay):
         if name == "Topic":
             self.camera_info = None
         self._frustum_key = None
+        self._remove_quads()  # redrawn with the new rendering, alpha or zoom
+
+    def build_panel(self, gui: Any) -> None:
+        super().build_panel(gui)
+        self._view_checkbox = gui.add_checkbox(
+            VIEW_THROUGH, self.viewing,
+            hint="The 3D view from the camera, the image behind and/or over the scene "
+            "(Image Rendering); dragging the view is undone until this is off",
+        )  # fmt: skip
+        box = self._view_checkbox
+        box.on_update(lambda _e: self.context.post(lambda: self.set_view_through(bool(box.value))))  # fmt: skip
+
+    def set_view_through(self, on: bool) -> None:
+        """Look through the camera (the next draw moves the pages' cameras), or stop and give
+        the pages their cameras back (loop thread)."""
+        self.viewing = on
+        if self._view_checkbox is not None and bool(self._view_checkbox.value) != on:
+            self._view_checkbox.value = on
+        if not on:
+            self._stop_view()
+
+    def _stop_view(self) -> None:
+        self._pages.release()
+        self._remove_quads()
+
+    def _remove_quads(self) -> None:
+        for key in list(self._quads):
+            self.remove_node(key)
+        self._quads.clear()
+
+    def on_enabled_changed(self) -> None:
+        if not self.enabled:
+            self._stop_view()
+
+    def close(self) -> None:
+        self._stop_view()
+        super().close()
+
+    def _quad(self, key: str, rgb: Any, depth_m: float, alpha: float | None, view: CameraView) -> None:  # fmt: skip
+        """The image as a quad filling the view ``depth_m`` ahead (RGBA at ``alpha``, else
+        opaque), updated in place as the frustum is."""
+        size = (view.size_per_m[0] * depth_m, view.size_per_m[1] * depth_m)
+        image = rgb
+        if alpha is not None:  # viser draws images with blending: the PNG's alpha is used
+            image = np.dstack([image, np.full(image.shape[:2], round(255 * alpha), np.uint8)])
+        node, (shown, old_size) = self.node(key), self._quads.get(key, (-1, (0.0, 0.0)))
+        if node is None or not np.allclose(old_size, size):
+            node = self.add_node(key, "image", image=image, render_width=size[0],
+                                 render_height=size[1], format="png" if alpha is not None else "jpeg",
+                                 cast_shadow=False, receive_shadow=False)  # fmt: skip
+        elif shown != self.shown and not np.array_equal(node.image, image):
+            node.image = image  # an unchanged image is not sent again (the page reloads it)
+        self._quads[key] = (self.shown, size)
+        axis = np.subtract(view.look_at, view.position)  # look_at is on the optical axis
+        position = np.asarray(view.position) + depth_m * axis / np.linalg.norm(axis)
+        pose = (view.wxyz, tuple(float(v) for v in position))
+        if (tuple(node.wxyz), tuple(node.position)) != pose:  # unmoved: nothing sent
+            node.wxyz, node.position = pose
+
+    def _show_view(self, rgb: Any, T_fixed_camera: Any) -> DisplayStatus:
+        view = camera_view(T_fixed_camera, self.camera_info, float(self.values["Zoom Factor"]))
+        if view is None:
+            return DisplayStatus.error("CameraInfo/P has no usable focal length")
+        self.remove_node("frustum")  # it would cover the view it is seen from
+        self._frustum_key = None
+        rendering = str(self.values["Image Rendering"])
+        wanted = {"background": rendering != "overlay", "overlay": rendering != "background"}
+        for key, depth, alpha in (("background", BACKGROUND_DEPTH_M, None),
+                                  ("overlay", OVERLAY_DEPTH_M, float(self.values["Overlay Alpha"]))):  # fmt: skip
+            if wanted[key]:
+                self._quad(key, rgb, depth, alpha, view)
+            elif key in self._quads:
+                self.remove_node(key)
+                del self._quads[key]
+        self._pages.follow(view)
+        return DisplayStatus.ok()
 
     def _show_frustum(self, shape: tuple[float, float], T_fixed_camera: Any) -> None:
         """The frustum with the newest image; updated in place (a re-added node would flicker
@@ -136,5 +237,9 @@ class CameraDisplay(ImageDisplay):
             self.remove_node("frustum")
             self._frustum_pose = ()
             return combine(None, [placement.reason], "")
+        if self.viewing:
+            viewed = self._show_view(self.rgb, placement.T_fixed_frame)
+            return viewed if viewed.level.value == "error" else DisplayStatus.ok(f"{status.text}; {VIEWING}")  # fmt: skip
+        self._stop_view()
         self._show_frustum(shape, placement.T_fixed_frame)
         return DisplayStatus.warn(f"{status.text}; {NO_OVERLAY}")
