@@ -10,10 +10,6 @@ screenshot must have the message's colour. The Image display's panel image must 
 from __future__ import annotations
 
 import io
-import os
-import signal
-import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -22,54 +18,19 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-from tests.conftest import unique_domain
-from tests.timing import scaled
+from robomodel.viewer import Viewer
 from tests.viewer import display_publisher as published
 from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.fed_viewer import viewer_fed_by
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = pytest.mark.browser
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-EMPTY_ROBOT = '<?xml version="1.0"?><robot name="frame_only"><link name="map"/></robot>\n'
-
 
 @pytest.fixture
 def fed_viewer(tmp_path: Path) -> Iterator[Viewer]:
-    domain = unique_domain()
-    urdf = tmp_path / "frame_only.urdf"  # the viewer needs a description; this one draws nothing
-    urdf.write_text(EMPTY_ROBOT)
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
-    publisher = subprocess.Popen(
-        [sys.executable, "-m", "tests.viewer.display_publisher", domain],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env,
-    )  # fmt: skip
-    assert publisher.stdout is not None
-    assert "publishing" in publisher.stdout.readline()
-    viewer = Viewer(
-        ViewerOptions(
-            sources=(RobotSource(str(urdf)),),
-            port=0,
-            bus="zenoh",
-            domain_id=int(domain),
-            fixed_frame="map",
-            tools=False,
-        )
-    )
-    viewer.start()
-    try:
+    with viewer_fed_by("tests.viewer.display_publisher", tmp_path) as viewer:
         yield viewer
-    finally:
-        viewer.close()
-        publisher.send_signal(signal.SIGINT)
-        try:
-            publisher.wait(scaled(10))
-        except subprocess.TimeoutExpired:
-            publisher.kill()
-            publisher.wait()
 
 
 def _statuses(viewer: Viewer) -> dict[str, str]:

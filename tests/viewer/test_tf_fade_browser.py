@@ -14,7 +14,8 @@ import pytest
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.timing import scaled
 from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
-from tests.viewer.test_sensor_displays_browser import EMPTY_ROBOT, _look_at_origin, _project
+from tests.viewer.fed_viewer import EMPTY_ROBOT
+from tests.viewer.test_sensor_displays_browser import _look_at_origin, _project
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = pytest.mark.browser

@@ -1,0 +1,53 @@
+"""A viewer beside a publisher process: the browser tests of displays feed the viewer from
+another process on the Zenoh bus, as a robot or a bag replay would."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from tests.conftest import unique_domain
+from tests.timing import scaled
+
+__all__ = ["EMPTY_ROBOT", "viewer_fed_by"]
+
+ROOT = Path(__file__).resolve().parents[2]
+EMPTY_ROBOT = '<?xml version="1.0"?><robot name="frame_only"><link name="map"/></robot>\n'
+
+
+@contextlib.contextmanager
+def viewer_fed_by(module: str, tmp_path: Path, *args: str) -> Iterator[Viewer]:
+    """A viewer (fixed frame ``map``, no tools) of a description that draws nothing, on a
+    domain of its own, and ``python -m <module> <domain> <args>`` publishing there (it prints
+    "publishing" once ready; it is stopped with SIGINT at the end)."""
+    domain = unique_domain()
+    urdf = tmp_path / "frame_only.urdf"  # the viewer needs a description; this one draws nothing
+    urdf.write_text(EMPTY_ROBOT)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
+    publisher = subprocess.Popen(
+        [sys.executable, "-m", module, domain, *args],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env,
+    )  # fmt: skip
+    try:
+        assert publisher.stdout is not None
+        assert "publishing" in publisher.stdout.readline()
+        viewer = Viewer(ViewerOptions(sources=(RobotSource(str(urdf)),), port=0, bus="zenoh",
+                                      domain_id=int(domain), fixed_frame="map", tools=False))  # fmt: skip
+        viewer.start()
+        try:
+            yield viewer
+        finally:
+            viewer.close()
+    finally:
+        publisher.send_signal(signal.SIGINT)
+        try:
+            publisher.wait(scaled(10))
+        except subprocess.TimeoutExpired:
+            publisher.kill()
+            publisher.wait()
