@@ -10,13 +10,13 @@ field of view), and a red cube Marker on /cube ``CUBE_AHEAD_M`` ahead of the cam
 
 from __future__ import annotations
 
-import signal
 import sys
 
 import numpy as np
 
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage, TransformStamped, get_message_type
+from tests.viewer.fed_viewer import publish_until_stopped
 
 CAMERA_XYZ = (0.0, -3.0, 1.0)
 CAMERA_XYZW = (-(0.5**0.5), 0.0, 0.0, 0.5**0.5)  # -90 degrees about x: optical z = map +y
@@ -79,15 +79,7 @@ def main(domain: int) -> None:
         for topic, msg in messages.items():
             pubs[topic].publish(msg)
 
-    node.create_timer(0.25, publish)
-    signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop as on Ctrl-C
-    print("publishing", flush=True)
-    try:
-        context.spin()
-    except KeyboardInterrupt:
-        pass
-    finally:
-        context.shutdown()
+    publish_until_stopped(context, node, publish)
 
 
 if __name__ == "__main__":

@@ -9,7 +9,6 @@ TF does not have, an Odometry pose on /odom and a Path on /path, and /tf placing
 
 from __future__ import annotations
 
-import signal
 import struct
 import sys
 
@@ -17,6 +16,7 @@ import numpy as np
 
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage, TransformStamped, get_message_type
+from tests.viewer.fed_viewer import publish_until_stopped
 
 # where the test expects them (fixed frame: map) -----------------------------------------------
 CLOUD_POINTS = (((1.0, 0.0, 0.0), 0xFF0000), ((0.0, 1.0, 0.0), 0x00FF00), ((-1.0, -1.0, 0.0), 0x0000FF))  # fmt: skip
@@ -115,15 +115,7 @@ def main(domain: int) -> None:
         for topic, msg in messages.items():
             pubs[topic].publish(msg)
 
-    node.create_timer(0.25, publish)
-    signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop as on Ctrl-C
-    print("publishing", flush=True)
-    try:
-        context.spin()
-    except KeyboardInterrupt:
-        pass
-    finally:
-        context.shutdown()
+    publish_until_stopped(context, node, publish)
 
 
 if __name__ == "__main__":

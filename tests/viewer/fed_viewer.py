@@ -8,14 +8,17 @@ import os
 import signal
 import subprocess
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import unique_domain
 from tests.timing import scaled
 
-__all__ = ["EMPTY_ROBOT", "viewer_fed_by"]
+if TYPE_CHECKING:
+    from robomodel.viewer import Viewer
+
+__all__ = ["EMPTY_ROBOT", "publish_until_stopped", "viewer_fed_by"]
 
 ROOT = Path(__file__).resolve().parents[2]
 EMPTY_ROBOT = '<?xml version="1.0"?><robot name="frame_only"><link name="map"/></robot>\n'
@@ -26,6 +29,8 @@ def viewer_fed_by(module: str, tmp_path: Path, *args: str) -> Iterator[Viewer]:
     """A viewer (fixed frame ``map``, no tools) of a description that draws nothing, on a
     domain of its own, and ``python -m <module> <domain> <args>`` publishing there (it prints
     "publishing" once ready; it is stopped with SIGINT at the end)."""
+    from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+
     domain = unique_domain()
     urdf = tmp_path / "frame_only.urdf"  # the viewer needs a description; this one draws nothing
     urdf.write_text(EMPTY_ROBOT)
@@ -51,3 +56,17 @@ def viewer_fed_by(module: str, tmp_path: Path, *args: str) -> Iterator[Viewer]:
         except subprocess.TimeoutExpired:
             publisher.kill()
             publisher.wait()
+
+
+def publish_until_stopped(context: Any, node: Any, publish: Callable[[], None]) -> None:
+    """The publisher process's side: ``publish()`` every 0.25 s on ``node`` until SIGINT or
+    SIGTERM, after saying "publishing" on stdout; the context is shut down at the end."""
+    node.create_timer(0.25, publish)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop as on Ctrl-C
+    print("publishing", flush=True)
+    try:
+        context.spin()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        context.shutdown()

@@ -15,12 +15,12 @@ interrupted (fixed frame ``map``):
 
 from __future__ import annotations
 
-import signal
 import sys
 from pathlib import Path
 
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import get_message_type
+from tests.viewer.fed_viewer import publish_until_stopped
 from tests.viewer.textured import write_textured_cube
 
 TEXT_HEIGHT_M = 0.6
@@ -97,15 +97,7 @@ def main(domain: int, mesh_dir: Path) -> None:
         mesh_pub.publish(mesh_msg)
         cov_pub.publish(cov_msg)
 
-    node.create_timer(0.25, publish)
-    signal.signal(signal.SIGTERM, signal.default_int_handler)  # stop as on Ctrl-C
-    print("publishing", flush=True)
-    try:
-        context.spin()
-    except KeyboardInterrupt:
-        pass
-    finally:
-        context.shutdown()
+    publish_until_stopped(context, node, publish)
 
 
 if __name__ == "__main__":
