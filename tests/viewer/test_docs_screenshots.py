@@ -37,7 +37,11 @@ def _toggle(page: Any, label: str, folder: str = "RobotModel") -> None:
 def _assert_drawn(page: Any) -> None:
     """The robot covers pixels that hidden visuals leave as background."""
 
-    # the robot's meshes may reach the page after the sliders: wait for something drawn
+    # the robot's meshes may reach the page after the sliders: wait until the Status no longer
+    # says "loading" (its first text, then "loading N mesh(es)..." until they are drawn; the
+    # TF display's axes alone are "something drawn")
+    wait_for(lambda: page.locator("text=loading").count() == 0, what="the meshes loaded")
+
     def something_drawn() -> Any:
         image = settle(page)
         return (image,) if (image < 200).any() else None
