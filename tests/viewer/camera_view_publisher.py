@@ -16,7 +16,7 @@ import numpy as np
 
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage, TransformStamped, get_message_type
-from tests.viewer.fed_viewer import publish_until_stopped
+from tests.viewer.fed_viewer import publish_stamped_until_stopped
 
 CAMERA_XYZ = (0.0, -3.0, 1.0)
 CAMERA_XYZW = (-(0.5**0.5), 0.0, 0.0, 0.5**0.5)  # -90 degrees about x: optical z = map +y
@@ -72,14 +72,7 @@ def main(domain: int) -> None:
     messages = {"/camera/image_raw": image(types), "/camera/camera_info": camera_info(types),
                 "/cube": cube(types)}  # fmt: skip
 
-    def publish() -> None:
-        now = node.get_clock().now_ns()
-        pose.header.stamp.sec, pose.header.stamp.nanosec = divmod(now, 1_000_000_000)
-        pubs["/tf"].publish(TFMessage(transforms=[pose]))
-        for topic, msg in messages.items():
-            pubs[topic].publish(msg)
-
-    publish_until_stopped(context, node, publish)
+    publish_stamped_until_stopped(context, node, pubs, pose, messages)
 
 
 if __name__ == "__main__":

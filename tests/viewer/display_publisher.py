@@ -16,7 +16,7 @@ import numpy as np
 
 from robomodel.runtime.context import Context
 from robomodel.runtime.msg import TFMessage, TransformStamped, get_message_type
-from tests.viewer.fed_viewer import publish_until_stopped
+from tests.viewer.fed_viewer import publish_stamped_until_stopped
 
 # where the test expects them (fixed frame: map) -----------------------------------------------
 CLOUD_POINTS = (((1.0, 0.0, 0.0), 0xFF0000), ((0.0, 1.0, 0.0), 0x00FF00), ((-1.0, -1.0, 0.0), 0x0000FF))  # fmt: skip
@@ -108,14 +108,7 @@ def main(domain: int) -> None:
                 "/camera/camera_info": camera_info(types), "/map": occupancy(types),
                 "/odom": odometry(types), "/path": path(types)}  # fmt: skip
 
-    def publish() -> None:
-        now = node.get_clock().now_ns()
-        lift.header.stamp.sec, lift.header.stamp.nanosec = divmod(now, 1_000_000_000)
-        pubs["/tf"].publish(TFMessage(transforms=[lift]))
-        for topic, msg in messages.items():
-            pubs[topic].publish(msg)
-
-    publish_until_stopped(context, node, publish)
+    publish_stamped_until_stopped(context, node, pubs, lift, messages)
 
 
 if __name__ == "__main__":

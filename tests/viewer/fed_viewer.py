@@ -18,7 +18,7 @@ from tests.timing import scaled
 if TYPE_CHECKING:
     from robomodel.viewer import Viewer
 
-__all__ = ["EMPTY_ROBOT", "publish_until_stopped", "viewer_fed_by"]
+__all__ = ["EMPTY_ROBOT", "publish_stamped_until_stopped", "publish_until_stopped", "viewer_fed_by"]
 
 ROOT = Path(__file__).resolve().parents[2]
 EMPTY_ROBOT = '<?xml version="1.0"?><robot name="frame_only"><link name="map"/></robot>\n'
@@ -70,3 +70,20 @@ def publish_until_stopped(context: Any, node: Any, publish: Callable[[], None]) 
         pass
     finally:
         context.shutdown()
+
+
+def publish_stamped_until_stopped(
+    context: Any, node: Any, pubs: dict[str, Any], transform: Any, messages: dict[str, Any]
+) -> None:
+    """:func:`publish_until_stopped` of ``transform`` on ``pubs["/tf"]``, stamped now each
+    time, and of each of ``messages`` on its topic's publisher."""
+    from robomodel.runtime.msg import TFMessage
+
+    def publish() -> None:
+        now = node.get_clock().now_ns()
+        transform.header.stamp.sec, transform.header.stamp.nanosec = divmod(now, 1_000_000_000)
+        pubs["/tf"].publish(TFMessage(transforms=[transform]))
+        for topic, msg in messages.items():
+            pubs[topic].publish(msg)
+
+    publish_until_stopped(context, node, publish)
