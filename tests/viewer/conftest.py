@@ -193,9 +193,13 @@ def changed_view(
     """The settled scene once it differs from ``before`` in more than ``at_least`` of its
     pixels: an action's effect reaches the canvas after a websocket round trip, which a
     loaded machine can make longer than the 0.3 s between two agreeing shots of settle()."""
+
+    def failed() -> str:  # for the failure's reader: the page as it was
+        return f"{what} (the page is in {save_shot(page, f'unchanged_{os.getpid()}')})"
+
     (image,) = wait_for(
         lambda: (shot,) if changed_fraction(before, shot := settle(page, 5)) > at_least else None,
-        what=what,
+        what=failed,
     )
     return image  # type: ignore[no-any-return]
 
@@ -229,6 +233,19 @@ def type_into(page: Any, label: str, text: str, server: Any = None) -> None:
         lambda: any(h.label == label and str(h.value) == text for h in list(handles)),
         what=f"the server to hold {label} = {text!r}",
     )
+
+
+def toggle_checkbox(page: Any, label: str, folder: str = "RobotModel") -> None:
+    """Click the checkbox ``label`` of the display ``folder`` (opened first: the Displays
+    panel's folders start collapsed, as RViz's tree), and wait until the page shows it
+    flipped (a click is not taken until the folder's controls are mounted)."""
+    box = page.locator(f"label:text-is('{label}')").filter(visible=True)
+    if box.count() == 0:
+        page.get_by_text(folder, exact=True).filter(visible=True).first.click()
+    checkbox = gui_row(page, label).locator("input[type=checkbox]").filter(visible=True).first
+    was = checkbox.is_checked()
+    box.first.click()
+    wait_for(lambda: checkbox.is_checked() != was, what=f"{label} {'un' if was else ''}checked on the page")  # fmt: skip
 
 
 def slider_input(page: Any, label: str) -> Any:

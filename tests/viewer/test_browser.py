@@ -28,20 +28,12 @@ from tests.viewer.conftest import (
     settle,
     slider_input,
     slider_thumb,
+    toggle_checkbox,
     wait_for,
 )
 from tests.viewer.robots import write_arm
 
 pytestmark = pytest.mark.browser
-
-
-def _toggle(page: Any, label: str, folder: str = "RobotModel") -> None:
-    """Click the checkbox ``label`` of the display ``folder`` (opened first: the Displays
-    panel's folders start collapsed, as RViz's tree)."""
-    box = page.locator(f"label:text-is('{label}')").filter(visible=True)
-    if box.count() == 0:
-        page.get_by_text(folder, exact=True).filter(visible=True).first.click()
-    box.first.click()
 
 
 def test_simplebot_is_drawn_with_sliders_and_frames(
@@ -53,11 +45,11 @@ def test_simplebot_is_drawn_with_sliders_and_frames(
     page.get_by_text("right_wheel_joint").wait_for()
     with_robot = settle(page)
     save_shot(page, "simplebot")
-    _toggle(page, "Visual Enabled")
+    toggle_checkbox(page, "Visual Enabled")
     # The robot covers pixels that are background (or grid) when its visuals are hidden.
     changed_view(page, with_robot, what="the robot's visuals hidden")
     # Randomize moves the sliders (and the wheels); Center brings them back to zero.
-    _toggle(page, "Visual Enabled")
+    toggle_checkbox(page, "Visual Enabled")
     page.get_by_text("Randomize").click()
     wait_for(
         lambda: float(slider_input(page, "left_wheel_joint").input_value()) != 0.0,
@@ -193,7 +185,7 @@ def test_missing_mesh_is_listed_and_the_rest_drawn(
     assert "escapes package" in text
     drawn = settle(page)
     save_shot(page, "arm_missing_mesh")
-    _toggle(page, "Visual Enabled")
+    toggle_checkbox(page, "Visual Enabled")
     changed_view(page, drawn, what="the visuals hidden")
 
 
@@ -235,7 +227,7 @@ def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any
     )
     drawn = settle(page)
     save_shot(page, "talos")
-    _toggle(page, "Visual Enabled")
+    toggle_checkbox(page, "Visual Enabled")
     changed_view(page, drawn, 0.01, what="talos's visuals hidden")
 
 
@@ -303,9 +295,9 @@ def test_display_options_mimic_and_floating_controls(
     moved = changed_view(page, start, 0.001, what="the ball moved")
     save_shot(page, "arm_floating_moved")
     # Collision geometry appears; Alpha fades everything.
-    _toggle(page, "Collision Enabled")
+    toggle_checkbox(page, "Collision Enabled")
     changed_view(page, moved, 0.001, what="the collision geometry drawn")
-    _toggle(page, "Collision Enabled")
+    toggle_checkbox(page, "Collision Enabled")
     alpha = gui_row(page, "Alpha").locator("input:not([type=hidden]):visible").first  # RobotModel's
     alpha.fill("0.2")
     alpha.press("Enter")
@@ -315,7 +307,7 @@ def test_display_options_mimic_and_floating_controls(
     alpha.fill("1")
     alpha.press("Enter")
     no_names = settle(page)
-    _toggle(page, "Show Names", "TF")  # labels are drawn in the 3D view (not page text)
+    toggle_checkbox(page, "Show Names", "TF")  # labels are drawn in the 3D view (not page text)
     before = changed_view(page, no_names, 0.0005, what="the frames' names drawn")
     save_shot(page, "arm_names")
     page.locator("input[value='base_link']:not([type=hidden])").click()

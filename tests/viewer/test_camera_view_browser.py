@@ -102,5 +102,5 @@ def test_view_through_the_camera_background_and_overlay(camera_viewer: Viewer, p
 
     on_loop(viewer, lambda: display.set_view_through(False))
     wait_for(lambda: np.allclose(camera.position, before[0], atol=1e-3) and abs(camera.fov - before[1]) < 1e-3,
-             what="the user's camera back")  # fmt: skip
+             what=lambda: f"the user's camera back at {before} (have {camera.position}, {camera.fov})")  # fmt: skip
     wait_for(lambda: "not rendered over" in display.status.text, what="the frustum again")

@@ -19,19 +19,11 @@ from tests.viewer.conftest import (
     save_shot,
     settle,
     slider_input,
+    toggle_checkbox,
     wait_for,
 )
 
 pytestmark = pytest.mark.browser
-
-
-def _toggle(page: Any, label: str, folder: str = "RobotModel") -> None:
-    """Click the checkbox ``label`` of the display ``folder`` (opened first: the Displays
-    panel's folders start collapsed, as RViz's tree)."""
-    box = page.locator(f"label:text-is('{label}')").filter(visible=True)
-    if box.count() == 0:
-        page.get_by_text(folder, exact=True).filter(visible=True).first.click()
-    box.first.click()
 
 
 def _assert_drawn(page: Any) -> None:
@@ -47,9 +39,9 @@ def _assert_drawn(page: Any) -> None:
         return (image,) if (image < 200).any() else None
 
     (drawn,) = wait_for(something_drawn, what="the robot drawn")
-    _toggle(page, "Visual Enabled")
+    toggle_checkbox(page, "Visual Enabled")
     changed_view(page, drawn, 0.0005, what="the visuals hidden")  # the arm is small in view
-    _toggle(page, "Visual Enabled")
+    toggle_checkbox(page, "Visual Enabled")
     settle(page)  # drawn again before the picture is taken
 
 

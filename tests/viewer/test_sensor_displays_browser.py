@@ -39,19 +39,32 @@ def _statuses(viewer: Viewer) -> dict[str, str]:
 
 def _look_at_origin(viewer: Viewer, position: tuple[float, float, float] = (0.0, -6.0, 8.0)) -> Any:  # fmt: skip
     """Put the page's camera at ``position`` looking at the origin (+z up), and wait until the
-    page reports that pose back."""
+    page reports that pose back.
+
+    viser's setters change the server's copy at once, and each report from the page replaces
+    it: a report the page sent before it took the new pose (on a loaded machine, a round trip
+    can take a second) would put the old pose back. Only a report of the new pose says that
+    every older one has arrived (one websocket, in order) and the page has taken it."""
     from scipy.spatial.transform import Rotation
 
     (client,) = viewer.server.get_clients().values()
     camera = client.camera
+    forward = -np.asarray(position) / np.linalg.norm(position)
+    reports: list[tuple[np.ndarray, np.ndarray]] = []
+
+    async def on_report(reported: Any) -> None:  # async: runs on viser's loop, in order
+        reports.append((np.array(reported.position), np.array(reported.wxyz)))
+
+    camera.on_update(on_report)
     camera.position = position  # first: viser's position setter carries look_at along
     camera.look_at = (0.0, 0.0, 0.0)
-    forward = -np.asarray(position) / np.linalg.norm(position)
 
     def settled() -> bool:
-        w, x, y, z = camera.wxyz
+        if not reports:
+            return False
+        xyz, (w, x, y, z) = reports[-1]
         R = Rotation.from_quat([x, y, z, w]).as_matrix()
-        return bool(np.allclose(camera.position, position, atol=1e-3) and R[:, 2] @ forward > 0.9999)  # fmt: skip
+        return bool(np.allclose(xyz, position, atol=1e-3) and R[:, 2] @ forward > 0.9999)
 
     wait_for(settled, what="the page's camera to look at the origin")
     return camera
