@@ -35,6 +35,21 @@ _DOMAINS = itertools.count()
 
 
 _ROUTER: subprocess.Popen[bytes] | None = None
+_TMPDIR: str | None = None  # the processes' TMPDIR, removed at the end of the run
+
+
+def _processes_tmpdir() -> None:
+    """Give every process the tests start a TMPDIR of this run's own, removed at its end.
+
+    Debian's genpy (behind rostopic, rosbag, rosservice) writes each message type it builds
+    to a ``genpy_*`` folder in TMPDIR and removes it at exit, which a tool ended by SIGTERM
+    never reaches: a full run left dozens in /tmp. xdist's workers start after this and
+    inherit it (the controlling process removes it once they are done)."""
+    global _TMPDIR
+    import tempfile
+
+    _TMPDIR = tempfile.mkdtemp(prefix="robomodel-tests-")
+    os.environ["TMPDIR"] = _TMPDIR
 
 
 def _listening(port: int) -> bool:
@@ -55,7 +70,10 @@ def pytest_configure(config: pytest.Config) -> None:
     # robomodel's verbs take the ROS 1 bus when ROS_MASTER_URI is set: tests that want it set
     # it for their own processes (tests/ros1wire)
     os.environ.pop("ROS_MASTER_URI", None)
-    if hasattr(config, "workerinput") or _listening(7447):
+    if hasattr(config, "workerinput"):
+        return
+    _processes_tmpdir()
+    if _listening(7447):
         return
     _ROUTER = subprocess.Popen(
         [*ROBOMODEL, "router"], stderr=subprocess.DEVNULL, start_new_session=True
@@ -80,6 +98,8 @@ def pytest_unconfigure(config: pytest.Config) -> None:
         except subprocess.TimeoutExpired:
             _ROUTER.kill()
             _ROUTER.wait()
+    if _TMPDIR is not None:
+        shutil.rmtree(_TMPDIR, ignore_errors=True)
 
 
 def unique_domain() -> str:
