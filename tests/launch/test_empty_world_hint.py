@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.timing import scaled
 
 pytest.importorskip("mujoco")
 
@@ -28,7 +29,7 @@ def _run_until(argv: list[str], cwd: Path, wanted: str, log: Path) -> str:
             cwd=cwd, stdout=out, stderr=subprocess.STDOUT, text=True, env=env,
         )  # fmt: skip
         try:
-            deadline = time.monotonic() + 120
+            deadline = time.monotonic() + scaled(120)
             while wanted not in log.read_text() and proc.poll() is None:
                 assert time.monotonic() < deadline, log.read_text()
                 time.sleep(0.2)

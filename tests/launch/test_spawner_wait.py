@@ -11,6 +11,7 @@ import pytest
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.controllers import wait_for_manager
+from tests.timing import scaled
 
 
 class _Runtime:
@@ -129,7 +130,7 @@ def test_spawners_wait_past_10_s_for_a_slow_load_controller(
         load_timeouts = [t for s, t in runtime.calls if s == "load_controller"]
         assert load_timeouts and min(load_timeouts) >= min_call_s
         runtime.release.set()
-        deadline = time.monotonic() + 30
+        deadline = time.monotonic() + scaled(30)
         while node.exit_code() is None and "switch_controller" not in dict(runtime.calls):
             assert time.monotonic() < deadline, runtime.calls
             time.sleep(0.05)
@@ -182,7 +183,7 @@ def test_a_manager_answering_after_more_than_10_s_gets_its_controllers_spawned()
         while time.monotonic() - seen < 10.5:  # the scenario: an answer after more than 10 s
             time.sleep(0.1)
         release.set()
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + scaled(60)
         while {c["name"]: c["state"] for c in manager.list_controllers()}.get(
             "joint_state_broadcaster"
         ) != "active":

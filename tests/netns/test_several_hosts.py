@@ -31,6 +31,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.timing import scaled
 
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
 ARM = EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf.xacro"
@@ -152,7 +153,7 @@ def test_zenoh_graph_across_hosts(hosts: Hosts) -> None:
     control = hosts.start("a", *ROBOMODEL, "control", "run", str(ARM), "--controllers",
                           str(ARM_CONTROLLERS), "--no-view", *to_a)  # fmt: skip
     _first_line_with(control, "controller manager")
-    deadline = time.monotonic() + 60
+    deadline = time.monotonic() + scaled(60)
     listed = hosts.run("b", *ROBOMODEL, "control", "list-controllers", *to_b)
     while "joint1_position_controller" not in listed.stdout and time.monotonic() < deadline:
         listed = hosts.run("b", *ROBOMODEL, "control", "list-controllers", *to_b)
@@ -165,7 +166,7 @@ def test_ros1_master_across_hosts(hosts: Hosts) -> None:
         pytest.skip("Debian's rostopic is not installed (tools/system-deps test)")
     master_uri = f"http://{ROUTER_A}:11311/"
     master = hosts.start("r", *ROBOMODEL, "master", ROS_IP=ROUTER_A, ROS_MASTER_URI=master_uri)
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + scaled(30)
     while hosts.run("b", "rostopic", "list", timeout=30, ROS_MASTER_URI=master_uri,
                     ROS_IP=HOST_B).returncode != 0:  # fmt: skip
         assert master.poll() is None and time.monotonic() < deadline, "the master did not answer"

@@ -367,7 +367,7 @@ def test_rviz_opens_a_config_robomodel_saved_with_its_displays_and_fixed_frame(
         )  # fmt: skip
     ros1.procs.append(rviz)  # type: ignore[arg-type]
     shot = tmp_path / "rviz.png"
-    deadline = time.monotonic() + 90
+    deadline = time.monotonic() + scaled(90)
     while True:
         assert rviz.poll() is None, f"rviz ended: {log.read_text()}"
         ImageGrab.grab(xdisplay=display).save(shot)

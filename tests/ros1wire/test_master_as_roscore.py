@@ -21,6 +21,7 @@ from pathlib import Path
 import pytest
 
 from tests.ros1wire.conftest import Ros1, free_port
+from tests.timing import scaled
 
 # what roscore's /rosout node alone puts on the graph
 ROSOUT = {
@@ -227,7 +228,7 @@ def test_29_10_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> No
 def _wait(check: Callable[[], bool], proc: subprocess.Popen[bytes]) -> None:
     import time
 
-    deadline = time.monotonic() + 60
+    deadline = time.monotonic() + scaled(60)
     while not check():
         assert proc.poll() is None and time.monotonic() < deadline, "the master did not start"
         time.sleep(0.1)

@@ -13,6 +13,7 @@ import yaml
 from tests.launch.test_namespaces import ARM
 from tests.ros1wire.conftest import Ros1
 from tests.ros1wire.test_debian_ros1 import _launch
+from tests.timing import scaled
 
 GROUP = """  <group ns="{ns}">
     <param name="robot_description" textfile="{urdf}"/>
@@ -38,7 +39,7 @@ def test_group_ns_gives_namespaced_topics_and_prefixed_frames(ros1: Ros1, tmp_pa
     assert {"/r1/joint_states", "/r2/joint_states", "/tf"} <= ours and "/joint_states" not in ours
     info = ros1.run("/usr/bin/rostopic", "info", "/r1/joint_states").stdout
     assert "/r1/jsp_gui" in info and "/r1/rsp" in info  # published there, and subscribed
-    deadline = time.monotonic() + 60
+    deadline = time.monotonic() + scaled(60)
     frames: set[str] = set()
     parents: set[str] = set()
     while not {"r1/link_1", "r2/link_1"} <= frames:

@@ -25,6 +25,7 @@ from robomodel.runtime.msg import (
 from robomodel.runtime.msg._schema import get_service_type
 from robomodel.runtime.msg.typehash import type_hash
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 IMAGE = (
     "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
@@ -236,7 +237,7 @@ def test_a_publishers_other_hash_is_named(tmp_path: Path) -> None:
         env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, text=True,
     )  # fmt: skip
     try:
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + scaled(60)
         while "/range" not in _run(env, "topic", "list", "--domain-id", domain).stdout:
             assert time.monotonic() < deadline, "the publisher did not appear in 60 s"
         echo = subprocess.run(

@@ -81,7 +81,7 @@ def private_router(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Iterator[
 
 def _router_of(ctx: Context) -> list[str]:
     info = ctx.transport.session.info  # type: ignore[attr-defined]
-    deadline = time.monotonic() + 10.0
+    deadline = time.monotonic() + scaled(10.0)
     while not list(info.routers_zid()) and time.monotonic() < deadline:
         time.sleep(0.02)
     return [str(z) for z in info.routers_zid()]
