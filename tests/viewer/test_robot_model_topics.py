@@ -58,7 +58,8 @@ def _link_xyz(viewer: Viewer, robot: str, link: str) -> np.ndarray | None:
             return None
         drawing = session.display
         handle = drawing._links[drawing.link_names.index(link)]
-        return np.asarray(handle.position) if handle.visible else None
+        # a copy: placing writes the handle's array in place
+        return np.array(handle.position) if handle.visible else None
 
     return on_loop(viewer, read)  # type: ignore[no-any-return]
 
@@ -203,7 +204,8 @@ def test_links_are_placed_at_most_once_per_update_interval(viewer: Viewer) -> No
     on_loop(viewer, lambda: model.set_option("Update Interval", 0.0))
     wait_for(lambda: (p := _link_xyz(viewer, "planar_3dof", "gripper")) is not None and p[1] > 0.5,
              what="the gripper drawn where /tf has it")  # fmt: skip
-    assert session.link_updates.placements > placements
+    # counted just after the links are written, on the thread that places them
+    wait_for(lambda: session.link_updates.placements > placements, what="the placement counted")
 
 
 def test_a_robot_of_another_process_on_the_zenoh_bus(tmp_path: Path) -> None:
