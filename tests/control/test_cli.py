@@ -101,7 +101,7 @@ def rrbot_run() -> Iterator[str]:
             "--domain-id",
             domain,
             "--duration",
-            "60",
+            str(scaled(60)),  # ended by the test; a bound if it is not
         ],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
@@ -202,7 +202,7 @@ def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
             "--domain-id",
             domain,
             "--duration",
-            "60",
+            str(scaled(60)),  # ended by the test; a bound if it is not
         ],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

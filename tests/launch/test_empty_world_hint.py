@@ -25,7 +25,7 @@ def _run_until(argv: list[str], cwd: Path, wanted: str, log: Path) -> str:
     env = {**os.environ, "ROS_PACKAGE_PATH": str(EXAMPLES), "PYTHONUNBUFFERED": "1"}
     with log.open("w") as out:
         proc = subprocess.Popen(
-            [*ROBOMODEL, "launch", *argv, "--headless", "--bus", "inproc", "--duration", "120"],
+            [*ROBOMODEL, "launch", *argv, "--headless", "--bus", "inproc", "--duration", str(scaled(120))],
             cwd=cwd, stdout=out, stderr=subprocess.STDOUT, text=True, env=env,
         )  # fmt: skip
         try:

@@ -237,7 +237,7 @@ def test_seed_workflow_three_processes() -> None:
     urdf = str(EXAMPLES / "gripper_description" / "urdf" / "planar_3dof.urdf")
     domain = _domain(3)
     state = subprocess.Popen(
-        [*ROBOMODEL, "publish-state", urdf, "--domain-id", domain, "--duration", "30"],
+        [*ROBOMODEL, "publish-state", urdf, "--domain-id", domain, "--duration", str(scaled(30))],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

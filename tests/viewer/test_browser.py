@@ -338,7 +338,7 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
             "0",
             "--no-browser",
             "--duration",
-            "90",
+            str(scaled(90)),  # ended by the test; a bound if it is not
         ],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
