@@ -155,17 +155,15 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
         ),
     ),
     "controller_manager_msgs": (
-        "controller_manager_msgs (ros2_control): the controller manager's services and their "
-        "messages.",
+        "controller_manager_msgs (ros2_control): the controller manager's controller services "
+        "and their messages (the hardware ones: controller_manager_msgs_hardware).",
         (
             *(
                 f"controller_manager_msgs/msg/{n}"
                 for n in (
-                    "HardwareInterface",
                     "ChainConnection",
                     "ControllerState",
                     "NamedLifecycleState",
-                    "HardwareComponentState",
                     "ControllerManagerActivity",
                 )
             ),
@@ -174,17 +172,25 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
                 for n in (
                     "ListControllers",
                     "ListControllerTypes",
-                    "ListHardwareComponents",
-                    "ListHardwareInterfaces",
                     "LoadController",
                     "ConfigureController",
                     "CleanupController",
                     "SwitchController",
                     "UnloadController",
                     "ReloadControllerLibraries",
-                    "SetHardwareComponentState",
                 )
             ),
+        ),
+    ),
+    "controller_manager_msgs_hardware": (
+        "controller_manager_msgs (ros2_control): the controller manager's hardware component "
+        "services and their messages.",
+        (
+            "controller_manager_msgs/msg/HardwareInterface",
+            "controller_manager_msgs/msg/HardwareComponentState",
+            "controller_manager_msgs/srv/ListHardwareComponents",
+            "controller_manager_msgs/srv/ListHardwareInterfaces",
+            "controller_manager_msgs/srv/SetHardwareComponentState",
         ),
     ),
     "gazebo_msgs": (

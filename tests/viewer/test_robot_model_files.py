@@ -5,11 +5,9 @@ shows the loader's file:line for an error. The robot goes with its display (issu
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from robomodel.runtime.msg import TFMessage
 from robomodel.runtime.qos import latched
@@ -17,7 +15,8 @@ from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.displays.base import Display, StatusLevel
 from robomodel.viewer.session import RobotSession
 from tests.viewer.conftest import wait_for
-from tests.viewer.test_robot_model_topics import MAST, PLANAR, _link_xyz, _static
+from tests.viewer.planar_viewer import PLANAR, planar_viewer  # noqa: F401  (the fixture)
+from tests.viewer.test_robot_model_topics import MAST, _link_xyz, _static
 from tests.viewer.test_tools_inprocess import on_loop
 
 FLAG = """  <link name="mast_flag"><visual><geometry><box size="0.1 0.3 0.1"/></geometry></visual></link>
@@ -30,16 +29,6 @@ MAST_XACRO = """<robot name="mast" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="mast_base"><visual><geometry><box size="0.2 0.2 ${height}"/></geometry></visual></link>
 </robot>
 """
-
-
-@pytest.fixture
-def viewer() -> Iterator[Viewer]:
-    viewer = Viewer(
-        ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, reload_period_s=0.05)
-    )
-    viewer.start()
-    yield viewer
-    viewer.close()
 
 
 def _publish_mast_tf(viewer: Viewer) -> None:

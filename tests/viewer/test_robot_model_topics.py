@@ -4,7 +4,6 @@ local); the robot is drawn from TF like the viewer's own, and goes with its disp
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -17,12 +16,11 @@ from robomodel.tf import TransformStamped
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.displays.base import StatusLevel
 from robomodel.viewer.displays.robot_model import LinkUpdates
-from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, ros1  # noqa: F401  (the fixture)
 from tests.viewer.conftest import wait_for
+from tests.viewer.planar_viewer import PLANAR, planar_viewer  # noqa: F401  (the fixture)
 from tests.viewer.test_tools_inprocess import on_loop
 
-PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
 MAST = """<robot name="mast">
   <link name="mast_base"><visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual></link>
   <link name="mast_top"><visual><geometry><sphere radius="0.1"/></geometry></visual></link>
@@ -30,16 +28,6 @@ MAST = """<robot name="mast">
     <parent link="mast_base"/><child link="mast_top"/><origin xyz="0 0 1"/>
   </joint>
 </robot>"""
-
-
-@pytest.fixture
-def viewer() -> Iterator[Viewer]:
-    viewer = Viewer(
-        ViewerOptions(sources=(RobotSource(str(PLANAR)),), port=0, reload_period_s=0.05)
-    )
-    viewer.start()
-    yield viewer
-    viewer.close()
 
 
 def _static(parent: str, child: str, xyz: tuple[float, float, float]) -> object:

@@ -40,7 +40,14 @@ def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("topic", help=verb_help("topic"))
     verbs = parser.add_subparsers(dest="topic_verb", metavar="VERB")
     verbs.required = True
+    _add_list_verb(verbs)
+    _add_echo_verb(verbs)
+    _add_pub_verb(verbs)
+    _add_hz_verb(verbs)
+    _add_info_verb(verbs)
 
+
+def _add_list_verb(verbs: Any) -> None:
     p = verbs.add_parser("list", help="the topics that exist")
     p.add_argument("-t", "--show-types", action="store_true", help="also print each topic's type")
     p.add_argument(
@@ -52,6 +59,8 @@ def register(subparsers: Any) -> None:
     add_type_arguments(p)
     p.set_defaults(func=run_list)
 
+
+def _add_echo_verb(verbs: Any) -> None:
     p = verbs.add_parser("echo", help="print messages as YAML documents")
     p.add_argument("topic")
     p.add_argument("type", nargs="?", help="message type (default: the publisher's type)")
@@ -64,6 +73,8 @@ def register(subparsers: Any) -> None:
     add_type_arguments(p)
     p.set_defaults(func=run_echo)
 
+
+def _add_pub_verb(verbs: Any) -> None:
     p = verbs.add_parser("pub", help="publish a message given as YAML")
     p.add_argument("topic")
     p.add_argument("type", help="e.g. std_msgs/msg/Float64 or std_msgs/Float64")
@@ -83,6 +94,8 @@ def register(subparsers: Any) -> None:
     add_type_arguments(p)
     p.set_defaults(func=run_pub)
 
+
+def _add_hz_verb(verbs: Any) -> None:
     p = verbs.add_parser("hz", help="print the average publishing rate")
     p.add_argument("topic")
     p.add_argument("-w", "--window", type=int, default=10000, help="samples in the window")
@@ -91,6 +104,8 @@ def register(subparsers: Any) -> None:
     add_type_arguments(p)
     p.set_defaults(func=run_hz)
 
+
+def _add_info_verb(verbs: Any) -> None:
     p = verbs.add_parser("info", help="type and publisher/subscription counts of a topic")
     p.add_argument("topic")
     p.add_argument("-v", "--verbose", action="store_true", help="list every endpoint")

@@ -15,7 +15,7 @@ import sys
 import threading
 import time
 import webbrowser
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robomodel.cli._bus import add_bus_arguments
 from robomodel.cli._common import (
@@ -27,6 +27,9 @@ from robomodel.cli._common import (
 from robomodel.cli._ports import add_port_argument
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
+
+if TYPE_CHECKING:
+    from robomodel.viewer import RobotSource
 
 __all__ = ["register"]
 
@@ -40,6 +43,18 @@ def register(subparsers: Any) -> None:
             "joint sliders (joint_state_publisher_gui); reloads when a file is saved."
         ),
     )
+    _add_description_arguments(parser)
+    _add_page_arguments(parser)
+    add_package_options(parser, mappings=False)
+    parser.add_argument(
+        "--duration", type=float, default=None, help=argparse.SUPPRESS
+    )  # stop after S seconds (tests, benchmarks)
+    add_bus_arguments(parser, default="inproc")
+    parser.set_defaults(func=run)
+
+
+def _add_description_arguments(parser: argparse.ArgumentParser) -> None:
+    """What to draw: the FILEs with their xacro arguments and prefixes, or a topic."""
     parser.add_argument(
         "inputs",
         nargs="*",
@@ -61,6 +76,10 @@ def register(subparsers: Any) -> None:
         metavar="P",
         help="frame_prefix of each FILE, in order (repeatable; verbatim, e.g. robot1/)",
     )
+
+
+def _add_page_arguments(parser: argparse.ArgumentParser) -> None:
+    """How the page is served and what it shows beside the robots."""
     add_port_argument(parser, "HTTP port")
     parser.add_argument(
         "--host", default="127.0.0.1", help="address to serve on (default: 127.0.0.1)"
@@ -91,12 +110,6 @@ def register(subparsers: Any) -> None:
         help="hide the rqt tools (robot steering, plot, topic publisher, parameters) and add no "
         "displays for the graph's scans and odometry",
     )
-    add_package_options(parser, mappings=False)
-    parser.add_argument(
-        "--duration", type=float, default=None, help=argparse.SUPPRESS
-    )  # stop after S seconds (tests, benchmarks)
-    add_bus_arguments(parser, default="inproc")
-    parser.set_defaults(func=run)
 
 
 def _report_meshes(viewer: Any) -> None:
@@ -130,9 +143,9 @@ def _rviz_document(args: argparse.Namespace) -> Any:
     return document
 
 
-def run(args: argparse.Namespace) -> int:
-    from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-
+def _checked_inputs(args: argparse.Namespace) -> tuple[list[str], dict[str, str], str | None]:
+    """The FILEs, their xacro arguments and the description topic (None: none), checked
+    against the options that go with them."""
     if args.inputs or args.joint_states != "external":
         files, mappings = split_inputs(args.inputs, "view")
     else:
@@ -152,13 +165,43 @@ def run(args: argparse.Namespace) -> int:
             "a description from a topic comes from another process, with its joint states: "
             "add --bus zenoh --joint-states external (or give a FILE)"
         )
-    document = _rviz_document(args)
+    return files, mappings, topic
+
+
+def _robot_sources(
+    args: argparse.Namespace, files: list[str], mappings: dict[str, str], topic: str | None
+) -> tuple[RobotSource, ...]:
+    """One :class:`~robomodel.viewer.RobotSource` per FILE (with its prefix), then the topic's."""
+    from robomodel.viewer import RobotSource
+
     prefixes = [*args.prefix, *([""] * (len(files) - len(args.prefix)))]
     sources = [RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=True)]
     if topic is not None:
         sources.append(RobotSource("", mappings, "", topic="/" + topic.lstrip("/")))
+    return tuple(sources)
+
+
+def _announce(viewer: Any) -> None:
+    """Print the page's URL, the bus (stderr) and why a robot did not load (stderr)."""
+    print(f"robomodel view: serving {viewer.url} (Ctrl-C stops)", flush=True)
+    context = getattr(viewer, "context", None)
+    if context is not None:
+        print(f"robomodel view: {context.transport.describe()}", file=sys.stderr, flush=True)
+    for session in viewer.sessions:
+        if session.failure is not None:
+            for line in session.failure.message.splitlines() + [
+                d.format() for d in session.failure.diagnostics[1:]
+            ]:
+                print(f"robomodel view: {line}", file=sys.stderr, flush=True)
+
+
+def run(args: argparse.Namespace) -> int:
+    from robomodel.viewer import Viewer, ViewerOptions
+
+    files, mappings, topic = _checked_inputs(args)
+    document = _rviz_document(args)
     options = ViewerOptions(
-        sources=tuple(sources),
+        sources=_robot_sources(args, files, mappings, topic),
         host=args.host,
         port=args.port,
         fixed_frame=args.fixed_frame,
@@ -176,16 +219,7 @@ def run(args: argparse.Namespace) -> int:
     viewer = Viewer(options)
     try:
         viewer.start()
-        print(f"robomodel view: serving {viewer.url} (Ctrl-C stops)", flush=True)
-        context = getattr(viewer, "context", None)
-        if context is not None:
-            print(f"robomodel view: {context.transport.describe()}", file=sys.stderr, flush=True)
-        for session in viewer.sessions:
-            if session.failure is not None:
-                for line in session.failure.message.splitlines() + [
-                    d.format() for d in session.failure.diagnostics[1:]
-                ]:
-                    print(f"robomodel view: {line}", file=sys.stderr, flush=True)
+        _announce(viewer)
         _report_meshes(viewer)
         if not args.no_browser:
             webbrowser.open(viewer.url)

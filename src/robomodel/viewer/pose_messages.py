@@ -9,7 +9,7 @@ message buffer cannot tell them apart.
 
 They depend on viser's private message module; :func:`pose_message_types` checks, once,
 that the fast dicts and keys equal what viser itself produces for a probe message and
-returns None otherwise (the caller then sets poses through viser's public setters).
+returns None otherwise (:func:`write_pose` then sets poses through viser's public setters).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import dataclasses
 import functools
 from typing import Any, NamedTuple
 
-__all__ = ["PoseMessageTypes", "pose_message_types"]
+__all__ = ["PoseMessageTypes", "pose_message_types", "write_pose"]
 
 
 class PoseMessageTypes(NamedTuple):
@@ -48,6 +48,40 @@ def pose_message_types() -> PoseMessageTypes | None:
     except Exception:  # any change in viser's message machinery: use its own classes
         return None
     return types if same else None
+
+
+def write_pose(scene: Any, handle: Any, wxyz: list[float] | None, xyz: list[float] | None) -> None:
+    """Set a node's orientation and/or position (None: unchanged), known to have changed.
+
+    viser's ``wxyz``/``position`` setters cast, compare (``np.allclose``) and copy on every
+    call, which is most of the cost of a 60-link update. When this viser has the same
+    internals as 1.1 (``scene._queue_scene_message``, its pose messages), the messages are
+    queued directly, as the quickly serialised subclasses of :func:`pose_message_types`, and
+    the handle's state updated in place; otherwise the public setters.
+
+    Args:
+        scene: viser's scene API (``server.scene``) the node belongs to.
+        handle: The node's viser handle.
+        wxyz: The new orientation, or None to keep it.
+        xyz: The new position [m], or None to keep it.
+    """
+    queue = getattr(scene, "_queue_scene_message", None)
+    impl = getattr(handle, "_impl", None)
+    messages = pose_message_types()
+    if queue is None or impl is None or messages is None:
+        if wxyz is not None:
+            handle.wxyz = wxyz
+        if xyz is not None:
+            handle.position = xyz
+        return
+    if wxyz is not None:
+        w, x, y, z = wxyz
+        impl.wxyz[:] = (w, x, y, z)
+        queue(messages.orientation(impl.name, (w, x, y, z)))
+    if xyz is not None:
+        px, py, pz = xyz
+        impl.position[:] = (px, py, pz)
+        queue(messages.position(impl.name, (px, py, pz)))
 
 
 def _fast_subclass(base: type, field: str) -> type:

@@ -30,7 +30,7 @@ from robomodel.errors import PackageNotFoundError, RobomodelError
 from robomodel.viewer._poses import wxyz_xyz_from_matrix
 from robomodel.viewer.materials import DEFAULT_RGBA, material_rgba, rgb255
 from robomodel.viewer.meshes import MeshCache, resolve_mesh_uri
-from robomodel.viewer.pose_messages import pose_message_types
+from robomodel.viewer.pose_messages import write_pose
 
 __all__ = ["GeometryProblem", "RobotModelDisplay"]
 
@@ -358,7 +358,8 @@ class RobotModelDisplay:
         wxyz_rows, xyz_rows = wxyz.tolist(), xyz.tolist()  # floats, not numpy scalars
         turned_rows, shifted_rows = turned.tolist(), shifted.tolist()
         for k in np.flatnonzero(moved).tolist():
-            self._write_pose(
+            write_pose(
+                self.scene,
                 self._links[k],
                 wxyz_rows[k] if turned_rows[k] else None,
                 xyz_rows[k] if shifted_rows[k] else None,
@@ -369,33 +370,6 @@ class RobotModelDisplay:
             self._links[i].visible = bool(visible[i])
         self._last_visible = visible.copy()
         return int(moved.sum())
-
-    def _write_pose(self, handle: Any, wxyz: list[float] | None, xyz: list[float] | None) -> None:
-        """Set a node's orientation and/or position (None: unchanged), known to have changed.
-
-        viser's ``wxyz``/``position`` setters cast, compare (``np.allclose``) and copy on every
-        call, which is most of the cost of a 60-link update. When this viser has the same
-        internals as 1.1 (``_queue_scene_message``, its pose messages), the messages are
-        queued directly, as :mod:`~robomodel.viewer.pose_messages`' quickly serialised
-        subclasses, and the handle's state updated in place; otherwise the public setters.
-        """
-        queue = getattr(self.scene, "_queue_scene_message", None)
-        impl = getattr(handle, "_impl", None)
-        messages = pose_message_types()
-        if queue is None or impl is None or messages is None:
-            if wxyz is not None:
-                handle.wxyz = wxyz
-            if xyz is not None:
-                handle.position = xyz
-            return
-        if wxyz is not None:
-            w, x, y, z = wxyz
-            impl.wxyz[:] = (w, x, y, z)
-            queue(messages.orientation(impl.name, (w, x, y, z)))
-        if xyz is not None:
-            px, py, pz = xyz
-            impl.position[:] = (px, py, pz)
-            queue(messages.position(impl.name, (px, py, pz)))
 
     def remove(self) -> None:
         """Take the robot out of the scene."""

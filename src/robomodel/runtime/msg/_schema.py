@@ -199,6 +199,7 @@ _PACKAGES = {
 }
 _EXTRA_MODULES = {
     "control_msgs": ("control_msgs_actions",),
+    "controller_manager_msgs": ("controller_manager_msgs_hardware",),
     "gazebo_msgs": ("gazebo_msgs_states",),
 }
 
