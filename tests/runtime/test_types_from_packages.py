@@ -124,7 +124,7 @@ def test_ros1_md5sums_of_package_types_equal_genmsg(packages: Path, tmp_path: Pa
 
     done = subprocess.run(
         ["/usr/bin/python3", "-c", GENMSG, str(packages), str(tmp_path / "scratch")],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert done.returncode == 0, done.stderr[-500:]
     reading_md5, scale_md5 = json.loads(done.stdout)
@@ -148,7 +148,9 @@ SERVER = textwrap.dedent(
 
 
 def _run(env: dict[str, str], *argv: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([*ROBOMODEL, *argv], capture_output=True, text=True, timeout=90, env=env)
+    return subprocess.run(
+        [*ROBOMODEL, *argv], capture_output=True, text=True, timeout=scaled(90), env=env
+    )
 
 
 def test_verbs_across_processes(tmp_path: Path) -> None:
@@ -212,13 +214,13 @@ def test_distro_option_of_the_verbs() -> None:
     argv = ("topic", "pub", "/range", "sensor_msgs/msg/Range", "{variance: 0.5}", "--once")
     humble = subprocess.run(
         [*ROBOMODEL, *argv, "--bus", "inproc", "--distro", "humble"],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert humble.returncode == 2 and "has no field 'variance'" in humble.stderr
     assert "Traceback" not in humble.stderr
     jazzy = subprocess.run(
         [*ROBOMODEL, *argv, "--bus", "inproc", "--distro", "jazzy"],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert jazzy.returncode == 0 and "variance=0.5" in jazzy.stdout, jazzy.stderr
 
@@ -243,7 +245,7 @@ def test_a_publishers_other_hash_is_named(tmp_path: Path) -> None:
         echo = subprocess.run(
             [*ROBOMODEL, "topic", "echo", "/range", "--once", "--timeout", "3",
              "--domain-id", domain, "--distro", "jazzy"],
-            capture_output=True, text=True, timeout=90, env=env,
+            capture_output=True, text=True, timeout=scaled(90), env=env,
         )  # fmt: skip
     finally:
         pub.kill()
