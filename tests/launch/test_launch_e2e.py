@@ -47,13 +47,14 @@ def _launch(domain: str, *argv: str, log: Path) -> Iterator[subprocess.Popen[str
 
 
 def _wait_for_line(log: Path, text: str, proc: subprocess.Popen[str], timeout_s: float) -> None:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
         if text in log.read_text():
             return
         assert proc.poll() is None, f"launch ended early:\n{log.read_text()}"
         time.sleep(0.2)
-    raise AssertionError(f"'{text}' not printed in {timeout_s} s:\n{log.read_text()}")
+    raise AssertionError(f"'{text}' not printed in {timeout_s:.0f} s:\n{log.read_text()}")
 
 
 def _cli(domain: str, *argv: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
@@ -62,7 +63,7 @@ def _cli(domain: str, *argv: str, timeout: float = 30) -> subprocess.CompletedPr
         capture_output=True,
         text=True,
         env=_env(),
-        timeout=timeout,
+        timeout=scaled(timeout),
     )
 
 
@@ -81,6 +82,7 @@ def _joint(
     tolerance: float = 0.05,
     timeout_s: float = 25,
 ) -> float:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     value = float("nan")
     while time.monotonic() < deadline:
@@ -88,7 +90,7 @@ def _joint(
         value = msg["position"][msg["name"].index(joint)]
         if abs(value - target) < tolerance:
             return float(value)
-    raise AssertionError(f"{joint} at {value}, not near {target} after {timeout_s} s")
+    raise AssertionError(f"{joint} at {value}, not near {target} after {timeout_s:.0f} s")
 
 
 def test_rrbot_two_terminals_as_seed_000(tmp_path: Path) -> None:
