@@ -33,6 +33,7 @@ from tests.seeds.conftest import (
     until,
     write_tree,
 )
+from tests.timing import scaled
 
 # --- the seed's files -----------------------------------------------------------------------
 
@@ -606,4 +607,4 @@ def test_ctrl_c_ends_the_launches(graph: SeedRos1, tmp_path: Path) -> None:
     _rrbot_two_terminals(graph, tmp_path)
     for proc in reversed(graph.procs):
         proc.send_signal(signal.SIGINT)
-        assert proc.wait(60) is not None
+        assert proc.wait(scaled(60)) is not None
