@@ -145,8 +145,9 @@ def test_zenoh_graph_across_hosts(hosts: Hosts) -> None:
     to_b = ("--connect", f"tcp/{ROUTER_B}:7447", "--listen", f"tcp/{HOST_B}:0")
     state = hosts.start("a", *ROBOMODEL, "publish-state", str(PLANAR), *to_a)
     _first_line_with(state, "publishing robot")
+    within = f"{scaled(30):.1f}"
     tf = hosts.run(
-        "b", *ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", "30", *to_b
+        "b", *ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", within, *to_b
     )
     assert tf.returncode == 0, tf.stderr
     assert tf.stdout.startswith("At time ") and "- Translation: [" in tf.stdout

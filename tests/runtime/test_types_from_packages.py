@@ -188,7 +188,7 @@ def test_verbs_across_processes(tmp_path: Path) -> None:
         hz = _run(env, "topic", "hz", "/img", "--duration", "3", *bus)
         assert hz.returncode == 0 and "average rate" in hz.stdout, hz.stderr
         call = _run(env, "service", "call", "/scale", "my_msgs/srv/Scale",
-                    "{value: 2.5, factor: 4.0}", "--timeout", "30", *bus)  # fmt: skip
+                    "{value: 2.5, factor: 4.0}", "--timeout", f"{scaled(30):.1f}", *bus)  # fmt: skip
         assert call.returncode == 0, call.stderr
         assert "response (" in call.stdout and call.stdout.endswith("result: 10.0\n")
     finally:
@@ -242,8 +242,9 @@ def test_a_publishers_other_hash_is_named(tmp_path: Path) -> None:
         deadline = time.monotonic() + scaled(60)
         while "/range" not in _run(env, "topic", "list", "--domain-id", domain).stdout:
             assert time.monotonic() < deadline, "the publisher did not appear in 60 s"
+        # (the echo gets nothing, the hashes differ: 3 s is its time to see the publisher)
         echo = subprocess.run(
-            [*ROBOMODEL, "topic", "echo", "/range", "--once", "--timeout", "3",
+            [*ROBOMODEL, "topic", "echo", "/range", "--once", "--timeout", f"{scaled(3):.1f}",
              "--domain-id", domain, "--distro", "jazzy"],
             capture_output=True, text=True, timeout=scaled(90), env=env,
         )  # fmt: skip

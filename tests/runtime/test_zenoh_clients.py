@@ -57,7 +57,7 @@ def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
         )
         caller = subprocess.Popen(
             [*ROBOMODEL, "service", "call", "/probe/check", "std_srvs/srv/SetBool",
-             "{data: true}", "--timeout", "60", "--domain-id", domain],
+             "{data: true}", "--timeout", f"{scaled(60):.1f}", "--domain-id", domain],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
         )  # fmt: skip
         try:

@@ -311,7 +311,9 @@ def test_display_launch_publishes_state_and_tf(
     nodes = graph.tool(ROSNODE, "list").stdout.split()
     # the viewer stands for rviz: headless, there is none
     assert {"/joint_state_publisher", "/robot_state_publisher"} <= set(nodes)
-    tf = graph.tool(*ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", "60")
+    tf = graph.tool(
+        *ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", f"{scaled(60):.1f}"
+    )
     assert tf.returncode == 0, tf.stderr
     assert "[1.000, 0.000, 0.000]" in tf.stdout
 
