@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 MIB = 1 << 20
 
@@ -29,7 +30,9 @@ class Measured:
 
 
 def run_measured(*argv: str, env: dict[str, str] | None = None, timeout_s: float = 120) -> Measured:
-    """Run ``robomodel *argv`` to its end; killed (and the test failed) after ``timeout_s``."""
+    """Run ``robomodel *argv`` to its end; killed (and the test failed) after ``timeout_s``
+    (scaled with the machine: :func:`tests.timing.scaled`)."""
+    timeout_s = scaled(timeout_s)
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         proc = subprocess.Popen([*ROBOMODEL, *argv], stdout=out, stderr=err, env=env, text=True)
         timer = threading.Timer(timeout_s, proc.kill)

@@ -19,6 +19,7 @@ import pytest
 
 from tests.conftest import ROOT, unique_domain
 from tests.docs.runner import commands
+from tests.timing import scaled
 
 _MARKER = "<!-- quickstart: tests/test_readme_quickstart.py runs each line -->"
 _BIN = Path(sys.executable).parent  # the venv the README tells the user to activate
@@ -87,7 +88,7 @@ def _run_until_running(argv: list[str], workdir: Path, timeout_s: float) -> None
         assert any(re.search(r"\d+ nodes? running", s) for s in seen), "".join(seen)
         assert not any("Traceback" in s for s in seen), "".join(seen)
         os.killpg(proc.pid, signal.SIGINT)
-        rest, _ = proc.communicate(timeout=60)
+        rest, _ = proc.communicate(timeout=scaled(60))
         # 0 once the launch's loop runs; 130 (Ctrl-C) when it comes during start-up
         assert proc.returncode in (0, 130), "".join(seen) + rest
         assert "Traceback" not in rest, rest
@@ -110,14 +111,14 @@ def _topic_list_beside_a_launch(argv: list[str], workdir: Path) -> None:
             if re.search(r"\d+ nodes? running", line):
                 break
         listed = subprocess.run(
-            argv, cwd=workdir, env=env, capture_output=True, text=True, timeout=120
+            argv, cwd=workdir, env=env, capture_output=True, text=True, timeout=scaled(120)
         )
         assert listed.returncode == 0, listed.stderr
         assert {"/joint_states", "/tf", "/robot_description"} <= set(listed.stdout.split())
     finally:
         os.killpg(launch.pid, signal.SIGINT)
         try:
-            launch.wait(60)
+            launch.wait(scaled(60))
         except subprocess.TimeoutExpired:
             os.killpg(launch.pid, signal.SIGKILL)
             launch.wait()
@@ -127,13 +128,13 @@ def _topic_list_beside_a_launch(argv: list[str], workdir: Path) -> None:
 def test_quickstart_command_runs(command: str, workdir: Path) -> None:
     argv = shlex.split(command)
     if argv[1] == "launch":
-        _run_until_running(argv, workdir, timeout_s=120)
+        _run_until_running(argv, workdir, timeout_s=scaled(120))
         return
     if argv[1:3] == ["topic", "list"]:  # "in a second terminal while a launch runs"
         _topic_list_beside_a_launch(argv, workdir)
         return
     done = subprocess.run(
-        argv, cwd=workdir, env=_env(workdir), capture_output=True, text=True, timeout=120
+        argv, cwd=workdir, env=_env(workdir), capture_output=True, text=True, timeout=scaled(120)
     )
     assert done.returncode == 0, done.stderr
     if argv[1] == "check":

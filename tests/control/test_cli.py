@@ -83,7 +83,9 @@ def _domain() -> str:
 
 
 def _cli(*args: str, timeout: float = 20) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(
+        [*ROBOMODEL, *args], capture_output=True, text=True, timeout=scaled(timeout)
+    )
 
 
 @pytest.fixture

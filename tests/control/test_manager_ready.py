@@ -33,7 +33,7 @@ def test_services_are_offered_after_the_configuration_and_prepare() -> None:
     seen: dict[str, Any] = {}
     with Context("inproc") as ctx:
 
-        def prepare(manager: Any) -> None:
+        def prepare(manager: Any) -> None:  # (inproc: graph()'s timeout_s bounds nothing)
             seen["offered"] = LOAD in ctx.graph(timeout_s=1.0).services
             seen["specs"] = sorted(manager.specs)
 
@@ -58,7 +58,7 @@ def test_a_simulated_robot_s_manager_serves_after_prepare() -> None:
         sim = Simulation(world=None)
         sim.add_robot(load(str(rrbot / "urdf" / "rrbot.xacro")))
 
-        def prepare(manager: Any) -> None:
+        def prepare(manager: Any) -> None:  # (inproc: graph()'s timeout_s bounds nothing)
             seen["offered"] = LOAD in ctx.graph(timeout_s=1.0).services
             manager.spec_source = lambda name: None
 

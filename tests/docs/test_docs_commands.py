@@ -26,6 +26,7 @@ from tests.docs.runner import (
     expected_exit,
     output_matches,
 )
+from tests.timing import scaled
 
 PAGES = [*sorted((ROOT / "docs").rglob("*.md")), ROOT / "README.md"]
 RUNNABLE = [page for page in PAGES if any(b.marker.startswith("run") for b in blocks(page))]
@@ -48,19 +49,19 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
             if code is not None:
                 for command in commands(block.text):
                     try:
-                        run.run(command, _TIMEOUT_S, exit_code=code)
+                        run.run(command, scaled(_TIMEOUT_S), exit_code=code)
                     except AssertionError as exc:
                         raise AssertionError(f"{where}: {exc}") from None
             elif block.marker == "run: python":
                 try:
-                    run.python(block.text, _TIMEOUT_S)
+                    run.python(block.text, scaled(_TIMEOUT_S))
                 except AssertionError as exc:
                     raise AssertionError(f"{where}: {exc}") from None
             elif block.marker.startswith("run:"):
                 (command,) = commands(block.text)
-                run.start(command, background_until(block.marker), _TIMEOUT_S)
+                run.start(command, background_until(block.marker), scaled(_TIMEOUT_S))
             elif block.marker == "ctrl-c":
-                problems += run.end(timeout_s=60)
+                problems += run.end(timeout_s=scaled(60))
             elif block.marker.startswith("file:"):
                 target = tmp_path / block.marker.split(":", 1)[1].strip()
                 target.parent.mkdir(parents=True, exist_ok=True)
@@ -72,7 +73,7 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
                     f"{run.last_output}"
                 )
     finally:
-        problems += run.end(timeout_s=60)
+        problems += run.end(timeout_s=scaled(60))
     assert not problems, "\n".join(problems)
 
 

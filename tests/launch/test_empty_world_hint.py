@@ -35,7 +35,7 @@ def _run_until(argv: list[str], cwd: Path, wanted: str, log: Path) -> str:
                 time.sleep(0.2)
         finally:
             proc.terminate()
-            proc.wait(30)
+            proc.wait(scaled(30))
     return log.read_text()
 
 

@@ -13,11 +13,12 @@ from robomodel.launch.model import LaunchError
 from robomodel.launch.ros1 import load_launch as load_ros1
 from robomodel.launch.ros2 import load_launch as load_ros2
 from tests.conftest import ROBOMODEL
+from tests.timing import scaled
 
 
 def _launch(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [*ROBOMODEL, "launch", *args], capture_output=True, text=True, timeout=timeout
+        [*ROBOMODEL, "launch", *args], capture_output=True, text=True, timeout=scaled(timeout)
     )
 
 

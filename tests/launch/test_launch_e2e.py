@@ -47,13 +47,14 @@ def _launch(domain: str, *argv: str, log: Path) -> Iterator[subprocess.Popen[str
 
 
 def _wait_for_line(log: Path, text: str, proc: subprocess.Popen[str], timeout_s: float) -> None:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
         if text in log.read_text():
             return
         assert proc.poll() is None, f"launch ended early:\n{log.read_text()}"
         time.sleep(0.2)
-    raise AssertionError(f"'{text}' not printed in {timeout_s} s:\n{log.read_text()}")
+    raise AssertionError(f"'{text}' not printed in {timeout_s:.0f} s:\n{log.read_text()}")
 
 
 def _cli(domain: str, *argv: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
@@ -62,7 +63,7 @@ def _cli(domain: str, *argv: str, timeout: float = 30) -> subprocess.CompletedPr
         capture_output=True,
         text=True,
         env=_env(),
-        timeout=timeout,
+        timeout=scaled(timeout),
     )
 
 
@@ -81,6 +82,7 @@ def _joint(
     tolerance: float = 0.05,
     timeout_s: float = 25,
 ) -> float:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     value = float("nan")
     while time.monotonic() < deadline:
@@ -88,7 +90,7 @@ def _joint(
         value = msg["position"][msg["name"].index(joint)]
         if abs(value - target) < tolerance:
             return float(value)
-    raise AssertionError(f"{joint} at {value}, not near {target} after {timeout_s} s")
+    raise AssertionError(f"{joint} at {value}, not near {target} after {timeout_s:.0f} s")
 
 
 def test_rrbot_two_terminals_as_seed_000(tmp_path: Path) -> None:
@@ -119,7 +121,7 @@ def test_rrbot_two_terminals_as_seed_000(tmp_path: Path) -> None:
             # target, off by the gravity sag, as in Gazebo
             _joint(domain, "/rrbot/joint_states", "joint1", 0.8, tolerance=0.25)
             # robot_state_publisher (remapped to /rrbot/joint_states) follows the simulation
-            tf = _cli(domain, "tf", "link1", "link3", "--once", "--timeout", "20")
+            tf = _cli(domain, "tf", "link1", "link3", "--once", "--timeout", f"{scaled(20):.1f}")
             assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
         assert c.returncode is not None
         assert "Loaded controllers: joint_state_controller, joint1_position_controller" in (
@@ -149,7 +151,7 @@ def test_display_launch_serves_tf_and_parameters(tmp_path: Path) -> None:
     log = tmp_path / "display.log"
     with _launch(domain, "gripper_description", "display.launch", log=log) as proc:
         _wait_for_line(log, "nodes running", proc, 60)
-        tf = _cli(domain, "tf", "base_link", "gripper", "--once", "--timeout", "20")
+        tf = _cli(domain, "tf", "base_link", "gripper", "--once", "--timeout", f"{scaled(20):.1f}")
         assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
         text = _cli(domain, "param", "get", "/robot_description")
         assert text.returncode == 0 and "<robot" in text.stdout and "planar_3dof" in text.stdout
@@ -184,7 +186,9 @@ def test_robomodel_new_writes_a_launch_file_robomodel_launch_runs(tmp_path: Path
     argv = ("arm_description", "display.launch", "gui:=false", "--package-path", str(tmp_path))
     with _launch(domain, *argv, log=log) as proc:
         _wait_for_line(log, "nodes running", proc, 60)
-        frames = _cli(domain, "tf", "base_link", "link_2", "--once", "--timeout", "20")
+        frames = _cli(
+            domain, "tf", "base_link", "link_2", "--once", "--timeout", f"{scaled(20):.1f}"
+        )
         assert frames.returncode == 0 and "Translation" in frames.stdout, frames.stderr
     text = log.read_text()
     assert "started /joint_state_publisher (joint_state_publisher/joint_state_publisher)" in text

@@ -21,6 +21,7 @@ from robomodel.launch.ros2 import load_launch
 from robomodel.launch.runner import LaunchRunner, RunOptions
 from robomodel.runtime.msg import TFMessage
 from tests.conftest import unique_domain
+from tests.timing import scaled
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -90,9 +91,10 @@ def _package(tmp_path: Path) -> Path:
 
 
 def _wait(condition: Callable[[], Any], what: str, timeout_s: float = 30.0) -> None:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while not condition():
-        assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
+        assert time.monotonic() < deadline, f"{what}: not within {timeout_s:.0f} s"
         time.sleep(0.05)
 
 
@@ -137,7 +139,7 @@ class _Run:
 
     def close(self) -> None:
         self.runner._stop.set()  # what a required node ending does
-        self._spin.join(timeout=30)
+        self._spin.join(timeout=scaled(30))
         self.runner.shutdown()
 
 

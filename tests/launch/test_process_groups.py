@@ -25,14 +25,14 @@ def _alive(marker: str) -> list[str]:
 
 
 def _wait_gone(marker: str, timeout_s: float = 10.0) -> bool:
-    deadline = time.monotonic() + timeout_s
+    deadline = time.monotonic() + scaled(timeout_s)
     while _alive(marker) and time.monotonic() < deadline:
         time.sleep(0.1)
     return not _alive(marker)
 
 
 def _wait_alive(marker: str, count: int, timeout_s: float = 30.0) -> None:
-    deadline = time.monotonic() + timeout_s
+    deadline = time.monotonic() + scaled(timeout_s)
     while len(_alive(marker)) < count:
         assert time.monotonic() < deadline, f"{marker} did not start"
         time.sleep(0.1)
@@ -48,6 +48,7 @@ def test_end_group_ends_background_children_too() -> None:
     proc = subprocess.Popen(["sh", "-c", f"sleep {a} & sleep {b}"], start_new_session=True)
     _wait_alive(f"sleep {a}", 1)
     _wait_alive(f"sleep {b}", 1)
+    # the SIGINT window is expected to expire (the background sleep ignores SIGINT): not scaled
     end_group(proc, sigint_timeout_s=5, sigterm_timeout_s=2)
     # the background sleep ignores SIGINT (a non-interactive shell's background job): SIGTERM
     assert _wait_gone(f"sleep {a}") and _wait_gone(f"sleep {b}")

@@ -23,7 +23,7 @@ def test_two_link_arm_visualize_launch(tmp_path: Path) -> None:
     log = tmp_path / "visualize.log"
     with _launch(domain, "two_link_arm", "visualize.launch.py", log=log) as proc:
         _wait_for_line(log, "nodes running", proc, 60)
-        tf = _cli(domain, "tf", "base_link", "gripper", "--once", "--timeout", "20")
+        tf = _cli(domain, "tf", "base_link", "gripper", "--once", "--timeout", f"{scaled(20):.1f}")
         assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
         text = log.read_text()
         assert "started /state_publisher (robot_state_publisher/robot_state_publisher)" in text
@@ -65,7 +65,7 @@ def test_two_link_arm_gazebo_launch_spawns_and_controls_in_the_simulator(tmp_pat
             "std_msgs/msg/Float64MultiArray", "data: [0.5]",
         )  # fmt: skip
         assert pub.returncode == 0, pub.stderr
-        _joint(domain, "/joint_states", "joint1", 0.5, tolerance=0.05, timeout_s=scaled(30))
+        _joint(domain, "/joint_states", "joint1", 0.5, tolerance=0.05, timeout_s=30)
         clock = _cli(domain, "topic", "echo", "/clock", "--once")
         assert clock.returncode == 0 and "clock" in clock.stdout
 
@@ -80,7 +80,8 @@ def test_example_description_display_launch_prefixes_frames_with_robot_name(
     argv = ("example_description", "display.launch.py", "robot_name:=r1")
     with _launch(domain, *argv, log=log) as proc:
         _wait_for_line(log, "nodes running", proc, 60)
-        tf = _cli(domain, "tf", "r1/base_link", "r1/arm_link_2", "--once", "--timeout", "20")
+        within = f"{scaled(20):.1f}"
+        tf = _cli(domain, "tf", "r1/base_link", "r1/arm_link_2", "--once", "--timeout", within)
         assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr + log.read_text()
 
 
@@ -107,7 +108,7 @@ def test_robomodel_new_display_launch_py_runs(tmp_path: Path) -> None:
     argv = ("arm_description", "display.launch.py", "--package-path", str(tmp_path))
     with _launch(domain, *argv, log=log) as proc:
         _wait_for_line(log, "nodes running", proc, 60)
-        tf = _cli(domain, "tf", "base_link", "link_2", "--once", "--timeout", "20")
+        tf = _cli(domain, "tf", "base_link", "link_2", "--once", "--timeout", f"{scaled(20):.1f}")
         assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr + log.read_text()
 
 

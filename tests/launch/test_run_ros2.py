@@ -16,6 +16,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 ARM = EXAMPLES / "two_link_arm"
 
@@ -28,11 +29,11 @@ class _Bus:
 
     def cli(self, *argv: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
         command = [*ROBOMODEL, *argv, "--domain-id", self.domain]
-        return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+        return subprocess.run(command, capture_output=True, text=True, timeout=scaled(timeout))
 
     def run(self, *argv: str, timeout: float = 90) -> subprocess.CompletedProcess[str]:
         command = [*ROBOMODEL, "run", "--domain-id", self.domain, *argv]
-        return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+        return subprocess.run(command, capture_output=True, text=True, timeout=scaled(timeout))
 
     def start(self, name: str, *argv: str) -> subprocess.Popen[str]:
         log = (self.tmp / f"{name}.log").open("w")
@@ -54,9 +55,10 @@ class _Bus:
             return False
 
     def until(self, check: Callable[[], bool], what: str, timeout_s: float = 120) -> None:
+        timeout_s = scaled(timeout_s)
         deadline = time.monotonic() + timeout_s
         while not check():
-            assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
+            assert time.monotonic() < deadline, f"{what}: not within {timeout_s:.0f} s"
             time.sleep(0.3)
 
 
@@ -79,13 +81,13 @@ def _params_file(path: Path, node: str, values: dict[str, object]) -> Path:
 
 def _stop(proc: subprocess.Popen[str]) -> int:
     os.killpg(proc.pid, signal.SIGINT)
-    return proc.wait(30)
+    return proc.wait(scaled(30))
 
 
 def test_ros2_control_node_spawners_and_the_ros1_script_by_run(bus: _Bus) -> None:
     description = subprocess.run(
         [*ROBOMODEL, "xacro", str(ARM / "urdf/two_link_arm.urdf.xacro")],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert description.returncode == 0, description.stderr
     urdf = _params_file(bus.tmp / "urdf.yaml", "/**", {"robot_description": description.stdout})
@@ -173,7 +175,7 @@ def test_tf2_tools_view_frames_writes_the_tree(bus: _Bus) -> None:
     run = subprocess.run(
         [*ROBOMODEL, "run", "--domain-id", bus.domain, "tf2_tools", "view_frames", "-t", "2",
          "-o", "tree"],
-        capture_output=True, text=True, timeout=90, cwd=bus.tmp,
+        capture_output=True, text=True, timeout=scaled(90), cwd=bus.tmp,
     )  # fmt: skip
     assert run.returncode == 0, run.stderr
     assert run.stdout.splitlines() == [

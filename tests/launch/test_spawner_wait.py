@@ -44,7 +44,8 @@ def _wait(runtime: _Runtime, timeout_s: float, stopping: threading.Event | None 
 
 def test_ready_once_list_controllers_answers() -> None:
     runtime = _Runtime(answer_after=3)
-    assert _wait(runtime, 5.0, call_timeout_s=2.0) is True
+    # call_timeout_s is compared with what the manager was asked: not scaled
+    assert _wait(runtime, scaled(5.0), call_timeout_s=2.0) is True
     assert runtime.calls == [("/ns/controller_manager/list_controllers", 2.0)] * 3
 
 
@@ -52,14 +53,14 @@ def test_ready_only_once_load_and_switch_controller_are_offered_too() -> None:
     """A manager registers its services one by one: on a real roscore a spawner that called
     load_controller as soon as list_controllers answered found no provider yet."""
     runtime = _Runtime(answer_after=1, offered_after=2)
-    assert _wait(runtime, 5.0, call_timeout_s=2.0) is True
+    assert _wait(runtime, scaled(5.0), call_timeout_s=2.0) is True
     assert runtime.graphs == 3 and len(runtime.calls) == 3
 
 
 def test_times_out_without_a_manager() -> None:
     start = time.monotonic()
-    assert _wait(_Runtime(answer_after=None), 0.3) is False
-    assert 0.3 <= time.monotonic() - start < 3.0
+    assert _wait(_Runtime(answer_after=None), 0.3) is False  # the deadline under test
+    assert 0.3 <= time.monotonic() - start < scaled(3.0)
 
 
 def test_zero_timeout_waits_until_stopped_when_asked_to() -> None:
@@ -126,7 +127,7 @@ def test_spawners_wait_past_10_s_for_a_slow_load_controller(
     assert factory is not None
     node = factory(ctx)
     try:
-        assert runtime.load_seen.wait(30), runtime.calls
+        assert runtime.load_seen.wait(scaled(30)), runtime.calls
         load_timeouts = [t for s, t in runtime.calls if s == "load_controller"]
         assert load_timeouts and min(load_timeouts) >= min_call_s
         runtime.release.set()
@@ -171,14 +172,14 @@ def test_a_manager_answering_after_more_than_10_s_gets_its_controllers_spawned()
 
         def slow_load(*args: Any, **kwargs: Any) -> Any:
             held.set()
-            release.wait(60)
+            release.wait(scaled(60))
             return load(*args, **kwargs)
 
         manager.load_controller = slow_load
         spin.start()
         runner._start(NodeSpec("ros1", "controller_manager", "spawner", "spawner",
                                args=("joint_state_broadcaster",)))  # fmt: skip
-        assert held.wait(60)
+        assert held.wait(scaled(60))
         seen = time.monotonic()
         while time.monotonic() - seen < 10.5:  # the scenario: an answer after more than 10 s
             time.sleep(0.1)
@@ -192,7 +193,7 @@ def test_a_manager_answering_after_more_than_10_s_gets_its_controllers_spawned()
         assert runner.started[1].handle.exit_code() is None  # the ROS 1 spawner stays up
     finally:
         runner._stop.set()
-        spin.join(30)
+        spin.join(scaled(30))
         runner.shutdown()
 
 

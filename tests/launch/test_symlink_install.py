@@ -22,6 +22,7 @@ import pytest
 from robomodel.description.packages import PackageIndex
 from robomodel.launch.ros2.loader import load_launch
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 PKG = "ros2_control_demo_example_1"
 CORPUS = Path(__file__).parent / "ros2" / "corpus" / "rrbot_demo"
@@ -144,7 +145,7 @@ def _launch_until(
     with log.open("w") as out:
         proc = subprocess.Popen(argv, stdout=out, stderr=subprocess.STDOUT, text=True, env=env)
         try:
-            deadline = time.monotonic() + timeout_s
+            deadline = time.monotonic() + scaled(timeout_s)
             while line not in log.read_text():
                 assert proc.poll() is None, f"launch ended early:\n{log.read_text()}"
                 assert time.monotonic() < deadline, f"no '{line}':\n{log.read_text()}"
@@ -153,7 +154,7 @@ def _launch_until(
         finally:
             proc.terminate()
             try:
-                proc.wait(20)
+                proc.wait(scaled(20))
             except subprocess.TimeoutExpired:
                 proc.kill()
                 proc.wait()

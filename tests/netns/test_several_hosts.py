@@ -42,7 +42,7 @@ _COUNT = itertools.count()
 
 
 def _ip(*args: str) -> None:
-    subprocess.run(["ip", *args], check=True, capture_output=True, text=True, timeout=30)
+    subprocess.run(["ip", *args], check=True, capture_output=True, text=True, timeout=scaled(30))
 
 
 @dataclass
@@ -67,7 +67,7 @@ class Hosts:
     ) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
             ["ip", "netns", "exec", self.names[host], *cmd],
-            capture_output=True, text=True, timeout=timeout, env={**self.env, **env},
+            capture_output=True, text=True, timeout=scaled(timeout), env={**self.env, **env},
         )  # fmt: skip
 
 
@@ -94,7 +94,7 @@ def _end_all(hosts: Hosts) -> None:
             process.send_signal(signal.SIGINT)
     for process in hosts.started:
         try:
-            process.communicate(timeout=10)
+            process.communicate(timeout=scaled(10))
         except subprocess.TimeoutExpired:
             process.kill()
             process.communicate()
@@ -145,8 +145,9 @@ def test_zenoh_graph_across_hosts(hosts: Hosts) -> None:
     to_b = ("--connect", f"tcp/{ROUTER_B}:7447", "--listen", f"tcp/{HOST_B}:0")
     state = hosts.start("a", *ROBOMODEL, "publish-state", str(PLANAR), *to_a)
     _first_line_with(state, "publishing robot")
+    within = f"{scaled(30):.1f}"
     tf = hosts.run(
-        "b", *ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", "30", *to_b
+        "b", *ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", within, *to_b
     )
     assert tf.returncode == 0, tf.stderr
     assert tf.stdout.startswith("At time ") and "- Translation: [" in tf.stdout

@@ -97,7 +97,9 @@ def test_a_real_roscore_and_debian_s_cpp_robot_state_publisher(ros1: Ros1, tmp_p
     assert "planar_3dof" in value.stdout, value.stderr
     echo = ros1.robomodel_run("topic", "echo", "/tf_cpp", "--once")
     assert echo.returncode == 0 and "child_frame_id" in echo.stdout, echo.stderr
-    tf = ros1.robomodel_run("tf", "base_link", "gripper", "--once", "--timeout", "20")
+    tf = ros1.robomodel_run(
+        "tf", "base_link", "gripper", "--once", "--timeout", f"{scaled(20):.1f}"
+    )
     assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
     nodes = ros1.robomodel_run("node", "list")
     assert "/cpp_state_publisher" in nodes.stdout.split(), nodes.stderr

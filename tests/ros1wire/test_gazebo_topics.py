@@ -13,6 +13,7 @@ from typing import Any
 import yaml
 
 from tests.ros1wire.conftest import Ros1
+from tests.timing import scaled
 
 # Seed 001's `rostopic list` after the launch and the controllers, less what robomodel's
 # simulator does not have (dynamic_reconfigure's /gazebo/parameter_*)
@@ -69,7 +70,7 @@ def _launch_seed_001(ros1: Ros1, tmp_path: Path) -> Path:
     ros1.until(
         lambda: "Started controllers" in log.read_text() or proc.poll() is not None,
         "the controllers",
-        timeout_s=120,
+        timeout_s=scaled(120),
     )
     assert proc.poll() is None, log.read_text()
     return log
@@ -99,7 +100,7 @@ def test_seed_001_topics_services_and_rosout(ros1: Ros1, tmp_path: Path) -> None
     def rosservice(*argv: str) -> subprocess.CompletedProcess[str]:
         env = {**ros1.env, "PYTHONPATH": str(python)}
         argv = ("/usr/bin/rosservice", *argv)
-        return subprocess.run(argv, capture_output=True, text=True, env=env, timeout=30)
+        return subprocess.run(argv, capture_output=True, text=True, env=env, timeout=scaled(30))
 
     state = _yaml(
         rosservice(
@@ -111,7 +112,7 @@ def test_seed_001_topics_services_and_rosout(ros1: Ros1, tmp_path: Path) -> None
     assert state["header"]["frame_id"] == "world"
     echo = subprocess.run(
         ["/usr/bin/rostopic", "echo", "-n", "1", "/gazebo/model_states"],
-        capture_output=True, text=True, env={**ros1.env, "PYTHONPATH": str(python)}, timeout=30,
+        capture_output=True, text=True, env={**ros1.env, "PYTHONPATH": str(python)}, timeout=scaled(30),
     )  # fmt: skip
     models = _yaml(echo)
     assert models["name"] == ["ground_plane", "robot"]
@@ -140,7 +141,7 @@ def test_seed_001_topics_services_and_rosout(ros1: Ros1, tmp_path: Path) -> None
     refused = ros1.robomodel_run("control", "load", "no_such", "-c", "/controller_manager")
     assert refused.returncode != 0, refused.stdout
     for proc in echoes.values():
-        proc.wait(30)
+        proc.wait(scaled(30))
     # (rostopic's own warnings about /use_sim_time come first: the message starts at header)
     texts = [(tmp_path / f"{n}.log").read_text() for n in range(2)]
     lines = [yaml.safe_load(t[t.index("header:") :].split("\n---")[0]) for t in texts]
@@ -189,7 +190,7 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
         "{level: 4, name: /somebody, msg: careful}",
     )  # fmt: skip
     assert pub.returncode == 0, pub.stderr
-    agg.wait(30)
+    agg.wait(scaled(30))
     text = (tmp_path / "agg.log").read_text()
     line = yaml.safe_load(text[text.index("header:") :].split("\n---")[0])
     assert (line["level"], line["name"], line["msg"]) == (4, "/somebody", "careful")

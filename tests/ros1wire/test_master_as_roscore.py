@@ -83,7 +83,7 @@ def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
     seen.append(_graph(ros1))
     call = ros1.run("/usr/bin/rosservice", "call", "/trigger")
     assert call.returncode == 0 and "ok" in call.stdout, call.stderr
-    provider.wait(30)
+    provider.wait(scaled(30))
     seen.append(_graph(ros1))
 
     assert ros1.run("/usr/bin/rosparam", "set", "/gain", "5").returncode == 0
@@ -97,7 +97,7 @@ def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
     ros1.until(lambda: _publishers_and_subscribers(ros1, "/bar") == (1, 1), "/bar's two ends")
     seen.append(_graph(ros1))
     killed.kill()  # SIGKILL: no unregistering; the master keeps it until `rosnode cleanup`
-    killed.wait(30)
+    killed.wait(scaled(30))
     ros1.stop(echo)  # SIGINT: rospy unregisters
     seen.append(_graph(ros1))
     cleanup = subprocess.run(
@@ -106,7 +106,7 @@ def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
         capture_output=True,
         text=True,
         env=ros1.env,
-        timeout=60,
+        timeout=scaled(60),
     )
     assert cleanup.returncode == 0, cleanup.stderr
     seen.append(_graph(ros1))
@@ -209,19 +209,20 @@ def test_29_10_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> No
         try:
             echo = subprocess.run(
                 [*ROBOMODEL, "topic", "echo", "/six", "--once"],
-                env=env, capture_output=True, text=True, timeout=120,
+                env=env, capture_output=True, text=True, timeout=scaled(120),
             )  # fmt: skip
         finally:
             pub.terminate()
-            pub.wait(30)
+            pub.wait(scaled(30))
         assert echo.returncode == 0 and "six" in echo.stdout, echo.stderr
         import socket
 
         with pytest.raises(OSError):  # loopback ::1 only: not IPv4, not other interfaces
+            # refused at once; a timeout would be an OSError too, so its length is not scaled
             socket.create_connection(("127.0.0.1", port), timeout=5).close()
     finally:
         master.terminate()
-        master.wait(30)
+        master.wait(scaled(30))
     assert "Traceback" not in err.read_text()
 
 

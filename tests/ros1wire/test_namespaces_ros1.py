@@ -44,7 +44,7 @@ def test_group_ns_gives_namespaced_topics_and_prefixed_frames(ros1: Ros1, tmp_pa
     parents: set[str] = set()
     while not {"r1/link_1", "r2/link_1"} <= frames:
         assert time.monotonic() < deadline, f"frames on /tf: {frames}"
-        echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "20", "/tf", timeout=60)
+        echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "20", "/tf", timeout=scaled(60))
         for doc in yaml.safe_load_all(echo.stdout.replace("\n---", "\n---\n")):
             for t in (doc or {}).get("transforms", ()):
                 frames.add(t["child_frame_id"])

@@ -131,7 +131,7 @@ def test_run_state_publishers_with_rosrun_arguments(ros1: Ros1, tmp_path: Path) 
 
 def _serves(port: int) -> bool:
     try:
-        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as reply:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=scaled(2)) as reply:
             return bool(reply.status == 200)
     except OSError:
         return False
@@ -184,7 +184,9 @@ def _generated_messages(work: Path) -> Path:
 
 def _rosservice(ros1: Ros1, generated: Path, *argv: str) -> subprocess.CompletedProcess[str]:
     env = {**ros1.env, "PYTHONPATH": str(generated)}
-    return subprocess.run([ROSSERVICE, *argv], capture_output=True, text=True, env=env, timeout=60)
+    return subprocess.run(
+        [ROSSERVICE, *argv], capture_output=True, text=True, env=env, timeout=scaled(60)
+    )
 
 
 def _response(stdout: str) -> Any:

@@ -15,6 +15,7 @@ import pytest
 import yaml
 
 from tests.ros1wire.conftest import Ros1
+from tests.timing import scaled
 
 
 @dataclass
@@ -63,6 +64,7 @@ def _first(text: str) -> Any:
 
 
 def _debian_echo(ros1: Ros1, topic: str, timeout_s: float = 60) -> Any:
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while True:
         echo = ros1.run("/usr/bin/rostopic", "echo", "-n", "1", topic, timeout=timeout_s)
@@ -75,7 +77,7 @@ def _debian_echo(ros1: Ros1, topic: str, timeout_s: float = 60) -> Any:
 def test_image_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Path) -> None:
     _master(ros1)
     ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/theirs", "sensor_msgs/Image", IMAGE])
-    echo = ros1.robomodel_run("topic", "echo", "/theirs", "--once", timeout=90)
+    echo = ros1.robomodel_run("topic", "echo", "/theirs", "--once", timeout=scaled(90))
     assert echo.returncode == 0, echo.stderr
     got = _first(echo.stdout)
     assert (got["height"], got["width"], got["encoding"], got["step"]) == (2, 2, "rgb8", 6)
@@ -130,12 +132,12 @@ def test_custom_package_type_both_ways(custom: Ros1, tmp_path: Path) -> None:
         "topic", "pub", "/reading", "my_msgs/msg/Reading",
         "{value: 2.5, unit: bar, raw: [1, -2, 3]}", "-r", "5", log=log,
     )  # fmt: skip
-    echo = custom.run("/usr/bin/python3", str(script), "echo", timeout=90)
+    echo = custom.run("/usr/bin/python3", str(script), "echo", timeout=scaled(90))
     assert proc.poll() is None, log.read_text()
     assert echo.stdout.strip() == "2.5 bar [1, -2, 3]", echo.stderr
     msg = tmp_path / "ws" / "my_msgs" / "msg" / "Reading.msg"
     custom.start(["/usr/bin/python3", str(script), "pub", str(msg)])
-    ours = custom.robomodel_run("topic", "echo", "/from_debian", "--once", timeout=90)
+    ours = custom.robomodel_run("topic", "echo", "/from_debian", "--once", timeout=scaled(90))
     assert ours.returncode == 0, ours.stderr
     got = _first(ours.stdout)
     assert (got["value"], got["unit"], got["raw"]) == (-1.25, "psi", [7, 8, -9])
@@ -168,7 +170,7 @@ def test_a_type_only_the_publisher_knows_is_learned_from_its_definition(
     ros1.until(
         lambda: "/sample" in ros1.run("/usr/bin/rostopic", "list").stdout.split(), "publisher"
     )
-    echo = ros1.robomodel_run("topic", "echo", "/sample", "--once", timeout=90)
+    echo = ros1.robomodel_run("topic", "echo", "/sample", "--once", timeout=scaled(90))
     assert echo.returncode == 0, echo.stderr
     got = _first(echo.stdout)
     assert got == {"where": {"x": 1.0, "y": -2.0, "z": 0.5}, "level": 7, "tags": ["a", "b"]}
@@ -187,7 +189,7 @@ def test_marker_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Pat
     _master(ros1)
     ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/their_marker",
                 "visualization_msgs/Marker", MARKER])  # fmt: skip
-    echo = ros1.robomodel_run("topic", "echo", "/their_marker", "--once", timeout=90)
+    echo = ros1.robomodel_run("topic", "echo", "/their_marker", "--once", timeout=scaled(90))
     assert echo.returncode == 0, echo.stderr
     got = _first(echo.stdout)
     assert (got["header"]["frame_id"], got["ns"], got["id"], got["type"]) == ("map", "path", 3, 4)
@@ -282,7 +284,7 @@ def test_genaction_types_of_a_package_action(custom: Ros1, tmp_path: Path) -> No
         "the feedback topic on the master",
     )
     echo = custom.robomodel_run("topic", "echo", "/fib/feedback", "--once", "--bus", "ros1",
-                                timeout=90)  # fmt: skip
+                                timeout=scaled(90))  # fmt: skip
     assert echo.returncode == 0, echo.stderr + log.read_text()
     got = _first(echo.stdout)
     assert got["status"]["text"] == "going" and got["status"]["status"] == 1

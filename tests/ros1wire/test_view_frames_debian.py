@@ -13,6 +13,7 @@ import pytest
 
 from tests.conftest import ROBOMODEL
 from tests.ros1wire.conftest import Ros1
+from tests.timing import scaled
 
 VIEW_FRAMES = Path("/usr/lib/tf/view_frames")
 
@@ -40,8 +41,8 @@ def test_tf_view_frames_writes_what_debian_s_writes(ros1: Ros1, tmp_path: Path) 
     theirs_dir, ours_dir = tmp_path / "debian", tmp_path / "robomodel"
     theirs_dir.mkdir()
     ours_dir.mkdir()
-    theirs = ros1.run("/usr/bin/python3", str(VIEW_FRAMES), cwd=theirs_dir, timeout=60)
-    ours = ros1.run(*ROBOMODEL, "run", "tf", "view_frames", cwd=ours_dir, timeout=60)
+    theirs = ros1.run("/usr/bin/python3", str(VIEW_FRAMES), cwd=theirs_dir, timeout=scaled(60))
+    ours = ros1.run(*ROBOMODEL, "run", "tf", "view_frames", cwd=ours_dir, timeout=scaled(60))
     assert ours.returncode == 0, ours.stderr
     assert ours.stdout.splitlines()[:2] == theirs.stdout.splitlines()[:2] == [
         "Listening to /tf for 5.0 seconds", "Done Listening",

@@ -81,7 +81,7 @@ def arm_control() -> Iterator[str]:
     assert proc.stderr is not None and "controller manager" in past_the_bus_line(proc.stderr)
     yield domain
     proc.send_signal(signal.SIGINT)
-    proc.wait(10)
+    proc.wait(scaled(10))
 
 
 def test_every_layout_is_answered_in_its_own(arm_control: str) -> None:
@@ -99,11 +99,15 @@ def test_every_layout_is_answered_in_its_own(arm_control: str) -> None:
                 break
             time.sleep(0.1)
         for tag, srv_type in LAYOUTS:
-            reply = ctx.call_service("/controller_manager/list_controllers", srv_type, timeout_s=10)
+            reply = ctx.call_service(
+                "/controller_manager/list_controllers", srv_type, timeout_s=scaled(10)
+            )
             assert isinstance(reply, srv_type.Response), tag
             states = {c.name: c for c in reply.controller}  # type: ignore[attr-defined]
             assert states["joint1_position_controller"].state == "active", tag
             has_rate = "update_rate" in type(states["joint1_position_controller"]).field_names()
             assert has_rate == (tag == "4.28.0")
-        servers = ctx.graph(timeout_s=10).services["/controller_manager/list_controllers"].servers
+        servers = (
+            ctx.graph(timeout_s=scaled(10)).services["/controller_manager/list_controllers"].servers
+        )
         assert len(servers) == 3  # one queryable (and SS token) per layout

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import unique_domain
+from tests.timing import scaled
 
 
 def test_a_bad_attachment_costs_no_other_message(caplog: pytest.LogCaptureFixture) -> None:
@@ -36,7 +37,7 @@ def test_a_bad_attachment_costs_no_other_message(caplog: pytest.LogCaptureFixtur
                 attachment = encode_attachment(n, 0, gid)
                 session.put(key, serialize(Float64(float(n))), attachment=attachment)
             session.put(key, b"\x00\x01\x00\x00\x01", attachment=encode_attachment(6, 0, gid))
-            ctx.spin(duration_s=5.0, until=lambda: len(got) >= 5)
+            ctx.spin(duration_s=scaled(5.0), until=lambda: len(got) >= 5)
             ctx.spin(duration_s=0.3)
         for n in range(1000):
             transport.warn_once(("flood", str(n)), "flood %s", n)  # type: ignore[attr-defined]

@@ -12,6 +12,7 @@ from robomodel.runtime.msg import Quaternion, Time, get_message_type
 from robomodel.runtime.msg._resolver import _distro_store
 from robomodel.runtime.msg.action_msgs import UUID
 from robomodel.runtime.msg.typehash import type_hash
+from tests.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[2]
 MSG = ROOT / "src" / "robomodel" / "runtime" / "msg"
@@ -21,7 +22,7 @@ from gen_msgs_modules import MODULES, ROS1_ONLY, VARIANTS  # noqa: E402
 
 def _check(*argv: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run([sys.executable, str(ROOT / "tools" / "gen_msgs.py"), "--check", *argv],
-                          capture_output=True, text=True, timeout=300, cwd=ROOT)  # fmt: skip
+                          capture_output=True, text=True, timeout=scaled(300), cwd=ROOT)  # fmt: skip
 
 
 def test_checked_in_modules_are_the_generators_output() -> None:

@@ -287,6 +287,7 @@ def test_29_11_a_slowloris_is_dropped_at_the_request_deadline(
     from robomodel.runtime.transport.ros1 import xmlrpc_io
 
     monkeypatch.setattr(xmlrpc_io, "_throttled", {})  # lines of earlier tests held none back
+    # request_timeout_s is the deadline under test (not scaled: the loop below bounds the wait)
     server = XmlRpcServer("127.0.0.1", 0, {"getPid": lambda c: [1, "", 1]}, request_timeout_s=2)
     try:
         sock = socket.create_connection(("127.0.0.1", server.port), timeout=scaled(30))

@@ -29,6 +29,7 @@ from robomodel.runtime.msg import (
 from robomodel.runtime.msg._from_definition import build_message_class
 from robomodel.runtime.msg._schema import message_type_names
 from robomodel.runtime.msg.typehash import type_hash
+from tests.timing import scaled
 
 typesys = pytest.importorskip("rosbags.typesys")
 STORE = typesys.get_typestore(typesys.Stores.ROS2_JAZZY)
@@ -235,7 +236,9 @@ def test_ros1_md5sums_equal_genpy_and_rosbags() -> None:
         "    out[name] = getattr(importlib.import_module(pkg + '.msg'), typ)._md5sum\n"
         "print(json.dumps(out))"
     )
-    done = subprocess.run([_GENPY, "-c", script], capture_output=True, text=True, timeout=60)
+    done = subprocess.run(
+        [_GENPY, "-c", script], capture_output=True, text=True, timeout=scaled(60)
+    )
     assert done.returncode == 0, done.stderr[-400:]
     genpy = json.loads(done.stdout)
     for name in ROS1_TYPES:

@@ -124,7 +124,7 @@ def test_ros1_md5sums_of_package_types_equal_genmsg(packages: Path, tmp_path: Pa
 
     done = subprocess.run(
         ["/usr/bin/python3", "-c", GENMSG, str(packages), str(tmp_path / "scratch")],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert done.returncode == 0, done.stderr[-500:]
     reading_md5, scale_md5 = json.loads(done.stdout)
@@ -148,7 +148,9 @@ SERVER = textwrap.dedent(
 
 
 def _run(env: dict[str, str], *argv: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([*ROBOMODEL, *argv], capture_output=True, text=True, timeout=90, env=env)
+    return subprocess.run(
+        [*ROBOMODEL, *argv], capture_output=True, text=True, timeout=scaled(90), env=env
+    )
 
 
 def test_verbs_across_processes(tmp_path: Path) -> None:
@@ -186,7 +188,7 @@ def test_verbs_across_processes(tmp_path: Path) -> None:
         hz = _run(env, "topic", "hz", "/img", "--duration", "3", *bus)
         assert hz.returncode == 0 and "average rate" in hz.stdout, hz.stderr
         call = _run(env, "service", "call", "/scale", "my_msgs/srv/Scale",
-                    "{value: 2.5, factor: 4.0}", "--timeout", "30", *bus)  # fmt: skip
+                    "{value: 2.5, factor: 4.0}", "--timeout", f"{scaled(30):.1f}", *bus)  # fmt: skip
         assert call.returncode == 0, call.stderr
         assert "response (" in call.stdout and call.stdout.endswith("result: 10.0\n")
     finally:
@@ -212,13 +214,13 @@ def test_distro_option_of_the_verbs() -> None:
     argv = ("topic", "pub", "/range", "sensor_msgs/msg/Range", "{variance: 0.5}", "--once")
     humble = subprocess.run(
         [*ROBOMODEL, *argv, "--bus", "inproc", "--distro", "humble"],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert humble.returncode == 2 and "has no field 'variance'" in humble.stderr
     assert "Traceback" not in humble.stderr
     jazzy = subprocess.run(
         [*ROBOMODEL, *argv, "--bus", "inproc", "--distro", "jazzy"],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert jazzy.returncode == 0 and "variance=0.5" in jazzy.stdout, jazzy.stderr
 
@@ -240,10 +242,11 @@ def test_a_publishers_other_hash_is_named(tmp_path: Path) -> None:
         deadline = time.monotonic() + scaled(60)
         while "/range" not in _run(env, "topic", "list", "--domain-id", domain).stdout:
             assert time.monotonic() < deadline, "the publisher did not appear in 60 s"
+        # (the echo gets nothing, the hashes differ: 3 s is its time to see the publisher)
         echo = subprocess.run(
-            [*ROBOMODEL, "topic", "echo", "/range", "--once", "--timeout", "3",
+            [*ROBOMODEL, "topic", "echo", "/range", "--once", "--timeout", f"{scaled(3):.1f}",
              "--domain-id", domain, "--distro", "jazzy"],
-            capture_output=True, text=True, timeout=90, env=env,
+            capture_output=True, text=True, timeout=scaled(90), env=env,
         )  # fmt: skip
     finally:
         pub.kill()

@@ -21,6 +21,7 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Request, SetBool_Response
 from robomodel.runtime.transport.rmw_zenoh import parse_attachment
 from tests.conftest import ROBOMODEL, unique_domain
+from tests.timing import scaled
 
 
 def _tokens(session: Any, domain: str) -> list[str]:
@@ -28,13 +29,13 @@ def _tokens(session: Any, domain: str) -> list[str]:
 
 
 def _wait_for(condition: Any, what: str, timeout_s: float = 30.0) -> Any:
-    deadline = time.monotonic() + timeout_s
+    deadline = time.monotonic() + scaled(timeout_s)
     while time.monotonic() < deadline:
         found = condition()
         if found:
             return found
         time.sleep(0.05)
-    raise AssertionError(f"no {what} within {timeout_s} s")
+    raise AssertionError(f"no {what} within {scaled(timeout_s):.0f} s")
 
 
 def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
@@ -56,7 +57,7 @@ def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
         )
         caller = subprocess.Popen(
             [*ROBOMODEL, "service", "call", "/probe/check", "std_srvs/srv/SetBool",
-             "{data: true}", "--timeout", "60", "--domain-id", domain],
+             "{data: true}", "--timeout", f"{scaled(60):.1f}", "--domain-id", domain],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
         )  # fmt: skip
         try:
@@ -73,14 +74,14 @@ def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
             zid = parts[2]  # the node's token is the same session's
             node_tokens = [k for k in _tokens(session, domain) if f"/NN/%/%/{client_node}" in k]
             assert [k.split("/")[2] for k in node_tokens] == [zid]
-            attachment = parse_attachment(requests.get(timeout=30))
+            attachment = parse_attachment(requests.get(timeout=scaled(30)))
             assert attachment is not None and attachment.sequence_number == 1
             digest = xxhash.xxh3_128_intdigest(token.encode())
             assert attachment.gid == digest.to_bytes(16, "little")
-            clients = ctx.graph(timeout_s=10.0).services["/probe/check"].clients
+            clients = ctx.graph(timeout_s=scaled(10.0)).services["/probe/check"].clients
             assert [c.node for c in clients] == [f"/{client_node}"]
-            ctx.spin(duration_s=60, until=lambda: caller.poll() is not None)
-            out, err = caller.communicate(timeout=30)
+            ctx.spin(duration_s=scaled(60), until=lambda: caller.poll() is not None)
+            out, err = caller.communicate(timeout=scaled(30))
             assert caller.returncode == 0, err
             assert "message: seen" in out
             _wait_for(

@@ -69,7 +69,9 @@ def talker(tmp_path: Path) -> Iterator[tuple[subprocess.Popen[str], str]]:
 
 
 def _cli(*args: str, timeout: float = 20) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(
+        [*ROBOMODEL, *args], capture_output=True, text=True, timeout=scaled(timeout)
+    )
 
 
 def test_echo_info_list_across_processes(talker: tuple[subprocess.Popen[str], str]) -> None:
@@ -203,7 +205,7 @@ def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None
     first: list[str] = []
     reader = threading.Thread(target=_read_until, args=(echo.stdout, "data:", first), daemon=True)
     reader.start()
-    reader.join(60)
+    reader.join(scaled(60))
     assert first, "topic echo printed no message in 60 s"
     for p in (echo, proc):
         p.send_signal(signal.SIGINT)

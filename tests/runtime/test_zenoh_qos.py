@@ -115,7 +115,7 @@ def test_a_publisher_s_token_carries_its_full_qos() -> None:
         assert key.endswith("/2:1:2,5:1,500000000:2,0:3,3,0")
         token = EntityToken.parse(key)
         assert token is not None and qos_from_key(token.qos) == FULL
-        [endpoint] = ctx.graph(timeout_s=10.0).topics["/counted"].publishers
+        [endpoint] = ctx.graph(timeout_s=scaled(10.0)).topics["/counted"].publishers
         assert endpoint.qos == FULL
 
 
@@ -142,6 +142,6 @@ def test_keep_all_keeps_every_message_and_a_reliable_one_blocks() -> None:
         for n in range(200):
             pub_all.publish(Int32(n))
             pub_last.publish(Int32(n))
-        ctx.spin(duration_s=30.0, until=lambda: len(got_all) == 200 and 199 in got_last)
+        ctx.spin(duration_s=scaled(30.0), until=lambda: len(got_all) == 200 and 199 in got_last)
         assert got_all == list(range(200))
         assert got_last[-1] == 199 and len(got_last) < 200

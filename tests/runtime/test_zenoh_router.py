@@ -101,14 +101,14 @@ def test_a_session_starts_a_router_that_outlives_it(private_router: str) -> None
         assert _exchange(second, third)
     stopped = subprocess.run(
         [*ROBOMODEL, "router", "--stop", "--listen", private_router],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert stopped.returncode == 0
     assert f"stopped the Zenoh router {record.zid} (pid {record.pid})" in stopped.stderr
     assert read_record(private_router) is None and not listening(private_router)
     again = subprocess.run(
         [*ROBOMODEL, "router", "--stop", "--listen", private_router],
-        capture_output=True, text=True, timeout=60,
+        capture_output=True, text=True, timeout=scaled(60),
     )  # fmt: skip
     assert again.returncode == 0 and "no robomodel router is running" in again.stderr
 
@@ -147,7 +147,7 @@ def test_the_router_ends_when_no_session_uses_it() -> None:
                 assert _router_of(ctx)
                 ctx.spin(duration_s=2.5)  # linked for longer than --idle-exit: it stays
                 assert router.poll() is None
-        assert router.wait(30) == 0
+        assert router.wait(scaled(30)) == 0
         assert "no session for 1 s; stopping" in router.stderr.read()
     finally:
         router.kill()
@@ -186,13 +186,13 @@ def test_check_attempts_zero_waits_for_a_router() -> None:
         router = subprocess.Popen(
             [*ROBOMODEL, "router", "--listen", endpoint], stderr=subprocess.DEVNULL
         )
-        assert waiting.wait(60) == 0
+        assert waiting.wait(scaled(60)) == 0
     finally:
         waiting.kill()
         waiting.wait()
         if router is not None:
             router.terminate()
-            router.wait(10)
+            router.wait(scaled(10))
 
 
 def test_robomodel_router_serves_peers(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -10,7 +10,7 @@ Zenoh bus. The ROS tools robomodel replaces are typed as robomodel's equivalents
 ``robomodel topic``).
 
 Every wait is for a condition, bounded by :data:`TIMEOUT_S`, the one place that says how long a
-loaded machine may take.
+step may take, times the machine's factor (:func:`tests.timing.scaled`) on a loaded one.
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ import yaml
 
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.ros1wire.conftest import ROSCORE, Ros1
+from tests.timing import scaled
 
 TIMEOUT_S = 90.0
 """The longest any step may take to show what it should (a launch to start, a joint to arrive)."""
@@ -87,7 +88,8 @@ def until(
     check: Callable[[], Any], what: str, timeout_s: float = TIMEOUT_S, *, log: Path | None = None
 ) -> Any:
     """Poll ``check`` until it returns a true value; fail naming ``what`` (and showing ``log``)
-    after ``timeout_s``."""
+    after ``timeout_s`` (scaled with the machine)."""
+    timeout_s = scaled(timeout_s)
     deadline = time.monotonic() + timeout_s
     while True:
         value = check()
@@ -95,7 +97,7 @@ def until(
             return value
         if time.monotonic() > deadline:
             shown = f"\n{log.name}:\n{log.read_text()[-4000:]}" if log is not None else ""
-            raise AssertionError(f"{what}: not within {timeout_s} s{shown}")
+            raise AssertionError(f"{what}: not within {timeout_s:.0f} s{shown}")
         time.sleep(0.3)
 
 
@@ -123,8 +125,9 @@ class SeedRos1(Ros1):
     def tool(self, *argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
         """A Debian ROS 1 tool (or any command) on this graph."""
         return subprocess.run(
-            list(argv), capture_output=True, text=True, env=self.env, cwd=cwd, timeout=TIMEOUT_S
-        )
+            list(argv), capture_output=True, text=True, env=self.env, cwd=cwd,
+            timeout=scaled(TIMEOUT_S),
+        )  # fmt: skip
 
     def echo(self, topic: str) -> Any:
         """The first message of ``rostopic echo -n 1 TOPIC``, as YAML; fails at once when a
@@ -136,7 +139,7 @@ class SeedRos1(Ros1):
             try:  # rostopic echo waits for a publisher for good: ask again in a while
                 out = subprocess.run(
                     [ROSTOPIC, "echo", "-n", "1", topic],
-                    capture_output=True, text=True, env=self.env, timeout=_ATTEMPT_S,
+                    capture_output=True, text=True, env=self.env, timeout=scaled(_ATTEMPT_S),
                 )  # fmt: skip
             except subprocess.TimeoutExpired:
                 return None
@@ -213,14 +216,15 @@ class Ros2Workspace:
     def robomodel(self, *argv: str, timeout: float = TIMEOUT_S) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
             [*ROBOMODEL, *argv, "--domain-id", self.domain],
-            capture_output=True, text=True, env=self.env, cwd=self.root, timeout=timeout,
+            capture_output=True, text=True, env=self.env, cwd=self.root, timeout=scaled(timeout),
         )  # fmt: skip
 
     def robomodel_plain(self, *argv: str) -> subprocess.CompletedProcess[str]:
         """A verb that takes no bus options (``check``, ``xacro``), from the workspace's root."""
         return subprocess.run(
             [*ROBOMODEL, *argv],
-            capture_output=True, text=True, env=self.env, cwd=self.root, timeout=TIMEOUT_S,
+            capture_output=True, text=True, env=self.env, cwd=self.root,
+            timeout=scaled(TIMEOUT_S),
         )  # fmt: skip
 
     def start(self, log: Path, *argv: str) -> subprocess.Popen[str]:
@@ -260,7 +264,8 @@ class Ros2Workspace:
         def once() -> Any:
             ended = [p.args for p in self.procs if p.poll() is not None]
             assert not ended, f"ended before {topic} had a message: {ended}"
-            out = self.robomodel("topic", "echo", topic, "--once", "--timeout", str(_ATTEMPT_S))
+            attempt_s = f"{scaled(_ATTEMPT_S):.1f}"
+            out = self.robomodel("topic", "echo", topic, "--once", "--timeout", attempt_s)
             return yaml.safe_load(out.stdout.split("---")[0]) if out.returncode == 0 else None
 
         return until(once, f"robomodel topic echo {topic}", timeout_s)
@@ -271,7 +276,7 @@ class Ros2Workspace:
                 with contextlib.suppress(OSError):
                     os.killpg(proc.pid, 2)
                 try:
-                    proc.wait(20)
+                    proc.wait(scaled(20))
                 except subprocess.TimeoutExpired:
                     os.killpg(proc.pid, 9)
                     proc.wait()

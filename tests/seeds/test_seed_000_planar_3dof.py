@@ -33,6 +33,7 @@ from tests.seeds.conftest import (
     until,
     write_tree,
 )
+from tests.timing import scaled
 
 # --- the seed's files -----------------------------------------------------------------------
 
@@ -310,7 +311,9 @@ def test_display_launch_publishes_state_and_tf(
     nodes = graph.tool(ROSNODE, "list").stdout.split()
     # the viewer stands for rviz: headless, there is none
     assert {"/joint_state_publisher", "/robot_state_publisher"} <= set(nodes)
-    tf = graph.tool(*ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", "60")
+    tf = graph.tool(
+        *ROBOMODEL, "tf", "base_link", "gripper", "--once", "--timeout", f"{scaled(60):.1f}"
+    )
     assert tf.returncode == 0, tf.stderr
     assert "[1.000, 0.000, 0.000]" in tf.stdout
 
@@ -606,4 +609,4 @@ def test_ctrl_c_ends_the_launches(graph: SeedRos1, tmp_path: Path) -> None:
     _rrbot_two_terminals(graph, tmp_path)
     for proc in reversed(graph.procs):
         proc.send_signal(signal.SIGINT)
-        assert proc.wait(60) is not None
+        assert proc.wait(scaled(60)) is not None

@@ -28,6 +28,7 @@ from tests.seeds.conftest import (
     until,
     write_tree,
 )
+from tests.timing import scaled
 
 # typo fixed: the seed puts the blog's caption comment ("<!-- ur_gazebo.launch 加载Gazebo 世界和
 # 机器人模型 -->") before the <?xml?> declaration, which XML allows only first; the caption is
@@ -258,7 +259,7 @@ def test_ur_meshes_resolve_without_setup(tmp_path: Path) -> None:
     urdf = tmp_path / "ur5_base.urdf"
     urdf.write_text(_SEED_BASE_LINK)
     run = subprocess.run(
-        [*ROBOMODEL, "check", str(urdf)], capture_output=True, text=True, timeout=60
+        [*ROBOMODEL, "check", str(urdf)], capture_output=True, text=True, timeout=scaled(60)
     )
     assert run.returncode == 0, run.stderr
     assert "robot name is: ur5" in run.stdout

@@ -28,6 +28,7 @@ from tests.seeds.conftest import (
     until,
     write_tree,
 )
+from tests.timing import scaled
 
 # Step 4's simplebot.urdf.xacro as the seed prints it (its listing starts inside a comment).
 SEED_XACRO = """-->
@@ -392,7 +393,9 @@ def test_view_urdf_launch_publishes_the_wheels(
     )  # fmt: skip
     states = ros1_graph.echo("/joint_states")
     assert sorted(states["name"]) == ["left_wheel_joint", "right_wheel_joint"]
-    tf = ros1_graph.tool(*ROBOMODEL, "tf", "base_link", "left_wheel", "--once", "--timeout", "60")
+    tf = ros1_graph.tool(
+        *ROBOMODEL, "tf", "base_link", "left_wheel", "--once", "--timeout", f"{scaled(60):.1f}"
+    )
     assert tf.returncode == 0 and "[0.350, 0.125, 0.000]" in tf.stdout, tf.stdout + tf.stderr
 
 
@@ -450,7 +453,9 @@ def test_the_robot_drives_on_cmd_vel_and_odom_follows(
 
     until(lambda: odom_x() > 0.2, "odometry x past 0.2 m")
     assert joint_position(ros1_graph.echo("/joint_states"), "left_wheel_joint") > 1.0
-    tf = ros1_graph.tool(*ROBOMODEL, "tf", "odom", "base_link", "--once", "--timeout", "60")
+    tf = ros1_graph.tool(
+        *ROBOMODEL, "tf", "odom", "base_link", "--once", "--timeout", f"{scaled(60):.1f}"
+    )
     assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
 
 

@@ -24,6 +24,7 @@ from tests.seeds.conftest import (
     until,
     write_tree,
 )
+from tests.timing import scaled
 
 PKG = "urdf_cpp_demo"
 INSTALLED = ("launch", "urdf", "config", "worlds")  # install(DIRECTORY launch ...) and friends
@@ -324,7 +325,7 @@ def test_visualize_launch_publishes_tf(ros2_ws: Ros2Workspace, tmp_path: Path) -
         log.read_text()
     )
     assert ros2_ws.echo("/joint_states")["name"] == ["joint1"]
-    tf = ros2_ws.robomodel("tf", "base_link", "link1", "--once", "--timeout", "60")
+    tf = ros2_ws.robomodel("tf", "base_link", "link1", "--once", "--timeout", f"{scaled(60):.1f}")
     assert tf.returncode == 0 and "[0.000, 0.000, 1.000]" in tf.stdout, tf.stdout + tf.stderr
 
 

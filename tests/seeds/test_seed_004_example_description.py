@@ -22,6 +22,7 @@ from tests.seeds.conftest import (
     package_xml,
     write_tree,
 )
+from tests.timing import scaled
 
 PKG = "example_description"
 
@@ -213,7 +214,7 @@ def test_one_robot_in_a_namespace(ros2_ws: Ros2Workspace, tmp_path: Path) -> Non
     ros2_ws.wait_for_topics("/r1/robot_description")  # the launch's nodes are on the graph
     states = ros2_ws.echo("/r1/joint_states", timeout_s=LINE_TIMEOUT_S)
     assert joint_position(states, "joint_1") == 0.0
-    tf = ros2_ws.robomodel("tf", "r1/base", "r1/link_1", "--once", "--timeout", "30")
+    tf = ros2_ws.robomodel("tf", "r1/base", "r1/link_1", "--once", "--timeout", f"{scaled(30):.1f}")
     assert tf.returncode == 0 and "[0.000, 0.000, 0.200]" in tf.stdout, tf.stdout + tf.stderr
 
 
@@ -225,5 +226,7 @@ def test_two_robots_with_frame_prefixes(ros2_ws: Ros2Workspace, tmp_path: Path) 
     for name in ("r1", "r2"):
         states = ros2_ws.echo(f"/{name}/joint_states", timeout_s=LINE_TIMEOUT_S)
         assert joint_position(states, "joint_1") == 0.0
-        tf = ros2_ws.robomodel("tf", f"{name}/base", f"{name}/link_1", "--once", "--timeout", "30")
+        tf = ros2_ws.robomodel(
+            "tf", f"{name}/base", f"{name}/link_1", "--once", "--timeout", f"{scaled(30):.1f}"
+        )
         assert tf.returncode == 0 and "[0.000, 0.000, 0.200]" in tf.stdout, tf.stderr

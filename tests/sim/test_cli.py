@@ -108,7 +108,7 @@ def test_paused_single_step_and_services_from_another_process() -> None:
         )
 
     def clock_s() -> float:
-        echo = run("topic", "echo", "/clock", "--once", "--timeout", "10")
+        echo = run("topic", "echo", "/clock", "--once", "--timeout", f"{scaled(10):.1f}")
         assert echo.returncode == 0, echo.stderr
         sec = int(echo.stdout.split("sec: ")[1].split()[0])
         nanosec = int(echo.stdout.split("nanosec: ")[1].split()[0])
@@ -126,7 +126,7 @@ def test_paused_single_step_and_services_from_another_process() -> None:
         assert run("service", "call", "/gazebo/step", step % 250).returncode == 0
         assert clock_s() == pytest.approx(0.25, abs=1e-6)  # exactly 250 steps of 1 ms
         assert clock_s() == pytest.approx(0.25, abs=1e-6)  # and still paused
-        tf = run("topic", "echo", "/tf_static", "--once", "--timeout", "10")
+        tf = run("topic", "echo", "/tf_static", "--once", "--timeout", f"{scaled(10):.1f}")
         assert "left_base_link" in tf.stdout  # prefix:=left_ reached the xacro
         assert run("service", "call", "/gazebo/unpause_physics").returncode == 0
         deadline = time.monotonic() + scaled(30)
@@ -161,12 +161,12 @@ def test_prefix_runs_through_the_simulator_state_publisher_and_tf() -> None:
     )  # fmt: skip
     try:
         echo = subprocess.run(
-            [*cli, "tf", "world", "r1_link3", "--once", "--timeout", "20", *bus],
+            [*cli, "tf", "world", "r1_link3", "--once", "--timeout", f"{scaled(20):.1f}", *bus],
             capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
         assert echo.returncode == 0, echo.stderr
         assert "Translation: [" in echo.stdout
-        unprefixed = subprocess.run(
+        unprefixed = subprocess.run(  # a lookup expected to time out: its 2 s is not scaled
             [*cli, "tf", "world", "link3", "--once", "--timeout", "2", *bus],
             capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
@@ -268,7 +268,7 @@ def test_two_mobile_robots_are_one_connected_tf_tree() -> None:
     try:
         for frame, y in (("r1_left_wheel", 0.0), ("r2_left_wheel", 2.0)):
             echo = subprocess.run(
-                [*cli, "tf", "world", frame, "--once", "--timeout", "20", *bus],
+                [*cli, "tf", "world", frame, "--once", "--timeout", f"{scaled(20):.1f}", *bus],
                 capture_output=True, text=True, timeout=scaled(60),
             )  # fmt: skip
             assert echo.returncode == 0, echo.stderr[-2000:]

@@ -18,6 +18,7 @@ from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion, Twist, 
 from robomodel.sim import default_world
 from robomodel.sim.server import SimServer
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 
 pytest.importorskip("mujoco")
 
@@ -40,7 +41,7 @@ def _server(ros_version: int) -> tuple[SimServer, Context]:
 
 
 def _call(context: Context, name: str, srv: object, request: object) -> object:
-    return context.call_service(name, srv, request, timeout_s=5.0)  # type: ignore[arg-type]
+    return context.call_service(name, srv, request, timeout_s=scaled(5.0))  # type: ignore[arg-type]
 
 
 def test_model_and_link_states_are_gazebo_s() -> None:

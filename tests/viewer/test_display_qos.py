@@ -127,7 +127,7 @@ def test_the_zenoh_bus_sees_and_applies_the_display_s_qos(
     manager.update()
 
     def subscribers() -> list[QoSProfile]:
-        info = peer.graph(timeout_s=1.0).topics.get("/latched")
+        info = peer.graph(timeout_s=1.0).topics.get("/latched")  # one probe: _until retries it
         return sorted((e.qos for e in info.subscribers), key=lambda q: q.depth) if info else []
 
     _until(lambda: len(subscribers()) == 2, "the two subscriptions in the graph", viewer)

@@ -77,7 +77,7 @@ def test_display_launch_sliders_move_the_robot(page: Any) -> None:
         save_shot(page, "launch_display_xacro_slider")
         # robot_state_publisher (state_publisher) follows the sliders: another process sees it
         tf = subprocess.run(
-            [*ROBOMODEL, "tf", "link_1", "link_2", "--once", "--timeout", "20",
+            [*ROBOMODEL, "tf", "link_1", "link_2", "--once", "--timeout", f"{scaled(20):.1f}",
              "--domain-id", domain],
             capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip

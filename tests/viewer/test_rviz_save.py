@@ -18,6 +18,7 @@ from robomodel.viewer.rviz_config import read_rviz_file
 from robomodel.viewer.rviz_document import open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.timing import scaled
 from tests.viewer.conftest import wait_for
 from tests.viewer.test_tools_inprocess import on_loop
 
@@ -112,7 +113,7 @@ def test_a_launch_whose_rviz_config_does_not_exist_keeps_running(tmp_path: Path)
     result = subprocess.run(
         [*ROBOMODEL, "launch", "gripper_description", "display.launch", "--headless",
          "--bus", "inproc", "--duration", "3"],
-        capture_output=True, text=True, env=env, timeout=120,
+        capture_output=True, text=True, env=env, timeout=scaled(120),
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     warnings = [line for line in result.stderr.splitlines() if "urdf.rviz" in line]
@@ -129,7 +130,7 @@ def test_a_launch_whose_rviz_config_is_malformed_says_where(tmp_path: Path) -> N
     result = subprocess.run(
         [*ROBOMODEL, "launch", "gripper_description", "display.launch", "--headless",
          "--bus", "inproc", "--duration", "3"],
-        capture_output=True, text=True, env=env, timeout=120,
+        capture_output=True, text=True, env=env, timeout=scaled(120),
     )  # fmt: skip
     [line] = [x for x in result.stderr.splitlines() if "urdf.rviz" in x]
     assert line == (
@@ -150,7 +151,7 @@ def test_the_readme_command_opens_a_missing_config_with_one_warning(tmp_path: Pa
     argv = [str(ROOT / a) if a.startswith("examples/") else a for a in shlex.split(line)[2:]]
     result = subprocess.run(
         [*ROBOMODEL, "view", *argv, "--no-browser", "--port", "0", "--duration", "3"],
-        capture_output=True, text=True, cwd=tmp_path, timeout=120,
+        capture_output=True, text=True, cwd=tmp_path, timeout=scaled(120),
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert "serving http://" in result.stdout
@@ -165,7 +166,7 @@ def test_the_readme_command_opens_a_missing_config_with_one_warning(tmp_path: Pa
     argv[argv.index("urdf.rviz")] = str(bad)
     result = subprocess.run(
         [*ROBOMODEL, "view", *argv, "--no-browser", "--port", "0", "--duration", "3"],
-        capture_output=True, text=True, cwd=tmp_path, timeout=120,
+        capture_output=True, text=True, cwd=tmp_path, timeout=scaled(120),
     )  # fmt: skip
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert result.stderr.strip().endswith(
@@ -185,7 +186,7 @@ def test_a_ros2_launch_s_rviz2_with_a_missing_config_warns_once_and_runs(tmp_pat
     )
     result = subprocess.run(
         [*ROBOMODEL, "launch", str(launch), "--headless", "--bus", "inproc", "--duration", "2"],
-        capture_output=True, text=True, timeout=120,
+        capture_output=True, text=True, timeout=scaled(120),
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     warnings = [x for x in result.stderr.splitlines() if "does not exist" in x]

@@ -13,6 +13,7 @@ import pytest
 
 from robomodel.viewer.rviz_config import read_rviz_file
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 from tests.viewer.conftest import (
     domain_id,
     gui_row,
@@ -70,7 +71,7 @@ def test_save_config_writes_the_missing_rviz_file_of_display_launch(
         other = tmp_path / "copy" / "view_urdf.rviz"
         page.get_by_role("button", name="Save Config As", exact=True).click()
         box = gui_row(page, "Path").locator("input:not([type=hidden])").first
-        box.wait_for(timeout=20000)
+        box.wait_for(timeout=scaled(20) * 1000)  # playwright's timeouts are in ms
         box.fill(str(other))
         page.get_by_role("button", name="Save", exact=True).click()
         wait_for(other.exists, what=f"{other} written")
@@ -78,4 +79,4 @@ def test_save_config_writes_the_missing_rviz_file_of_display_launch(
         assert launch.poll() is None
     finally:
         launch.terminate()
-        launch.wait(timeout=30)
+        launch.wait(timeout=scaled(30))

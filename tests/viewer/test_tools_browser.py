@@ -187,7 +187,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         # /tf_static) and odom -> base_link connect for a late joiner, as for the viewer.
         tf = subprocess.run(
             [*ROBOMODEL, "tf", "world", "base_link", "--once",
-             "--timeout", "20", "--domain-id", domain],
+             "--timeout", f"{scaled(20):.1f}", "--domain-id", domain],
             capture_output=True, text=True, timeout=scaled(60),
         )  # fmt: skip
         assert tf.returncode == 0, tf.stderr[-2000:]
