@@ -247,7 +247,12 @@ def toggle_checkbox(page: Any, label: str, folder: str = "RobotModel") -> None:
     if box.count() == 0:
         page.get_by_text(folder, exact=True).filter(visible=True).first.click()
     box.first.wait_for()
-    checkbox = gui_row(page, label).locator("input[type=checkbox]").filter(visible=True).first
+    flip_checkbox(page, gui_row(page, label).locator("input[type=checkbox]").filter(visible=True).first, label)  # fmt: skip
+
+
+def flip_checkbox(page: Any, checkbox: Any, label: str) -> None:
+    """Send a DOM click to ``checkbox`` (a locator) and wait until the page shows it flipped
+    (see :func:`toggle_checkbox` for why not the pointer)."""
     was = checkbox.is_checked()
     checkbox.dispatch_event("click")
 

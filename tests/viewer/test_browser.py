@@ -22,6 +22,7 @@ from tests.viewer.conftest import (
     changed_fraction,
     changed_view,
     domain_id,
+    flip_checkbox,
     gui_row,
     open_viewer,
     save_shot,
@@ -202,8 +203,13 @@ def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], 
     # one RobotModel display per robot (each on its namespace's description topic)
     page.get_by_text("RobotModel", exact=True).filter(visible=True).first.click()
     page.get_by_text("RobotModel (2)", exact=True).filter(visible=True).first.click()
-    page.locator("label:text-is('Visual Enabled')").nth(0).click()
-    page.locator("label:text-is('Visual Enabled')").nth(1).click()
+    for k in (0, 1):
+        row = (
+            page.locator("label:text-is('Visual Enabled')")
+            .nth(k)
+            .locator("xpath=ancestor::div[.//input[not(@type='hidden')]][1]")
+        )
+        flip_checkbox(page, row.locator("input[type=checkbox]").first, f"Visual Enabled ({k + 1})")
     # robot1 at the fixed frame (centre), robot2 beside it (to the left): both are drawn.
     half = both.shape[1] // 2
 
