@@ -134,6 +134,36 @@ def _domain_block() -> tuple[int, int]:
     return base, int(count_text)
 
 
+_PORTS = itertools.count()
+_PORT_LOW, _PORT_LANES, _PORTS_PER_LANE = 12000, 256, 80  # 12000..32479: below Linux's 32768
+
+
+def free_port() -> int:
+    """A free TCP port on 127.0.0.1 for a server a test starts itself (a roscore, a master,
+    a router), that no other process is handed meanwhile.
+
+    A port from ``bind(0)`` comes from the kernel's ephemeral range (32768-60999), which every
+    client socket and every node's XML-RPC server draws from too: between the probe and the
+    server's own bind, a ROS node of the other xdist worker took one (run 15 under load: the
+    test's launch found a node where its master should start, "setParam is not supported").
+    These ports lie below that range, in a lane per xdist worker and per domain block (so two
+    runs with different ``ROBOMODEL_TEST_DOMAIN_BASE`` differ too), and are checked free."""
+    import socket
+
+    base, _count = _domain_block()
+    worker = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw") or 0)
+    lane = (base + worker) % _PORT_LANES
+    for _ in range(_PORTS_PER_LANE):
+        port = _PORT_LOW + lane * _PORTS_PER_LANE + next(_PORTS) % _PORTS_PER_LANE
+        with socket.socket() as probe:
+            try:
+                probe.bind(("127.0.0.1", port))
+            except OSError:
+                continue  # in use (or lingering): the next one
+            return port
+    raise RuntimeError(f"no free port in lane {lane} ({_PORTS_PER_LANE} tried)")
+
+
 def past_the_bus_line(stream: Any) -> str:
     """The first line a long-running verb writes after the line naming the graph it joined
     (``robomodel sim: bus: zenoh ...``), which every such verb prints first."""

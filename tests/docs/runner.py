@@ -35,12 +35,13 @@ from __future__ import annotations
 import os
 import re
 import signal
-import socket
 import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from tests.conftest import free_port
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent
@@ -132,12 +133,6 @@ def output_matches(expected: str, actual: str, *, any_numbers: bool = False) -> 
     pattern = "".join(parts)
     text = "\n".join(line.rstrip() for line in actual.rstrip("\n").splitlines()) + "\n"
     return re.fullmatch(pattern, text, flags=re.S) is not None
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 @dataclass

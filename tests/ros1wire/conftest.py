@@ -8,7 +8,6 @@ from __future__ import annotations
 import os
 import shutil
 import signal
-import socket
 import subprocess
 import time
 from collections.abc import Callable, Iterator
@@ -17,16 +16,10 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLES, ROBOMODEL
+from tests.conftest import EXAMPLES, ROBOMODEL, free_port
 from tests.timing import scaled
 
 ROSCORE = "/usr/bin/roscore"
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 @dataclass

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import logging
 import os
-import socket
 import subprocess
 import sys
 import textwrap
@@ -16,7 +15,7 @@ from typing import Any
 
 import pytest
 
-from tests.conftest import ROBOMODEL, ROOT, ToolResult, unique_domain
+from tests.conftest import ROBOMODEL, ROOT, ToolResult, free_port, unique_domain
 from tests.timing import scaled
 
 pytest.importorskip("zenoh")
@@ -159,12 +158,6 @@ def _rss_mib(pid: int) -> float:
     raise AssertionError("no VmRSS")
 
 
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
 FLOODER = textwrap.dedent(
     """
     import sys, zenoh
@@ -185,7 +178,7 @@ FLOODER = textwrap.dedent(
 def test_the_router_gives_back_the_memory_of_tokens_that_went() -> None:
     """A router's memory grows with a peer's 8,000 tokens (Zenoh's routing tables) and goes
     back near where it was once they are gone (it kept 75 MiB of a flood before)."""
-    endpoint = f"tcp/127.0.0.1:{_free_port()}"
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
     env = {**_cli_env(), "ZENOH_CONFIG_OVERRIDE": ""}
     router = subprocess.Popen(
         [*ROBOMODEL, "router", "--listen", endpoint],

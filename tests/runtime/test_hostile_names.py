@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from robomodel._escape import escape_name, escape_names
-from tests.conftest import ROBOMODEL, ROOT, unique_domain
+from tests.conftest import ROBOMODEL, ROOT, free_port, unique_domain
 from tests.timing import scaled
 
 # Retitle the terminal, then turn its text red.
@@ -84,15 +84,9 @@ def test_hostile_zenoh_liveliness_names_are_escaped_in_listings() -> None:
         _assert_no_raw_controls(result)
 
 
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
 @pytest.fixture
 def ros1_master(tmp_path: Path) -> Iterator[str]:
-    port = _free_port()
+    port = free_port()
     env = {**_cli_env(), "ROS_HOME": str(tmp_path)}
     # Debian's rosmaster: it registers names holding controls, which robomodel's own master
     # refuses (issue 29.13), so that what a listing prints of them can be seen

@@ -29,14 +29,8 @@ from robomodel.runtime.transport._zenoh_router import (
 )
 from robomodel.runtime.transport._zenoh_session import ZenohConfigError, parse_override
 from robomodel.runtime.transport.rmw_zenoh import EntityKind
-from tests.conftest import ROBOMODEL, unique_domain
+from tests.conftest import ROBOMODEL, free_port, unique_domain
 from tests.timing import scaled
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 def _use_router(monkeypatch: pytest.MonkeyPatch, port: int) -> None:
@@ -69,7 +63,7 @@ def _wait_linked(a: Context, b: Context, kind: str) -> None:
 def private_router(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Iterator[str]:
     """A router endpoint of this test's own; the router a session starts there is stopped at
     teardown (it would outlive the test otherwise, as it outlives a session)."""
-    endpoint = f"tcp/localhost:{_free_port()}"
+    endpoint = f"tcp/localhost:{free_port()}"
     monkeypatch.setenv("XDG_RUNTIME_DIR", str(tmp_path))  # its record and log
     monkeypatch.setenv("ZENOH_CONFIG_OVERRIDE", f'connect/endpoints=["{endpoint}"]')
     yield endpoint
@@ -134,7 +128,7 @@ def test_peers_keep_talking_when_the_router_stops(private_router: str) -> None:
 
 
 def test_the_router_ends_when_no_session_uses_it() -> None:
-    endpoint = f"tcp/127.0.0.1:{_free_port()}"
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
     router = subprocess.Popen(
         [*ROBOMODEL, "router", "--listen", endpoint, "--idle-exit", "1"],
         stderr=subprocess.PIPE, text=True,
@@ -172,7 +166,7 @@ def test_check_attempts_are_read_as_rmw_zenoh_reads_them(
 
 def test_check_attempts_zero_waits_for_a_router() -> None:
     """0: the process waits for a router (and starts none of its own) until one comes."""
-    endpoint = f"tcp/localhost:{_free_port()}"
+    endpoint = f"tcp/localhost:{free_port()}"
     env = {**os.environ, "ZENOH_ROUTER_CHECK_ATTEMPTS": "0",
            "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["{endpoint}"]'}  # fmt: skip
     waiting = subprocess.Popen(
@@ -196,7 +190,7 @@ def test_check_attempts_zero_waits_for_a_router() -> None:
 
 
 def test_robomodel_router_serves_peers(monkeypatch: pytest.MonkeyPatch) -> None:
-    port = _free_port()
+    port = free_port()
     router = subprocess.Popen(
         [*ROBOMODEL, "router", "--listen", f"tcp/127.0.0.1:{port}"],
         stderr=subprocess.PIPE,
@@ -215,7 +209,7 @@ def test_robomodel_router_serves_peers(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_check_attempts_below_zero_skip_the_router(monkeypatch: pytest.MonkeyPatch) -> None:
-    port = _free_port()
+    port = free_port()
     _use_router(monkeypatch, port)
     monkeypatch.setenv("ZENOH_ROUTER_CHECK_ATTEMPTS", "-1")
     with Context("zenoh", domain_id=int(unique_domain())) as ctx:

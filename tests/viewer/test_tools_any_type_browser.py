@@ -18,7 +18,7 @@ import pytest
 from robomodel.runtime.msg import _resolver, get_message_type
 from robomodel.runtime.node import Node
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, free_port, unique_domain
 from tests.timing import scaled
 from tests.viewer.conftest import gui_row, open_viewer, save_shot, type_into, wait_for
 from tests.viewer.test_tools_inprocess import on_loop
@@ -35,14 +35,6 @@ def _package(root: Path) -> Path:
     )
     (package / "msg" / "Reading.msg").write_text("float64 value\nint16[3] raw\n")
     return root
-
-
-def _free_port() -> int:
-    import socket
-
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def _answers(uri: str) -> bool:
@@ -62,7 +54,7 @@ def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
     if request.param == "zenoh":
         bus["domain_id"] = int(unique_domain())
     else:
-        port = _free_port()
+        port = free_port()
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS")}
         master = subprocess.Popen(
             [*ROBOMODEL, "master", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
