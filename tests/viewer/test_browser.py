@@ -204,11 +204,7 @@ def test_two_prefixed_robots_in_one_scene(viewer: Callable[..., ViewerProcess], 
     page.get_by_text("RobotModel", exact=True).filter(visible=True).first.click()
     page.get_by_text("RobotModel (2)", exact=True).filter(visible=True).first.click()
     for k in (0, 1):
-        row = (
-            page.locator("label:text-is('Visual Enabled')")
-            .nth(k)
-            .locator("xpath=ancestor::div[.//input[not(@type='hidden')]][1]")
-        )
+        row = gui_row(page, "Visual Enabled").nth(k)
         flip_checkbox(page, row.locator("input[type=checkbox]").first, f"Visual Enabled ({k + 1})")
     # robot1 at the fixed frame (centre), robot2 beside it (to the left): both are drawn.
     half = both.shape[1] // 2
