@@ -65,12 +65,17 @@ class Executor:
 
     def __init__(self) -> None:
         # Producers append (atomic under the GIL) and ring the bell only when it is not rung
-        # already. The spinning thread waits on the bell, never in queue.SimpleQueue.get with a
-        # timeout: on CPython 3.11/3.12 that get blocks forever once a signal handler (Ctrl-C's)
-        # runs past its deadline (tests/runtime/test_executor_signals.py), where Event.wait
-        # (lock.acquire) checks the deadline again.
+        # already. The bell is a bare lock, held while silent: ringing releases it, and the
+        # spinning thread's acquire both waits for a ring and silences it again. That is
+        # threading.Event without its Condition (a waiter list, a lock per wait, notify_all),
+        # which cost ~10 us a message at 1 kHz (BENCHMARKS.md, issue 30). The spinning thread
+        # waits in lock.acquire, never in queue.SimpleQueue.get with a timeout: on CPython
+        # 3.11/3.12 that get blocks forever once a signal handler (Ctrl-C's) runs past its
+        # deadline (tests/runtime/test_executor_signals.py), where lock.acquire checks the
+        # deadline again.
         self._queue: collections.deque[Callable[[], None]] = collections.deque()
-        self._bell = threading.Event()
+        self._bell = threading.Lock()
+        self._bell.acquire()  # silent
         self._timers: list[Timer] = []
         self._stopped = False
         self.spinner: int | None = None  # the ident of the thread that spins, once one did
@@ -78,8 +83,11 @@ class Executor:
     # -- producers (any thread) ----------------------------------------------------------
     def post(self, callback: Callable[[], None]) -> None:
         self._queue.append(callback)
-        if not self._bell.is_set():  # a stale True is harmless: the waiter clears, then looks
-            self._bell.set()
+        if self._bell.locked():  # a stale answer is harmless: the waiter silences, then looks
+            try:  # noqa: SIM105 (contextlib.suppress costs a Python-level __exit__ per post)
+                self._bell.release()
+            except RuntimeError:  # another producer rang it in between
+                pass
 
     def answer(
         self,
@@ -162,9 +170,9 @@ class Executor:
         live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
         if live:
             wait = min(wait, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
-        self._bell.clear()  # then look: a post after this rings the bell again
+        self._bell.acquire(blocking=False)  # silence, then look: a later post rings again
         if not self._queue and wait > 0:
-            self._bell.wait(wait)
+            self._bell.acquire(timeout=wait)
         return self.run_pending() + self.run_due_timers()
 
     def spin(

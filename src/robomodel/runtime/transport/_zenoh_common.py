@@ -93,7 +93,8 @@ def passing_interrupts(callback: Any) -> Any:
         except KeyboardInterrupt as exc:
             defer_signal(_signal_of(exc))
         finally:
-            _redeliver()
+            if _deferred:
+                _redeliver()
 
     return run
 

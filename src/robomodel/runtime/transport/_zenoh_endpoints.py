@@ -149,10 +149,10 @@ class ZenohSubscription(SubscriptionHandle):
         # the oldest (rmw_zenoh's message queue) instead of falling further behind. KEEP_ALL
         # keeps every one (SubscriptionData::add_new_message, rmw_subscription_data.cpp).
         keep_all = endpoint.qos.history is History.KEEP_ALL
+        # Zenoh's thread appends and the executor pops, each atomic under the GIL: no lock.
         self._pending: collections.deque[tuple[bytes, bytes, int]] = collections.deque(
             maxlen=None if keep_all else max(1, endpoint.qos.depth)
         )
-        self._pending_lock = threading.Lock()
         self._scheduled = False
         self.dropped = 0
         token = bus.entity_token(endpoint, EntityKind.SUBSCRIPTION, msg_type)
@@ -186,22 +186,24 @@ class ZenohSubscription(SubscriptionHandle):
         attached = sample.attachment  # each access builds a new ZBytes: read it once
         item = (sample.payload.to_bytes(), b"" if attached is None else attached.to_bytes(),
                 received_ns)  # fmt: skip
-        with self._pending_lock:
-            if len(self._pending) == self._pending.maxlen:
-                self.dropped += 1
-            self._pending.append(item)
-            if self._scheduled:
-                return
+        pending = self._pending
+        if len(pending) == pending.maxlen:  # the drain may pop one meanwhile: a count, no more
+            self.dropped += 1
+        pending.append(item)
+        if not self._scheduled:
             self._scheduled = True
-        self._bus.executor.post(self._drain)
+            self._bus.executor.post(self._drain)
 
     def _drain(self) -> None:
-        """On the executor: handle what is pending now; later arrivals get their own turn."""
-        with self._pending_lock:
-            batch = list(self._pending)
-            self._pending.clear()
-            self._scheduled = False
-        for payload, attachment, received_ns in batch:
+        """On the executor: handle what is pending now; later arrivals get their own turn.
+
+        The flag is lowered before the first pop: a sample appended after that schedules
+        another drain (at worst one that finds nothing), one appended before it is popped here.
+        """
+        self._scheduled = False
+        pending = self._pending
+        for _ in range(len(pending)):
+            payload, attachment, received_ns = pending.popleft()
             try:
                 self._handle(payload, attachment, received_ns)
             except Exception:  # one bad sample (or callback) never costs the others
