@@ -150,7 +150,7 @@ class ZenohSubscription(SubscriptionHandle):
         # keeps every one (SubscriptionData::add_new_message, rmw_subscription_data.cpp).
         keep_all = endpoint.qos.history is History.KEEP_ALL
         # Zenoh's thread appends and the executor pops, each atomic under the GIL: no lock.
-        self._pending: collections.deque[tuple[bytes, bytes, int]] = collections.deque(
+        self._pending: collections.deque[tuple[Any, int]] = collections.deque(
             maxlen=None if keep_all else max(1, endpoint.qos.depth)
         )
         self._scheduled = False
@@ -182,14 +182,13 @@ class ZenohSubscription(SubscriptionHandle):
         return self._sequences.lost
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
-        received_ns = time.time_ns()
-        attached = sample.attachment  # each access builds a new ZBytes: read it once
-        item = (sample.payload.to_bytes(), b"" if attached is None else attached.to_bytes(),
-                received_ns)  # fmt: skip
+        # Only queue the sample and ring: the executor's thread wakes meanwhile, and takes the
+        # GIL as soon as this returns. Reading the payload and attachment here would hold it
+        # back by as long (~10 us a message at 1 kHz, BENCHMARKS.md's issue 30 section).
         pending = self._pending
         if len(pending) == pending.maxlen:  # the drain may pop one meanwhile: a count, no more
             self.dropped += 1
-        pending.append(item)
+        pending.append((sample, time.time_ns()))
         if not self._scheduled:
             self._scheduled = True
             self._bus.executor.post(self._drain)
@@ -203,9 +202,11 @@ class ZenohSubscription(SubscriptionHandle):
         self._scheduled = False
         pending = self._pending
         for _ in range(len(pending)):
-            payload, attachment, received_ns = pending.popleft()
+            sample, received_ns = pending.popleft()
             try:
-                self._handle(payload, attachment, received_ns)
+                attached = sample.attachment  # each access builds a new ZBytes: read it once
+                attachment = b"" if attached is None else attached.to_bytes()
+                self._handle(sample.payload.to_bytes(), attachment, received_ns)
             except Exception:  # one bad sample (or callback) never costs the others
                 log.exception("error handling a sample on %s", self._endpoint.topic)
 
