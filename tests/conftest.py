@@ -245,6 +245,29 @@ def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., ToolResult]:
     return run
 
 
+def end_process(
+    proc: subprocess.Popen[Any],
+    sig: int = signal.SIGINT,
+    *,
+    timeout_s: float = 10.0,
+    group: bool = False,
+) -> int:
+    """End a process a test started: ``sig`` (to its process group with ``group``), a scaled
+    ``timeout_s`` to exit, then SIGKILL. Returns its exit code (negative: killed by a signal).
+    Nothing is done to one that has exited already."""
+    if proc.poll() is None:
+        send = (lambda s: os.killpg(proc.pid, s)) if group else proc.send_signal
+        with contextlib.suppress(ProcessLookupError):
+            send(sig)
+        try:
+            proc.wait(scaled(timeout_s))
+        except subprocess.TimeoutExpired:
+            with contextlib.suppress(ProcessLookupError):
+                send(signal.SIGKILL)
+            proc.wait()
+    return int(proc.returncode)
+
+
 def _children() -> dict[int, str]:
     """The live (not zombie) child processes of this process: pid -> command line."""
     me = str(os.getpid())

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from tests.conftest import ROBOMODEL, unique_domain
+from tests.conftest import ROBOMODEL, end_process, unique_domain
 from tests.timing import scaled
 
 TALKER = textwrap.dedent(
@@ -65,13 +65,7 @@ def run_cli(*args: str, timeout: float | None = None) -> subprocess.CompletedPro
 
 
 def stop(proc: subprocess.Popen[str], sig: int = signal.SIGTERM) -> None:
-    if proc.poll() is None:
-        proc.send_signal(sig)
-        try:
-            proc.wait(scaled(10))
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+    end_process(proc, sig)
 
 
 class Talker:

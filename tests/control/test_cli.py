@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import signal
 import subprocess
 import time
 from collections.abc import Callable, Iterator
@@ -11,7 +10,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from tests.conftest import EXAMPLES, ROBOMODEL, past_the_bus_line, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, end_process, past_the_bus_line, unique_domain
 from tests.timing import scaled
 
 RUNS = [
@@ -113,12 +112,7 @@ def rrbot_run() -> Iterator[str]:
     line = past_the_bus_line(proc.stderr)
     assert "controller manager" in line, line + proc.stderr.read()
     yield domain
-    proc.send_signal(signal.SIGINT)
-    try:
-        proc.wait(scaled(10))
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.wait()
+    end_process(proc)
 
 
 def _joint1(domain: str) -> float:
@@ -234,12 +228,7 @@ def test_seed_003_load_with_set_state_start_over_zenoh() -> None:
         assert _joint1(domain) == 1.0
         _lifecycle_verbs(domain, "joint1_position_controller")
     finally:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(scaled(10))
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+        end_process(proc)
 
 
 def test_controller_parameter_error_points_at_the_yaml(

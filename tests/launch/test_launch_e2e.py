@@ -5,6 +5,7 @@ checks them with rostopic in another terminal."""
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import time
 from collections.abc import Iterator
@@ -15,7 +16,7 @@ from typing import Any
 import pytest
 import yaml
 
-from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, end_process, unique_domain
 from tests.timing import scaled
 
 pytest.importorskip("zenoh")
@@ -38,12 +39,7 @@ def _launch(domain: str, *argv: str, log: Path) -> Iterator[subprocess.Popen[str
         try:
             yield proc
         finally:
-            proc.terminate()
-            try:
-                proc.wait(scaled(20))
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+            end_process(proc, signal.SIGTERM, timeout_s=20)
 
 
 def _wait_for_line(log: Path, text: str, proc: subprocess.Popen[str], timeout_s: float) -> None:

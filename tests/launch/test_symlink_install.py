@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import time
 from pathlib import Path
@@ -21,7 +22,7 @@ import pytest
 
 from robomodel.description.packages import PackageIndex
 from robomodel.launch.ros2.loader import load_launch
-from tests.conftest import ROBOMODEL, unique_domain
+from tests.conftest import ROBOMODEL, end_process, unique_domain
 from tests.timing import scaled
 
 PKG = "ros2_control_demo_example_1"
@@ -152,12 +153,7 @@ def _launch_until(
                 time.sleep(0.2)
             return log.read_text()
         finally:
-            proc.terminate()
-            try:
-                proc.wait(scaled(20))
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+            end_process(proc, signal.SIGTERM, timeout_s=20)
 
 
 @pytest.mark.parametrize("symlink", [False, True], ids=["copied", "symlink-install"])

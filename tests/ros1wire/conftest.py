@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import os
 import shutil
-import signal
 import subprocess
 import time
 from collections.abc import Callable, Iterator
@@ -16,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLES, ROBOMODEL, free_port
+from tests.conftest import EXAMPLES, ROBOMODEL, end_process, free_port
 from tests.timing import scaled
 
 ROSCORE = "/usr/bin/roscore"
@@ -92,15 +91,7 @@ class Ros1:
         return proc
 
     def stop(self, proc: subprocess.Popen[str], timeout_s: float | None = None) -> int:
-        timeout_s = scaled(20) if timeout_s is None else timeout_s
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGINT)
-            try:
-                proc.wait(timeout_s)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
-        return int(proc.returncode)
+        return end_process(proc, timeout_s=20 if timeout_s is None else timeout_s, group=True)
 
     def close(self) -> None:
         for proc in reversed(self.procs):

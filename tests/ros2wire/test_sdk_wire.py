@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import os
-import signal
 import subprocess
 import time
 from collections.abc import Iterator
@@ -35,7 +34,7 @@ from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.service_msgs import ServiceEventInfo
 from robomodel.runtime.msg.std_srvs import SetBool, Trigger
 from robomodel.runtime.msg.typehash import type_hash
-from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, past_the_bus_line, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, end_process, past_the_bus_line, unique_domain
 from tests.ros2wire.msgtext import write_definitions
 from tests.timing import scale, scaled
 
@@ -106,8 +105,7 @@ def state_publisher() -> Iterator[str]:
     )
     assert proc.stderr is not None and "publishing robot" in past_the_bus_line(proc.stderr)
     yield domain
-    proc.send_signal(signal.SIGINT)
-    proc.wait(scaled(10))
+    end_process(proc)
 
 
 @pytest.fixture
@@ -121,8 +119,7 @@ def arm_control() -> Iterator[str]:
     )  # fmt: skip
     assert proc.stderr is not None and "controller manager" in past_the_bus_line(proc.stderr)
     yield domain
-    proc.send_signal(signal.SIGINT)
-    proc.wait(scaled(10))
+    end_process(proc)
 
 
 def test_type_hashes_agree_with_the_sdk_s(definitions: Path) -> None:

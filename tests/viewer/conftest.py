@@ -11,7 +11,6 @@ import io
 import os
 import re
 import shutil
-import signal
 import subprocess
 import time
 from collections.abc import Callable, Iterator
@@ -21,7 +20,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.conftest import ROBOMODEL, unique_domain
+from tests.conftest import ROBOMODEL, end_process, unique_domain
 from tests.timing import scaled
 
 CHROMIUM_ARGS = [
@@ -84,13 +83,7 @@ class ViewerProcess:
         self.stderr = ""
 
     def stop(self) -> None:
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(timeout=scaled(10))
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        end_process(self.proc)
         assert self.proc.stderr is not None
         self.stderr = self.proc.stderr.read()
 

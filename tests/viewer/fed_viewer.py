@@ -12,8 +12,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from tests.conftest import unique_domain
-from tests.timing import scaled
+from tests.conftest import end_process, unique_domain
 
 if TYPE_CHECKING:
     from robomodel.viewer import Viewer
@@ -50,12 +49,7 @@ def viewer_fed_by(module: str, tmp_path: Path, *args: str) -> Iterator[Viewer]:
         finally:
             viewer.close()
     finally:
-        publisher.send_signal(signal.SIGINT)
-        try:
-            publisher.wait(scaled(10))
-        except subprocess.TimeoutExpired:
-            publisher.kill()
-            publisher.wait()
+        end_process(publisher)
 
 
 def publish_until_stopped(context: Any, node: Any, publish: Callable[[], None]) -> None:

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import itertools
 import os
-import signal
 import subprocess
 from collections.abc import Iterator
 from pathlib import Path
@@ -18,7 +17,7 @@ import pytest
 from robomodel.runtime.msg import _resolver, get_message_type
 from robomodel.runtime.node import Node
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-from tests.conftest import EXAMPLES, ROBOMODEL, free_port, unique_domain
+from tests.conftest import EXAMPLES, ROBOMODEL, end_process, free_port, unique_domain
 from tests.timing import scaled
 from tests.viewer.conftest import gui_row, open_viewer, save_shot, type_into, wait_for
 from tests.viewer.test_tools_inprocess import on_loop
@@ -71,8 +70,7 @@ def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
         viewer.close()
         _resolver.configure(package_paths=())
         if master is not None:
-            os.killpg(master.pid, signal.SIGINT)
-            master.wait(scaled(10))
+            end_process(master, group=True)
 
 
 def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, page: Any) -> None:
