@@ -8,6 +8,7 @@ from typing import Any
 
 from robomodel.runtime.msg._cdr_strings import CDRError, decode_strings, encode_strings
 from robomodel.runtime.msg._schema import Spec
+from robomodel.runtime.msg._source_gen import SourceGen
 
 __all__ = ["Gen", "Run", "add_prim", "after_prim_seq", "flush", "wire"]
 
@@ -35,32 +36,20 @@ def _fixed(values: Any, size: int) -> list[Any]:
 # -- code generation -------------------------------------------------------------------------
 
 
-class Gen:
-    """Accumulates generated source lines and the names they refer to."""
+class Gen(SourceGen):
+    """Accumulates a CDR codec's source lines and the names they refer to."""
 
     def __init__(self) -> None:
-        self.lines: list[str] = []
-        self.env: dict[str, Any] = {
-            "struct": struct,
-            "CDRError": CDRError,
-            "_encode_strings": encode_strings,
-            "_decode_strings": decode_strings,
-            "_count": _count,
-            "_fixed": _fixed,
-        }
-        self._n = 0
-
-    def name(self, prefix: str) -> str:
-        self._n += 1
-        return f"{prefix}{self._n}"
-
-    def ref(self, obj: Any, prefix: str) -> str:
-        name = self.name(prefix)
-        self.env[name] = obj
-        return name
-
-    def emit(self, depth: int, line: str) -> None:
-        self.lines.append("    " * depth + line)
+        super().__init__(
+            {
+                "struct": struct,
+                "CDRError": CDRError,
+                "_encode_strings": encode_strings,
+                "_decode_strings": decode_strings,
+                "_count": _count,
+                "_fixed": _fixed,
+            }
+        )
 
 
 class Run:

@@ -22,6 +22,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
+from robomodel.runtime.msg._source_gen import SourceGen
 
 __all__ = ["Field", "Ros1CodecError", "make_codec"]
 
@@ -71,31 +72,19 @@ def _fixed(values: Any, size: int) -> list[Any]:
     return items
 
 
-class _Gen:
+class _Gen(SourceGen):
     def __init__(self, defs: Fielddefs, classes: Callable[[str], Any], special: Lookup) -> None:
+        super().__init__(
+            {
+                "struct": struct, "Ros1CodecError": Ros1CodecError, "_count": _count,
+                "_fixed": _fixed, "NS": types.SimpleNamespace,
+            }
+        )  # fmt: skip
         self.defs = defs
         self.classes = classes  # ros1 type name -> robomodel class or None
         self.special = special
-        self.lines: list[str] = []
-        self.env: dict[str, Any] = {
-            "struct": struct, "Ros1CodecError": Ros1CodecError, "_count": _count,
-            "_fixed": _fixed, "NS": types.SimpleNamespace,
-        }  # fmt: skip
         self.fmt: list[str] = []
         self.items: list[str] = []
-        self._n = 0
-
-    def name(self, prefix: str) -> str:
-        self._n += 1
-        return f"{prefix}{self._n}"
-
-    def ref(self, obj: Any, prefix: str) -> str:
-        name = self.name(prefix)
-        self.env[name] = obj
-        return name
-
-    def emit(self, d: int, line: str) -> None:
-        self.lines.append("    " * d + line)
 
     # -- runs of fixed-size values --------------------------------------------------------------
     def prim(self, code: str, item: str) -> None:
