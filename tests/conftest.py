@@ -287,6 +287,48 @@ def _children() -> dict[int, str]:
     return found
 
 
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+def _ignored_by_the_kernel(signum: int) -> bool:
+    """Whether ``signum`` is ignored at the OS level (what a child process inherits), whatever
+    Python's own table says."""
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith("SigIgn:"):
+                return bool(int(line.split()[1], 16) >> (signum - 1) & 1)
+    return False
+
+
+@pytest.fixture(autouse=True)
+def _signal_handlers_put_back(request: pytest.FixtureRequest) -> Iterator[None]:
+    """Each test starts with the worker's SIGINT and SIGTERM handlers, whatever the tests before
+    it changed: ``robomodel.cli.main`` run in-process installs its own on purpose, and a test
+    that checks Ctrl-C (or a child that inherits SIGINT's disposition) must not depend on which
+    tests the worker ran first. A change other than the command line's is reported."""
+    from robomodel.cli import main as cli_main
+
+    saved = {signum: signal.getsignal(signum) for signum in _SIGNALS}
+    ignored = {signum: _ignored_by_the_kernel(signum) for signum in _SIGNALS}
+    yield
+    ours = (cli_main._raise_interrupt, cli_main._raise_terminated)
+    changed = [
+        signum.name
+        for signum in _SIGNALS
+        if (signal.getsignal(signum) is not saved[signum] and signal.getsignal(signum) not in ours)
+        or _ignored_by_the_kernel(signum) != ignored[signum]
+    ]
+    for signum, handler in saved.items():
+        if handler is not None:
+            signal.signal(signum, handler)
+    if changed:
+        import warnings
+
+        warnings.warn(
+            f"{request.node.nodeid} left {', '.join(changed)} changed (put back)", stacklevel=1
+        )
+
+
 # What a test starts and must end itself. Not the browser of the session-scoped playwright
 # fixture, which lives across tests on purpose.
 _OURS = ("robomodel", "rosmaster", "roscore", "roslaunch", "rostopic", "rosbag", "rviz", "Xvfb",
