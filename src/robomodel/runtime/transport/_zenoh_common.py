@@ -82,9 +82,9 @@ def passing_interrupts(callback: Any) -> Any:
     Zenoh delivers a local sample on the thread that put it, so a callback can run on the main
     thread (a launch's simulator publishing /clock); a KeyboardInterrupt raised there would be
     printed as a "callback error" and swallowed by zenoh-python, and Ctrl-C would not end the
-    command. A signal that arrives in the callback is raised again once Zenoh returns: the
-    command line's handlers (robomodel.cli.main) defer one that lands on this wrapper's own
-    frame (``deferred_signal``), and one raised further in is caught here.
+    command. A signal that arrives in the callback is raised again a moment later: the command
+    line's handlers (robomodel.cli.main) defer one that lands on this wrapper's own frame
+    (:func:`defer_signal`), and one raised further in is caught here and deferred the same way.
     """
 
     def run(sample: Any) -> None:
@@ -92,9 +92,6 @@ def passing_interrupts(callback: Any) -> Any:
             callback(sample)
         except KeyboardInterrupt as exc:
             defer_signal(_signal_of(exc))
-        finally:
-            if _deferred:
-                _redeliver()
 
     return run
 
@@ -102,6 +99,7 @@ def passing_interrupts(callback: Any) -> Any:
 CALLBACK_CODE = passing_interrupts(print).__code__
 """The code of every Zenoh callback's wrapper: a signal handler that finds it running defers."""
 _deferred: list[int] = []
+_delivering = [False]  # a helper thread is on its way to raise the deferred signals
 
 
 def _signal_of(exc: BaseException) -> int:
@@ -112,28 +110,37 @@ def _signal_of(exc: BaseException) -> int:
 
 
 def defer_signal(signum: int) -> None:
-    """Deliver ``signum`` to the main thread after the current Zenoh callback."""
+    """Raise ``signum`` in the main thread again a moment later, from a helper thread: raised
+    at once it would land in the wrapper's frame again.
+
+    The helper is started here, not when the callback returns: a signal can land on the
+    wrapper's frame after its last look (on its way out), and was then never raised again
+    (seen under load: Ctrl-C lost). If the signal lands on a wrapper again, it is deferred
+    again. Each deferred signal is raised once (popped), whichever helper gets it.
+    """
     if signum not in _deferred:
         _deferred.append(signum)
+    if not _delivering[0]:
+        _delivering[0] = True
+        threading.Thread(target=_deliver_later, name="robomodel-signal", daemon=True).start()
 
 
-def _redeliver() -> None:
-    """Raise the deferred signals again, from a helper thread a moment later: raised at once,
-    they would land in this wrapper's frame again."""
-    if not _deferred:
-        return
+def _deliver_later() -> None:
     import _thread
     import signal
 
-    signums = [signal.Signals(s) for s in _deferred]
-    _deferred.clear()
-
-    def later() -> None:
+    while True:
         time.sleep(0.01)
-        for signum in signums:
-            _thread.interrupt_main(signum)
-
-    threading.Thread(target=later, name="robomodel-signal", daemon=True).start()
+        while _deferred:
+            try:
+                signum = _deferred.pop(0)
+            except IndexError:  # another helper took it
+                break
+            _thread.interrupt_main(signal.Signals(signum))
+        _delivering[0] = False
+        if not _deferred:  # one deferred after the pops and before the flag fell: go again
+            return
+        _delivering[0] = True
 
 
 CLOSE_TIMEOUT_S = 5.0
