@@ -19,12 +19,16 @@ machine's load falls on both alike. Target: robomodel's median within 1.5x raw's
 ``--profile FILE`` writes a cProfile of robomodel's subscriber process (B) to FILE;
 ``--decompose`` adds a third variant per round, raw put -> callback -> a queue -> the main thread
 (robomodel's executor hand-over without the codecs), to tell the two costs apart;
-``--best-effort`` adds raw put with zenoh-python's default options (best effort).
+``--best-effort`` adds raw put with zenoh-python's default options (best effort);
+``--stages`` times each message's steps inside robomodel's subscriber: publish -> Zenoh's
+callback, inside it, the hand-over to the executor's thread, and the executor's drain -> the
+subscription callback (decoding included), as medians per round.
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import statistics
 import struct
@@ -96,7 +100,13 @@ def sink_raw(domain: int, seconds: float, *, hop: bool = False) -> list[float]:
     return latencies
 
 
-def sink_robomodel(domain: int, seconds: float) -> list[float]:
+def sink_robomodel(
+    domain: int,
+    seconds: float,
+    *,
+    stages: list[list[float]] | None = None,
+    at: dict[str, int] | None = None,
+) -> list[float]:
     from robomodel.runtime import Context
     from robomodel.runtime.msg import JointState
 
@@ -106,12 +116,43 @@ def sink_robomodel(domain: int, seconds: float) -> list[float]:
         def on_states(msg: JointState) -> None:
             now = time.monotonic_ns()
             stamp = msg.header.stamp
-            latencies.append((now - (stamp.sec * 1_000_000_000 + stamp.nanosec)) * 1e-9)
+            sent = stamp.sec * 1_000_000_000 + stamp.nanosec
+            latencies.append((now - sent) * 1e-9)
+            if stages is not None and at is not None:
+                marks = (sent, at["in"], at["out"], at["drain"], now)
+                steps = [(b - a) * 1e-9 for a, b in itertools.pairwise(marks)]
+                stages.append([*steps, (now - sent) * 1e-9])
 
         ctx.create_node("sink").create_subscription(JointState, TOPIC, on_states, 1000)
         print("ready", flush=True)
         ctx.spin(duration_s=seconds)
     return latencies
+
+
+def sink_robomodel_stages(domain: int, seconds: float) -> list[list[float]]:
+    """As sink_robomodel, with each message's time at the subscription's Zenoh callback (entry
+    and exit) and at the executor's drain: [to the callback, in it, hand-over, drain ->
+    callback, total] in seconds, per message."""
+    from robomodel.runtime.transport._zenoh_endpoints import ZenohSubscription
+
+    at: dict[str, int] = {}
+    on_sample, drain = ZenohSubscription._on_sample, ZenohSubscription._drain
+
+    def timed_on_sample(self: Any, sample: Any) -> None:
+        at["in"] = time.monotonic_ns()
+        on_sample(self, sample)
+        at["out"] = time.monotonic_ns()
+
+    def timed_drain(self: Any) -> None:
+        at["drain"] = time.monotonic_ns()
+        drain(self)
+
+    ZenohSubscription._on_sample = timed_on_sample  # type: ignore[method-assign]
+    ZenohSubscription._drain = timed_drain  # type: ignore[method-assign]
+    stages: list[list[float]] = []
+    totals = sink_robomodel(domain, seconds, stages=stages, at=at)
+    assert len(totals) == len(stages)
+    return stages
 
 
 def _start_sink(kind: str, domain: int, seconds: float, profile: str | None) -> Any:
@@ -161,13 +202,19 @@ def run_raw(
 
 
 def run_robomodel(
-    names: list[str], domain: int, seconds: float, rate: float, profile: str | None
+    names: list[str],
+    domain: int,
+    seconds: float,
+    rate: float,
+    profile: str | None,
+    stages: bool = False,
 ) -> dict[str, Any]:
     from robomodel.runtime import Context
     from robomodel.runtime.msg import JointState
     from robomodel.runtime.msg.cdr import serialize
 
-    sink = _start_sink("sink-robomodel", domain, seconds + 4.0, profile)
+    role = "sink-robomodel-stages" if stages else "sink-robomodel"
+    sink = _start_sink(role, domain, seconds + 4.0, profile)
     with Context("zenoh", domain_id=domain) as ctx:
         pub = ctx.create_node("driver").create_publisher(JointState, TOPIC, 1000)
         time.sleep(1.0)  # the sink's subscription reaches this session
@@ -181,8 +228,11 @@ def run_robomodel(
             pub.publish(template)
 
         sent, elapsed = paced_sends(seconds, rate, send)
-    latencies = json.loads(sink.communicate(timeout=60)[0].strip().splitlines()[-1])
-    return {"sent": sent, "elapsed": elapsed, "latencies": latencies, "bytes": size}
+    got = json.loads(sink.communicate(timeout=60)[0].strip().splitlines()[-1])
+    run = {"sent": sent, "elapsed": elapsed, "latencies": got, "bytes": size}
+    if stages:
+        run.update(latencies=[steps[-1] for steps in got], stages=got)
+    return run
 
 
 def _percentile(values: list[float], q: float) -> float:
@@ -198,11 +248,18 @@ def _summary(run: dict[str, Any]) -> str:
     )
 
 
+def _stage_summary(stages: list[list[float]]) -> str:
+    names = ("publish -> Zenoh callback", "in it", "hand-over", "drain -> callback", "total")
+    medians = (statistics.median(column) * 1e6 for column in zip(*stages, strict=True))
+    return "; ".join(f"{name} {value:.0f} us" for name, value in zip(names, medians, strict=True))
+
+
 def _sink_main(args: argparse.Namespace) -> None:
     roles = {
         "sink-raw": sink_raw,
         "sink-raw-hop": lambda domain, seconds: sink_raw(domain, seconds, hop=True),
         "sink-robomodel": sink_robomodel,
+        "sink-robomodel-stages": sink_robomodel_stages,
     }
     role = roles[args.role]
     if args.profile:
@@ -234,8 +291,13 @@ def main() -> None:
         help="also raw put with zenoh-python's default options (best effort)",
     )
     parser.add_argument(
+        "--stages",
+        action="store_true",
+        help="time the steps inside robomodel's subscriber process (medians per round)",
+    )
+    parser.add_argument(
         "--role",
-        choices=("driver", "sink-raw", "sink-raw-hop", "sink-robomodel"),
+        choices=("driver", "sink-raw", "sink-raw-hop", "sink-robomodel", "sink-robomodel-stages"),
         default="driver",
     )
     args = parser.parse_args()
@@ -257,8 +319,12 @@ def main() -> None:
         if args.decompose:
             hop = run_raw(names, args.domain, args.seconds, args.rate, "sink-raw-hop")
             print(f"round {k + 1} raw put, handed to the main thread: {_summary(hop)}")
-        ours.append(run_robomodel(names, args.domain, args.seconds, args.rate, args.profile))
+        ours.append(
+            run_robomodel(names, args.domain, args.seconds, args.rate, args.profile, args.stages)
+        )
         print(f"round {k + 1} robomodel ({ours[-1]['bytes']} B CDR): {_summary(ours[-1])}")
+        if args.stages:
+            print(f"round {k + 1} robomodel's steps: {_stage_summary(ours[-1]['stages'])}")
     med = statistics.median
     for q, label in ((0.5, "p50"), (0.99, "p99")):
         theirs = med(_percentile(r["latencies"], q) for r in raw)
