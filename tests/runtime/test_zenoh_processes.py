@@ -22,7 +22,8 @@ from tests.timing import scaled
 
 TALKER = textwrap.dedent(
     """
-    import sys
+    import faulthandler, signal, sys
+    faulthandler.register(signal.SIGUSR1, all_threads=True)  # the test asks for stacks on a hang
     from robomodel.runtime import Context, latched
     from robomodel.runtime.msg import Float64, String
     ctx = Context("zenoh", domain_id=int(sys.argv[1]))
@@ -211,7 +212,16 @@ def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None
         p.send_signal(signal.SIGINT)
     _out, err = echo.communicate(timeout=scaled(10))
     assert echo.returncode == 0 and "Traceback" not in err
-    t_out, t_err = proc.communicate(timeout=scaled(10))
+    try:
+        t_out, t_err = proc.communicate(timeout=scaled(10))
+    except subprocess.TimeoutExpired:
+        proc.send_signal(signal.SIGUSR1)  # faulthandler: every thread's stack to stderr
+        try:
+            t_out, t_err = proc.communicate(timeout=scaled(5))
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            t_out, t_err = proc.communicate()
+        raise AssertionError(f"the talker did not exit on SIGINT:\n{t_out}\n{t_err}") from None
     assert proc.returncode == 0 and "clean exit" in t_out and "Traceback" not in t_err
 
 
