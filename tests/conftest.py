@@ -70,6 +70,12 @@ def pytest_configure(config: pytest.Config) -> None:
     # robomodel's verbs take the ROS 1 bus when ROS_MASTER_URI is set: tests that want it set
     # it for their own processes (tests/ros1wire)
     os.environ.pop("ROS_MASTER_URI", None)
+    # A shell without job control starts background commands with SIGINT ignored (`make test &`
+    # in a script, `nohup ... &`), and every process of the run would inherit that: Ctrl-C
+    # tests then saw nothing, and a plain Python child ignored SIGINT. Each process of the
+    # run (the controller and every xdist worker) takes Python's own handler, as from a
+    # terminal; the tests of starting with SIGINT ignored set that up for their child.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     if hasattr(config, "workerinput"):
         return
     _processes_tmpdir()
