@@ -296,14 +296,14 @@ def _children() -> dict[int, str]:
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
-def _ignored_by_the_kernel(signum: int) -> bool:
-    """Whether ``signum`` is ignored at the OS level (what a child process inherits), whatever
-    Python's own table says."""
+def _kernel_ignore_mask() -> int:
+    """The signals ignored at the OS level (what a child process inherits), whatever Python's
+    own table says: bit ``signum - 1`` of /proc's SigIgn."""
     with open("/proc/self/status") as status:
         for line in status:
             if line.startswith("SigIgn:"):
-                return bool(int(line.split()[1], 16) >> (signum - 1) & 1)
-    return False
+                return int(line.split()[1], 16)
+    return 0
 
 
 @pytest.fixture(autouse=True)
@@ -315,14 +315,15 @@ def _signal_handlers_put_back(request: pytest.FixtureRequest) -> Iterator[None]:
     from robomodel.cli import main as cli_main
 
     saved = {signum: signal.getsignal(signum) for signum in _SIGNALS}
-    ignored = {signum: _ignored_by_the_kernel(signum) for signum in _SIGNALS}
+    ignored = _kernel_ignore_mask()
     yield
     ours = (cli_main._raise_interrupt, cli_main._raise_terminated)
+    flipped = _kernel_ignore_mask() ^ ignored
     changed = [
         signum.name
         for signum in _SIGNALS
         if (signal.getsignal(signum) is not saved[signum] and signal.getsignal(signum) not in ours)
-        or _ignored_by_the_kernel(signum) != ignored[signum]
+        or flipped >> (signum - 1) & 1
     ]
     for signum, handler in saved.items():
         if handler is not None:
