@@ -6,6 +6,7 @@ from __future__ import annotations
 import subprocess
 import sys
 import textwrap
+import threading
 from pathlib import Path
 
 import pytest
@@ -38,6 +39,41 @@ def _check(request: SetBool_Request) -> SetBool_Response:
     if not request.data:
         raise ValueError("data must be true")
     return SetBool_Response(True, "checked")
+
+
+def test_a_zenoh_call_waits_for_a_server_that_comes_up_late(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A query that no queryable matched is asked again until the call's timeout, as rclpy's
+    ``wait_for_service`` before ros2controlcli's calls: a ``control load`` typed right after
+    ``control run`` started must not be told that nobody serves it (run 20's failure)."""
+    from robomodel.runtime.transport._zenoh_services import ServiceClient
+
+    asked_nobody = threading.Event()
+    ask = ServiceClient._ask
+
+    def spied(self: ServiceClient, *args: object) -> object:
+        answer = ask(self, *args)  # type: ignore[arg-type]
+        if answer == (None, True):
+            asked_nobody.set()
+        return answer
+
+    monkeypatch.setattr(ServiceClient, "_ask", spied)
+    domain = int(unique_domain())
+    answers: list[object] = []
+    with Context("zenoh", domain_id=domain) as caller, Context("zenoh", domain_id=domain) as late:
+        request = SetBool_Request(True)
+        call = threading.Thread(
+            target=lambda: answers.append(
+                caller.call_service("/late/check", SetBool, request, timeout_s=scaled(30))
+            )
+        )
+        call.start()
+        assert asked_nobody.wait(scaled(10)), "the first query should have found nobody"
+        late.create_node("late").create_service(SetBool, "/late/check", _check)
+        late.spin(duration_s=scaled(30), until=lambda: not call.is_alive())
+        call.join()
+    assert answers == [SetBool_Response(True, "checked")]
 
 
 def test_inproc_service_call_and_errors() -> None:

@@ -142,20 +142,54 @@ class ServiceClient:
         self._token = bus.session.liveliness().declare_token(self.token.key())
 
     def call(self, request: Message, timeout_s: float) -> Message:
-        zenoh = import_zenoh()
+        """The response to ``request``, waiting up to ``timeout_s`` for a server to appear.
+
+        A query that ends with no reply reached no queryable: the server is not on the bus, or
+        the router has not heard of it yet (a manager that has just started). As rclpy's
+        ``wait_for_service`` before a call (ros2controlcli's ``service_caller``), the request
+        is sent again, backing off, until one answers or the time is up."""
         with self._lock:
             number = next(self._numbers)
+        payload = serialize(request)
+        deadline = time.monotonic() + timeout_s
+        pause_s = 0.02
+        while True:
+            remaining_s = deadline - time.monotonic()
+            answer, ended_early = self._ask(payload, number, max(remaining_s, 0.001))
+            if answer is not None:
+                return answer
+            remaining_s = deadline - time.monotonic()
+            if not ended_early or remaining_s <= pause_s:
+                break
+            time.sleep(pause_s)  # nobody served it yet: ask again, as wait_for_service polls
+            pause_s = min(pause_s * 2, 0.25)
+        if ended_early:
+            raise ServiceCallError(
+                f"service '{self.name}' ({self.srv_type.__typename__}) has no server on the "
+                f"bus after {timeout_s:g} s (is its process running?)"
+            )
+        raise ServiceCallError(
+            f"service '{self.name}' ({self.srv_type.__typename__}) did not answer within "
+            f"{timeout_s:g} s (is its process running?)"
+        )
+
+    def _ask(self, payload: bytes, number: int, timeout_s: float) -> tuple[Message | None, bool]:
+        """One query: (the response or None, whether it ended before ``timeout_s`` with no
+        reply at all, which is how Zenoh says that no queryable matched)."""
+        zenoh = import_zenoh()
         started = time.monotonic()
         replies = self._bus.session.get(
             self._key,
-            payload=serialize(request),
+            payload=payload,
             attachment=encode_attachment(number, time.time_ns(), self.gid),
             target=zenoh.QueryTarget.ALL_COMPLETE,
             consolidation=zenoh.ConsolidationMode.NONE,
             timeout=timeout_s,
         )
         errors: list[str] = []
+        replied = False
         for reply in replies:
+            replied = True
             sample = reply.ok
             if sample is None:
                 error = reply.err
@@ -167,20 +201,12 @@ class ServiceClient:
             if attachment is None or attachment.sequence_number != number:
                 continue  # not the reply to this request
             try:
-                return deserialize(sample.payload.to_bytes(), self.srv_type.Response)
+                return deserialize(sample.payload.to_bytes(), self.srv_type.Response), False
             except CDRError as exc:
                 errors.append(f"malformed response: {exc}")
         if errors:
             raise ServiceCallError(f"service '{self.name}': {'; '.join(errors)}")
-        if time.monotonic() - started < timeout_s * 0.9:  # the query ended: nobody serves it
-            raise ServiceCallError(
-                f"service '{self.name}' ({self.srv_type.__typename__}) has no server on the "
-                "bus (is its process running?)"
-            )
-        raise ServiceCallError(
-            f"service '{self.name}' ({self.srv_type.__typename__}) did not answer within "
-            f"{timeout_s:g} s (is its process running?)"
-        )
+        return None, not replied and time.monotonic() - started < timeout_s * 0.9
 
     def destroy(self) -> None:
         undeclare_all(self._token)
