@@ -52,6 +52,8 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_kinematics.py
 	$(BIN)/python bench/bench_runtime.py --seconds 8 --rounds 3 --reference
 	$(BIN)/python bench/bench_runtime.py --seconds 8 --rounds 3 --reference --bus ros1
+	$(BIN)/python bench/bench_latency.py --seconds 2 --rounds 5 --stages
+	$(BIN)/python bench/bench_handover.py
 	$(BIN)/python bench/bench_codec.py
 	$(BIN)/python bench/bench_control.py
 	$(BIN)/python bench/bench_viewer.py
