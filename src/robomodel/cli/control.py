@@ -138,8 +138,11 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
     cm = "/" + args.controller_manager.strip("/")
     with context_from_args(args) as context:
         wait_for_peers(context)
+        managers = _managers_on_the_bus(context)
+        if managers and cm not in managers:  # others are there: do not wait for this one
+            raise RobomodelError(_elsewhere(cm, managers))
         # ros2controlcli's service_caller: 10 s per attempt, 3 attempts, a warning after each
-        # (a busy manager answers late; a missing one is refused at once by the bus)
+        # (a busy manager answers late; with none on the bus the call waits for one to start)
         client = AttemptsClient(
             context,
             cm,
@@ -155,13 +158,17 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
                 raise
             others = [m for m in managers if m != cm]
             if others:
-                hint = (
-                    f"controller manager {cm} is not on the bus; controller managers that are: "
-                    f"{', '.join(others)} (pass -c {others[0]})"
-                )
+                hint = _elsewhere(cm, others)
             else:
                 hint = f"is `robomodel control run` running (controller manager {cm})?"
             raise RobomodelError(f"{exc}; {hint}") from None
+
+
+def _elsewhere(cm: str, others: list[str]) -> str:
+    return (
+        f"controller manager {cm} is not on the bus; controller managers that are: "
+        f"{', '.join(others)} (pass -c {others[0]})"
+    )
 
 
 def _managers_on_the_bus(context: Any) -> list[str]:
