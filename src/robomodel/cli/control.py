@@ -138,9 +138,7 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
     cm = "/" + args.controller_manager.strip("/")
     with context_from_args(args) as context:
         wait_for_peers(context)
-        managers = _managers_on_the_bus(context)
-        if managers and cm not in managers:  # others are there: do not wait for this one
-            raise RobomodelError(_elsewhere(cm, managers))
+        _refuse_if_elsewhere(context, cm)
         # ros2controlcli's service_caller: 10 s per attempt, 3 attempts, a warning after each
         # (a busy manager answers late; with none on the bus the call waits for one to start)
         client = AttemptsClient(
@@ -171,11 +169,27 @@ def _elsewhere(cm: str, others: list[str]) -> str:
     )
 
 
+def _refuse_if_elsewhere(context: Any, cm: str) -> None:
+    """Say at once that ``cm`` is not on the bus when other managers are, rather than wait
+    for it. One look at the graph finds a manager that is there; only when it does not is the
+    graph let settle (~0.5 s), so the usual call pays nothing for the check."""
+    if cm in _managers(context.graph(timeout_s=0.5)):
+        return
+    managers = _managers_on_the_bus(context)
+    if managers and cm not in managers:  # others are there: do not wait for this one
+        raise RobomodelError(_elsewhere(cm, managers))
+
+
 def _managers_on_the_bus(context: Any) -> list[str]:
-    """The controller managers the graph shows: whatever offers ``<manager>/list_controllers``
-    (ros2_control's and ROS 1 controller_manager's service name)."""
+    """The controller managers the settled graph shows."""
+    return _managers(settled_graph(context, 1.0))
+
+
+def _managers(graph: Any) -> list[str]:
+    """Whatever offers ``<manager>/list_controllers`` (ros2_control's and ROS 1
+    controller_manager's service name)."""
     suffix = "/list_controllers"
-    services = settled_graph(context, 1.0).services
+    services = graph.services
     return sorted(
         name[: -len(suffix)]
         for name, info in services.items()
