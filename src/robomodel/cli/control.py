@@ -154,9 +154,8 @@ def _with_manager(args: argparse.Namespace, action: Any) -> Any:
             managers = _managers_on_the_bus(context)
             if cm in managers:  # it answered, refusing: asking whether it runs would mislead
                 raise
-            others = [m for m in managers if m != cm]
-            if others:
-                hint = _elsewhere(cm, others)
+            if managers:  # all of them others: cm is not among them
+                hint = _elsewhere(cm, managers)
             else:
                 hint = f"is `robomodel control run` running (controller manager {cm})?"
             raise RobomodelError(f"{exc}; {hint}") from None
