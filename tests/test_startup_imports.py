@@ -157,6 +157,15 @@ def test_graph_and_new_load_no_numpy(tmp_path: Path) -> None:
     assert _offenders(new, NEVER_ON_LIGHT_PATHS) == []
 
 
+def test_a_control_verb_without_a_robot_loads_no_description(tmp_path: Path) -> None:
+    # `control run` reads a description; the parser offers its arguments, which must not
+    # pull the description layer (lxml with it) into `control list-controllers`
+    loaded = modules_loaded_by(tmp_path, "control", "list-controllers", "--help")
+    assert "robomodel.cli.control" in loaded  # it did run
+    banned = {"lxml", "robomodel.description", "robomodel.loading", "robomodel.xacro"}
+    assert _offenders(loaded, banned) == []
+
+
 def test_help_imports_no_verb_module(tmp_path: Path) -> None:
     loaded = modules_loaded_by(tmp_path, "--help")
     assert _verb_modules(loaded) == set()

@@ -1,13 +1,21 @@
-"""Arguments shared by the verbs that read a robot description."""
+"""Arguments shared by the verbs that read a robot description.
+
+Adding the arguments imports nothing of the description layer (lxml with it): a verb whose
+parser offers them to one sub-verb (``control run``) does not load it for the others
+(``control list-controllers``). Reading the description does.
+"""
 
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
-from robomodel.description.packages import PackageIndex, index_from_options
-from robomodel.description.urdf.reader import ParseResult
 from robomodel.errors import RobomodelError
-from robomodel.loading import LoadedDescription, read_description
+
+if TYPE_CHECKING:
+    from robomodel.description.packages import PackageIndex
+    from robomodel.description.urdf.reader import ParseResult
+    from robomodel.loading import LoadedDescription
 
 __all__ = [
     "add_description_arguments",
@@ -86,6 +94,8 @@ def split_mappings(items: list[str]) -> dict[str, str]:
 
 
 def package_index_from_args(args: argparse.Namespace) -> PackageIndex:
+    from robomodel.description.packages import index_from_options
+
     return index_from_options(args.package_path, args.package)
 
 
@@ -93,6 +103,8 @@ def load_from_args(
     args: argparse.Namespace,
 ) -> tuple[ParseResult, LoadedDescription, PackageIndex]:
     """Expand and parse the description named on the command line."""
+    from robomodel.loading import read_description
+
     index = package_index_from_args(args).with_workspace_of(args.file)
     result, loaded = read_description(
         args.file, args=split_mappings(args.mappings), package_index=index
