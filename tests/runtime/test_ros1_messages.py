@@ -194,3 +194,5 @@ def test_values_that_do_not_fit_are_refused() -> None:
     kind = ros1_type(JointState)
     with pytest.raises(Ros1CodecError):
         kind.encode(JointState(Header(Time(-1, 0), "f")))  # ROS 1 time is unsigned
+    with pytest.raises(Ros1CodecError):  # an int no float64 holds: OverflowError inside
+        kind.encode(JointState(position=[10**400]))

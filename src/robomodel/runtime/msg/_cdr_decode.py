@@ -5,7 +5,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from robomodel.runtime.msg._cdr_codegen import Gen, Run, add_prim, after_prim_seq, flush, wire
+from robomodel.runtime.msg._cdr_codegen import (
+    ARRAY_FLOAT64,
+    Gen,
+    Run,
+    add_prim,
+    after_prim_seq,
+    emit_count,
+    flush,
+    wire,
+)
 from robomodel.runtime.msg._cdr_strings import StringsMemo
 from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, Seq, Spec
 
@@ -67,7 +76,7 @@ def _dec_sequence(g: Gen, d: int, run: Run, spec: Seq | Array) -> str:
     if isinstance(spec, Array):
         g.emit(d, f"{count} = {spec.size}")
     else:
-        g.emit(d, f"{count}, o = _count(data, o)")
+        emit_count(g, d, count)
         run.forget(4)
     if primitive:
         _dec_primitives(g, d, run, str(item), target, count)
@@ -91,15 +100,16 @@ def _dec_primitives(g: Gen, d: int, run: Run, item: str, target: str, count: str
     g.emit(d, f"if {count}:")
     if size > 1:
         g.emit(d + 1, f"o += (-(o - 4)) & {size - 1}")
-    g.emit(
-        d + 1,
-        f"if o + {count} * {size} > n: raise CDRError(f'payload truncated at offset {{o}}')",
-    )
+    end = g.name("e")
+    g.emit(d + 1, f"{end} = o + {count} * {size}")
+    g.emit(d + 1, f"if {end} > n: raise CDRError(f'payload truncated at offset {{o}}')")
     if code == "B":  # bytes, as rospy gives uint8[]: no list of ints to build
-        g.emit(d + 1, f"{target} = bytes(data[o : o + {count}])")
+        g.emit(d + 1, f"{target} = bytes(data[o : {end}])")
+    elif code == "d" and ARRAY_FLOAT64:
+        g.emit(d + 1, f"{target} = _array('d', data[o : {end}]).tolist()")
     else:
         g.emit(d + 1, f"{target} = list(struct.unpack_from('<%d{code}' % {count}, data, o))")
-    g.emit(d + 1, f"o += {count} * {size}")
+    g.emit(d + 1, f"o = {end}")
     g.emit(d, "else:")
     g.emit(d + 1, f"{target} = " + ("b''" if code == "B" else "[]"))
     after_prim_seq(run, size)

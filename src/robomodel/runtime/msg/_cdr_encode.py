@@ -5,7 +5,15 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from robomodel.runtime.msg._cdr_codegen import Gen, Run, add_prim, after_prim_seq, flush, wire
+from robomodel.runtime.msg._cdr_codegen import (
+    ARRAY_FLOAT64,
+    Gen,
+    Run,
+    add_prim,
+    after_prim_seq,
+    flush,
+    wire,
+)
 from robomodel.runtime.msg._cdr_strings import StringsMemo
 from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, Seq, Spec
 
@@ -80,11 +88,14 @@ def _enc_primitives(g: Gen, d: int, run: Run, item: str, seq: str) -> None:
     if code == "B":  # uint8[] (images, point clouds): bytes() is 20x faster
         g.emit(d, f"buf += bytes({seq})")  # no `if seq`: numpy has no truth value
     else:
-        g.emit(d, f"if {seq}:")
+        g.emit(d, f"if len({seq}):")  # not `if seq`: numpy arrays have no truth value
         if size > 1:
             g.emit(d + 1, f"r = (len(buf) - 4) & {size - 1}")
             g.emit(d + 1, f"if r: buf += b'\\x00' * ({size} - r)")
-        g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
+        if code == "d" and ARRAY_FLOAT64:  # any iterable of numbers; TypeError otherwise
+            g.emit(d + 1, f"buf += _array('d', {seq})")
+        else:
+            g.emit(d + 1, f"buf += struct.pack('<%d{code}' % len({seq}), *{seq})")
     after_prim_seq(run, size)
 
 

@@ -16,14 +16,22 @@ strings).
 from __future__ import annotations
 
 import struct
-from typing import TypeVar
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 from robomodel.runtime.msg._cdr_decode import message_decoder as _message_decoder
 from robomodel.runtime.msg._cdr_encode import message_encoder as _message_encoder
 from robomodel.runtime.msg._cdr_strings import CDRError
 from robomodel.runtime.msg._schema import Message
 
-__all__ = ["CDRError", "deserialize", "prepare", "serialize"]
+__all__ = [
+    "CDRError",
+    "deserialize",
+    "payload_decoder",
+    "payload_encoder",
+    "prepare",
+    "serialize",
+]
 
 HEADER_LE = b"\x00\x01\x00\x00"
 _M = TypeVar("_M", bound=Message)
@@ -42,30 +50,72 @@ def prepare(cls: type[Message]) -> None:
 
 def serialize(msg: Message) -> bytes:
     """Encode ``msg`` as a ROS 2 CDR payload (what rmw puts on the wire)."""
-    buf = bytearray(HEADER_LE)
-    try:
-        _message_encoder(type(msg))(buf, msg)
-    except (struct.error, ValueError, TypeError) as exc:  # bytes() of uint8[]: ValueError
-        raise CDRError(f"{type(msg).__typename__}: a value does not fit its field: {exc}") from None
-    return bytes(buf)
+    return payload_encoder(type(msg))(msg)
 
 
 def deserialize(payload: bytes | bytearray | memoryview, cls: type[_M]) -> _M:
     """Decode a ROS 2 CDR payload into a ``cls`` message; CDRError if it does not fit."""
-    data = bytes(payload)
+    return payload_decoder(cls)(bytes(payload))
+
+
+def payload_encoder(cls: type[_M]) -> Callable[[_M], bytes]:
+    """:func:`serialize` for messages of ``cls`` alone: a publisher keeps it, and saves the
+    look-up of the type's code on every message."""
+    coder = _payload_encoders.get(cls)
+    if coder is None:
+        coder = _payload_encoders[cls] = _make_payload_encoder(cls)
+    return coder
+
+
+def payload_decoder(cls: type[_M]) -> Callable[[bytes], _M]:
+    """:func:`deserialize` of a ``bytes`` payload into ``cls``: a subscription keeps it."""
+    coder = _payload_decoders.get(cls)
+    if coder is None:
+        coder = _payload_decoders[cls] = _make_payload_decoder(cls)
+    return coder
+
+
+_payload_encoders: dict[type[Message], Callable[[Any], bytes]] = {}
+_payload_decoders: dict[type[Message], Callable[[bytes], Any]] = {}
+
+
+def _make_payload_encoder(cls: type[Message]) -> Callable[[Message], bytes]:
+    encode = _message_encoder(cls)
+
+    def encode_payload(msg: Message) -> bytes:
+        buf = bytearray(HEADER_LE)
+        try:
+            encode(buf, msg)
+        except (struct.error, ValueError, TypeError, OverflowError) as exc:  # uint8[]: ValueError
+            raise CDRError(f"{cls.__typename__}: a value does not fit its field: {exc}") from None
+        return bytes(buf)
+
+    return encode_payload
+
+
+def _make_payload_decoder(cls: type[_M]) -> Callable[[bytes], _M]:
+    decode = _message_decoder(cls)
+    empty = not cls.__fields__  # its one placeholder byte carries nothing (absent: accepted)
+
+    def decode_payload(data: bytes) -> _M:
+        if data[:2] != b"\x00\x01" or len(data) < 4:
+            _refuse_header(data)
+        if empty:
+            return cls()
+        try:
+            msg, _ = decode(data, 4)
+        except struct.error as exc:
+            raise CDRError(f"malformed {cls.__typename__} payload: {exc}") from None
+        except UnicodeDecodeError:  # the generated code decodes strings inline
+            raise CDRError("string is not valid UTF-8") from None
+        return msg  # type: ignore[no-any-return]
+
+    return decode_payload
+
+
+def _refuse_header(data: bytes) -> None:
     if len(data) < 4:
         raise CDRError(f"payload of {len(data)} bytes has no CDR encapsulation header")
-    if data[:2] != b"\x00\x01":
-        kind = data[:2].hex()
-        raise CDRError(
-            f"unsupported CDR encapsulation 0x{kind}; expected 0x0001 (CDR little endian)"
-        )
-    if not cls.__fields__:  # its one placeholder byte carries nothing (absent: accepted)
-        return cls()
-    try:
-        msg, _ = _message_decoder(cls)(data, 4)
-    except struct.error as exc:
-        raise CDRError(f"malformed {cls.__typename__} payload: {exc}") from None
-    except UnicodeDecodeError:  # the generated code decodes strings inline
-        raise CDRError("string is not valid UTF-8") from None
-    return msg  # type: ignore[no-any-return]
+    raise CDRError(
+        f"unsupported CDR encapsulation 0x{data[:2].hex()}; expected 0x0001 (CDR little endian)"
+    )

@@ -301,7 +301,14 @@ def make_codec(
     def encode(msg: Message, seq: int = 0) -> bytes:
         try:
             return raw_encode(msg, seq)  # type: ignore[no-any-return]
-        except (struct.error, AttributeError, TypeError, UnicodeEncodeError, ValueError) as exc:
+        except (
+            struct.error,
+            AttributeError,
+            TypeError,
+            UnicodeEncodeError,
+            ValueError,
+            OverflowError,
+        ) as exc:
             raise Ros1CodecError(
                 f"{type_name}: a value does not fit ROS 1's field: {exc}"
             ) from None
