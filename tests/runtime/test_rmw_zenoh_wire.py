@@ -261,6 +261,22 @@ def test_sequence_state_is_bounded_when_gids_flood() -> None:
     assert seen.lost == 0
 
 
+def test_the_publisher_heard_least_recently_is_the_one_forgotten() -> None:
+    """The tracker's memory is least recently used first out: a publisher heard again moves
+    to the back, so a flood of new GIDs does not make it count its own next sample lost."""
+    seen = SequenceTracker(max_publishers=3)
+    steady = b"s" * 16
+    seen.record(steady, 1)
+    for i in range(2):
+        seen.record(bytes([i]) * 16, 1)
+    seen.record(steady, 2)  # heard again: now the most recent
+    seen.record(b"n" * 16, 1)  # a fourth GID: the oldest other one goes, not steady
+    seen.record(steady, 4)  # 3 lost, counted against the remembered 2
+    assert seen.lost == 1
+    seen.record(bytes([0]) * 16, 9)  # forgotten, so this is a first sample: nothing counted
+    assert seen.lost == 1
+
+
 def test_a_publisher_restarting_with_the_same_gid_loses_none_of_8_messages() -> None:
     """Issue 29.16: a publisher that restarts with the same GID numbers its samples from 1
     again; rmw_zenoh delivers them (robomodel dropped those up to 1023 below the last)."""

@@ -26,8 +26,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
-from robomodel.runtime.msg.cdr import prepare
+from robomodel.runtime.msg import CDRError, Message
+from robomodel.runtime.msg.cdr import payload_decoder, payload_encoder
 from robomodel.runtime.qos import Durability, History, Reliability
 from robomodel.runtime.transport._attachment import SequenceTracker
 from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
@@ -38,8 +38,10 @@ from robomodel.runtime.transport.base import (
     SubscriptionHandle,
 )
 from robomodel.runtime.transport.rmw_zenoh import (
+    ATTACHMENT_SIZE,
+    GID_SIZE,
     EntityKind,
-    encode_attachment,
+    attachment_struct,
     entity_gid,
     parse_attachment,
 )
@@ -65,7 +67,8 @@ class ZenohPublisher(PublisherHandle):
         self._seq = 0
         self._lock = threading.Lock()
         self._destroyed = False
-        prepare(msg_type)
+        self._encode = payload_encoder(msg_type)  # generated now, not on the first message
+        self._attach = attachment_struct().pack
         token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
         self._gid = entity_gid(token.key())
         self._graph = bus.graph_cache
@@ -109,12 +112,12 @@ class ZenohPublisher(PublisherHandle):
                 f"publisher on {self._endpoint.topic} has type {self._type.__typename__}, "
                 f"got {type(msg).__name__}"
             )
-        payload = serialize(msg)
+        payload = self._encode(msg)
         with self._lock:
             if self._destroyed:  # a message of a node torn down by another callback: dropped
                 return
             self._seq += 1
-            attachment = encode_attachment(self._seq, time.time_ns(), self._gid)
+            attachment = self._attach(self._seq, time.time_ns(), GID_SIZE, self._gid)
             self._pub.put(payload, attachment=attachment)
 
     def subscription_count(self) -> int:
@@ -144,7 +147,8 @@ class ZenohSubscription(SubscriptionHandle):
         self._raw_deliver = raw_deliver
         self._sequences = SequenceTracker()
         self._alive = True
-        prepare(msg_type)
+        self._decode = payload_decoder(msg_type)  # generated now, not on the first message
+        self._unpack_attachment = attachment_struct().unpack
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
         # the oldest (rmw_zenoh's message queue) instead of falling further behind. KEEP_ALL
         # keeps every one (SubscriptionData::add_new_message, rmw_subscription_data.cpp).
@@ -204,35 +208,33 @@ class ZenohSubscription(SubscriptionHandle):
         for _ in range(len(pending)):
             sample, received_ns = pending.popleft()
             try:
-                attached = sample.attachment  # each access builds a new ZBytes: read it once
-                attachment = b"" if attached is None else attached.to_bytes()
-                self._handle(sample.payload.to_bytes(), attachment, received_ns)
+                self._handle(sample, received_ns)
             except Exception:  # one bad sample (or callback) never costs the others
                 log.exception("error handling a sample on %s", self._endpoint.topic)
 
-    def _handle(self, payload: bytes, attachment: bytes, received_ns: int) -> None:
+    def _handle(self, sample: Any, received_ns: int) -> None:
         if not self._alive:
             return
-        parsed = parse_attachment(attachment)
-        topic = self._endpoint.topic
-        if parsed is None:
-            self._bus.warn_once(
-                (topic, "attachment"),
-                "dropping samples on %s without a valid rmw_zenoh attachment (%r...)",
-                topic,
-                attachment[:40],
-            )
-            return
-        self._sequences.record(parsed.gid, parsed.sequence_number)
+        attached = sample.attachment  # each access builds a new ZBytes: read it once
+        attachment = b"" if attached is None else attached.to_bytes()
+        # rmw_zenoh's form, unpacked here (parse_attachment's first case, without its tuple)
+        if len(attachment) == ATTACHMENT_SIZE and attachment[16] == GID_SIZE:
+            sequence, stamp_ns, _, gid = self._unpack_attachment(attachment)
+        else:
+            parsed = parse_attachment(attachment)  # an older rmw_zenoh's, or none
+            if parsed is None:
+                self._no_attachment(attachment)
+                return
+            sequence, stamp_ns, gid = parsed
+        self._sequences.record(gid, sequence)
+        payload = sample.payload.to_bytes()
         if self._raw_deliver is not None:
-            info = MessageInfo(
-                parsed.source_timestamp_ns, received_ns, parsed.sequence_number, parsed.gid
-            )
-            self._raw_deliver(payload, info)
+            self._raw_deliver(payload, MessageInfo(stamp_ns, received_ns, sequence, gid))
             return
         try:
-            msg = deserialize(payload, self._type)
+            msg = self._decode(payload)
         except CDRError as exc:
+            topic = self._endpoint.topic
             self._bus.warn_once(
                 (topic, "malformed"),
                 "dropping a malformed %s payload on %s: %s",
@@ -243,6 +245,15 @@ class ZenohSubscription(SubscriptionHandle):
             return
         if self._deliver is not None:
             self._deliver(msg)
+
+    def _no_attachment(self, attachment: bytes) -> None:
+        topic = self._endpoint.topic
+        self._bus.warn_once(
+            (topic, "attachment"),
+            "dropping samples on %s without a valid rmw_zenoh attachment (%r...)",
+            topic,
+            attachment[:40],
+        )
 
     def destroy(self) -> None:
         self._alive = False
