@@ -89,11 +89,43 @@ def passing_interrupts(callback: Any) -> Any:
 
     def run(sample: Any) -> None:
         try:
+            if get_ident() not in _kept_thread_states:
+                keep_thread_state()
             callback(sample)
         except KeyboardInterrupt as exc:
             defer_signal(_signal_of(exc))
 
     return run
+
+
+get_ident = threading.get_ident
+_kept_thread_states: set[int] = set()
+
+
+def keep_thread_state() -> None:
+    """Keep the Python thread state of the (Zenoh) thread this runs on from one callback to
+    the next.
+
+    zenoh-python enters Python from its own threads through ``PyGILState_Ensure`` and leaves
+    through ``PyGILState_Release``, and a thread that Python did not start has its thread
+    state made by the first and destroyed by the second: every sample paid for a new thread
+    state and its frame stack (CPython maps and unmaps a 16 KiB chunk for it), about 20 us of
+    each message's way at 1 kHz (BENCHMARKS.md, issue 30). One more ``PyGILState_Ensure``,
+    never released, keeps the thread state's count above zero, so the release after each
+    callback only lets the GIL go; the state stays with its thread as a Python thread's
+    does. On a thread that Python started, or the main thread, it only counts one more.
+    Once per thread; CPython only (elsewhere nothing is done).
+    """
+    ident = get_ident()
+    if ident in _kept_thread_states or len(_kept_thread_states) > _MAX_KEPT:
+        return
+    _kept_thread_states.add(ident)
+    ensure = getattr(getattr(ctypes, "pythonapi", None), "PyGILState_Ensure", None)
+    if ensure is not None:
+        ensure()
+
+
+_MAX_KEPT = 4096  # thread identifiers remembered (a thread's is reused after it ends)
 
 
 CALLBACK_CODE = passing_interrupts(print).__code__
