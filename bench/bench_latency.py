@@ -23,6 +23,9 @@ machine's load falls on both alike. Target: robomodel's median within 1.5x raw's
 ``--stages`` times each message's steps inside robomodel's subscriber: publish -> Zenoh's
 callback, inside it, the hand-over to the executor's thread, and the executor's drain -> the
 subscription callback (decoding included), as medians per round.
+``--split`` adds two mixed variants per round, to tell the two ends' costs apart: robomodel's
+publisher -> raw's callback, and raw's put (with rmw_zenoh's attachment, which a robomodel
+subscription requires) -> robomodel's subscription.
 """
 
 from __future__ import annotations
@@ -171,11 +174,13 @@ def run_raw(
     sink_role: str = "sink-raw",
     *,
     reliable: bool = True,
+    attach: bool = False,
 ) -> dict[str, Any]:
     import zenoh
 
     from robomodel.runtime.msg.cdr import serialize
     from robomodel.runtime.transport._zenoh_session import open_session
+    from robomodel.runtime.transport.rmw_zenoh import encode_attachment
 
     sink = _start_sink(sink_role, domain, seconds + 4.0, None)
     opened = open_session()
@@ -187,12 +192,16 @@ def run_raw(
         congestion_control=zenoh.CongestionControl.DROP,
     )
     template = bytearray(serialize(_message(names, 0)))
+    gid = bytes(range(16))
     time.sleep(1.0)  # the sink's subscription reaches this session
 
-    def send(_: int) -> None:
+    def send(k: int) -> None:
         now = time.monotonic_ns()
         struct.pack_into("<iI", template, _STAMP_OFFSET, now // 1_000_000_000, now % 1_000_000_000)
-        pub.put(bytes(template))
+        if attach:
+            pub.put(bytes(template), attachment=encode_attachment(k + 1, time.time_ns(), gid))
+        else:
+            pub.put(bytes(template))
 
     sent, elapsed = paced_sends(seconds, rate, send)
     latencies = json.loads(sink.communicate(timeout=60)[0].strip().splitlines()[-1])
@@ -208,12 +217,13 @@ def run_robomodel(
     rate: float,
     profile: str | None,
     stages: bool = False,
+    sink_role: str | None = None,
 ) -> dict[str, Any]:
     from robomodel.runtime import Context
     from robomodel.runtime.msg import JointState
     from robomodel.runtime.msg.cdr import serialize
 
-    role = "sink-robomodel-stages" if stages else "sink-robomodel"
+    role = sink_role or ("sink-robomodel-stages" if stages else "sink-robomodel")
     sink = _start_sink(role, domain, seconds + 4.0, profile)
     with Context("zenoh", domain_id=domain) as ctx:
         pub = ctx.create_node("driver").create_publisher(JointState, TOPIC, 1000)
@@ -296,6 +306,11 @@ def main() -> None:
         help="time the steps inside robomodel's subscriber process (medians per round)",
     )
     parser.add_argument(
+        "--split",
+        action="store_true",
+        help="also robomodel's publisher -> raw callback and raw put -> robomodel's subscription",
+    )
+    parser.add_argument(
         "--role",
         choices=("driver", "sink-raw", "sink-raw-hop", "sink-robomodel", "sink-robomodel-stages"),
         default="driver",
@@ -319,6 +334,15 @@ def main() -> None:
         if args.decompose:
             hop = run_raw(names, args.domain, args.seconds, args.rate, "sink-raw-hop")
             print(f"round {k + 1} raw put, handed to the main thread: {_summary(hop)}")
+        if args.split:
+            mixed = run_robomodel(
+                names, args.domain, args.seconds, args.rate, None, False, "sink-raw"
+            )
+            print(f"round {k + 1} robomodel publisher -> raw callback: {_summary(mixed)}")
+            mixed = run_raw(
+                names, args.domain, args.seconds, args.rate, "sink-robomodel", attach=True
+            )
+            print(f"round {k + 1} raw put -> robomodel subscription: {_summary(mixed)}")
         ours.append(
             run_robomodel(names, args.domain, args.seconds, args.rate, args.profile, args.stages)
         )
