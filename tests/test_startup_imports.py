@@ -166,6 +166,21 @@ def test_a_control_verb_without_a_robot_loads_no_description(tmp_path: Path) -> 
     assert _offenders(loaded, banned) == []
 
 
+def test_nodes_and_messages_load_no_yaml_until_yaml_is_read_or_written() -> None:
+    """PyYAML (~20 ms) is for what reads or prints YAML (topic echo, params files), not for
+    every bus verb: `control list-controllers` and a node publishing load none of it."""
+    probe = (
+        "import sys; from robomodel.runtime import Context; "
+        "from robomodel.runtime.msg import JointState, message_to_yaml; "
+        "import robomodel.runtime.transport.zenoh_bus; "
+        "ctx = Context(); node = ctx.create_node('a'); "
+        "node.create_publisher(JointState, '/js', 10).publish(JointState()); "
+        "print('yaml' in sys.modules); message_to_yaml(JointState()); print('yaml' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    assert out.stdout.split() == ["False", "True"], out.stderr
+
+
 def test_help_imports_no_verb_module(tmp_path: Path) -> None:
     loaded = modules_loaded_by(tmp_path, "--help")
     assert _verb_modules(loaded) == set()

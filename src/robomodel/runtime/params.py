@@ -14,8 +14,6 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-import yaml
-
 from robomodel._atomic import atomic_write_text
 from robomodel._files import UserFileError, read_user_text
 from robomodel._yaml_bounded import load_yaml
@@ -85,6 +83,8 @@ def _coerce(name: str, old: Any, new: Any) -> Any:
 
 def parse_parameter_value(text: str) -> ParameterValue:
     """Parse a command-line value as ``ros2 param set`` does (YAML scalars and lists)."""
+    import yaml  # here, not at import: a node that never parses a value skips its 20 ms
+
     try:
         value = load_yaml(text, what="the parameter value")
     except yaml.YAMLError:
@@ -217,6 +217,8 @@ def load_parameters_file(path: str | os.PathLike[str], node_fq_name: str) -> dic
         text = read_user_text(path, what="parameter file")
     except UserFileError as exc:
         raise ParameterError(str(exc)) from None
+    import yaml
+
     try:
         data = yaml.safe_load(text) or {}
     except yaml.YAMLError as exc:
@@ -248,6 +250,8 @@ def dump_parameters_yaml(node_fq_name: str, values: Mapping[str, Any]) -> str:
         for part in parts[:-1]:
             target = target.setdefault(part, {})
         target[parts[-1]] = value
+    import yaml
+
     return yaml.safe_dump({node_fq_name: {"ros__parameters": nested}}, sort_keys=False)
 
 

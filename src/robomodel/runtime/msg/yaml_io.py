@@ -7,11 +7,10 @@ and leaves the rest at their defaults, as rosidl_runtime_py's ``set_message_fiel
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
-from typing import Any, TypeVar
-
-import yaml
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from robomodel._yaml_bounded import load_yaml
 from robomodel.errors import close_matches
@@ -25,6 +24,9 @@ from robomodel.runtime.msg._schema import (
 )
 
 __all__ = ["message_from_dict", "message_from_yaml", "message_to_dict", "message_to_yaml"]
+
+if TYPE_CHECKING:
+    import yaml
 
 _M = TypeVar("_M", bound=Message)
 _INT_RANGES = {
@@ -132,6 +134,8 @@ def message_from_dict(cls: type[_M], data: dict[str, Any] | None) -> _M:
 
 def message_from_yaml(cls: type[_M], text: str) -> _M:
     """Parse ``ros2 topic pub``-style YAML (``"data: 1.5"``, ``"{linear: {x: 0.2}}"``)."""
+    import yaml  # here, not at import: the bus verbs that never read YAML skip its 20 ms
+
     try:
         data = load_yaml(text, what="the message") if text.strip() else None
     except yaml.YAMLError as exc:
@@ -157,24 +161,31 @@ def _to_plain(spec: Spec, value: Any) -> Any:
     return message_to_dict(value)
 
 
-class _EchoDumper(yaml.SafeDumper):
-    """PyYAML's dumper with insertion-ordered mappings, as rosidl_runtime_py registers."""
+@functools.cache
+def _echo_dumper() -> type[yaml.SafeDumper]:
+    """PyYAML's dumper with insertion-ordered mappings, as rosidl_runtime_py registers, and
+    NaN written ``.nan`` (made on first use: PyYAML is imported only by what prints YAML)."""
+    import yaml
 
+    class EchoDumper(yaml.SafeDumper):
+        pass
 
-def _represent_float(dumper: yaml.SafeDumper, value: float) -> yaml.ScalarNode:
-    if math.isnan(value):
-        return dumper.represent_scalar("tag:yaml.org,2002:float", ".nan")
-    return dumper.represent_float(value)
+    def represent_float(dumper: yaml.SafeDumper, value: float) -> yaml.ScalarNode:
+        if math.isnan(value):
+            return dumper.represent_scalar("tag:yaml.org,2002:float", ".nan")
+        return dumper.represent_float(value)
 
-
-_EchoDumper.add_representer(float, _represent_float)
+    EchoDumper.add_representer(float, represent_float)
+    return EchoDumper
 
 
 def message_to_yaml(msg: Message) -> str:
     """What ``ros2 topic echo`` prints for one message (without the ``---`` separator)."""
+    import yaml
+
     return yaml.dump(
         message_to_dict(msg),
-        Dumper=_EchoDumper,
+        Dumper=_echo_dumper(),
         sort_keys=False,
         default_flow_style=False,
         allow_unicode=True,
