@@ -140,16 +140,12 @@ class Executor:
     def run_pending(self) -> int:
         """Run every queued callback (including ones queued meanwhile); return the count."""
         count = 0
-        queue = self._queue
         while True:
             try:
-                callback = queue.popleft()
+                callback = self._queue.popleft()
             except IndexError:
                 return count
-            try:  # _run's body, inline: this loop hands every message to its callback
-                callback()
-            except Exception:
-                log.exception("callback failed; the node keeps running")
+            self._run(callback)
             count += 1
 
     def run_due_timers(self) -> int:

@@ -89,7 +89,7 @@ def passing_interrupts(callback: Any) -> Any:
 
     def run(sample: Any) -> None:
         try:
-            if get_ident() not in _kept_thread_states:
+            if _get_ident() not in _kept_thread_states:
                 keep_thread_state()
             callback(sample)
         except KeyboardInterrupt as exc:
@@ -98,7 +98,7 @@ def passing_interrupts(callback: Any) -> Any:
     return run
 
 
-get_ident = threading.get_ident
+_get_ident = threading.get_ident
 _kept_thread_states: set[int] = set()
 
 
@@ -116,7 +116,7 @@ def keep_thread_state() -> None:
     does. On a thread that Python started, or the main thread, it only counts one more.
     Once per thread; CPython only (elsewhere nothing is done).
     """
-    ident = get_ident()
+    ident = _get_ident()
     if ident in _kept_thread_states or len(_kept_thread_states) > _MAX_KEPT:
         return
     _kept_thread_states.add(ident)

@@ -38,10 +38,8 @@ from robomodel.runtime.transport.base import (
     SubscriptionHandle,
 )
 from robomodel.runtime.transport.rmw_zenoh import (
-    ATTACHMENT_SIZE,
-    GID_SIZE,
     EntityKind,
-    attachment_struct,
+    encode_attachment,
     entity_gid,
     parse_attachment,
 )
@@ -68,7 +66,6 @@ class ZenohPublisher(PublisherHandle):
         self._lock = threading.Lock()
         self._destroyed = False
         self._encode = payload_encoder(msg_type)  # generated now, not on the first message
-        self._attach = attachment_struct().pack
         token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
         self._gid = entity_gid(token.key())
         self._graph = bus.graph_cache
@@ -117,7 +114,7 @@ class ZenohPublisher(PublisherHandle):
             if self._destroyed:  # a message of a node torn down by another callback: dropped
                 return
             self._seq += 1
-            attachment = self._attach(self._seq, time.time_ns(), GID_SIZE, self._gid)
+            attachment = encode_attachment(self._seq, time.time_ns(), self._gid)
             self._pub.put(payload, attachment=attachment)
 
     def subscription_count(self) -> int:
@@ -148,7 +145,6 @@ class ZenohSubscription(SubscriptionHandle):
         self._sequences = SequenceTracker()
         self._alive = True
         self._decode = payload_decoder(msg_type)  # generated now, not on the first message
-        self._unpack_attachment = attachment_struct().unpack
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
         # the oldest (rmw_zenoh's message queue) instead of falling further behind. KEEP_ALL
         # keeps every one (SubscriptionData::add_new_message, rmw_subscription_data.cpp).
@@ -217,15 +213,11 @@ class ZenohSubscription(SubscriptionHandle):
             return
         attached = sample.attachment  # each access builds a new ZBytes: read it once
         attachment = b"" if attached is None else attached.to_bytes()
-        # rmw_zenoh's form, unpacked here (parse_attachment's first case, without its tuple)
-        if len(attachment) == ATTACHMENT_SIZE and attachment[16] == GID_SIZE:
-            sequence, stamp_ns, _, gid = self._unpack_attachment(attachment)
-        else:
-            parsed = parse_attachment(attachment)  # an older rmw_zenoh's, or none
-            if parsed is None:
-                self._no_attachment(attachment)
-                return
-            sequence, stamp_ns, gid = parsed
+        parsed = parse_attachment(attachment)
+        if parsed is None:
+            self._no_attachment(attachment)
+            return
+        sequence, stamp_ns, gid = parsed
         self._sequences.record(gid, sequence)
         payload = sample.payload.to_bytes()
         if self._raw_deliver is not None:

@@ -33,7 +33,6 @@ __all__ = [
     "Attachment",
     "EntityKind",
     "EntityToken",
-    "attachment_struct",
     "demangle",
     "encode_attachment",
     "entity_gid",
@@ -169,12 +168,6 @@ class Attachment(NamedTuple):  # a tuple: built for every sample, in half a data
 
 def encode_attachment(sequence_number: int, source_timestamp_ns: int, gid: bytes) -> bytes:
     return _ATTACHMENT.pack(sequence_number, source_timestamp_ns, GID_SIZE, gid)
-
-
-def attachment_struct() -> struct.Struct:
-    """The layout of rmw_zenoh's attachment: sequence number, source timestamp [ns], the GID's
-    size (16) and the GID. A publisher packs it and a subscription unpacks it directly."""
-    return _ATTACHMENT
 
 
 def _legacy(data: bytes) -> Attachment | None:
