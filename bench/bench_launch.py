@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import signal
 import statistics
 import subprocess
@@ -109,6 +110,7 @@ def main() -> None:
             print(f"round {k + 1}: robomodel {ours[-1]:.3f} s, roslaunch {reference[-1]:.3f} s")
     finally:
         _stop(core)
+        shutil.rmtree(work, ignore_errors=True)  # the launch file, roscore's logs, ROS_HOME
     ratio = statistics.median(o / r for o, r in zip(ours, reference, strict=True))
     print(
         f"time to the first /tf: robomodel launch {statistics.median(ours):.3f} s, "

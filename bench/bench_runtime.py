@@ -23,6 +23,7 @@ import argparse
 import contextlib
 import json
 import os
+import shutil
 import signal
 import statistics
 import subprocess
@@ -197,6 +198,7 @@ def _run_ros1(names: list[str], seconds: float, rate: float, port: int) -> dict[
                 except subprocess.TimeoutExpired:
                     proc.kill()
                     proc.wait()
+        shutil.rmtree(work, ignore_errors=True)  # roscore's logs and ROS_HOME
     return {
         "sent": summary["sent"],
         "elapsed": summary["elapsed"],

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import socket
 import statistics
 import subprocess
@@ -107,6 +108,7 @@ def main() -> None:
     finally:
         master.terminate()
         master.wait()
+        shutil.rmtree(work, ignore_errors=True)  # ROS_HOME and the generated gazebo_msgs
 
 
 def _rounds(
