@@ -42,7 +42,7 @@ def _robomodel_commands() -> list[str]:
 def test_quickstart_sets_up_the_command_and_the_packages() -> None:
     quickstart, per_lesson = _quickstart_blocks()
     lines = commands(quickstart)
-    assert len(lines) == 5  # issue 32: a five-command quickstart
+    assert len(lines) == 5  # a five-command quickstart
     assert lines[0] == "source .venv/bin/activate"
     assert lines[1] == "export ROS_PACKAGE_PATH=$PWD/examples"
     assert lines[-1] == "robomodel topic list"

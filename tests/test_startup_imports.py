@@ -1,4 +1,4 @@
-"""Start-up (issue 14.1): which modules each command loads, so that it cannot silently regress.
+"""Start-up: which modules each command loads, so that it cannot silently regress.
 
 Each command runs in a process of its own, through the same ``main`` as the console script,
 and reports ``sys.modules`` when it is done. The time these imports take is measured by

@@ -1,4 +1,4 @@
-"""Every file a user names is read through one bounded reader (issue 23, items 3 and 6):
+"""Every file a user names is read through one bounded reader:
 device files, FIFOs, directories and files over 64 MiB are refused with the file named; bytes
 that are not UTF-8 are an error at their line and column, not a UnicodeDecodeError traceback."""
 

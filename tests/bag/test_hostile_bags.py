@@ -1,4 +1,4 @@
-"""Hostile bag files (issue 29, findings 3, 5 and 15): each is refused or read within its
+"""Hostile bag files: each is refused or read within its
 bound, in the process that reads it, with one clear line and no traceback."""
 
 from __future__ import annotations

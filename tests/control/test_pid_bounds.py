@@ -1,4 +1,4 @@
-"""Issue 15.3: PID bounds checked as control_toolbox checks them.
+"""PID bounds checked as control_toolbox checks them.
 
 Transcribed from control_toolbox's test/pid_tests.cpp:
 - ``ITermBadIBoundsTestConstructor`` (Humble): ``Pid(1.0, 1.0, 1.0, -1.0, 1.0)`` (i_max=-1 <

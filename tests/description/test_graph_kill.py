@@ -1,4 +1,4 @@
-"""Issue 15.11: a killed ``robomodel graph -o out.svg`` leaves no file behind.
+"""A killed ``robomodel graph -o out.svg`` leaves no file behind.
 
 dot used to write its own temporary file beside the target and, killed with its parent gone,
 finished it anyway: ``.out.svg.<random>.svg`` piled up. Now dot writes to a pipe, dies with

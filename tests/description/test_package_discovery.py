@@ -1,4 +1,4 @@
-"""Issue 15.4 and 15.9: ament resource-index markers, and a package that finds itself."""
+"""Ament resource-index markers, and a package that finds itself."""
 
 from __future__ import annotations
 
@@ -142,8 +142,8 @@ def test_a_package_path_still_wins_over_the_workspace(tmp_path: Path) -> None:
 def test_a_files_own_package_wins_where_the_search_paths_know_none(
     tmp_path: Path, where: str
 ) -> None:
-    """Issue 23.13: a copy of simplebot_description beside the original, with its
-    simplebot_body.xacro broken, is processed with its own (broken) file. Issue 27.12: with the
+    """A copy of simplebot_description beside the original, with its
+    simplebot_body.xacro broken, is processed with its own (broken) file. With the
     original on ROS_PACKAGE_PATH or --package-path, ROS's search finds the original, whichever
     file asks, and so does robomodel."""
     original = tmp_path / "aaa" / "simplebot_description"
@@ -165,7 +165,7 @@ def test_a_files_own_package_wins_where_the_search_paths_know_none(
 
 
 def test_package_not_found_says_where_and_how_in_user_terms(tmp_path: Path) -> None:
-    """Issue 23.14: no internal path, the flags and variables that add a place, did-you-mean."""
+    """No internal path, the flags and variables that add a place, did-you-mean."""
     (tmp_path / "pkgs" / "gripper_description").mkdir(parents=True)
     (tmp_path / "pkgs" / "gripper_description" / "package.xml").write_text(
         "<package><name>gripper_description</name></package>"

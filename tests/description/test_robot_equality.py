@@ -1,4 +1,4 @@
-"""Issue 15.8: ``Robot`` equality is that of the robot, not of the document's order."""
+"""``Robot`` equality is that of the robot, not of the document's order."""
 
 from __future__ import annotations
 
@@ -60,7 +60,7 @@ def test_gazebo_blocks_keep_their_order() -> None:
 
 
 def test_diagnostic_of_a_childless_element_points_at_it(tmp_path: Path) -> None:
-    # Issue 15.7: `exc.element or element` took a childless lxml element as false (and lxml
+    # `exc.element or element` took a childless lxml element as false (and lxml
     # warned with a FutureWarning), so the warning pointed at the parent <transmission>.
     path = tmp_path / "t.urdf"
     path.write_text(

@@ -1,4 +1,4 @@
-"""The README stays a short front page whose links all lead somewhere (issue 32).
+"""The README stays a short front page whose links all lead somewhere.
 
 mkdocs' strict build checks the links between the site's pages; the README is read on the
 forge, outside the site, so its links and their ``#anchors`` are checked here.

@@ -1,4 +1,4 @@
-"""Issue 23.18: the kinematics reference's example (docs/reference/kinematics.md) runs as written, from the checkout's root
+"""The kinematics reference's example (docs/reference/kinematics.md) runs as written, from the checkout's root
 (it once named ``tool0``, a link the example UR5 does not have)."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Issue 23.15: what a new user mistypes gets a did-you-mean (a verb, a launch file in a
+"""What a new user mistypes gets a did-you-mean (a verb, a launch file in a
 package), and a ``name:=value`` that no launch ``<arg>`` or ``<xacro:arg>`` declares gets a
 warning naming the declared ones (ROS ignores it silently and so does robomodel, apart from the
 warning)."""

@@ -1,4 +1,4 @@
-"""Issue 27.8: seed 003's ``gazebo.launch.py`` starts Gazebo but never spawns the robot. The
+"""Seed 003's ``gazebo.launch.py`` starts Gazebo but never spawns the robot. The
 world runs empty, as Gazebo's would, and robomodel prints one hint line: no entity was spawned,
 the launch file, and the spawner line that would spawn one (ROS 2's spawn_entity.py, ROS 1's
 spawn_model). A launch with a spawner gets no hint."""

@@ -1,4 +1,4 @@
-"""The launch layer's bounds (issue 23, items 1-4): substitution results, include fan-out,
+"""The launch layer's bounds: substitution results, include fan-out,
 device files and huge files, and ``<param command=>``'s time and output. Each is refused with
 one clear line at file:line, exit code 2, no traceback."""
 

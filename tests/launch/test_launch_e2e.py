@@ -103,7 +103,7 @@ def test_rrbot_two_terminals_as_seed_000(tmp_path: Path) -> None:
             assert got.returncode == 0 and float(got.stdout) == 100.0, got.stderr
             listed = _cli(domain, "control", "list-controllers", "-c", "/rrbot/controller_manager")
             assert "joint1_position_controller" in listed.stdout and "active" in listed.stdout
-            # issue 23.16: without -c, the error names the manager that is on the bus
+            # Without -c, the error names the manager that is on the bus
             default = _cli(domain, "control", "list-controllers")
             assert default.returncode == 2 and "Traceback" not in default.stderr
             assert "controller managers that are: /rrbot/controller_manager" in default.stderr

@@ -1,5 +1,5 @@
-"""Child processes end as a group, and Ctrl-C works however robomodel was started (issue 23,
-items 9 and 10): roslaunch's SIGINT, SIGTERM, SIGKILL sequence on each child's own process
+"""Child processes end as a group, and Ctrl-C works however robomodel was started:
+roslaunch's SIGINT, SIGTERM, SIGKILL sequence on each child's own process
 group; a SIGTERM during a ``<param command=>`` load ends the command's whole tree; SIGINT
 stops a verb that a script started in the background (SIGINT ignored at start)."""
 

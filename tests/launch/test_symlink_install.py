@@ -1,4 +1,4 @@
-"""Issue 27.12: a ``colcon build --symlink-install`` prefix runs as the copied one does.
+"""A ``colcon build --symlink-install`` prefix runs as the copied one does.
 
 The package is modelled on ros2_control_demos' example_1 (Jazzy): its source tree keeps the
 launch file in ``bringup/launch``, the controllers in ``bringup/config`` and the description in

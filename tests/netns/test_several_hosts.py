@@ -1,4 +1,4 @@
-"""Several machines, checked on one (issue 30.9): each "host" is a network namespace of its
+"""Several machines, checked on one: each "host" is a network namespace of its
 own, with its own loopback and one private address, joined to a "router host" by a veth pair
 (10.200.1.0/24 and 10.200.2.0/24, inside these namespaces only; the router host forwards
 between them). Nothing a test runs can then reach another through 127.0.0.1: every message

@@ -1,5 +1,5 @@
-"""Long-running commands say which graph they joined (issue 32: master, domain and router are
-shared machine-wide by default, so a user on a shared machine must see which one they are in)."""
+"""Long-running commands say which graph they joined: master, domain and router
+are shared machine-wide by default, so a user on a shared machine must see which one they are in."""
 
 from __future__ import annotations
 

@@ -343,7 +343,7 @@ def _robomodel_saved_config(ros1: Ros1, path: Path) -> None:
 def test_rviz_opens_a_config_robomodel_saved_with_its_displays_and_fixed_frame(
     ros1: Ros1, tmp_path: Path
 ) -> None:
-    """Issue 27.1: Debian's ``rviz -d`` opens the file robomodel's viewer saved (ROS 1 class
+    """Debian's ``rviz -d`` opens the file robomodel's viewer saved (ROS 1 class
     names on a ROS 1 graph): the robot (RobotModel) and its frames' axes (TF) are drawn in the
     fixed frame, and rviz's log names no unknown display class and no missing frame."""
     from robomodel.viewer.rviz_config import read_rviz_file

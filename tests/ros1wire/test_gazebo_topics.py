@@ -1,4 +1,4 @@
-"""Issue 27.5, seed 001: ``roslaunch ur5_gazebo ur_gazebo_control.launch`` against robomodel's
+"""Seed 001: ``roslaunch ur5_gazebo ur_gazebo_control.launch`` against robomodel's
 master, seen by Debian's rostopic / rosservice / rosnode: Gazebo's and roscore's standard
 topics (``/gazebo/model_states``, ``/gazebo/link_states``, ``/gazebo/set_*_state``,
 ``/rosout``, ``/rosout_agg``), the state services, and the robomodel nodes' log lines on

@@ -1,4 +1,4 @@
-"""Hostile TCPROS peers against a robomodel node process (issue 29, findings 2, 9 and 12): each
+"""Hostile TCPROS peers against a robomodel node process: each
 attack is refused or survived within its bound, in the process under test, with one log line
 and no traceback, and the node answers afterwards (and ends promptly on SIGTERM).
 

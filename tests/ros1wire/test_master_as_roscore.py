@@ -1,5 +1,4 @@
-"""robomodel's ROS 1 master against a real roscore, driven by Debian's ROS 1 tools (issue 27
-item 6, issue 29 findings 1 and 10).
+"""robomodel's ROS 1 master against a real roscore, driven by Debian's ROS 1 tools.
 
 The same sequence of tool runs goes to a real ``roscore`` and to ``robomodel master``; after
 each step ``rosnode list``, ``rostopic list`` and ``rosservice list`` must agree, roscore's

@@ -1,4 +1,4 @@
-"""Debian's ``rosbag play`` plays a ROS 1 bag that robomodel wrote (issue 24's ``--ros1``), on a
+"""Debian's ``rosbag play`` plays a ROS 1 bag that robomodel wrote, on a
 master robomodel runs, to a robomodel subscriber: the md5sums, definitions and bytes of the
 bag are what ROS 1's own player accepts and sends."""
 

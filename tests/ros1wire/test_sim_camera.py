@@ -1,4 +1,4 @@
-"""Issue 31: the simulated simplebot_camera on a ROS 1 graph, seen by Debian's rostopic: the
+"""The simulated simplebot_camera on a ROS 1 graph, seen by Debian's rostopic: the
 openni_kinect plugin's topics and types, CameraInfo's K, and N messages at the sensor's
 ``update_rate`` (stamps in sim time: waiting for N messages, no timed assertion)."""
 

@@ -206,7 +206,7 @@ def test_marker_from_rostopic_pub_and_to_rostopic_echo(ros1: Ros1, tmp_path: Pat
 
 
 def test_bag_record_of_rostopic_pub_s_image_and_marker(ros1: Ros1, tmp_path: Path) -> None:
-    """Issue 28 on ROS 1: what Debian's ``rostopic pub`` sends as sensor_msgs/Image and
+    """Types from definitions on ROS 1: what Debian's ``rostopic pub`` sends as sensor_msgs/Image and
     visualization_msgs/Marker, ``bag record`` records, and rosbags reads back from the bag's
     own definitions equal to what was sent."""
     from rosbags.highlevel import AnyReader

@@ -1,6 +1,6 @@
 """Interface definitions for the zenoh-ros2-sdk process of the wire tests, from sources
 independent of robomodel: the SDK reads ``.msg`` / ``.srv`` files and computes every type
-hash itself, so what it is given must not come from robomodel's classes (issue 30.7).
+hash itself, so what it is given must not come from robomodel's classes.
 
 - ``interfaces/<pkg>/{msg,srv}/`` and ``custom_interfaces/``: upstream files (``interfaces/README.md`` says from which
   repository, branch and commit), with relative type names qualified by their package;

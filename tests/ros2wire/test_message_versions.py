@@ -1,4 +1,4 @@
-"""ListControllers under every Jazzy layout (issue 30.4): the controller manager answers a
+"""ListControllers under every Jazzy layout: the controller manager answers a
 client of ros2_control 4.0-4.12, 4.13-4.27 and 4.28+ each in its own layout.
 
 The layouts' reference is the upstream files at the release tags (``interface_versions/``,

@@ -1,5 +1,5 @@
-"""Types robomodel has no generated class for, published by an independent rmw_zenoh peer
-(issue 28): zenoh-ros2-sdk, with definitions from rosbags' Jazzy store (never robomodel's),
+"""Types robomodel has no generated class for, published by an independent rmw_zenoh peer:
+zenoh-ros2-sdk, with definitions from rosbags' Jazzy store (never robomodel's),
 publishes an Image, a Marker, a PointCloud2, an OccupancyGrid and a type of the user's own
 interface package. robomodel's ``topic echo`` prints each, ``bag record -a`` records them all,
 and rosbags reads the bag back, from the bag's own definitions, equal to what was sent.

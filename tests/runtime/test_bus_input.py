@@ -1,4 +1,4 @@
-"""Issue 15.10: input from other processes is parsed strictly and never costs good messages."""
+"""Input from other processes is parsed strictly and never costs good messages."""
 
 from __future__ import annotations
 

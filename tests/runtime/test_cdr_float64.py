@@ -1,4 +1,4 @@
-"""float64[] fields: coded through array('d') on little-endian hosts (issue 30's latency), with
+"""float64[] fields: coded through array('d') on little-endian hosts, with
 the bytes that struct's explicit little-endian format gives, for every value a list, tuple or
 numpy array of numbers can hold; anything else is refused as it was."""
 

@@ -1,4 +1,4 @@
-"""The domain id as rcl reads ``ROS_DOMAIN_ID`` (issue 30.5).
+"""The domain id as rcl reads ``ROS_DOMAIN_ID``.
 
 Expected values follow ros2/rcl ``rcl/src/rcl/domain_id.c`` (``rcl_get_default_domain_id``:
 ``strtoul(text, &end, 0)``; 0 with text left over is refused, overflow is refused, other

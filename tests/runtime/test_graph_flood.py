@@ -1,4 +1,4 @@
-"""Issue 29.8: a peer flooding the graph with liveliness tokens hides nobody else's entities,
+"""A peer flooding the graph with liveliness tokens hides nobody else's entities,
 is bounded with one warning and a non-zero exit, and the memory goes when its tokens go."""
 
 from __future__ import annotations

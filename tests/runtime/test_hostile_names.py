@@ -1,4 +1,4 @@
-"""Issue 29.7: names from a peer are printed with control characters escaped, on both buses."""
+"""Names from a peer are printed with control characters escaped, on both buses."""
 
 from __future__ import annotations
 
@@ -89,7 +89,7 @@ def ros1_master(tmp_path: Path) -> Iterator[str]:
     port = free_port()
     env = {**_cli_env(), "ROS_HOME": str(tmp_path)}
     # Debian's rosmaster: it registers names holding controls, which robomodel's own master
-    # refuses (issue 29.13), so that what a listing prints of them can be seen
+    # refuses, so that what a listing prints of them can be seen
     proc = subprocess.Popen(
         ["/usr/bin/roscore", "-p", str(port)],
         stdout=subprocess.DEVNULL,

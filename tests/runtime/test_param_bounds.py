@@ -1,4 +1,4 @@
-"""Bounds of the parameter server and of YAML from users and peers (issue 23, items 5, 7, 8)."""
+"""Bounds of the parameter server and of YAML from users and peers."""
 
 from __future__ import annotations
 

@@ -278,7 +278,7 @@ def test_the_publisher_heard_least_recently_is_the_one_forgotten() -> None:
 
 
 def test_a_publisher_restarting_with_the_same_gid_loses_none_of_8_messages() -> None:
-    """Issue 29.16: a publisher that restarts with the same GID numbers its samples from 1
+    """A publisher that restarts with the same GID numbers its samples from 1
     again; rmw_zenoh delivers them (robomodel dropped those up to 1023 below the last)."""
     from robomodel.runtime import Context
     from robomodel.runtime.msg import Float64, serialize

@@ -1,4 +1,4 @@
-"""Issue 29 (one bound per resource): a node's TCPROS server caps the subscriber connections
+"""One bound per resource: a node's TCPROS server caps the subscriber connections
 and the service connections of its process, each of which holds a thread while it lasts.
 
 A hostile peer that opens connections with valid headers gets the cap's worth served; past it

@@ -1,4 +1,4 @@
-"""Issue 29's findings against the ROS 1 master, its parameter server and its XML-RPC server,
+"""Hostile peers against the ROS 1 master, its parameter server and its XML-RPC server,
 each reproducer rebuilt: the attack is refused (or survived) within the bound, with at most a
 few log lines and no traceback, the master process's memory stays below the bound (RSS
 measured), and the master answers afterwards.

@@ -1,4 +1,4 @@
-"""Issue 29.6 and its kin: a peer refused before its request was read reads the refusal, not a
+"""A peer refused before its request was read reads the refusal, not a
 reset, and a burst of connections past the XML-RPC request cap is refused at once.
 
 A socket closed with unread input resets the connection (RST): a peer still sending its request

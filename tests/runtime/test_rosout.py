@@ -1,4 +1,4 @@
-"""Issue 27.5: every node publishes its log lines on /rosout (rcl_interfaces/msg/Log off ROS 1,
+"""Every node publishes its log lines on /rosout (rcl_interfaces/msg/Log off ROS 1,
 rcl's /rosout QoS: a late subscriber still gets them), and a launch's lines for a node go out as
 that node's."""
 

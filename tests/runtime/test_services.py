@@ -146,7 +146,7 @@ def test_zenoh_service_across_processes(tmp_path: Path) -> None:
         missing = subprocess.run([*cli, "call", "/calc/sub", "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
         assert missing.returncode == 2
         assert "not offered" in missing.stderr and "/calc/check" in missing.stderr
-        # issue 23.15: a mistyped service, with or without its type, gets a did-you-mean
+        # A mistyped service, with or without its type, gets a did-you-mean
         for typed_args in ([], ["std_srvs/srv/SetBool", "{data: true}"]):
             typo = subprocess.run([*cli, "call", "/calc/chek", *typed_args, "--timeout", "0.5", "--domain-id", domain], capture_output=True, text=True, timeout=scaled(20))  # fmt: skip
             assert typo.returncode == 2 and "Traceback" not in typo.stderr

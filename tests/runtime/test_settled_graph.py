@@ -1,4 +1,4 @@
-"""Issue 15.6: ``topic list`` waits for discovery instead of printing a partial graph."""
+"""``topic list`` waits for discovery instead of printing a partial graph."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""One-off service callers are clients of the ROS 2 graph (issue 30.8).
+"""One-off service callers are clients of the ROS 2 graph.
 
 rmw_zenoh's ``ClientData::make`` (``rmw_zenoh_cpp/src/detail/rmw_client_data.cpp``, Jazzy
 0.2.10) declares an ``SC`` liveliness token for each client (``liveliness_utils.cpp``,

@@ -1,4 +1,4 @@
-"""Full QoS in rmw_zenoh's tokens and in what the Zenoh transport does with it (issue 30.3).
+"""Full QoS in rmw_zenoh's tokens and in what the Zenoh transport does with it.
 
 Expected strings are transcribed from ros2/rmw_zenoh Jazzy 0.2.10 (``ros2-gbp/rmw_zenoh-release``
 tag ``release/jazzy/rmw_zenoh_cpp/0.2.10-1``): ``qos_to_keyexpr``, ``keyexpr_to_qos`` and

@@ -82,7 +82,7 @@ def _router_of(ctx: Context) -> list[str]:
 
 
 def test_a_session_starts_a_router_that_outlives_it(private_router: str) -> None:
-    """Issue 30.1: start a session, exit it, start another: the same router (pid and Zenoh id)
+    """Start a session, exit it, start another: the same router (pid and Zenoh id)
     serves both; ``robomodel router --stop`` ends it."""
     domain = int(unique_domain())
     with Context("zenoh", domain_id=domain) as first:

@@ -2,7 +2,7 @@
 
 zenoh-python enters Python from its own threads through PyGILState_Ensure/Release, which made
 and destroyed a thread state (and its frame stack) for every sample: about 20 us of each
-message's way at 1 kHz (BENCHMARKS.md, issue 30). robomodel's callback wrapper keeps it.
+message's way at 1 kHz. robomodel's callback wrapper keeps it.
 Each case runs in a process of its own: a thread state kept by an earlier test in the same
 process would stay kept.
 """

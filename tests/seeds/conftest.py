@@ -1,4 +1,4 @@
-"""The seeds as a student types them (issue 27, "How it is checked").
+"""The seeds as a student types them.
 
 Each module builds one seed's packages from the seed's own file text in a temporary workspace
 and runs the seed's command lines in order: ROS 1 seeds with Debian's real ``rostopic``,

@@ -5,7 +5,7 @@ spawned, ``rostopic list`` and a joint moved by ``rostopic pub``, as the student
 ur5_gazebo's files are the seed's own text (typo fixes named in comments). ur5_description is
 the official package trimmed to the UR5, of which the seed shows only fragments: the student's
 copy is examples/ur5_description (cylinders for the meshes the seed copies from the official
-package; issue 27 item 9 brings those meshes).
+package; example-robot-data brings those meshes).
 """
 
 from __future__ import annotations
@@ -206,7 +206,7 @@ def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(
 
 @pytest.mark.xfail(
     strict=True,
-    reason="not in issue 27: gazebo's dynamic_reconfigure topics /gazebo/parameter_descriptions "
+    reason="not offered: gazebo's dynamic_reconfigure topics /gazebo/parameter_descriptions "
     "and /gazebo/parameter_updates",
 )
 def test_rostopic_list_shows_gazebo_s_reconfigure_topics(

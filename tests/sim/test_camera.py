@@ -1,4 +1,4 @@
-"""Simulated cameras (issue 31): the simplebot's depth camera sees wall.world's wall where its
+"""Simulated cameras: the simplebot's depth camera sees wall.world's wall where its
 geometry puts it, CameraInfo's K, every topic at the update rate (other forms:
 test_camera_forms.py)."""
 

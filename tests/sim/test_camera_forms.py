@@ -1,4 +1,4 @@
-"""Simulated cameras (issue 31), their forms: the topic names of gazebo_ros's ROS 1 and ROS 2
+"""Simulated cameras, their forms: the topic names of gazebo_ros's ROS 1 and ROS 2
 plugins, a ROS 2 depth camera on the bus, CameraInfo on the ROS 1 wire, the OpenGL choice, a
 camera of an SDF world model."""
 

@@ -1,4 +1,4 @@
-"""The simulated control loop equals a hand-written one, to rounding (issue 14 target 5).
+"""The simulated control loop equals a hand-written one, to rounding.
 
 Six effort_controllers/JointPositionController (PID with i = 0) on the UR5 through the
 controller manager, resource manager and simulated hardware must give the same trajectory as

@@ -1,4 +1,4 @@
-"""Issue 27.5: gazebo_ros's /gazebo/model_states and /gazebo/link_states, get/set model and link
+"""gazebo_ros's /gazebo/model_states and /gazebo/link_states, get/set model and link
 state, get_model_properties, on a simulation server, with gazebo_ros's replies; the service
 names of the graph's ROS version."""
 

@@ -1,4 +1,4 @@
-"""Issue 15.2: the same command line gives the same simulation, to the last digit.
+"""The same command line gives the same simulation, to the last digit.
 
 ``--cmd-vel`` went through the bus at wall-clock times, so under load the command reached the
 controller at a different sim time in each run (distances 1.003, 1.024, 1.028 and once 0.531 m

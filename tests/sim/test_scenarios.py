@@ -1,4 +1,4 @@
-"""Issue 8's scenarios, headless and faster than real time (physics 1 kHz, controllers in the loop)."""
+"""The simulation scenarios, headless and faster than real time (physics 1 kHz, controllers in the loop)."""
 
 from __future__ import annotations
 

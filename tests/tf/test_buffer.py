@@ -170,7 +170,7 @@ def test_frames_as_string_and_yaml() -> None:
 
 @pytest.mark.parametrize("static", [False, True])
 def test_one_hop_lookup_is_the_general_walk(static: bool) -> None:
-    """Issue 14.4: parent<-child at time 0 answers from the child's newest sample, and gives
+    """Parent<-child at time 0 answers from the child's newest sample, and gives
     exactly what the general walk gives (also when the parent's own data would extrapolate)."""
     buf = BufferCore()
     buf.set_transform(_tf("world", "base", x=0.5, t_s=1.0), "a")

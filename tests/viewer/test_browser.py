@@ -319,7 +319,7 @@ def test_display_options_mimic_and_floating_controls(
 
 
 def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
-    """Issue 7's done-when: the seed's topic pub moves rrbot's joint1 in the viewer."""
+    """The seed's topic pub moves rrbot's joint1 in the viewer."""
     import subprocess
     import sys
 

@@ -1,4 +1,4 @@
-"""Issue 31: a config with displays saved from the page opens in Debian's ``rviz -d``.
+"""A config with displays saved from the page opens in Debian's ``rviz -d``.
 
 The page (headless Chromium) adds a Marker and a MarkerArray display on a ROS 1 graph and clicks
 Save Config; rviz under Xvfb opens the file, draws the red cube Debian's ``rostopic pub`` sends

@@ -1,7 +1,7 @@
 """A RobotModel display with Description Source File naming a file the viewer did not load
 loads that robot, as RViz 2's does (robot_model_display.cpp, ``load_urdf_from_file``): drawn
 from TF, publishing nothing; robomodel also reads xacro, reloads the file when it changes and
-shows the loader's file:line for an error. The robot goes with its display (issue 31)."""
+shows the loader's file:line for an error. The robot goes with its display."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""RobotModel and TF are displays like the others (issue 31): RViz's options and defaults, read
+"""RobotModel and TF are displays like the others: RViz's options and defaults, read
 from and written to ROS 1 and ROS 2 configs, added, removed, enabled and set in a viewer; a
 config without a RobotModel shows no robot, as RViz; without a config every robot has one."""
 

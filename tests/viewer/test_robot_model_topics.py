@@ -1,5 +1,5 @@
 """A RobotModel display naming a description the viewer did not load loads that robot, as
-RViz's does (issue 31): RViz 2 subscribes to its Description Topic (std_msgs/String, transient
+RViz's does: RViz 2 subscribes to its Description Topic (std_msgs/String, transient
 local); the robot is drawn from TF like the viewer's own, and goes with its display."""
 
 from __future__ import annotations

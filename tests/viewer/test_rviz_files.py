@@ -1,4 +1,4 @@
-"""Issue 27.1: RViz configs read, written in RViz's own format, and read back unchanged.
+"""RViz configs read, written in RViz's own format, and read back unchanged.
 
 RViz's own default config (Debian's /usr/share/rviz/default.rviz) is rewritten byte for byte;
 every .rviz robomodel ships reads back equal after a write; arbitrary trees survive the

@@ -1,4 +1,4 @@
-"""Issue 27.1: the viewer opens a -d file that does not exist with RViz's defaults, and its
+"""The viewer opens a -d file that does not exist with RViz's defaults, and its
 File folder saves what it shows; a launch whose rviz node names a missing file keeps running.
 """
 

@@ -1,4 +1,4 @@
-"""Issue 27.1 in a real browser: seed 000's display.launch before urdf.rviz exists serves the
+"""RViz configs in a real browser: seed 000's display.launch before urdf.rviz exists serves the
 viewer with Grid, RobotModel and TF; the student sets the Fixed Frame and clicks Save Config,
 and the file is RViz's; Save Config As asks for a path and writes there."""
 

@@ -1,4 +1,4 @@
-"""Issue 31: the sensor and navigation displays saved in a ROS 1 config open in Debian's ``rviz -d``.
+"""The sensor and navigation displays saved in a ROS 1 config open in Debian's ``rviz -d``.
 
 A viewer adds PointCloud2, Image, Camera, Map, Path, Pose, PoseArray, PoseWithCovariance,
 Odometry and Wrench (RViz 1's ``rviz/WrenchStamped``) displays and saves a ROS 1 config. A display of a class no rviz has is appended as

@@ -1,4 +1,4 @@
-"""Issue 15.5: textured DAE meshes are drawn with their textures, as RViz draws them, and every
+"""Textured DAE meshes are drawn with their textures, as RViz draws them, and every
 mesh of a many-mesh robot is drawn (one failing mesh never stops the ones after it)."""
 
 from __future__ import annotations

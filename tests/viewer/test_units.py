@@ -229,7 +229,7 @@ def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
 
 
 def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:
-    """Issue 14.4: a link that only turns sends one message, not two; unchanged links none."""
+    """A link that only turns sends one message, not two; unchanged links none."""
     import viser
 
     from robomodel.viewer.scene import RobotModelDisplay
@@ -284,7 +284,7 @@ def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:
 
 
 def test_pose_messages_are_what_viser_sends_for_its_own() -> None:
-    """Issue 14.4: the quickly serialised pose messages put viser's bytes on the wire."""
+    """The quickly serialised pose messages put viser's bytes on the wire."""
     import msgspec
     from viser import _messages
 
@@ -334,7 +334,7 @@ def test_pose_messages_fall_back_when_viser_serialises_differently(
 
 
 def test_next_big_update_waits_for_pages_to_be_sent_the_previous_one() -> None:
-    """Issue 14.4: a new update would replace pose messages still waiting to be sent."""
+    """A new update would replace pose messages still waiting to be sent."""
     from types import SimpleNamespace
 
     from robomodel.viewer.app import Viewer

@@ -1,4 +1,4 @@
-"""Issue 27.9: the UR5 example draws ur_description's meshes from example-robot-data, and falls
+"""The UR5 example draws ur_description's meshes from example-robot-data, and falls
 back to its collision cylinders, with one status line, where that package is not found."""
 
 from __future__ import annotations

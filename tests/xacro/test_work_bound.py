@@ -1,4 +1,4 @@
-"""Issue 15.1: exponential expansions are refused by a bound on total work, not after minutes.
+"""Exponential expansions are refused by a bound on total work, not after minutes.
 
 A macro that calls itself twice per level does 2^depth calls; before the work bound only the
 node limit stopped it (2^20 after 44 s). Each case here must be refused with the work message,

@@ -184,7 +184,7 @@ def run_list(args: argparse.Namespace) -> int:
 
 def run_echo(args: argparse.Namespace) -> int:
     limit = 1 if args.once else args.count
-    # until Ctrl-C: say which graph it listens to (issue 32); a counted echo prints only messages
+    # until Ctrl-C: say which graph it listens to; a counted echo prints only messages
     announce = "robomodel topic echo" if limit is None else None
     with context_from_args(args, announce=announce) as context:
         wait_for_peers(context)

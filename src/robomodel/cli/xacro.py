@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
             "xacro: in-order processing became default in ROS Melodic. You can drop the option.",
             file=sys.stderr,
         )
-    # The input's own package and its workspace siblings resolve without any setup (issue 15.9).
+    # The input's own package and its workspace siblings resolve without any setup.
     index = index_from_options(args.package_path, args.package).with_workspace_of(inputs[0])
     result = expand(
         inputs[0],

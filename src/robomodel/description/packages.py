@@ -252,7 +252,7 @@ class PackageIndex:
         for prefix in map(_absolute, self._ament_prefixes):
             for name in _ament_packages(prefix):
                 index.setdefault(name, Package(name, prefix / "share" / name, "AMENT_PREFIX_PATH"))
-        for package in self._own:  # issue 27.12: only where the search paths know no such name
+        for package in self._own:  # only where the search paths know no such name, as ROS's search
             index.setdefault(package.name, package)
         for root, _ in self._fallback_paths:
             found = {}

@@ -68,7 +68,7 @@ class Executor:
         # already. The bell is a bare lock, held while silent: ringing releases it, and the
         # spinning thread's acquire both waits for a ring and silences it again. That is
         # threading.Event without its Condition (a waiter list, a lock per wait, notify_all),
-        # which cost ~10 us a message at 1 kHz (BENCHMARKS.md, issue 30). The spinning thread
+        # which cost ~10 us a message at 1 kHz. The spinning thread
         # waits in lock.acquire, never in queue.SimpleQueue.get with a timeout: on CPython
         # 3.11/3.12 that get blocks forever once a signal handler (Ctrl-C's) runs past its
         # deadline (tests/runtime/test_executor_signals.py), where lock.acquire checks the

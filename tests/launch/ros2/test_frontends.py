@@ -126,7 +126,7 @@ def test_xml_errors(tmp_path: Path, text: str, message: str) -> None:
     "mode", [["--print"], ["--headless", "--bus", "inproc", "--duration", "0.5"]]
 )
 def test_temporary_parameter_files_are_removed_at_exit(tmp_path: Path, mode: list[str]) -> None:
-    """Issue 23.17: the launch_params_*.yaml of ``allow_substs`` are gone when the launch
+    """The launch_params_*.yaml of ``allow_substs`` are gone when the launch
     ends (ros2 launch leaves them in /tmp; 11 piled up in one test session)."""
     import os
     import subprocess

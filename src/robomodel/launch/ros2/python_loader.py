@@ -20,7 +20,7 @@ def load_python_description(path: Path) -> LaunchDescription:
     """Run the file and return its LaunchDescription (errors as LaunchError at file:line)."""
     session = current_session()
     # as given, like launch's SourceFileLoader: in a --symlink-install prefix, __file__ is the
-    # prefix's path and not the source file the symlink points at (issue 27.12)
+    # prefix's path and not the source file the symlink points at
     filename = os.path.abspath(path)
     if session is not None:
         session.python_files.add(filename)

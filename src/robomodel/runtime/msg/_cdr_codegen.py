@@ -36,7 +36,7 @@ def _fixed(values: Any, size: int) -> list[Any]:
 
 # float64[] through array('d') (its bytes are the machine's doubles, so little-endian hosts
 # only): no format string to build and look up, no argument tuple of every value. Coded
-# cold, once a millisecond, it is a third faster than struct (BENCHMARKS.md, issue 30).
+# cold, once a millisecond, it is a third faster than struct.
 ARRAY_FLOAT64 = sys.byteorder == "little"
 
 

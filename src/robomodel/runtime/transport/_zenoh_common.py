@@ -110,7 +110,7 @@ def keep_thread_state() -> None:
     through ``PyGILState_Release``, and a thread that Python did not start has its thread
     state made by the first and destroyed by the second: every sample paid for a new thread
     state and its frame stack (CPython maps and unmaps a 16 KiB chunk for it), about 20 us of
-    each message's way at 1 kHz (BENCHMARKS.md, issue 30). One more ``PyGILState_Ensure``,
+    each message's way at 1 kHz. One more ``PyGILState_Ensure``,
     never released, keeps the thread state's count above zero, so the release after each
     callback only lets the GIL go; the state stays with its thread as a Python thread's
     does. On a thread that Python started, or the main thread, it only counts one more.

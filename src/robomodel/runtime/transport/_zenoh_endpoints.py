@@ -184,7 +184,7 @@ class ZenohSubscription(SubscriptionHandle):
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
         # Only queue the sample and ring: the executor's thread wakes meanwhile, and takes the
         # GIL as soon as this returns. Reading the payload and attachment here would hold it
-        # back by as long (~10 us a message at 1 kHz, BENCHMARKS.md's issue 30 section).
+        # back by as long (~10 us a message at 1 kHz, BENCHMARKS.md's latency section).
         pending = self._pending
         if len(pending) == pending.maxlen:  # the drain may pop one meanwhile: a count, no more
             self.dropped += 1
