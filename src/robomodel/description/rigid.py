@@ -21,11 +21,13 @@ __all__ = [
     "QuatXyzw",
     "Vec3",
     "compose_poses",
+    "conjugate_xyzw",
     "invert_pose",
     "qmul_xyzw",
     "quat_wxyz_from_rpy",
     "quat_xyzw_from_rpy",
     "rotate_xyzw",
+    "rpy_exact_from_quat_xyzw",
     "rpy_from_quat_xyzw",
     "wxyz_from_xyzw",
     "xyzw_from_wxyz",
@@ -51,31 +53,29 @@ def xyzw_from_wxyz(q_wxyz: QuatWxyz) -> QuatXyzw:
 
 
 def qmul_xyzw(a: QuatXyzw, b: QuatXyzw) -> QuatXyzw:
-    """The Hamilton product ``a * b`` of two xyzw quaternions (``b``'s rotation first)."""
+    """The Hamilton product ``a * b`` of two xyzw quaternions (``b``'s rotation first), summed
+    in the order of tf2's ``Quaternion::operator*=``."""
     ax, ay, az, aw = a
     bx, by, bz, bw = b
     return (
         aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
+        aw * by + ay * bw + az * bx - ax * bz,
+        aw * bz + az * bw + ax * by - ay * bx,
         aw * bw - ax * bx - ay * by - az * bz,
     )
 
 
 def rotate_xyzw(q_xyzw: QuatXyzw, v: Vec3) -> Vec3:
-    """``v`` rotated by the unit quaternion ``q_xyzw`` (``q v q*``, tf2's ``quatRotate``).
+    """``v`` rotated by the unit quaternion ``q_xyzw``: ``q v q*``, as tf2's ``quatRotate``
+    evaluates it (two products), so a quarter turn about an axis maps axes exactly."""
+    x, y, z, _ = qmul_xyzw(qmul_xyzw(q_xyzw, (v[0], v[1], v[2], 0.0)), conjugate_xyzw(q_xyzw))
+    return (x, y, z)
 
-    Evaluated as ``v + w t + u x t`` with ``t = 2 u x v`` (``u`` the vector part), which is
-    ``q v q*`` for a unit quaternion at half the multiplications.
-    """
-    ux, uy, uz, w = q_xyzw
-    vx, vy, vz = v
-    tx, ty, tz = 2.0 * (uy * vz - uz * vy), 2.0 * (uz * vx - ux * vz), 2.0 * (ux * vy - uy * vx)
-    return (
-        vx + w * tx + (uy * tz - uz * ty),
-        vy + w * ty + (uz * tx - ux * tz),
-        vz + w * tz + (ux * ty - uy * tx),
-    )
+
+def conjugate_xyzw(q_xyzw: QuatXyzw) -> QuatXyzw:
+    """The conjugate (for a unit quaternion: the inverse rotation)."""
+    x, y, z, w = q_xyzw
+    return (-x, -y, -z, w)
 
 
 def compose_poses(T_a_b: PoseXyzw, T_b_c: PoseXyzw) -> PoseXyzw:
@@ -88,8 +88,7 @@ def compose_poses(T_a_b: PoseXyzw, T_b_c: PoseXyzw) -> PoseXyzw:
 
 def invert_pose(T_a_b: PoseXyzw) -> PoseXyzw:
     """``T_b_a``, the inverse of a pose with a unit quaternion."""
-    x, y, z, w = T_a_b[1]
-    q_ba: QuatXyzw = (-x, -y, -z, w)
+    q_ba = conjugate_xyzw(T_a_b[1])
     tx, ty, tz = rotate_xyzw(q_ba, T_a_b[0])
     return (-tx, -ty, -tz), q_ba
 
@@ -113,9 +112,20 @@ def quat_wxyz_from_rpy(roll: float, pitch: float, yaw: float) -> QuatWxyz:
     return wxyz_from_xyzw(quat_xyzw_from_rpy(roll, pitch, yaw))
 
 
+def rpy_exact_from_quat_xyzw(x: float, y: float, z: float, w: float) -> Vec3:
+    """Roll, pitch, yaw [rad] of a unit quaternion that give back the same rotation, however
+    close pitch is to ±90° (where roll and yaw share one angle; pitch is clamped to ±90°)."""
+    r20 = 2.0 * (x * z - w * y)
+    pitch = math.asin(max(-1.0, min(1.0, -r20)))
+    roll = math.atan2(2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y))
+    yaw = math.atan2(2.0 * (x * y + w * z), 1.0 - 2.0 * (y * y + z * z))
+    return (roll, pitch, yaw)
+
+
 def rpy_from_quat_xyzw(x: float, y: float, z: float, w: float) -> Vec3:
     """Roll, pitch, yaw [rad] of a unit quaternion, by urdfdom's ``Rotation::getRPY`` and its
-    branch rules (at pitch ±90°, roll is 0 and yaw carries the rest)."""
+    branch rules: within about 0.26° of pitch ±90° it reports exactly ±90°, roll 0 and yaw the
+    rest (what urdf_to_graphviz prints; :func:`rpy_exact_from_quat_xyzw` keeps the rotation)."""
     sqw, sqx, sqy, sqz = w * w, x * x, y * y, z * z
     sarg = -2.0 * (x * z - w * y)
     if sarg <= -0.99999:

@@ -25,7 +25,7 @@ from robomodel.description.rigid import (
     PoseXyzw,
     compose_poses,
     quat_xyzw_from_rpy,
-    rpy_from_quat_xyzw,
+    rpy_exact_from_quat_xyzw,
 )
 from robomodel.sim.exceptions import WorldError
 from robomodel.sim.sensors.spec import SensorSpec, parse_sensor
@@ -257,7 +257,7 @@ def _compose(
 ) -> tuple[float, float, float, float, float, float]:
     """Pose b given in the frame of pose a, in the world (x y z roll pitch yaw, SDF's order)."""
     (x, y, z), q = compose_poses(_pose(a), _pose(b))
-    return (x, y, z, *rpy_from_quat_xyzw(*q))
+    return (x, y, z, *rpy_exact_from_quat_xyzw(*q))
 
 
 def _pose(pose: tuple[float, ...]) -> PoseXyzw:
