@@ -191,7 +191,14 @@ class JointTrajectoryController(ControllerInterface):
         (measured values and commands only while active: the interfaces are loaned then)."""
         if not self._active:
             return TrajectoryControllerSnapshot(
-                self._now_s, False, tuple(self.joints), (), (), self.trajectory, self.goal, {}
+                self._now_s,
+                False,
+                tuple(self.joints),
+                (),
+                (),
+                self.trajectory,
+                self.goal,
+                MappingProxyType({}),
             )
         return self._snapshot(self._measured("position"), self._measured("velocity"))
 
