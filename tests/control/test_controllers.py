@@ -154,6 +154,33 @@ def test_jtc_follows_and_succeeds() -> None:
     assert goal.status is GoalStatus.SUCCEEDED
 
 
+def test_jtc_snapshot_is_a_frozen_copy_of_the_last_update() -> None:
+    """What the action and services read: the state at the last update, which they cannot
+    change, and nothing measured while the controller is inactive."""
+    import dataclasses
+
+    cm, ctrl = _jtc({})
+    goal = ctrl.send_goal(_trajectory([(1.0, [0.5, -0.5])], ["joint1", "joint2"]))
+    for _ in range(50):
+        cm.step()  # type: ignore[attr-defined]
+    state = ctrl.snapshot()
+    assert state.active and state.goal is goal and state.trajectory is ctrl.trajectory
+    assert state.joints == ("joint1", "joint2")
+    assert state.time_s == pytest.approx(0.5, abs=1e-9)  # the 50th update of a 100 Hz loop
+    # written at 0.49 s into the trajectory: 0.25 -> 0.5 and 0 -> -0.5 linearly over 1 s
+    assert state.commands["position"] == pytest.approx((0.3725, -0.245), abs=1e-9)
+    assert state.positions[0] == pytest.approx(0.25 + 0.25 * 0.48, abs=0.01)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        state.time_s = 0.0  # type: ignore[misc]
+    with pytest.raises(TypeError):
+        state.commands["position"] = (0.0, 0.0)  # type: ignore[index]
+    cm.step()  # type: ignore[attr-defined]
+    assert state.time_s == pytest.approx(0.5, abs=1e-9)  # a copy: later updates leave it
+    cm.switch_controllers(deactivate=["jtc"])  # type: ignore[attr-defined]
+    inactive = ctrl.snapshot()
+    assert not inactive.active and inactive.positions == () and inactive.commands == {}
+
+
 def test_jtc_path_tolerance_aborts_and_holds() -> None:
     cm, ctrl = _jtc({"constraints.joint1.trajectory": 0.05})
     # mock hardware follows position commands, so force a tracking error via the offset hardware

@@ -5,14 +5,55 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Any
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from robomodel.errors import RobomodelError
 
-__all__ = ["add_robots", "attach", "prefixed_controllers"]
+if TYPE_CHECKING:
+    from robomodel.control.config import ControllerConfig
+    from robomodel.control.system import ControlSystem
+    from robomodel.description.model import Robot
+    from robomodel.description.packages import PackageIndex
+    from robomodel.runtime import Context
+    from robomodel.sim import BuiltRobot, Simulation
+    from robomodel.sim.scripted import OdomWatcher
+
+__all__ = ["AddedRobot", "RobotRequest", "add_robots", "attach", "prefixed_controllers"]
 
 
-def prefixed_controllers(path: str, prefix: str) -> Any:
+@dataclass(frozen=True, slots=True)
+class RobotRequest:
+    """One robot of the command line: its file, frame prefix, spawn pose and controllers.
+
+    Attributes:
+        path: The URDF or xacro file.
+        prefix: The frame prefix (``r1_``), empty for none.
+        xyz_m: Spawn position in the world [m].
+        rpy_rad: Spawn orientation, fixed-axis roll, pitch, yaw [rad].
+        controllers: The controller file, if any.
+        namespace: The namespace of the robot's nodes (``/`` for one robot).
+    """
+
+    path: str
+    prefix: str
+    xyz_m: tuple[float, float, float]
+    rpy_rad: tuple[float, float, float]
+    controllers: str | None
+    namespace: str = "/"
+
+
+@dataclass(frozen=True, slots=True)
+class AddedRobot:
+    """A requested robot as read and as added to the simulation."""
+
+    request: RobotRequest
+    robot: Robot
+    built: BuiltRobot
+
+
+def prefixed_controllers(path: str, prefix: str) -> ControllerConfig:
     """The controller file for a robot with frame prefix ``prefix``.
 
     A diff drive names its odometry frames itself (``odom_frame_id``, ``base_frame_id``); with a
@@ -50,8 +91,13 @@ def _cmd_vel(text: str) -> tuple[float, float, float]:
     return values[0], values[1], values[2]
 
 
-def add_robots(sim: Any, requests: list[Any], mappings: Any, index: Any) -> list[Any]:
-    """Each requested robot read and added: (request, robot, built) in order."""
+def add_robots(
+    sim: Simulation,
+    requests: Sequence[RobotRequest],
+    mappings: Mapping[str, str],
+    index: PackageIndex,
+) -> list[AddedRobot]:
+    """Each requested robot read (with the xacro arguments ``mappings``) and added, in order."""
     from robomodel.loading import read_description
     from robomodel.sim import Placement
 
@@ -60,13 +106,13 @@ def add_robots(sim: Any, requests: list[Any], mappings: Any, index: Any) -> list
         result, loaded = read_description(request.path, args=mappings, package_index=index)
         placement = Placement(request.prefix, request.xyz_m, request.rpy_rad)
         built = sim.add_robot(result.robot, placement=placement, base_dir=loaded.base_dir)
-        robots.append((request, result.robot, built))
+        robots.append(AddedRobot(request, result.robot, built))
     return robots
 
 
 def attach(
-    args: argparse.Namespace, sim: Any, robots: list[Any], context: Any
-) -> tuple[list[Any], list[Any]]:
+    args: argparse.Namespace, sim: Simulation, robots: Sequence[AddedRobot], context: Context
+) -> tuple[list[ControlSystem | None], list[OdomWatcher | None]]:
     """Each robot's controllers (its controller manager), robot_state_publisher, odometry
     watcher and scripted cmd_vel: the control systems and the watchers, in robot order."""
     from robomodel.description.urdf.writer import urdf_to_string
@@ -75,9 +121,10 @@ def attach(
 
     cmd = _cmd_vel(args.cmd_vel) if args.cmd_vel else None
     several = len(robots) > 1
-    systems: list[Any] = []
-    watchers: list[Any] = []
-    for request, robot, _built in robots:
+    systems: list[ControlSystem | None] = []
+    watchers: list[OdomWatcher | None] = []
+    for added in robots:
+        request = added.request
         system = None
         namespace = request.namespace
         if request.controllers:
@@ -91,7 +138,7 @@ def attach(
         systems.append(system)
         RobotStatePublisher(
             context,
-            urdf_to_string(robot),
+            urdf_to_string(added.robot),
             namespace=namespace,
             parameters={"frame_prefix": request.prefix},  # ROS 2 multi-robot: P<link>
         )

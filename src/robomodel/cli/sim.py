@@ -18,8 +18,8 @@ import json
 import math
 import sys
 import time
-from dataclasses import dataclass
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 from robomodel.cli._bus import add_bus_arguments, context_from_args
 from robomodel.cli._common import (
@@ -29,9 +29,17 @@ from robomodel.cli._common import (
     split_inputs,
 )
 from robomodel.cli._ports import add_port_argument
-from robomodel.cli._sim_robots import add_robots, attach
+from robomodel.cli._sim_robots import AddedRobot, RobotRequest, add_robots, attach
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
+
+if TYPE_CHECKING:
+    from robomodel.control.system import ControlSystem
+    from robomodel.runtime import Context
+    from robomodel.sim import Simulation
+    from robomodel.sim.bus import SimBridge
+    from robomodel.sim.scripted import OdomWatcher
+    from robomodel.sim.world import World
 
 __all__ = ["parse_rate", "register"]
 
@@ -119,18 +127,6 @@ def _spawn(values: list[float]) -> tuple[tuple[float, float, float], tuple[float
     return (v[0], v[1], v[2]), (v[3], v[4], v[5])
 
 
-@dataclass(frozen=True, slots=True)
-class RobotRequest:
-    """One robot of the command line: its file, frame prefix, spawn pose and controllers."""
-
-    path: str
-    prefix: str
-    xyz_m: tuple[float, float, float]
-    rpy_rad: tuple[float, float, float]
-    controllers: str | None
-    namespace: str = "/"
-
-
 def _namespace(prefix: str, number: int) -> str:
     """ROS 2 multi-robot: a robot's nodes in a namespace named after its prefix (``r1_`` ->
     ``/r1``), ``/robot<N>`` when the prefix makes no valid name (``1_``)."""
@@ -214,15 +210,23 @@ def _run(args: argparse.Namespace) -> int:
                 viewer.close()
         if args.report == "json":
             reports = [
-                {"prefix": request.prefix, **_report(sim, built.root_body, odom, wall_s)}
-                for (request, _robot, built), odom in zip(robots, watchers, strict=True)
+                {
+                    "prefix": added.request.prefix,
+                    **_report(sim, added.built.root_body, odom, wall_s),
+                }
+                for added, odom in zip(robots, watchers, strict=True)
             ]
             first = {k: v for k, v in reports[0].items() if k != "prefix"}
             print(json.dumps({**first, "robots": reports} if len(robots) > 1 else first))
     return 0
 
 
-def _sim_viewer(args: argparse.Namespace, world: Any, requests: list[Any], mappings: Any) -> Any:
+def _sim_viewer(
+    args: argparse.Namespace,
+    world: World,
+    requests: Sequence[RobotRequest],
+    mappings: dict[str, str],
+) -> Any:
     """The viewer of a simulation: RViz's Fixed Frame "world", the world's objects drawn."""
     from robomodel.cli.control import _start_viewer
 
@@ -242,16 +246,16 @@ def _sim_viewer(args: argparse.Namespace, world: Any, requests: list[Any], mappi
 
 def _announce(
     args: argparse.Namespace,
-    sim: Any,
-    world: Any,
-    robots: list[Any],
-    systems: list[Any],
-    context: Any,
+    sim: Simulation,
+    world: World,
+    robots: Sequence[AddedRobot],
+    systems: Sequence[ControlSystem | None],
+    context: Context,
 ) -> None:
     several = len(robots) > 1
     names = ", ".join(
-        f"'{robot.name}'" + (f" ({request.prefix})" if request.prefix else "")
-        for request, robot, _ in robots
+        f"'{added.robot.name}'" + (f" ({added.request.prefix})" if added.request.prefix else "")
+        for added in robots
     )
     controllers = [
         c["name"] for system in systems if system for c in system.manager.list_controllers()
@@ -266,7 +270,9 @@ def _announce(
     )
 
 
-def _loop(sim: Any, bridge: Any, duration_s: float | None, factor: float | None) -> float:
+def _loop(
+    sim: Simulation, bridge: SimBridge, duration_s: float | None, factor: float | None
+) -> float:
     """Step until ``duration_s`` (or forever); returns the wall time spent running [s].
 
     Pacing is against the start of the run (re-anchored after a pause), so sleeping per chunk
@@ -300,7 +306,9 @@ def _loop(sim: Any, bridge: Any, duration_s: float | None, factor: float | None)
     return wall
 
 
-def _report(sim: Any, root_body: str, odom: Any, wall_s: float) -> dict[str, Any]:
+def _report(
+    sim: Simulation, root_body: str, odom: OdomWatcher | None, wall_s: float
+) -> dict[str, Any]:
     from robomodel.sim.sensors.ground_truth import yaw_of
 
     body = sim.data.body(root_body)

@@ -5,6 +5,7 @@
 ``(*batch, n_q)``.
 """
 
+from robomodel.kinematics._ik_options import IKOptions
 from robomodel.kinematics.dynamics import Dynamics
 from robomodel.kinematics.exceptions import (
     ConfigurationError,
@@ -19,6 +20,7 @@ from robomodel.kinematics.kinematics import Kinematics
 __all__ = [
     "ConfigurationError",
     "Dynamics",
+    "IKOptions",
     "Kinematics",
     "KinematicsError",
     "KinematicsWarning",

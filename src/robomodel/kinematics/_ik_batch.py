@@ -4,12 +4,13 @@ the targets."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from robomodel.kinematics._chain import Chain
+from robomodel.kinematics._compile import CompiledModel
+from robomodel.kinematics._ik_options import IKOptions
 from robomodel.kinematics._ik_solver import (
     _DAMPING,
     _MAX_ITERATIONS,
@@ -23,9 +24,6 @@ from robomodel.kinematics._ik_solver import (
 from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import fk_batch
 from robomodel.kinematics.se3 import log_rotation
-
-if TYPE_CHECKING:
-    from robomodel.kinematics.kinematics import Kinematics
 
 __all__ = ["IKBatchResult", "solve_ik_batch"]
 
@@ -145,33 +143,35 @@ def _batch_step(chain: Chain, Ts_root_path: F64, ep: F64, er: F64, position_only
 
 
 def solve_ik_batch(
-    kin: Kinematics,
+    solver: Solver,
+    model: CompiledModel,
     Ts_root_target: ArrayLike,
-    link: str,
     *,
-    seed: ArrayLike | None = None,
-    position_only: bool = False,
-    tol_m: float = 1e-6,
-    tol_rad: float = 1e-6,
-    max_iterations: int = 300,
-    rng: int | np.random.Generator | None = None,
+    seed: ArrayLike | None,
+    rng: int | np.random.Generator | None,
+    options: IKOptions,
 ) -> IKBatchResult:
-    """Solve many targets at once: the same iteration, vectorised over the targets.
+    """Solve many targets at once with ``solver`` (made for ``options.position_only``): the
+    same iteration, vectorised over the targets.
 
     Targets that have not converged after ``_MAX_ITERATIONS`` iterations of an attempt restart
-    from random configurations, until ``max_iterations`` in total.
+    from random configurations, until ``options.max_iterations`` per target in total
+    (``options.restarts`` does not bound a batch; ``options.max_time_s`` must be None).
     """
     T_t = _target(Ts_root_target)
     if T_t.ndim != 3:
         raise KinematicsError(f"ik_batch takes targets of shape (n, 4, 4), got {T_t.shape}")
+    if options.max_time_s is not None:
+        raise KinematicsError("ik_batch has no time limit; pass max_time_s=None (the default)")
+    if solver.position_only != options.position_only:
+        raise KinematicsError("the solver and the options disagree on position_only")
+    position_only, tol_m, tol_rad = options.position_only, options.tol_m, options.tol_rad
     n = T_t.shape[0]
-    model = kin.compiled
-    solver = kin._ik_solver(link, position_only)
     chain, sub = solver.chain, solver.chain.model
     gen = np.random.default_rng(rng)
     q = _initial_q(solver, model, seed, n)
     state = _BatchState.start(n)
-    for _ in range(max_iterations):
+    for _ in range(options.max_iterations):
         todo = np.flatnonzero(~state.done)
         if len(todo) == 0:
             break

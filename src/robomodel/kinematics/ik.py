@@ -8,7 +8,8 @@ far from the target, Gauss-Newton's quadratic convergence is kept near it). Ever
 clamped to the limits, so a returned ``q`` never leaves them. An attempt that has not
 converged after ``_MAX_ITERATIONS`` or stalls restarts from a random configuration. The budget
 is a number of iterations (the result depends on the inputs and ``rng`` only, not on the
-machine's load); a time limit is optional.
+machine's load); a time limit is optional. The options and their defaults are
+:class:`~robomodel.kinematics.IKOptions`.
 """
 
 from __future__ import annotations
@@ -16,12 +17,13 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from robomodel.kinematics._compile import CompiledModel
 from robomodel.kinematics._ik_batch import IKBatchResult, solve_ik_batch
+from robomodel.kinematics._ik_options import IKOptions
 from robomodel.kinematics._ik_solver import (
     _DAMPING,
     _MAX_ITERATIONS,
@@ -34,10 +36,7 @@ from robomodel.kinematics._ik_solver import (
 )
 from robomodel.kinematics.exceptions import KinematicsError
 
-if TYPE_CHECKING:
-    from robomodel.kinematics.kinematics import Kinematics
-
-__all__ = ["IKBatchResult", "IKResult", "Solver", "solve_ik", "solve_ik_batch"]
+__all__ = ["IKBatchResult", "IKOptions", "IKResult", "Solver", "solve_ik", "solve_ik_batch"]
 
 F64 = NDArray[np.float64]
 
@@ -128,27 +127,24 @@ def _run_attempt(
 
 
 def solve_ik(
-    kin: Kinematics,
+    solver: Solver,
+    model: CompiledModel,
     T_root_target: ArrayLike,
-    link: str,
     *,
     seed: ArrayLike | None,
-    position_only: bool,
-    tol_m: float,
-    tol_rad: float,
-    max_iterations: int,
-    max_time_s: float | None,
-    restarts: int,
     rng: int | np.random.Generator | None,
+    options: IKOptions,
 ) -> IKResult:
-    """See :meth:`Kinematics.ik`."""
+    """One target with ``solver`` (made for ``options.position_only``); see
+    :meth:`Kinematics.ik`."""
     T_t = _target(T_root_target)
     if T_t.shape != (4, 4):
         raise KinematicsError("ik takes one 4x4 target; use ik_batch for many")
-    if max_iterations < 1:
-        raise KinematicsError(f"max_iterations must be at least 1, not {max_iterations}")
-    solver = kin._ik_solver(link, position_only)
-    q = _initial_q(solver, kin.compiled, seed)
+    if solver.position_only != options.position_only:
+        raise KinematicsError("the solver and the options disagree on position_only")
+    max_iterations, max_time_s = options.max_iterations, options.max_time_s
+    tol_m, tol_rad = options.tol_m, options.tol_rad
+    q = _initial_q(solver, model, seed)
     active = solver.chain.active
     target = (np.ascontiguousarray(T_t[:3, :3]), T_t[:3, 3].copy())
     deadline = None if max_time_s is None else time.perf_counter() + max_time_s
@@ -156,7 +152,7 @@ def solve_ik(
     best = _Attempt(0, False, q[active], math.inf, math.inf)
     total_iterations = 0
     attempts = 0
-    while attempts <= restarts and total_iterations < max_iterations:
+    while attempts <= options.restarts and total_iterations < max_iterations:
         attempts += 1
         budget = min(_MAX_ITERATIONS, max_iterations - total_iterations)
         attempt = _run_attempt(solver, q, target, budget, tol_m, tol_rad)

@@ -15,12 +15,15 @@ from robomodel.kinematics._chain import Chain, make_chain, restrict
 from robomodel.kinematics._checks import check_limits, check_q, link_indices
 from robomodel.kinematics._compile import CompiledModel, compile_robot
 from robomodel.kinematics._config_space import ConfigurationSpace
+from robomodel.kinematics._ik_options import IKOptionOverrides, IKOptions
 from robomodel.kinematics._mujoco import MujocoKinematics, load_mujoco
 from robomodel.kinematics.exceptions import KinematicsError
 from robomodel.kinematics.fk import SinglePlan, fk_batch, fk_single, make_single_plan
 from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch, jacobian_single, to_frame
 
 if TYPE_CHECKING:
+    from typing import Unpack
+
     from robomodel.kinematics.dynamics import Dynamics
     from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
     from robomodel.kinematics.ur import NotAnalyticError, URGeometry
@@ -244,13 +247,9 @@ class Kinematics(ConfigurationSpace):
         link: str,
         *,
         seed: ArrayLike | None = None,
-        position_only: bool = False,
-        tol_m: float = 1e-6,
-        tol_rad: float = 1e-6,
-        max_iterations: int = 3000,
-        max_time_s: float | None = None,
-        restarts: int = 50,
         rng: int | np.random.Generator | None = None,
+        options: IKOptions | None = None,
+        **overrides: Unpack[IKOptionOverrides],
     ) -> IKResult:
         """Numerical IK: a configuration inside the limits that puts ``link`` at the target.
 
@@ -265,30 +264,22 @@ class Kinematics(ConfigurationSpace):
             T_root_target: 4x4 pose of the target in the root frame.
             link: The link to place.
             seed: Starting configuration ``(n_q,)``.
-            position_only: Only reach the position (orientation free).
-            tol_m: Position tolerance [m].
-            tol_rad: Rotation tolerance [rad].
-            max_iterations: Iteration budget over all attempts.
-            max_time_s: Optional time budget over all attempts [s], checked between attempts
-                (None: no time limit, the default).
-            restarts: Maximum number of random restarts after the first attempt.
             rng: Seed or generator for the restarts (reproducible results).
+            options: How to search (:class:`~robomodel.kinematics.IKOptions`, whose defaults
+                are the defaults here).
+            **overrides: Any field of :class:`~robomodel.kinematics.IKOptions`
+                (``position_only``, ``tol_m``, ``tol_rad``, ``max_iterations``, ``max_time_s``,
+                ``restarts``), overriding ``options``.
+
+        Raises:
+            KinematicsError: the target is not one finite 4x4 pose, or an option is invalid.
+            UnknownNameError: ``link`` is not a link of the robot.
         """
         from robomodel.kinematics.ik import solve_ik
 
-        return solve_ik(
-            self,
-            T_root_target,
-            link,
-            seed=seed,
-            position_only=position_only,
-            tol_m=tol_m,
-            tol_rad=tol_rad,
-            max_iterations=max_iterations,
-            max_time_s=max_time_s,
-            restarts=restarts,
-            rng=rng,
-        )
+        resolved = (options or IKOptions()).replace(overrides)
+        solver = self._ik_solver(link, resolved.position_only)
+        return solve_ik(solver, self._model, T_root_target, seed=seed, rng=rng, options=resolved)
 
     def ik_batch(
         self,
@@ -296,30 +287,23 @@ class Kinematics(ConfigurationSpace):
         link: str,
         *,
         seed: ArrayLike | None = None,
-        position_only: bool = False,
-        tol_m: float = 1e-6,
-        tol_rad: float = 1e-6,
-        max_iterations: int = 1000,
         rng: int | np.random.Generator | None = None,
+        options: IKOptions | None = None,
+        **overrides: Unpack[IKOptionOverrides],
     ) -> IKBatchResult:
         """IK for many targets ``(n, 4, 4)`` at once, vectorised over the targets.
 
-        Same method as :meth:`ik`; targets not solved after an attempt's iterations restart from
-        random configurations, until ``max_iterations`` in total. Returns an
-        :class:`~robomodel.kinematics.ik.IKBatchResult` with one row per target.
+        Same method and options as :meth:`ik`, with ``max_iterations`` per target; targets not
+        solved after an attempt's iterations restart from random configurations until it is
+        spent (``restarts`` does not bound a batch, and a batch has no ``max_time_s``).
+        Returns an :class:`~robomodel.kinematics.ik.IKBatchResult` with one row per target.
         """
         from robomodel.kinematics.ik import solve_ik_batch
 
+        resolved = (options or IKOptions()).replace(overrides)
+        solver = self._ik_solver(link, resolved.position_only)
         return solve_ik_batch(
-            self,
-            Ts_root_target,
-            link,
-            seed=seed,
-            position_only=position_only,
-            tol_m=tol_m,
-            tol_rad=tol_rad,
-            max_iterations=max_iterations,
-            rng=rng,
+            solver, self._model, Ts_root_target, seed=seed, rng=rng, options=resolved
         )
 
     def ur_geometry(self, link: str) -> URGeometry:

@@ -42,7 +42,7 @@ import time
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from robomodel.description.model.pose import quat_xyzw_from_rpy
+from robomodel.description.rigid import quat_xyzw_from_rpy
 from robomodel.runtime.clock import ManualClock
 from robomodel.runtime.msg.builtin_interfaces import Time
 from robomodel.runtime.msg.geometry_msgs import (

@@ -344,7 +344,7 @@ class Simulation:
         prefix: str = "",
     ) -> None:
         """Move a robot's root to a pose, zeroing its velocity (``set_model_state``)."""
-        from robomodel.sim.build.robot import quat_wxyz_from_rpy
+        from robomodel.description.rigid import quat_wxyz_from_rpy
 
         mj = mujoco()
         built = self.robot(prefix)

@@ -98,7 +98,7 @@ class WorldStates:
         self._links = {link.name: link for m in self.models for link in m.links}
 
     def _add_world_models(self) -> None:
-        from robomodel.sim.build.robot import quat_wxyz_from_rpy
+        from robomodel.description.rigid import quat_wxyz_from_rpy
         from robomodel.sim.build.scene import shape_body_name
 
         seen: dict[str, list[Entity]] = {}

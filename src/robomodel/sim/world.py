@@ -18,10 +18,15 @@ import os
 import warnings
 from dataclasses import dataclass, replace
 
-import numpy as np
 from lxml import etree
 
 from robomodel._files import UserFileError, read_user_bytes
+from robomodel.description.rigid import (
+    PoseXyzw,
+    compose_poses,
+    quat_xyzw_from_rpy,
+    rpy_exact_from_quat_xyzw,
+)
 from robomodel.sim.exceptions import WorldError
 from robomodel.sim.sensors.spec import SensorSpec, parse_sensor
 
@@ -234,8 +239,6 @@ def _read(world: etree._Element, path: str) -> World:
             warnings.warn(
                 f"{_at(path, el)}: <{el.tag}> in a world is not supported; skipped", stacklevel=3
             )
-    if any(s.kind is ShapeKind.PLANE for s in shapes):
-        ground = ground or False
     return World(
         name=world.get("name", "default"),
         timestep_s=timestep,
@@ -252,20 +255,14 @@ def _read(world: etree._Element, path: str) -> World:
 def _compose(
     a: tuple[float, ...], b: tuple[float, ...]
 ) -> tuple[float, float, float, float, float, float]:
-    """Pose b given in the frame of pose a, in the world (x y z roll pitch yaw)."""
-    T = _matrix(a) @ _matrix(b)
-    R = T[:3, :3]
-    pitch = math.asin(max(-1.0, min(1.0, -float(R[2, 0]))))
-    roll = math.atan2(float(R[2, 1]), float(R[2, 2]))
-    yaw = math.atan2(float(R[1, 0]), float(R[0, 0]))
-    return (float(T[0, 3]), float(T[1, 3]), float(T[2, 3]), roll, pitch, yaw)
+    """Pose b given in the frame of pose a, in the world (x y z roll pitch yaw, SDF's order)."""
+    (x, y, z), q = compose_poses(_pose(a), _pose(b))
+    return (x, y, z, *rpy_exact_from_quat_xyzw(*q))
 
 
-def _matrix(pose: tuple[float, ...]) -> np.ndarray:
-    from robomodel.description.model.pose import matrix_from_xyz_rpy
-
-    x, y, z, r, p, yaw = pose
-    return np.asarray(matrix_from_xyz_rpy((x, y, z), (r, p, yaw)), dtype=float)
+def _pose(pose: tuple[float, ...]) -> PoseXyzw:
+    x, y, z, roll, pitch, yaw = pose
+    return (x, y, z), quat_xyzw_from_rpy(roll, pitch, yaw)
 
 
 def _model(model: etree._Element, path: str) -> list[Shape]:

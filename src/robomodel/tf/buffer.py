@@ -12,8 +12,11 @@ from __future__ import annotations
 import math
 import warnings
 
+from robomodel.description.rigid import IDENTITY_POSE as IDENTITY
+from robomodel.description.rigid import PoseXyzw as Pose
+from robomodel.description.rigid import compose_poses as compose
+from robomodel.description.rigid import invert_pose as inverse
 from robomodel.errors import close_matches
-from robomodel.tf._pose import IDENTITY, Pose, compose, inverse
 from robomodel.tf.cache import StaticCache, Storage, TimeCache
 from robomodel.tf.exceptions import (
     ConnectivityError,

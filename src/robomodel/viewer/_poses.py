@@ -44,30 +44,3 @@ def wxyz_xyz_from_matrix(
     """``(wxyz, xyz)`` of one 4x4 transform, as plain tuples for viser's ``wxyz``/``position``."""
     w, x, y, z = (float(v) for v in wxyz_from_matrices(T[:3, :3])[0])
     return (w, x, y, z), (float(T[0, 3]), float(T[1, 3]), float(T[2, 3]))
-
-
-Vec3 = tuple[float, float, float]
-QuatXyzw = tuple[float, float, float, float]
-
-
-def compose(t_ab: Vec3, q_ab: QuatXyzw, t_bc: Vec3, q_bc: QuatXyzw) -> tuple[Vec3, QuatXyzw]:
-    """``T_ac = T_ab @ T_bc`` on (translation, quaternion ``xyzw``) pairs, in plain floats.
-
-    Scalar Python is several times faster than numpy for one 3-vector at a time.
-    """
-    ax, ay, az, aw = q_ab
-    bx, by, bz, bw = q_bc
-    vx, vy, vz = t_bc
-    # v' = v + 2w (u x v) + 2 u x (u x v), u = (ax, ay, az)
-    cx, cy, cz = ay * vz - az * vy, az * vx - ax * vz, ax * vy - ay * vx
-    cx, cy, cz = 2 * cx, 2 * cy, 2 * cz
-    rx = vx + aw * cx + (ay * cz - az * cy)
-    ry = vy + aw * cy + (az * cx - ax * cz)
-    rz = vz + aw * cz + (ax * cy - ay * cx)
-    q = (
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    )
-    return (t_ab[0] + rx, t_ab[1] + ry, t_ab[2] + rz), q

@@ -10,9 +10,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from robomodel.description.model import Robot
+from robomodel.description.rigid import IDENTITY_POSE, PoseXyzw, compose_poses
 from robomodel.tf import BufferCore
 from robomodel.tf.exceptions import TransformError
-from robomodel.viewer._poses import QuatXyzw, Vec3, compose
 
 if TYPE_CHECKING:
     from robomodel.viewer.session import RobotSession
@@ -85,10 +85,9 @@ class LinkPoseSolver:
         """Every link in the fixed frame, in ``link_names`` order."""
         root = self._root_frame
         names = self.link_names
-        identity: tuple[Vec3, QuatXyzw] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
         # Plain lists and floats while walking (numpy element access costs more than the
         # maths), one array per field at the end.
-        poses: dict[str, tuple[Vec3, QuatXyzw]] = {self._root: identity}
+        poses: dict[str, PoseXyzw] = {self._root: IDENTITY_POSE}
         missing = []
         lookup = buffer.lookup_transform
         # One hop per joint (parent -> child), composed down the tree: O(links), not
@@ -99,7 +98,7 @@ class LinkPoseSolver:
                 if parent_pose is None:
                     raise TransformError("parent not connected")
                 tf = lookup(parent_frame, frame)
-                poses[child] = compose(*parent_pose, tf.translation_m, tf.rotation_xyzw)
+                poses[child] = compose_poses(parent_pose, (tf.translation_m, tf.rotation_xyzw))
             except TransformError:
                 try:  # another process may publish a different tree: ask the root directly
                     tf = lookup(root, frame)
@@ -118,7 +117,7 @@ class LinkPoseSolver:
 
 
 def _in_fixed_frame(
-    rows: list[tuple[Vec3, QuatXyzw] | None],
+    rows: list[PoseXyzw | None],
     root: str,
     buffer: BufferCore,
     fixed_frame: str,

@@ -8,8 +8,10 @@ trajectory"); a running goal is then canceled. Tolerances (``constraints``) abor
 Position commands forward the desired position; velocity/effort-only commands run a PID per
 joint on the position error with the velocity error as its derivative (``gains.<joint>``).
 
-Goals and trajectory validation live in :mod:`.joint_trajectory_goal`; the services and the
-state topics in :mod:`.joint_trajectory_services`; sampling in :mod:`.trajectory`.
+Goals and trajectory validation live in :mod:`.joint_trajectory_goal`; tolerance checks in
+:mod:`.joint_trajectory_tolerances`; sampling in :mod:`.trajectory`. The action, the services
+and the state topics (:mod:`.joint_trajectory_services`) read the controller through
+:meth:`JointTrajectoryController.snapshot` only.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
+from types import MappingProxyType
 from typing import Any
 
 from robomodel.control.controllers.base import (
@@ -30,10 +33,8 @@ from robomodel.control.controllers.joint_trajectory_goal import (
     GoalStatus,
     validate_trajectory,
 )
-from robomodel.control.controllers.joint_trajectory_services import (
-    offer,
-    publish_state,
-)
+from robomodel.control.controllers.joint_trajectory_services import TrajectoryControllerBus
+from robomodel.control.controllers.joint_trajectory_snapshot import TrajectoryControllerSnapshot
 from robomodel.control.controllers.joint_trajectory_tolerances import (
     goal_reached,
     goal_time_s,
@@ -42,7 +43,7 @@ from robomodel.control.controllers.joint_trajectory_tolerances import (
 )
 from robomodel.control.controllers.trajectory import Sample, Trajectory, TrajectoryPoint
 from robomodel.control.pid import Gains, Pid
-from robomodel.runtime.msg import JointTrajectory, JointTrajectoryControllerState
+from robomodel.runtime.msg import JointTrajectory
 
 __all__ = ["GoalHandle", "GoalStatus", "JointTrajectoryController"]
 
@@ -109,9 +110,12 @@ class JointTrajectoryController(ControllerInterface):
         # Jazzy publishes the state at every update; Humble's state_publish_rate, if a
         # controller YAML still sets it, throttles it
         self.state_publish_rate_hz = self.param_float("state_publish_rate", 0.0)
-        self._state_pub: Any = None
+        self._bus: TrajectoryControllerBus | None = None
         self._next_state_s = -math.inf
         self._active = False
+        self._now_s = 0.0
+        self._cmd: dict[str, Sequence[Any]] = {}
+        self._state: dict[str, Sequence[Any]] = {}
         self.trajectory: Trajectory | None = None
         self.goal: GoalHandle | None = None
         self._pending: tuple[JointTrajectory, GoalHandle | None] | None = None
@@ -132,28 +136,21 @@ class JointTrajectoryController(ControllerInterface):
         )
 
     def on_configure(self) -> None:
-        self._goals: dict[int, GoalHandle] = {}
-        self._unregister: list[Any] = []
         if self.node is not None:
             self._sub = self.node.create_subscription(
                 JointTrajectory, self.topic, self._on_trajectory, 10
             )
-            # FollowJointTrajectory (a ROS 2 action) and QueryTrajectoryState
-            self._unregister = [part.destroy for part in offer(self)]
-            self._state_pub = self.node.create_publisher(
-                JointTrajectoryControllerState, "~/controller_state", 1
-            )
+            # FollowJointTrajectory (a ROS 2 action), QueryTrajectoryState, controller_state
+            self._bus = TrajectoryControllerBus(self.node, self)
 
     def on_cleanup(self) -> None:
         sub = getattr(self, "_sub", None)
         if sub is not None:
             sub.destroy()
-        for unregister in getattr(self, "_unregister", []):
-            unregister()
-        self._unregister = []
-        if self._state_pub is not None:
-            self._state_pub.destroy()
-        self._state_pub = None
+            del self._sub
+        if self._bus is not None:
+            self._bus.destroy()
+        self._bus = None
 
     def cancel_goal(self, handle: GoalHandle) -> None:
         """Cancel a running goal: the controller holds the measured position."""
@@ -189,9 +186,47 @@ class JointTrajectoryController(ControllerInterface):
     def _measured(self, kind: str) -> tuple[float, ...]:
         return tuple(si.get() for si in self._state.get(kind, ()))
 
+    def snapshot(self) -> TrajectoryControllerSnapshot:
+        """The controller's state as of its last update: what its action and services read
+        (measured values and commands only while active: the interfaces are loaned then)."""
+        if not self._active:
+            return TrajectoryControllerSnapshot(
+                self._now_s,
+                False,
+                tuple(self.joints),
+                (),
+                (),
+                self.trajectory,
+                self.goal,
+                MappingProxyType({}),
+            )
+        return self._snapshot(self._measured("position"), self._measured("velocity"))
+
+    def _snapshot(
+        self, positions: Sequence[float], velocities: Sequence[float]
+    ) -> TrajectoryControllerSnapshot:
+        return TrajectoryControllerSnapshot(
+            time_s=self._now_s,
+            active=self._active,
+            joints=tuple(self.joints),
+            positions=tuple(positions),
+            velocities=tuple(velocities),
+            trajectory=self.trajectory,
+            goal=self.goal,
+            commands=MappingProxyType(
+                {kind: tuple(ci.get() for ci in cis) for kind, cis in self._cmd.items()}
+            ),
+        )
+
     def validate(self, msg: JointTrajectory) -> str:
         """Why ``msg`` is rejected (humble ``validate_trajectory_msg``), or ``""``."""
-        return validate_trajectory(self, msg)
+        return validate_trajectory(
+            msg,
+            joints=self.joints,
+            allow_partial_joints_goal=self.allow_partial_joints_goal,
+            allow_nonzero_velocity_at_trajectory_end=self.allow_nonzero_velocity_at_trajectory_end,
+            now_s=self._now_s,
+        )
 
     def _on_trajectory(self, msg: JointTrajectory) -> None:
         self.send_trajectory(msg)
@@ -355,10 +390,10 @@ class JointTrajectoryController(ControllerInterface):
         errors: Sequence[float],
     ) -> None:
         """Publish ``~/controller_state`` every update, or at ``state_publish_rate``."""
-        if self._state_pub is not None and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
+        if self._bus is not None and time_s + 1e-9 >= self._next_state_s:  # ns tolerance
             if self.state_publish_rate_hz > 0.0:
                 self._next_state_s = time_s + 1.0 / self.state_publish_rate_hz
-            publish_state(self, time_s, sample, pos, vel, errors)
+            self._bus.publish_state(self._snapshot(pos, vel), sample, errors)
 
     def _write(
         self,

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from robomodel.control.controllers.joint_trajectory import JointTrajectoryController
     from robomodel.runtime.msg import JointTrajectory
 
 __all__ = ["GoalHandle", "GoalStatus", "validate_trajectory"]
@@ -38,18 +38,26 @@ class GoalHandle:
     goal_time_tolerance_s: float | None = None
 
 
-def validate_trajectory(controller: JointTrajectoryController, msg: JointTrajectory) -> str:
-    """Why ``controller`` rejects ``msg`` (humble ``validate_trajectory_msg``), or ``""``.
+def validate_trajectory(
+    msg: JointTrajectory,
+    *,
+    joints: Sequence[str],
+    allow_partial_joints_goal: bool,
+    allow_nonzero_velocity_at_trajectory_end: bool,
+    now_s: float,
+) -> str:
+    """Why a controller of ``joints`` rejects ``msg`` (humble ``validate_trajectory_msg``), or
+    ``""``.
 
-    The controller's clock is read only for a stamped trajectory that passed every other check
-    (whether it ends in the past).
+    ``now_s`` (the controller's clock) matters only for a stamped trajectory that passed every
+    other check: whether it ends in the past.
     """
     if not msg.joint_names or not msg.points:
         return "empty joint names or points"
-    unknown = [j for j in msg.joint_names if j not in controller.joints]
+    unknown = [j for j in msg.joint_names if j not in joints]
     if unknown:
         return f"unknown joints {unknown}"
-    if len(msg.joint_names) != len(controller.joints) and not controller.allow_partial_joints_goal:
+    if len(msg.joint_names) != len(joints) and not allow_partial_joints_goal:
         return "the trajectory must name every joint (allow_partial_joints_goal is false)"
     previous = -math.inf
     for point in msg.points:
@@ -71,12 +79,12 @@ def validate_trajectory(controller: JointTrajectoryController, msg: JointTraject
             return "non-finite values"
     last = msg.points[-1]
     if (
-        not controller.allow_nonzero_velocity_at_trajectory_end
+        not allow_nonzero_velocity_at_trajectory_end
         and last.velocities
         and any(v != 0.0 for v in last.velocities)
     ):
         return "non-zero velocity at the end (allow_nonzero_velocity_at_trajectory_end is false)"
     stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
-    if stamp != 0.0 and stamp + t < controller._now_s:
+    if stamp != 0.0 and stamp + t < now_s:
         return "the trajectory ends in the past"
     return ""

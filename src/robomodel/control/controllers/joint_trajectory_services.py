@@ -7,16 +7,22 @@ fails validation is rejected, as Humble's ``goal_received_callback`` rejects it;
 preempts the running one; feedback (desired, actual, error) is published while it runs.
 ``~/query_state`` is control_msgs/srv/QueryTrajectoryState; ``~/controller_state`` carries
 what Jazzy's ``publish_state`` publishes (no speed scaling here, so its factor is 1).
+
+The adapter reads the controller only through
+:class:`~.joint_trajectory_snapshot.TrajectoryControllerSnapshot` and acts on it only through
+its public goal methods (:class:`TrajectoryGoalTarget`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.control.controllers.joint_trajectory_goal import GoalHandle, GoalStatus
+from robomodel.control.controllers.joint_trajectory_snapshot import TrajectoryControllerSnapshot
 from robomodel.runtime.msg import (
     Header,
+    JointTrajectory,
     JointTrajectoryControllerState,
     JointTrajectoryPoint,
     Time,
@@ -33,10 +39,16 @@ from robomodel.runtime.msg.control_msgs_actions import (
 )
 
 if TYPE_CHECKING:
-    from robomodel.control.controllers.joint_trajectory import JointTrajectoryController
     from robomodel.control.controllers.trajectory import Sample
+    from robomodel.runtime.node import Node
 
-__all__ = ["accept_goal", "offer", "publish_state", "query_state"]
+__all__ = [
+    "TrajectoryControllerBus",
+    "TrajectoryGoalTarget",
+    "accept_goal",
+    "query_state",
+    "state_message",
+]
 
 _STATUS = {
     GoalStatus.ACTIVE: ActionStatus.STATUS_EXECUTING,
@@ -46,6 +58,25 @@ _STATUS = {
 }
 
 
+class TrajectoryGoalTarget(Protocol):
+    """What the adapter needs of a joint trajectory controller: its public goal interface."""
+
+    def snapshot(self) -> TrajectoryControllerSnapshot: ...
+
+    def validate(self, msg: JointTrajectory) -> str: ...
+
+    def send_goal(
+        self,
+        msg: JointTrajectory,
+        *,
+        path_tolerance: dict[str, float] | None = None,
+        goal_tolerance: dict[str, float] | None = None,
+        goal_time_tolerance_s: float | None = None,
+    ) -> GoalHandle: ...
+
+    def cancel_goal(self, handle: GoalHandle) -> None: ...
+
+
 def _tolerances(items: Sequence[Any]) -> dict[str, float]:
     return {t.name: t.position for t in items}
 
@@ -53,7 +84,7 @@ def _tolerances(items: Sequence[Any]) -> dict[str, float]:
 class _Goal:
     """A FollowJointTrajectory goal as the action server sees it (runtime.ActionGoal)."""
 
-    def __init__(self, controller: JointTrajectoryController, handle: GoalHandle) -> None:
+    def __init__(self, controller: TrajectoryGoalTarget, handle: GoalHandle) -> None:
         self.controller, self.handle = controller, handle
 
     def status(self) -> int:
@@ -63,14 +94,13 @@ class _Goal:
         return FollowJointTrajectory_Result(self.handle.error_code, self.handle.error_string)
 
     def feedback(self) -> FollowJointTrajectory_Feedback | None:
-        controller = self.controller
-        traj = controller.trajectory
-        if traj is None or controller.goal is not self.handle:
+        state = self.controller.snapshot()
+        traj = state.trajectory
+        if traj is None or state.goal is not self.handle:
             return None
-        sample = traj.sample(controller._now_s)
+        sample = traj.sample(state.time_s)
         actual = JointTrajectoryPoint(
-            positions=list(controller._measured("position")),
-            velocities=list(controller._measured("velocity")),
+            positions=list(state.positions), velocities=list(state.velocities)
         )
         desired = JointTrajectoryPoint()
         error = JointTrajectoryPoint()
@@ -80,21 +110,17 @@ class _Goal:
             error.positions = [
                 d - a for d, a in zip(desired.positions, actual.positions, strict=False)
             ]
-        header = Header(stamp=Time.from_seconds(controller._now_s))
-        return FollowJointTrajectory_Feedback(
-            header, list(controller.joints), desired, actual, error
-        )
+        header = Header(stamp=Time.from_seconds(state.time_s))
+        return FollowJointTrajectory_Feedback(header, list(state.joints), desired, actual, error)
 
     def cancel(self) -> bool:
         self.controller.cancel_goal(self.handle)
         return True
 
 
-def accept_goal(
-    controller: JointTrajectoryController, goal: FollowJointTrajectory_Goal
-) -> _Goal | None:
+def accept_goal(controller: TrajectoryGoalTarget, goal: FollowJointTrajectory_Goal) -> _Goal | None:
     """``goal_received_callback``: reject when inactive or invalid, else start it."""
-    if not controller._active or controller.validate(goal.trajectory):
+    if not controller.snapshot().active or controller.validate(goal.trajectory):
         return None
     tolerance = goal.goal_time_tolerance
     handle = controller.send_goal(
@@ -108,39 +134,19 @@ def accept_goal(
     return _Goal(controller, handle)
 
 
-def offer(controller: JointTrajectoryController) -> list[Any]:
-    """The action server and the query_state service on the controller's node."""
-    from robomodel.runtime.action_server import ActionServer
-
-    node = controller.node
-    assert node is not None
-    server = ActionServer(
-        node,
-        FollowJointTrajectory,
-        "~/follow_joint_trajectory",
-        lambda g: accept_goal(controller, g),
-    )
-    query = node.create_service(
-        QueryTrajectoryState, "~/query_state", lambda r: query_state(controller, r)
-    )
-    return [server, query]
-
-
 def query_state(
-    controller: JointTrajectoryController, request: QueryTrajectoryState_Request
+    state: TrajectoryControllerSnapshot, request: QueryTrajectoryState_Request
 ) -> QueryTrajectoryState_Response:
     """humble ``query_state_service``: the running trajectory sampled at ``time``;
     ``success`` only while the controller is active and the time lies within the trajectory;
     otherwise the measured state is returned with ``success: false`` and the reason."""
-    if not controller._active:
+    if not state.active:
         return QueryTrajectoryState_Response(False, "Can't sample trajectory. Controller is not active.")  # fmt: skip
     time_s = request.time.to_seconds()
     reply = QueryTrajectoryState_Response(
-        name=list(controller.joints),
-        position=list(controller._measured("position")),
-        velocity=list(controller._measured("velocity")),
+        name=list(state.joints), position=list(state.positions), velocity=list(state.velocities)
     )
-    traj = controller.trajectory
+    traj = state.trajectory
     sample = traj.sample(time_s) if traj is not None else None
     if traj is None:
         reply.message = "Currently there is no valid trajectory instance."
@@ -157,45 +163,68 @@ def query_state(
     return reply
 
 
-def publish_state(
-    controller: JointTrajectoryController,
-    time_s: float,
-    sample: Sample,
-    pos: Sequence[float],
-    vel: Sequence[float],
-    errors: Sequence[float],
-) -> None:
+def state_message(
+    state: TrajectoryControllerSnapshot, sample: Sample, errors: Sequence[float]
+) -> JointTrajectoryControllerState:
     """Jazzy's ``publish_state``: the sampled reference, the measured feedback, their
-    difference and what was written."""
+    difference (``errors``: the position errors the controller acted on) and what was written."""
     reference = JointTrajectoryPoint(
         positions=list(sample.positions),
         velocities=list(sample.velocities),
         accelerations=list(sample.accelerations),
     )
-    feedback = JointTrajectoryPoint(positions=list(pos), velocities=list(vel))
+    vel = state.velocities
+    feedback = JointTrajectoryPoint(positions=list(state.positions), velocities=list(vel))
     error = JointTrajectoryPoint(positions=list(errors))
     if vel and len(sample.velocities) == len(vel):
         error.velocities = [d - m for d, m in zip(sample.velocities, vel, strict=True)]
     output = JointTrajectoryPoint()
-    for kind, interfaces in controller._cmd.items():
-        values = [ci.get() for ci in interfaces]
+    for kind, values in state.commands.items():
         if kind == "position":
-            output.positions = values
+            output.positions = list(values)
         elif kind == "velocity":
-            output.velocities = values
+            output.velocities = list(values)
         elif kind == "acceleration":
-            output.accelerations = values
+            output.accelerations = list(values)
         elif kind == "effort":
-            output.effort = values
-    header = Header(stamp=Time.from_seconds(time_s))
-    controller._state_pub.publish(
-        JointTrajectoryControllerState(
-            header,
-            list(controller.joints),
-            reference,
-            feedback,
-            error,
-            output,
-            speed_scaling_factor=1.0,
-        )
+            output.effort = list(values)
+    return JointTrajectoryControllerState(
+        Header(stamp=Time.from_seconds(state.time_s)),
+        list(state.joints),
+        reference,
+        feedback,
+        error,
+        output,
+        speed_scaling_factor=1.0,
     )
+
+
+class TrajectoryControllerBus:
+    """The controller's action server, ``~/query_state`` service and ``~/controller_state``
+    publisher on its node, made in ``on_configure`` and destroyed in ``on_cleanup``."""
+
+    def __init__(self, node: Node, controller: TrajectoryGoalTarget) -> None:
+        from robomodel.runtime.action_server import ActionServer
+
+        self._action = ActionServer(
+            node,
+            FollowJointTrajectory,
+            "~/follow_joint_trajectory",
+            lambda g: accept_goal(controller, g),
+        )
+        self._query = node.create_service(
+            QueryTrajectoryState,
+            "~/query_state",
+            lambda r: query_state(controller.snapshot(), r),
+        )
+        self._state = node.create_publisher(JointTrajectoryControllerState, "~/controller_state", 1)
+
+    def publish_state(
+        self, state: TrajectoryControllerSnapshot, sample: Sample, errors: Sequence[float]
+    ) -> None:
+        """Publish ``~/controller_state`` (see :func:`state_message`)."""
+        self._state.publish(state_message(state, sample, errors))
+
+    def destroy(self) -> None:
+        for part in (self._action, self._query, self._state):
+            part.destroy()

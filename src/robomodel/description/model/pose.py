@@ -6,6 +6,8 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from robomodel.description.rigid import quat_xyzw_from_rpy, rpy_from_quat_xyzw
+
 if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import NDArray
@@ -57,44 +59,6 @@ class Origin:
         ]
         T[:3, 3] = self.xyz_m
         return T
-
-
-def quat_xyzw_from_rpy(roll: float, pitch: float, yaw: float) -> tuple[float, float, float, float]:
-    """Quaternion of R = Rz(yaw)·Ry(pitch)·Rx(roll), as urdfdom's ``Rotation::setFromRPY``."""
-    phi, the, psi = roll / 2.0, pitch / 2.0, yaw / 2.0
-    x = math.sin(phi) * math.cos(the) * math.cos(psi) - math.cos(phi) * math.sin(the) * math.sin(
-        psi
-    )
-    y = math.cos(phi) * math.sin(the) * math.cos(psi) + math.sin(phi) * math.cos(the) * math.sin(
-        psi
-    )
-    z = math.cos(phi) * math.cos(the) * math.sin(psi) - math.sin(phi) * math.sin(the) * math.cos(
-        psi
-    )
-    w = math.cos(phi) * math.cos(the) * math.cos(psi) + math.sin(phi) * math.sin(the) * math.sin(
-        psi
-    )
-    norm = math.sqrt(x * x + y * y + z * z + w * w)
-    return (x / norm, y / norm, z / norm, w / norm)
-
-
-def rpy_from_quat_xyzw(x: float, y: float, z: float, w: float) -> tuple[float, float, float]:
-    """urdfdom's ``Rotation::getRPY`` (used by urdf_to_graphviz labels), same branch rules."""
-    sqw, sqx, sqy, sqz = w * w, x * x, y * y, z * z
-    sarg = -2.0 * (x * z - w * y)
-    if sarg <= -0.99999:
-        pitch = -0.5 * math.pi
-        roll = 0.0
-        yaw = 2.0 * math.atan2(x, -y)
-    elif sarg >= 0.99999:
-        pitch = 0.5 * math.pi
-        roll = 0.0
-        yaw = 2.0 * math.atan2(-x, y)
-    else:
-        pitch = math.asin(sarg)
-        roll = math.atan2(2.0 * (y * z + w * x), sqw - sqx - sqy + sqz)
-        yaw = math.atan2(2.0 * (x * y + w * z), sqw + sqx - sqy - sqz)
-    return (roll, pitch, yaw)
 
 
 def matrix_from_xyz_rpy(

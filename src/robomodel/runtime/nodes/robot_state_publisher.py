@@ -21,6 +21,7 @@ import numpy as np
 
 from robomodel.description import read_urdf
 from robomodel.description.model import Joint, JointType, Robot
+from robomodel.description.rigid import QuatXyzw, Vec3, qmul_xyzw
 from robomodel.description.urdf.writer import urdf_to_string
 from robomodel.errors import RobomodelError
 from robomodel.runtime.context import Context
@@ -44,20 +45,6 @@ __all__ = ["RobotStatePublisher"]
 _MOVABLE = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 _STATIC = (JointType.FIXED, JointType.PLANAR)
 
-Quat = tuple[float, float, float, float]
-Vec3 = tuple[float, float, float]
-
-
-def _qmul(a: Quat, b: Quat) -> Quat:
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    )
-
 
 @dataclass(frozen=True, slots=True)
 class _Segment:
@@ -65,9 +52,11 @@ class _Segment:
 
     joint: Joint
     xyz: Vec3
-    rotation: Quat  # of the origin, xyzw
+    rotation: QuatXyzw  # of the origin
     axis_in_parent: Vec3  # origin rotation applied to the unit axis (for prismatic travel)
-    rotation_times_axis: Quat  # rotation ⊗ (unit axis, 0): a revolute pose is linear in sin, cos
+    rotation_times_axis: (
+        QuatXyzw  # rotation ⊗ (unit axis, 0): a revolute pose is linear in sin, cos
+    )
     revolute: bool  # revolute or continuous
     prismatic: bool
 
@@ -89,7 +78,7 @@ class _Segment:
             joint.origin.xyz_m,
             rotation,
             (px, py, pz),
-            _qmul(rotation, (ux, uy, uz, 0.0)),
+            qmul_xyzw(rotation, (ux, uy, uz, 0.0)),
             joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS),
             joint.type is JointType.PRISMATIC,
         )

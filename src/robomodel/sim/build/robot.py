@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from robomodel.description.model import Joint, JointType, Link, Origin, Robot
+from robomodel.description.rigid import quat_wxyz_from_rpy, wxyz_from_xyzw
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.build.gazebo import GazeboExtensions, read_gazebo
 from robomodel.sim.build.geoms import MeshLoader, geom_kwargs
@@ -33,7 +34,6 @@ __all__ = [
     "BuiltRobot",
     "Placement",
     "add_robot",
-    "quat_wxyz_from_rpy",
     "velocity_actuator_name",
 ]
 
@@ -82,22 +82,13 @@ class BuiltRobot:
         return self.placement.prefix + name
 
 
-def quat_wxyz_from_rpy(roll: float, pitch: float, yaw: float) -> list[float]:
-    """MuJoCo's ``wxyz`` quaternion of R = Rz(yaw) Ry(pitch) Rx(roll) (URDF rpy)."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return [
-        cr * cp * cy + sr * sp * sy,
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-    ]
+def _quat_rpy(roll: float, pitch: float, yaw: float) -> list[float]:
+    """MuJoCo's ``quat`` (wxyz) of URDF/SDF roll, pitch, yaw [rad]."""
+    return list(quat_wxyz_from_rpy(roll, pitch, yaw))
 
 
 def _quat(origin: Origin) -> list[float]:
-    x, y, z, w = origin.quaternion_xyzw()
-    return [w, x, y, z]
+    return list(wxyz_from_xyzw(origin.quaternion_xyzw()))
 
 
 def _moving_groups(robot: Robot, static: bool) -> dict[str, bool]:
@@ -240,7 +231,7 @@ def _add_bodies(
     root = spec.worldbody.add_body(
         name=built.root_body,
         pos=list(placement.xyz_m),
-        quat=quat_wxyz_from_rpy(*placement.rpy_rad),
+        quat=_quat_rpy(*placement.rpy_rad),
     )
     if built.floating:
         root.add_freejoint(name=placement.prefix + tree.root + "_free")
@@ -286,7 +277,7 @@ def _add_sensor_sites(
     for sensor in ext.sensors:
         x, y, z, r, p, yaw = sensor.pose
         bodies[sensor.link].add_site(
-            name=prefix + sensor.name, pos=[x, y, z], quat=quat_wxyz_from_rpy(r, p, yaw)
+            name=prefix + sensor.name, pos=[x, y, z], quat=_quat_rpy(r, p, yaw)
         )
         if sensor.camera is not None:
             from robomodel.sim.sensors.camera import add_mujoco_camera

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from robomodel.description.rigid import quat_wxyz_from_rpy
 from robomodel.sim._mujoco import mujoco
-from robomodel.sim.build.robot import BuiltRobot, quat_wxyz_from_rpy
+from robomodel.sim.build.robot import BuiltRobot
 from robomodel.sim.world import Shape, ShapeKind, World, WorldSensor
 
 __all__ = ["WORLD_BIT", "add_world", "apply_min_friction", "new_spec", "shape_body_name"]
@@ -77,7 +78,7 @@ def _add_shape(spec: Any, shape: Shape, index: int) -> None:
     x, y, z, r, p, yaw = shape.pose
     parent = spec.worldbody
     name = shape_body_name(shape, index)
-    pos, quat = [x, y, z], quat_wxyz_from_rpy(r, p, yaw)
+    pos, quat = [x, y, z], list(quat_wxyz_from_rpy(r, p, yaw))
     if shape.mass_kg > 0:
         parent = spec.worldbody.add_body(name=name, pos=pos, quat=quat)
         parent.add_freejoint()

@@ -45,7 +45,7 @@ _CLOUD = np.dtype({"names": ["x", "y", "z", "rgb"], "formats": ["<f4", "<f4", "<
 def add_mujoco_camera(spec: Any, body: Any, name: str, sensor: SensorSpec) -> None:
     """Add the MuJoCo camera of ``sensor`` to ``body`` (named ``name``, at the sensor's pose,
     looking along its +x) and grow the offscreen buffer to its image."""
-    from robomodel.sim.build.robot import quat_wxyz_from_rpy
+    from robomodel.description.rigid import quat_wxyz_from_rpy
 
     mj = mujoco()
     camera = sensor.camera or CameraSpec()

@@ -22,6 +22,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel.description.rigid import conjugate_xyzw, qmul_xyzw
+
 __all__ = [
     "ArrowTrail",
     "WrenchShapes",
@@ -173,11 +175,7 @@ def quaternion_angular_distance(a_xyzw: Sequence[float], b_xyzw: Sequence[float]
     """RViz's ogreQuaternionAngularDistance: the rotation angle of ``a * conj(b)`` [rad]."""
     ax, ay, az, aw = a_xyzw
     bx, by, bz, bw = b_xyzw
-    bx, by, bz = -bx, -by, -bz
-    x = aw * bx + ax * bw + ay * bz - az * by
-    y = aw * by - ax * bz + ay * bw + az * bx
-    z = aw * bz + ax * by - ay * bx + az * bw
-    w = aw * bw - ax * bx - ay * by - az * bz
+    x, y, z, w = qmul_xyzw((ax, ay, az, aw), conjugate_xyzw((bx, by, bz, bw)))
     return 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), abs(w))
 
 

@@ -32,7 +32,6 @@ __all__ = ["PoseArrayDisplay", "PoseDisplay", "PoseWithCovarianceDisplay"]
 
 _TOPIC = Option("Topic", "", OptionKind.TOPIC)
 _ARRAY_SHAPES = ("Arrow (Flat)", "Arrow (3D)", "Axes")
-_ARRAY_SHAPES = ("Arrow (Flat)", "Arrow (3D)", "Axes")
 _QUEUE = Option("Queue Size", 5, OptionKind.INT, minimum=0, help="Incoming message queue")
 
 
