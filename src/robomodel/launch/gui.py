@@ -19,12 +19,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
-from robomodel.launch.nodes.base import LaunchShared, ViewerRequest, ViewerRobot
+from robomodel.launch.nodes.base import LaunchShared, SharedSimulator, ViewerRequest, ViewerRobot
 
 if TYPE_CHECKING:
     from robomodel.runtime import Context
     from robomodel.runtime.nodes.joint_state_publisher import JointStatePublisher
-    from robomodel.sim.server import SimServer
     from robomodel.viewer import RobotSource, Viewer
 
 __all__ = ["GuiOptions", "LaunchGui", "ParamLookup"]
@@ -223,7 +222,7 @@ class LaunchGui:
             Path(path).unlink(missing_ok=True)
 
 
-def _world_scenery(server: SimServer) -> tuple[Any, ...]:
+def _world_scenery(server: SharedSimulator) -> tuple[Any, ...]:
     """The simulator server's current world as the viewer's scenery (it changes on spawns)."""
     from robomodel.sim.scenery import scenery_of
 

@@ -16,13 +16,13 @@ from robomodel.description.packages import PackageIndex
 from robomodel.launch.model import NodeSpec
 
 if TYPE_CHECKING:
-    from robomodel.sim.server import SimServer
     from robomodel.viewer.rviz_document import RvizDocument
 
 __all__ = [
     "LaunchShared",
     "NodeContext",
     "RunningNode",
+    "SharedSimulator",
     "ThreadNode",
     "ViewerRequest",
     "ViewerRobot",
@@ -119,6 +119,14 @@ class ViewerRequest:
         return found
 
 
+class SharedSimulator(Protocol):
+    """gzserver's simulator as the launch's GUI sees it (a robomodel.sim.server.SimServer)."""
+
+    @property
+    def world(self) -> Any:
+        """The current world (robomodel.sim.World), spawned models included."""
+
+
 @dataclass
 class LaunchShared:
     """What the nodes of one launch share with each other and with its GUI.
@@ -138,7 +146,7 @@ class LaunchShared:
     package_index: PackageIndex = field(default_factory=PackageIndex)
     nodes: tuple[NodeSpec, ...] = ()
     launch_file: str | None = None
-    sim_server: SimServer | None = None
+    sim_server: SharedSimulator | None = None
     rviz: RvizDocument | None = None
 
 
