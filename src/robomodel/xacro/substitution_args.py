@@ -9,8 +9,8 @@ be the whole value; it sees ``arg()``, ``find()``, ``env()``, ``optenv()``, ``di
 names, no attribute escapes, bounded work): :func:`safe_evaluator`.
 
 What differs between the two is a :class:`Dialect`: the commands it knows (roslaunch 1.16 has
-``$(anon)``; xacro has none), its messages, and whether ``$(find)`` replaces the first or every
-copy of its group. What differs between runs is a :class:`SubstitutionScope`: the args, the
+``$(anon)``; xacro has none), its messages, and its ``$(find)`` rules (robomodel's xacro also
+resolves ``find`` in the first pass and replaces every copy of a group at once). What differs between runs is a :class:`SubstitutionScope`: the args, the
 package lookup, the environment, the current file, ``$(eval)``'s evaluator.
 
 Example:
