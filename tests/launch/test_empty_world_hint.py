@@ -79,12 +79,12 @@ def test_a_ros1_launch_without_spawn_model_gets_the_ros1_line(tmp_path: Path) ->
 def test_a_launch_with_a_spawner_gets_no_hint(dialect: str, package: str, executable: str) -> None:
     """The spawner reports its own failures; the hint is only for launches without one."""
     from robomodel.launch.model import NodeSpec
-    from robomodel.launch.nodes.base import NodeContext, ViewerRequest
+    from robomodel.launch.nodes.base import LaunchShared, NodeContext, ViewerRequest
     from robomodel.launch.nodes.gazebo_hint import spawn_hint
 
     server = NodeSpec(dialect, "gazebo_ros", "gzserver", "gazebo")  # type: ignore[arg-type]
     spawner = NodeSpec(dialect, package, executable, "spawn")  # type: ignore[arg-type]
-    ctx = NodeContext(server, None, None, ViewerRequest(), print, {"launch_nodes": (server,)})
+    ctx = NodeContext(server, None, None, ViewerRequest(), print, LaunchShared(nodes=(server,)))
     assert spawn_hint(ctx) is not None
-    ctx.extra["launch_nodes"] = (server, spawner)
+    ctx.shared.nodes = (server, spawner)
     assert spawn_hint(ctx) is None

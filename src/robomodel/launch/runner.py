@@ -19,10 +19,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
-from robomodel.launch.gui import LaunchGui
+from robomodel.launch.gui import GuiOptions, LaunchGui
 from robomodel.launch.model import LaunchError, NodeSpec
 from robomodel.launch.nodes.base import (
+    LaunchShared,
     NodeContext,
     RunningNode,
     ViewerRequest,
@@ -92,12 +94,8 @@ class LaunchRunner:
     _scheduler: Any = None
     _ros1: Any = None
     _node_log: Any = None  # NodeLogToLaunch, while the bus is open
-    gui: LaunchGui = field(init=False)
-
-    def __post_init__(self) -> None:
-        self.gui = LaunchGui(self)
-
-    _extra: dict[str, Any] = field(default_factory=dict)
+    shared: LaunchShared | None = None  # what the nodes share, once they start
+    gui: LaunchGui | None = None  # made with ``shared``, started after the nodes
 
     # -- set-up ---------------------------------------------------------------------------
     def check(self) -> None:
@@ -164,9 +162,27 @@ class LaunchRunner:
 
     # -- running --------------------------------------------------------------------------
     def start_nodes(self) -> None:
-        self._extra.setdefault("package_index", self.options.package_index or _default_index())
-        self._extra["launch_nodes"] = tuple(self.nodes)
-        self._extra["launch_file"] = self.options.launch_file
+        options = self.options
+        self.shared = LaunchShared(
+            package_index=options.package_index or PackageIndex(),
+            nodes=tuple(self.nodes),
+            launch_file=options.launch_file,
+        )
+        gui_options = GuiOptions(
+            headless=options.headless,
+            open_browser=options.open_browser,
+            port=options.port,
+            bus=options.bus,
+            domain_id=options.domain_id,
+        )
+        self.gui = LaunchGui(
+            gui_options,
+            self.request,
+            self.shared,
+            context=self.context,
+            params=self.params,
+            log=self.log,
+        )
         if self.steps:
             from robomodel.launch.steps import StepScheduler
 
@@ -214,9 +230,9 @@ class LaunchRunner:
 
     def _start(self, spec: NodeSpec, restarts: int = 0) -> None:
         factory = factory_for(spec)
-        assert factory is not None
+        assert factory is not None and self.shared is not None  # start_nodes made it
         ctx = NodeContext(
-            spec, self.context, self.params, self.request, self._prefixed(spec), self._extra
+            spec, self.context, self.params, self.request, self._prefixed(spec), self.shared
         )
         try:
             handle = factory(ctx)
@@ -329,7 +345,8 @@ class LaunchRunner:
         watchdog.daemon = True
         watchdog.start()
         try:
-            self.gui.close()
+            if self.gui is not None:
+                self.gui.close()
             if self.context is not None:
                 self.context.shutdown()
             if self._ros1 is not None:
@@ -391,9 +408,3 @@ class _Failed:
 
     def exit_code(self) -> int | None:
         return 1
-
-
-def _default_index() -> Any:
-    from robomodel.description.packages import PackageIndex
-
-    return PackageIndex()

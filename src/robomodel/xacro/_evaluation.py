@@ -24,9 +24,15 @@ from robomodel.xacro._safe_eval import (
     compile_expression,
     evaluate,
 )
-from robomodel.xacro._subst import SubstitutionError, SubstitutionHooks, resolve_args
 from robomodel.xacro._symbols import CircularDefinitionError, ReadOnlyNamespace, Scope
 from robomodel.xacro._yaml import YamlDictWrapper, load_yaml_text
+from robomodel.xacro.substitution_args import (
+    XACRO,
+    Lookup,
+    SubstitutionError,
+    SubstitutionScope,
+    resolve_args,
+)
 
 TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
 if TYPE_CHECKING:
@@ -102,15 +108,23 @@ def eval_expression(ctx: Context, expr: object, scope: Scope, source: str) -> ob
         raise ctx.error(message, needle="${" + source) from None
 
 
-def _hooks(ctx: Context) -> SubstitutionHooks:
-    def evaluate_eval(expr: str, lookup: Callable[[str], object]) -> object:
+def _scope(ctx: Context) -> SubstitutionScope:
+    """The run's substitution scope: ``$(eval)`` shares the run's work bounds and its
+    bounded ``math``."""
+
+    def evaluate_eval(expr: str, lookup: Lookup) -> object:
         code = compile_expression(expr.strip())
         return evaluate(code, lookup, ctx.guards, ctx.base)
 
     maths = ctx.globals.get("math")
     math_names = maths.as_dict() if isinstance(maths, ReadOnlyNamespace) else {}
-    return SubstitutionHooks(
-        ctx.args, ctx.find_package, ctx.current_file, ctx.environ, evaluate_eval, math_names
+    return SubstitutionScope(
+        ctx.args,
+        ctx.find_package,
+        ctx.environ,
+        filename=ctx.current_file,
+        evaluate=evaluate_eval,
+        math_names=math_names,
     )
 
 
@@ -119,7 +133,7 @@ def eval_extension(ctx: Context, text: str) -> str:
     if text == "$(cwd)":
         return os.path.abspath(ctx.root_dir)
     try:
-        return resolve_args(text, _hooks(ctx))
+        return resolve_args(text, _scope(ctx), XACRO)
     except InputError:
         raise
     except SubstitutionError as exc:

@@ -10,13 +10,19 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
+from robomodel.description.packages import PackageIndex
 from robomodel.launch.model import NodeSpec
 
+if TYPE_CHECKING:
+    from robomodel.viewer.rviz_document import RvizDocument
+
 __all__ = [
+    "LaunchShared",
     "NodeContext",
     "RunningNode",
+    "SharedSimulator",
     "ThreadNode",
     "ViewerRequest",
     "ViewerRobot",
@@ -113,6 +119,37 @@ class ViewerRequest:
         return found
 
 
+class SharedSimulator(Protocol):
+    """gzserver's simulator as the launch's GUI sees it (a robomodel.sim.server.SimServer)."""
+
+    @property
+    def world(self) -> Any:
+        """The current world (robomodel.sim.World), spawned models included."""
+
+
+@dataclass
+class LaunchShared:
+    """What the nodes of one launch share with each other and with its GUI.
+
+    The runner makes one a launch and hands it to every node's :class:`NodeContext` and to the
+    :class:`~robomodel.launch.gui.LaunchGui`; the nodes that play a part others look for
+    (gzserver's simulator, rviz's display config) set it here.
+
+    Attributes:
+        package_index: Where packages are found (the launch's, else the environment's).
+        nodes: Every node of the launch, in file order (hints and lookups of peers).
+        launch_file: The launch file run, if any (hints name it).
+        sim_server: The simulator gzserver started (one a launch; gzclient draws its world).
+        rviz: The rviz node's ``-d`` display config (the viewer shows it).
+    """
+
+    package_index: PackageIndex = field(default_factory=PackageIndex)
+    nodes: tuple[NodeSpec, ...] = ()
+    launch_file: str | None = None
+    sim_server: SharedSimulator | None = None
+    rviz: RvizDocument | None = None
+
+
 @dataclass
 class NodeContext:
     """Everything a factory needs for one node."""
@@ -122,7 +159,7 @@ class NodeContext:
     params: Any  # the ROS 1 parameter server (ParamServer or RemoteParamServer)
     viewer: ViewerRequest
     log: Callable[[str], None]
-    extra: dict[str, Any] = field(default_factory=dict)
+    shared: LaunchShared = field(default_factory=LaunchShared)
 
     @property
     def namespace(self) -> str:

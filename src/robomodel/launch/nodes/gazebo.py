@@ -84,7 +84,7 @@ def start_sim_server(
     from robomodel.sim import default_world, read_world
     from robomodel.sim.server import SimServer
 
-    if ctx.extra.get("sim_server") is not None:
+    if ctx.shared.sim_server is not None:
         raise RobomodelError("a simulator already runs in this launch")
     if name in ("empty.sdf", "empty.world"):  # Gazebo's own empty worlds
         name = ""
@@ -93,13 +93,13 @@ def start_sim_server(
     server = SimServer(
         world,
         context=ctx.runtime,
-        package_index=ctx.extra["package_index"],
+        package_index=ctx.shared.package_index,
         paused=paused,
         real_time_factor=world.real_time_factor,
         spec_source=spec_source,
         ros_version=1 if ctx.spec.dialect == "ros1" else 2,  # the launch's gazebo_ros
     )
-    ctx.extra["sim_server"] = server
+    ctx.shared.sim_server = server
     ctx.log(
         f"world '{world.name}' ({path or 'the default ground and sun'}) at "
         f"{world.timestep_s * 1e3:g} ms steps{', paused' if paused else ''}"

@@ -58,10 +58,10 @@ def _robot_name(ctx: Any) -> str | None:
 def spawn_hint(ctx: Any) -> str | None:
     """The hint line for the simulator node of ``ctx``'s launch, or None when the launch
     has a spawner (see the module docstring)."""
-    nodes = tuple(ctx.extra.get("launch_nodes", ()))
+    nodes = ctx.shared.nodes
     if any((s.dialect, s.package, s.executable) in _SPAWNERS for s in nodes):
         return None
-    where = ctx.extra.get("launch_file") or _launch_file(nodes) or "this launch"
+    where = ctx.shared.launch_file or _launch_file(nodes) or "this launch"
     name = _robot_name(ctx) or "my_robot"
     if ctx.spec.dialect == "ros2":
         how = (

@@ -31,7 +31,7 @@ def robot_description_of(ctx: NodeContext, own: dict[str, Any]) -> str:
         return str(text)
     from robomodel.launch.nodes.ros2_params import node_parameters
 
-    for spec in ctx.extra.get("launch_nodes", ()):
+    for spec in ctx.shared.nodes:
         if (spec.dialect, spec.package, spec.executable) != (
             "ros2",
             "robot_state_publisher",

@@ -84,9 +84,7 @@ def _xacro(ctx: NodeContext) -> RunningNode:
     inputs, output, mappings = _xacro_args(ctx.spec.args)
     # a ROS 1 command line's name:=value words are its remaps (rosgraph's mappings)
     mappings = {**dict(ctx.spec.remaps), **mappings}
-    index = ctx.extra.get("package_index")
-    if index is not None:
-        index = index.with_workspace_of(inputs)
+    index = ctx.shared.package_index.with_workspace_of(inputs)
     result = expand(inputs, mappings=mappings, package_index=index)  # errors: exit 2
     for warning in result.warnings:
         print(warning.format(), file=sys.stderr)

@@ -41,7 +41,7 @@ def open_rviz_argument(ctx: NodeContext) -> Any:
     document, warning = open_rviz_document(path, RvizDialect(ctx.spec.dialect))
     if warning is not None:
         ctx.log(f"warning: {warning}")
-    ctx.extra["rviz"] = document
+    ctx.shared.rviz = document
     return document
 
 

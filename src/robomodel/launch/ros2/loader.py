@@ -12,17 +12,33 @@ from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.packages import launch_package_index
 from robomodel.launch.processes import COMMAND_TIMEOUT_S
+from robomodel.launch.ros2.frontend.xml_frontend import XML_LOADER
+from robomodel.launch.ros2.frontend.yaml_frontend import YAML_LOADER
 from robomodel.launch.ros2.importer import launch_modules
 from robomodel.launch.ros2.model import DeclaredArgument, Ros2Launch
 from robomodel.launch.ros2.printing import describe_entities
-from robomodel.launch.ros2.shim.action import LaunchDescription, user_error, visit_entities
+from robomodel.launch.ros2.python_loader import PYTHON_LOADER
+from robomodel.launch.ros2.shim.action import (
+    LaunchDescription,
+    launch_arguments,
+    user_error,
+    visit_entities,
+)
 from robomodel.launch.ros2.shim.actions import IncludeLaunchDescription
 from robomodel.launch.ros2.shim.context import LaunchContext, Session, session_scope
-from robomodel.launch.ros2.shim.sources import LaunchDescriptionSource, load_description_file
-from robomodel.launch.ros2.shim.static import launch_arguments
+from robomodel.launch.ros2.shim.events import EVENTS
+from robomodel.launch.ros2.shim.sources import (
+    LaunchDescriptionSource,
+    LoaderRegistry,
+    load_description_file,
+    loader_scope,
+)
 from robomodel.launch.ros2.shim.substitutions import perform_substitutions
 
-__all__ = ["load_launch"]
+__all__ = ["FILE_LOADERS", "load_launch"]
+
+FILE_LOADERS = LoaderRegistry((PYTHON_LOADER, XML_LOADER, YAML_LOADER))
+"""The launch file types ``load_launch`` reads, as ``ros2 launch`` does."""
 
 
 class _Loaded(LaunchDescriptionSource):
@@ -73,7 +89,7 @@ def _visit(
 ) -> tuple[tuple[str, ...], tuple[DeclaredArgument, ...]]:
     """Load the top file and visit it as ``ros2 launch`` does: (its description's lines, the
     declared arguments)."""
-    with launch_modules(), session_scope(session):
+    with launch_modules(), session_scope(session), loader_scope(FILE_LOADERS):
         context = LaunchContext(session=session, environ=env)
         try:
             description = load_description_file(path, "any")
@@ -121,6 +137,7 @@ def load_launch(
     session = Session(
         packages=launch_package_index(index).with_workspace_of(path),
         command_timeout_s=command_timeout_s,
+        events=EVENTS,
     )
     try:
         lines, arguments = _visit(path, session, env, args)

@@ -12,17 +12,16 @@ from collections.abc import Iterable
 from typing import Any
 
 from robomodel.launch.ros2.model import Ros2Launch
+from robomodel.launch.ros2.shim.action import Action, object_text
+from robomodel.launch.ros2.shim.events import (
+    EmitEvent,
+    ExecuteProcess,
+    LogInfo,
+    RegisterEventHandler,
+)
+from robomodel.launch.ros2.shim.ros import Node
 
 __all__ = ["describe_entities", "format_print", "format_show_args", "object_text"]
-
-_UPSTREAM_MODULE = {
-    "action": "launch.action",
-    "actions": "launch.actions",
-    "configuration_actions": "launch.actions",
-    "environment_actions": "launch.actions",
-    "events": "launch.actions",
-    "ros": "launch_ros.actions",
-}
 
 
 def format_show_args(launch: Ros2Launch) -> str:
@@ -46,17 +45,6 @@ def format_show_args(launch: Ros2Launch) -> str:
     return "\n".join(lines) + "\n"
 
 
-def object_text(entity: Any) -> str:
-    """``<module.snake_name.Class object at 0x0>`` under the upstream module names."""
-    cls = type(entity)
-    module = cls.__module__.rsplit(".", 1)[-1]
-    snake = "".join("_" + c.lower() if c.isupper() else c for c in cls.__name__).lstrip("_")
-    package = _UPSTREAM_MODULE.get(module, "launch.actions")
-    if cls.__name__.startswith("OnProcess"):
-        package = "launch.event_handlers"
-    return f"<{package}.{snake}.{cls.__name__} object at 0x0>"
-
-
 def _subs(subs: Iterable[Any]) -> str:
     return " + ".join(sub.describe() for sub in subs)
 
@@ -67,15 +55,6 @@ def _indent(lines: list[str]) -> list[str]:
 
 def describe_entities(entities: Iterable[Any]) -> list[str]:
     """``format_entities`` of launch's introspector, before tree drawing."""
-    from robomodel.launch.ros2.shim.action import Action
-    from robomodel.launch.ros2.shim.events import (
-        EmitEvent,
-        ExecuteProcess,
-        LogInfo,
-        RegisterEventHandler,
-    )
-    from robomodel.launch.ros2.shim.ros import Node
-
     out: list[str] = []
     for entity in entities:
         if isinstance(entity, LogInfo):

@@ -12,8 +12,9 @@ from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.shim.action import LaunchDescription, user_error
 from robomodel.launch.ros2.shim.context import current_session
+from robomodel.launch.ros2.shim.sources import FileLoader
 
-__all__ = ["load_python_description"]
+__all__ = ["PYTHON_LOADER", "load_python_description"]
 
 
 def load_python_description(path: Path) -> LaunchDescription:
@@ -55,3 +56,6 @@ def load_python_description(path: Path) -> LaunchDescription:
             include_stack=tuple(session.include_stack) if session else (),
         )
     return description
+
+
+PYTHON_LOADER = FileLoader("python", (".py",), load_python_description)

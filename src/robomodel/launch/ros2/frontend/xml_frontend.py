@@ -13,8 +13,9 @@ from robomodel.launch.ros2.frontend.build import build_description
 from robomodel.launch.ros2.frontend.entity import Entity
 from robomodel.launch.ros2.shim.action import LaunchDescription
 from robomodel.launch.ros2.shim.context import current_session
+from robomodel.launch.ros2.shim.sources import FileLoader
 
-__all__ = ["load_xml_description"]
+__all__ = ["XML_LOADER", "load_xml_description"]
 
 
 def _entity(element: etree._Element, path: str) -> Entity:
@@ -54,3 +55,6 @@ def load_xml_description(path: Path) -> LaunchDescription:
             include_stack=stack,
         )
     return build_description(entity.children, entity.location)
+
+
+XML_LOADER = FileLoader("xml", (".xml",), load_xml_description)

@@ -14,8 +14,9 @@ from robomodel.launch.ros2.frontend.build import build_description
 from robomodel.launch.ros2.frontend.entity import Entity
 from robomodel.launch.ros2.shim.action import LaunchDescription
 from robomodel.launch.ros2.shim.context import current_session
+from robomodel.launch.ros2.shim.sources import FileLoader
 
-__all__ = ["load_yaml_description"]
+__all__ = ["YAML_LOADER", "load_yaml_description"]
 
 _LINE = "__line__"
 _NESTED_LISTS = ("param", "remap", "arg", "env", "choice", "keep")
@@ -108,3 +109,6 @@ def load_yaml_description(path: Path) -> LaunchDescription:
         )
     items = data["launch"] or []
     return build_description(_entities(items, str(path), 1), SourceLocation(str(path), 1))
+
+
+YAML_LOADER = FileLoader("yaml", (".yaml", ".yml"), load_yaml_description)

@@ -1,20 +1,43 @@
-"""The base of every action, ``LaunchDescription`` and the visitor that executes them."""
+"""The base of every action, ``LaunchDescription``, the visitor that executes them and the
+static walk that finds their declared arguments (``--show-args``)."""
 
 from __future__ import annotations
 
 import traceback
 from collections.abc import Iterable
-from typing import Any
+from enum import Enum
+from typing import Any, ClassVar
 
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.shim.context import LaunchContext, caller_location, current_session
 
-__all__ = ["Action", "LaunchDescription", "LaunchDescriptionEntity", "user_error", "visit_entities"]
+__all__ = [
+    "Action",
+    "LaunchDescription",
+    "LaunchDescriptionEntity",
+    "StaticRole",
+    "launch_arguments",
+    "object_text",
+    "user_error",
+    "visit_entities",
+]
+
+
+class StaticRole(Enum):
+    """What the static walk for declared arguments (:func:`launch_arguments`) does with an
+    entity: the class of an action says it, as upstream's ``isinstance`` checks do."""
+
+    OTHER = "other"
+    DECLARES_ARGUMENT = "declares_argument"  # DeclareLaunchArgument: collected
+    INCLUDES = "includes"  # IncludeLaunchDescription: starts an include chain
+    RESETS = "resets"  # ResetLaunchConfigurations: the branch stops here
 
 
 class LaunchDescriptionEntity:
     """Anything a launch description holds."""
+
+    static_role: ClassVar[StaticRole] = StaticRole.OTHER
 
     def visit(self, context: LaunchContext) -> list[Any] | None:
         """Execute and return the entities to visit next."""
@@ -86,9 +109,62 @@ class LaunchDescription(LaunchDescriptionEntity):
 
     def get_launch_arguments(self, conditional_inclusion: bool = False) -> list[Any]:
         """The ``DeclareLaunchArgument`` actions found statically (see ``--show-args``)."""
-        from robomodel.launch.ros2.shim.static import launch_arguments
-
         return [arg for arg, _, _ in launch_arguments(self.entities, conditional_inclusion)]
+
+
+def launch_arguments(
+    entities: list[Any], conditional_inclusion: bool = False
+) -> list[tuple[Any, bool, list[Any] | None]]:
+    """``(DeclareLaunchArgument, conditionally_included, include chain)`` in order.
+
+    Transcribes ``LaunchDescription.get_launch_arguments_with_include_launch_description_actions``:
+    the walk follows ``describe_sub_entities`` (includes whose file can be found without a
+    context are loaded), marks declarations under a condition or an event handler as
+    conditional, keeps the first declaration of a name and stops a branch at
+    ``ResetLaunchConfigurations``.
+    """
+    found: list[tuple[Any, bool, list[Any] | None]] = []
+
+    def walk(items: list[Any], conditional: bool, chain: list[Any] | None) -> None:
+        for entity in items:
+            role = getattr(entity, "static_role", StaticRole.OTHER)
+            if role is StaticRole.DECLARES_ARGUMENT:
+                if any(entity.name == other.name for other, _, _ in found):
+                    continue
+                found.append((entity, conditional or entity.condition is not None, chain))
+            if role is StaticRole.RESETS:
+                return
+            next_chain = chain
+            if role is StaticRole.INCLUDES:
+                next_chain = [*(chain or []), entity]
+            walk(entity.describe_sub_entities(), False, next_chain)
+            for _, sub in entity.describe_conditional_sub_entities():
+                walk(sub, True, next_chain)
+
+    walk(entities, conditional_inclusion, None)
+    return found
+
+
+_UPSTREAM_MODULE = {
+    "action": "launch.action",
+    "actions": "launch.actions",
+    "configuration_actions": "launch.actions",
+    "environment_actions": "launch.actions",
+    "events": "launch.actions",
+    "ros": "launch_ros.actions",
+}
+
+
+def object_text(entity: Any) -> str:
+    """``<module.snake_name.Class object at 0x0>`` under the upstream module names (how
+    launch's introspector names an entity; object addresses differ at every run upstream)."""
+    cls = type(entity)
+    module = cls.__module__.rsplit(".", 1)[-1]
+    snake = "".join("_" + c.lower() if c.isupper() else c for c in cls.__name__).lstrip("_")
+    package = _UPSTREAM_MODULE.get(module, "launch.actions")
+    if cls.__name__.startswith("OnProcess"):
+        package = "launch.event_handlers"
+    return f"<{package}.{snake}.{cls.__name__} object at 0x0>"
 
 
 def user_error(exc: BaseException, fallback: SourceLocation | None) -> LaunchError:

@@ -11,7 +11,13 @@ import os
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
-from robomodel.launch.ros2.shim.action import Action, LaunchDescription
+from robomodel.launch.ros2.shim.action import (
+    Action,
+    LaunchDescription,
+    StaticRole,
+    launch_arguments,
+    visit_entities,
+)
 from robomodel.launch.ros2.shim.configuration_actions import (
     DeclareLaunchArgument,
     PopLaunchConfigurations,
@@ -29,6 +35,7 @@ from robomodel.launch.ros2.shim.environment_actions import (
     SetEnvironmentVariable,
     UnsetEnvironmentVariable,
 )
+from robomodel.launch.ros2.shim.sources import AnyLaunchDescriptionSource, LaunchDescriptionSource
 from robomodel.launch.ros2.shim.substitutions import (
     normalize_to_list_of_substitutions,
     perform_substitutions,
@@ -131,6 +138,8 @@ class IncludeLaunchDescription(Action):
     names given in ``launch_arguments``.
     """
 
+    static_role = StaticRole.INCLUDES
+
     def __init__(
         self,
         launch_description_source: Any,
@@ -139,11 +148,6 @@ class IncludeLaunchDescription(Action):
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
-        from robomodel.launch.ros2.shim.sources import (
-            AnyLaunchDescriptionSource,
-            LaunchDescriptionSource,
-        )
-
         if not isinstance(launch_description_source, LaunchDescriptionSource):
             launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
         self.launch_description_source = launch_description_source
@@ -166,8 +170,6 @@ class IncludeLaunchDescription(Action):
             return []
 
     def execute(self, context: LaunchContext) -> list[Any] | None:
-        from robomodel.launch.ros2.shim.static import launch_arguments
-
         session = context.session
         source = self.launch_description_source
         description = source.get_launch_description(context, self.location)
@@ -209,8 +211,6 @@ class _IncludeScope(Action):
         self.description = description
 
     def execute(self, context: LaunchContext) -> list[Any] | None:
-        from robomodel.launch.ros2.shim.action import visit_entities
-
         session = context.session
         pushed = self.include.location is not None
         if pushed:

@@ -11,6 +11,7 @@ from robomodel.errors import RobomodelError
 from robomodel.launch.processes import CommandError, run_bounded
 from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure, current_session
 from robomodel.launch.ros2.shim.substitutions import (
+    PathJoinSubstitution,
     Substitution,
     _describe,
     normalize_to_list_of_substitutions,
@@ -239,8 +240,6 @@ class FindPackage(Substitution):
             raise SubstitutionFailure(str(exc.args[0])) from None
 
     def __truediv__(self, other: Any) -> Any:
-        from robomodel.launch.ros2.shim.substitutions import PathJoinSubstitution
-
         return PathJoinSubstitution([self]) / other
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from robomodel.launch.ros2.shim.action import Action
+from robomodel.launch.ros2.shim.action import Action, StaticRole
 from robomodel.launch.ros2.shim.context import LaunchContext
 from robomodel.launch.ros2.shim.substitutions import (
     Substitution,
@@ -25,6 +25,8 @@ __all__ = [
 
 class DeclareLaunchArgument(Action):
     """Declare an argument: set its default if not given, check its choices."""
+
+    static_role = StaticRole.DECLARES_ARGUMENT
 
     def __init__(
         self,
@@ -125,6 +127,8 @@ class PopLaunchConfigurations(Action):
 
 class ResetLaunchConfigurations(Action):
     """Clear the launch configurations, keeping the given ones (evaluated before clearing)."""
+
+    static_role = StaticRole.RESETS
 
     def __init__(
         self, launch_configurations: Mapping[Any, Any] | None = None, **kwargs: Any

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import contextvars
 import sys
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,7 +17,14 @@ from robomodel.launch.bounds import work_exceeded
 from robomodel.launch.model import LaunchError
 from robomodel.launch.processes import COMMAND_TIMEOUT_S
 
-__all__ = ["LaunchContext", "Session", "SubstitutionFailure", "caller_location", "current_session"]
+__all__ = [
+    "EventDispatch",
+    "LaunchContext",
+    "Session",
+    "SubstitutionFailure",
+    "caller_location",
+    "current_session",
+]
 
 
 class WorkBoundError(LaunchError):
@@ -27,6 +34,20 @@ class WorkBoundError(LaunchError):
 
 class SubstitutionFailure(RuntimeError):
     """A substitution could not be performed (``launch.substitutions.SubstitutionFailure``)."""
+
+
+@dataclass(frozen=True, slots=True)
+class EventDispatch:
+    """How a load handles events, the part of upstream's ``LaunchService`` a
+    ``LaunchContext`` hands them to (:data:`robomodel.launch.ros2.shim.events.EVENTS`).
+
+    Attributes:
+        register_handler: ``(context, event handler, where it was registered)``.
+        emit_event: ``(context, event, the action that emitted it or None)``.
+    """
+
+    register_handler: Callable[[LaunchContext, Any, SourceLocation | None], None]
+    emit_event: Callable[[LaunchContext, Any, Any], None]
 
 
 @dataclass
@@ -45,6 +66,8 @@ class Session:
         work: Units of work done so far (the fan-out bound).
         command_timeout_s: The longest a ``Command`` substitution may run.
         temporary_files: Files written while loading (substituted parameter files).
+        events: How events and event handlers given to a context are handled (None: a
+            context of this session refuses them).
     """
 
     packages: PackageIndex
@@ -59,6 +82,7 @@ class Session:
     work: int = 0
     command_timeout_s: float = COMMAND_TIMEOUT_S
     temporary_files: list[Path] = field(default_factory=list)
+    events: EventDispatch | None = None
 
     def charge(self, units: int, location: SourceLocation | None) -> None:
         """Count ``units`` of work (robomodel.launch.bounds); past the bound, refuse the load."""
@@ -219,16 +243,20 @@ class LaunchContext:
 
     def register_event_handler(self, event_handler: Any, append: bool = False) -> None:
         """Register an event handler: its entities are evaluated now (see the front-end docs)."""
-        from robomodel.launch.ros2.shim.events import register_handler
-
-        register_handler(self, event_handler, None)
+        self._events().register_handler(self, event_handler, None)
 
     def emit_event_sync(self, event: Any) -> None:
         """Events other than shutdown are not modelled; Shutdown records a shutdown step."""
-        from robomodel.launch.ros2.shim.events import emit_event
-
-        emit_event(self, event, None)
+        self._events().emit_event(self, event, None)
 
     async def emit_event(self, event: Any) -> None:
         """See :meth:`emit_event_sync`."""
         self.emit_event_sync(event)
+
+    def _events(self) -> EventDispatch:
+        events = self.session.events
+        if events is None:
+            raise SubstitutionFailure(
+                "this LaunchContext's session handles no events (it was not made by load_launch)"
+            )
+        return events

@@ -8,6 +8,7 @@ from typing import Any
 from robomodel.launch.ros2.shim.action import Action
 from robomodel.launch.ros2.shim.context import LaunchContext
 from robomodel.launch.ros2.shim.substitutions import (
+    coerce_bool,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
@@ -95,8 +96,6 @@ class AppendEnvironmentVariable(Action):
         sep = perform_substitutions(context, self.separator)
         prepend = self.prepend
         if not isinstance(prepend, bool):
-            from robomodel.launch.ros2.shim.substitutions import coerce_bool
-
             prepend = coerce_bool(
                 perform_substitutions(context, normalize_to_list_of_substitutions(prepend))
             )

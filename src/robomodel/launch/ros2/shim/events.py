@@ -14,14 +14,20 @@ from typing import Any
 
 from robomodel.errors import SourceLocation
 from robomodel.launch.ros2.model import LaunchStep, StepKind
-from robomodel.launch.ros2.shim.action import Action, visit_entities
-from robomodel.launch.ros2.shim.context import LaunchContext, Trigger, caller_location
+from robomodel.launch.ros2.shim.action import Action, object_text, visit_entities
+from robomodel.launch.ros2.shim.context import (
+    EventDispatch,
+    LaunchContext,
+    Trigger,
+    caller_location,
+)
 from robomodel.launch.ros2.shim.substitutions import (
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
 
 __all__ = [
+    "EVENTS",
     "EmitEvent",
     "ExecuteProcess",
     "LogInfo",
@@ -134,8 +140,6 @@ class _ProcessHandler:
     def describe(self) -> tuple[str, list[Any]]:
         name = type(self).__name__
         entities = self.entities if isinstance(self.entities, list) else []
-        from robomodel.launch.ros2.printing import object_text
-
         return f"{name}(matcher='{object_text(self.target_action)}')", entities
 
 
@@ -300,3 +304,8 @@ class ExecuteProcess(Action):
 
 
 Callback = Callable[..., Any]
+
+
+EVENTS = EventDispatch(register_handler, emit_event)
+"""What a ``LaunchContext`` of ``load_launch`` does with the event handlers and events given
+to it (``register_event_handler``, ``emit_event``)."""

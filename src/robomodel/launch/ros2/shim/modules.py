@@ -76,7 +76,8 @@ def _events() -> dict[str, Any]:
 def _sources() -> dict[str, Any]:
     from robomodel.launch.ros2.shim import sources
 
-    return _pick(sources, *[n for n in sources.__all__ if n != "load_description_file"])
+    upstream = [n for n in sources.__all__ if n.endswith("LaunchDescriptionSource")]
+    return _pick(sources, *upstream)
 
 
 def _utilities() -> dict[str, Any]:

@@ -17,10 +17,12 @@ from typing import Any
 import yaml
 
 from robomodel._files import UserFileError, read_user_text
+from robomodel.launch.ros2.frontend.substitution_parser import parse_substitution
 from robomodel.launch.ros2.shim.context import LaunchContext, SubstitutionFailure
 from robomodel.launch.ros2.shim.substitutions import (
     Substitution,
     TextSubstitution,
+    coerce_bool,
     normalize_to_list_of_substitutions,
     perform_substitutions,
     perform_typed_substitution,
@@ -82,8 +84,6 @@ class ParameterFile:
         path = Path(os.path.abspath(perform_substitutions(context, self.param_file)))
         allow = self.allow_substs
         if not isinstance(allow, bool):
-            from robomodel.launch.ros2.shim.substitutions import coerce_bool
-
             allow = coerce_bool(
                 perform_substitutions(context, normalize_to_list_of_substitutions(allow))
             )
@@ -93,8 +93,6 @@ class ParameterFile:
             text = read_user_text(path, what="parameter file")
         except UserFileError as exc:
             raise SubstitutionFailure(str(exc)) from None
-        from robomodel.launch.ros2.frontend.substitution_parser import parse_substitution
-
         parsed = perform_substitutions(context, parse_substitution(text))
         try:
             yaml.safe_load(parsed)

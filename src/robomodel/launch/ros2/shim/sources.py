@@ -1,8 +1,19 @@
-"""``launch.launch_description_sources``: where an included launch description comes from."""
+"""``launch.launch_description_sources``: where an included launch description comes from.
+
+The readers of the three launch file types (Python, XML and YAML) are not imported here: they
+build descriptions out of the actions, which include descriptions through these sources.
+``load_launch`` hands them to the load as a :class:`LoaderRegistry` keyed by file type
+(upstream finds its front-ends through entry points the same way, by name), made current with
+:func:`loader_scope` as the session is.
+"""
 
 from __future__ import annotations
 
+import contextvars
 import os
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -22,37 +33,89 @@ from robomodel.launch.ros2.shim.substitutions import (
 
 __all__ = [
     "AnyLaunchDescriptionSource",
+    "FileLoader",
     "FrontendLaunchDescriptionSource",
     "LaunchDescriptionSource",
+    "LoaderRegistry",
     "PythonLaunchDescriptionSource",
     "XMLLaunchDescriptionSource",
     "YAMLLaunchDescriptionSource",
     "load_description_file",
+    "loader_scope",
 ]
 
-_PYTHON = (".py",)
-_XML = (".xml",)
-_YAML = (".yaml", ".yml")
+
+@dataclass(frozen=True, slots=True)
+class FileLoader:
+    """How one launch file type becomes a LaunchDescription.
+
+    Attributes:
+        kind: The file type (``python``, ``xml``, ``yaml``), as the sources name it.
+        suffixes: The lower-case suffixes that mean this type (``.py``).
+        load: Reads the file (errors as LaunchError at file:line).
+    """
+
+    kind: str
+    suffixes: tuple[str, ...]
+    load: Callable[[Path], LaunchDescription]
+
+
+class LoaderRegistry:
+    """The file loaders of a launch, keyed by file type (see the module docstring)."""
+
+    def __init__(self, loaders: Iterable[FileLoader]) -> None:
+        self._loaders: Mapping[str, FileLoader] = {loader.kind: loader for loader in loaders}
+
+    def kind_of(self, path: Path) -> str:
+        """The file type of ``path`` by its suffix."""
+        suffix = path.suffix.lower()
+        for loader in self._loaders.values():
+            if suffix in loader.suffixes:
+                return loader.kind
+        names = [loader.suffixes[0] for loader in self._loaders.values()]
+        expected = " or ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names)
+        raise SubstitutionFailure(
+            f"cannot tell the launch file type of '{path}' (expected {expected})"
+        )
+
+    def loader(self, kind: str) -> FileLoader:
+        """The loader of file type ``kind``."""
+        try:
+            return self._loaders[kind]
+        except KeyError:
+            known = ", ".join(sorted(self._loaders)) or "none"
+            raise SubstitutionFailure(
+                f"no loader for {kind} launch files (this load reads: {known})"
+            ) from None
+
+
+_LOADERS: contextvars.ContextVar[LoaderRegistry | None] = contextvars.ContextVar(
+    "robomodel_ros2_launch_loaders", default=None
+)
+
+
+@contextmanager
+def loader_scope(loaders: LoaderRegistry) -> Iterator[LoaderRegistry]:
+    """Make ``loaders`` the file loaders of the sources used inside."""
+    token = _LOADERS.set(loaders)
+    try:
+        yield loaders
+    finally:
+        _LOADERS.reset(token)
 
 
 def load_description_file(path: Path, kind: str, *, record: bool = True) -> LaunchDescription:
     """Load a launch file as a LaunchDescription: ``kind`` is python, xml, yaml or any."""
+    loaders = _LOADERS.get()
+    if loaders is None:
+        raise SubstitutionFailure(
+            f"cannot load '{path}': launch files are loaded inside "
+            "robomodel.launch.ros2.load_launch"
+        )
     session = current_session()
     if kind == "any":
-        suffix = path.suffix.lower()
-        kind = (
-            "python"
-            if suffix in _PYTHON
-            else "xml"
-            if suffix in _XML
-            else "yaml"
-            if suffix in _YAML
-            else "any"
-        )
-        if kind == "any":
-            raise SubstitutionFailure(
-                f"cannot tell the launch file type of '{path}' (expected .py, .xml or .yaml)"
-            )
+        kind = loaders.kind_of(path)
+    loader = loaders.loader(kind)
     if not path.is_file():
         raise SubstitutionFailure(f"launch file '{path}' does not exist")
     if session is not None:
@@ -60,17 +123,7 @@ def load_description_file(path: Path, kind: str, *, record: bool = True) -> Laun
         session.charge(INCLUDE_WORK, SourceLocation(str(path)))
         if record and path not in session.files:
             session.files.append(path)
-    if kind == "python":
-        from robomodel.launch.ros2.python_loader import load_python_description
-
-        return load_python_description(path)
-    if kind == "xml":
-        from robomodel.launch.ros2.frontend.xml_frontend import load_xml_description
-
-        return load_xml_description(path)
-    from robomodel.launch.ros2.frontend.yaml_frontend import load_yaml_description
-
-    return load_yaml_description(path)
+    return loader.load(path)
 
 
 class LaunchDescriptionSource:
