@@ -205,7 +205,7 @@ def test_scan_points_drop_invalid_ranges() -> None:
 
 
 def test_messages_are_shown_literally_in_markdown() -> None:
-    from robomodel.viewer.tools.base import escape_markdown
+    from robomodel.viewer.markup import escape_markdown
 
     assert escape_markdown("sin(i/rate*speed)*diff [pid_p]") == (
         r"sin(i/rate\*speed)\*diff \[pid\_p\]"

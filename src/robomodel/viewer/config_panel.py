@@ -16,6 +16,7 @@ from dataclasses import replace
 from typing import Any
 
 from robomodel.viewer.displays.attach import config_with_displays, open_config_displays
+from robomodel.viewer.markup import Markup, code, md, safe_markdown
 from robomodel.viewer.rviz_apply import apply_rviz_document, viewer_state
 from robomodel.viewer.rviz_config import RvizConfigError
 from robomodel.viewer.rviz_document import RvizDocument, open_rviz_document
@@ -33,10 +34,6 @@ log = logging.getLogger("robomodel.viewer")
 
 def _nothing() -> None:
     pass
-
-
-def _markdown_path(path: str) -> str:
-    return "`" + path.replace("`", "'") + "`"
 
 
 class ConfigPanel:
@@ -72,7 +69,7 @@ class ConfigPanel:
         self._lock = threading.Lock()
         gui = server.gui
         with gui.add_folder("File"):
-            self.status = gui.add_markdown(self._opened_text())
+            self.status = safe_markdown(gui, self._opened_text())
             self.save_button = gui.add_button("Save Config", icon="device-floppy")
             self.save_as_button = gui.add_button("Save Config As")
             self.open_button = gui.add_button("Open Config", visible=reopen is not None)
@@ -82,13 +79,13 @@ class ConfigPanel:
             lambda event: self.ask_path(event.client, title="Open Config", action=self.open)
         )
 
-    def _opened_text(self) -> str:
+    def _opened_text(self) -> Markup:
         path = self.document.path
         if path is None:
-            return "RViz config: none (Save Config As writes one)"
+            return md("RViz config: none (Save Config As writes one)")
         if self.document.missing:
-            return f"RViz config {_markdown_path(path)} does not exist yet: Save Config writes it"
-        return f"RViz config {_markdown_path(path)}"
+            return md("RViz config {} does not exist yet: Save Config writes it", code(path))
+        return md("RViz config {}", code(path))
 
     def _on_save(self, client: Any) -> None:
         if self.document.path is None:
@@ -110,12 +107,12 @@ class ConfigPanel:
             try:
                 written = write_rviz_config(path, config)
             except RvizSaveError as exc:
-                self.status.content = f"**Not saved**: {exc}"
+                self.status.content = md("**Not saved**: {}", exc)
                 log.warning("%s", exc)
                 return False
             self.document = replace(self.document, path=str(path), config=config, missing=False)
             saved()
-            self.status.content = f"Saved RViz config {_markdown_path(str(written))}"
+            self.status.content = md("Saved RViz config {}", code(written))
             log.info("saved RViz config %s", written)
             return True
 
@@ -128,14 +125,14 @@ class ConfigPanel:
             try:
                 document, _ = open_rviz_document(path, self.document.dialect)
             except RvizConfigError as exc:
-                self.status.content = f"**Not opened**: {exc}"
+                self.status.content = md("**Not opened**: {}", exc)
                 return False
             if document.missing:
-                self.status.content = f"**Not opened**: {_markdown_path(path)} does not exist"
+                self.status.content = md("**Not opened**: {} does not exist", code(path))
                 return False
             self.document = document
             self._reopen(document)
-            self.status.content = f"Opened RViz config {_markdown_path(path)}"
+            self.status.content = md("Opened RViz config {}", code(path))
             log.info("opened RViz config %s", path)
             return True
 
@@ -154,7 +151,9 @@ class ConfigPanel:
         def on_ok(_event: Any) -> None:
             text = str(path.value).strip()
             if not text:
-                self.status.content = f"**Not {'opened' if verb == 'Open' else 'saved'}**: give a file path"  # fmt: skip
+                self.status.content = md(
+                    "**Not {}**: give a file path", "opened" if verb == "Open" else "saved"
+                )
             else:
                 act(text, client)
             modal.close()
