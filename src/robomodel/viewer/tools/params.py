@@ -14,6 +14,7 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.param_client import ParameterClient
 from robomodel.runtime.params import SetResult, parameter_type_name, parse_parameter_value
+from robomodel.viewer.limits import MAX_PARAMETERS_SHOWN
 from robomodel.viewer.markup import code, md, safe_markdown
 from robomodel.viewer.tools.base import ToolContext
 
@@ -75,10 +76,16 @@ class ParameterTool:
         self.node_name, self.values = node, dict(values)
         with self._parent:
             self._folder = self.gui.add_folder(node)
+        shown = sorted(values.items())[:MAX_PARAMETERS_SHOWN]
         with self._folder:
-            for name, value in sorted(values.items()):
+            for name, value in shown:
                 self.controls[name] = self._control(name, value)
-        self.result.content = md("{} parameter(s) of {}", len(values), code(node))
+        if len(shown) < len(values):
+            self.result.content = md(
+                "{} parameter(s) of {}; the first {} shown", len(values), code(node), len(shown)
+            )
+        else:
+            self.result.content = md("{} parameter(s) of {}", len(values), code(node))
 
     def _control(self, name: str, value: Any) -> Any:
         kind = parameter_type_name(value)
