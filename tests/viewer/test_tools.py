@@ -229,3 +229,65 @@ def test_steering_follows_a_diff_drive_topic_until_edited() -> None:
     fresh.topic = SimpleNamespace(value="/cmd_vel")
     fresh.follow_graph({"/cmd_vel": twist, "/x/cmd_vel": twist})  # /cmd_vel is in use: kept
     assert fresh.topic.value == "/cmd_vel"
+
+
+class _Control:
+    def __init__(self, value: object) -> None:
+        self.value, self.min, self.max = value, -1.0, 1.0
+        self.callbacks: list[object] = []
+
+    def on_update(self, callback: object) -> None:
+        self.callbacks.append(callback)
+
+    on_click = on_update
+
+    def moved_by_page(self, value: float) -> None:
+        from types import SimpleNamespace
+
+        self.value = value
+        for callback in self.callbacks:
+            callback(SimpleNamespace(client=object()))  # type: ignore[operator]
+
+
+class _SteeringGui:
+    def __getattr__(self, name: str) -> object:
+        def add(_label: str, value: object = None, **kwargs: object) -> _Control:
+            return _Control(kwargs.get("initial_value", value))
+
+        return add
+
+
+def test_steering_is_a_dead_man_switch_when_the_last_page_leaves() -> None:
+    """A page drives at 0.5 m/s and closes: one zero command, then nothing, also if the
+    program sets a slider, until a page moves a slider again."""
+    from types import SimpleNamespace
+
+    from robomodel.viewer.tools.steering import SteeringTool
+
+    sent: list[object] = []
+    clients: dict[int, object] = {}
+    node = SimpleNamespace(
+        create_publisher=lambda *_a: SimpleNamespace(publish=sent.append, destroy=lambda: None),
+        create_timer=lambda *_a: None,
+    )
+    server = SimpleNamespace(gui=_SteeringGui(), get_clients=lambda: dict(clients))
+    tools = SimpleNamespace(server=server, node=node, post=lambda f: f())
+    tool = SteeringTool(tools)  # type: ignore[arg-type]
+    clients[1] = object()  # a page connects and moves the slider
+    tool.linear.moved_by_page(0.5)  # type: ignore[attr-defined]
+    for _ in range(3):
+        tool.tick()
+    assert [t.linear.x for t in sent] == [0.5, 0.5, 0.5]  # type: ignore[attr-defined]
+    clients.clear()  # the last page leaves
+    for _ in range(5):
+        tool.tick()
+    assert [t.linear.x for t in sent[3:]] == [0.0]  # type: ignore[attr-defined]
+    assert tool.linear.value == 0.0 and not tool.armed
+    tool.linear.value = 0.7  # set by a program, not a page: still nothing
+    tool.tick()
+    clients[2] = object()  # a page opens: nothing until it moves a slider
+    tool.tick()
+    assert len(sent) == 4
+    tool.angular.moved_by_page(-1.0)  # type: ignore[attr-defined]
+    tool.tick()
+    assert len(sent) == 5 and sent[-1].angular.z == -1.0  # type: ignore[attr-defined]
