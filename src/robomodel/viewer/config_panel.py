@@ -10,9 +10,11 @@ or why it could not be written.
 from __future__ import annotations
 
 import logging
+import os
 import threading
 from collections.abc import Callable
 from dataclasses import replace
+from pathlib import Path
 from typing import Any
 
 from robomodel.viewer.displays.attach import config_with_displays, open_config_displays
@@ -25,11 +27,37 @@ from robomodel.viewer.rviz_open import reopen_rviz_document
 from robomodel.viewer.rviz_state import ViewerState, config_with_state
 from robomodel.viewer.rviz_write import RvizSaveError, write_rviz_config
 
-__all__ = ["ConfigPanel", "attach_rviz"]
+__all__ = ["ConfigPanel", "PagePathError", "attach_rviz", "page_path"]
 
 DisplaysHook = Callable[[RvizConfig, RvizDialect], tuple[RvizConfig, Callable[[], None]]]
 
 log = logging.getLogger("robomodel.viewer")
+
+
+class PagePathError(ValueError):
+    """A path typed in the page that the viewer does not read or write."""
+
+
+def page_path(text: str, roots: tuple[Path, ...]) -> Path:
+    """The file a page's Save Config As or Open Config dialog names, if the viewer lets a
+    page use it: an ``.rviz`` file inside one of ``roots`` (real paths: the ``-d`` config's
+    folder, the working folder), reached through no symbolic link. Anyone who can open the page can
+    type a path, so the page cannot overwrite ``~/.bashrc`` or read ``/etc/shadow`` through
+    the viewer; the ``-d`` file itself (a command-line choice) is not restricted.
+
+    Raises:
+        PagePathError: outside the roots, through a link, or not an ``.rviz`` file.
+    """
+    typed = Path(text).expanduser()
+    target = Path(os.path.abspath(typed if typed.is_absolute() else roots[0] / typed))
+    if target.suffix != ".rviz":
+        raise PagePathError(f"{target}: the page reads and writes .rviz files only")
+    if os.path.realpath(target) != str(target):
+        raise PagePathError(f"{target}: a symbolic link is in the way; give the real path")
+    if not any(target.is_relative_to(root) for root in roots):
+        folders = " or ".join(str(root) for root in roots)
+        raise PagePathError(f"{target} is outside {folders}, where the page may save and open")
+    return target
 
 
 def _nothing() -> None:
@@ -61,6 +89,10 @@ class ConfigPanel:
         reopen: Callable[[RvizDocument], None] | None = None,
     ) -> None:
         self.document = document
+        folder = Path(document.path).expanduser().absolute().parent if document.path else None
+        self.roots = tuple(
+            dict.fromkeys(Path(os.path.realpath(p)) for p in (folder, Path.cwd()) if p is not None)
+        )
         self._displays = displays
         self._reopen = reopen
         self._frame_rate_hz = frame_rate_hz
@@ -150,12 +182,15 @@ class ConfigPanel:
 
         def on_ok(_event: Any) -> None:
             text = str(path.value).strip()
+            done = "opened" if verb == "Open" else "saved"
             if not text:
-                self.status.content = md(
-                    "**Not {}**: give a file path", "opened" if verb == "Open" else "saved"
-                )
+                self.status.content = md("**Not {}**: give a file path", done)
             else:
-                act(text, client)
+                try:
+                    act(str(page_path(text, self.roots)), client)
+                except PagePathError as exc:
+                    self.status.content = md("**Not {}**: {}", done, exc)
+                    log.warning("not %s: %s", done, exc)
             modal.close()
 
         ok.on_click(on_ok)
