@@ -29,6 +29,9 @@ STATED = [
     ("robomodel.cli.graph", "DOT_TIMEOUT_S", 60.0, "60 s (`DOT_TIMEOUT_S`)"),
     ("robomodel.cli.graph", "MAX_DOT_BYTES", 8 * 2**20, "8 MiB of Graphviz text (`MAX_DOT_BYTES`)"),
     ("robomodel.cli.graph", "DOT_MEMORY_BYTES", 2 * 2**30, "2 GiB of address space (`DOT_MEMORY_BYTES`)"),
+    ("robomodel.cli.log", "MAX_MESSAGE_CHARS", 8192, "8,192 characters of message and of file name\n(`MAX_MESSAGE_CHARS`)"),
+    ("robomodel.cli.log", "MAX_NAME_CHARS", 256, "256 of node name (`MAX_NAME_CHARS`)"),
+    ("robomodel.cli.log", "MAX_NODE_COLUMN", 48, "48 characters (`MAX_NODE_COLUMN`)"),
 ]  # fmt: skip
 
 
