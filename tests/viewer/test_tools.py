@@ -291,3 +291,43 @@ def test_steering_is_a_dead_man_switch_when_the_last_page_leaves() -> None:
     tool.angular.moved_by_page(-1.0)  # type: ignore[attr-defined]
     tool.tick()
     assert len(sent) == 5 and sent[-1].angular.z == -1.0  # type: ignore[attr-defined]
+
+
+class _Folder:
+    def __enter__(self) -> _Folder:
+        return self
+
+    def __exit__(self, *_args: object) -> None:
+        return None
+
+    def remove(self) -> None:
+        return None
+
+
+class _ParamGui(_SteeringGui):
+    def add_folder(self, _label: str) -> _Folder:
+        return _Folder()
+
+    def add_markdown(self, content: str) -> _Control:
+        return _Control(content)
+
+
+def test_a_node_of_many_parameters_shows_the_first_thousand() -> None:
+    import time
+
+    from robomodel.viewer.limits import MAX_PARAMETERS_SHOWN
+    from robomodel.viewer.markup import safe_markdown
+    from robomodel.viewer.tools.params import ParameterTool
+    from tests.timing import scaled
+
+    tool = ParameterTool.__new__(ParameterTool)
+    tool.gui = _ParamGui()
+    tool.result = safe_markdown(tool.gui)
+    tool._folder, tool._parent, tool.controls = None, _Folder(), {}
+    values = {f"p{k:07d}": float(k) for k in range(10**5)}
+    start = time.perf_counter()
+    tool._build("/flood", values)
+    assert time.perf_counter() - start < scaled(5.0)
+    assert len(tool.controls) == MAX_PARAMETERS_SHOWN == 1000
+    assert sorted(tool.controls)[-1] == "p0000999"  # the first by name
+    assert tool.result.content == "100000 parameter(s) of `/flood`; the first 1000 shown"
