@@ -105,3 +105,29 @@ def test_controller_and_parameter_files_are_bounded(tmp_path: Path) -> None:
     ):
         with pytest.raises(Exception, match=rf"^{bomb}:7:\d+: more than 1000000 values"):
             read()
+
+
+def test_xacro_kinematics_and_yaml_launch_files_are_bounded(tmp_path: Path) -> None:
+    import robomodel.xacro as rx
+    from robomodel.errors import InputError
+    from robomodel.kinematics.yaml_model import read_kinematics_yaml
+    from robomodel.launch.model import LaunchError
+    from robomodel.launch.ros2.frontend.yaml_frontend import load_yaml_description
+
+    bomb = tmp_path / "bomb.yaml"
+    bomb.write_text(alias_bomb())
+    robot = tmp_path / "r.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        "<x v=\"${xacro.load_yaml('bomb.yaml')}\"/></robot>"
+    )
+    with pytest.raises(InputError, match=rf"load_yaml\('bomb.yaml'\): {bomb}:7:\d+: more than"):
+        rx.process_file(robot)
+    with pytest.raises(InputError) as caught:
+        read_kinematics_yaml(str(bomb))
+    assert caught.value.diagnostic.location.line == 7
+    launch = tmp_path / "bomb.launch.yaml"
+    launch.write_text(alias_bomb())
+    with pytest.raises(LaunchError, match="more than 1000000 values") as raised:
+        load_yaml_description(launch)
+    assert raised.value.location is not None and raised.value.location.line == 7
