@@ -164,6 +164,28 @@ def test_readme_run_commands(bus: _Bus) -> None:
     assert _stop(echo) == 0 and _stop(publisher) == 0
 
 
+def test_view_frames_draws_frames_whose_names_are_yaml_and_dot_syntax(bus: _Bus) -> None:
+    """A child frame named ``it's: [x`` or ``b" -> "PWNED" [label="injected``: frames.gv and
+    frames.pdf are written, the names quoted, and no edge of their own."""
+    children = ("it's: [x", 'b" -> "PWNED" [label="injected')
+    publishers = [
+        bus.start(f"stp{k}", "tf2_ros", "static_transform_publisher", "--frame-id", "world",
+                  "--child-frame-id", child, "--ros-args", "-r", f"__node:=stp{k}")
+        for k, child in enumerate(children)
+    ]  # fmt: skip
+    bus.until(lambda: bus.listed("/stp0") and bus.listed("/stp1"), "the publishers listed")
+    run = subprocess.run(
+        [*ROBOMODEL, "run", "--domain-id", bus.domain, "tf", "view_frames"],
+        capture_output=True, text=True, timeout=scaled(90), cwd=bus.tmp,
+    )  # fmt: skip
+    assert run.returncode == 0 and "Traceback" not in run.stderr, run.stderr
+    gv = (bus.tmp / "frames.gv").read_text()
+    assert '"world" -> "it\'s: [x"' in gv
+    assert '"world" -> "b\\" -> \\"PWNED\\" [label=\\"injected"' in gv
+    assert (bus.tmp / "frames.pdf").read_bytes().startswith(b"%PDF")
+    assert all(_stop(p) == 0 for p in publishers)
+
+
 def test_tf2_tools_view_frames_writes_the_tree(bus: _Bus) -> None:
     """``ros2 run tf2_tools view_frames -t 2 -o tree``: tree.gv with the static transform's edge
     (frame names from the bus, so a buffer that heard nothing fails), tree.pdf; its lines."""

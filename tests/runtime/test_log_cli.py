@@ -89,3 +89,17 @@ def test_filters_and_columns() -> None:
     assert not matches(line, ["/other*"], "debug") and not matches(line, [], "warn")
     odd = LogLine(0, "7", "/x", "m", "", 0)  # a level no ROS defines is shown, not filtered
     assert matches(odd, [], "fatal") and format_line(odd).split()[1] == "7"
+
+
+def test_a_flood_of_huge_lines_prints_each_cut_to_its_bound() -> None:
+    """A peer's megabyte message, or a megabyte node name, is printed cut, saying how long it
+    was; the node column of later lines stays narrow."""
+    from robomodel.cli.log import MAX_MESSAGE_CHARS, MAX_NAME_CHARS, MAX_NODE_COLUMN
+
+    huge = LogLine(0, "info", "n" * 10**6, "\x1b" + "m" * 10**6, "f" * 10**6, 1)
+    text = format_line(huge, node_width=10**6)
+    assert len(text) < 4 * MAX_MESSAGE_CHARS + MAX_NAME_CHARS + 200
+    assert "… (1000001 characters)" in text and text.count("… (1000000 characters)") == 2
+    assert "\\x1b" in text and "\x1b" not in text
+    short = format_line(LogLine(0, "info", "talker", "hi", "", 0), node_width=10**6)
+    assert short == f"0.000000000  INFO   {'talker'.ljust(MAX_NODE_COLUMN)}  hi"

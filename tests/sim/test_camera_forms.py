@@ -283,3 +283,56 @@ def test_robomodel_sim_without_the_asked_opengl_is_one_error_line_and_exit_2() -
     errors = [line for line in run.stderr.splitlines() if "error" in line]
     assert len(errors) == 1 and "Traceback" not in run.stderr
     assert "egl: " in errors[0] and "install Debian's libegl1 libegl-mesa0" in errors[0]
+
+
+@pytest.mark.parametrize(
+    ("image", "rate", "said"),
+    [
+        ("<width>100000</width><height>100000</height>", "10",
+         r"the image is 100000 x 100000 pixels; <image><width> and <height> must be 1\.\.4096"),
+        ("<width>4097</width><height>1</height>", "10", r"the image is 4097 x 1 pixels"),
+        ("<width>320</width><height>240</height>", "1e9",
+         r"<update_rate> 1e\+09 Hz is outside 0\.\.1000 Hz"),
+        ("<width>320</width><height>240</height>", "-5", r"<update_rate> -5 Hz is outside"),
+    ],
+)  # fmt: skip
+def test_a_camera_outside_its_bounds_is_refused_at_load(image: str, rate: str, said: str) -> None:
+    from robomodel.sim.exceptions import SimulationError
+
+    el = _sensor(f"""<sensor type="camera" name="cam"><update_rate>{rate}</update_rate>
+      <camera><image>{image}</image></camera></sensor>""")
+    with pytest.raises(SimulationError, match=rf"^robot.urdf:7: sensor 'cam': {said}") as caught:
+        parse_camera(el, "cam", False, "robot.urdf:7")
+    assert caught.value.name == "cam"
+    edge = _sensor("""<sensor type="camera" name="cam"><update_rate>1000</update_rate>
+      <camera><image><width>4096</width><height>1</height></image></camera></sensor>""")
+    assert parse_camera(edge, "cam", False, "x").width_px == 4096
+
+
+def test_robomodel_sim_refuses_a_huge_camera_with_one_line_naming_the_sensor(
+    tmp_path: Any,
+) -> None:
+    import shutil
+    import subprocess
+
+    from tests.conftest import ROBOMODEL
+
+    from .conftest import SIMPLEBOT_CAMERA
+
+    package = tmp_path / "simplebot_description"
+    shutil.copytree(SIMPLEBOT_CAMERA.parents[1], package)
+    robot = package / "urdf" / SIMPLEBOT_CAMERA.name
+    text = robot.read_text()
+    assert "<width>320</width>" in text
+    robot.write_text(text.replace("<width>320</width>", "<width>100000</width>").replace(
+        "<height>240</height>", "<height>100000</height>"))  # fmt: skip
+    run = subprocess.run(
+        [*ROBOMODEL, "sim", str(robot), "--headless", "--rate", "max", "--duration", "0.5",
+         "--bus", "inproc"],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert run.returncode == 2, run.stderr
+    assert "Traceback" not in run.stderr and "FatalError" not in run.stderr
+    [line] = [x for x in run.stderr.splitlines() if "error" in x]
+    assert line.startswith(f"robomodel: error: {robot} (expanded):")  # the line of its <sensor>
+    assert "sensor 'camera': the image is 100000 x 100000 pixels" in line

@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
+from robomodel.viewer.markup import escape_markdown
 from robomodel.viewer.rviz_config import read_rviz_file
 from robomodel.viewer.rviz_document import open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
@@ -87,7 +88,8 @@ def test_save_config_as_and_an_unwritable_path(started: list[Viewer], tmp_path: 
     blocked = tmp_path / "a_file"
     blocked.write_text("")
     assert not panel.save(str(blocked / "x.rviz"))
-    assert "Not saved" in panel.status.content and str(blocked / "x.rviz") in panel.status.content
+    content = panel.status.content
+    assert "Not saved" in content and escape_markdown(str(blocked / "x.rviz")) in content
     other = tmp_path / "other.rviz"
     tf = next(d for d in viewer.displays.displays if d.class_name == "TF")
     on_loop(viewer, lambda: tf.set_option("Show Names", True))  # TF > Show Names ticked

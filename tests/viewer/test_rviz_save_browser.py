@@ -68,7 +68,7 @@ def test_save_config_writes_the_missing_rviz_file_of_display_launch(
         text = config.read_text()
         assert text.startswith("Panels:\n") and '  Class: ""\n' in text
         # Save Config As: a dialog asks for the path; later saves go there.
-        other = tmp_path / "copy" / "view_urdf.rviz"
+        other = config.parent / "copy" / "view_urdf.rviz"  # a page saves beside the -d file
         page.get_by_role("button", name="Save Config As", exact=True).click()
         box = gui_row(page, "Path").locator("input:not([type=hidden])").first
         box.wait_for(timeout=scaled(20) * 1000)  # playwright's timeouts are in ms

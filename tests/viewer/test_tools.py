@@ -205,7 +205,7 @@ def test_scan_points_drop_invalid_ranges() -> None:
 
 
 def test_messages_are_shown_literally_in_markdown() -> None:
-    from robomodel.viewer.tools.base import escape_markdown
+    from robomodel.viewer.markup import escape_markdown
 
     assert escape_markdown("sin(i/rate*speed)*diff [pid_p]") == (
         r"sin(i/rate\*speed)\*diff \[pid\_p\]"
@@ -229,3 +229,105 @@ def test_steering_follows_a_diff_drive_topic_until_edited() -> None:
     fresh.topic = SimpleNamespace(value="/cmd_vel")
     fresh.follow_graph({"/cmd_vel": twist, "/x/cmd_vel": twist})  # /cmd_vel is in use: kept
     assert fresh.topic.value == "/cmd_vel"
+
+
+class _Control:
+    def __init__(self, value: object) -> None:
+        self.value, self.min, self.max = value, -1.0, 1.0
+        self.callbacks: list[object] = []
+
+    def on_update(self, callback: object) -> None:
+        self.callbacks.append(callback)
+
+    on_click = on_update
+
+    def moved_by_page(self, value: float) -> None:
+        from types import SimpleNamespace
+
+        self.value = value
+        for callback in self.callbacks:
+            callback(SimpleNamespace(client=object()))  # type: ignore[operator]
+
+
+class _SteeringGui:
+    def __getattr__(self, name: str) -> object:
+        def add(_label: str, value: object = None, **kwargs: object) -> _Control:
+            return _Control(kwargs.get("initial_value", value))
+
+        return add
+
+
+def test_steering_is_a_dead_man_switch_when_the_last_page_leaves() -> None:
+    """A page drives at 0.5 m/s and closes: one zero command, then nothing, also if the
+    program sets a slider, until a page moves a slider again."""
+    from types import SimpleNamespace
+
+    from robomodel.viewer.tools.steering import SteeringTool
+
+    sent: list[object] = []
+    clients: dict[int, object] = {}
+    node = SimpleNamespace(
+        create_publisher=lambda *_a: SimpleNamespace(publish=sent.append, destroy=lambda: None),
+        create_timer=lambda *_a: None,
+    )
+    server = SimpleNamespace(gui=_SteeringGui(), get_clients=lambda: dict(clients))
+    tools = SimpleNamespace(server=server, node=node, post=lambda f: f())
+    tool = SteeringTool(tools)  # type: ignore[arg-type]
+    clients[1] = object()  # a page connects and moves the slider
+    tool.linear.moved_by_page(0.5)  # type: ignore[attr-defined]
+    for _ in range(3):
+        tool.tick()
+    assert [t.linear.x for t in sent] == [0.5, 0.5, 0.5]  # type: ignore[attr-defined]
+    clients.clear()  # the last page leaves
+    for _ in range(5):
+        tool.tick()
+    assert [t.linear.x for t in sent[3:]] == [0.0]  # type: ignore[attr-defined]
+    assert tool.linear.value == 0.0 and not tool.armed
+    tool.linear.value = 0.7  # set by a program, not a page: still nothing
+    tool.tick()
+    clients[2] = object()  # a page opens: nothing until it moves a slider
+    tool.tick()
+    assert len(sent) == 4
+    tool.angular.moved_by_page(-1.0)  # type: ignore[attr-defined]
+    tool.tick()
+    assert len(sent) == 5 and sent[-1].angular.z == -1.0  # type: ignore[attr-defined]
+
+
+class _Folder:
+    def __enter__(self) -> _Folder:
+        return self
+
+    def __exit__(self, *_args: object) -> None:
+        return None
+
+    def remove(self) -> None:
+        return None
+
+
+class _ParamGui(_SteeringGui):
+    def add_folder(self, _label: str) -> _Folder:
+        return _Folder()
+
+    def add_markdown(self, content: str) -> _Control:
+        return _Control(content)
+
+
+def test_a_node_of_many_parameters_shows_the_first_thousand() -> None:
+    import time
+
+    from robomodel.viewer.limits import MAX_PARAMETERS_SHOWN
+    from robomodel.viewer.markup import safe_markdown
+    from robomodel.viewer.tools.params import ParameterTool
+    from tests.timing import scaled
+
+    tool = ParameterTool.__new__(ParameterTool)
+    tool.gui = _ParamGui()
+    tool.result = safe_markdown(tool.gui)
+    tool._folder, tool._parent, tool.controls = None, _Folder(), {}
+    values = {f"p{k:07d}": float(k) for k in range(10**5)}
+    start = time.perf_counter()
+    tool._build("/flood", values)
+    assert time.perf_counter() - start < scaled(5.0)
+    assert len(tool.controls) == MAX_PARAMETERS_SHOWN == 1000
+    assert sorted(tool.controls)[-1] == "p0000999"  # the first by name
+    assert tool.result.content == "100000 parameter(s) of `/flood`; the first 1000 shown"

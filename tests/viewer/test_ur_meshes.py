@@ -96,7 +96,7 @@ def test_the_ur5_example_falls_back_to_cylinders_with_one_status_line() -> None:
         )  # fmt: skip
         text = render_status([status], True, "world")
         assert text.count("\n") == 0
-        assert "package `ur\\_description` not found: 7 link(s) drawn with their collision" in text
+        assert "package `ur_description` not found: 7 link(s) drawn with their collision" in text
         assert "pip install example-robot-data" in text
     finally:
         server.stop()  # type: ignore[attr-defined]

@@ -22,6 +22,9 @@ from robomodel.errors import RobomodelError
 __all__ = ["register", "render_dot"]
 
 _RENDERED = {".svg": "svg", ".pdf": "pdf", ".png": "png"}
+DOT_TIMEOUT_S = 60.0  # a robot's tree renders in well under a second
+MAX_DOT_BYTES = 8 * 1024 * 1024  # Graphviz text handed to dot (a 1,000-frame tree: ~300 KiB)
+DOT_MEMORY_BYTES = 2 * 1024**3  # dot's address space
 
 
 def register(subparsers: Any) -> None:
@@ -38,8 +41,14 @@ def register(subparsers: Any) -> None:
     parser.set_defaults(func=run)
 
 
-def render_dot(dot_text: str, output: str | os.PathLike[str]) -> None:
-    """Render Graphviz text to ``output`` (format from its suffix), atomically."""
+def render_dot(
+    dot_text: str, output: str | os.PathLike[str], *, timeout_s: float = DOT_TIMEOUT_S
+) -> None:
+    """Render Graphviz text to ``output`` (format from its suffix), atomically.
+
+    dot runs with a timeout (``timeout_s``), on text of at most ``MAX_DOT_BYTES`` and in at
+    most ``DOT_MEMORY_BYTES`` of memory: a graph of names from peers cannot keep it running.
+    """
     target = Path(output)
     fmt = _RENDERED.get(target.suffix.lower())
     if fmt is None:
@@ -52,13 +61,26 @@ def render_dot(dot_text: str, output: str | os.PathLike[str]) -> None:
             "rendering needs Graphviz's 'dot', which is not installed: apt-get install graphviz "
             "(Debian/Ubuntu), brew install graphviz (macOS); or write .gv text with -o FILE.gv"
         )
-    with _terminate_as_exit():
-        proc = subprocess.run(
-            [dot, f"-T{fmt}"],
-            input=dot_text.encode(),
-            capture_output=True,
-            preexec_fn=_die_with_parent,
+    data = dot_text.encode()
+    if len(data) > MAX_DOT_BYTES:
+        raise RobomodelError(
+            f"the graph for '{target}' is {len(data)} bytes of Graphviz text, more than the "
+            f"{MAX_DOT_BYTES} dot is given; write the .gv text with -o FILE.gv instead"
         )
+    with _terminate_as_exit():
+        try:
+            proc = subprocess.run(
+                [dot, f"-T{fmt}"],
+                input=data,
+                capture_output=True,
+                preexec_fn=_die_with_parent,
+                timeout=timeout_s,
+            )
+        except subprocess.TimeoutExpired:
+            raise RobomodelError(
+                f"dot did not render '{target}' within {timeout_s:g} s; the .gv text is "
+                "written, render it with dot yourself"
+            ) from None
         if proc.returncode != 0:
             raise RobomodelError(f"dot failed: {proc.stderr.decode(errors='replace').strip()}")
         # dot's output comes through a pipe: the only file ever created beside the target is
@@ -74,6 +96,10 @@ def _die_with_parent() -> None:  # pragma: no cover - runs in the child between 
 
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG = 1
+    with contextlib.suppress(ImportError, ValueError, OSError):
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (DOT_MEMORY_BYTES, DOT_MEMORY_BYTES))
 
 
 @contextlib.contextmanager

@@ -22,7 +22,21 @@ from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError
 
-__all__ = ["LogLine", "format_line", "register"]
+__all__ = [
+    "MAX_MESSAGE_CHARS",
+    "MAX_NAME_CHARS",
+    "MAX_NODE_COLUMN",
+    "LogLine",
+    "format_line",
+    "register",
+]
+
+# A peer chooses its log lines: one of megabytes, or a node name that long, would be printed
+# whole (and the name would pad every later line to its width). Past these the text is cut and
+# says how long it was.
+MAX_MESSAGE_CHARS = 8_192  # of one message, and of its file name
+MAX_NAME_CHARS = 256  # of a node name
+MAX_NODE_COLUMN = 48  # the node column pads to at most this width
 
 # rqt_console's severities; ROS 2's rcl_interfaces/msg/Log levels and ROS 1's rosgraph_msgs/Log.
 SEVERITIES = ("debug", "info", "warn", "error", "fatal")
@@ -92,12 +106,21 @@ def matches(line: LogLine, globs: list[str], level: str) -> bool:
     return any(fnmatch.fnmatchcase(form, g) for form in _node_forms(line.node) for g in globs)
 
 
+def _clipped(text: str, limit: int) -> str:
+    """``text`` escaped, cut at ``limit`` characters with how long it was."""
+    if len(text) <= limit:
+        return escape_name(text)
+    return f"{escape_name(text[:limit])}… ({len(text)} characters)"
+
+
 def format_line(line: LogLine, node_width: int = 0) -> str:
-    """``sec.nanosec  SEVERITY  node  message  file:line``, text from peers escaped."""
+    """``sec.nanosec  SEVERITY  node  message  file:line``, text from peers escaped and cut
+    at ``MAX_MESSAGE_CHARS`` (``MAX_NAME_CHARS`` for the node)."""
     stamp = f"{line.stamp_ns // 1_000_000_000}.{line.stamp_ns % 1_000_000_000:09d}"
-    location = f"  {escape_name(line.file)}:{line.line}" if line.file else ""
-    node = escape_name(line.node).ljust(node_width)
-    return f"{stamp}  {line.severity.upper():<5}  {node}  {escape_name(line.message)}{location}"
+    location = f"  {_clipped(line.file, MAX_MESSAGE_CHARS)}:{line.line}" if line.file else ""
+    node = _clipped(line.node, MAX_NAME_CHARS).ljust(min(node_width, MAX_NODE_COLUMN))
+    message = _clipped(line.message, MAX_MESSAGE_CHARS)
+    return f"{stamp}  {line.severity.upper():<5}  {node}  {message}{location}"
 
 
 def run_log(args: argparse.Namespace) -> int:
@@ -122,7 +145,7 @@ def run_log(args: argparse.Namespace) -> int:
                 line, args.node, args.level
             ):
                 return
-            width[0] = max(width[0], len(escape_name(line.node)))
+            width[0] = min(max(width[0], len(escape_name(line.node))), MAX_NODE_COLUMN)
             sys.stdout.write(format_line(line, width[0]) + "\n")
             sys.stdout.flush()
             printed[0] += 1

@@ -67,15 +67,28 @@ def _chosen_verb(args: Sequence[str]) -> str | None:
     return None
 
 
+def _terminal_safe(text: str) -> str:
+    """``text`` with control characters other than line breaks spelt out (``\\x1b``): an error
+    quotes arguments, file contents and names from peers, and a terminal would act on them."""
+    if text.isprintable():
+        return text
+    from robomodel._escape import escape_name
+
+    return "\n".join(
+        line if line.isprintable() else "".join(escape_name(c) if c != "\\" else c for c in line)
+        for line in text.split("\n")
+    )
+
+
 def _report(exc: RobomodelError) -> None:
     from robomodel.errors import InputError
 
     if isinstance(exc, InputError):
-        print(exc.diagnostic.format(), file=sys.stderr)
+        print(_terminal_safe(exc.diagnostic.format()), file=sys.stderr)
         for note in exc.notes:
-            print(note.format(), file=sys.stderr)
+            print(_terminal_safe(note.format()), file=sys.stderr)
     else:
-        print(f"robomodel: error: {exc}", file=sys.stderr)
+        print(_terminal_safe(f"robomodel: error: {exc}"), file=sys.stderr)
 
 
 class Terminated(KeyboardInterrupt):

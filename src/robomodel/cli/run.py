@@ -20,6 +20,7 @@ import time
 from typing import Any
 
 from robomodel.cli._bus import add_bus_arguments, bus_from_args
+from robomodel.cli._ports import add_port_argument
 from robomodel.cli._signals import stop_on_signals
 from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, describe_unknown
@@ -45,7 +46,7 @@ def register(subparsers: Any) -> None:
     parser.add_argument(
         "--no-browser", action="store_true", help="rviz: serve the viewer, open no browser"
     )
-    parser.add_argument("--port", type=int, default=8080, help="rviz: the viewer's HTTP port")
+    add_port_argument(parser, "rviz: the viewer's HTTP port")
     add_bus_arguments(parser)
     parser.set_defaults(func=run)
 

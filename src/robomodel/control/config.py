@@ -19,6 +19,7 @@ from typing import Any
 import yaml
 
 from robomodel._files import UserFileError, read_user_text
+from robomodel._yaml_bounded import YamlNestingError, check_yaml_file
 from robomodel.control.controllers.registry import CONTROLLER_TYPES
 from robomodel.control.exceptions import ConfigError
 from robomodel.errors import SourceLocation, close_matches
@@ -265,7 +266,12 @@ def _params_file(
         raise ConfigError(f"params_file '{file}' of '{name}': {exc}", where) from None
     doc = _Located(str(path))
     try:
+        check_yaml_file(text, where=str(path))
         node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except YamlNestingError as exc:
+        raise ConfigError(
+            exc.problem, SourceLocation(str(path), exc.line or None, exc.column or None)
+        ) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark
         loc = SourceLocation(str(path), mark.line + 1, mark.column + 1) if mark else where
@@ -351,10 +357,17 @@ def load_controller_config(
         try:
             text = read_user_text(path, what="controller file")
         except UserFileError as exc:
-            raise ConfigError(exc.reason, SourceLocation(path, exc.line, exc.column)) from None
+            raise ConfigError(
+                exc.reason, SourceLocation(path, exc.line or None, exc.column or None)
+            ) from None
     doc = _Located(path)
     try:
+        check_yaml_file(text, where=path)
         node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except YamlNestingError as exc:
+        raise ConfigError(
+            exc.problem, SourceLocation(path, exc.line or None, exc.column or None)
+        ) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark
         loc = SourceLocation(path, mark.line + 1, mark.column + 1) if mark else SourceLocation(path)

@@ -101,8 +101,12 @@ def _load_document(source: str | os.PathLike[str]) -> tuple[Mapping[str, Any], s
             text = read_user_text(path, what="model file")
         except UserFileError as exc:
             raise _fail(exc.reason, path) from None
+    from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
+
     try:
-        doc = yaml.safe_load(text)
+        doc = load_yaml_file(text, where=path or "the model text")
+    except YamlNestingError as exc:
+        raise InputError.at(exc.problem, path, exc.line or None, exc.column or None) from None
     except yaml.YAMLError as exc:
         raise _fail(f"invalid YAML: {exc}", path) from None
     if not isinstance(doc, Mapping):

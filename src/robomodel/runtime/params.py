@@ -16,7 +16,7 @@ from typing import Any
 
 from robomodel._atomic import atomic_write_text
 from robomodel._files import UserFileError, read_user_text
-from robomodel._yaml_bounded import load_yaml
+from robomodel._yaml_bounded import YamlNestingError, load_yaml, load_yaml_file
 from robomodel.errors import RobomodelError, close_matches
 
 __all__ = [
@@ -220,7 +220,9 @@ def load_parameters_file(path: str | os.PathLike[str], node_fq_name: str) -> dic
     import yaml
 
     try:
-        data = yaml.safe_load(text) or {}
+        data = load_yaml_file(text, where=str(path)) or {}
+    except YamlNestingError as exc:
+        raise ParameterError(str(exc)) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)

@@ -77,6 +77,27 @@ def _rejections(parent: str, child: str, values: tuple[float, ...], authority: s
     return problems
 
 
+def _yaml_scalar(text: str, style: str | None) -> str:
+    """``text`` as one YAML scalar on one line, written by PyYAML's emitter (``style``: None
+    for plain where plain reads back the same, ``'`` single-quoted, ``"`` double-quoted)."""
+    import yaml
+
+    dumped = yaml.safe_dump(text, default_style=style, width=float("inf"), allow_unicode=True)
+    return dumped.removesuffix("\n...\n").removesuffix("\n")
+
+
+def _yaml_key(name: str) -> str:
+    """A frame name as a mapping key: plain as tf2 writes it, quoted when plain would not
+    read back as the name."""
+    return _yaml_scalar(name, None if name.isprintable() else '"')
+
+
+def _yaml_quoted(name: str) -> str:
+    """A name single-quoted as tf2 writes it (``'base'``), double-quoted with escapes when it
+    holds a line break or another character a single-quoted scalar cannot."""
+    return _yaml_scalar(name, "'" if name.isprintable() else '"')
+
+
 class BufferCore:
     """Stores transforms between frames over time and answers lookups between any two.
 
@@ -370,7 +391,9 @@ class BufferCore:
         return "".join(lines)
 
     def all_frames_as_yaml(self, current_time_ns: int = 0) -> str:
-        """tf2's ``allFramesAsYAML`` (what view_frames reads)."""
+        """tf2's ``allFramesAsYAML`` (what view_frames reads). Frame and broadcaster names come
+        from peers: each is written by PyYAML's emitter (:func:`_yaml_key`,
+        :func:`_yaml_quoted`), so ``it's: [x`` or a line break reads back as the name."""
         out = []
         if not self._frames:
             out.append("[]")
@@ -383,9 +406,10 @@ class BufferCore:
                 continue
             span = cache.latest_ns - cache.oldest_ns
             rate = len(cache) * 1e9 / max(span, 100_000)
-            out.append(f"{frame}: \n")
-            out.append(f"  parent: '{parent}'\n")
-            out.append(f"  broadcaster: '{self._authority.get(frame, 'no recorded authority')}'\n")
+            authority = self._authority.get(frame, "no recorded authority")
+            out.append(f"{_yaml_key(frame)}: \n")
+            out.append(f"  parent: {_yaml_quoted(parent)}\n")
+            out.append(f"  broadcaster: {_yaml_quoted(authority)}\n")
             out.append(f"  rate: {rate:.3f}\n")
             out.append(f"  most_recent_transform: {display_time(cache.latest_ns)}\n")
             out.append(f"  oldest_transform: {display_time(cache.oldest_ns)}\n")

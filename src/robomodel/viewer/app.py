@@ -33,6 +33,7 @@ from robomodel.viewer.displays.tf import TFDisplay
 from robomodel.viewer.layout import place_camera, session_namespace
 from robomodel.viewer.layout import zero_pose_extent_m as zero_pose_extent_m
 from robomodel.viewer.link_poses import append_other_frames
+from robomodel.viewer.markup import Markup
 from robomodel.viewer.meshes import MeshCache
 from robomodel.viewer.options import ViewerOptions
 from robomodel.viewer.options_panel import OptionsPanel
@@ -90,7 +91,7 @@ class Viewer:
         self._threads: list[threading.Thread] = []
         self.placement = Placement()  # what the last scene updates found, robot by robot
         self._status_text = ""
-        self.status_note = ""  # appended to the Status (e.g. RViz displays not supported)
+        self.status_note = Markup("")  # appended to the Status (e.g. RViz displays not supported)
         self._frame_options: tuple[str, ...] = ()
         rviz = options.rviz.settings if options.rviz is not None else None
         self.fixed_frame = options.fixed_frame or (rviz.fixed_frame if rviz else None) or ""
@@ -382,7 +383,7 @@ class Viewer:
             self.fixed_dropdown.value = self.fixed_frame
 
     def _refresh_status(self) -> None:
-        text = (
+        text = Markup(
             viewer_status(
                 self.sessions,
                 self.buffer,

@@ -10,12 +10,15 @@ or why it could not be written.
 from __future__ import annotations
 
 import logging
+import os
 import threading
 from collections.abc import Callable
 from dataclasses import replace
+from pathlib import Path
 from typing import Any
 
 from robomodel.viewer.displays.attach import config_with_displays, open_config_displays
+from robomodel.viewer.markup import Markup, code, md, safe_markdown
 from robomodel.viewer.rviz_apply import apply_rviz_document, viewer_state
 from robomodel.viewer.rviz_config import RvizConfigError
 from robomodel.viewer.rviz_document import RvizDocument, open_rviz_document
@@ -24,19 +27,41 @@ from robomodel.viewer.rviz_open import reopen_rviz_document
 from robomodel.viewer.rviz_state import ViewerState, config_with_state
 from robomodel.viewer.rviz_write import RvizSaveError, write_rviz_config
 
-__all__ = ["ConfigPanel", "attach_rviz"]
+__all__ = ["ConfigPanel", "PagePathError", "attach_rviz", "page_path"]
 
 DisplaysHook = Callable[[RvizConfig, RvizDialect], tuple[RvizConfig, Callable[[], None]]]
 
 log = logging.getLogger("robomodel.viewer")
 
 
+class PagePathError(ValueError):
+    """A path typed in the page that the viewer does not read or write."""
+
+
+def page_path(text: str, roots: tuple[Path, ...]) -> Path:
+    """The file a page's Save Config As or Open Config dialog names, if the viewer lets a
+    page use it: an ``.rviz`` file inside one of ``roots`` (real paths: the ``-d`` config's
+    folder, the working folder), reached through no symbolic link. Anyone who can open the page can
+    type a path, so the page cannot overwrite ``~/.bashrc`` or read ``/etc/shadow`` through
+    the viewer; the ``-d`` file itself (a command-line choice) is not restricted.
+
+    Raises:
+        PagePathError: outside the roots, through a link, or not an ``.rviz`` file.
+    """
+    typed = Path(text).expanduser()
+    target = Path(os.path.abspath(typed if typed.is_absolute() else roots[0] / typed))
+    if target.suffix != ".rviz":
+        raise PagePathError(f"{target}: the page reads and writes .rviz files only")
+    if os.path.realpath(target) != str(target):
+        raise PagePathError(f"{target}: a symbolic link is in the way; give the real path")
+    if not any(target.is_relative_to(root) for root in roots):
+        folders = " or ".join(str(root) for root in roots)
+        raise PagePathError(f"{target} is outside {folders}, where the page may save and open")
+    return target
+
+
 def _nothing() -> None:
     pass
-
-
-def _markdown_path(path: str) -> str:
-    return "`" + path.replace("`", "'") + "`"
 
 
 class ConfigPanel:
@@ -64,6 +89,10 @@ class ConfigPanel:
         reopen: Callable[[RvizDocument], None] | None = None,
     ) -> None:
         self.document = document
+        folder = Path(document.path).expanduser().absolute().parent if document.path else None
+        self.roots = tuple(
+            dict.fromkeys(Path(os.path.realpath(p)) for p in (folder, Path.cwd()) if p is not None)
+        )
         self._displays = displays
         self._reopen = reopen
         self._frame_rate_hz = frame_rate_hz
@@ -72,7 +101,7 @@ class ConfigPanel:
         self._lock = threading.Lock()
         gui = server.gui
         with gui.add_folder("File"):
-            self.status = gui.add_markdown(self._opened_text())
+            self.status = safe_markdown(gui, self._opened_text())
             self.save_button = gui.add_button("Save Config", icon="device-floppy")
             self.save_as_button = gui.add_button("Save Config As")
             self.open_button = gui.add_button("Open Config", visible=reopen is not None)
@@ -82,13 +111,13 @@ class ConfigPanel:
             lambda event: self.ask_path(event.client, title="Open Config", action=self.open)
         )
 
-    def _opened_text(self) -> str:
+    def _opened_text(self) -> Markup:
         path = self.document.path
         if path is None:
-            return "RViz config: none (Save Config As writes one)"
+            return md("RViz config: none (Save Config As writes one)")
         if self.document.missing:
-            return f"RViz config {_markdown_path(path)} does not exist yet: Save Config writes it"
-        return f"RViz config {_markdown_path(path)}"
+            return md("RViz config {} does not exist yet: Save Config writes it", code(path))
+        return md("RViz config {}", code(path))
 
     def _on_save(self, client: Any) -> None:
         if self.document.path is None:
@@ -110,12 +139,12 @@ class ConfigPanel:
             try:
                 written = write_rviz_config(path, config)
             except RvizSaveError as exc:
-                self.status.content = f"**Not saved**: {exc}"
+                self.status.content = md("**Not saved**: {}", exc)
                 log.warning("%s", exc)
                 return False
             self.document = replace(self.document, path=str(path), config=config, missing=False)
             saved()
-            self.status.content = f"Saved RViz config {_markdown_path(str(written))}"
+            self.status.content = md("Saved RViz config {}", code(written))
             log.info("saved RViz config %s", written)
             return True
 
@@ -128,14 +157,14 @@ class ConfigPanel:
             try:
                 document, _ = open_rviz_document(path, self.document.dialect)
             except RvizConfigError as exc:
-                self.status.content = f"**Not opened**: {exc}"
+                self.status.content = md("**Not opened**: {}", exc)
                 return False
             if document.missing:
-                self.status.content = f"**Not opened**: {_markdown_path(path)} does not exist"
+                self.status.content = md("**Not opened**: {} does not exist", code(path))
                 return False
             self.document = document
             self._reopen(document)
-            self.status.content = f"Opened RViz config {_markdown_path(path)}"
+            self.status.content = md("Opened RViz config {}", code(path))
             log.info("opened RViz config %s", path)
             return True
 
@@ -153,10 +182,15 @@ class ConfigPanel:
 
         def on_ok(_event: Any) -> None:
             text = str(path.value).strip()
+            done = "opened" if verb == "Open" else "saved"
             if not text:
-                self.status.content = f"**Not {'opened' if verb == 'Open' else 'saved'}**: give a file path"  # fmt: skip
+                self.status.content = md("**Not {}**: give a file path", done)
             else:
-                act(text, client)
+                try:
+                    act(str(page_path(text, self.roots)), client)
+                except PagePathError as exc:
+                    self.status.content = md("**Not {}**: {}", done, exc)
+                    log.warning("not %s: %s", done, exc)
             modal.close()
 
         ok.on_click(on_ok)

@@ -14,6 +14,7 @@ from typing import Any
 
 from robomodel.description.model import Joint, JointType
 from robomodel.runtime.nodes.joint_state_publisher import FreeJoint
+from robomodel.viewer.markup import code, md, safe_markdown
 
 __all__ = ["BodyPose", "JointPanel"]
 
@@ -80,13 +81,13 @@ class JointPanel:
             for joint in free_joints:
                 self._add_slider(joint)
             for name, source in mimic.items():
-                gui.add_markdown(f"`{name}` mimics `{source}`")
+                safe_markdown(gui, md("{} mimics {}", code(name), code(source)))
             for body in bodies:
                 self._add_body(body)
             if note is not None:
-                gui.add_markdown(note)
+                safe_markdown(gui, note)
             elif not free_joints and not bodies:
-                gui.add_markdown("*no movable joints*")
+                safe_markdown(gui, md("*no movable joints*"))
 
     def _add_slider(self, joint: FreeJoint) -> None:
         low, high = joint.min, joint.max
@@ -116,7 +117,7 @@ class JointPanel:
     def _add_body(self, joint: Joint) -> None:
         planar = joint.type is JointType.PLANAR
         label = f"{joint.name} ({joint.type.value})"
-        self.gui.add_markdown(f"**{label}**")
+        safe_markdown(self.gui, md("**{}**", label))
         if planar:
             xyz = self.gui.add_vector2(f"{joint.name} x y", (0.0, 0.0), step=0.001)
             rpy = self.gui.add_number(f"{joint.name} angle", 0.0, step=0.001)

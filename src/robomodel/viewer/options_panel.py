@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from robomodel.viewer.markup import safe_markdown
+
 __all__ = ["OptionsPanel"]
 
 
@@ -38,7 +40,7 @@ class OptionsPanel:
         gui.configure_theme(control_width="large")  # room for file:line errors and mesh paths
         server.scene.set_up_direction("+z")
         with gui.add_folder("Status"):
-            self.status = gui.add_markdown("loading...")
+            self.status = safe_markdown(gui, "loading...")
         with gui.add_folder("Global Options"):
             self.fixed_dropdown = gui.add_dropdown(
                 "Fixed Frame", (fixed_frame,), initial_value=fixed_frame

@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from robomodel.viewer.displays.base import display_classes
+from robomodel.viewer.markup import md
 from robomodel.viewer.rviz_document import RvizDocument
 from robomodel.viewer.rviz_state import OrbitCamera, ViewerState, implied_state
 
@@ -27,8 +28,8 @@ def apply_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None
         viewer.server.scene.set_background_image(image, format="png")
     if rviz.unsupported:
         have = ", ".join(display_classes())
-        viewer.status_note = f"\n\nRViz displays not drawn (robomodel has {have}): " + ", ".join(
-            rviz.unsupported
+        viewer.status_note = md(
+            "\n\nRViz displays not drawn (robomodel has {}): {}", have, ", ".join(rviz.unsupported)
         )
 
 

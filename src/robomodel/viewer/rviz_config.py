@@ -20,6 +20,7 @@ from typing import Any
 import yaml
 
 from robomodel._files import UserFileError, read_user_text
+from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
 from robomodel.errors import RobomodelError
 from robomodel.viewer.displays.base import is_rviz_display
 from robomodel.viewer.rviz_model import RvizConfig, RvizDisplay, RvizView, freeze
@@ -147,7 +148,10 @@ def config_from_tree(data: Any, where: str) -> RvizConfig:
 def parse_rviz_text(text: str, where: str) -> RvizConfig:
     """The config in ``text`` (the contents of ``where``)."""
     try:
-        data = yaml.safe_load(text) or {}
+        data = load_yaml_file(text, where=where) or {}
+    except YamlNestingError as exc:
+        at = f"{where}:{exc.line}:{exc.column}" if exc.line else where
+        raise RvizConfigError(f"{at}: invalid RViz config: {exc.problem}") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         at = f"{where}:{mark.line + 1}:{mark.column + 1}" if mark else where

@@ -12,6 +12,7 @@ import logging
 from typing import Any
 
 from robomodel.viewer.displays.attach import open_config_displays
+from robomodel.viewer.markup import Markup
 from robomodel.viewer.rviz_apply import apply_rviz_document, apply_rviz_view
 from robomodel.viewer.rviz_document import RvizDocument
 
@@ -22,7 +23,7 @@ log = logging.getLogger("robomodel.viewer")
 
 def reopen_rviz_document(viewer: Any, panel: Any, document: RvizDocument) -> None:
     """Apply ``document`` to the running ``viewer`` (loop thread: it owns the displays)."""
-    viewer.status_note = ""
+    viewer.status_note = Markup("")
     apply_rviz_document(viewer, panel, document)
     frame = document.settings.fixed_frame
     if frame:

@@ -17,6 +17,7 @@ from robomodel.runtime.tf_listener import to_msg
 from robomodel.tf import TransformStamped
 from robomodel.viewer.bodies import body_transform
 from robomodel.viewer.joint_panel import BodyPose, JointPanel
+from robomodel.viewer.markup import md
 
 __all__ = ["JointControls"]
 
@@ -60,7 +61,7 @@ class JointControls:
                 on_randomize=lambda: None,
                 on_center=lambda: None,
                 on_body=lambda _n, _p: None,
-                note="joint states come from the bus (`--joint-states external`)",
+                note=md("joint states come from the bus (`--joint-states external`)"),
             )
             return
         jsp = self.jsp

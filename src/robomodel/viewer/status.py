@@ -7,6 +7,7 @@ from collections.abc import Mapping, Sequence, Set
 from dataclasses import dataclass
 from typing import Any
 
+from robomodel.viewer.markup import Markup, code, escape_markdown, md
 from robomodel.viewer.scene import GeometryProblem
 from robomodel.viewer.session import LoadFailure, RobotSession
 
@@ -30,11 +31,6 @@ class RobotStatus:
     substituted: tuple[tuple[str, str], ...] = ()  # (missing package, link)
 
 
-def _escape(text: str) -> str:
-    """Markdown-escape free text so that file names and messages show as written."""
-    return "".join("\\" + c if c in "\\`*_[]<>|#" else c for c in text)
-
-
 def _short(path: str | None, base_dir: str) -> str:
     if path is None:
         return "<string>"
@@ -42,20 +38,20 @@ def _short(path: str | None, base_dir: str) -> str:
     return path if relative.startswith("..") else relative
 
 
-def _failure(failure: LoadFailure, base_dir: str) -> str:
+def _failure(failure: LoadFailure, base_dir: str) -> Markup:
     if not failure.diagnostics:
-        return _escape(failure.message)
+        return escape_markdown(failure.message)
     lines = []
     for diagnostic in failure.diagnostics:
         loc = diagnostic.location
         where = ":".join(
             [_short(loc.path, base_dir)] + [str(v) for v in (loc.line, loc.column) if v is not None]
         )
-        lines.append(f"`{where}`: {diagnostic.severity.value}: {_escape(diagnostic.message)}")
-    return "\n\n".join(lines)
+        lines.append(md("{}: {}: {}", code(where), diagnostic.severity.value, diagnostic.message))
+    return Markup("\n\n".join(lines))
 
 
-def _substitution_lines(head: str, substituted: Sequence[tuple[str, str]]) -> list[str]:
+def _substitution_lines(head: Markup, substituted: Sequence[tuple[str, str]]) -> list[Markup]:
     """One line per missing package whose visual meshes were drawn as collision shapes."""
     links: dict[str, set[str]] = {}
     for package, link in substituted:
@@ -64,51 +60,63 @@ def _substitution_lines(head: str, substituted: Sequence[tuple[str, str]]) -> li
     for package, names in links.items():
         hint = " (if it is one of example-robot-data's robots: `pip install example-robot-data`)"
         lines.append(
-            f"{head}: package `{_escape(package)}` not found: {len(names)} link(s) drawn with "
-            "their collision shapes instead of their visual meshes"
-            + (hint if package.endswith("_description") else "")
+            md(
+                "{}: package {} not found: {} link(s) drawn with their collision shapes instead "
+                "of their visual meshes" + (hint if package.endswith("_description") else ""),
+                head,
+                code(package),
+                len(names),
+            )
         )
     return lines
 
 
-def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed: str) -> str:
+def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed: str) -> Markup:
     """Markdown for the status panel ("OK" when there is nothing to report)."""
-    parts: list[str] = []
+    parts: list[Markup] = []
     if not fixed_frame_known:
-        parts.append(f"**Fixed Frame** `{fixed}` does not exist (yet).")
+        parts.append(md("**Fixed Frame** {} does not exist (yet).", code(fixed)))
     for robot in robots:
         base_dir = os.path.dirname(os.path.abspath(robot.path))
-        head = f"**{_escape(robot.label)}** (`{os.path.basename(robot.path)}`)"
+        head = md("**{}** ({})", robot.label, code(os.path.basename(robot.path)))
         if robot.failure is not None:
             parts.append(
-                f"{head}: **error**, showing the last good model:\n\n"
-                + _failure(robot.failure, base_dir)
+                md(
+                    "{}: **error**, showing the last good model:\n\n{}",
+                    head,
+                    _failure(robot.failure, base_dir),
+                )
             )
         if robot.problems:
             lines = [
-                f"- {_escape(p.link)} ({p.kind}): `{p.uri}`: {_escape(p.reason)}"
+                md("- {} ({}): {}: {}", p.link, p.kind, code(p.uri), p.reason)
                 for p in robot.problems
             ]
-            parts.append(f"{head}: {len(lines)} mesh(es) not drawn:\n\n" + "\n".join(lines))
+            parts.append(
+                md("{}: {} mesh(es) not drawn:\n\n{}", head, len(lines), Markup("\n".join(lines)))
+            )
         parts.extend(_substitution_lines(head, robot.substituted))
         if robot.pending_meshes:
-            parts.append(f"{head}: loading {robot.pending_meshes} mesh(es)...")
+            parts.append(md("{}: loading {} mesh(es)...", head, robot.pending_meshes))
         if robot.missing_frames:
             shown = robot.missing_frames[:_MAX_LISTED]
             more = len(robot.missing_frames) - len(shown)
             lines = [
-                f"- No transform from \\[{_escape(f)}\\] to \\[{_escape(robot.fixed_frame)}\\]"
+                md("- No transform from {} to {}", f"[{f}]", f"[{robot.fixed_frame}]")
                 for f in shown
             ]
             if more > 0:
-                lines.append(f"- ... and {more} more")
-            parts.append(f"{head}:\n\n" + "\n".join(lines))
+                lines.append(md("- ... and {} more", more))
+            parts.append(md("{}:\n\n{}", head, Markup("\n".join(lines))))
         if robot.placed_beside:
             parts.append(
-                f"{head}: its tree is not connected to the Fixed Frame `{robot.fixed_frame}`; "
-                "drawn beside it"
+                md(
+                    "{}: its tree is not connected to the Fixed Frame {}; drawn beside it",
+                    head,
+                    code(robot.fixed_frame),
+                )
             )
-    return "\n\n".join(parts) if parts else "OK"
+    return Markup("\n\n".join(parts)) if parts else md("OK")
 
 
 def viewer_status(
@@ -117,7 +125,7 @@ def viewer_status(
     fixed_frame: str,
     missing: Mapping[int, tuple[str, ...]],
     beside: Set[int],
-) -> str:
+) -> Markup:
     """The status panel's Markdown for the viewer's robots (see :func:`render_status`).
 
     Args:

@@ -188,11 +188,13 @@ def _xacro_functions(ctx: Context) -> dict[str, object]:
 
     def load_yaml(filename: str) -> Any:
         path = abs_filename_spec(ctx, filename)
+        from robomodel._yaml_bounded import YamlNestingError  # not at start-up: it loads typing
+
         ctx.filestack.append(path)
         try:
             text = read_user_text(path, what="YAML file")
-            return load_yaml_text(text, functools.partial(_unit_value, ctx))
-        except UserFileError as exc:
+            return load_yaml_text(text, functools.partial(_unit_value, ctx), where=str(path))
+        except (UserFileError, YamlNestingError) as exc:
             raise ctx.error(f"load_yaml('{filename}'): {exc}") from None
         finally:
             ctx.filestack.pop()

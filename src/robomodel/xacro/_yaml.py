@@ -73,8 +73,15 @@ def _loader(evaluate_unit: Callable[[str], object]) -> type[yaml.SafeLoader]:
     return Loader
 
 
-def load_yaml_text(text: str, evaluate_unit: Callable[[str], object]) -> Any:
-    """Parse YAML text; unit-tagged scalars are xacro expressions (``!degrees 2*90``)."""
-    import yaml
+def load_yaml_text(
+    text: str, evaluate_unit: Callable[[str], object], *, where: str = "the YAML text"
+) -> Any:
+    """Parse YAML text; unit-tagged scalars are xacro expressions (``!degrees 2*90``). Size,
+    nesting and alias expansion are bounded (:func:`robomodel._yaml_bounded.load_yaml_file`).
 
-    return wrap(yaml.load(text, Loader=_loader(evaluate_unit)))
+    Raises:
+        YamlNestingError: past a bound, ``where:line:column: ...``.
+    """
+    from robomodel._yaml_bounded import load_yaml_file
+
+    return wrap(load_yaml_file(text, where=where, loader=_loader(evaluate_unit)))

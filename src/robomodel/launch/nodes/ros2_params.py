@@ -56,9 +56,11 @@ def parameters_from_file(path: Path, fqn: str) -> dict[str, Any]:
     """
     import yaml
 
+    from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
+
     try:
-        data = yaml.safe_load(read_user_text(path, what="parameter file"))
-    except UserFileError as exc:
+        data = load_yaml_file(read_user_text(path, what="parameter file"), where=str(path))
+    except (UserFileError, YamlNestingError) as exc:
         raise RobomodelError(str(exc)) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark

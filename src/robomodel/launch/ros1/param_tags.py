@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
+from robomodel._yaml_bounded import YamlNestingError
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros1._loader_base import _PARAM_ATTRS, _ROSPARAM_ATTRS, LoaderBase
@@ -105,7 +106,15 @@ class ParamTags(LoaderBase):
             except SubstitutionError as exc:
                 raise self.error(str(exc), element, ctx) from None
         try:
-            data = load_rosparam_yaml(text)
+            data = load_rosparam_yaml(text, where=file or "the <rosparam> block")
+        except YamlNestingError as exc:  # past the size, nesting or alias bound
+            if not (file and exc.line):
+                raise self.error(str(exc), element, ctx) from None
+            raise LaunchError(
+                f"invalid YAML: {exc.problem}",
+                location=SourceLocation(file, exc.line, exc.column),
+                include_stack=(*self.stack, self.where(element, ctx.filename)),
+            ) from None
         except Exception as exc:
             where = f"file {file} contains invalid YAML" if file else "Error within YAML block"
             mark = getattr(exc, "problem_mark", None)

@@ -126,9 +126,12 @@ RosparamLoader.add_implicit_resolver(
 )
 
 
-def load_rosparam_yaml(text: str) -> Any:
-    """Parse ``<rosparam>`` YAML; an empty document is ``{}`` (as roslaunch)."""
-    data = yaml.load(text, Loader=RosparamLoader)
+def load_rosparam_yaml(text: str, *, where: str = "the <rosparam> block") -> Any:
+    """Parse ``<rosparam>`` YAML; an empty document is ``{}`` (as roslaunch). Bounded in size,
+    nesting and alias expansion (:func:`robomodel._yaml_bounded.load_yaml_file`)."""
+    from robomodel._yaml_bounded import load_yaml_file
+
+    data = load_yaml_file(text, where=where, loader=RosparamLoader)
     return {} if data is None else data
 
 

@@ -31,7 +31,20 @@ from lxml import etree
 
 from robomodel.sim.exceptions import SimulationError
 
-__all__ = ["CameraSpec", "CameraTopics", "camera_topics", "parse_camera"]
+__all__ = [
+    "MAX_CAMERA_SIDE_PX",
+    "MAX_SENSOR_RATE_HZ",
+    "CameraSpec",
+    "CameraTopics",
+    "camera_topics",
+    "parse_camera",
+]
+
+# An image side MuJoCo's offscreen framebuffer takes on any GL (GL_MAX_RENDERBUFFER_SIZE is at
+# least 4096 on the GPUs and software renderers MuJoCo runs on); 100000 x 100000 ended the
+# simulator in mujoco.FatalError "Offscreen framebuffer is not complete".
+MAX_CAMERA_SIDE_PX = 4096
+MAX_SENSOR_RATE_HZ = 1000.0  # <update_rate>: one image per physics step of 1 ms at most
 
 # Gazebo image formats and the sensor_msgs encodings gazebo_ros gives them (ROS 1 and ROS 2
 # alike); bayer and 16-bit formats are not rendered.
@@ -174,6 +187,22 @@ def parse_camera(el: etree._Element, name: str, depth: bool, where: str) -> Came
             f"within (0, pi) rad, got {spec.width_px} x {spec.height_px}, "
             f"{spec.horizontal_fov_rad} rad",
             where=where,
+            name=name,
+        )
+    if max(spec.width_px, spec.height_px) > MAX_CAMERA_SIDE_PX:
+        raise SimulationError(
+            f"sensor '{name}': the image is {spec.width_px} x {spec.height_px} pixels; "
+            f"<image><width> and <height> must be 1..{MAX_CAMERA_SIDE_PX}",
+            where=where,
+            name=name,
+        )
+    rate_hz = _number(el.findtext("update_rate"), 0.0, "update_rate", where)
+    if not 0.0 <= rate_hz <= MAX_SENSOR_RATE_HZ:
+        raise SimulationError(
+            f"sensor '{name}': <update_rate> {rate_hz:g} Hz is outside 0..{MAX_SENSOR_RATE_HZ:g} "
+            "Hz (0: every physics step)",
+            where=where,
+            name=name,
         )
     if not 0 < spec.near_m < spec.far_m:
         raise SimulationError(

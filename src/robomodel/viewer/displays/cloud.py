@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 
 from robomodel.viewer.displays.laser_scan import rainbow  # RViz's getRainbowColor
 from robomodel.viewer.errors import ViewerError
+from robomodel.viewer.limits import MAX_CLOUD_POINTS
 
 __all__ = [
     "COLOR_TRANSFORMERS",
@@ -88,6 +89,7 @@ class DecodedCloud:
         transformer: The colour transformer used.
         bounds: The (min, max) the colours were scaled over (Intensity, AxisColor), else None.
         dropped: Points dropped for a non-finite x, y or z.
+        truncated: Points not drawn: those past ``MAX_CLOUD_POINTS``.
     """
 
     points_m: NDArray[np.float32]
@@ -95,6 +97,7 @@ class DecodedCloud:
     transformer: str
     bounds: tuple[float, float] | None
     dropped: int
+    truncated: int = 0
 
 
 def message_bytes(data: Any) -> bytes:
@@ -256,6 +259,9 @@ def decode_cloud(
     """
     opts = options or CloudColorOptions()
     records = cloud_records(msg)
+    truncated = max(0, len(records) - MAX_CLOUD_POINTS)
+    if truncated:
+        records = records[:MAX_CLOUD_POINTS]  # a view: the rest is never read
     xyz = np.stack([_scalar(records, c) for c in "xyz"], axis=1).astype(np.float32)
     finite = np.isfinite(xyz)
     valid = finite[:, 0] & finite[:, 1] & finite[:, 2]  # faster than .all(axis=1) on (n, 3)
@@ -272,4 +278,4 @@ def decode_cloud(
     colors, bounds = _colors(records, xyz, name, opts, bool(msg.is_bigendian), T_fixed_cloud)
     xyz.setflags(write=False)
     colors.setflags(write=False)
-    return DecodedCloud(xyz, colors, name, bounds, dropped)
+    return DecodedCloud(xyz, colors, name, bounds, dropped, truncated)

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 
 from robomodel.viewer.displays.cloud import message_bytes
 from robomodel.viewer.errors import ViewerError
+from robomodel.viewer.limits import MAX_IMAGE_PIXELS
 
 __all__ = [
     "ENCODINGS",
@@ -91,9 +92,27 @@ def scale_to_mono8(values: NDArray[Any], lo: float, hi: float) -> NDArray[np.uin
     return np.nan_to_num(scaled, nan=0.0).astype(np.uint8)
 
 
-def _rows(msg: Any, bytes_per_pixel: int) -> NDArray[np.uint8]:
-    """The pixel bytes as (height, width * bytes_per_pixel), honouring ``step``."""
+def shown_rows(msg: Any) -> int:
+    """The rows of ``msg`` the viewer draws: all of them, or the first ones within
+    ``MAX_IMAGE_PIXELS`` (the rest is truncated).
+
+    Raises:
+        ImageError: one row alone is wider than the bound.
+    """
     h, w = int(msg.height), int(msg.width)
+    if w > MAX_IMAGE_PIXELS:
+        raise ImageError(
+            f"image of {w}x{h} pixels: a row is wider than the {MAX_IMAGE_PIXELS} pixels "
+            "the viewer draws"
+        )
+    return min(h, MAX_IMAGE_PIXELS // max(w, 1))
+
+
+def _rows(msg: Any, bytes_per_pixel: int) -> NDArray[np.uint8]:
+    """The pixel bytes as (rows, width * bytes_per_pixel), honouring ``step``: the rows of
+    :func:`shown_rows`."""
+    w = int(msg.width)
+    h = shown_rows(msg)
     row = w * bytes_per_pixel
     step = int(msg.step) or row
     data = message_bytes(msg.data)
@@ -109,16 +128,17 @@ def _rows(msg: Any, bytes_per_pixel: int) -> NDArray[np.uint8]:
 
 
 def _yuv(msg: Any, order: tuple[int, int, int, int]) -> NDArray[np.uint8]:
-    quads = _rows(msg, 2).reshape(int(msg.height), -1, 4).astype(np.int32)
+    rows = _rows(msg, 2)
+    quads = rows.reshape(rows.shape[0], -1, 4).astype(np.int32)
     y0, u, y1, v = (quads[..., k] for k in order)
-    out = np.empty((int(msg.height), quads.shape[1], 2, 3), dtype=np.uint8)
+    out = np.empty((rows.shape[0], quads.shape[1], 2, 3), dtype=np.uint8)
     u, v = u - 128, v - 128
     for k, y in enumerate((y0, y1)):  # RViz's pixelYUVToRGB, in integer arithmetic
         r = y + _div(1403 * v, 1000)
         g = y + _div(344 * u - 714 * v, 1000)
         b = y + _div(1770 * u, 1000)
         out[:, :, k] = np.clip(np.stack([r, g, b], axis=-1), 0, 255)
-    return out.reshape(int(msg.height), -1, 3)[:, : int(msg.width)]
+    return out.reshape(rows.shape[0], -1, 3)[:, : int(msg.width)]
 
 
 def _div(a: NDArray[np.int32], b: int) -> NDArray[np.int32]:
@@ -147,7 +167,7 @@ def image_rgb(
         ImageError: Unknown encoding, or data too short for width, height and step.
     """
     enc = str(msg.encoding)
-    h, w = int(msg.height), int(msg.width)
+    h, w = shown_rows(msg), int(msg.width)
     if enc in _COLOR:
         channels, order = _COLOR[enc]
         pixels = _rows(msg, channels).reshape(h, w, channels)
@@ -199,6 +219,11 @@ def compressed_image_rgb(
     depth = "compresseddepth" in fmt.lower()
     try:
         with Image.open(io.BytesIO(data[12:] if depth else data)) as img:
+            if img.width * img.height > MAX_IMAGE_PIXELS:  # read from the header: not decoded
+                raise ImageError(
+                    f"compressed image of {img.width}x{img.height} pixels is larger than the "
+                    f"{MAX_IMAGE_PIXELS} pixels the viewer draws; not drawn"
+                )
             img.load()
             if img.mode in ("I;16", "I;16B", "I", "F"):
                 values = np.asarray(img)

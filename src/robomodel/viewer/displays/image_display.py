@@ -30,6 +30,7 @@ from robomodel.viewer.displays.image import (
     image_rgb,
     nearest_upscale,
 )
+from robomodel.viewer.limits import MAX_IMAGE_PIXELS
 
 __all__ = ["ImageDisplay", "message_rgb"]
 
@@ -89,6 +90,7 @@ class ImageDisplay(Display):
         self.rgb: NDArray[np.uint8] | None = None  # the image shown
         self.header: Any = None  # the shown image's header
         self.shown = 0  # images converted and shown
+        self._full_rows = 0  # rows of the last image converted (more than shown: truncated)
 
     def on_message(self, msg: Any) -> None:
         self._pending = msg
@@ -126,6 +128,7 @@ class ImageDisplay(Display):
         self._error = ""
         self.shown += 1
         self.header = getattr(msg, "header", None)
+        self._full_rows = int(getattr(msg, "height", 0) or self.rgb.shape[0])
         return True
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
@@ -138,4 +141,10 @@ class ImageDisplay(Display):
         if waiting is not None or self.rgb is None:
             return waiting or DisplayStatus.ok()
         h, w = self.rgb.shape[:2]
-        return DisplayStatus.ok(f"{self.messages_received} images received; showing {w}x{h}")
+        text = f"{self.messages_received} images received; showing {w}x{h}"
+        if self._full_rows > h:
+            return DisplayStatus.warn(
+                f"{text}: an image of {w}x{self._full_rows} drawn truncated to its first {h} "
+                f"rows ({MAX_IMAGE_PIXELS} pixels at most)"
+            )
+        return DisplayStatus.ok(text)

@@ -29,7 +29,11 @@ from robomodel.viewer.displays.base import (
     register_display,
     stamp_ns,
 )
-from robomodel.viewer.displays.marker_geometry import MarkerShapeError, marker_drawables
+from robomodel.viewer.displays.marker_geometry import (
+    MarkerShapeError,
+    bounded_marker,
+    marker_drawables,
+)
 from robomodel.viewer.displays.marker_store import MarkerKey, MarkerStore
 
 __all__ = ["MarkerArrayDisplay", "MarkerDisplay", "pose_matrix"]
@@ -79,6 +83,7 @@ class _Drawn:
     T_fixed_marker: NDArray[np.float64] | None = None
     fixed_frame: str = ""
     error: str = ""  # why it cannot be drawn (RViz's marker status)
+    note: str = ""  # what of it is not drawn (over a bound of robomodel.viewer.limits)
 
 
 class MarkerDisplay(Display):
@@ -151,7 +156,8 @@ class MarkerDisplay(Display):
             if problem:
                 problems.append(f"{key[0]}/{key[1]}: {problem}")
         self._face_camera()
-        return self._status(problems)
+        notes = [f"{k[0]}/{k[1]}: {d.note}" for k, d in self._drawn.items() if d.note]
+        return self._status(problems, [*self.store.notes, *notes])
 
     def _face_camera(self) -> None:
         """Turn view-facing text to the page's camera: an image node with the camera's
@@ -165,21 +171,25 @@ class MarkerDisplay(Display):
                 if node is not None and not np.allclose(node.wxyz, view, atol=1e-6):
                     node.wxyz = view
 
-    def _status(self, problems: list[str]) -> DisplayStatus:
+    def _status(self, problems: list[str], notes: list[str]) -> DisplayStatus:
         waiting = self.topic_status()
         if problems:
             more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
             return DisplayStatus.error(problems[0] + more)
         if waiting is not None:
             return waiting
+        if notes:
+            more = f" (and {len(notes) - 1} more)" if len(notes) > 1 else ""
+            return DisplayStatus.warn(notes[0] + more)
         return DisplayStatus.ok(f"{self.messages_received} messages received")
 
     def _draw_marker(self, key: MarkerKey, entry: Any, lookup: FrameLookup, fixed: str) -> str:
         msg = entry.msg
         drawn = self._drawn.get(key)
         if drawn is None:
+            bounded, note = bounded_marker(msg)
             try:
-                drawables = marker_drawables(msg, self.context.load_mesh)
+                drawables = marker_drawables(bounded, self.context.load_mesh)
             except (MarkerShapeError, RobomodelError) as exc:
                 self._drawn[key] = _Drawn(entry.version, msg, (), error=str(exc))
                 return str(exc)
@@ -188,7 +198,7 @@ class MarkerDisplay(Display):
             for node_key, drawable in zip(keys, drawables, strict=True):
                 self.add_node(node_key, drawable.kind, visible=False, **drawable.kwargs)
             facing = tuple(k for k, d in zip(keys, drawables, strict=True) if d.view_facing)
-            drawn = self._drawn[key] = _Drawn(entry.version, msg, keys, facing)
+            drawn = self._drawn[key] = _Drawn(entry.version, msg, keys, facing, note=note)
         if drawn.error:
             return drawn.error
         if drawn.T_fixed_marker is None or msg.frame_locked or drawn.fixed_frame != fixed:

@@ -26,6 +26,7 @@ Each builder returns :class:`Drawable` s: a scene method (``mesh_simple``, ``lin
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -42,8 +43,9 @@ from robomodel.viewer.displays.mesh_tint import (
     without_material,
 )
 from robomodel.viewer.displays.text_image import text_image
+from robomodel.viewer.limits import MAX_MARKER_POINTS, truncated_text
 
-__all__ = ["MARKER_TYPES", "Drawable", "MarkerShapeError", "marker_drawables"]
+__all__ = ["MARKER_TYPES", "Drawable", "MarkerShapeError", "bounded_marker", "marker_drawables"]
 
 MARKER_TYPES = {
     0: "ARROW", 1: "CUBE", 2: "SPHERE", 3: "CYLINDER", 4: "LINE_STRIP", 5: "LINE_LIST",
@@ -277,6 +279,26 @@ _BUILDERS: dict[int, Callable[[Any, Any], list[Drawable]]] = {
     5: _lines(True), 6: _list_of("box"), 7: _list_of("sphere"), 8: _points_marker, 9: _text,
     10: _mesh_resource, 11: _triangles,
 }  # fmt: skip
+
+
+def bounded_marker(msg: Any) -> tuple[Any, str]:
+    """``msg`` within the viewer's bounds (:mod:`robomodel.viewer.limits`): its first
+    ``MAX_MARKER_POINTS`` points and colors, its text truncated; and a note saying what was cut
+    ("" and ``msg`` itself when nothing was)."""
+    notes = []
+    changes: dict[str, Any] = {}
+    if len(msg.points) > MAX_MARKER_POINTS:
+        changes["points"] = msg.points[:MAX_MARKER_POINTS]
+        changes["colors"] = msg.colors[:MAX_MARKER_POINTS]
+        notes.append(f"{len(msg.points)} points drawn truncated to the first {MAX_MARKER_POINTS}")
+    if int(msg.type) == 9:
+        text, note = truncated_text(str(msg.text))
+        if note:
+            changes["text"] = text
+            notes.append(note)
+    if not changes:
+        return msg, ""
+    return dataclasses.replace(msg, **changes), "; ".join(notes)
 
 
 def marker_drawables(msg: Any, load_mesh: Callable[[str], tuple[Any, ...]] | None = None) -> list[Drawable]:  # fmt: skip

@@ -16,6 +16,8 @@ from typing import Any
 
 import numpy as np
 
+from robomodel.viewer.limits import MAX_MARKERS, MAX_MARKERS_PER_NAMESPACE
+
 __all__ = ["ADD", "DELETE", "DELETEALL", "MarkerEntry", "MarkerStore"]
 
 ADD = 0  # also MODIFY (visualization_msgs/Marker: MODIFY=0)
@@ -64,7 +66,9 @@ class MarkerStore:
     markers: dict[MarkerKey, MarkerEntry] = field(default_factory=dict)
     namespaces: dict[str, bool] = field(default_factory=dict)
     errors: list[str] = field(default_factory=list)  # bad actions, newest last
+    notes: list[str] = field(default_factory=list)  # markers refused over a bound
     _versions: int = 0
+    _per_namespace: dict[str, int] = field(default_factory=dict)
 
     def apply(self, msg: Any, now_ns: int) -> None:
         """One marker message (loop thread)."""
@@ -73,6 +77,8 @@ class MarkerStore:
         if action == ADD and not _finite(msg):
             self._error(f"{key[0]}/{key[1]}: Contains invalid floating point values (nans or infs)")
         elif action == ADD:
+            if key not in self.markers and not self._room_for(key[0]):
+                return
             lifetime = _duration_ns(msg.lifetime)
             self._versions += 1
             self.markers[key] = MarkerEntry(
@@ -83,15 +89,39 @@ class MarkerStore:
             )
             self.namespaces.setdefault(key[0], True)
         elif action == DELETE:
-            self.markers.pop(key, None)
+            self._remove(key)
         elif action == DELETEALL:
             if key[0]:  # RViz 2 (marker_common.cpp deleteMarkersInNamespace): only that ns
                 for other in [k for k in self.markers if k[0] == key[0]]:
-                    del self.markers[other]
+                    self._remove(other)
             else:
                 self.markers.clear()
+                self._per_namespace.clear()
         else:
             self._error(f"Unknown marker action: {action}")  # rviz's words
+
+    def _room_for(self, ns: str) -> bool:
+        """Whether a new marker fits in ``ns`` (counted if so); over a bound, a note says
+        which markers are not drawn."""
+        held = self._per_namespace.get(ns, 0)
+        if held >= MAX_MARKERS_PER_NAMESPACE:
+            self._note(f"{ns}: more than {MAX_MARKERS_PER_NAMESPACE} markers in the namespace; "
+                       "new ids are not drawn")  # fmt: skip
+            return False
+        if len(self.markers) >= MAX_MARKERS:
+            self._note(f"more than {MAX_MARKERS} markers; new ones are not drawn")
+            return False
+        self._per_namespace[ns] = held + 1
+        return True
+
+    def _remove(self, key: MarkerKey) -> None:
+        if self.markers.pop(key, None) is not None:
+            self._per_namespace[key[0]] -= 1
+
+    def _note(self, text: str) -> None:
+        if text not in self.notes:
+            self.notes.append(text)
+            del self.notes[:-10]
 
     def _error(self, text: str) -> None:
         self.errors.append(text)
@@ -101,7 +131,7 @@ class MarkerStore:
         """Remove the markers whose lifetime is over; their keys."""
         gone = [k for k, e in self.markers.items() if e.expires_ns is not None and e.expires_ns <= now_ns]  # fmt: skip
         for key in gone:
-            del self.markers[key]
+            self._remove(key)
         return gone
 
     def shown(self) -> dict[MarkerKey, MarkerEntry]:
@@ -111,3 +141,5 @@ class MarkerStore:
     def clear(self) -> None:
         self.markers.clear()
         self.errors.clear()
+        self.notes.clear()
+        self._per_namespace.clear()

@@ -24,7 +24,8 @@ from robomodel.viewer.displays.base import (
     display_classes,
 )
 from robomodel.viewer.displays.manager import DisplayManager
-from robomodel.viewer.tools.base import BusWorker, escape_markdown
+from robomodel.viewer.markup import Markup, md, safe_markdown
+from robomodel.viewer.tools.base import BusWorker
 
 __all__ = ["DisplaysPanel", "status_markdown", "topic_choices"]
 
@@ -35,10 +36,10 @@ _GRAPH_PERIOD_S = 1.0
 _MARK = {StatusLevel.OK: "✓ Ok", StatusLevel.WARN: "⚠ Warn", StatusLevel.ERROR: "✗ Error"}
 
 
-def status_markdown(display: Display) -> str:
+def status_markdown(display: Display) -> Markup:
     """The display's status line as the panel shows it."""
     status = display.status
-    return f"**Status: {_MARK[status.level]}** {escape_markdown(status.text)}"
+    return md("**Status: {}** {}", Markup(_MARK[status.level]), status.text)
 
 
 def topic_choices(topics: Mapping[str, frozenset[str]]) -> dict[str, tuple[str, str]]:
@@ -75,7 +76,7 @@ class _Row:
         with panel.folder:
             self.folder = gui.add_folder(display.name, expand_by_default=False)
         with self.folder:
-            self.status = gui.add_markdown(status_markdown(display))
+            self.status = safe_markdown(gui, status_markdown(display))
             self.enabled = gui.add_checkbox("Enabled", display.enabled)
             self.name = gui.add_text("Name", display.name)
             self.controls = {o.name: self._control(gui, o) for o in display.options}
@@ -111,7 +112,7 @@ class _Row:
         try:
             self.display.set_option(name, value)
         except RobomodelError as exc:
-            self.status.content = f"**Status: ✗ Error** {escape_markdown(str(exc))}"
+            self.status.content = md("**Status: ✗ Error** {}", exc)
 
     def refresh(self, gui: Any) -> None:
         """Status line and namespace checkboxes (loop thread, after an update)."""
@@ -182,7 +183,7 @@ class DisplaysPanel:
             self.add_type_button = gui.add_button("Add by type", icon="plus")
             self.topic_dropdown = gui.add_dropdown("Topic", (_CHOOSE,), initial_value=_CHOOSE)  # fmt: skip
             self.add_topic_button = gui.add_button("Add by topic", icon="plus")
-            self.add_status = gui.add_markdown("")
+            self.add_status = safe_markdown(gui)
         self.add_type_button.on_click(lambda _e: self._on_add_type())
         self.add_topic_button.on_click(lambda _e: self._on_add_topic())
         manager.listeners.append(self.refresh)
@@ -200,7 +201,7 @@ class DisplaysPanel:
     def _on_add_topic(self) -> None:
         choice = self._choices.get(str(self.topic_dropdown.value))
         if choice is None:
-            self.add_status.content = "Choose a topic first"
+            self.add_status.content = md("Choose a topic first")
             return
         class_name, topic = choice
         self.post(lambda: self.add(class_name, values={"Topic": topic}, name=topic))
@@ -211,9 +212,9 @@ class DisplaysPanel:
         try:
             display = self.manager.add(class_name, name, values, enabled=enabled)
         except RobomodelError as exc:
-            self.add_status.content = f"**Not added**: {escape_markdown(str(exc))}"
+            self.add_status.content = md("**Not added**: {}", exc)
             return None
-        self.add_status.content = f"Added {escape_markdown(display.name)}"
+        self.add_status.content = md("Added {}", display.name)
         self.add_row(display)
         return display
 
@@ -230,7 +231,7 @@ class DisplaysPanel:
         try:
             self.manager.rename(row.display, name)
         except RobomodelError as exc:
-            row.status.content = f"**Status: ✗ Error** {escape_markdown(str(exc))}"
+            row.status.content = md("**Status: ✗ Error** {}", exc)
             return
         row.folder.label = row.display.name
 

@@ -27,6 +27,7 @@ from robomodel.viewer.displays.base import (
     FrameLookup,
     Option,
     OptionKind,
+    StatusLevel,
     color_rgb,
     register_display,
 )
@@ -39,6 +40,7 @@ from robomodel.viewer.displays.cloud import (
     decode_cloud,
     default_color_transformer,
 )
+from robomodel.viewer.limits import MAX_CLOUD_POINTS
 
 __all__ = ["PointCloud2Display", "wire_precision"]
 
@@ -101,6 +103,7 @@ class PointCloud2Display(Display):
         self._clouds: collections.deque[_Cloud] = collections.deque()
         self._seq = 0
         self._message_error = ""  # RViz's "Message" status: the last cloud that failed
+        self._truncated_note = ""  # the last cloud drawn truncated (over MAX_CLOUD_POINTS)
         self._last_lookup: tuple[str, FrameLookup] | None = None  # (fixed frame, lookup)
         self._drawn_ns = 0  # when a cloud was last put in the scene [ns, bus time]
 
@@ -181,7 +184,10 @@ class PointCloud2Display(Display):
         shown = [c for c in self._clouds if c.key]
         total = sum(c.points for c in shown)
         ok = f"Showing [{total}] points from [{len(shown)}] messages"
-        return combine(self.topic_status(), problems, ok)
+        status = combine(self.topic_status(), problems, ok)
+        if self._truncated_note and status.level is StatusLevel.OK:
+            return DisplayStatus.warn(f"{ok}; {self._truncated_note}")
+        return status
 
     def _expire(self) -> list[str]:
         """Drop clouds older than "Decay Time", keeping the newest (cloudInfoIsDecayed); the
@@ -207,6 +213,12 @@ class PointCloud2Display(Display):
             self._message_error = str(exc)
             return ""
         self._message_error = ""
+        self._truncated_note = (
+            f"a cloud of {MAX_CLOUD_POINTS + decoded.truncated} points "
+            f"drawn truncated to its first {MAX_CLOUD_POINTS}"
+            if decoded.truncated
+            else ""
+        )
         self._remember_bounds(decoded.transformer, decoded.bounds)
         self._show(cloud, decoded, placement.T_fixed_frame, spare)
         return ""

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import logging
 import queue
-import re
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -21,12 +20,7 @@ from robomodel.runtime.context import Context
 from robomodel.runtime.msg import Message, MessageTypeError, get_message_type
 from robomodel.runtime.node import Node
 
-__all__ = ["BusWorker", "ToolContext", "escape_markdown"]
-
-
-def escape_markdown(text: str) -> str:
-    """``text`` shown literally in a markdown element (error messages quote ``*``, ``_``)."""
-    return re.sub(r"([\\`*_\[\]<>#|~])", r"\\\1", text)
+__all__ = ["BusWorker", "ToolContext"]
 
 
 log = logging.getLogger("robomodel.viewer")

@@ -14,7 +14,9 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.param_client import ParameterClient
 from robomodel.runtime.params import SetResult, parameter_type_name, parse_parameter_value
-from robomodel.viewer.tools.base import ToolContext, escape_markdown
+from robomodel.viewer.limits import MAX_PARAMETERS_SHOWN
+from robomodel.viewer.markup import code, md, safe_markdown
+from robomodel.viewer.tools.base import ToolContext
 
 __all__ = ["ParameterTool"]
 
@@ -30,7 +32,7 @@ class ParameterTool:
         self.gui = tools.server.gui
         self.node_dropdown = self.gui.add_dropdown("Node", (_NONE,), initial_value=_NONE)
         refresh = self.gui.add_button("Reload parameters")
-        self.result = self.gui.add_markdown("")
+        self.result = safe_markdown(self.gui)
         self._folder: Any = None
         self.controls: dict[str, Any] = {}
         self.values: dict[str, Any] = {}
@@ -58,7 +60,7 @@ class ParameterTool:
                 names = self.tools.bus.query(client.list_names)
                 values = self.tools.bus.query(lambda: client.get(names)) if names else {}
             except RobomodelError as exc:
-                self.result.content = f"**{node}:** {escape_markdown(str(exc))}"
+                self.result.content = md("**{}:** {}", node, exc)
                 return
             self._build(node, values)
 
@@ -74,10 +76,16 @@ class ParameterTool:
         self.node_name, self.values = node, dict(values)
         with self._parent:
             self._folder = self.gui.add_folder(node)
+        shown = sorted(values.items())[:MAX_PARAMETERS_SHOWN]
         with self._folder:
-            for name, value in sorted(values.items()):
+            for name, value in shown:
                 self.controls[name] = self._control(name, value)
-        self.result.content = f"{len(values)} parameter(s) of `{node}`"
+        if len(shown) < len(values):
+            self.result.content = md(
+                "{} parameter(s) of {}; the first {} shown", len(values), code(node), len(shown)
+            )
+        else:
+            self.result.content = md("{} parameter(s) of {}", len(values), code(node))
 
     def _control(self, name: str, value: Any) -> Any:
         kind = parameter_type_name(value)
@@ -110,9 +118,9 @@ class ParameterTool:
         self.sets += 1
         if result.successful:
             self.values[name] = value
-            self.result.content = f"`{name}` set to `{value}`"
+            self.result.content = md("{} set to {}", code(name), code(value))
             return True
-        self.result.content = f"**refused:** `{name}`: {escape_markdown(result.reason)}"
+        self.result.content = md("**refused:** {}: {}", code(name), result.reason)
         control = self.controls.get(name)
         old = self.values.get(name)
         if control is not None and node == self.node_name:

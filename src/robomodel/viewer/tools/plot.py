@@ -20,7 +20,8 @@ from numpy.typing import NDArray
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
 from robomodel.runtime.node import Subscription
-from robomodel.viewer.tools.base import ToolContext, escape_markdown
+from robomodel.viewer.markup import Markup, code, md, safe_markdown
+from robomodel.viewer.tools.base import ToolContext
 from robomodel.viewer.tools.field_path import FieldPath, field_value, resolve_field_path
 
 __all__ = ["PlotData", "PlotTool", "Series"]
@@ -94,7 +95,7 @@ class PlotTool:
         clear = gui.add_button("Clear")
         self.window_s = gui.add_number("Window [s]", 10.0, min=1.0, max=300.0, step=1.0)
         self.paused = gui.add_checkbox("Pause", False)
-        self.status = gui.add_markdown("*no series*")
+        self.status = safe_markdown(gui, md("*no series*"))
         self.chart: Any = None
         self._gui = gui
         self._folder = gui.add_folder("Chart")
@@ -107,7 +108,7 @@ class PlotTool:
         try:
             path = resolve_field_path(text, self.tools.topic_types())
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
+            self.status.content = md("**refused:** {}", exc)
             return
         self.tools.post(lambda: self._add(path))
 
@@ -144,7 +145,9 @@ class PlotTool:
             self.chart.remove()
             self.chart = None
         names = [s.path.text for s in self.data.series]
-        self.status.content = "\n".join(f"- `{n}`" for n in names) if names else "*no series*"
+        self.status.content = (
+            Markup("\n".join(md("- {}", code(n)) for n in names)) if names else md("*no series*")
+        )
 
     def _make_chart(self, data: tuple[NDArray[np.float64], ...]) -> None:
         series: list[dict[str, Any]] = [{"label": "t [s]"}]

@@ -16,7 +16,8 @@ from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Timer
 from robomodel.runtime.msg import Message, get_message_type
 from robomodel.runtime.node import Publisher
-from robomodel.viewer.tools.base import ToolContext, escape_markdown
+from robomodel.viewer.markup import code, md, safe_markdown
+from robomodel.viewer.tools.base import ToolContext
 from robomodel.viewer.tools.expression import Expression, parse_variables
 from robomodel.viewer.tools.field_path import parse_steps, set_field
 
@@ -79,14 +80,14 @@ class PublisherTool:
         self.variables = gui.add_text("Variables", "speed=1, diff=3.1415, offset=0")
         self.rate = gui.add_number("Rate [Hz]", 50.0, min=0.1, max=1000.0, step=0.1)
         self.enabled = gui.add_checkbox("Publishing", False)
-        self.status = gui.add_markdown("*stopped*")
+        self.status = safe_markdown(gui, md("*stopped*"))
         self.enabled.on_update(lambda _e: self._toggle())
 
     def _toggle(self) -> None:
         if not self.enabled.value:
             self.tools.post(self._stop)
             if self._running:  # keep a refusal's reason on screen
-                self.status.content = "*stopped*"
+                self.status.content = md("*stopped*")
             self._running = False
             return
         try:
@@ -98,12 +99,12 @@ class PublisherTool:
                 str(self.variables.value),
             )
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
+            self.status.content = md("**refused:** {}", exc)
             self.enabled.value = False
             return
         topic = str(self.topic.value).strip()
         self._running = True
-        self.status.content = f"publishing {state.msg_type.__typename__} on `{topic}`"
+        self.status.content = md("publishing {} on {}", state.msg_type.__typename__, code(topic))
         self.tools.post(lambda: self._start(topic, state))
 
     def _start(self, topic: str, state: ExpressionPublisher) -> None:
@@ -111,7 +112,7 @@ class PublisherTool:
         try:
             self._publisher = self.tools.node.create_publisher(state.msg_type, topic, 10)
         except RobomodelError as exc:
-            self.status.content = f"**refused:** {escape_markdown(str(exc))}"
+            self.status.content = md("**refused:** {}", exc)
             return
         self.state = state
         self._timer = self.tools.node.create_timer(1.0 / state.rate_hz, self.tick)
@@ -133,7 +134,7 @@ class PublisherTool:
         except RobomodelError as exc:  # e.g. log(0) at some i: stop, say why
             self._stop()
             self._running = False
-            self.status.content = f"**stopped:** {escape_markdown(str(exc))}"
+            self.status.content = md("**stopped:** {}", exc)
             self.enabled.value = False
             return
         self._publisher.publish(msg)

@@ -17,7 +17,8 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Clock, Message, std_srvs
 from robomodel.runtime.msg import ros_gz_interfaces as rgz
-from robomodel.viewer.tools.base import ToolContext, escape_markdown
+from robomodel.viewer.markup import md, safe_markdown
+from robomodel.viewer.tools.base import ToolContext
 
 __all__ = ["RealTimeFactor", "SimulationTool"]
 
@@ -63,7 +64,7 @@ class SimulationTool:
         self.rtf = RealTimeFactor()
         self.last_reply: Message | None = None
         self.last_error = ""
-        self.status = gui.add_markdown("No simulator on the bus (start `robomodel sim`).")
+        self.status = safe_markdown(gui, md("No simulator on the bus (start `robomodel sim`)."))
         self.pause = gui.add_button("Pause", hint="pause the physics (/gazebo/pause_physics)")
         self.play = gui.add_button("Play", hint="run the physics (/gazebo/unpause_physics)")
         self.steps = gui.add_number("Steps", 1, min=1, max=100000, step=1)
@@ -91,11 +92,13 @@ class SimulationTool:
         if not self.available and self.sim_time_s is None:
             return
         if self.sim_time_s is None:
-            self.status.content = "Simulator found; waiting for /clock."
+            self.status.content = md("Simulator found; waiting for /clock.")
             return
         factor = self.rtf.factor(time.monotonic())
         rtf = "paused" if factor == 0.0 else ("-" if factor is None else f"{factor:.2f}x")
-        self.status.content = f"Sim time **{self.sim_time_s:.3f} s** · real-time factor **{rtf}**"
+        self.status.content = md(
+            "Sim time **{} s** · real-time factor **{}**", f"{self.sim_time_s:.3f}", rtf
+        )
 
     def _step_request(self) -> rgz.ControlWorld_Request:
         control = rgz.WorldControl(pause=True, multi_step=int(self.steps.value))
@@ -113,6 +116,6 @@ class SimulationTool:
                 self.last_error = ""
             except RobomodelError as exc:
                 self.last_reply, self.last_error = None, str(exc)
-                self.status.content = f"{service}: {escape_markdown(str(exc))}"
+                self.status.content = md("{}: {}", service, exc)
 
         self.tools.bus.submit(job)

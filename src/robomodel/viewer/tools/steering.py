@@ -4,6 +4,11 @@ As rqt_robot_steering (robot_steering.py ``_on_parameter_changed`` / ``_send_twi
 command is re-sent every 100 ms while it is non-zero, and a zero command is sent once, so that
 other sources (a joystick, a planner) can take over when the sliders are at rest. The topic is
 typed in (default ``/cmd_vel``); TwistStamped is published instead when chosen.
+
+A dead-man switch, which rqt_robot_steering (a window on the robot's own desktop) does not need:
+when the last browser page leaves, the sliders go to zero and a zero command is sent once; then
+nothing is published until a page moves a slider again. A robot never keeps driving on the
+command of a page that is gone.
 """
 
 from __future__ import annotations
@@ -46,6 +51,8 @@ class SteeringTool:
         gui = tools.server.gui
         self.command = SteeringCommand()
         self.published = 0
+        self.armed = True  # False once the last page left, until a page moves a slider
+        self._pages_seen = False
         self._publisher: Publisher[Any] | None = None
         self._key: tuple[str, bool] = ("", False)
         self.topic = gui.add_text(
@@ -64,6 +71,8 @@ class SteeringTool:
         )
         self.stop = gui.add_button("Stop", hint="both velocities to zero")
         self.stop.on_click(lambda _e: self.halt())
+        self.linear.on_update(self._moved)
+        self.angular.on_update(self._moved)
         self.linear_max.on_update(lambda _e: self._set_range(self.linear, self.linear_max))
         self.angular_max.on_update(lambda _e: self._set_range(self.angular, self.angular_max))
         tools.post(lambda: tools.node.create_timer(_PERIOD_S, self.tick))
@@ -92,9 +101,27 @@ class SteeringTool:
         self.linear.value = 0.0
         self.angular.value = 0.0
 
+    def _moved(self, event: Any) -> None:
+        if getattr(event, "client", None) is not None:  # a page moved it, not the program
+            self.armed = True
+
+    def _watch_pages(self) -> None:
+        """The dead-man switch: the last page leaving stops the robot and disarms steering."""
+        pages = len(self.tools.server.get_clients())
+        if pages:
+            self._pages_seen = True
+        elif self._pages_seen:
+            self._pages_seen = False
+            self.armed = False
+            self.halt()
+
     def tick(self) -> None:
-        """Every 100 ms on the loop thread: publish the sliders' command (zero once)."""
+        """Every 100 ms on the loop thread: publish the sliders' command (zero once); only the
+        zero while disarmed (see :meth:`_watch_pages`)."""
+        self._watch_pages()
         linear, angular = float(self.linear.value), float(self.angular.value)
+        if not self.armed:
+            linear = angular = 0.0
         if self._publisher is None and linear == 0.0 and angular == 0.0:
             return  # nothing moved yet: no publisher in the graph, so the topic can still follow
         twist = self.command.twist(linear, angular)

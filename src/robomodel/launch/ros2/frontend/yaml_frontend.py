@@ -8,6 +8,7 @@ from typing import Any
 import yaml
 
 from robomodel._files import UserFileError, read_user_text
+from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
 from robomodel.errors import SourceLocation
 from robomodel.launch.model import LaunchError
 from robomodel.launch.ros2.frontend.build import build_description
@@ -90,9 +91,13 @@ def load_yaml_description(path: Path) -> LaunchDescription:
     session = current_session()
     stack = tuple(session.include_stack) if session is not None else ()
     try:
-        data = yaml.load(read_user_text(path, what="launch file"), Loader=_LineLoader)
+        text = read_user_text(path, what="launch file")
+        data = load_yaml_file(text, where=str(path), loader=_LineLoader)
     except UserFileError as exc:
         raise LaunchError(str(exc), include_stack=stack) from None
+    except YamlNestingError as exc:
+        location = SourceLocation(str(path), exc.line or None, exc.column or None)
+        raise LaunchError(exc.problem, location=location, include_stack=stack) from None
     except RecursionError:
         raise LaunchError(
             "YAML nested too deeply", location=SourceLocation(str(path)), include_stack=stack
