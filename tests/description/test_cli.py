@@ -60,7 +60,7 @@ def test_check_resolves_packages(cli: Callable[..., ToolResult], tmp_path: Path)
 
 
 def test_graph_gv_to_stdout(cli: Callable[..., ToolResult]) -> None:
-    result = cli("graph", str(PLANAR))
+    result = cli("graph", str(PLANAR), "-o", "-")
     assert result.code == 0
     assert result.out.startswith('digraph G {\nnode [shape=box];\n"base_link" [label="base_link"];')
     assert '"link_1" -> "joint_2" [label="xyz: 0.5 0 0 \\nrpy: 0 -0 0"]' in result.out
@@ -75,6 +75,46 @@ def test_graph_rendered(cli: Callable[..., ToolResult], tmp_path: Path, suffix: 
     magic = {".svg": b"<?xml", ".pdf": b"%PDF", ".png": b"\x89PNG", ".gv": b"digraph"}[suffix]
     assert data.startswith(magic)
     assert [p.name for p in out.parent.iterdir()] == [out.name]  # no temp files left
+
+
+def test_graph_without_output_writes_what_urdf_to_graphviz_writes(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``urdf_to_graphviz FILE`` (Debian's liburdfdom-tools) writes ``$ROBOT_NAME.gv`` and
+    ``$ROBOT_NAME.pdf`` in the current folder and names both; so does ``robomodel graph FILE``."""
+    if shutil.which("dot") is None:
+        pytest.skip("Graphviz's dot renders the pdf")
+    reference = shutil.which("urdf_to_graphviz")
+    if reference is None:
+        pytest.fail("urdf_to_graphviz is not installed: apt-get install liburdfdom-tools")
+    theirs, ours = tmp_path / "theirs", tmp_path / "ours"
+    theirs.mkdir()
+    ours.mkdir()
+    ref = subprocess.run([reference, str(PLANAR)], cwd=theirs, capture_output=True, text=True)
+    assert ref.returncode == 0, ref.stderr
+    run = subprocess.run(
+        [sys.executable, "-m", "robomodel.cli.main", "graph", str(PLANAR)],
+        cwd=ours,
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    assert run.stdout == ref.stdout == "Created file planar_3dof.gv\nCreated file planar_3dof.pdf\n"
+    assert sorted(p.name for p in ours.iterdir()) == ["planar_3dof.gv", "planar_3dof.pdf"]
+    assert sorted(p.name for p in theirs.iterdir()) == ["planar_3dof.gv", "planar_3dof.pdf"]
+    assert (ours / "planar_3dof.gv").read_text() == (theirs / "planar_3dof.gv").read_text()
+    assert (ours / "planar_3dof.pdf").read_bytes().startswith(b"%PDF")
+
+
+def test_graph_without_output_or_dot_keeps_the_gv(
+    cli: Callable[..., ToolResult], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(shutil, "which", lambda name: None)
+    result = cli("graph", str(PLANAR))
+    assert result.code == 2 and "apt-get install graphviz" in result.err
+    assert result.out == "Created file planar_3dof.gv\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["planar_3dof.gv"]
 
 
 def test_graph_without_dot_names_the_package(
