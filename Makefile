@@ -10,7 +10,7 @@ STAMP := $(VENV)/.installed
 SDK_VENV := .venv-ros2sdk
 SDK_STAMP := $(SDK_VENV)/.installed
 
-.PHONY: demo test docs bench lint typecheck clean
+.PHONY: demo test docs bench lint typecheck clean wheel-smoke
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -39,8 +39,15 @@ test:
 	$(BIN)/mypy
 	$(BIN)/python -m pytest -q -n 2 tests
 
+# The built wheel (not the checkout) under every Python 3.10-3.13 the machine has, each in a
+# fresh venv, one command of each verb family run outside the checkout (tools/wheel_smoke.py).
+wheel-smoke:
+	PYTHON=$(PYTHON) tools/system-deps test
+	$(MAKE) --no-print-directory $(STAMP)
+	$(BIN)/python tools/wheel_smoke.py
+
 # The documentation site, strict (a broken link or a missing page fails). Its screenshots are the
-# browser tests' (build/viewer-screenshots): tools/docs_screenshots takes the missing ones.
+# browser tests', committed in docs/assets/: tools/docs_screenshots takes and copies missing ones.
 docs:
 	PYTHON=$(PYTHON) tools/system-deps test
 	$(MAKE) --no-print-directory $(STAMP)
