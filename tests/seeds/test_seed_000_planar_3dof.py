@@ -202,10 +202,18 @@ RRBOT_CONTROL_LAUNCH = """<launch>
 """
 
 
+COURSE_DEPENDENCIES = ("roscpp", "tf", "geometry_msgs", "urdf", "rviz", "xacro")
+
+
 def gripper_description(src: Path, *, with_rviz: bool) -> Path:
-    """``catkin_create_pkg gripper_description ...``, the provided meshes, the seed's files."""
+    """``catkin_create_pkg gripper_description roscpp tf geometry_msgs urdf rviz xacro`` as
+    ``robomodel new`` writes it (the course's line, typed as written), then the provided
+    meshes and the seed's files."""
+    from robomodel.cli.main import main
+
+    if not (src / "gripper_description").exists():
+        assert main(["new", "gripper_description", *COURSE_DEPENDENCIES, "--dir", str(src)]) == 0
     files: dict[str, str | bytes] = {
-        "package.xml": package_xml("gripper_description"),
         "urdf/planar_3dof.urdf": PLANAR_3DOF_URDF,
         "urdf/planar_3dof.xacro": PLANAR_3DOF_XACRO,
         "launch/display.launch": DISPLAY_LAUNCH,
