@@ -1,27 +1,31 @@
-"""Take the screenshots the documentation shows and that build/viewer-screenshots/ lacks.
+"""Put the screenshots the documentation shows into docs/assets/, taking the missing ones.
 
-The pictures in docs/ are the browser tests' own (``save_shot(page, "NAME")`` in tests/viewer/),
-never drawn by hand. After ``make test`` they are all there; otherwise this finds, for each
-missing ``screenshots/NAME.png`` named in docs/, the test that saves it and runs those tests.
+The pictures in docs/ are the browser tests' own (``save_shot(page, "NAME")`` in tests/viewer/
+keeps them in build/viewer-screenshots/), never drawn by hand, and committed under docs/assets/
+(tests/docs/test_images.py fails when a page names a missing image). For each ``assets/NAME.png``
+a page names that docs/assets/ lacks, this copies build/viewer-screenshots/NAME.png, first
+running the test that saves it when that is missing too. ``--retake`` takes them all anew.
 """
 
 from __future__ import annotations
 
 import ast
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SHOTS = ROOT / "build" / "viewer-screenshots"
+ASSETS = ROOT / "docs" / "assets"
 
 
 def wanted() -> set[str]:
     """The screenshot names the documentation's pages show."""
     names: set[str] = set()
     for page in (ROOT / "docs").rglob("*.md"):
-        names.update(re.findall(r"screenshots/([\w.\-]+)\.png", page.read_text()))
+        names.update(re.findall(r"assets/([\w.\-]+)\.png", page.read_text()))
     return names
 
 
@@ -46,17 +50,30 @@ def takers() -> dict[str, str]:
 
 
 def main() -> int:
-    missing = sorted(name for name in wanted() if not (SHOTS / f"{name}.png").exists())
-    if not missing:
+    retake = "--retake" in sys.argv[1:]
+    needed = sorted(name for name in wanted() if retake or not (ASSETS / f"{name}.png").exists())
+    if not needed:
         return 0
     known = takers()
+    missing = [n for n in needed if retake or not (SHOTS / f"{n}.png").exists()]
     unknown = [name for name in missing if name not in known]
     if unknown:
         print(f"docs: no browser test saves {', '.join(unknown)} (save_shot)", file=sys.stderr)
         return 2
-    tests = sorted({known[name] for name in missing})
-    print(f"docs: taking {len(missing)} screenshots with {len(tests)} browser tests", flush=True)
-    return subprocess.call([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *tests])
+    if missing:
+        tests = sorted({known[name] for name in missing})
+        print(
+            f"docs: taking {len(missing)} screenshots with {len(tests)} browser tests", flush=True
+        )
+        code = subprocess.call(
+            [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *tests]
+        )
+        if code != 0:
+            return code
+    for name in needed:
+        shutil.copyfile(SHOTS / f"{name}.png", ASSETS / f"{name}.png")
+        print(f"docs: docs/assets/{name}.png (commit it)")
+    return 0
 
 
 if __name__ == "__main__":

@@ -233,7 +233,7 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
     "robomodel_interfaces": (
         "robomodel_interfaces: robomodel's own service types, for what ROS has no type for "
         "(MasterCall: a call of the ROS 1 parameter server robomodel launch hosts on the Zenoh "
-        "bus, on /rosmaster).",
+        "bus, on /_robomodel_params/call).",
         ("robomodel_interfaces/srv/MasterCall",),
     ),
     "type_description_interfaces": (

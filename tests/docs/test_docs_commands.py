@@ -78,26 +78,32 @@ def test_page_commands_run(page: Path, tmp_path: Path) -> None:
 
 
 _SHELL = ("bash", "sh", "console", "shell")
+_CODE = (*_SHELL, "python", "py")
 
 
 @pytest.mark.parametrize("page", PAGES, ids=_name)
-def test_page_shell_blocks_are_run(page: Path) -> None:
-    """Every shell block of every page (the README, the newcomer pages and the reference) is run
-    by a test (``<!-- run... -->``, the README's quickstart) or says why not (``<!-- not run:
-    REASON -->``)."""
+def test_page_code_blocks_are_run(page: Path) -> None:
+    """Every shell and Python block of every page (the README, the newcomer pages and the
+    reference) is run by a test (``<!-- run... -->``, the README's quickstart) or says why not
+    and which test covers it (``<!-- not run: REASON naming tests/... -->``)."""
     text = page.read_text()
     marked = {block.line for block in blocks(page)}
     unmarked = [
         f"{_name(page)}:{text[: match.start()].count(chr(10)) + 1}"
         for match in re.finditer(r"^```(\w+)[^\n]*\n", text, flags=re.M)
-        if match.group(1) in _SHELL
+        if match.group(1) in _CODE
         and text[: match.start()].count("\n") + 1 not in marked
         and "<!-- quickstart:" not in text[max(0, match.start() - 100) : match.start()]
     ]
-    assert not unmarked, f"shell blocks neither run nor marked `not run: REASON`: {unmarked}"
+    assert not unmarked, f"code blocks neither run nor marked `not run: REASON`: {unmarked}"
     for block in blocks(page):
         if block.marker.startswith("not run"):
-            assert block.marker.split(":", 1)[1].strip(), f"{_name(page)}:{block.line}: no reason"
+            where = f"{_name(page)}:{block.line}"
+            reason = block.marker.split(":", 1)[1].strip()
+            named = re.findall(r"tests/[\w/.-]*\w", reason)
+            assert named, f"{where}: the reason names no test under tests/: {reason!r}"
+            for path in named:
+                assert (ROOT / path.split("::")[0]).exists(), f"{where}: {path} does not exist"
 
 
 def _shell_lines() -> list[tuple[str, str]]:

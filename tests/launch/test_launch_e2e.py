@@ -186,6 +186,14 @@ def test_robomodel_new_writes_a_launch_file_robomodel_launch_runs(tmp_path: Path
             domain, "tf", "base_link", "link_2", "--once", "--timeout", f"{scaled(20):.1f}"
         )
         assert frames.returncode == 0 and "Translation" in frames.stdout, frames.stderr
+        # the launch's parameter server is a hidden node: no /rosmaster on a Zenoh graph
+        nodes = _cli(domain, "node", "list").stdout.split()
+        assert "/robot_state_publisher" in nodes and "/rosmaster" not in nodes, nodes
+        assert not [n for n in nodes if "_robomodel" in n], nodes
+        assert "/_robomodel_params" in _cli(domain, "node", "list", "--all").stdout.split()
+        services = _cli(domain, "service", "list").stdout.split()
+        assert "/rosmaster" not in services and "/_robomodel_params/call" not in services
+        assert _cli(domain, "param", "get", "/robot_description").stdout.startswith("<?xml")
     text = log.read_text()
     assert "started /joint_state_publisher (joint_state_publisher/joint_state_publisher)" in text
     assert "started /robot_state_publisher (robot_state_publisher" in text

@@ -100,9 +100,10 @@ def test_show_args_of_a_python_launch_file() -> None:
 
 
 def test_robomodel_new_display_launch_py_runs(tmp_path: Path) -> None:
-    from robomodel.description.scaffold import create_description_package
+    from robomodel.description.scaffold import BuildType, PackageSpec, create_description_package
 
-    create_description_package("arm_description", tmp_path / "ws")
+    spec = PackageSpec("arm_description", build_type=BuildType.AMENT_CMAKE)
+    create_description_package(spec, tmp_path / "ws")
     domain = unique_domain()
     log = tmp_path / "arm.log"
     argv = ("arm_description", "display.launch.py", "--package-path", str(tmp_path))

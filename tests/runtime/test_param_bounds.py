@@ -11,7 +11,7 @@ import pytest
 import yaml
 
 from robomodel._yaml_bounded import YamlNestingError, load_yaml
-from robomodel.launch.param_server import ParamServer
+from robomodel.launch.param_server import SERVICE, ParamServer
 from robomodel.runtime import Context
 from robomodel.runtime.msg.robomodel_interfaces import MasterCall, MasterCall_Request
 from robomodel.runtime.transport.ros1.param_bounds import (
@@ -77,10 +77,10 @@ def test_the_servers_refusal_reaches_the_client_over_the_bus() -> None:
     with Context("inproc") as context:
         server.serve(context)
         big = MasterCall_Request("setParam", json.dumps({"key": "/x", "value": "y" * 200}))
-        reply = context.call_service("/rosmaster", MasterCall, big)
+        reply = context.call_service(SERVICE, MasterCall, big)
         assert not reply.ok and "[/x] is larger than 0 MiB" in reply.error
         nested = MasterCall_Request("getParam", "[" * 100_000 + "]" * 100_000)
-        reply = context.call_service("/rosmaster", MasterCall, nested)
+        reply = context.call_service(SERVICE, MasterCall, nested)
         assert not reply.ok and reply.error == "arguments are nested too deeply"
 
 

@@ -202,10 +202,18 @@ RRBOT_CONTROL_LAUNCH = """<launch>
 """
 
 
+COURSE_DEPENDENCIES = ("roscpp", "tf", "geometry_msgs", "urdf", "rviz", "xacro")
+
+
 def gripper_description(src: Path, *, with_rviz: bool) -> Path:
-    """``catkin_create_pkg gripper_description ...``, the provided meshes, the seed's files."""
+    """``catkin_create_pkg gripper_description roscpp tf geometry_msgs urdf rviz xacro`` as
+    ``robomodel new`` writes it (the course's line, typed as written), then the provided
+    meshes and the seed's files."""
+    from robomodel.cli.main import main
+
+    if not (src / "gripper_description").exists():
+        assert main(["new", "gripper_description", *COURSE_DEPENDENCIES, "--dir", str(src)]) == 0
     files: dict[str, str | bytes] = {
-        "package.xml": package_xml("gripper_description"),
         "urdf/planar_3dof.urdf": PLANAR_3DOF_URDF,
         "urdf/planar_3dof.xacro": PLANAR_3DOF_XACRO,
         "launch/display.launch": DISPLAY_LAUNCH,
@@ -267,13 +275,15 @@ def test_check_urdf_prints_what_the_seed_shows(graph: SeedRos1) -> None:
 
 
 def test_urdf_to_graphviz_writes_the_pdf(graph: SeedRos1) -> None:
-    """``urdf_to_graphviz planar_3dof.urdf`` → ``robomodel graph planar_3dof.urdf -o
-    planar_3dof.pdf`` (the seed then opens planar_3dof.pdf)."""
+    """``urdf_to_graphviz planar_3dof.urdf`` → ``robomodel graph planar_3dof.urdf``: the same
+    planar_3dof.gv and planar_3dof.pdf (the seed then opens planar_3dof.pdf)."""
     if shutil.which("dot") is None:
         pytest.skip("Graphviz's dot renders the pdf")
     urdf = gripper_description(_src(graph), with_rviz=False) / "urdf"
-    run = graph.tool(*ROBOMODEL, "graph", "planar_3dof.urdf", "-o", "planar_3dof.pdf", cwd=urdf)
+    run = graph.tool(*ROBOMODEL, "graph", "planar_3dof.urdf", cwd=urdf)
     assert run.returncode == 0, run.stderr
+    assert run.stdout == "Created file planar_3dof.gv\nCreated file planar_3dof.pdf\n"
+    assert (urdf / "planar_3dof.gv").read_text().startswith("digraph G {")
     assert (urdf / "planar_3dof.pdf").read_bytes().startswith(b"%PDF")
 
 

@@ -20,7 +20,6 @@ from tests.seeds.conftest import (
     LINE_TIMEOUT_S,
     Ros2Workspace,
     joint_position,
-    package_xml,
     until,
     write_tree,
 )
@@ -262,7 +261,14 @@ EMPTY_WORLD = """<?xml version="1.0" ?>
 
 
 def urdf_cpp_demo(ws: Ros2Workspace, *, with_limits: bool) -> Path:
-    """``ros2 pkg create urdf_cpp_demo``, the seed's files, ``colcon build``."""
+    """``ros2 pkg create --build-type ament_cmake urdf_cpp_demo --dependencies rclcpp`` as
+    ``robomodel new`` writes it (the course's line, typed as written), the seed's files,
+    ``colcon build``."""
+    from robomodel.cli.main import main
+
+    if not (ws.src / PKG).exists():
+        argv = ["new", "--build-type", "ament_cmake", PKG, "--dependencies", "rclcpp"]
+        assert main([*argv, "--dir", str(ws.src)]) == 0
     urdf, xacro_text = SIMPLE_ARM_URDF, SIMPLE_ARM_XACRO
     if with_limits:
         urdf = urdf.replace('<axis xyz="0 0 1"/>\n', '<axis xyz="0 0 1"/>\n' + LIMIT)
@@ -272,7 +278,6 @@ def urdf_cpp_demo(ws: Ros2Workspace, *, with_limits: bool) -> Path:
     root = write_tree(
         ws.src / PKG,
         {
-            "package.xml": package_xml(PKG),
             "urdf/simple_arm.urdf": urdf,
             "urdf/simple_arm.xacro": xacro_text,
             "launch/visualize.launch.py": VISUALIZE_LAUNCH,

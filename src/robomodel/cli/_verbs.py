@@ -32,7 +32,7 @@ VERBS: tuple[Verb, ...] = (
     Verb(
         "new",
         "robomodel.cli.new",
-        "create a robot description package (package.xml, urdf/, meshes/, launch/, config/)",
+        "create a robot description package (catkin_create_pkg, ros2 pkg create)",
     ),
     Verb("xacro", "robomodel.cli.xacro", "expand a xacro file (same output as ROS xacro 2.1.1)"),
     Verb("tf", "robomodel.cli.tf", "print the transform between two frames, as tf2_echo does"),

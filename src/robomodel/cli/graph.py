@@ -32,12 +32,20 @@ def register(subparsers: Any) -> None:
         "graph",
         help=verb_help("graph"),
         description=(
-            "Write the link/joint graph that urdf_to_graphviz writes. Without -o the .gv text "
-            "goes to stdout; -o FILE.svg|.pdf|.png renders it with Graphviz's dot."
+            "Write the link/joint graph that urdf_to_graphviz writes. Without -o, as "
+            "urdf_to_graphviz does: ROBOT.gv and ROBOT.pdf (the robot's name) in the current "
+            "folder. -o FILE.gv|.dot writes the text, -o FILE.svg|.pdf|.png renders it with "
+            "Graphviz's dot, -o - prints the .gv text."
         ),
     )
     add_description_arguments(parser)
-    parser.add_argument("-o", "--output", metavar="OUT", help="output file (.gv, .svg, .pdf, .png)")
+    parser.add_argument(
+        "-o",
+        "--output",
+        metavar="OUT",
+        help="output file (.gv, .dot, .svg, .pdf, .png), or - for the .gv text on stdout "
+        "(default: ROBOT.gv and ROBOT.pdf in the current folder)",
+    )
     parser.set_defaults(func=run)
 
 
@@ -124,8 +132,16 @@ def _terminate_as_exit() -> Iterator[None]:
 def run(args: argparse.Namespace) -> int:
     result, _, _ = load_from_args(args)
     text = graphviz_text(result.robot)
-    if args.output is None:
+    if args.output == "-":
         sys.stdout.write(text)
+        return 0
+    if args.output is None:
+        # urdf_to_graphviz FILE: $ROBOT_NAME.gv, then dot -Tpdf to $ROBOT_NAME.pdf, in the CWD
+        gv, pdf = f"{result.robot.name}.gv", f"{result.robot.name}.pdf"
+        atomic_write_text(gv, text)
+        print(f"Created file {gv}")
+        render_dot(text, pdf)
+        print(f"Created file {pdf}")
         return 0
     if args.output.endswith(".gv") or args.output.endswith(".dot"):
         atomic_write_text(args.output, text)

@@ -10,6 +10,7 @@ from robomodel._escape import escape_name, escape_names
 from robomodel.cli._bus import (
     add_bus_arguments,
     context_from_args,
+    hides,
     listing_exit_code,
     settled_graph,
 )
@@ -25,6 +26,12 @@ def register(subparsers: Any) -> None:
     verbs = parser.add_subparsers(dest="node_verb", metavar="VERB")
     verbs.required = True
     p = verbs.add_parser("list", help="the nodes of the graph")
+    p.add_argument(
+        "-a",
+        "--all",
+        action="store_true",
+        help="also hidden nodes (a name starting with _), as ros2 node list --all",
+    )
     add_bus_arguments(p)
     p.set_defaults(func=_run_list)
     p = verbs.add_parser("info", help="a node's publishers, subscribers, services and clients")
@@ -37,7 +44,8 @@ def _run_list(args: argparse.Namespace) -> int:
     with context_from_args(args) as context:
         graph = settled_graph(context)
         for name in sorted(graph.nodes):
-            print(escape_name(name))
+            if not hides(context, name, args.all):
+                print(escape_name(name))
     return listing_exit_code(graph)
 
 

@@ -153,8 +153,9 @@ class _Located:
                 name = str(yaml.safe_load(yaml.serialize(k)))  # scalar keys
                 if name in out:
                     raise ConfigError(f"duplicate key '{name}'", self._at(k))
-                self.marks[(*key, name)] = k.start_mark
-                out[name] = self.convert(v, (*key, name))
+                path = (*key, name)
+                self.marks[path] = k.start_mark
+                out[name] = self.convert(v, path)
             return out
         if isinstance(node, yaml.SequenceNode):
             return [self.convert(v, (*key, str(i))) for i, v in enumerate(node.value)]

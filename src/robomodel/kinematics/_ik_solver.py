@@ -167,7 +167,8 @@ def _initial_q(
     """
     if n_targets is None:
         if seed is None:
-            return solver.start.copy()
+            start: F64 = solver.start.copy()
+            return start
         return np.clip(np.array(check_q(model, seed), dtype=np.float64), model.lower, model.upper)
     if seed is None:
         return np.tile(solver.start, (n_targets, 1))

@@ -131,6 +131,7 @@ class MujocoKinematics:
     def fk(self, q: F64, links: Sequence[int] | None = None) -> F64:
         """Poses ``(n, 4, 4)`` of all links (or of ``links``) for one validated ``q``."""
         s = self._kinematics(q)
+        out: F64
         if links is None:
             out = self._all.copy()
             out[:, :3, :3] = s.R
@@ -147,7 +148,7 @@ class MujocoKinematics:
     def fk_link(self, q: F64, link: int) -> F64:
         """``T_root_link`` ``(4, 4)`` for one validated ``q``."""
         s = self._kinematics(q)
-        out = _ONE.copy()
+        out: F64 = _ONE.copy()
         out[:3, :3] = s.R[link]
         out[:3, 3] = s.p[link]
         out.setflags(write=False)

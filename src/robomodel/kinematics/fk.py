@@ -126,7 +126,7 @@ def fk_batch(model: CompiledModel, q: F64, links: Sequence[int] | None = None) -
             X = local_transforms_batch(model, i, qT)
             W[...] = np.einsum("rkb,bkc->rcb", W, X)
     out = buf if links is None else buf[list(links)]
-    Ts = out.transpose(3, 0, 1, 2)
+    Ts: NDArray[np.float64] = out.transpose(3, 0, 1, 2)
     Ts.setflags(write=False)
     return Ts
 

@@ -1,10 +1,14 @@
 """A ROS 1 parameter server (rosmaster's), shared by every robomodel process of a domain.
 
 The first ``robomodel launch`` of a domain hosts it, as ``roscore`` does, and offers it over the
-bus as one service of its own, ``/rosmaster`` (``robomodel_interfaces/srv/MasterCall``: the call
+bus as one service of its own, ``/_robomodel_params/call`` (``robomodel_interfaces/srv/MasterCall``: the call
 -- ``getParam``, ``setParam``, ``deleteParam``, ``hasParam``, ``searchParam``, ``getParamNames``
 -- and its arguments and result as JSON); later processes of the domain find it there and use
 it. ``robomodel param get /name`` / ``set`` / ``list /`` / ``delete`` reach it too.
+
+Its node and service names are hidden ones (a part starting with ``_``, which ``ros2 node list``
+and ``ros2 service list`` leave out, as ``robomodel node list`` does): a Zenoh graph shows no
+``/rosmaster``, since no ROS 1 master is part of it.
 
 Values are stored as rosmaster stores them: a tree, so getting a namespace returns a dict and
 setting a dict replaces the whole namespace.
@@ -28,6 +32,7 @@ from robomodel.runtime.msg.robomodel_interfaces import (
 from robomodel.runtime.transport.ros1.param_tree import ParamServerError, ParamTree
 
 __all__ = [
+    "NODE",
     "SERVICE",
     "ParamServer",
     "ParamServerError",
@@ -37,7 +42,8 @@ __all__ = [
     "encode_value",
 ]
 
-SERVICE = "/rosmaster"
+NODE = "_robomodel_params"
+SERVICE = f"/{NODE}/call"
 _CALLS = ("getParam", "setParam", "deleteParam", "hasParam", "searchParam", "getParamNames")
 
 
@@ -63,7 +69,7 @@ def decode_value(value: Any) -> Any:
 
 
 class ParamServer(ParamTree):
-    """rosmaster's parameter tree, served over the bus as ``/rosmaster``."""
+    """rosmaster's parameter tree, served over the bus as :data:`SERVICE`."""
 
     # -- over the bus -----------------------------------------------------------------------
     def handle(self, call: str, request: Mapping[str, Any]) -> dict[str, Any]:
@@ -89,8 +95,8 @@ class ParamServer(ParamTree):
         return {"error": f"unknown call {call}"}
 
     def serve(self, context: Any) -> Callable[[], None]:
-        """Offer this server as the ``/rosmaster`` service on ``context``'s bus."""
-        node = context.create_node("rosmaster")
+        """Offer this server as the :data:`SERVICE` service on ``context``'s bus."""
+        node = context.create_node(NODE)
         node.create_service(MasterCall, SERVICE, self._answer)
         return node.destroy  # type: ignore[no-any-return]
 
@@ -149,14 +155,14 @@ class RemoteParamServer:
 
 def connect_or_host(context: Any, settle_s: float = 1.5) -> tuple[Any, bool]:
     """The domain's parameter server: a remote one if a process already hosts it (its
-    ``/rosmaster`` service is in the graph), else a new one hosted (and served) here. Returns
+    :data:`SERVICE` is in the graph), else a new one hosted (and served) here. Returns
     ``(server, hosted_here)``.
 
     The graph decides, not a timed call: a call to a service this session has not yet heard of
     returns at once. A session linked to a router receives the router's liveliness tokens some
     milliseconds after opening, longer on a loaded machine; so while the domain looks empty and
     the session is linked, the graph is asked again for up to ``settle_s``. Once other nodes
-    show, the graph must stop changing for three answers before its lack of ``/rosmaster``
+    show, the graph must stop changing for three answers before its lack of :data:`SERVICE`
     decides. A second server would split the
     launch's parameters in two."""
     if context.transport.name != "inproc" and _remote_server_found(context, settle_s):
@@ -177,7 +183,7 @@ def _remote_server_found(context: Any, settle_s: float) -> bool:
         if info is not None and info.servers:  # a server, not another launch's client of it
             return True
         # Liveliness tokens arrive in batches: decide only once the graph has stopped growing
-        # (three answers in a row the same), not on a partial one that lacks /rosmaster yet.
+        # (three answers in a row the same), not on a partial one that lacks the service yet.
         snapshot = (sorted(map(str, graph.nodes)), sorted(map(str, graph.services)))
         stable = stable + 1 if graph.nodes and snapshot == previous else 0
         previous = snapshot

@@ -8,7 +8,10 @@ the annotations here only let the type checker see them.
 from __future__ import annotations
 
 import uuid
-from typing import TYPE_CHECKING, Any, Self
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from typing_extensions import Self  # typing.Self is Python 3.11+
 
 __all__ = ["DurationMethods", "TimeMethods", "UUIDMethods"]
 

@@ -143,7 +143,8 @@ class CameraSensor(SimSensor):
         cam = self.camera
         h, w = rgb.shape[:2]
         noise = self.rng.normal(cam.noise_mean * 255.0, cam.noise_stddev * 255.0, (h, w, 1))
-        return np.clip(rgb + noise, 0, 255).round().astype(np.uint8)
+        noisy: np.ndarray = np.clip(rgb + noise, 0, 255).round().astype(np.uint8)
+        return noisy
 
     def _depth_m(self) -> np.ndarray:
         """Linear z depth from the depth buffer (MuJoCo's near and far planes), clipped to the
@@ -177,7 +178,8 @@ class CameraSensor(SimSensor):
             return np.ascontiguousarray(frame.rgb[..., ::-1])
         if encoding == "mono8":  # ITU-R 601 luma
             luma: np.ndarray = frame.rgb @ np.array([0.299, 0.587, 0.114])
-            return luma.round().astype(np.uint8)[..., None]
+            mono: np.ndarray = luma.round().astype(np.uint8)[..., None]
+            return mono
         return np.ascontiguousarray(frame.rgb)
 
     def image(self, frame: Frame) -> Message:
@@ -213,7 +215,7 @@ class CameraSensor(SimSensor):
         """The plugin's range: ROS 1 NaN outside the cutoffs, ROS 2 -inf / +inf."""
         topics = self.topics or CameraTopics("", "")
         lo, hi = topics.min_depth_m, topics.max_depth_m
-        out = depth_m.copy()
+        out: np.ndarray = depth_m.copy()
         near, far = depth_m <= lo, ~(depth_m < hi) & ~(depth_m <= lo)
         if topics.out_of_range_nan:
             out[near | far] = math.nan

@@ -66,7 +66,7 @@ class Lidar(SimSensor):
             self.model, d, origin, vec, _GROUPS, 1, self.body,
             self._geomid, self._dist, None, n, ray.range_max_m,
         )  # fmt: skip
-        r = self._dist.copy()
+        r: np.ndarray = self._dist.copy()
         miss = (self._geomid < 0) | (r > ray.range_max_m)
         if ray.noise.active:
             r += self.rng.normal(ray.noise.mean, ray.noise.stddev, n)

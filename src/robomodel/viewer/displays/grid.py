@@ -71,7 +71,8 @@ def grid_segments(
         top = normal_count / 2.0 * cell_size_m
         lines += [((a, -top, b), (a, top, b)) for a in steps for b in steps]
     local = np.asarray(lines, dtype=np.float64)
-    return local @ rotation.T + np.asarray(offset_m, dtype=np.float64)
+    world: NDArray[np.float64] = local @ rotation.T + np.asarray(offset_m, dtype=np.float64)
+    return world
 
 
 @register_display

@@ -95,7 +95,8 @@ def _point_colors(msg: Any) -> NDArray[np.uint8]:
     n = len(msg.points)
     if len(msg.colors) == n and n:
         rgba = np.array([(c.r, c.g, c.b) for c in msg.colors], dtype=np.float64)
-        return (np.clip(rgba, 0.0, 1.0) * 255).round().astype(np.uint8)
+        rgba_u8: NDArray[np.uint8] = (np.clip(rgba, 0.0, 1.0) * 255).round().astype(np.uint8)
+        return rgba_u8
     rgb, _ = _rgb_alpha(msg.color)
     return np.tile(np.array(rgb, dtype=np.uint8), (n, 1))
 

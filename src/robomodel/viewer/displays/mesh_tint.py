@@ -72,7 +72,8 @@ def tinted_rgb(rgb: ArrayLike, tint: Tint) -> NDArray[np.float64]:
     """Material colours ``rgb`` (shape (..., 3), 0..1) as the two passes draw them."""
     m = np.asarray(rgb, dtype=np.float64)
     if tint.weight == 0.0:
-        return m.copy()
+        untinted: NDArray[np.float64] = m.copy()
+        return untinted
     w, a = tint.weight, tint.alpha
     return (np.asarray(tint.rgb) * w + m * a * (1.0 - w)) / tint.opacity
 

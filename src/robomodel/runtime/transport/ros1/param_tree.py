@@ -2,7 +2,7 @@
 whole namespace, names are leaves (``rosparam list``) and ``searchParam`` looks upwards.
 
 The ROS 1 master serves it over XML-RPC; ``robomodel launch`` on the other buses serves it as
-the ``/rosmaster`` service (robomodel.launch.param_server).
+a service of a hidden node (robomodel.launch.param_server).
 """
 
 from __future__ import annotations
