@@ -88,7 +88,10 @@ class LaunchGui:
             return text
         param = self.runner.request.robot_description_param or "/robot_description"
         if self.runner.params is None or not self.runner.params.has(param):
-            self.runner.log(f"[launch] the viewer has no robot to show: {param} is not set")
+            self.runner.log(
+                f"[launch] {param} is not set: the viewer starts with no robot, as rviz does "
+                "(its RobotModel displays bring them)"
+            )
             return None
         return str(self.runner.params.get(param))
 
@@ -98,9 +101,7 @@ class LaunchGui:
         except ImportError as exc:
             self.runner.log(f"[launch] no viewer: {exc}")
             return
-        robots = self._robots()
-        if not robots:
-            return
+        robots = self._robots()  # none: RViz's empty start
         sources = tuple(self._source(robot, text) for robot, text in robots)
         document = self.runner._extra.get("rviz")  # the rviz node's -d config
         settings = document.settings if document is not None else None
