@@ -1,14 +1,23 @@
-"""RViz's Image display: the latest sensor_msgs/Image (or CompressedImage) as a panel image.
+"""RViz's Image display: the latest sensor_msgs/Image (or CompressedImage) in a panel of its own.
 
-RViz 2's Image display (image_display.cpp) shows the image in its own panel, with "Normalize
-Range", "Min Value", "Max Value" and "Median window" for 16-bit and float images; a topic of
-type CompressedImage (image_transport's ``.../compressed``) is decoded as RViz's compressed
-transport would. Only the newest image is converted, when the page is next drawn (10 Hz):
-older ones are skipped, as RViz shows the newest at each render.
+RViz 2's Image display (image_display.cpp) shows the image in its own panel, docked beside the
+3D view as soon as the display is added, with "Normalize Range", "Min Value", "Max Value" and
+"Median window" for 16-bit and float images; a topic of type CompressedImage
+(image_transport's ``.../compressed``) is decoded as RViz's compressed transport would. Here
+the panel is an image area at the top of the page's control panel, expanded, named after the
+display, hidden while the display is disabled (its options stay in the Displays tree).
+
+RViz shows the newest image at each render, at its Frame Rate (Global Options, 30 by
+default): an image is converted and sent when it arrives unless one went less than a frame
+ago (:data:`FRAME_SLACK` of it: arrival jitter must not halve a camera's rate), in which case
+it waits and the next arrival or the next draw (10 Hz) shows the newest. Older ones are
+skipped, and viser replaces an image update the page has not taken yet by the next one, so a
+slow page never builds a backlog.
 """
 
 from __future__ import annotations
 
+import time
 from types import MappingProxyType
 from typing import Any, ClassVar
 
@@ -31,7 +40,10 @@ from robomodel.viewer.displays.image import (
     nearest_upscale,
 )
 
-__all__ = ["ImageDisplay", "message_rgb"]
+__all__ = ["FRAME_SLACK", "ImageDisplay", "message_rgb"]
+
+FRAME_SLACK = 0.75  # an image may follow the last one after this fraction of a frame
+_DOCK_ORDER = -1000.0  # viser orders the panel's folders by this: image areas come first
 
 IMAGE_OPTIONS = (
     Option(
@@ -68,7 +80,7 @@ def message_rgb(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -
 
 @register_display
 class ImageDisplay(Display):
-    """RViz's Image display: the image in the display's folder of the panel."""
+    """RViz's Image display: the image in an image area of its own."""
 
     class_name = "Image"
     message_types = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
@@ -86,20 +98,36 @@ class ImageDisplay(Display):
         self._normalizer = RangeNormalizer()
         self._error = ""
         self._panel_image: Any = None
+        self._dock: Any = None
+        self._shown_s = -float("inf")  # when the last image was sent [monotonic s]
         self.rgb: NDArray[np.uint8] | None = None  # the image shown
         self.header: Any = None  # the shown image's header
         self.shown = 0  # images converted and shown
 
     def on_message(self, msg: Any) -> None:
         self._pending = msg
+        period_s = 1.0 / max(float(self.context.frame_rate_hz()), 1e-3)
+        if self.enabled and time.monotonic() - self._shown_s >= FRAME_SLACK * period_s:
+            self.show_pending()
 
-    def build_panel(self, gui: Any) -> None:
+    def build_dock(self, gui: Any) -> None:
         placeholder = np.full((48, 64, 3), 40, dtype=np.uint8)  # RViz's empty texture: dark
-        # JPEG as RViz's image_transport "compressed" would: PNG of a 640x480 camera image
-        # is ~10x larger and slower to encode
-        self._panel_image = gui.add_image(
-            placeholder, label=self.name, format="jpeg", jpeg_quality=90
-        )
+        self._dock = gui.add_folder(self.name, order=_DOCK_ORDER, expand_by_default=True,
+                                    visible=self.enabled)  # fmt: skip
+        with self._dock:
+            # JPEG as RViz's image_transport "compressed" would: PNG of a 640x480 camera
+            # image is ~10x larger and slower to encode
+            self._panel_image = gui.add_image(placeholder, format="jpeg", jpeg_quality=90)
+
+    def on_renamed(self) -> None:
+        super().on_renamed()
+        if self._dock is not None:
+            self._dock.label = self.name
+
+    def on_enabled_changed(self) -> None:
+        super().on_enabled_changed()
+        if self._dock is not None:
+            self._dock.visible = self.enabled
 
     def on_option_changed(self, name: str) -> None:
         if name == "Topic":
@@ -109,9 +137,9 @@ class ImageDisplay(Display):
 
     def close(self) -> None:
         super().close()
-        if self._panel_image is not None:
-            self._panel_image.remove()
-            self._panel_image = None
+        if self._dock is not None:
+            self._dock.remove()
+            self._dock, self._panel_image = None, None
 
     def convert_pending(self) -> bool:
         """Convert the newest image if one came since the last draw; whether one did."""
@@ -128,10 +156,18 @@ class ImageDisplay(Display):
         self.header = getattr(msg, "header", None)
         return True
 
-    def draw(self, lookup: FrameLookup) -> DisplayStatus:
-        if self.convert_pending() and self._panel_image is not None and self.rgb is not None:
+    def show_pending(self) -> bool:
+        """Convert the newest image and send it to the panel; whether one was shown."""
+        if not self.convert_pending() or self.rgb is None:
+            return False
+        self._shown_s = time.monotonic()
+        if self._panel_image is not None:
             # a small image is shown at its own size: repeat its pixels to fill the panel
             self._panel_image.image = nearest_upscale(self.rgb, min_side=320)
+        return True
+
+    def draw(self, lookup: FrameLookup) -> DisplayStatus:
+        self.show_pending()
         if self._error:
             return DisplayStatus.error(self._error)
         waiting = self.topic_status()

@@ -81,6 +81,7 @@ class _Row:
             self.controls = {o.name: self._control(gui, o) for o in display.options}
             display.build_panel(gui)
             self.remove = gui.add_button("Remove", color="red")
+        display.build_dock(gui)  # at the panel's top level, not in the Displays tree
         self.enabled.on_update(lambda _e: post(lambda: display.set_enabled(bool(self.enabled.value))))  # fmt: skip
         self.name.on_update(lambda _e: post(lambda: panel.rename(self, str(self.name.value))))
         self.remove.on_click(lambda _e: post(lambda: panel.remove(self)))
