@@ -8,11 +8,12 @@ the panel is an image area at the top of the page's control panel, expanded, nam
 display, hidden while the display is disabled (its options stay in the Displays tree).
 
 RViz shows the newest image at each render, at its Frame Rate (Global Options, 30 by
-default): an image is converted and sent when it arrives unless one went less than a frame
-ago (:data:`FRAME_SLACK` of it: arrival jitter must not halve a camera's rate), in which case
-it waits and the next arrival or the next draw (10 Hz) shows the newest. Older ones are
-skipped, and viser replaces an image update the page has not taken yet by the next one, so a
-slow page never builds a backlog.
+default): an image is converted and sent when it arrives if the Frame Rate allows one more
+(a budget of one image per frame, of which up to :data:`BURST_FRAMES` may be saved, so that
+images arriving bunched by the network's jitter are all shown while the rate over any second
+stays the Frame Rate); else it waits, and the next arrival or the next draw (10 Hz) shows the
+newest. Older ones are skipped, and viser replaces an image update the page has not taken yet
+by the next one, so a slow page never builds a backlog.
 """
 
 from __future__ import annotations
@@ -40,9 +41,9 @@ from robomodel.viewer.displays.image import (
     nearest_upscale,
 )
 
-__all__ = ["FRAME_SLACK", "ImageDisplay", "message_rgb"]
+__all__ = ["BURST_FRAMES", "FramePacer", "ImageDisplay", "message_rgb"]
 
-FRAME_SLACK = 0.75  # an image may follow the last one after this fraction of a frame
+BURST_FRAMES = 3.0  # frames of unused budget kept (see the module docstring)
 _DOCK_ORDER = -1000.0  # viser orders the panel's folders by this: image areas come first
 
 IMAGE_OPTIONS = (
@@ -78,6 +79,25 @@ def message_rgb(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -
     return image_rgb(msg, **kwargs)
 
 
+class FramePacer:
+    """At most ``rate_hz`` events a second on average, up to :data:`BURST_FRAMES` at once
+    (a token bucket, refilled at the rate, that starts full)."""
+
+    def __init__(self) -> None:
+        self._budget = BURST_FRAMES
+        self._last_s: float | None = None
+
+    def allow(self, now_s: float, rate_hz: float) -> bool:
+        """Whether an event at ``now_s`` [s, monotonic] fits the rate (and spend it if so)."""
+        if self._last_s is not None:
+            self._budget = min(BURST_FRAMES, self._budget + (now_s - self._last_s) * rate_hz)
+        self._last_s = now_s
+        if self._budget < 1.0:
+            return False
+        self._budget -= 1.0
+        return True
+
+
 @register_display
 class ImageDisplay(Display):
     """RViz's Image display: the image in an image area of its own."""
@@ -99,15 +119,14 @@ class ImageDisplay(Display):
         self._error = ""
         self._panel_image: Any = None
         self._dock: Any = None
-        self._shown_s = -float("inf")  # when the last image was sent [monotonic s]
+        self._pacer = FramePacer()
         self.rgb: NDArray[np.uint8] | None = None  # the image shown
         self.header: Any = None  # the shown image's header
         self.shown = 0  # images converted and shown
 
     def on_message(self, msg: Any) -> None:
         self._pending = msg
-        period_s = 1.0 / max(float(self.context.frame_rate_hz()), 1e-3)
-        if self.enabled and time.monotonic() - self._shown_s >= FRAME_SLACK * period_s:
+        if self.enabled:
             self.show_pending()
 
     def build_dock(self, gui: Any) -> None:
@@ -157,10 +176,14 @@ class ImageDisplay(Display):
         return True
 
     def show_pending(self) -> bool:
-        """Convert the newest image and send it to the panel; whether one was shown."""
+        """Convert the newest image and send it to the panel if the Frame Rate allows one
+        more now; whether one was shown."""
+        if self._pending is None:
+            return False
+        if not self._pacer.allow(time.monotonic(), float(self.context.frame_rate_hz())):
+            return False
         if not self.convert_pending() or self.rgb is None:
             return False
-        self._shown_s = time.monotonic()
         if self._panel_image is not None:
             # a small image is shown at its own size: repeat its pixels to fill the panel
             self._panel_image.image = nearest_upscale(self.rgb, min_side=320)
