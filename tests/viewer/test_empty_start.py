@@ -109,3 +109,35 @@ def test_two_namespaced_robots_come_from_the_config_s_robot_models(
     assert models_of(saved) == models_of(read)
     assert [m[2] for m in models_of(saved)] == ["robot1", "robot2"]
     assert saved.settings.fixed_frame == "world"
+
+
+def test_run_rviz2_without_a_robot_description_serves_an_empty_viewer() -> None:
+    """``robomodel run rviz2 rviz2`` while nobody publishes /robot_description: RViz 2 opens
+    with no robot, and so does the viewer (its RobotModel waits for the description)."""
+    import signal
+    import subprocess
+    import time
+
+    from tests.conftest import ROBOMODEL, unique_domain
+    from tests.timing import scaled
+
+    rviz = subprocess.Popen(
+        [*ROBOMODEL, "run", "--no-browser", "--port", "0", "--bus", "zenoh",
+         "--domain-id", unique_domain(), "rviz2", "rviz2"],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    )  # fmt: skip
+    seen: list[str] = []
+    try:
+        assert rviz.stdout is not None
+        deadline = time.monotonic() + scaled(60)
+        while time.monotonic() < deadline and not any("viewer: serving" in s for s in seen):
+            line = rviz.stdout.readline()
+            if not line:
+                break
+            seen.append(line)
+        text = "".join(seen)
+        assert "viewer: serving http://" in text, text
+        assert "/robot_description is not set: the viewer starts with no robot" in text, text
+    finally:
+        rviz.send_signal(signal.SIGINT)
+        rviz.wait(scaled(20))

@@ -252,7 +252,10 @@ class DisplaysPanel:
         try:
             assert self.bus is not None
             context = self.manager.node.context
-            graph = self.bus.query(lambda: context.graph(timeout_s=0.5))
+            try:
+                graph = self.bus.query(lambda: context.graph(timeout_s=0.5))
+            except RobomodelError:  # a loop busy for seconds (a loaded machine): next round
+                return
             self.topics = {name: frozenset(info.types) for name, info in graph.topics.items()}
             self._choices = topic_choices(self.topics)
             options = (_CHOOSE, *self._choices)
