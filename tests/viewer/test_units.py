@@ -381,3 +381,12 @@ def test_view_sources_take_the_prefixes_in_order_files_then_topics() -> None:
                    "--prefix", "a/", "--prefix", "r1/", "--prefix", "r2/") == [
         ("a.urdf", "a/", None), ("", "r1/", "/r1/robot_description"),
         ("", "r2/", "/r2/robot_description")]  # fmt: skip
+
+
+def test_view_without_a_file_serves_an_empty_page_and_says_how_a_robot_comes(
+    cli: Callable[..., ToolResult],
+) -> None:
+    result = cli("view", "--no-browser", "--port", "0", "--duration", "0.5")
+    assert result.code == 0, result.err
+    assert "serving http://" in result.out
+    assert "no FILE: the page starts with no robot; no other process can describe one on --bus inproc" in result.err  # fmt: skip

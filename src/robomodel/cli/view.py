@@ -241,6 +241,15 @@ def run(args: argparse.Namespace) -> int:
     try:
         viewer.start()
         _announce(viewer)
+        if not options.sources:
+            where = (
+                "no other process can describe one on --bus inproc: a RobotModel display with "
+                "Description Source File loads a file"
+                if args.bus == "inproc"
+                else "its RobotModel displays load those other processes describe"
+            )
+            print(f"robomodel view: no FILE: the page starts with no robot; {where}",
+                  file=sys.stderr, flush=True)  # fmt: skip
         _report_meshes(viewer)
         if not args.no_browser:
             webbrowser.open(viewer.url)
