@@ -5,8 +5,8 @@ message.
 Run: ``.venv/bin/python bench/bench_displays.py [SECONDS] [FEED ...]`` (needs Debian's
 chromium; about 3 x SECONDS + 20 s, default SECONDS 6; FEED: cloud, image, noise, default all).
 
-For each feed the viewer runs in this process with one display (PointCloud2 on /bench/cloud,
-Image on /bench/image), headless Chromium has the page open, and ``_display_feed.py`` publishes
+For each feed the viewer runs in this process (Frame Rate 30, RViz's default) with one display
+(PointCloud2 on /bench/cloud, Image on /bench/image), headless Chromium has the page open, and ``_display_feed.py`` publishes
 for SECONDS. Counted: messages sent, messages the display received, what reached Chromium
 (websocket frames carrying a new point cloud or new points for a cloud's node, or a new panel
 image; for the cloud also how many
@@ -46,8 +46,10 @@ def _viewer(tmp: Path) -> Any:
 
     urdf = tmp / "frame_only.urdf"
     urdf.write_text('<?xml version="1.0"?><robot name="f"><link name="map"/></robot>\n')
+    # Frame Rate 30: RViz's default, at which its Image display shows new images
     options = ViewerOptions(sources=(RobotSource(str(urdf)),), port=0, bus="zenoh",
-                            domain_id=DOMAIN, fixed_frame="map", tools=False)  # fmt: skip
+                            domain_id=DOMAIN, fixed_frame="map", tools=False,
+                            frame_rate_hz=30.0)  # fmt: skip
     viewer = Viewer(options)
     viewer.start()
     return viewer
@@ -92,7 +94,8 @@ def run(kind: str, rate_hz: float, seconds: float, page: Any, viewer: Any, frame
     page.wait_for_timeout(3000)  # frames still coming after the last send are the backlog
     feed.wait(10)
     received = display.messages_received
-    drawn = getattr(display, "_seq", 0)  # clouds put in the scene (PointCloud2Display)
+    # clouds put in the scene (PointCloud2Display), images sent to the panel (ImageDisplay)
+    drawn = getattr(display, "_seq", getattr(display, "shown", 0))
     least = 50_000 if kind == "cloud" else 5_000  # a frame with the points, or the image
 
     def new_state(meta: bytes) -> bool:
@@ -106,7 +109,7 @@ def run(kind: str, rate_hz: float, seconds: float, page: Any, viewer: Any, frame
     return {
         "sent": float(sent_line.split()[1]),
         "received": float(received),
-        **({"drawn": float(drawn)} if kind == "cloud" else {}),
+        "drawn": float(drawn),
         "reached_browser": float(len(shown)),
         "browser_per_s": len([t for t in shown if wall0 <= t <= end]) / (end - wall0),
         "drain_s": (max(shown) - end) if shown else float("nan"),

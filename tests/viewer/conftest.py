@@ -133,7 +133,8 @@ def page(browser: Any) -> Iterator[Any]:
 def open_viewer(page: Any, url: str) -> None:
     """Load the page and wait until the GUI arrived over the websocket."""
     page.goto(url)
-    page.get_by_text("Fixed Frame", exact=True).wait_for(timeout=scaled(30_000))
+    # .first: the Status may name the Fixed Frame too ("Fixed Frame `world` does not exist")
+    page.get_by_text("Fixed Frame", exact=True).first.wait_for(timeout=scaled(30_000))
 
 
 def screenshot(page: Any) -> np.ndarray:

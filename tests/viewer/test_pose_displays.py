@@ -220,3 +220,40 @@ def test_wrench_is_rviz_1_s_wrench_stamped() -> None:
     assert display_class("rviz/WrenchStamped") is display_class("rviz_default_plugins/Wrench")
     with pytest.raises(UnknownDisplayError):
         display_class("rviz_default_plugins/WrenchStamped")  # RViz 2 has no such class
+
+
+def test_odometry_keeps_a_bounded_trail_over_thirty_minutes_of_driving() -> None:
+    """Seed 002's step 8 for 30 minutes at 1 m/s on a 5 m circle, odometry at 10 Hz, drawn
+    once a (simulated) second: RViz's Keep (100) arrows are all that
+    stays; the covariance shapes go with their arrows, and the messages waiting for a draw
+    are bounded too."""
+    from robomodel.viewer.displays.odometry import MAX_PENDING
+
+    display, scene = start("Odometry", **{"Covariance/Value": False})  # Keep 100
+    lookup = lookup_from({"odom": np.eye(4)})
+    rate_hz, radius_m, speed_mps = 10, 5.0, 1.0
+
+    def drive(step: int) -> object:
+        angle = speed_mps * step / rate_hz / radius_m
+        msg = odom(0.0, yaw=angle + math.pi / 2)
+        msg.pose.pose.position.x, msg.pose.pose.position.y = radius_m * math.cos(angle), radius_m * math.sin(angle)  # fmt: skip
+        msg.pose.covariance = [0.001 if i in (0, 7, 35) else 0.0 for i in range(36)]
+        return msg
+
+    for step in range(30 * 60 * rate_hz):
+        display.receive(drive(step))
+        if step % rate_hz == 0:
+            display.draw(lookup)
+    display.draw(lookup)
+    assert len(display.trail.poses) == 100
+    assert list(scene.nodes) == ["/displays/d/arrows"]
+    assert scene.nodes["/displays/d/arrows"].kwargs["points"].shape == (100, 2, 3)
+    covariance, scene = start("Odometry", Keep=10)  # shown: RViz's default
+    for step in range(50):
+        covariance.receive(drive(step))
+        covariance.draw(lookup)
+    shapes = [n for n in scene.nodes if "covariance" in n]
+    assert len(covariance.trail.poses) == 10 and 10 <= len(shapes) <= 4 * 10
+    for _ in range(3 * MAX_PENDING):  # a burst between two draws keeps the newest
+        display.receive(odom(7.0))
+    assert len(display._pending) == MAX_PENDING

@@ -142,14 +142,15 @@ def test_tf_prefix_places_link_l_at_prefix_slash_l() -> None:
         model = on_loop(viewer, lambda: panel.add("RobotModel", values=values))
         wait_for(lambda: (p := _link_xyz(viewer, "mast", "mast_top")) is not None and np.allclose(p, (0, 0, 1)),
                  what="the mast's top at r1/mast_top")  # fmt: skip
-        wait_for(lambda: model.status.text == "Showing mast", what="its status")
+        # named with the prefix its frames have, as a FILE's robot with --prefix is
+        wait_for(lambda: model.status.text == "Showing r1/mast", what="its status")
         on_loop(viewer, lambda: model.set_option("TF Prefix", "r9"))
         wait_for(lambda: model.status.text == "No transform from [r9/mast_base] to [r1/mast_base]",
                  what="RViz's status for a frame TF lacks")  # fmt: skip
         assert model.status.level is StatusLevel.ERROR
         wait_for(lambda: _link_xyz(viewer, "mast", "mast_top") is None, what="the top not drawn")
         on_loop(viewer, lambda: model.set_option("TF Prefix", "r1/"))
-        wait_for(lambda: model.status.text == "Showing mast", what="drawn again at r1/")
+        wait_for(lambda: model.status.text == "Showing r1/mast", what="drawn again at r1/")
         wait_for(lambda: _link_xyz(viewer, "mast", "mast_top") is not None, what="the top again")
     finally:
         viewer.close()
@@ -223,7 +224,7 @@ def test_a_robot_of_another_process_on_the_zenoh_bus(tmp_path: Path) -> None:
         panel = viewer.displays_panel
         values = {"Description Topic": "/r2/robot_description", "TF Prefix": "r1"}
         model = on_loop(viewer, lambda: panel.add("RobotModel", name="R2", values=values))
-        wait_for(lambda: model.status.text == "Showing planar_3dof", what="the other robot")
+        wait_for(lambda: model.status.text == "Showing r1/planar_3dof", what="the other robot")
         wait_for(lambda: viewer.buffer.can_transform("r1/base_link", "r1/gripper"), what="its TF")
         expected = viewer.buffer.lookup_transform("r1/base_link", "r1/gripper").translation_m
         wait_for(lambda: (p := _link_xyz(viewer, "planar_3dof", "gripper")) is not None and np.allclose(p, expected),

@@ -4,6 +4,7 @@ draw, where, and their statuses."""
 from __future__ import annotations
 
 import struct
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -170,3 +171,88 @@ def test_map_display_texture_placement_and_status() -> None:
     display.receive(bad)
     status = display.draw(lookup_from({}))
     assert status.level.value == "error" and "data size = 1" in status.text
+
+
+class _Folder:
+    """A viser folder handle as far as the Image display uses it."""
+
+    def __init__(self, label: str, **kwargs: object) -> None:
+        self.label, self.removed, self.kwargs = label, False, kwargs
+        self.visible = kwargs.get("visible", True)
+
+    def __enter__(self) -> _Folder:
+        return self
+
+    def __exit__(self, *_exc: object) -> None:
+        return None
+
+    def remove(self) -> None:
+        self.removed = True
+
+
+class _Gui:
+    """The parts of viser's GUI API the Image display's image area uses, recorded."""
+
+    def __init__(self) -> None:
+        self.folders: list[_Folder] = []
+        self.images: list[SimpleNamespace] = []
+
+    def add_folder(self, label: str, **kwargs: object) -> _Folder:
+        self.folders.append(_Folder(label, **kwargs))
+        return self.folders[-1]
+
+    def add_image(self, image: np.ndarray, **_kwargs: object) -> SimpleNamespace:
+        self.images.append(SimpleNamespace(image=image))
+        return self.images[-1]
+
+
+def test_image_display_shows_each_image_on_arrival_at_the_frame_rate(monkeypatch: pytest.MonkeyPatch) -> None:  # fmt: skip
+    """RViz's Image display: its own panel at once (here an image area at the top of the
+    control panel, hidden while disabled), and the newest image at each render of its Frame
+    Rate: on arrival while the rate allows (jitter-bunched arrivals of a camera at the Frame
+    Rate are all shown), else at the next arrival or draw."""
+    from robomodel.viewer.displays import image_display
+
+    now = [100.0]
+    monkeypatch.setattr(image_display.time, "monotonic", lambda: now[0])
+    gui, rate_hz = _Gui(), [30.0]
+    context = fake_context(FakeScene())
+    context.gui, context.frame_rate_hz = gui, lambda: rate_hz[0]
+    display = display_class("Image")("Camera feed", context, {"Topic": "/camera/image"})
+    display.build_dock(gui)
+    (dock,) = gui.folders
+    assert (dock.label, dock.kwargs["order"], dock.kwargs["expand_by_default"], dock.visible) == ("Camera feed", -1000.0, True, True)  # fmt: skip
+    (panel,) = gui.images
+    display.receive(checkerboard())  # no draw needed: shown when it arrives
+    assert display.shown == 1 and panel.image.shape == (320, 320, 3)
+
+    def camera(rate: float, seconds: float, jitter_s: float = 0.0) -> int:
+        """Images shown of a camera at ``rate`` Hz, every other one ``jitter_s`` late."""
+        before, t0 = display.shown, now[0]
+        for k in range(round(rate * seconds)):
+            now[0] = t0 + (k + 1) / rate + (jitter_s if k % 2 else 0.0)
+            display.receive(checkerboard())
+        now[0] = t0 + seconds
+        return display.shown - before
+
+    assert camera(30.0, 2.0, jitter_s=0.025) == 60  # bunched 8 ms apart, all shown
+    # a faster camera: the Frame Rate's 30 a second (and the budget saved before it)
+    assert 60 <= camera(90.0, 2.0) <= 60 + image_display.BURST_FRAMES
+    rate_hz[0] = 10.0  # Global Options > Frame Rate 10
+    assert 30 <= camera(30.0, 3.0) <= 30 + image_display.BURST_FRAMES
+    now[0] += 1.0  # the budget saved: BURST_FRAMES images at once
+    for _ in range(int(image_display.BURST_FRAMES)):
+        display.receive(checkerboard())
+    display.receive(checkerboard("bgr8"))  # the budget spent: waits
+    assert tuple(panel.image[0, 0]) == (255, 0, 0)
+    now[0] += 0.11
+    display.draw(lookup_from({}))  # the next draw shows the newest
+    assert tuple(panel.image[0, 0]) == (0, 0, 255)
+    display.rename("Front")
+    display.set_enabled(False)
+    assert (dock.label, dock.visible) == ("Front", False)
+    shown = display.shown
+    display.receive(checkerboard())
+    assert display.shown == shown  # a disabled display shows nothing
+    display.close()
+    assert dock.removed

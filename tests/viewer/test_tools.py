@@ -176,7 +176,7 @@ def test_steering_sends_zero_once_as_rqt_robot_steering() -> None:
 
 
 def test_plot_window_interpolates_series_on_one_time_axis() -> None:
-    data = PlotData()
+    data = PlotData(lambda: 1000.0)
     t0 = data.start_s
     command = data.add(resolve_field_path("/joint1_position_controller/command/data", TOPICS))
     state = data.add(resolve_field_path("/joint_states/position[0]", TOPICS))
@@ -190,6 +190,31 @@ def test_plot_window_interpolates_series_on_one_time_axis() -> None:
     assert pos.tolist() == pytest.approx([0.0, 0.1, 0.2, 0.3, 0.4])
     x, _, pos = data.window(1.0, t0 + 3.0)  # the moving window: the last second only
     assert x.tolist() == [2.0, 2.5, 3.0]
+
+
+def test_plot_x_is_rqt_plot_s_seconds_since_the_plot_started_on_ros_time() -> None:
+    """rqt_plot: x = (header stamp, else arrival) - the plot's start, on ROS time; Clear keeps
+    the start. A zero stamp or one from another clock (a simulator's stamps beside a wall
+    clock) is placed at its arrival."""
+    clock = [120.0]  # ROS time [s], e.g. simulated seconds under use_sim_time
+    data = PlotData(lambda: clock[0])
+    clock[0] = 130.0  # the series is added ten seconds after the plot started
+    state = data.add(resolve_field_path("/joint_states/position[0]", TOPICS))
+    stamped = JointState(position=[1.0])
+    stamped.header.stamp.sec, stamped.header.stamp.nanosec = 129, 500_000_000
+    data.record(state, stamped)  # arrives at 130, taken at 129.5
+    data.record(state, JointState(position=[2.0]))  # stamp 0: its arrival, 130
+    elsewhere = JointState(position=[3.0])
+    elsewhere.header.stamp.sec = 1_700_000_000  # wall time while the plot runs on sim time
+    clock[0] = 131.0
+    data.record(state, elsewhere)
+    command = data.add(resolve_field_path("/joint1_position_controller/command/data", TOPICS))
+    data.record(command, Float64(5.0))  # no header: its arrival, 131
+    assert list(state.times_s) == [9.5, 10.0, 11.0] and list(command.times_s) == [11.0]
+    x, *_ = data.window(10.0)
+    assert x.tolist() == [11.0]  # from the moment every series has a sample
+    data.clear()
+    assert data.series == [] and data.start_s == 120.0
 
 
 def test_scan_points_drop_invalid_ranges() -> None:

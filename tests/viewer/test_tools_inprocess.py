@@ -199,6 +199,21 @@ def test_the_graph_s_scan_odometry_and_ground_truth_get_displays_in_the_fixed_fr
     wait_for(lambda: len(ground_truth.trail.poses) == 2, what="the ground-truth arrows")
     assert (odometry.option("Shape/Color"), ground_truth.option("Shape/Color")) == (
         "40; 200; 255", "255; 150; 0")  # fmt: skip
+    # RViz's arrow scaled to half the robot's size, so that the trail never hides the robot;
+    # a display the user adds has RViz's 1 m shaft
+    from robomodel.viewer.layout import zero_pose_extent_m
+
+    robot = viewer.sessions[0].robot
+    assert robot is not None
+    half_m = 0.5 * zero_pose_extent_m(robot)
+    for added in (odometry, ground_truth):
+        length_m = added.option("Shape/Shaft Length") + added.option("Shape/Head Length")
+        assert length_m == pytest.approx(half_m)
+        assert added.option("Shape/Head Radius") == pytest.approx(0.1 * half_m / 1.3)
+    assert odometry.node("arrows").head_length == pytest.approx(0.3 * half_m / 1.3)
+    user = on_loop(viewer, lambda: panel.add("Odometry", values={"Topic": "/odom"}))
+    assert (user.option("Shape/Shaft Length"), user.option("Keep")) == (1.0, 100)
+    on_loop(viewer, lambda: panel.remove(panel.rows[-1]))
     # the trails only: no covariance shapes (a diff drive's 1e6 variances span a kilometre)
     assert not odometry.option("Covariance/Value") and not ground_truth.option("Covariance/Value")
     assert not any(key.startswith("covariance") for key in odometry._nodes)

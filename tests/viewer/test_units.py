@@ -67,6 +67,13 @@ def test_cli_rejects_bad_arguments(
     assert result.code == 2 and "one per FILE" in result.err
     result = cli("view", urdf, "--joint-states", "external", "--no-browser")
     assert result.code == 2 and "--bus zenoh" in result.err
+    result = cli("view", "--description-topic", "/r1/robot_description", "--no-browser")
+    assert result.code == 2 and "--bus zenoh" in result.err and result.err.count("\n") == 1
+    result = cli("view", "--description-topic", "/r1/robot_description", "--prefix", "r1/",
+                 "--prefix", "r2/", "--bus", "zenoh", "--no-browser")  # fmt: skip
+    assert result.code == 2 and "1 --description-topic(s); give one per FILE, then per topic" in result.err  # fmt: skip
+    result = cli("view", "name:=value", "--no-browser")
+    assert result.code == 2 and "without a FILE" in result.err
     result = cli("view", "nothere.urdf", "--no-browser", "--port", "0")
     assert result.code == 2 and "no such file" in result.err
     for verb in ("view", "sim"):  # argparse's own usage error: exit 2
@@ -355,3 +362,31 @@ def test_next_big_update_waits_for_pages_to_be_sent_the_previous_one() -> None:
     assert not behind(viewer, 10.1)  # type: ignore[arg-type]
     viewer._last_push_ids = None
     assert not behind(viewer, 10.1)  # type: ignore[arg-type]  # nothing pushed yet
+
+
+def test_view_sources_take_the_prefixes_in_order_files_then_topics() -> None:
+    """``--prefix`` gives each FILE its frame_prefix, then each ``--description-topic``'s robot
+    its TF Prefix; no FILE and no topic is RViz's empty start."""
+    from robomodel.cli.main import build_parser
+    from robomodel.cli.view import _checked_inputs, _robot_sources
+
+    def sources(*argv: str) -> list[tuple[str, str, str | None]]:
+        args = build_parser().parse_args(["view", *argv])
+        return [(s.path, s.prefix, s.topic) for s in _robot_sources(args, *_checked_inputs(args))]
+
+    assert sources() == []
+    assert sources("--bus", "zenoh", "--joint-states", "external") == []
+    assert sources("a.urdf", "--description-topic", "r1/robot_description",
+                   "--description-topic", "/r2/robot_description", "--bus", "zenoh",
+                   "--prefix", "a/", "--prefix", "r1/", "--prefix", "r2/") == [
+        ("a.urdf", "a/", None), ("", "r1/", "/r1/robot_description"),
+        ("", "r2/", "/r2/robot_description")]  # fmt: skip
+
+
+def test_view_without_a_file_serves_an_empty_page_and_says_how_a_robot_comes(
+    cli: Callable[..., ToolResult],
+) -> None:
+    result = cli("view", "--no-browser", "--port", "0", "--duration", "0.5")
+    assert result.code == 0, result.err
+    assert "serving http://" in result.out
+    assert "no FILE: the page starts with no robot; no other process can describe one on --bus inproc" in result.err  # fmt: skip

@@ -2,7 +2,10 @@
 
 ``robomodel view FILE [FILE ...] [name:=value ...] [--prefix P ...]`` expands each
 description, runs robot_state_publisher and joint_state_publisher for it, serves the page on
-loopback, prints the URL and opens a browser; saving a file reloads it in the page.
+loopback, prints the URL and opens a browser; saving a file reloads it in the page. Without a
+FILE the page starts as RViz does, with no robot: the RobotModel displays of the config (or
+those added in the page) bring them; ``--description-topic TOPIC`` (repeatable) draws the robot
+another process describes there.
 ``-d FILE.rviz`` opens an RViz config (a missing one: RViz's defaults and one warning line);
 the page's File folder saves it.
 """
@@ -64,17 +67,21 @@ def _add_description_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--description-topic",
-        default=None,
+        action="append",
+        default=[],
         metavar="TOPIC",
-        help="draw the robot described on TOPIC (RViz's Description Source: Topic; default "
-        "/robot_description when no FILE is given)",
+        help="draw the robot described on TOPIC (RViz's RobotModel with Description Source "
+        "Topic; repeatable, one robot each). Without FILE or TOPIC the page starts with no "
+        "robot, as RViz does: the -d config's RobotModel displays (RViz's defaults: one on "
+        "/robot_description) bring them",
     )
     parser.add_argument(
         "--prefix",
         action="append",
         default=[],
         metavar="P",
-        help="frame_prefix of each FILE, in order (repeatable; verbatim, e.g. robot1/)",
+        help="frame prefix of each FILE, then of each --description-topic's robot (its "
+        "RobotModel's TF Prefix), in order (repeatable; verbatim, e.g. robot1/)",
     )
 
 
@@ -143,41 +150,55 @@ def _rviz_document(args: argparse.Namespace) -> Any:
     return document
 
 
-def _checked_inputs(args: argparse.Namespace) -> tuple[list[str], dict[str, str], str | None]:
-    """The FILEs, their xacro arguments and the description topic (None: none), checked
-    against the options that go with them."""
-    if args.inputs or args.joint_states != "external":
-        files, mappings = split_inputs(args.inputs, "view")
-    else:
-        files, mappings = [], {}
-    if len(args.prefix) > len(files):
+def _checked_inputs(
+    args: argparse.Namespace,
+) -> tuple[list[str], dict[str, str], list[str]]:
+    """The FILEs, their xacro arguments and the description topics, checked against the
+    options that go with them. No FILE and no topic is RViz's empty start: the config's
+    RobotModel displays (RViz's defaults: one on /robot_description), or one added in the
+    page, bring the robots."""
+    inputs = list(args.inputs)
+    files = [item for item in inputs if ":=" not in item]
+    if files:
+        files, mappings = split_inputs(inputs, "view")
+    elif inputs:
         raise RobomodelError(
-            f"{len(args.prefix)} --prefix options for {len(files)} file(s); give one per FILE"
+            f"xacro arguments ({', '.join(inputs)}) without a FILE: give the .urdf or .xacro file"
+        )
+    else:
+        mappings = {}
+    topics = list(args.description_topic)
+    if len(args.prefix) > len(files) + len(topics):
+        raise RobomodelError(
+            f"{len(args.prefix)} --prefix options for {len(files)} file(s) and "
+            f"{len(topics)} --description-topic(s); give one per FILE, then per topic"
         )
     if args.joint_states == "external" and args.bus not in ("zenoh", "ros1"):
         raise RobomodelError(
             "--joint-states external reads /joint_states and /tf from other processes: "
             "add --bus zenoh (ROS 2, robomodel) or --bus ros1 (a ROS 1 master)"
         )
-    topic = args.description_topic or (None if files else "/robot_description")
-    if topic is not None and args.joint_states != "external":
+    if topics and args.bus not in ("zenoh", "ros1"):
         raise RobomodelError(
-            "a description from a topic comes from another process, with its joint states: "
-            "add --bus zenoh --joint-states external (or give a FILE)"
+            "a description from a topic comes from another process, with its /tf: "
+            "add --bus zenoh (ROS 2, robomodel) or --bus ros1 (a ROS 1 master)"
         )
-    return files, mappings, topic
+    return files, mappings, topics
 
 
 def _robot_sources(
-    args: argparse.Namespace, files: list[str], mappings: dict[str, str], topic: str | None
+    args: argparse.Namespace, files: list[str], mappings: dict[str, str], topics: list[str]
 ) -> tuple[RobotSource, ...]:
-    """One :class:`~robomodel.viewer.RobotSource` per FILE (with its prefix), then the topic's."""
+    """One :class:`~robomodel.viewer.RobotSource` per FILE, then one per topic, each with its
+    ``--prefix`` in order: a FILE's frame_prefix, a topic's TF Prefix (the prefix its
+    robot_state_publisher gives the frames, as RViz's RobotModel is told)."""
     from robomodel.viewer import RobotSource
 
-    prefixes = [*args.prefix, *([""] * (len(files) - len(args.prefix)))]
-    sources = [RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=True)]
-    if topic is not None:
-        sources.append(RobotSource("", mappings, "", topic="/" + topic.lstrip("/")))
+    count = len(files) + len(topics)
+    prefixes = [*args.prefix, *([""] * (count - len(args.prefix)))]
+    sources = [RobotSource(f, mappings, p) for f, p in zip(files, prefixes, strict=False)]
+    for topic, prefix in zip(topics, prefixes[len(files) :], strict=True):
+        sources.append(RobotSource("", {}, prefix, topic="/" + topic.strip().lstrip("/")))
     return tuple(sources)
 
 
@@ -198,10 +219,10 @@ def _announce(viewer: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from robomodel.viewer import Viewer, ViewerOptions
 
-    files, mappings, topic = _checked_inputs(args)
+    files, mappings, topics = _checked_inputs(args)
     document = _rviz_document(args)
     options = ViewerOptions(
-        sources=_robot_sources(args, files, mappings, topic),
+        sources=_robot_sources(args, files, mappings, topics),
         host=args.host,
         port=args.port,
         fixed_frame=args.fixed_frame,
@@ -220,6 +241,15 @@ def run(args: argparse.Namespace) -> int:
     try:
         viewer.start()
         _announce(viewer)
+        if not options.sources:
+            where = (
+                "no other process can describe one on --bus inproc: a RobotModel display with "
+                "Description Source File loads a file"
+                if args.bus == "inproc"
+                else "its RobotModel displays load those other processes describe"
+            )
+            print(f"robomodel view: no FILE: the page starts with no robot; {where}",
+                  file=sys.stderr, flush=True)  # fmt: skip
         _report_meshes(viewer)
         if not args.no_browser:
             webbrowser.open(viewer.url)

@@ -141,7 +141,10 @@ class LaunchGui:
             return text
         param = self.request.robot_description_param or "/robot_description"
         if self.params is None or not self.params.has(param):
-            self.log(f"[launch] the viewer has no robot to show: {param} is not set")
+            self.log(
+                f"[launch] {param} is not set: the viewer starts with no robot, as rviz does "
+                "(its RobotModel displays bring them)"
+            )
             return None
         return str(self.params.get(param))
 
@@ -151,9 +154,7 @@ class LaunchGui:
         except ImportError as exc:
             self.log(f"[launch] no viewer: {exc}")
             return
-        robots = self._robots()
-        if not robots:
-            return
+        robots = self._robots()  # none: RViz's empty start
         sources = tuple(self._source(robot, text) for robot, text in robots)
         document = self.shared.rviz  # the rviz node's -d config
         settings = document.settings if document is not None else None

@@ -55,8 +55,8 @@ class Viewer:
     """``robomodel view``: serve the robots on a web page until :meth:`close`."""
 
     def __init__(self, options: ViewerOptions) -> None:
-        if not options.sources:
-            raise RobomodelError("nothing to view: give at least one description file")
+        # No sources is RViz's empty start: a RobotModel display added (or the config's)
+        # brings a robot (robomodel.viewer.topic_robots).
         for source in options.sources:
             if source.topic is None and not os.path.isfile(source.path):
                 raise RobomodelError(f"cannot read '{source.path}': no such file")

@@ -109,7 +109,9 @@ class RobotSession(JointControls):
             if self.robot is not None
             else (self.source.topic or Path(self.source.path).name)
         )
-        return f"{self.prefix}{name}" if self.prefix else name
+        # the prefix its frames have where it is drawn: a topic's robot has its display's
+        prefix = self.frame_prefix
+        return f"{prefix}{name}" if prefix else name
 
     @property
     def description_topic(self) -> str:

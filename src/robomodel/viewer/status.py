@@ -29,6 +29,7 @@ class RobotStatus:
     placed_beside: bool
     pending_meshes: int
     substituted: tuple[tuple[str, str], ...] = ()  # (missing package, link)
+    topic: str = ""  # the description topic of a robot without a file
 
 
 def _short(path: str | None, base_dir: str) -> str:
@@ -78,7 +79,9 @@ def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed:
         parts.append(md("**Fixed Frame** {} does not exist (yet).", code(fixed)))
     for robot in robots:
         base_dir = os.path.dirname(os.path.abspath(robot.path))
-        head = md("**{}** ({})", robot.label, code(os.path.basename(robot.path)))
+        head = md(
+            "**{}** ({})", robot.label, code(os.path.basename(robot.path) or robot.topic)
+        )
         if robot.failure is not None:
             parts.append(
                 md(
@@ -149,6 +152,7 @@ def viewer_status(
                 placed_beside=session.number in beside and len(sessions) > 1,
                 pending_meshes=display.pending_meshes if display is not None else 0,
                 substituted=tuple(display.substituted) if display is not None else (),
+                topic=session.source.topic or "",
             )
         )
     known = fixed_frame in buffer.frames or any(fixed_frame == s.root_frame for s in sessions)

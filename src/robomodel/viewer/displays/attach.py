@@ -61,6 +61,7 @@ def attach_displays(viewer: Any, node: Any) -> DisplaysPanel:
         view_wxyz=_track_view(viewer.server),
         robots=lambda: viewer.sessions,
         clients=lambda: tuple(viewer.server.get_clients().values()),
+        frame_rate_hz=lambda: float(viewer.frame_rate_hz),
     )
     manager = DisplayManager(context, node, viewer.buffer)
     folder = getattr(getattr(viewer, "options_panel", None), "displays_folder", None)

@@ -256,7 +256,11 @@ class Display:
         self.remove_nodes()
 
     def build_panel(self, gui: Any) -> None:
-        """Hook: add page controls inside the display's folder (an image panel)."""
+        """Hook: add page controls inside the display's folder."""
+
+    def build_dock(self, gui: Any) -> None:
+        """Hook: add a panel of the display's own, outside the Displays tree (an image, as
+        RViz docks the Image display's panel beside the 3D view)."""
 
     def close(self) -> None:
         self.remove_nodes()

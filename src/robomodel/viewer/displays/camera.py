@@ -155,6 +155,7 @@ class CameraDisplay(ImageDisplay):
         self._quads.clear()
 
     def on_enabled_changed(self) -> None:
+        super().on_enabled_changed()
         if not self.enabled:
             self._stop_view()
 

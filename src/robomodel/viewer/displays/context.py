@@ -129,6 +129,8 @@ class DisplayContext:
             for the RobotModel display (None: a viewer without robots).
         clients: The connected pages (viser clients), whose cameras the Camera display
             moves (None: no page).
+        frame_rate_hz: RViz's Global Options > Frame Rate (the viewer's), at which the Image
+            display shows new images.
     """
 
     scene: Any
@@ -141,3 +143,4 @@ class DisplayContext:
     view_wxyz: Callable[[], tuple[float, float, float, float] | None] | None = None
     robots: Callable[[], Sequence[Any]] | None = None
     clients: Callable[[], Sequence[Any]] | None = None
+    frame_rate_hz: Callable[[], float] = lambda: 30.0  # RViz's default Frame Rate

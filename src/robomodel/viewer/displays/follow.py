@@ -9,16 +9,39 @@ is (Gazebo's p3d, ``.../ground_truth/odom``), in orange beside the odometry's bl
 odometry drift shows as two trails parting. A topic a display already shows is not added
 again, and a display the user removes stays removed. A config the user opened (``-d``, Open
 Config) is shown as RViz shows it: nothing is added.
+
+The Odometry displays added here keep RViz's Shape (Arrow), Keep (100) and tolerances but not
+its arrow size: RViz's 1.3 m arrows (shaft 1 m, head 0.3 m, head 0.2 m across), one per 0.1 m
+driven, make a fan of cones that hides a small robot such as the course's simplebot. Their
+arrows are RViz's shape scaled to half the smallest robot's size (its links' farthest frame
+from its root with every joint at zero; 0.05 m to 1.3 m), so that the newest arrow, at the
+robot's base, stays within the robot. A display the user adds has RViz's defaults.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-__all__ = ["FOLLOWED", "Followed", "GraphFollower"]
+from robomodel.viewer.layout import zero_pose_extent_m
+
+__all__ = ["FOLLOWED", "Followed", "GraphFollower", "trail_arrow_values"]
+
+# RViz's Odometry arrow (odometry_display.cpp): shaft 1 x 0.05 m, head 0.3 x 0.1 m
+_RVIZ_ARROW_M = {"Shaft Length": 1.0, "Shaft Radius": 0.05, "Head Length": 0.3, "Head Radius": 0.1}
+_RVIZ_ARROW_LENGTH_M = 1.3
+_NO_ROBOT_EXTENT_M = 0.5  # no robot loaded yet
+
+
+def trail_arrow_values(robot_extents_m: Sequence[float]) -> dict[str, float]:
+    """The "Shape/..." sizes of an added Odometry display: RViz's arrow scaled to half the
+    smallest of ``robot_extents_m`` (see the module docstring), never larger than RViz's."""
+    extent = min(robot_extents_m, default=_NO_ROBOT_EXTENT_M)
+    length_m = min(_RVIZ_ARROW_LENGTH_M, max(0.05, 0.5 * extent))
+    scale = length_m / _RVIZ_ARROW_LENGTH_M
+    return {f"Shape/{name}": size * scale for name, size in _RVIZ_ARROW_M.items()}
 
 
 def _is_ground_truth(topic: str) -> bool:
@@ -66,6 +89,11 @@ class GraphFollower:
         self.waiting = list(followed)
         self.added: dict[str, Any] = {}  # name -> the display added
 
+    def _robot_extents_m(self) -> list[float]:
+        robots = self.panel.manager.context.robots
+        sessions = robots() if robots is not None else ()
+        return [zero_pose_extent_m(s.robot) for s in sessions if s.robot is not None]
+
     def stop(self) -> None:
         """Add nothing more (a config was opened)."""
         self.waiting.clear()
@@ -83,6 +111,8 @@ class GraphFollower:
             if any(d.topic in found for d in self.panel.manager.displays):
                 continue  # already shown (by the user or another rule)
             values = {"Topic": found[0], **followed.values}
+            if followed.class_name == "Odometry":
+                values.update(trail_arrow_values(self._robot_extents_m()))
             display = self.panel.add(followed.class_name, name=followed.name, values=values)
             if display is not None:
                 self.added[followed.name] = display

@@ -171,7 +171,12 @@ def image_rgb(
     if enc in _COLOR:
         channels, order = _COLOR[enc]
         pixels = _rows(msg, channels).reshape(h, w, channels)
-        return np.ascontiguousarray(pixels[..., list(order)])
+        # channel by channel: numpy copies an index list or a reversed channel axis 20-50x
+        # slower (10-20 ms for 640x480)
+        rgb = np.empty((h, w, 3), dtype=np.uint8)
+        for k, source in enumerate(order):
+            rgb[..., k] = pixels[..., source]
+        return rgb
     if enc in _MONO8 or enc.startswith("bayer"):
         grey = _rows(msg, 1)
     elif enc in _SCALED:

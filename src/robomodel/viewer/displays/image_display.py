@@ -1,14 +1,24 @@
-"""RViz's Image display: the latest sensor_msgs/Image (or CompressedImage) as a panel image.
+"""RViz's Image display: the latest sensor_msgs/Image (or CompressedImage) in a panel of its own.
 
-RViz 2's Image display (image_display.cpp) shows the image in its own panel, with "Normalize
-Range", "Min Value", "Max Value" and "Median window" for 16-bit and float images; a topic of
-type CompressedImage (image_transport's ``.../compressed``) is decoded as RViz's compressed
-transport would. Only the newest image is converted, when the page is next drawn (10 Hz):
-older ones are skipped, as RViz shows the newest at each render.
+RViz 2's Image display (image_display.cpp) shows the image in its own panel, docked beside the
+3D view as soon as the display is added, with "Normalize Range", "Min Value", "Max Value" and
+"Median window" for 16-bit and float images; a topic of type CompressedImage
+(image_transport's ``.../compressed``) is decoded as RViz's compressed transport would. Here
+the panel is an image area at the top of the page's control panel, expanded, named after the
+display, hidden while the display is disabled (its options stay in the Displays tree).
+
+RViz shows the newest image at each render, at its Frame Rate (Global Options, 30 by
+default): an image is converted and sent when it arrives if the Frame Rate allows one more
+(a budget of one image per frame, of which up to :data:`BURST_FRAMES` may be saved, so that
+images arriving bunched by the network's jitter are all shown while the rate over any second
+stays the Frame Rate); else it waits, and the next arrival or the next draw (10 Hz) shows the
+newest. Older ones are skipped, and viser replaces an image update the page has not taken yet
+by the next one, so a slow page never builds a backlog.
 """
 
 from __future__ import annotations
 
+import time
 from types import MappingProxyType
 from typing import Any, ClassVar
 
@@ -32,7 +42,10 @@ from robomodel.viewer.displays.image import (
 )
 from robomodel.viewer.limits import MAX_IMAGE_PIXELS
 
-__all__ = ["ImageDisplay", "message_rgb"]
+__all__ = ["BURST_FRAMES", "FramePacer", "ImageDisplay", "message_rgb"]
+
+BURST_FRAMES = 3.0  # frames of unused budget kept (see the module docstring)
+_DOCK_ORDER = -1000.0  # viser orders the panel's folders by this: image areas come first
 
 IMAGE_OPTIONS = (
     Option(
@@ -67,9 +80,28 @@ def message_rgb(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -
     return image_rgb(msg, **kwargs)
 
 
+class FramePacer:
+    """At most ``rate_hz`` events a second on average, up to :data:`BURST_FRAMES` at once
+    (a token bucket, refilled at the rate, that starts full)."""
+
+    def __init__(self) -> None:
+        self._budget = BURST_FRAMES
+        self._last_s: float | None = None
+
+    def allow(self, now_s: float, rate_hz: float) -> bool:
+        """Whether an event at ``now_s`` [s, monotonic] fits the rate (and spend it if so)."""
+        if self._last_s is not None:
+            self._budget = min(BURST_FRAMES, self._budget + (now_s - self._last_s) * rate_hz)
+        self._last_s = now_s
+        if self._budget < 1.0:
+            return False
+        self._budget -= 1.0
+        return True
+
+
 @register_display
 class ImageDisplay(Display):
-    """RViz's Image display: the image in the display's folder of the panel."""
+    """RViz's Image display: the image in an image area of its own."""
 
     class_name = "Image"
     message_types = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
@@ -87,6 +119,8 @@ class ImageDisplay(Display):
         self._normalizer = RangeNormalizer()
         self._error = ""
         self._panel_image: Any = None
+        self._dock: Any = None
+        self._pacer = FramePacer()
         self.rgb: NDArray[np.uint8] | None = None  # the image shown
         self.header: Any = None  # the shown image's header
         self.shown = 0  # images converted and shown
@@ -94,14 +128,27 @@ class ImageDisplay(Display):
 
     def on_message(self, msg: Any) -> None:
         self._pending = msg
+        if self.enabled:
+            self.show_pending()
 
-    def build_panel(self, gui: Any) -> None:
+    def build_dock(self, gui: Any) -> None:
         placeholder = np.full((48, 64, 3), 40, dtype=np.uint8)  # RViz's empty texture: dark
-        # JPEG as RViz's image_transport "compressed" would: PNG of a 640x480 camera image
-        # is ~10x larger and slower to encode
-        self._panel_image = gui.add_image(
-            placeholder, label=self.name, format="jpeg", jpeg_quality=90
-        )
+        self._dock = gui.add_folder(self.name, order=_DOCK_ORDER, expand_by_default=True,
+                                    visible=self.enabled)  # fmt: skip
+        with self._dock:
+            # JPEG as RViz's image_transport "compressed" would: PNG of a 640x480 camera
+            # image is ~10x larger and slower to encode
+            self._panel_image = gui.add_image(placeholder, format="jpeg", jpeg_quality=90)
+
+    def on_renamed(self) -> None:
+        super().on_renamed()
+        if self._dock is not None:
+            self._dock.label = self.name
+
+    def on_enabled_changed(self) -> None:
+        super().on_enabled_changed()
+        if self._dock is not None:
+            self._dock.visible = self.enabled
 
     def on_option_changed(self, name: str) -> None:
         if name == "Topic":
@@ -111,9 +158,9 @@ class ImageDisplay(Display):
 
     def close(self) -> None:
         super().close()
-        if self._panel_image is not None:
-            self._panel_image.remove()
-            self._panel_image = None
+        if self._dock is not None:
+            self._dock.remove()
+            self._dock, self._panel_image = None, None
 
     def convert_pending(self) -> bool:
         """Convert the newest image if one came since the last draw; whether one did."""
@@ -131,10 +178,22 @@ class ImageDisplay(Display):
         self._full_rows = int(getattr(msg, "height", 0) or self.rgb.shape[0])
         return True
 
-    def draw(self, lookup: FrameLookup) -> DisplayStatus:
-        if self.convert_pending() and self._panel_image is not None and self.rgb is not None:
+    def show_pending(self) -> bool:
+        """Convert the newest image and send it to the panel if the Frame Rate allows one
+        more now; whether one was shown."""
+        if self._pending is None:
+            return False
+        if not self._pacer.allow(time.monotonic(), float(self.context.frame_rate_hz())):
+            return False
+        if not self.convert_pending() or self.rgb is None:
+            return False
+        if self._panel_image is not None:
             # a small image is shown at its own size: repeat its pixels to fill the panel
             self._panel_image.image = nearest_upscale(self.rgb, min_side=320)
+        return True
+
+    def draw(self, lookup: FrameLookup) -> DisplayStatus:
+        self.show_pending()
         if self._error:
             return DisplayStatus.error(self._error)
         waiting = self.topic_status()

@@ -4,6 +4,10 @@ Each message's pose is placed through TF at its stamp when it arrives and stays 
 within both "Position Tolerance" and "Angle Tolerance" of the last kept one is skipped; the
 oldest arrows go beyond "Keep" (0: all). The shape options sit below "Shape" and the
 covariance's below "Covariance", as RViz 2 saves them.
+
+What is kept is bounded however long the robot drives: Keep arrows (and their covariance
+shapes), one scene node for all the arrows, and at most :data:`MAX_PENDING` messages between
+two draws (the newest; a simulation faster than real time publishes more).
 """
 
 from __future__ import annotations
@@ -28,7 +32,9 @@ from robomodel.viewer.displays.base import (
 )
 from robomodel.viewer.displays.geometry import ArrowTrail, poses_from_msgs
 
-__all__ = ["OdometryDisplay"]
+__all__ = ["MAX_PENDING", "OdometryDisplay"]
+
+MAX_PENDING = 1000  # messages kept between two draws (0.1 s apart): 10 kHz of odometry
 
 
 def _nested(option: Option) -> Option:
@@ -58,7 +64,7 @@ class OdometryDisplay(Display):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.trail = self._new_trail()
-        self._pending: list[Any] = []
+        self._pending: collections.deque[Any] = collections.deque(maxlen=MAX_PENDING)
         self._covariances: collections.deque[str] = collections.deque()
         self._seq = 0
         self._problem = ""
@@ -92,7 +98,7 @@ class OdometryDisplay(Display):
         return values
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
-        pending, self._pending = self._pending, []
+        pending, self._pending = self._pending, collections.deque(maxlen=MAX_PENDING)
         changed = False
         for msg in pending:
             changed |= self._take(msg, lookup)

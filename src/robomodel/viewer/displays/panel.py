@@ -82,6 +82,7 @@ class _Row:
             self.controls = {o.name: self._control(gui, o) for o in display.options}
             display.build_panel(gui)
             self.remove = gui.add_button("Remove", color="red")
+        display.build_dock(gui)  # at the panel's top level, not in the Displays tree
         self.enabled.on_update(lambda _e: post(lambda: display.set_enabled(bool(self.enabled.value))))  # fmt: skip
         self.name.on_update(lambda _e: post(lambda: panel.rename(self, str(self.name.value))))
         self.remove.on_click(lambda _e: post(lambda: panel.remove(self)))
@@ -252,7 +253,10 @@ class DisplaysPanel:
         try:
             assert self.bus is not None
             context = self.manager.node.context
-            graph = self.bus.query(lambda: context.graph(timeout_s=0.5))
+            try:
+                graph = self.bus.query(lambda: context.graph(timeout_s=0.5))
+            except RobomodelError:  # a loop busy for seconds (a loaded machine): next round
+                return
             self.topics = {name: frozenset(info.types) for name, info in graph.topics.items()}
             self._choices = topic_choices(self.topics)
             options = (_CHOOSE, *self._choices)

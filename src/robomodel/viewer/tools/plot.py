@@ -1,16 +1,24 @@
 """Plot (rqt_plot): numeric fields of any topics against time, in a moving window.
 
 Series are added by field path as in rqt_plot (``/joint_states/position[0]``,
-``/joint1_position_controller/state/process_value``); each sample is stamped with the time it
-arrived. The chart is viser's uPlot, redrawn at 10 Hz with every series on one time axis: the
-union of the samples' times, each series interpolated linearly between its own samples, from
-the moment every series has a sample (uPlot needs one x array for all series).
+``/joint1_position_controller/state/process_value``). The x axis is rqt_plot's: seconds since
+the plot started (rqt_plot: its widget's start; here the Plot tool's, with the viewer; Clear
+keeps it, as rqt_plot's Clear does) on ROS time, the viewer node's clock (simulated time under
+``use_sim_time``, as ``rospy.get_time()``). A sample is placed at its message's header stamp
+when it has one (rqt_plot's rosplot.py), else at its arrival. A stamp of zero, or one more than
+:data:`STAMP_TOLERANCE_S` from the clock (a simulator's stamps while the viewer runs on wall
+time), is not on that clock and would put the sample outside every window: such a sample is
+placed at its arrival too.
+
+The chart is viser's uPlot, redrawn at 10 Hz with every series on one time axis: the union of
+the samples' times, each series interpolated linearly between its own samples, from the moment
+every series has a sample (uPlot needs one x array for all series).
 """
 
 from __future__ import annotations
 
 import collections
-import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,7 +32,9 @@ from robomodel.viewer.markup import Markup, code, md, safe_markdown
 from robomodel.viewer.tools.base import ToolContext
 from robomodel.viewer.tools.field_path import FieldPath, field_value, resolve_field_path
 
-__all__ = ["PlotData", "PlotTool", "Series"]
+__all__ = ["STAMP_TOLERANCE_S", "PlotData", "PlotTool", "Series", "sample_time_s"]
+
+STAMP_TOLERANCE_S = 60.0  # a header stamp this far from the clock is on another clock
 
 _COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2")
 _MAX_POINTS = 600  # per redraw: plenty for a panel a few hundred pixels wide
@@ -44,12 +54,32 @@ class Series:
     )
 
 
-class PlotData:
-    """The series and the windowed arrays for the chart."""
+def sample_time_s(msg: Message, arrival_s: float) -> float:
+    """When a sample of ``msg`` arriving at ``arrival_s`` (ROS time [s]) was taken: its header
+    stamp if it has one on the same clock, else ``arrival_s`` (see the module docstring)."""
+    header = getattr(msg, "header", None)
+    stamp = getattr(header, "stamp", None)
+    if stamp is None:
+        return arrival_s
+    sec = getattr(stamp, "sec", getattr(stamp, "secs", 0))
+    nanosec = getattr(stamp, "nanosec", getattr(stamp, "nsecs", 0))
+    stamp_s = int(sec) + int(nanosec) * 1e-9
+    if stamp_s == 0.0 or abs(stamp_s - arrival_s) > STAMP_TOLERANCE_S:
+        return arrival_s
+    return stamp_s
 
-    def __init__(self) -> None:
+
+class PlotData:
+    """The series and the windowed arrays for the chart.
+
+    Args:
+        now_s: The plot's clock: ROS time [s] (the viewer node's).
+    """
+
+    def __init__(self, now_s: Callable[[], float]) -> None:
         self.series: list[Series] = []
-        self.start_s = time.monotonic()
+        self.now_s = now_s
+        self.start_s = now_s()  # x = 0
 
     def add(self, path: FieldPath) -> Series:
         series = Series(path)
@@ -57,18 +87,26 @@ class PlotData:
         return series
 
     def record(self, series: Series, msg: Message, now_s: float | None = None) -> None:
+        """Add ``msg``'s value to ``series``; ``now_s``: its arrival (default: the clock's now)."""
         value = field_value(msg, series.path.steps)
         if value is None:
             return
-        t = (time.monotonic() if now_s is None else now_s) - self.start_s
+        arrival_s = self.now_s() if now_s is None else now_s
+        t = sample_time_s(msg, arrival_s) - self.start_s
+        if series.times_s and t < series.times_s[-1]:
+            t = series.times_s[-1]  # a stamp older than the last sample's: keep time ordered
         series.times_s.append(t)
         series.values.append(value)
+
+    def clear(self) -> None:
+        """Remove every series; the plot's start stays (rqt_plot's Clear)."""
+        self.series = []
 
     def window(
         self, window_s: float, now_s: float | None = None
     ) -> tuple[NDArray[np.float64], ...]:
         """``(x, y_1, ..., y_n)`` over the last ``window_s`` seconds (empty before data)."""
-        now = (time.monotonic() if now_s is None else now_s) - self.start_s
+        now = (self.now_s() if now_s is None else now_s) - self.start_s
         empty = tuple(np.zeros(0) for _ in range(len(self.series) + 1))
         if not self.series or any(not s.times_s for s in self.series):
             return empty
@@ -88,7 +126,8 @@ class PlotTool:
     def __init__(self, tools: ToolContext) -> None:
         self.tools = tools
         gui = tools.server.gui
-        self.data = PlotData()
+        clock = tools.node.get_clock()
+        self.data = PlotData(clock.now_s)
         self._subscriptions: dict[str, Subscription[Any]] = {}
         self.path = gui.add_text("Field", "/joint_states/position[0]", hint="/topic/field[i]")
         add = gui.add_button("Add series")
@@ -122,7 +161,7 @@ class PlotTool:
             return
 
         def on_msg(msg: Message) -> None:
-            now = time.monotonic()
+            now = self.data.now_s()
             for series in self.data.series:
                 if series.path.topic == path.topic:
                     self.data.record(series, msg, now)
@@ -135,7 +174,7 @@ class PlotTool:
         for subscription in self._subscriptions.values():
             subscription.destroy()
         self._subscriptions = {}
-        self.data = PlotData()
+        self.data.clear()
         self._rebuild_chart()
 
     def _rebuild_chart(self) -> None:
