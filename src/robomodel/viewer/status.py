@@ -79,9 +79,7 @@ def render_status(robots: Sequence[RobotStatus], fixed_frame_known: bool, fixed:
         parts.append(md("**Fixed Frame** {} does not exist (yet).", code(fixed)))
     for robot in robots:
         base_dir = os.path.dirname(os.path.abspath(robot.path))
-        head = md(
-            "**{}** ({})", robot.label, code(os.path.basename(robot.path) or robot.topic)
-        )
+        head = md("**{}** ({})", robot.label, code(os.path.basename(robot.path) or robot.topic))
         if robot.failure is not None:
             parts.append(
                 md(
