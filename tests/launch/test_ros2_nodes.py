@@ -14,8 +14,9 @@ from robomodel.errors import RobomodelError
 from robomodel.launch.model import NodeSpec, ParamSource
 from robomodel.launch.nodes.ros2_control import controller_config_text, parse_ros2_spawner_args
 from robomodel.launch.nodes.ros2_nodes import parse_ros2_static_transform_args
-from robomodel.launch.nodes.ros2_params import node_parameters, parameters_from_file
+from robomodel.launch.nodes.ros2_params import node_parameters
 from robomodel.launch.ros2.model import LaunchStep
+from robomodel.runtime.param_files import parameters_from_file
 from tests.conftest import EXAMPLES
 
 ARM = EXAMPLES / "two_link_arm"

@@ -119,7 +119,7 @@ def _spec_from_parameters(node: Node | None, name: str) -> tuple[str | None, dic
     type_name = store.get(f"{name}.type") if store.has(f"{name}.type") else None
     params: dict[str, Any] | None = None
     if store.has(f"{name}.params_file"):
-        from robomodel.launch.nodes.ros2_params import parameters_from_file
+        from robomodel.runtime.param_files import parameters_from_file
 
         files = store.get(f"{name}.params_file")
         params = {}

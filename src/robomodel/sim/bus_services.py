@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import gazebo_msgs as gz
@@ -35,12 +35,49 @@ from robomodel.runtime.msg import std_srvs
 
 if TYPE_CHECKING:
     from robomodel.sim.build.robot import BuiltRobot
-    from robomodel.sim.bus import SimBridge
+    from robomodel.sim.engine import Simulation
+    from robomodel.sim.states import WorldStates
 
-__all__ = ["bridge_services", "find_robot", "rpy_from_quaternion_xyzw", "set_model_state"]
+__all__ = [
+    "ServedBridge",
+    "bridge_services",
+    "find_robot",
+    "rpy_from_quaternion_xyzw",
+    "set_model_state",
+]
 
 
-def find_robot(bridge: SimBridge, model_name: str) -> BuiltRobot:
+class ServedBridge(Protocol):
+    """What gazebo_ros's services use of the :class:`robomodel.sim.bus.SimBridge` that offers
+    them (this module's and :mod:`robomodel.sim.state_services`')."""
+
+    paused: bool
+    pending_steps: int
+
+    @property
+    def sim(self) -> Simulation: ...
+
+    @property
+    def ros_version(self) -> int: ...
+
+    @property
+    def states(self) -> WorldStates: ...
+
+    def model_name(self, built: BuiltRobot) -> str: ...
+
+    def queue(self, action: Callable[[], None]) -> None: ...
+
+    def apply_wrench(
+        self,
+        link: str,
+        prefix: str,
+        force_n: tuple[float, float, float],
+        torque_nm: tuple[float, float, float],
+        duration_s: float | None,
+    ) -> None: ...
+
+
+def find_robot(bridge: ServedBridge, model_name: str) -> BuiltRobot:
     """The robot Gazebo would call ``model_name`` (its URDF name or its prefix)."""
     robots = bridge.sim.robots
     for built in robots:
@@ -69,7 +106,7 @@ def _empty(action: Callable[[], None]) -> Callable[[Any], std_srvs.Empty_Respons
     return handle
 
 
-def _control(bridge: SimBridge, request: rgz.ControlWorld_Request) -> rgz.ControlWorld_Response:
+def _control(bridge: ServedBridge, request: rgz.ControlWorld_Request) -> rgz.ControlWorld_Response:
     """ControlWorld as Gazebo Sim's world control: reset, pause, then step while paused."""
     control = request.world_control
     if control.reset.all or control.reset.time_only or control.reset.model_only:
@@ -85,7 +122,9 @@ def _control(bridge: SimBridge, request: rgz.ControlWorld_Request) -> rgz.Contro
     return rgz.ControlWorld_Response(True)
 
 
-def _wrench(bridge: SimBridge, request: gz.ApplyBodyWrench_Request) -> gz.ApplyBodyWrench_Response:
+def _wrench(
+    bridge: ServedBridge, request: gz.ApplyBodyWrench_Request
+) -> gz.ApplyBodyWrench_Response:
     model, _, link = request.body_name.rpartition("::")
     try:
         built = _robot_named(bridge, model) if model else _robot_with_link(bridge, link)
@@ -110,7 +149,7 @@ def _wrench(bridge: SimBridge, request: gz.ApplyBodyWrench_Request) -> gz.ApplyB
     return gz.ApplyBodyWrench_Response(True, "")
 
 
-def _robot_with_link(bridge: SimBridge, link: str) -> BuiltRobot:
+def _robot_with_link(bridge: ServedBridge, link: str) -> BuiltRobot:
     for built in bridge.sim.robots:
         if any(candidate.name == link for candidate in built.robot.links):
             return built
@@ -118,7 +157,7 @@ def _robot_with_link(bridge: SimBridge, link: str) -> BuiltRobot:
 
 
 def set_model_state(
-    bridge: SimBridge, request: gz.SetModelState_Request
+    bridge: ServedBridge, request: gz.SetModelState_Request
 ) -> gz.SetModelState_Response:
     """Teleport a robot (world frame; the model at rest), by its Gazebo model name, URDF name
     or prefix."""
@@ -138,14 +177,14 @@ def set_model_state(
     return gz.SetModelState_Response(True, "SetModelState: set model state done")
 
 
-def _robot_named(bridge: SimBridge, model_name: str) -> BuiltRobot:
+def _robot_named(bridge: ServedBridge, model_name: str) -> BuiltRobot:
     for built in bridge.sim.robots:
         if bridge.model_name(built) == model_name:
             return built
     return find_robot(bridge, model_name)
 
 
-def bridge_services(bridge: SimBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
+def bridge_services(bridge: ServedBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
     """(name, type, handler) of every service the simulation loop offers."""
 
     def pause() -> None:

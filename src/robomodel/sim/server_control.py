@@ -4,17 +4,47 @@ one compiled scene to the next (see :mod:`robomodel.sim.server`)."""
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
     from robomodel.control import ControlSystem
     from robomodel.control.config import ControllerSpec
     from robomodel.control.manager import ControllerManager
+    from robomodel.runtime.context import Context
+    from robomodel.sim.build.robot import Placement
     from robomodel.sim.engine import Simulation
-    from robomodel.sim.server import SimServer, SpawnedRobot
 
-__all__ = ["Controllers", "carry_state", "namespace_of", "start_control"]
+__all__ = [
+    "ControlledServer",
+    "Controllers",
+    "PlacedRobot",
+    "carry_state",
+    "namespace_of",
+    "start_control",
+]
+
+
+class ControlledServer(Protocol):
+    """What :func:`start_control` uses of the :class:`~robomodel.sim.server.SimServer`: the
+    graph its controller managers join and where their controllers' parameters come from."""
+
+    @property
+    def context(self) -> Context: ...
+
+    @property
+    def spec_source(self) -> Callable[[str, str], ControllerSpec | None] | None: ...
+
+
+class PlacedRobot(Protocol):
+    """What :func:`start_control` reads of a :class:`~robomodel.sim.server.SpawnedRobot`."""
+
+    @property
+    def placement(self) -> Placement: ...
+
+    @property
+    def robot_namespace(self) -> str: ...
 
 
 @dataclass(frozen=True, slots=True)
@@ -26,7 +56,7 @@ class Controllers:
 
 
 def start_control(
-    server: SimServer, sim: Simulation, entry: SpawnedRobot, previous: Controllers | None
+    server: ControlledServer, sim: Simulation, entry: PlacedRobot, previous: Controllers | None
 ) -> ControlSystem | None:
     """The robot's controller manager, as ``gazebo_ros_control`` (ROS 1) or
     ``gazebo_ros2_control`` starts one: only for a robot with the plugin or hardware."""

@@ -10,7 +10,7 @@ with the service type, as gazebo_ros words it), never an exception in the server
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import gazebo_msgs as gz
@@ -19,12 +19,48 @@ from robomodel.runtime.msg.std_msgs import Header
 from robomodel.sim.bus_services import rpy_from_quaternion_xyzw
 
 if TYPE_CHECKING:
-    from robomodel.sim.server import SimServer
+    from robomodel.sim.engine import Simulation
 
-__all__ = ["service_handlers"]
+__all__ = ["WorldServer", "service_handlers"]
 
 Handler = Callable[[Any], Any]
 _ERRORS = (RobomodelError, KeyError, TypeError, ValueError, IndexError)
+
+
+class WorldServer(Protocol):
+    """What the world services use of the :class:`~robomodel.sim.server.SimServer` that offers
+    them."""
+
+    @property
+    def sim(self) -> Simulation | None: ...
+
+    @property
+    def ros_version(self) -> int: ...
+
+    def spawn(
+        self,
+        model_name: str,
+        urdf_xml: str,
+        *,
+        xyz_m: tuple[float, float, float],
+        rpy_rad: tuple[float, float, float],
+        robot_namespace: str,
+    ) -> object: ...
+
+    def spawn_sdf(
+        self,
+        model_name: str,
+        sdf_xml: str,
+        *,
+        xyz_m: tuple[float, float, float],
+        rpy_rad: tuple[float, float, float],
+    ) -> None: ...
+
+    def delete(self, model_name: str) -> None: ...
+
+    def model_names(self) -> list[str]: ...
+
+    def set_joint_positions(self, model_name: str, positions: dict[str, float]) -> None: ...
 
 
 def _pose(pose: Pose) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
@@ -35,7 +71,7 @@ def _pose(pose: Pose) -> tuple[tuple[float, float, float], tuple[float, float, f
 
 
 def _spawn(
-    server: SimServer, name: str, xml: str, robot_namespace: str, pose: Pose, reference: str
+    server: WorldServer, name: str, xml: str, robot_namespace: str, pose: Pose, reference: str
 ) -> tuple[bool, str]:
     if reference not in ("", "world"):
         return False, f"reference_frame '{reference}': only the world frame is supported"
@@ -52,7 +88,7 @@ def _spawn(
     return True, "Successfully spawned entity"
 
 
-def spawn_model(server: SimServer, request: gz.SpawnModel_Request) -> gz.SpawnModel_Response:
+def spawn_model(server: WorldServer, request: gz.SpawnModel_Request) -> gz.SpawnModel_Response:
     """gazebo_ros (ROS 1) ``/gazebo/spawn_urdf_model`` and ``/gazebo/spawn_sdf_model``."""
     ok, message = _spawn(
         server, request.model_name, request.model_xml, request.robot_namespace,
@@ -61,7 +97,7 @@ def spawn_model(server: SimServer, request: gz.SpawnModel_Request) -> gz.SpawnMo
     return gz.SpawnModel_Response(ok, f"SpawnModel: {message}")
 
 
-def spawn_entity(server: SimServer, request: gz.SpawnEntity_Request) -> gz.SpawnEntity_Response:
+def spawn_entity(server: WorldServer, request: gz.SpawnEntity_Request) -> gz.SpawnEntity_Response:
     """gazebo_ros (ROS 2) ``/spawn_entity``."""
     ok, message = _spawn(
         server, request.name, request.xml, request.robot_namespace,
@@ -70,7 +106,7 @@ def spawn_entity(server: SimServer, request: gz.SpawnEntity_Request) -> gz.Spawn
     return gz.SpawnEntity_Response(ok, f"SpawnEntity: {message}")
 
 
-def _delete(server: SimServer, name: str) -> tuple[bool, str]:
+def _delete(server: WorldServer, name: str) -> tuple[bool, str]:
     try:
         server.delete(name)
     except RobomodelError as exc:
@@ -78,18 +114,20 @@ def _delete(server: SimServer, name: str) -> tuple[bool, str]:
     return True, "successfully deleted model"
 
 
-def delete_model(server: SimServer, request: gz.DeleteModel_Request) -> gz.DeleteModel_Response:
+def delete_model(server: WorldServer, request: gz.DeleteModel_Request) -> gz.DeleteModel_Response:
     ok, message = _delete(server, request.model_name)
     return gz.DeleteModel_Response(ok, f"DeleteModel: {message}")
 
 
-def delete_entity(server: SimServer, request: gz.DeleteEntity_Request) -> gz.DeleteEntity_Response:
+def delete_entity(
+    server: WorldServer, request: gz.DeleteEntity_Request
+) -> gz.DeleteEntity_Response:
     ok, message = _delete(server, request.name)
     return gz.DeleteEntity_Response(ok, f"DeleteEntity: {message}")
 
 
 def set_model_configuration(
-    server: SimServer, request: gz.SetModelConfiguration_Request
+    server: WorldServer, request: gz.SetModelConfiguration_Request
 ) -> gz.SetModelConfiguration_Response:
     """gazebo_ros ``/gazebo/set_model_configuration`` (``spawn_model -J``): joint positions."""
     if len(request.joint_names) != len(request.joint_positions):
@@ -104,7 +142,7 @@ def set_model_configuration(
     return gz.SetModelConfiguration_Response(True, "SetModelConfiguration: success")
 
 
-def get_world_properties(server: SimServer, _request: Any) -> gz.GetWorldProperties_Response:
+def get_world_properties(server: WorldServer, _request: Any) -> gz.GetWorldProperties_Response:
     """gazebo_ros ``/gazebo/get_world_properties``: the sim time and the models' names."""
     return gz.GetWorldProperties_Response(
         sim_time=server.sim.time_s if server.sim is not None else 0.0,
@@ -115,7 +153,7 @@ def get_world_properties(server: SimServer, _request: Any) -> gz.GetWorldPropert
     )
 
 
-def get_model_list(server: SimServer, _request: Any) -> gz.GetModelList_Response:
+def get_model_list(server: WorldServer, _request: Any) -> gz.GetModelList_Response:
     """gazebo_ros (ROS 2) ``/get_model_list``."""
     return gz.GetModelList_Response(Header(), server.model_names(), True)
 
@@ -123,7 +161,7 @@ def get_model_list(server: SimServer, _request: Any) -> gz.GetModelList_Response
 _ROS2_ONLY = ("/spawn_entity", "/delete_entity", "/get_model_list")
 
 
-def service_handlers(server: SimServer) -> list[tuple[str, Any, Handler]]:
+def service_handlers(server: WorldServer) -> list[tuple[str, Any, Handler]]:
     """(name, type, handler) of the server's services, in the order they are offered; ROS 2
     gazebo_ros's root-level names only on a ROS 2 graph."""
     handlers = _handlers(server)
@@ -132,7 +170,7 @@ def service_handlers(server: SimServer) -> list[tuple[str, Any, Handler]]:
     return handlers
 
 
-def _handlers(server: SimServer) -> list[tuple[str, Any, Handler]]:
+def _handlers(server: WorldServer) -> list[tuple[str, Any, Handler]]:
     return [
         ("/gazebo/spawn_urdf_model", gz.SpawnModel, lambda r: spawn_model(server, r)),
         ("/gazebo/spawn_sdf_model", gz.SpawnModel, lambda r: spawn_model(server, r)),

@@ -29,7 +29,7 @@ from robomodel.runtime.msg.std_msgs import Header
 from robomodel.sim._mujoco import mujoco
 
 if TYPE_CHECKING:
-    from robomodel.sim.bus import SimBridge
+    from robomodel.sim.bus_services import ServedBridge
     from robomodel.sim.states import Entity, WorldStates
 
 __all__ = ["state_services", "state_topics"]
@@ -43,7 +43,7 @@ def _frame(states: WorldStates, name: str) -> tuple[bool, Entity | None]:
     return (entity is not None or name in _WORLD_FRAMES), entity
 
 
-def get_model_state(bridge: SimBridge, request: gz.GetModelState_Request) -> Any:
+def get_model_state(bridge: ServedBridge, request: gz.GetModelState_Request) -> Any:
     states = bridge.states
     model = states.model(request.model_name)
     if model is None:
@@ -70,7 +70,7 @@ def get_model_state(bridge: SimBridge, request: gz.GetModelState_Request) -> Any
     )
 
 
-def get_link_state(bridge: SimBridge, request: gzs.GetLinkState_Request) -> Any:
+def get_link_state(bridge: ServedBridge, request: gzs.GetLinkState_Request) -> Any:
     states = bridge.states
     link = states.entity(request.link_name)
     if link is None or states.model(request.link_name) is not None:
@@ -91,7 +91,7 @@ def get_link_state(bridge: SimBridge, request: gzs.GetLinkState_Request) -> Any:
     return gzs.GetLinkState_Response(state, True, "GetLinkState: got state")
 
 
-def get_model_properties(bridge: SimBridge, request: gzs.GetModelProperties_Request) -> Any:
+def get_model_properties(bridge: ServedBridge, request: gzs.GetModelProperties_Request) -> Any:
     model = bridge.states.model(request.model_name)
     if model is None:
         return gzs.GetModelProperties_Response(
@@ -107,7 +107,7 @@ def get_model_properties(bridge: SimBridge, request: gzs.GetModelProperties_Requ
     )
 
 
-def set_link_state(bridge: SimBridge, request: gzs.SetLinkState_Request) -> Any:
+def set_link_state(bridge: ServedBridge, request: gzs.SetLinkState_Request) -> Any:
     state = request.link_state
     states = bridge.states
     link = states.entity(state.link_name)
@@ -129,7 +129,7 @@ def set_link_state(bridge: SimBridge, request: gzs.SetLinkState_Request) -> Any:
     return gzs.SetLinkState_Response(True, "SetLinkState: success")
 
 
-def _free_joint(bridge: SimBridge, body: int | None) -> int | None:
+def _free_joint(bridge: ServedBridge, body: int | None) -> int | None:
     """The free joint that places ``body``, if it has one."""
     if body is None:
         return None
@@ -167,7 +167,12 @@ def _in_world(
 
 
 def _place(
-    bridge: SimBridge, joint: int, p: np.ndarray, q_xyzw: np.ndarray, v: np.ndarray, w: np.ndarray
+    bridge: ServedBridge,
+    joint: int,
+    p: np.ndarray,
+    q_xyzw: np.ndarray,
+    v: np.ndarray,
+    w: np.ndarray,
 ) -> None:
     """Put a free body at ``p``, ``q_xyzw`` with world velocities ``v``, ``w``."""
     from robomodel.kinematics.se3 import matrix_from_quat_xyzw
@@ -182,7 +187,7 @@ def _place(
     mj.mj_forward(model, data)
 
 
-def state_services(bridge: SimBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
+def state_services(bridge: ServedBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
     """(name, type, handler) of the state services (the module docstring's table)."""
     return [
         ("/gazebo/get_model_state", gz.GetModelState, lambda r: get_model_state(bridge, r)),
@@ -193,7 +198,7 @@ def state_services(bridge: SimBridge) -> list[tuple[str, Any, Callable[[Any], An
     ]  # fmt: skip
 
 
-def state_topics(bridge: SimBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
+def state_topics(bridge: ServedBridge) -> list[tuple[str, Any, Callable[[Any], Any]]]:
     """(topic, type, callback) of the set_model_state / set_link_state subscribers."""
     from robomodel.sim.bus_services import set_model_state
 

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Sequence, Set
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -14,10 +14,7 @@ from robomodel.description.rigid import IDENTITY_POSE, PoseXyzw, compose_poses
 from robomodel.tf import BufferCore
 from robomodel.tf.exceptions import TransformError
 
-if TYPE_CHECKING:
-    from robomodel.viewer.session import RobotSession
-
-__all__ = ["LinkPoseSolver", "LinkPoses", "append_other_frames"]
+__all__ = ["LinkPoseSolver", "LinkPoses", "StaleFrames", "append_other_frames"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -146,10 +143,18 @@ def _in_fixed_frame(
     return LinkPoses(wxyz, xyz, visible, connected, missing, root_in_tf)
 
 
+class StaleFrames(Protocol):
+    """What :func:`append_other_frames` reads of a robot session: the TF frames its robot no
+    longer has (a reloaded description's old links)."""
+
+    @property
+    def stale_frames(self) -> Set[str]: ...
+
+
 def append_other_frames(
     buffer: BufferCore,
     fixed_frame: str,
-    sessions: Sequence[RobotSession],
+    sessions: Sequence[StaleFrames],
     frames: list[str],
     wxyzs: list[np.ndarray],
     xyzs: list[np.ndarray],

@@ -164,7 +164,7 @@ def spawner_param_files(spec: NodeSpec, options: Ros2SpawnerArgs) -> tuple[str, 
 def _files_for(files: tuple[str, ...], fqn: str) -> tuple[str, ...]:
     """The files with parameters for controller ``fqn`` (its name, ``/ns/name``, a ``/**``
     wildcard), as Jazzy's ``get_params_files_with_controller_parameters`` picks them."""
-    from robomodel.launch.nodes.ros2_params import parameters_from_file
+    from robomodel.runtime.param_files import parameters_from_file
 
     return tuple(f for f in files if parameters_from_file(Path(f), fqn))
 

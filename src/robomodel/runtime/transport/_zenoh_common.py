@@ -7,12 +7,20 @@ import functools
 import logging
 import threading
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.errors import MissingDependencyError
 
+if TYPE_CHECKING:
+    from robomodel.runtime.executor import Executor
+    from robomodel.runtime.msg import Message
+    from robomodel.runtime.msg._schema import Service
+    from robomodel.runtime.transport.base import Endpoint
+    from robomodel.runtime.transport.rmw_zenoh import EntityKind, EntityToken
+
 __all__ = [
     "CLOSE_TIMEOUT_S",
+    "ZenohSessionOwner",
     "close_session",
     "direct",
     "import_zenoh",
@@ -22,6 +30,26 @@ __all__ = [
 ]
 
 log = logging.getLogger("robomodel.runtime")
+
+
+class ZenohSessionOwner(Protocol):
+    """What the transport's publishers, subscriptions and services use of the
+    :class:`~robomodel.runtime.transport.zenoh_bus.ZenohTransport` that makes them: its Zenoh
+    session, executor, key and token naming and its once-only warnings."""
+
+    @property
+    def session(self) -> Any: ...
+
+    @property
+    def executor(self) -> Executor: ...
+
+    def data_key(self, name: str, kind: type[Message] | type[Service]) -> str: ...
+
+    def entity_token(
+        self, endpoint: Endpoint, kind: EntityKind, type_: type[Message] | type[Service]
+    ) -> EntityToken: ...
+
+    def warn_once(self, key: tuple[str, ...], fmt: str, *args: object) -> None: ...
 
 
 def import_zenoh() -> Any:

@@ -23,14 +23,20 @@ import collections
 import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import CDRError, Message
 from robomodel.runtime.msg.cdr import payload_decoder, payload_encoder
 from robomodel.runtime.qos import Durability, History, Reliability
 from robomodel.runtime.transport._attachment import SequenceTracker
-from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
+from robomodel.runtime.transport._zenoh_common import (
+    ZenohSessionOwner,
+    direct,
+    import_zenoh,
+    log,
+    undeclare_all,
+)
 from robomodel.runtime.transport.base import (
     Endpoint,
     MessageInfo,
@@ -45,11 +51,18 @@ from robomodel.runtime.transport.rmw_zenoh import (
 )
 
 if TYPE_CHECKING:
-    from robomodel.runtime.transport.zenoh_bus import ZenohTransport
+    from robomodel.runtime.transport._zenoh_graph import GraphCache
 
-__all__ = ["ZenohPublisher", "ZenohSubscription"]
+__all__ = ["EndpointOwner", "ZenohPublisher", "ZenohSubscription"]
 
 HEARTBEAT_PERIOD_S = 0.5  # SAMPLE_MISS_DETECTION_HEARTBEAT_PERIOD
+
+
+class EndpointOwner(ZenohSessionOwner, Protocol):
+    """The transport as its publishers see it: also the graph cache they count matches in."""
+
+    @property
+    def graph_cache(self) -> GraphCache: ...
 
 
 def _reliability(zenoh: Any, endpoint: Endpoint) -> Any:
@@ -58,7 +71,7 @@ def _reliability(zenoh: Any, endpoint: Endpoint) -> Any:
 
 
 class ZenohPublisher(PublisherHandle):
-    def __init__(self, bus: ZenohTransport, endpoint: Endpoint, msg_type: type[Message]) -> None:
+    def __init__(self, bus: EndpointOwner, endpoint: Endpoint, msg_type: type[Message]) -> None:
         zenoh = import_zenoh()
         self._type = msg_type
         self._endpoint = endpoint
@@ -129,7 +142,7 @@ class ZenohPublisher(PublisherHandle):
 class ZenohSubscription(SubscriptionHandle):
     def __init__(
         self,
-        bus: ZenohTransport,
+        bus: EndpointOwner,
         endpoint: Endpoint,
         msg_type: type[Message],
         deliver: Callable[[Message], None] | None,

@@ -18,13 +18,19 @@ from __future__ import annotations
 import itertools
 import threading
 import time
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
 from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.cdr import prepare
 from robomodel.runtime.transport._failures import log_failure
-from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
+from robomodel.runtime.transport._zenoh_common import (
+    ZenohSessionOwner,
+    direct,
+    import_zenoh,
+    log,
+    undeclare_all,
+)
 from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
@@ -39,16 +45,19 @@ from robomodel.runtime.transport.rmw_zenoh import (
     parse_attachment,
 )
 
-if TYPE_CHECKING:
-    from robomodel.runtime.transport.zenoh_bus import ZenohTransport
+__all__ = ["ServiceClient", "ServiceOwner", "ZenohService"]
 
-__all__ = ["ServiceClient", "ZenohService"]
+
+class ServiceOwner(ZenohSessionOwner, Protocol):
+    """The transport as its services see it: also told when a service is destroyed."""
+
+    def forget_service(self, service: ZenohService) -> None: ...
 
 
 class ZenohService(ServiceHandle):
     def __init__(
         self,
-        bus: ZenohTransport,
+        bus: ServiceOwner,
         endpoint: Endpoint,
         srv_type: type[Service],
         handler: ServiceHandler,
@@ -127,7 +136,7 @@ class ServiceClient:
     entity ``SC`` token (``liveliness_utils.cpp``, ``Entity::make``) and the GID that every
     request's attachment carries is derived from that token (``Entity::copy_gid``)."""
 
-    def __init__(self, bus: ZenohTransport, name: str, srv_type: type[Service], node: str) -> None:
+    def __init__(self, bus: ServiceOwner, name: str, srv_type: type[Service], node: str) -> None:
         self._bus = bus
         self.name = name
         self.srv_type = srv_type

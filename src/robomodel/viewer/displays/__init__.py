@@ -6,9 +6,6 @@ type is one new module with a :func:`register_display` class (no list to edit).
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
-
 from robomodel.viewer.displays.base import (
     Display,
     DisplayContext,
@@ -24,6 +21,7 @@ from robomodel.viewer.displays.base import (
     display_class,
     display_classes,
     is_rviz_display,
+    load_builtin_displays,
     register_display,
     stamp_ns,
 )
@@ -47,16 +45,3 @@ __all__ = [
     "register_display",
     "stamp_ns",
 ]
-
-_LOADED: list[bool] = []
-_NOT_DISPLAYS = ("attach", "base", "manager", "options", "panel", "rviz_io")
-
-
-def load_builtin_displays() -> None:
-    """Import every display module of this package once (each registers its classes)."""
-    if _LOADED:
-        return
-    _LOADED.append(True)
-    for info in pkgutil.iter_modules(__path__):
-        if not info.name.startswith("_") and info.name not in _NOT_DISPLAYS:
-            importlib.import_module(f"{__name__}.{info.name}")

@@ -30,8 +30,11 @@ The contract, for anyone writing a display type:
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
 import re
 from collections.abc import Callable, Mapping
+from pathlib import Path
 from types import MappingProxyType
 from typing import Any, ClassVar, TypeVar
 
@@ -65,6 +68,7 @@ __all__ = [
     "display_class",
     "display_classes",
     "is_rviz_display",
+    "load_builtin_displays",
     "register_display",
     "stamp_ns",
 ]
@@ -280,10 +284,23 @@ def register_display(cls: D) -> D:
     return cls
 
 
+_LOADED: list[bool] = []
+_NOT_DISPLAYS = ("attach", "base", "manager", "options", "panel", "rviz_io")
+
+
+def load_builtin_displays() -> None:
+    """Import every display module of this package once (each registers its classes)."""
+    if _LOADED:
+        return
+    _LOADED.append(True)
+    package = __name__.rpartition(".")[0]
+    for info in pkgutil.iter_modules([str(Path(__file__).parent)]):
+        if not info.name.startswith("_") and info.name not in _NOT_DISPLAYS:
+            importlib.import_module(f"{package}.{info.name}")
+
+
 def display_classes() -> Mapping[str, type[Display]]:
     """Every registered display class by ``class_name`` (the package's modules loaded)."""
-    from robomodel.viewer.displays import load_builtin_displays
-
     load_builtin_displays()
     return MappingProxyType(dict(sorted(_REGISTRY.items())))
 
