@@ -22,7 +22,7 @@ from robomodel.kinematics.fk import SinglePlan, fk_batch, fk_single, make_single
 from robomodel.kinematics.jacobian import JacobianFrame, jacobian_batch, jacobian_single, to_frame
 
 if TYPE_CHECKING:
-    from typing import Unpack
+    from typing_extensions import Unpack
 
     from robomodel.kinematics.dynamics import Dynamics
     from robomodel.kinematics.ik import IKBatchResult, IKResult, Solver
