@@ -38,7 +38,7 @@ MARKERS: dict[str, str] = {
     "ros1": "runs a ROS 1 graph: a master (ours or Debian's rosmaster) and its nodes",
     "bus": "opens Zenoh sessions: talks to the run's router or to other processes",
     "process": "starts processes (the robomodel CLI, reference tools, routers, launches)",
-    "sim": "steps the MuJoCo simulator",
+    "sim": "the simulator's tests (tests/sim): MuJoCo stepped, rendered and driven",
 }
 
 # Fixtures that take a test out of the process, by where they are defined (the folder of the
