@@ -10,7 +10,7 @@ STAMP := $(VENV)/.installed
 SDK_VENV := .venv-ros2sdk
 SDK_STAMP := $(SDK_VENV)/.installed
 
-.PHONY: demo test docs bench lint typecheck clean wheel-smoke
+.PHONY: demo test test-fast docs bench lint typecheck clean wheel-smoke
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -45,6 +45,14 @@ wheel-smoke:
 	PYTHON=$(PYTHON) tools/system-deps test
 	$(MAKE) --no-print-directory $(STAMP)
 	$(BIN)/python tools/wheel_smoke.py
+
+# The in-process tier: the tests that start no process, browser, ROS 1 graph, Zenoh session or
+# simulator (their markers are set by tests/conftest.py, see tests/tiers.py), and are not slow
+# (the long property-based and corpus tests). About a minute on 2 cores.
+FAST_TIER := not (browser or ros1 or bus or process or sim or slow)
+
+test-fast: $(STAMP)
+	$(BIN)/python -m pytest -q -n 2 -m "$(FAST_TIER)" tests
 
 # The documentation site, strict (a broken link or a missing page fails). Its screenshots are the
 # browser tests', committed in docs/assets/: tools/docs_screenshots takes and copies missing ones.

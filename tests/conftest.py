@@ -20,6 +20,7 @@ import pytest
 from hypothesis import settings
 
 from robomodel.cli.main import main
+from tests.tiers import MARKERS, child_pids, in_process_only, tiers_of
 from tests.timing import scaled
 
 # No per-example deadline: timing belongs in bench/, and a loaded CI machine must not fail tests.
@@ -67,6 +68,8 @@ def pytest_configure(config: pytest.Config) -> None:
     of a test becomes the router and takes it along when it exits (tested on its own port in
     tests/runtime/test_zenoh_router.py)."""
     global _ROUTER
+    for name, description in MARKERS.items():
+        config.addinivalue_line("markers", f"{name}: {description}")
     # robomodel's verbs take the ROS 1 bus when ROS_MASTER_URI is set: tests that want it set
     # it for their own processes (tests/ros1wire)
     os.environ.pop("ROS_MASTER_URI", None)
@@ -88,6 +91,32 @@ def pytest_configure(config: pytest.Config) -> None:
         if _listening(7447):
             return
         time.sleep(0.05)
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark each test with the tiers it belongs to (tests/tiers.py): from the fixtures of its
+    closure, and from PATH_TIERS for one that starts its processes itself."""
+    for item in items:
+        defs = getattr(item, "_fixtureinfo", None)
+        fixtures = [
+            (definitions[-1].baseid, name)
+            for name, definitions in (defs.name2fixturedefs.items() if defs else ())
+            if definitions
+        ]
+        for marker in sorted(tiers_of(item.nodeid, fixtures)):
+            item.add_marker(marker)
+
+
+@pytest.fixture(autouse=True)
+def _in_process_tier_stays_in_process(request: pytest.FixtureRequest) -> Iterator[None]:
+    """A test with none of the tier markers (``make test-fast`` runs those) starts no process,
+    opens no Zenoh session and binds no socket beyond loopback; one that does fails, naming the
+    marker it lacks."""
+    if any(request.node.get_closest_marker(name) for name in MARKERS):
+        yield
+        return
+    with in_process_only(request.node.nodeid):
+        yield
 
 
 def pytest_report_header(config: pytest.Config) -> str:
@@ -276,19 +305,12 @@ def end_process(
 
 def _children() -> dict[int, str]:
     """The live (not zombie) child processes of this process: pid -> command line."""
-    me = str(os.getpid())
     found: dict[int, str] = {}
-    for entry in os.scandir("/proc"):
-        if not entry.name.isdigit():
-            continue
+    for pid in child_pids():
         try:
-            with open(f"/proc/{entry.name}/stat", "rb") as stat:
-                fields = stat.read().rsplit(b")", 1)[1].split()
-            if fields[1].decode() != me or fields[0] == b"Z":
-                continue
-            with open(f"/proc/{entry.name}/cmdline", "rb") as cmdline:
-                found[int(entry.name)] = cmdline.read().replace(b"\0", b" ").decode().strip()
-        except (OSError, IndexError):
+            with open(f"/proc/{pid}/cmdline", "rb") as cmdline:
+                found[pid] = cmdline.read().replace(b"\0", b" ").decode().strip()
+        except OSError:
             continue
     return found
 

@@ -10,15 +10,19 @@ runner, a laptop building something else, ``taskset -c 0``). The factor is
   what a process pinned to one busy core sees), kept between 1 and ``MAX_SCALE``.
 
 A timeout only bounds how long a failing test waits: scaling it up never makes a passing test
-slower, because each test waits for a condition, not for the time.
+slower, because each test waits for a condition, not for the time: :func:`wait_until` is how.
 """
 
 from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
+from typing import TypeVar
 
-__all__ = ["ENVIRONMENT_VARIABLE", "MAX_SCALE", "scale", "scale_source", "scaled"]
+__all__ = ["ENVIRONMENT_VARIABLE", "MAX_SCALE", "scale", "scale_source", "scaled", "wait_until"]
+
+T = TypeVar("T")
 
 ENVIRONMENT_VARIABLE = "ROBOMODEL_TEST_TIMEOUT_SCALE"
 MAX_SCALE = 20.0
@@ -84,3 +88,30 @@ def scale_source() -> str:
 def scaled(seconds: float) -> float:
     """``seconds`` times the machine's timeout factor."""
     return seconds * scale()
+
+
+def wait_until(
+    predicate: Callable[[], T],
+    timeout_s: float,
+    *,
+    what: str | Callable[[], str],
+    interval_s: float = 0.05,
+) -> T:
+    """Call ``predicate`` until it returns a true value, and return that value.
+
+    Fails with an ``AssertionError`` naming ``what`` (a callable is asked only then, so the
+    message can show what the test saw last) after ``scaled(timeout_s)``. ``predicate`` is
+    called once more at the deadline, so a slow last call still counts; it may raise to stop
+    the wait early (a process it waits on has ended). ``interval_s`` is the pause between
+    calls, not scaled: it sets how soon the condition is seen, not how long a test may take.
+    """
+    limit_s = scaled(timeout_s)
+    deadline = time.monotonic() + limit_s
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            label = what() if callable(what) else what
+            raise AssertionError(f"timed out after {limit_s:.1f} s waiting for {label}")
+        time.sleep(interval_s)

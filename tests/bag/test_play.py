@@ -11,20 +11,19 @@ from robomodel.bag import open_bag
 from robomodel.runtime import Context
 from robomodel.runtime.msg import JointState, deserialize, message_to_yaml
 from tests.conftest import ROBOMODEL, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 from .conftest import Talker, run_cli, stop
 
 
 def _wait_subscribed(domain: str, topic: str, timeout_s: float = 15) -> None:
     with Context("zenoh", domain_id=int(domain)) as context:
-        deadline = time.monotonic() + scaled(timeout_s)
-        while time.monotonic() < deadline:
+
+        def subscribed() -> bool:
             info = context.graph(timeout_s=scaled(0.3)).topics.get(topic)
-            if info is not None and info.subscribers:
-                return
-            time.sleep(0.1)
-    raise AssertionError(f"no subscriber on {topic}")
+            return info is not None and bool(info.subscribers)
+
+        wait_until(subscribed, timeout_s, what=f"a subscriber on {topic}", interval_s=0.1)
 
 
 def test_play_reproduces_the_joint_states_seen_by_echo(tmp_path: Path) -> None:

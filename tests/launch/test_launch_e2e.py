@@ -17,7 +17,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES, ROBOMODEL, end_process, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 pytest.importorskip("zenoh")
 
@@ -43,14 +43,17 @@ def _launch(domain: str, *argv: str, log: Path) -> Iterator[subprocess.Popen[str
 
 
 def _wait_for_line(log: Path, text: str, proc: subprocess.Popen[str], timeout_s: float) -> None:
-    timeout_s = scaled(timeout_s)
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
+    """Until the launch writes ``text`` to ``log``; fails at once when it has ended."""
+
+    def printed() -> bool:
         if text in log.read_text():
-            return
+            return True
         assert proc.poll() is None, f"launch ended early:\n{log.read_text()}"
-        time.sleep(0.2)
-    raise AssertionError(f"'{text}' not printed in {timeout_s:.0f} s:\n{log.read_text()}")
+        return False
+
+    wait_until(
+        printed, timeout_s, what=lambda: f"'{text}' printed:\n{log.read_text()}", interval_s=0.2
+    )
 
 
 def _cli(domain: str, *argv: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:

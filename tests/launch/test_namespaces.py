@@ -10,10 +10,7 @@ from __future__ import annotations
 
 import math
 import threading
-import time
-from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 import pytest
 
@@ -21,7 +18,7 @@ from robomodel.launch.ros2 import load_launch
 from robomodel.launch.runner import LaunchRunner, RunOptions
 from robomodel.runtime.msg import TFMessage
 from tests.conftest import unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -90,14 +87,6 @@ def _package(tmp_path: Path) -> Path:
     return launch
 
 
-def _wait(condition: Callable[[], Any], what: str, timeout_s: float = 30.0) -> None:
-    timeout_s = scaled(timeout_s)
-    deadline = time.monotonic() + timeout_s
-    while not condition():
-        assert time.monotonic() < deadline, f"{what}: not within {timeout_s:.0f} s"
-        time.sleep(0.05)
-
-
 class _Run:
     """A launch run in this process on the in-process bus, with a /tf listener."""
 
@@ -147,7 +136,7 @@ class _Run:
 def test_one_robot_in_a_namespace(tmp_path: Path, gui: str) -> None:
     run = _Run(_package(tmp_path) / "one.launch.py", {"robot_name": "r1", "gui": gui})
     try:
-        _wait(lambda: "r1/link_1" in run.frames(), "r1/link_1 on /tf")
+        wait_until(lambda: "r1/link_1" in run.frames(), 30, what="r1/link_1 on /tf")
         topics = run.publishers()
         assert topics["/r1/joint_states"] == {f"/r1/{gui}"}
         assert "/joint_states" not in topics  # nothing on the global topic
@@ -161,7 +150,9 @@ def test_one_robot_in_a_namespace(tmp_path: Path, gui: str) -> None:
 def test_two_robots_r1_and_r2(tmp_path: Path) -> None:
     run = _Run(_package(tmp_path) / "two.launch.py", {})
     try:
-        _wait(lambda: {"r1/link_1", "r2/link_1"} <= run.frames(), "both robots on /tf")
+        wait_until(
+            lambda: {"r1/link_1", "r2/link_1"} <= run.frames(), 30, what="both robots on /tf"
+        )
         topics = run.publishers()
         assert topics["/r1/joint_states"] == {"/r1/joint_state_publisher_gui"}
         assert topics["/r2/joint_states"] == {"/r2/joint_state_publisher_gui"}
@@ -191,15 +182,18 @@ def test_the_viewer_sliders_move_the_robot_of_their_namespace(tmp_path: Path) ->
                 f"{ns[1:]}/link_1",
                 f"{ns[1:]}/link_2",
             )
-        _wait(
+        wait_until(
             lambda: run.publishers().get("/r2/joint_states") == {"/r2/joint_state_publisher"},
-            "the viewer's r2 sliders on /r2/joint_states",
+            30,
+            what="the viewer's r2 sliders on /r2/joint_states",
         )
         sessions["/r2"].jsp.set_positions({"joint_1": 1.0})
         sessions["/r2"].jsp.publish_now()
-        _wait(lambda: abs((run.angle("r2/link_1") or 0.0) - 1.0) < 1e-6, "r2/link_1 at 1 rad")
+        wait_until(
+            lambda: abs((run.angle("r2/link_1") or 0.0) - 1.0) < 1e-6, 30, what="r2/link_1 at 1 rad"
+        )
         # r1's publisher may not have sent its first /tf yet on a busy machine
-        _wait(lambda: run.angle("r1/link_1") is not None, "r1/link_1 on /tf")
+        wait_until(lambda: run.angle("r1/link_1") is not None, 30, what="r1/link_1 on /tf")
         assert run.angle("r1/link_1") == pytest.approx(0.0)
     finally:
         run.close()

@@ -16,7 +16,7 @@ import pytest
 
 from robomodel.launch.processes import CommandError, end_group, run_bounded
 from tests.conftest import ROBOMODEL
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 
 def _alive(marker: str) -> list[str]:
@@ -24,18 +24,12 @@ def _alive(marker: str) -> list[str]:
     return found.stdout.split()
 
 
-def _wait_gone(marker: str, timeout_s: float = 10.0) -> bool:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while _alive(marker) and time.monotonic() < deadline:
-        time.sleep(0.1)
+def _gone(marker: str) -> bool:
     return not _alive(marker)
 
 
-def _wait_alive(marker: str, count: int, timeout_s: float = 30.0) -> None:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while len(_alive(marker)) < count:
-        assert time.monotonic() < deadline, f"{marker} did not start"
-        time.sleep(0.1)
+def _started(marker: str) -> bool:
+    return bool(_alive(marker))
 
 
 def _seconds() -> str:
@@ -46,19 +40,20 @@ def _seconds() -> str:
 def test_end_group_ends_background_children_too() -> None:
     a, b = _seconds(), _seconds()
     proc = subprocess.Popen(["sh", "-c", f"sleep {a} & sleep {b}"], start_new_session=True)
-    _wait_alive(f"sleep {a}", 1)
-    _wait_alive(f"sleep {b}", 1)
+    wait_until(lambda: _started(f"sleep {a}"), 30, what=f"sleep {a} to start", interval_s=0.1)
+    wait_until(lambda: _started(f"sleep {b}"), 30, what=f"sleep {b} to start", interval_s=0.1)
     # the SIGINT window is expected to expire (the background sleep ignores SIGINT): not scaled
     end_group(proc, sigint_timeout_s=5, sigterm_timeout_s=2)
     # the background sleep ignores SIGINT (a non-interactive shell's background job): SIGTERM
-    assert _wait_gone(f"sleep {a}") and _wait_gone(f"sleep {b}")
+    wait_until(lambda: _gone(f"sleep {a}"), 10, what=f"sleep {a} to end", interval_s=0.1)
+    wait_until(lambda: _gone(f"sleep {b}"), 10, what=f"sleep {b} to end", interval_s=0.1)
 
 
 def test_run_bounded_kills_the_tree_on_timeout() -> None:
     a = _seconds()
     with pytest.raises(CommandError, match=r"did not finish within 0\.3 s"):
         run_bounded(["sh", "-c", f"sleep {a} & sleep {a}; echo done"], timeout_s=0.3)
-    assert _wait_gone(f"sleep {a}")
+    wait_until(lambda: _gone(f"sleep {a}"), 10, what=f"sleep {a} to end", interval_s=0.1)
 
 
 def _ros2_launch(tmp_path: Path, a: str, b: str) -> Path:
@@ -78,12 +73,13 @@ def test_launch_ends_its_childrens_groups(tmp_path: Path, how: str) -> None:
     argv += ["--bus", "inproc"] + (["--duration", "3"] if how == "duration" else [])
     proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     try:
-        _wait_alive(f"sleep {a}", 1)
+        wait_until(lambda: _started(f"sleep {a}"), 30, what=f"sleep {a} to start", interval_s=0.1)
         if how != "duration":
             proc.send_signal(getattr(signal, how))
         _, err = proc.communicate(timeout=scaled(30))
         assert "Traceback" not in err
-        assert _wait_gone(f"sleep {a}") and _wait_gone(f"sleep {b}"), "children left running"
+        wait_until(lambda: _gone(f"sleep {a}"), 10, what=f"child sleep {a} to end", interval_s=0.1)
+        wait_until(lambda: _gone(f"sleep {b}"), 10, what=f"child sleep {b} to end", interval_s=0.1)
     finally:
         proc.kill()
         proc.wait()
@@ -102,11 +98,11 @@ def test_sigterm_during_a_param_command_ends_the_command_tree(tmp_path: Path) ->
         text=True,
     )
     try:
-        _wait_alive(f"sleep {a}", 1)
+        wait_until(lambda: _started(f"sleep {a}"), 30, what=f"sleep {a} to start", interval_s=0.1)
         proc.terminate()
         _, err = proc.communicate(timeout=scaled(20))
         assert proc.returncode == 143 and "Traceback" not in err
-        assert _wait_gone(f"sleep {a}")
+        wait_until(lambda: _gone(f"sleep {a}"), 10, what=f"sleep {a} to end", interval_s=0.1)
     finally:
         proc.kill()
         proc.wait()

@@ -8,7 +8,6 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
-import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
@@ -16,7 +15,7 @@ import pytest
 import yaml
 
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 ARM = EXAMPLES / "two_link_arm"
 
@@ -55,11 +54,8 @@ class _Bus:
             return False
 
     def until(self, check: Callable[[], bool], what: str, timeout_s: float = 120) -> None:
-        timeout_s = scaled(timeout_s)
-        deadline = time.monotonic() + timeout_s
-        while not check():
-            assert time.monotonic() < deadline, f"{what}: not within {timeout_s:.0f} s"
-            time.sleep(0.3)
+        """``wait_until`` at the pace of a CLI call (``timeout_s`` is scaled)."""
+        wait_until(check, timeout_s, what=what, interval_s=0.3)
 
 
 @pytest.fixture

@@ -8,7 +8,6 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -16,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import EXAMPLES, ROBOMODEL, end_process, free_port
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 ROSCORE = "/usr/bin/roscore"
 
@@ -76,12 +75,9 @@ class Ros1:
             list(argv), capture_output=True, text=True, env=self.env, timeout=timeout, cwd=cwd
         )
 
-    def until(self, check: Callable[[], bool], what: str, timeout_s: float | None = None) -> None:
-        timeout_s = scaled(60) if timeout_s is None else timeout_s
-        deadline = time.monotonic() + timeout_s
-        while not check():
-            assert time.monotonic() < deadline, f"{what}: not within {timeout_s} s"
-            time.sleep(0.3)
+    def until(self, check: Callable[[], bool], what: str, timeout_s: float = 60.0) -> None:
+        """``wait_until`` at the pace of a ROS 1 tool's call (``timeout_s`` is scaled)."""
+        wait_until(check, timeout_s, what=what, interval_s=0.3)
 
     def roscore(self) -> subprocess.Popen[str]:
         proc = self.start([ROSCORE, "-p", str(self.port)])

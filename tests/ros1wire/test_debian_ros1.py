@@ -164,7 +164,7 @@ def _receive_after_recorder_joined(ros1: Ros1, topic: str, msg_type: Any, count:
             t == topic and any(n.startswith("/record") for n in nodes) for t, nodes in subscribers
         )
 
-    ros1.until(recorder_subscribed, "rosbag record subscribed", timeout_s=scaled(60))
+    ros1.until(recorder_subscribed, "rosbag record subscribed", timeout_s=60)
     got: list[object] = []
     os.environ["ROS_IP"] = "127.0.0.1"
     try:

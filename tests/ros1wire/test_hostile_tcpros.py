@@ -14,9 +14,8 @@ import socket
 import struct
 import subprocess
 import threading
-import time
 import xmlrpc.client
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -33,7 +32,7 @@ from robomodel.runtime.transport.ros1.tcpros import (
 from robomodel.runtime.transport.ros1.xmlrpc_io import XmlRpcServer
 from tests.measured import MIB, peak_rss_bytes, thread_count
 from tests.ros1wire.conftest import Ros1
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 STRING_MD5 = "992ce8a1687cec8c8bd883ec73ca41d1"
 FLOAT64_MD5 = "fdb28210bfa9d7c91146260178d9a584"
@@ -376,7 +375,7 @@ def test_29_12_past_the_bound_the_oldest_stalled_handshake_makes_room(
             stalled.append(sock)
         with socket.create_connection(("127.0.0.1", port), timeout=scaled(5)) as real:
             real.sendall(encode_header({"callerid": "/real", "topic": "/chatter"}))
-            _wait_for(lambda: bool(got))
+            wait_until(lambda: bool(got), 60, what="the real header read", interval_s=0.02)
         assert got == [{"callerid": "/real", "topic": "/chatter"}]
         assert server.in_progress <= MAX_HANDSHAKES
         warnings = [r for r in caplog.records if r.levelno >= logging.WARNING]
@@ -386,12 +385,6 @@ def test_29_12_past_the_bound_the_oldest_stalled_handshake_makes_room(
         listener.close()
         for sock in stalled:
             sock.close()
-    _wait_for(lambda: server.in_progress == 0)
-
-
-def _wait_for(check: Callable[[], bool], timeout_s: float = 60) -> None:
-    timeout_s = scaled(timeout_s)
-    deadline = time.monotonic() + timeout_s
-    while not check():
-        assert time.monotonic() < deadline, f"not within {timeout_s:.0f} s"
-        time.sleep(0.02)
+    wait_until(
+        lambda: server.in_progress == 0, 60, what="no handshake in progress", interval_s=0.02
+    )

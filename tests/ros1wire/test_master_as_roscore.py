@@ -14,13 +14,12 @@ import re
 import subprocess
 import textwrap
 import xmlrpc.client
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
 from tests.ros1wire.conftest import Ros1, free_port
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 # what roscore's /rosout node alone puts on the graph
 ROSOUT = {
@@ -200,7 +199,12 @@ def test_29_10_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> No
     with err.open("w") as stderr:
         master = subprocess.Popen([*ROBOMODEL, "master", "-p", str(port)], stderr=stderr, env=env)
     try:
-        _wait(lambda: "started ROS 1 master at http://[::1]:" in err.read_text(), master)
+        wait_until(
+            lambda: "started ROS 1 master at http://[::1]:" in err.read_text() or _ended(master),
+            60,
+            what="the master to start",
+            interval_s=0.1,
+        )
         pub = subprocess.Popen(
             [*ROBOMODEL, "topic", "pub", "/six", "std_msgs/msg/String", "{data: six}", "-r", "5"],
             env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
@@ -225,10 +229,7 @@ def test_29_10_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> No
     assert "Traceback" not in err.read_text()
 
 
-def _wait(check: Callable[[], bool], proc: subprocess.Popen[bytes]) -> None:
-    import time
-
-    deadline = time.monotonic() + scaled(60)
-    while not check():
-        assert proc.poll() is None and time.monotonic() < deadline, "the master did not start"
-        time.sleep(0.1)
+def _ended(proc: subprocess.Popen[bytes]) -> bool:
+    """Never true: fails at once when ``proc`` has ended (a wait for it would be in vain)."""
+    assert proc.poll() is None, "the master did not start"
+    return False

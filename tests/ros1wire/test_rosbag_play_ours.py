@@ -42,7 +42,7 @@ def test_debian_rosbag_plays_a_robomodel_bag_to_robomodel(ros1: Ros1, tmp_path: 
         timeout_s=scaled(30),
     )
     play = ros1.start(["/usr/bin/rosbag", "play", str(bag)], log=tmp_path / "play.log")
-    ros1.until(lambda: echo.poll() is not None, "three messages echoed", timeout_s=scaled(60))
+    ros1.until(lambda: echo.poll() is not None, "three messages echoed", timeout_s=60)
     ros1.stop(play)
     assert echo.returncode == 0, (tmp_path / "echo.log").read_text()
     docs = [

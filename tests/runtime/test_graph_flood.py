@@ -8,7 +8,6 @@ import os
 import subprocess
 import sys
 import textwrap
-import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
@@ -16,7 +15,7 @@ from typing import Any
 import pytest
 
 from tests.conftest import ROBOMODEL, ROOT, ToolResult, free_port, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 pytest.importorskip("zenoh")
 
@@ -64,13 +63,6 @@ def _cli_env() -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if not k.startswith("ROS")}
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "src"), str(ROOT)])
     return env
-
-
-def _wait(condition: Callable[[], bool], what: str, timeout_s: float = 30.0) -> None:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while not condition():
-        assert time.monotonic() < deadline, f"timed out waiting for {what}"
-        time.sleep(0.02)
 
 
 def test_a_flood_of_tokens_hides_no_entity_of_another_peer() -> None:
@@ -135,15 +127,29 @@ def test_the_graph_is_complete_again_when_the_flood_goes() -> None:
     cache = GraphCache(session, int(domain), max_tokens=400, max_per_peer=250)
     try:
         with _peer(_flood(domain, 399)):
-            _wait(lambda: len(cache) + cache.left_out == 400, "the flood")
+            wait_until(
+                lambda: len(cache) + cache.left_out == 400, 30, what="the flood", interval_s=0.02
+            )
             assert (len(cache), cache.left_out) == (250, 150)
             assert not cache.graph().complete
             with _peer(_token_keys(domain, "ab12", "other", [f"o{i}" for i in range(199)])):
-                _wait(lambda: len(cache) + cache.left_out == 600, "the other peer")
+                wait_until(
+                    lambda: len(cache) + cache.left_out == 600,
+                    30,
+                    what="the other peer",
+                    interval_s=0.02,
+                )
                 assert (len(cache), cache.left_out) == (400, 200)  # 150 of the other's kept
-            _wait(lambda: len(cache) + cache.left_out == 400, "the other peer to go")
+            wait_until(
+                lambda: len(cache) + cache.left_out == 400,
+                30,
+                what="the other peer to go",
+                interval_s=0.02,
+            )
             assert (len(cache), cache.left_out) == (250, 150)
-        _wait(lambda: len(cache) + cache.left_out == 0, "the flood to go")
+        wait_until(
+            lambda: len(cache) + cache.left_out == 0, 30, what="the flood to go", interval_s=0.02
+        )
         assert cache.graph().complete
     finally:
         cache.close()
@@ -197,15 +203,21 @@ def test_the_router_gives_back_the_memory_of_tokens_that_went() -> None:
             text=True,
         )
         assert flooder.stdout is not None and flooder.stdout.readline() == "declared\n"
-        _wait(lambda: _rss_mib(router.pid) > baseline + 10, "the router to hold the tokens")
+        wait_until(
+            lambda: _rss_mib(router.pid) > baseline + 10,
+            30,
+            what="the router to hold the tokens",
+            interval_s=0.02,
+        )
         peak = _rss_mib(router.pid)
         flooder.communicate("\n", timeout=scaled(60))
         # Half the growth back: the allocator returns freed pages when it trims, not at once
         # (a third was missed once in a quiet run); the leak this guards kept all of it.
-        _wait(
+        wait_until(
             lambda: _rss_mib(router.pid) < baseline + (peak - baseline) / 2,
-            f"the router's memory to go back (baseline {baseline:.0f} MiB, peak {peak:.0f})",
-            timeout_s=60.0,
+            60,
+            what=f"the router's memory to go back (baseline {baseline:.0f} MiB, peak {peak:.0f})",
+            interval_s=0.02,
         )
     finally:
         router.terminate()

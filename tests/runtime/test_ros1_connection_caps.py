@@ -12,8 +12,7 @@ from __future__ import annotations
 import select
 import socket
 import threading
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 
 import pytest
 
@@ -40,17 +39,10 @@ from robomodel.runtime.transport.ros1.tcpros import (
     recv_exact,
     write_frame,
 )
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 PAST_CAP = 3
 FEW_THREADS = 16  # the handshake, lingering and executor threads, and a refusal in progress
-
-
-def _until(check: Callable[[], bool], what: str, timeout_s: float = 30) -> None:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while not check():
-        assert time.monotonic() < deadline, f"{what}: not within {scaled(timeout_s):.0f} s"
-        time.sleep(0.02)
 
 
 @pytest.fixture(autouse=True)
@@ -66,8 +58,18 @@ def executor() -> Executor:
 
 @pytest.fixture
 def endpoint(executor: Executor) -> Iterator[NodeEndpoint]:
-    _until(lambda: subscriber_connections() == 0, "subscriber connections of earlier tests")
-    _until(lambda: service_connections() == 0, "service connections of earlier tests")
+    wait_until(
+        lambda: subscriber_connections() == 0,
+        30,
+        what="subscriber connections of earlier tests",
+        interval_s=0.02,
+    )
+    wait_until(
+        lambda: service_connections() == 0,
+        30,
+        what="service connections of earlier tests",
+        interval_s=0.02,
+    )
     node = NodeEndpoint("/capped", "http://127.0.0.1:1/", "127.0.0.1")
     kind = ros1_type_named("std_msgs/String")
     node.publications["/chatter"] = Publication(
@@ -120,7 +122,12 @@ def test_29_subscriber_connections_past_the_cap_read_an_error_header(
         # one subscriber leaves, without anything published: its writer notices, its slot is
         # given back, and a new subscriber is served (and gets the latched message)
         opened.pop(0).close()
-        _until(lambda: subscriber_connections() < MAX_SUBSCRIBER_CONNECTIONS, "a slot back")
+        wait_until(
+            lambda: subscriber_connections() < MAX_SUBSCRIBER_CONNECTIONS,
+            30,
+            what="a slot back",
+            interval_s=0.02,
+        )
         endpoint.publications["/chatter"].publish(
             get_message_type("std_msgs/msg/String")(data="latched")
         )
@@ -131,8 +138,18 @@ def test_29_subscriber_connections_past_the_cap_read_an_error_header(
     finally:
         for sock in opened:
             sock.close()
-    _until(lambda: subscriber_connections() == 0, "every slot back once all closed")
-    _until(lambda: _threads("ros1-pub-writer") == 0, "every writer thread ended")
+    wait_until(
+        lambda: subscriber_connections() == 0,
+        30,
+        what="every slot back once all closed",
+        interval_s=0.02,
+    )
+    wait_until(
+        lambda: _threads("ros1-pub-writer") == 0,
+        30,
+        what="every writer thread ended",
+        interval_s=0.02,
+    )
 
 
 def test_29_service_connections_past_the_cap_read_an_error_header(
@@ -152,15 +169,22 @@ def test_29_service_connections_past_the_cap_read_an_error_header(
         assert len(refused) == PAST_CAP, refused
         assert all("already (its process's limit)" in e for e in refused), refused
         assert service_connections() == MAX_SERVICE_CONNECTIONS
-        _until(
+        wait_until(
             lambda: _threads("ros1-tcpros-conn") == MAX_SERVICE_CONNECTIONS,
-            "the refusals' threads ended",
+            30,
+            what="the refusals' threads ended",
+            interval_s=0.02,
         )
         assert threading.active_count() <= before + MAX_SERVICE_CONNECTIONS + FEW_THREADS
         lines = [r.getMessage() for r in caplog.records if "MAX_SERVICE" in r.getMessage()]
         assert len(lines) == 1 and f"more than {MAX_SERVICE_CONNECTIONS}" in lines[0], lines
         opened.pop(0).close()
-        _until(lambda: service_connections() < MAX_SERVICE_CONNECTIONS, "a slot back")
+        wait_until(
+            lambda: service_connections() < MAX_SERVICE_CONNECTIONS,
+            30,
+            what="a slot back",
+            interval_s=0.02,
+        )
         sock, answer = _connect(endpoint, header)
         opened.append(sock)
         assert "error" not in answer and answer["type"] == "std_srvs/Trigger", answer
@@ -173,7 +197,12 @@ def test_29_service_connections_past_the_cap_read_an_error_header(
     finally:
         for sock in opened:
             sock.close()
-    _until(lambda: service_connections() == 0, "every slot back once all closed")
+    wait_until(
+        lambda: service_connections() == 0,
+        30,
+        what="every slot back once all closed",
+        interval_s=0.02,
+    )
 
 
 def test_29_the_caps_count_the_process_not_one_node(endpoint: NodeEndpoint) -> None:
@@ -195,4 +224,9 @@ def test_29_the_caps_count_the_process_not_one_node(endpoint: NodeEndpoint) -> N
         for sock in opened:
             sock.close()
         second.close()
-    _until(lambda: subscriber_connections() == 0, "every slot back once all closed")
+    wait_until(
+        lambda: subscriber_connections() == 0,
+        30,
+        what="every slot back once all closed",
+        interval_s=0.02,
+    )

@@ -24,7 +24,7 @@ from robomodel.runtime.transport.ros1.tcpros import (
 )
 from robomodel.runtime.transport.ros1.xmlrpc_io import MAX_BODY_BYTES, XmlRpcServer
 from tests.ros1wire.conftest import free_port
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 
 @pytest.fixture
@@ -161,13 +161,6 @@ def test_tcpros_headers_are_parsed_within_bounds() -> None:
     assert MAX_HEADER_BYTES <= 1 << 20
 
 
-def _wait(check: Any, timeout_s: float = 10.0) -> None:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while not check():
-        assert time.monotonic() < deadline, "not within the time"
-        time.sleep(0.05)
-
-
 def test_nodes_drop_hostile_tcpros_peers_and_go_on(master: tuple[Master, Any]) -> None:
     """Garbage, an oversized header and a wrong md5sum on a node's TCPROS port, and a
     publisher that sends a malformed message: each ends its connection; messages still flow."""
@@ -205,12 +198,12 @@ def test_nodes_drop_hostile_tcpros_peers_and_go_on(master: tuple[Master, Any]) -
             listener.spin_once(0.05)
             return text in got
 
-        _wait(lambda: heard("hello"))
+        wait_until(lambda: heard("hello"), 10, what="'hello' heard")
         evil, dropped = _evil_publisher(proxy)  # a second publisher: its message does not decode
         try:
             assert dropped.wait(scaled(30)), "the listener did not drop the garbage publisher"
             got.clear()
-            _wait(lambda: heard("still"))
+            wait_until(lambda: heard("still"), 10, what="'still' heard")
             assert all(text in ("hello", "still") for text in got)
         finally:
             evil.close()

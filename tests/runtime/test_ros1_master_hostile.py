@@ -15,7 +15,7 @@ import socket
 import subprocess
 import time
 import xmlrpc.client
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -33,17 +33,9 @@ from robomodel.runtime.transport.ros1.xmlrpc_io import (
 from tests.conftest import ROBOMODEL
 from tests.measured import thread_count
 from tests.ros1wire.conftest import free_port
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 MIB = 1 << 20
-
-
-def _until(check: Callable[[], bool], what: str, timeout_s: float = 60) -> None:
-    timeout_s = scaled(timeout_s)
-    deadline = time.monotonic() + timeout_s
-    while not check():
-        assert time.monotonic() < deadline, f"{what}: not within {timeout_s:.0f} s"
-        time.sleep(0.05)
 
 
 @dataclass
@@ -92,7 +84,7 @@ def master(tmp_path: Path) -> Iterator[MasterProcess]:
         )
     m = MasterProcess(proc, port, stderr)
     try:
-        _until(lambda: "started ROS 1 master" in stderr.read_text(), "the master")
+        wait_until(lambda: "started ROS 1 master" in stderr.read_text(), 60, what="the master")
         yield m
     finally:
         proc.terminate()
@@ -118,7 +110,7 @@ def test_29_1_a_garbage_subscriber_api_is_refused_and_notifications_go_on(
         assert proxy.registerSubscriber("/evil2", "/t", "std_msgs/String", "rosrpc://h:1")[0] == 1
         proxy.registerSubscriber("/good", "/t", "std_msgs/String", f"http://127.0.0.1:{node.port}/")
         proxy.registerPublisher("/talker", "/t", "std_msgs/String", "http://127.0.0.1:9/")
-        _until(lambda: bool(updates), "publisherUpdate to the good subscriber")
+        wait_until(lambda: bool(updates), 60, what="publisherUpdate to the good subscriber")
         assert updates[-1] == ("/master", "/t", ["http://127.0.0.1:9/"])
     finally:
         node.close()
@@ -226,7 +218,7 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
     try:
         for sock in open_:  # each is read: fill its body but for the last byte
             sock.sendall(b"x" * (size - 2))
-        _until(lambda: master.rss() - before > (held * size) // 2, "the bodies held")
+        wait_until(lambda: master.rss() - before > (held * size) // 2, 60, what="the bodies held")
         refused = _announce(master.port, size)
         assert b"503" in _status(refused)
         refused.close()
@@ -241,7 +233,9 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
         for _ in range(MAX_CONCURRENT + 3)
     ]
     try:  # connections that send nothing hold a request slot each, up to the cap
-        _until(lambda: len(select.select(flood, [], [], 0.1)[0]) >= 3, "503 past the cap")
+        wait_until(
+            lambda: len(select.select(flood, [], [], 0.1)[0]) >= 3, 60, what="503 past the cap"
+        )
         answered = select.select(flood, [], [], 0.5)[0]
         # at least the 3 past the cap; on a loaded machine a slot of the bodies closed above can
         # still be held when the flood comes, so more may be refused, but every answer is a 503
@@ -254,7 +248,7 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
     finally:
         for sock in flood:
             sock.close()
-    _until(master.answers, "the master after the flood")
+    wait_until(master.answers, 60, what="the master after the flood")
     lines = master.log()
     assert any("in flight" in line for line in lines) and any("at once" in line for line in lines)
     assert len(lines) <= 6, lines
@@ -276,7 +270,7 @@ def test_29_11_peers_that_leave_mid_request_cost_a_line_not_a_traceback(
         sock = socket.create_connection(("127.0.0.1", master.port))
         sock.sendall(b"POST / HTTP/1.0\r\nContent-Length: 1000\r\n\r\n<method")
         sock.close()
-    _until(master.answers, "the master")
+    wait_until(master.answers, 60, what="the master")
     lines = master.log()  # rate-limited; the fixture checks: no traceback
     assert 1 <= len(lines) <= 6 and all("ended early" in line for line in lines), lines
 

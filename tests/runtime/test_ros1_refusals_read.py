@@ -14,7 +14,6 @@ from __future__ import annotations
 import select
 import socket
 import threading
-import time
 import xmlrpc.client
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -31,17 +30,10 @@ from robomodel.runtime.transport.ros1.ros1_types import ros1_service_type, ros1_
 from robomodel.runtime.transport.ros1.services import ServiceServer
 from robomodel.runtime.transport.ros1.tcpros import encode_header, read_header
 from robomodel.runtime.transport.ros1.xmlrpc_io import MAX_BODY_BYTES, MAX_CONCURRENT
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 MIB = 1 << 20
 AFTER_REFUSAL = 8 * MIB  # more than loopback's socket buffers take while nobody reads
-
-
-def _until(check: Callable[[], bool], what: str, timeout_s: float = 30) -> None:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while not check():
-        assert time.monotonic() < deadline, f"{what}: not within {scaled(timeout_s):.0f} s"
-        time.sleep(0.02)
 
 
 def _status_line(sock: socket.socket) -> bytes:
@@ -102,7 +94,12 @@ def test_29_6_a_burst_past_the_request_cap_waits_in_the_backlog_and_is_refused_a
         def all_connected() -> bool:
             return len(select.select([], burst, [], 0.1)[1]) == len(burst)
 
-        _until(all_connected, "every handshake of the burst while the server is busy")
+        wait_until(
+            all_connected,
+            30,
+            what="every handshake of the burst while the server is busy",
+            interval_s=0.02,
+        )
         assert all(s.getsockopt(socket.SOL_SOCKET, socket.SO_ERROR) == 0 for s in burst)
         accepting.set()
         for sock in burst:
@@ -184,7 +181,9 @@ def test_29_6_a_refused_body_is_drained_and_its_refusal_read(
     # the server answers afterwards, and gives the lingering connection back
     proxy = xmlrpc.client.ServerProxy(f"http://127.0.0.1:{server.port}/")
     assert proxy.getPid("/x") == [1, "", 42]
-    _until(lambda: linger.lingering() == 0, "the lingering connection closed")
+    wait_until(
+        lambda: linger.lingering() == 0, 30, what="the lingering connection closed", interval_s=0.02
+    )
 
 
 @pytest.fixture
@@ -237,7 +236,12 @@ def test_29_6_a_refused_tcpros_connection_reads_its_error_header(
 def test_lingering_is_bounded_in_connections_and_time_and_its_thread_ends(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    _until(lambda: linger.lingering() == 0, "connections of earlier tests closed")
+    wait_until(
+        lambda: linger.lingering() == 0,
+        30,
+        what="connections of earlier tests closed",
+        interval_s=0.02,
+    )
     monkeypatch.setattr(linger, "MAX_LINGERING", 2)
     monkeypatch.setattr(linger, "LINGER_S", 0.2)  # a peer that never closes
     pairs = [socket.socketpair() for _ in range(3)]
@@ -249,7 +253,12 @@ def test_lingering_is_bounded_in_connections_and_time_and_its_thread_ends(
         for _, peer in pairs:
             peer.settimeout(scaled(30))
             assert peer.recv(1) == b""  # the writing side is shut down at once
-        _until(lambda: linger.lingering() == 0, "lingering connections closed at their deadline")
+        wait_until(
+            lambda: linger.lingering() == 0,
+            30,
+            what="lingering connections closed at their deadline",
+            interval_s=0.02,
+        )
         assert all(ours.fileno() == -1 for ours, _ in pairs)
         monkeypatch.setattr(linger, "LINGER_S", 600.0)
         ours, peer = socket.socketpair()
@@ -257,10 +266,17 @@ def test_lingering_is_bounded_in_connections_and_time_and_its_thread_ends(
             linger.close_after_answer(ours)
             peer.sendall(b"x" * MIB)  # read and discarded
             assert linger.lingering() == 1
-        _until(lambda: ours.fileno() == -1, "a lingering connection closed when its peer did")
-        _until(
+        wait_until(
+            lambda: ours.fileno() == -1,
+            30,
+            what="a lingering connection closed when its peer did",
+            interval_s=0.02,
+        )
+        wait_until(
             lambda: all(t.name != "ros1-linger" for t in threading.enumerate()),
-            "the lingering thread ended with nothing left to drain",
+            30,
+            what="the lingering thread ended with nothing left to drain",
+            interval_s=0.02,
         )
     finally:
         for ours, peer in pairs:

@@ -6,9 +6,8 @@ connections. Each count follows subscribers as they come and as they go."""
 
 from __future__ import annotations
 
-import time
 import xmlrpc.client
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 
 import pytest
 
@@ -17,17 +16,9 @@ from robomodel.runtime.msg import Int32, get_message_type
 from robomodel.runtime.transport.ros1.master import Master
 from tests.conftest import unique_domain
 from tests.ros1wire.conftest import free_port
-from tests.timing import scaled
+from tests.timing import wait_until
 
 String = get_message_type("std_msgs/msg/String")
-
-
-def _until(check: Callable[[], bool], what: str, timeout_s: float = 30.0) -> None:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while not check():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.01)
 
 
 @pytest.fixture
@@ -47,12 +38,27 @@ def _follows_subscribers(talker: Context, listener: Context) -> None:
     assert pub.get_subscription_count() == 0
     node = listener.create_node("listener")
     first = node.create_subscription(Int32, "/count_me", lambda m: None, 10)
-    _until(lambda: pub.get_subscription_count() == 1, "the first subscription")
+    wait_until(
+        lambda: pub.get_subscription_count() == 1,
+        30,
+        what="the first subscription",
+        interval_s=0.01,
+    )
     second = node.create_subscription(Int32, "/count_me", lambda m: None, 10)
-    _until(lambda: pub.get_subscription_count() == 2, "the second subscription")
+    wait_until(
+        lambda: pub.get_subscription_count() == 2,
+        30,
+        what="the second subscription",
+        interval_s=0.01,
+    )
     first.destroy()
     second.destroy()
-    _until(lambda: pub.get_subscription_count() == 0, "the subscriptions to go")
+    wait_until(
+        lambda: pub.get_subscription_count() == 0,
+        30,
+        what="the subscriptions to go",
+        interval_s=0.01,
+    )
 
 
 def test_inproc_counts_the_subscriptions_it_delivers_to() -> None:
@@ -76,7 +82,7 @@ def test_zenoh_counts_the_graph_s_subscription_tokens() -> None:
             info = talker.graph().topics.get("/typed")
             return info is not None and len(info.subscribers) == 2
 
-        _until(both_seen, "both subscriptions in the talker's graph")
+        wait_until(both_seen, 30, what="both subscriptions in the talker's graph", interval_s=0.01)
         assert pub.get_subscription_count() == 1
 
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import queue
 import subprocess
-import time
 from typing import Any
 
 import xxhash
@@ -21,21 +20,11 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Request, SetBool_Response
 from robomodel.runtime.transport.rmw_zenoh import parse_attachment
 from tests.conftest import ROBOMODEL, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 
 def _tokens(session: Any, domain: str) -> list[str]:
     return [str(r.ok.key_expr) for r in session.liveliness().get(f"@ros2_lv/{domain}/**") if r.ok]
-
-
-def _wait_for(condition: Any, what: str, timeout_s: float = 30.0) -> Any:
-    deadline = time.monotonic() + scaled(timeout_s)
-    while time.monotonic() < deadline:
-        found = condition()
-        if found:
-            return found
-        time.sleep(0.05)
-    raise AssertionError(f"no {what} within {scaled(timeout_s):.0f} s")
 
 
 def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
@@ -63,9 +52,10 @@ def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
         try:
             # The server has not spun yet, so the caller waits for its answer, token declared.
             client_node = f"robomodel_client_{caller.pid}"
-            [token] = _wait_for(
+            [token] = wait_until(
                 lambda: [k for k in _tokens(session, domain) if "/SC/" in k],
-                "SC token of the caller",
+                30,
+                what="SC token of the caller",
             )
             parts = token.split("/")
             assert parts[5:9] == ["SC", "%", "%", client_node]
@@ -84,9 +74,10 @@ def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
             out, err = caller.communicate(timeout=scaled(30))
             assert caller.returncode == 0, err
             assert "message: seen" in out
-            _wait_for(
+            wait_until(
                 lambda: not [k for k in _tokens(session, domain) if client_node in k],
-                "the caller's tokens to go",
+                30,
+                what="the caller's tokens to go",
             )
         finally:
             caller.kill()

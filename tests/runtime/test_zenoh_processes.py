@@ -18,7 +18,7 @@ from typing import Any
 import pytest
 
 from tests.conftest import ROBOMODEL, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 TALKER = textwrap.dedent(
     """
@@ -123,13 +123,12 @@ def _wait_subscribed(domain: str, topic: str) -> None:
     from robomodel.runtime import Context
 
     with Context("zenoh", domain_id=int(domain)) as ctx:
-        deadline = time.monotonic() + scaled(20)
-        while True:
+
+        def subscribed() -> bool:
             info = ctx.graph().topics.get(topic)
-            if info is not None and info.subscribers:
-                return
-            assert time.monotonic() < deadline, f"no subscription to {topic}"
-            time.sleep(0.05)
+            return info is not None and bool(info.subscribers)
+
+        wait_until(subscribed, 20, what=f"a subscription to {topic}")
 
 
 def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:

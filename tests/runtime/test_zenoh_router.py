@@ -30,7 +30,7 @@ from robomodel.runtime.transport._zenoh_router import (
 from robomodel.runtime.transport._zenoh_session import ZenohConfigError, parse_override
 from robomodel.runtime.transport.rmw_zenoh import EntityKind
 from tests.conftest import ROBOMODEL, free_port, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 
 def _use_router(monkeypatch: pytest.MonkeyPatch, port: int) -> None:
@@ -53,10 +53,12 @@ def _wait_linked(a: Context, b: Context, kind: str) -> None:
     info = a.transport.session.info  # type: ignore[attr-defined]
     zid = str(b.transport.session.zid())  # type: ignore[attr-defined]
     listed = info.peers_zid if kind == "peers" else info.routers_zid
-    deadline = time.monotonic() + scaled(10)
-    while zid not in {str(z) for z in listed()}:
-        assert time.monotonic() < deadline, f"{zid} not among the {kind} of {info.zid()}"
-        time.sleep(0.02)
+    wait_until(
+        lambda: zid in {str(z) for z in listed()},
+        10,
+        what=lambda: f"{zid} among the {kind} of {info.zid()}",
+        interval_s=0.02,
+    )
 
 
 @pytest.fixture

@@ -19,7 +19,6 @@ import contextlib
 import os
 import shutil
 import subprocess
-import time
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -30,7 +29,7 @@ import yaml
 
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.ros1wire.conftest import ROSCORE, Ros1
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 TIMEOUT_S = 90.0
 """The longest any step may take to show what it should (a launch to start, a joint to arrive)."""
@@ -87,18 +86,13 @@ def box_stl(size_xyz_m: tuple[float, float, float]) -> bytes:
 def until(
     check: Callable[[], Any], what: str, timeout_s: float = TIMEOUT_S, *, log: Path | None = None
 ) -> Any:
-    """Poll ``check`` until it returns a true value; fail naming ``what`` (and showing ``log``)
-    after ``timeout_s`` (scaled with the machine)."""
-    timeout_s = scaled(timeout_s)
-    deadline = time.monotonic() + timeout_s
-    while True:
-        value = check()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            shown = f"\n{log.name}:\n{log.read_text()[-4000:]}" if log is not None else ""
-            raise AssertionError(f"{what}: not within {timeout_s:.0f} s{shown}")
-        time.sleep(0.3)
+    """``wait_until`` at the pace of a CLI call: fails naming ``what`` (and showing the end of
+    ``log``) after ``timeout_s`` (scaled with the machine)."""
+
+    def described() -> str:
+        return what if log is None else f"{what}\n{log.name}:\n{log.read_text()[-4000:]}"
+
+    return wait_until(check, timeout_s, what=described, interval_s=0.3)
 
 
 @dataclass

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from tests.conftest import ROBOMODEL, end_process, unique_domain
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 CHROMIUM_ARGS = [
     "--no-sandbox",
@@ -44,21 +44,12 @@ def chromium_path() -> str:
 
 def wait_for(
     condition: Callable[[], Any],
-    timeout_s: float | None = None,
+    timeout_s: float = 20.0,
     what: str | Callable[[], str] = "",
 ) -> Any:
-    """Poll ``condition`` until it returns something truthy; fail after ``timeout_s``
-    (default ``scaled(20)``), saying ``what`` (or what ``what()`` says then)."""
-    timeout_s = scaled(20.0) if timeout_s is None else timeout_s
-    deadline = time.monotonic() + timeout_s
-    while True:
-        value = condition()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            label = what() if callable(what) else what
-            pytest.fail(f"timed out after {timeout_s:g} s waiting for {label or condition}")
-        time.sleep(0.1)
+    """``wait_until`` with the viewer tests' pace and default: 20 s (scaled), a check every
+    0.1 s (a screenshot takes longer than that), ``what`` defaulting to the condition."""
+    return wait_until(condition, timeout_s, what=what or repr(condition), interval_s=0.1)
 
 
 class ViewerProcess:

@@ -224,7 +224,7 @@ def test_large_robot_with_meshes(viewer: Callable[..., ViewerProcess], page: Any
     open_viewer(page, view.url)
     wait_for(
         lambda: page.locator("text=loading").count() == 0 and page.get_by_text("OK").count(),
-        timeout_s=scaled(60),
+        timeout_s=60,
         what="every mesh to load",
     )
     drawn = settle(page)
@@ -385,7 +385,7 @@ def test_control_run_topic_pub_moves_rrbot_in_the_viewer(page: Any) -> None:
             changed = changed_fraction(before, image)  # settle() crops already
             return (image,) if changed > 0.002 else None  # a tuple: wait_for tests truthiness
 
-        (after,) = wait_for(moved, timeout_s=scaled(60), what="rrbot to move in the page")
+        (after,) = wait_for(moved, timeout_s=60, what="rrbot to move in the page")
         save_shot(page, "rrbot_joint1_1.5")
         # rrbot is small in the default view: a quarter turn of joint1 changes ~0.5 % of the
         # scene; a page that does not move changes none.

@@ -5,7 +5,7 @@ Transient Local display; Keep Last drops all but the newest ``depth``, Keep All 
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from types import MappingProxyType
 
 import pytest
@@ -19,7 +19,7 @@ from robomodel.viewer.displays.manager import DisplayManager
 from robomodel.viewer.displays.rviz_io import display_entry, display_values
 from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import unique_domain
-from tests.timing import scaled
+from tests.timing import wait_until
 from tests.viewer.fake_scene import FakeScene, fake_context
 
 Marker = get_message_type("visualization_msgs/msg/Marker")
@@ -95,15 +95,17 @@ def zenoh_pair() -> Iterator[tuple[Context, Context]]:
         yield viewer, peer
 
 
-def _until(check: object, what: str, *contexts: Context) -> None:
-    import time
+def _until(check: Callable[[], bool], what: str, *contexts: Context) -> None:
+    """``wait_until`` that spins ``contexts`` (their callbacks run here) between checks."""
 
-    deadline = time.monotonic() + scaled(20.0)
-    while not check():  # type: ignore[operator]
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
+    def spun() -> bool:
+        if check():
+            return True
         for context in contexts:
             context.spin_once(0.02)
+        return False
+
+    wait_until(spun, 20, what=what, interval_s=0)
 
 
 def _cube(marker_id: int) -> object:

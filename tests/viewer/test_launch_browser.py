@@ -66,12 +66,12 @@ def test_display_launch_sliders_move_the_robot(page: Any) -> None:
         box.press("Enter")
         wait_for(
             lambda: abs(_joint_states(domain).get("joint_2", 0.0) - 1.2) < 1e-6,
-            timeout_s=scaled(30),
+            timeout_s=30,
             what="joint_2 = 1.2 on /joint_states from the slider",
         )
         wait_for(
             lambda: changed_fraction(before, _scene(page)) > 0.002,
-            timeout_s=scaled(30),
+            timeout_s=30,
             what="the arm to move in the page",
         )
         save_shot(page, "launch_display_xacro_slider")

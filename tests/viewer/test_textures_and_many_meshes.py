@@ -13,7 +13,6 @@ from robomodel.description import Mesh
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.meshes import MeshCache, load_mesh_file
 from tests.conftest import example_robot_data_dir
-from tests.timing import scaled
 from tests.viewer.conftest import (
     ViewerProcess,
     open_viewer,
@@ -80,9 +79,7 @@ def test_every_mesh_of_the_pr2_is_drawn(started: list[Viewer]) -> None:
     v.start()
     started.append(v)
     session = v.sessions[0]
-    wait_for(
-        lambda: session.display is not None and session.display.pending_meshes == 0, scaled(60)
-    )
+    wait_for(lambda: session.display is not None and session.display.pending_meshes == 0, 60)
     display = session.display
     assert display is not None and not display.problems
     robot = session.robot

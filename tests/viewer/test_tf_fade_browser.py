@@ -95,11 +95,11 @@ def test_a_frame_no_longer_published_turns_grey_then_goes(viewer: Viewer, page: 
     on_loop(viewer, timer.cancel)  # no longer published: it ages from here
     grey = wait_for(
         lambda: looks(lambda r, g, b: max(r, g, b) - min(r, g, b) < 20 and 90 < r < 215),
-        timeout_s=timeout_s + scaled(10.0), what=lambda: f"the x axis greyed ({seen})",
+        timeout_s=timeout_s + 10.0, what=lambda: f"the x axis greyed ({seen})",
     )  # fmt: skip
     assert grey
     save_shot(page, "tf_frame_grey")
-    wait_for(lambda: "probe" not in tf.shown, timeout_s=timeout_s + scaled(10.0), what="the probe past its timeout")  # fmt: skip
+    wait_for(lambda: "probe" not in tf.shown, timeout_s=timeout_s + 10.0, what="the probe past its timeout")  # fmt: skip
     # the page's white where the axis was (the last of the fade, alpha near 0, is lighter grey)
     wait_for(lambda: looks(lambda r, g, b: min(r, g, b) > 250), what=lambda: f"the axis gone ({seen})")  # fmt: skip
     save_shot(page, "tf_frame_gone")

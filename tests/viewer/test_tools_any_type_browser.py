@@ -18,7 +18,6 @@ from robomodel.runtime.msg import _resolver, get_message_type
 from robomodel.runtime.node import Node
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES, ROBOMODEL, end_process, free_port, unique_domain
-from tests.timing import scaled
 from tests.viewer.conftest import gui_row, open_viewer, save_shot, type_into, wait_for
 from tests.viewer.test_tools_inprocess import on_loop
 
@@ -60,7 +59,7 @@ def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
             stderr=subprocess.DEVNULL, text=True, start_new_session=True,
         )  # fmt: skip
         bus["master"] = f"http://127.0.0.1:{port}/"
-        wait_for(lambda: _answers(bus["master"]), timeout_s=scaled(30), what="the ROS 1 master")
+        wait_for(lambda: _answers(bus["master"]), timeout_s=30, what="the ROS 1 master")
     source = RobotSource(str(EXAMPLES / "simplebot_description/urdf/simplebot.urdf.xacro"))
     viewer = Viewer(ViewerOptions(sources=(source,), port=0, **bus))
     try:
@@ -101,7 +100,7 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
     on_loop(viewer, make_node)
     wait_for(
         lambda: {"/cam", "/reading"} <= set(viewer.tools.tools.topic_types()),
-        timeout_s=scaled(30),
+        timeout_s=30,
         what="both topics in the graph, with their types",
     )
     open_viewer(page, viewer.url)
@@ -124,7 +123,7 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
     type_into(page, "Expression", "i * 2", viewer.server)
     type_into(page, "Variables", "", viewer.server)
     gui_row(page, "Publishing").locator("input[type=checkbox]").first.click()
-    wait_for(lambda: len(received) >= 3, timeout_s=scaled(30), what="the page's publications")
+    wait_for(lambda: len(received) >= 3, timeout_s=30, what="the page's publications")
     values = [list(m.raw) for m in received[:3]]  # i = 0, 1, 2, ... (ROS 1 may miss the first)
     assert all(v[:2] == [0, 0] for v in values)
     assert [b[2] - a[2] for a, b in itertools.pairwise(values)] == [2, 2]
@@ -165,7 +164,7 @@ def test_plot_takes_a_type_only_its_ros1_publisher_knows(
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)  # fmt: skip
     try:
         tools = viewer.tools.tools
-        wait_for(lambda: "/sample" in tools.topic_types(), timeout_s=scaled(60),
+        wait_for(lambda: "/sample" in tools.topic_types(), timeout_s=60,
                  what="plot_msgs/Sample learned from its publisher")  # fmt: skip
         open_viewer(page, viewer.url)
         page.get_by_text("Plot", exact=True).click()

@@ -157,7 +157,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
         try:
             wait_for(
                 lambda: any("Started controllers" in line for line in errors),
-                timeout_s=scaled(60),
+                timeout_s=60,
                 what="the spawner to start the controllers",
             )
         except BaseException:
@@ -175,7 +175,7 @@ def test_demo_simplebot_in_the_wall_world_driven_by_the_steering_pad(page: Any) 
             return (image,) if changed_fraction(before, image) > 0.004 else None
 
         try:
-            wait_for(moved, timeout_s=scaled(40), what="the simplebot to drive in the page")
+            wait_for(moved, timeout_s=40, what="the simplebot to drive in the page")
         except BaseException:
             save_shot(page, "demo_simplebot_not_driving")
             raise AssertionError(
