@@ -89,8 +89,8 @@ def test_robomodel_view_refuses_a_hostile_rviz_file_with_one_line(
 def test_controller_and_parameter_files_are_bounded(tmp_path: Path) -> None:
     from robomodel.control.config import load_controller_config
     from robomodel.control.exceptions import ConfigError
-    from robomodel.runtime.param_files import parameters_from_file
     from robomodel.launch.ros1.params import load_rosparam_yaml
+    from robomodel.runtime.param_files import parameters_from_file
     from robomodel.runtime.params import load_parameters_file
 
     bomb = tmp_path / "bomb.yaml"
