@@ -6,7 +6,10 @@ from __future__ import annotations
 import contextlib
 import io
 import struct
+import sys
 from pathlib import Path
+
+import pytest
 
 from tests.measured import MIB, run_measured
 
@@ -78,6 +81,41 @@ def test_29_3_mcap_decompression_bombs_are_refused_within_the_bound(tmp_path: Pa
     small.write_bytes(_mcap_with_chunk("zstd", _zstd_rle_bomb(4 * MIB), 4 * MIB))
     result = run_measured("bag", "info", str(small))
     assert "times the file's size" in _one_error_line(result.err)
+
+
+@pytest.mark.parametrize("codec", ["lz4", "zstd", "zstandard"])
+def test_a_chunk_that_expands_beyond_its_declared_size_is_never_held_whole(
+    codec: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A chunk declaring 64 KiB whose stream expands to 32 MiB is damage, found by reading at
+    most one byte past what it declares: the reader's allocations stay far below the 32 MiB
+    (measured with tracemalloc, in this process). ``zstandard`` is the fallback without the
+    zstd module of Python 3.14 or its backport."""
+    import tracemalloc
+
+    import lz4.frame
+
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.bag.model import Damage
+
+    declared = 64 << 10
+    data = lz4.frame.compress(bytes(32 * MIB)) if codec == "lz4" else _zstd_rle_bomb(32 * MIB)
+    if codec == "zstandard":
+        monkeypatch.setitem(sys.modules, "compression.zstd", None)  # None: ImportError
+        monkeypatch.setitem(sys.modules, "backports.zstd", None)
+    liar = tmp_path / f"{codec}.mcap"
+    liar.write_bytes(_mcap_with_chunk(codec.replace("zstandard", "zstd"), data, declared))
+    damage: list[Damage] = []
+    tracemalloc.start()
+    try:
+        assert list(scan_mcap(liar, damage)) == []
+        _, peak_bytes = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert [d.reason for d in damage] == [
+        f"chunk expands beyond the {declared} bytes it declares; its messages are skipped"
+    ]
+    assert peak_bytes < 4 * MIB
 
 
 _LAUGHS = "\n".join(

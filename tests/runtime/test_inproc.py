@@ -163,3 +163,18 @@ def test_parameter_events_are_published() -> None:
     assert [p.name for e in mine for p in e.new_parameters] == ["use_sim_time", "gain"]
     changed = [p for e in mine for p in e.changed_parameters]
     assert [(p.name, p.value.double_value) for p in changed] == [("gain", 2.0)]
+
+
+def test_transient_local_keeps_the_last_depth_messages() -> None:
+    """A late subscriber gets the publisher's last ``depth`` messages, oldest first, as DDS
+    and rmw_zenoh's transient-local publication cache (``history`` of ``depth``) keep them."""
+    ctx = Context(clock=ManualClock())
+    pub = ctx.create_node("talker").create_publisher(String, "log", latched(depth=3))
+    for k in range(5):
+        pub.publish(String(f"m{k}"))
+    late: list[str] = []
+    ctx.create_node("late").create_subscription(
+        String, "/log", lambda m: late.append(m.data), latched(depth=3)
+    )
+    ctx.spin_once()
+    assert late == ["m2", "m3", "m4"]
