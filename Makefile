@@ -10,7 +10,7 @@ STAMP := $(VENV)/.installed
 SDK_VENV := .venv-ros2sdk
 SDK_STAMP := $(SDK_VENV)/.installed
 
-.PHONY: demo test docs bench lint typecheck clean
+.PHONY: demo test docs bench lint typecheck clean mutate
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -35,6 +35,12 @@ test: $(STAMP) $(SDK_STAMP)
 	$(BIN)/ruff format --no-cache --check src tests bench
 	$(BIN)/mypy
 	$(BIN)/python -m pytest -q -n 2 tests
+
+# Mutation testing of the core modules with mutmut, one module group at a time, each against
+# its fast in-process tests (tools/mutate.py; scores in CONTRIBUTING.md). Not part of `test`:
+# it runs for about an hour on two cores. `tools/mutate.py GROUP` runs one group.
+mutate: $(STAMP)
+	$(BIN)/python tools/mutate.py
 
 # The documentation site, strict (a broken link or a missing page fails). Its screenshots are the
 # browser tests' (build/viewer-screenshots): tools/docs_screenshots takes the missing ones.

@@ -6,6 +6,7 @@ import logging
 
 import pytest
 
+from robomodel.errors import RobomodelError
 from robomodel.runtime import Context, ManualClock, latched
 from robomodel.runtime.msg import Clock, Float64, String, Time
 from robomodel.runtime.param_client import ParameterClient
@@ -178,3 +179,121 @@ def test_transient_local_keeps_the_last_depth_messages() -> None:
     )
     ctx.spin_once()
     assert late == ["m2", "m3", "m4"]
+
+
+def test_destroyed_endpoints_leave_the_graph_and_deliver_nothing() -> None:
+    ctx = Context(clock=ManualClock())
+    pub = ctx.create_node("talker").create_publisher(String, "chatter", latched(depth=2))
+    heard: list[str] = []
+    ear = ctx.create_node("ear")
+    sub = ear.create_subscription(String, "/chatter", lambda m: heard.append(m.data))
+    kept = ear.create_subscription(String, "/chatter", lambda m: heard.append("kept " + m.data))
+    sub.destroy()
+    sub.destroy()  # twice: nothing more happens
+    pub.publish(String("a"))
+    ctx.spin_once()
+    assert heard == ["kept a"]
+    topic = ctx.graph().topics["/chatter"]
+    assert [e.node for e in topic.subscribers] == ["/ear"]
+    pub.destroy()
+    pub.destroy()
+    assert ctx.graph().topics["/chatter"].publishers == []
+    late: list[str] = []
+    ear.create_subscription(String, "/chatter", lambda m: late.append(m.data), latched(depth=2))
+    ctx.spin_once()
+    assert late == []  # a destroyed publisher's history goes with it
+    kept.destroy()
+    ctx.shutdown()
+    # the context is closed: handles destroyed now find no lists, and that is no error
+    pub.destroy()
+    kept.destroy()
+
+
+def test_a_destroyed_service_handle_does_not_remove_its_successor() -> None:
+    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+
+    ctx = Context(clock=ManualClock())
+    node = ctx.create_node("server")
+    first = node.create_service(Trigger, "reset", lambda r: Trigger_Response(True, "first"))
+    first.destroy()
+    second = node.create_service(Trigger, "reset", lambda r: Trigger_Response(True, "second"))
+    first.destroy()  # the old handle again: the new service stays
+    assert ctx.call_service("/reset", Trigger).message == "second"
+    assert set(ctx.graph().services) >= {"/reset"}
+    second.destroy()
+    assert "/reset" not in ctx.graph().services
+
+
+def test_the_graph_lists_each_endpoint_with_its_node_type_and_qos() -> None:
+    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.qos import QoSProfile
+
+    ctx = Context(clock=ManualClock())
+    ctx.create_node("talker").create_publisher(String, "chatter", latched(depth=4))
+    ctx.create_node("ear").create_subscription(String, "/chatter", lambda m: None, 7)
+    ctx.create_node("server").create_service(Trigger, "reset", lambda r: Trigger_Response())
+    graph = ctx.graph()
+    assert {"/talker", "/ear", "/server"} <= graph.nodes
+    topic = graph.topics["/chatter"]
+    assert topic.types == {"std_msgs/msg/String"}
+    assert [(e.node, e.topic, e.type_name, e.qos) for e in topic.publishers] == [
+        ("/talker", "/chatter", "std_msgs/msg/String", latched(depth=4))
+    ]
+    assert [(e.node, e.topic, e.type_name, e.qos) for e in topic.subscribers] == [
+        ("/ear", "/chatter", "std_msgs/msg/String", QoSProfile(7))
+    ]
+    server = graph.services["/reset"]
+    assert [(e.node, e.type_name) for e in server.servers] == [("/server", "std_srvs/srv/Trigger")]
+
+
+def test_nodes_of_one_name_are_counted_and_warned_about(caplog: pytest.LogCaptureFixture) -> None:
+    ctx = Context(clock=ManualClock())
+    first = ctx.create_node("twin")
+    with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        second = ctx.create_node("twin")
+    assert "a node named /twin already exists; names should be unique" in [
+        r.getMessage() for r in caplog.records
+    ]
+    assert "/twin" in ctx.graph().nodes
+    first.destroy()
+    assert "/twin" in ctx.graph().nodes  # the other one still runs
+    second.destroy()
+    assert "/twin" not in ctx.graph().nodes
+    third = ctx.create_node("twin")
+    assert "/twin" in ctx.graph().nodes
+    third.destroy()
+    assert "/twin" not in ctx.graph().nodes
+
+
+def test_publishing_the_wrong_type_names_both_types() -> None:
+    ctx = Context(clock=ManualClock())
+    pub = ctx.create_node("talker").create_publisher(String, "chatter")
+    with pytest.raises(RobomodelError) as caught:
+        pub.publish(Float64(1.0))  # type: ignore[arg-type]
+    assert str(caught.value) == (
+        "publisher on /chatter has type std_msgs/msg/String, got std_msgs/msg/Float64"
+    )
+
+
+def test_each_type_clash_is_warned_once_with_its_topic(caplog: pytest.LogCaptureFixture) -> None:
+    """Once per (topic, published type, subscribed type), at the first message for a
+    subscription made first, and at once for a late transient-local subscription."""
+    ctx = Context(clock=ManualClock())
+    got: list[object] = []
+    ear = ctx.create_node("ear")
+    ear.create_subscription(String, "/a", got.append)
+    talker = ctx.create_node("talker")
+    to_a = talker.create_publisher(Float64, "a", latched())
+    to_b = talker.create_publisher(Float64, "b", latched())
+    with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        for _ in range(2):
+            to_a.publish(Float64(1.0))
+            to_b.publish(Float64(2.0))
+        ear.create_subscription(String, "/b", got.append, latched())  # history of another type
+        ctx.spin_once()
+    assert got == []
+    assert [r.getMessage() for r in caplog.records] == [
+        f"topic /{t} is published as std_msgs/msg/Float64 but subscribed as std_msgs/msg/String "
+        "by /ear; messages are not delivered"
+        for t in ("a", "b")
+    ]
