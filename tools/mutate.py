@@ -58,7 +58,7 @@ GROUPS = (
         (
             "runtime/test_ros1_master.py",
             "runtime/test_ros1_master_hostile.py",
-            "runtime/test_hostile_names.py",
+            "runtime/test_ros1_master_api.py",
         ),
     ),
     Group(
@@ -133,7 +133,7 @@ def prepare(group: Group) -> Path:
     """The group's folder: links to the tree and a pyproject.toml with its mutmut table."""
     folder = WORK / group.name
     folder.mkdir(parents=True, exist_ok=True)
-    for name in ("src", "tests", "examples"):
+    for name in ("src", "tests", "examples", "docs"):
         link = folder / name
         if not link.is_symlink():
             link.symlink_to(ROOT / name, target_is_directory=True)
@@ -146,7 +146,7 @@ def prepare(group: Group) -> Path:
             "pytest_add_cli_args_test_selection = "
             + _toml_list([f"tests/{t}" for t in group.tests]),
             f"pytest_add_cli_args = {_toml_list(PYTEST_ARGS)}",
-            'also_copy = ["examples"]',
+            'also_copy = ["examples", "docs"]',
             "use_git_change_detection = false",
             "",
         ]
@@ -200,12 +200,12 @@ def survivors(group: Group) -> list[str]:
     return names
 
 
-def table_row(source: str, counts: dict[str, int]) -> str:
+def table_row(group: str, source: str, counts: dict[str, int]) -> str:
     killed = counts.get("killed", 0) + counts.get("timeout", 0)
     total = sum(counts.values())
     score = f"{100 * killed / total:.0f}%" if total else "-"
     return (
-        f"| `{source}` | {total} | {killed} | {counts.get('survived', 0)} "
+        f"| {group} | `{source}` | {total} | {killed} | {counts.get('survived', 0)} "
         f"| {counts.get('no tests', 0)} | {score} |"
     )
 
@@ -253,11 +253,11 @@ def main(argv: list[str] | None = None) -> int:
         if router is not None:
             router.terminate()
             router.wait()
-    print("\n| module | mutants | killed | survived | no tests | score |")
-    print("| --- | --- | --- | --- | --- | --- |")
+    print("\n| group | module | mutants | killed | survived | no tests | score |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
     for g in chosen:
         for source, counts in scores(g).items():
-            print(table_row(source, counts))
+            print(table_row(g.name, source, counts))
     if args.survivors:
         for g in chosen:
             for name in survivors(g):
