@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import random
 import struct
 import sys
 from pathlib import Path
@@ -217,3 +218,70 @@ def test_29_15_sqlite3_bags_that_cannot_be_played_say_so(tmp_path: Path) -> None
         assert result.code == 2
         line = _one_error_line(result.err)
         assert line.startswith(f"robomodel: error: {bag}: none of its 10 messages could be played")
+
+
+def _mcap_of(path: Path, compression: str, payloads: list[bytes]) -> None:
+    """A sound MCAP file with ``payloads`` on /data, in one chunk compressed with
+    ``compression``."""
+    from mcap.writer import CompressionType, Writer
+
+    with path.open("wb") as stream:
+        writer = Writer(stream, compression=CompressionType[compression.upper()],
+                        chunk_size=64 * MIB)  # fmt: skip
+        writer.start(profile="ros2", library="test")
+        schema = writer.register_schema("std_msgs/msg/String", "ros2msg", b"string data")
+        channel = writer.register_channel("/data", "cdr", schema)
+        for k, payload in enumerate(payloads):
+            writer.add_message(channel, log_time=k, data=payload, publish_time=k)
+        writer.finish()
+
+
+ZSTD_MODULES = ("compression.zstd", "backports.zstd", "zstandard")
+
+
+@pytest.mark.parametrize(
+    ("codec", "present"),
+    [("zstd", "backports.zstd"), ("zstd", "zstandard"), ("lz4", "lz4.frame")],
+)
+def test_chunks_of_several_mib_decompress_whole_with_each_codec_module(
+    codec: str, present: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Each zstd module alone reads the chunk (the others made missing), in pieces when the
+    chunk is larger than one read: two messages of 1.5 MiB come back byte for byte."""
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.bag.model import Damage
+
+    payloads = [random.Random(k).randbytes(3 * MIB // 2) for k in (1, 2)]  # incompressible
+    path = tmp_path / f"{codec}.mcap"
+    _mcap_of(path, codec, payloads)
+    for module in ZSTD_MODULES if codec == "zstd" else ():
+        if module != present:
+            monkeypatch.setitem(sys.modules, module, None)  # None: ImportError
+    damage: list[Damage] = []
+    assert [m.data for m in scan_mcap(path, damage)] == payloads
+    assert damage == []
+
+
+@pytest.mark.parametrize(
+    ("codec", "blocked", "message"),
+    [
+        ("zstd", ZSTD_MODULES, "reading zstd-compressed MCAP chunks needs the 'zstandard' "
+                               "package: pip install 'robomodel[bag]'"),
+        ("lz4", ("lz4.frame",), "reading lz4-compressed MCAP chunks needs the 'lz4' package: "
+                                "pip install 'robomodel[bag]'"),
+    ],
+)  # fmt: skip
+def test_a_missing_codec_module_names_the_package_and_the_extra(
+    codec: str, blocked: tuple[str, ...], message: str, tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:  # fmt: skip
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.errors import MissingDependencyError
+
+    path = tmp_path / f"{codec}.mcap"
+    _mcap_of(path, codec, [b"\x00" * 64])
+    for module in blocked:
+        monkeypatch.setitem(sys.modules, module, None)
+    with pytest.raises(MissingDependencyError) as caught:
+        list(scan_mcap(path, []))
+    assert str(caught.value) == message
