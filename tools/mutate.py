@@ -48,8 +48,9 @@ GROUPS = (
         ("runtime/transport/inproc.py",),
         (
             "runtime/test_inproc.py",
-            "runtime/test_services.py",
-            "runtime/test_subscription_count.py",
+            # their other tests start Zenoh processes, which cannot import the mutated tree
+            "runtime/test_services.py::test_inproc_service_call_and_errors",
+            "runtime/test_subscription_count.py::test_inproc_counts_the_subscriptions_it_delivers_to",
         ),
     ),
     Group(
@@ -76,7 +77,7 @@ GROUPS = (
     Group(
         "bag_readers",
         ("bag/_mcap_reader.py", "bag/reader.py"),
-        ("bag/test_hostile_bags.py", "bag/test_bad_input.py", "bag/test_split.py"),
+        ("bag/test_hostile_bags.py", "bag/test_bad_input.py"),
     ),
     Group(
         "cdr",
@@ -148,6 +149,9 @@ def prepare(group: Group) -> Path:
             f"pytest_add_cli_args = {_toml_list(PYTEST_ARGS)}",
             'also_copy = ["examples", "docs"]',
             "use_git_change_detection = false",
+            # a mutant that makes a test wait (a queue, a thread) uses no CPU time: mutmut
+            # ends it after this many times the tests' own duration
+            "timeout_multiplier = 5.0",
             "",
         ]
     )
@@ -201,11 +205,13 @@ def survivors(group: Group) -> list[str]:
 
 
 def table_row(group: str, source: str, counts: dict[str, int]) -> str:
-    killed = counts.get("killed", 0) + counts.get("timeout", 0)
+    """A row of the scores table: the score is over the mutants tested so far."""
+    killed = sum(counts.get(k, 0) for k in ("killed", "timeout", "segfault"))
     total = sum(counts.values())
-    score = f"{100 * killed / total:.0f}%" if total else "-"
+    tested = total - counts.get("not checked", 0) - counts.get("check was interrupted by user", 0)
+    score = f"{100 * killed / tested:.0f}%" if tested else "-"
     return (
-        f"| {group} | `{source}` | {total} | {killed} | {counts.get('survived', 0)} "
+        f"| {group} | `{source}` | {total} | {tested} | {killed} | {counts.get('survived', 0)} "
         f"| {counts.get('no tests', 0)} | {score} |"
     )
 
@@ -253,8 +259,8 @@ def main(argv: list[str] | None = None) -> int:
         if router is not None:
             router.terminate()
             router.wait()
-    print("\n| group | module | mutants | killed | survived | no tests | score |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("\n| group | module | mutants | tested | killed | survived | no tests | score |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     for g in chosen:
         for source, counts in scores(g).items():
             print(table_row(g.name, source, counts))

@@ -11,6 +11,7 @@ from robomodel.runtime import Context, ManualClock, latched
 from robomodel.runtime.msg import Clock, Float64, String, Time
 from robomodel.runtime.param_client import ParameterClient
 from robomodel.runtime.params import ParameterError, SetResult
+from tests.timing import scaled
 
 
 def _run(seed_order: list[str]) -> list[tuple[float, str, float]]:
@@ -297,3 +298,90 @@ def test_each_type_clash_is_warned_once_with_its_topic(caplog: pytest.LogCapture
         "by /ear; messages are not delivered"
         for t in ("a", "b")
     ]
+
+
+def test_a_node_name_in_use_is_warned_about_until_its_last_node_goes(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    ctx = Context(clock=ManualClock())
+    warning = "a node named /twin already exists; names should be unique"
+
+    def warned() -> bool:
+        found = warning in [r.getMessage() for r in caplog.records]
+        caplog.clear()
+        return found
+
+    with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        first = ctx.create_node("twin")
+        assert not warned()
+        second = ctx.create_node("twin")
+        assert warned()
+        first.destroy()
+        third = ctx.create_node("twin")  # the second still runs
+        assert warned()
+        second.destroy()
+        third.destroy()
+        fourth = ctx.create_node("twin")
+        assert not warned()
+    ctx.shutdown()
+    fourth.destroy()  # after the context: no error
+
+
+def test_services_answer_from_the_spinning_thread_and_say_why_not() -> None:
+    """A call from another thread runs the handler on the spinning thread (as a call from
+    another process would) and waits; the errors name the service."""
+    import threading
+
+    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.transport.base import Deferred, ServiceCallError
+
+    ctx = Context()
+    node = ctx.create_node("server")
+    threads: list[int] = []
+    later: list[Deferred] = []
+
+    def now(_: object) -> Trigger_Response:
+        threads.append(threading.get_ident())
+        return Trigger_Response(True, "now")
+
+    def deferred(_: object) -> Deferred:
+        answer = Deferred()
+        later.append(answer)
+        ctx.executor.post(lambda: answer.resolve(Trigger_Response(True, "later")))
+        return answer
+
+    def failing(_: object) -> Trigger_Response:
+        raise ValueError("boom")
+
+    node.create_service(Trigger, "now", now)
+    node.create_service(Trigger, "later", deferred)
+    node.create_service(Trigger, "fails", failing)
+    node.create_service(Trigger, "never", lambda _: Deferred())
+    with pytest.raises(ServiceCallError) as caught:
+        ctx.call_service("/nope", Trigger)
+    assert str(caught.value) == "service '/nope' not found; services: " + ", ".join(
+        sorted(ctx.graph().services)
+    )
+    with pytest.raises(ServiceCallError, match=r"^service '/never' answers later; call it from another thread than the spinner$"):  # fmt: skip
+        ctx.call_service("/never", Trigger)
+    stop = threading.Event()
+    spinner = threading.Thread(target=lambda: ctx.spin(until=stop.is_set), daemon=True)
+    spinner.start()
+    try:
+        assert ctx.call_service("/now", Trigger, timeout_s=scaled(5)).message == "now"
+        assert threads == [spinner.ident]
+        assert ctx.call_service("/later", Trigger, timeout_s=scaled(5)).message == "later"
+        with pytest.raises(ServiceCallError) as caught:
+            ctx.call_service("/fails", Trigger, timeout_s=scaled(5))
+        assert str(caught.value) == "service '/fails' failed: boom"
+        with pytest.raises(ServiceCallError) as caught:
+            ctx.call_service("/never", Trigger, timeout_s=0.25)
+        assert str(caught.value) == "service '/never' did not answer in 0.25 s"
+    finally:
+        stop.set()
+        spinner.join(scaled(5))
+    ctx.shutdown()
+    empty = Context()
+    with pytest.raises(ServiceCallError, match=r"^service '/nope' not found; services: \(none\)$"):
+        empty.transport.call_service("/nope", Trigger, Trigger.Request())
+    empty.shutdown()
