@@ -286,7 +286,10 @@ def test_each_type_clash_is_warned_once_with_its_topic(caplog: pytest.LogCapture
     talker = ctx.create_node("talker")
     to_a = talker.create_publisher(Float64, "a", latched())
     to_b = talker.create_publisher(Float64, "b", latched())
+    ear.create_subscription(String, "/c", got.append, latched())  # no publisher yet: nothing
+    to_c = talker.create_publisher(Float64, "c")
     with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        assert to_c.get_subscription_count() == 0  # asked before any message: warned here
         for _ in range(2):
             to_a.publish(Float64(1.0))
             to_b.publish(Float64(2.0))
@@ -296,7 +299,7 @@ def test_each_type_clash_is_warned_once_with_its_topic(caplog: pytest.LogCapture
     assert [r.getMessage() for r in caplog.records] == [
         f"topic /{t} is published as std_msgs/msg/Float64 but subscribed as std_msgs/msg/String "
         "by /ear; messages are not delivered"
-        for t in ("a", "b")
+        for t in ("c", "a", "b")
     ]
 
 
