@@ -388,3 +388,39 @@ def test_services_answer_from_the_spinning_thread_and_say_why_not() -> None:
     with pytest.raises(ServiceCallError, match=r"^service '/nope' not found; services: \(none\)$"):
         empty.transport.call_service("/nope", Trigger, Trigger.Request())
     empty.shutdown()
+
+
+def test_a_failing_handler_is_one_warning_and_the_caller_learns_why(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    import threading
+
+    from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Response
+    from robomodel.runtime.transport.base import ServiceCallError
+
+    def check(request: object) -> SetBool_Response:
+        if not request.data:  # type: ignore[attr-defined]
+            raise ValueError("data must be true")
+        return SetBool_Response(True, "checked")
+
+    ctx = Context()
+    ctx.create_node("server").create_service(SetBool, "check", check)
+    with (
+        caplog.at_level(logging.WARNING, logger="robomodel.runtime"),
+        pytest.raises(ServiceCallError) as caught,
+    ):
+        ctx.call_service("/check", SetBool, SetBool.Request(False))
+    assert str(caught.value) == "service '/check' failed: data must be true"
+    assert [r.getMessage() for r in caplog.records] == [
+        "service /check failed: ValueError: data must be true"
+    ]
+    stop = threading.Event()
+    spinner = threading.Thread(target=lambda: ctx.spin(until=stop.is_set), daemon=True)
+    spinner.start()
+    try:  # from another thread, the request reaches the handler as well
+        reply = ctx.call_service("/check", SetBool, SetBool.Request(True), timeout_s=scaled(5))
+        assert reply == SetBool_Response(True, "checked")
+    finally:
+        stop.set()
+        spinner.join(scaled(5))
+    ctx.shutdown()
