@@ -10,7 +10,7 @@ STAMP := $(VENV)/.installed
 SDK_VENV := .venv-ros2sdk
 SDK_STAMP := $(SDK_VENV)/.installed
 
-.PHONY: demo test test-fast docs bench lint typecheck clean wheel-smoke
+.PHONY: demo test test-fast docs bench lint typecheck clean wheel-smoke mutate
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -53,6 +53,12 @@ FAST_TIER := not (browser or ros1 or bus or process or sim or slow)
 
 test-fast: $(STAMP)
 	$(BIN)/python -m pytest -q -n 2 -m "$(FAST_TIER)" tests
+
+# Mutation testing of the core modules with mutmut, one module group at a time, each against
+# its fast in-process tests (tools/mutate.py; scores in CONTRIBUTING.md). Not part of `test`:
+# it runs for about an hour on two cores. `tools/mutate.py GROUP` runs one group.
+mutate: $(STAMP)
+	$(BIN)/python tools/mutate.py
 
 # The documentation site, strict (a broken link or a missing page fails). Its screenshots are the
 # browser tests', committed in docs/assets/: tools/docs_screenshots takes and copies missing ones.

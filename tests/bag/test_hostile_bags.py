@@ -5,8 +5,12 @@ from __future__ import annotations
 
 import contextlib
 import io
+import random
 import struct
+import sys
 from pathlib import Path
+
+import pytest
 
 from tests.measured import MIB, run_measured
 
@@ -78,6 +82,41 @@ def test_29_3_mcap_decompression_bombs_are_refused_within_the_bound(tmp_path: Pa
     small.write_bytes(_mcap_with_chunk("zstd", _zstd_rle_bomb(4 * MIB), 4 * MIB))
     result = run_measured("bag", "info", str(small))
     assert "times the file's size" in _one_error_line(result.err)
+
+
+@pytest.mark.parametrize("codec", ["lz4", "zstd", "zstandard"])
+def test_a_chunk_that_expands_beyond_its_declared_size_is_never_held_whole(
+    codec: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A chunk declaring 64 KiB whose stream expands to 32 MiB is damage, found by reading at
+    most one byte past what it declares: the reader's allocations stay far below the 32 MiB
+    (measured with tracemalloc, in this process). ``zstandard`` is the fallback without the
+    zstd module of Python 3.14 or its backport."""
+    import tracemalloc
+
+    import lz4.frame
+
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.bag.model import Damage
+
+    declared = 64 << 10
+    data = lz4.frame.compress(bytes(32 * MIB)) if codec == "lz4" else _zstd_rle_bomb(32 * MIB)
+    if codec == "zstandard":
+        monkeypatch.setitem(sys.modules, "compression.zstd", None)  # None: ImportError
+        monkeypatch.setitem(sys.modules, "backports.zstd", None)
+    liar = tmp_path / f"{codec}.mcap"
+    liar.write_bytes(_mcap_with_chunk(codec.replace("zstandard", "zstd"), data, declared))
+    damage: list[Damage] = []
+    tracemalloc.start()
+    try:
+        assert list(scan_mcap(liar, damage)) == []
+        _, peak_bytes = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert [d.reason for d in damage] == [
+        f"chunk expands beyond the {declared} bytes it declares; its messages are skipped"
+    ]
+    assert peak_bytes < 4 * MIB
 
 
 _LAUGHS = "\n".join(
@@ -179,3 +218,70 @@ def test_29_15_sqlite3_bags_that_cannot_be_played_say_so(tmp_path: Path) -> None
         assert result.code == 2
         line = _one_error_line(result.err)
         assert line.startswith(f"robomodel: error: {bag}: none of its 10 messages could be played")
+
+
+def _mcap_of(path: Path, compression: str, payloads: list[bytes]) -> None:
+    """A sound MCAP file with ``payloads`` on /data, in one chunk compressed with
+    ``compression``."""
+    from mcap.writer import CompressionType, Writer
+
+    with path.open("wb") as stream:
+        writer = Writer(stream, compression=CompressionType[compression.upper()],
+                        chunk_size=64 * MIB)  # fmt: skip
+        writer.start(profile="ros2", library="test")
+        schema = writer.register_schema("std_msgs/msg/String", "ros2msg", b"string data")
+        channel = writer.register_channel("/data", "cdr", schema)
+        for k, payload in enumerate(payloads):
+            writer.add_message(channel, log_time=k, data=payload, publish_time=k)
+        writer.finish()
+
+
+ZSTD_MODULES = ("compression.zstd", "backports.zstd", "zstandard")
+
+
+@pytest.mark.parametrize(
+    ("codec", "present"),
+    [("zstd", "backports.zstd"), ("zstd", "zstandard"), ("lz4", "lz4.frame")],
+)
+def test_chunks_of_several_mib_decompress_whole_with_each_codec_module(
+    codec: str, present: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Each zstd module alone reads the chunk (the others made missing), in pieces when the
+    chunk is larger than one read: two messages of 1.5 MiB come back byte for byte."""
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.bag.model import Damage
+
+    payloads = [random.Random(k).randbytes(3 * MIB // 2) for k in (1, 2)]  # incompressible
+    path = tmp_path / f"{codec}.mcap"
+    _mcap_of(path, codec, payloads)
+    for module in ZSTD_MODULES if codec == "zstd" else ():
+        if module != present:
+            monkeypatch.setitem(sys.modules, module, None)  # None: ImportError
+    damage: list[Damage] = []
+    assert [m.data for m in scan_mcap(path, damage)] == payloads
+    assert damage == []
+
+
+@pytest.mark.parametrize(
+    ("codec", "blocked", "message"),
+    [
+        ("zstd", ZSTD_MODULES, "reading zstd-compressed MCAP chunks needs the 'zstandard' "
+                               "package: pip install 'robomodel[bag]'"),
+        ("lz4", ("lz4.frame",), "reading lz4-compressed MCAP chunks needs the 'lz4' package: "
+                                "pip install 'robomodel[bag]'"),
+    ],
+)  # fmt: skip
+def test_a_missing_codec_module_names_the_package_and_the_extra(
+    codec: str, blocked: tuple[str, ...], message: str, tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:  # fmt: skip
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.errors import MissingDependencyError
+
+    path = tmp_path / f"{codec}.mcap"
+    _mcap_of(path, codec, [b"\x00" * 64])
+    for module in blocked:
+        monkeypatch.setitem(sys.modules, module, None)
+    with pytest.raises(MissingDependencyError) as caught:
+        list(scan_mcap(path, []))
+    assert str(caught.value) == message

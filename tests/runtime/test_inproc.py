@@ -6,10 +6,12 @@ import logging
 
 import pytest
 
+from robomodel.errors import RobomodelError
 from robomodel.runtime import Context, ManualClock, latched
 from robomodel.runtime.msg import Clock, Float64, String, Time
 from robomodel.runtime.param_client import ParameterClient
 from robomodel.runtime.params import ParameterError, SetResult
+from tests.timing import scaled
 
 
 def _run(seed_order: list[str]) -> list[tuple[float, str, float]]:
@@ -163,3 +165,262 @@ def test_parameter_events_are_published() -> None:
     assert [p.name for e in mine for p in e.new_parameters] == ["use_sim_time", "gain"]
     changed = [p for e in mine for p in e.changed_parameters]
     assert [(p.name, p.value.double_value) for p in changed] == [("gain", 2.0)]
+
+
+def test_transient_local_keeps_the_last_depth_messages() -> None:
+    """A late subscriber gets the publisher's last ``depth`` messages, oldest first, as DDS
+    and rmw_zenoh's transient-local publication cache (``history`` of ``depth``) keep them."""
+    ctx = Context(clock=ManualClock())
+    pub = ctx.create_node("talker").create_publisher(String, "log", latched(depth=3))
+    for k in range(5):
+        pub.publish(String(f"m{k}"))
+    late: list[str] = []
+    ctx.create_node("late").create_subscription(
+        String, "/log", lambda m: late.append(m.data), latched(depth=3)
+    )
+    ctx.spin_once()
+    assert late == ["m2", "m3", "m4"]
+
+
+def test_destroyed_endpoints_leave_the_graph_and_deliver_nothing() -> None:
+    ctx = Context(clock=ManualClock())
+    pub = ctx.create_node("talker").create_publisher(String, "chatter", latched(depth=2))
+    heard: list[str] = []
+    ear = ctx.create_node("ear")
+    sub = ear.create_subscription(String, "/chatter", lambda m: heard.append(m.data))
+    kept = ear.create_subscription(String, "/chatter", lambda m: heard.append("kept " + m.data))
+    sub.destroy()
+    sub.destroy()  # twice: nothing more happens
+    pub.publish(String("a"))
+    ctx.spin_once()
+    assert heard == ["kept a"]
+    topic = ctx.graph().topics["/chatter"]
+    assert [e.node for e in topic.subscribers] == ["/ear"]
+    pub.destroy()
+    pub.destroy()
+    assert ctx.graph().topics["/chatter"].publishers == []
+    late: list[str] = []
+    ear.create_subscription(String, "/chatter", lambda m: late.append(m.data), latched(depth=2))
+    ctx.spin_once()
+    assert late == []  # a destroyed publisher's history goes with it
+    kept.destroy()
+    ctx.shutdown()
+    # the context is closed: handles destroyed now find no lists, and that is no error
+    pub.destroy()
+    kept.destroy()
+
+
+def test_a_destroyed_service_handle_does_not_remove_its_successor() -> None:
+    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+
+    ctx = Context(clock=ManualClock())
+    node = ctx.create_node("server")
+    first = node.create_service(Trigger, "reset", lambda r: Trigger_Response(True, "first"))
+    first.destroy()
+    second = node.create_service(Trigger, "reset", lambda r: Trigger_Response(True, "second"))
+    first.destroy()  # the old handle again: the new service stays
+    assert ctx.call_service("/reset", Trigger).message == "second"
+    assert set(ctx.graph().services) >= {"/reset"}
+    second.destroy()
+    assert "/reset" not in ctx.graph().services
+
+
+def test_the_graph_lists_each_endpoint_with_its_node_type_and_qos() -> None:
+    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.qos import QoSProfile
+
+    ctx = Context(clock=ManualClock())
+    ctx.create_node("talker").create_publisher(String, "chatter", latched(depth=4))
+    ctx.create_node("ear").create_subscription(String, "/chatter", lambda m: None, 7)
+    ctx.create_node("server").create_service(Trigger, "reset", lambda r: Trigger_Response())
+    graph = ctx.graph()
+    assert {"/talker", "/ear", "/server"} <= graph.nodes
+    topic = graph.topics["/chatter"]
+    assert topic.types == {"std_msgs/msg/String"}
+    assert [(e.node, e.topic, e.type_name, e.qos) for e in topic.publishers] == [
+        ("/talker", "/chatter", "std_msgs/msg/String", latched(depth=4))
+    ]
+    assert [(e.node, e.topic, e.type_name, e.qos) for e in topic.subscribers] == [
+        ("/ear", "/chatter", "std_msgs/msg/String", QoSProfile(7))
+    ]
+    server = graph.services["/reset"]
+    assert [(e.node, e.type_name) for e in server.servers] == [("/server", "std_srvs/srv/Trigger")]
+
+
+def test_nodes_of_one_name_are_counted_and_warned_about(caplog: pytest.LogCaptureFixture) -> None:
+    ctx = Context(clock=ManualClock())
+    first = ctx.create_node("twin")
+    with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        second = ctx.create_node("twin")
+    assert "a node named /twin already exists; names should be unique" in [
+        r.getMessage() for r in caplog.records
+    ]
+    assert "/twin" in ctx.graph().nodes
+    first.destroy()
+    assert "/twin" in ctx.graph().nodes  # the other one still runs
+    second.destroy()
+    assert "/twin" not in ctx.graph().nodes
+    third = ctx.create_node("twin")
+    assert "/twin" in ctx.graph().nodes
+    third.destroy()
+    assert "/twin" not in ctx.graph().nodes
+
+
+def test_publishing_the_wrong_type_names_both_types() -> None:
+    ctx = Context(clock=ManualClock())
+    pub = ctx.create_node("talker").create_publisher(String, "chatter")
+    with pytest.raises(RobomodelError) as caught:
+        pub.publish(Float64(1.0))  # type: ignore[arg-type]
+    assert str(caught.value) == (
+        "publisher on /chatter has type std_msgs/msg/String, got std_msgs/msg/Float64"
+    )
+
+
+def test_each_type_clash_is_warned_once_with_its_topic(caplog: pytest.LogCaptureFixture) -> None:
+    """Once per (topic, published type, subscribed type), at the first message for a
+    subscription made first, and at once for a late transient-local subscription."""
+    ctx = Context(clock=ManualClock())
+    got: list[object] = []
+    ear = ctx.create_node("ear")
+    ear.create_subscription(String, "/a", got.append)
+    talker = ctx.create_node("talker")
+    to_a = talker.create_publisher(Float64, "a", latched())
+    to_b = talker.create_publisher(Float64, "b", latched())
+    ear.create_subscription(String, "/c", got.append, latched())  # no publisher yet: nothing
+    to_c = talker.create_publisher(Float64, "c")
+    with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        assert to_c.get_subscription_count() == 0  # asked before any message: warned here
+        for _ in range(2):
+            to_a.publish(Float64(1.0))
+            to_b.publish(Float64(2.0))
+        ear.create_subscription(String, "/b", got.append, latched())  # history of another type
+        ctx.spin_once()
+    assert got == []
+    assert [r.getMessage() for r in caplog.records] == [
+        f"topic /{t} is published as std_msgs/msg/Float64 but subscribed as std_msgs/msg/String "
+        "by /ear; messages are not delivered"
+        for t in ("c", "a", "b")
+    ]
+
+
+def test_a_node_name_in_use_is_warned_about_until_its_last_node_goes(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    ctx = Context(clock=ManualClock())
+    warning = "a node named /twin already exists; names should be unique"
+
+    def warned() -> bool:
+        found = warning in [r.getMessage() for r in caplog.records]
+        caplog.clear()
+        return found
+
+    with caplog.at_level(logging.WARNING, logger="robomodel.runtime"):
+        first = ctx.create_node("twin")
+        assert not warned()
+        second = ctx.create_node("twin")
+        assert warned()
+        first.destroy()
+        third = ctx.create_node("twin")  # the second still runs
+        assert warned()
+        second.destroy()
+        third.destroy()
+        fourth = ctx.create_node("twin")
+        assert not warned()
+    ctx.shutdown()
+    fourth.destroy()  # after the context: no error
+
+
+def test_services_answer_from_the_spinning_thread_and_say_why_not() -> None:
+    """A call from another thread runs the handler on the spinning thread (as a call from
+    another process would) and waits; the errors name the service."""
+    import threading
+
+    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.transport.base import Deferred, ServiceCallError
+
+    ctx = Context()
+    node = ctx.create_node("server")
+    threads: list[int] = []
+    later: list[Deferred] = []
+
+    def now(_: object) -> Trigger_Response:
+        threads.append(threading.get_ident())
+        return Trigger_Response(True, "now")
+
+    def deferred(_: object) -> Deferred:
+        answer = Deferred()
+        later.append(answer)
+        ctx.executor.post(lambda: answer.resolve(Trigger_Response(True, "later")))
+        return answer
+
+    def failing(_: object) -> Trigger_Response:
+        raise ValueError("boom")
+
+    node.create_service(Trigger, "now", now)
+    node.create_service(Trigger, "later", deferred)
+    node.create_service(Trigger, "fails", failing)
+    node.create_service(Trigger, "never", lambda _: Deferred())
+    with pytest.raises(ServiceCallError) as caught:
+        ctx.call_service("/nope", Trigger)
+    assert str(caught.value) == "service '/nope' not found; services: " + ", ".join(
+        sorted(ctx.graph().services)
+    )
+    with pytest.raises(ServiceCallError, match=r"^service '/never' answers later; call it from another thread than the spinner$"):  # fmt: skip
+        ctx.call_service("/never", Trigger)
+    stop = threading.Event()
+    spinner = threading.Thread(target=lambda: ctx.spin(until=stop.is_set), daemon=True)
+    spinner.start()
+    try:
+        assert ctx.call_service("/now", Trigger, timeout_s=scaled(5)).message == "now"
+        assert threads == [spinner.ident]
+        assert ctx.call_service("/later", Trigger, timeout_s=scaled(5)).message == "later"
+        with pytest.raises(ServiceCallError) as caught:
+            ctx.call_service("/fails", Trigger, timeout_s=scaled(5))
+        assert str(caught.value) == "service '/fails' failed: boom"
+        with pytest.raises(ServiceCallError) as caught:
+            ctx.call_service("/never", Trigger, timeout_s=0.25)
+        assert str(caught.value) == "service '/never' did not answer in 0.25 s"
+    finally:
+        stop.set()
+        spinner.join(scaled(5))
+    ctx.shutdown()
+    empty = Context()
+    with pytest.raises(ServiceCallError, match=r"^service '/nope' not found; services: \(none\)$"):
+        empty.transport.call_service("/nope", Trigger, Trigger.Request())
+    empty.shutdown()
+
+
+def test_a_failing_handler_is_one_warning_and_the_caller_learns_why(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    import threading
+
+    from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Response
+    from robomodel.runtime.transport.base import ServiceCallError
+
+    def check(request: object) -> SetBool_Response:
+        if not request.data:  # type: ignore[attr-defined]
+            raise ValueError("data must be true")
+        return SetBool_Response(True, "checked")
+
+    ctx = Context()
+    ctx.create_node("server").create_service(SetBool, "check", check)
+    with (
+        caplog.at_level(logging.WARNING, logger="robomodel.runtime"),
+        pytest.raises(ServiceCallError) as caught,
+    ):
+        ctx.call_service("/check", SetBool, SetBool.Request(False))
+    assert str(caught.value) == "service '/check' failed: data must be true"
+    assert [r.getMessage() for r in caplog.records] == [
+        "service /check failed: ValueError: data must be true"
+    ]
+    stop = threading.Event()
+    spinner = threading.Thread(target=lambda: ctx.spin(until=stop.is_set), daemon=True)
+    spinner.start()
+    try:  # from another thread, the request reaches the handler as well
+        reply = ctx.call_service("/check", SetBool, SetBool.Request(True), timeout_s=scaled(5))
+        assert reply == SetBool_Response(True, "checked")
+    finally:
+        stop.set()
+        spinner.join(scaled(5))
+    ctx.shutdown()

@@ -15,7 +15,12 @@ from typing import Any
 import pytest
 
 from robomodel.runtime.transport.ros1.master import Master
-from robomodel.runtime.transport.ros1.names import canonical, namespace_of, resolve
+from robomodel.runtime.transport.ros1.names import (
+    canonical,
+    master_bind_host,
+    namespace_of,
+    resolve,
+)
 from robomodel.runtime.transport.ros1.tcpros import (
     MAX_HEADER_BYTES,
     TcprosError,
@@ -43,6 +48,26 @@ def test_names_resolve_as_rosgraph_does() -> None:
     assert resolve("/abs//x/", "/ns/node") == "/abs/x"
     assert namespace_of("/a/b") == "/a/" and namespace_of("/a") == "/"
     assert canonical("//a///b/") == "/a/b"
+
+
+@pytest.mark.parametrize(
+    ("ros_ip", "uri", "expected"),
+    [
+        ("10.1.2.3", "http://[2001:db8::5]:11311/", "::"),  # "::" takes IPv4 peers too
+        ("10.1.2.3", "http://[::1]:11311/", "::"),
+        ("10.1.2.3", "http://127.0.0.1:11311/", "0.0.0.0"),
+        ("2001:db8::7", "http://127.0.0.1:11311/", "::"),
+        ("2001:db8::7", "http://[2001:db8::5]:11311/", "::"),
+    ],
+)
+def test_a_master_with_an_address_others_use_binds_every_interface_of_its_uri_s_family(
+    ros_ip: str, uri: str, expected: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A non-loopback ``ROS_IP`` binds every interface, as roscpp does; a master whose URI is
+    IPv6 must bind "::" (on "0.0.0.0" the peers that ROS_MASTER_URI sends there are refused)."""
+    monkeypatch.delenv("ROS_HOSTNAME", raising=False)
+    monkeypatch.setenv("ROS_IP", ros_ip)
+    assert master_bind_host(uri) == expected
 
 
 def test_registrations_lookups_and_system_state(master: tuple[Master, Any]) -> None:
@@ -110,6 +135,34 @@ def test_param_subscribers_get_param_update(master: tuple[Master, Any]) -> None:
             time.sleep(0.05)
         assert updates[0] == ("/master", "/robot/", {"x": 1})
         assert updates[-1] == ("/master", "/robot/", {})
+    finally:
+        node.close()
+
+
+def test_param_subscribers_below_a_namespace_set_to_a_dict_get_their_value(
+    master: tuple[Master, Any],
+) -> None:
+    """Setting ``/robot`` to a dict tells the subscribers of keys inside it their new value,
+    and those of keys it no longer holds ``{}`` (rosmaster's compute_param_updates: the
+    "exact matches within tree" and "parameter was deleted" cases)."""
+    updates: list[tuple[str, str, Any]] = []
+    node = XmlRpcServer("127.0.0.1", 0, {"paramUpdate": lambda *a: updates.append(a) or [1, "", 0]})
+    api = f"http://127.0.0.1:{node.port}/"
+    _, proxy = master
+    try:
+        proxy.setParam("/other", "/robot/gone", 3)
+        for key in ("/robot/arm/gain", "/robot/gone", "/elsewhere"):
+            proxy.subscribeParam("/node", api, key)
+        proxy.setParam("/other", "/robot", {"arm": {"gain": 2.5}, "name": "r2"})
+        proxy.setParam("/other", "/elsewhere", 1)  # one worker sends in order: this comes last
+        deadline = time.monotonic() + scaled(5)
+        while ("/master", "/elsewhere/", 1) not in updates and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert updates[-1] == ("/master", "/elsewhere/", 1)
+        assert sorted(updates[:-1]) == [
+            ("/master", "/robot/arm/gain/", 2.5),
+            ("/master", "/robot/gone/", {}),
+        ]
     finally:
         node.close()
 

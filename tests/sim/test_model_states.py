@@ -5,6 +5,7 @@ names of the graph's ROS version."""
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import pytest
@@ -226,6 +227,51 @@ def test_ros2_states_at_gazebo_ros_state_s_100_hz(monkeypatch: pytest.MonkeyPatc
         assert server.sim.timestep_s == pytest.approx(0.001)
         server.sim.step(100)  # 0.1 s
         assert calls == {"model_states": 10, "link_states": 10}
+    finally:
+        server.close()
+        context.shutdown()
+
+
+PUCK = """<robot name="puck"><link name="body">
+  <inertial><origin xyz="0 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+</link></robot>"""
+
+
+def test_states_carry_the_linear_and_angular_twist_in_the_world_frame() -> None:
+    """gazebo_ros fills ModelStates/LinkStates twists with the link's world linear velocity,
+    then its world angular velocity: a free body in the air keeps the twist it was set to (its
+    spin about a principal axis exactly, its horizontal velocity; gravity changes only z)."""
+    server, context = _server(1)
+    got: dict[str, object] = {}
+    try:
+        server.spawn("puck", PUCK, xyz_m=(0.0, 0.0, 5.0))
+        node = context.create_node("listener")
+        for topic, kind in (("/gazebo/model_states", gzs.ModelStates),
+                            ("/gazebo/link_states", gzs.LinkStates)):  # fmt: skip
+            node.create_subscription(kind, topic, lambda m, t=topic: got.__setitem__(t, m), 10)
+        state = gzs.LinkState(
+            "puck::body", Pose(Point(0.0, 0.0, 5.0), Quaternion(0, 0, 0, 1)),
+            Twist(Vector3(0.3, -0.2, 0.0), Vector3(0.0, 0.0, 0.8)), "world",
+        )  # fmt: skip
+        reply = _call(context, "/gazebo/set_link_state", gzs.SetLinkState,
+                      gzs.SetLinkState_Request(state))  # fmt: skip
+        assert reply.success, reply.status_message  # type: ignore[attr-defined]
+        server.drive(0.05)  # applied at the next tick
+        got.clear()
+        deadline = time.monotonic() + scaled(10.0)
+        while len(got) < 2 and time.monotonic() < deadline:
+            server.drive(0.02)
+            context.spin_once(0.0)
+        models, links = got["/gazebo/model_states"], got["/gazebo/link_states"]
+        model_twist = models.twist[models.name.index("puck")]  # type: ignore[attr-defined]
+        link_twist = links.twist[links.name.index("puck::body")]  # type: ignore[attr-defined]
+        for twist in (model_twist, link_twist):
+            lin, ang = twist.linear, twist.angular
+            assert (lin.x, lin.y) == pytest.approx((0.3, -0.2), abs=1e-6)
+            assert lin.z < -0.01  # falling
+            assert (ang.x, ang.y, ang.z) == pytest.approx((0.0, 0.0, 0.8), abs=1e-6)
     finally:
         server.close()
         context.shutdown()

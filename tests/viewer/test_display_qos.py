@@ -88,6 +88,25 @@ def test_a_changed_policy_of_a_read_display_is_written_into_its_topic_map() -> N
     assert dict(written) == {"Value": "/scan", "Depth": 5, "Reliability Policy": "Best Effort"}
 
 
+def test_a_changed_queue_size_of_a_read_display_is_written_as_its_topic_s_depth() -> None:
+    """RViz 2 keeps Queue Size as the topic map's ``Depth``: Save Config writes the new one,
+    whether the topic changed too or not, and keeps the map's other keys."""
+    from robomodel.viewer.rviz_model import RvizDisplay
+
+    cls = display_class("LaserScan")
+    topic = MappingProxyType({"Value": "/scan", "Depth": 5, "Reliability Policy": "Reliable"})
+    settings = MappingProxyType({"Topic": topic})
+    base = RvizDisplay("rviz_default_plugins/LaserScan", "scan", True, settings)
+    display = cls("scan", fake_context(FakeScene()), display_values(cls, settings, RvizDialect.ROS2)[0])  # fmt: skip
+    display.set_option("Queue Size", 20)
+    written = display_entry(display, RvizDialect.ROS2, base).settings
+    assert dict(written["Topic"]) == {"Value": "/scan", "Depth": 20, "Reliability Policy": "Reliable"}  # fmt: skip
+    assert "Queue Size" not in written  # RViz 2 has no key of that name
+    display.set_option("Topic", "/scan_front")
+    written = display_entry(display, RvizDialect.ROS2, base).settings
+    assert dict(written["Topic"]) == {"Value": "/scan_front", "Depth": 20, "Reliability Policy": "Reliable"}  # fmt: skip
+
+
 @pytest.fixture
 def zenoh_pair() -> Iterator[tuple[Context, Context]]:
     domain = int(unique_domain())

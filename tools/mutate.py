@@ -1,0 +1,282 @@
+"""Mutation testing of the core modules with mutmut, one module group at a time.
+
+Each group is a few source files and the fast in-process tests that cover them. A group runs in
+``build/mutate/GROUP/``, a folder of its own with links to ``src``, ``tests`` and ``examples``
+and a ``pyproject.toml`` that is the project's plus a ``[tool.mutmut]`` table naming the
+group's files and tests, since mutmut reads its settings from the current folder only. mutmut
+records which tests reach each function and runs only those on that function's mutants, each
+in a process forked from one that has imported everything, so a group's run is minutes where
+running pytest anew per mutant would be hours.
+
+The score per source file is printed as a Markdown table (the one in CONTRIBUTING.md) and
+written to ``build/mutate/GROUP/scores.json``; ``--survivors`` prints each surviving mutant's
+diff. Results are kept, so a second run of a group re-tests only what changed.
+
+    python tools/mutate.py                  # every group, in order
+    python tools/mutate.py inproc names     # these groups
+    python tools/mutate.py --list           # the groups, their files and tests
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+WORK = ROOT / "build" / "mutate"
+
+
+@dataclass(frozen=True, slots=True)
+class Group:
+    """Source files (under src/robomodel/) and the tests (under tests/) that cover them."""
+
+    name: str
+    sources: tuple[str, ...]
+    tests: tuple[str, ...]
+
+
+GROUPS = (
+    Group(
+        "inproc",
+        ("runtime/transport/inproc.py",),
+        (
+            "runtime/test_inproc.py",
+            # their other tests start Zenoh processes, which cannot import the mutated tree
+            "runtime/test_services.py::test_inproc_service_call_and_errors",
+            "runtime/test_subscription_count.py::test_inproc_counts_the_subscriptions_it_delivers_to",
+        ),
+    ),
+    Group(
+        "master",
+        ("runtime/transport/ros1/master.py", "runtime/transport/ros1/names.py"),
+        (
+            "runtime/test_ros1_master.py",
+            "runtime/test_ros1_master_hostile.py",
+            "runtime/test_ros1_master_api.py",
+        ),
+    ),
+    Group(
+        "rviz_io",
+        ("viewer/displays/rviz_io.py",),
+        (
+            "viewer/test_display_qos.py",
+            "viewer/test_displays_config.py",
+            "viewer/test_rviz_save.py",
+            "viewer/test_rviz_files.py",
+            "viewer/test_displays_rviz.py",
+            "viewer/test_sensor_displays_rviz.py",
+        ),
+    ),
+    Group(
+        "bag_readers",
+        ("bag/_mcap_reader.py", "bag/reader.py"),
+        ("bag/test_hostile_bags.py", "bag/test_bad_input.py"),
+    ),
+    Group(
+        "cdr",
+        ("runtime/msg/_cdr_encode.py", "runtime/msg/_cdr_decode.py", "runtime/msg/cdr.py"),
+        (
+            "runtime/test_messages.py",
+            "runtime/test_cdr_float64.py",
+            "runtime/test_cdr_strings.py",
+            "runtime/test_types_from_definitions.py",
+            "runtime/test_rmw_zenoh_wire.py",
+        ),
+    ),
+    Group(
+        "ros1_codec",
+        ("runtime/transport/ros1/ros1_codec.py",),
+        ("runtime/test_ros1_messages.py", "runtime/test_types_from_definitions.py"),
+    ),
+    Group(
+        "msg_types",
+        ("runtime/msg/typehash.py", "runtime/msg/_from_definition.py"),
+        (
+            "runtime/test_type_hashes.py",
+            "runtime/test_types_from_definitions.py",
+            "runtime/test_type_descriptions.py",
+            "runtime/test_types_rebuilt.py",
+        ),
+    ),
+    Group(
+        "control_maths",
+        (
+            "control/pid.py",
+            "control/controllers/trajectory.py",
+            "control/controllers/odometry.py",
+            "control/controllers/diff_drive.py",
+        ),
+        (
+            "control/test_pid_bounds.py",
+            "control/test_reference_scenarios.py",
+            "control/test_controllers.py",
+            "control/test_properties.py",
+        ),
+    ),
+)
+
+# The tests of a group run in mutmut's process, without xdist, and only the quick ones.
+PYTEST_ARGS = ["-p", "no:xdist", "-p", "no:cacheprovider", "-m", "not slow and not browser"]
+
+
+def _toml_list(items: list[str]) -> str:
+    return "[" + ", ".join(json.dumps(item) for item in items) + "]"
+
+
+def prepare(group: Group) -> Path:
+    """The group's folder: links to the tree and a pyproject.toml with its mutmut table."""
+    folder = WORK / group.name
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in ("src", "tests", "examples", "docs"):
+        link = folder / name
+        if not link.is_symlink():
+            link.symlink_to(ROOT / name, target_is_directory=True)
+    table = "\n".join(
+        [
+            "",
+            "[tool.mutmut]",
+            'source_paths = ["src"]',
+            f"only_mutate = {_toml_list([f'src/robomodel/{s}' for s in group.sources])}",
+            "pytest_add_cli_args_test_selection = "
+            + _toml_list([f"tests/{t}" for t in group.tests]),
+            f"pytest_add_cli_args = {_toml_list(PYTEST_ARGS)}",
+            'also_copy = ["examples", "docs"]',
+            "use_git_change_detection = false",
+            # a mutant that makes a test wait (a queue, a thread) uses no CPU time: mutmut
+            # ends it after this many times the tests' own duration
+            "timeout_multiplier = 5.0",
+            "",
+        ]
+    )
+    (folder / "pyproject.toml").write_text((ROOT / "pyproject.toml").read_text() + table)
+    return folder
+
+
+def _router_listening() -> bool:
+    with socket.socket() as probe:
+        probe.settimeout(0.2)
+        return probe.connect_ex(("127.0.0.1", 7447)) == 0
+
+
+def run(group: Group, *, children: int) -> int:
+    """mutmut run in the group's folder; its exit code."""
+    folder = prepare(group)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONPATH"] = str(ROOT / "src")  # mutmut puts mutants/src before it
+    command = [sys.executable, "-m", "mutmut", "run", "--max-children", str(children)]
+    return subprocess.run(command, cwd=folder, env=env, check=False).returncode
+
+
+def scores(group: Group) -> dict[str, dict[str, int]]:
+    """Per source file: how many of its mutants ended in each status."""
+    from mutmut.stats import status_by_exit_code
+
+    out: dict[str, dict[str, int]] = {}
+    for source in group.sources:
+        meta = WORK / group.name / "mutants" / "src" / "robomodel" / f"{source}.meta"
+        counts: dict[str, int] = {}
+        if meta.exists():
+            for code in json.loads(meta.read_text())["exit_code_by_key"].values():
+                status = status_by_exit_code[code]
+                counts[status] = counts.get(status, 0) + 1
+        out[source] = counts
+    (WORK / group.name / "scores.json").write_text(json.dumps(out, indent=2, sort_keys=True))
+    return out
+
+
+def survivors(group: Group) -> list[str]:
+    """The names of the group's surviving mutants."""
+    from mutmut.stats import status_by_exit_code
+
+    names = []
+    for source in group.sources:
+        meta = WORK / group.name / "mutants" / "src" / "robomodel" / f"{source}.meta"
+        if meta.exists():
+            codes = json.loads(meta.read_text())["exit_code_by_key"]
+            names += [k for k, c in codes.items() if status_by_exit_code[c] == "survived"]
+    return names
+
+
+def table_row(group: str, source: str, counts: dict[str, int]) -> str:
+    """A row of the scores table: the score is over the mutants tested so far."""
+    killed = sum(counts.get(k, 0) for k in ("killed", "timeout", "segfault"))
+    total = sum(counts.values())
+    tested = total - counts.get("not checked", 0) - counts.get("check was interrupted by user", 0)
+    score = f"{100 * killed / tested:.0f}%" if tested else "-"
+    return (
+        f"| {group} | `{source}` | {total} | {tested} | {killed} | {counts.get('survived', 0)} "
+        f"| {counts.get('no tests', 0)} | {score} |"
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("groups", nargs="*", help="groups to run (default: all)")
+    parser.add_argument("--list", action="store_true", help="show the groups and stop")
+    parser.add_argument("--report", action="store_true", help="print the scores, run nothing")
+    parser.add_argument("--survivors", action="store_true", help="print surviving mutants")
+    parser.add_argument("--fresh", action="store_true", help="forget a group's earlier results")
+    parser.add_argument("--children", type=int, default=1, help="mutants tested at once")
+    args = parser.parse_args(argv)
+    by_name = {g.name: g for g in GROUPS}
+    unknown = [name for name in args.groups if name not in by_name]
+    if unknown:
+        print(
+            f"mutate: unknown group {', '.join(unknown)}; groups are: {', '.join(by_name)}",
+            file=sys.stderr,
+        )
+        return 2
+    chosen = [by_name[name] for name in args.groups] or list(GROUPS)
+    if args.list:
+        for g in chosen:
+            print(f"{g.name}: {', '.join(g.sources)}\n    tests: {', '.join(g.tests)}")
+        return 0
+    router = None
+    if not args.report and not _router_listening():
+        # tests/conftest.py starts a Zenoh router for every pytest run that finds none, which
+        # mutmut's one-run-per-mutant would pay for each time: one for the whole run instead
+        router = subprocess.Popen(
+            [sys.executable, "-m", "robomodel.cli.main", "router"],
+            stderr=subprocess.DEVNULL, start_new_session=True,
+            env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        )  # fmt: skip
+    failed = []
+    try:
+        for g in chosen:
+            if not args.report:
+                if args.fresh:
+                    shutil.rmtree(WORK / g.name / "mutants", ignore_errors=True)
+                if run(g, children=args.children) != 0:
+                    failed.append(g.name)
+    finally:
+        if router is not None:
+            router.terminate()
+            router.wait()
+    print("\n| group | module | mutants | tested | killed | survived | no tests | score |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for g in chosen:
+        for source, counts in scores(g).items():
+            print(table_row(g.name, source, counts))
+    if args.survivors:
+        for g in chosen:
+            for name in survivors(g):
+                shown = subprocess.run(
+                    [sys.executable, "-m", "mutmut", "show", name],
+                    cwd=WORK / g.name, capture_output=True, text=True, check=False,
+                )  # fmt: skip
+                print(shown.stdout)
+    if failed:
+        print(f"mutate: mutmut failed for {', '.join(failed)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
