@@ -45,7 +45,7 @@ OUT = ROOT / "src" / "robomodel" / "runtime" / "msg"
 INTERFACES = OUT / "interfaces"
 VERSIONS = OUT / "interface_versions"
 
-MSG_SCHEMA = "robomodel.runtime.msg._schema"
+MSG_SCHEMA = "robomodel.runtime.msg.schema"
 _BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
 _PYTHON = {"bool": "bool", "string": "str", "float32": "float", "float64": "float"}
 _ZERO = {"bool": "False", "string": '""', "float32": "0.0", "float64": "0.0"}
@@ -155,20 +155,20 @@ def _field(
         return cls, f"field(default_factory={cls})", cls
     item_ann, item_default, item_spec = _field(rest[0], owner, where, key, "")
     size = int(rest[1])
-    if item_spec in ('"uint8"', '"byte"', '"char"'):  # held as bytes (msg._schema.BYTE_ITEMS)
+    if item_spec in ('"uint8"', '"byte"', '"char"'):  # held as bytes (msg.schema.BYTE_ITEMS)
         kind_name = "Array" if kind == _ARRAY else "Seq"
-        owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add(kind_name)
+        owner.imports.setdefault("robomodel.runtime.msg.schema", set()).add(kind_name)
         if kind == _ARRAY:
             return "bytes", f"bytes({size})", f"Array({item_spec}, {size})"
         return "bytes", 'b""', f"Seq({item_spec}, {size})" if size else f"Seq({item_spec})"
     if kind == _ARRAY:
-        owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add("Array")
+        owner.imports.setdefault("robomodel.runtime.msg.schema", set()).add("Array")
         if int(rest[0][0]) == _NAME:
             default = f"field(default_factory=lambda: [{item_spec}() for _ in range({size})])"
         else:
             default = f"field(default_factory=lambda: [{item_default}] * {size})"
         return f"list[{item_ann}]", default, f"Array({item_spec}, {size})"
-    owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add("Seq")
+    owner.imports.setdefault("robomodel.runtime.msg.schema", set()).add("Seq")
     spec = f"Seq({item_spec}, {size})" if size else f"Seq({item_spec})"
     return f"list[{item_ann}]", "field(default_factory=list)", spec
 
@@ -282,7 +282,7 @@ def _module_text(module: str, names: list[str], sources: Sources, where: dict[st
     for key in MODULES[module][1]:
         short = key.rsplit("/", 1)[-1]
         if "/srv/" in key:
-            mod.imports["robomodel.runtime.msg._schema"].add("Service")
+            mod.imports["robomodel.runtime.msg.schema"].add("Service")
             mod.lines += [
                 "",
                 "",

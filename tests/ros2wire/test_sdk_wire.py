@@ -30,7 +30,7 @@ from robomodel.runtime.msg import (
     gazebo_msgs,
     rcl_interfaces,
 )
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.msg.service_msgs import ServiceEventInfo
 from robomodel.runtime.msg.std_srvs import SetBool, Trigger
 from robomodel.runtime.msg.typehash import type_hash

@@ -27,7 +27,7 @@ from robomodel.runtime.msg import (
     serialize,
 )
 from robomodel.runtime.msg._from_definition import build_message_class
-from robomodel.runtime.msg._schema import message_type_names
+from robomodel.runtime.msg.schema import message_type_names
 from robomodel.runtime.msg.typehash import type_hash
 from tests.timing import scaled
 

@@ -10,7 +10,7 @@ classes, so schemas carry fields only: what readers (Foxglove, PlotJuggler, rosb
 from __future__ import annotations
 
 from robomodel.runtime.msg import Array, Message, Seq
-from robomodel.runtime.msg._schema import Spec
+from robomodel.runtime.msg.schema import Spec
 from robomodel.runtime.msg.typehash import type_hash
 
 __all__ = ["rihs01", "ros2msg_definition"]

@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Action
 from robomodel.runtime.msg.action_msgs import (
     CancelGoal,
     CancelGoal_Request,
@@ -29,6 +28,7 @@ from robomodel.runtime.msg.action_msgs import (
     GoalStatus,
     GoalStatusArray,
 )
+from robomodel.runtime.msg.schema import Action
 from robomodel.runtime.qos import QoSProfile, latched
 from robomodel.runtime.transport.base import Deferred
 

@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import type_description_interfaces as tdi
-from robomodel.runtime.msg._schema import Array, Message, Seq, Service, Spec
+from robomodel.runtime.msg.schema import Array, Message, Seq, Service, Spec
 from robomodel.runtime.msg.typehash import type_description, type_hash
 
 if TYPE_CHECKING:

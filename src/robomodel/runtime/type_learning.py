@@ -15,7 +15,7 @@ import logging
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg._schema import MessageTypeError
+from robomodel.runtime.msg.schema import MessageTypeError
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context

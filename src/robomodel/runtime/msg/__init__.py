@@ -1,14 +1,5 @@
 """ROS 2 message types as Python dataclasses, their CDR encoding and YAML conversion."""
 
-from robomodel.runtime.msg._schema import (
-    Array,
-    Message,
-    MessageTypeError,
-    Seq,
-    canonical_type_name,
-    get_message_type,
-    message_type_names,
-)
 from robomodel.runtime.msg.builtin_interfaces import Duration, Time
 from robomodel.runtime.msg.cdr import CDRError, deserialize, serialize
 from robomodel.runtime.msg.control_msgs import (
@@ -30,6 +21,15 @@ from robomodel.runtime.msg.geometry_msgs import (
     Vector3,
 )
 from robomodel.runtime.msg.nav_msgs import Clock, Odometry, TFMessage
+from robomodel.runtime.msg.schema import (
+    Array,
+    Message,
+    MessageTypeError,
+    Seq,
+    canonical_type_name,
+    get_message_type,
+    message_type_names,
+)
 from robomodel.runtime.msg.sensor_msgs import Imu, JointState, LaserScan
 from robomodel.runtime.msg.std_msgs import (
     Bool,

@@ -21,7 +21,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 
-from robomodel.runtime.msg._schema import MessageTypeError
+from robomodel.runtime.msg.schema import MessageTypeError
 
 __all__ = ["action_part", "action_parts", "ros1_wrapper_text"]
 

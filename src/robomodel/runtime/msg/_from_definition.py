@@ -17,7 +17,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import field, make_dataclass
 from typing import Any
 
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.schema import (
     PRIMITIVES,
     Array,
     Message,

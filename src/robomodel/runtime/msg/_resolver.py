@@ -1,7 +1,7 @@
 """Where robomodel finds the message, service and action types it has no class of its own
 for (its own are generated into modules by tools/gen_msgs.py).
 
-:func:`~._schema.get_message_type` asks here when a name is not one of robomodel's own
+:func:`~.schema.get_message_type` asks here when a name is not one of robomodel's own
 classes. The definition is taken from, in this order:
 
 1. the interface packages on the package path (``--package-path``, ``ROS_PACKAGE_PATH``,
@@ -40,7 +40,7 @@ from robomodel.runtime.msg._from_definition import (
     build_message_class,
     build_service_class,
 )
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.schema import (
     Action,
     Message,
     MessageTypeError,
@@ -290,7 +290,7 @@ def searched() -> str:
 
 def _hint(key: str) -> str:
     from robomodel.errors import close_matches
-    from robomodel.runtime.msg._schema import message_type_names
+    from robomodel.runtime.msg.schema import message_type_names
 
     known = {*message_type_names(), *_distro_store().fielddefs, *_package_files()}
     hint = close_matches(key, sorted(known))
@@ -348,8 +348,8 @@ _DERIVED = re.compile(
 
 def _action_known(key: str) -> bool:
     """Whether action ``key`` is robomodel's own or on the package path."""
-    from robomodel.runtime.msg._schema import _import_package
     from robomodel.runtime.msg.action import _ACTIONS
+    from robomodel.runtime.msg.schema import _import_package
 
     _import_package(key)
     return key in _ACTIONS or key in _package_files()
@@ -358,8 +358,8 @@ def _action_known(key: str) -> bool:
 def resolve_action(key: str, name: str) -> type[Action]:
     """The action ``key`` (``pkg/action/Name``): robomodel's own if it has it, else the one
     built from the package path's ``.action`` file, with the types rosidl derives from it."""
-    from robomodel.runtime.msg._schema import _import_package
     from robomodel.runtime.msg.action import _ACTIONS, make_action
+    from robomodel.runtime.msg.schema import _import_package
 
     _import_package(key)
     with _lock:

@@ -19,9 +19,10 @@ from __future__ import annotations
 from dataclasses import field, make_dataclass
 from typing import Any
 
-from robomodel.runtime.msg._schema import Action, Message, Service
+from robomodel.runtime.msg import schema
 from robomodel.runtime.msg.action_msgs import UUID
 from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.schema import Action, Message, Service
 
 __all__ = ["make_action"]
 
@@ -32,12 +33,7 @@ def _named(cls: Any, typename: str, register: bool) -> Any:
     ``__typename__`` when it is created, so an unregistered one gets it afterwards)."""
     cls.__typename__ = typename
     if register:
-        from robomodel.runtime.msg import _schema
-
-        if issubclass(cls, Message):
-            _schema._REGISTRY[typename] = cls
-        else:
-            _schema._SERVICES[typename] = cls
+        schema.register(cls)
     return cls
 
 

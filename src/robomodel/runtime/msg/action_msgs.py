@@ -12,8 +12,8 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from robomodel.runtime.msg._methods import UUIDMethods
-from robomodel.runtime.msg._schema import Array, Message, Seq, Service
 from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.schema import Array, Message, Seq, Service
 
 __all__ = [
     "UUID",

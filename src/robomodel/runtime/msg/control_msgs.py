@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq
+from robomodel.runtime.msg.schema import Message, Seq
 from robomodel.runtime.msg.std_msgs import Header
 from robomodel.runtime.msg.trajectory_msgs import JointTrajectoryPoint, MultiDOFJointTrajectoryPoint
 

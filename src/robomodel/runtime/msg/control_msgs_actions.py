@@ -11,9 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
 from robomodel.runtime.msg.action import make_action
 from robomodel.runtime.msg.builtin_interfaces import Duration, Time
+from robomodel.runtime.msg.schema import Message, Seq, Service
 from robomodel.runtime.msg.std_msgs import Header
 from robomodel.runtime.msg.trajectory_msgs import (
     JointTrajectory,

@@ -11,9 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
 from robomodel.runtime.msg.builtin_interfaces import Duration
 from robomodel.runtime.msg.lifecycle_msgs import State
+from robomodel.runtime.msg.schema import Message, Seq, Service
 from robomodel.runtime.msg.std_msgs import Header
 
 __all__ = [

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq
 from robomodel.runtime.msg.controller_manager_msgs import ChainConnection
+from robomodel.runtime.msg.schema import Message, Seq
 
 __all__ = ["ControllerState_4_0", "ControllerState_4_13"]
 

@@ -21,12 +21,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
 from robomodel.runtime.msg.controller_manager_msgs import ControllerState
 from robomodel.runtime.msg.controller_manager_msgs_layouts import (
     ControllerState_4_0,
     ControllerState_4_13,
 )
+from robomodel.runtime.msg.schema import Message, Seq, Service
 
 __all__ = ["LIST_CONTROLLERS_VARIANTS", "ListControllersVariant", "downgrade"]
 

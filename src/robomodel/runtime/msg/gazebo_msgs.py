@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
 from robomodel.runtime.msg.builtin_interfaces import Duration, Time
 from robomodel.runtime.msg.geometry_msgs import Point, Pose, Twist, Wrench
+from robomodel.runtime.msg.schema import Message, Seq, Service
 from robomodel.runtime.msg.std_msgs import Header
 
 __all__ = [

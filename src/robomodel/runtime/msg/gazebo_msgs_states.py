@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
 from robomodel.runtime.msg.geometry_msgs import Pose, Twist
+from robomodel.runtime.msg.schema import Message, Seq, Service
 
 __all__ = [
     "GetLinkState",

@@ -10,13 +10,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Message, Seq
 from robomodel.runtime.msg.builtin_interfaces import Time
 from robomodel.runtime.msg.geometry_msgs import (
     PoseWithCovariance,
     TransformStamped,
     TwistWithCovariance,
 )
+from robomodel.runtime.msg.schema import Message, Seq
 from robomodel.runtime.msg.std_msgs import Header
 
 __all__ = ["Clock", "Odometry", "RosgraphLog", "TFMessage"]

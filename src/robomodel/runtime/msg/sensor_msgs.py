@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Array, Message, Seq
 from robomodel.runtime.msg.geometry_msgs import Quaternion, Vector3
+from robomodel.runtime.msg.schema import Array, Message, Seq
 from robomodel.runtime.msg.std_msgs import Header
 
 __all__ = ["Imu", "JointState", "LaserScan"]

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq
 from robomodel.runtime.msg.builtin_interfaces import Duration
 from robomodel.runtime.msg.geometry_msgs import Transform, Twist
+from robomodel.runtime.msg.schema import Message, Seq
 from robomodel.runtime.msg.std_msgs import Header
 
 __all__ = [

@@ -23,7 +23,7 @@ import hashlib
 import json
 from typing import Any
 
-from robomodel.runtime.msg._schema import Array, Message, Seq, Service, Spec
+from robomodel.runtime.msg.schema import Array, Message, Seq, Service, Spec
 
 __all__ = [
     "dds_type_name",

@@ -21,8 +21,8 @@ import time
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
-from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.cdr import prepare
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import direct, import_zenoh, log, undeclare_all
 from robomodel.runtime.transport.base import (

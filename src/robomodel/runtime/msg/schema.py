@@ -1,5 +1,5 @@
-"""Message type machinery: field specifications, the message and service base classes and
-their registries.
+"""Message type machinery: field specifications, the message, service and action base classes
+and the registry of robomodel's own types.
 
 A message class declares ``__fields__`` as ``(name, spec)`` pairs, where a spec is a primitive
 name (``"float64"``, ``"string"``, ...), another message class, ``Seq(spec)`` for an unbounded
@@ -32,6 +32,7 @@ __all__ = [
     "get_service_type",
     "is_byte_array",
     "message_type_names",
+    "register",
     "service_type_names",
 ]
 
@@ -148,6 +149,15 @@ class Action:
     SendGoal: ClassVar[Any]
     GetResult: ClassVar[Any]
     FeedbackMessage: ClassVar[Any]
+
+
+def register(cls: type[Message] | type[Service]) -> None:
+    """Enter a class whose ``__typename__`` was set after it was made (the derived types of an
+    action, :func:`msg.action.make_action`) in the registry of robomodel's own types."""
+    if issubclass(cls, Message):
+        _REGISTRY[cls.__typename__] = cls
+    else:
+        _SERVICES[cls.__typename__] = cls
 
 
 def default_for(spec: Spec) -> Any:
