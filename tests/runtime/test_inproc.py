@@ -148,7 +148,7 @@ def test_graph_and_parameter_service() -> None:
 
 
 def test_parameter_events_are_published() -> None:
-    from robomodel.runtime.msg.rcl_interfaces import ParameterEvent
+    from robomodel.runtime.msg.types.rcl_interfaces import ParameterEvent
 
     ctx = Context(clock=ManualClock())
     events: list[ParameterEvent] = []

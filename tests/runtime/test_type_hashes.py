@@ -34,9 +34,9 @@ Nodetype = pytest.importorskip("rosbags.typesys.base").Nodetype
 
 STORE = typesys.get_typestore(typesys.Stores.ROS2_JAZZY)
 
-for _module in pkgutil.iter_modules(msg_package.__path__):
-    if not _module.name.startswith("_"):
-        importlib.import_module(f"robomodel.runtime.msg.{_module.name}")
+for _module in pkgutil.walk_packages(msg_package.__path__, "robomodel.runtime.msg."):
+    if not _module.name.rsplit(".", 1)[-1].startswith("_"):
+        importlib.import_module(_module.name)
 
 # (type, RIHS01) as ROS 2 publishes them
 CITED = [
@@ -190,8 +190,8 @@ def test_action_types_derived_as_rosidl_does() -> None:
     from dataclasses import dataclass, field
 
     from robomodel.runtime.msg.action import make_action
-    from robomodel.runtime.msg.builtin_interfaces import Duration, Time
-    from robomodel.runtime.msg.geometry_msgs import TransformStamped
+    from robomodel.runtime.msg.types.builtin_interfaces import Duration, Time
+    from robomodel.runtime.msg.types.geometry_msgs import TransformStamped
 
     @dataclass(slots=True)
     class Goal(Message):

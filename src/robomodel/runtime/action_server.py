@@ -20,7 +20,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg.action_msgs import (
+from robomodel.runtime.msg.schema import Action
+from robomodel.runtime.msg.types.action_msgs import (
     CancelGoal,
     CancelGoal_Request,
     CancelGoal_Response,
@@ -28,7 +29,6 @@ from robomodel.runtime.msg.action_msgs import (
     GoalStatus,
     GoalStatusArray,
 )
-from robomodel.runtime.msg.schema import Action
 from robomodel.runtime.qos import QoSProfile, latched
 from robomodel.runtime.transport.base import Deferred
 

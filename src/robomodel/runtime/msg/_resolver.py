@@ -18,8 +18,8 @@ classes. The definition is taken from, in this order:
 4. definitions learned at run time: a ROS 1 publisher's ``message_definition`` connection
    header, a bag's stored schema (:func:`learn_definition`).
 
-rosbags parses the ``.msg`` text (``get_types_from_msg``); :mod:`._from_definition` makes the
-class. Nested types go through :func:`get_message_type` again, so robomodel's own classes are
+:mod:`.definition` parses the ``.msg``/``.srv``/``.action`` text; :mod:`._from_definition` makes
+the class. Nested types go through :func:`get_message_type` again, so robomodel's own classes are
 used wherever robomodel has them. rosbags is imported only when a type is first looked for
 here, so that verbs which never need one do not pay for it.
 """
@@ -34,11 +34,13 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from robomodel.runtime.msg._actions import action_part, action_parts, ros1_wrapper_text
-from robomodel.runtime.msg._from_definition import (
+from robomodel.runtime.msg._actions import action_part, ros1_wrapper_text
+from robomodel.runtime.msg._from_definition import build_message_class, build_service_class
+from robomodel.runtime.msg.definition import (
     FieldDef,
-    build_message_class,
-    build_service_class,
+    nested_type,
+    parse_message,
+    split_parts,
 )
 from robomodel.runtime.msg.schema import (
     Action,
@@ -140,16 +142,6 @@ def _package_files(shipped: bool = True) -> dict[str, Path]:
     return files
 
 
-def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
-    from rosbags.typesys import TypesysError, get_types_from_msg
-
-    try:
-        found: dict[str, FieldDef] = dict(get_types_from_msg(text, name))
-    except TypesysError as exc:
-        raise MessageTypeError(f"{where}: not a valid message definition: {exc}") from None
-    return found
-
-
 def package_definitions(name: str, *, shipped: bool = True) -> dict[str, FieldDef] | None:
     """The definition of message ``pkg/msg/Name``, of a service half (``pkg/srv/Name_Request``,
     or ROS 1's ``pkg/msg/NameRequest``) or of an action part (``pkg/action/Name_Goal``, or
@@ -158,50 +150,39 @@ def package_definitions(name: str, *, shipped: bool = True) -> dict[str, FieldDe
     files = _package_files(shipped)
     path = files.get(name)
     if path is not None:
-        return _parse(path.read_text(), name, where=str(path))
+        return parse_message(path.read_text(), name, where=str(path))
     part = action_part(name, files)
     if part is not None:
         action, index, ros1 = part
         path = files[action]
-        text = action_parts(path.read_text(), where=str(path))[index]
+        text = split_parts(path.read_text(), "action", where=str(path))[index]
         if ros1 is not None:
             text = ros1_wrapper_text(name, text, ros1)
-        return _parse_as(text, name, where=str(path))
+        return parse_message(text, name, where=str(path))
     half = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name) or re.fullmatch(
         r"(\w+)/msg/(\w+?)(Request|Response)", name
     )
     path = files.get(f"{half[1]}/srv/{half[2]}") if half is not None else None
     if half is None or path is None:
         return None
-    halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
-    if len(halves) != 2:
-        raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
-    return _parse_as(halves[0 if half[3] == "Request" else 1], name, where=str(path))
+    halves = split_parts(path.read_text(), "srv", where=str(path))
+    return parse_message(halves[0 if half[3] == "Request" else 1], name, where=str(path))
 
 
-def _parse_as(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
-    """Parse ``text`` as type ``name``, which may be a service or action part: rosbags names
-    parsed types ``pkg/msg/Name`` (and resolves relative names in that package), so parse it
-    as that, then rename it."""
-    package, _, short = name.split("/")
-    as_message = f"{package}/msg/{short}"
-    found = _parse(text, as_message, where=where)
-    if as_message != name:
-        found[name] = found.pop(as_message)
-    return found
-
-
-def _definition(key: str) -> FieldDef | None:
+def _definition(key: str) -> tuple[FieldDef, bool] | None:
+    """The definition of ``key`` and whether it is a ROS 1 one (rosbags' Noetic store)."""
     if _DERIVED.fullmatch(key):
         # derived from an action's parts by make_action, unless a bag's schema taught it
-        return _learned.get(key)
+        learned = _learned.get(key)
+        return None if learned is None else (learned, False)
     found = package_definitions(key)
     if found is not None:
-        return found[key]
-    for store in (_distro_store(), _store("ROS1_NOETIC")):
+        return found[key], False
+    for store, ros1 in ((_distro_store(), False), (_store("ROS1_NOETIC"), True)):
         if key in store.fielddefs:
-            return store.fielddefs[key]  # type: ignore[no-any-return]
-    return _learned.get(key)
+            return store.fielddefs[key], ros1
+    learned = _learned.get(key)
+    return None if learned is None else (learned, False)
 
 
 def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
@@ -224,10 +205,9 @@ def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
             continue
         out[name] = definition
         for _, desc in definition[1]:
-            while int(desc[0]) in (3, 4):  # arrays and sequences: their item
-                desc = desc[1][0]
-            if int(desc[0]) == 2:
-                pending.append(str(desc[1]))
+            nested = nested_type(desc)
+            if nested is not None:
+                pending.append(nested)
     return out
 
 
@@ -236,7 +216,7 @@ def learn_definition(name: str, text: str) -> None:
     ``ros2msg`` schema: the type's fields, then ``===`` / ``MSG: pkg/Name`` sections) so that
     ``name`` and the types it uses resolve even where no package or store has them."""
     key = _canonical(name)
-    _remember(_parse(text, key, where=f"the definition of {name}"))
+    _remember(parse_message(text, key, where=f"the definition of {name}"))
 
 
 def learn_fielddefs(found: dict[str, FieldDef]) -> None:
@@ -317,7 +297,8 @@ def resolve_message(key: str, name: str) -> type[Message]:
                 raise MessageTypeError(
                     f"unknown message type '{name}'{_hint(key)}: looked in {searched()}"
                 )
-            found = build_message_class(key, definition, get_message_type)
+            fields, ros1 = definition
+            found = build_message_class(key, fields, get_message_type, ros1=ros1)
             _messages[key] = found
         return found
 
@@ -349,9 +330,9 @@ _DERIVED = re.compile(
 def _action_known(key: str) -> bool:
     """Whether action ``key`` is robomodel's own or on the package path."""
     from robomodel.runtime.msg.action import _ACTIONS
-    from robomodel.runtime.msg.schema import _import_package
+    from robomodel.runtime.msg.schema import import_package
 
-    _import_package(key)
+    import_package(key)
     return key in _ACTIONS or key in _package_files()
 
 
@@ -359,9 +340,9 @@ def resolve_action(key: str, name: str) -> type[Action]:
     """The action ``key`` (``pkg/action/Name``): robomodel's own if it has it, else the one
     built from the package path's ``.action`` file, with the types rosidl derives from it."""
     from robomodel.runtime.msg.action import _ACTIONS, make_action
-    from robomodel.runtime.msg.schema import _import_package
+    from robomodel.runtime.msg.schema import import_package
 
-    _import_package(key)
+    import_package(key)
     with _lock:
         found = _ACTIONS.get(key) or _actions.get(key)
         if found is None:

@@ -20,9 +20,9 @@ from dataclasses import field, make_dataclass
 from typing import Any
 
 from robomodel.runtime.msg import schema
-from robomodel.runtime.msg.action_msgs import UUID
-from robomodel.runtime.msg.builtin_interfaces import Time
 from robomodel.runtime.msg.schema import Action, Message, Service
+from robomodel.runtime.msg.types.builtin_interfaces import Time
+from robomodel.runtime.msg.types.unique_identifier_msgs import UUID
 
 __all__ = ["make_action"]
 

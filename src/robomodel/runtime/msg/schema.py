@@ -30,6 +30,7 @@ __all__ = [
     "default_for",
     "get_message_type",
     "get_service_type",
+    "import_package",
     "is_byte_array",
     "message_type_names",
     "register",
@@ -181,49 +182,20 @@ def canonical_type_name(name: str) -> str:
     return "/".join(parts)
 
 
-# The module of each package robomodel has types of, imported when a type of it is first asked
-# for by name (``robomodel topic pub``, a type in the graph), so that importing the message
-# package stays cheap.
-_PACKAGES = {
-    "action_msgs": "action_msgs",
-    "builtin_interfaces": "builtin_interfaces",
-    "control_msgs": "control_msgs",
-    "controller_manager_msgs": "controller_manager_msgs",
-    "gazebo_msgs": "gazebo_msgs",
-    "geometry_msgs": "geometry_msgs",
-    "lifecycle_msgs": "lifecycle_msgs",
-    "nav_msgs": "nav_msgs",
-    "rcl_interfaces": "rcl_interfaces",
-    "robomodel_interfaces": "robomodel_interfaces",
-    "ros_gz_interfaces": "ros_gz_interfaces",
-    "roscpp": "roscpp",
-    "rosgraph_msgs": "nav_msgs",
-    "sensor_msgs": "sensor_msgs",
-    "service_msgs": "service_msgs",
-    "std_msgs": "std_msgs",
-    "std_srvs": "std_srvs",
-    "tf2_msgs": "nav_msgs",
-    "trajectory_msgs": "trajectory_msgs",
-    "type_description_interfaces": "type_description_interfaces",
-    "unique_identifier_msgs": "action_msgs",
-}
-_EXTRA_MODULES = {
-    "control_msgs": ("control_msgs_actions",),
-    "controller_manager_msgs": ("controller_manager_msgs_hardware",),
-    "gazebo_msgs": ("gazebo_msgs_states",),
-}
-
-
-def _import_package(key: str) -> None:
-    """Import the module holding the types of ``key``'s package, if robomodel has one."""
+def import_package(key: str) -> None:
+    """Import robomodel's module of the package of type ``key`` (``pkg/kind/Name``), if it has
+    one: ``robomodel.runtime.msg.types.<pkg>``, whose classes register themselves. Imported when
+    a type of the package is first asked for by name (``robomodel topic pub``, a type in the
+    graph), so that importing the message package stays cheap."""
     import importlib
+    import importlib.util
 
     package = key.split("/", 1)[0]
-    module = _PACKAGES.get(package)
-    if module is None:
+    if not package.isidentifier():
         return
-    for name in (module, *_EXTRA_MODULES.get(package, ())):
-        importlib.import_module(f"robomodel.runtime.msg.{name}")
+    module = f"robomodel.runtime.msg.types.{package}"
+    if importlib.util.find_spec(module) is not None:
+        importlib.import_module(module)
 
 
 def get_message_type(name: str) -> type[Message]:
@@ -231,7 +203,7 @@ def get_message_type(name: str) -> type[Message]:
     class if it has one, else one built from the type's definition (:mod:`._resolver`)."""
     key = canonical_type_name(name)
     if key not in _REGISTRY:
-        _import_package(key)
+        import_package(key)
     found = _REGISTRY.get(key)
     if found is not None:
         return found
@@ -257,7 +229,7 @@ def get_service_type(name: str) -> type[Service]:
     """Look up a service class by ROS name (``pkg/srv/Name`` or ``pkg/Name``)."""
     key = canonical_service_name(name)
     if key not in _SERVICES:
-        _import_package(key)
+        import_package(key)
     found = _SERVICES.get(key)
     if found is not None:
         return found

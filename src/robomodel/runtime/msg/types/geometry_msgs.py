@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from robomodel.runtime.msg.schema import Array, Message
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.types.std_msgs import Header
 
 __all__ = [
     "Point",
