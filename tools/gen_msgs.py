@@ -27,12 +27,12 @@ from what it would write (exit 1), as tests/runtime/test_generated_msgs.py runs 
 from __future__ import annotations
 
 import argparse
-import keyword
 import os
 import subprocess
 import sys
 import tempfile
 import textwrap
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -40,7 +40,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from gen_msgs_modules import DEFAULTS, MIXINS, MODULES, ROS1_ONLY, VARIANTS
 
-from robomodel.runtime.msg.definition import field_spec, nested_type, parse_interface
+from robomodel.runtime.msg.definition import field_specs, nested_type, parse_interface
 from robomodel.runtime.msg.schema import Array, Message, MessageTypeError, Seq, Spec, is_byte_array
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -62,6 +62,7 @@ class Definition:
     constants: tuple[tuple[str, str, Any], ...]
     fields: tuple[tuple[str, Any], ...]
     source: str
+    ros1: bool = False  # a ROS 1 definition (ROS 1's byte is int8)
 
 
 def _file_parts(key: str) -> dict[str, tuple[Any, str]] | None:
@@ -100,7 +101,8 @@ class Sources:
         if parts is None:
             raise SystemExit(f"{key}: no file in interfaces/ (rosbags has no {key})")
         for name, ((constants, fields), where) in parts.items():
-            self.found[name] = Definition(name, tuple(constants), tuple(fields), where)
+            ros1 = name in ROS1_ONLY
+            self.found[name] = Definition(name, tuple(constants), tuple(fields), where, ros1)
         return list(parts)
 
 
@@ -113,6 +115,7 @@ class Module:
     imports: dict[str, set[str]]
     names: list[str]
     sources: set[str]
+    base: str = TYPES  # the package its sibling modules are imported from
 
 
 def _py_name(key: str) -> str:
@@ -128,12 +131,17 @@ def _reference(key: str) -> type[Message]:
 
 
 def _field(
-    spec: Spec, owner: Module, where: dict[str, str], key: str, field_name: str
+    spec: Spec,
+    owner: Module,
+    where: dict[str, str],
+    key: str,
+    field_name: str,
+    defaults: Mapping[tuple[str, str], object],
 ) -> tuple[str, str, str]:
     """(annotation, default, spec) source text of one field."""
     if isinstance(spec, str):
         base = spec.partition("<=")[0]
-        default = DEFAULTS.get((key, field_name))
+        default = defaults.get((key, field_name))
         return (
             _PYTHON.get(base, "int"),
             repr(default) if default is not None else _ZERO.get(base, "0"),
@@ -142,7 +150,7 @@ def _field(
     if isinstance(spec, type):
         cls = _use(spec.__typename__, owner, where)
         return cls, f"field(default_factory={cls})", cls
-    item_ann, item_default, item_spec = _field(spec.item, owner, where, key, "")
+    item_ann, item_default, item_spec = _field(spec.item, owner, where, key, "", defaults)
     kind_name = "Array" if isinstance(spec, Array) else "Seq"
     owner.imports.setdefault(MSG_SCHEMA, set()).add(kind_name)
     if isinstance(spec, Array):
@@ -167,15 +175,21 @@ def _use(key: str, owner: Module, where: dict[str, str]) -> str:
     if module is None:
         raise SystemExit(f"{key} is used but no module of MODULES holds it")
     if module != owner.name:
-        owner.imports.setdefault(f"{TYPES}.{module}", set()).add(_py_name(key))
+        owner.imports.setdefault(f"{owner.base}.{module}", set()).add(_py_name(key))
     return _py_name(key)
 
 
 def _message(
-    defn: Definition, owner: Module, where: dict[str, str], *, py_name: str | None = None
+    defn: Definition,
+    owner: Module,
+    where: dict[str, str],
+    *,
+    py_name: str | None = None,
+    defaults: Mapping[tuple[str, str], object] = DEFAULTS,
 ) -> None:
     """Add the class of ``defn`` to ``owner``; one named ``py_name`` is not registered (its
-    ``__typename__`` is set after the class exists)."""
+    ``__typename__`` is set after the class exists). Its fields are the specs the run-time
+    builder gives too (:func:`robomodel.runtime.msg.definition.field_specs`)."""
     name = py_name or _py_name(defn.name)
     bases = f"{MIXINS[defn.name]}, Message" if defn.name in MIXINS else "Message"
     if defn.name in MIXINS:
@@ -184,21 +198,15 @@ def _message(
     for c_name, c_type, value in defn.constants:
         owner.imports.setdefault("typing", set()).add("ClassVar")
         out.append(f"    {c_name}: ClassVar[{_PYTHON.get(c_type, 'int')}] = {value!r}")
-    specs = []
-    fields = [
-        f
-        for f in defn.fields
-        if not (f[0] == "structure_needs_at_least_one_member" and len(defn.fields) == 1)
-    ]
+    try:
+        fields = field_specs(defn.name, (defn.constants, defn.fields), _reference, ros1=defn.ros1)
+    except MessageTypeError as exc:
+        raise SystemExit(str(exc)) from None
     if defn.constants and fields:
         out.append("")
-    for field_name, desc in fields:
-        if not field_name.isidentifier() or keyword.iskeyword(field_name):
-            raise SystemExit(f"{defn.name}.{field_name}: not a Python name")
-        spec_of = field_spec(
-            desc, _reference, where=f"{defn.name}.{field_name}", ros1=defn.name in ROS1_ONLY
-        )
-        ann, default, spec = _field(spec_of, owner, where, defn.name, field_name)
+    specs = []
+    for field_name, spec_of in fields:
+        ann, default, spec = _field(spec_of, owner, where, defn.name, field_name, defaults)
         if "field(" in default:
             owner.imports.setdefault("dataclasses", set()).add("field")
         out.append(f"    {field_name}: {ann} = {default}")
@@ -216,14 +224,14 @@ def _message(
     owner.sources.add(defn.source)
 
 
-def _ordered(keys: list[str], sources: Sources) -> list[str]:
+def _ordered(keys: list[str], found: Mapping[str, Definition]) -> list[str]:
     """``keys`` with every type after the types of the same list it uses."""
     done: list[str] = []
 
     def visit(key: str) -> None:
         if key in done or key not in keys:
             return
-        for _, desc in sources.found[key].fields:
+        for _, desc in found[key].fields:
             nested = nested_type(desc)
             if nested is not None:
                 visit(nested)
@@ -275,7 +283,7 @@ def _module_text(module: str, names: list[str], sources: Sources, where: dict[st
         [],
         set(),
     )
-    for key in _ordered(names, sources):
+    for key in _ordered(names, sources.found):
         _message(sources.found[key], mod, where)
     for key in MODULES[module][1]:
         short = key.rsplit("/", 1)[-1]
@@ -296,6 +304,30 @@ def _module_text(module: str, names: list[str], sources: Sources, where: dict[st
             mod.lines += ["", "", f'{short} = make_action("{key}", {parts})']
             mod.names.append(short)
     return _render(mod, MODULES[module][0])
+
+
+def store_modules(
+    fielddefs: Mapping[str, Any], *, base: str, ros1: bool, source: str
+) -> dict[str, str]:
+    """The source of one module per package (``<base>.<package>``) with a class of every
+    message of ``fielddefs`` (a rosbags type store's), written as robomodel's own modules are but
+    not registered (their ``__typename__`` is set after the class exists) and without the
+    defaults the definitions do not say: what the run-time builder makes of the same
+    definitions, for the tests that compare the two paths."""
+    found = {
+        name: Definition(name, tuple(constants), tuple(fields), source, ros1)
+        for name, (constants, fields) in fielddefs.items()
+    }
+    where = {name: name.split("/", 1)[0] for name in found}
+    texts: dict[str, str] = {}
+    for package in sorted(set(where.values())):
+        mod = Module(package, [], {"dataclasses": {"dataclass"}, MSG_SCHEMA: {"Message"}}, [],
+                     set(), base)  # fmt: skip
+        names = [name for name in found if where[name] == package]
+        for key in _ordered(names, found):
+            _message(found[key], mod, where, py_name=_py_name(key), defaults={})
+        texts[package] = _render(mod, f"{package}: every message of {source}.")
+    return texts
 
 
 def _render(mod: Module, doc: str) -> str:
