@@ -26,7 +26,13 @@ from robomodel.runtime.msg.schema import (
     is_byte_array,
 )
 
-__all__ = ["PLACEHOLDER", "FieldDef", "build_message_class", "build_service_class"]
+__all__ = [
+    "PLACEHOLDER",
+    "FieldDef",
+    "build_message_class",
+    "build_service_class",
+    "make_message_class",
+]
 
 
 def _annotation(spec: Spec) -> Any:
@@ -45,23 +51,21 @@ def _field_default(spec: Spec) -> Any:
     return field(default_factory=lambda: default_for(spec))
 
 
-def build_message_class(
-    name: str, definition: FieldDef, lookup: Lookup, *, ros1: bool = False
+def make_message_class(
+    name: str,
+    specs: tuple[tuple[str, Spec], ...],
+    constants: tuple[tuple[str, str, Any], ...] = (),
+    *,
+    module: str = __name__,
 ) -> type[Message]:
-    """A message class for type ``name`` (``pkg/msg/Name``) from its rosbags definition.
-
-    Nested types are taken from ``lookup`` (robomodel's own classes where it has them, so
-    that a generated ``sensor_msgs/msg/Image`` holds robomodel's own ``std_msgs/msg/Header``).
-    Constants become class attributes, as rosidl's Python classes have them. ``ros1``: the
-    definition is a ROS 1 one (:func:`.definition.field_spec`).
-    """
-    constants = definition[0]
-    specs = field_specs(name, definition, lookup, ros1=ros1)
+    """The message class of type ``name`` (``pkg/kind/Name``) with fields ``specs`` (``(name,
+    spec)`` in wire order) and ``constants`` (``(name, type, value)``, also class attributes, as
+    rosidl's Python classes have them): the one place a class is made at run time, for a
+    definition (:func:`build_message_class`) and for the types rosidl derives from an action
+    (:func:`.action.make_action`). Not registered: the caller decides (:func:`.schema.register`)."""
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
     namespace["__fields__"] = specs
-    namespace["__constants__"] = tuple(
-        (c_name, c_type, value) for c_name, c_type, value in constants
-    )
+    namespace["__constants__"] = tuple(constants)
     cls: type[Message] = make_dataclass(
         name.rsplit("/", 1)[-1],
         [(n, _annotation(s), _field_default(s)) for n, s in specs],
@@ -71,17 +75,32 @@ def build_message_class(
     )
     # Set after creation: Message.__init_subclass__ registers only robomodel's own classes.
     cls.__typename__ = name
-    cls.__module__ = __name__
+    cls.__module__ = module
     return cls
 
 
+def build_message_class(
+    name: str, definition: FieldDef, lookup: Lookup, *, ros1: bool = False
+) -> type[Message]:
+    """A message class for type ``name`` (``pkg/msg/Name``) from its field definition.
+
+    Nested types are taken from ``lookup`` (robomodel's own classes where it has them, so
+    that a generated ``sensor_msgs/msg/Image`` holds robomodel's own ``std_msgs/msg/Header``).
+    ``ros1``: the definition is a ROS 1 one (:func:`.definition.field_spec`).
+    """
+    specs = field_specs(name, definition, lookup, ros1=ros1)
+    constants = tuple((str(c_name), str(c_type), value) for c_name, c_type, value in definition[0])
+    return make_message_class(name, specs, constants)
+
+
 def build_service_class(
-    name: str, request: type[Message], response: type[Message]
+    name: str, request: type[Message], response: type[Message], *, module: str = __name__
 ) -> type[Service]:
-    """A service class ``pkg/srv/Name`` from its request and response message classes."""
+    """A service class ``pkg/srv/Name`` from its request and response message classes (not
+    registered)."""
     cls: type[Service] = type(
         name.rsplit("/", 1)[-1], (Service,), {"Request": request, "Response": response}
     )
     cls.__typename__ = name
-    cls.__module__ = __name__
+    cls.__module__ = module
     return cls
