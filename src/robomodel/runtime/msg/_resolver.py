@@ -40,6 +40,7 @@ from robomodel.runtime.msg.definition import (
     FieldDef,
     nested_type,
     parse_message,
+    recursion_in,
     split_parts,
 )
 from robomodel.runtime.msg.schema import (
@@ -75,6 +76,7 @@ _services: dict[str, type[Service]] = {}
 _actions: dict[str, type[Action]] = {}
 _learned: dict[str, FieldDef] = {}
 _conflicts: set[str] = set()
+_building: list[str] = []  # the types being built, outermost first (under _lock)
 _log = logging.getLogger("robomodel.msg")
 _package_paths: tuple[Path, ...] = ()
 _distro: str | None = None
@@ -228,8 +230,12 @@ def learn_fielddefs(found: dict[str, FieldDef]) -> None:
 def _remember(found: dict[str, FieldDef]) -> None:
     """The first definition learned of a name stays for the process's life: its classes and
     codecs may be in use. A different one learned later (a publisher rebuilt with a changed
-    ``.msg``) is refused with one warning per name, as ROS 1 refuses a mismatched md5sum."""
+    ``.msg``) is refused with one warning per name, as ROS 1 refuses a mismatched md5sum.
+    Definitions that nest themselves are refused whole (MessageTypeError, one line)."""
     with _lock:
+        chain = recursion_in({**_learned, **found})
+        if chain is not None:
+            raise MessageTypeError(_recursive(chain))
         for type_name, definition in found.items():
             known = _learned.setdefault(type_name, definition)
             if known != definition and type_name not in _conflicts:
@@ -297,10 +303,23 @@ def resolve_message(key: str, name: str) -> type[Message]:
                 raise MessageTypeError(
                     f"unknown message type '{name}'{_hint(key)}: looked in {searched()}"
                 )
+            if key in _building:  # a package's .msg files that nest a type in itself
+                raise MessageTypeError(_recursive((*_building[_building.index(key) :], key)))
             fields, ros1 = definition
-            found = build_message_class(key, fields, get_message_type, ros1=ros1)
+            _building.append(key)
+            try:
+                found = build_message_class(key, fields, get_message_type, ros1=ros1)
+            finally:
+                _building.pop()
             _messages[key] = found
         return found
+
+
+def _recursive(chain: tuple[str, ...]) -> str:
+    return (
+        f"{chain[0]}: its definition contains itself ({' -> '.join(chain)}); a ROS message "
+        "type cannot nest itself, not even through an array"
+    )
 
 
 def resolve_service(key: str, name: str) -> type[Service]:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import itertools
 import keyword
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any, Literal
 
 from robomodel.runtime.msg.schema import (
@@ -39,6 +39,7 @@ __all__ = [
     "nested_type",
     "parse_interface",
     "parse_message",
+    "recursion_in",
     "short_name",
     "split_parts",
 ]
@@ -126,6 +127,41 @@ def nested_type(desc: Any) -> str | None:
     while int(desc[0]) in (ARRAY, SEQUENCE):
         desc = desc[1][0]
     return str(desc[1]) if int(desc[0]) == NAME else None
+
+
+def recursion_in(found: Mapping[str, FieldDef]) -> tuple[str, ...] | None:
+    """A chain of types of ``found`` that contains itself (``A -> B -> A``), or None.
+
+    ROS message types cannot nest themselves, not even through an array (rosidl and genmsg
+    refuse it: a message's size would be unbounded at every level); a definition learned from
+    a peer or a file that does is refused before any class or codec recurses through it."""
+    done: set[str] = set()
+
+    def children(name: str) -> Iterator[str]:
+        for _, desc in found[name][1]:
+            nested = nested_type(desc)
+            if nested is not None and nested in found:
+                yield nested
+
+    for start in found:
+        if start in done:
+            continue
+        # depth-first with an explicit stack: a long chain must not exhaust Python's own
+        path, on_path = [start], {start}
+        stack = [children(start)]
+        while stack:
+            child = next(stack[-1], None)
+            if child is None:
+                stack.pop()
+                done.add(path[-1])
+                on_path.discard(path.pop())
+            elif child in on_path:
+                return (*path[path.index(child) :], child)
+            elif child not in done:
+                path.append(child)
+                on_path.add(child)
+                stack.append(children(child))
+    return None
 
 
 def field_spec(desc: Any, lookup: Lookup, *, where: str, ros1: bool = False) -> Spec:
