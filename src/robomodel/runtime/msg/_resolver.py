@@ -31,13 +31,16 @@ import logging
 import os
 import re
 import threading
+import weakref
 from pathlib import Path
 from typing import Any
 
 from robomodel.runtime.msg._actions import action_part, ros1_wrapper_text
 from robomodel.runtime.msg._from_definition import build_message_class, build_service_class
 from robomodel.runtime.msg.definition import (
+    LIMITS,
     FieldDef,
+    check_limits,
     nested_type,
     parse_message,
     recursion_in,
@@ -45,8 +48,10 @@ from robomodel.runtime.msg.definition import (
 )
 from robomodel.runtime.msg.schema import (
     Action,
+    Array,
     Message,
     MessageTypeError,
+    Seq,
     Service,
     get_message_type,
 )
@@ -76,7 +81,8 @@ _services: dict[str, type[Service]] = {}
 _actions: dict[str, type[Action]] = {}
 _learned: dict[str, FieldDef] = {}
 _conflicts: set[str] = set()
-_building: list[str] = []  # the types being built, outermost first (under _lock)
+_local = threading.local()  # .building: the types this thread is building
+_generation = 0  # counts configure() calls: a class built across one is not kept
 _log = logging.getLogger("robomodel.msg")
 _package_paths: tuple[Path, ...] = ()
 _distro: str | None = None
@@ -87,13 +93,14 @@ def configure(
 ) -> None:
     """Set the extra package folders (``--package-path``) and the distribution (``--distro``);
     classes already built from definitions are forgotten."""
-    global _package_paths, _distro
+    global _package_paths, _distro, _generation
     with _lock:
         paths = _package_paths if package_paths is None else tuple(Path(p) for p in package_paths)
         wanted = _distro if distro is None else distro
         if (paths, wanted) == (_package_paths, _distro) and (package_paths, distro) != (None, None):
             return  # nothing changes: the classes built so far stay (one class per type)
         _package_paths, _distro = paths, wanted
+        _generation += 1
         _messages.clear()
         _services.clear()
         _actions.clear()
@@ -233,9 +240,11 @@ def _remember(found: dict[str, FieldDef]) -> None:
     ``.msg``) is refused with one warning per name, as ROS 1 refuses a mismatched md5sum.
     Definitions that nest themselves are refused whole (MessageTypeError, one line)."""
     with _lock:
-        chain = recursion_in({**_learned, **found})
+        graph = {**_learned, **found}
+        chain = recursion_in(graph)
         if chain is not None:
             raise MessageTypeError(_recursive(chain))
+        check_limits(graph)
         for type_name, definition in found.items():
             known = _learned.setdefault(type_name, definition)
             if known != definition and type_name not in _conflicts:
@@ -297,22 +306,68 @@ def resolve_message(key: str, name: str) -> type[Message]:
         return kind if derived[4] is None else getattr(kind, derived[4])  # type: ignore[no-any-return]
     with _lock:
         found = _messages.get(key)
-        if found is None:
-            definition = _definition(key)
-            if definition is None:
-                raise MessageTypeError(
-                    f"unknown message type '{name}'{_hint(key)}: looked in {searched()}"
-                )
-            if key in _building:  # a package's .msg files that nest a type in itself
-                raise MessageTypeError(_recursive((*_building[_building.index(key) :], key)))
-            fields, ros1 = definition
-            _building.append(key)
-            try:
-                found = build_message_class(key, fields, get_message_type, ros1=ros1)
-            finally:
-                _building.pop()
-            _messages[key] = found
-        return found
+        if found is not None:
+            return found
+        definition = _definition(key)
+        generation = _generation
+    if definition is None:
+        raise MessageTypeError(f"unknown message type '{name}'{_hint(key)}: looked in {searched()}")
+    # Built with no lock held, so that a large type does not hold up every other lookup; the
+    # nested types it asks for take the lock for their own look-up only.
+    building = _building_stack()
+    if key in building:  # a package's .msg files that nest a type in itself
+        raise MessageTypeError(_recursive((*building[building.index(key) :], key)))
+    if len(building) >= LIMITS.max_depth:
+        raise MessageTypeError(
+            f"{building[0]}: message types nested more than {LIMITS.max_depth} deep "
+            "(robomodel's bound, docs/reference/limits.md)"
+        )
+    fields, ros1 = definition
+    building.append(key)
+    try:
+        built = build_message_class(key, fields, get_message_type, ros1=ros1)
+    finally:
+        building.pop()
+    _check_flattened(built)
+    with _lock:
+        if generation != _generation:  # configure() ran meanwhile: not kept
+            return built
+        return _messages.setdefault(key, built)  # another thread's, if it finished first
+
+
+def _building_stack() -> list[str]:
+    """The types this thread is building, outermost first."""
+    stack: list[str] | None = getattr(_local, "building", None)
+    if stack is None:
+        stack = _local.building = []
+    return stack
+
+
+def _check_flattened(cls: type[Message]) -> None:
+    """Refuse a class whose fields, nested types expanded, are more than LIMITS allows."""
+    size = _flat_size(cls)
+    if size > LIMITS.max_flattened:
+        raise MessageTypeError(
+            f"{cls.__typename__}: more than {LIMITS.max_flattened} fields once its nested types "
+            "are expanded (robomodel's bound, docs/reference/limits.md)"
+        )
+
+
+def _flat_size(cls: type[Message]) -> int:
+    found = _FLAT.get(cls)
+    if found is None:
+        found = 0
+        for _, spec in cls.__fields__:
+            count = 1
+            while isinstance(spec, (Seq, Array)):
+                count *= spec.size if isinstance(spec, Array) else 1
+                spec = spec.item
+            found += count * _flat_size(spec) if isinstance(spec, type) else 1
+        _FLAT[cls] = found
+    return found
+
+
+_FLAT: weakref.WeakKeyDictionary[type[Message], int] = weakref.WeakKeyDictionary()
 
 
 def _recursive(chain: tuple[str, ...]) -> str:

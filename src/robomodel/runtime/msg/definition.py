@@ -17,6 +17,7 @@ from __future__ import annotations
 import itertools
 import keyword
 from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any, Literal
 
 from robomodel.runtime.msg.schema import (
@@ -29,10 +30,13 @@ from robomodel.runtime.msg.schema import (
 )
 
 __all__ = [
+    "LIMITS",
     "PART_SUFFIXES",
     "PLACEHOLDER",
+    "DefinitionLimits",
     "FieldDef",
     "Lookup",
+    "check_limits",
     "field_spec",
     "field_specs",
     "message_text",
@@ -47,6 +51,21 @@ __all__ = [
 FieldDef = tuple[Sequence[tuple[str, str, Any]], Sequence[tuple[str, Any]]]
 Lookup = Callable[[str], type[Message]]
 Kind = Literal["msg", "srv", "action"]
+
+
+@dataclass(frozen=True, slots=True)
+class DefinitionLimits:
+    """Bounds on a definition robomodel builds a class from (docs/reference/limits.md). The
+    largest type of a ROS 2 Jazzy or ROS 1 Noetic install has 93 fields and constants
+    (type_description_interfaces/msg/FieldType); a definition past a bound is refused in one
+    line before a class is built, so a peer cannot make a lookup take minutes."""
+
+    max_fields: int = 1_024  # fields and constants of one type
+    max_depth: int = 32  # message types nested in one another
+    max_flattened: int = 65_536  # fields once nested types (and fixed arrays of them) are expanded
+
+
+LIMITS = DefinitionLimits()
 
 # rosbags' Nodetype values (rosbags.typesys.base.Nodetype), kept as ints so that importing
 # this module does not import rosbags.
@@ -92,6 +111,7 @@ def parse_message(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
     """
     from rosbags.typesys import TypesysError, get_types_from_msg
 
+    _count_lines(text, name, where=where)
     package, _, short = name.split("/")
     as_message = f"{package}/msg/{short}"
     try:
@@ -102,6 +122,23 @@ def parse_message(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
     if as_message != name:
         found[name] = found.pop(as_message)
     return found
+
+
+def _count_lines(text: str, name: str, *, where: str) -> None:
+    """Refuse, before parsing, a text with more field or constant lines in one type's section
+    than :data:`LIMITS` allows (rosbags' parser would take seconds per thousand)."""
+    count, section = 0, name
+    for line in text.splitlines():
+        line = line.partition("#")[0].strip()
+        if line.startswith("MSG:"):
+            count, section = 0, line[4:].strip()
+        elif line and line.strip("=") and line != "---":
+            count += 1
+            if count > LIMITS.max_fields:
+                raise MessageTypeError(
+                    f"{where}: {section} has more than {LIMITS.max_fields} fields and constants"
+                    " (robomodel's bound, docs/reference/limits.md)"
+                )
 
 
 def parse_interface(text: str, key: str, *, where: str) -> dict[str, FieldDef]:
@@ -164,6 +201,54 @@ def recursion_in(found: Mapping[str, FieldDef]) -> tuple[str, ...] | None:
     return None
 
 
+def check_limits(found: Mapping[str, FieldDef]) -> None:
+    """Refuse (MessageTypeError, one line) a set of definitions, free of recursion
+    (:func:`recursion_in`), with a type past :data:`LIMITS`: fields and constants, nesting depth
+    or flattened size. A type ``found`` does not define counts as one field of depth one."""
+    depth: dict[str, int] = {}
+    flat: dict[str, int] = {}
+
+    def measure(root: str) -> None:
+        # post-order without recursion: a type is measured after every type it uses
+        stack = [(root, False)]
+        while stack:
+            name, ready = stack.pop()
+            if name in depth:
+                continue
+            nested = [(nested_type(desc), desc) for _, desc in found[name][1]]
+            inner = [n for n, _ in nested if n is not None and n in found and n not in depth]
+            if not ready and inner:
+                stack.append((name, True))
+                stack += [(n, False) for n in inner]
+                continue
+            if len(found[name][0]) + len(found[name][1]) > LIMITS.max_fields:
+                raise MessageTypeError(f"{name}: more than {LIMITS.max_fields} fields and "
+                                       "constants (robomodel's bound, docs/reference/limits.md)")  # fmt: skip
+            depth[name] = 1 + max((depth.get(n, 1) for n, _ in nested if n), default=0)
+            flat[name] = sum(flat.get(n, 1) * _fixed_count(d) if n else 1 for n, d in nested)
+            if depth[name] > LIMITS.max_depth:
+                raise MessageTypeError(f"{name}: message types nested more than "
+                                       f"{LIMITS.max_depth} deep (robomodel's bound, "
+                                       "docs/reference/limits.md)")  # fmt: skip
+            if flat[name] > LIMITS.max_flattened:
+                raise MessageTypeError(f"{name}: more than {LIMITS.max_flattened} fields once its "
+                                       "nested types are expanded (robomodel's bound, "
+                                       "docs/reference/limits.md)")  # fmt: skip
+
+    for name in found:
+        measure(name)
+
+
+def _fixed_count(desc: Any) -> int:
+    """How many times a field holds its item: the product of its fixed array sizes."""
+    count = 1
+    while int(desc[0]) in (ARRAY, SEQUENCE):
+        if int(desc[0]) == ARRAY:
+            count *= max(int(desc[1][1]), 1)
+        desc = desc[1][0]
+    return count
+
+
 def field_spec(desc: Any, lookup: Lookup, *, where: str, ros1: bool = False) -> Spec:
     """The robomodel field spec of a field definition ``(node type, details)``.
 
@@ -202,6 +287,11 @@ def field_specs(
 ) -> tuple[tuple[str, Spec], ...]:
     """``(name, spec)`` of every field of type ``name``, rosidl's placeholder left out."""
     fields = definition[1]
+    if len(fields) + len(definition[0]) > LIMITS.max_fields:
+        raise MessageTypeError(
+            f"{name}: more than {LIMITS.max_fields} fields and constants (robomodel's bound,"
+            " docs/reference/limits.md)"
+        )
     specs: list[tuple[str, Spec]] = []
     for field_name, desc in fields:
         if field_name == PLACEHOLDER and len(fields) == 1:
