@@ -55,7 +55,7 @@ def _scene(camera: bool):  # type: ignore[no-untyped-def]
     bridge = SimBridge(sim, context, ros_version=2)
     frames: list[object] = []
     if camera:
-        from robomodel.runtime.msg._schema import get_message_type
+        from robomodel.runtime.msg.schema import get_message_type
 
         image = get_message_type("sensor_msgs/msg/Image")
         context.create_node("sub").create_subscription(

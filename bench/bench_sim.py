@@ -129,7 +129,7 @@ def simplebot_round(seconds: float) -> tuple[float, float, int, float]:
     from robomodel.description.urdf.writer import urdf_to_string
     from robomodel.loading import load
     from robomodel.runtime import Context, ManualClock
-    from robomodel.runtime.msg.sensor_msgs import LaserScan
+    from robomodel.runtime.msg.types.sensor_msgs import LaserScan
     from robomodel.runtime.nodes.robot_state_publisher import RobotStatePublisher
     from robomodel.sim import Placement, Simulation, read_world
     from robomodel.sim.bus import SimBridge

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Generate robomodel's typed message modules (src/robomodel/runtime/msg/<module>.py) from
-their definitions.
+"""Generate robomodel's typed message modules from their definitions: one module per ROS
+package in src/robomodel/runtime/msg/types/, and earlier layouts of a few types in
+src/robomodel/runtime/msg/layouts/.
 
 The classes robomodel's own nodes use are written as ``@dataclass(slots=True)`` classes, so
 that mypy checks their users; this script writes them from the types' definitions instead of
@@ -26,27 +27,29 @@ from what it would write (exit 1), as tests/runtime/test_generated_msgs.py runs 
 from __future__ import annotations
 
 import argparse
-import itertools
-import keyword
 import os
 import subprocess
 import sys
 import tempfile
 import textwrap
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from gen_msgs_modules import DEFAULTS, MIXINS, MODULES, PY_NAMES, ROS1_ONLY, VARIANTS
+from gen_msgs_modules import DEFAULTS, MIXINS, MODULES, ROS1_ONLY, VARIANTS
+
+from robomodel.runtime.msg.definition import field_specs, nested_type, parse_interface
+from robomodel.runtime.msg.schema import Array, Message, MessageTypeError, Seq, Spec, is_byte_array
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "src" / "robomodel" / "runtime" / "msg"
 INTERFACES = OUT / "interfaces"
 VERSIONS = OUT / "interface_versions"
+TYPES = "robomodel.runtime.msg.types"
 
-MSG_SCHEMA = "robomodel.runtime.msg._schema"
-_BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
+MSG_SCHEMA = "robomodel.runtime.msg.schema"
 _PYTHON = {"bool": "bool", "string": "str", "float32": "float", "float64": "float"}
 _ZERO = {"bool": "False", "string": '""', "float32": "0.0", "float64": "0.0"}
 
@@ -59,15 +62,7 @@ class Definition:
     constants: tuple[tuple[str, str, Any], ...]
     fields: tuple[tuple[str, Any], ...]
     source: str
-
-
-def _parse(text: str, name: str) -> dict[str, Any]:
-    from rosbags.typesys import get_types_from_msg
-
-    package, _, short = name.split("/")
-    found = dict(get_types_from_msg(text, f"{package}/msg/{short}"))
-    found[name] = found.pop(f"{package}/msg/{short}")
-    return found
+    ros1: bool = False  # a ROS 1 definition (ROS 1's byte is int8)
 
 
 def _file_parts(key: str) -> dict[str, tuple[Any, str]] | None:
@@ -76,21 +71,12 @@ def _file_parts(key: str) -> dict[str, tuple[Any, str]] | None:
     path = INTERFACES / package / kind / f"{short}.{kind}"
     if not path.is_file():
         return None
-    text = path.read_text()
     where = f"interfaces/{package}/{kind}/"
-    if kind == "msg":
-        return {key: (_parse(text, key)[key], where)}
-    lines = text.splitlines()
-    cuts = [i for i, line in enumerate(lines) if line.strip() == "---"]
-    bounds = [0, *[c + 1 for c in cuts], len(lines) + 1]
-    chunks = ["\n".join(lines[a : b - 1]) + "\n" for a, b in itertools.pairwise(bounds)]
-    suffixes = ("Request", "Response") if kind == "srv" else ("Goal", "Result", "Feedback")
-    if len(chunks) != len(suffixes):
-        raise SystemExit(f"{where}: expected {len(suffixes)} parts split by ---")
-    return {
-        f"{key}_{suffix}": (_parse(chunk, f"{key}_{suffix}")[f"{key}_{suffix}"], where)
-        for suffix, chunk in zip(suffixes, chunks, strict=True)
-    }
+    try:
+        found = parse_interface(path.read_text(), key, where=where)
+    except MessageTypeError as exc:
+        raise SystemExit(str(exc)) from None
+    return {name: (definition, where) for name, definition in found.items()}
 
 
 class Sources:
@@ -115,7 +101,8 @@ class Sources:
         if parts is None:
             raise SystemExit(f"{key}: no file in interfaces/ (rosbags has no {key})")
         for name, ((constants, fields), where) in parts.items():
-            self.found[name] = Definition(name, tuple(constants), tuple(fields), where)
+            ros1 = name in ROS1_ONLY
+            self.found[name] = Definition(name, tuple(constants), tuple(fields), where, ros1)
         return list(parts)
 
 
@@ -128,49 +115,58 @@ class Module:
     imports: dict[str, set[str]]
     names: list[str]
     sources: set[str]
+    base: str = TYPES  # the package its sibling modules are imported from
 
 
 def _py_name(key: str) -> str:
-    return PY_NAMES.get(key, key.rsplit("/", 1)[-1])
+    return key.rsplit("/", 1)[-1]
+
+
+def _reference(key: str) -> type[Message]:
+    """A stand-in class for nested type ``key`` (the generator needs its name only); its
+    ``__typename__`` is set after it is made, so it is not registered."""
+    cls = type(key.rsplit("/", 1)[-1], (Message,), {"__slots__": ()})
+    cls.__typename__ = key
+    return cls
 
 
 def _field(
-    desc: Any, owner: Module, where: dict[str, str], key: str, field_name: str
+    spec: Spec,
+    owner: Module,
+    where: dict[str, str],
+    key: str,
+    field_name: str,
+    defaults: Mapping[tuple[str, str], object],
 ) -> tuple[str, str, str]:
     """(annotation, default, spec) source text of one field."""
-    kind, rest = int(desc[0]), desc[1]
-    if kind == _BASE:
-        base, bound = rest
-        if base in ("octet", "byte"):  # ROS 1's byte is int8 (genmsg), ROS 2's is IDL's octet
-            base = "int8" if key in ROS1_ONLY else "byte"
-        spec = f'"string<={bound}"' if base == "string" and bound else f'"{base}"'
-        default = DEFAULTS.get((key, field_name))
+    if isinstance(spec, str):
+        base = spec.partition("<=")[0]
+        default = defaults.get((key, field_name))
         return (
             _PYTHON.get(base, "int"),
             repr(default) if default is not None else _ZERO.get(base, "0"),
-            spec,
+            f'"{spec}"',
         )
-    if kind == _NAME:
-        cls = _use(str(rest), owner, where)
+    if isinstance(spec, type):
+        cls = _use(spec.__typename__, owner, where)
         return cls, f"field(default_factory={cls})", cls
-    item_ann, item_default, item_spec = _field(rest[0], owner, where, key, "")
-    size = int(rest[1])
-    if item_spec in ('"uint8"', '"byte"', '"char"'):  # held as bytes (msg._schema.BYTE_ITEMS)
-        kind_name = "Array" if kind == _ARRAY else "Seq"
-        owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add(kind_name)
-        if kind == _ARRAY:
-            return "bytes", f"bytes({size})", f"Array({item_spec}, {size})"
-        return "bytes", 'b""', f"Seq({item_spec}, {size})" if size else f"Seq({item_spec})"
-    if kind == _ARRAY:
-        owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add("Array")
-        if int(rest[0][0]) == _NAME:
-            default = f"field(default_factory=lambda: [{item_spec}() for _ in range({size})])"
-        else:
-            default = f"field(default_factory=lambda: [{item_default}] * {size})"
-        return f"list[{item_ann}]", default, f"Array({item_spec}, {size})"
-    owner.imports.setdefault("robomodel.runtime.msg._schema", set()).add("Seq")
-    spec = f"Seq({item_spec}, {size})" if size else f"Seq({item_spec})"
-    return f"list[{item_ann}]", "field(default_factory=list)", spec
+    item_ann, item_default, item_spec = _field(spec.item, owner, where, key, "", defaults)
+    kind_name = "Array" if isinstance(spec, Array) else "Seq"
+    owner.imports.setdefault(MSG_SCHEMA, set()).add(kind_name)
+    if isinstance(spec, Array):
+        spec_text = f"Array({item_spec}, {spec.size})"
+    else:
+        spec_text = f"Seq({item_spec}, {spec.bound})" if spec.bound else f"Seq({item_spec})"
+    if is_byte_array(spec):  # held as bytes (msg.schema.BYTE_ITEMS)
+        default = f"bytes({spec.size})" if isinstance(spec, Array) else 'b""'
+        return "bytes", default, spec_text
+    if isinstance(spec, Seq):
+        return f"list[{item_ann}]", "field(default_factory=list)", spec_text
+    if isinstance(spec.item, type):
+        default = f"field(default_factory=lambda: [{item_spec}() for _ in range({spec.size})])"
+    else:
+        default = f"field(default_factory=lambda: [{item_default}] * {spec.size})"
+    return f"list[{item_ann}]", default, spec_text
 
 
 def _use(key: str, owner: Module, where: dict[str, str]) -> str:
@@ -179,15 +175,21 @@ def _use(key: str, owner: Module, where: dict[str, str]) -> str:
     if module is None:
         raise SystemExit(f"{key} is used but no module of MODULES holds it")
     if module != owner.name:
-        owner.imports.setdefault(f"robomodel.runtime.msg.{module}", set()).add(_py_name(key))
+        owner.imports.setdefault(f"{owner.base}.{module}", set()).add(_py_name(key))
     return _py_name(key)
 
 
 def _message(
-    defn: Definition, owner: Module, where: dict[str, str], *, py_name: str | None = None
+    defn: Definition,
+    owner: Module,
+    where: dict[str, str],
+    *,
+    py_name: str | None = None,
+    defaults: Mapping[tuple[str, str], object] = DEFAULTS,
 ) -> None:
     """Add the class of ``defn`` to ``owner``; one named ``py_name`` is not registered (its
-    ``__typename__`` is set after the class exists)."""
+    ``__typename__`` is set after the class exists). Its fields are the specs the run-time
+    builder gives too (:func:`robomodel.runtime.msg.definition.field_specs`)."""
     name = py_name or _py_name(defn.name)
     bases = f"{MIXINS[defn.name]}, Message" if defn.name in MIXINS else "Message"
     if defn.name in MIXINS:
@@ -196,18 +198,15 @@ def _message(
     for c_name, c_type, value in defn.constants:
         owner.imports.setdefault("typing", set()).add("ClassVar")
         out.append(f"    {c_name}: ClassVar[{_PYTHON.get(c_type, 'int')}] = {value!r}")
-    specs = []
-    fields = [
-        f
-        for f in defn.fields
-        if not (f[0] == "structure_needs_at_least_one_member" and len(defn.fields) == 1)
-    ]
+    try:
+        fields = field_specs(defn.name, (defn.constants, defn.fields), _reference, ros1=defn.ros1)
+    except MessageTypeError as exc:
+        raise SystemExit(str(exc)) from None
     if defn.constants and fields:
         out.append("")
-    for field_name, desc in fields:
-        if not field_name.isidentifier() or keyword.iskeyword(field_name):
-            raise SystemExit(f"{defn.name}.{field_name}: not a Python name")
-        ann, default, spec = _field(desc, owner, where, defn.name, field_name)
+    specs = []
+    for field_name, spec_of in fields:
+        ann, default, spec = _field(spec_of, owner, where, defn.name, field_name, defaults)
         if "field(" in default:
             owner.imports.setdefault("dataclasses", set()).add("field")
         out.append(f"    {field_name}: {ann} = {default}")
@@ -225,18 +224,17 @@ def _message(
     owner.sources.add(defn.source)
 
 
-def _ordered(keys: list[str], sources: Sources) -> list[str]:
+def _ordered(keys: list[str], found: Mapping[str, Definition]) -> list[str]:
     """``keys`` with every type after the types of the same list it uses."""
     done: list[str] = []
 
     def visit(key: str) -> None:
         if key in done or key not in keys:
             return
-        for _, desc in sources.found[key].fields:
-            while int(desc[0]) in (_ARRAY, _SEQUENCE):
-                desc = desc[1][0]
-            if int(desc[0]) == _NAME:
-                visit(str(desc[1]))
+        for _, desc in found[key].fields:
+            nested = nested_type(desc)
+            if nested is not None:
+                visit(nested)
         done.append(key)
 
     for key in keys:
@@ -245,27 +243,35 @@ def _ordered(keys: list[str], sources: Sources) -> list[str]:
 
 
 def generate() -> dict[str, str]:
-    """The source text of every module of MODULES, by module name."""
+    """The source text of every module of MODULES and VARIANTS, by path under runtime/msg/."""
     sources = Sources()
     where: dict[str, str] = {}
     members: dict[str, list[str]] = {}
     for module, (_, keys) in MODULES.items():
         members[module] = []
         for key in keys:
+            if key.split("/", 1)[0] != module:  # one module per ROS package, named as it
+                raise SystemExit(f"{key}: listed under {module}, not its package")
             for name in sources.add(key):
                 where[name] = module
                 members[module].append(name)
-    texts = {m: _module_text(m, members[m], sources, where) for m in MODULES}
+    texts = {f"types/{m}.py": _module_text(m, members[m], sources, where) for m in MODULES}
     for module, (doc, layouts) in VARIANTS.items():
-        mod = Module(module, [], {"dataclasses": {"dataclass"}, MSG_SCHEMA: {"Message"}}, [], set())
+        mod = Module(
+            f"layouts.{module}",
+            [],
+            {"dataclasses": {"dataclass"}, MSG_SCHEMA: {"Message"}},
+            [],
+            set(),
+        )
         for py_name, release, key in layouts:
             package, kind, short = key.split("/")
             path = VERSIONS / release / package / kind / f"{short}.{kind}"
-            constants, fields = _parse(path.read_text(), key)[key]
+            constants, fields = parse_interface(path.read_text(), key, where=str(path))[key]
             source = f"{path.parent.relative_to(VERSIONS.parent)}/"
             defn = Definition(key, tuple(constants), tuple(fields), source)
             _message(defn, mod, where, py_name=py_name)
-        texts[module] = _render(mod, doc)
+        texts[f"layouts/{module}.py"] = _render(mod, doc)
     return texts
 
 
@@ -277,12 +283,12 @@ def _module_text(module: str, names: list[str], sources: Sources, where: dict[st
         [],
         set(),
     )
-    for key in _ordered(names, sources):
+    for key in _ordered(names, sources.found):
         _message(sources.found[key], mod, where)
     for key in MODULES[module][1]:
         short = key.rsplit("/", 1)[-1]
         if "/srv/" in key:
-            mod.imports["robomodel.runtime.msg._schema"].add("Service")
+            mod.imports["robomodel.runtime.msg.schema"].add("Service")
             mod.lines += [
                 "",
                 "",
@@ -298,6 +304,30 @@ def _module_text(module: str, names: list[str], sources: Sources, where: dict[st
             mod.lines += ["", "", f'{short} = make_action("{key}", {parts})']
             mod.names.append(short)
     return _render(mod, MODULES[module][0])
+
+
+def store_modules(
+    fielddefs: Mapping[str, Any], *, base: str, ros1: bool, source: str
+) -> dict[str, str]:
+    """The source of one module per package (``<base>.<package>``) with a class of every
+    message of ``fielddefs`` (a rosbags type store's), written as robomodel's own modules are but
+    not registered (their ``__typename__`` is set after the class exists) and without the
+    defaults the definitions do not say: what the run-time builder makes of the same
+    definitions, for the tests that compare the two paths."""
+    found = {
+        name: Definition(name, tuple(constants), tuple(fields), source, ros1)
+        for name, (constants, fields) in fielddefs.items()
+    }
+    where = {name: name.split("/", 1)[0] for name in found}
+    texts: dict[str, str] = {}
+    for package in sorted(set(where.values())):
+        mod = Module(package, [], {"dataclasses": {"dataclass"}, MSG_SCHEMA: {"Message"}}, [],
+                     set(), base)  # fmt: skip
+        names = [name for name in found if where[name] == package]
+        for key in _ordered(names, found):
+            _message(found[key], mod, where, py_name=_py_name(key), defaults={})
+        texts[package] = _render(mod, f"{package}: every message of {source}.")
+    return texts
 
 
 def _render(mod: Module, doc: str) -> str:
@@ -338,12 +368,14 @@ def _ruff(text: str, path: Path) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="only report modules that differ")
-    parser.add_argument("--out", type=Path, default=OUT, help="the modules' folder")
+    parser.add_argument(
+        "--out", type=Path, default=OUT, help="the folder holding types/ and layouts/"
+    )
     args = parser.parse_args(argv)
     stale = []
-    for module, text in generate().items():
-        path = args.out.resolve() / f"{module}.py"
-        text = _ruff(text, OUT / path.name)
+    for relative, text in generate().items():
+        path = args.out.resolve() / relative
+        text = _ruff(text, OUT / relative)
         if path.is_file() and path.read_text() == text:
             continue
         stale.append(path)

@@ -1,9 +1,11 @@
-"""What tools/gen_msgs.py generates: robomodel's typed message modules and the types each
-holds, with the few things a definition does not say (Python names, defaults, helpers)."""
+"""What tools/gen_msgs.py generates: robomodel's typed message modules, one per ROS package
+(runtime/msg/types/<package>.py), the types each holds, and the few things a definition does
+not say (defaults, helpers)."""
 
 from __future__ import annotations
 
-# module -> (docstring's first line, the types it holds: pkg/msg/X, pkg/srv/X, pkg/action/X)
+# ROS package -> (docstring's first line, the types of it robomodel has classes of: pkg/msg/X,
+# pkg/srv/X, pkg/action/X)
 MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
     "builtin_interfaces": (
         "builtin_interfaces: Time and Duration.",
@@ -62,14 +64,14 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
             )
         ),
     ),
-    "nav_msgs": (
-        "nav_msgs: Odometry; tf2_msgs: TFMessage; rosgraph_msgs: Clock and (ROS 1) Log.",
-        (
-            "nav_msgs/msg/Odometry",
-            "tf2_msgs/msg/TFMessage",
-            "rosgraph_msgs/msg/Clock",
-            "rosgraph_msgs/msg/Log",
-        ),
+    "nav_msgs": ("nav_msgs: Odometry.", ("nav_msgs/msg/Odometry",)),
+    "tf2_msgs": (
+        "tf2_msgs: TFMessage, the message of /tf and /tf_static.",
+        ("tf2_msgs/msg/TFMessage",),
+    ),
+    "rosgraph_msgs": (
+        "rosgraph_msgs: Clock (/clock) and ROS 1's Log (/rosout).",
+        ("rosgraph_msgs/msg/Clock", "rosgraph_msgs/msg/Log"),
     ),
     "lifecycle_msgs": (
         "lifecycle_msgs: State, the state of a managed node or hardware component.",
@@ -79,11 +81,14 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
         "service_msgs: ServiceEventInfo, the header of every service's ``_Event`` message.",
         ("service_msgs/msg/ServiceEventInfo",),
     ),
+    "unique_identifier_msgs": (
+        "unique_identifier_msgs: UUID, the id of an action's goal.",
+        ("unique_identifier_msgs/msg/UUID",),
+    ),
     "action_msgs": (
-        "action_msgs and unique_identifier_msgs: goal ids, goal status and the cancel service "
-        "every ROS 2 action server offers.",
+        "action_msgs: goal ids, goal status and the cancel service every ROS 2 action server "
+        "offers.",
         (
-            "unique_identifier_msgs/msg/UUID",
             "action_msgs/msg/GoalInfo",
             "action_msgs/msg/GoalStatus",
             "action_msgs/msg/GoalStatusArray",
@@ -132,31 +137,27 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
         ("roscpp/msg/Logger", "roscpp/srv/GetLoggers", "roscpp/srv/SetLoggerLevel"),
     ),
     "control_msgs": (
-        "control_msgs: DynamicJointState, InterfaceValue, JointControllerState and "
-        "JointTrajectoryControllerState.",
-        tuple(
-            f"control_msgs/msg/{n}"
-            for n in (
-                "InterfaceValue",
-                "DynamicJointState",
-                "JointControllerState",
-                "JointTrajectoryControllerState",
-            )
-        ),
-    ),
-    "control_msgs_actions": (
-        "control_msgs services and actions: QueryTrajectoryState and FollowJointTrajectory "
-        "(the joint_trajectory_controller's ``~/query_state`` and ``~/follow_joint_trajectory``).",
+        "control_msgs: controller states, QueryTrajectoryState and FollowJointTrajectory (the "
+        "joint_trajectory_controller's ``~/query_state`` and ``~/follow_joint_trajectory``).",
         (
-            "control_msgs/msg/JointTolerance",
-            "control_msgs/msg/JointComponentTolerance",
+            *(
+                f"control_msgs/msg/{n}"
+                for n in (
+                    "InterfaceValue",
+                    "DynamicJointState",
+                    "JointControllerState",
+                    "JointTrajectoryControllerState",
+                    "JointTolerance",
+                    "JointComponentTolerance",
+                )
+            ),
             "control_msgs/srv/QueryTrajectoryState",
             "control_msgs/action/FollowJointTrajectory",
         ),
     ),
     "controller_manager_msgs": (
-        "controller_manager_msgs (ros2_control): the controller manager's controller services "
-        "and their messages (the hardware ones: controller_manager_msgs_hardware).",
+        "controller_manager_msgs (ros2_control): the controller manager's controller and "
+        "hardware component services and their messages.",
         (
             *(
                 f"controller_manager_msgs/msg/{n}"
@@ -165,6 +166,8 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
                     "ControllerState",
                     "NamedLifecycleState",
                     "ControllerManagerActivity",
+                    "HardwareInterface",
+                    "HardwareComponentState",
                 )
             ),
             *(
@@ -178,27 +181,23 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
                     "SwitchController",
                     "UnloadController",
                     "ReloadControllerLibraries",
+                    "ListHardwareComponents",
+                    "ListHardwareInterfaces",
+                    "SetHardwareComponentState",
                 )
             ),
         ),
     ),
-    "controller_manager_msgs_hardware": (
-        "controller_manager_msgs (ros2_control): the controller manager's hardware component "
-        "services and their messages.",
-        (
-            "controller_manager_msgs/msg/HardwareInterface",
-            "controller_manager_msgs/msg/HardwareComponentState",
-            "controller_manager_msgs/srv/ListHardwareComponents",
-            "controller_manager_msgs/srv/ListHardwareInterfaces",
-            "controller_manager_msgs/srv/SetHardwareComponentState",
-        ),
-    ),
     "gazebo_msgs": (
-        "gazebo_msgs (gazebo_ros_pkgs, ROS 2): the simulator's spawn, delete, state, world and "
-        "wrench services.",
+        "gazebo_msgs (gazebo_ros_pkgs): the simulator's spawn, delete, state, world and wrench "
+        "services, and model and link states and properties (Gazebo's scoped link names, "
+        "``model::link``).",
         (
             "gazebo_msgs/msg/ModelState",
             "gazebo_msgs/msg/EntityState",
+            "gazebo_msgs/msg/LinkState",
+            "gazebo_msgs/msg/ModelStates",
+            "gazebo_msgs/msg/LinkStates",
             *(
                 f"gazebo_msgs/srv/{n}"
                 for n in (
@@ -214,20 +213,11 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
                     "GetWorldProperties",
                     "GetModelList",
                     "ApplyBodyWrench",
+                    "GetLinkState",
+                    "SetLinkState",
+                    "GetModelProperties",
                 )
             ),
-        ),
-    ),
-    "gazebo_msgs_states": (
-        "gazebo_msgs (gazebo_ros_pkgs): model and link states and properties (Gazebo's scoped "
-        "link names, ``model::link``).",
-        (
-            "gazebo_msgs/msg/LinkState",
-            "gazebo_msgs/msg/ModelStates",
-            "gazebo_msgs/msg/LinkStates",
-            "gazebo_msgs/srv/GetLinkState",
-            "gazebo_msgs/srv/SetLinkState",
-            "gazebo_msgs/srv/GetModelProperties",
         ),
     ),
     "robomodel_interfaces": (
@@ -264,8 +254,6 @@ MODULES: dict[str, tuple[str, tuple[str, ...]]] = {
     ),
 }
 
-# Python names that differ from the ROS name (rcl_interfaces has a Log of its own).
-PY_NAMES = {"rosgraph_msgs/msg/Log": "RosgraphLog"}
 # Defaults of the definitions (other than zero), which rosbags does not keep.
 DEFAULTS: dict[tuple[str, str], object] = {
     ("geometry_msgs/msg/Quaternion", "w"): 1.0,
@@ -282,13 +270,13 @@ MIXINS = {
 # Types read from a ROS 1 store (they exist in ROS 1 only).
 ROS1_ONLY = {"rosgraph_msgs/msg/Log"}
 
-# Earlier layouts of a type (one module each): the class name, the release folder under
-# runtime/msg/interface_versions/ and the type. Their classes are named as the real type but not
-# registered, so the registry keeps the current layout.
+# Earlier layouts of types (runtime/msg/layouts/<package>.py, one module per ROS package): the
+# class name, the release folder under runtime/msg/interface_versions/ and the type. Their
+# classes are named as the real type but not registered, so the registry keeps the current layout.
 VARIANTS: dict[str, tuple[str, tuple[tuple[str, str, str], ...]]] = {
-    "controller_manager_msgs_layouts": (
+    "controller_manager_msgs": (
         "controller_manager_msgs' ControllerState in the layouts of earlier Jazzy ros2_control "
-        "releases (4.0-4.12 and 4.13-4.27), for controller_manager_msgs_variants.",
+        "releases (4.0-4.12 and 4.13-4.27), for runtime/msg/service_variants.py.",
         (
             (
                 "ControllerState_4_0",

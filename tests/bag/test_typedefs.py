@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from robomodel.bag.typedefs import rihs01, ros2msg_definition
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.schema import (
     get_message_type,
     get_service_type,
     message_type_names,

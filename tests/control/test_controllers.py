@@ -437,7 +437,7 @@ def test_seed_000_namespaced_file(caplog: pytest.LogCaptureFixture) -> None:
         system.manager.step(0.01)
     ctx.spin_once()
     assert states[-1].position[0] == pytest.approx(1.6, abs=0.2)
-    from robomodel.runtime.msg.controller_manager_msgs import ListControllers
+    from robomodel.runtime.msg.types.controller_manager_msgs import ListControllers
 
     answer = ctx.call_service("/rrbot/controller_manager/list_controllers", ListControllers)
     assert [c.state for c in answer.controller] == ["active", "active"]
@@ -488,9 +488,9 @@ def test_jtc_follow_joint_trajectory_action_and_query_state() -> None:
     """FollowJointTrajectory over rcl_action's services and topics, QueryTrajectoryState."""
     from robomodel.runtime.action_client import ActionClient
     from robomodel.runtime.msg import JointTrajectory, message_from_dict
-    from robomodel.runtime.msg.action_msgs import GoalStatus, GoalStatusArray
-    from robomodel.runtime.msg.builtin_interfaces import Time
-    from robomodel.runtime.msg.control_msgs_actions import (
+    from robomodel.runtime.msg.types.action_msgs import GoalStatus, GoalStatusArray
+    from robomodel.runtime.msg.types.builtin_interfaces import Time
+    from robomodel.runtime.msg.types.control_msgs import (
         FollowJointTrajectory,
         QueryTrajectoryState,
         QueryTrajectoryState_Request,

@@ -210,7 +210,7 @@ def test_spawn_model_sdf_adds_rigid_shapes_and_refuses_articulated_models() -> N
     try:
         assert not [s for s in _world_scenery(server) if "crate" in s.name]
         from robomodel.launch.nodes.gazebo import pose_message
-        from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
+        from robomodel.runtime.msg.types.gazebo_msgs import SpawnModel, SpawnModel_Request
 
         request = SpawnModel_Request(
             model_name="crate", model_xml=crate, initial_pose=pose_message((1, 2, 0.5), (0, 0, 0))

@@ -14,7 +14,8 @@ from typing import Any
 
 import pytest
 
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.action import make_action  # noqa: F401  (the actions' module)
+from robomodel.runtime.msg.schema import (
     Array,
     Message,
     Seq,
@@ -22,7 +23,6 @@ from robomodel.runtime.msg._schema import (
     get_message_type,
     get_service_type,
 )
-from robomodel.runtime.msg.action import make_action  # noqa: F401  (the actions' module)
 from robomodel.runtime.msg.typehash import type_hash
 
 typesys = pytest.importorskip("rosbags.typesys")

@@ -18,10 +18,10 @@ from pathlib import Path
 import pytest
 
 from robomodel.runtime import Context
-from robomodel.runtime.msg import controller_manager_msgs
-from robomodel.runtime.msg._schema import Message, Service
-from robomodel.runtime.msg.controller_manager_msgs_variants import LIST_CONTROLLERS_VARIANTS
+from robomodel.runtime.msg.schema import Message, Service
+from robomodel.runtime.msg.service_variants import LIST_CONTROLLERS_VARIANTS
 from robomodel.runtime.msg.typehash import type_hash
+from robomodel.runtime.msg.types import controller_manager_msgs
 from tests.conftest import EXAMPLES, ROBOMODEL, past_the_bus_line, unique_domain
 from tests.timing import scaled
 

@@ -20,20 +20,12 @@ from typing import Any
 
 import pytest
 
-from robomodel.runtime.msg import (
-    Float64MultiArray,
-    JointState,
-    Message,
-    String,
-    TFMessage,
-    controller_manager_msgs,
-    gazebo_msgs,
-    rcl_interfaces,
-)
-from robomodel.runtime.msg._schema import Service
-from robomodel.runtime.msg.service_msgs import ServiceEventInfo
-from robomodel.runtime.msg.std_srvs import SetBool, Trigger
+from robomodel.runtime.msg import Float64MultiArray, JointState, Message, String, TFMessage
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.msg.typehash import type_hash
+from robomodel.runtime.msg.types import controller_manager_msgs, gazebo_msgs, rcl_interfaces
+from robomodel.runtime.msg.types.service_msgs import ServiceEventInfo
+from robomodel.runtime.msg.types.std_srvs import SetBool, Trigger
 from tests.conftest import EXAMPLES, ROBOMODEL, ROOT, end_process, past_the_bus_line, unique_domain
 from tests.ros2wire.msgtext import write_definitions
 from tests.timing import scale, scaled

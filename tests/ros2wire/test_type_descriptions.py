@@ -18,8 +18,8 @@ from typing import Any
 
 import pytest
 
-from robomodel.runtime.msg.type_description_interfaces import GetTypeDescription
 from robomodel.runtime.msg.typehash import type_hash
+from robomodel.runtime.msg.types.type_description_interfaces import GetTypeDescription
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.ros2wire.msgtext import write_definitions
 from tests.ros2wire.test_sdk_wire import AGENT, _sdk, _sdk_python, state_publisher

@@ -3,7 +3,7 @@ does) as a char of its own, so the two disagree on such types' RIHS01 hashes."""
 
 from __future__ import annotations
 
-from robomodel.runtime.msg._schema import Array, Message, Seq
+from robomodel.runtime.msg.schema import Array, Message, Seq
 
 
 def has_char(kind: type[Message], seen: set[str] | None = None) -> bool:

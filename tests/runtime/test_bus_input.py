@@ -80,7 +80,7 @@ def test_simulated_hardware_clamps_huge_velocity_before_mujoco(tmp_path: Path) -
     pytest.importorskip("mujoco")
     from robomodel.description.urdf.reader import read_urdf
     from robomodel.runtime import Context, ManualClock
-    from robomodel.runtime.msg.std_msgs import Float64MultiArray
+    from robomodel.runtime.msg.types.std_msgs import Float64MultiArray
     from robomodel.sim import Simulation
     from robomodel.sim.bus import SimBridge
     from robomodel.sim.hardware import MAX_VELOCITY_COMMAND

@@ -10,14 +10,14 @@ from pathlib import Path
 
 from robomodel.runtime.msg import Quaternion, Time, get_message_type
 from robomodel.runtime.msg._resolver import _distro_store
-from robomodel.runtime.msg.action_msgs import UUID
 from robomodel.runtime.msg.typehash import type_hash
+from robomodel.runtime.msg.types.unique_identifier_msgs import UUID
 from tests.timing import scaled
 
 ROOT = Path(__file__).resolve().parents[2]
 MSG = ROOT / "src" / "robomodel" / "runtime" / "msg"
 sys.path.insert(0, str(ROOT / "tools"))
-from gen_msgs_modules import MODULES, ROS1_ONLY, VARIANTS  # noqa: E402
+from gen_msgs_modules import MODULES, ROS1_ONLY  # noqa: E402
 
 
 def _check(*argv: str) -> subprocess.CompletedProcess[str]:
@@ -31,11 +31,11 @@ def test_checked_in_modules_are_the_generators_output() -> None:
 
 
 def test_check_names_a_module_that_differs(tmp_path: Path) -> None:
-    for module in (*MODULES, *VARIANTS):
-        shutil.copy(MSG / f"{module}.py", tmp_path)
-    edited = tmp_path / "geometry_msgs.py"
+    for folder in ("types", "layouts"):
+        shutil.copytree(MSG / folder, tmp_path / folder)
+    edited = tmp_path / "types" / "geometry_msgs.py"
     edited.write_text(edited.read_text().replace("w: float = 1.0", "w: float = 0.0"))
-    (tmp_path / "std_srvs.py").unlink()
+    (tmp_path / "types" / "std_srvs.py").unlink()
     done = _check("--out", str(tmp_path))
     assert done.returncode == 1
     assert sorted(line.rsplit("/", 1)[-1] for line in done.stdout.splitlines()) == [
@@ -65,10 +65,31 @@ def test_generated_store_types_hash_as_rosbags() -> None:
         assert type_hash(get_message_type(key)) == store.hash_rihs01(key), key
 
 
+def test_one_module_per_ros_package() -> None:
+    """Every generated class lives in the module named as its ROS package, every generated
+    module is one of MODULES, and a type is found by name with no table naming its module."""
+    import importlib
+
+    generated = {p.stem for p in (MSG / "types").glob("*.py")} - {"__init__"}
+    assert generated == set(MODULES)
+    for package in sorted(generated):
+        module = importlib.import_module(f"robomodel.runtime.msg.types.{package}")
+        for name in module.__all__:
+            assert getattr(module, name).__typename__.split("/")[0] == package, name
+    for key in (
+        "tf2_msgs/msg/TFMessage",
+        "rosgraph_msgs/msg/Clock",
+        "unique_identifier_msgs/msg/UUID",
+    ):
+        assert (
+            get_message_type(key).__module__ == f"robomodel.runtime.msg.types.{key.split('/')[0]}"
+        )
+
+
 def test_earlier_layouts_are_not_registered() -> None:
     """The generated ControllerState of ros2_control 4.0-4.12 is named as the type but the
     registry keeps the current layout (with is_async and update_rate, 4.28 on)."""
-    from robomodel.runtime.msg.controller_manager_msgs_layouts import ControllerState_4_0
+    from robomodel.runtime.msg.layouts.controller_manager_msgs import ControllerState_4_0
 
     current = get_message_type("controller_manager_msgs/msg/ControllerState")
     assert ControllerState_4_0.__typename__ == current.__typename__

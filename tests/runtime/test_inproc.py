@@ -150,7 +150,7 @@ def test_graph_and_parameter_service() -> None:
 
 
 def test_parameter_events_are_published() -> None:
-    from robomodel.runtime.msg.rcl_interfaces import ParameterEvent
+    from robomodel.runtime.msg.types.rcl_interfaces import ParameterEvent
 
     ctx = Context(clock=ManualClock())
     events: list[ParameterEvent] = []
@@ -211,7 +211,7 @@ def test_destroyed_endpoints_leave_the_graph_and_deliver_nothing() -> None:
 
 
 def test_a_destroyed_service_handle_does_not_remove_its_successor() -> None:
-    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.msg.types.std_srvs import Trigger, Trigger_Response
 
     ctx = Context(clock=ManualClock())
     node = ctx.create_node("server")
@@ -226,7 +226,7 @@ def test_a_destroyed_service_handle_does_not_remove_its_successor() -> None:
 
 
 def test_the_graph_lists_each_endpoint_with_its_node_type_and_qos() -> None:
-    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.msg.types.std_srvs import Trigger, Trigger_Response
     from robomodel.runtime.qos import QoSProfile
 
     ctx = Context(clock=ManualClock())
@@ -335,7 +335,7 @@ def test_services_answer_from_the_spinning_thread_and_say_why_not() -> None:
     another process would) and waits; the errors name the service."""
     import threading
 
-    from robomodel.runtime.msg.std_srvs import Trigger, Trigger_Response
+    from robomodel.runtime.msg.types.std_srvs import Trigger, Trigger_Response
     from robomodel.runtime.transport.base import Deferred, ServiceCallError
 
     ctx = Context()
@@ -395,7 +395,7 @@ def test_a_failing_handler_is_one_warning_and_the_caller_learns_why(
 ) -> None:
     import threading
 
-    from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Response
+    from robomodel.runtime.msg.types.std_srvs import SetBool, SetBool_Response
     from robomodel.runtime.transport.base import ServiceCallError
 
     def check(request: object) -> SetBool_Response:

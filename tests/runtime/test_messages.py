@@ -439,8 +439,8 @@ def test_an_empty_message_is_one_byte_on_the_wire() -> None:
     from pycdr2.types import float64, uint8
 
     from robomodel.runtime.msg import Empty, deserialize, serialize
-    from robomodel.runtime.msg._schema import Message
-    from robomodel.runtime.msg.std_srvs import Empty_Request, Empty_Response
+    from robomodel.runtime.msg.schema import Message
+    from robomodel.runtime.msg.types.std_srvs import Empty_Request, Empty_Response
 
     assert serialize(Empty()) == serialize(Empty_Request()) == b"\x00\x01\x00\x00\x00"
     assert deserialize(b"\x00\x01\x00\x00\x00", Empty_Response) == Empty_Response()

@@ -13,7 +13,7 @@ import yaml
 from robomodel._yaml_bounded import YamlNestingError, load_yaml
 from robomodel.launch.param_server import SERVICE, ParamServer
 from robomodel.runtime import Context
-from robomodel.runtime.msg.robomodel_interfaces import MasterCall, MasterCall_Request
+from robomodel.runtime.msg.types.robomodel_interfaces import MasterCall, MasterCall_Request
 from robomodel.runtime.transport.ros1.param_bounds import (
     DICT_BYTES,
     ParamBoundError,
@@ -85,7 +85,7 @@ def test_the_servers_refusal_reaches_the_client_over_the_bus() -> None:
 
 
 def test_a_failing_service_logs_one_line_and_answers(caplog: pytest.LogCaptureFixture) -> None:
-    from robomodel.runtime.msg.std_srvs import Trigger
+    from robomodel.runtime.msg.types.std_srvs import Trigger
 
     def handler(request: object) -> object:
         return json.loads("[" * 100_000 + "]" * 100_000)  # RecursionError

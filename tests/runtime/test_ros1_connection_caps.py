@@ -18,7 +18,7 @@ import pytest
 
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import get_message_type
-from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.schema import get_service_type
 from robomodel.runtime.transport.ros1 import publication, services, xmlrpc_io
 from robomodel.runtime.transport.ros1.node_endpoint import NodeEndpoint
 from robomodel.runtime.transport.ros1.publication import (

@@ -14,7 +14,7 @@ from typing import Any
 import pytest
 
 from robomodel.runtime.msg import Header, JointState, Time, get_message_type
-from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.schema import get_service_type
 from robomodel.runtime.transport.ros1.ros1_types import (
     Ros1CodecError,
     Ros1TypeError,

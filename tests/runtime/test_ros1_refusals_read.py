@@ -21,7 +21,7 @@ from typing import Any
 import pytest
 
 from robomodel.runtime.executor import Executor
-from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.schema import get_service_type
 from robomodel.runtime.transport.ros1 import linger, xmlrpc_io
 from robomodel.runtime.transport.ros1.budget import ByteBudget
 from robomodel.runtime.transport.ros1.node_endpoint import NodeEndpoint

@@ -7,7 +7,7 @@ from __future__ import annotations
 import logging
 
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg.rcl_interfaces import Log
+from robomodel.runtime.msg.types.rcl_interfaces import Log
 from robomodel.runtime.qos import Durability
 from robomodel.runtime.rosout import ROSOUT_QOS, publish_line
 

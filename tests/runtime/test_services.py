@@ -13,7 +13,7 @@ import pytest
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime import Context
-from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Request, SetBool_Response, Trigger
+from robomodel.runtime.msg.types.std_srvs import SetBool, SetBool_Request, SetBool_Response, Trigger
 from robomodel.runtime.transport.base import ServiceCallError
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.timing import scaled
@@ -22,7 +22,7 @@ SERVER = textwrap.dedent(
     """
     import sys
     from robomodel.runtime import Context
-    from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Response
+    from robomodel.runtime.msg.types.std_srvs import SetBool, SetBool_Response
     ctx = Context("zenoh", domain_id=int(sys.argv[1]))
     def check(request):
         if not request.data:

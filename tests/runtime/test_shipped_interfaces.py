@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from robomodel.runtime.msg import _resolver
-from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.schema import get_service_type
 from robomodel.runtime.msg.typehash import type_hash
 from tests.timing import scaled
 

@@ -8,11 +8,11 @@ from __future__ import annotations
 import pytest
 
 from robomodel.runtime.context import Context
-from robomodel.runtime.msg import type_description_interfaces as tdi
 from robomodel.runtime.msg._from_definition import build_message_class
-from robomodel.runtime.msg._schema import Message, get_message_type
-from robomodel.runtime.msg.rcl_interfaces import DescribeParameters_Response
+from robomodel.runtime.msg.schema import Message, get_message_type
 from robomodel.runtime.msg.typehash import type_hash
+from robomodel.runtime.msg.types import type_description_interfaces as tdi
+from robomodel.runtime.msg.types.rcl_interfaces import DescribeParameters_Response
 from robomodel.runtime.transport.base import Endpoint
 from robomodel.runtime.type_descriptions import describe, description_hash
 from robomodel.runtime.type_learning import _ask, fielddefs_of

@@ -16,7 +16,7 @@ from typing import Any
 import pytest
 
 import robomodel.runtime.msg as msg_package
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.schema import (
     Array,
     Message,
     Seq,
@@ -34,9 +34,9 @@ Nodetype = pytest.importorskip("rosbags.typesys.base").Nodetype
 
 STORE = typesys.get_typestore(typesys.Stores.ROS2_JAZZY)
 
-for _module in pkgutil.iter_modules(msg_package.__path__):
-    if not _module.name.startswith("_"):
-        importlib.import_module(f"robomodel.runtime.msg.{_module.name}")
+for _module in pkgutil.walk_packages(msg_package.__path__, "robomodel.runtime.msg."):
+    if not _module.name.rsplit(".", 1)[-1].startswith("_"):
+        importlib.import_module(_module.name)
 
 # (type, RIHS01) as ROS 2 publishes them
 CITED = [
@@ -122,7 +122,7 @@ def test_add_two_ints_hash_from_its_definition() -> None:
     classes are named after creation so that they stay out of robomodel's registry)."""
     from dataclasses import dataclass
 
-    from robomodel.runtime.msg._schema import Service
+    from robomodel.runtime.msg.schema import Service
 
     @dataclass(slots=True)
     class Request(Message):
@@ -189,10 +189,9 @@ def test_action_types_derived_as_rosidl_does() -> None:
     nano-ros' notes): make_action derives the services and the feedback message as rosidl."""
     from dataclasses import dataclass, field
 
-    from robomodel.runtime.msg import _schema
     from robomodel.runtime.msg.action import make_action
-    from robomodel.runtime.msg.builtin_interfaces import Duration, Time
-    from robomodel.runtime.msg.geometry_msgs import TransformStamped
+    from robomodel.runtime.msg.types.builtin_interfaces import Duration, Time
+    from robomodel.runtime.msg.types.geometry_msgs import TransformStamped
 
     @dataclass(slots=True)
     class Goal(Message):
@@ -223,20 +222,14 @@ def test_action_types_derived_as_rosidl_does() -> None:
     TF2Error.__typename__ = "tf2_msgs/msg/TF2Error"
     Result.__typename__ = "tf2_msgs/action/LookupTransform_Result"
     Feedback.__typename__ = "tf2_msgs/action/LookupTransform_Feedback"
-    before = (dict(_schema._REGISTRY), dict(_schema._SERVICES))
-    try:
-        action = make_action("tf2_msgs/action/LookupTransform", Goal, Result, Feedback)
-        assert type_hash(action.SendGoal) == (
-            "RIHS01_4646ff5706c86b04d0a1098d329951a9731a7517e16702905de6073cc72c8530"
-        )
-        assert type_hash(action.GetResult) == (
-            "RIHS01_3cd1715751899e3167b5aec3e4ac194f7da9e8493a77285f9f6a4c914f5e8b24"
-        )
-        assert type_hash(action.FeedbackMessage) == (
-            "RIHS01_10cb89922dcb103e95c185d43e8a5efa3d38db996f733151a2f3e2ac133f4839"
-        )
-    finally:  # keep tf2_msgs' action out of the registry for the other tests
-        _schema._REGISTRY.clear()
-        _schema._REGISTRY.update(before[0])
-        _schema._SERVICES.clear()
-        _schema._SERVICES.update(before[1])
+    # not registered: tf2_msgs' action stays out of the registry for the other tests
+    action = make_action("tf2_msgs/action/LookupTransform", Goal, Result, Feedback, register=False)
+    assert type_hash(action.SendGoal) == (
+        "RIHS01_4646ff5706c86b04d0a1098d329951a9731a7517e16702905de6073cc72c8530"
+    )
+    assert type_hash(action.GetResult) == (
+        "RIHS01_3cd1715751899e3167b5aec3e4ac194f7da9e8493a77285f9f6a4c914f5e8b24"
+    )
+    assert type_hash(action.FeedbackMessage) == (
+        "RIHS01_10cb89922dcb103e95c185d43e8a5efa3d38db996f733151a2f3e2ac133f4839"
+    )

@@ -16,7 +16,7 @@ import yaml
 
 from robomodel.runtime.msg import MessageTypeError, _resolver, get_message_type
 from robomodel.runtime.msg._from_definition import PLACEHOLDER
-from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.schema import get_service_type
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.timing import scaled
@@ -135,7 +135,7 @@ SERVER = textwrap.dedent(
     from robomodel.runtime.action_server import ActionServer
     from robomodel.runtime.msg import get_message_type
     from robomodel.runtime.msg._resolver import resolve_action
-    from robomodel.runtime.msg._schema import get_service_type
+    from robomodel.runtime.msg.schema import get_service_type
     Fibonacci = resolve_action("my_msgs/action/Fibonacci", "my_msgs/action/Fibonacci")
 
     class Running:  # never ends: feedback on every monitor tick

@@ -27,7 +27,7 @@ from robomodel.runtime.msg import (
     serialize,
 )
 from robomodel.runtime.msg._from_definition import build_message_class
-from robomodel.runtime.msg._schema import message_type_names
+from robomodel.runtime.msg.schema import message_type_names
 from robomodel.runtime.msg.typehash import type_hash
 from tests.timing import scaled
 
@@ -143,9 +143,9 @@ def _generated(name: str, cache: dict[str, type[Message]]) -> type[Message]:
     return cache[name]
 
 
-for _module in pkgutil.iter_modules(msg_package.__path__):
-    if not _module.name.startswith("_"):
-        importlib.import_module(f"robomodel.runtime.msg.{_module.name}")
+for _module in pkgutil.walk_packages(msg_package.__path__, "robomodel.runtime.msg."):
+    if not _module.name.rsplit(".", 1)[-1].startswith("_"):
+        importlib.import_module(_module.name)
 HAND_WRITTEN = [n for n in message_type_names() if n in STORE.fielddefs]
 
 
@@ -276,7 +276,7 @@ def test_uint8_arrays_decode_as_bytes_from_any_byte_container() -> None:
     import numpy as np
 
     from robomodel.runtime.msg import message_from_yaml, message_to_yaml
-    from robomodel.runtime.msg.action_msgs import UUID
+    from robomodel.runtime.msg.types.unique_identifier_msgs import UUID
     from robomodel.runtime.transport.ros1.ros1_types import ros1_type
 
     image = get_message_type("sensor_msgs/msg/Image")

@@ -22,7 +22,7 @@ from robomodel.runtime.msg import (
     message_from_yaml,
     serialize,
 )
-from robomodel.runtime.msg._schema import get_service_type
+from robomodel.runtime.msg.schema import get_service_type
 from robomodel.runtime.msg.typehash import type_hash
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.timing import scaled
@@ -136,7 +136,7 @@ SERVER = textwrap.dedent(
     """
     import sys
     from robomodel.runtime import Context
-    from robomodel.runtime.msg._schema import get_service_type
+    from robomodel.runtime.msg.schema import get_service_type
     Scale = get_service_type("my_msgs/srv/Scale")
     ctx = Context("zenoh", domain_id=int(sys.argv[1]))
     node = ctx.create_node("scaler")

@@ -17,7 +17,7 @@ from typing import Any
 import xxhash
 
 from robomodel.runtime import Context
-from robomodel.runtime.msg.std_srvs import SetBool, SetBool_Request, SetBool_Response
+from robomodel.runtime.msg.types.std_srvs import SetBool, SetBool_Request, SetBool_Response
 from robomodel.runtime.transport.rmw_zenoh import parse_attachment
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.timing import scaled, wait_until

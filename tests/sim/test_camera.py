@@ -12,7 +12,7 @@ import pytest
 
 from robomodel.loading import load
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg._schema import get_message_type
+from robomodel.runtime.msg.schema import get_message_type
 from robomodel.sim import Placement, Simulation, read_world
 from robomodel.sim.bus import SimBridge
 from robomodel.sim.sensors.camera import CameraSensor

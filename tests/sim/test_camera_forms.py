@@ -12,7 +12,7 @@ import pytest
 from lxml import etree
 
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg._schema import get_message_type
+from robomodel.runtime.msg.schema import get_message_type
 from robomodel.sim import Placement, Simulation, read_world
 from robomodel.sim.bus import SimBridge
 from robomodel.sim.sensors import _gl

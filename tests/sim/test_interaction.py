@@ -10,8 +10,8 @@ import pytest
 
 from robomodel.loading import load
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg.geometry_msgs import Twist, Vector3
-from robomodel.runtime.msg.nav_msgs import Odometry
+from robomodel.runtime.msg.types.geometry_msgs import Twist, Vector3
+from robomodel.runtime.msg.types.nav_msgs import Odometry
 from robomodel.sim import DivergenceError, Placement, Simulation
 from robomodel.sim.bus import SimBridge
 
@@ -54,10 +54,10 @@ def test_services_queue_requests_to_the_loop() -> None:
     sim = _simplebot()
     SimBridge(sim, context)
     sim.step(100)
-    from robomodel.runtime.msg import gazebo_msgs as gz
-    from robomodel.runtime.msg import std_srvs
-    from robomodel.runtime.msg.builtin_interfaces import Duration
-    from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion, Vector3, Wrench
+    from robomodel.runtime.msg.types import gazebo_msgs as gz
+    from robomodel.runtime.msg.types import std_srvs
+    from robomodel.runtime.msg.types.builtin_interfaces import Duration
+    from robomodel.runtime.msg.types.geometry_msgs import Point, Pose, Quaternion, Vector3, Wrench
 
     state = gz.ModelState("simplebot", Pose(Point(1, 1, 0.1), Quaternion(0, 0, 0, 1)))
     reply = context.call_service(
@@ -185,7 +185,7 @@ def test_two_robots_collide_with_each_other() -> None:
 
 
 def test_ground_truth_tf_and_static_odom_frame() -> None:
-    from robomodel.runtime.msg.nav_msgs import TFMessage
+    from robomodel.runtime.msg.types.tf2_msgs import TFMessage
 
     context = Context(clock=ManualClock())
     sim = Simulation()
@@ -207,7 +207,7 @@ def test_ground_truth_tf_and_static_odom_frame() -> None:
     assert truth.header.frame_id == "world"  # type: ignore[attr-defined]
     assert truth.transform.translation.x == pytest.approx(1.0, abs=0.01)  # type: ignore[attr-defined]
     assert odom.transform.translation.y == pytest.approx(2.0)  # type: ignore[attr-defined]
-    from robomodel.runtime.msg import ros_gz_interfaces as rgz
+    from robomodel.runtime.msg.types import ros_gz_interfaces as rgz
 
     step = rgz.ControlWorld_Request(rgz.WorldControl(multi_step=3))
     assert context.call_service("/gazebo/step", rgz.ControlWorld, step).success

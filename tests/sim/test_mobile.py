@@ -10,9 +10,10 @@ import pytest
 
 from robomodel.loading import load
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg.geometry_msgs import Twist, Vector3
-from robomodel.runtime.msg.nav_msgs import Clock, Odometry
-from robomodel.runtime.msg.sensor_msgs import LaserScan
+from robomodel.runtime.msg.types.geometry_msgs import Twist, Vector3
+from robomodel.runtime.msg.types.nav_msgs import Odometry
+from robomodel.runtime.msg.types.rosgraph_msgs import Clock
+from robomodel.runtime.msg.types.sensor_msgs import LaserScan
 from robomodel.sim import Placement, Simulation, read_world
 from robomodel.sim.bus import SimBridge
 

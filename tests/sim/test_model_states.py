@@ -13,9 +13,8 @@ import pytest
 from robomodel.description.packages import PackageIndex
 from robomodel.loading import expand_description
 from robomodel.runtime import Context
-from robomodel.runtime.msg import gazebo_msgs as gz
-from robomodel.runtime.msg import gazebo_msgs_states as gzs
-from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion, Twist, Vector3
+from robomodel.runtime.msg.types import gazebo_msgs as gz
+from robomodel.runtime.msg.types.geometry_msgs import Point, Pose, Quaternion, Twist, Vector3
 from robomodel.sim import default_world
 from robomodel.sim.server import SimServer
 from tests.conftest import EXAMPLES
@@ -53,8 +52,8 @@ def test_model_and_link_states_are_gazebo_s() -> None:
     try:
         server.spawn("robot", _xml(UR5), xyz_m=(0.0, 0.0, 0.1))
         node = context.create_node("listener")
-        for topic, kind in (("/gazebo/model_states", gzs.ModelStates),
-                            ("/gazebo/link_states", gzs.LinkStates)):  # fmt: skip
+        for topic, kind in (("/gazebo/model_states", gz.ModelStates),
+                            ("/gazebo/link_states", gz.LinkStates)):  # fmt: skip
             node.create_subscription(kind, topic, lambda m, t=topic: got.__setitem__(t, m), 10)
         server.drive(0.1)
         context.spin_once(0.0)
@@ -86,14 +85,14 @@ def test_get_model_state_link_state_and_properties() -> None:
         assert not missing.success  # type: ignore[attr-defined]
         assert missing.status_message == "GetModelState: model does not exist"  # type: ignore[attr-defined]
         relative = _call(
-            context, "/gazebo/get_link_state", gzs.GetLinkState,
-            gzs.GetLinkState_Request("robot::shoulder_link", "robot::base_link"),
+            context, "/gazebo/get_link_state", gz.GetLinkState,
+            gz.GetLinkState_Request("robot::shoulder_link", "robot::base_link"),
         )  # fmt: skip
         assert relative.success, relative.status_message  # type: ignore[attr-defined]
         q = relative.link_state.pose.position  # type: ignore[attr-defined]
         assert (q.x, q.y, q.z) == pytest.approx((0.0, 0.0, 0.089159), abs=1e-6)
-        props = _call(context, "/gazebo/get_model_properties", gzs.GetModelProperties,
-                      gzs.GetModelProperties_Request("robot"))  # fmt: skip
+        props = _call(context, "/gazebo/get_model_properties", gz.GetModelProperties,
+                      gz.GetModelProperties_Request("robot"))  # fmt: skip
         assert props.success and props.body_names == UR5_LINKS  # type: ignore[attr-defined]
         assert props.joint_names[0] == "world_joint"  # type: ignore[attr-defined]
         assert "shoulder_pan_joint" in props.joint_names  # type: ignore[attr-defined]
@@ -108,22 +107,22 @@ def test_set_link_state_moves_a_free_body_and_refuses_a_jointed_link() -> None:
     try:
         server.spawn("bot", _xml(SIMPLEBOT), xyz_m=(0.0, 0.0, 0.1))
         qz = math.sin(math.pi / 4)
-        state = gzs.LinkState(
+        state = gz.LinkState(
             "bot::base_link", Pose(Point(2.0, 1.0, 0.5), Quaternion(0, 0, qz, qz)),
             Twist(Vector3(0.0, 0.0, 0.0)), "world",
         )  # fmt: skip
-        reply = _call(context, "/gazebo/set_link_state", gzs.SetLinkState,
-                      gzs.SetLinkState_Request(state))  # fmt: skip
+        reply = _call(context, "/gazebo/set_link_state", gz.SetLinkState,
+                      gz.SetLinkState_Request(state))  # fmt: skip
         assert reply.success and reply.status_message == "SetLinkState: success"  # type: ignore[attr-defined]
         server.drive(0.02)  # applied at the next tick
-        got = _call(context, "/gazebo/get_link_state", gzs.GetLinkState,
-                    gzs.GetLinkState_Request("bot::base_link", ""))  # fmt: skip
+        got = _call(context, "/gazebo/get_link_state", gz.GetLinkState,
+                    gz.GetLinkState_Request("bot::base_link", ""))  # fmt: skip
         pose = got.link_state.pose  # type: ignore[attr-defined]
         assert (pose.position.x, pose.position.y) == pytest.approx((2.0, 1.0), abs=0.01)
         assert pose.orientation.z == pytest.approx(qz, abs=0.01)
         wheel = "bot::left_wheel"
-        refused = _call(context, "/gazebo/set_link_state", gzs.SetLinkState,
-                        gzs.SetLinkState_Request(gzs.LinkState(wheel)))  # fmt: skip
+        refused = _call(context, "/gazebo/set_link_state", gz.SetLinkState,
+                        gz.SetLinkState_Request(gz.LinkState(wheel)))  # fmt: skip
         assert not refused.success and "hangs on a joint" in refused.status_message  # type: ignore[attr-defined]
     finally:
         server.close()
@@ -202,7 +201,7 @@ def test_ros1_states_at_every_step_while_subscribed_and_none_without(
         assert calls == {"model_states": 0, "link_states": 0}
         got: list[object] = []
         sub = context.create_node("listener").create_subscription(
-            gzs.ModelStates, "/gazebo/model_states", got.append, 10
+            gz.ModelStates, "/gazebo/model_states", got.append, 10
         )
         sim.step(100)
         _drain(context)
@@ -248,15 +247,15 @@ def test_states_carry_the_linear_and_angular_twist_in_the_world_frame() -> None:
     try:
         server.spawn("puck", PUCK, xyz_m=(0.0, 0.0, 5.0))
         node = context.create_node("listener")
-        for topic, kind in (("/gazebo/model_states", gzs.ModelStates),
-                            ("/gazebo/link_states", gzs.LinkStates)):  # fmt: skip
+        for topic, kind in (("/gazebo/model_states", gz.ModelStates),
+                            ("/gazebo/link_states", gz.LinkStates)):  # fmt: skip
             node.create_subscription(kind, topic, lambda m, t=topic: got.__setitem__(t, m), 10)
-        state = gzs.LinkState(
+        state = gz.LinkState(
             "puck::body", Pose(Point(0.0, 0.0, 5.0), Quaternion(0, 0, 0, 1)),
             Twist(Vector3(0.3, -0.2, 0.0), Vector3(0.0, 0.0, 0.8)), "world",
         )  # fmt: skip
-        reply = _call(context, "/gazebo/set_link_state", gzs.SetLinkState,
-                      gzs.SetLinkState_Request(state))  # fmt: skip
+        reply = _call(context, "/gazebo/set_link_state", gz.SetLinkState,
+                      gz.SetLinkState_Request(state))  # fmt: skip
         assert reply.success, reply.status_message  # type: ignore[attr-defined]
         server.drive(0.05)  # applied at the next tick
         got.clear()

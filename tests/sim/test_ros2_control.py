@@ -6,8 +6,8 @@ import pytest
 
 from robomodel.description.urdf.reader import read_urdf
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg.sensor_msgs import JointState
-from robomodel.runtime.msg.std_msgs import Float64MultiArray
+from robomodel.runtime.msg.types.sensor_msgs import JointState
+from robomodel.runtime.msg.types.std_msgs import Float64MultiArray
 from robomodel.sim import Simulation
 from robomodel.sim.bus import SimBridge
 

@@ -8,7 +8,7 @@ import pytest
 
 from robomodel.description.urdf.reader import read_urdf
 from robomodel.runtime import Context, ManualClock
-from robomodel.runtime.msg.sensor_msgs import Imu, LaserScan
+from robomodel.runtime.msg.types.sensor_msgs import Imu, LaserScan
 from robomodel.sim import Placement, Simulation, parse_world
 from robomodel.sim.bus import SimBridge
 from robomodel.sim.sensors.msgs import ContactsState, range_type

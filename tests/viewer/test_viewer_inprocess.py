@@ -102,8 +102,8 @@ def test_link_poses_in_the_fixed_frame(started: list[Viewer], tmp_path: Path) ->
 def test_scene_updates_are_capped_at_the_frame_rate(started: list[Viewer], tmp_path: Path) -> None:
     """TF at 200 Hz (a simulation) reaches the page at most Frame Rate times a second."""
     from robomodel.runtime.msg import TFMessage
-    from robomodel.runtime.msg.geometry_msgs import Transform, TransformStamped, Vector3
-    from robomodel.runtime.msg.std_msgs import Header
+    from robomodel.runtime.msg.types.geometry_msgs import Transform, TransformStamped, Vector3
+    from robomodel.runtime.msg.types.std_msgs import Header
 
     with pytest.raises(RobomodelError, match=r"frame rate must be 1\.\.1000 Hz"):
         Viewer(ViewerOptions(sources=(RobotSource(str(write_arm(tmp_path))),), frame_rate_hz=0))
@@ -167,8 +167,13 @@ def test_scenery_is_posed_in_its_frame_and_hidden_while_unconnected(
     started: list[Viewer], tmp_path: Path
 ) -> None:
     from robomodel.runtime.msg import TFMessage
-    from robomodel.runtime.msg.geometry_msgs import Quaternion, Transform, TransformStamped, Vector3
-    from robomodel.runtime.msg.std_msgs import Header
+    from robomodel.runtime.msg.types.geometry_msgs import (
+        Quaternion,
+        Transform,
+        TransformStamped,
+        Vector3,
+    )
+    from robomodel.runtime.msg.types.std_msgs import Header
     from robomodel.runtime.qos import latched
     from robomodel.viewer import SceneryShape
 

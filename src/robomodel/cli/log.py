@@ -133,9 +133,9 @@ def run_log(args: argparse.Namespace) -> int:
     with stop_on_signals() as stopped, context_from_args(args, announce="robomodel log") as ctx:
         ros1 = ctx.bus == "ros1"
         if ros1:
-            from robomodel.runtime.msg.nav_msgs import RosgraphLog as kind
+            from robomodel.runtime.msg.types.rosgraph_msgs import Log as kind
         else:
-            from robomodel.runtime.msg.rcl_interfaces import Log as kind  # type: ignore[assignment]
+            from robomodel.runtime.msg.types.rcl_interfaces import Log as kind  # type: ignore[assignment]
         wait_for_peers(ctx)
         node = ctx.create_node("robomodel_log", enable_rosout=False)
 

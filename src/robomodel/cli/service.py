@@ -33,7 +33,7 @@ from robomodel.cli._verbs import verb_help
 from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime import Context
 from robomodel.runtime.msg import message_from_yaml, message_to_yaml
-from robomodel.runtime.msg._schema import Service, get_service_type
+from robomodel.runtime.msg.schema import Service, get_service_type
 from robomodel.runtime.msg.yaml_io import message_from_dict
 from robomodel.runtime.transport.base import ServiceCallError
 

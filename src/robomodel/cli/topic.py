@@ -30,7 +30,7 @@ from robomodel.runtime.msg import (
     message_from_yaml,
     message_to_yaml,
 )
-from robomodel.runtime.msg._schema import canonical_type_name
+from robomodel.runtime.msg.schema import canonical_type_name
 from robomodel.runtime.qos import Durability, QoSProfile
 
 __all__ = ["register"]

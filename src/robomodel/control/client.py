@@ -7,9 +7,8 @@ import threading
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
-from robomodel.runtime.msg import controller_manager_msgs as cm_msgs
-from robomodel.runtime.msg import controller_manager_msgs_hardware as cm_hw
-from robomodel.runtime.msg.builtin_interfaces import Duration
+from robomodel.runtime.msg.types import controller_manager_msgs as cm_msgs
+from robomodel.runtime.msg.types.builtin_interfaces import Duration
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
@@ -51,14 +50,14 @@ class ManagerClient:
     def list_types(self) -> list[str]:
         return list(self.call("list_controller_types", cm_msgs.ListControllerTypes).types)
 
-    def list_interfaces(self) -> cm_hw.ListHardwareInterfaces_Response:
-        reply: cm_hw.ListHardwareInterfaces_Response = self.call(
-            "list_hardware_interfaces", cm_hw.ListHardwareInterfaces
+    def list_interfaces(self) -> cm_msgs.ListHardwareInterfaces_Response:
+        reply: cm_msgs.ListHardwareInterfaces_Response = self.call(
+            "list_hardware_interfaces", cm_msgs.ListHardwareInterfaces
         )
         return reply
 
-    def list_components(self) -> list[cm_hw.HardwareComponentState]:
-        return list(self.call("list_hardware_components", cm_hw.ListHardwareComponents).component)
+    def list_components(self) -> list[cm_msgs.HardwareComponentState]:
+        return list(self.call("list_hardware_components", cm_msgs.ListHardwareComponents).component)
 
     def set_controller_parameters(
         self, name: str, *, type_name: str | None = None, params_files: Sequence[str] = ()

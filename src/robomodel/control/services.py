@@ -19,9 +19,8 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel.control.controllers.registry import CONTROLLER_TYPES
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import controller_manager_msgs as cm_msgs
-from robomodel.runtime.msg import controller_manager_msgs_hardware as cm_hw
-from robomodel.runtime.msg.lifecycle_msgs import State
+from robomodel.runtime.msg.types import controller_manager_msgs as cm_msgs
+from robomodel.runtime.msg.types.lifecycle_msgs import State
 
 if TYPE_CHECKING:
     from robomodel.control.manager import ControllerManager
@@ -70,45 +69,46 @@ def _controller_state(info: dict[str, Any], ros1: bool = False) -> cm_msgs.Contr
     )
 
 
-def _interfaces(cm: ControllerManager) -> cm_hw.ListHardwareInterfaces_Response:
+def _interfaces(cm: ControllerManager) -> cm_msgs.ListHardwareInterfaces_Response:
     listed = cm.resources.list_interfaces()
-    return cm_hw.ListHardwareInterfaces_Response(
+    return cm_msgs.ListHardwareInterfaces_Response(
         command_interfaces=[
-            cm_hw.HardwareInterface(
+            cm_msgs.HardwareInterface(
                 str(i["name"]), "double", bool(i["available"]), bool(i["claimed"])
             )
             for i in listed["command"]
         ],
         state_interfaces=[
-            cm_hw.HardwareInterface(str(i["name"]), "double", True, False) for i in listed["state"]
+            cm_msgs.HardwareInterface(str(i["name"]), "double", True, False)
+            for i in listed["state"]
         ],
     )
 
 
-def _components(cm: ControllerManager) -> cm_hw.ListHardwareComponents_Response:
+def _components(cm: ControllerManager) -> cm_msgs.ListHardwareComponents_Response:
     resources = cm.resources
     components = []
     for c in resources.components:
         commands = {d.name for d in c.export_command_interfaces()}
         states = [d.name for d in c.export_state_interfaces()]
         components.append(
-            cm_hw.HardwareComponentState(
+            cm_msgs.HardwareComponentState(
                 name=c.name,
                 type=c.info.type,
                 plugin_name=c.info.plugin,
                 state=lifecycle_state(c.state.value),
                 command_interfaces=[
-                    cm_hw.HardwareInterface(
+                    cm_msgs.HardwareInterface(
                         n, "double", resources.command_available(n), n in resources.claimed
                     )
                     for n in sorted(commands)
                 ],
                 state_interfaces=[
-                    cm_hw.HardwareInterface(n, "double", True, False) for n in states
+                    cm_msgs.HardwareInterface(n, "double", True, False) for n in states
                 ],
             )
         )
-    return cm_hw.ListHardwareComponents_Response(components)
+    return cm_msgs.ListHardwareComponents_Response(components)
 
 
 def _spec_from_parameters(node: Node | None, name: str) -> tuple[str | None, dict[str, Any] | None]:
@@ -214,8 +214,8 @@ def _handlers(
          lambda r: m.ListControllers_Response(
              [_controller_state(i, ros1) for i in cm.list_controllers()])),
         ("list_controller_types", m.ListControllerTypes, lambda r: _types(ros1)),
-        ("list_hardware_interfaces", cm_hw.ListHardwareInterfaces, lambda r: _interfaces(cm)),
-        ("list_hardware_components", cm_hw.ListHardwareComponents, lambda r: _components(cm)),
+        ("list_hardware_interfaces", cm_msgs.ListHardwareInterfaces, lambda r: _interfaces(cm)),
+        ("list_hardware_components", cm_msgs.ListHardwareComponents, lambda r: _components(cm)),
         ("load_controller", m.LoadController, lambda r: _load(cm, r)),
         ("configure_controller", m.ConfigureController,
          lambda r: m.ConfigureController_Response(
@@ -260,7 +260,7 @@ def register_services(cm: ControllerManager, node: Node) -> list[Callable[[], No
 def _variant_handlers(cm: ControllerManager) -> list[tuple[str, Any, Callable[[Any], Any]]]:
     """list_controllers in the layouts of earlier Jazzy ros2_control releases (each its own
     hash, so an older ``ros2 control list_controllers`` finds the manager too)."""
-    from robomodel.runtime.msg.controller_manager_msgs_variants import (
+    from robomodel.runtime.msg.service_variants import (
         LIST_CONTROLLERS_VARIANTS,
         ListControllersVariant,
         downgrade,

@@ -24,7 +24,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.launch.ros1.params import Binary
-from robomodel.runtime.msg.robomodel_interfaces import (
+from robomodel.runtime.msg.types.robomodel_interfaces import (
     MasterCall,
     MasterCall_Request,
     MasterCall_Response,

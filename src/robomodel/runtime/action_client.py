@@ -7,8 +7,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Action
-from robomodel.runtime.msg.action_msgs import UUID, CancelGoal, CancelGoal_Request, GoalInfo
+from robomodel.runtime.msg.schema import Action
+from robomodel.runtime.msg.types.action_msgs import CancelGoal, CancelGoal_Request, GoalInfo
+from robomodel.runtime.msg.types.unique_identifier_msgs import UUID
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Action
-from robomodel.runtime.msg.action_msgs import (
+from robomodel.runtime.msg.schema import Action
+from robomodel.runtime.msg.types.action_msgs import (
     CancelGoal,
     CancelGoal_Request,
     CancelGoal_Response,

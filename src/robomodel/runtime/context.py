@@ -10,7 +10,7 @@ from robomodel.errors import RobomodelError
 from robomodel.runtime.clock import Clock, ManualClock, SystemClock
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.node import Node
 from robomodel.runtime.params import load_parameters_file
 from robomodel.runtime.transport.base import Graph, Transport

@@ -11,7 +11,7 @@ from robomodel.runtime.clock import Clock, SimClock
 from robomodel.runtime.executor import Timer
 from robomodel.runtime.msg import Clock as ClockMsg
 from robomodel.runtime.msg import Message, Time
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.names import (
     apply_remappings,
     expand_topic_name,

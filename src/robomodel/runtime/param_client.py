@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
-from robomodel.runtime.msg import rcl_interfaces as rcl
+from robomodel.runtime.msg.types import rcl_interfaces as rcl
 from robomodel.runtime.param_values import from_parameter_value, to_parameter_value
 from robomodel.runtime.params import ParameterError, SetResult
 

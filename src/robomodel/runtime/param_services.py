@@ -16,7 +16,7 @@ from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import rcl_interfaces as rcl
+from robomodel.runtime.msg.types import rcl_interfaces as rcl
 from robomodel.runtime.param_values import from_parameter_value, to_parameter_value, type_code
 from robomodel.runtime.params import ParameterError, ParameterStore
 from robomodel.runtime.qos import QoSProfile

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from robomodel.runtime.msg.rcl_interfaces import ParameterType, ParameterValue
+from robomodel.runtime.msg.types.rcl_interfaces import ParameterType, ParameterValue
 from robomodel.runtime.params import ParameterError, parameter_type_name
 
 __all__ = ["TYPE_NAMES", "from_parameter_value", "to_parameter_value", "type_code"]

@@ -48,11 +48,11 @@ class Rosout:
         self.node = node
         self.ros1 = getattr(node.context, "bus", "") == "ros1"
         if self.ros1:
-            from robomodel.runtime.msg.nav_msgs import RosgraphLog
+            from robomodel.runtime.msg.types.rosgraph_msgs import Log as RosgraphLog
 
             self._publisher: Any = node.create_publisher(RosgraphLog, "/rosout", _ROS1_QUEUE)
         else:
-            from robomodel.runtime.msg.rcl_interfaces import Log
+            from robomodel.runtime.msg.types.rcl_interfaces import Log
 
             self._publisher = node.create_publisher(Log, "/rosout", ROSOUT_QOS)
         self._handler = _Handler(self)
@@ -68,8 +68,8 @@ class Rosout:
         try:
             node = self.node
             if self.ros1:
-                from robomodel.runtime.msg.nav_msgs import RosgraphLog
-                from robomodel.runtime.msg.std_msgs import Header
+                from robomodel.runtime.msg.types.rosgraph_msgs import Log as RosgraphLog
+                from robomodel.runtime.msg.types.std_msgs import Header
 
                 topics = sorted({p.topic for p in node._publishers})
                 msg: Any = RosgraphLog(
@@ -77,7 +77,7 @@ class Rosout:
                     text, file, function, line, topics,
                 )  # fmt: skip
             else:
-                from robomodel.runtime.msg.rcl_interfaces import Log
+                from robomodel.runtime.msg.types.rcl_interfaces import Log
 
                 msg = Log(node.now(), level, node.fully_qualified_name, text, file, function, line)
             self._publisher.publish(msg)

@@ -15,7 +15,8 @@ rosidl_generator_c's ``full__description.c.em``: the type first, then each refer
 the description's order; a service's request, response and event are ``implicit`` without
 text; a type read from a ``.msg``/``.srv`` file on the package path has that file's text; other
 types (robomodel's own classes, rosbags' stores) have no file here, so their ``.msg`` text is
-written from their fields (encoding ``msg``, without comments or constants).
+written from their constants and fields (encoding ``msg``, without comments:
+:func:`~robomodel.runtime.msg.definition.message_text`).
 
 A peer's answer is read back by :mod:`robomodel.runtime.type_learning`.
 """
@@ -30,9 +31,10 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import type_description_interfaces as tdi
-from robomodel.runtime.msg._schema import Array, Message, Seq, Service, Spec
+from robomodel.runtime.msg.definition import message_text
+from robomodel.runtime.msg.schema import Array, Message, Seq, Service, Spec
 from robomodel.runtime.msg.typehash import type_description, type_hash
+from robomodel.runtime.msg.types import type_description_interfaces as tdi
 
 if TYPE_CHECKING:
     from robomodel.runtime.node import Node, ServiceServer
@@ -93,22 +95,6 @@ def description_hash(description: tdi.TypeDescription) -> str:
     return "RIHS01_" + hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _spec_text(spec: Spec) -> str:
-    if isinstance(spec, str):
-        return spec
-    if isinstance(spec, Array):
-        return f"{_spec_text(spec.item)}[{spec.size}]"
-    if isinstance(spec, Seq):
-        inner = _spec_text(spec.item)
-        return f"{inner}[<={spec.bound}]" if spec.bound is not None else f"{inner}[]"
-    package, _, name = spec.__typename__.split("/")
-    return f"{package}/{name}"
-
-
-def _message_text(cls: type[Message]) -> str:
-    return "".join(f"{_spec_text(spec)} {name}\n" for name, spec in cls.__fields__)
-
-
 def _classes(kind: Kind) -> dict[str, type[Message]]:
     """Every message class ``kind`` uses, by type name."""
     found: dict[str, type[Message]] = {}
@@ -133,10 +119,10 @@ def _source(name: str, kind: Kind, classes: dict[str, type[Message]]) -> tdi.Typ
     if path is not None:
         return tdi.TypeSource(name, path.suffix.lstrip("."), path.read_text())
     if name == service:
-        halves = (_message_text(kind.Request), _message_text(kind.Response))  # type: ignore[union-attr]
+        halves = (message_text(kind.Request), message_text(kind.Response))  # type: ignore[union-attr]
         return tdi.TypeSource(name, "srv", "---\n".join(halves))
     found = classes.get(name)
-    return tdi.TypeSource(name, "msg", _message_text(found) if found is not None else "")
+    return tdi.TypeSource(name, "msg", message_text(found) if found is not None else "")
 
 
 def type_sources(kind: Kind, description: tdi.TypeDescription) -> list[tdi.TypeSource]:

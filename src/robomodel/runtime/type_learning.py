@@ -15,12 +15,12 @@ import logging
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg._schema import MessageTypeError
+from robomodel.runtime.msg.schema import MessageTypeError
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
-    from robomodel.runtime.msg import type_description_interfaces as tdi
     from robomodel.runtime.msg._from_definition import FieldDef
+    from robomodel.runtime.msg.types import type_description_interfaces as tdi
     from robomodel.runtime.transport.base import Endpoint
 
 __all__ = ["fielddefs_of", "learn_topic_type"]
@@ -68,7 +68,7 @@ def fielddefs_of(description: tdi.TypeDescription) -> dict[str, FieldDef]:
 
 def _ask(context: Context, endpoint: Endpoint, timeout_s: float) -> tdi.TypeDescription | None:
     """The description ``endpoint``'s node gives of its type, if it matches the token's hash."""
-    from robomodel.runtime.msg import type_description_interfaces as tdi
+    from robomodel.runtime.msg.types import type_description_interfaces as tdi
     from robomodel.runtime.type_descriptions import description_hash
 
     service = f"{endpoint.node.rstrip('/')}/get_type_description"

@@ -44,15 +44,16 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel.description.rigid import quat_xyzw_from_rpy
 from robomodel.runtime.clock import ManualClock
-from robomodel.runtime.msg.builtin_interfaces import Time
-from robomodel.runtime.msg.geometry_msgs import (
+from robomodel.runtime.msg.types.builtin_interfaces import Time
+from robomodel.runtime.msg.types.geometry_msgs import (
     Quaternion,
     Transform,
     TransformStamped,
     Vector3,
 )
-from robomodel.runtime.msg.nav_msgs import Clock, TFMessage
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.types.rosgraph_msgs import Clock
+from robomodel.runtime.msg.types.std_msgs import Header
+from robomodel.runtime.msg.types.tf2_msgs import TFMessage
 from robomodel.sim.build.robot import BuiltRobot
 from robomodel.sim.build.scene import shape_body_name
 from robomodel.sim.sensors.base import SimSensor

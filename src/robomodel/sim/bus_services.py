@@ -29,9 +29,9 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import gazebo_msgs as gz
-from robomodel.runtime.msg import ros_gz_interfaces as rgz
-from robomodel.runtime.msg import std_srvs
+from robomodel.runtime.msg.types import gazebo_msgs as gz
+from robomodel.runtime.msg.types import ros_gz_interfaces as rgz
+from robomodel.runtime.msg.types import std_srvs
 
 if TYPE_CHECKING:
     from robomodel.sim.build.robot import BuiltRobot

@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from robomodel.runtime.msg.geometry_msgs import Twist, TwistStamped, Vector3
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.types.geometry_msgs import Twist, TwistStamped, Vector3
+from robomodel.runtime.msg.types.std_msgs import Header
 from robomodel.sim.exceptions import SimulationError
 
 if TYPE_CHECKING:

@@ -13,9 +13,9 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import gazebo_msgs as gz
-from robomodel.runtime.msg.geometry_msgs import Pose
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.types import gazebo_msgs as gz
+from robomodel.runtime.msg.types.geometry_msgs import Pose
+from robomodel.runtime.msg.types.std_msgs import Header
 from robomodel.sim.bus_services import rpy_from_quaternion_xyzw
 
 if TYPE_CHECKING:

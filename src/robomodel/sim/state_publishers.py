@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from robomodel.runtime.msg.gazebo_msgs_states import LinkStates, ModelStates
+from robomodel.runtime.msg.types.gazebo_msgs import LinkStates, ModelStates
 
 if TYPE_CHECKING:
     from robomodel.runtime.node import Node, Publisher

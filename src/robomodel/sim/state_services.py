@@ -23,9 +23,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from robomodel.runtime.msg import gazebo_msgs as gz
-from robomodel.runtime.msg import gazebo_msgs_states as gzs
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.types import gazebo_msgs as gz
+from robomodel.runtime.msg.types.std_msgs import Header
 from robomodel.sim._mujoco import mujoco
 
 if TYPE_CHECKING:
@@ -60,7 +59,7 @@ def get_model_state(bridge: ServedBridge, request: gz.GetModelState_Request) -> 
     pose, twist = (
         states.pose_twist(model.frame) if frame is None else states.relative(model.frame, frame)
     )
-    from robomodel.runtime.msg.builtin_interfaces import Time
+    from robomodel.runtime.msg.types.builtin_interfaces import Time
 
     header = Header(
         stamp=Time.from_seconds(bridge.sim.time_s), frame_id=request.relative_entity_name
@@ -70,34 +69,34 @@ def get_model_state(bridge: ServedBridge, request: gz.GetModelState_Request) -> 
     )
 
 
-def get_link_state(bridge: ServedBridge, request: gzs.GetLinkState_Request) -> Any:
+def get_link_state(bridge: ServedBridge, request: gz.GetLinkState_Request) -> Any:
     states = bridge.states
     link = states.entity(request.link_name)
     if link is None or states.model(request.link_name) is not None:
-        return gzs.GetLinkState_Response(
+        return gz.GetLinkState_Response(
             success=False,
             status_message="GetLinkState: link not found, did you forget to scope the link by "
             "model name?",
         )
     known, frame = _frame(states, request.reference_frame)
     if not known:
-        return gzs.GetLinkState_Response(
+        return gz.GetLinkState_Response(
             success=False,
             status_message="GetLinkState: reference reference_frame not found, did you forget "
             "to scope the link by model name?",
         )
     pose, twist = states.pose_twist(link) if frame is None else states.relative(link, frame)
-    state = gzs.LinkState(request.link_name, pose, twist, request.reference_frame)
-    return gzs.GetLinkState_Response(state, True, "GetLinkState: got state")
+    state = gz.LinkState(request.link_name, pose, twist, request.reference_frame)
+    return gz.GetLinkState_Response(state, True, "GetLinkState: got state")
 
 
-def get_model_properties(bridge: ServedBridge, request: gzs.GetModelProperties_Request) -> Any:
+def get_model_properties(bridge: ServedBridge, request: gz.GetModelProperties_Request) -> Any:
     model = bridge.states.model(request.model_name)
     if model is None:
-        return gzs.GetModelProperties_Response(
+        return gz.GetModelProperties_Response(
             success=False, status_message="GetModelProperties: model does not exist"
         )
-    return gzs.GetModelProperties_Response(
+    return gz.GetModelProperties_Response(
         body_names=[link.name.split("::", 1)[1] for link in model.links],
         geom_names=list(model.geoms),
         joint_names=list(model.joints),
@@ -107,18 +106,18 @@ def get_model_properties(bridge: ServedBridge, request: gzs.GetModelProperties_R
     )
 
 
-def set_link_state(bridge: ServedBridge, request: gzs.SetLinkState_Request) -> Any:
+def set_link_state(bridge: ServedBridge, request: gz.SetLinkState_Request) -> Any:
     state = request.link_state
     states = bridge.states
     link = states.entity(state.link_name)
     if link is None or states.model(state.link_name) is not None:
-        return gzs.SetLinkState_Response(False, "SetLinkState: link does not exist")
+        return gz.SetLinkState_Response(False, "SetLinkState: link does not exist")
     known, frame = _frame(states, state.reference_frame)
     if not known:
-        return gzs.SetLinkState_Response(False, "SetLinkState: failed")
+        return gz.SetLinkState_Response(False, "SetLinkState: failed")
     free = _free_joint(bridge, link.body)
     if free is None:
-        return gzs.SetLinkState_Response(
+        return gz.SetLinkState_Response(
             False,
             f"SetLinkState: link {state.link_name} hangs on a joint: robomodel moves only free "
             "bodies (a floating model's root link, a world object); set its joints with "
@@ -126,7 +125,7 @@ def set_link_state(bridge: ServedBridge, request: gzs.SetLinkState_Request) -> A
         )
     target = _in_world(states, state.pose, state.twist, frame)
     bridge.queue(lambda: _place(bridge, free, *target))
-    return gzs.SetLinkState_Response(True, "SetLinkState: success")
+    return gz.SetLinkState_Response(True, "SetLinkState: success")
 
 
 def _free_joint(bridge: ServedBridge, body: int | None) -> int | None:
@@ -191,9 +190,9 @@ def state_services(bridge: ServedBridge) -> list[tuple[str, Any, Callable[[Any],
     """(name, type, handler) of the state services (the module docstring's table)."""
     return [
         ("/gazebo/get_model_state", gz.GetModelState, lambda r: get_model_state(bridge, r)),
-        ("/gazebo/get_link_state", gzs.GetLinkState, lambda r: get_link_state(bridge, r)),
-        ("/gazebo/set_link_state", gzs.SetLinkState, lambda r: set_link_state(bridge, r)),
-        ("/gazebo/get_model_properties", gzs.GetModelProperties,
+        ("/gazebo/get_link_state", gz.GetLinkState, lambda r: get_link_state(bridge, r)),
+        ("/gazebo/set_link_state", gz.SetLinkState, lambda r: set_link_state(bridge, r)),
+        ("/gazebo/get_model_properties", gz.GetModelProperties,
          lambda r: get_model_properties(bridge, r)),
     ]  # fmt: skip
 
@@ -203,8 +202,8 @@ def state_topics(bridge: ServedBridge) -> list[tuple[str, Any, Callable[[Any], A
     from robomodel.sim.bus_services import set_model_state
 
     return [
-        ("/gazebo/set_link_state", gzs.LinkState,
-         lambda m: set_link_state(bridge, gzs.SetLinkState_Request(m))),
+        ("/gazebo/set_link_state", gz.LinkState,
+         lambda m: set_link_state(bridge, gz.SetLinkState_Request(m))),
         ("/gazebo/set_model_state", gz.ModelState,
          lambda m: set_model_state(bridge, gz.SetModelState_Request(m))),
     ]  # fmt: skip

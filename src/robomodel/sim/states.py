@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from robomodel.description.model import JointType
-from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion, Twist, Vector3
+from robomodel.runtime.msg.types.geometry_msgs import Point, Pose, Quaternion, Twist, Vector3
 from robomodel.sim._mujoco import mujoco
 
 if TYPE_CHECKING:
@@ -182,12 +182,12 @@ class WorldStates:
         return names, poses, twists
 
     def model_states(self) -> Any:
-        from robomodel.runtime.msg.gazebo_msgs_states import ModelStates
+        from robomodel.runtime.msg.types.gazebo_msgs import ModelStates
 
         return ModelStates(*self.states([m.frame for m in self.models]))
 
     def link_states(self) -> Any:
-        from robomodel.runtime.msg.gazebo_msgs_states import LinkStates
+        from robomodel.runtime.msg.types.gazebo_msgs import LinkStates
 
         return LinkStates(*self.states([link for m in self.models for link in m.links]))
 

@@ -27,8 +27,8 @@ from robomodel.runtime.msg import (
     JointTrajectoryPoint,
     Time,
 )
-from robomodel.runtime.msg.action_msgs import GoalStatus as ActionStatus
-from robomodel.runtime.msg.control_msgs_actions import (
+from robomodel.runtime.msg.types.action_msgs import GoalStatus as ActionStatus
+from robomodel.runtime.msg.types.control_msgs import (
     FollowJointTrajectory,
     FollowJointTrajectory_Feedback,
     FollowJointTrajectory_Goal,

@@ -92,7 +92,7 @@ class _Script:
         return True
 
     def reload_libraries(self, restore: bool) -> bool:
-        from robomodel.runtime.msg import controller_manager_msgs as cm_msgs
+        from robomodel.runtime.msg.types import controller_manager_msgs as cm_msgs
 
         print(f"Restore: {restore}", flush=True)
         before = self.client.list_controllers() if restore else []

@@ -22,7 +22,7 @@ from typing import Any
 from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
-from robomodel.runtime.msg.gazebo_msgs import SpawnModel, SpawnModel_Request
+from robomodel.runtime.msg.types.gazebo_msgs import SpawnModel, SpawnModel_Request
 
 __all__ = [
     "SpawnArgs",
@@ -324,7 +324,7 @@ def spawn_model(ctx: NodeContext) -> RunningNode:
 def pose_message(xyz_m: tuple[float, float, float], rpy_rad: tuple[float, float, float]) -> Any:
     """A geometry_msgs/Pose from a position and roll, pitch, yaw."""
     from robomodel.description.model.pose import quat_xyzw_from_rpy
-    from robomodel.runtime.msg.geometry_msgs import Point, Pose, Quaternion
+    from robomodel.runtime.msg.types.geometry_msgs import Point, Pose, Quaternion
 
     qx, qy, qz, qw = quat_xyzw_from_rpy(*rpy_rad)
     return Pose(Point(*xyz_m), Quaternion(qx, qy, qz, qw))
@@ -332,7 +332,7 @@ def pose_message(xyz_m: tuple[float, float, float], rpy_rad: tuple[float, float,
 
 def _after_spawn(ctx: NodeContext, options: SpawnArgs) -> int:
     """spawn_model's ``-J`` (``set_model_configuration``) and ``-unpause``."""
-    from robomodel.runtime.msg import gazebo_msgs, std_srvs
+    from robomodel.runtime.msg.types import gazebo_msgs, std_srvs
 
     code = 0
     if options.joints:

@@ -165,7 +165,7 @@ def _spawn(ctx: NodeContext) -> RunningNode:
 
     def work(node: ThreadNode) -> int:
         from robomodel.launch.nodes.gazebo import pose_message
-        from robomodel.runtime.msg import gazebo_msgs, std_srvs
+        from robomodel.runtime.msg.types import gazebo_msgs, std_srvs
 
         xml = _description(ctx, options, node.stopping)
         pose = options["pose"]

@@ -1,6 +1,8 @@
 """ROS 2 message types as Python dataclasses, their CDR encoding and YAML conversion."""
 
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg import _resolver as _resolver  # installs the fallback for unknown types
+from robomodel.runtime.msg.cdr import CDRError, deserialize, serialize
+from robomodel.runtime.msg.schema import (
     Array,
     Message,
     MessageTypeError,
@@ -9,15 +11,14 @@ from robomodel.runtime.msg._schema import (
     get_message_type,
     message_type_names,
 )
-from robomodel.runtime.msg.builtin_interfaces import Duration, Time
-from robomodel.runtime.msg.cdr import CDRError, deserialize, serialize
-from robomodel.runtime.msg.control_msgs import (
+from robomodel.runtime.msg.types.builtin_interfaces import Duration, Time
+from robomodel.runtime.msg.types.control_msgs import (
     DynamicJointState,
     InterfaceValue,
     JointControllerState,
     JointTrajectoryControllerState,
 )
-from robomodel.runtime.msg.geometry_msgs import (
+from robomodel.runtime.msg.types.geometry_msgs import (
     Point,
     Pose,
     PoseWithCovariance,
@@ -29,9 +30,10 @@ from robomodel.runtime.msg.geometry_msgs import (
     TwistWithCovariance,
     Vector3,
 )
-from robomodel.runtime.msg.nav_msgs import Clock, Odometry, TFMessage
-from robomodel.runtime.msg.sensor_msgs import Imu, JointState, LaserScan
-from robomodel.runtime.msg.std_msgs import (
+from robomodel.runtime.msg.types.nav_msgs import Odometry
+from robomodel.runtime.msg.types.rosgraph_msgs import Clock
+from robomodel.runtime.msg.types.sensor_msgs import Imu, JointState, LaserScan
+from robomodel.runtime.msg.types.std_msgs import (
     Bool,
     Empty,
     Float64,
@@ -42,7 +44,8 @@ from robomodel.runtime.msg.std_msgs import (
     MultiArrayLayout,
     String,
 )
-from robomodel.runtime.msg.trajectory_msgs import (
+from robomodel.runtime.msg.types.tf2_msgs import TFMessage
+from robomodel.runtime.msg.types.trajectory_msgs import (
     JointTrajectory,
     JointTrajectoryPoint,
     MultiDOFJointTrajectoryPoint,

@@ -1,8 +1,7 @@
 """The message definitions an ``.action`` file gives, for the resolver.
 
 An ``.action`` file is three message definitions split by lines ``---``: the goal, the result
-and the feedback (rosidl_adapter's ``parse_action_string``, github:ros2/rosidl
-rosidl_adapter/rosidl_adapter/parser.py: exactly two separator lines, each exactly ``---``).
+and the feedback (:func:`.definition.split_parts`).
 
 ROS 2 names them ``pkg/action/Name_Goal``, ``_Result`` and ``_Feedback`` and derives two
 services and a message from them (:mod:`.action`). ROS 1's genaction (actionlib_msgs'
@@ -21,9 +20,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 
-from robomodel.runtime.msg._schema import MessageTypeError
-
-__all__ = ["action_part", "action_parts", "ros1_wrapper_text"]
+__all__ = ["action_part", "ros1_wrapper_text"]
 
 _PARTS = ("Goal", "Result", "Feedback")
 _ROS2_PART = re.compile(r"(\w+)/action/(\w+)_(Goal|Result|Feedback)")
@@ -70,23 +67,6 @@ def action_part(name: str, files: Mapping[str, object]) -> tuple[str, int, str |
             part = suffix.removeprefix("Action") or "Goal"
             return key, _PARTS.index(part), suffix
     return None
-
-
-def action_parts(text: str, *, where: str) -> tuple[str, str, str]:
-    """The goal, result and feedback definitions of an ``.action`` file's text."""
-    lines = text.splitlines()
-    separators = [index for index, line in enumerate(lines) if line == "---"]
-    if len(separators) != 2:
-        raise MessageTypeError(
-            f"{where}: an action needs its goal, result and feedback split by two lines '---'"
-            f" (found {len(separators)})"
-        )
-    first, second = separators
-    return (
-        "\n".join(lines[:first]) + "\n",
-        "\n".join(lines[first + 1 : second]) + "\n",
-        "\n".join(lines[second + 1 :]) + "\n",
-    )
 
 
 def ros1_wrapper_text(name: str, part: str, suffix: str) -> str:

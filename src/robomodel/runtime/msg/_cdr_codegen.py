@@ -9,8 +9,8 @@ from array import array
 from typing import Any
 
 from robomodel.runtime.msg._cdr_strings import CDRError, decode_strings, encode_strings
-from robomodel.runtime.msg._schema import Spec
 from robomodel.runtime.msg._source_gen import SourceGen
+from robomodel.runtime.msg.schema import Spec
 
 __all__ = [
     "ARRAY_FLOAT64",

@@ -15,7 +15,7 @@ from robomodel.runtime.msg._cdr_codegen import (
     wire,
 )
 from robomodel.runtime.msg._cdr_strings import StringsMemo
-from robomodel.runtime.msg._schema import PRIMITIVES, Array, Message, Seq, Spec
+from robomodel.runtime.msg.schema import PRIMITIVES, Array, Message, Seq, Spec
 
 __all__ = ["Encoder", "encoders", "message_encoder"]
 

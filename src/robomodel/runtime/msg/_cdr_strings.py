@@ -18,7 +18,7 @@ from __future__ import annotations
 import struct
 from collections.abc import Sequence
 
-from robomodel.runtime.msg._schema import MessageTypeError
+from robomodel.runtime.msg.schema import MessageTypeError
 
 __all__ = ["MEMO_MAX_BYTES", "CDRError", "StringsMemo", "decode_strings", "encode_strings"]
 

@@ -1,10 +1,10 @@
-"""Message and service classes built from a definition at run time.
+"""Message and service classes built from a field definition at run time.
 
-A definition is what rosbags' type system makes of ``.msg`` text, an IDL file or its type
-stores: per type, its constants and its fields as ``(name, (node type, details))``. The class
-built here is of the same kind as robomodel's own (generated) ones (a ``@dataclass(slots=True)``
-:class:`Message` with ``__typename__`` and ``__fields__``), so the generated CDR and ROS 1
-codecs, YAML, RIHS01 hashes and bag schemas work on it unchanged.
+The definition is what :mod:`.definition` parses from ``.msg`` text (or what rosbags' type
+stores hold, or a peer's type description gives). The class built here is of the same kind as
+robomodel's own (generated) ones (a ``@dataclass(slots=True)`` :class:`Message` with
+``__typename__`` and ``__fields__``), so the generated CDR and ROS 1 codecs, YAML, RIHS01 hashes
+and bag schemas work on it unchanged.
 
 The classes are not entered in the registry of robomodel's own types: the resolver keeps them
 (:mod:`._resolver`), so robomodel's own class always wins over one built from a definition.
@@ -12,16 +12,13 @@ The classes are not entered in the registry of robomodel's own types: the resolv
 
 from __future__ import annotations
 
-import keyword
-from collections.abc import Callable, Sequence
 from dataclasses import field, make_dataclass
 from typing import Any
 
-from robomodel.runtime.msg._schema import (
-    PRIMITIVES,
+from robomodel.runtime.msg.definition import PLACEHOLDER, FieldDef, Lookup, field_specs
+from robomodel.runtime.msg.schema import (
     Array,
     Message,
-    MessageTypeError,
     Seq,
     Service,
     Spec,
@@ -29,43 +26,13 @@ from robomodel.runtime.msg._schema import (
     is_byte_array,
 )
 
-__all__ = ["FieldDef", "build_message_class", "build_service_class", "spec_of"]
-
-# rosbags' Nodetype values (rosbags.typesys.base.Nodetype), kept as ints so that this module
-# does not import rosbags.
-_BASE, _NAME, _ARRAY, _SEQUENCE = 1, 2, 3, 4
-# rosidl's member of a message without fields; robomodel's classes leave it out (the codecs
-# and the hash add it back).
-PLACEHOLDER = "structure_needs_at_least_one_member"
-
-FieldDef = tuple[Sequence[tuple[str, str, Any]], Sequence[tuple[str, Any]]]
-Lookup = Callable[[str], type[Message]]
-
-
-def spec_of(desc: Any, lookup: Lookup, *, where: str) -> Spec:
-    """The robomodel field spec of a rosbags field description.
-
-    Args:
-        desc: ``(node type, details)`` as in rosbags' ``fielddefs``.
-        lookup: Gives the message class of a nested type name (``pkg/msg/Name``).
-        where: ``type.field``, for the error message.
-    """
-    kind, rest = int(desc[0]), desc[1]
-    if kind == _BASE:
-        name, bound = rest
-        name = "byte" if name == "octet" else str(name)
-        if name == "string":
-            return f"string<={bound}" if bound else "string"
-        if name not in PRIMITIVES:
-            raise MessageTypeError(f"{where}: robomodel has no codec for the field type '{name}'")
-        return name
-    if kind == _NAME:
-        return lookup(str(rest))
-    item, size = rest
-    inner = spec_of(item, lookup, where=where)
-    if kind == _ARRAY:
-        return Array(inner, int(size))
-    return Seq(inner, int(size) or None)
+__all__ = [
+    "PLACEHOLDER",
+    "FieldDef",
+    "build_message_class",
+    "build_service_class",
+    "make_message_class",
+]
 
 
 def _annotation(spec: Spec) -> Any:
@@ -84,26 +51,21 @@ def _field_default(spec: Spec) -> Any:
     return field(default_factory=lambda: default_for(spec))
 
 
-def build_message_class(name: str, definition: FieldDef, lookup: Lookup) -> type[Message]:
-    """A message class for type ``name`` (``pkg/msg/Name``) from its rosbags definition.
-
-    Nested types are taken from ``lookup`` (robomodel's own classes where it has them, so
-    that a generated ``sensor_msgs/msg/Image`` holds robomodel's own ``std_msgs/msg/Header``).
-    Constants become class attributes, as rosidl's Python classes have them.
-    """
-    constants, fields = definition
-    specs: list[tuple[str, Spec]] = []
-    for field_name, desc in fields:
-        if field_name == PLACEHOLDER and len(fields) == 1:
-            break
-        if not field_name.isidentifier() or keyword.iskeyword(field_name):
-            raise MessageTypeError(f"{name}: field name '{field_name}' is not usable in Python")
-        specs.append((field_name, spec_of(desc, lookup, where=f"{name}.{field_name}")))
+def make_message_class(
+    name: str,
+    specs: tuple[tuple[str, Spec], ...],
+    constants: tuple[tuple[str, str, Any], ...] = (),
+    *,
+    module: str = __name__,
+) -> type[Message]:
+    """The message class of type ``name`` (``pkg/kind/Name``) with fields ``specs`` (``(name,
+    spec)`` in wire order) and ``constants`` (``(name, type, value)``, also class attributes, as
+    rosidl's Python classes have them): the one place a class is made at run time, for a
+    definition (:func:`build_message_class`) and for the types rosidl derives from an action
+    (:func:`.action.make_action`). Not registered: the caller decides (:func:`.schema.register`)."""
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
-    namespace["__fields__"] = tuple(specs)
-    namespace["__constants__"] = tuple(
-        (c_name, c_type, value) for c_name, c_type, value in constants
-    )
+    namespace["__fields__"] = specs
+    namespace["__constants__"] = tuple(constants)
     cls: type[Message] = make_dataclass(
         name.rsplit("/", 1)[-1],
         [(n, _annotation(s), _field_default(s)) for n, s in specs],
@@ -113,17 +75,32 @@ def build_message_class(name: str, definition: FieldDef, lookup: Lookup) -> type
     )
     # Set after creation: Message.__init_subclass__ registers only robomodel's own classes.
     cls.__typename__ = name
-    cls.__module__ = __name__
+    cls.__module__ = module
     return cls
 
 
+def build_message_class(
+    name: str, definition: FieldDef, lookup: Lookup, *, ros1: bool = False
+) -> type[Message]:
+    """A message class for type ``name`` (``pkg/msg/Name``) from its field definition.
+
+    Nested types are taken from ``lookup`` (robomodel's own classes where it has them, so
+    that a generated ``sensor_msgs/msg/Image`` holds robomodel's own ``std_msgs/msg/Header``).
+    ``ros1``: the definition is a ROS 1 one (:func:`.definition.field_spec`).
+    """
+    specs = field_specs(name, definition, lookup, ros1=ros1)
+    constants = tuple((str(c_name), str(c_type), value) for c_name, c_type, value in definition[0])
+    return make_message_class(name, specs, constants)
+
+
 def build_service_class(
-    name: str, request: type[Message], response: type[Message]
+    name: str, request: type[Message], response: type[Message], *, module: str = __name__
 ) -> type[Service]:
-    """A service class ``pkg/srv/Name`` from its request and response message classes."""
+    """A service class ``pkg/srv/Name`` from its request and response message classes (not
+    registered)."""
     cls: type[Service] = type(
         name.rsplit("/", 1)[-1], (Service,), {"Request": request, "Response": response}
     )
     cls.__typename__ = name
-    cls.__module__ = __name__
+    cls.__module__ = module
     return cls

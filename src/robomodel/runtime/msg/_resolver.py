@@ -1,7 +1,7 @@
 """Where robomodel finds the message, service and action types it has no class of its own
 for (its own are generated into modules by tools/gen_msgs.py).
 
-:func:`~._schema.get_message_type` asks here when a name is not one of robomodel's own
+:func:`~.schema.get_message_type` asks here when a name is not one of robomodel's own
 classes. The definition is taken from, in this order:
 
 1. the interface packages on the package path (``--package-path``, ``ROS_PACKAGE_PATH``,
@@ -18,8 +18,8 @@ classes. The definition is taken from, in this order:
 4. definitions learned at run time: a ROS 1 publisher's ``message_definition`` connection
    header, a bag's stored schema (:func:`learn_definition`).
 
-rosbags parses the ``.msg`` text (``get_types_from_msg``); :mod:`._from_definition` makes the
-class. Nested types go through :func:`get_message_type` again, so robomodel's own classes are
+:mod:`.definition` parses the ``.msg``/``.srv``/``.action`` text; :mod:`._from_definition` makes
+the class. Nested types go through :func:`get_message_type` again, so robomodel's own classes are
 used wherever robomodel has them. rosbags is imported only when a type is first looked for
 here, so that verbs which never need one do not pay for it.
 """
@@ -31,21 +31,31 @@ import logging
 import os
 import re
 import threading
+import weakref
 from pathlib import Path
 from typing import Any
 
-from robomodel.runtime.msg._actions import action_part, action_parts, ros1_wrapper_text
-from robomodel.runtime.msg._from_definition import (
+from robomodel.runtime.msg._actions import action_part, ros1_wrapper_text
+from robomodel.runtime.msg._from_definition import build_message_class, build_service_class
+from robomodel.runtime.msg.definition import (
+    LIMITS,
     FieldDef,
-    build_message_class,
-    build_service_class,
+    check_limits,
+    nested_type,
+    parse_message,
+    recursion_in,
+    split_parts,
 )
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.schema import (
     Action,
+    Array,
+    DefinitionResolver,
     Message,
     MessageTypeError,
+    Seq,
     Service,
     get_message_type,
+    install_definition_resolver,
 )
 
 __all__ = [
@@ -73,6 +83,8 @@ _services: dict[str, type[Service]] = {}
 _actions: dict[str, type[Action]] = {}
 _learned: dict[str, FieldDef] = {}
 _conflicts: set[str] = set()
+_local = threading.local()  # .building: the types this thread is building
+_generation = 0  # counts configure() calls: a class built across one is not kept
 _log = logging.getLogger("robomodel.msg")
 _package_paths: tuple[Path, ...] = ()
 _distro: str | None = None
@@ -83,13 +95,14 @@ def configure(
 ) -> None:
     """Set the extra package folders (``--package-path``) and the distribution (``--distro``);
     classes already built from definitions are forgotten."""
-    global _package_paths, _distro
+    global _package_paths, _distro, _generation
     with _lock:
         paths = _package_paths if package_paths is None else tuple(Path(p) for p in package_paths)
         wanted = _distro if distro is None else distro
         if (paths, wanted) == (_package_paths, _distro) and (package_paths, distro) != (None, None):
             return  # nothing changes: the classes built so far stay (one class per type)
         _package_paths, _distro = paths, wanted
+        _generation += 1
         _messages.clear()
         _services.clear()
         _actions.clear()
@@ -140,16 +153,6 @@ def _package_files(shipped: bool = True) -> dict[str, Path]:
     return files
 
 
-def _parse(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
-    from rosbags.typesys import TypesysError, get_types_from_msg
-
-    try:
-        found: dict[str, FieldDef] = dict(get_types_from_msg(text, name))
-    except TypesysError as exc:
-        raise MessageTypeError(f"{where}: not a valid message definition: {exc}") from None
-    return found
-
-
 def package_definitions(name: str, *, shipped: bool = True) -> dict[str, FieldDef] | None:
     """The definition of message ``pkg/msg/Name``, of a service half (``pkg/srv/Name_Request``,
     or ROS 1's ``pkg/msg/NameRequest``) or of an action part (``pkg/action/Name_Goal``, or
@@ -158,50 +161,39 @@ def package_definitions(name: str, *, shipped: bool = True) -> dict[str, FieldDe
     files = _package_files(shipped)
     path = files.get(name)
     if path is not None:
-        return _parse(path.read_text(), name, where=str(path))
+        return parse_message(path.read_text(), name, where=str(path))
     part = action_part(name, files)
     if part is not None:
         action, index, ros1 = part
         path = files[action]
-        text = action_parts(path.read_text(), where=str(path))[index]
+        text = split_parts(path.read_text(), "action", where=str(path))[index]
         if ros1 is not None:
             text = ros1_wrapper_text(name, text, ros1)
-        return _parse_as(text, name, where=str(path))
+        return parse_message(text, name, where=str(path))
     half = re.fullmatch(r"(\w+)/srv/(\w+)_(Request|Response)", name) or re.fullmatch(
         r"(\w+)/msg/(\w+?)(Request|Response)", name
     )
     path = files.get(f"{half[1]}/srv/{half[2]}") if half is not None else None
     if half is None or path is None:
         return None
-    halves = re.split(r"^---[ \t]*$", path.read_text(), maxsplit=1, flags=re.MULTILINE)
-    if len(halves) != 2:
-        raise MessageTypeError(f"{path}: a service needs its request and response split by ---")
-    return _parse_as(halves[0 if half[3] == "Request" else 1], name, where=str(path))
+    halves = split_parts(path.read_text(), "srv", where=str(path))
+    return parse_message(halves[0 if half[3] == "Request" else 1], name, where=str(path))
 
 
-def _parse_as(text: str, name: str, *, where: str) -> dict[str, FieldDef]:
-    """Parse ``text`` as type ``name``, which may be a service or action part: rosbags names
-    parsed types ``pkg/msg/Name`` (and resolves relative names in that package), so parse it
-    as that, then rename it."""
-    package, _, short = name.split("/")
-    as_message = f"{package}/msg/{short}"
-    found = _parse(text, as_message, where=where)
-    if as_message != name:
-        found[name] = found.pop(as_message)
-    return found
-
-
-def _definition(key: str) -> FieldDef | None:
+def _definition(key: str) -> tuple[FieldDef, bool] | None:
+    """The definition of ``key`` and whether it is a ROS 1 one (rosbags' Noetic store)."""
     if _DERIVED.fullmatch(key):
         # derived from an action's parts by make_action, unless a bag's schema taught it
-        return _learned.get(key)
+        learned = _learned.get(key)
+        return None if learned is None else (learned, False)
     found = package_definitions(key)
     if found is not None:
-        return found[key]
-    for store in (_distro_store(), _store("ROS1_NOETIC")):
+        return found[key], False
+    for store, ros1 in ((_distro_store(), False), (_store("ROS1_NOETIC"), True)):
         if key in store.fielddefs:
-            return store.fielddefs[key]  # type: ignore[no-any-return]
-    return _learned.get(key)
+            return store.fielddefs[key], ros1
+    learned = _learned.get(key)
+    return None if learned is None else (learned, False)
 
 
 def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
@@ -224,10 +216,9 @@ def definitions_outside(key: str, known: Any) -> dict[str, FieldDef]:
             continue
         out[name] = definition
         for _, desc in definition[1]:
-            while int(desc[0]) in (3, 4):  # arrays and sequences: their item
-                desc = desc[1][0]
-            if int(desc[0]) == 2:
-                pending.append(str(desc[1]))
+            nested = nested_type(desc)
+            if nested is not None:
+                pending.append(nested)
     return out
 
 
@@ -236,7 +227,7 @@ def learn_definition(name: str, text: str) -> None:
     ``ros2msg`` schema: the type's fields, then ``===`` / ``MSG: pkg/Name`` sections) so that
     ``name`` and the types it uses resolve even where no package or store has them."""
     key = _canonical(name)
-    _remember(_parse(text, key, where=f"the definition of {name}"))
+    _remember(parse_message(text, key, where=f"the definition of {name}"))
 
 
 def learn_fielddefs(found: dict[str, FieldDef]) -> None:
@@ -248,8 +239,14 @@ def learn_fielddefs(found: dict[str, FieldDef]) -> None:
 def _remember(found: dict[str, FieldDef]) -> None:
     """The first definition learned of a name stays for the process's life: its classes and
     codecs may be in use. A different one learned later (a publisher rebuilt with a changed
-    ``.msg``) is refused with one warning per name, as ROS 1 refuses a mismatched md5sum."""
+    ``.msg``) is refused with one warning per name, as ROS 1 refuses a mismatched md5sum.
+    Definitions that nest themselves are refused whole (MessageTypeError, one line)."""
     with _lock:
+        graph = {**_learned, **found}
+        chain = recursion_in(graph)
+        if chain is not None:
+            raise MessageTypeError(_recursive(chain))
+        check_limits(graph)
         for type_name, definition in found.items():
             known = _learned.setdefault(type_name, definition)
             if known != definition and type_name not in _conflicts:
@@ -290,7 +287,7 @@ def searched() -> str:
 
 def _hint(key: str) -> str:
     from robomodel.errors import close_matches
-    from robomodel.runtime.msg._schema import message_type_names
+    from robomodel.runtime.msg.schema import message_type_names
 
     known = {*message_type_names(), *_distro_store().fielddefs, *_package_files()}
     hint = close_matches(key, sorted(known))
@@ -311,15 +308,75 @@ def resolve_message(key: str, name: str) -> type[Message]:
         return kind if derived[4] is None else getattr(kind, derived[4])  # type: ignore[no-any-return]
     with _lock:
         found = _messages.get(key)
-        if found is None:
-            definition = _definition(key)
-            if definition is None:
-                raise MessageTypeError(
-                    f"unknown message type '{name}'{_hint(key)}: looked in {searched()}"
-                )
-            found = build_message_class(key, definition, get_message_type)
-            _messages[key] = found
-        return found
+        if found is not None:
+            return found
+        definition = _definition(key)
+        generation = _generation
+    if definition is None:
+        raise MessageTypeError(f"unknown message type '{name}'{_hint(key)}: looked in {searched()}")
+    # Built with no lock held, so that a large type does not hold up every other lookup; the
+    # nested types it asks for take the lock for their own look-up only.
+    building = _building_stack()
+    if key in building:  # a package's .msg files that nest a type in itself
+        raise MessageTypeError(_recursive((*building[building.index(key) :], key)))
+    if len(building) >= LIMITS.max_depth:
+        raise MessageTypeError(
+            f"{building[0]}: message types nested more than {LIMITS.max_depth} deep "
+            "(robomodel's bound, docs/reference/limits.md)"
+        )
+    fields, ros1 = definition
+    building.append(key)
+    try:
+        built = build_message_class(key, fields, get_message_type, ros1=ros1)
+    finally:
+        building.pop()
+    _check_flattened(built)
+    with _lock:
+        if generation != _generation:  # configure() ran meanwhile: not kept
+            return built
+        return _messages.setdefault(key, built)  # another thread's, if it finished first
+
+
+def _building_stack() -> list[str]:
+    """The types this thread is building, outermost first."""
+    stack: list[str] | None = getattr(_local, "building", None)
+    if stack is None:
+        stack = _local.building = []
+    return stack
+
+
+def _check_flattened(cls: type[Message]) -> None:
+    """Refuse a class whose fields, nested types expanded, are more than LIMITS allows."""
+    size = _flat_size(cls)
+    if size > LIMITS.max_flattened:
+        raise MessageTypeError(
+            f"{cls.__typename__}: more than {LIMITS.max_flattened} fields once its nested types "
+            "are expanded (robomodel's bound, docs/reference/limits.md)"
+        )
+
+
+def _flat_size(cls: type[Message]) -> int:
+    found = _FLAT.get(cls)
+    if found is None:
+        found = 0
+        for _, spec in cls.__fields__:
+            count = 1
+            while isinstance(spec, (Seq, Array)):
+                count *= spec.size if isinstance(spec, Array) else 1
+                spec = spec.item
+            found += count * _flat_size(spec) if isinstance(spec, type) else 1
+        _FLAT[cls] = found
+    return found
+
+
+_FLAT: weakref.WeakKeyDictionary[type[Message], int] = weakref.WeakKeyDictionary()
+
+
+def _recursive(chain: tuple[str, ...]) -> str:
+    return (
+        f"{chain[0]}: its definition contains itself ({' -> '.join(chain)}); a ROS message "
+        "type cannot nest itself, not even through an array"
+    )
 
 
 def resolve_service(key: str, name: str) -> type[Service]:
@@ -348,20 +405,20 @@ _DERIVED = re.compile(
 
 def _action_known(key: str) -> bool:
     """Whether action ``key`` is robomodel's own or on the package path."""
-    from robomodel.runtime.msg._schema import _import_package
     from robomodel.runtime.msg.action import _ACTIONS
+    from robomodel.runtime.msg.schema import import_package
 
-    _import_package(key)
+    import_package(key)
     return key in _ACTIONS or key in _package_files()
 
 
 def resolve_action(key: str, name: str) -> type[Action]:
     """The action ``key`` (``pkg/action/Name``): robomodel's own if it has it, else the one
     built from the package path's ``.action`` file, with the types rosidl derives from it."""
-    from robomodel.runtime.msg._schema import _import_package
     from robomodel.runtime.msg.action import _ACTIONS, make_action
+    from robomodel.runtime.msg.schema import import_package
 
-    _import_package(key)
+    import_package(key)
     with _lock:
         found = _ACTIONS.get(key) or _actions.get(key)
         if found is None:
@@ -373,3 +430,6 @@ def resolve_action(key: str, name: str) -> type[Action]:
             )
             found = _actions[key] = make_action(key, goal, result, feedback, register=False)
         return found
+
+
+install_definition_resolver(DefinitionResolver(resolve_message, resolve_service))

@@ -22,7 +22,7 @@ from typing import Any, TypeVar
 from robomodel.runtime.msg._cdr_decode import message_decoder as _message_decoder
 from robomodel.runtime.msg._cdr_encode import message_encoder as _message_encoder
 from robomodel.runtime.msg._cdr_strings import CDRError
-from robomodel.runtime.msg._schema import Message
+from robomodel.runtime.msg.schema import Message
 
 __all__ = [
     "CDRError",

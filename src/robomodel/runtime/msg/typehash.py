@@ -23,7 +23,7 @@ import hashlib
 import json
 from typing import Any
 
-from robomodel.runtime.msg._schema import Array, Message, Seq, Service, Spec
+from robomodel.runtime.msg.schema import Array, Message, Seq, Service, Spec
 
 __all__ = [
     "dds_type_name",
@@ -109,7 +109,7 @@ def _message_individuals(cls: type[Message], out: dict[str, Individual]) -> None
 
 def _service_individuals(srv: type[Service], out: dict[str, Individual]) -> Individual:
     """Add the request, response, event and their types to ``out``; return the service's."""
-    from robomodel.runtime.msg.service_msgs import ServiceEventInfo
+    from robomodel.runtime.msg.types.service_msgs import ServiceEventInfo
 
     request, response = srv.Request.__typename__, srv.Response.__typename__
     for cls in (ServiceEventInfo, srv.Request, srv.Response):

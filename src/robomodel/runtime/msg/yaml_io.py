@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from robomodel._yaml_bounded import load_yaml
 from robomodel.errors import close_matches
-from robomodel.runtime.msg._schema import (
+from robomodel.runtime.msg.schema import (
     Array,
     Message,
     MessageTypeError,

@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg.nav_msgs import RosgraphLog
+from robomodel.runtime.msg.types.rosgraph_msgs import Log as RosgraphLog
 
 if TYPE_CHECKING:
     from robomodel.runtime.context import Context
@@ -38,7 +38,7 @@ class RosoutAggregator:
     """The ``/rosout`` node on ``context`` (a ROS 1 bus)."""
 
     def __init__(self, context: Context) -> None:
-        from robomodel.runtime.msg.roscpp import GetLoggers, SetLoggerLevel
+        from robomodel.runtime.msg.types.roscpp import GetLoggers, SetLoggerLevel
 
         self.loggers = {"ros": "info"}
         self.node = context.create_node("rosout", enable_rosout=False)
@@ -51,12 +51,12 @@ class RosoutAggregator:
         self._agg.publish(msg)
 
     def _get_loggers(self, request: Any) -> Any:
-        from robomodel.runtime.msg.roscpp import GetLoggers_Response, Logger
+        from robomodel.runtime.msg.types.roscpp import GetLoggers_Response, Logger
 
         return GetLoggers_Response([Logger(n, lv) for n, lv in sorted(self.loggers.items())])
 
     def _set_level(self, request: Any) -> Any:
-        from robomodel.runtime.msg.roscpp import SetLoggerLevel_Response
+        from robomodel.runtime.msg.types.roscpp import SetLoggerLevel_Response
 
         level = str(request.level).lower()
         if level not in _LEVELS:

@@ -14,7 +14,7 @@ from robomodel.errors import MissingDependencyError
 if TYPE_CHECKING:
     from robomodel.runtime.executor import Executor
     from robomodel.runtime.msg import Message
-    from robomodel.runtime.msg._schema import Service
+    from robomodel.runtime.msg.schema import Service
     from robomodel.runtime.transport.base import Endpoint
     from robomodel.runtime.transport.rmw_zenoh import EntityKind, EntityToken
 

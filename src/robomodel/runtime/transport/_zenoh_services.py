@@ -21,8 +21,8 @@ import time
 from typing import Any, Protocol
 
 from robomodel.runtime.msg import CDRError, Message, deserialize, serialize
-from robomodel.runtime.msg._schema import Service
 from robomodel.runtime.msg.cdr import prepare
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import (
     ZenohSessionOwner,

@@ -20,7 +20,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.qos import QoSProfile
 
 __all__ = [

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport.base import (

@@ -19,7 +19,7 @@ from typing import Any
 
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.transport.base import (
     Deferred,

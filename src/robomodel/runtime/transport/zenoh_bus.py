@@ -26,7 +26,7 @@ from robomodel._escape import escape_name
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
-from robomodel.runtime.msg._schema import Service
+from robomodel.runtime.msg.schema import Service
 from robomodel.runtime.msg.typehash import dds_type_name, type_hash
 from robomodel.runtime.qos import QoSProfile
 from robomodel.runtime.transport._domain_id import domain_id_from_env

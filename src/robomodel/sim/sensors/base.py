@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from robomodel.runtime.msg._schema import Message
-from robomodel.runtime.msg.builtin_interfaces import Time
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.schema import Message
+from robomodel.runtime.msg.types.builtin_interfaces import Time
+from robomodel.runtime.msg.types.std_msgs import Header
 from robomodel.sim.sensors.spec import SensorSpec
 
 __all__ = ["SimSensor"]

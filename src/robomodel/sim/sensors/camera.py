@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from robomodel.runtime.msg._schema import Message, get_message_type
+from robomodel.runtime.msg.schema import Message, get_message_type
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.sensors._gl import check_rendering, gl_context
 from robomodel.sim.sensors.base import SimSensor

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from robomodel.runtime.msg._schema import Message
-from robomodel.runtime.msg.geometry_msgs import Vector3
+from robomodel.runtime.msg.schema import Message
+from robomodel.runtime.msg.types.geometry_msgs import Vector3
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.sensors.base import SimSensor
 from robomodel.sim.sensors.msgs import ContactsState, ContactState

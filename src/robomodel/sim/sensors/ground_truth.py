@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from robomodel.runtime.msg.builtin_interfaces import Time
-from robomodel.runtime.msg.geometry_msgs import (
+from robomodel.runtime.msg.types.builtin_interfaces import Time
+from robomodel.runtime.msg.types.geometry_msgs import (
     Point,
     Pose,
     PoseWithCovariance,
@@ -21,8 +21,9 @@ from robomodel.runtime.msg.geometry_msgs import (
     TwistWithCovariance,
     Vector3,
 )
-from robomodel.runtime.msg.nav_msgs import Odometry, TFMessage
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.types.nav_msgs import Odometry
+from robomodel.runtime.msg.types.std_msgs import Header
+from robomodel.runtime.msg.types.tf2_msgs import TFMessage
 from robomodel.sim._mujoco import mujoco
 
 __all__ = ["GroundTruth", "yaw_of"]

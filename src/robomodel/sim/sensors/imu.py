@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from robomodel.runtime.msg._schema import Message
-from robomodel.runtime.msg.geometry_msgs import Quaternion, Vector3
-from robomodel.runtime.msg.sensor_msgs import Imu
+from robomodel.runtime.msg.schema import Message
+from robomodel.runtime.msg.types.geometry_msgs import Quaternion, Vector3
+from robomodel.runtime.msg.types.sensor_msgs import Imu
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.sensors.base import SimSensor
 

@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from robomodel.runtime.msg._schema import Message
-from robomodel.runtime.msg.sensor_msgs import LaserScan
+from robomodel.runtime.msg.schema import Message
+from robomodel.runtime.msg.types.sensor_msgs import LaserScan
 from robomodel.sim._mujoco import mujoco
 from robomodel.sim.sensors.base import SimSensor
 from robomodel.sim.sensors.msgs import range_type

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq
-from robomodel.runtime.msg.geometry_msgs import Vector3
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.schema import Message, Seq
+from robomodel.runtime.msg.types.geometry_msgs import Vector3
+from robomodel.runtime.msg.types.std_msgs import Header
 
 __all__ = ["ContactState", "ContactsState", "range_type"]
 
@@ -44,6 +44,6 @@ class ContactsState(Message):
 
 def range_type() -> type[Message]:
     """``sensor_msgs/msg/Range`` of the distribution in use (``ROS_DISTRO``, default Jazzy)."""
-    from robomodel.runtime.msg._schema import get_message_type
+    from robomodel.runtime.msg.schema import get_message_type
 
     return get_message_type("sensor_msgs/msg/Range")

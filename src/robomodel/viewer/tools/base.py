@@ -126,7 +126,10 @@ class ToolContext:
                 get_message_type(next(iter(types)))
             except MessageTypeError:
                 self._asked.add((name, *types))
-                learn_topic_type(self.node.context.transport, name)
+                try:
+                    learn_topic_type(self.node.context.transport, name)
+                except MessageTypeError as exc:  # a definition robomodel refuses: this topic only
+                    log.warning("not showing %s: %s", name, exc)
 
     def topics_of_type(self, type_name: str) -> list[str]:
         return sorted(n for n, types in list(self.topics.items()) if type_name in types)

@@ -16,7 +16,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError, close_matches
 from robomodel.runtime.msg import Array, Message, Seq
-from robomodel.runtime.msg._schema import PRIMITIVES, Spec
+from robomodel.runtime.msg.schema import PRIMITIVES, Spec
 
 __all__ = ["FieldPath", "FieldPathError", "field_value", "resolve_field_path", "set_field"]
 
@@ -183,7 +183,7 @@ def set_field(msg_type: type[Message], steps: tuple[Step, ...], value: float) ->
 
 
 def _zero(spec: Spec) -> Any:
-    from robomodel.runtime.msg._schema import default_for
+    from robomodel.runtime.msg.schema import default_for
 
     return default_for(spec)
 

@@ -15,8 +15,9 @@ import time
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import Clock, Message, std_srvs
-from robomodel.runtime.msg import ros_gz_interfaces as rgz
+from robomodel.runtime.msg import Clock, Message
+from robomodel.runtime.msg.types import ros_gz_interfaces as rgz
+from robomodel.runtime.msg.types import std_srvs
 from robomodel.viewer.markup import md, safe_markdown
 from robomodel.viewer.tools.base import ToolContext
 

@@ -71,7 +71,7 @@ def _seconds(duration: Any) -> float:
 
 
 def _duration(seconds: float) -> Any:
-    from robomodel.runtime.msg.builtin_interfaces import Duration
+    from robomodel.runtime.msg.types.builtin_interfaces import Duration
 
     if not math.isfinite(seconds):
         return Duration(0, 0)

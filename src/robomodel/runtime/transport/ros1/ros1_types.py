@@ -26,7 +26,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message, get_message_type
-from robomodel.runtime.msg._schema import MessageTypeError, Service
+from robomodel.runtime.msg.schema import MessageTypeError, Service
 from robomodel.runtime.msg.typehash import same_type
 from robomodel.runtime.transport.ros1.ros1_codec import (
     DURATION,
@@ -118,7 +118,7 @@ def _robomodel_class(ros1_key: str) -> Any:
     target = ALIASES.get(ros1_key, ros1_key)
     service = re.fullmatch(r"(\w+)/msg/(\w+?)(Request|Response)", target)
     if service is not None:
-        from robomodel.runtime.msg._schema import get_service_type
+        from robomodel.runtime.msg.schema import get_service_type
 
         try:
             kind = get_service_type(f"{service[1]}/srv/{service[2]}")

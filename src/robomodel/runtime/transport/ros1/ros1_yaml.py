@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from robomodel.runtime.msg._schema import Array, Message, Seq, Spec
+from robomodel.runtime.msg.schema import Array, Message, Seq, Spec
 from robomodel.runtime.transport.ros1.ros1_fields import special_field
 
 __all__ = ["from_ros1_fields"]

@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Array, Message
-from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.schema import Array, Message
+from robomodel.runtime.msg.types.builtin_interfaces import Time
 
 __all__ = ["ServiceEventInfo"]
 

@@ -1,5 +1,5 @@
-"""Message type machinery: field specifications, the message and service base classes and
-their registries.
+"""Message type machinery: field specifications, the message, service and action base classes
+and the registry of robomodel's own types.
 
 A message class declares ``__fields__`` as ``(name, spec)`` pairs, where a spec is a primitive
 name (``"float64"``, ``"string"``, ...), another message class, ``Seq(spec)`` for an unbounded
@@ -10,6 +10,7 @@ halves.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, TypeAlias
 
@@ -20,6 +21,7 @@ __all__ = [
     "PRIMITIVES",
     "Action",
     "Array",
+    "DefinitionResolver",
     "Message",
     "MessageTypeError",
     "Seq",
@@ -30,8 +32,11 @@ __all__ = [
     "default_for",
     "get_message_type",
     "get_service_type",
+    "import_package",
+    "install_definition_resolver",
     "is_byte_array",
     "message_type_names",
+    "register",
     "service_type_names",
 ]
 
@@ -150,6 +155,15 @@ class Action:
     FeedbackMessage: ClassVar[Any]
 
 
+def register(cls: type[Message] | type[Service]) -> None:
+    """Enter a class whose ``__typename__`` was set after it was made (the derived types of an
+    action, :func:`msg.action.make_action`) in the registry of robomodel's own types."""
+    if issubclass(cls, Message):
+        _REGISTRY[cls.__typename__] = cls
+    else:
+        _SERVICES[cls.__typename__] = cls
+
+
 def default_for(spec: Spec) -> Any:
     """A fresh default value for a field (a new list or message each time)."""
     if isinstance(spec, str):
@@ -171,49 +185,45 @@ def canonical_type_name(name: str) -> str:
     return "/".join(parts)
 
 
-# The module of each package robomodel has types of, imported when a type of it is first asked
-# for by name (``robomodel topic pub``, a type in the graph), so that importing the message
-# package stays cheap.
-_PACKAGES = {
-    "action_msgs": "action_msgs",
-    "builtin_interfaces": "builtin_interfaces",
-    "control_msgs": "control_msgs",
-    "controller_manager_msgs": "controller_manager_msgs",
-    "gazebo_msgs": "gazebo_msgs",
-    "geometry_msgs": "geometry_msgs",
-    "lifecycle_msgs": "lifecycle_msgs",
-    "nav_msgs": "nav_msgs",
-    "rcl_interfaces": "rcl_interfaces",
-    "robomodel_interfaces": "robomodel_interfaces",
-    "ros_gz_interfaces": "ros_gz_interfaces",
-    "roscpp": "roscpp",
-    "rosgraph_msgs": "nav_msgs",
-    "sensor_msgs": "sensor_msgs",
-    "service_msgs": "service_msgs",
-    "std_msgs": "std_msgs",
-    "std_srvs": "std_srvs",
-    "tf2_msgs": "nav_msgs",
-    "trajectory_msgs": "trajectory_msgs",
-    "type_description_interfaces": "type_description_interfaces",
-    "unique_identifier_msgs": "action_msgs",
-}
-_EXTRA_MODULES = {
-    "control_msgs": ("control_msgs_actions",),
-    "controller_manager_msgs": ("controller_manager_msgs_hardware",),
-    "gazebo_msgs": ("gazebo_msgs_states",),
-}
-
-
-def _import_package(key: str) -> None:
-    """Import the module holding the types of ``key``'s package, if robomodel has one."""
+def import_package(key: str) -> None:
+    """Import robomodel's module of the package of type ``key`` (``pkg/kind/Name``), if it has
+    one: ``robomodel.runtime.msg.types.<pkg>``, whose classes register themselves. Imported when
+    a type of the package is first asked for by name (``robomodel topic pub``, a type in the
+    graph), so that importing the message package stays cheap."""
     import importlib
+    import importlib.util
 
     package = key.split("/", 1)[0]
-    module = _PACKAGES.get(package)
-    if module is None:
+    if not package.isidentifier():
         return
-    for name in (module, *_EXTRA_MODULES.get(package, ())):
-        importlib.import_module(f"robomodel.runtime.msg.{name}")
+    module = f"robomodel.runtime.msg.types.{package}"
+    if importlib.util.find_spec(module) is not None:
+        importlib.import_module(module)
+
+
+@dataclass(frozen=True, slots=True)
+class DefinitionResolver:
+    """Builds the class of a type robomodel has no class of its own for, from its definition
+    (``message(key, name)``, ``service(key, name)``: the canonical key and what the user wrote).
+    :mod:`robomodel.runtime.msg._resolver` installs it when the package is imported, so that
+    this registry does not import the builder that registers into it."""
+
+    message: Callable[[str, str], type[Message]]
+    service: Callable[[str, str], type[Service]]
+
+
+_RESOLVER: list[DefinitionResolver] = []
+
+
+def install_definition_resolver(resolver: DefinitionResolver) -> None:
+    """Make ``resolver`` the one that lookups of unknown types fall back to."""
+    _RESOLVER[:] = [resolver]
+
+
+def _definition_resolver() -> DefinitionResolver:
+    if not _RESOLVER:
+        raise MessageTypeError("no definition resolver installed (import robomodel.runtime.msg)")
+    return _RESOLVER[0]
 
 
 def get_message_type(name: str) -> type[Message]:
@@ -221,14 +231,12 @@ def get_message_type(name: str) -> type[Message]:
     class if it has one, else one built from the type's definition (:mod:`._resolver`)."""
     key = canonical_type_name(name)
     if key not in _REGISTRY:
-        _import_package(key)
+        import_package(key)
     found = _REGISTRY.get(key)
     if found is not None:
         return found
     # Not one of robomodel's own: built from its definition (stores, packages, peers; see _resolver).
-    from robomodel.runtime.msg._resolver import resolve_message
-
-    return resolve_message(key, name)
+    return _definition_resolver().message(key, name)
 
 
 def message_type_names() -> tuple[str, ...]:
@@ -247,13 +255,11 @@ def get_service_type(name: str) -> type[Service]:
     """Look up a service class by ROS name (``pkg/srv/Name`` or ``pkg/Name``)."""
     key = canonical_service_name(name)
     if key not in _SERVICES:
-        _import_package(key)
+        import_package(key)
     found = _SERVICES.get(key)
     if found is not None:
         return found
-    from robomodel.runtime.msg._resolver import resolve_service
-
-    return resolve_service(key, name)
+    return _definition_resolver().service(key, name)
 
 
 def service_type_names() -> tuple[str, ...]:

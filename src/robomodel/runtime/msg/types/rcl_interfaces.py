@@ -11,8 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
-from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.schema import Message, Seq, Service
+from robomodel.runtime.msg.types.builtin_interfaces import Time
 
 __all__ = [
     "DescribeParameters",

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Message
+from robomodel.runtime.msg.schema import Message
 
 __all__ = ["State"]
 

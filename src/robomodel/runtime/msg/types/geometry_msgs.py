@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Array, Message
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.schema import Array, Message
+from robomodel.runtime.msg.types.std_msgs import Header
 
 __all__ = [
     "Point",

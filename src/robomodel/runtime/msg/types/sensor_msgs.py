@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Array, Message, Seq
-from robomodel.runtime.msg.geometry_msgs import Quaternion, Vector3
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.schema import Array, Message, Seq
+from robomodel.runtime.msg.types.geometry_msgs import Quaternion, Vector3
+from robomodel.runtime.msg.types.std_msgs import Header
 
 __all__ = ["Imu", "JointState", "LaserScan"]
 

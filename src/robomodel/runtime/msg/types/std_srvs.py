@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from robomodel.runtime.msg._schema import Message, Service
+from robomodel.runtime.msg.schema import Message, Service
 
 __all__ = [
     "Empty",

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq
-from robomodel.runtime.msg.builtin_interfaces import Duration
-from robomodel.runtime.msg.geometry_msgs import Transform, Twist
-from robomodel.runtime.msg.std_msgs import Header
+from robomodel.runtime.msg.schema import Message, Seq
+from robomodel.runtime.msg.types.builtin_interfaces import Duration
+from robomodel.runtime.msg.types.geometry_msgs import Transform, Twist
+from robomodel.runtime.msg.types.std_msgs import Header
 
 __all__ = [
     "JointTrajectory",

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq
-from robomodel.runtime.msg.builtin_interfaces import Time
+from robomodel.runtime.msg.schema import Message, Seq
+from robomodel.runtime.msg.types.builtin_interfaces import Time
 
 __all__ = [
     "Bool",

@@ -7,12 +7,12 @@ ros2_control, ``controller_manager_msgs/msg/ControllerState.msg`` at the tags):
 - 4.13.0 to 4.27.x: ``exported_state_interfaces`` added (#1021, "Export state interfaces from
   chainable controllers");
 - 4.28.0 on: ``is_async`` and ``update_rate`` added (#2102) -- robomodel's
-  :class:`~robomodel.runtime.msg.controller_manager_msgs.ControllerState`.
+  :class:`~robomodel.runtime.msg.types.controller_manager_msgs.ControllerState`.
 
 Each layout has its own RIHS01 hash, so rmw_zenoh keys each under its own service key: a
 ``ros2 control list_controllers`` of an older install only finds a server of its layout. The
 controller manager offers every variant (one queryable each). The earlier ControllerState
-classes are generated from the releases' ``.msg`` files (:mod:`.controller_manager_msgs_layouts`,
+classes are generated from the releases' ``.msg`` files (:mod:`.layouts.controller_manager_msgs`,
 tools/gen_msgs.py); like the services here, they are not registered by type name (the name is
 the current layout's) and are reached from here only.
 """
@@ -21,12 +21,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
-from robomodel.runtime.msg.controller_manager_msgs import ControllerState
-from robomodel.runtime.msg.controller_manager_msgs_layouts import (
+from robomodel.runtime.msg.layouts.controller_manager_msgs import (
     ControllerState_4_0,
     ControllerState_4_13,
 )
+from robomodel.runtime.msg.schema import Message, Seq, Service
+from robomodel.runtime.msg.types.controller_manager_msgs import ControllerState
 
 __all__ = ["LIST_CONTROLLERS_VARIANTS", "ListControllersVariant", "downgrade"]
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
+from robomodel.runtime.msg.schema import Message, Seq, Service
 
 __all__ = [
     "Field",

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from robomodel.runtime.msg._schema import Message, Seq, Service
+from robomodel.runtime.msg.schema import Message, Seq, Service
 
 __all__ = [
     "GetLoggers",
