@@ -179,6 +179,8 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/runtime/test_zenoh_router.py::test_the_router_ends_when_no_session_uses_it": PROCESS,
     "tests/runtime/test_zenoh_thread_states.py": BUS,
     "tests/test_readme_quickstart.py::test_quickstart_command_runs": PROCESS,
+    "tests/runtime/test_rosparam_load.py::test_ns_handling_equals_debian_s_rosparam": PROCESS,
+    "tests/docs/test_contributing_mutation.py": PROCESS,
     "tests/test_import_cycles.py::test_the_script_prints_one_circle_a_line": PROCESS,
     "tests/test_startup_imports.py::test_a_control_verb_without_a_robot_loads_no_description": PROCESS,
     "tests/test_startup_imports.py::test_check_of_a_urdf_loads_neither_numpy_nor_xacro": PROCESS,
