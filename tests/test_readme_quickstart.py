@@ -47,8 +47,15 @@ def test_quickstart_sets_up_the_command_and_the_packages() -> None:
     assert lines[1] == "export ROS_PACKAGE_PATH=$PWD/examples"
     assert lines[-1] == "robomodel topic list"
     assert (_BIN / "robomodel").exists(), "make demo/test installs the robomodel command"
-    # then one command per seed lesson, 000 to 004
-    assert set(re.findall(r"# seed (\d{3})", per_lesson)) == {"000", "001", "002", "003", "004"}
+    # then one command per lesson of the course, each named in its comment
+    lessons = set(re.findall(r"# ([^:\n]+):", per_lesson))
+    assert lessons == {
+        "URDF gripper",
+        "UR5 in simulation",
+        "simplebot lab",
+        "ROS 2 two-link arm",
+        "example_description",
+    }
 
 
 @pytest.fixture
