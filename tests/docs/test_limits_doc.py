@@ -26,6 +26,7 @@ STATED = [
     ("robomodel.viewer.limits", "MAX_CLOUD_POINTS", 2_000_000, "2,000,000 (`MAX_CLOUD_POINTS`)"),
     ("robomodel.viewer.limits", "MAX_IMAGE_PIXELS", 4096 * 4096, "4096 x 4096 (`MAX_IMAGE_PIXELS`)"),
     ("robomodel.viewer.limits", "MAX_PARAMETERS_SHOWN", 1000, "1,000 (`MAX_PARAMETERS_SHOWN`)"),
+    ("robomodel.viewer.limits", "MAX_ODOMETRY_PENDING", 1000, "1,000 (`MAX_ODOMETRY_PENDING`)"),
     ("robomodel.cli.graph", "DOT_TIMEOUT_S", 60.0, "60 s (`DOT_TIMEOUT_S`)"),
     ("robomodel.cli.graph", "MAX_DOT_BYTES", 8 * 2**20, "8 MiB of Graphviz text (`MAX_DOT_BYTES`)"),
     ("robomodel.cli.graph", "DOT_MEMORY_BYTES", 2 * 2**30, "2 GiB of address space (`DOT_MEMORY_BYTES`)"),

@@ -227,7 +227,7 @@ def test_odometry_keeps_a_bounded_trail_over_thirty_minutes_of_driving() -> None
     once a (simulated) second: RViz's Keep (100) arrows are all that
     stays; the covariance shapes go with their arrows, and the messages waiting for a draw
     are bounded too."""
-    from robomodel.viewer.displays.odometry import MAX_PENDING
+    from robomodel.viewer.limits import MAX_ODOMETRY_PENDING
 
     display, scene = start("Odometry", **{"Covariance/Value": False})  # Keep 100
     lookup = lookup_from({"odom": np.eye(4)})
@@ -254,6 +254,6 @@ def test_odometry_keeps_a_bounded_trail_over_thirty_minutes_of_driving() -> None
         covariance.draw(lookup)
     shapes = [n for n in scene.nodes if "covariance" in n]
     assert len(covariance.trail.poses) == 10 and 10 <= len(shapes) <= 4 * 10
-    for _ in range(3 * MAX_PENDING):  # a burst between two draws keeps the newest
+    for _ in range(3 * MAX_ODOMETRY_PENDING):  # a burst between two draws keeps the newest
         display.receive(odom(7.0))
-    assert len(display._pending) == MAX_PENDING
+    assert len(display._pending) == MAX_ODOMETRY_PENDING

@@ -1,4 +1,5 @@
-"""How much of a message the viewer draws: text, points, pixels, markers, parameters.
+"""How much of a message the viewer draws, and keeps: text, points, pixels, markers,
+parameters, Odometry messages waiting for a draw.
 
 Whatever a peer publishes is drawn within these bounds; what is over one is drawn truncated
 (the first part of it) and the display's status says so, so a 10,000-character text marker, a
@@ -14,6 +15,7 @@ __all__ = [
     "MAX_MARKERS",
     "MAX_MARKERS_PER_NAMESPACE",
     "MAX_MARKER_POINTS",
+    "MAX_ODOMETRY_PENDING",
     "MAX_PARAMETERS_SHOWN",
     "MAX_TEXT_CHARS",
     "MAX_TEXT_LINES",
@@ -28,6 +30,8 @@ MAX_MARKERS = 100_000  # of one Marker or MarkerArray display
 MAX_CLOUD_POINTS = 2_000_000  # of one PointCloud2 (a 64-beam lidar sends ~130,000)
 MAX_IMAGE_PIXELS = 4096 * 4096  # of one Image, CompressedImage or Camera frame
 MAX_PARAMETERS_SHOWN = 1_000  # controls the Parameters tool builds for one node
+# Odometry messages kept between two draws (0.1 s apart): 10 kHz of odometry; the newest are kept
+MAX_ODOMETRY_PENDING = 1_000
 
 
 def truncated_text(text: str) -> tuple[str, str]:

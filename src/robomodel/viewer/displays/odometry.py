@@ -6,7 +6,7 @@ oldest arrows go beyond "Keep" (0: all). The shape options sit below "Shape" and
 covariance's below "Covariance", as RViz 2 saves them.
 
 What is kept is bounded however long the robot drives: Keep arrows (and their covariance
-shapes), one scene node for all the arrows, and at most :data:`MAX_PENDING` messages between
+shapes), one scene node for all the arrows, and at most :data:`~robomodel.viewer.limits.MAX_ODOMETRY_PENDING` messages between
 two draws (the newest; a simulation faster than real time publishes more).
 """
 
@@ -31,10 +31,9 @@ from robomodel.viewer.displays.base import (
     register_display,
 )
 from robomodel.viewer.displays.geometry import ArrowTrail, poses_from_msgs
+from robomodel.viewer.limits import MAX_ODOMETRY_PENDING
 
-__all__ = ["MAX_PENDING", "OdometryDisplay"]
-
-MAX_PENDING = 1000  # messages kept between two draws (0.1 s apart): 10 kHz of odometry
+__all__ = ["OdometryDisplay"]
 
 
 def _nested(option: Option) -> Option:
@@ -64,7 +63,7 @@ class OdometryDisplay(Display):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.trail = self._new_trail()
-        self._pending: collections.deque[Any] = collections.deque(maxlen=MAX_PENDING)
+        self._pending: collections.deque[Any] = collections.deque(maxlen=MAX_ODOMETRY_PENDING)
         self._covariances: collections.deque[str] = collections.deque()
         self._seq = 0
         self._problem = ""
@@ -98,7 +97,7 @@ class OdometryDisplay(Display):
         return values
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
-        pending, self._pending = self._pending, collections.deque(maxlen=MAX_PENDING)
+        pending, self._pending = self._pending, collections.deque(maxlen=MAX_ODOMETRY_PENDING)
         changed = False
         for msg in pending:
             changed |= self._take(msg, lookup)
