@@ -18,6 +18,7 @@ $(BIN)/python:
 
 $(STAMP): $(BIN)/python pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[all,test,docs]'
+	$(BIN)/python tools/install_clientlibs_pth.py
 	touch $(STAMP)
 
 $(SDK_STAMP):

@@ -68,6 +68,7 @@ NEVER_ON_LIGHT_PATHS = {
 
 def _env() -> dict[str, str]:
     env = dict(os.environ)
+    env["ROBOMODEL_CLIENTLIBS"] = "0"  # the client-library finder's start is tested on its own
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(REPO / "src"), env.get("PYTHONPATH")]))
     return env
 
@@ -206,6 +207,32 @@ def test_packages_load_no_sub_package_until_used(code: str) -> None:
         "robomodel.cli._verbs",
     }
     assert loaded and loaded <= allowed, sorted(loaded - allowed)
+
+
+def test_client_library_finder_loads_only_itself_at_start() -> None:
+    env = dict(_env(), ROBOMODEL_CLIENTLIBS="1")
+    probe = "import sys; print('\\n'.join(m for m in sys.modules if m.startswith('robomodel')))"
+    site_start = subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, env=env, check=True
+    )
+    loaded = set(site_start.stdout.split())
+    hook = {
+        "robomodel",
+        "robomodel._version",
+        "robomodel.clientlibs",
+        "robomodel.clientlibs.hook",
+        "robomodel.clientlibs.finder",
+    }
+    assert loaded == hook
+    unrelated = "import sys\ntry:\n    import no_such_module_here\nexcept ImportError:\n    pass\n"
+    after_miss = subprocess.run(
+        [sys.executable, "-c", unrelated + probe[len("import sys; ") :]],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+    )
+    assert set(after_miss.stdout.split()) == hook  # a failed import of another name costs no more
 
 
 def test_lazy_names_are_the_defining_modules_objects() -> None:

@@ -1,0 +1,135 @@
+"""The import finder that makes ROS's Python names importable on robomodel.
+
+Two kinds of names:
+
+- **client libraries**: ``rclpy``, ``rospy`` and the helper libraries are aliases of
+  ``robomodel.clientlibs.<name>`` (``import rclpy.node`` is ``robomodel.clientlibs.rclpy.node``,
+  one module object under both names);
+- **interface packages**: ``<pkg>.msg``, ``<pkg>.srv`` and ``<pkg>.action`` of every package
+  whose types robomodel knows (:mod:`.interfaces`), with no build step.
+
+The finder is appended to ``sys.meta_path``: Python's own path finder asks first, so a real ROS
+installation on ``sys.path`` (a sourced ``setup.bash``) or a real message package always wins.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.machinery
+import importlib.util
+import os
+import sys
+from types import ModuleType
+
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing at every Python start
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from importlib.abc import Loader as _LoaderBase
+else:
+    _LoaderBase = object  # importlib.abc would import importlib.resources at every start
+
+__all__ = ["ALIASED", "ClientLibraryFinder", "install", "installed"]
+
+_HOME = "robomodel.clientlibs"
+
+# Top-level names served from robomodel.clientlibs.<name>, when that sub-package exists.
+ALIASED = frozenset(
+    {"rclpy", "rospy", "genpy", "tf", "tf2_ros", "ament_index_python", "rospkg", "roslib"}
+)
+
+
+class _AliasLoader(_LoaderBase):
+    """Gives the module ``target`` (imported once) under the alias being imported."""
+
+    def __init__(self, target: str) -> None:
+        self.target = target
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
+        return importlib.import_module(self.target)
+
+    def exec_module(self, module: ModuleType) -> None:
+        """Nothing: the target module ran when it was imported under its own name."""
+
+
+class ClientLibraryFinder:
+    """Finds the aliased client libraries and the interface packages' message modules (a
+    meta path finder and its loaders by protocol: ``importlib.abc`` would cost every Python
+    start in the environment the import of ``importlib.resources``)."""
+
+    def find_spec(
+        self,
+        fullname: str,
+        path: Sequence[str] | None,
+        target: ModuleType | None = None,
+    ) -> importlib.machinery.ModuleSpec | None:
+        top = fullname.partition(".")[0]
+        if top in ALIASED:
+            real = f"{_HOME}.{fullname}"
+            try:
+                found = importlib.util.find_spec(real)
+            except ModuleNotFoundError:  # the alias's parent is not a robomodel package
+                return None
+            if found is None:
+                return None
+            return importlib.machinery.ModuleSpec(
+                fullname,
+                _AliasLoader(real),
+                is_package=found.submodule_search_locations is not None,
+            )
+        if not _may_be_interface_package(top):
+            return None
+        from robomodel.clientlibs import interfaces
+
+        return interfaces.find_spec(fullname)
+
+
+_MSG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "runtime", "msg")
+# Python asks for these at every start; they are never interface packages.
+_STARTUP_HOOKS = frozenset({"sitecustomize", "usercustomize"})
+_store_texts: list[str] = []
+
+
+def _may_be_interface_package(package: str) -> bool:
+    """A quick look, with no import, whether ``package`` can be an interface package robomodel
+    knows. Every failed ``import`` in the process reaches this finder: it should cost a few
+    file checks, not the loading of the type stores."""
+    if not package.isidentifier() or package.startswith("_") or package in _STARTUP_HOOKS:
+        return False
+    if os.path.isfile(os.path.join(_MSG, "types", f"{package}.py")):
+        return True
+    if os.path.isdir(os.path.join(_MSG, "interfaces", package)):
+        return True
+    if os.environ.get("ROS_PACKAGE_PATH") or os.environ.get("AMENT_PREFIX_PATH"):
+        return True  # the package path is crawled (once) by interfaces.package_names()
+    needle = f"'{package}/"
+    return any(needle in text for text in _rosbags_store_texts())
+
+
+def _rosbags_store_texts() -> list[str]:
+    """The source of rosbags' type stores, read once (they name every type as 'pkg/kind/Name')."""
+    if not _store_texts:
+        spec = importlib.util.find_spec("rosbags")
+        for folder in (spec.submodule_search_locations or []) if spec else []:
+            stores = os.path.join(folder, "typesys", "stores")
+            for name in sorted(os.listdir(stores)) if os.path.isdir(stores) else []:
+                if name.endswith(".py"):
+                    with open(os.path.join(stores, name), encoding="utf-8") as file:
+                        _store_texts.append(file.read())
+    return _store_texts
+
+
+def installed() -> ClientLibraryFinder | None:
+    """The finder on ``sys.meta_path``, if it is there."""
+    for finder in sys.meta_path:
+        if isinstance(finder, ClientLibraryFinder):
+            return finder
+    return None
+
+
+def install() -> ClientLibraryFinder:
+    """Append the finder to ``sys.meta_path`` (once), after Python's own finders."""
+    finder = installed()
+    if finder is None:
+        finder = ClientLibraryFinder()
+        sys.meta_path.append(finder)
+    return finder

@@ -1,0 +1,123 @@
+"""Interface packages as Python modules: ``std_msgs.msg``, ``example_interfaces.srv``,
+``my_interfaces.action``, with no build step.
+
+A package is known when robomodel has its types: its own classes, its copies of the common
+interfaces, the ``msg/``, ``srv/`` and ``action/`` folders of the packages on the package path
+(``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH``), or rosbags' type stores. Each module gives its
+types by name on first access (``from std_msgs.msg import String``), and lists them in
+``__all__`` (``from std_srvs.srv import *``).
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib.machinery
+from types import ModuleType
+from typing import Any
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from importlib.abc import Loader as _LoaderBase
+else:
+    _LoaderBase = object  # importlib.abc would import importlib.resources at every start
+
+__all__ = ["KINDS", "find_spec", "package_names", "type_names"]
+
+KINDS = ("msg", "srv", "action")
+
+
+@functools.cache
+def _all_type_names() -> frozenset[str]:
+    """Every ``pkg/kind/Name`` robomodel can give a class for."""
+    from robomodel.runtime.msg import _resolver
+    from robomodel.runtime.msg.action import _ACTIONS
+    from robomodel.runtime.msg.schema import message_type_names, service_type_names
+
+    names = {*message_type_names(), *service_type_names(), *_ACTIONS}
+    names.update(_resolver._package_files())
+    for store in (_resolver._distro_store(), _resolver._store("ROS1_NOETIC")):
+        names.update(store.fielddefs)
+    return frozenset(names)
+
+
+def package_names() -> frozenset[str]:
+    """The interface packages robomodel knows."""
+    return frozenset(name.split("/", 1)[0] for name in _all_type_names())
+
+
+def type_names(package: str, kind: str) -> tuple[str, ...]:
+    """The type names (``String``) of ``package``'s ``kind`` (``msg``, ``srv``, ``action``)
+    that a module lists; the parts that rosidl and genpy derive (``Foo_Request``,
+    ``FooRequest``, ``Bar_Goal``) are left out, as they are reached through their parent."""
+    prefix = f"{package}/{kind}/"
+    names = {name[len(prefix) :] for name in _all_type_names() if name.startswith(prefix)}
+    if kind == "msg":
+        services = set(type_names(package, "srv"))
+        names = {n for n in names if not _derived_service_half(n, services)}
+    return tuple(sorted(n for n in names if "_" not in n or not n.rsplit("_", 1)[1][:1].isupper()))
+
+
+def _derived_service_half(name: str, services: set[str]) -> bool:
+    for suffix in ("Request", "Response"):
+        if name.endswith(suffix) and name[: -len(suffix)] in services:
+            return True
+    return False
+
+
+def _type_of(package: str, kind: str, name: str) -> Any:
+    from robomodel.runtime.msg import _resolver
+    from robomodel.runtime.msg.schema import get_message_type, get_service_type
+
+    key = f"{package}/{kind}/{name}"
+    if kind == "msg":
+        return get_message_type(key)
+    if kind == "srv":
+        return get_service_type(key)
+    return _resolver.resolve_action(key, key)
+
+
+class _InterfaceModule(ModuleType):
+    """``pkg.msg`` / ``pkg.srv`` / ``pkg.action``: types made on first access."""
+
+    __all__: list[str]
+
+    def __getattr__(self, name: str) -> Any:
+        package, _, kind = self.__name__.partition(".")
+        if name.startswith("__") or name not in self.__all__:
+            raise AttributeError(
+                f"module '{self.__name__}' has no attribute '{name}'"
+                f" (it has {', '.join(self.__all__) or 'no types'})"
+            )
+        found = _type_of(package, kind, name)
+        setattr(self, name, found)
+        return found
+
+    def __dir__(self) -> list[str]:
+        return sorted({*super().__dir__(), *self.__all__})
+
+
+class _InterfaceLoader(_LoaderBase):
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
+        package, _, kind = spec.name.partition(".")
+        if not kind:
+            return ModuleType(spec.name, f"The {package} interface package (robomodel).")
+        module = _InterfaceModule(spec.name, f"The {kind} types of {package} (robomodel).")
+        module.__all__ = list(type_names(package, kind))
+        return module
+
+    def exec_module(self, module: ModuleType) -> None:
+        """Nothing to run: the module's types are made on first access."""
+
+
+def find_spec(fullname: str) -> importlib.machinery.ModuleSpec | None:
+    """The spec of ``pkg`` or ``pkg.msg``/``pkg.srv``/``pkg.action`` if robomodel knows the
+    package, else None (the import goes on to fail as Python's own)."""
+    parts = fullname.split(".")
+    if len(parts) > 2 or (len(parts) == 2 and parts[1] not in KINDS):
+        return None
+    if parts[0] not in package_names():
+        return None
+    spec = importlib.machinery.ModuleSpec(fullname, _InterfaceLoader(), is_package=len(parts) == 1)
+    if len(parts) == 1:
+        spec.submodule_search_locations = []
+    return spec
