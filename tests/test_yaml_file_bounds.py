@@ -131,3 +131,11 @@ def test_xacro_kinematics_and_yaml_launch_files_are_bounded(tmp_path: Path) -> N
     with pytest.raises(LaunchError, match="more than 1000000 values") as raised:
         load_yaml_description(launch)
     assert raised.value.location is not None and raised.value.location.line == 7
+
+
+def test_a_yaml_typed_launch_parameter_is_bounded() -> None:
+    from robomodel.launch.ros1.params import ParamValueError, convert_value
+
+    assert convert_value("[1, {a: 2}]", "yaml") == [1, {"a": 2}]
+    with pytest.raises(ParamValueError, match="^invalid YAML: more than 1000000 values"):
+        convert_value(alias_bomb(), "yaml")

@@ -54,3 +54,27 @@ def test_ros2_refuses_what_rcl_refuses(argv: list[str], said: str) -> None:
     with pytest.raises(NodeArgsError) as error:
         parse_ros2_args(argv, default_name="n")
     assert said in str(error.value)
+
+
+_ALIAS_BOMB = "a: &a [x,x,x,x,x,x,x,x,x]\n" + "".join(
+    f"{n}: &{n} [{', '.join([f'*{p}'] * 9)}]\n" for p, n in zip("abcdef", "bcdefg", strict=True)
+)
+
+
+@pytest.mark.parametrize(
+    ("value", "said"),
+    [
+        ("[" * 5000 + "]" * 5000, "nested more than 100 levels deep"),
+        (_ALIAS_BOMB, "aliases are expanded"),
+    ],
+)
+def test_a_parameter_value_past_the_yaml_bounds_is_one_line(value: str, said: str) -> None:
+    for parse in (
+        lambda: parse_ros1_args([f"_p:={value}"]),
+        lambda: parse_ros2_args(["--ros-args", "-p", f"p:={value}"], default_name="n"),
+    ):
+        with pytest.raises(NodeArgsError) as error:
+            parse()
+        message = str(error.value)
+        assert "the value of '" in message and said in message
+        assert "\n" not in message and len(message) < 200

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from robomodel._escape import escape_name
 from robomodel.errors import RobomodelError, close_matches
 
 __all__ = ["NodeArgs", "NodeArgsError", "parse_ros1_args", "parse_ros2_args"]
@@ -43,12 +44,16 @@ def _yaml(text: str, where: str) -> Any:
     """A parameter value typed as rospy and rcl type it (YAML; unparsable text stays text)."""
     import yaml
 
+    from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
     from robomodel.launch.ros1.params import RosparamLoader
 
     try:
-        return yaml.load(text, Loader=RosparamLoader) if text else ""
-    except (yaml.YAMLError, RecursionError):
+        return load_yaml_file(text, where=where, loader=RosparamLoader) if text else ""
+    except yaml.YAMLError:
         return text
+    except YamlNestingError as exc:
+        name = escape_name(where.split(":=", 1)[0])
+        raise NodeArgsError(f"the value of '{name}' is refused: {exc.problem}") from None
 
 
 _ROS1_SPECIAL = ("__name", "__ns", "__master", "__log", "__ip", "__hostname")

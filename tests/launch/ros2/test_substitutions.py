@@ -119,3 +119,12 @@ def test_parameter_yaml_rules(context: LaunchContext) -> None:
     }  # fmt: skip
     with pytest.raises(TypeError, match="Unable to parse the value of parameter bad as yaml"):
         evaluate_dict(context, normalize_dict({"bad": LaunchConfiguration("v", default="a: b: c")}))
+
+
+def test_a_substituted_parameter_past_the_yaml_bounds_is_a_substitution_failure(
+    context: LaunchContext,
+) -> None:
+    deep = LaunchConfiguration("v", default="[" * 500 + "]" * 500)
+    refused = pytest.raises(SubstitutionFailure, match="parameter p: nested more than 100 levels")
+    with refused, session_scope(context.session):
+        evaluate_dict(context, normalize_dict({"p": deep}))

@@ -70,10 +70,14 @@ def convert_value(value: str, type_name: str) -> Any:
             return False
         raise ParamValueError(f"{text} is not a '{kind}' type")
     if kind == "yaml":
+        from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
+
         try:
-            return yaml.load(value, Loader=RosparamLoader)
+            return load_yaml_file(value, where="the yaml value", loader=RosparamLoader)
         except yaml.YAMLError as exc:
             raise ParamValueError(f"invalid YAML: {exc}") from None
+        except YamlNestingError as exc:
+            raise ParamValueError(f"invalid YAML: {exc.problem}") from None
     raise ParamValueError(
         f"Unknown type '{type_name}'; valid types are auto, str, string, int, double, bool, "
         "boolean, yaml"

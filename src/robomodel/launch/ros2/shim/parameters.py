@@ -23,6 +23,7 @@ from robomodel.launch.ros2.shim.substitutions import (
     Substitution,
     TextSubstitution,
     coerce_bool,
+    load_yaml_value,
     normalize_to_list_of_substitutions,
     perform_substitutions,
     perform_typed_substitution,
@@ -54,7 +55,9 @@ class ParameterValue:
             items = [perform_substitutions(context, v) for v in self.value]
             if self.value_type is str:
                 return items
-            return [yaml.safe_load(item) if item else "" for item in items]
+            return [
+                load_yaml_value(item, what="a parameter value") if item else "" for item in items
+            ]
         return perform_typed_substitution(context, self.value, self.value_type)
 
 
@@ -95,7 +98,7 @@ class ParameterFile:
             raise SubstitutionFailure(str(exc)) from None
         parsed = perform_substitutions(context, parse_substitution(text))
         try:
-            yaml.safe_load(parsed)
+            load_yaml_value(parsed, what=str(path))
         except yaml.YAMLError:
             raise SubstitutionFailure(
                 "The substituted parameter file is not a valid yaml file"
@@ -175,7 +178,7 @@ def _uniform(seq: Sequence[Any]) -> bool:
 
 def _yaml_value(name: str, text: str) -> Any:
     try:
-        value = yaml.safe_load(text if text else "''")
+        value = load_yaml_value(text if text else "''", what=f"parameter {name}")
     except yaml.YAMLError:
         raise TypeError(
             f"Unable to parse the value of parameter {name} as yaml. If the parameter is meant "
@@ -209,7 +212,10 @@ def evaluate_dict(
         if isinstance(value, tuple) and value and isinstance(value[0], Substitution):
             out[name] = _yaml_value(name, perform_substitutions(context, list(value)))
         elif isinstance(value, tuple) and value and isinstance(value[0], tuple):
-            items = [yaml.safe_load(perform_substitutions(context, list(v)) or "''") for v in value]
+            items = [
+                load_yaml_value(perform_substitutions(context, list(v)) or "''", what=name)
+                for v in value
+            ]
             if not _uniform(items):
                 raise TypeError(
                     "Expected a non-empty sequence, with items of uniform type. Allowed sequence "

@@ -30,6 +30,7 @@ __all__ = [
     "TextSubstitution",
     "ThisLaunchFile",
     "ThisLaunchFileDir",
+    "load_yaml_value",
     "normalize_to_list_of_substitutions",
     "perform_substitutions",
     "perform_typed_substitution",
@@ -89,11 +90,23 @@ def _describe(subs: Iterable[Substitution]) -> str:
     return " + ".join(sub.describe() for sub in subs)
 
 
+def load_yaml_value(text: str, *, what: str) -> Any:
+    """``yaml.safe_load(text)`` as launch does it, within the bounds of the project's YAML
+    loader (nesting, aliases, size): a value past them is a SubstitutionFailure naming
+    ``what``; a syntax error is yaml's, for the caller to word as launch does."""
+    from robomodel._yaml_bounded import YamlNestingError, load_yaml_file
+
+    try:
+        return load_yaml_file(text, where=what)
+    except YamlNestingError as exc:
+        raise SubstitutionFailure(f"{what}: {exc.problem}") from None
+
+
 def coerce_bool(text: str) -> bool:
     """launch's bool coercion: '1'/'0' and YAML booleans (``true``, ``False``, ...)."""
     value = {"1": "true", "0": "false"}.get(text, text)
     try:
-        out = yaml.safe_load(value)
+        out = load_yaml_value(value, what=f"the value '{text[:40]}'")
     except yaml.YAMLError:
         out = None
     if not isinstance(out, bool):
@@ -116,7 +129,7 @@ def perform_typed_substitution(context: LaunchContext, value: Any, data_type: An
         except ValueError:
             raise SubstitutionFailure(f"Failed to convert '{text}' to '{data_type}'") from None
     try:
-        return yaml.safe_load(text)
+        return load_yaml_value(text, what="a substituted value")
     except yaml.YAMLError:
         raise SubstitutionFailure(f"Failed to convert '{text}' using yaml rules") from None
 
