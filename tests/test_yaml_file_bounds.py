@@ -137,5 +137,5 @@ def test_a_yaml_typed_launch_parameter_is_bounded() -> None:
     from robomodel.launch.ros1.params import ParamValueError, convert_value
 
     assert convert_value("[1, {a: 2}]", "yaml") == [1, {"a": 2}]
-    with pytest.raises(ParamValueError, match="^invalid YAML: more than 1000000 values"):
+    with pytest.raises(ParamValueError, match=r"^invalid YAML: more than 1000000 values"):
         convert_value(alias_bomb(), "yaml")
