@@ -24,6 +24,8 @@ STATED = [
     ("robomodel.viewer.limits", "MAX_MARKERS_PER_NAMESPACE", 10_000, "10,000 per namespace (`MAX_MARKERS_PER_NAMESPACE`)"),
     ("robomodel.viewer.limits", "MAX_MARKERS", 100_000, "100,000 per Marker or MarkerArray display (`MAX_MARKERS`)"),
     ("robomodel.viewer.limits", "MAX_CLOUD_POINTS", 2_000_000, "2,000,000 (`MAX_CLOUD_POINTS`)"),
+    ("robomodel.viewer.limits", "MAX_CLOUDS_KEPT", 1000, "1,000 clouds (`MAX_CLOUDS_KEPT`)"),
+    ("robomodel.viewer.limits", "MAX_CLOUD_BYTES_KEPT", 256 * 2**20, "256 MiB of point data (`MAX_CLOUD_BYTES_KEPT`)"),
     ("robomodel.viewer.limits", "MAX_IMAGE_PIXELS", 4096 * 4096, "4096 x 4096 (`MAX_IMAGE_PIXELS`)"),
     ("robomodel.viewer.limits", "MAX_PARAMETERS_SHOWN", 1000, "1,000 (`MAX_PARAMETERS_SHOWN`)"),
     ("robomodel.viewer.limits", "MAX_ODOMETRY_PENDING", 1000, "1,000 (`MAX_ODOMETRY_PENDING`)"),

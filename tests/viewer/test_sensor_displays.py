@@ -74,6 +74,38 @@ def test_point_cloud2_decay_time_keeps_recent_clouds() -> None:
     assert next(iter(scene.nodes.values())).kwargs["point_size"] == 0.2
 
 
+def test_point_cloud2_decay_time_keeps_clouds_within_the_bound(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from robomodel.viewer.displays import point_cloud2
+
+    monkeypatch.setattr(point_cloud2, "MAX_CLOUDS_KEPT", 4)
+    monkeypatch.setattr(point_cloud2, "MAX_CLOUD_BYTES_KEPT", 10 * 60)  # ten 60-byte clouds
+    scene, clock = FakeScene(), FakeClock()
+    values = {"Topic": "/points", "Decay Time": 100.0}
+    display = display_class("PointCloud2")("cloud", fake_context(scene, clock=clock), values)
+    lookup = lookup_from({"lidar": np.eye(4)})
+    for _ in range(3):
+        display.receive(three_point_cloud())
+        clock.ns += 1_000_000
+    status = display.draw(lookup)
+    assert status.level.value == "ok" and status.text == "Showing [9] points from [3] messages"
+    for _ in range(7):  # between two draws: the bound holds as they arrive
+        display.receive(three_point_cloud())
+        clock.ns += 1_000_000
+    status = display.draw(lookup)
+    assert status.level.value == "warn"
+    assert status.text.startswith(
+        "Showing [12] points from [4] messages; Decay Time keeps at most 4"
+    )
+    assert len(scene.visible("/displays/cloud")) == 4  # the dropped clouds' nodes are gone
+    monkeypatch.setattr(point_cloud2, "MAX_CLOUDS_KEPT", 1000)
+    for _ in range(12):
+        display.receive(three_point_cloud())
+        clock.ns += 1_000_000
+    assert display.draw(lookup).text.startswith("Showing [30] points from [10] messages")
+
+
 def test_point_cloud2_bad_cloud_is_an_error_status_and_config_transformer_kept() -> None:
     scene = FakeScene()
     display = display_class("PointCloud2")("c", fake_context(scene), {"Topic": "/p", "Color Transformer": "Intensity"})  # fmt: skip

@@ -10,6 +10,8 @@ documented in ``docs/reference/limits.md``.
 from __future__ import annotations
 
 __all__ = [
+    "MAX_CLOUDS_KEPT",
+    "MAX_CLOUD_BYTES_KEPT",
     "MAX_CLOUD_POINTS",
     "MAX_IMAGE_PIXELS",
     "MAX_MARKERS",
@@ -28,6 +30,10 @@ MAX_MARKER_POINTS = 1_000_000  # points (and colors) of one marker
 MAX_MARKERS_PER_NAMESPACE = 10_000
 MAX_MARKERS = 100_000  # of one Marker or MarkerArray display
 MAX_CLOUD_POINTS = 2_000_000  # of one PointCloud2 (a 64-beam lidar sends ~130,000)
+# PointCloud2 clouds kept for its Decay Time (the oldest dropped first): 10 s of a 100 Hz
+# sensor, and the point data of ~10 s of a 64-beam lidar at 10 Hz (~2 MB a cloud)
+MAX_CLOUDS_KEPT = 1_000
+MAX_CLOUD_BYTES_KEPT = 256 * 2**20
 MAX_IMAGE_PIXELS = 4096 * 4096  # of one Image, CompressedImage or Camera frame
 MAX_PARAMETERS_SHOWN = 1_000  # controls the Parameters tool builds for one node
 # Odometry messages kept between two draws (0.1 s apart): 10 kHz of odometry; the newest are kept

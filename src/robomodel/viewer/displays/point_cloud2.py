@@ -40,7 +40,7 @@ from robomodel.viewer.displays.cloud import (
     decode_cloud,
     default_color_transformer,
 )
-from robomodel.viewer.limits import MAX_CLOUD_POINTS
+from robomodel.viewer.limits import MAX_CLOUD_BYTES_KEPT, MAX_CLOUD_POINTS, MAX_CLOUDS_KEPT
 
 __all__ = ["PointCloud2Display", "wire_precision"]
 
@@ -106,10 +106,13 @@ class PointCloud2Display(Display):
         self._truncated_note = ""  # the last cloud drawn truncated (over MAX_CLOUD_POINTS)
         self._last_lookup: tuple[str, FrameLookup] | None = None  # (fixed frame, lookup)
         self._drawn_ns = 0  # when a cloud was last put in the scene [ns, bus time]
+        self._dropped_keys: list[str] = []  # scene nodes of clouds dropped past the bound
+        self._bound_note = ""  # set once Decay Time kept more than the bound allows
 
     def on_message(self, msg: Any) -> None:
         now = self.context.now_ns()
         self._clouds.append(_Cloud(msg, now))
+        self._keep_within_bound()
         # RViz draws a new cloud at its next render (30 fps); the page's displays are drawn
         # at 10 Hz, so a 10 Hz cloud would often wait behind the next one and be dropped.
         # Drawn at once instead (with the last draw's TF lookup, for the same fixed frame),
@@ -123,14 +126,18 @@ class PointCloud2Display(Display):
             self._auto_color = False
         if name in ("Topic", "Queue Size"):
             self._clouds.clear()
+            self._bound_note = ""
             self.messages_received = 0
         self.remove_nodes()  # redrawn from the kept messages with the new options
+        self._dropped_keys.clear()
         for cloud in self._clouds:
             cloud.key = ""
 
     def reset(self) -> None:
         super().reset()
         self._clouds.clear()
+        self._dropped_keys.clear()
+        self._bound_note = ""
 
     def on_renamed(self) -> None:
         for cloud in self._clouds:
@@ -185,16 +192,35 @@ class PointCloud2Display(Display):
         total = sum(c.points for c in shown)
         ok = f"Showing [{total}] points from [{len(shown)}] messages"
         status = combine(self.topic_status(), problems, ok)
-        if self._truncated_note and status.level is StatusLevel.OK:
-            return DisplayStatus.warn(f"{ok}; {self._truncated_note}")
+        notes = "; ".join(note for note in (self._truncated_note, self._bound_note) if note)
+        if notes and status.level is StatusLevel.OK:
+            return DisplayStatus.warn(f"{ok}; {notes}")
         return status
+
+    def _keep_within_bound(self) -> None:
+        """Drop the oldest clouds while more than ``MAX_CLOUDS_KEPT`` clouds or
+        ``MAX_CLOUD_BYTES_KEPT`` bytes of point data are kept (a long Decay Time at a high
+        rate), keeping the newest; RViz keeps them all."""
+        kept = sum(len(cloud.msg.data) for cloud in self._clouds)
+        while len(self._clouds) > 1 and (
+            len(self._clouds) > MAX_CLOUDS_KEPT or kept > MAX_CLOUD_BYTES_KEPT
+        ):
+            old = self._clouds.popleft()
+            kept -= len(old.msg.data)
+            if old.key:
+                self._dropped_keys.append(old.key)
+            self._bound_note = (
+                f"Decay Time keeps at most {MAX_CLOUDS_KEPT} clouds and "
+                f"{MAX_CLOUD_BYTES_KEPT // 2**20} MiB of points: older clouds dropped"
+            )
 
     def _expire(self) -> list[str]:
         """Drop clouds older than "Decay Time", keeping the newest (cloudInfoIsDecayed); the
-        keys of their scene nodes, for the new clouds to take (removed if none does)."""
+        keys of their scene nodes (and of those dropped past the bound), for the new clouds to
+        take (removed if none does)."""
         decay_ns = float(self.values["Decay Time"]) * 1e9
         now = self.context.now_ns()
-        spare = []
+        spare, self._dropped_keys = self._dropped_keys, []
         while len(self._clouds) > 1 and now - self._clouds[0].received_ns > decay_ns:
             old = self._clouds.popleft()
             if old.key:
