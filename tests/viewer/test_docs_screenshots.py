@@ -78,3 +78,16 @@ def test_ur5(viewer: Callable[..., ViewerProcess], page: Any) -> None:
     page.get_by_text("shoulder_lift_joint", exact=True).first.wait_for()
     _assert_drawn(page)
     save_shot(page, "ur5")
+
+
+def test_two_link_arm_xacro(viewer: Callable[..., ViewerProcess], page: Any) -> None:
+    view = viewer(EXAMPLES / "two_link_arm/urdf/two_link_arm.urdf.xacro")
+    open_viewer(page, view.url)
+    for joint in ("joint1", "joint2", "joint3"):  # the xacro's recursion makes three links
+        page.get_by_text(joint, exact=True).first.wait_for()
+    box = slider_input(page, "joint2")
+    box.fill("0.9")
+    box.press("Enter")
+    wait_for(lambda: abs(float(box.input_value()) - 0.9) < 1e-6, what="joint2 at 0.9")
+    _assert_drawn(page)
+    save_shot(page, "two_link_arm")
