@@ -51,6 +51,7 @@ FIXTURE_TIERS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tests/viewer", "viewer"): ("process",),
     ("tests/ros1wire", "ros1"): ("ros1", "process"),
     ("tests/seeds", "ros1_graph"): ("ros1", "process"),
+    ("tests/ros1wire/test_hostile_definitions_ros1.py", "evil_graph"): ("ros1", "process"),
     ("tests/seeds", "ros2_ws"): ("process",),
     ("tests/bag", "talker"): ("process", "bus"),
     ("tests/control/test_cli.py", "rrbot_run"): ("process", "bus"),

@@ -15,24 +15,22 @@ rosidl_generator_c's ``full__description.c.em``: the type first, then each refer
 the description's order; a service's request, response and event are ``implicit`` without
 text; a type read from a ``.msg``/``.srv`` file on the package path has that file's text; other
 types (robomodel's own classes, rosbags' stores) have no file here, so their ``.msg`` text is
-written from their constants and fields (encoding ``msg``, without comments:
-:func:`~robomodel.runtime.msg.definition.message_text`).
+written from their constants and fields (encoding ``msg``, without comments: the
+:class:`~robomodel.runtime.msg.spec.MessageSpec`'s ``msg``).
 
 A peer's answer is read back by :mod:`robomodel.runtime.type_learning`.
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
 import logging
 import re
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg.definition import message_text
-from robomodel.runtime.msg.schema import Array, Message, Seq, Service, Spec
+from robomodel.runtime.msg.schema import Message, Service
+from robomodel.runtime.msg.spec import MessageSpec, rihs01_of, spec_of
 from robomodel.runtime.msg.typehash import type_description, type_hash
 from robomodel.runtime.msg.types import type_description_interfaces as tdi
 
@@ -91,25 +89,21 @@ def description_hash(description: tdi.TypeDescription) -> str:
             individual(d) for d in description.referenced_type_descriptions
         ],
     }
-    text = json.dumps(data, ensure_ascii=True, allow_nan=False)
-    return "RIHS01_" + hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return rihs01_of(data)
 
 
-def _classes(kind: Kind) -> dict[str, type[Message]]:
-    """Every message class ``kind`` uses, by type name."""
-    found: dict[str, type[Message]] = {}
-    pending: list[Spec] = [kind.Request, kind.Response] if issubclass(kind, Service) else [kind]
-    while pending:
-        spec = pending.pop()
-        if isinstance(spec, (Seq, Array)):
-            pending.append(spec.item)
-        elif isinstance(spec, type) and spec.__typename__ not in found:
-            found[spec.__typename__] = spec
-            pending.extend(s for _, s in spec.__fields__)
+def _specs(kind: Kind) -> dict[str, MessageSpec]:
+    """The spec of every message type ``kind`` uses, by type name."""
+    tops = [kind.Request, kind.Response] if issubclass(kind, Service) else [kind]
+    found: dict[str, MessageSpec] = {}
+    for top in tops:
+        spec = spec_of(top)
+        for part in (spec, *spec.nested):
+            found.setdefault(part.name, part)
     return found
 
 
-def _source(name: str, kind: Kind, classes: dict[str, type[Message]]) -> tdi.TypeSource:
+def _source(name: str, kind: Kind, specs: dict[str, MessageSpec]) -> tdi.TypeSource:
     from robomodel.runtime.msg._resolver import package_source
 
     service = kind.__typename__ if issubclass(kind, Service) else None
@@ -119,18 +113,18 @@ def _source(name: str, kind: Kind, classes: dict[str, type[Message]]) -> tdi.Typ
     if path is not None:
         return tdi.TypeSource(name, path.suffix.lstrip("."), path.read_text())
     if name == service:
-        halves = (message_text(kind.Request), message_text(kind.Response))  # type: ignore[union-attr]
+        halves = (spec_of(kind.Request).msg, spec_of(kind.Response).msg)  # type: ignore[union-attr]
         return tdi.TypeSource(name, "srv", "---\n".join(halves))
-    found = classes.get(name)
-    return tdi.TypeSource(name, "msg", message_text(found) if found is not None else "")
+    found = specs.get(name)
+    return tdi.TypeSource(name, "msg", found.msg if found is not None else "")
 
 
 def type_sources(kind: Kind, description: tdi.TypeDescription) -> list[tdi.TypeSource]:
     """The ``TypeSource`` of the type and of each type its description references."""
-    classes = _classes(kind)
+    specs = _specs(kind)
     names = [description.type_description.type_name]
     names += [d.type_name for d in description.referenced_type_descriptions]
-    return [_source(name, kind, classes) for name in names]
+    return [_source(name, kind, specs) for name in names]
 
 
 def _parse_hash(text: str) -> bytes | None:

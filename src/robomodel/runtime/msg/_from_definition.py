@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import field, make_dataclass
 from typing import Any
 
+from robomodel.runtime.msg._dataclass_methods import add_init_and_repr
 from robomodel.runtime.msg.definition import PLACEHOLDER, FieldDef, Lookup, field_specs
 from robomodel.runtime.msg.schema import (
     Array,
@@ -72,7 +73,10 @@ def make_message_class(
         bases=(Message,),
         namespace=namespace,
         slots=True,
+        init=False,  # dataclasses' own take time quadratic in the fields (_dataclass_methods)
+        repr=False,
     )
+    add_init_and_repr(cls)
     # Set after creation: Message.__init_subclass__ registers only robomodel's own classes.
     cls.__typename__ = name
     cls.__module__ = module

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import itertools
 import keyword
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -27,6 +27,16 @@ from robomodel.runtime.msg.schema import (
     MessageTypeError,
     Seq,
     Spec,
+)
+from robomodel.runtime.msg.spec import (
+    ARRAY,
+    BASE,
+    NAME,
+    PLACEHOLDER,
+    SEQUENCE,
+    FieldDef,
+    short_name,
+    spec_of,
 )
 
 __all__ = [
@@ -48,7 +58,6 @@ __all__ = [
     "split_parts",
 ]
 
-FieldDef = tuple[Sequence[tuple[str, str, Any]], Sequence[tuple[str, Any]]]
 Lookup = Callable[[str], type[Message]]
 Kind = Literal["msg", "srv", "action"]
 
@@ -67,12 +76,6 @@ class DefinitionLimits:
 
 LIMITS = DefinitionLimits()
 
-# rosbags' Nodetype values (rosbags.typesys.base.Nodetype), kept as ints so that importing
-# this module does not import rosbags.
-BASE, NAME, ARRAY, SEQUENCE = 1, 2, 3, 4
-# rosidl's member of a message without fields; robomodel's classes leave it out (the codecs
-# and the hash add it back).
-PLACEHOLDER = "structure_needs_at_least_one_member"
 # The messages a service or an action file defines, in the file's order (rosidl's names:
 # pkg/srv/Name_Request, pkg/action/Name_Goal, ...).
 PART_SUFFIXES: dict[Kind, tuple[str, ...]] = {
@@ -304,30 +307,8 @@ def field_specs(
     return tuple(specs)
 
 
-def short_name(typename: str) -> str:
-    """``geometry_msgs/msg/Vector3`` -> ``geometry_msgs/Vector3``, as ``.msg`` files say it.
-
-    The parts of an action or a service (``pkg/action/Name_Feedback``) keep their full name:
-    no ``.msg`` file names them, and ``pkg/Name_Feedback`` would be read back as a message of
-    another name (and RIHS01 hash)."""
-    package, kind, name = typename.split("/")
-    return f"{package}/{name}" if kind == "msg" else typename
-
-
-def _spec_text(spec: Spec) -> str:
-    """``float64``, ``float64[]``, ``pkg/T[3]``, ``string<=8[<=2]``."""
-    if isinstance(spec, Seq):
-        return f"{_spec_text(spec.item)}[{'' if spec.bound is None else f'<={spec.bound}'}]"
-    if isinstance(spec, Array):
-        return f"{_spec_text(spec.item)}[{spec.size}]"
-    if isinstance(spec, str):
-        return spec
-    return short_name(spec.__typename__)
-
-
 def message_text(cls: type[Message]) -> str:
     """The ``.msg`` text of a message class: its constants, then its fields, one a line
-    (without the comments and default values of the original file, which classes do not keep)."""
-    lines = [f"{c_type} {c_name}={value}" for c_name, c_type, value in cls.__constants__]
-    lines += [f"{_spec_text(spec)} {name}" for name, spec in cls.__fields__]
-    return "".join(line + "\n" for line in lines)
+    (without the comments and default values of the original file, which classes do not keep):
+    its :class:`~.spec.MessageSpec`'s ``msg``."""
+    return spec_of(cls).msg

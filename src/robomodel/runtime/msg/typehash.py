@@ -1,7 +1,7 @@
 """ROS 2 type identity on the wire: RIHS01 type hashes and DDS type names.
 
-The hash is REP-2016's RIHS01, as ``rosidl_generator_type_description`` computes it: the
-type's description (its name and fields, each field's type id, capacity, string capacity and
+The hash is REP-2016's RIHS01 (a message's is its :class:`~.spec.MessageSpec`'s), as
+``rosidl_generator_type_description`` computes it: the type's description (its name and fields, each field's type id, capacity, string capacity and
 nested type name; default values left out) and those of every type it references, sorted by
 name, serialised as compact JSON and hashed with SHA-256. A message without fields gets
 rosidl's ``uint8 structure_needs_at_least_one_member``. ``.msg`` files' ``char`` is IDL's
@@ -19,11 +19,10 @@ never match.
 
 from __future__ import annotations
 
-import hashlib
-import json
 from typing import Any
 
-from robomodel.runtime.msg.schema import Array, Message, Seq, Service, Spec
+from robomodel.runtime.msg.schema import Message, Service
+from robomodel.runtime.msg.spec import rihs01_of, spec_of
 
 __all__ = [
     "dds_type_name",
@@ -33,89 +32,33 @@ __all__ = [
     "type_hash",
 ]
 
-# type_description_interfaces/msg/FieldType
-_FIELD_TYPE_ID = {
-    "int8": 2,
-    "uint8": 3,
-    "char": 3,  # .msg char is IDL uint8
-    "int16": 4,
-    "uint16": 5,
-    "int32": 6,
-    "uint32": 7,
-    "int64": 8,
-    "uint64": 9,
-    "float32": 10,
-    "float64": 11,
-    "bool": 15,
-    "byte": 16,
-    "string": 17,
-}
 _NESTED = 1
-_BOUNDED_STRING = 21
-_ARRAY_OFFSET = 48
 _BOUNDED_SEQUENCE_OFFSET = 96
-_SEQUENCE_OFFSET = 144
 
-Field = dict[str, Any]
 Individual = dict[str, Any]
 
 
-def _type(
-    type_id: int, nested: str = "", capacity: int = 0, string_capacity: int = 0
-) -> dict[str, Any]:
+def _type(type_id: int, nested: str = "", capacity: int = 0) -> dict[str, Any]:
     return {
         "type_id": type_id,
         "capacity": capacity,
-        "string_capacity": string_capacity,
+        "string_capacity": 0,
         "nested_type_name": nested,
     }
 
 
-def _field_type(spec: Spec) -> tuple[dict[str, Any], type[Message] | None]:
-    """The FieldType of ``spec`` and the message class it refers to, if any."""
-    offset, capacity, item = 0, 0, spec
-    if isinstance(spec, Array):
-        offset, capacity, item = _ARRAY_OFFSET, spec.size, spec.item
-    elif isinstance(spec, Seq):
-        if spec.bound is not None:
-            offset, capacity, item = _BOUNDED_SEQUENCE_OFFSET, spec.bound, spec.item
-        else:
-            offset, item = _SEQUENCE_OFFSET, spec.item
-    if isinstance(item, str):
-        name, _, bound = item.partition("<=")
-        if name == "string" and bound:
-            return _type(offset + _BOUNDED_STRING, "", capacity, int(bound)), None
-        return _type(offset + _FIELD_TYPE_ID[name], "", capacity), None
-    if isinstance(item, type) and issubclass(item, Message):
-        return _type(offset + _NESTED, item.__typename__, capacity), item
-    raise TypeError(f"not a field specification: {spec!r}")
-
-
-def _message_individuals(cls: type[Message], out: dict[str, Individual]) -> None:
-    """Add the descriptions of ``cls`` and of every type it refers to, to ``out``."""
-    if cls.__typename__ in out:
-        return
-    fields: list[Field] = []
-    refs: list[type[Message]] = []
-    for name, spec in cls.__fields__ or (("structure_needs_at_least_one_member", "uint8"),):
-        kind, ref = _field_type(spec)
-        fields.append({"name": name, "type": kind})
-        if ref is not None:
-            refs.append(ref)
-    out[cls.__typename__] = {"type_name": cls.__typename__, "fields": fields}
-    for ref in refs:
-        _message_individuals(ref, out)
-
-
-def _service_individuals(srv: type[Service], out: dict[str, Individual]) -> Individual:
-    """Add the request, response, event and their types to ``out``; return the service's."""
+def _service_description(srv: type[Service]) -> dict[str, Any]:
+    """The service's description: request, response and event, and every type they use."""
     from robomodel.runtime.msg.types.service_msgs import ServiceEventInfo
 
-    request, response = srv.Request.__typename__, srv.Response.__typename__
+    individuals: dict[str, Individual] = {}
     for cls in (ServiceEventInfo, srv.Request, srv.Response):
-        _message_individuals(cls, out)
+        spec = spec_of(cls)
+        for part in (spec, *spec.nested):
+            individuals.setdefault(part.name, part.individual_description())
+    request, response = srv.Request.__typename__, srv.Response.__typename__
     event = f"{srv.__typename__}_Event"
-    out[event] = {
+    individuals[event] = {
         "type_name": event,
         "fields": [
             {"name": "info", "type": _type(_NESTED, ServiceEventInfo.__typename__)},
@@ -123,7 +66,7 @@ def _service_individuals(srv: type[Service], out: dict[str, Individual]) -> Indi
             {"name": "response", "type": _type(_BOUNDED_SEQUENCE_OFFSET + _NESTED, response, 1)},
         ],
     }
-    return {
+    top = {
         "type_name": srv.__typename__,
         "fields": [
             {"name": "request_message", "type": _type(_NESTED, request)},
@@ -131,18 +74,16 @@ def _service_individuals(srv: type[Service], out: dict[str, Individual]) -> Indi
             {"name": "event_message", "type": _type(_NESTED, event)},
         ],
     }
+    referenced = [individuals[name] for name in sorted(individuals)]
+    return {"type_description": top, "referenced_type_descriptions": referenced}
 
 
 def type_description(kind: type[Message] | type[Service]) -> dict[str, Any]:
-    """The hashable part of ``TypeDescription``: the type and every type it references."""
-    individuals: dict[str, Individual] = {}
+    """The hashable part of ``TypeDescription``: the type and every type it references (a
+    message's is its :class:`~.spec.MessageSpec`'s)."""
     if isinstance(kind, type) and issubclass(kind, Service):
-        top = _service_individuals(kind, individuals)
-    else:
-        _message_individuals(kind, individuals)
-        top = individuals.pop(kind.__typename__)
-    referenced = [individuals[name] for name in sorted(individuals) if name != top["type_name"]]
-    return {"type_description": top, "referenced_type_descriptions": referenced}
+        return _service_description(kind)
+    return spec_of(kind).type_description()
 
 
 _HASHES: dict[type, str] = {}
@@ -150,10 +91,11 @@ _HASHES: dict[type, str] = {}
 
 def type_hash(kind: type[Message] | type[Service]) -> str:
     """The RIHS01 hash of a message or service type, ``RIHS01_<64 hex digits>``."""
+    if not (isinstance(kind, type) and issubclass(kind, Service)):
+        return spec_of(kind).rihs01
     cached = _HASHES.get(kind)
     if cached is None:
-        text = json.dumps(type_description(kind), ensure_ascii=True, allow_nan=False)
-        cached = _HASHES[kind] = "RIHS01_" + hashlib.sha256(text.encode("utf-8")).hexdigest()
+        cached = _HASHES[kind] = rihs01_of(type_description(kind))
     return cached
 
 

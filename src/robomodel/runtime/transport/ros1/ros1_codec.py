@@ -268,9 +268,18 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
             continue
         if special is not None and special.from_ros1 is not None:
             value = f"{g.ref(special.from_ros1, 'cv')}({value})"
-        args.append(f"{target}={value}")
-    maker = g.ref(ours, "T") if ours is not None else "NS"
-    return f"{maker}({', '.join(args)})"
+        args.append((target, value))
+    if ours is None:  # a dict display: a call's keywords take time quadratic in their number
+        return f"NS(**{{{', '.join(f'{t!r}: {v}' for t, v in args)}}})"
+    # Positional while the ROS 1 fields come in the class's order (all of them, for a type
+    # built from the ROS 1 definition), keywords for the rest: CPython compiles a call's
+    # keywords in time quadratic in their number (a 10,000-field type took seconds).
+    order = [n for n, _ in ours.__fields__]
+    cut = 0
+    while cut < min(len(args), len(order)) and args[cut][0] == order[cut]:
+        cut += 1
+    parts = [v for _, v in args[:cut]] + [f"{t}={v}" for t, v in args[cut:]]
+    return f"{g.ref(ours, 'T')}({', '.join(parts)})"
 
 
 Encoder = Callable[[Message, int], bytes]

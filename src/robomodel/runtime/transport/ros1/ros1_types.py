@@ -5,8 +5,9 @@ The ROS 1 definitions come from rosbags' Noetic type store (std_msgs, geometry_m
 sensor_msgs, nav_msgs, trajectory_msgs, rosgraph_msgs, ...) and, for the packages it lacks,
 from the ROS 1 files vendored under ``definitions/`` (tf2_msgs, tf, std_srvs, control_msgs,
 controller_manager_msgs, gazebo_msgs; see its README). md5sums and message definitions are
-rosbags' (genmsg's algorithm); a service's md5sum is genmsg's: the md5 of its request's md5
-text followed by its response's.
+those of the definitions' :class:`~robomodel.runtime.msg.spec.MessageSpec` (genmsg's
+algorithm); a service's md5sum is genmsg's: the md5 of its request's md5 text followed by its
+response's.
 
 A robomodel type ``pkg/msg/Name`` is ROS 1's ``pkg/Name``; a service ``pkg/srv/Name`` ROS 1's
 ``pkg/Name`` with ``pkg/NameRequest`` and ``pkg/NameResponse``. Fields map by name, with the
@@ -20,6 +21,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -27,10 +29,10 @@ from typing import Any
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message, get_message_type
 from robomodel.runtime.msg.schema import MessageTypeError, Service
+from robomodel.runtime.msg.spec import MessageSpec, spec_from_definitions
 from robomodel.runtime.msg.typehash import same_type
 from robomodel.runtime.transport.ros1.ros1_codec import (
     DURATION,
-    PLACEHOLDER,
     PRIMITIVES,
     TIME,
     Decoder,
@@ -87,22 +89,30 @@ class Ros1ServiceType:
 
 
 @functools.cache
-def _store() -> Any:
+def _fielddefs() -> dict[str, Any]:
+    """ROS 1's types by name (``pkg/msg/Name``): rosbags' Noetic store's, the vendored files'
+    and (:func:`_add`) those of the user's packages and learned definitions."""
     from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-    store = get_typestore(Stores.ROS1_NOETIC)
-    found: dict[str, Any] = {}
+    found: dict[str, Any] = dict(get_typestore(Stores.ROS1_NOETIC).fielddefs)
     for path in sorted(DEFINITIONS.glob("*/*/*.*")):
         package, kind, stem = path.parent.parent.name, path.parent.name, path.stem
         text = path.read_text()
         if kind == "msg":
-            found.update(get_types_from_msg(text, f"{package}/msg/{stem}"))
+            _add(found, get_types_from_msg(text, f"{package}/msg/{stem}"))
             continue
         request, response = re.split(r"^---[ \t]*$", text, maxsplit=1, flags=re.MULTILINE)
-        found.update(get_types_from_msg(request, f"{package}/msg/{stem}Request"))
-        found.update(get_types_from_msg(response, f"{package}/msg/{stem}Response"))
-    store.register(found)
-    return store
+        _add(found, get_types_from_msg(request, f"{package}/msg/{stem}Request"))
+        _add(found, get_types_from_msg(response, f"{package}/msg/{stem}Response"))
+    return found
+
+
+def _add(fielddefs: dict[str, Any], new: Mapping[str, Any]) -> None:
+    """Enter the definitions of ``new`` that ``fielddefs`` lacks: a name keeps its first
+    definition, as in rosbags' stores. (Not ``Typestore.register``, which writes a rosbags
+    class per type, in time quadratic in a type's fields, that robomodel does not use.)"""
+    for name, definition in new.items():
+        fielddefs.setdefault(name, definition)
 
 
 def _ros1_key(name: str) -> str:
@@ -132,46 +142,30 @@ def _robomodel_class(ros1_key: str) -> Any:
         return None
 
 
-def _md5_text(store: Any, key: str) -> str:
-    """genmsg's md5 text of a message: constants, then fields with message types by md5."""
-    constants, fields = store.fielddefs[key]
-    lines = [f"{typ} {name}={value}" for name, typ, value in constants]
-    for name, desc in fields:
-        if name != PLACEHOLDER:
-            lines.append(f"{_md5_type(store, desc)} {name}")
-    return "\n".join(lines)
+_SPECS: dict[str, MessageSpec] = {}  # of _fielddefs()'s types: one definition per name
 
 
-def _md5_type(store: Any, desc: Any) -> str:
-    kind, rest = int(desc[0]), desc[1]
-    if kind == 1:
-        return str(rest[0])
-    if kind == 2:
-        if rest in (TIME, DURATION):
-            return "time" if rest == TIME else "duration"
-        return str(store.generate_msgdef(rest, ros_version=1)[1])
-    item, size = rest
-    inner = _md5_type(store, item)
-    if int(item[0]) == 2 and item[1] not in (TIME, DURATION):
-        return inner  # a message array is its md5, without brackets
-    return f"{inner}[{size if kind == 3 else ''}]"
+def _spec(key: str) -> MessageSpec:
+    """The spec of ROS 1 type ``key``: its md5sum and message_definition."""
+    return spec_from_definitions(key, _fielddefs(), cache=_SPECS)
 
 
 def _make_type(key: str, name: str) -> Ros1Type:
-    store = _store()
-    if key not in store.fielddefs:
+    defs = _fielddefs()
+    if key not in defs:
         # A type of the user's interface packages, or learned from a peer: ROS 1 gets it too.
         from robomodel.runtime.msg._resolver import definitions_outside
 
-        store.register(definitions_outside(key, store.fielddefs))
-    if key not in store.fielddefs:
+        _add(defs, definitions_outside(key, defs))
+    if key not in defs:
         raise Ros1TypeError(f"ROS 1 has no type {name}")
     cls = _robomodel_class(key)
     if cls is None:
         raise Ros1TypeError(f"robomodel has no class for the ROS 1 type {name}")
-    definition, md5 = store.generate_msgdef(key, ros_version=1)
-    encode, decode = make_codec(key, store.fielddefs, _robomodel_class, special_field)
-    return Ros1Type(name, md5, definition, cls, encode, decode, _fixed_size(store.fielddefs, key))
+    spec = _spec(key)
+    encode, decode = make_codec(key, defs, _robomodel_class, special_field)
+    fixed = _fixed_size(defs, key)
+    return Ros1Type(name, spec.md5, spec.ros1_definition, cls, encode, decode, fixed)
 
 
 def _fixed_size(fielddefs: Any, key: str) -> int | None:
@@ -249,17 +243,18 @@ def ros1_service_type(cls: type[Service]) -> Ros1ServiceType:
 
 def _make_service(cls: type[Service]) -> Ros1ServiceType:
     package, kind, name = cls.__typename__.split("/")
-    store = _store()
+    defs = _fielddefs()
     keys = [f"{package}/msg/{name}{part}" for part in ("Request", "Response")]
-    if kind == "srv" and any(k not in store.fielddefs for k in keys):
+    if kind == "srv" and any(k not in defs for k in keys):
         # A service of the user's interface packages: ROS 1 gets its halves too.
         from robomodel.runtime.msg._resolver import definitions_outside
 
         for key in keys:
-            store.register(definitions_outside(key, store.fielddefs))
-    if kind != "srv" or any(k not in store.fielddefs for k in keys):
+            _add(defs, definitions_outside(key, defs))
+    if kind != "srv" or any(k not in defs for k in keys):
         raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
     request, response = (_make_type(k, k.replace("/msg/", "/")) for k in keys)
-    text = _md5_text(store, keys[0]) + _md5_text(store, keys[1])
+    # genmsg: the md5 of the request's md5 text followed by the response's
+    text = _spec(keys[0]).md5_text + _spec(keys[1]).md5_text
     md5 = hashlib.md5(text.encode()).hexdigest()
     return Ros1ServiceType(f"{package}/{name}", md5, request, response, cls)
