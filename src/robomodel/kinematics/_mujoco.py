@@ -13,13 +13,13 @@ folded back with the same ``S`` map as the numpy path. The numpy path (:mod:`.fk
 
 from __future__ import annotations
 
-import importlib
 import threading
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from robomodel._mujoco_import import import_mujoco
 from robomodel.kinematics._compile import FIXED, PRISMATIC, REVOLUTE, CompiledModel
 
 if TYPE_CHECKING:
@@ -40,7 +40,7 @@ def load_mujoco() -> Any:
     global _module
     if _module is None:
         try:
-            _module = importlib.import_module("mujoco")
+            _module = import_mujoco()
         except ImportError:
             _module = _UNAVAILABLE
     return None if _module is _UNAVAILABLE else _module

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import importlib
 import logging
 from typing import Any
 
+from robomodel._mujoco_import import import_mujoco
 from robomodel.errors import MissingDependencyError
 
 __all__ = ["mujoco"]
@@ -29,7 +29,7 @@ def mujoco() -> Any:
     if _module is not None:  # called in the stepping loop: no import machinery after the first
         return _module
     try:
-        module = importlib.import_module("mujoco")
+        module = import_mujoco()
     except ImportError:
         raise MissingDependencyError("mujoco", "sim", "the simulator") from None
     if module.get_mju_user_warning() is None:
