@@ -223,7 +223,7 @@ class MultiThreadedExecutor(Executor):
             self._run(run)
             with self._lock:
                 queue = self._waiting.get(key)
-                if not queue:
+                if not queue or self._is_shutdown:
                     self._busy.discard(key)
                     self._waiting.pop(key, None)
                     return

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import inspect
+import threading
 from collections.abc import Callable, Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -200,10 +201,12 @@ class Node:
         yield from self._waitables
 
     def _dispatcher(
-        self, group: CallbackGroup, callback: Callable[..., Any]
+        self, group: CallbackGroup, callback: Callable[..., Any], *, coalesce: bool = False
     ) -> Callable[..., None]:
         """``callback`` as the bus calls it: handed to the spinning executor, which runs it as
-        ``group`` allows; a coroutine function runs as a :class:`Task`."""
+        ``group`` allows; a coroutine function runs as a :class:`Task`. With ``coalesce`` (a
+        timer) at most one call waits for its turn on another thread, as an rclpy timer is
+        ready once however many periods passed while its group was busy."""
         context = self._context
         if inspect.iscoroutinefunction(callback):
             coroutine_function = callback
@@ -211,12 +214,20 @@ class Node:
             def callback(*args: Any) -> None:
                 Task(coroutine_function, args, executor=context)()
 
+        waiting = threading.Lock()  # held while a call of a coalescing callback waits
+
+        def run_waiting() -> None:
+            waiting.release()
+            callback()
+
         def deliver(*args: Any) -> None:
             executor = context.dispatcher
             if executor is None:
                 callback(*args)
-            else:
+            elif not (coalesce and executor.hands_over):
                 executor.dispatch(group, functools.partial(callback, *args))
+            elif waiting.acquire(blocking=False):
+                executor.dispatch(group, run_waiting)
 
         return deliver
 
@@ -340,7 +351,7 @@ class Node:
         group = callback_group or self.default_callback_group
         timer = Timer(
             self.robomodel_node,
-            self._dispatcher(group, callback),
+            self._dispatcher(group, callback, coalesce=True),
             callback,
             group,
             round(timer_period_sec * 1e9),
