@@ -8,7 +8,6 @@ import time
 from pathlib import Path
 
 import pytest
-
 import rclpy
 from rclpy.clock import Clock, ClockType
 from rclpy.duration import Duration

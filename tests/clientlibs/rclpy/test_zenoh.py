@@ -15,10 +15,10 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-
 import rclpy
 from rclpy.action import ActionClient
 from rclpy.executors import MultiThreadedExecutor
+
 from tests.clientlibs.rclpy.test_tutorial_nodes import (
     AddTwoIntsClient,
     AddTwoIntsServer,

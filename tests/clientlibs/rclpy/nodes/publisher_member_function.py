@@ -17,9 +17,9 @@ class MinimalPublisher(Node):
 
     def timer_callback(self):
         msg = String()
-        msg.data = "Hello World: %d" % self.i
+        msg.data = "Hello World: %d" % self.i  # noqa: UP031 (the tutorial's own line)
         self.publisher_.publish(msg)
-        self.get_logger().info('Publishing: "%s"' % msg.data)
+        self.get_logger().info('Publishing: "%s"' % msg.data)  # noqa: UP031
         self.i += 1
 
 
