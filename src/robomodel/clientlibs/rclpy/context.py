@@ -25,17 +25,17 @@ _BUS_VARIABLE = "ROBOMODEL_RCLPY_BUS"  # robomodel's: "inproc" keeps the nodes i
 
 
 def _choose_rosidl_flavour() -> None:
-    """rclpy's message classes are rosidl's (the flavour chooser may not be installed)."""
+    """rclpy's message classes are rosidl's. Importing rclpy chooses that flavour already (the
+    flavour rule of :mod:`robomodel.clientlibs.messages`); an explicit chooser, where there is
+    one, is told too. ``ROBOMODEL_MESSAGE_FLAVOUR`` is left alone: child processes (a rospy
+    node a script starts) choose their own."""
     try:
         from robomodel.clientlibs import messages  # type: ignore[attr-defined, unused-ignore]
     except ImportError:
-        os.environ.setdefault("ROBOMODEL_MESSAGE_FLAVOUR", "rosidl")
         return
     choose = getattr(messages, "set_flavour", None)
     if callable(choose):
         choose("rosidl")
-    else:
-        os.environ.setdefault("ROBOMODEL_MESSAGE_FLAVOUR", "rosidl")
 
 
 class Context:
