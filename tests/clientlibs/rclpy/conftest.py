@@ -12,12 +12,16 @@ import pytest
 INTERFACES = Path(__file__).with_name("interfaces")
 
 
-def _forget_package_path() -> None:
+def _package_path(*paths: Path) -> None:
+    """The resolver's package path (``--package-path``), and the finder's memory of the
+    interface packages forgotten so that it looks again."""
     from robomodel.clientlibs import interfaces
     from robomodel.runtime.msg import _resolver
 
-    _resolver._package_files.cache_clear()  # the package path is read again
-    interfaces._all_type_names.cache_clear()
+    _resolver.configure(package_paths=paths)
+    forget = getattr(interfaces._all_type_names, "cache_clear", None)
+    if forget is not None:
+        forget()
 
 
 @pytest.fixture(scope="session")
@@ -25,13 +29,13 @@ def tutorial_interfaces() -> Iterator[Path]:
     """``tutorial_interfaces`` (Num, AddTwoInts, Fibonacci) importable as a user's package."""
     before = os.environ.get("ROS_PACKAGE_PATH")
     os.environ["ROS_PACKAGE_PATH"] = os.pathsep.join(p for p in (str(INTERFACES), before) if p)
-    _forget_package_path()
+    _package_path(INTERFACES)
     yield INTERFACES
     if before is None:
         os.environ.pop("ROS_PACKAGE_PATH", None)
     else:
         os.environ["ROS_PACKAGE_PATH"] = before
-    _forget_package_path()
+    _package_path()
 
 
 @pytest.fixture

@@ -1,6 +1,10 @@
 """``rclpy.action.ActionClient``: goals sent through rcl_action's services and topics
 (``<action>/_action/send_goal``, ``get_result``, ``cancel_goal``, ``feedback``, ``status``),
-with the node's clients and subscriptions, so its futures and callbacks behave as the node's."""
+with the node's clients and subscriptions, so its futures and callbacks behave as the node's.
+
+On the bus it speaks with robomodel's own classes of the action's types, as robomodel's action
+server does (so the in-process bus, which hands over objects, matches them); what user code
+receives, results and feedback, is of the classes the user's action type names."""
 
 from __future__ import annotations
 
@@ -10,7 +14,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy._support import interface
-from robomodel.clientlibs.rclpy.action._types import uuid_key
+from robomodel.clientlibs.rclpy.action._types import as_class, robomodel_action, uuid_key
 from robomodel.clientlibs.rclpy.qos import QoSProfile, qos_profile_action_status_default
 from robomodel.clientlibs.rclpy.task import Future
 
@@ -92,24 +96,27 @@ class ActionClient:
     ) -> None:
         self._node = node
         self._action_type = action_type
+        self._base = robomodel_action(action_type)
         self.callback_group = callback_group or node.default_callback_group
         base = node.resolve_topic_name(action_name) + "/_action"
-        self._cancel_type = interface("action_msgs.srv", "CancelGoal")
+        from robomodel.runtime.msg.types.action_msgs import CancelGoal, GoalStatusArray
+
+        self._cancel_type = CancelGoal
         group = self.callback_group
-        self._send_goal = node.create_client(action_type.SendGoal, f"{base}/send_goal",
+        self._send_goal = node.create_client(self._base.SendGoal, f"{base}/send_goal",
                                              callback_group=group)  # fmt: skip
-        self._get_result = node.create_client(action_type.GetResult, f"{base}/get_result",
+        self._get_result = node.create_client(self._base.GetResult, f"{base}/get_result",
                                               callback_group=group)  # fmt: skip
-        self._cancel = node.create_client(self._cancel_type, f"{base}/cancel_goal",
+        self._cancel = node.create_client(CancelGoal, f"{base}/cancel_goal",
                                           callback_group=group)  # fmt: skip
         self._feedback_callbacks: dict[bytes, Callable[[Any], None]] = {}
         self._handles: dict[bytes, ClientGoalHandle] = {}
         self._feedback_sub = node.create_subscription(
-            action_type.FeedbackMessage, f"{base}/feedback", self._on_feedback,
+            self._base.FeedbackMessage, f"{base}/feedback", self._on_feedback,
             feedback_sub_qos_profile or 10, callback_group=group,
         )  # fmt: skip
         self._status_sub = node.create_subscription(
-            interface("action_msgs.msg", "GoalStatusArray"), f"{base}/status", self._on_status,
+            GoalStatusArray, f"{base}/status", self._on_status,
             status_sub_qos_profile, callback_group=group,
         )  # fmt: skip
 
@@ -129,14 +136,13 @@ class ActionClient:
         return True
 
     # -- goals ---------------------------------------------------------------------------------
-    def _new_goal_id(self) -> Any:
-        uuid_class = type(self._action_type.SendGoal.Request().goal_id)
-        random = getattr(uuid_class, "random", None)
-        if callable(random):
-            return random()
-        import numpy as np
+    def _goal_id(self, goal_uuid: Any) -> Any:
+        """A goal id of robomodel's UUID class: ``goal_uuid`` (of any flavour) or a new one."""
+        from robomodel.runtime.msg.types.unique_identifier_msgs import UUID
 
-        return uuid_class(uuid=np.frombuffer(os.urandom(16), dtype=np.uint8).copy())
+        if goal_uuid is None:
+            return UUID(uuid=os.urandom(16))
+        return UUID(uuid=bytes(bytearray(goal_uuid.uuid)))
 
     def send_goal_async(
         self,
@@ -146,11 +152,11 @@ class ActionClient:
     ) -> Future:
         """Send ``goal``; a future of its :class:`ClientGoalHandle`. ``feedback_callback``
         receives each FeedbackMessage (``.goal_id``, ``.feedback``)."""
-        goal_id = goal_uuid if goal_uuid is not None else self._new_goal_id()
+        goal_id = self._goal_id(goal_uuid)
         key = uuid_key(goal_id)
         if feedback_callback is not None:
             self._feedback_callbacks[key] = feedback_callback
-        request = self._action_type.SendGoal.Request(goal_id=goal_id, goal=goal)
+        request = self._base.SendGoal.Request(goal_id=goal_id, goal=as_class(goal, self._base.Goal))
         answered = self._send_goal.call_async(request)
         future = Future(executor=self._node.context)
 
@@ -183,28 +189,53 @@ class ActionClient:
         return handle.get_result()
 
     def _get_result_async(self, handle: ClientGoalHandle) -> Future:
-        request = self._action_type.GetResult.Request(goal_id=handle.goal_id)
-        answered = self._get_result.call_async(request)
+        request = self._base.GetResult.Request(goal_id=handle.goal_id)
+        return self._converted(
+            self._get_result.call_async(request),
+            self._action_type.GetResult.Response,
+            lambda response: self._ended(handle, response),
+        )
+
+    def _ended(self, handle: ClientGoalHandle, response: Any) -> None:
+        handle._status = int(response.status)
         key = uuid_key(handle.goal_id)
 
-        def ended(done: Future) -> None:
-            if done.exception() is None:
-                handle._status = int(done.result().status)
+        def forget() -> None:
             self._feedback_callbacks.pop(key, None)
             self._handles.pop(key, None)
 
-        answered.add_done_callback(ended)
-        return answered
+        # after the feedback that waits in the group's queue (it came before the result)
+        self._node._dispatcher(self.callback_group, forget)()
 
     def _cancel_goal_async(self, handle: ClientGoalHandle) -> Future:
-        request = self._cancel_type.Request()
-        request.goal_info.goal_id = handle.goal_id
-        return self._cancel.call_async(request)
+        from robomodel.runtime.msg.types.action_msgs import GoalInfo
+
+        request = self._cancel_type.Request(goal_info=GoalInfo(goal_id=handle.goal_id))
+        flavoured = interface("action_msgs.srv", "CancelGoal").Response
+        return self._converted(self._cancel.call_async(request), flavoured)
+
+    def _converted(
+        self, answered: Future, cls: Any, seen: Callable[[Any], None] | None = None
+    ) -> Future:
+        """A future of ``answered``'s response as an instance of ``cls`` (the user's flavour)."""
+        future = Future(executor=self._node.context)
+
+        def convert(done: Future) -> None:
+            failure = done.exception()
+            if failure is not None:
+                future.set_exception(failure)
+                return
+            if seen is not None:
+                seen(done.result())
+            future.set_result(as_class(done.result(), cls))
+
+        answered.add_done_callback(convert)
+        return future
 
     def _on_feedback(self, message: Any) -> None:
         callback = self._feedback_callbacks.get(uuid_key(message.goal_id))
         if callback is not None:
-            callback(message)
+            callback(as_class(message, self._action_type.FeedbackMessage))
 
     def _on_status(self, message: Any) -> None:
         for status in message.status_list:
