@@ -75,6 +75,31 @@ def test_minimal_publisher_and_subscriber(
     subscriber.destroy_node()
 
 
+def test_sensor_data_qos_reaches_the_bus(rclpy_inproc: None) -> None:
+    from rclpy.qos import QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
+    from sensor_msgs.msg import LaserScan
+
+    from robomodel.runtime.qos import Durability, Reliability
+
+    node = rclpy.create_node("scanner")
+    scans: list[Any] = []
+    subscription = node.create_subscription(
+        LaserScan, "scan", scans.append, qos_profile_sensor_data
+    )
+    assert subscription.robomodel_subscription.qos.reliability == Reliability.BEST_EFFORT
+    assert subscription.robomodel_subscription.qos.depth == 5
+    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=1)
+    publisher = node.create_publisher(LaserScan, "scan", latched)
+    assert publisher.robomodel_publisher.qos.durability == Durability.TRANSIENT_LOCAL
+    publisher.publish(LaserScan(range_max=30.0))
+    rclpy.spin_once(node, timeout_sec=scaled(5))
+    assert [s.range_max for s in scans] == [30.0]
+    assert node.destroy_subscription(subscription) and not node.destroy_subscription(subscription)
+    publisher.publish(LaserScan(range_max=1.0))
+    rclpy.spin_once(node, timeout_sec=0.05)
+    assert len(scans) == 1  # a destroyed subscription hears no more
+
+
 def test_publish_refuses_another_type(rclpy_inproc: None) -> None:
     from std_msgs.msg import Int32, String
 

@@ -123,7 +123,7 @@ def talker_script(zenoh_rclpy: MultiThreadedExecutor) -> Iterator[str]:
     line = proc.stderr.readline()
     assert "[INFO] [" in line and '[lesson.minimal_publisher]: Publishing: "Hello World: 0"' in line
     yield domain
-    end_process(proc)
+    assert end_process(proc) == 0  # Ctrl-C: the tutorial's except clause, a clean exit
 
 
 def test_a_robomodel_node_hears_the_talker_script(
