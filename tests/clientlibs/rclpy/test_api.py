@@ -15,7 +15,7 @@ from rclpy.time import Time
 
 MODULES = [
     "rclpy", "rclpy.action", "rclpy.action.client", "rclpy.action.server", "rclpy.callback_groups",
-    "rclpy.client", "rclpy.clock", "rclpy.context", "rclpy.duration", "rclpy.exceptions",
+    "rclpy.client", "rclpy.clock", "rclpy.clock_type", "rclpy.context", "rclpy.duration", "rclpy.exceptions",
     "rclpy.executors", "rclpy.logging", "rclpy.node", "rclpy.parameter", "rclpy.publisher",
     "rclpy.qos", "rclpy.service", "rclpy.subscription", "rclpy.task", "rclpy.time",
     "rclpy.timer", "rclpy.utilities",

@@ -4,12 +4,12 @@
 
 from __future__ import annotations
 
-import enum
 import time as _time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy._support import not_offered
+from robomodel.clientlibs.rclpy.clock_type import ClockType
 from robomodel.clientlibs.rclpy.duration import Duration
 
 if TYPE_CHECKING:
@@ -18,13 +18,6 @@ if TYPE_CHECKING:
     from robomodel.runtime.clock import Clock as RobomodelClock
 
 __all__ = ["Clock", "ClockType", "JumpThreshold", "ROSClock"]
-
-
-class ClockType(enum.IntEnum):
-    UNINITIALIZED = 0
-    ROS_TIME = 1
-    SYSTEM_TIME = 2
-    STEADY_TIME = 3
 
 
 class JumpThreshold:

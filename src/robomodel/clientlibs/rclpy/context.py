@@ -9,14 +9,12 @@ import sys
 import threading
 import weakref
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.clientlibs.rclpy._arguments import RosArguments, parse_ros_arguments
 from robomodel.clientlibs.rclpy.exceptions import NotInitializedException
 
 if TYPE_CHECKING:
-    from robomodel.clientlibs.rclpy.executors import Executor
-    from robomodel.clientlibs.rclpy.node import Node
     from robomodel.runtime.context import Context as RobomodelContext
 
 __all__ = ["Context"]
@@ -38,6 +36,19 @@ def _choose_rosidl_flavour() -> None:
         choose("rosidl")
 
 
+class Dispatcher(Protocol):
+    """The executor spinning a context, as nodes hand it their callbacks
+    (:class:`~robomodel.clientlibs.rclpy.executors.Executor`)."""
+
+    hands_over: bool
+
+    def dispatch(self, group: Any, run: Callable[[], None]) -> None: ...
+
+
+class _Node(Protocol):
+    def destroy_node(self) -> None: ...
+
+
 class Context:
     """An rclpy context: ``init`` opens its robomodel context, ``shutdown`` closes it."""
 
@@ -47,10 +58,10 @@ class Context:
         self._shutdown = threading.Event()
         self._shutdown.set()
         self._callbacks: list[Callable[[], None]] = []
-        self._nodes: weakref.WeakSet[Node] = weakref.WeakSet()
+        self._nodes: weakref.WeakSet[_Node] = weakref.WeakSet()
         self._domain_id: int | None = None
         self.arguments = RosArguments()
-        self.dispatcher: Executor | None = None  # the multi-threaded executor spinning, if one
+        self.dispatcher: Dispatcher | None = None  # the multi-threaded executor spinning, if one
 
     # -- lifetime -----------------------------------------------------------------------------
     def init(
@@ -132,10 +143,10 @@ class Context:
         transport: Any = self.robomodel.transport
         return int(getattr(transport, "domain_id", self._domain_id or 0))
 
-    def track_node(self, node: Node) -> None:
+    def track_node(self, node: _Node) -> None:
         self._nodes.add(node)
 
-    def untrack_node(self, node: Node) -> None:
+    def untrack_node(self, node: _Node) -> None:
         self._nodes.discard(node)
 
     @property

@@ -43,7 +43,6 @@ from robomodel.runtime.params import ParameterError, SetResult
 
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.context import Context
-    from robomodel.clientlibs.rclpy.executors import Executor
 
 __all__ = ["Node"]
 
@@ -118,7 +117,7 @@ class Node:
         self.robomodel_node.parameters.add_set_callback(self._run_set_callbacks)
         self.robomodel_node.parameters.add_post_set_callback(self._run_post_set_callbacks)
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
-        self.executor: Executor | None = None
+        self.executor: Any = None  # the rclpy Executor the node was last added to
         self._publishers: list[Publisher] = []
         self._subscriptions: list[Subscription] = []
         self._services: list[Service] = []

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from robomodel.clientlibs.rclpy._support import interface
-from robomodel.clientlibs.rclpy.clock import ClockType
+from robomodel.clientlibs.rclpy.clock_type import ClockType
 from robomodel.clientlibs.rclpy.duration import Duration
 
 __all__ = ["Time"]
