@@ -6,7 +6,10 @@
    once with rclpy's (``create_publisher``/``create_subscription``, ``rclpy.spin``); the two
    alternate round by round. Both publishers are paced by the same loop, so the difference is
    what the face adds to a publish and a delivery.
-2. **Start-up**: a fresh process's time from its first line to a node on the bus,
+2. **Cost per message in one process** (the in-process bus, no Zenoh: what the face itself
+   adds, free of the scheduling noise of two processes): publish one message and spin once
+   until its callback ran, 20,000 times; the best of ``--rounds`` alternating runs.
+3. **Start-up**: a fresh process's time from its first line to a node on the bus,
    ``import rclpy; rclpy.init(); rclpy.create_node('n')`` against
    ``from robomodel.runtime import Context; Context('zenoh').create_node('n')`` (median of
    ``--starts`` alternating runs; interpreter start-up itself not counted).
@@ -126,6 +129,47 @@ def _pubsub_round(api: str, seconds: float, rate: float) -> dict[str, float]:
     return {"sent": sent, "received": len(latencies), "p50_us": q[49] * 1e6, "p99_us": q[98] * 1e6}
 
 
+def _inproc_us(api: str, count: int = 20_000) -> float:
+    """Microseconds per publish -> callback on the in-process bus."""
+    got = [0]
+
+    def on_msg(msg: Any) -> None:
+        got[0] += 1
+
+    if api == "rclpy":
+        import rclpy
+        from rclpy.executors import SingleThreadedExecutor
+        from std_msgs.msg import Header
+
+        rclpy.init(args=[], bus="inproc")
+        node = rclpy.create_node("bench_inproc")
+        node.create_subscription(Header, "bench", on_msg, 10)
+        publish = node.create_publisher(Header, "bench", 10).publish
+        spin = SingleThreadedExecutor().spin_once
+        msg: Any = Header()
+    else:
+        from robomodel.runtime import Context
+        from robomodel.runtime.msg.types.std_msgs import Header as RobomodelHeader
+
+        ctx = Context()
+        robomodel_node = ctx.create_node("bench_inproc")
+        robomodel_node.create_subscription(RobomodelHeader, "bench", on_msg, 10)
+        publish = robomodel_node.create_publisher(RobomodelHeader, "bench", 10).publish
+        spin = ctx.spin_once
+        msg = RobomodelHeader()
+    start = time.perf_counter()
+    for _ in range(count):
+        publish(msg)
+        spin(0.0)
+    elapsed = time.perf_counter() - start
+    assert got[0] == count, got
+    if api == "rclpy":
+        rclpy.shutdown()
+    else:
+        ctx.shutdown()
+    return elapsed / count * 1e6
+
+
 _START = {
     "rclpy": "import rclpy; rclpy.init(args=[], domain_id={d}); rclpy.create_node('n')",
     "robomodel": "from robomodel.runtime import Context; Context('zenoh', domain_id={d}).create_node('n')",
@@ -173,6 +217,13 @@ def main() -> None:
         ratio = med["rclpy"][key] / med["robomodel"][key]
         print(f"1 kHz pub->sub {key[:3]}: robomodel {med['robomodel'][key]:.0f} us, "
               f"rclpy {med['rclpy'][key]:.0f} us, ratio {ratio:.2f} (target <= 1.2)")  # fmt: skip
+    costs: dict[str, list[float]] = {"robomodel": [], "rclpy": []}
+    for _ in range(args.rounds):
+        for api in ("robomodel", "rclpy"):
+            costs[api].append(_inproc_us(api))
+    best = {api: min(values) for api, values in costs.items()}
+    print(f"in-process publish -> callback: robomodel {best['robomodel']:.1f} us, "
+          f"rclpy {best['rclpy']:.1f} us, ratio {best['rclpy'] / best['robomodel']:.2f}")  # fmt: skip
     starts: dict[str, list[float]] = {"robomodel": [], "rclpy": []}
     for _ in range(args.starts):
         for api in ("robomodel", "rclpy"):

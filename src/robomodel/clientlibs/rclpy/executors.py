@@ -172,6 +172,10 @@ class Executor:
         except Exception as exc:
             self._failure = exc
 
+    def fail(self, exc: Exception) -> None:
+        """A callback run on the spinning thread raised ``exc``: the spin call raises it."""
+        self._failure = exc
+
     def __enter__(self) -> Executor:
         return self
 

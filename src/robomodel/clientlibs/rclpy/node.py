@@ -221,9 +221,14 @@ class Node:
 
         def deliver(*args: Any) -> None:
             executor = context.dispatcher
-            if executor is None:
-                callback(*args)
-            elif not (coalesce and executor.hands_over):
+            if executor is None or not executor.hands_over:
+                try:  # on the spinning thread, at once (no hand-over to pay for)
+                    callback(*args)
+                except Exception as exc:
+                    if executor is None:
+                        raise
+                    executor.fail(exc)
+            elif not coalesce:
                 executor.dispatch(group, functools.partial(callback, *args))
             elif waiting.acquire(blocking=False):
                 executor.dispatch(group, run_waiting)
