@@ -18,7 +18,7 @@ MODULES = [
     "rclpy.client", "rclpy.clock", "rclpy.clock_type", "rclpy.context", "rclpy.duration", "rclpy.exceptions",
     "rclpy.executors", "rclpy.logging", "rclpy.node", "rclpy.parameter", "rclpy.publisher",
     "rclpy.qos", "rclpy.service", "rclpy.subscription", "rclpy.task", "rclpy.time",
-    "rclpy.timer", "rclpy.utilities",
+    "rclpy.timer", "rclpy.utilities", "rclpy.wait_for_message",
 ]  # fmt: skip
 
 
@@ -210,3 +210,18 @@ def test_the_node_s_clock_and_log_lines_on_rosout(rclpy_inproc: None) -> None:
 
     node.set_parameters([Parameter("use_sim_time", value=True)])
     assert node.get_clock().ros_time_is_active and node.get_clock().now().nanoseconds == 0
+
+
+def test_wait_for_message_and_a_logger_outliving_its_node(rclpy_inproc: None) -> None:
+    from rclpy.wait_for_message import wait_for_message
+    from std_msgs.msg import String
+
+    node = rclpy.create_node("waiter")
+    assert wait_for_message(String, node, "/quiet", time_to_wait=0.05) == (False, None)
+    publisher = node.create_publisher(String, "/said", 10)
+    node.create_timer(0.01, lambda: publisher.publish(String(data="here")))
+    ok, msg = wait_for_message(String, node, "/said", time_to_wait=5.0)
+    assert ok and msg.data == "here"
+    logger = node.get_logger()
+    node.destroy_node()
+    assert logger.info("after the node")  # printed; no /rosout to publish on any more

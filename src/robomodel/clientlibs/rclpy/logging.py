@@ -15,6 +15,7 @@ import os
 import sys
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -116,7 +117,9 @@ def get_logging_directory() -> str:
 class RcutilsLogger:
     """A logger by name (``get_logger("talker")``, ``node.get_logger()``)."""
 
-    def __init__(self, name: str = "", *, rosout: Rosout | None = None) -> None:
+    def __init__(
+        self, name: str = "", *, rosout: Callable[[], Rosout | None] | None = None
+    ) -> None:
         self.name = name
         self._rosout = rosout
         self._sites: dict[tuple[str, int, str], list[float]] = {}  # call site -> [last, count]
@@ -167,8 +170,9 @@ class RcutilsLogger:
                 state[0] = now
         text = str(message)
         _print(level, name or self.name, text, site)
-        if self._rosout is not None:
-            self._rosout.publish(int(level), text, file=site[0], function=site[2], line=site[1])
+        rosout = self._rosout() if self._rosout is not None else None  # None once destroyed
+        if rosout is not None:
+            rosout.publish(int(level), text, file=site[0], function=site[2], line=site[1])
         return True
 
     def debug(self, message: Any, **kwargs: Any) -> bool:

@@ -127,7 +127,8 @@ class Node:
         self._waitables: list[Any] = []
         self._clock = ROSClock(self.robomodel_node.get_clock)
         logger_name = fq_name.lstrip("/").replace("/", ".")
-        self._logger = RcutilsLogger(logger_name, rosout=self.robomodel_node.rosout)
+        robomodel_node = self.robomodel_node
+        self._logger = RcutilsLogger(logger_name, rosout=lambda: robomodel_node.rosout)
         self._destroyed = False
         self._context.track_node(self)
         if automatically_declare_parameters_from_overrides:
