@@ -132,8 +132,7 @@ def spin(node: Node, executor: Executor | None = None) -> None:
     chosen = _executor_for(node, executor)
     try:
         chosen.add_node(node)
-        while chosen.context.ok():
-            chosen.spin_once()
+        chosen.spin()
     finally:
         chosen.remove_node(node)
 
