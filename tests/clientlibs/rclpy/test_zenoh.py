@@ -25,8 +25,9 @@ from tests.clientlibs.rclpy.test_tutorial_nodes import (
     FibonacciActionServer,
     MinimalPublisher,
     MinimalSubscriber,
+    ParameterNode,
 )
-from tests.conftest import ROOT, end_process, unique_domain
+from tests.conftest import ROBOMODEL, ROOT, end_process, unique_domain
 from tests.timing import scale, scaled
 
 TALKER = Path(__file__).with_name("nodes") / "publisher_member_function.py"
@@ -106,6 +107,25 @@ def test_fibonacci_with_feedback_and_cancel(zenoh_rclpy: MultiThreadedExecutor) 
     assert ended.result().status == GoalStatus.STATUS_CANCELED
     node.destroy_node()
     server.destroy_node()
+
+
+def test_robomodel_param_reaches_the_node_s_parameters(zenoh_rclpy: MultiThreadedExecutor) -> None:
+    node = ParameterNode()
+    domain = str(zenoh_rclpy.context.get_domain_id())
+
+    def param(*args: str) -> str:
+        proc = subprocess.Popen([*ROBOMODEL, "param", *args, "--domain-id", domain],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)  # fmt: skip
+        _spin_until(zenoh_rclpy, lambda: proc.poll() is not None, f"robomodel param {args[0]}")
+        out, err = proc.communicate()
+        assert proc.returncode == 0, err
+        return out
+
+    assert param("get", "/minimal_param_node", "my_parameter") == "String value is: world\n"
+    assert "Set parameter successful" in param("set", "/minimal_param_node", "speed", "3.5")
+    assert node.get_parameter("speed").value == 3.5
+    assert node.seen[-1] == [("speed", 3.5)]  # the node's callback was asked
+    node.destroy_node()
 
 
 @pytest.fixture(scope="module")
