@@ -71,6 +71,13 @@ def test_minimal_publisher_and_subscriber(
     assert subscriber.count_publishers("/topic") == 1
     assert ("/topic", ["std_msgs/msg/String"]) in publisher.get_topic_names_and_types()
     assert {"minimal_publisher", "minimal_subscriber"} <= set(publisher.get_node_names())
+    [info] = subscriber.get_publishers_info_by_topic("topic")
+    assert (info.node_name, info.node_namespace, info.topic_type) == (
+        "minimal_publisher", "/", "std_msgs/msg/String"
+    )  # fmt: skip
+    assert info.qos_profile.depth == 10 and info.endpoint_type.name == "PUBLISHER"
+    [info] = publisher.get_subscriptions_info_by_topic("/topic")
+    assert info.node_name == "minimal_subscriber"
     publisher.destroy_node()
     subscriber.destroy_node()
 

@@ -508,11 +508,38 @@ class Node:
         info = self._graph().services.get(self.resolve_service_name(service_name))
         return len(info.clients) if info else 0
 
-    def get_publishers_info_by_topic(self, topic_name: str, no_mangle: bool = False) -> Any:
-        not_offered("Node.get_publishers_info_by_topic()", "use count_publishers()")
+    def _endpoints(self, topic_name: str, kind: str, no_mangle: bool) -> list[Any]:
+        from robomodel.clientlibs.rclpy.qos import from_robomodel
+        from robomodel.clientlibs.rclpy.topic_endpoint_info import (
+            TopicEndpointInfo,
+            TopicEndpointTypeEnum,
+        )
 
-    def get_subscriptions_info_by_topic(self, topic_name: str, no_mangle: bool = False) -> Any:
-        not_offered("Node.get_subscriptions_info_by_topic()", "use count_subscribers()")
+        name = topic_name if no_mangle else self.resolve_topic_name(topic_name)
+        info = self._graph().topics.get(name)
+        endpoint_type = (
+            TopicEndpointTypeEnum.PUBLISHER if kind == "publishers"
+            else TopicEndpointTypeEnum.SUBSCRIPTION
+        )  # fmt: skip
+        found = []
+        for endpoint in getattr(info, kind) if info else ():
+            namespace, _, node_name = endpoint.node.rpartition("/")
+            found.append(TopicEndpointInfo(
+                node_name=node_name, node_namespace=namespace or "/",
+                topic_type=endpoint.type_name, topic_type_hash=endpoint.type_hash,
+                endpoint_type=endpoint_type, qos_profile=from_robomodel(endpoint.qos),
+            ))  # fmt: skip
+        return found
+
+    def get_publishers_info_by_topic(self, topic_name: str, no_mangle: bool = False) -> list[Any]:
+        """The publishers of ``topic_name`` in the graph (``TopicEndpointInfo``)."""
+        return self._endpoints(topic_name, "publishers", no_mangle)
+
+    def get_subscriptions_info_by_topic(
+        self, topic_name: str, no_mangle: bool = False
+    ) -> list[Any]:
+        """The subscriptions of ``topic_name`` in the graph (``TopicEndpointInfo``)."""
+        return self._endpoints(topic_name, "subscribers", no_mangle)
 
     def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
         """Wait up to ``timeout`` seconds for a node to be in the graph."""

@@ -227,6 +227,34 @@ class QoSProfile:
         )
 
 
+def from_robomodel(qos: rm.QoSProfile) -> QoSProfile:
+    """robomodel's profile (a graph endpoint's) as rclpy's."""
+    return QoSProfile(
+        history=HistoryPolicy.KEEP_ALL
+        if qos.history == rm.History.KEEP_ALL
+        else HistoryPolicy.KEEP_LAST,
+        depth=qos.depth,
+        reliability=(
+            ReliabilityPolicy.BEST_EFFORT
+            if qos.reliability == rm.Reliability.BEST_EFFORT
+            else ReliabilityPolicy.RELIABLE
+        ),
+        durability=(
+            DurabilityPolicy.TRANSIENT_LOCAL
+            if qos.durability == rm.Durability.TRANSIENT_LOCAL
+            else DurabilityPolicy.VOLATILE
+        ),
+        deadline=Duration(nanoseconds=qos.deadline_ns or 0),
+        lifespan=Duration(nanoseconds=qos.lifespan_ns or 0),
+        liveliness=(
+            LivelinessPolicy.MANUAL_BY_TOPIC
+            if qos.liveliness == rm.Liveliness.MANUAL_BY_TOPIC
+            else LivelinessPolicy.AUTOMATIC
+        ),
+        liveliness_lease_duration=Duration(nanoseconds=qos.liveliness_lease_ns or 0),
+    )
+
+
 def _ns_or_none(value: Duration) -> int | None:
     """rmw's 0 and infinite durations are robomodel's None (infinite)."""
     return None if value.nanoseconds in (0, Infinite.nanoseconds) else value.nanoseconds
