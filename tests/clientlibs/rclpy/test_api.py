@@ -17,7 +17,7 @@ MODULES = [
     "rclpy", "rclpy.action", "rclpy.action.client", "rclpy.action.server", "rclpy.callback_groups",
     "rclpy.client", "rclpy.clock", "rclpy.clock_type", "rclpy.context", "rclpy.duration", "rclpy.exceptions",
     "rclpy.executors", "rclpy.logging", "rclpy.node", "rclpy.parameter", "rclpy.publisher",
-    "rclpy.qos", "rclpy.service", "rclpy.subscription", "rclpy.task", "rclpy.time",
+    "rclpy.qos", "rclpy.service", "rclpy.signals", "rclpy.subscription", "rclpy.task", "rclpy.time",
     "rclpy.timer", "rclpy.topic_endpoint_info", "rclpy.utilities", "rclpy.wait_for_message",
 ]  # fmt: skip
 
@@ -179,6 +179,11 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
             String, "t", 10
         ).assert_liveliness(),
     }
+    from rclpy.signals import SignalHandlerOptions
+
+    calls["rclpy.init(signal_handler_options=...) other than SignalHandlerOptions.NO"] = lambda: (
+        rclpy.init(signal_handler_options=SignalHandlerOptions.ALL)
+    )
     for name, call in calls.items():
         with pytest.raises(
             NotImplementedError,

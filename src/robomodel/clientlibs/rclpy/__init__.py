@@ -71,6 +71,13 @@ def init(
     ``bus`` is robomodel's: ``zenoh`` (default) or ``inproc`` (one process, for tests).
     Ctrl-C raises KeyboardInterrupt in the spinning thread, as rclpy without its handlers.
     """
+    if signal_handler_options is not None and int(signal_handler_options) != 0:
+        from robomodel.clientlibs.rclpy._support import not_offered
+
+        not_offered(
+            "rclpy.init(signal_handler_options=...) other than SignalHandlerOptions.NO",
+            "Ctrl-C raises KeyboardInterrupt",
+        )
     chosen = context or get_default_context()
     chosen.init(args, domain_id=domain_id, bus=bus)
     return InitContextManager(chosen)
