@@ -24,9 +24,10 @@ def _package_path(*paths: Path) -> None:
         forget()
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def tutorial_interfaces() -> Iterator[Path]:
-    """``tutorial_interfaces`` (Num, AddTwoInts, Fibonacci) importable as a user's package."""
+    """``tutorial_interfaces`` (Num, AddTwoInts, Fibonacci) importable as a user's package,
+    for one module: the processes other modules' tests start inherit no package path."""
     before = os.environ.get("ROS_PACKAGE_PATH")
     os.environ["ROS_PACKAGE_PATH"] = os.pathsep.join(p for p in (str(INTERFACES), before) if p)
     _package_path(INTERFACES)
