@@ -134,8 +134,11 @@ class Context:
 
     def _post(self, callback: Callable[[], None]) -> None:
         """Queue ``callback`` for whoever spins (what a :class:`~.task.Future` made with
-        ``executor=context`` runs its done callbacks with)."""
-        self.robomodel.executor.post(callback)
+        ``executor=context`` runs its done callbacks with); nothing once shut down, when no
+        executor will run anything again."""
+        robomodel = self._robomodel
+        if robomodel is not None:
+            robomodel.executor.post(callback)
 
     def wait_shutdown(self, timeout_s: float) -> bool:
         """Wait up to ``timeout_s`` for shutdown; True once shut down."""
