@@ -121,19 +121,35 @@ class Task(Future):
         self._args = args
         self._kwargs = kwargs or {}
         self._coroutine: Coroutine[Any, Any, Any] | None = None
-        self._running = threading.Lock()
+        self._turn = threading.Lock()  # guards the two flags below
+        self._running = False
+        self._again = False  # asked to run while running: run once more when done
 
     def executing(self) -> bool:
-        return self._running.locked()
+        return self._running
 
     def __call__(self) -> None:
-        """Run until the coroutine awaits something not done yet (or it ends)."""
-        if self.done() or not self._running.acquire(blocking=False):
-            return
+        """Run until the coroutine awaits something not done yet (or it ends). A call while
+        another thread runs it is not lost: that thread runs it once more (a future it awaits
+        may have completed in between)."""
+        with self._turn:
+            if self._running:
+                self._again = True
+                return
+            self._running = True
         try:
-            self._step()
-        finally:
-            self._running.release()
+            while True:
+                if not self.done():
+                    self._step()
+                with self._turn:  # the check and the end are one step: no call slips between
+                    if not self._again or self.done():
+                        self._running = self._again = False
+                        return
+                    self._again = False
+        except BaseException:
+            with self._turn:
+                self._running = False
+            raise
 
     def _step(self) -> None:
         if self._coroutine is None:
