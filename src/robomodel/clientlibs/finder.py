@@ -45,10 +45,42 @@ class _AliasLoader(_LoaderBase):
         self.target = target
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
+        if spec.submodule_search_locations is not None and not any(
+            isinstance(f, _SubmoduleAliasFinder) for f in sys.meta_path
+        ):
+            sys.meta_path.insert(0, _SubmoduleAliasFinder())
         return importlib.import_module(self.target)
 
     def exec_module(self, module: ModuleType) -> None:
         """Nothing: the target module ran when it was imported under its own name."""
+
+
+class _SubmoduleAliasFinder:
+    """First on ``sys.meta_path`` once an aliased package is imported: ``rclpy.node`` is then
+    ``robomodel.clientlibs.rclpy.node`` (one module object), never a second copy that Python's
+    path finder would load from the package's folder under the alias's name (two classes of
+    one name: an ``except rclpy.exceptions.X`` that misses the X robomodel raises). Only for
+    an alias whose top-level module is robomodel's, so a real ROS install still wins."""
+
+    def find_spec(
+        self,
+        fullname: str,
+        path: Sequence[str] | None,
+        target: ModuleType | None = None,
+    ) -> importlib.machinery.ModuleSpec | None:
+        top, dot, _ = fullname.partition(".")
+        if not dot or top not in ALIASED:
+            return None
+        parent = sys.modules.get(top)
+        if parent is None or not getattr(parent, "__name__", "").startswith(f"{_HOME}."):
+            return None
+        real = f"{_HOME}.{fullname}"
+        found = importlib.util.find_spec(real)
+        if found is None:
+            return None
+        return importlib.machinery.ModuleSpec(
+            fullname, _AliasLoader(real), is_package=found.submodule_search_locations is not None
+        )
 
 
 class ClientLibraryFinder:

@@ -8,8 +8,11 @@ and ``get_result``, the topic ``feedback`` (the action's FeedbackMessage) and th
 request follows rcl_action's rules (a zero goal id with a zero stamp cancels every goal, with a
 stamp those accepted at or before it).
 
-A server is given ``accept(goal) -> ActionGoal | None``; the returned object reports its
-status, result and feedback, and is polled at ``monitor_rate_hz`` on the node's executor.
+A server is given ``accept(goal) -> ActionGoal | None`` (``accept(goal, info)``, the goal's
+GoalInfo too, with ``accept_with_info=True``); the returned object reports its status, result
+and feedback, and is polled at ``monitor_rate_hz`` on the node's executor. A server that has
+feedback to send at once (rclpy's ``publish_feedback``) calls :meth:`ActionServer.publish_feedback`
+and :meth:`ActionServer.refresh` after a goal's status changed.
 """
 
 from __future__ import annotations
@@ -73,11 +76,13 @@ class ActionServer:
         node: Node,
         action_type: type[Action],
         name: str,
-        accept: Callable[[Any], ActionGoal | None],
+        accept: Callable[..., ActionGoal | None],
         *,
         monitor_rate_hz: float = 20.0,
+        accept_with_info: bool = False,
     ) -> None:
         self._node = node
+        self._accept_with_info = accept_with_info
         self._type = action_type
         self._accept = accept
         self._goals: collections.OrderedDict[bytes, _Goal] = collections.OrderedDict()
@@ -97,7 +102,13 @@ class ActionServer:
     # -- services ------------------------------------------------------------------------------
     def _send_goal(self, request: Any) -> Any:
         info = GoalInfo(request.goal_id, self._node.now())
-        goal = self._accept(request.goal) if _key(info) not in self._goals else None
+        goal = None
+        if _key(info) not in self._goals:
+            goal = (
+                self._accept(request.goal, info)
+                if self._accept_with_info
+                else self._accept(request.goal)
+            )
         if goal is not None:
             self._goals[_key(info)] = _Goal(info, goal)
             self._monitor()
@@ -136,6 +147,14 @@ class ActionServer:
         return CancelGoal_Response(CancelGoal_Response.ERROR_NONE, canceling)
 
     # -- monitoring ----------------------------------------------------------------------------
+    def publish_feedback(self, goal_id: Any, feedback: Message) -> None:
+        """Publish ``feedback`` of goal ``goal_id`` (a unique_identifier_msgs/UUID) now."""
+        self._feedback.publish(self._type.FeedbackMessage(goal_id, feedback))
+
+    def refresh(self) -> None:
+        """Look at the goals now (on the executor's thread), not at the next monitor tick."""
+        self._monitor()
+
     def _monitor(self) -> None:
         """Publish feedback of running goals; on any status change the status array, and the
         results of goals that ended."""

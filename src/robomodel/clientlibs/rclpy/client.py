@@ -1,0 +1,131 @@
+"""``rclpy.client.Client``: calls a service over robomodel's transport.
+
+``call_async`` sends the request from a thread of its own (the transport's call blocks) and
+completes the returned future from there; its done callbacks run on the executor. ``call``
+waits on the calling thread, so it works whether or not another thread spins (rclpy needs one
+spinning; robomodel does not).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import TYPE_CHECKING, Any
+
+from robomodel.clientlibs.rclpy._support import not_offered
+from robomodel.clientlibs.rclpy.task import Future
+
+if TYPE_CHECKING:
+    from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
+    from robomodel.clientlibs.rclpy.context import Context
+    from robomodel.clientlibs.rclpy.qos import QoSProfile
+    from robomodel.runtime.msg.schema import Service as ServiceType
+
+__all__ = ["Client"]
+
+_FOREVER_S = 24 * 3600.0  # rclpy's call_async has no timeout
+_POLL_S = 0.02
+
+
+class Client:
+    """A client of ``srv_name`` (made by ``Node.create_client``)."""
+
+    def __init__(
+        self,
+        context: Context,
+        node_name: str,
+        srv_type: type[ServiceType],
+        srv_name: str,
+        callback_group: CallbackGroup,
+        qos_profile: QoSProfile,
+    ) -> None:
+        self.context = context
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self.callback_group = callback_group
+        self.qos_profile = qos_profile
+        self._node_name = node_name
+        self._pending: set[Future] = set()
+        self._destroyed = False
+
+    @property
+    def service_name(self) -> str:
+        return self.srv_name
+
+    def _call(self, request: Any, timeout_s: float) -> Any:
+        if self._destroyed:
+            raise RuntimeError(f"client of '{self.srv_name}' was destroyed")
+        return self.context.robomodel.transport.call_service(
+            self.srv_name, self.srv_type, request, timeout_s, node=self._node_name
+        )
+
+    def call_async(self, request: Any) -> Future:
+        """Send ``request``; the future's result is the response (or the error it got)."""
+        future = Future(executor=self.context)
+        self._pending.add(future)
+
+        def work() -> None:
+            try:
+                response = self._call(request, _FOREVER_S)
+            except Exception as exc:
+                future.set_exception(exc)
+            else:
+                future.set_result(response)
+            finally:
+                self._pending.discard(future)
+
+        threading.Thread(target=work, name=f"rclpy call {self.srv_name}", daemon=True).start()
+        return future
+
+    def call(self, request: Any, timeout_sec: float | None = None) -> Any:
+        """The response; None if none came within ``timeout_sec`` (None: wait for ever)."""
+        from robomodel.runtime.transport.base import ServiceCallError
+
+        timeout_s = _FOREVER_S if timeout_sec is None else float(timeout_sec)
+        try:
+            return self._call(request, timeout_s)
+        except ServiceCallError as exc:
+            if "within" in str(exc) or "after" in str(exc):
+                return None
+            raise
+
+    def remove_pending_request(self, future: Future) -> None:
+        """Forget ``future``: it is cancelled (a late response is dropped)."""
+        self._pending.discard(future)
+        future.cancel()
+
+    def service_is_ready(self) -> bool:
+        """Whether a server of the service is in the graph now."""
+        graph = self.context.robomodel.transport.graph(0.0)
+        info = graph.services.get(self.srv_name)
+        return bool(info and info.servers)
+
+    def wait_for_service(self, timeout_sec: float | None = None) -> bool:
+        """Wait until a server is in the graph; False after ``timeout_sec`` (None: for ever)."""
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while self.context.ok():
+            if self.service_is_ready():
+                return True
+            if deadline is not None and time.monotonic() >= deadline:
+                return False
+            self.context.wait_shutdown(_POLL_S)
+        return False
+
+    def configure_introspection(self, *args: Any, **kwargs: Any) -> None:
+        not_offered("Client.configure_introspection()")
+
+    @property
+    def handle(self) -> Any:
+        not_offered("Client.handle (rcl's handle)")
+
+    def destroy(self) -> None:
+        self._destroyed = True
+        for future in list(self._pending):
+            future.cancel()
+        self._pending.clear()
+
+    def __enter__(self) -> Client:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.destroy()

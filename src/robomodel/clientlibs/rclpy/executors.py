@@ -1,0 +1,247 @@
+"""``rclpy.executors``: executors run the callbacks of nodes' subscriptions, timers, services,
+clients and actions.
+
+Every node of an rclpy context lives in the context's one robomodel context, whose executor
+receives the bus's deliveries (:mod:`robomodel.runtime.executor`); an rclpy executor spins it.
+:class:`SingleThreadedExecutor` runs each callback on the spinning thread.
+:class:`MultiThreadedExecutor` hands them to a thread pool, a mutually exclusive callback group's
+one at a time and in order, a reentrant group's in parallel. Deliveries to the nodes of a
+context reach whichever executor spins it (rclpy runs only those of the nodes added to it).
+"""
+
+from __future__ import annotations
+
+import collections
+import os
+import threading
+import time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING, Any
+
+from robomodel.clientlibs.rclpy.task import Future, Task
+from robomodel.clientlibs.rclpy.utilities import get_default_context
+
+if TYPE_CHECKING:
+    from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
+    from robomodel.clientlibs.rclpy.context import Context
+    from robomodel.clientlibs.rclpy.node import Node
+
+__all__ = [
+    "ConditionReachedException",
+    "Executor",
+    "ExternalShutdownException",
+    "MultiThreadedExecutor",
+    "ShutdownException",
+    "SingleThreadedExecutor",
+    "TimeoutException",
+]
+
+_SLICE_S = 0.05  # how often a wait for ever looks at shutdown and at its future
+
+
+class ExternalShutdownException(Exception):
+    """The context was shut down from outside (a signal, another thread)."""
+
+
+class ShutdownException(Exception):
+    """The executor was shut down."""
+
+
+class TimeoutException(Exception):
+    """Nothing became ready in time."""
+
+
+class ConditionReachedException(Exception):
+    """The future waited for is done."""
+
+
+def _noop() -> None:
+    """Posted to wake the spinning thread."""
+
+
+class Executor:
+    """The base of the executors (the interface is documented here)."""
+
+    hands_over = False  # whether callbacks run on other threads than the spinning one
+
+    def __init__(self, *, context: Context | None = None) -> None:
+        self._context = context or get_default_context()
+        self._nodes: list[Node] = []
+        self._nodes_lock = threading.Lock()
+        self._is_shutdown = False
+        self._failure: BaseException | None = None
+
+    @property
+    def context(self) -> Context:
+        return self._context
+
+    def _post(self, callback: Callable[[], None]) -> None:
+        """Queue ``callback`` on the context's executor (run by whoever spins)."""
+        self._context.robomodel.executor.post(callback)
+
+    def wake(self) -> None:
+        self._post(_noop)
+
+    def create_task(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> Task:
+        """Run ``callback(*args)`` (a function or a coroutine) at the next spin."""
+        task = Task(callback, args, kwargs, executor=self)
+        self._post(task)
+        return task
+
+    def add_node(self, node: Node) -> bool:
+        with self._nodes_lock:
+            if node in self._nodes:
+                return False
+            self._nodes.append(node)
+        node.executor = self
+        return True
+
+    def remove_node(self, node: Node) -> None:
+        with self._nodes_lock:
+            if node in self._nodes:
+                self._nodes.remove(node)
+
+    def get_nodes(self) -> list[Node]:
+        with self._nodes_lock:
+            return list(self._nodes)
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        """Stop spinning (the spin in progress returns); True when stopped."""
+        self._is_shutdown = True
+        if self._context.dispatcher is self:
+            self._context.dispatcher = None
+        if self._context.ok():
+            self.wake()
+        return True
+
+    def _spin_robomodel(self, timeout_s: float) -> int:
+        self._context.dispatcher = self
+        done = self._context.robomodel.executor.spin_once(timeout_s)
+        failure, self._failure = self._failure, None
+        if failure is not None:  # as rclpy: a callback's exception comes out of spin
+            raise failure
+        return done
+
+    def spin(self) -> None:
+        """Run callbacks until the context or this executor shuts down."""
+        while self._context.ok() and not self._is_shutdown:
+            self.spin_once(_SLICE_S)
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        """Run what is ready; if nothing is, wait up to ``timeout_sec`` (None: for ever) for
+        something and run it."""
+        if timeout_sec is not None and timeout_sec <= 0:
+            self._spin_robomodel(0.0)
+            return
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while self._context.ok() and not self._is_shutdown:
+            remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
+            if remaining <= 0:
+                return
+            if self._spin_robomodel(min(remaining, _SLICE_S)):
+                return
+
+    def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
+        """Spin until ``future`` is done, or ``timeout_sec`` passed (None: for ever)."""
+        if future._post is None:
+            future._set_executor(self)  # its completion now wakes this spin
+        deadline = (
+            None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
+        )
+        while self._context.ok() and not self._is_shutdown and not future.done():
+            remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
+            if remaining <= 0:
+                return
+            self._spin_robomodel(min(remaining, _SLICE_S))
+
+    def spin_once_until_future_complete(
+        self, future: Future, timeout_sec: float | None = None
+    ) -> None:
+        if future._post is None:
+            future._set_executor(self)
+        if not future.done():
+            self.spin_once(timeout_sec)
+
+    # -- callbacks (called on the spinning thread) ----------------------------------------
+    def dispatch(self, group: CallbackGroup, run: Callable[[], None]) -> None:
+        """Run ``run`` (a callback of ``group``) now; a multi-threaded executor hands it over.
+        An exception leaves the spin call, with its traceback, as in rclpy."""
+        try:
+            run()
+        except Exception as exc:
+            self._failure = exc
+
+    def fail(self, exc: Exception) -> None:
+        """A callback run on the spinning thread raised ``exc``: the spin call raises it."""
+        self._failure = exc
+
+    def __enter__(self) -> Executor:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.shutdown()
+
+
+class SingleThreadedExecutor(Executor):
+    """Runs every callback on the thread that spins, one at a time."""
+
+
+class MultiThreadedExecutor(Executor):
+    """Runs callbacks on ``num_threads`` threads (the CPU count by default), honouring callback
+    groups."""
+
+    hands_over = True
+
+    def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
+        super().__init__(context=context)
+        if num_threads is None:
+            num_threads = os.cpu_count() or 2
+        if num_threads <= 0:
+            raise ValueError("num_threads must be > 0")
+        self._num_threads = num_threads
+        self._pool = ThreadPoolExecutor(num_threads, thread_name_prefix="rclpy")
+        self._lock = threading.Lock()
+        self._waiting: dict[int, collections.deque[Callable[[], None]]] = {}
+        self._busy: set[int] = set()
+
+    @property
+    def num_threads(self) -> int:
+        return self._num_threads
+
+    def dispatch(self, group: CallbackGroup, run: Callable[[], None]) -> None:
+        if group.reentrant:
+            self._pool.submit(self._run, run)
+            return
+        key = id(group)
+        with self._lock:
+            if key in self._busy:
+                self._waiting.setdefault(key, collections.deque()).append(run)
+                return
+            self._busy.add(key)
+        self._pool.submit(self._drain, key, run)
+
+    def _drain(self, key: int, run: Callable[[], None]) -> None:
+        """Run the group's callbacks one after the other until none waits."""
+        while True:
+            self._run(run)
+            with self._lock:
+                queue = self._waiting.get(key)
+                if not queue or self._is_shutdown:
+                    self._busy.discard(key)
+                    self._waiting.pop(key, None)
+                    return
+                run = queue.popleft()
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        super().shutdown(timeout_sec)
+        self._pool.shutdown(wait=timeout_sec is None or timeout_sec > 0, cancel_futures=True)
+        return True
+
+    def _run(self, run: Callable[[], None]) -> None:
+        try:
+            run()
+        except Exception as exc:  # the spinning thread raises it, as rclpy's spin does
+            self._failure = exc
+            if self._context.ok():
+                self.wake()

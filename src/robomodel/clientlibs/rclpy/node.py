@@ -1,0 +1,776 @@
+"""``rclpy.node.Node``: an rclpy node that is a robomodel runtime node (``.robomodel_node``).
+
+Publishers, subscriptions, services, clients, timers, parameters, the clock and ``/rosout``
+logging are the robomodel node's, so the node is on the graph as any robomodel node is
+(rmw_zenoh's tokens on the Zenoh bus): ``ros2 node list``, ``ros2 topic echo`` and
+``ros2 param`` of a real ROS 2 install see it. Callbacks reach the executor that spins the
+context, which runs them as their callback groups allow.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any
+
+from robomodel.clientlibs.rclpy import exceptions as ex
+from robomodel.clientlibs.rclpy._arguments import parse_ros_arguments
+from robomodel.clientlibs.rclpy._support import interface, not_offered
+from robomodel.clientlibs.rclpy.callback_groups import (
+    CallbackGroup,
+    MutuallyExclusiveCallbackGroup,
+)
+from robomodel.clientlibs.rclpy.client import Client
+from robomodel.clientlibs.rclpy.clock import Clock, ROSClock
+from robomodel.clientlibs.rclpy.logging import RcutilsLogger
+from robomodel.clientlibs.rclpy.parameter import Parameter
+from robomodel.clientlibs.rclpy.parameter import _Type as ParameterType
+from robomodel.clientlibs.rclpy.publisher import Publisher
+from robomodel.clientlibs.rclpy.qos import (
+    QoSProfile,
+    as_robomodel_qos,
+    qos_profile_services_default,
+)
+from robomodel.clientlibs.rclpy.service import Service
+from robomodel.clientlibs.rclpy.subscription import Subscription
+from robomodel.clientlibs.rclpy.task import Task
+from robomodel.clientlibs.rclpy.timer import Rate, Timer
+from robomodel.clientlibs.rclpy.utilities import get_default_context
+from robomodel.runtime.names import NameError_
+from robomodel.runtime.params import ParameterError, SetResult
+
+if TYPE_CHECKING:
+    from robomodel.clientlibs.rclpy.context import Context
+
+__all__ = ["Node"]
+
+_SetCallback = Callable[[list[Parameter]], Any]
+
+
+def _int_qos(qos_profile: QoSProfile | int) -> QoSProfile:
+    return qos_profile if isinstance(qos_profile, QoSProfile) else QoSProfile(depth=qos_profile)
+
+
+class Node:
+    """A node (``Node("talker")``, or a subclass as the ROS 2 tutorials write them).
+
+    Args mirror rclpy's; ``cli_args`` are this node's ``--ros-args`` besides the context's.
+    ``start_parameter_services=False`` and ``enable_logger_service=True`` are not offered.
+    """
+
+    PARAM_REL_TOL = 1e-6
+
+    def __init__(
+        self,
+        node_name: str,
+        *,
+        context: Context | None = None,
+        cli_args: Sequence[str] | None = None,
+        namespace: str | None = None,
+        use_global_arguments: bool = True,
+        enable_rosout: bool = True,
+        rosout_qos_profile: Any = None,
+        start_parameter_services: bool = True,
+        parameter_overrides: Sequence[Parameter] | None = None,
+        allow_undeclared_parameters: bool = False,
+        automatically_declare_parameters_from_overrides: bool = False,
+        enable_logger_service: bool = False,
+    ) -> None:
+        if not start_parameter_services:
+            not_offered("Node(start_parameter_services=False)")
+        if enable_logger_service:
+            not_offered("Node(enable_logger_service=True)")
+        self._context = context or get_default_context()
+        robomodel_context = self._context.robomodel  # NotInitializedException before init
+        arguments = self._context.arguments if use_global_arguments else parse_ros_arguments([])
+        local = parse_ros_arguments(list(cli_args or []))
+        name = local.node_name(arguments.node_name(node_name))
+        namespace = local.namespace(arguments.namespace(namespace, node_name), node_name)
+        remappings = {**arguments.remappings(node_name), **local.remappings(node_name)}
+        from robomodel.runtime.names import fully_qualified_node_name, validate_namespace
+
+        try:
+            fq_name = fully_qualified_node_name(name, namespace or "/")
+        except NameError_ as exc:
+            raise ex.InvalidNamespaceException(str(exc)) from None
+        overrides = {**arguments.overrides(fq_name), **local.overrides(fq_name)}
+        overrides.update({p.name: p.value for p in parameter_overrides or ()})
+        try:
+            self.robomodel_node = robomodel_context.create_node(
+                name,
+                validate_namespace(namespace or "/"),
+                parameters=overrides,
+                remappings=remappings,
+                allow_undeclared_parameters=allow_undeclared_parameters,
+                enable_rosout=enable_rosout and arguments.rosout and local.rosout,
+            )
+        except NameError_ as exc:
+            raise ex.InvalidNodeNameException(str(exc)) from None
+        self._overrides = overrides
+        self._allow_undeclared = allow_undeclared_parameters
+        self._unset: dict[str, ParameterType] = {}  # declared with a type or none, no value
+        self._descriptors: dict[str, Any] = {}
+        self._set_callbacks: list[_SetCallback] = []
+        self._post_set_callbacks: list[Callable[[list[Parameter]], None]] = []
+        self.robomodel_node.parameters.add_set_callback(self._run_set_callbacks)
+        self.robomodel_node.parameters.add_post_set_callback(self._run_post_set_callbacks)
+        self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
+        self.executor: Any = None  # the rclpy Executor the node was last added to
+        self._publishers: list[Publisher] = []
+        self._subscriptions: list[Subscription] = []
+        self._services: list[Service] = []
+        self._clients: list[Client] = []
+        self._timers: list[Timer] = []
+        self._guards: list[Any] = []
+        self._waitables: list[Any] = []
+        self._clock = ROSClock(self.robomodel_node.get_clock)
+        logger_name = fq_name.lstrip("/").replace("/", ".")
+        robomodel_node = self.robomodel_node
+        self._logger = RcutilsLogger(logger_name, rosout=lambda: robomodel_node.rosout)
+        self._destroyed = False
+        self._context.track_node(self)
+        if automatically_declare_parameters_from_overrides:
+            for pname, value in overrides.items():
+                if not self.has_parameter(pname):
+                    self.declare_parameter(pname, value)
+
+    # -- names and context ------------------------------------------------------------------
+    @property
+    def context(self) -> Context:
+        return self._context
+
+    @property
+    def handle(self) -> Any:
+        not_offered("Node.handle (rcl's handle)")
+
+    def get_name(self) -> str:
+        return self.robomodel_node.name
+
+    def get_namespace(self) -> str:
+        return self.robomodel_node.namespace
+
+    def get_fully_qualified_name(self) -> str:
+        return self.robomodel_node.fully_qualified_name
+
+    def get_logger(self) -> RcutilsLogger:
+        return self._logger
+
+    def get_clock(self) -> ROSClock:
+        return self._clock
+
+    def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str:
+        from robomodel.runtime.names import expand_topic_name
+
+        node = self.robomodel_node
+        if only_expand:
+            return expand_topic_name(topic, node.name, node.namespace)
+        return node.resolve_topic_name(topic)
+
+    def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
+        return self.resolve_topic_name(service, only_expand=only_expand)
+
+    # -- entities ----------------------------------------------------------------------------
+    @property
+    def publishers(self) -> Iterator[Publisher]:
+        yield from self._publishers
+
+    @property
+    def subscriptions(self) -> Iterator[Subscription]:
+        yield from self._subscriptions
+
+    @property
+    def services(self) -> Iterator[Service]:
+        yield from self._services
+
+    @property
+    def clients(self) -> Iterator[Client]:
+        yield from self._clients
+
+    @property
+    def timers(self) -> Iterator[Timer]:
+        yield from self._timers
+
+    @property
+    def guards(self) -> Iterator[Any]:
+        yield from self._guards
+
+    @property
+    def waitables(self) -> Iterator[Any]:
+        yield from self._waitables
+
+    def _dispatcher(
+        self, group: CallbackGroup, callback: Callable[..., Any], *, coalesce: bool = False
+    ) -> Callable[..., None]:
+        """``callback`` as the bus calls it: handed to the spinning executor, which runs it as
+        ``group`` allows; a coroutine function runs as a :class:`Task`. With ``coalesce`` (a
+        timer) at most one call waits for its turn on another thread, as an rclpy timer is
+        ready once however many periods passed while its group was busy."""
+        context = self._context
+        if inspect.iscoroutinefunction(callback):
+            coroutine_function = callback
+
+            def callback(*args: Any) -> None:
+                Task(coroutine_function, args, executor=context)()
+
+        waiting = threading.Lock()  # held while a call of a coalescing callback waits
+
+        def run_waiting() -> None:
+            waiting.release()
+            callback()
+
+        def deliver(*args: Any) -> None:
+            executor = context.dispatcher
+            if executor is None or not executor.hands_over:
+                try:  # on the spinning thread, at once (no hand-over to pay for)
+                    callback(*args)
+                except Exception as exc:
+                    if executor is None:
+                        raise
+                    executor.fail(exc)
+            elif not coalesce:
+                executor.dispatch(group, functools.partial(callback, *args))
+            elif waiting.acquire(blocking=False):
+                executor.dispatch(group, run_waiting)
+
+        return deliver
+
+    def create_publisher(
+        self,
+        msg_type: Any,
+        topic: str,
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: Any = None,
+        qos_overriding_options: Any = None,
+        publisher_class: Any = None,
+    ) -> Publisher:
+        """Publish ``msg_type`` on ``topic`` (relative names go in the node's namespace)."""
+        if publisher_class is not None:
+            not_offered("create_publisher(publisher_class=...)")
+        profile = _int_qos(qos_profile)
+        publisher = Publisher(
+            self.robomodel_node.create_publisher(msg_type, topic, as_robomodel_qos(qos_profile)),
+            profile,
+        )
+        self._publishers.append(publisher)
+        return publisher
+
+    def create_subscription(
+        self,
+        msg_type: Any,
+        topic: str,
+        callback: Callable[[Any], Any],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: Any = None,
+        qos_overriding_options: Any = None,
+        raw: bool = False,
+    ) -> Subscription:
+        """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here)."""
+        if raw:
+            not_offered("create_subscription(raw=True)")
+        if _required_arguments(callback) > 1:
+            not_offered("a subscription callback taking (msg, message_info)")
+        group = callback_group or self.default_callback_group
+        deliver = self._dispatcher(group, callback)
+        handle = self.robomodel_node.create_subscription(
+            msg_type, topic, deliver, as_robomodel_qos(qos_profile)
+        )
+        subscription = Subscription(handle, callback, group, _int_qos(qos_profile))
+        group.add_entity(subscription)
+        self._subscriptions.append(subscription)
+        return subscription
+
+    def create_service(
+        self,
+        srv_type: Any,
+        srv_name: str,
+        callback: Callable[[Any, Any], Any],
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+    ) -> Service:
+        """Answer ``srv_name`` with ``callback(request, response) -> response``."""
+        group = callback_group or self.default_callback_group
+        context = self._context
+
+        def handle(request: Any) -> Any:
+            executor = context.dispatcher
+            if executor is None or not executor.hands_over:
+                return callback(request, srv_type.Response())
+            from robomodel.runtime.transport.base import Deferred
+
+            deferred = Deferred()
+
+            def run() -> None:
+                response = callback(request, srv_type.Response())
+                context._post(lambda: deferred.resolve(response))
+
+            executor.dispatch(group, run)
+            return deferred
+
+        server = self.robomodel_node.create_service(srv_type, srv_name, handle)
+        service = Service(server, callback, group, qos_profile)
+        group.add_entity(service)
+        self._services.append(service)
+        return service
+
+    def create_client(
+        self,
+        srv_type: Any,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+    ) -> Client:
+        group = callback_group or self.default_callback_group
+        node = self.robomodel_node
+        node.create_client(srv_type, srv_name)  # enters the type in the node's type cache
+        client = Client(
+            self._context,
+            node.fully_qualified_name,
+            srv_type,
+            node.resolve_topic_name(srv_name),
+            group,
+            qos_profile,
+        )
+        group.add_entity(client)
+        self._clients.append(client)
+        return client
+
+    def create_timer(
+        self,
+        timer_period_sec: float,
+        callback: Callable[[], Any],
+        callback_group: CallbackGroup | None = None,
+        clock: Clock | None = None,
+        autostart: bool = True,
+    ) -> Timer:
+        """Call ``callback()`` every ``timer_period_sec`` seconds of the node's clock."""
+        if clock is not None and clock is not self._clock:
+            not_offered("create_timer(clock=...) with a clock other than the node's")
+        group = callback_group or self.default_callback_group
+        timer = Timer(
+            self.robomodel_node,
+            self._dispatcher(group, callback, coalesce=True),
+            callback,
+            group,
+            round(timer_period_sec * 1e9),
+            self._clock,
+            autostart=autostart,
+        )
+        group.add_entity(timer)
+        self._timers.append(timer)
+        return timer
+
+    def create_rate(self, frequency: float, clock: Clock | None = None) -> Rate:
+        return Rate(frequency, clock or self._clock, self._context)
+
+    def create_guard_condition(self, *args: Any, **kwargs: Any) -> Any:
+        not_offered("Node.create_guard_condition()")
+
+    def add_waitable(self, waitable: Any) -> None:
+        not_offered("Node.add_waitable()")
+
+    def destroy_publisher(self, publisher: Publisher) -> bool:
+        return self._destroy(self._publishers, publisher)
+
+    def destroy_subscription(self, subscription: Subscription) -> bool:
+        return self._destroy(self._subscriptions, subscription)
+
+    def destroy_service(self, service: Service) -> bool:
+        return self._destroy(self._services, service)
+
+    def destroy_client(self, client: Client) -> bool:
+        return self._destroy(self._clients, client)
+
+    def destroy_timer(self, timer: Timer) -> bool:
+        return self._destroy(self._timers, timer)
+
+    def destroy_rate(self, rate: Rate) -> bool:
+        rate.destroy()
+        return True
+
+    @staticmethod
+    def _destroy(entities: list[Any], entity: Any) -> bool:
+        if entity not in entities:
+            return False
+        entities.remove(entity)
+        entity.destroy()
+        return True
+
+    def destroy_node(self) -> None:
+        """Destroy every entity of the node and leave the graph."""
+        if self._destroyed:
+            return
+        self._destroyed = True
+        for client in self._clients:
+            client.destroy()
+        for timer in self._timers:
+            timer.destroy()
+        self._publishers.clear()
+        self._subscriptions.clear()
+        self._services.clear()
+        self._clients.clear()
+        self._timers.clear()
+        self._context.untrack_node(self)
+        if self._context.ok():
+            context = self._context.robomodel
+            if self.robomodel_node in context.nodes:
+                context.nodes.remove(self.robomodel_node)
+            self.robomodel_node.destroy()
+
+    def __enter__(self) -> Node:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.destroy_node()
+
+    # -- graph -------------------------------------------------------------------------------
+    def _graph(self) -> Any:
+        return self._context.robomodel.transport.graph(0.0)
+
+    def get_node_names(self) -> list[str]:
+        return [name for name, _ in self.get_node_names_and_namespaces()]
+
+    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        out = []
+        for fq_name in sorted(self._graph().nodes):
+            namespace, _, name = fq_name.rpartition("/")
+            out.append((name, namespace or "/"))
+        return out
+
+    def get_fully_qualified_node_names(self) -> list[str]:
+        return sorted(self._graph().nodes)
+
+    def get_topic_names_and_types(self, no_demangle: bool = False) -> list[tuple[str, list[str]]]:
+        topics = self._graph().topics
+        return [(name, sorted(info.types)) for name, info in sorted(topics.items())]
+
+    def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        services = self._graph().services
+        return [(name, sorted(info.types)) for name, info in sorted(services.items())]
+
+    def _by_node(
+        self, node_name: str, node_namespace: str, kind: str
+    ) -> list[tuple[str, list[str]]]:
+        from robomodel.runtime.names import fully_qualified_node_name
+
+        wanted = fully_qualified_node_name(node_name, node_namespace)
+        graph = self._graph()
+        if wanted not in graph.nodes:
+            raise ex.InvalidNodeNameException(f"node '{wanted}' is not in the graph")
+        found: dict[str, set[str]] = {}
+        table = graph.services if kind in ("servers", "clients") else graph.topics
+        for name, info in table.items():
+            for endpoint in getattr(info, kind):
+                if endpoint.node == wanted:
+                    found.setdefault(name, set()).add(endpoint.type_name)
+        return [(name, sorted(types)) for name, types in sorted(found.items())]
+
+    def get_publisher_names_and_types_by_node(
+        self, node_name: str, node_namespace: str, no_demangle: bool = False
+    ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, "publishers")
+
+    def get_subscriber_names_and_types_by_node(
+        self, node_name: str, node_namespace: str, no_demangle: bool = False
+    ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, "subscribers")
+
+    def get_service_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, "servers")
+
+    def get_client_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, "clients")
+
+    def count_publishers(self, topic_name: str) -> int:
+        info = self._graph().topics.get(self.resolve_topic_name(topic_name))
+        return len(info.publishers) if info else 0
+
+    def count_subscribers(self, topic_name: str) -> int:
+        info = self._graph().topics.get(self.resolve_topic_name(topic_name))
+        return len(info.subscribers) if info else 0
+
+    def count_services(self, service_name: str) -> int:
+        info = self._graph().services.get(self.resolve_service_name(service_name))
+        return len(info.servers) if info else 0
+
+    def count_clients(self, service_name: str) -> int:
+        info = self._graph().services.get(self.resolve_service_name(service_name))
+        return len(info.clients) if info else 0
+
+    def _endpoints(self, topic_name: str, kind: str, no_mangle: bool) -> list[Any]:
+        from robomodel.clientlibs.rclpy.qos import from_robomodel
+        from robomodel.clientlibs.rclpy.topic_endpoint_info import (
+            TopicEndpointInfo,
+            TopicEndpointTypeEnum,
+        )
+
+        name = topic_name if no_mangle else self.resolve_topic_name(topic_name)
+        info = self._graph().topics.get(name)
+        endpoint_type = (
+            TopicEndpointTypeEnum.PUBLISHER if kind == "publishers"
+            else TopicEndpointTypeEnum.SUBSCRIPTION
+        )  # fmt: skip
+        found = []
+        for endpoint in getattr(info, kind) if info else ():
+            namespace, _, node_name = endpoint.node.rpartition("/")
+            found.append(TopicEndpointInfo(
+                node_name=node_name, node_namespace=namespace or "/",
+                topic_type=endpoint.type_name, topic_type_hash=endpoint.type_hash,
+                endpoint_type=endpoint_type, qos_profile=from_robomodel(endpoint.qos),
+            ))  # fmt: skip
+        return found
+
+    def get_publishers_info_by_topic(self, topic_name: str, no_mangle: bool = False) -> list[Any]:
+        """The publishers of ``topic_name`` in the graph (``TopicEndpointInfo``)."""
+        return self._endpoints(topic_name, "publishers", no_mangle)
+
+    def get_subscriptions_info_by_topic(
+        self, topic_name: str, no_mangle: bool = False
+    ) -> list[Any]:
+        """The subscriptions of ``topic_name`` in the graph (``TopicEndpointInfo``)."""
+        return self._endpoints(topic_name, "subscribers", no_mangle)
+
+    def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
+        """Wait up to ``timeout`` seconds for a node to be in the graph."""
+        import time
+
+        deadline = time.monotonic() + timeout
+        while self._context.ok():
+            if fully_qualified_node_name in self._graph().nodes:
+                return True
+            if time.monotonic() >= deadline:
+                return False
+            self._context.wait_shutdown(0.02)
+        return False
+
+    # -- parameters --------------------------------------------------------------------------
+    def declare_parameter(
+        self,
+        name: str,
+        value: Any = None,
+        descriptor: Any = None,
+        ignore_override: bool = False,
+    ) -> Parameter:
+        """Declare ``name`` with ``value`` (a value, or a ``Parameter.Type`` for a parameter
+        without one yet); an override (``-p``, a file, ``parameter_overrides``) wins."""
+        store = self.robomodel_node.parameters
+        if store.has(name) and not (self._allow_undeclared and name not in self._descriptors):
+            raise ex.ParameterAlreadyDeclaredException([name])
+        if name in self._unset:
+            raise ex.ParameterAlreadyDeclaredException([name])
+        if isinstance(value, Parameter):
+            value = value.value
+        if descriptor is None:
+            descriptor = interface("rcl_interfaces.msg", "ParameterDescriptor")()
+        wanted_type: ParameterType | None = value if isinstance(value, Parameter.Type) else None
+        if wanted_type is not None:
+            value = None
+        if ignore_override or name not in self._overrides:
+            if value is None:
+                self._unset[name] = wanted_type or Parameter.Type.NOT_SET
+                self._descriptors[name] = descriptor
+                return Parameter(name, Parameter.Type.NOT_SET, None)
+            initial = value
+        else:
+            initial = self._overrides[name]
+            if value is None:
+                value = initial
+        _plain = Parameter(name, value=value).value
+        self._check_range(name, descriptor, initial)
+        try:
+            if ignore_override and name in self._overrides:
+                got = store.declare(name, _plain, description=descriptor.description,
+                                    read_only=bool(descriptor.read_only))  # fmt: skip
+                store.set({name: _plain})
+            else:
+                got = self.robomodel_node.declare_parameter(
+                    name, _plain, description=descriptor.description,
+                    read_only=bool(descriptor.read_only),
+                )  # fmt: skip
+        except ParameterError as exc:
+            raise ex.InvalidParameterTypeException(Parameter(name, value=value), str(exc)) from None
+        self._descriptors[name] = descriptor
+        return Parameter(name, value=got)
+
+    def declare_parameters(
+        self, namespace: str, parameters: Sequence[tuple[Any, ...]], ignore_override: bool = False
+    ) -> list[Parameter]:
+        """Declare several: tuples of (name,), (name, value) or (name, value, descriptor)."""
+        declared = []
+        for entry in parameters:
+            name = f"{namespace}.{entry[0]}" if namespace else entry[0]
+            value = entry[1] if len(entry) > 1 else None
+            descriptor = entry[2] if len(entry) > 2 else None
+            declared.append(self.declare_parameter(name, value, descriptor, ignore_override))
+        return declared
+
+    def undeclare_parameter(self, name: str) -> None:
+        not_offered("Node.undeclare_parameter()")
+
+    def has_parameter(self, name: str) -> bool:
+        return name in self._unset or self.robomodel_node.parameters.has(name)
+
+    def get_parameter(self, name: str) -> Parameter:
+        if name in self._unset:
+            if self._unset[name] != Parameter.Type.NOT_SET:
+                raise ex.ParameterUninitializedException(name)
+            return Parameter(name, Parameter.Type.NOT_SET, None)
+        store = self.robomodel_node.parameters
+        if not store.has(name):
+            if self._allow_undeclared:
+                return Parameter(name, Parameter.Type.NOT_SET, None)
+            raise ex.ParameterNotDeclaredException(name)
+        return Parameter(name, value=store.get(name))
+
+    def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
+        if alternative_value is None:
+            alternative_value = Parameter(name, Parameter.Type.NOT_SET)
+        if not self.has_parameter(name) or name in self._unset:
+            return alternative_value
+        return self.get_parameter(name)
+
+    def get_parameters(self, names: Sequence[str]) -> list[Parameter]:
+        return [self.get_parameter(name) for name in names]
+
+    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        """Parameters under ``prefix.``, keyed by the rest of their name."""
+        start = f"{prefix}." if prefix else ""
+        store = self.robomodel_node.parameters
+        return {n[len(start) :]: Parameter(n, value=store.get(n)) for n in store.names(start)}
+
+    def describe_parameter(self, name: str) -> Any:
+        if not self.has_parameter(name):
+            raise ex.ParameterNotDeclaredException(name)
+        descriptor = (
+            self._descriptors.get(name) or interface("rcl_interfaces.msg", "ParameterDescriptor")()
+        )
+        descriptor.name = name
+        descriptor.type = int(self.get_parameter(name).type_) if name not in self._unset else 0
+        return descriptor
+
+    def describe_parameters(self, names: Sequence[str]) -> list[Any]:
+        return [self.describe_parameter(name) for name in names]
+
+    def set_descriptor(self, name: str, descriptor: Any, alternative_value: Any = None) -> Any:
+        not_offered("Node.set_descriptor()")
+
+    def set_parameters(self, parameter_list: Sequence[Parameter]) -> list[Any]:
+        """Set each parameter on its own; one ``SetParametersResult`` per parameter."""
+        return [self._set([parameter]) for parameter in parameter_list]
+
+    def set_parameters_atomically(self, parameter_list: Sequence[Parameter]) -> Any:
+        """Set all or none; one ``SetParametersResult``."""
+        return self._set(list(parameter_list))
+
+    def _set(self, parameters: list[Parameter]) -> Any:
+        result_class = interface("rcl_interfaces.msg", "SetParametersResult")
+        changes: dict[str, Any] = {}
+        for parameter in parameters:
+            name = parameter.name
+            if not self.has_parameter(name) and not self._allow_undeclared:
+                raise ex.ParameterNotDeclaredException(name)
+            descriptor = self._descriptors.get(name)
+            if descriptor is not None and descriptor.read_only:
+                raise ex.ParameterImmutableException(name)
+            wanted = self._unset.get(name)
+            if wanted not in (None, Parameter.Type.NOT_SET) and parameter.type_ != wanted:
+                return result_class(successful=False, reason=(
+                    f"Wrong parameter type, expected '{wanted.name}' got '{parameter.type_.name}'"
+                ))  # fmt: skip
+            reason = self._range_error(name, descriptor, parameter.value)
+            if reason:
+                return result_class(successful=False, reason=reason)
+            changes[name] = parameter.value
+        store = self.robomodel_node.parameters
+        for name in [n for n in changes if n in self._unset]:  # their first value declares them
+            callbacks_ok = self._run_set_callbacks({name: changes[name]})
+            if not callbacks_ok.successful:
+                return result_class(successful=False, reason=callbacks_ok.reason)
+            descriptor = self._descriptors.get(name)
+            store.declare(
+                name, changes.pop(name), description=getattr(descriptor, "description", "")
+            )
+            del self._unset[name]
+            self._run_post_set_callbacks({name: store.get(name)})
+        if not changes:
+            return result_class(successful=True, reason="")
+        result = self.robomodel_node.set_parameters(changes)
+        return result_class(successful=result.successful, reason=result.reason)
+
+    def _check_range(self, name: str, descriptor: Any, value: Any) -> None:
+        reason = self._range_error(name, descriptor, value)
+        if reason:
+            raise ex.InvalidParameterValueException(name, value, reason)
+
+    def _range_error(self, name: str, descriptor: Any, value: Any) -> str:
+        """Why ``value`` is outside the descriptor's integer or floating point range, or ""."""
+        if descriptor is None or isinstance(value, bool):
+            return ""
+        for kind, ranges in (("integer", descriptor.integer_range),
+                             ("floating point", descriptor.floating_point_range)):  # fmt: skip
+            if not ranges or not isinstance(value, (int, float)):
+                continue
+            bounds = ranges[0]
+            low, high, step = bounds.from_value, bounds.to_value, bounds.step
+            if not low <= value <= high:
+                return f"Parameter {name} out of {kind} range [{low}, {high}]"
+            if step and value != high:
+                steps = (value - low) / step
+                if abs(steps - round(steps)) > self.PARAM_REL_TOL:
+                    return f"Parameter {name} is not a step of {step} from {low}"
+        return ""
+
+    def add_on_set_parameters_callback(self, callback: _SetCallback) -> None:
+        """``callback(list[Parameter]) -> SetParametersResult`` may refuse a change."""
+        self._set_callbacks.insert(0, callback)
+
+    def remove_on_set_parameters_callback(self, callback: _SetCallback) -> None:
+        self._set_callbacks.remove(callback)
+
+    def add_post_set_parameters_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
+        self._post_set_callbacks.append(callback)
+
+    def remove_post_set_parameters_callback(
+        self, callback: Callable[[list[Parameter]], None]
+    ) -> None:
+        self._post_set_callbacks.remove(callback)
+
+    def add_pre_set_parameters_callback(self, callback: Any) -> None:
+        not_offered("Node.add_pre_set_parameters_callback()")
+
+    def _run_set_callbacks(self, changes: Any) -> SetResult:
+        parameters = [Parameter(name, value=value) for name, value in changes.items()]
+        for callback in list(self._set_callbacks):
+            result = callback(parameters)
+            if not result.successful:
+                return SetResult(False, str(result.reason))
+        return SetResult(True)
+
+    def _run_post_set_callbacks(self, changes: Any) -> None:
+        parameters = [Parameter(name, value=value) for name, value in changes.items()]
+        for callback in list(self._post_set_callbacks):
+            callback(parameters)
+
+
+def _required_arguments(callback: Callable[..., Any]) -> int:
+    """How many positional arguments ``callback`` needs (0 when it cannot be told)."""
+    try:
+        signature = inspect.signature(callback)
+    except (TypeError, ValueError):
+        return 0
+    return sum(
+        1
+        for p in signature.parameters.values()
+        if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) and p.default is p.empty
+    )
