@@ -26,7 +26,7 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message, get_message_type
-from robomodel.runtime.msg.schema import MessageTypeError, Service
+from robomodel.runtime.msg.schema import Array, MessageTypeError, Seq, Service
 from robomodel.runtime.msg.typehash import same_type
 from robomodel.runtime.transport.ros1.ros1_codec import (
     DURATION,
@@ -157,7 +157,9 @@ def _md5_type(store: Any, desc: Any) -> str:
     return f"{inner}[{size if kind == 3 else ''}]"
 
 
-def _make_type(key: str, name: str) -> Ros1Type:
+def _make_type(key: str, name: str, flavour: type[Message] | None = None) -> Ros1Type:
+    """The ROS 1 type ``key``; its decoder builds ``flavour``'s classes (a class with the same
+    ``__typename__`` as robomodel's, and its nested classes) where one is given."""
     store = _store()
     if key not in store.fielddefs:
         # A type of the user's interface packages, or learned from a peer: ROS 1 gets it too.
@@ -166,12 +168,36 @@ def _make_type(key: str, name: str) -> Ros1Type:
         store.register(definitions_outside(key, store.fielddefs))
     if key not in store.fielddefs:
         raise Ros1TypeError(f"ROS 1 has no type {name}")
-    cls = _robomodel_class(key)
+    classes = _robomodel_class if flavour is None else _flavour_classes(flavour)
+    cls = classes(key)
     if cls is None:
         raise Ros1TypeError(f"robomodel has no class for the ROS 1 type {name}")
     definition, md5 = store.generate_msgdef(key, ros_version=1)
-    encode, decode = make_codec(key, store.fielddefs, _robomodel_class, special_field)
+    encode, decode = make_codec(key, store.fielddefs, classes, special_field)
     return Ros1Type(name, md5, definition, cls, encode, decode, _fixed_size(store.fielddefs, key))
+
+
+def _flavour_classes(flavour: type[Message]) -> Any:
+    """A class lookup (ROS 1 key -> class) that gives ``flavour`` and the message classes its
+    fields name in place of robomodel's own classes of the same types: a client library's face
+    (genpy's, rosidl's) of a type decodes into that face, so callbacks get the class the
+    subscription was made with."""
+    faces: dict[str, type[Message]] = {}
+    pending: list[Any] = [flavour]
+    while pending:
+        spec = pending.pop()
+        if isinstance(spec, (Seq, Array)):
+            pending.append(spec.item)
+        elif isinstance(spec, type) and issubclass(spec, Message):
+            if spec.__typename__ not in faces:
+                faces[spec.__typename__] = spec
+                pending.extend(field for _, field in spec.__fields__)
+
+    def classes(ros1_key: str) -> Any:
+        own = _robomodel_class(ros1_key)
+        return own if own is None else faces.get(own.__typename__, own)
+
+    return classes
 
 
 def _fixed_size(fielddefs: Any, key: str) -> int | None:
@@ -235,6 +261,8 @@ def ros1_type(cls: type[Message]) -> Ros1Type:
         found = _make_type(key, key.replace("/msg/", "/"))
         if not same_type(found.cls, cls):
             raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
+        if found.cls is not cls:  # another face of the type (genpy's, rosidl's): its classes
+            found = _make_type(key, found.name, cls)
         _TYPES[cls] = found
     return found
 
@@ -259,7 +287,10 @@ def _make_service(cls: type[Service]) -> Ros1ServiceType:
             store.register(definitions_outside(key, store.fielddefs))
     if kind != "srv" or any(k not in store.fielddefs for k in keys):
         raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
-    request, response = (_make_type(k, k.replace("/msg/", "/")) for k in keys)
+    request, response = (
+        _make_type(k, k.replace("/msg/", "/"), half)
+        for k, half in zip(keys, (cls.Request, cls.Response), strict=True)
+    )
     text = _md5_text(store, keys[0]) + _md5_text(store, keys[1])
     md5 = hashlib.md5(text.encode()).hexdigest()
     return Ros1ServiceType(f"{package}/{name}", md5, request, response, cls)
