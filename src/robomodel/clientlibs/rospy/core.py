@@ -8,6 +8,7 @@ bus, its node and a thread that runs the node's callbacks), created by ``init_no
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import inspect
 import logging
@@ -214,10 +215,25 @@ def shutdown_reason() -> str:
 
 
 # -- names --------------------------------------------------------------------------------------
+@functools.cache
+def _unnamed() -> tuple[str, Mapping[str, str]]:
+    """The caller id and remappings before ``init_node``: rospy reads ``sys.argv``'s at import
+    and names the process ``<namespace>unnamed``."""
+    from robomodel.clientlibs.rospy.names import (
+        namespace_from,
+        parse_command_line,
+        resolve_remappings,
+    )
+
+    command_line = parse_command_line(sys.argv)
+    caller_id = namespace_from(command_line.special) + "unnamed"
+    return caller_id, resolve_remappings(command_line.remappings, caller_id)
+
+
 def get_name() -> str:
     """The node's name with its namespace (``/ns/talker``); ``/unnamed`` before init_node."""
     node_state = _LIFE.state
-    return node_state.caller_id if node_state is not None else "/unnamed"
+    return node_state.caller_id if node_state is not None else _unnamed()[0]
 
 
 get_caller_id = get_name
@@ -233,7 +249,7 @@ def get_namespace() -> str:
 def resolve_name(name: str, caller_id: str | None = None) -> str:
     """``name`` resolved as this node (or ``caller_id``) resolves it, remappings applied."""
     node_state = _LIFE.state
-    remappings = node_state.remappings if node_state is not None else {}
+    remappings = node_state.remappings if node_state is not None else _unnamed()[1]
     return resolve(name, caller_id or get_name(), remappings)
 
 

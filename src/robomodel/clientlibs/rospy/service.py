@@ -124,11 +124,10 @@ class ServiceProxy:
     ) -> None:
         if headers:
             raise NotImplementedError("rospy ServiceProxy(headers=...) is not offered")
-        node_state = core.state()
         self.service_class = _check_class(service_class, name)
         self.request_class = _request_class(self.service_class)
         self.response_class = _response_class(self.service_class)
-        self.resolved_name = node_state.resolve(name)
+        self.resolved_name = core.resolve_name(name)
         self.persistent = persistent  # every call opens its connection: the same answers
 
     def __call__(self, *args: Any, **kwds: Any) -> Any:
@@ -146,16 +145,26 @@ class ServiceProxy:
                     f"service {self.resolved_name}: cannot make a request of the arguments: {exc}"
                 ) from None
         from robomodel.runtime.transport.base import ServiceCallError
+        from robomodel.runtime.transport.ros1.ros1_types import Ros1TypeError, ros1_service_type
+        from robomodel.runtime.transport.ros1.services import call_service
 
-        node_state = core.state()
+        node_state = core.current()
         try:
-            return node_state.context.transport.call_service(
-                self.resolved_name,
-                self.service_class,
-                request,
-                CALL_TIMEOUT_S,
-                node=node_state.caller_id,
+            if node_state is not None:  # this process's own services are called in place
+                return node_state.context.transport.call_service(
+                    self.resolved_name,
+                    self.service_class,
+                    request,
+                    CALL_TIMEOUT_S,
+                    node=node_state.caller_id,
+                )
+            # rospy calls services without init_node (ros_tutorials' add_two_ints_client does)
+            kind = ros1_service_type(self.service_class)
+            return call_service(
+                _master_uri(), core.get_name(), self.resolved_name, kind, request, CALL_TIMEOUT_S
             )
+        except Ros1TypeError as exc:
+            raise ServiceException(f"service [{self.resolved_name}]: {exc}") from None
         except ServiceCallError as exc:
             raise ServiceException(
                 f"service [{self.resolved_name}] responded with an error: {exc}"
@@ -168,14 +177,25 @@ class ServiceProxy:
         """Nothing stays open between calls."""
 
 
+def _master_uri() -> str:
+    """The master of the node, or (before ``init_node``) of ``ROS_MASTER_URI``/``__master:=``."""
+    node_state = core.current()
+    if node_state is not None:
+        return str(node_state.context.transport.master_uri)  # type: ignore[attr-defined]
+    import sys
+
+    from robomodel.clientlibs.rospy.names import parse_command_line
+    from robomodel.runtime.transport.ros1.names import master_uri
+
+    return master_uri(parse_command_line(sys.argv).special.get("__master"))
+
+
 def _provider_answers(name: str) -> bool:
     from robomodel.runtime.transport.base import ServiceCallError
     from robomodel.runtime.transport.ros1.services import probe_service_type
 
-    node_state = core.state()
-    master = node_state.context.transport.master_uri  # type: ignore[attr-defined]
     try:
-        probe_service_type(master, node_state.caller_id, name, timeout_s=2.0)
+        probe_service_type(_master_uri(), core.get_name(), name, timeout_s=2.0)
     except ServiceCallError:
         return False
     return True
@@ -184,7 +204,7 @@ def _provider_answers(name: str) -> bool:
 def wait_for_service(service: str, timeout: float | None = None) -> None:
     """Wait until a provider of ``service`` answers. ROSException after ``timeout`` seconds,
     ROSInterruptException when the node shuts down first."""
-    name = core.state().resolve(service)
+    name = core.resolve_name(service)
     end = None if timeout is None else time.monotonic() + float(timeout)
     stop = core.shutdown_event()
     while not _provider_answers(name):
