@@ -208,3 +208,28 @@ def test_names_params_latch_timers_and_logging(graph: Graph, tmp_path: Path) -> 
     text = _lines(log)
     assert text.count("once ") == 1 and text.count("throttled ") == 1 and text.count("same") == 1
     assert "[WARN] [" in text and "[ERROR] [" in text
+
+
+def test_tf_listener_and_broadcaster_with_debian_tf(graph: Graph, tmp_path: Path) -> None:
+    # Debian's tf: yaw 90 degrees, half a metre along x (x y z yaw pitch roll parent child ms)
+    static = graph.start(
+        ["/usr/lib/tf/static_transform_publisher", "0.5", "0", "0", "1.5707963267948966", "0",
+         "0", "world", "sensor", "50"]
+    )  # fmt: skip
+    log = tmp_path / "tf.log"
+    node = graph.node("tf_node", log=log)
+    graph.until(lambda: "lookup_error" in _results(log), "the tf node's lookups")
+    assert _results(log) == {
+        "lookup": [0.5, 0.0, 0.0],
+        "yaw": 1.5708,
+        "point": [0.5, 1.0],  # x of the sensor frame is y of the world
+        "can_unknown": False,
+        "lookup_error": True,
+    }, _lines(log)
+    echo_log = tmp_path / "tf_echo.log"
+    echo = graph.start(["/usr/lib/tf/tf_echo", "world", "robot"], echo_log)
+    graph.until(lambda: "Translation: [1.000, 2.000, 3.000]" in _lines(echo_log), "tf_echo")
+    assert "in RPY (radian) [0.000, -0.000, 1.571]" in _lines(echo_log), _lines(echo_log)
+    for proc in (echo, static):
+        graph.stop(proc)
+    assert end_process(node, signal.SIGINT, timeout_s=scaled(20)) == 0, _lines(log)

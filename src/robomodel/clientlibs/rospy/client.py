@@ -149,11 +149,27 @@ def _at_exit() -> None:
 
 
 def _install_signal_handlers() -> None:
+    """SIGINT and SIGTERM shut the node down, as rospy's handlers do. The handler only writes
+    the signal's number to a pipe: a thread reads it and shuts down. Setting the shutdown event
+    in the handler itself would deadlock when the signal lands while the main thread holds that
+    event's lock (returning from a sleep's wait)."""
+    read_end, write_end = os.pipe()
+    os.set_blocking(write_end, False)
+
+    def watch() -> None:
+        number = os.read(read_end, 1)
+        if number:
+            core.signal_shutdown(f"signal-{number[0]}")
+
+    threading.Thread(target=watch, name="rospy-signals", daemon=True).start()
     for number in (signal.SIGINT, signal.SIGTERM):
         previous = signal.getsignal(number)
 
         def handler(signum: int, frame: Any, previous: Any = previous) -> None:
-            core.signal_shutdown_in_background(f"signal-{signum}")
+            try:
+                os.write(write_end, bytes([signum]))
+            except BlockingIOError:  # a signal before: the shutdown is under way
+                pass
             if callable(previous):
                 try:
                     previous(signum, frame)

@@ -165,7 +165,7 @@ def signal_shutdown(reason: str) -> None:
             _LIFE.flag.set()
     if first:
         _teardown()
-    elif threading.current_thread() is not threading.main_thread() or not _in_teardown():
+    elif not _in_teardown():  # a hook that signals shutdown again must not wait for itself
         _LIFE.done.wait(10.0)
 
 
@@ -191,18 +191,6 @@ def _teardown() -> None:
     finally:
         _tearing.on = False
         _LIFE.done.set()
-
-
-def signal_shutdown_in_background(reason: str) -> None:
-    """:func:`signal_shutdown` from a signal handler: the flag at once, the teardown (which
-    talks to the master) on a thread of its own, joined at exit."""
-    with _LIFE.lock:
-        if _LIFE.started:
-            return
-        _LIFE.started = True
-        _LIFE.reason = reason
-        _LIFE.flag.set()
-    threading.Thread(target=_teardown, name="rospy-shutdown", daemon=True).start()
 
 
 def wait_for_teardown(timeout_s: float = 10.0) -> None:
