@@ -105,7 +105,7 @@ def test_talker_is_heard_by_rostopic_echo_and_logs_to_rosout(graph: Graph, tmp_p
     info = graph.tool(ROSTOPIC, "info", "/chatter").stdout
     assert "std_msgs/String" in info and name in info, info
     rosout = graph.tool(ROSTOPIC, "echo", "-n", "1", "/rosout_agg")
-    assert f"name: \"{name}\"" in rosout.stdout and "level: 2" in rosout.stdout, rosout.stdout
+    assert f'name: "{name}"' in rosout.stdout and "level: 2" in rosout.stdout, rosout.stdout
     assert 'msg: "hello world ' in rosout.stdout and "/chatter" in rosout.stdout
     assert end_process(talker, signal.SIGINT, timeout_s=scaled(20)) == 0, _lines(log)
     assert "Traceback" not in _lines(log)

@@ -174,9 +174,9 @@ def test_handler_answers_become_responses_as_rospy_reads_them() -> None:
 def test_logging_forms_before_init_node(capsys: pytest.CaptureFixture[str]) -> None:
     for i in range(3):
         rospy.loginfo_once("once %d", i)
-        rospy.logwarn_throttle(60, "throttled %d" % i)
+        rospy.logwarn_throttle(60, f"throttled {i}")
         rospy.logerr_throttle_identical(60, "same")
-        rospy.logerr_throttle_identical(60, "differs %d" % i)
+        rospy.logerr_throttle_identical(60, f"differs {i}")
         rospy.logdebug("hidden at the default level")
     out, err = capsys.readouterr()
     assert [line.split("]: ", 1)[1] for line in out.splitlines()] == ["once 0"]

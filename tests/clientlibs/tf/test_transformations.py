@@ -66,7 +66,9 @@ def test_known_values() -> None:
     np.testing.assert_allclose(
         tr.euler_matrix(0.3, 0.2, 0.1, "rzyx"), tr.euler_matrix(0.1, 0.2, 0.3, "sxyz")
     )
-    m = tr.concatenate_matrices(tr.translation_matrix([1, 2, 3]), tr.rotation_matrix(math.pi, [0, 0, 1]))
+    m = tr.concatenate_matrices(
+        tr.translation_matrix([1, 2, 3]), tr.rotation_matrix(math.pi, [0, 0, 1])
+    )
     np.testing.assert_allclose(m @ [1, 0, 0, 1], [0, 2, 3, 1], atol=1e-15)
     np.testing.assert_allclose(tr.inverse_matrix(m) @ m, np.eye(4), atol=1e-15)
     np.testing.assert_allclose(tr.translation_from_matrix(m), [1, 2, 3])
@@ -94,24 +96,34 @@ def test_quaternions_and_rotations_match_tf(ref: ModuleType) -> None:
         m = ref.random_rotation_matrix(rng.random(3))
         if i % 5 == 0:  # half turns: the trace is -1, the sign rule's other branch
             m = ref.rotation_matrix(math.pi, rng.normal(size=3))
-        np.testing.assert_allclose(tr.quaternion_from_matrix(m), ref.quaternion_from_matrix(m), atol=1e-12)
+        np.testing.assert_allclose(
+            tr.quaternion_from_matrix(m), ref.quaternion_from_matrix(m), atol=1e-12
+        )
         q0, q1 = ref.random_quaternion(rng.random(3)), ref.random_quaternion(rng.random(3))
-        np.testing.assert_allclose(tr.random_quaternion(q0[:3] ** 2), ref.random_quaternion(q0[:3] ** 2))
+        np.testing.assert_allclose(
+            tr.random_quaternion(q0[:3] ** 2), ref.random_quaternion(q0[:3] ** 2)
+        )
         np.testing.assert_allclose(tr.quaternion_multiply(q1, q0), ref.quaternion_multiply(q1, q0))
         np.testing.assert_allclose(tr.quaternion_matrix(q0), ref.quaternion_matrix(q0), atol=1e-15)
         np.testing.assert_allclose(tr.quaternion_inverse(q0), ref.quaternion_inverse(q0))
         f = float(rng.random())
         np.testing.assert_allclose(tr.quaternion_slerp(q0, q1, f), ref.quaternion_slerp(q0, q1, f))
         angle, axis, point = float(rng.uniform(-3, 3)), rng.normal(size=3), rng.normal(size=3)
-        np.testing.assert_allclose(tr.quaternion_about_axis(angle, axis), ref.quaternion_about_axis(angle, axis))
+        np.testing.assert_allclose(
+            tr.quaternion_about_axis(angle, axis), ref.quaternion_about_axis(angle, axis)
+        )
         r = ref.rotation_matrix(angle, axis, point)
         np.testing.assert_allclose(tr.rotation_matrix(angle, axis, point), r, atol=1e-12)
         np.testing.assert_allclose(tr.rotation_matrix(*tr.rotation_from_matrix(r)), r, atol=1e-9)
-        np.testing.assert_allclose(tr.scale_matrix(1.5, point, axis), ref.scale_matrix(1.5, point, axis))
+        np.testing.assert_allclose(
+            tr.scale_matrix(1.5, point, axis), ref.scale_matrix(1.5, point, axis)
+        )
         scale, shear = rng.uniform(0.5, 2, 3), rng.uniform(-0.5, 0.5, 3)
         angles, translate = rng.uniform(-1, 1, 3), rng.normal(size=3)
         c = ref.compose_matrix(scale, shear, angles, translate)
-        np.testing.assert_allclose(tr.compose_matrix(scale, shear, angles, translate), c, atol=1e-12)
+        np.testing.assert_allclose(
+            tr.compose_matrix(scale, shear, angles, translate), c, atol=1e-12
+        )
         for ours, theirs in zip(tr.decompose_matrix(c), ref.decompose_matrix(c), strict=True):
             np.testing.assert_allclose(ours, theirs, atol=1e-9)
         assert tr.is_same_transform(c, c * 2.0) and not tr.is_same_transform(c, r)

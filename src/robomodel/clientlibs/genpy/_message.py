@@ -33,7 +33,7 @@ def _ros1_type(cls: type) -> Any:
     from robomodel.runtime.transport.ros1.ros1_types import Ros1TypeError, ros1_type
 
     try:
-        return ros1_type(cls)  # type: ignore[arg-type]
+        return ros1_type(cls)
     except Ros1TypeError as exc:
         raise SerializationError(str(exc)) from None
 

@@ -92,20 +92,20 @@ class TVal:
         return isinstance(other, base)
 
     def __eq__(self, other: object) -> bool:
-        if not self._same_kind(other):
+        if not isinstance(other, TVal) or not self._same_kind(other):
             return False
-        return self.to_nsec() == other.to_nsec()  # type: ignore[attr-defined]
+        return self.to_nsec() == other.to_nsec()
 
     def __ne__(self, other: object) -> bool:
         return not self.__eq__(other)
 
     def _compare(self, other: object) -> int:
-        if not self._same_kind(other):
+        if not isinstance(other, TVal) or not self._same_kind(other):
             raise TypeError(
                 f"cannot compare {type(self).__name__} with {type(other).__name__}"
                 " (a Time compares with a Time, a Duration with a Duration)"
             )
-        mine, theirs = self.to_nsec(), other.to_nsec()  # type: ignore[attr-defined]
+        mine, theirs = self.to_nsec(), other.to_nsec()
         return (mine > theirs) - (mine < theirs)
 
     def __lt__(self, other: object) -> bool:

@@ -4,6 +4,7 @@ them, on a robomodel node of the ROS 1 master at ``ROS_MASTER_URI``."""
 from __future__ import annotations
 
 import atexit
+import contextlib
 import os
 import signal
 import sys
@@ -126,9 +127,7 @@ def _init(
             warned = True
         time.sleep(_MASTER_POLL_S)
     context = Context("ros1", master=master)
-    node = context.create_node(
-        base, namespace.rstrip("/") or "/", enable_rosout=not disable_rosout
-    )
+    node = context.create_node(base, namespace.rstrip("/") or "/", enable_rosout=not disable_rosout)
     node_state = core.NodeState(caller_id, remappings, context, node, arguments=arguments)
     node_state.hooks.extend(core.pending_hooks())
     core.set_state(node_state)
@@ -166,15 +165,13 @@ def _install_signal_handlers() -> None:
         previous = signal.getsignal(number)
 
         def handler(signum: int, frame: Any, previous: Any = previous) -> None:
-            try:
+            with contextlib.suppress(BlockingIOError):  # a full pipe: shutdown is under way
                 os.write(write_end, bytes([signum]))
-            except BlockingIOError:  # a signal before: the shutdown is under way
-                pass
             if callable(previous):
-                try:
+                # as rospy: Ctrl-C's KeyboardInterrupt is dropped, and the node's sleeps and
+                # spin end through the shutdown instead
+                with contextlib.suppress(KeyboardInterrupt):
                     previous(signum, frame)
-                except KeyboardInterrupt:
-                    pass  # as rospy: the node's sleeps and spin end through the shutdown
 
         signal.signal(number, handler)
 

@@ -86,9 +86,7 @@ def state() -> NodeState:
     """The node, or ROSInitException before ``init_node``."""
     found = _LIFE.state
     if found is None:
-        raise ROSInitException(
-            "the node is not initialized: call rospy.init_node(name) first"
-        )
+        raise ROSInitException("the node is not initialized: call rospy.init_node(name) first")
     return found
 
 
@@ -254,7 +252,7 @@ def _emit(level: int, text: str, frame: Any) -> None:
         stream.flush()
     except (OSError, ValueError):  # a closed console must not stop the node
         pass
-    if node_state is None or _LIFE.flag.is_set() and _LIFE.done.is_set():
+    if node_state is None or (_LIFE.flag.is_set() and _LIFE.done.is_set()):
         return
     rosout = node_state.node.rosout
     if rosout is None:

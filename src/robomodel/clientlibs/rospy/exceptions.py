@@ -42,7 +42,7 @@ class ROSTimeMovedBackwardsException(ROSInterruptException):
         self.time = time
 
 
-class ROSInternalException(Exception):  # noqa: N818 (rospy's name)
+class ROSInternalException(Exception):
     """An error inside rospy itself."""
 
 
@@ -50,7 +50,7 @@ class TransportException(ROSException):
     """A connection to a peer failed."""
 
 
-class TransportTerminated(TransportException):  # noqa: N818 (rospy's name)
+class TransportTerminated(TransportException):
     """A connection that the peer closed."""
 
 

@@ -108,7 +108,10 @@ def resolve(name: str, caller_id: str, remappings: Mapping[str, str] | None = No
 
 def resolve_remappings(remappings: Mapping[str, str], caller_id: str) -> dict[str, str]:
     """Both sides of every remapping resolved for ``caller_id``, as rospy does at init."""
-    return {resolve(source, caller_id): resolve(target, caller_id) for source, target in remappings.items()}
+    return {
+        resolve(source, caller_id): resolve(target, caller_id)
+        for source, target in remappings.items()
+    }
 
 
 def namespace_from(special: Mapping[str, str]) -> str:

@@ -27,13 +27,14 @@ def _check_class(service_class: Any, name: str) -> type[ServiceType]:
         isinstance(service_class, type)
         and isinstance(getattr(service_class, "Request", None), type)
         and isinstance(getattr(service_class, "Response", None), type)
-        and getattr(service_class, "__typename__", "")
+        and bool(getattr(service_class, "__typename__", ""))
     ):
         raise ValueError(
             f"service {name}: service_class must be a service class"
             f" (from rospy_tutorials.srv import AddTwoInts), got {service_class!r}"
         )
-    return service_class  # type: ignore[no-any-return]
+    found: type[ServiceType] = service_class
+    return found
 
 
 def _request_class(service_class: type[ServiceType]) -> type[Message]:
@@ -48,7 +49,7 @@ def _same_type(value: Any, cls: type[Message]) -> bool:
     return isinstance(value, Message) and type(value).__typename__ == cls.__typename__
 
 
-def response_of(answer: Any, response_class: type[Message]) -> Message:
+def response_of(answer: Any, response_class: Any) -> Message:
     """The handler's answer as a response, as rospy reads it: a response as it is, a dict as
     keywords, a list or tuple as positional fields, anything else as the one field."""
     if _same_type(answer, response_class):
@@ -57,12 +58,14 @@ def response_of(answer: Any, response_class: type[Message]) -> Message:
         raise ServiceException("service handler returned None")
     try:
         if isinstance(answer, dict):
-            return response_class(**answer)
-        if isinstance(answer, (list, tuple)):
-            return response_class(*answer)
-        return response_class(answer)
+            made: Message = response_class(**answer)
+        elif isinstance(answer, (list, tuple)):
+            made = response_class(*answer)
+        else:
+            made = response_class(answer)
     except (TypeError, AttributeError) as exc:
         raise ServiceException(f"handler returned invalid value: {exc}") from None
+    return made
 
 
 class Service:

@@ -85,8 +85,7 @@ class Publisher(_Topic):
         _unsupported("Publisher(headers=...)", headers)
         if queue_size is None:
             warnings.warn(
-                "The publisher should be created with an explicit keyword argument"
-                " 'queue_size'.",
+                "The publisher should be created with an explicit keyword argument 'queue_size'.",
                 SyntaxWarning,
                 stacklevel=2,
             )

@@ -7,7 +7,7 @@ from robomodel.clientlibs.tf import transformations
 from robomodel.clientlibs.tf._broadcaster import TransformBroadcaster
 from robomodel.clientlibs.tf._listener import (
     ConnectivityException,
-    Exception,  # noqa: A004 (tf's name)
+    Exception,
     ExtrapolationException,
     LookupException,
     Transformer,

@@ -24,7 +24,7 @@ class TransformBroadcaster:
 
         self._publisher = robomodel_node().create_publisher(TFMessage, "/tf", queue_size)
 
-    def sendTransform(  # noqa: N802 (tf's name)
+    def sendTransform(
         self,
         translation: Sequence[float],
         rotation: Sequence[float],
@@ -53,7 +53,7 @@ class TransformBroadcaster:
         )
         self.sendTransformMessage(msg)
 
-    def sendTransformMessage(self, transform: Any) -> None:  # noqa: N802 (tf's name)
+    def sendTransformMessage(self, transform: Any) -> None:
         """Publish a ``geometry_msgs/TransformStamped`` (or a list of them)."""
         from robomodel.runtime.msg import TFMessage
 

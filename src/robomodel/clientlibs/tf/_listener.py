@@ -33,7 +33,7 @@ __all__ = [
 ]
 
 # tf's exceptions are tf2's: robomodel's TF buffer raises the same family
-Exception = TransformError  # noqa: A001 (tf's name)
+Exception = TransformError
 LookupException = TfLookupError
 ConnectivityException = ConnectivityError
 ExtrapolationException = ExtrapolationError
@@ -56,30 +56,28 @@ class _LockedBuffer(BufferCore):
 
     def __init__(self, cache_time_ns: int) -> None:
         super().__init__(cache_time_ns)
-        self._lock = threading.RLock()
+        self.lock = threading.RLock()
 
-    def set_transform(self, transform: TransformValue, authority: str, is_static: bool = False) -> bool:
-        with self._lock:
+    def set_transform(
+        self, transform: TransformValue, authority: str, is_static: bool = False
+    ) -> bool:
+        with self.lock:
             return super().set_transform(transform, authority, is_static)
 
     def lookup_transform(self, target: str, source: str, time_ns: int = 0) -> TransformValue:
-        with self._lock:
+        with self.lock:
             return super().lookup_transform(target, source, time_ns)
 
     def can_transform(self, target: str, source: str, time_ns: int = 0) -> bool:
-        with self._lock:
+        with self.lock:
             return super().can_transform(target, source, time_ns)
 
     def latest_common_time_ns(self, target: str, source: str) -> int:
-        with self._lock:
+        with self.lock:
             return super().latest_common_time_ns(target, source)
 
-    def frames(self) -> tuple[str, ...]:
-        with self._lock:
-            return super().frames()
-
     def clear(self) -> None:
-        with self._lock:
+        with self.lock:
             super().clear()
 
 
@@ -90,9 +88,10 @@ class Transformer:
         if not interpolate:
             raise NotImplementedError("tf Transformer(interpolate=False) is not offered")
         cache_s = _DEFAULT_CACHE_S if cache_time is None else _seconds(cache_time)
-        self.buffer: BufferCore = _LockedBuffer(int(cache_s * 1e9))
+        self.buffer = _LockedBuffer(int(cache_s * 1e9))
+        self._lock = self.buffer.lock
 
-    def setTransform(self, transform: Any, authority: str = "default_authority") -> None:  # noqa: N802
+    def setTransform(self, transform: Any, authority: str = "default_authority") -> None:
         """Add a ``geometry_msgs/TransformStamped``."""
         t, r = transform.transform.translation, transform.transform.rotation
         value = TransformValue(
@@ -104,7 +103,7 @@ class Transformer:
         )
         self.buffer.set_transform(value, authority)
 
-    def lookupTransform(  # noqa: N802 (tf's name)
+    def lookupTransform(
         self, target_frame: str, source_frame: str, time: Any
     ) -> tuple[tuple[float, float, float], tuple[float, float, float, float]]:
         """``((x, y, z), (qx, qy, qz, qw))``: the pose of ``source_frame`` in
@@ -113,10 +112,10 @@ class Transformer:
         found = self.buffer.lookup_transform(target_frame, source_frame, stamp_ns(time))
         return found.translation_m, found.rotation_xyzw
 
-    def canTransform(self, target_frame: str, source_frame: str, time: Any) -> bool:  # noqa: N802
+    def canTransform(self, target_frame: str, source_frame: str, time: Any) -> bool:
         return self.buffer.can_transform(target_frame, source_frame, stamp_ns(time))
 
-    def waitForTransform(  # noqa: N802 (tf's name)
+    def waitForTransform(
         self,
         target_frame: str,
         source_frame: str,
@@ -139,21 +138,25 @@ class Transformer:
                 )
             _time.sleep(poll_s)
 
-    def getLatestCommonTime(self, source_frame: str, target_frame: str) -> Any:  # noqa: N802
+    def getLatestCommonTime(self, source_frame: str, target_frame: str) -> Any:
         """The latest time at which both frames are known (rospy.Time)."""
         return _rospy_time(self.buffer.latest_common_time_ns(target_frame, source_frame))
 
-    def frameExists(self, frame_id: str) -> bool:  # noqa: N802
-        return frame_id.lstrip("/") in self.buffer.frames()
+    def frameExists(self, frame_id: str) -> bool:
+        with self._lock:
+            return frame_id.lstrip("/") in self.buffer.frames
 
-    def getFrameStrings(self) -> list[str]:  # noqa: N802
-        return list(self.buffer.frames())
+    def getFrameStrings(self) -> list[str]:
+        with self._lock:
+            return list(self.buffer.frames)
 
-    def allFramesAsString(self) -> str:  # noqa: N802
-        return self.buffer.all_frames_as_string()
+    def allFramesAsString(self) -> str:
+        with self._lock:
+            return self.buffer.all_frames_as_string()
 
-    def allFramesAsYAML(self) -> str:  # noqa: N802
-        return self.buffer.all_frames_as_yaml()
+    def allFramesAsYAML(self) -> str:
+        with self._lock:
+            return self.buffer.all_frames_as_yaml()
 
     def clear(self) -> None:
         self.buffer.clear()
@@ -177,16 +180,14 @@ _NOT_OFFERED = frozenset(
 class TransformerROS(Transformer):
     """A :class:`Transformer` with tf's helpers for stamped messages and matrices."""
 
-    def fromTranslationRotation(  # noqa: N802 (tf's name)
-        self, translation: Any, rotation: Any
-    ) -> NDArray[np.float64]:
+    def fromTranslationRotation(self, translation: Any, rotation: Any) -> NDArray[np.float64]:
         """The 4x4 matrix of a translation [m] and a quaternion ``[x, y, z, w]``."""
-        return np.dot(
-            transformations.translation_matrix(translation),
-            transformations.quaternion_matrix(rotation),
-        )
+        matrix: NDArray[np.float64] = transformations.translation_matrix(
+            translation
+        ) @ transformations.quaternion_matrix(rotation)
+        return matrix
 
-    def asMatrix(self, target_frame: str, hdr: Any) -> NDArray[np.float64]:  # noqa: N802
+    def asMatrix(self, target_frame: str, hdr: Any) -> NDArray[np.float64]:
         """The 4x4 matrix that takes points in ``hdr.frame_id`` at ``hdr.stamp`` to
         ``target_frame``."""
         translation, rotation = self.lookupTransform(target_frame, hdr.frame_id, hdr.stamp)
@@ -198,21 +199,21 @@ class TransformerROS(Transformer):
         result.header.frame_id = target_frame
         return result, matrix
 
-    def transformPoint(self, target_frame: str, ps: Any) -> Any:  # noqa: N802
+    def transformPoint(self, target_frame: str, ps: Any) -> Any:
         """A ``geometry_msgs/PointStamped`` in ``target_frame``."""
         result, m = self._moved(target_frame, ps)
         x, y, z = (m @ np.array([ps.point.x, ps.point.y, ps.point.z, 1.0]))[:3]
         result.point.x, result.point.y, result.point.z = float(x), float(y), float(z)
         return result
 
-    def transformVector3(self, target_frame: str, v3s: Any) -> Any:  # noqa: N802
+    def transformVector3(self, target_frame: str, v3s: Any) -> Any:
         """A ``geometry_msgs/Vector3Stamped`` in ``target_frame`` (rotated only)."""
         result, m = self._moved(target_frame, v3s)
         x, y, z = m[:3, :3] @ np.array([v3s.vector.x, v3s.vector.y, v3s.vector.z])
         result.vector.x, result.vector.y, result.vector.z = float(x), float(y), float(z)
         return result
 
-    def transformQuaternion(self, target_frame: str, ps: Any) -> Any:  # noqa: N802
+    def transformQuaternion(self, target_frame: str, ps: Any) -> Any:
         """A ``geometry_msgs/QuaternionStamped`` in ``target_frame``."""
         result, m = self._moved(target_frame, ps)
         q = ps.quaternion
@@ -224,7 +225,7 @@ class TransformerROS(Transformer):
         )
         return result
 
-    def transformPose(self, target_frame: str, ps: Any) -> Any:  # noqa: N802
+    def transformPose(self, target_frame: str, ps: Any) -> Any:
         """A ``geometry_msgs/PoseStamped`` in ``target_frame``."""
         result, m = self._moved(target_frame, ps)
         p, q = ps.pose.position, ps.pose.orientation

@@ -80,7 +80,9 @@ def _axes(axes: str) -> tuple[str, tuple[int, int, int]]:
     return axes[0], (first, second, third)
 
 
-def _static(axes: str, ai: float, aj: float, ak: float) -> tuple[tuple[int, ...], tuple[float, ...]]:
+def _static(
+    axes: str, ai: float, aj: float, ak: float
+) -> tuple[tuple[int, ...], tuple[float, ...]]:
     """The axes and angles of the same rotation as static rotations, in the order applied."""
     frame, order = _axes(axes)
     if frame == "r":  # rotating ABC by (a, b, c) is static CBA by (c, b, a)
@@ -126,9 +128,7 @@ def rotation_matrix(angle: float, direction: ArrayLike, point: ArrayLike | None 
     ``point`` (the origin by default)."""
     axis = unit_vector(np.asarray(direction, dtype=float)[:3])
     c, s = math.cos(angle), math.sin(angle)
-    cross = np.array(
-        [[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]]
-    )
+    cross = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
     m = np.identity(4)
     m[:3, :3] = c * np.eye(3) + s * cross + (1.0 - c) * np.outer(axis, axis)  # Rodrigues
     if point is not None:
@@ -225,9 +225,7 @@ def euler_from_matrix(matrix: ArrayLike, axes: str = "sxyz") -> tuple[float, flo
     return (c, b, a) if frame == "r" else (a, b, c)
 
 
-def euler_from_quaternion(
-    quaternion: ArrayLike, axes: str = "sxyz"
-) -> tuple[float, float, float]:
+def euler_from_quaternion(quaternion: ArrayLike, axes: str = "sxyz") -> tuple[float, float, float]:
     """The Euler angles [rad] of quaternion ``[x, y, z, w]`` in convention ``axes``."""
     return euler_from_matrix(quaternion_matrix(quaternion), axes)
 
@@ -473,8 +471,10 @@ def unit_vector(data: ArrayLike, axis: int | None = None, out: Any = None) -> Ma
         _not_offered("unit_vector(out=...)")
     a = np.array(data, dtype=float, copy=True)
     if axis is None:
-        return a / math.sqrt(float(a @ a)) if a.ndim == 1 else a / vector_norm(a)
-    return a / np.expand_dims(np.sqrt(np.sum(a * a, axis=axis)), axis)
+        length = math.sqrt(float(np.sum(a * a)))
+        return a / length
+    lengths: Matrix = np.expand_dims(np.sqrt(np.sum(a * a, axis=axis)), axis)
+    return a / lengths
 
 
 def _not_offered(what: str) -> NoReturn:

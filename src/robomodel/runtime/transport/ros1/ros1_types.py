@@ -188,10 +188,11 @@ def _flavour_classes(flavour: type[Message]) -> Any:
         spec = pending.pop()
         if isinstance(spec, (Seq, Array)):
             pending.append(spec.item)
-        elif isinstance(spec, type) and issubclass(spec, Message):
-            if spec.__typename__ not in faces:
-                faces[spec.__typename__] = spec
-                pending.extend(field for _, field in spec.__fields__)
+        elif (
+            isinstance(spec, type) and issubclass(spec, Message) and spec.__typename__ not in faces
+        ):
+            faces[spec.__typename__] = spec
+            pending.extend(field for _, field in spec.__fields__)
 
     def classes(ros1_key: str) -> Any:
         own = _robomodel_class(ros1_key)
