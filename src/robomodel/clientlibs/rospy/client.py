@@ -103,8 +103,8 @@ def _init(
     disable_rosout: bool,
 ) -> None:
     from robomodel.runtime.context import Context
-    from robomodel.runtime.transport.ros1.master import master_answers
     from robomodel.runtime.transport.ros1.names import master_uri
+    from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError
 
     command_line = parse_command_line(argv)
     special = dict(command_line.special)
@@ -116,17 +116,22 @@ def _init(
     if not disable_signals and threading.current_thread() is threading.main_thread():
         _install_signal_handlers()
     warned = False
-    while not master_answers(master, timeout_s=2.0):
-        if core.is_shutdown():
-            raise ROSInitException(f"shut down while waiting for the master at {master}")
-        if not warned:
-            core.logwarn(
-                f"Unable to register with master node [{master}]: master may not be running"
-                " yet. Will keep trying."
-            )
-            warned = True
-        time.sleep(_MASTER_POLL_S)
-    context = Context("ros1", master=master)
+    while True:
+        try:
+            context = Context("ros1", master=master)
+            break
+        except Ros1WireError:  # no master answers yet: rospy waits for one
+            if core.is_shutdown():
+                raise ROSInitException(
+                    f"shut down while waiting for the master at {master}"
+                ) from None
+            if not warned:
+                core.logwarn(
+                    f"Unable to register with master node [{master}]: master may not be"
+                    " running yet. Will keep trying."
+                )
+                warned = True
+            time.sleep(_MASTER_POLL_S)
     node = context.create_node(base, namespace.rstrip("/") or "/", enable_rosout=not disable_rosout)
     node_state = core.NodeState(caller_id, remappings, context, node, arguments=arguments)
     node_state.hooks.extend(core.pending_hooks())
@@ -134,7 +139,7 @@ def _init(
     core.bind_deferred(node_state)
     for key, value in command_line.params.items():
         set_param("~" + key, value)
-    if _read_param(node_state, "/use_sim_time", False) is True:
+    if _sim_time(node_state):
         node.set_parameters({"use_sim_time": True})
     spinner = threading.Thread(target=context.spin, name="rospy-callbacks", daemon=True)
     node_state.spinner = spinner
@@ -199,10 +204,12 @@ def _master(node_state: core.NodeState, method: str, *args: Any) -> Any:
         raise ROSException(f"{method}: {exc}") from None
 
 
-def _read_param(node_state: core.NodeState, name: str, default: Any) -> Any:
-    if not _master(node_state, "hasParam", name):
-        return default
-    return _master(node_state, "getParam", name)
+def _sim_time(node_state: core.NodeState) -> bool:
+    """Whether ``/use_sim_time`` is true (one call: the master answers an error when unset)."""
+    try:
+        return _master(node_state, "getParam", "/use_sim_time") is True
+    except ROSException:
+        return False
 
 
 def get_param(param_name: str, default: Any = _UNSET) -> Any:

@@ -36,8 +36,6 @@ class CommandLine:
 def parse_command_line(argv: Sequence[str]) -> CommandLine:
     """The remappings, special keys and private parameters of ``argv`` (rospy's reading: a
     ``_name:=value`` is a parameter ``~name`` whose value is read as a YAML scalar)."""
-    import yaml
-
     remappings: dict[str, str] = {}
     special: dict[str, str] = {}
     params: dict[str, Any] = {}
@@ -53,6 +51,8 @@ def parse_command_line(argv: Sequence[str]) -> CommandLine:
         elif source.startswith("__"):
             continue  # another special key (__log etc. that rospy ignores too)
         elif source.startswith("_"):
+            import yaml
+
             try:
                 params[source[1:]] = yaml.safe_load(target)
             except yaml.YAMLError:
