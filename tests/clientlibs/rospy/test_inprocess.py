@@ -243,3 +243,26 @@ def test_ros1_messages_decode_into_the_face_a_subscription_was_made_with() -> No
     assert (decoded.header.frame_id, decoded.point.y) == ("map", 2.0)
     assert face.encode(decoded) == data
     assert type(ros1_type(OwnPointStamped).decode(data)) is OwnPointStamped
+
+
+def test_a_message_face_of_time_is_a_genpy_time() -> None:
+    """A genpy-flavoured message's stamp (a face of builtin_interfaces/msg/Time with genpy's
+    ``secs``/``nsecs``) is a ``genpy.Time``: it compares and subtracts with rospy's times."""
+
+    class FaceTime:
+        __typename__ = "builtin_interfaces/msg/Time"
+
+        def __init__(self, secs: int, nsecs: int) -> None:
+            self.secs, self.nsecs = secs, nsecs
+
+        def to_nsec(self) -> int:
+            return self.secs * 1_000_000_000 + self.nsecs
+
+    stamp = FaceTime(5, 250)
+    assert isinstance(stamp, genpy.Time) and not isinstance(stamp, genpy.Duration)
+    assert not isinstance(stamp, rospy.Time)  # rospy's subclass stays rospy's
+    assert (rospy.Time(7, 250) - stamp).to_sec() == 2.0  # type: ignore[operator]
+    assert rospy.Time(5, 250) == stamp and rospy.Time(4) < stamp
+    from robomodel.runtime.msg import Time as OwnTime
+
+    assert not isinstance(OwnTime(1, 2), genpy.Time)  # sec/nanosec, no genpy fields

@@ -28,7 +28,26 @@ def _split(secs: Any, nsecs: Any) -> tuple[int, int]:
     return int(secs), int(nsecs)
 
 
-class TVal:
+class _Kind(type):
+    """``isinstance(stamp, genpy.Time)`` also holds for a message class's face of
+    ``builtin_interfaces/msg/Time`` (``Duration``) that has genpy's ``secs``/``nsecs``: the
+    stamps of received genpy-flavoured messages are genpy times, as under ROS 1."""
+
+    _face = ""
+
+    def __instancecheck__(cls, instance: object) -> bool:
+        if type.__instancecheck__(cls, instance):
+            return True
+        kind = type(instance)
+        return (
+            bool(cls._face)
+            and getattr(kind, "__typename__", "") == cls._face
+            and hasattr(instance, "secs")
+            and "_face" in cls.__dict__  # genpy's own Time/Duration, not rospy's subclasses
+        )
+
+
+class TVal(metaclass=_Kind):
     """A time value: ``secs`` [s] and ``nsecs`` [ns], canonical after every change."""
 
     __slots__ = ("nsecs", "secs")
@@ -125,6 +144,7 @@ class Time(TVal):
     """A point in time since the epoch (ROS 1's ``time``); never negative."""
 
     __slots__ = ()
+    _face = "builtin_interfaces/msg/Time"
 
     def __init__(self, secs: Any = 0, nsecs: Any = 0) -> None:
         super().__init__(secs, nsecs)
@@ -161,6 +181,7 @@ class Duration(TVal):
     """A span of time (ROS 1's ``duration``); may be negative (``secs`` carries the sign)."""
 
     __slots__ = ()
+    _face = "builtin_interfaces/msg/Duration"
 
     def __repr__(self) -> str:
         return f"genpy.Duration[{self.to_nsec()}]"

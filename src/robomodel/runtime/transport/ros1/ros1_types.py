@@ -20,7 +20,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -157,9 +157,7 @@ def _md5_type(store: Any, desc: Any) -> str:
     return f"{inner}[{size if kind == 3 else ''}]"
 
 
-def _make_type(key: str, name: str, flavour: type[Message] | None = None) -> Ros1Type:
-    """The ROS 1 type ``key``; its decoder builds ``flavour``'s classes (a class with the same
-    ``__typename__`` as robomodel's, and its nested classes) where one is given."""
+def _make_type(key: str, name: str) -> Ros1Type:
     store = _store()
     if key not in store.fielddefs:
         # A type of the user's interface packages, or learned from a peer: ROS 1 gets it too.
@@ -168,37 +166,12 @@ def _make_type(key: str, name: str, flavour: type[Message] | None = None) -> Ros
         store.register(definitions_outside(key, store.fielddefs))
     if key not in store.fielddefs:
         raise Ros1TypeError(f"ROS 1 has no type {name}")
-    classes = _robomodel_class if flavour is None else _flavour_classes(flavour)
-    cls = classes(key)
+    cls = _robomodel_class(key)
     if cls is None:
         raise Ros1TypeError(f"robomodel has no class for the ROS 1 type {name}")
     definition, md5 = store.generate_msgdef(key, ros_version=1)
-    encode, decode = make_codec(key, store.fielddefs, classes, special_field)
+    encode, decode = make_codec(key, store.fielddefs, _robomodel_class, special_field)
     return Ros1Type(name, md5, definition, cls, encode, decode, _fixed_size(store.fielddefs, key))
-
-
-def _flavour_classes(flavour: type[Message]) -> Any:
-    """A class lookup (ROS 1 key -> class) that gives ``flavour`` and the message classes its
-    fields name in place of robomodel's own classes of the same types: a client library's face
-    (genpy's, rosidl's) of a type decodes into that face, so callbacks get the class the
-    subscription was made with."""
-    faces: dict[str, type[Message]] = {}
-    pending: list[Any] = [flavour]
-    while pending:
-        spec = pending.pop()
-        if isinstance(spec, (Seq, Array)):
-            pending.append(spec.item)
-        elif (
-            isinstance(spec, type) and issubclass(spec, Message) and spec.__typename__ not in faces
-        ):
-            faces[spec.__typename__] = spec
-            pending.extend(field for _, field in spec.__fields__)
-
-    def classes(ros1_key: str) -> Any:
-        own = _robomodel_class(ros1_key)
-        return own if own is None else faces.get(own.__typename__, own)
-
-    return classes
 
 
 def _fixed_size(fielddefs: Any, key: str) -> int | None:
@@ -262,10 +235,36 @@ def ros1_type(cls: type[Message]) -> Ros1Type:
         found = _make_type(key, key.replace("/msg/", "/"))
         if not same_type(found.cls, cls):
             raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
-        if found.cls is not cls:  # another face of the type (genpy's, rosidl's): its classes
-            found = _make_type(key, found.name, cls)
-        _TYPES[cls] = found
+        _TYPES[cls] = found = _decoding_into(found, cls)
     return found
+
+
+def _decoding_into(found: Ros1Type, cls: type[Message]) -> Ros1Type:
+    """``found`` decoding into ``cls``, a client library's face of its robomodel class (a
+    genpy-flavoured class for rospy), with nested types of the same family."""
+    if found.cls is cls:
+        return found
+    family: dict[str, Any] = {}
+    _collect(cls, family)
+
+    def classes(ros1_key: str) -> Any:
+        ours = _robomodel_class(ros1_key)
+        return None if ours is None else family.get(ours.__typename__, ours)
+
+    encode, decode = make_codec(_ros1_key(found.name), _store().fielddefs, classes, special_field)
+    return replace(found, cls=cls, _encode=encode, _decode=decode)
+
+
+def _collect(cls: Any, family: dict[str, Any]) -> None:
+    """The message classes ``cls`` holds, nested ones too, by type name."""
+    if cls.__typename__ in family:
+        return
+    family[cls.__typename__] = cls
+    for _, spec in cls.__fields__:
+        while isinstance(spec, (Seq, Array)):
+            spec = spec.item
+        if isinstance(spec, type):
+            _collect(spec, family)
 
 
 def ros1_service_type(cls: type[Service]) -> Ros1ServiceType:
@@ -289,7 +288,7 @@ def _make_service(cls: type[Service]) -> Ros1ServiceType:
     if kind != "srv" or any(k not in store.fielddefs for k in keys):
         raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
     request, response = (
-        _make_type(k, k.replace("/msg/", "/"), half)
+        _decoding_into(_make_type(k, k.replace("/msg/", "/")), half)
         for k, half in zip(keys, (cls.Request, cls.Response), strict=True)
     )
     text = _md5_text(store, keys[0]) + _md5_text(store, keys[1])
