@@ -174,13 +174,17 @@ def main() -> None:
     )  # fmt: skip
     try:
         time.sleep(2.0)  # the master's port (a benchmark may wait; tests must not)
-        print(f"1 kHz std_msgs/String over TCPROS, {args.seconds:g} s per run, {args.rounds} rounds")
+        print(
+            f"1 kHz std_msgs/String over TCPROS, {args.seconds:g} s per run, {args.rounds} rounds"
+        )
         print(f"load average at start: {os.getloadavg()[0]:.1f}")
         rows: dict[str, list[tuple[float, float, int]]] = {"robomodel": [], "rospy": []}
         for _ in range(args.rounds):
             for variant in rows:
                 found = _run_pair(variant, env, args)
-                rows[variant].append((_percentile(found, 0.5), _percentile(found, 0.99), len(found)))
+                rows[variant].append(
+                    (_percentile(found, 0.5), _percentile(found, 0.99), len(found))
+                )
         print(f"{'':<12}{'p50 [us]':>10}{'p99 [us]':>10}{'received':>10}")
         medians = {}
         for variant, results in rows.items():

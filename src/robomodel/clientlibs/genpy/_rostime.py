@@ -28,6 +28,10 @@ def _split(secs: Any, nsecs: Any) -> tuple[int, int]:
     return int(secs), int(nsecs)
 
 
+def _nsec(value: Any) -> int:
+    return int(value.secs) * _NS_PER_S + int(value.nsecs)
+
+
 class _Kind(type):
     """``isinstance(stamp, genpy.Time)`` also holds for a message class's face of
     ``builtin_interfaces/msg/Time`` (``Duration``) that has genpy's ``secs``/``nsecs``: the
@@ -111,20 +115,20 @@ class TVal(metaclass=_Kind):
         return isinstance(other, base)
 
     def __eq__(self, other: object) -> bool:
-        if not isinstance(other, TVal) or not self._same_kind(other):
+        if not self._same_kind(other):
             return False
-        return self.to_nsec() == other.to_nsec()
+        return self.to_nsec() == _nsec(other)
 
     def __ne__(self, other: object) -> bool:
         return not self.__eq__(other)
 
     def _compare(self, other: object) -> int:
-        if not isinstance(other, TVal) or not self._same_kind(other):
+        if not self._same_kind(other):
             raise TypeError(
                 f"cannot compare {type(self).__name__} with {type(other).__name__}"
                 " (a Time compares with a Time, a Duration with a Duration)"
             )
-        mine, theirs = self.to_nsec(), other.to_nsec()
+        mine, theirs = self.to_nsec(), _nsec(other)
         return (mine > theirs) - (mine < theirs)
 
     def __lt__(self, other: object) -> bool:
