@@ -174,6 +174,8 @@ def test_names_params_latch_timers_and_logging(graph: Graph, tmp_path: Path) -> 
         "-", "1", "-", "2", "-", "3",
     ]  # fmt: skip
     pub = graph.start([ROSTOPIC, "pub", "-r", "5", "/lab/trigger", "std_msgs/String", "data: go"])
+    refused = graph.tool(ROSSERVICE, "call", "/lab/probe/refuse", "true")
+    assert refused.returncode != 0 and "no thanks" in refused.stderr, refused.stderr
     graph.until(lambda: "trigger" in _results(log), "wait_for_message")
     graph.stop(pub)
     words = graph.start([ROSTOPIC, "pub", "-r", "5", "/lab/words", "std_msgs/String", "data: abc"])
@@ -197,6 +199,12 @@ def test_names_params_latch_timers_and_logging(graph: Graph, tmp_path: Path) -> 
         "missing_raises": "'/lab/probe/missing'",
         "search": "/robot_size",
         "names_has_written": True,
+        "service_error": True,
+        "service_missing": True,
+        "wait_service_timeout": "timeout exceeded while waiting for service /nowhere",
+        "published_has_state": True,
+        "node_uri": True,
+        "robomodel_node": "Node",
         "oneshot": True,
         "timer_ticks": 3,
         "timer_event_has_last": True,
