@@ -266,3 +266,73 @@ def test_a_message_face_of_time_is_a_genpy_time() -> None:
     from robomodel.runtime.msg import Time as OwnTime
 
     assert not isinstance(OwnTime(1, 2), genpy.Time)  # sec/nanosec, no genpy fields
+
+
+@pytest.fixture
+def manual_node() -> Any:
+    """A rospy node state on the in-process bus with a manual clock (no master), removed
+    after the test."""
+    from robomodel.runtime.clock import ManualClock
+    from robomodel.runtime.context import Context
+
+    clock = ManualClock(100.0)
+    context = Context("inproc", clock=clock)
+    node = context.create_node("timing")
+    core.set_state(core.NodeState("/timing", {}, context, node))
+    try:
+        yield context, clock
+    finally:
+        core._LIFE.state = None
+        context.shutdown()
+
+
+def _advance_in_background(clock: Any, step_s: float, steps: int) -> Any:
+    import threading
+    import time
+
+    def run() -> None:
+        for _ in range(steps):
+            time.sleep(0.002)
+            clock.set(clock.now_s() + step_s)
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    return thread
+
+
+def test_rate_and_sleep_follow_ros_time(manual_node: Any) -> None:
+    _, clock = manual_node
+    rate = rospy.Rate(10)
+    assert rate.last_time == rospy.Time(100)
+    assert rate.remaining() == rospy.Duration(0, 100_000_000)
+    mover = _advance_in_background(clock, 0.01, 400)
+    for tick in range(1, 4):
+        rate.sleep()
+        assert clock.now_s() >= 100.0 + 0.1 * tick - 1e-9
+        assert rate.last_time.to_sec() == pytest.approx(100.0 + 0.1 * tick)
+    clock.set(clock.now_s() + 5.0)  # a loop far behind starts its schedule afresh
+    late_s = clock.now_s()
+    rate.sleep()
+    assert rate.last_time.to_sec() == pytest.approx(late_s)
+    start_s = clock.now_s()
+    rospy.sleep(0.05)
+    assert clock.now_s() >= start_s + 0.05 - 1e-9
+    rospy.sleep(rospy.Duration(-1))  # a negative sleep returns at once
+    mover.join()
+
+
+def test_timer_events_in_ros_time(manual_node: Any) -> None:
+    context, _ = manual_node
+    events: list[Any] = []
+    once: list[Any] = []
+    timer = rospy.Timer(rospy.Duration(0.5), events.append)
+    rospy.Timer(rospy.Duration(0.25), once.append, oneshot=True)
+    context.advance(1.6)
+    assert [e.current_expected.to_sec() for e in events] == [100.5, 101.0, 101.5]
+    assert events[0].last_expected is None and events[0].last_duration is None
+    assert events[2].last_expected == events[1].current_expected
+    assert events[2].last_real == events[1].current_real
+    assert len(once) == 1 and once[0].current_real.to_sec() == pytest.approx(100.25)
+    timer.shutdown()
+    context.advance(1.0)
+    assert len(events) == 3 and not timer.is_alive()

@@ -14,11 +14,11 @@ from robomodel.clientlibs.rospy.exceptions import (
     ROSTimeMovedBackwardsException,
 )
 from robomodel.clientlibs.rospy.rostime import Duration, Time, get_rostime
-from robomodel.runtime.clock import SimClock
+from robomodel.runtime.clock import SystemClock
 
 __all__ = ["Rate", "Timer", "TimerEvent", "sleep"]
 
-_SIM_POLL_S = 0.001  # how often a sleep in sim time looks at /clock's time
+_SIM_POLL_S = 0.001  # how often a sleep in sim time (or any clock but the wall's) looks at it
 
 
 def _seconds(duration: Any) -> float:
@@ -35,7 +35,7 @@ def _sleep_until(end_s: float) -> None:
     clock = core.state().node.get_clock()
     stop = core.shutdown_event()
     start_s = clock.now_s()
-    sim = isinstance(clock, SimClock)
+    sim = not isinstance(clock, SystemClock)
     while True:
         now_s = clock.now_s()
         if stop.is_set():
@@ -48,43 +48,47 @@ def _sleep_until(end_s: float) -> None:
 
 
 class Rate:
-    """Sleeps so that a loop runs at ``hz`` (``r = rospy.Rate(10); r.sleep()``)."""
+    """Sleeps so that a loop runs at ``hz`` (``r = rospy.Rate(10); r.sleep()``). Times are
+    whole nanoseconds, as rospy's (its period is ``Duration(0, int(1e9 / hz))``)."""
 
     def __init__(self, hz: float, reset: bool = False) -> None:
         if not hz > 0:
             raise ValueError(f"Rate needs a rate > 0 Hz, got {hz}")
-        self.period_s = 1.0 / hz
-        self.last_time = get_rostime()
-        self._last_s = self.last_time.to_sec()
+        self.sleep_dur = Duration(0, int(1e9 / hz))
+        self._period_ns = self.sleep_dur.to_nsec()
+        self._last_ns = core.state().node.get_clock().now_ns()
         self._reset = reset
 
-    def _remaining_s(self, now_s: float) -> float:
-        if self._last_s > now_s:  # time went back (a bag or a simulator restarted)
-            self._last_s = now_s
-        return self._last_s + self.period_s - now_s
+    @property
+    def last_time(self) -> Time:
+        """The time of the last tick."""
+        return Time(0, self._last_ns)
+
+    def _remaining_ns(self, now_ns: int) -> int:
+        if self._last_ns > now_ns:  # time went back (a bag or a simulator restarted)
+            self._last_ns = now_ns
+        return self._period_ns - (now_ns - self._last_ns)
 
     def remaining(self) -> Duration:
         """The time left before the next tick."""
-        now_s = core.state().node.get_clock().now_s()
-        return Duration.from_sec(self._remaining_s(now_s))
+        return Duration(0, self._remaining_ns(core.state().node.get_clock().now_ns()))
 
     def sleep(self) -> None:
-        """Sleep until one period after the last tick; a loop that ran late starts afresh.
-        ROSInterruptException when the node shuts down."""
+        """Sleep until one period after the last tick (at once if that has passed); a loop
+        that fell behind by more than two periods starts afresh. ROSInterruptException when the
+        node shuts down."""
         clock = core.state().node.get_clock()
-        now_s = clock.now_s()
+        now_ns = clock.now_ns()
         try:
-            _sleep_until(now_s + max(0.0, self._remaining_s(now_s)))
+            _sleep_until((now_ns + max(0, self._remaining_ns(now_ns))) / 1e9)
         except ROSTimeMovedBackwardsException:
             if not self._reset:
                 raise
-            self._last_s = clock.now_s()
+            self._last_ns = clock.now_ns()
             return
-        self._last_s += self.period_s
-        now_s = clock.now_s()
-        if now_s - self._last_s > self.period_s:
-            self._last_s = now_s
-        self.last_time = Time.from_sec(self._last_s)
+        self._last_ns += self._period_ns
+        if now_ns - self._last_ns > 2 * self._period_ns:  # as rospy: a loop more than two
+            self._last_ns = now_ns  # periods late starts its schedule again from the sleep's start
 
 
 @dataclass(frozen=True)
