@@ -13,7 +13,7 @@ from robomodel.clientlibs.rospy.exceptions import (
     ROSInterruptException,
     ROSTimeMovedBackwardsException,
 )
-from robomodel.clientlibs.rospy.rostime import Duration, Time, get_rostime
+from robomodel.clientlibs.rospy.rostime import Duration, Time
 from robomodel.runtime.clock import SystemClock
 
 __all__ = ["Rate", "Timer", "TimerEvent", "sleep"]
