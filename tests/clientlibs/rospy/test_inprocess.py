@@ -205,46 +205,6 @@ def test_before_init_node_the_node_is_unnamed() -> None:
         rospy.get_param("x")
 
 
-def test_ros1_messages_decode_into_the_face_a_subscription_was_made_with() -> None:
-    """A client library's face of a type (same ``__typename__`` and fields, another class)
-    is written and read on ROS 1's wire as robomodel's own class, and decodes into itself, with
-    its nested faces."""
-    from dataclasses import dataclass, field
-
-    from robomodel.runtime.msg import Message, get_message_type
-    from robomodel.runtime.msg.types.geometry_msgs import Point
-    from robomodel.runtime.msg.types.std_msgs import Header
-    from robomodel.runtime.transport.ros1.ros1_types import ros1_type
-
-    @dataclass(slots=True)
-    class FacePoint(Message):
-        x: float = 0.0
-        y: float = 0.0
-        z: float = 0.0
-
-    @dataclass(slots=True)
-    class FacePointStamped(Message):
-        header: Header = field(default_factory=Header)
-        point: FacePoint = field(default_factory=FacePoint)
-
-    OwnPointStamped: Any = get_message_type("geometry_msgs/msg/PointStamped")
-    # set after the class is made, so the faces do not take robomodel's registry entries
-    FacePoint.__typename__ = Point.__typename__
-    FacePoint.__fields__ = Point.__fields__
-    FacePointStamped.__typename__ = OwnPointStamped.__typename__
-    FacePointStamped.__fields__ = (("header", Header), ("point", FacePoint))
-
-    own = OwnPointStamped(Header(frame_id="map"), Point(1.0, 2.0, 3.0))
-    data = ros1_type(OwnPointStamped).encode(own)
-    face = ros1_type(FacePointStamped)
-    assert face.md5sum == ros1_type(OwnPointStamped).md5sum
-    decoded = face.decode(data)
-    assert type(decoded) is FacePointStamped and type(decoded.point) is FacePoint
-    assert (decoded.header.frame_id, decoded.point.y) == ("map", 2.0)
-    assert face.encode(decoded) == data
-    assert type(ros1_type(OwnPointStamped).decode(data)) is OwnPointStamped
-
-
 def test_a_message_face_of_time_is_a_genpy_time() -> None:
     """A genpy-flavoured message's stamp (a face of builtin_interfaces/msg/Time with genpy's
     ``secs``/``nsecs``) is a ``genpy.Time``: it compares and subtracts with rospy's times."""
