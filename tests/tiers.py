@@ -77,6 +77,7 @@ ROS1_PROCESS: tuple[str, ...] = ("process", "ros1")
 PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/netns": ("process", "bus", "ros1"),
     "tests/ros1wire": ROS1_PROCESS,
+    "tests/clientlibs/rospy/test_debian_tools.py": ROS1_PROCESS,
     "tests/ros2wire": BUS_PROCESS,
     "tests/seeds": PROCESS,
     "tests/sim": ("sim",),
