@@ -5,7 +5,8 @@ A package is known when robomodel has its types: its own classes, its copies of 
 interfaces, the ``msg/``, ``srv/`` and ``action/`` folders of the packages on the package path
 (``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH``), or rosbags' type stores. Each module gives its
 types by name on first access (``from std_msgs.msg import String``), and lists them in
-``__all__`` (``from std_srvs.srv import *``).
+``__all__`` (``from std_srvs.srv import *``). The classes are of the process's flavour when the
+module is first imported (:func:`robomodel.clientlibs.messages.flavour`): rclpy's or rospy's.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ if TYPE_CHECKING:
 else:
     _LoaderBase = object  # importlib.abc would import importlib.resources at every start
 
-__all__ = ["KINDS", "find_spec", "package_names", "type_names"]
+__all__ = ["KINDS", "find_spec", "module_names", "package_names", "type_names"]
 
 KINDS = ("msg", "srv", "action")
 
@@ -64,22 +65,38 @@ def _derived_service_half(name: str, services: set[str]) -> bool:
     return False
 
 
-def _type_of(package: str, kind: str, name: str) -> Any:
-    from robomodel.runtime.msg import _resolver
-    from robomodel.runtime.msg.schema import get_message_type, get_service_type
+def _type_of(package: str, kind: str, name: str, flavour: str) -> Any:
+    """The ``flavour``'s class of ``package``'s ``kind`` type ``name`` (genpy's service
+    module also has the halves, ``AddTwoIntsRequest``)."""
+    from robomodel.clientlibs import messages
 
     key = f"{package}/{kind}/{name}"
     if kind == "msg":
-        return get_message_type(key)
+        return messages.message_class(key, flavour)
     if kind == "srv":
-        return get_service_type(key)
-    return _resolver.resolve_action(key, key)
+        for suffix in ("Request", "Response"):
+            service = name.removesuffix(suffix)
+            if flavour == "genpy" and service != name and service in type_names(package, kind):
+                found = messages.service_class(f"{package}/srv/{service}", flavour)
+                return found.Request if suffix == "Request" else found.Response
+        return messages.service_class(key, flavour)
+    return messages.action_class(key, flavour)
+
+
+def module_names(package: str, kind: str, flavour: str) -> list[str]:
+    """The names a ``flavour``'s module ``package.kind`` lists: the types, and for genpy's
+    service modules the halves (``AddTwoInts``, ``AddTwoIntsRequest``, ``AddTwoIntsResponse``)."""
+    names = list(type_names(package, kind))
+    if kind == "srv" and flavour == "genpy":
+        names += [f"{n}{suffix}" for n in names for suffix in ("Request", "Response")]
+    return sorted(names)
 
 
 class _InterfaceModule(ModuleType):
     """``pkg.msg`` / ``pkg.srv`` / ``pkg.action``: types made on first access."""
 
     __all__: list[str]
+    __flavour__: str
 
     def __getattr__(self, name: str) -> Any:
         package, _, kind = self.__name__.partition(".")
@@ -88,7 +105,7 @@ class _InterfaceModule(ModuleType):
                 f"module '{self.__name__}' has no attribute '{name}'"
                 f" (it has {', '.join(self.__all__) or 'no types'})"
             )
-        found = _type_of(package, kind, name)
+        found = _type_of(package, kind, name, self.__flavour__)
         setattr(self, name, found)
         return found
 
@@ -101,8 +118,14 @@ class _InterfaceLoader(_LoaderBase):
         package, _, kind = spec.name.partition(".")
         if not kind:
             return ModuleType(spec.name, f"The {package} interface package (robomodel).")
-        module = _InterfaceModule(spec.name, f"The {kind} types of {package} (robomodel).")
-        module.__all__ = list(type_names(package, kind))
+        from robomodel.clientlibs.messages import flavour
+
+        chosen = flavour()
+        module = _InterfaceModule(
+            spec.name, f"The {kind} types of {package}, {chosen}-flavoured (robomodel)."
+        )
+        module.__flavour__ = chosen
+        module.__all__ = module_names(package, kind, chosen)
         return module
 
     def exec_module(self, module: ModuleType) -> None:

@@ -13,7 +13,7 @@ The classes are not entered in the registry of robomodel's own types: the resolv
 from __future__ import annotations
 
 from dataclasses import field, make_dataclass
-from typing import Any
+from typing import Any, Protocol
 
 from robomodel.runtime.msg.definition import PLACEHOLDER, FieldDef, Lookup, field_specs
 from robomodel.runtime.msg.schema import (
@@ -29,6 +29,7 @@ from robomodel.runtime.msg.schema import (
 __all__ = [
     "PLACEHOLDER",
     "FieldDef",
+    "MessageFlavour",
     "build_message_class",
     "build_service_class",
     "make_message_class",
@@ -51,31 +52,68 @@ def _field_default(spec: Spec) -> Any:
     return field(default_factory=lambda: default_for(spec))
 
 
+class MessageFlavour(Protocol):
+    """How a family of classes other than robomodel's own dataclasses looks to its users: the
+    rosidl-generated classes of rclpy, the genpy-generated ones of rospy
+    (:mod:`robomodel.clientlibs.messages`). The class is still a :class:`Message` with the same
+    ``__typename__`` and ``__fields__``, so every codec takes it; its nested specs name the same
+    flavour's classes. A flavoured class may define ``__from_fields__``: the codecs' decoders
+    build instances through it (field values in wire order, or by name) instead of the
+    class's own constructor."""
+
+    def class_name(self, name: str) -> str:
+        """The Python name of the class of type ``name`` (``pkg/kind/Name``)."""
+        ...
+
+    def class_body(
+        self,
+        name: str,
+        specs: tuple[tuple[str, Spec], ...],
+        constants: tuple[tuple[str, str, Any], ...],
+    ) -> tuple[tuple[type, ...], dict[str, Any]]:
+        """The bases (before :class:`Message`) and the namespace of the class."""
+        ...
+
+    def finish(self, cls: type[Message]) -> None:
+        """Complete the class once made (the code generated for its fields)."""
+        ...
+
+
 def make_message_class(
     name: str,
     specs: tuple[tuple[str, Spec], ...],
     constants: tuple[tuple[str, str, Any], ...] = (),
     *,
     module: str = __name__,
+    flavour: MessageFlavour | None = None,
 ) -> type[Message]:
     """The message class of type ``name`` (``pkg/kind/Name``) with fields ``specs`` (``(name,
     spec)`` in wire order) and ``constants`` (``(name, type, value)``, also class attributes, as
     rosidl's Python classes have them): the one place a class is made at run time, for a
-    definition (:func:`build_message_class`) and for the types rosidl derives from an action
-    (:func:`.action.make_action`). Not registered: the caller decides (:func:`.schema.register`)."""
+    definition (:func:`build_message_class`), for the types rosidl derives from an action
+    (:func:`.action.make_action`) and for the client libraries' faces of every type
+    (``flavour``: see :class:`MessageFlavour`). Not registered: the caller decides
+    (:func:`.schema.register`)."""
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
     namespace["__fields__"] = specs
     namespace["__constants__"] = tuple(constants)
-    cls: type[Message] = make_dataclass(
-        name.rsplit("/", 1)[-1],
-        [(n, _annotation(s), _field_default(s)) for n, s in specs],
-        bases=(Message,),
-        namespace=namespace,
-        slots=True,
-    )
+    cls: type[Message]
+    if flavour is not None:
+        bases, body = flavour.class_body(name, specs, constants)
+        cls = type(flavour.class_name(name), (*bases, Message), {**namespace, **body})
+    else:
+        cls = make_dataclass(
+            name.rsplit("/", 1)[-1],
+            [(n, _annotation(s), _field_default(s)) for n, s in specs],
+            bases=(Message,),
+            namespace=namespace,
+            slots=True,
+        )
     # Set after creation: Message.__init_subclass__ registers only robomodel's own classes.
     cls.__typename__ = name
     cls.__module__ = module
+    if flavour is not None:
+        flavour.finish(cls)
     return cls
 
 

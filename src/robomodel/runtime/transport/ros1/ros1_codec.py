@@ -254,7 +254,7 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
         g.prim(code, sec)
         g.prim(code, nsec)
         ours = g.classes(type_name)
-        return f"{g.ref(ours, 'T')}({sec}, {nsec})"
+        return f"{g.ref(_maker(ours), 'T')}({sec}, {nsec})"
     ours = g.classes(type_name)
     names = {n for n, _ in ours.__fields__} if ours is not None else None
     args = []
@@ -269,8 +269,14 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
         if special is not None and special.from_ros1 is not None:
             value = f"{g.ref(special.from_ros1, 'cv')}({value})"
         args.append(f"{target}={value}")
-    maker = g.ref(ours, "T") if ours is not None else "NS"
+    maker = g.ref(_maker(ours), "T") if ours is not None else "NS"
     return f"{maker}({', '.join(args)})"
+
+
+def _maker(cls: Any) -> Any:
+    """What builds an instance of ``cls`` from its field values: a client library's face of a
+    type has its own (``__from_fields__``, see msg._from_definition.MessageFlavour)."""
+    return getattr(cls, "__from_fields__", cls)
 
 
 Encoder = Callable[[Message, int], bytes]
