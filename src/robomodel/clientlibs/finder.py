@@ -76,11 +76,17 @@ class ClientLibraryFinder:
                 _AliasLoader(real),
                 is_package=found.submodule_search_locations is not None,
             )
-        if not _may_be_interface_package(top):
-            return None
-        from robomodel.clientlibs import interfaces
+        if _may_be_interface_package(top):
+            from robomodel.clientlibs import interfaces
 
-        return interfaces.find_spec(fullname)
+            return interfaces.find_spec(fullname)
+        if fullname == top and path is None:
+            close = _close_names(top)
+            if close:  # a typo of an interface package's name: say so, with what was meant
+                from robomodel.clientlibs import interfaces
+
+                raise ModuleNotFoundError(interfaces.not_found(top, close), name=top)
+        return None
 
 
 _MSG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "runtime", "msg")
@@ -101,8 +107,48 @@ def _may_be_interface_package(package: str) -> bool:
         return True
     if os.environ.get("ROS_PACKAGE_PATH") or os.environ.get("AMENT_PREFIX_PATH"):
         return True  # the package path is crawled (once) by interfaces.package_names()
+    resolver = sys.modules.get("robomodel.runtime.msg._resolver")
+    if resolver is not None and resolver.package_paths():
+        return True  # robomodel run/launch --package-path
+    if _in_workspace_src(package):
+        return True
     needle = f"'{package}/"
     return any(needle in text for text in _rosbags_store_texts())
+
+
+def _in_workspace_src(package: str) -> bool:
+    """Whether the working folder is a workspace whose ``src/`` holds ``package`` (at
+    ``src/<package>`` or one folder down), as ``colcon``/``catkin`` lay packages out."""
+    if not os.path.isdir("src"):
+        return False
+    if os.path.isfile(os.path.join("src", package, "package.xml")):
+        return True
+    with os.scandir("src") as entries:
+        folders = [e.path for e in entries if e.is_dir() and not e.name.startswith(".")]
+    return any(os.path.isfile(os.path.join(f, package, "package.xml")) for f in folders)
+
+
+_cheap_names: list[str] = []
+
+
+def _close_names(package: str) -> list[str]:
+    """Names of interface packages robomodel ships or rosbags' stores hold that look like
+    ``package`` (a typo), found with no import of robomodel's type machinery."""
+    if not package.isidentifier() or package.startswith("_") or package in _STARTUP_HOOKS:
+        return []
+    if not _cheap_names:
+        import re
+
+        names = {n[:-3] for n in os.listdir(os.path.join(_MSG, "types")) if n.endswith(".py")}
+        interfaces = os.path.join(_MSG, "interfaces")
+        if os.path.isdir(interfaces):
+            names.update(os.listdir(interfaces))
+        for text in _rosbags_store_texts():
+            names.update(re.findall(r"'(\w+)/(?:msg|srv|action)/", text))
+        _cheap_names.extend(sorted(n for n in names if n.isidentifier() and n[0] != "_"))
+    import difflib
+
+    return difflib.get_close_matches(package, _cheap_names, n=3, cutoff=0.8)
 
 
 def _rosbags_store_texts() -> list[str]:

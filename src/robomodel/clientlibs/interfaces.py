@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import functools
 import importlib.machinery
+import os
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
@@ -27,9 +29,17 @@ __all__ = ["KINDS", "find_spec", "module_names", "package_names", "type_names"]
 KINDS = ("msg", "srv", "action")
 
 
-@functools.cache
 def _all_type_names() -> frozenset[str]:
-    """Every ``pkg/kind/Name`` robomodel can give a class for."""
+    """Every ``pkg/kind/Name`` robomodel can give a class for (found again when the resolver's
+    sources change: ``robomodel run --package-path``)."""
+    from robomodel.runtime.msg import _resolver
+
+    _use_workspace_src()
+    return _type_names_of(_resolver.generation())
+
+
+@functools.cache
+def _type_names_of(generation: int) -> frozenset[str]:
     from robomodel.runtime.msg import _resolver
     from robomodel.runtime.msg.action import _ACTIONS
     from robomodel.runtime.msg.schema import message_type_names, service_type_names
@@ -39,6 +49,41 @@ def _all_type_names() -> frozenset[str]:
     for store in (_resolver._distro_store(), _resolver._store("ROS1_NOETIC")):
         names.update(store.fielddefs)
     return frozenset(names)
+
+
+_workspace_checked: list[str] = []
+
+
+def _use_workspace_src() -> None:
+    """Add the working folder's ``src/`` to the resolver's package path, once, when it holds
+    packages: a node run from its workspace's root finds the workspace's interface packages
+    with no build step, as after ``colcon build`` and sourcing the install."""
+    here = os.path.abspath("src")
+    if here in _workspace_checked:
+        return
+    _workspace_checked.append(here)
+    from robomodel.description.packages import PackageIndex
+    from robomodel.runtime.msg import _resolver
+
+    if not os.path.isdir(here) or not PackageIndex(
+        package_paths=(here,), use_environment=False
+    ).names():
+        return
+    paths = _resolver.package_paths()
+    if Path(here) not in paths:
+        _resolver.configure(package_paths=(*paths, here))
+
+
+def not_found(package: str, close: list[str]) -> str:
+    """The message of the ModuleNotFoundError for an interface package robomodel lacks."""
+    from robomodel.runtime.msg._resolver import searched
+
+    hint = f" (did you mean {', '.join(close)}?)" if close else ""
+    return (
+        f"No module named '{package}'{hint}: neither Python's path nor robomodel has it; "
+        f"robomodel looked for an interface package of that name in {searched()}, "
+        "and in the working folder's src/"
+    )
 
 
 def package_names() -> frozenset[str]:
@@ -134,11 +179,27 @@ class _InterfaceLoader(_LoaderBase):
 
 def find_spec(fullname: str) -> importlib.machinery.ModuleSpec | None:
     """The spec of ``pkg`` or ``pkg.msg``/``pkg.srv``/``pkg.action`` if robomodel knows the
-    package, else None (the import goes on to fail as Python's own)."""
+    package; else None (the import goes on to fail as Python's own), or ModuleNotFoundError
+    naming where robomodel looked when the name is close to a package it knows, or when a
+    package it knows is asked for a module other than msg, srv and action."""
     parts = fullname.split(".")
-    if len(parts) > 2 or (len(parts) == 2 and parts[1] not in KINDS):
+    if len(parts) > 2:
         return None
-    if parts[0] not in package_names():
+    known = package_names()
+    if len(parts) == 2 and parts[1] not in KINDS:
+        if parts[0] in known:
+            raise ModuleNotFoundError(
+                f"No module named '{fullname}': the interface package {parts[0]} has the "
+                f"modules {', '.join(KINDS)} (robomodel)",
+                name=fullname,
+            )
+        return None
+    if parts[0] not in known:
+        import difflib
+
+        close = difflib.get_close_matches(parts[0], sorted(known), n=3, cutoff=0.8)
+        if close:
+            raise ModuleNotFoundError(not_found(parts[0], close), name=fullname)
         return None
     spec = importlib.machinery.ModuleSpec(fullname, _InterfaceLoader(), is_package=len(parts) == 1)
     if len(parts) == 1:

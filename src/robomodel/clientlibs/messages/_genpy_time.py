@@ -113,7 +113,6 @@ class TimeMixin(TVal):
     """genpy's Time: a point in time; ``Time + Duration``, ``Time - Time -> Duration``."""
 
     __slots__ = ()
-    _duration_class: Any = None  # the genpy flavour's Duration, set when both are made
 
     def __repr__(self) -> str:
         return "genpy.Time[%d]" % self.to_nsec()
@@ -127,7 +126,10 @@ class TimeMixin(TVal):
 
     def __sub__(self, other: Any) -> Any:
         if isinstance(other, TimeMixin):
-            return self._duration_class(0, self.to_nsec() - other.to_nsec())
+            from robomodel.clientlibs.messages import message_class
+
+            duration = message_class("builtin_interfaces/msg/Duration", "genpy")
+            return duration(0, self.to_nsec() - other.to_nsec())
         if isinstance(other, DurationMixin):
             return type(self)(0, self.to_nsec() - other.to_nsec())
         return NotImplemented
