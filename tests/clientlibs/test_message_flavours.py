@@ -32,7 +32,7 @@ def test_rosidl_string_is_rclpys() -> None:
     msg = cls(data="hi")
     assert repr(msg) == "std_msgs.msg.String(data='hi')"
     assert cls.get_fields_and_field_types() == {"data": "string"}
-    assert cls.SLOT_TYPES == (rosidl_definition.UnboundedString(),)
+    assert (rosidl_definition.UnboundedString(),) == cls.SLOT_TYPES
     assert cls.__slots__ == ("_data", "_check_fields")
     assert issubclass(cls, Message) and cls.__typename__ == String.__typename__
     assert cls(data="hi") == msg and cls(data="ho") != msg and String(data="hi") != msg
@@ -58,7 +58,9 @@ def test_rosidl_containers_checks_and_repr() -> None:
         msg.header = String()
     imu = message_class("sensor_msgs/msg/Imu", "rosidl")()
     assert isinstance(imu.orientation_covariance, np.ndarray)
-    assert imu.orientation_covariance.dtype == np.float64 and imu.orientation_covariance.shape == (9,)
+    assert imu.orientation_covariance.dtype == np.float64 and imu.orientation_covariance.shape == (
+        9,
+    )
     with pytest.raises(AssertionError, match="must have a size of 9"):
         imu.orientation_covariance = np.zeros(3)
     image = message_class("sensor_msgs/msg/Image", "rosidl")(data=b"\x01\x02")

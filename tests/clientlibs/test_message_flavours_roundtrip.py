@@ -15,7 +15,14 @@ import pytest
 from robomodel.clientlibs.messages import flavoured
 from robomodel.clientlibs.messages._genpy_time import TVal
 from robomodel.runtime.msg.cdr import deserialize, serialize
-from robomodel.runtime.msg.schema import Array, Message, MessageTypeError, Seq, Spec, get_message_type
+from robomodel.runtime.msg.schema import (
+    Array,
+    Message,
+    MessageTypeError,
+    Seq,
+    Spec,
+    get_message_type,
+)
 from robomodel.runtime.transport.ros1.ros1_types import Ros1TypeError, ros1_type
 
 typesys = pytest.importorskip("rosbags.typesys")

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from robomodel.clientlibs import ament_index_python as ament
-from robomodel.clientlibs import rospkg, roslib
+from robomodel.clientlibs import roslib, rospkg
 from robomodel.clientlibs.roslib import message as roslib_message
 from robomodel.clientlibs.roslib import packages as roslib_packages
 

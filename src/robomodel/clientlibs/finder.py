@@ -119,13 +119,27 @@ def _may_be_interface_package(package: str) -> bool:
 def _in_workspace_src(package: str) -> bool:
     """Whether the working folder is a workspace whose ``src/`` holds ``package`` (at
     ``src/<package>`` or one folder down), as ``colcon``/``catkin`` lay packages out."""
+    return package in _workspace_src_packages()
+
+
+def _workspace_src_packages() -> list[str]:
+    """The folders with a ``package.xml`` at ``src/<name>`` or ``src/<group>/<name>``."""
     if not os.path.isdir("src"):
-        return False
-    if os.path.isfile(os.path.join("src", package, "package.xml")):
-        return True
+        return []
+    found = []
     with os.scandir("src") as entries:
         folders = [e.path for e in entries if e.is_dir() and not e.name.startswith(".")]
-    return any(os.path.isfile(os.path.join(f, package, "package.xml")) for f in folders)
+    for folder in folders:
+        if os.path.isfile(os.path.join(folder, "package.xml")):
+            found.append(os.path.basename(folder))
+            continue
+        with os.scandir(folder) as inner:
+            found += [
+                e.name
+                for e in inner
+                if e.is_dir() and os.path.isfile(os.path.join(e.path, "package.xml"))
+            ]
+    return found
 
 
 _cheap_names: list[str] = []
@@ -148,7 +162,8 @@ def _close_names(package: str) -> list[str]:
         _cheap_names.extend(sorted(n for n in names if n.isidentifier() and n[0] != "_"))
     import difflib
 
-    return difflib.get_close_matches(package, _cheap_names, n=3, cutoff=0.8)
+    candidates = [*_cheap_names, *_workspace_src_packages()]
+    return difflib.get_close_matches(package, candidates, n=3, cutoff=0.8)
 
 
 def _rosbags_store_texts() -> list[str]:

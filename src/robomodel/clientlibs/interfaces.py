@@ -65,9 +65,10 @@ def _use_workspace_src() -> None:
     from robomodel.description.packages import PackageIndex
     from robomodel.runtime.msg import _resolver
 
-    if not os.path.isdir(here) or not PackageIndex(
-        package_paths=(here,), use_environment=False
-    ).names():
+    if (
+        not os.path.isdir(here)
+        or not PackageIndex(package_paths=(here,), use_environment=False).names()
+    ):
         return
     paths = _resolver.package_paths()
     if Path(here) not in paths:
@@ -78,11 +79,11 @@ def not_found(package: str, close: list[str]) -> str:
     """The message of the ModuleNotFoundError for an interface package robomodel lacks."""
     from robomodel.runtime.msg._resolver import searched
 
+    _use_workspace_src()
     hint = f" (did you mean {', '.join(close)}?)" if close else ""
     return (
         f"No module named '{package}'{hint}: neither Python's path nor robomodel has it; "
-        f"robomodel looked for an interface package of that name in {searched()}, "
-        "and in the working folder's src/"
+        f"robomodel looked for an interface package of that name in {searched()}"
     )
 
 

@@ -30,4 +30,3 @@ def index() -> PackageIndex:
 def find(name: str) -> Package:
     """The package called ``name``; robomodel's PackageNotFoundError if none is."""
     return index().get(name)
-

@@ -64,7 +64,7 @@ def flavour() -> Flavour:
 def _checked(name: str, where: str) -> Flavour:
     if name not in FLAVOURS:
         raise FlavourError(f"unknown message flavour {where}; flavours are: {', '.join(FLAVOURS)}")
-    return name  # type: ignore[return-value]
+    return name
 
 
 _IMPORT = re.compile(r"^\s*(?:import|from)\s+(rospy|rclpy)\b", re.MULTILINE)
@@ -182,7 +182,7 @@ def _make_service(base: type[Service], name: Flavour) -> type[Service]:
             half._service_class = service  # type: ignore[attr-defined]
     else:
         service.Event = _service_event(base, request, response)  # type: ignore[attr-defined]
-        service.__init__ = _no_instances("Service")  # type: ignore[misc]
+        setattr(service, "__init__", _no_instances("Service"))  # noqa: B010
     return service
 
 
@@ -262,8 +262,12 @@ def _make_action(base: type[Action], name: Flavour) -> type[Action]:
             "SendGoalService": parts["SendGoal"],
             "GetResultService": parts["GetResult"],
             "FeedbackMessage": parts["FeedbackMessage"],
-            "CancelGoalService": flavoured_service(get_service_type("action_msgs/srv/CancelGoal"), name),
-            "GoalStatusMessage": flavoured(get_message_type("action_msgs/msg/GoalStatusArray"), name),
+            "CancelGoalService": flavoured_service(
+                get_service_type("action_msgs/srv/CancelGoal"), name
+            ),
+            "GoalStatusMessage": flavoured(
+                get_message_type("action_msgs/msg/GoalStatusArray"), name
+            ),
         },
     )
     parts["Impl"] = impl

@@ -84,17 +84,13 @@ class GenpyMessage:
         if args:
             if len(args) != len(slots):
                 raise TypeError(
-                    "Invalid number of arguments, args should be %s" % str(list(slots))
-                    + " args are"
-                    + str(args)
+                    f"Invalid number of arguments, args should be {list(slots)} args are{args}"
                 )
             values = dict(zip(slots, args, strict=True))
         else:
             for key in kwds:
                 if key not in slots:
-                    raise AttributeError(
-                        "%s is not an attribute of %s" % (key, type(self).__name__)
-                    )
+                    raise AttributeError(f"{key} is not an attribute of {type(self).__name__}")
             values = kwds
         defaults = self.__defaults__
         for name in slots:
@@ -164,7 +160,9 @@ class GenpyMessage:
 
 
 def _numeric(item: Spec) -> bool:
-    return isinstance(item, str) and item not in ("string", "bool") and not item.startswith("string")
+    return (
+        isinstance(item, str) and item not in ("string", "bool") and not item.startswith("string")
+    )
 
 
 def _dtype(item: Spec) -> str:
@@ -199,7 +197,7 @@ def strify_message(val: Any, indent: str = "") -> str:
 
         return str(yaml.dump(val, default_style='"')).rstrip("\n")
     if isinstance(val, TVal):
-        return "\n%ssecs: %s\n%snsecs: %9d" % (indent, val.secs, indent, val.nsecs)
+        return f"\n{indent}secs: {val.secs}\n{indent}nsecs: {val.nsecs:9d}"
     if type(val) in (list, tuple):
         if not val:
             return "[]"
@@ -221,7 +219,7 @@ def strify_message(val: Any, indent: str = "") -> str:
             value = getattr(val, name)
             if isinstance(value, (bytes, bytearray)) and "uint8[" in slot_type:
                 value = list(value)
-            lines.append("%s%s: %s" % (indent, name, strify_message(value, "  " + indent)))
+            lines.append(f"{indent}{name}: {strify_message(value, '  ' + indent)}")
         text = "\n".join(lines)
         return "\n" + text if indent else text
     return str(val)
@@ -243,7 +241,11 @@ class GenpyFlavour:
         constants: tuple[tuple[str, str, Any], ...],
     ) -> tuple[tuple[type, ...], dict[str, Any]]:
         package = name.split("/", 1)[0]
-        header = bool(specs) and specs[0][0] == "header" and _typename(specs[0][1]) == "std_msgs/msg/Header"
+        header = (
+            bool(specs)
+            and specs[0][0] == "header"
+            and _typename(specs[0][1]) == "std_msgs/msg/Header"
+        )
         extra = _ROS1_ONLY.get(name, ())
         body: dict[str, Any] = {
             "__slots__": (*(n for n, _ in extra), *(n for n, _ in specs)),

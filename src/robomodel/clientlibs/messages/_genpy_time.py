@@ -5,7 +5,7 @@ and ``nanosec`` that the codecs read, normalised as genpy's ``TVal.canon`` does.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 __all__ = ["DurationMixin", "TVal", "TimeMixin"]
 
@@ -16,15 +16,18 @@ class TVal:
     """genpy's TVal: seconds and nanoseconds; the subclass is a message class with the slots
     ``sec`` and ``nanosec``."""
 
-    __slots__ = ()
-    sec: int
-    nanosec: int
+    if TYPE_CHECKING:  # the message class made from the type's fields has these slots
+        __slots__ = ("nanosec", "sec")
+        sec: int
+        nanosec: int
+    else:
+        __slots__ = ()
 
     def __init__(self, secs: int | float = 0, nsecs: int = 0) -> None:
         if not isinstance(secs, int):
             # float seconds, as genpy accepts them
             whole = math.floor(secs)
-            nsecs = int(nsecs) + int(round((secs - whole) * _NS))
+            nsecs = int(nsecs) + round((secs - whole) * _NS)
             secs = int(whole)
         self.sec, self.nanosec = _canon(int(secs), int(nsecs))
 
@@ -115,7 +118,7 @@ class TimeMixin(TVal):
     __slots__ = ()
 
     def __repr__(self) -> str:
-        return "genpy.Time[%d]" % self.to_nsec()
+        return f"genpy.Time[{self.to_nsec()}]"
 
     def __add__(self, other: Any) -> Any:
         if not isinstance(other, DurationMixin):
@@ -128,7 +131,7 @@ class TimeMixin(TVal):
         if isinstance(other, TimeMixin):
             from robomodel.clientlibs.messages import message_class
 
-            duration = message_class("builtin_interfaces/msg/Duration", "genpy")
+            duration: Any = message_class("builtin_interfaces/msg/Duration", "genpy")
             return duration(0, self.to_nsec() - other.to_nsec())
         if isinstance(other, DurationMixin):
             return type(self)(0, self.to_nsec() - other.to_nsec())
@@ -141,7 +144,7 @@ class DurationMixin(TVal):
     __slots__ = ()
 
     def __repr__(self) -> str:
-        return "genpy.Duration[%d]" % self.to_nsec()
+        return f"genpy.Duration[{self.to_nsec()}]"
 
     def __neg__(self) -> Any:
         return type(self)(0, -self.to_nsec())
@@ -162,11 +165,11 @@ class DurationMixin(TVal):
         return type(self)(0, self.to_nsec() - other.to_nsec())
 
     def __mul__(self, factor: float) -> Any:
-        return type(self)(0, int(round(self.to_nsec() * factor)))
+        return type(self)(0, round(self.to_nsec() * factor))
 
     __rmul__ = __mul__
 
     def __truediv__(self, other: Any) -> Any:
         if isinstance(other, DurationMixin):
             return self.to_nsec() / other.to_nsec()
-        return type(self)(0, int(round(self.to_nsec() / other)))
+        return type(self)(0, round(self.to_nsec() / other))

@@ -21,7 +21,7 @@ import math
 import os
 from collections import UserList, UserString
 from collections.abc import ByteString, Sequence, Set
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.messages import slot_types
 from robomodel.runtime.msg._source_gen import SourceGen
@@ -63,7 +63,10 @@ def _check_default() -> bool:
 class RosidlMessage:
     """Base of the rosidl-flavoured classes: what every generated class has alike."""
 
-    __slots__ = ()
+    if TYPE_CHECKING:  # each class has its fields' slots and this one
+        __slots__ = ("_check_fields",)
+    else:
+        __slots__ = ()
     _fields_and_field_types: dict[str, str]
     SLOT_TYPES: tuple[Any, ...]
 
@@ -72,9 +75,10 @@ class RosidlMessage:
         cls = type(self)
         if self._check_fields:
             unknown = [k for k in kwargs if k not in cls._fields_and_field_types]
-            assert not unknown, "Invalid arguments passed to constructor: %s" % ", ".join(
-                sorted(unknown)
-            )
+            if unknown:  # rosidl asserts; raised so that python -O keeps the check
+                raise AssertionError(
+                    f"Invalid arguments passed to constructor: {', '.join(sorted(unknown))}"
+                )
         defaults = cls.__defaults__  # type: ignore[attr-defined]
         for name in cls._fields_and_field_types:
             setattr(self, name, kwargs[name] if name in kwargs else defaults[name]())
@@ -92,7 +96,7 @@ class RosidlMessage:
             ):
                 text = "[]" if len(value) == 0 else text[len("array('X', ") : -len(")")]
             args.append(f"{s}={text}")
-        return "%s(%s)" % (".".join(typename), ", ".join(args))
+        return f"{'.'.join(typename)}({', '.join(args)})"
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, self.__class__):
@@ -177,7 +181,7 @@ def _numpy() -> Any:
     return numpy
 
 
-def _split_octets(value: Any) -> list[bytes]:
+def _split_octets(value: Any) -> list[Any]:
     """``byte[]`` values from the wire (bytes) as rosidl's list of bytes of length 1."""
     if isinstance(value, (bytes, bytearray)):
         return [value[i : i + 1] for i in range(len(value))]
@@ -238,10 +242,19 @@ def _default(g: _Gen, spec: Spec) -> str:
         return f"[{_default(g, spec.item)} for _ in range({spec.size})]"
     if isinstance(spec, str):
         base = spec.partition("<=")[0]
-        return {"string": "''", "bool": "False", "float32": "0.0", "float64": "0.0"}.get(
-            base, "0"
-        )
+        return {"string": "''", "bool": "False", "float32": "0.0", "float64": "0.0"}.get(base, "0")
     return f"{g.ref(spec, 'T')}()"
+
+
+def _raising(line: str) -> str:
+    """rosidl's ``assert cond, "The ..."`` as an ``if``/``raise AssertionError``: the same
+    exception and message, kept under ``python -O``."""
+    indent = line[: len(line) - len(line.lstrip())]
+    body = line.lstrip()
+    if not body.startswith("assert "):
+        return line
+    condition, message = body[len("assert ") :].rsplit(', "The ', 1)
+    return f'{indent}if not ({condition}): raise AssertionError("The {message})'
 
 
 def _check(g: _Gen, name: str, spec: Spec) -> list[str]:
@@ -309,7 +322,7 @@ def _check_nested(g: _Gen, name: str, spec: Seq | Array) -> list[str]:
             f"    assert value.dtype == '{dtype}', \"The '{name}' numpy.ndarray() must have the"
             f" dtype of 'numpy.{dtype}'\"",
             f"    assert value.size == {spec.size}, \"The '{name}' numpy.ndarray() must have a"  # type: ignore[union-attr]
-            f" size of {spec.size}\"",  # type: ignore[union-attr]
+            f' size of {spec.size}"',  # type: ignore[union-attr]
             f"    self._{name} = value",
             "    return",
         ]
@@ -323,7 +336,7 @@ def _check_nested(g: _Gen, name: str, spec: Seq | Array) -> list[str]:
         if isinstance(spec, Seq) and spec.bound is not None:
             lines.append(
                 f"    assert len(value) <= {spec.bound}, \"The '{name}' array.array() must have"
-                f" a size <= {spec.bound}\""
+                f' a size <= {spec.bound}"'
             )
         lines += [f"    self._{name} = value", "    return"]
     conditions = [
@@ -356,8 +369,10 @@ def _check_nested(g: _Gen, name: str, spec: Seq | Array) -> list[str]:
 
 def _item_check(g: _Gen, item: Spec) -> tuple[tuple[str, str], str, str]:
     """(isinstance target and its name, the range condition and its text) of sequence items."""
-    if not isinstance(item, str):
+    if isinstance(item, type):
         return (g.ref(item, "T"), item.__name__), "", ""
+    if not isinstance(item, str):
+        raise TypeError(f"an array of arrays is not a ROS field type: {item!r}")
     base = item.partition("<=")[0]
     if base == "string":
         return ("str", "str"), "", ""
@@ -422,7 +437,7 @@ class RosidlFlavour:
             g.emit(0, f"def _set_{name}(self, value):")
             g.emit(1, "if self._check_fields:")
             for line in _check(g, name, spec):
-                g.emit(2, line)
+                g.emit(2, _raising(line))
             g.emit(1, f"self._{name} = {_to_container(g, spec, 'value')}")
             g.emit(0, f"def _default_{name}():")
             g.emit(1, f"return {_default(g, spec)}")
@@ -437,7 +452,9 @@ class RosidlFlavour:
         g.emit(1, "return _o")
         exec("\n".join(g.lines), g.env)
         for name in names:
-            prop = property(g.env[f"_get_{name}"], g.env[f"_set_{name}"], doc=f"Message field '{name}'.")
+            prop = property(
+                g.env[f"_get_{name}"], g.env[f"_set_{name}"], doc=f"Message field '{name}'."
+            )
             setattr(cls, name, prop)
         cls.__defaults__ = {n: g.env[f"_default_{n}"] for n in names}  # type: ignore[attr-defined]
         cls.__from_fields__ = staticmethod(g.env["__from_fields__"])  # type: ignore[attr-defined]

@@ -34,7 +34,9 @@ class AbstractType:
         )
 
     def __hash__(self) -> int:
-        return hash((type(self).__name__, *(repr(getattr(self, s)) for s in _all_slots(type(self)))))
+        return hash(
+            (type(self).__name__, *(repr(getattr(self, s)) for s in _all_slots(type(self))))
+        )
 
     def __repr__(self) -> str:
         args = ", ".join(repr(getattr(self, s)) for s in _all_slots(type(self)))
@@ -57,7 +59,7 @@ class BasicType(AbstractType):
 class NamespacedType(AbstractType):
     """A message type: ``namespaces`` (``['std_msgs', 'msg']``) and ``name``."""
 
-    __slots__ = ("namespaces", "name")
+    __slots__ = ("name", "namespaces")
 
     def __init__(self, namespaces: list[str], name: str) -> None:
         self.namespaces = list(namespaces)

@@ -29,9 +29,8 @@ class ResourceNotFound(Exception):
     def __str__(self) -> str:
         text = str(self.args[0])
         if self.ros_paths:
-            text += "\nROS path [%s]=%s" % (0, self.ros_paths[0])
-            for i, path in enumerate(self.ros_paths[1:], start=1):
-                text += "\nROS path [%s]=%s" % (i, path)
+            for i, path in enumerate(self.ros_paths):
+                text += f"\nROS path [{i}]={path}"
         return text
 
 

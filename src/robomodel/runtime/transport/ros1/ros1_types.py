@@ -289,7 +289,7 @@ def _make_service(cls: type[Service]) -> Ros1ServiceType:
         raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
     request, response = (
         _decoding_into(_make_type(k, k.replace("/msg/", "/")), half)
-        for k, half in zip(keys, (cls.Request, cls.Response))
+        for k, half in zip(keys, (cls.Request, cls.Response), strict=True)
     )
     text = _md5_text(store, keys[0]) + _md5_text(store, keys[1])
     md5 = hashlib.md5(text.encode()).hexdigest()
