@@ -56,8 +56,12 @@ _FLOAT_BOUND = {"float32": 3.402823466e38, "float64": 1.7976931348623157e308}
 _FLOAT_NAME = {"float32": "float", "float64": "double"}
 
 
+# Read once, as the generated modules read ROS_PYTHON_CHECK_FIELDS when imported.
+_CHECK_DEFAULT = os.environ.get("ROS_PYTHON_CHECK_FIELDS", "1") != "0"
+
+
 def _check_default() -> bool:
-    return os.environ.get("ROS_PYTHON_CHECK_FIELDS", "1") != "0"
+    return _CHECK_DEFAULT
 
 
 class RosidlMessage:
@@ -71,17 +75,16 @@ class RosidlMessage:
     SLOT_TYPES: tuple[Any, ...]
 
     def __init__(self, **kwargs: Any) -> None:
-        self._check_fields = kwargs.pop("check_fields", _check_default())
-        cls = type(self)
-        if self._check_fields:
-            unknown = [k for k in kwargs if k not in cls._fields_and_field_types]
-            if unknown:  # rosidl asserts; raised so that python -O keeps the check
-                raise AssertionError(
-                    f"Invalid arguments passed to constructor: {', '.join(sorted(unknown))}"
-                )
-        defaults = cls.__defaults__  # type: ignore[attr-defined]
-        for name in cls._fields_and_field_types:
-            setattr(self, name, kwargs[name] if name in kwargs else defaults[name]())
+        """Generated per class (:meth:`RosidlFlavour.finish`): the given fields through their
+        setters, the others their defaults."""
+        raise NotImplementedError(f"{type(self).__name__} was not finished by its flavour")
+
+    def _unknown_arguments(self, kwargs: dict[str, Any]) -> None:
+        unknown = [k for k in kwargs if k not in self._fields_and_field_types]
+        if unknown:  # rosidl asserts; raised so that python -O keeps the check
+            raise AssertionError(
+                f"Invalid arguments passed to constructor: {', '.join(sorted(unknown))}"
+            )
 
     def __repr__(self) -> str:
         typename = [*type(self).__module__.split("."), type(self).__name__]
@@ -289,11 +292,13 @@ def _check_number(name: str, base: str) -> list[str]:
         return [f"assert isinstance(value, bool), \"The '{name}' field must be of type 'bool'\""]
     if base in _FLOAT_BOUND:
         bound = _FLOAT_BOUND[base]
-        return [
-            f"assert isinstance(value, float), \"The '{name}' field must be of type 'float'\"",
-            f"assert not (value < -{bound!r} or value > {bound!r}) or _isinf(value), "
-            f"\"The '{name}' field must be a {_FLOAT_NAME[base]} in [-{bound!r}, {bound!r}]\"",
-        ]
+        lines = [f"assert isinstance(value, float), \"The '{name}' field must be of type 'float'\""]
+        if base == "float32":  # every Python float is in a double's range, or infinite
+            lines.append(
+                f"assert not (value < -{bound!r} or value > {bound!r}) or _isinf(value), "
+                f"\"The '{name}' field must be a {_FLOAT_NAME[base]} in [-{bound!r}, {bound!r}]\""
+            )
+        return lines
     unsigned = base.startswith("uint") or base == "char"
     bits = 8 if base == "char" else int(base.removeprefix("u").removeprefix("int"))
     lines = [f"assert isinstance(value, int), \"The '{name}' field must be of type 'int'\""]
@@ -339,10 +344,10 @@ def _check_nested(g: _Gen, name: str, spec: Seq | Array) -> list[str]:
                 f' a size <= {spec.bound}"'
             )
         lines += [f"    self._{name} = value", "    return"]
-    conditions = [
-        "(isinstance(value, Sequence) or isinstance(value, Set) or isinstance(value, UserList))",
-        "not isinstance(value, str)",
-        "not isinstance(value, UserString)",
+    conditions = [  # a list or tuple first: the ABCs' isinstance is the slow part
+        "(value.__class__ is list or value.__class__ is tuple or ((isinstance(value, Sequence)"
+        " or isinstance(value, Set) or isinstance(value, UserList)) and not isinstance(value,"
+        " str) and not isinstance(value, UserString)))",
     ]
     suffixes = ["a set or sequence"]
     if isinstance(spec, Seq) and spec.bound is not None:
@@ -382,9 +387,15 @@ def _item_check(g: _Gen, item: Spec) -> tuple[tuple[str, str], str, str]:
         return ("bool", "bool"), "", ""
     if base in _FLOAT_BOUND:
         bound = _FLOAT_BOUND[base]
+        # a double's range holds every Python float (or it is infinite): the message only
+        in_range = (
+            "True"
+            if base == "float64"
+            else (f"all(not (val < -{bound!r} or val > {bound!r}) or _isinf(val) for val in value)")
+        )
         return (
             ("float", "float"),
-            f"all(not (val < -{bound!r} or val > {bound!r}) or _isinf(val) for val in value)",
+            in_range,
             f"and each {_FLOAT_NAME[base]} in [{-bound:f}, {bound:f}]",
         )
     bits = 8 if base == "char" else int(base.removeprefix("u").removeprefix("int"))
@@ -441,11 +452,18 @@ class RosidlFlavour:
             g.emit(1, f"self._{name} = {_to_container(g, spec, 'value')}")
             g.emit(0, f"def _default_{name}():")
             g.emit(1, f"return {_default(g, spec)}")
+        # rosidl's constructor: given fields through their setters, the others their defaults
+        g.emit(0, "def __init__(self, **kwargs):")
+        g.emit(1, f"self._check_fields = kwargs.pop('check_fields', {_CHECK_DEFAULT})")
+        g.emit(1, "if kwargs and self._check_fields: self._unknown_arguments(kwargs)")
+        for name in names:
+            g.emit(1, f"if '{name}' in kwargs: self.{name} = kwargs['{name}']")
+            g.emit(1, f"else: self._{name} = _default_{name}()")
         params = ", ".join(f"{n}=_MISSING" for n in names)
         g.env["_MISSING"] = _MISSING
         g.emit(0, f"def __from_fields__({params}):")
         g.emit(1, "_o = _new(_cls)")  # ROS field names never start with "_"
-        g.emit(1, "_o._check_fields = _check_default()")
+        g.emit(1, f"_o._check_fields = {_CHECK_DEFAULT}")
         for name, spec in cls.__fields__:
             g.emit(1, f"if {name} is _MISSING: _o._{name} = _default_{name}()")
             g.emit(1, f"else: _o._{name} = {_to_container(g, spec, name)}")
@@ -456,6 +474,7 @@ class RosidlFlavour:
                 g.env[f"_get_{name}"], g.env[f"_set_{name}"], doc=f"Message field '{name}'."
             )
             setattr(cls, name, prop)
+        cls.__init__ = g.env["__init__"]  # type: ignore[misc]
         cls.__defaults__ = {n: g.env[f"_default_{n}"] for n in names}  # type: ignore[attr-defined]
         cls.__from_fields__ = staticmethod(g.env["__from_fields__"])  # type: ignore[attr-defined]
 
