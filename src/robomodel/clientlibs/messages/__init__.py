@@ -91,7 +91,10 @@ def _flavour_object(name: str) -> Any:
 
         return FLAVOUR
     from robomodel.clientlibs.messages._genpy import FLAVOUR as GENPY
+    from robomodel.clientlibs.messages._genpy_time import DURATION_FACE
 
+    if not DURATION_FACE:
+        DURATION_FACE.append(lambda: message_class("builtin_interfaces/msg/Duration", "genpy"))
     return GENPY
 
 

@@ -5,11 +5,15 @@ and ``nanosec`` that the codecs read, normalised as genpy's ``TVal.canon`` does.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 __all__ = ["DurationMixin", "TVal", "TimeMixin"]
 
 _NS = 1_000_000_000
+# Gives the genpy flavour's Duration class (Time - Time): set by robomodel.clientlibs.messages,
+# which makes the classes.
+DURATION_FACE: list[Callable[[], Any]] = []
 
 
 class TVal:
@@ -129,10 +133,7 @@ class TimeMixin(TVal):
 
     def __sub__(self, other: Any) -> Any:
         if isinstance(other, TimeMixin):
-            from robomodel.clientlibs.messages import message_class
-
-            duration: Any = message_class("builtin_interfaces/msg/Duration", "genpy")
-            return duration(0, self.to_nsec() - other.to_nsec())
+            return DURATION_FACE[0]()(0, self.to_nsec() - other.to_nsec())
         if isinstance(other, DurationMixin):
             return type(self)(0, self.to_nsec() - other.to_nsec())
         return NotImplemented
