@@ -55,13 +55,20 @@ def test_workspace_interfaces_import_in_each_flavour(workspace: Path) -> None:
     genpy = _run(
         "from my_interfaces.srv import *\n"
         "print(AddThreeRequest(1, 2, 3).c, AddThree._request_class is AddThreeRequest)\n"
-        "print(AddThreeResponse._type, len(AddThree._md5sum))\n",
+        "print(AddThreeResponse._type, len(AddThree._md5sum))\n"
+        "from my_interfaces.msg import CountActionGoal, CountGoal\n"
+        "print(type(CountActionGoal().goal) is CountGoal, CountActionGoal._type)\n",
         workspace,
         ROBOMODEL_MESSAGE_FLAVOUR="genpy",
     )
-    assert genpy.stdout.split() == ["3", "True", "my_interfaces/AddThreeResponse", "32"], (
-        genpy.stderr
-    )
+    assert genpy.stdout.split() == [
+        "3",
+        "True",
+        "my_interfaces/AddThreeResponse",
+        "32",
+        "True",
+        "my_interfaces/CountActionGoal",
+    ], genpy.stderr
 
 
 def test_a_typo_names_the_close_package_and_where_robomodel_looked(workspace: Path) -> None:

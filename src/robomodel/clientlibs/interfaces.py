@@ -135,7 +135,20 @@ def module_names(package: str, kind: str, flavour: str) -> list[str]:
     names = list(type_names(package, kind))
     if kind == "srv" and flavour == "genpy":
         names += [f"{n}{suffix}" for n in names for suffix in ("Request", "Response")]
-    return sorted(names)
+    if kind == "msg" and flavour == "genpy":  # genaction's messages of the package's actions
+        names += [f"{a}{suffix}" for a in type_names(package, "action") for suffix in _GENACTION]
+    return sorted(set(names))
+
+
+_GENACTION = (
+    "Action",
+    "ActionGoal",
+    "ActionResult",
+    "ActionFeedback",
+    "Goal",
+    "Result",
+    "Feedback",
+)
 
 
 class _InterfaceModule(ModuleType):

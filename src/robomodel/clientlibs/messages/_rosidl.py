@@ -474,7 +474,7 @@ class RosidlFlavour:
                 g.env[f"_get_{name}"], g.env[f"_set_{name}"], doc=f"Message field '{name}'."
             )
             setattr(cls, name, prop)
-        cls.__init__ = g.env["__init__"]  # type: ignore[misc]
+        setattr(cls, "__init__", g.env["__init__"])  # noqa: B010  # generated per class
         cls.__defaults__ = {n: g.env[f"_default_{n}"] for n in names}  # type: ignore[attr-defined]
         cls.__from_fields__ = staticmethod(g.env["__from_fields__"])  # type: ignore[attr-defined]
 
