@@ -273,7 +273,7 @@ class GenpyFlavour:
             return  # Time(secs, nsecs): the decoders' positional call is its constructor
         g = SourceGen({"_new": object.__new__, "_cls": cls, "_MISSING": _MISSING})
         names = [n for n, _ in cls.__fields__]
-        g.env.update({f"_d_{n}": cls.__defaults__[n] for n in names})  # type: ignore[attr-defined]
+        g.env.update({f"_d_{n}": d for n, d in cls.__defaults__.items()})  # type: ignore[attr-defined]
         g.emit(0, f"def __from_fields__({', '.join(f'{n}=_MISSING' for n in names)}):")
         g.emit(1, "_o = _new(_cls)")
         for name, _ in extra:
@@ -281,8 +281,44 @@ class GenpyFlavour:
         for name in names:
             g.emit(1, f"_o.{name} = _d_{name}() if {name} is _MISSING else {name}")
         g.emit(1, "return _o")
+        _emit_init(g, [n for n, _ in extra] + names)
         exec("\n".join(g.lines), g.env)
         cls.__from_fields__ = staticmethod(g.env["__from_fields__"])  # type: ignore[attr-defined]
+        setattr(cls, "__init__", g.env["__init__"])  # noqa: B010  # generated per class
+
+
+def _emit_init(g: SourceGen, slots: list[str]) -> None:
+    """genpy's constructor (:meth:`GenpyMessage.__init__`) for these slots, unrolled as genpy's
+    generated classes have it: every field positionally, or any by keyword; None is the
+    default."""
+    g.env["_slots"] = frozenset(slots)
+    g.env["_bad_keyword"] = _bad_keyword
+    g.env["_bad_count"] = _bad_count
+    g.emit(0, "def __init__(self, *args, **kwds):")
+    g.emit(1, "if args:")
+    g.emit(
+        2, "if kwds: raise TypeError('Message constructor may only use args OR keywords, not both')"
+    )
+    g.emit(2, f"if len(args) != {len(slots)}: _bad_count(self, args)")
+    if slots:
+        g.emit(2, f"{', '.join(slots)}, = args")
+    g.emit(1, "else:")
+    g.emit(2, "if kwds and not _slots.issuperset(kwds): _bad_keyword(self, kwds)")
+    for name in slots:
+        g.emit(2, f"{name} = kwds.get('{name}')")
+    for name in slots:
+        g.emit(1, f"self.{name} = _d_{name}() if {name} is None else {name}")
+
+
+def _bad_count(message: GenpyMessage, args: tuple[Any, ...]) -> None:
+    raise TypeError(
+        f"Invalid number of arguments, args should be {list(message.__slots__)} args are{args}"
+    )
+
+
+def _bad_keyword(message: GenpyMessage, kwds: dict[str, Any]) -> None:
+    key = next(k for k in kwds if k not in message.__slots__)
+    raise AttributeError(f"{key} is not an attribute of {type(message).__name__}")
 
 
 def _typename(spec: Spec) -> str:

@@ -28,6 +28,9 @@ class TVal:
         __slots__ = ()
 
     def __init__(self, secs: int | float = 0, nsecs: int = 0) -> None:
+        if secs.__class__ is int and nsecs.__class__ is int and 0 <= nsecs < _NS:
+            self.sec, self.nanosec = secs, nsecs  # the decoders' case: already canonical
+            return
         if not isinstance(secs, int):
             # float seconds, as genpy accepts them
             whole = math.floor(secs)
