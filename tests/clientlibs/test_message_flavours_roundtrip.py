@@ -14,6 +14,7 @@ import pytest
 
 from robomodel.clientlibs.messages import flavoured
 from robomodel.clientlibs.messages._genpy_time import TVal
+from robomodel.runtime.msg import message_to_dict
 from robomodel.runtime.msg.cdr import deserialize, serialize
 from robomodel.runtime.msg.schema import (
     Array,
@@ -96,7 +97,11 @@ def test_every_store_type_round_trips_in_each_flavour(store: str, flavour: str) 
         assert [n for n, _ in face.__fields__] == [n for n, _ in ours.__fields__]
         msg = _message(face, 3, flavour == "rosidl")
         data = serialize(msg)
-        assert data == serialize(_message(ours, 3, False)), ours.__typename__
+        native = _message(ours, 3, False)
+        assert data == serialize(native), ours.__typename__
+        assert message_to_dict(msg) == message_to_dict(native), ours.__typename__
+        # defaults too: a definition's default annotation (Quaternion's w 1) is the flavour's
+        assert message_to_dict(face()) == message_to_dict(ours()), ours.__typename__
         back = deserialize(data, face)
         assert type(back) is face
         assert back == msg, ours.__typename__

@@ -124,10 +124,24 @@ def flavoured(cls: type[Message], name: str | None = None) -> type[Message]:
                 base.__constants__,
                 module=_module_of(base.__typename__),
                 flavour=_flavour_object(chosen),
+                defaults=_primitive_defaults(base),
             )
             found.__robomodel_class__ = base  # type: ignore[attr-defined]
             _faces[key] = found
         return found
+
+
+def _primitive_defaults(base: type[Message]) -> dict[str, Any]:
+    """The primitive fields whose default is not their type's zero: a definition's default
+    annotation (``geometry_msgs/Quaternion``'s ``float64 w 1``), as robomodel's class has it."""
+    from robomodel.runtime.msg.schema import default_for
+
+    sample = base()
+    return {
+        name: getattr(sample, name)
+        for name, spec in base.__fields__
+        if isinstance(spec, str) and getattr(sample, name) != default_for(spec.partition("<=")[0])
+    }
 
 
 def _robomodel_class(cls: type[Message]) -> type[Message]:

@@ -265,9 +265,11 @@ class GenpyFlavour:
     def finish(self, cls: type[Message]) -> None:
         """The fields' defaults and ``__from_fields__``."""
         extra = _ROS1_ONLY.get(cls.__typename__, ())
+        annotated = cls.__dict__.get("__field_defaults__", {})
         cls.__defaults__ = {  # type: ignore[attr-defined]
             **{n: _default_maker(t) for n, t in extra},
             **{n: _default_maker(s) for n, s in cls.__fields__},
+            **{n: _constant(v) for n, v in annotated.items()},
         }
         if issubclass(cls, TVal):
             return  # Time(secs, nsecs): the decoders' positional call is its constructor
@@ -323,6 +325,10 @@ def _bad_keyword(message: GenpyMessage, kwds: dict[str, Any]) -> None:
 
 def _typename(spec: Spec) -> str:
     return "" if isinstance(spec, (str, Seq, Array)) else spec.__typename__
+
+
+def _constant(value: Any) -> Any:
+    return lambda: value
 
 
 def _default_maker(spec: Spec) -> Any:

@@ -27,7 +27,16 @@ class TVal:
     else:
         __slots__ = ()
 
-    def __init__(self, secs: int | float = 0, nsecs: int = 0) -> None:
+    def __init__(
+        self,
+        secs: int | float = 0,
+        nsecs: int = 0,
+        *,
+        sec: int | None = None,
+        nanosec: int | None = None,
+    ) -> None:
+        if sec is not None or nanosec is not None:  # the message fields' names, as robomodel's
+            secs, nsecs = sec or 0, nanosec or 0
         if secs.__class__ is int and nsecs.__class__ is int and 0 <= nsecs < _NS:
             self.sec, self.nanosec = secs, nsecs  # the decoders' case: already canonical
             return

@@ -442,6 +442,7 @@ class RosidlFlavour:
         g.env["_new"] = object.__new__
         g.env["_cls"] = cls
         names = [n for n, _ in cls.__fields__]
+        annotated = cls.__dict__.get("__field_defaults__", {})
         for name, spec in cls.__fields__:
             g.emit(0, f"def _get_{name}(self):")
             g.emit(1, f"return self._{name}")
@@ -451,7 +452,10 @@ class RosidlFlavour:
                 g.emit(2, _raising(line))
             g.emit(1, f"self._{name} = {_to_container(g, spec, 'value')}")
             g.emit(0, f"def _default_{name}():")
-            g.emit(1, f"return {_default(g, spec)}")
+            if name in annotated:  # the definition's default annotation
+                g.emit(1, f"return {annotated[name]!r}")
+            else:
+                g.emit(1, f"return {_default(g, spec)}")
         # rosidl's constructor: given fields through their setters, the others their defaults
         g.emit(0, "def __init__(self, **kwargs):")
         g.emit(1, f"self._check_fields = kwargs.pop('check_fields', {_CHECK_DEFAULT})")

@@ -86,19 +86,22 @@ def make_message_class(
     *,
     module: str = __name__,
     flavour: MessageFlavour | None = None,
+    defaults: dict[str, Any] | None = None,
 ) -> type[Message]:
     """The message class of type ``name`` (``pkg/kind/Name``) with fields ``specs`` (``(name,
     spec)`` in wire order) and ``constants`` (``(name, type, value)``, also class attributes, as
     rosidl's Python classes have them): the one place a class is made at run time, for a
     definition (:func:`build_message_class`), for the types rosidl derives from an action
     (:func:`.action.make_action`) and for the client libraries' faces of every type
-    (``flavour``: see :class:`MessageFlavour`). Not registered: the caller decides
-    (:func:`.schema.register`)."""
+    (``flavour``: see :class:`MessageFlavour`; ``defaults``: the values a definition's default
+    annotations give primitive fields, ``float64 w 1``, kept as ``__field_defaults__`` for it).
+    Not registered: the caller decides (:func:`.schema.register`)."""
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
     namespace["__fields__"] = specs
     namespace["__constants__"] = tuple(constants)
     cls: type[Message]
     if flavour is not None:
+        namespace["__field_defaults__"] = dict(defaults or {})
         bases, body = flavour.class_body(name, specs, constants)
         cls = type(flavour.class_name(name), (*bases, Message), {**namespace, **body})
     else:
