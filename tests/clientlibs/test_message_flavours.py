@@ -214,3 +214,41 @@ def test_one_class_per_flavour_and_type() -> None:
     assert flavoured(JointState, "rosidl") is rosidl
     assert flavoured(rosidl, "genpy") is flavoured(JointState, "genpy")
     assert messages.message_class("sensor_msgs/JointState", "rosidl") is rosidl
+
+
+def test_copies_and_pickles_keep_the_flavour() -> None:
+    import copy
+    import pickle
+
+    for name in ("rosidl", "genpy"):
+        cls = message_class("sensor_msgs/msg/JointState", name)
+        msg = cls(name=["a"], position=[1.0])
+        msg.header.frame_id = "base"
+        for again in (copy.deepcopy(msg), pickle.loads(pickle.dumps(msg))):
+            assert type(again) is cls and again == msg and again is not msg
+
+
+def test_package_path_set_at_run_time(tmp_path: Path) -> None:
+    """``robomodel run --package-path`` configures the resolver: the finder and the
+    interface modules see the package from then on."""
+    from robomodel.clientlibs import interfaces
+    from robomodel.runtime.msg import _resolver
+
+    package = tmp_path / "late_interfaces"
+    (package / "msg").mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>late_interfaces</name></package>")
+    (package / "msg" / "Late.msg").write_text("string note\n")
+    with pytest.raises(ModuleNotFoundError, match="No module named 'late_interfaces'"):
+        interfaces.find_spec("late_interfaces.msg")  # close to rcl_interfaces: it says so
+    before = _resolver.package_paths()
+    _resolver.configure(package_paths=(*before, tmp_path))
+    try:
+        spec = interfaces.find_spec("late_interfaces.msg")
+        assert spec is not None and spec.loader is not None
+        module = spec.loader.create_module(spec)
+        assert module is not None and module.__all__ == ["Late"]
+        assert module.Late(note="x").note == "x"
+    finally:
+        _resolver.configure(package_paths=before)
+    with pytest.raises(ModuleNotFoundError):
+        interfaces.find_spec("late_interfaces.msg")

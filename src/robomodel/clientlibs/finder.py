@@ -28,7 +28,7 @@ if TYPE_CHECKING:
 else:
     _LoaderBase = object  # importlib.abc would import importlib.resources at every start
 
-__all__ = ["ALIASED", "ClientLibraryFinder", "install", "installed"]
+__all__ = ["ALIASED", "ClientLibraryFinder", "install", "installed", "workspace_src_folders"]
 
 _HOME = "robomodel.clientlibs"
 
@@ -123,7 +123,13 @@ def _in_workspace_src(package: str) -> bool:
 
 
 def _workspace_src_packages() -> list[str]:
-    """The folders with a ``package.xml`` at ``src/<name>`` or ``src/<group>/<name>``."""
+    """The names of :func:`workspace_src_folders`."""
+    return [os.path.basename(folder) for folder in workspace_src_folders()]
+
+
+def workspace_src_folders() -> list[str]:
+    """The folders with a ``package.xml`` at ``src/<name>`` or ``src/<group>/<name>`` of the
+    working folder (a colcon or catkin workspace's layout), read with a few directory scans."""
     if not os.path.isdir("src"):
         return []
     found = []
@@ -131,11 +137,11 @@ def _workspace_src_packages() -> list[str]:
         folders = [e.path for e in entries if e.is_dir() and not e.name.startswith(".")]
     for folder in folders:
         if os.path.isfile(os.path.join(folder, "package.xml")):
-            found.append(os.path.basename(folder))
+            found.append(os.path.abspath(folder))
             continue
         with os.scandir(folder) as inner:
             found += [
-                e.name
+                os.path.abspath(e.path)
                 for e in inner
                 if e.is_dir() and os.path.isfile(os.path.join(e.path, "package.xml"))
             ]

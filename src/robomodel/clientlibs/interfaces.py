@@ -55,24 +55,26 @@ _workspace_checked: list[str] = []
 
 
 def _use_workspace_src() -> None:
-    """Add the working folder's ``src/`` to the resolver's package path, once, when it holds
-    packages: a node run from its workspace's root finds the workspace's interface packages
-    with no build step, as after ``colcon build`` and sourcing the install."""
+    """Add the interface packages of the working folder's workspace ``src/`` (at
+    ``src/<name>`` or ``src/<group>/<name>``, with ``msg/``, ``srv/`` or ``action/`` folders)
+    to the resolver's package path, once: a node run from its workspace's root finds them with
+    no build step, as after ``colcon build`` and sourcing the install."""
+    from robomodel.clientlibs.finder import workspace_src_folders
+    from robomodel.runtime.msg import _resolver
+
     here = os.path.abspath("src")
     if here in _workspace_checked:
         return
     _workspace_checked.append(here)
-    from robomodel.description.packages import PackageIndex
-    from robomodel.runtime.msg import _resolver
-
-    if (
-        not os.path.isdir(here)
-        or not PackageIndex(package_paths=(here,), use_environment=False).names()
-    ):
-        return
+    found = [
+        Path(folder)
+        for folder in workspace_src_folders()
+        if any(os.path.isdir(os.path.join(folder, kind)) for kind in KINDS)
+    ]
     paths = _resolver.package_paths()
-    if Path(here) not in paths:
-        _resolver.configure(package_paths=(*paths, here))
+    new = [folder for folder in found if folder not in paths]
+    if new:
+        _resolver.configure(package_paths=(*paths, *new))
 
 
 def not_found(package: str, close: list[str]) -> str:

@@ -128,6 +128,12 @@ class GenpyMessage:
     def _get_types(self) -> list[str]:
         return self._slot_types
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        from robomodel.clientlibs.messages._rosidl import rebuild
+
+        state = {name: getattr(self, name) for name in self.__slots__}
+        return rebuild, ("genpy", type(self).__typename__, state)  # type: ignore[attr-defined]
+
     def __getstate__(self) -> list[Any]:
         return [getattr(self, name) for name in self.__slots__]
 

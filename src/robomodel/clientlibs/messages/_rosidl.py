@@ -121,6 +121,25 @@ class RosidlMessage:
     def get_fields_and_field_types(cls) -> dict[str, str]:
         return dict(cls._fields_and_field_types)
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        state = {name: getattr(self, name) for name in self._fields_and_field_types}
+        return rebuild, ("rosidl", type(self).__typename__, state)  # type: ignore[attr-defined]
+
+
+def rebuild(flavour: str, typename: str, state: dict[str, Any]) -> Any:
+    """A pickled flavoured message, made again in its flavour (``pkg.msg`` gives the
+    process's flavour, which may be the other one)."""
+    import sys
+
+    messages = sys.modules["robomodel.clientlibs.messages"]  # loaded: it made the class
+    found = messages.message_class(typename, flavour)
+    message = found.__new__(found)
+    for name, value in state.items():
+        object.__setattr__(message, f"_{name}" if flavour == "rosidl" else name, value)
+    if flavour == "rosidl":
+        object.__setattr__(message, "_check_fields", _CHECK_DEFAULT)
+    return message
+
 
 def _is_ndarray(value: Any) -> bool:
     return type(value).__name__ == "ndarray"
