@@ -21,6 +21,8 @@ import os
 import sys
 from types import ModuleType
 
+from robomodel.clientlibs import _workspace
+
 TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing at every Python start
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -28,7 +30,7 @@ if TYPE_CHECKING:
 else:
     _LoaderBase = object  # importlib.abc would import importlib.resources at every start
 
-__all__ = ["ALIASED", "ClientLibraryFinder", "install", "installed", "workspace_src_folders"]
+__all__ = ["ALIASED", "ClientLibraryFinder", "install", "installed"]
 
 _HOME = "robomodel.clientlibs"
 
@@ -124,28 +126,7 @@ def _in_workspace_src(package: str) -> bool:
 
 def _workspace_src_packages() -> list[str]:
     """The names of :func:`workspace_src_folders`."""
-    return [os.path.basename(folder) for folder in workspace_src_folders()]
-
-
-def workspace_src_folders() -> list[str]:
-    """The folders with a ``package.xml`` at ``src/<name>`` or ``src/<group>/<name>`` of the
-    working folder (a colcon or catkin workspace's layout), read with a few directory scans."""
-    if not os.path.isdir("src"):
-        return []
-    found = []
-    with os.scandir("src") as entries:
-        folders = [e.path for e in entries if e.is_dir() and not e.name.startswith(".")]
-    for folder in folders:
-        if os.path.isfile(os.path.join(folder, "package.xml")):
-            found.append(os.path.abspath(folder))
-            continue
-        with os.scandir(folder) as inner:
-            found += [
-                os.path.abspath(e.path)
-                for e in inner
-                if e.is_dir() and os.path.isfile(os.path.join(e.path, "package.xml"))
-            ]
-    return found
+    return [os.path.basename(folder) for folder in _workspace.src_folders()]
 
 
 _cheap_names: list[str] = []

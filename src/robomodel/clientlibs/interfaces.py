@@ -59,7 +59,7 @@ def _use_workspace_src() -> None:
     ``src/<name>`` or ``src/<group>/<name>``, with ``msg/``, ``srv/`` or ``action/`` folders)
     to the resolver's package path, once: a node run from its workspace's root finds them with
     no build step, as after ``colcon build`` and sourcing the install."""
-    from robomodel.clientlibs.finder import workspace_src_folders
+    from robomodel.clientlibs._workspace import src_folders
     from robomodel.runtime.msg import _resolver
 
     here = os.path.abspath("src")
@@ -68,7 +68,7 @@ def _use_workspace_src() -> None:
     _workspace_checked.append(here)
     found = [
         Path(folder)
-        for folder in workspace_src_folders()
+        for folder in src_folders()
         if any(os.path.isdir(os.path.join(folder, kind)) for kind in KINDS)
     ]
     paths = _resolver.package_paths()

@@ -11,6 +11,11 @@ robomodel's CDR and ROS 1 codecs, YAML and type hashes take it as it is, and dec
 Which flavour a process gets (:func:`flavour`): ``ROBOMODEL_MESSAGE_FLAVOUR`` (``rosidl`` or
 ``genpy``, which ``robomodel run`` and ``launch`` set); else genpy once ``rospy`` is imported,
 rosidl once ``rclpy`` is; else the one whose library the ``__main__`` script imports; else rosidl.
+
+genpy's own names for rospy's ``genpy`` module: :class:`GenpyMessage` (genpy's ``Message``, the
+base of every genpy-flavoured class), its exceptions and :func:`strify_message`; genpy's
+``Time`` and ``Duration`` are the genpy flavour's classes of ``builtin_interfaces/msg/Time`` and
+``Duration`` (``message_class("builtin_interfaces/msg/Time", "genpy")``).
 """
 
 from __future__ import annotations
@@ -21,13 +26,24 @@ import sys
 import threading
 from typing import Any, Literal
 
+from robomodel.clientlibs.messages._genpy import (
+    DeserializationError,
+    GenpyMessage,
+    MessageException,
+    SerializationError,
+    strify_message,
+)
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg.schema import Action, Array, Message, Seq, Service, Spec
 
 __all__ = [
     "FLAVOURS",
+    "DeserializationError",
     "Flavour",
     "FlavourError",
+    "GenpyMessage",
+    "MessageException",
+    "SerializationError",
     "action_class",
     "flavour",
     "flavoured",
@@ -35,6 +51,7 @@ __all__ = [
     "flavoured_service",
     "message_class",
     "service_class",
+    "strify_message",
 ]
 
 Flavour = Literal["rosidl", "genpy"]
