@@ -252,3 +252,14 @@ def test_package_path_set_at_run_time(tmp_path: Path) -> None:
         _resolver.configure(package_paths=before)
     with pytest.raises(ModuleNotFoundError):
         interfaces.find_spec("late_interfaces.msg")
+
+
+def test_flavours_share_the_type_hash_and_md5sum() -> None:
+    from robomodel.runtime.msg.typehash import type_hash
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_type
+
+    for name in ("rosidl", "genpy"):
+        face = flavoured(JointState, name)
+        assert type_hash(face) == type_hash(JointState)
+        assert ros1_type(face).md5sum == ros1_type(JointState).md5sum
+        assert ros1_type(face).cls is face
