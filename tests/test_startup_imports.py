@@ -222,6 +222,7 @@ def test_client_library_finder_loads_only_itself_at_start() -> None:
         "robomodel.clientlibs",
         "robomodel.clientlibs.hook",
         "robomodel.clientlibs.finder",
+        "robomodel.clientlibs._workspace",
     }
     assert loaded == hook
     unrelated = "import sys\ntry:\n    import no_such_module_here\nexcept ImportError:\n    pass\n"

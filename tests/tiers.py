@@ -82,6 +82,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/seeds": PROCESS,
     "tests/sim": ("sim",),
     "tests/bag/test_hostile_bags.py": PROCESS,
+    "tests/clientlibs/test_finder_process.py": PROCESS,
     "tests/bag/test_play.py": PROCESS,
     "tests/bag/test_play_modes.py": BUS,
     "tests/bag/test_play_stored_definitions.py": PROCESS,

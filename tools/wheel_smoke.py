@@ -99,6 +99,12 @@ def smoke(minor: str, python: Path, wheel: Path) -> float:
                      cwd=work, env=env)  # fmt: skip
         if not where.startswith(str(venv)):
             raise SmokeError(f"robomodel imported from {where.strip()}, not from the venv")
+        # robomodel-clientlibs.pth: ROS's message modules import in the venv with no build step
+        face = _run([str(venv / "bin" / "python"), "-c",
+                     "from std_msgs.msg import String; print(repr(String(data='x')))"],
+                    cwd=work, env=env)  # fmt: skip
+        if face.strip() != "std_msgs.msg.String(data='x')":
+            raise SmokeError(f"std_msgs.msg did not import from the wheel's finder: {face!r}")
         if not _run([exe, "check", urdf], cwd=work, env=env).startswith(
             "robot name is: planar_3dof"
         ):

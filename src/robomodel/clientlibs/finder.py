@@ -21,6 +21,8 @@ import os
 import sys
 from types import ModuleType
 
+from robomodel.clientlibs import _workspace
+
 TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing at every Python start
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -108,11 +110,17 @@ class ClientLibraryFinder:
                 _AliasLoader(real),
                 is_package=found.submodule_search_locations is not None,
             )
-        if not _may_be_interface_package(top):
-            return None
-        from robomodel.clientlibs import interfaces
+        if _may_be_interface_package(top):
+            from robomodel.clientlibs import interfaces
 
-        return interfaces.find_spec(fullname)
+            return interfaces.find_spec(fullname)
+        if fullname == top and path is None:
+            close = _close_names(top)
+            if close:  # a typo of an interface package's name: say so, with what was meant
+                from robomodel.clientlibs import interfaces
+
+                raise ModuleNotFoundError(interfaces.not_found(top, close), name=top)
+        return None
 
 
 _MSG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "runtime", "msg")
@@ -133,8 +141,48 @@ def _may_be_interface_package(package: str) -> bool:
         return True
     if os.environ.get("ROS_PACKAGE_PATH") or os.environ.get("AMENT_PREFIX_PATH"):
         return True  # the package path is crawled (once) by interfaces.package_names()
+    resolver = sys.modules.get("robomodel.runtime.msg._resolver")
+    if resolver is not None and resolver.package_paths():
+        return True  # robomodel run/launch --package-path
+    if _in_workspace_src(package):
+        return True
     needle = f"'{package}/"
     return any(needle in text for text in _rosbags_store_texts())
+
+
+def _in_workspace_src(package: str) -> bool:
+    """Whether the working folder is a workspace whose ``src/`` holds ``package`` (at
+    ``src/<package>`` or one folder down), as ``colcon``/``catkin`` lay packages out."""
+    return package in _workspace_src_packages()
+
+
+def _workspace_src_packages() -> list[str]:
+    """The names of :func:`workspace_src_folders`."""
+    return [os.path.basename(folder) for folder in _workspace.src_folders()]
+
+
+_cheap_names: list[str] = []
+
+
+def _close_names(package: str) -> list[str]:
+    """Names of interface packages robomodel ships or rosbags' stores hold that look like
+    ``package`` (a typo), found with no import of robomodel's type machinery."""
+    if not package.isidentifier() or package.startswith("_") or package in _STARTUP_HOOKS:
+        return []
+    if not _cheap_names:
+        import re
+
+        names = {n[:-3] for n in os.listdir(os.path.join(_MSG, "types")) if n.endswith(".py")}
+        interfaces = os.path.join(_MSG, "interfaces")
+        if os.path.isdir(interfaces):
+            names.update(os.listdir(interfaces))
+        for text in _rosbags_store_texts():
+            names.update(re.findall(r"'(\w+)/(?:msg|srv|action)/", text))
+        _cheap_names.extend(sorted(n for n in names if n.isidentifier() and n[0] != "_"))
+    import difflib
+
+    candidates = [*_cheap_names, *_workspace_src_packages()]
+    return difflib.get_close_matches(package, candidates, n=3, cutoff=0.8)
 
 
 def _rosbags_store_texts() -> list[str]:

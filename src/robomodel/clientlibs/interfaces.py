@@ -5,13 +5,16 @@ A package is known when robomodel has its types: its own classes, its copies of 
 interfaces, the ``msg/``, ``srv/`` and ``action/`` folders of the packages on the package path
 (``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH``), or rosbags' type stores. Each module gives its
 types by name on first access (``from std_msgs.msg import String``), and lists them in
-``__all__`` (``from std_srvs.srv import *``).
+``__all__`` (``from std_srvs.srv import *``). The classes are of the process's flavour when the
+module is first imported (:func:`robomodel.clientlibs.messages.flavour`): rclpy's or rospy's.
 """
 
 from __future__ import annotations
 
 import functools
 import importlib.machinery
+import os
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
@@ -21,14 +24,22 @@ if TYPE_CHECKING:
 else:
     _LoaderBase = object  # importlib.abc would import importlib.resources at every start
 
-__all__ = ["KINDS", "find_spec", "package_names", "type_names"]
+__all__ = ["KINDS", "find_spec", "module_names", "package_names", "type_names"]
 
 KINDS = ("msg", "srv", "action")
 
 
-@functools.cache
 def _all_type_names() -> frozenset[str]:
-    """Every ``pkg/kind/Name`` robomodel can give a class for."""
+    """Every ``pkg/kind/Name`` robomodel can give a class for (found again when the resolver's
+    sources change: ``robomodel run --package-path``)."""
+    from robomodel.runtime.msg import _resolver
+
+    _use_workspace_src()
+    return _type_names_of(_resolver.generation())
+
+
+@functools.cache
+def _type_names_of(generation: int) -> frozenset[str]:
     from robomodel.runtime.msg import _resolver
     from robomodel.runtime.msg.action import _ACTIONS
     from robomodel.runtime.msg.schema import message_type_names, service_type_names
@@ -38,6 +49,44 @@ def _all_type_names() -> frozenset[str]:
     for store in (_resolver._distro_store(), _resolver._store("ROS1_NOETIC")):
         names.update(store.fielddefs)
     return frozenset(names)
+
+
+_workspace_checked: list[str] = []
+
+
+def _use_workspace_src() -> None:
+    """Add the interface packages of the working folder's workspace ``src/`` (at
+    ``src/<name>`` or ``src/<group>/<name>``, with ``msg/``, ``srv/`` or ``action/`` folders)
+    to the resolver's package path, once: a node run from its workspace's root finds them with
+    no build step, as after ``colcon build`` and sourcing the install."""
+    from robomodel.clientlibs._workspace import src_folders
+    from robomodel.runtime.msg import _resolver
+
+    here = os.path.abspath("src")
+    if here in _workspace_checked:
+        return
+    _workspace_checked.append(here)
+    found = [
+        Path(folder)
+        for folder in src_folders()
+        if any(os.path.isdir(os.path.join(folder, kind)) for kind in KINDS)
+    ]
+    paths = _resolver.package_paths()
+    new = [folder for folder in found if folder not in paths]
+    if new:
+        _resolver.configure(package_paths=(*paths, *new))
+
+
+def not_found(package: str, close: list[str]) -> str:
+    """The message of the ModuleNotFoundError for an interface package robomodel lacks."""
+    from robomodel.runtime.msg._resolver import searched
+
+    _use_workspace_src()
+    hint = f" (did you mean {', '.join(close)}?)" if close else ""
+    return (
+        f"No module named '{package}'{hint}: neither Python's path nor robomodel has it; "
+        f"robomodel looked for an interface package of that name in {searched()}"
+    )
 
 
 def package_names() -> frozenset[str]:
@@ -64,22 +113,51 @@ def _derived_service_half(name: str, services: set[str]) -> bool:
     return False
 
 
-def _type_of(package: str, kind: str, name: str) -> Any:
-    from robomodel.runtime.msg import _resolver
-    from robomodel.runtime.msg.schema import get_message_type, get_service_type
+def _type_of(package: str, kind: str, name: str, flavour: str) -> Any:
+    """The ``flavour``'s class of ``package``'s ``kind`` type ``name`` (genpy's service
+    module also has the halves, ``AddTwoIntsRequest``)."""
+    from robomodel.clientlibs import messages
 
     key = f"{package}/{kind}/{name}"
     if kind == "msg":
-        return get_message_type(key)
+        return messages.message_class(key, flavour)
     if kind == "srv":
-        return get_service_type(key)
-    return _resolver.resolve_action(key, key)
+        for suffix in ("Request", "Response"):
+            service = name.removesuffix(suffix)
+            if flavour == "genpy" and service != name and service in type_names(package, kind):
+                found = messages.service_class(f"{package}/srv/{service}", flavour)
+                return found.Request if suffix == "Request" else found.Response
+        return messages.service_class(key, flavour)
+    return messages.action_class(key, flavour)
+
+
+def module_names(package: str, kind: str, flavour: str) -> list[str]:
+    """The names a ``flavour``'s module ``package.kind`` lists: the types, and for genpy's
+    service modules the halves (``AddTwoInts``, ``AddTwoIntsRequest``, ``AddTwoIntsResponse``)."""
+    names = list(type_names(package, kind))
+    if kind == "srv" and flavour == "genpy":
+        names += [f"{n}{suffix}" for n in names for suffix in ("Request", "Response")]
+    if kind == "msg" and flavour == "genpy":  # genaction's messages of the package's actions
+        names += [f"{a}{suffix}" for a in type_names(package, "action") for suffix in _GENACTION]
+    return sorted(set(names))
+
+
+_GENACTION = (
+    "Action",
+    "ActionGoal",
+    "ActionResult",
+    "ActionFeedback",
+    "Goal",
+    "Result",
+    "Feedback",
+)
 
 
 class _InterfaceModule(ModuleType):
     """``pkg.msg`` / ``pkg.srv`` / ``pkg.action``: types made on first access."""
 
     __all__: list[str]
+    __flavour__: str
 
     def __getattr__(self, name: str) -> Any:
         package, _, kind = self.__name__.partition(".")
@@ -88,7 +166,7 @@ class _InterfaceModule(ModuleType):
                 f"module '{self.__name__}' has no attribute '{name}'"
                 f" (it has {', '.join(self.__all__) or 'no types'})"
             )
-        found = _type_of(package, kind, name)
+        found = _type_of(package, kind, name, self.__flavour__)
         setattr(self, name, found)
         return found
 
@@ -101,8 +179,14 @@ class _InterfaceLoader(_LoaderBase):
         package, _, kind = spec.name.partition(".")
         if not kind:
             return ModuleType(spec.name, f"The {package} interface package (robomodel).")
-        module = _InterfaceModule(spec.name, f"The {kind} types of {package} (robomodel).")
-        module.__all__ = list(type_names(package, kind))
+        from robomodel.clientlibs.messages import flavour
+
+        chosen = flavour()
+        module = _InterfaceModule(
+            spec.name, f"The {kind} types of {package}, {chosen}-flavoured (robomodel)."
+        )
+        module.__flavour__ = chosen
+        module.__all__ = module_names(package, kind, chosen)
         return module
 
     def exec_module(self, module: ModuleType) -> None:
@@ -111,11 +195,27 @@ class _InterfaceLoader(_LoaderBase):
 
 def find_spec(fullname: str) -> importlib.machinery.ModuleSpec | None:
     """The spec of ``pkg`` or ``pkg.msg``/``pkg.srv``/``pkg.action`` if robomodel knows the
-    package, else None (the import goes on to fail as Python's own)."""
+    package; else None (the import goes on to fail as Python's own), or ModuleNotFoundError
+    naming where robomodel looked when the name is close to a package it knows, or when a
+    package it knows is asked for a module other than msg, srv and action."""
     parts = fullname.split(".")
-    if len(parts) > 2 or (len(parts) == 2 and parts[1] not in KINDS):
+    if len(parts) > 2:
         return None
-    if parts[0] not in package_names():
+    known = package_names()
+    if len(parts) == 2 and parts[1] not in KINDS:
+        if parts[0] in known:
+            raise ModuleNotFoundError(
+                f"No module named '{fullname}': the interface package {parts[0]} has the "
+                f"modules {', '.join(KINDS)} (robomodel)",
+                name=fullname,
+            )
+        return None
+    if parts[0] not in known:
+        import difflib
+
+        close = difflib.get_close_matches(parts[0], sorted(known), n=3, cutoff=0.8)
+        if close:
+            raise ModuleNotFoundError(not_found(parts[0], close), name=fullname)
         return None
     spec = importlib.machinery.ModuleSpec(fullname, _InterfaceLoader(), is_package=len(parts) == 1)
     if len(parts) == 1:

@@ -11,6 +11,7 @@ from robomodel.clientlibs.genpy._message import (
     DeserializationError,
     GenpyException,
     Message,
+    MessageException,
     SerializationError,
 )
 from robomodel.clientlibs.genpy._rostime import Duration, Time, TVal
@@ -20,6 +21,7 @@ __all__ = [
     "Duration",
     "GenpyException",
     "Message",
+    "MessageException",
     "SerializationError",
     "TVal",
     "Time",

@@ -12,21 +12,23 @@ from __future__ import annotations
 import io
 from typing import Any
 
-from robomodel.errors import RobomodelError
+from robomodel.clientlibs.messages._genpy import (
+    DeserializationError,
+    MessageException,
+    SerializationError,
+)
 
-__all__ = ["DeserializationError", "GenpyException", "Message", "SerializationError"]
+__all__ = [
+    "DeserializationError",
+    "GenpyException",
+    "Message",
+    "MessageException",
+    "SerializationError",
+]
 
-
-class GenpyException(RobomodelError):
-    """The root of genpy's errors."""
-
-
-class SerializationError(GenpyException):
-    """A message that cannot be written in ROS 1's serialization."""
-
-
-class DeserializationError(GenpyException):
-    """Bytes that are not a message of the type."""
+# The errors are the ones the genpy-flavoured message classes raise (one class each, so that
+# ``except genpy.SerializationError`` catches what ``msg.serialize()`` raises).
+GenpyException = MessageException
 
 
 def _ros1_type(cls: type) -> Any:

@@ -37,11 +37,13 @@ def _dec_field(g: Gen, d: int, run: Run, spec: Spec) -> str:
         return var
     if isinstance(spec, (Seq, Array)):
         return _dec_sequence(g, d, run, spec)
+    # A client library's face of the type builds its instances its own way (MessageFlavour).
+    make = getattr(spec, "__from_fields__", spec)
     if not spec.__fields__:  # rosidl's one-byte placeholder, read and dropped
         add_prim(g, d, run, "B", 1, g.name("pad"), 1, False)
-        return f"{g.ref(spec, 'T')}()"
+        return f"{g.ref(make, 'T')}()"
     args = [_dec_field(g, d, run, field_spec) for _, field_spec in spec.__fields__]
-    return f"{g.ref(spec, 'T')}({', '.join(args)})"
+    return f"{g.ref(make, 'T')}({', '.join(args)})"
 
 
 def _dec_string(g: Gen, d: int, run: Run) -> str:

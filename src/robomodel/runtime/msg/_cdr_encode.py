@@ -36,6 +36,8 @@ def _enc_field(g: Gen, d: int, run: Run, spec: Spec, expr: str) -> None:
         run.forget()
     elif isinstance(spec, str):
         code, size, _ = PRIMITIVES[spec]
+        if spec == "byte":  # rclpy holds an octet as bytes of length 1
+            expr = f"{g.ref(octet, 'oc')}({expr})"
         add_prim(g, d, run, code, size, expr, 1, True)
     elif isinstance(spec, (Seq, Array)):
         _enc_sequence(g, d, run, spec, expr)
@@ -56,6 +58,8 @@ def _enc_sequence(g: Gen, d: int, run: Run, spec: Seq | Array, expr: str) -> Non
         _enc_strings(g, d, run, spec, expr)
         return
     primitive = isinstance(item, str)
+    if item == "byte":  # rclpy holds an octet sequence as a list of bytes of length 1
+        expr = f"{g.ref(octets, 'ocs')}({expr})"
     if isinstance(spec, Array):
         fixed = f"_fixed({expr}, {spec.size})"
         if primitive:
@@ -80,6 +84,19 @@ def _enc_sequence(g: Gen, d: int, run: Run, spec: Seq | Array, expr: str) -> Non
     flush(g, d + 1, inner, True)
     g.emit(d + 1, "pass")
     run.forget()
+
+
+def octet(value: Any) -> Any:
+    """A ``byte`` field's value as the integer CDR writes: robomodel and rospy hold an int,
+    rclpy (rosidl's ``octet``) bytes of length 1."""
+    return value[0] if value.__class__ is bytes else value
+
+
+def octets(values: Any) -> Any:
+    """A ``byte[]`` field's values as bytes-like: a list of bytes objects (rclpy) joined."""
+    if values.__class__ is list and values and values[0].__class__ is bytes:
+        return b"".join(values)
+    return values
 
 
 def _enc_primitives(g: Gen, d: int, run: Run, item: str, seq: str) -> None:

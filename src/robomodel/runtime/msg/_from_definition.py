@@ -13,7 +13,7 @@ The classes are not entered in the registry of robomodel's own types: the resolv
 from __future__ import annotations
 
 from dataclasses import field, make_dataclass
-from typing import Any
+from typing import Any, Protocol
 
 from robomodel.runtime.msg._dataclass_methods import add_init_and_repr
 from robomodel.runtime.msg.definition import PLACEHOLDER, FieldDef, Lookup, field_specs
@@ -30,6 +30,7 @@ from robomodel.runtime.msg.schema import (
 __all__ = [
     "PLACEHOLDER",
     "FieldDef",
+    "MessageFlavour",
     "build_message_class",
     "build_service_class",
     "make_message_class",
@@ -52,34 +53,74 @@ def _field_default(spec: Spec) -> Any:
     return field(default_factory=lambda: default_for(spec))
 
 
+class MessageFlavour(Protocol):
+    """How a family of classes other than robomodel's own dataclasses looks to its users: the
+    rosidl-generated classes of rclpy, the genpy-generated ones of rospy
+    (:mod:`robomodel.clientlibs.messages`). The class is still a :class:`Message` with the same
+    ``__typename__`` and ``__fields__``, so every codec takes it; its nested specs name the same
+    flavour's classes. A flavoured class may define ``__from_fields__``: the codecs' decoders
+    build instances through it (field values in wire order, or by name) instead of the
+    class's own constructor."""
+
+    def class_name(self, name: str) -> str:
+        """The Python name of the class of type ``name`` (``pkg/kind/Name``)."""
+        ...
+
+    def class_body(
+        self,
+        name: str,
+        specs: tuple[tuple[str, Spec], ...],
+        constants: tuple[tuple[str, str, Any], ...],
+    ) -> tuple[tuple[type, ...], dict[str, Any]]:
+        """The bases (before :class:`Message`) and the namespace of the class."""
+        ...
+
+    def finish(self, cls: type[Message]) -> None:
+        """Complete the class once made (the code generated for its fields)."""
+        ...
+
+
 def make_message_class(
     name: str,
     specs: tuple[tuple[str, Spec], ...],
     constants: tuple[tuple[str, str, Any], ...] = (),
     *,
     module: str = __name__,
+    flavour: MessageFlavour | None = None,
+    defaults: dict[str, Any] | None = None,
 ) -> type[Message]:
     """The message class of type ``name`` (``pkg/kind/Name``) with fields ``specs`` (``(name,
     spec)`` in wire order) and ``constants`` (``(name, type, value)``, also class attributes, as
     rosidl's Python classes have them): the one place a class is made at run time, for a
-    definition (:func:`build_message_class`) and for the types rosidl derives from an action
-    (:func:`.action.make_action`). Not registered: the caller decides (:func:`.schema.register`)."""
+    definition (:func:`build_message_class`), for the types rosidl derives from an action
+    (:func:`.action.make_action`) and for the client libraries' faces of every type
+    (``flavour``: see :class:`MessageFlavour`; ``defaults``: the values a definition's default
+    annotations give primitive fields, ``float64 w 1``, kept as ``__field_defaults__`` for it).
+    Not registered: the caller decides (:func:`.schema.register`)."""
     namespace: dict[str, Any] = {c_name: value for c_name, _, value in constants}
     namespace["__fields__"] = specs
     namespace["__constants__"] = tuple(constants)
-    cls: type[Message] = make_dataclass(
-        name.rsplit("/", 1)[-1],
-        [(n, _annotation(s), _field_default(s)) for n, s in specs],
-        bases=(Message,),
-        namespace=namespace,
-        slots=True,
-        init=False,  # dataclasses' own take time quadratic in the fields (_dataclass_methods)
-        repr=False,
-    )
-    add_init_and_repr(cls)
+    cls: type[Message]
+    if flavour is not None:
+        namespace["__field_defaults__"] = dict(defaults or {})
+        bases, body = flavour.class_body(name, specs, constants)
+        cls = type(flavour.class_name(name), (*bases, Message), {**namespace, **body})
+    else:
+        cls = make_dataclass(
+            name.rsplit("/", 1)[-1],
+            [(n, _annotation(s), _field_default(s)) for n, s in specs],
+            bases=(Message,),
+            namespace=namespace,
+            slots=True,
+            init=False,  # dataclasses' own take time quadratic in the fields (_dataclass_methods)
+            repr=False,
+        )
+        add_init_and_repr(cls)
     # Set after creation: Message.__init_subclass__ registers only robomodel's own classes.
     cls.__typename__ = name
     cls.__module__ = module
+    if flavour is not None:
+        flavour.finish(cls)
     return cls
 
 

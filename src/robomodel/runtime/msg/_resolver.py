@@ -62,9 +62,11 @@ __all__ = [
     "configure",
     "definitions_outside",
     "distro",
+    "generation",
     "learn_definition",
     "learn_fielddefs",
     "package_definitions",
+    "package_paths",
     "package_source",
     "resolve_action",
     "resolve_message",
@@ -107,6 +109,17 @@ def configure(
         _services.clear()
         _actions.clear()
         _package_files.cache_clear()
+
+
+def package_paths() -> tuple[Path, ...]:
+    """The extra package folders set by :func:`configure` (``--package-path``)."""
+    return _package_paths
+
+
+def generation() -> int:
+    """How many times :func:`configure` changed the sources: what was found before is stale
+    when this has changed."""
+    return _generation
 
 
 def distro() -> str:

@@ -145,6 +145,9 @@ def message_from_yaml(cls: type[_M], text: str) -> _M:
     return message_from_dict(cls, data)
 
 
+_PLAIN = frozenset({int, float, str, bool})
+
+
 def message_to_dict(msg: Message) -> dict[str, Any]:
     """The message as nested dicts and lists (field order kept)."""
     out: dict[str, Any] = {}
@@ -155,7 +158,11 @@ def message_to_dict(msg: Message) -> dict[str, Any]:
 
 def _to_plain(spec: Spec, value: Any) -> Any:
     if isinstance(spec, str):
-        return value
+        if value.__class__ in _PLAIN:
+            return value
+        if spec == "byte" and value.__class__ is bytes:  # rclpy's octet: bytes of length 1
+            return value[0]
+        return value.item() if hasattr(value, "item") else value  # a numpy array's number
     if isinstance(spec, (Seq, Array)):
         return [_to_plain(spec.item, v) for v in value]
     return message_to_dict(value)

@@ -254,7 +254,7 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
         g.prim(code, sec)
         g.prim(code, nsec)
         ours = g.classes(type_name)
-        return f"{g.ref(ours, 'T')}({sec}, {nsec})"
+        return f"{g.ref(_maker(ours), 'T')}({sec}, {nsec})"
     ours = g.classes(type_name)
     names = {n for n, _ in ours.__fields__} if ours is not None else None
     args = []
@@ -279,7 +279,13 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
     while cut < min(len(args), len(order)) and args[cut][0] == order[cut]:
         cut += 1
     parts = [v for _, v in args[:cut]] + [f"{t}={v}" for t, v in args[cut:]]
-    return f"{g.ref(ours, 'T')}({', '.join(parts)})"
+    return f"{g.ref(_maker(ours), 'T')}({', '.join(parts)})"
+
+
+def _maker(cls: Any) -> Any:
+    """What builds an instance of ``cls`` from its field values: a client library's face of a
+    type has its own (``__from_fields__``, see msg._from_definition.MessageFlavour)."""
+    return getattr(cls, "__from_fields__", cls)
 
 
 Encoder = Callable[[Message, int], bytes]

@@ -22,13 +22,13 @@ import functools
 import hashlib
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message, get_message_type
-from robomodel.runtime.msg.schema import MessageTypeError, Service
+from robomodel.runtime.msg.schema import Array, MessageTypeError, Seq, Service
 from robomodel.runtime.msg.spec import MessageSpec, spec_from_definitions
 from robomodel.runtime.msg.typehash import same_type
 from robomodel.runtime.transport.ros1.ros1_codec import (
@@ -229,8 +229,36 @@ def ros1_type(cls: type[Message]) -> Ros1Type:
         found = _make_type(key, key.replace("/msg/", "/"))
         if not same_type(found.cls, cls):
             raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
-        _TYPES[cls] = found
+        _TYPES[cls] = found = _decoding_into(found, cls)
     return found
+
+
+def _decoding_into(found: Ros1Type, cls: type[Message]) -> Ros1Type:
+    """``found`` decoding into ``cls``, a client library's face of its robomodel class (a
+    genpy-flavoured class for rospy), with nested types of the same family."""
+    if found.cls is cls:
+        return found
+    family: dict[str, Any] = {}
+    _collect(cls, family)
+
+    def classes(ros1_key: str) -> Any:
+        ours = _robomodel_class(ros1_key)
+        return None if ours is None else family.get(ours.__typename__, ours)
+
+    encode, decode = make_codec(_ros1_key(found.name), _fielddefs(), classes, special_field)
+    return replace(found, cls=cls, _encode=encode, _decode=decode)
+
+
+def _collect(cls: Any, family: dict[str, Any]) -> None:
+    """The message classes ``cls`` holds, nested ones too, by type name."""
+    if cls.__typename__ in family:
+        return
+    family[cls.__typename__] = cls
+    for _, spec in cls.__fields__:
+        while isinstance(spec, (Seq, Array)):
+            spec = spec.item
+        if isinstance(spec, type):
+            _collect(spec, family)
 
 
 def ros1_service_type(cls: type[Service]) -> Ros1ServiceType:
@@ -253,7 +281,10 @@ def _make_service(cls: type[Service]) -> Ros1ServiceType:
             _add(defs, definitions_outside(key, defs))
     if kind != "srv" or any(k not in defs for k in keys):
         raise Ros1TypeError(f"{cls.__typename__} has no ROS 1 counterpart")
-    request, response = (_make_type(k, k.replace("/msg/", "/")) for k in keys)
+    request, response = (
+        _decoding_into(_make_type(k, k.replace("/msg/", "/")), half)
+        for k, half in zip(keys, (cls.Request, cls.Response), strict=True)
+    )
     # genmsg: the md5 of the request's md5 text followed by the response's
     text = _spec(keys[0]).md5_text + _spec(keys[1]).md5_text
     md5 = hashlib.md5(text.encode()).hexdigest()
