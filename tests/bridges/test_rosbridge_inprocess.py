@@ -12,20 +12,17 @@ from collections.abc import Iterator
 from typing import Any
 
 import pytest
+from websockets.exceptions import ConnectionClosed
+from websockets.sync.client import connect
 
-pytest.importorskip("websockets")
-
-from websockets.exceptions import ConnectionClosed  # noqa: E402
-from websockets.sync.client import connect  # noqa: E402
-
-from robomodel.bridges import BridgeLimits  # noqa: E402
-from robomodel.bridges.json_mapping import message_from_json, message_to_json  # noqa: E402
-from robomodel.bridges.rosapi import Ros1Params  # noqa: E402
-from robomodel.bridges.rosbridge import RosbridgeServer  # noqa: E402
-from robomodel.launch.param_server import ParamServer  # noqa: E402
-from robomodel.runtime import Context  # noqa: E402
-from robomodel.runtime.msg import get_message_type  # noqa: E402
-from tests.timing import scaled, wait_until  # noqa: E402
+from robomodel.bridges import BridgeLimits
+from robomodel.bridges.json_mapping import message_from_json, message_to_json
+from robomodel.bridges.rosapi import Ros1Params
+from robomodel.bridges.rosbridge import RosbridgeServer
+from robomodel.launch.param_server import ParamServer
+from robomodel.runtime import Context
+from robomodel.runtime.msg import get_message_type
+from tests.timing import scaled, wait_until
 
 SEND_BUFFER = 200_000
 
@@ -94,7 +91,9 @@ def test_publish_subscribe_and_rosapi_params_through_the_bridge(bridge: _Bridge)
     string = get_message_type("std_msgs/msg/String")
     received: list[str] = []
     node = bridge.context.create_node("listener")
-    bridge.server.on_bus(lambda: node.create_subscription(string, "/chatter", lambda m: received.append(m.data)))
+    bridge.server.on_bus(
+        lambda: node.create_subscription(string, "/chatter", lambda m: received.append(m.data))
+    )
     with connect(bridge.url) as ws:
         ws.send(json.dumps({"op": "advertise", "topic": "/chatter", "type": "std_msgs/String"}))
         ws.send(json.dumps({"op": "publish", "topic": "/chatter", "msg": {"data": "hello"}}))
@@ -124,7 +123,9 @@ def test_a_slow_client_of_a_1khz_topic_loses_messages_not_memory(bridge: _Bridge
         ws.send(json.dumps({"op": "subscribe", "topic": "/joint_states",
                             "type": "sensor_msgs/JointState"}))  # fmt: skip
         wait_until(lambda: publisher.get_subscription_count() == 1, 5, what="the subscription")
-        timer = bridge.server.on_bus(lambda: node.create_timer(0.001, lambda: publisher.publish(msg)))
+        timer = bridge.server.on_bus(
+            lambda: node.create_timer(0.001, lambda: publisher.publish(msg))
+        )
         peak = [0]
 
         def dropped() -> bool:  # the client reads nothing meanwhile
