@@ -80,6 +80,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/seeds": PROCESS,
     "tests/sim": ("sim",),
     "tests/bag/test_hostile_bags.py": PROCESS,
+    "tests/bridges/test_rosbridge_clients.py": BUS_PROCESS,
     "tests/bag/test_play.py": PROCESS,
     "tests/bag/test_play_modes.py": BUS,
     "tests/bag/test_play_stored_definitions.py": PROCESS,

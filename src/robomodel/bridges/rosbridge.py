@@ -116,6 +116,11 @@ class RosbridgeServer:
             ) from None
         self.address = address
         self.port = int(self._server.socket.getsockname()[1])
+        # the real node's parameters, with the port it listens on (ros2 param get, rosapi)
+        for key, value in (("port", self.port), ("address", address),
+                           ("max_message_size", limits.max_frame_bytes),
+                           ("send_buffer_limit", limits.send_buffer_bytes)):  # fmt: skip
+            self.node.declare_parameter(key, value, read_only=True)
         self._thread = threading.Thread(
             target=self._server.serve_forever, name="rosbridge server", daemon=True
         )
