@@ -81,6 +81,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/sim": ("sim",),
     "tests/bag/test_hostile_bags.py": PROCESS,
     "tests/bridges/test_rosbridge_clients.py": BUS_PROCESS,
+    "tests/bridges/test_rosbridge_ros1.py": ROS1_PROCESS,
     "tests/bag/test_play.py": PROCESS,
     "tests/bag/test_play_modes.py": BUS,
     "tests/bag/test_play_stored_definitions.py": PROCESS,

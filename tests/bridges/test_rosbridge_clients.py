@@ -64,7 +64,7 @@ def graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[_Graph]:
                     "rosbridge_websocket", "--ros-args", "-p", f"port:={found.port}")  # fmt: skip
         found.start("counter", "topic", "pub", "--domain-id", found.domain, "-r", "20",
                     "/counter", "std_msgs/msg/Int32", "{data: 7}")  # fmt: skip
-        wait_until(lambda: "server started at" in found.log("bridge"), scaled(60),
+        wait_until(lambda: "server started at" in found.log("bridge"), 60,
                    what="the bridge's start line")  # fmt: skip
         yield found
     finally:
@@ -82,13 +82,13 @@ def ros(graph: _Graph) -> Iterator[Any]:
 
 
 def test_roslibpy_lists_subscribes_and_reads_parameters(graph: _Graph, ros: Any) -> None:
-    wait_until(lambda: "/counter" in ros.get_topics(), scaled(30), what="/counter via rosapi")
+    wait_until(lambda: "/counter" in ros.get_topics(), 30, what="/counter via rosapi")
     assert ros.get_topic_type("/counter") == "std_msgs/msg/Int32"
     assert "/rosbridge_websocket" in ros.get_nodes()
     got: list[dict[str, Any]] = []
     listener = roslibpy.Topic(ros, "/counter", "std_msgs/msg/Int32")
     listener.subscribe(got.append)
-    wait_until(lambda: got, scaled(20), what="a /counter message through the bridge")
+    wait_until(lambda: got, 20, what="a /counter message through the bridge")
     listener.unsubscribe()
     assert got[0] == {"data": 7}
     assert ros.get_param("/rosbridge_websocket:port") == graph.port
@@ -119,7 +119,7 @@ def test_roslibpy_publishes_and_serves_and_calls(graph: _Graph, ros: Any) -> Non
 
     service = roslibpy.Service(ros, "/flip", "std_srvs/srv/SetBool")
     service.advertise(flip)
-    wait_until(lambda: "/flip" in ros.get_services(), scaled(30), what="/flip on the bus")
+    wait_until(lambda: "/flip" in ros.get_services(), 30, what="/flip on the bus")
     called = graph.cli("service", "call", "/flip", "std_srvs/srv/SetBool", "{data: true}")
     assert "success: false\nmessage: flipped by roslibpy" in called.stdout, called
 

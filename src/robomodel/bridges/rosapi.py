@@ -156,9 +156,15 @@ class Rosapi:
             raise ClientError(f"rosapi: '{key}' must be a string, got {value!r:.60}")
         return value
 
-    @staticmethod
-    def _one_type(types: set[str]) -> str:
-        return sorted(types)[0] if types else ""
+    def _one_type(self, types: set[str]) -> str:
+        """The type as the bus's ROS names it: ``pkg/Name`` on ROS 1, ``pkg/msg/Name`` on 2."""
+        if not types:
+            return ""
+        name = sorted(types)[0]
+        parts = name.split("/")
+        if self._dialect == "ros1" and len(parts) == 3:
+            return f"{parts[0]}/{parts[2]}"
+        return name
 
     def _topics(self, _: dict[str, Any]) -> dict[str, Any]:
         topics = self._graph().topics
@@ -242,10 +248,10 @@ class Rosapi:
 
 
 def _type_key(name: str) -> str:
-    """``std_msgs/String`` and ``std_msgs/msg/String`` compare equal."""
-    from robomodel.runtime.msg.schema import canonical_type_name
-
-    return canonical_type_name(name) if name else ""
+    """``std_msgs/String``, ``std_msgs/msg/String`` and ``std_srvs/srv/Empty`` as ``pkg/Name``
+    (they compare equal however the client and the bus spell them)."""
+    parts = name.strip("/").split("/")
+    return f"{parts[0]}/{parts[-1]}" if len(parts) >= 2 else name
 
 
 def _loads(text: str, what: str) -> Any:
