@@ -95,3 +95,67 @@ def rosbridge_websocket_ros2(ctx: NodeContext) -> RunningNode:
     runtime = ctx.runtime
     params = Ros2Params(runtime, lambda: sorted(runtime.graph(timeout_s=0.3).nodes), 1.0)
     return _start(ctx, settings, params, name)
+
+
+_FOXGLOVE = ("port", "address", "topic_whitelist", "send_buffer_limit", "max_qos_depth",
+             "capabilities")  # fmt: skip
+
+
+def _strings(value: Any, name: str, fqn: str) -> tuple[str, ...]:
+    if isinstance(value, str):
+        return (value,)
+    if not isinstance(value, list | tuple) or not all(isinstance(v, str) for v in value):
+        raise RobomodelError(f"{fqn}: parameter {name} must be a list of strings, got {value!r}")
+    return tuple(value)
+
+
+def _start_foxglove(
+    ctx: NodeContext, settings: dict[str, Any], params: Any, name: str
+) -> RunningNode:
+    from robomodel.bridges.foxglove_bridge import CAPABILITIES, FoxgloveBridge
+
+    fqn = ctx.spec.fqn
+    address = settings.get("address", "127.0.0.1")
+    if not isinstance(address, str):
+        raise RobomodelError(f"{fqn}: parameter address must be a host name or address")
+    bridge = FoxgloveBridge(
+        ctx.runtime,
+        params,
+        dialect=ctx.spec.dialect,
+        package_index=ctx.shared.package_index,
+        name=name,
+        namespace=ctx.namespace,
+        address=address or "127.0.0.1",
+        port=_number(settings.get("port", 8765), "port", fqn, low=0, high=65535),
+        topic_whitelist=_strings(settings.get("topic_whitelist", [".*"]), "topic_whitelist", fqn),
+        send_buffer_limit=_number(settings.get("send_buffer_limit", 10_000_000),
+                                  "send_buffer_limit", fqn, low=1024, high=2**31),
+        max_qos_depth=_number(settings.get("max_qos_depth", 25), "max_qos_depth", fqn,
+                              low=1, high=10_000),
+        capabilities=_strings(settings.get("capabilities", list(CAPABILITIES)), "capabilities", fqn),
+        log=ctx.log,
+    )  # fmt: skip
+    return _BridgeNode(bridge)
+
+
+@register("ros1", "foxglove_bridge", "foxglove_bridge",
+          purpose="the Foxglove WebSocket protocol (port 8765) for Foxglove and Lichtblick")  # fmt: skip
+def foxglove_bridge_ros1(ctx: NodeContext) -> RunningNode:
+    from robomodel.bridges.rosapi import Ros1Params
+
+    settings = {k: ctx.param(f"~{k}") for k in _FOXGLOVE if ctx.param(f"~{k}") is not None}
+    return _start_foxglove(
+        ctx, settings, Ros1Params(ctx.params), ctx.spec.name or "foxglove_bridge"
+    )
+
+
+@register("ros2", "foxglove_bridge", "foxglove_bridge",
+          purpose="the Foxglove WebSocket protocol (port 8765) for Foxglove and Lichtblick")  # fmt: skip
+def foxglove_bridge_ros2(ctx: NodeContext) -> RunningNode:
+    from robomodel.bridges.rosapi import Ros2Params
+
+    name = ctx.spec.name or "foxglove_bridge"
+    settings = {k: v for k, v in ctx.ros2_parameters(name).items() if k in _FOXGLOVE}
+    runtime = ctx.runtime
+    params = Ros2Params(runtime, lambda: sorted(runtime.graph(timeout_s=0.3).nodes), 1.0)
+    return _start_foxglove(ctx, settings, params, name)
