@@ -1,6 +1,8 @@
-"""``robomodel run rosbridge_server rosbridge_websocket _port:=P`` on a ROS 1 master (robomodel's),
-driven by roslibpy: ROS 1's JSON (times as ``secs``/``nsecs``, types as ``pkg/Name``), a
-publication robomodel's ROS 1 echo receives, and the master's parameters through rosapi."""
+"""The bridges on a ROS 1 master (robomodel's, one for the module), started as rosrun starts
+them (``_port:=P``). rosbridge_websocket, driven by roslibpy: ROS 1's JSON (times as
+``secs``/``nsecs``, types as ``pkg/Name``), a publication robomodel's ROS 1 echo receives, the
+master's parameters through rosapi. foxglove_bridge, driven by @foxglove/ws-protocol with
+@foxglove/rosmsg-serialization: ``ros1`` messages with ``ros1msg`` schemas both ways."""
 
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from typing import Any
 import pytest
 import roslibpy
 
+from tests.bridges.test_foxglove_clients import node_client, results
 from tests.conftest import ROBOMODEL, end_process, free_port
 from tests.timing import scaled, wait_until
 
@@ -82,3 +85,40 @@ def test_roslibpy_on_a_ros1_master(master_env: dict[str, str], tmp_path: Path) -
         if echo is not None:
             end_process(echo, timeout_s=10, group=True)
         end_process(bridge, timeout_s=20, group=True)
+
+
+def test_foxglove_client_on_a_ros1_master(master_env: dict[str, str], tmp_path: Path) -> None:
+    port = free_port()
+    procs = []
+
+    def start(name: str, *argv: str) -> subprocess.Popen[str]:
+        proc = subprocess.Popen([*ROBOMODEL, *argv], env=master_env, text=True,
+                                stdout=(tmp_path / f"{name}.log").open("w"),
+                                stderr=subprocess.STDOUT, start_new_session=True)  # fmt: skip
+        procs.append(proc)
+        return proc
+
+    try:
+        start("bridge", "run", "foxglove_bridge", "foxglove_bridge", f"_port:={port}")
+        start("point", "topic", "pub", "-r", "10", "/point", "geometry_msgs/PointStamped",
+              "{header: {stamp: {sec: 5, nanosec: 6}, frame_id: base}, point: {x: 1.5}}")  # fmt: skip
+        echo = start("echo", "topic", "echo", "--once", "/chatter", "std_msgs/String")
+        wait_until(lambda: "listening at" in (tmp_path / "bridge.log").read_text(), 60,
+                   what="the bridge's start line")  # fmt: skip
+        plan = {"subscribe": "/point",
+                "publish": {"topic": "/chatter", "type": "std_msgs/String",
+                            "schema": "string data", "data": "hello from foxglove"}}  # fmt: skip
+        procs.append(node_client(f"ws://127.0.0.1:{port}", plan, tmp_path / "client.log"))
+        wait_until(lambda: "message" in results(tmp_path / "client.log") and echo.poll() is not None,
+                   60, what=lambda: (tmp_path / "client.log").read_text())  # fmt: skip
+        found = results(tmp_path / "client.log")
+        assert found["serverInfo"][0]["encodings"] == ["ros1"]
+        message = found["message"][0]
+        assert message["schemaName"] == "geometry_msgs/PointStamped"
+        assert message["encoding"] == "ros1"
+        assert message["msg"]["header"]["stamp"] == {"sec": 5, "nsec": 6}
+        assert message["msg"]["point"]["x"] == 1.5
+        assert "data: hello from foxglove" in (tmp_path / "echo.log").read_text()
+    finally:
+        for proc in reversed(procs):
+            end_process(proc, timeout_s=20, group=True)
