@@ -1,7 +1,7 @@
 // A Foxglove client for tests/bridges: @foxglove/ws-protocol's FoxgloveClient over `ws`, with
 // @foxglove/rosmsg2-serialization (cdr) or @foxglove/rosmsg-serialization (ros1) for messages.
 // Usage: node foxglove_client.js URL PLAN_JSON. It prints one JSON line per result:
-// serverInfo, the first message of plan.subscribe, a service response of plan.service,
+// serverInfo, the topics of advertised channels, the first message of plan.subscribe, a service response of plan.service,
 // plan.param's value, plan.assets' fetch results, a connection graph update; and it publishes
 // plan.publish.data on plan.publish.topic every 200 ms until it is ended.
 "use strict";
@@ -49,6 +49,7 @@ client.on("serverInfo", (info) => {
   }
 });
 client.on("advertise", (channels) => {
+  say("channels", channels.map((c) => c.topic));
   for (const channel of channels) {
     if (channel.topic !== plan.subscribe || readers.size) continue;
     const subscription = client.subscribe(channel.id);

@@ -1,4 +1,5 @@
-"""``robomodel run foxglove_bridge foxglove_bridge`` on Zenoh, driven by @foxglove/ws-protocol's
+"""foxglove_bridge on Zenoh, started by its launch file (``robomodel launch foxglove_bridge
+foxglove_bridge_launch.xml port:=P topic_whitelist:=...``), driven by @foxglove/ws-protocol's
 FoxgloveClient with @foxglove/rosmsg2-serialization (tests/bridges/foxglove_client.js, on
 Node.js; ``tools/system-deps test`` installs them into .node/): the channels' CDR messages
 decode with their ros2msg schemas, a client's publication reaches robomodel's echo, a service
@@ -73,8 +74,8 @@ def session(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[dict[str
         return proc
 
     try:
-        start("bridge", "run", "--domain-id", domain, "foxglove_bridge", "foxglove_bridge",
-              "--ros-args", "-p", f"port:={port}")  # fmt: skip
+        start("bridge", "launch", "--domain-id", domain, "foxglove_bridge",
+              "foxglove_bridge_launch.xml", f"port:={port}", "topic_whitelist:=['/c.*']")  # fmt: skip
         start("counter", "topic", "pub", "--domain-id", domain, "-r", "20", "/counter",
               "std_msgs/msg/Int32", "{data: 7}")  # fmt: skip
         echo = start("echo", "topic", "echo", "--domain-id", domain, "--once", "/chatter",
@@ -116,6 +117,8 @@ def test_channels_and_client_publish(session: tuple[dict[str, list[Any]], str]) 
     assert message["msg"] == {"data": 7}
     assert "data: hello from foxglove" in echoed
     assert "/counter" in found["graph"][0]["publishedTopics"]
+    offered = {topic for batch in found["channels"] for topic in batch}
+    assert "/counter" in offered and "/rosout" not in offered  # the launch's topic_whitelist
 
 
 def test_services_parameters_and_assets(session: tuple[dict[str, list[Any]], str]) -> None:
