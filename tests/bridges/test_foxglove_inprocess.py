@@ -1,6 +1,7 @@
 """foxglove_bridge on the in-process bus with a raw ``foxglove.sdk.v1`` client: a channel's
 schema is the type's ros2msg text and its messages are the CDR robomodel's codec makes, the
-server's connections have Nagle's algorithm off, bad settings are one-line errors."""
+server's connections have Nagle's algorithm off, a client channel with an invalid name is
+refused with one line while a valid one publishes, bad settings are one-line errors."""
 
 from __future__ import annotations
 
@@ -26,6 +27,8 @@ from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
 from tests.timing import scaled, wait_until
 
+LINES: list[str] = []
+
 
 @pytest.fixture(scope="module")
 def bridge() -> Iterator[FoxgloveBridge]:
@@ -34,7 +37,7 @@ def bridge() -> Iterator[FoxgloveBridge]:
     spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
     spinner.start()
     found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
-                           package_index=PackageIndex(), port=0, log=lambda _: None)  # fmt: skip
+                           package_index=PackageIndex(), port=0, log=LINES.append)  # fmt: skip
     try:
         yield found
     finally:
@@ -95,6 +98,31 @@ def test_channel_schema_and_cdr_messages(bridge: FoxgloveBridge) -> None:
             frame = ws.recv(timeout=scaled(10))
         assert frame[0] == 1 and struct.unpack_from("<I", frame, 1)[0] == 7
         assert frame[13:] == serialize(msg)
+
+
+def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:
+    string = get_message_type("std_msgs/msg/String")
+    heard: list[str] = []
+    node = bridge.context.create_node("listener")
+    bridge._on_bus(
+        lambda: node.create_subscription(string, "/said", lambda m: heard.append(m.data))
+    )
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        _next(ws, "serverInfo")
+        channels = [
+            {"id": 1, "topic": "/bad name", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
+             "schema": "string data", "schemaEncoding": "ros2msg"},
+            {"id": 2, "topic": "/said", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
+             "schema": "string data", "schemaEncoding": "ros2msg"},
+        ]  # fmt: skip
+        ws.send(json.dumps({"op": "advertise", "channels": channels}))
+        payload = serialize(string(data="through foxglove"))
+        wait_until(lambda: any("/bad name" in line for line in LINES), 10, what="the refusal")
+        for channel_id in (1, 2):  # clientMessageData: opcode 1, channel id, payload
+            ws.send(struct.pack("<BI", 1, channel_id) + payload)
+        wait_until(lambda: heard == ["through foxglove"], 10, what="the valid channel's message")
+    refusals = [line for line in LINES if "/bad name" in line]
+    assert len(refusals) == 1 and "invalid topic name '/bad name'" in refusals[0], LINES
 
 
 def test_bad_settings_are_one_line_errors(bridge: FoxgloveBridge) -> None:
