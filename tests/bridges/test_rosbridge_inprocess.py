@@ -100,7 +100,7 @@ def test_publish_subscribe_and_rosapi_params_through_the_bridge(bridge: _Bridge)
         wait_until(lambda: received == ["hello"], 5, what="the bus hears the client")
         ws.send(json.dumps({"op": "call_service", "id": "t", "service": "/rosapi/topic_type",
                             "args": {"topic": "/chatter"}}))  # fmt: skip
-        assert _reply(ws, "service_response")["values"] == {"type": "std_msgs/msg/String"}
+        assert _reply(ws, "service_response")["values"] == {"type": "std_msgs/String"}  # ROS 1
         ws.send(json.dumps({"op": "call_service", "id": "s", "service": "/rosapi/set_param",
                             "args": {"name": "/gain", "value": "[1, 2.5]"}}))  # fmt: skip
         assert _reply(ws, "service_response")["result"] is True
@@ -117,9 +117,9 @@ def test_a_slow_client_of_a_1khz_topic_loses_messages_not_memory(bridge: _Bridge
     joint_state = get_message_type("sensor_msgs/msg/JointState")
     node = bridge.context.create_node("fast")
     publisher = bridge.server.on_bus(lambda: node.create_publisher(joint_state, "/joint_states"))
-    # ~9 kB of JSON a message: 1 kHz is ~9 MB/s, more than the socket buffers hold
-    msg = joint_state(name=["joint"], position=[0.123456789] * 500)
-    with connect(bridge.url, max_size=None, max_queue=1) as ws:
+    # ~70 kB of JSON a message: more a second than the socket buffers hold
+    msg = joint_state(name=["joint"], position=[0.123456789] * 5000)
+    with connect(bridge.url, max_size=None, max_queue=1, close_timeout=1) as ws:
         ws.send(json.dumps({"op": "subscribe", "topic": "/joint_states",
                             "type": "sensor_msgs/JointState"}))  # fmt: skip
         wait_until(lambda: publisher.get_subscription_count() == 1, 5, what="the subscription")
@@ -131,13 +131,13 @@ def test_a_slow_client_of_a_1khz_topic_loses_messages_not_memory(bridge: _Bridge
         def dropped() -> bool:  # the client reads nothing meanwhile
             waiting = sum(s.outbox.waiting_bytes for s in list(bridge.server._sessions))
             peak[0] = max(peak[0], waiting)
-            return bridge.server.dropped() > 100
+            return bridge.server.dropped() > 20
 
         wait_until(dropped, 30, what="a slow client's dropped messages", interval_s=0.01)
         timer.cancel()
         assert 0 < peak[0] <= SEND_BUFFER
         first = json.loads(ws.recv(timeout=scaled(5)))
-        assert first["op"] == "publish" and len(first["msg"]["position"]) == 500
+        assert first["op"] == "publish" and len(first["msg"]["position"]) == 5000
 
 
 def test_oversized_frames_and_floods_are_refused_with_one_line_each(bridge: _Bridge) -> None:

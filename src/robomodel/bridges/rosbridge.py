@@ -108,6 +108,7 @@ class RosbridgeServer:
                 max_size=limits.max_frame_bytes,
                 compression=None,
                 ping_interval=None,  # roslibpy's and roslibjs's peers may not answer pings
+                close_timeout=2.0,  # a refused client does not hold its thread for long
             )
         except OSError as exc:
             self.node.destroy()
