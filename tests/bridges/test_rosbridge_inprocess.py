@@ -8,6 +8,7 @@ import base64
 import json
 import math
 import threading
+import time
 from collections.abc import Iterator
 from typing import Any
 
@@ -111,6 +112,39 @@ def test_publish_subscribe_and_rosapi_params_through_the_bridge(bridge: _Bridge)
         ws.send(json.dumps({"op": "subscribe", "topic": "/bad name", "type": "std_msgs/String"}))
         status = _reply(ws, "status")
         assert status["level"] == "error" and "invalid topic name '/bad name'" in status["msg"]
+
+
+def test_throttle_rate_and_status_levels(bridge: _Bridge) -> None:
+    int32 = get_message_type("std_msgs/msg/Int32")
+    node = bridge.context.create_node("ticker")
+    publisher = bridge.server.on_bus(lambda: node.create_publisher(int32, "/tick"))
+    count = [0]
+
+    def tick() -> None:
+        count[0] += 1
+        publisher.publish(int32(data=count[0]))
+
+    with connect(bridge.url) as ws:
+        ws.send(json.dumps({"op": "set_level", "level": "warning"}))
+        ws.send(json.dumps({"op": "subscribe", "topic": "/tick", "type": "std_msgs/Int32",
+                            "throttle_rate": 200, "compression": "png"}))  # fmt: skip
+        assert "compression 'png' is not served" in _reply(ws, "status")["msg"]
+        wait_until(lambda: publisher.get_subscription_count() == 1, 5, what="the subscription")
+        timer = bridge.server.on_bus(lambda: node.create_timer(0.002, tick))
+        first = _reply(ws, "publish")["msg"]["data"]
+        started_s = time.monotonic()
+        wait_until(lambda: count[0] >= first + 400, 30, what="400 more ticks")
+        bridge.server.on_bus(timer.cancel)
+        elapsed_s = time.monotonic() - started_s
+        received = [first]
+        while True:
+            try:
+                received.append(json.loads(ws.recv(timeout=0.5))["msg"]["data"])
+            except TimeoutError:
+                break
+    # one message per 200 ms at most: the ticks between are not sent
+    assert 2 <= len(received) <= elapsed_s / 0.2 + 2, (received, elapsed_s)
+    assert len(received) < (count[0] - first) / 4, received
 
 
 def test_a_slow_client_of_a_1khz_topic_loses_messages_not_memory(bridge: _Bridge) -> None:
