@@ -131,6 +131,7 @@ class FoxgloveBridge:
         self.log = log
         self.node = context.create_node(name, namespace)
         self._topics: dict[str, _Topic] = {}
+        self._refused: set[tuple[str, str]] = set()  # (topic, type) that cannot be offered
         self._services: dict[str, str] = {}  # name -> type offered to clients
         # (client, channel) -> (publisher, decoder of the wire format)
         self._client_channels: dict[tuple[int, int], tuple[Any, Callable[[bytes], Any]]] = {}
@@ -264,23 +265,20 @@ class FoxgloveBridge:
                 if gone.subscription is not None:
                     self._on_bus(gone.subscription.destroy)
             for name, info in present.items():
-                if name in self._topics:
-                    continue
                 type_name = next(iter(info.types))
+                if name in self._topics or (name, type_name) in self._refused:
+                    continue
                 try:
                     msg_type = self._message_type(name, type_name, info)
                     schema = self._schema(msg_type)
                 except RobomodelError as exc:
+                    self._refused.add((name, type_name))  # said once
                     self.log(f"foxglove_bridge: not offering {name}: {exc}")
-                    present_type = None
-                else:
-                    present_type = msg_type
-                if present_type is None:
                     continue
                 channel = foxglove.Channel(
                     name, schema=schema, message_encoding=self._encoding(), context=self._fox
                 )
-                self._topics[name] = _Topic(channel, present_type)
+                self._topics[name] = _Topic(channel, msg_type)
 
     def _message_type(self, topic: str, type_name: str, info: Any) -> type[Any]:
         from robomodel.runtime.msg import MessageTypeError, get_message_type
