@@ -15,6 +15,7 @@ from typing import Any
 import pytest
 import roslibpy
 
+from tests.bridges.started import wait_started
 from tests.bridges.test_foxglove_clients import node_client, results
 from tests.conftest import ROBOMODEL, end_process, free_port
 from tests.timing import scaled, wait_until
@@ -46,8 +47,7 @@ def test_roslibpy_on_a_ros1_master(master_env: dict[str, str], tmp_path: Path) -
     echo = None
     ros = roslibpy.Ros(host="127.0.0.1", port=port)
     try:
-        wait_until(lambda: "server started at" in (tmp_path / "bridge.log").read_text(),
-                   60, what="the bridge's start line")  # fmt: skip
+        wait_started(bridge, tmp_path / "bridge.log", "server started at")
         ros.run(timeout=scaled(20))
         points: list[dict[str, Any]] = []
         stamped = roslibpy.Topic(ros, "/point", "geometry_msgs/PointStamped")
@@ -99,12 +99,11 @@ def test_foxglove_client_on_a_ros1_master(master_env: dict[str, str], tmp_path: 
         return proc
 
     try:
-        start("bridge", "run", "foxglove_bridge", "foxglove_bridge", f"_port:={port}")
+        bridge = start("bridge", "run", "foxglove_bridge", "foxglove_bridge", f"_port:={port}")
         start("point", "topic", "pub", "-r", "10", "/point", "geometry_msgs/PointStamped",
               "{header: {stamp: {sec: 5, nanosec: 6}, frame_id: base}, point: {x: 1.5}}")  # fmt: skip
         echo = start("echo", "topic", "echo", "--once", "/chatter", "std_msgs/String")
-        wait_until(lambda: "listening at" in (tmp_path / "bridge.log").read_text(), 60,
-                   what="the bridge's start line")  # fmt: skip
+        wait_started(bridge, tmp_path / "bridge.log", "listening at")
         plan = {"subscribe": "/point",
                 "publish": {"topic": "/chatter", "type": "std_msgs/String",
                             "schema": "string data", "data": "hello from foxglove"}}  # fmt: skip

@@ -19,6 +19,7 @@ from typing import Any
 
 import pytest
 
+from tests.bridges.started import wait_started
 from tests.conftest import EXAMPLES, ROBOMODEL, free_port, unique_domain
 from tests.docs.runner import ROOT
 from tests.timing import scaled, wait_until
@@ -74,14 +75,13 @@ def session(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[dict[str
         return proc
 
     try:
-        start("bridge", "launch", "--domain-id", domain, "foxglove_bridge",
+        bridge = start("bridge", "launch", "--domain-id", domain, "foxglove_bridge",
               "foxglove_bridge_launch.xml", f"port:={port}", "topic_whitelist:=['/c.*']")  # fmt: skip
         start("counter", "topic", "pub", "--domain-id", domain, "-r", "20", "/counter",
               "std_msgs/msg/Int32", "{data: 7}")  # fmt: skip
         echo = start("echo", "topic", "echo", "--domain-id", domain, "--once", "/chatter",
                      "std_msgs/msg/String")  # fmt: skip
-        wait_until(lambda: "listening at" in (tmp / "bridge.log").read_text(), 60,
-                   what="the bridge's start line")  # fmt: skip
+        wait_started(bridge, tmp / "bridge.log", "listening at")
         plan = {
             "subscribe": "/counter",
             "param": "/robomodel_topic_pub.use_sim_time",

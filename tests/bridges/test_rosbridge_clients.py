@@ -16,6 +16,7 @@ from typing import Any
 import pytest
 import roslibpy
 
+from tests.bridges.started import wait_started
 from tests.conftest import ROBOMODEL, free_port, unique_domain
 from tests.timing import scaled, wait_until
 
@@ -60,12 +61,11 @@ class _Graph:
 def graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[_Graph]:
     found = _Graph(tmp_path_factory.mktemp("rosbridge"))
     try:
-        found.start("bridge", "run", "--domain-id", found.domain, "rosbridge_server",
+        bridge = found.start("bridge", "run", "--domain-id", found.domain, "rosbridge_server",
                     "rosbridge_websocket", "--ros-args", "-p", f"port:={found.port}")  # fmt: skip
         found.start("counter", "topic", "pub", "--domain-id", found.domain, "-r", "20",
                     "/counter", "std_msgs/msg/Int32", "{data: 7}")  # fmt: skip
-        wait_until(lambda: "server started at" in found.log("bridge"), 60,
-                   what="the bridge's start line")  # fmt: skip
+        wait_started(bridge, found.tmp / "bridge.log", "server started at")
         yield found
     finally:
         found.close()
