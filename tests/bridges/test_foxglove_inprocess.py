@@ -28,6 +28,7 @@ from robomodel.runtime.msg.cdr import serialize
 from tests.timing import scaled, wait_until
 
 LINES: list[str] = []
+PARAMS = ParamServer()
 
 
 @pytest.fixture(scope="module")
@@ -36,7 +37,7 @@ def bridge() -> Iterator[FoxgloveBridge]:
     stop = threading.Event()
     spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
     spinner.start()
-    found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
+    found = FoxgloveBridge(context, Ros1Params(PARAMS), dialect="ros2",
                            package_index=PackageIndex(), port=0, log=LINES.append)  # fmt: skip
     try:
         yield found
@@ -123,6 +124,24 @@ def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:
         wait_until(lambda: heard == ["through foxglove"], 10, what="the valid channel's message")
     refusals = [line for line in LINES if "/bad name" in line]
     assert len(refusals) == 1 and "invalid topic name '/bad name'" in refusals[0], LINES
+
+
+def test_parameters_get_set_and_subscribe(bridge: FoxgloveBridge) -> None:
+    PARAMS.set("/gain", 1.5)
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        _next(ws, "serverInfo")
+        ws.send(json.dumps({"op": "getParameters", "parameterNames": ["/gain"], "id": "g"}))
+        assert _next(ws, "parameterValues")["parameters"] == [
+            {"name": "/gain", "type": "float64", "value": 1.5}
+        ]
+        ws.send(json.dumps({"op": "subscribeParameterUpdates", "parameterNames": ["/gain"]}))
+        ws.send(json.dumps({"op": "setParameters", "id": "s",
+                            "parameters": [{"name": "/gain", "value": 2.5}]}))  # fmt: skip
+        assert _next(ws, "parameterValues")["parameters"][0]["value"] == 2.5
+        assert PARAMS.get("/gain") == 2.5
+        PARAMS.set("/gain", 3.5)  # changed by someone else: the subscriber hears it
+        while (update := _next(ws, "parameterValues"))["parameters"][0]["value"] != 3.5:
+            assert update["parameters"][0]["value"] == 2.5, update
 
 
 def test_bad_settings_are_one_line_errors(bridge: FoxgloveBridge) -> None:
