@@ -90,6 +90,7 @@ bench:
 	$(BIN)/python bench/bench_launch.py
 	$(BIN)/python bench/bench_bag.py
 	$(BIN)/python bench/bench_definitions.py
+	$(BIN)/python bench/bench_bridges.py --seconds 5
 
 clean:
 	rm -rf $(VENV) $(SDK_VENV) build .pytest_cache .mypy_cache .ruff_cache

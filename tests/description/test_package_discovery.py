@@ -183,7 +183,10 @@ def test_package_not_found_says_where_and_how_in_user_terms(tmp_path: Path) -> N
     assert line.startswith(f"robomodel: error: {launch}:2:") or f"{launch}:2:" in line
     assert "did you mean 'gripper_description'" in line
     assert f"ROS_PACKAGE_PATH {tmp_path / 'pkgs'}" in line
-    assert "robomodel's built-in packages (gazebo_ros, ros_gz_sim, xacro)" in line
+    assert (
+        "robomodel's built-in packages (foxglove_bridge, gazebo_ros, ros_gz_sim, rosbridge_server, xacro)"
+        in line
+    )
     assert "launch/share" not in line
     assert "--package-path DIR" in line and "ROS_PACKAGE_PATH=DIR" in line
 

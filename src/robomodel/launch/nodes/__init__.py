@@ -1,6 +1,7 @@
 """Node mappings: which robomodel component runs for each ROS node of a launch file."""
 
 from robomodel.launch.nodes import (
+    bridges,
     cm_script,
     controllers,
     gazebo,
@@ -26,6 +27,7 @@ __all__ = [
     "NodeContext",
     "RunningNode",
     "ViewerRequest",
+    "bridges",
     "cm_script",
     "controllers",
     "factory_for",

@@ -1,0 +1,206 @@
+"""foxglove_bridge's latency against robomodel's own subscriber: 1 kHz /joint_states and a
+640x480 rgb8 image at 30 Hz, published in one process, received by a robomodel subscription in
+another and, through ``robomodel run foxglove_bridge foxglove_bridge``, by a Foxglove client in a
+third (the ``foxglove.sdk.v1`` protocol over ``websockets``: each binary ``messageData`` frame's
+CDR payload as it came off the bus).
+
+Run: ``.venv/bin/python bench/bench_bridges.py [--seconds 5] [--domain-id 120]``.
+
+Every message carries ``time.monotonic_ns()`` (one clock for every process of a Linux machine)
+in ``header.stamp``; each receiver subtracts it on arrival. Printed per topic: the messages
+published, received by each side, and each side's p50 and p90 latency [ms].
+
+``--quickack`` makes the Foxglove client acknowledge every TCP segment at once (Linux
+``TCP_QUICKACK``): if the latency then drops, the rest was the server's small writes waiting
+for the client's delayed acknowledgements (Nagle's algorithm), not the bridge's own time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import signal
+import statistics
+import struct
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+TOPICS = {"/joint_states": 1000.0, "/camera/image": 30.0}
+_STAMP = struct.Struct("<iI")  # CDR: 4-byte encapsulation header, then header.stamp
+
+
+def _stamp(ns: int) -> Any:
+    from robomodel.runtime.msg import Time
+
+    return Time(ns // 1_000_000_000, ns % 1_000_000_000)
+
+
+def publish(domain: int, seconds: float) -> dict[str, int]:
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import get_message_type
+
+    joint_state = get_message_type("sensor_msgs/msg/JointState")
+    image_type = get_message_type("sensor_msgs/msg/Image")
+    names = [f"joint_{i}" for i in range(32)]
+    states = joint_state(name=names, position=[0.1] * 32, velocity=[0.0] * 32)
+    image = image_type(height=480, width=640, encoding="rgb8", step=640 * 3,
+                       data=bytes(640 * 480 * 3))  # fmt: skip
+    sent = dict.fromkeys(TOPICS, 0)
+    with Context("zenoh", domain_id=domain) as context:
+        node = context.create_node("bench_bridges_pub")
+        publishers = {
+            "/joint_states": (node.create_publisher(joint_state, "/joint_states"), states),
+            "/camera/image": (node.create_publisher(image_type, "/camera/image"), image),
+        }
+        context.spin(duration_s=3.0)  # the receivers find the publishers
+        start = time.monotonic()
+        next_s = dict.fromkeys(TOPICS, start)
+        while time.monotonic() - start < seconds:
+            now = time.monotonic()
+            for topic, rate_hz in TOPICS.items():
+                if now >= next_s[topic]:
+                    publisher, msg = publishers[topic]
+                    msg.header.stamp = _stamp(time.monotonic_ns())
+                    publisher.publish(msg)
+                    sent[topic] += 1
+                    next_s[topic] += 1.0 / rate_hz
+            time.sleep(max(0.0, min(next_s.values()) - time.monotonic()))
+        context.spin(duration_s=0.5)
+    return sent
+
+
+def receive_robomodel(domain: int, seconds: float) -> dict[str, list[float]]:
+    from robomodel.runtime import Context
+
+    latencies: dict[str, list[float]] = {t: [] for t in TOPICS}
+    with Context("zenoh", domain_id=domain) as context:
+        node = context.create_node("bench_bridges_sub")
+        raw = context.transport.create_raw_subscription  # type: ignore[attr-defined]
+        from robomodel.runtime.msg import get_message_type
+        from robomodel.runtime.qos import as_qos
+
+        for topic, kind in (("/joint_states", "sensor_msgs/msg/JointState"),
+                            ("/camera/image", "sensor_msgs/msg/Image")):  # fmt: skip
+
+            def on(payload: bytes, _: Any, topic: str = topic) -> None:
+                sec, nanosec = _STAMP.unpack_from(payload, 4)
+                latencies[topic].append((time.monotonic_ns() - sec * 10**9 - nanosec) / 1e6)
+
+            raw(node.fully_qualified_name, topic, get_message_type(kind), as_qos(10), on)
+        context.spin(duration_s=seconds)
+    return latencies
+
+
+def receive_foxglove(port: int, seconds: float, *, quickack: bool) -> dict[str, list[float]]:
+    import socket
+
+    from websockets.sync.client import connect
+
+    latencies: dict[str, list[float]] = {t: [] for t in TOPICS}
+    by_subscription: dict[int, str] = {}
+    deadline = time.monotonic() + seconds
+    with connect(f"ws://127.0.0.1:{port}", subprotocols=["foxglove.sdk.v1"], max_size=None,
+                 compression=None) as ws:  # fmt: skip
+        while time.monotonic() < deadline:
+            if quickack:  # Linux resets it after a while: set before every read
+                ws.socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_QUICKACK, 1)
+            try:
+                frame = ws.recv(timeout=0.5)
+            except TimeoutError:
+                continue
+            if isinstance(frame, str):
+                message = json.loads(frame)
+                if message["op"] == "advertise":
+                    wanted = [c for c in message["channels"] if c["topic"] in TOPICS]
+                    subscriptions = []
+                    for channel in wanted:
+                        sub_id = len(by_subscription) + 1
+                        by_subscription[sub_id] = channel["topic"]
+                        subscriptions.append({"id": sub_id, "channelId": channel["id"]})
+                    if subscriptions:
+                        ws.send(json.dumps({"op": "subscribe", "subscriptions": subscriptions}))
+                continue
+            if frame[0] != 1:  # messageData: opcode, subscription id, log time, payload
+                continue
+            (sub_id,) = struct.unpack_from("<I", frame, 1)
+            sec, nanosec = _STAMP.unpack_from(frame, 13 + 4)
+            latencies[by_subscription[sub_id]].append(
+                (time.monotonic_ns() - sec * 10**9 - nanosec) / 1e6
+            )
+    return latencies
+
+
+def _role(args: argparse.Namespace) -> None:
+    if args.role == "publish":
+        result: Any = publish(args.domain_id, args.seconds)
+    elif args.role == "robomodel":
+        result = receive_robomodel(args.domain_id, args.seconds + 15.0)
+    else:
+        result = receive_foxglove(args.port, args.seconds + 15.0, quickack=args.quickack)
+    print(json.dumps(result))
+
+
+def _percentile(values: list[float], q: float) -> float:
+    return statistics.quantiles(values, n=100)[int(q) - 1] if len(values) > 1 else float("nan")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seconds", type=float, default=5.0)
+    parser.add_argument("--domain-id", type=int, default=120)
+    parser.add_argument("--port", type=int, default=18765)
+    parser.add_argument("--role", choices=("publish", "robomodel", "foxglove"))
+    parser.add_argument(
+        "--quickack",
+        action="store_true",
+        help="the Foxglove client acknowledges every TCP segment at once",
+    )
+    args = parser.parse_args()
+    if args.role:
+        _role(args)
+        return
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    me = [sys.executable, __file__, "--seconds", str(args.seconds), "--domain-id",
+          str(args.domain_id), "--port", str(args.port)]  # fmt: skip
+    if args.quickack:
+        me.append("--quickack")
+    bridge = subprocess.Popen(
+        [sys.executable, "-m", "robomodel.cli.main", "run", "--domain-id", str(args.domain_id),
+         "foxglove_bridge", "foxglove_bridge", "--ros-args", "-p", f"port:={args.port}"],
+        env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        start_new_session=True,
+    )  # fmt: skip
+    try:
+        assert bridge.stdout is not None
+        for line in bridge.stdout:
+            if "listening at" in line:
+                break
+        receivers = {
+            side: subprocess.Popen(
+                [*me, "--role", side], env=env, stdout=subprocess.PIPE, text=True
+            )
+            for side in ("robomodel", "foxglove")
+        }
+        time.sleep(1.0)  # the receivers subscribe before the publisher's first message
+        sent = json.loads(subprocess.run([*me, "--role", "publish"], env=env, check=True,
+                                         capture_output=True, text=True).stdout)  # fmt: skip
+        got = {side: json.loads(proc.communicate()[0]) for side, proc in receivers.items()}
+    finally:
+        os.killpg(bridge.pid, signal.SIGINT)
+        bridge.wait(30)
+    print(f"foxglove_bridge vs robomodel's subscriber, {args.seconds:g} s (latency [ms])")
+    print(f"{'topic':<16}{'sent':>7}{'side':>11}{'received':>10}{'p50':>9}{'p90':>9}")
+    for topic in TOPICS:
+        for side in ("robomodel", "foxglove"):
+            values = got[side][topic]
+            print(f"{topic:<16}{sent[topic]:>7}{side:>11}{len(values):>10}"
+                  f"{_percentile(values, 50):>9.2f}{_percentile(values, 90):>9.2f}")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,156 @@
+"""foxglove_bridge on the in-process bus with a raw ``foxglove.sdk.v1`` client: a channel's
+schema is the type's ros2msg text and its messages are the CDR robomodel's codec makes, the
+server's connections have Nagle's algorithm off, a client channel with an invalid name is
+refused with one line while a valid one publishes, bad settings are one-line errors."""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import struct
+import threading
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+from websockets.sync.client import connect
+
+from robomodel.bag.typedefs import ros2msg_definition
+from robomodel.bridges import BridgeError
+from robomodel.bridges.foxglove_bridge import FoxgloveBridge
+from robomodel.bridges.rosapi import Ros1Params
+from robomodel.description.packages import PackageIndex
+from robomodel.launch.param_server import ParamServer
+from robomodel.runtime import Context
+from robomodel.runtime.msg import get_message_type
+from robomodel.runtime.msg.cdr import serialize
+from tests.timing import scaled, wait_until
+
+LINES: list[str] = []
+PARAMS = ParamServer()
+
+
+@pytest.fixture(scope="module")
+def bridge() -> Iterator[FoxgloveBridge]:
+    context = Context("inproc")
+    stop = threading.Event()
+    spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
+    spinner.start()
+    found = FoxgloveBridge(context, Ros1Params(PARAMS), dialect="ros2",
+                           package_index=PackageIndex(), port=0, log=LINES.append)  # fmt: skip
+    try:
+        yield found
+    finally:
+        found.stop()
+        stop.set()
+        context.executor.post(lambda: None)
+        spinner.join(timeout=5)
+        context.shutdown()
+
+
+def _server_sockets(port: int) -> list[int]:
+    """TCP_NODELAY of each of this process's TCP sockets on ``port`` (listener, connections)."""
+    found = []
+    for name in os.listdir("/proc/self/fd"):
+        try:
+            if not os.readlink(f"/proc/self/fd/{name}").startswith("socket:"):
+                continue
+            sock = socket.socket(fileno=os.dup(int(name)))
+        except OSError:
+            continue
+        with sock:
+            inet = sock.family == socket.AF_INET and sock.type == socket.SOCK_STREAM
+            if inet and sock.getsockname()[1] == port:
+                found.append(sock.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY))
+    return found
+
+
+def _next(ws: Any, op: str) -> dict[str, Any]:
+    while True:
+        frame = ws.recv(timeout=scaled(10))
+        if isinstance(frame, str) and json.loads(frame)["op"] == op:
+            return json.loads(frame)  # type: ignore[no-any-return]
+
+
+def test_channel_schema_and_cdr_messages(bridge: FoxgloveBridge) -> None:
+    vector = get_message_type("geometry_msgs/msg/Vector3Stamped")
+    node = bridge.context.create_node("talker")
+    publisher = bridge._on_bus(lambda: node.create_publisher(vector, "/wind"))
+    msg = vector(vector=get_message_type("geometry_msgs/msg/Vector3")(x=1.5, y=-2.0, z=0.25))
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        assert _next(ws, "serverInfo")["supportedEncodings"] == ["cdr"]
+        assert len(_server_sockets(bridge.port)) == 2 and all(_server_sockets(bridge.port))
+        channel = None
+        while channel is None:  # the graph is read once a second
+            found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/wind"]
+            channel = found[0] if found else None
+        assert channel["encoding"] == "cdr" and channel["schemaEncoding"] == "ros2msg"
+        assert channel["schema"] == ros2msg_definition(vector)
+        ws.send(
+            json.dumps(
+                {"op": "subscribe", "subscriptions": [{"id": 7, "channelId": channel["id"]}]}
+            )
+        )
+        wait_until(lambda: publisher.get_subscription_count() == 1, 10, what="the bus subscription")
+        bridge.context.executor.post(lambda: publisher.publish(msg))
+        frame = ws.recv(timeout=scaled(10))
+        while isinstance(frame, str):
+            frame = ws.recv(timeout=scaled(10))
+        assert frame[0] == 1 and struct.unpack_from("<I", frame, 1)[0] == 7
+        assert frame[13:] == serialize(msg)
+
+
+def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:
+    string = get_message_type("std_msgs/msg/String")
+    heard: list[str] = []
+    node = bridge.context.create_node("listener")
+    bridge._on_bus(
+        lambda: node.create_subscription(string, "/said", lambda m: heard.append(m.data))
+    )
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        _next(ws, "serverInfo")
+        channels = [
+            {"id": 1, "topic": "/bad name", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
+             "schema": "string data", "schemaEncoding": "ros2msg"},
+            {"id": 2, "topic": "/said", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
+             "schema": "string data", "schemaEncoding": "ros2msg"},
+        ]  # fmt: skip
+        ws.send(json.dumps({"op": "advertise", "channels": channels}))
+        payload = serialize(string(data="through foxglove"))
+        wait_until(lambda: any("/bad name" in line for line in LINES), 10, what="the refusal")
+        for channel_id in (1, 2):  # clientMessageData: opcode 1, channel id, payload
+            ws.send(struct.pack("<BI", 1, channel_id) + payload)
+        wait_until(lambda: heard == ["through foxglove"], 10, what="the valid channel's message")
+    refusals = [line for line in LINES if "/bad name" in line]
+    assert len(refusals) == 1 and "invalid topic name '/bad name'" in refusals[0], LINES
+
+
+def test_parameters_get_set_and_subscribe(bridge: FoxgloveBridge) -> None:
+    PARAMS.set("/gain", 1.5)
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        _next(ws, "serverInfo")
+        ws.send(json.dumps({"op": "getParameters", "parameterNames": ["/gain"], "id": "g"}))
+        assert _next(ws, "parameterValues")["parameters"] == [
+            {"name": "/gain", "type": "float64", "value": 1.5}
+        ]
+        ws.send(json.dumps({"op": "subscribeParameterUpdates", "parameterNames": ["/gain"]}))
+        ws.send(json.dumps({"op": "setParameters", "id": "s",
+                            "parameters": [{"name": "/gain", "value": 2.5}]}))  # fmt: skip
+        assert _next(ws, "parameterValues")["parameters"][0]["value"] == 2.5
+        assert PARAMS.get("/gain") == 2.5
+        PARAMS.set("/gain", 3.5)  # changed by someone else: the subscriber hears it
+        while (update := _next(ws, "parameterValues"))["parameters"][0]["value"] != 3.5:
+            assert update["parameters"][0]["value"] == 2.5, update
+
+
+def test_bad_settings_are_one_line_errors(bridge: FoxgloveBridge) -> None:
+    context = bridge.context
+    with pytest.raises(
+        BridgeError, match="unknown capabilities telepathy; they are: clientPublish"
+    ):
+        FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
+                       package_index=PackageIndex(), port=0, capabilities=["telepathy"])  # fmt: skip
+    with pytest.raises(BridgeError, match=f"cannot listen on 127.0.0.1:{bridge.port}"):
+        FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
+                       package_index=PackageIndex(), port=bridge.port, name="second")  # fmt: skip

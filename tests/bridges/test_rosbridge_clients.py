@@ -1,0 +1,129 @@
+"""``robomodel run rosbridge_server rosbridge_websocket`` on Zenoh, driven by roslibpy (a real
+rosbridge client): it lists topics and nodes through rosapi, subscribes to a topic robomodel
+publishes, publishes one robomodel echoes, offers a service robomodel calls, calls one on the
+bus and reads a node's parameter; one bridge for the module."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+import roslibpy
+
+from tests.bridges.started import wait_started
+from tests.conftest import ROBOMODEL, free_port, unique_domain
+from tests.timing import scaled, wait_until
+
+
+class _Graph:
+    def __init__(self, tmp: Path) -> None:
+        self.domain = unique_domain()
+        self.port = free_port()
+        self.tmp = tmp
+        self.procs: list[subprocess.Popen[str]] = []
+
+    def start(self, name: str, *argv: str) -> subprocess.Popen[str]:
+        log = (self.tmp / f"{name}.log").open("w")
+        proc = subprocess.Popen(
+            [*ROBOMODEL, *argv], stdout=log, stderr=subprocess.STDOUT, text=True,
+            start_new_session=True,
+        )  # fmt: skip
+        self.procs.append(proc)
+        return proc
+
+    def log(self, name: str) -> str:
+        return (self.tmp / f"{name}.log").read_text()
+
+    def cli(self, *argv: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [*ROBOMODEL, *argv, "--domain-id", self.domain],
+            capture_output=True, text=True, timeout=scaled(60),
+        )  # fmt: skip
+
+    def close(self) -> None:
+        for proc in self.procs:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGINT)
+                try:
+                    proc.wait(scaled(20))
+                except subprocess.TimeoutExpired:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                    proc.wait()
+
+
+@pytest.fixture(scope="module")
+def graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[_Graph]:
+    found = _Graph(tmp_path_factory.mktemp("rosbridge"))
+    try:
+        bridge = found.start("bridge", "run", "--domain-id", found.domain, "rosbridge_server",
+                    "rosbridge_websocket", "--ros-args", "-p", f"port:={found.port}")  # fmt: skip
+        found.start("counter", "topic", "pub", "--domain-id", found.domain, "-r", "20",
+                    "/counter", "std_msgs/msg/Int32", "{data: 7}")  # fmt: skip
+        wait_started(bridge, found.tmp / "bridge.log", "server started at")
+        yield found
+    finally:
+        found.close()
+
+
+@pytest.fixture(scope="module")
+def ros(graph: _Graph) -> Iterator[Any]:
+    client = roslibpy.Ros(host="127.0.0.1", port=graph.port)
+    client.run(timeout=scaled(20))
+    try:
+        yield client
+    finally:
+        client.close()
+
+
+def test_roslibpy_lists_subscribes_and_reads_parameters(graph: _Graph, ros: Any) -> None:
+    wait_until(lambda: "/counter" in ros.get_topics(), 30, what="/counter via rosapi")
+    assert ros.get_topic_type("/counter") == "std_msgs/msg/Int32"
+    assert "/rosbridge_websocket" in ros.get_nodes()
+    got: list[dict[str, Any]] = []
+    listener = roslibpy.Topic(ros, "/counter", "std_msgs/msg/Int32")
+    listener.subscribe(got.append)
+    wait_until(lambda: got, 20, what="a /counter message through the bridge")
+    listener.unsubscribe()
+    assert got[0] == {"data": 7}
+    assert ros.get_param("/rosbridge_websocket:port") == graph.port
+
+
+def test_roslibpy_publishes_and_serves_and_calls(graph: _Graph, ros: Any) -> None:
+    echo = graph.start("echo", "topic", "echo", "--domain-id", graph.domain, "--once",
+                       "/chatter", "std_msgs/msg/String")  # fmt: skip
+    talker = roslibpy.Topic(ros, "/chatter", "std_msgs/msg/String")
+    talker.advertise()
+    stop = threading.Event()
+
+    def talk() -> None:  # until the echo, which may subscribe after the first ones, has one
+        while not stop.wait(0.2):
+            talker.publish(roslibpy.Message({"data": "hello from roslibpy"}))
+
+    threading.Thread(target=talk, daemon=True).start()
+    try:
+        echo.wait(scaled(60))
+    finally:
+        stop.set()
+    assert "data: hello from roslibpy" in graph.log("echo")
+
+    def flip(request: dict[str, Any], response: dict[str, Any]) -> bool:
+        response["success"] = not request["data"]
+        response["message"] = "flipped by roslibpy"
+        return True
+
+    service = roslibpy.Service(ros, "/flip", "std_srvs/srv/SetBool")
+    service.advertise(flip)
+    wait_until(lambda: "/flip" in ros.get_services(), 30, what="/flip on the bus")
+    called = graph.cli("service", "call", "/flip", "std_srvs/srv/SetBool", "{data: true}")
+    assert "success: false\nmessage: flipped by roslibpy" in called.stdout, called
+
+    get = roslibpy.Service(ros, "/rosbridge_websocket/get_parameters",
+                           "rcl_interfaces/srv/GetParameters")  # fmt: skip
+    reply = get.call(roslibpy.ServiceRequest({"names": ["port"]}), timeout=scaled(20))
+    assert reply["values"][0]["integer_value"] == graph.port
