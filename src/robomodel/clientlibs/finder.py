@@ -126,7 +126,7 @@ class ClientLibraryFinder:
 _MSG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "runtime", "msg")
 # Python asks for these at every start; they are never interface packages.
 _STARTUP_HOOKS = frozenset({"sitecustomize", "usercustomize"})
-_store_texts: list[str] = []
+_store_texts: list[str] = []  # stays empty when rosbags is not installed (looked for each time)
 
 
 def _may_be_interface_package(package: str) -> bool:
@@ -188,7 +188,9 @@ def _close_names(package: str) -> list[str]:
 def _rosbags_store_texts() -> list[str]:
     """The source of rosbags' type stores, read once (they name every type as 'pkg/kind/Name')."""
     if not _store_texts:
-        spec = importlib.util.find_spec("rosbags")
+        # Python's path finder alone: importlib.util.find_spec would ask this finder again
+        # when rosbags is not installed (an endless recursion)
+        spec = importlib.machinery.PathFinder.find_spec("rosbags")
         for folder in (spec.submodule_search_locations or []) if spec else []:
             stores = os.path.join(folder, "typesys", "stores")
             for name in sorted(os.listdir(stores)) if os.path.isdir(stores) else []:
