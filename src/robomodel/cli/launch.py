@@ -317,6 +317,11 @@ def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
 
     runner = LaunchRunner(launch.nodes, _options(args, index, ros1_launch=True, path=launch.path))
     runner.check()
+    if args.bus is None and runner.options.bus != "ros1" and runner.user_nodes():
+        # rospy nodes find their parameters and peers through a master: roslaunch's roscore
+        from dataclasses import replace
+
+        runner.options = replace(runner.options, bus="ros1")
     # Ctrl-C and SIGTERM are a flag from here on: one that came while the nodes started
     # would otherwise raise inside a node's start-up and could leave a lock held.
     with stop_on_signals() as stopped:
