@@ -145,9 +145,23 @@ def build_type(package_dir: Path) -> BuildType:
 def _install_prefix(package: str, package_dir: Path) -> Path | None:
     """``<prefix>`` when ``package_dir`` is ``<prefix>/share/<package>``."""
     if package_dir.parent.name == "share" and package_dir.name == package:
-        lib = package_dir.parent.parent / "lib" / package
-        if lib.is_dir():
-            return package_dir.parent.parent
+        return package_dir.parent.parent
+    return None
+
+
+def _colcon_source(prefix: Path, package: str) -> Path | None:
+    """The source folder of an installed package in a colcon workspace (``install/`` or
+    ``install/<pkg>/`` beside ``src/``), to tell a C++ target apart from a missing name."""
+    from robomodel.description.packages import PackageIndex
+    from robomodel.errors import PackageNotFoundError
+
+    for workspace in (prefix.parent, prefix.parent.parent):
+        if (workspace / "src").is_dir():
+            index = PackageIndex(package_paths=[workspace / "src"], use_environment=False)
+            try:
+                return index.find(package)
+            except PackageNotFoundError:
+                return None
     return None
 
 
@@ -322,6 +336,14 @@ def find_executable(package: str, name: str, package_dir: Path) -> UserExecutabl
         path = prefix / "lib" / package / name
         if path.is_file():
             return _checked(UserExecutable(package, name, "install", path=path))
+        source = _colcon_source(prefix, package)
+        if source is not None and name in _cmake_targets(source):
+            raise CompiledNodeError(
+                package,
+                name,
+                f"{source}/CMakeLists.txt builds it with add_executable from "
+                f"{_cmake_targets(source)[name] or 'its sources'}",
+            )
     else:
         scripts = console_scripts(package_dir)
         if name in scripts:
