@@ -78,6 +78,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/ros1wire": ROS1_PROCESS,
     "tests/ros2wire": BUS_PROCESS,
     "tests/seeds": PROCESS,
+    "tests/sim/test_teleop_keyboard.py": ("sim", "process", "bus"),
     "tests/sim": ("sim",),
     "tests/bag/test_hostile_bags.py": PROCESS,
     "tests/bag/test_play.py": PROCESS,
