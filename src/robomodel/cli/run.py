@@ -37,8 +37,11 @@ def register(subparsers: Any) -> None:
         "run",
         help=verb_help("run"),
         description=(
-            "Run one node as rosrun / ros2 run do, with the component robomodel launch maps "
-            "PKG/EXECUTABLE onto. Options of robomodel come before PKG; everything after "
+            "Run one node as rosrun / ros2 run do: the component robomodel launch maps "
+            "PKG/EXECUTABLE onto, or else your own package's executable (an rclpy or rospy "
+            "program: a console_scripts entry of setup.py, lib/PKG/EXECUTABLE of an install "
+            "prefix, or a file of the package, found on the package path) in the foreground "
+            "with robomodel's Python. Options of robomodel come before PKG; everything after "
             "EXECUTABLE is the node's (ROS 1: __name:=, __ns:=, _param:=value, from:=to; ROS 2: "
             "--ros-args -r from:=to -r __ns:=/x -r __node:=n -p name:=value --params-file F)."
         ),
