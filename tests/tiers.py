@@ -134,6 +134,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/launch/test_run_ros2.py": PROCESS,
     "tests/launch/test_symlink_install.py::test_the_ros2_control_demo_runs_from_a_symlink_install_prefix": PROCESS,
     "tests/launch/test_user_nodes.py": ROS1_PROCESS,
+    "tests/clientlibs/test_tf2_ros_ros1_wire.py": ("ros1",),
     "tests/runtime/test_bus_input.py::test_a_bad_attachment_costs_no_other_message": BUS,
     "tests/runtime/test_domain_id.py::test_a_transport_keys_its_graph_by_ros_domain_id": BUS,
     "tests/runtime/test_domain_id.py::test_the_command_line_reads_domain_id_as_rcl": PROCESS,
