@@ -199,3 +199,10 @@ def test_robomodel_s_mapped_names_keep_priority_over_a_user_package_of_that_name
     own = NodeSpec("ros1", "robot_state_publisher", "helper", "helper")
     runner = LaunchRunner([mapped, own], RunOptions(bus="inproc", package_index=index))
     assert runner.user_nodes() == [own]
+
+
+def test_run_refuses_zenoh_endpoints_for_a_user_node_rather_than_ignore_them(cli: Any) -> None:
+    result = cli("run", "--connect", "tcp/10.0.0.1:7447", "--package-path", str(WS), "py_nodes",
+                 "echo_args")  # fmt: skip
+    assert result.code == 2
+    assert "--connect and --listen" in result.err and "py_nodes/echo_args" in result.err

@@ -107,14 +107,14 @@ def test_a_ros2_launch_shows_a_crashing_node_s_traceback_as_ros2_launch(tmp_path
         try:
             wait_until(
                 lambda: (
-                    "[ERROR] [crasher-1]: process has died" in log.read_text()
+                    "[ERROR] [crasher-2]: process has died" in log.read_text()
                     and "[INFO] [echo_args-1]: process has finished cleanly" in log.read_text()
                 ),
                 scaled(60),
                 what=lambda: f"both nodes ended:\n{log.read_text()}",
             )
             text = log.read_text()
-            assert "[crasher-1] ZeroDivisionError: division by zero" in text
+            assert "[crasher-2] ZeroDivisionError: division by zero" in text
             seen = _json_line(text, "[echo_args-1] ")
             assert seen["args"][:7] == ["--loud", "--ros-args", "-r", "__node:=echo", "-r",
                                         "__ns:=/robot1", "-r"]  # fmt: skip

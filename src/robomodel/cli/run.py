@@ -188,6 +188,12 @@ def _run_user_node(args: argparse.Namespace, index: Any) -> int:
     except PackageNotFoundError:
         _refuse(args.package, args.executable, index)
     found = find_executable(args.package, args.executable, package.path)
+    if args.connect or args.listen:
+        raise RobomodelError(
+            f"robomodel run: --connect and --listen set up robomodel's own nodes' Zenoh session; "
+            f"{args.package}/{args.executable} is your own node, which joins the graph as its "
+            "client library does (ROS_DOMAIN_ID, --domain-id)"
+        )
     env = dict(os.environ)
     env["ROBOMODEL_MESSAGE_FLAVOUR"] = found.flavour
     if found.source_dir is not None:

@@ -96,6 +96,7 @@ class LaunchRunner:
     _scheduler: Any = None
     _ros1: Any = None
     _node_log: Any = None  # NodeLogToLaunch, while the bus is open
+    _processes: int = 0  # the user's node processes started (ros2 launch numbers them)
     shared: LaunchShared | None = None  # what the nodes share, once they start
     gui: LaunchGui | None = None  # made with ``shared``, started after the nodes
 
@@ -161,6 +162,7 @@ class LaunchRunner:
         def start_process(ctx: NodeContext) -> RunningNode:
             from robomodel.launch.user_nodes import UserNodeProcess
 
+            self._processes += 1
             try:
                 return UserNodeProcess(
                     spec,
@@ -168,6 +170,7 @@ class LaunchRunner:
                     self.log,
                     master_uri=self._ros1.uri if self._ros1 is not None else None,
                     domain_id=self.options.domain_id,
+                    number=self._processes,
                 )
             except OSError as exc:
                 raise RobomodelError(f"{' '.join(found.command())}: {exc}") from None

@@ -38,6 +38,7 @@ __all__ = [
     "UserNodeProcess",
     "node_command",
     "node_environment",
+    "process_label",
     "ros_log_dir",
     "run_foreground",
 ]
@@ -126,18 +127,12 @@ def node_environment(
     return env
 
 
-_COUNTS: dict[str, int] = {}
-_COUNT_LOCK = threading.Lock()
-
-
-def _label(spec: NodeSpec) -> str:
-    """``[talker-1]`` as ros2 launch names its processes (executable and a launch-wide count);
-    ROS 1's roslaunch names them by the node's name (``[/talker]``)."""
+def process_label(spec: NodeSpec, number: int) -> str:
+    """``talker-3`` as ros2 launch names its processes (the executable and a launch-wide count
+    of the processes started); roslaunch names them by the node (``/talker``)."""
     if spec.dialect == "ros1":
         return spec.fqn
-    with _COUNT_LOCK:
-        _COUNTS[spec.executable] = _COUNTS.get(spec.executable, 0) + 1
-        return f"{Path(spec.executable).name}-{_COUNTS[spec.executable]}"
+    return f"{Path(spec.executable).name}-{number}"
 
 
 class UserNodeProcess:
@@ -151,9 +146,10 @@ class UserNodeProcess:
         *,
         master_uri: str | None = None,
         domain_id: int | None = None,
+        number: int = 1,
     ) -> None:
         self.spec = spec
-        self.label = _label(spec)
+        self.label = process_label(spec, number)
         self._log = log
         self._temporary: list[Path] = []
         self.command = node_command(spec, executable, temporary=self._temporary)
