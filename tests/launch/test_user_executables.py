@@ -206,3 +206,17 @@ def test_run_refuses_zenoh_endpoints_for_a_user_node_rather_than_ignore_them(cli
                  "echo_args")  # fmt: skip
     assert result.code == 2
     assert "--connect and --listen" in result.err and "py_nodes/echo_args" in result.err
+
+
+def test_an_execute_process_of_ros2_run_is_the_user_s_node() -> None:
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+    from robomodel.launch.steps import node_of_command
+
+    spec = node_of_command(["ros2", "run", "py_nodes", "echo_args", "--ros-args", "-r",
+                            "__node:=e2"])  # fmt: skip
+    assert spec is not None and spec.name == "e2"
+    index = PackageIndex(package_paths=[WS], use_environment=False)
+    runner = LaunchRunner([spec], RunOptions(bus="inproc", package_index=index))
+    found = runner.user_executable(spec)
+    assert found is not None and found.entry_point == "py_nodes.echo_args:main"
+    assert runner.user_nodes() == [spec]
