@@ -387,3 +387,30 @@ def test_gazebo_launch_controllers_and_command(ros2_ws: Ros2Workspace, tmp_path:
         lambda: abs(joint_position(ros2_ws.echo("/joint_states"), "joint1") - 1.5) < 1e-3,
         "joint1 at 1.5",
     )
+
+
+URDF_LOADER_CMAKE = """
+add_executable(urdf_loader src/urdf_loader.cpp)
+ament_target_dependencies(urdf_loader rclcpp)
+install(TARGETS urdf_loader DESTINATION lib/${PROJECT_NAME})
+"""
+
+
+def test_ros2_run_of_the_seed_s_cpp_node_names_the_cause_in_one_line(
+    ros2_ws: Ros2Workspace,
+) -> None:
+    """The seed's first part, ``ros2 run urdf_cpp_demo urdf_loader`` after ``colcon build``:
+    a C++ node. robomodel says why it cannot run it and what would (the docs' tutorial shows
+    the Python node that does the same)."""
+    root = urdf_cpp_demo(ros2_ws, with_limits=True)
+    (root / "src").mkdir(exist_ok=True)
+    (root / "src" / "urdf_loader.cpp").write_text("int main() { return 0; }\n")
+    with (root / "CMakeLists.txt").open("a") as cmake:
+        cmake.write(URDF_LOADER_CMAKE)
+    run = ros2_ws.robomodel_plain("run", PKG, "urdf_loader")
+    assert run.returncode == 2, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1, run.stderr
+    assert "urdf_cpp_demo/urdf_loader is a C++ node" in lines[0]
+    assert "add_executable from src/urdf_loader.cpp" in lines[0]
+    assert "robomodel runs Python nodes" in lines[0] and "ROS 2 and colcon" in lines[0]

@@ -76,7 +76,7 @@ VERBS: tuple[Verb, ...] = (
     Verb(
         "run",
         "robomodel.cli.run",
-        "run one node as rosrun / ros2 run do (the nodes robomodel launch knows)",
+        "run one node as rosrun / ros2 run do (robomodel's nodes and your own Python nodes)",
     ),
     Verb(
         "launch",

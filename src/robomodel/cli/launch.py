@@ -317,6 +317,21 @@ def _run(launch: Any, args: argparse.Namespace, index: Any) -> int:
 
     runner = LaunchRunner(launch.nodes, _options(args, index, ros1_launch=True, path=launch.path))
     runner.check()
+    own = runner.user_nodes()
+    if own and runner.options.bus != "ros1":
+        if args.bus is None:
+            # rospy nodes find their parameters and peers through a master: roslaunch's roscore
+            from dataclasses import replace
+
+            runner.options = replace(runner.options, bus="ros1")
+        else:
+            names = ", ".join(spec.fqn for spec in own)
+            print(
+                f"{launch.path}: warning: {names} run as your own ROS 1 nodes, which find "
+                f"their parameters and peers through a ROS 1 master; on --bus {args.bus} they "
+                "do not see the launch's (leave out --bus, or use --bus ros1)",
+                file=sys.stderr,
+            )
     # Ctrl-C and SIGTERM are a flag from here on: one that came while the nodes started
     # would otherwise raise inside a node's start-up and could leave a lock held.
     with stop_on_signals() as stopped:

@@ -1,8 +1,12 @@
 """``robomodel run PKG EXECUTABLE [ARGS...]``: one node, as ``rosrun`` and ``ros2 run`` start it.
 
-The node is the one ``robomodel launch`` runs for the same package and executable (the
-registry of :mod:`robomodel.launch.nodes`), started by the same runner, so a command line and
-a launch file's ``<node>`` behave alike. Its arguments are ROS 1's (``__name:=``, ``__ns:=``,
+A package and executable robomodel maps (the registry of :mod:`robomodel.launch.nodes`) runs
+that component, started by the runner ``robomodel launch`` uses, so a command line and a launch
+file's ``<node>`` behave alike; robomodel's names keep that priority. Any other executable is the
+user's own node (an rclpy or rospy program), found on the package path as ``ros2 run`` and
+``rosrun`` find it (:mod:`robomodel.launch.executables`: ``console_scripts``, ``lib/PKG/EXEC``,
+a file of the package) and run with robomodel's Python in the foreground, its arguments passed
+through unchanged. A C++ node is refused in one line. Its arguments are ROS 1's (``__name:=``, ``__ns:=``,
 ``_param:=value``, ``from:=to``) on a ROS 1 master, ROS 2's (``--ros-args -r ... -p ...
 --params-file ...``) on Zenoh (:mod:`robomodel.launch.node_args`).
 
@@ -17,7 +21,7 @@ import argparse
 import os
 import sys
 import time
-from typing import Any
+from typing import Any, NoReturn
 
 from robomodel.cli._bus import add_bus_arguments, bus_from_args
 from robomodel.cli._ports import add_port_argument
@@ -33,12 +37,24 @@ def register(subparsers: Any) -> None:
         "run",
         help=verb_help("run"),
         description=(
-            "Run one node as rosrun / ros2 run do, with the component robomodel launch maps "
-            "PKG/EXECUTABLE onto. Options of robomodel come before PKG; everything after "
+            "Run one node as rosrun / ros2 run do: the component robomodel launch maps "
+            "PKG/EXECUTABLE onto, or else your own package's executable (an rclpy or rospy "
+            "program: a console_scripts entry of setup.py, lib/PKG/EXECUTABLE of an install "
+            "prefix, or a file of the package, found on the package path) in the foreground "
+            "with robomodel's Python. Options of robomodel come before PKG; everything after "
             "EXECUTABLE is the node's (ROS 1: __name:=, __ns:=, _param:=value, from:=to; ROS 2: "
             "--ros-args -r from:=to -r __ns:=/x -r __node:=n -p name:=value --params-file F)."
         ),
     )
+    parser.add_argument(
+        "--package-path", action="append", default=[], metavar="DIR",
+        help="directory scanned for package.xml, for PKG (repeatable; a workspace's src/ is "
+        "enough)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--package", action="append", default=[], metavar="NAME=DIR", dest="package_option",
+        help="explicit package location (repeatable)",
+    )  # fmt: skip
     parser.add_argument("package", metavar="PKG")
     parser.add_argument("executable", metavar="EXECUTABLE")
     parser.add_argument("arguments", nargs=argparse.REMAINDER, metavar="ARGS")
@@ -51,13 +67,16 @@ def register(subparsers: Any) -> None:
     parser.set_defaults(func=run)
 
 
-def _dialect(package: str, executable: str, ros1_bus: bool) -> str:
-    """ROS 1's node on a ROS 1 master, else ROS 2's where robomodel has one, else ROS 1's."""
+def _mapped(package: str, executable: str) -> set[str]:
+    """The dialects in which robomodel maps ``package``/``executable`` onto a component."""
     from robomodel.launch.nodes import supported
 
-    known = {d for d in ("ros1", "ros2") if (package, executable) in _executables(supported(d))}
-    if not known:
-        _refuse(package, executable)
+    return {d for d in ("ros1", "ros2") if (package, executable) in _executables(supported(d))}
+
+
+def _dialect(package: str, executable: str, ros1_bus: bool) -> str:
+    """ROS 1's node on a ROS 1 master, else ROS 2's where robomodel has one, else ROS 1's."""
+    known = _mapped(package, executable)
     if ros1_bus and "ros1" in known:
         return "ros1"
     return "ros2" if "ros2" in known else "ros1"
@@ -67,15 +86,19 @@ def _executables(rows: list[tuple[str, str, str]]) -> set[tuple[str, str]]:
     return {(package, executable) for package, executable, _ in rows}
 
 
-def _refuse(package: str, executable: str) -> None:
+def _refuse(package: str, executable: str, index: Any) -> NoReturn:
     """One line: the unknown package or executable, a did-you-mean, what there is."""
     from robomodel.launch.nodes import supported
 
     known = _executables(supported("ros1")) | _executables(supported("ros2"))
-    packages = sorted({p for p, _ in known})
+    # example-robot-data's descriptions hold no nodes: they would drown the close names
+    users = {n for n in index.names() if index.get(n).origin != "example-robot-data"}
+    packages = sorted({p for p, _ in known} | users)
     if package not in packages:
+        searched = "; ".join(index.searched) or "no package path given"
         raise RobomodelError(
             describe_unknown("robomodel run: unknown package", package, packages, "packages are")
+            + f" (searched: {searched}; add your workspace with --package-path DIR)"
         )
     executables = sorted({e for p, e in known if p == package})
     raise RobomodelError(
@@ -154,9 +177,48 @@ def _quiet(text: str) -> None:
     print(text, file=sys.stderr, flush=True)
 
 
+def _run_user_node(args: argparse.Namespace, index: Any) -> int:
+    """The user's own executable ``PKG EXECUTABLE``, in the foreground; its exit code."""
+    from robomodel.errors import PackageNotFoundError
+    from robomodel.launch.executables import find_executable
+    from robomodel.launch.user_nodes import run_foreground
+
+    try:
+        package = index.get(args.package)
+    except PackageNotFoundError:
+        _refuse(args.package, args.executable, index)
+    found = find_executable(args.package, args.executable, package.path)
+    if args.connect or args.listen:
+        raise RobomodelError(
+            f"robomodel run: --connect and --listen set up robomodel's own nodes' Zenoh session; "
+            f"{args.package}/{args.executable} is your own node, which joins the graph as its "
+            "client library does (ROS_DOMAIN_ID, --domain-id)"
+        )
+    env = dict(os.environ)
+    env["ROBOMODEL_MESSAGE_FLAVOUR"] = found.flavour
+    if found.source_dir is not None:
+        env["PYTHONPATH"] = os.pathsep.join(
+            p for p in (str(found.source_dir), env.get("PYTHONPATH", "")) if p
+        )
+    if args.master:
+        env["ROS_MASTER_URI"] = args.master
+    if args.domain_id is not None:
+        env["ROS_DOMAIN_ID"] = str(args.domain_id)
+    return run_foreground([*found.command(), *args.arguments], env)
+
+
 def run(args: argparse.Namespace) -> int:
+    from robomodel.description.packages import index_from_options
     from robomodel.launch.runner import LaunchRunner, RunOptions
 
+    if not _mapped(args.package, args.executable):
+        index = index_from_options(args.package_path, args.package_option)
+        from robomodel.launch.nodes import supported
+
+        mapped_packages = {p for d in ("ros1", "ros2") for p, _, _ in supported(d)}
+        if args.package in mapped_packages and args.package not in index.names():
+            _refuse(args.package, args.executable, index)
+        return _run_user_node(args, index)
     ros1_bus = bus_from_args(args) == "ros1"
     dialect = _dialect(args.package, args.executable, ros1_bus)
     spec, private, master = _spec(args, dialect)

@@ -3,9 +3,11 @@
 Order (roslaunch's): parameters are cleared (``clear_params``, ``<rosparam command="delete">``),
 set on the domain's parameter server (hosted here if no other robomodel process hosts it),
 dumped (``command="dump"``), then the nodes start in file order. A node robomodel provides runs
-in-process (``robomodel.launch.nodes``); one it does not provide is reported once (package,
-type, what robomodel would need) and the others go on; ``required="true"`` on such a node is an
-error before anything starts. A required node that ends ends the launch; ``respawn`` restarts
+in-process (``robomodel.launch.nodes``); a node of the user's own package (an rclpy or rospy
+program) runs as a child process (``robomodel.launch.user_nodes``), found as ``ros2 run`` and
+``rosrun`` find it (``robomodel.launch.executables``). A node that is neither (an unknown
+package, a C++ node) is reported once and the others go on; ``required="true"`` on such a node
+is an error before anything starts. A required node that ends ends the launch; ``respawn`` restarts
 a node after ``respawn_delay``. Ctrl-C stops every node in reverse start order.
 """
 
@@ -16,7 +18,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from robomodel.description.packages import PackageIndex
@@ -60,10 +62,10 @@ def unsupported_message(spec: NodeSpec) -> str:
         f"; robomodel provides {spec.package}'s {', '.join(same_package)}" if same_package else ""
     )
     return (
-        f"{spec.location}: node {spec.fqn} ({spec.package}/{spec.executable}) is not provided "
-        f"by robomodel{hint}: it is not started (robomodel would need a mapping of "
-        f"{spec.package}/{spec.executable} onto one of its components; see `robomodel launch "
-        f"--help` for the supported nodes)"
+        f"{spec.location}: node {spec.fqn} ({spec.package}/{spec.executable}) is not started: "
+        f"robomodel maps no such node{hint} and no package '{spec.package}' is on the package "
+        "path (add the workspace that holds it with --package-path DIR or ROS_PACKAGE_PATH; "
+        "see `robomodel launch --help` for the nodes robomodel maps)"
     )
 
 
@@ -94,6 +96,7 @@ class LaunchRunner:
     _scheduler: Any = None
     _ros1: Any = None
     _node_log: Any = None  # NodeLogToLaunch, while the bus is open
+    _processes: int = 0  # the user's node processes started (ros2 launch numbers them)
     shared: LaunchShared | None = None  # what the nodes share, once they start
     gui: LaunchGui | None = None  # made with ``shared``, started after the nodes
 
@@ -101,13 +104,88 @@ class LaunchRunner:
     def check(self) -> None:
         """Refuse, before anything starts, a required node robomodel cannot run."""
         for spec in self.nodes:
-            if factory_for(spec) is None and spec.required:
+            if spec.required and self._factory(spec, report=False) is None:
                 raise LaunchError(
-                    f"required node {spec.fqn} ({spec.package}/{spec.executable}) is not provided "
-                    "by robomodel, so the launch cannot run (roslaunch would end when it ends); "
-                    'remove required="true" to run the rest',
+                    f"required node {spec.fqn} ({spec.package}/{spec.executable}) can not be run "
+                    f"by robomodel ({self._why_not(spec)}), so the launch cannot run (roslaunch "
+                    'would end when it ends); remove required="true" to run the rest',
                     location=spec.location,
                 )
+
+    def _index(self) -> PackageIndex:
+        if self.options.package_index is None:
+            self.options = replace(self.options, package_index=PackageIndex())
+        index: PackageIndex = self.options.package_index
+        return index
+
+    def _why_not(self, spec: NodeSpec) -> str:
+        """Why ``spec`` has neither a mapping nor a user executable (one clause)."""
+        from robomodel.launch.executables import find_executable
+
+        try:
+            package = self._index().get(spec.package)
+            find_executable(spec.package, spec.executable, package.path)
+        except RobomodelError as exc:
+            return str(exc)
+        return "it can be run"
+
+    def user_executable(self, spec: NodeSpec) -> Any:
+        """The user's executable for ``spec`` (a :class:`UserExecutable`), or None."""
+        from robomodel.errors import PackageNotFoundError
+        from robomodel.launch.executables import find_executable
+
+        try:
+            package = self._index().get(spec.package)
+            return find_executable(spec.package, spec.executable, package.path)
+        except PackageNotFoundError:
+            return None
+        except RobomodelError:
+            return None
+
+    def user_nodes(self) -> list[NodeSpec]:
+        """The nodes that run as the user's own programs (no mapping, an executable found)."""
+        return [s for s in self.nodes if factory_for(s) is None and self.user_executable(s)]
+
+    def _factory(self, spec: NodeSpec, *, report: bool = True) -> Any:
+        """How ``spec`` starts: robomodel's mapping first (its names keep priority), else the
+        user's executable of that package as a child process; None (reported) if neither."""
+        factory = factory_for(spec)
+        if factory is not None:
+            return factory
+        found = self.user_executable(spec)
+        if found is None:
+            if report:
+                self.skipped.append(spec)
+                self.log(self._unrunnable_message(spec))
+            return None
+
+        def start_process(ctx: NodeContext) -> RunningNode:
+            from robomodel.launch.user_nodes import UserNodeProcess
+
+            self._processes += 1
+            try:
+                return UserNodeProcess(
+                    spec,
+                    found,
+                    self.log,
+                    master_uri=self._ros1.uri if self._ros1 is not None else None,
+                    domain_id=self.options.domain_id,
+                    number=self._processes,
+                )
+            except OSError as exc:
+                raise RobomodelError(f"{' '.join(found.command())}: {exc}") from None
+
+        return start_process
+
+    def _unrunnable_message(self, spec: NodeSpec) -> str:
+        from robomodel.errors import PackageNotFoundError
+
+        try:
+            self._index().get(spec.package)
+        except PackageNotFoundError:
+            return unsupported_message(spec)
+        where = f"{spec.location}: " if spec.location is not None else ""
+        return f"{where}node {spec.fqn} is not started: {self._why_not(spec)}"
 
     def open_bus(self) -> None:
         from robomodel.launch.node_log import NodeLogToLaunch
@@ -191,12 +269,9 @@ class LaunchRunner:
             self.gui.start()
             return
         for spec in self.nodes:
-            factory = factory_for(spec)
-            if factory is None:
-                self.skipped.append(spec)
-                self.log(unsupported_message(spec))
-                continue
-            self._start(spec)
+            factory = self._factory(spec)
+            if factory is not None:
+                self._start(spec, factory=factory)
         self.gui.start()
 
     def _start_step(self, index: int, step: Any) -> Any:
@@ -221,15 +296,14 @@ class LaunchRunner:
                 return _Failed()
             self.started.append(_Started(_process_spec(step), handle))
             return handle
-        if factory_for(spec) is None:
-            self.skipped.append(spec)
-            self.log(unsupported_message(spec))
+        factory = self._factory(spec)
+        if factory is None:
             return _Failed()
-        self._start(spec)
+        self._start(spec, factory=factory)
         return self.started[-1].handle
 
-    def _start(self, spec: NodeSpec, restarts: int = 0) -> None:
-        factory = factory_for(spec)
+    def _start(self, spec: NodeSpec, restarts: int = 0, *, factory: Any = None) -> None:
+        factory = factory or self._factory(spec)
         assert factory is not None and self.shared is not None  # start_nodes made it
         ctx = NodeContext(
             spec, self.context, self.params, self.request, self._prefixed(spec), self.shared
