@@ -200,28 +200,6 @@ def _rosbags_store_texts() -> list[str]:
     return _store_texts
 
 
-class _AliasedSubmoduleFinder:
-    """Submodules of an aliased package (``tf2_ros.buffer``, ``rclpy.node``), first on
-    ``sys.meta_path`` but only when the package imported under that name is robomodel's:
-    Python's path finder would otherwise find ``buffer.py`` through the package's ``__path__``
-    and run it a second time as another module (two ``Buffer`` classes). A real ROS package
-    imported under the name is left to Python's finders."""
-
-    def find_spec(
-        self,
-        fullname: str,
-        path: Sequence[str] | None,
-        target: ModuleType | None = None,
-    ) -> importlib.machinery.ModuleSpec | None:
-        top, dot, _ = fullname.partition(".")
-        if not dot or top not in ALIASED:
-            return None
-        parent = sys.modules.get(top)
-        if parent is None or not getattr(parent, "__name__", "").startswith(_HOME + "."):
-            return None
-        return ClientLibraryFinder().find_spec(fullname, path, target)
-
-
 def installed() -> ClientLibraryFinder | None:
     """The finder on ``sys.meta_path``, if it is there."""
     for finder in sys.meta_path:
@@ -236,6 +214,4 @@ def install() -> ClientLibraryFinder:
     if finder is None:
         finder = ClientLibraryFinder()
         sys.meta_path.append(finder)
-    if not any(isinstance(f, _AliasedSubmoduleFinder) for f in sys.meta_path):
-        sys.meta_path.insert(0, _AliasedSubmoduleFinder())
     return finder
