@@ -9,11 +9,9 @@
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import re
 import shlex
 from pathlib import Path
-from typing import Any
 
 import pytest
 
@@ -41,23 +39,7 @@ def _name(page: Path) -> str:
 
 # Pages whose nodes import rclpy and rospy: they need robomodel's client libraries
 # (robomodel.clientlibs.rclpy and .rospy) and are skipped, naming them, where those are absent.
-NEEDS_CLIENT_LIBRARIES = {"docs/tutorials/first-node.md"}
-_MISSING_CLIENT_LIBRARIES = [
-    name
-    for name in ("robomodel.clientlibs.rclpy", "robomodel.clientlibs.rospy")
-    if importlib.util.find_spec(name) is None
-]
-
-
-def _page_param(page: Path) -> Any:
-    marks = []
-    if _name(page) in NEEDS_CLIENT_LIBRARIES and _MISSING_CLIENT_LIBRARIES:
-        reason = f"needs the client libraries {', '.join(_MISSING_CLIENT_LIBRARIES)}"
-        marks.append(pytest.mark.skip(reason=reason))
-    return pytest.param(page, marks=marks, id=_name(page))
-
-
-@pytest.mark.parametrize("page", [_page_param(page) for page in RUNNABLE])
+@pytest.mark.parametrize("page", RUNNABLE, ids=_name)
 def test_page_commands_run(page: Path, tmp_path: Path) -> None:
     (tmp_path / "examples").symlink_to(ROOT / "examples")
     run = PageRun(tmp_path, unique_domain())

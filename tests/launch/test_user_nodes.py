@@ -4,7 +4,6 @@ arguments), with tracebacks shown, respawn and required as ROS has them."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 import signal
@@ -123,10 +122,6 @@ def test_a_ros2_launch_shows_a_crashing_node_s_traceback_as_ros2_launch(tmp_path
             end_process(proc)
 
 
-NEEDS_ROSPY = importlib.util.find_spec("robomodel.clientlibs.rospy") is None
-
-
-@pytest.mark.skipif(NEEDS_ROSPY, reason="needs the rospy face (robomodel.clientlibs.rospy)")
 def test_rospy_tutorials_talker_listener_launch_runs_its_two_nodes(tmp_path: Path) -> None:
     """The package layout of ros/ros_tutorials' rospy_tutorials: its own launch file runs the
     talker and listener scripts, and the listener hears the talker over the master."""
