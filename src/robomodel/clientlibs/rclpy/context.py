@@ -46,6 +46,8 @@ class Dispatcher(Protocol):
 
     def fail(self, exc: Exception) -> None: ...
 
+    def owns(self, node: Any) -> bool: ...
+
 
 class _Node(Protocol):
     def destroy_node(self) -> None: ...
@@ -63,7 +65,20 @@ class Context:
         self._nodes: weakref.WeakSet[_Node] = weakref.WeakSet()
         self._domain_id: int | None = None
         self.arguments = RosArguments()
-        self.dispatcher: Dispatcher | None = None  # the multi-threaded executor spinning, if one
+        self._dispatcher: Dispatcher | None = None  # the executor that spun last, any thread
+        self._spinning = threading.local()  # .executor: the one spinning on this thread
+
+    @property
+    def dispatcher(self) -> Dispatcher | None:
+        """The executor spinning on this thread; on a thread that spins none (a pool thread of
+        a multi-threaded executor, a thread of the user's), the one that spun last."""
+        own: Dispatcher | None = getattr(self._spinning, "executor", None)
+        return own if own is not None else self._dispatcher
+
+    @dispatcher.setter
+    def dispatcher(self, executor: Dispatcher | None) -> None:
+        self._spinning.executor = executor
+        self._dispatcher = executor
 
     # -- lifetime -----------------------------------------------------------------------------
     def init(
@@ -98,6 +113,7 @@ class Context:
                 raise ValueError(f"rclpy bus must be 'zenoh' or 'inproc', got '{chosen}'")
             self._robomodel = RobomodelContext(chosen, domain_id=domain_id)
             self._domain_id = domain_id
+            self._dispatcher = None
             self._shutdown.clear()
 
     def ok(self) -> bool:
@@ -109,6 +125,7 @@ class Context:
             if self._robomodel is None:
                 raise RuntimeError("Context must be initialized before it can be shutdown")
             robomodel, self._robomodel = self._robomodel, None
+            self._dispatcher = None
             self._shutdown.set()
             callbacks, self._callbacks = self._callbacks, []
         for callback in callbacks:
