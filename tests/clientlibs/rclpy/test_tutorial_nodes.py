@@ -646,3 +646,21 @@ def test_robomodel_s_own_classes_and_rosidl_s_meet_on_the_in_process_bus(
     assert native_answer.message == SetBool.Request.__module__
     executor.shutdown()
     spinner.join(scaled(10))
+
+
+def test_ctrl_c_stops_the_context_and_raises_keyboard_interrupt(tutorial_interfaces: Path) -> None:
+    import os
+    import signal
+
+    from rclpy.signals import SignalHandlerOptions, get_current_signal_handlers_options
+
+    before = signal.getsignal(signal.SIGINT)
+    with rclpy.init(args=["test"], bus="inproc"):
+        assert get_current_signal_handlers_options() == SignalHandlerOptions.ALL
+        node = rclpy.create_node("interrupted")
+        node.create_timer(0.01, lambda: os.kill(os.getpid(), signal.SIGINT))
+        with pytest.raises(KeyboardInterrupt):
+            rclpy.spin(node)
+        assert not rclpy.ok()  # the handler stopped the context before Python's raised
+    assert signal.getsignal(signal.SIGINT) is before  # put back at shutdown
+    assert get_current_signal_handlers_options() == SignalHandlerOptions.NO

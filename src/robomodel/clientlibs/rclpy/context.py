@@ -36,6 +36,10 @@ def _choose_rosidl_flavour() -> None:
         choose("rosidl")
 
 
+def _noop() -> None:
+    """Posted to wake the spinning thread."""
+
+
 class Dispatcher(Protocol):
     """The executor spinning a context, as nodes hand it their callbacks
     (:class:`~robomodel.clientlibs.rclpy.executors.Executor`)."""
@@ -128,11 +132,23 @@ class Context:
             self._dispatcher = None
             self._shutdown.set()
             callbacks, self._callbacks = self._callbacks, []
+        from robomodel.clientlibs.rclpy import signals
+
+        signals._forget(self)
         for callback in callbacks:
             callback()
         for node in list(self._nodes):
             node.destroy_node()
         robomodel.shutdown()
+
+    def interrupt(self) -> None:
+        """Ctrl-C (rclpy's SIGINT handler): no longer ``ok()``, and the spinning executor wakes
+        and returns; the nodes and the bus go at :meth:`shutdown` (``try_shutdown``, the end
+        of ``with rclpy.init()``), which is safe to call then."""
+        self._shutdown.set()
+        robomodel = self._robomodel
+        if robomodel is not None:
+            robomodel.executor.post(_noop)
 
     def try_shutdown(self) -> None:
         """Shut down if initialised; nothing otherwise."""
