@@ -3,8 +3,8 @@
 Publishers, subscriptions, services, clients, timers, parameters, the clock and ``/rosout``
 logging are the robomodel node's, so the node is on the graph as any robomodel node is
 (rmw_zenoh's tokens on the Zenoh bus): ``ros2 node list``, ``ros2 topic echo`` and
-``ros2 param`` of a real ROS 2 install see it. Callbacks reach the executor that spins the
-context, which runs them as their callback groups allow.
+``ros2 param`` of a real ROS 2 install see it. Callbacks run on an executor the node was added
+to, as their callback groups allow; one that reaches another executor waits on the node.
 """
 
 from __future__ import annotations
