@@ -71,6 +71,7 @@ class Executor:
         self._context = context or get_default_context()
         self._nodes: list[Node] = []
         self._node_ids: frozenset[int] = frozenset()  # id() of each node added, for owns()
+        self._held: tuple[Node, ...] = ()  # the nodes, read without the lock when spinning
         self._nodes_lock = threading.Lock()
         self._is_shutdown = False
         self._failure: BaseException | None = None
@@ -98,6 +99,7 @@ class Executor:
                 return False
             self._nodes.append(node)
             self._node_ids = frozenset(map(id, self._nodes))
+            self._held = tuple(self._nodes)
         node.executor = self
         if self._context.ok():
             self.wake()  # what was parked on the node runs at the next spin
@@ -108,6 +110,7 @@ class Executor:
             if node in self._nodes:
                 self._nodes.remove(node)
                 self._node_ids = frozenset(map(id, self._nodes))
+                self._held = tuple(self._nodes)
 
     def owns(self, node: Any) -> bool:
         """Whether ``node`` was added to this executor (its callbacks are this executor's)."""
@@ -129,7 +132,7 @@ class Executor:
     def _run_parked(self) -> int:
         """Run the deliveries parked on this executor's nodes while another spun."""
         done = 0
-        for node in self.get_nodes():
+        for node in self._held:
             parked = node._parked
             while parked:
                 try:
