@@ -145,7 +145,9 @@ def _inproc_us(api: str, count: int = 20_000) -> float:
         node = rclpy.create_node("bench_inproc")
         node.create_subscription(Header, "bench", on_msg, 10)
         publish = node.create_publisher(Header, "bench", 10).publish
-        spin = SingleThreadedExecutor().spin_once
+        executor = SingleThreadedExecutor()
+        executor.add_node(node)  # an executor runs its own nodes' callbacks only
+        spin = executor.spin_once
         msg: Any = Header()
     else:
         from robomodel.runtime import Context

@@ -556,3 +556,111 @@ def test_spin_returns_when_another_thread_shuts_down(rclpy_inproc: None) -> None
     rclpy.shutdown()
     spinner.join(scaled(10))
     assert not spinner.is_alive()
+
+
+def test_an_executor_runs_only_the_callbacks_of_its_own_nodes(rclpy_inproc: None) -> None:
+    from std_msgs.msg import String
+
+    mine, other = rclpy.create_node("mine"), rclpy.create_node("other")
+    ticks: dict[str, int] = {"mine": 0, "other": 0}
+    heard: list[str] = []
+    mine.create_timer(0.001, lambda: ticks.__setitem__("mine", ticks["mine"] + 1))
+    other.create_timer(0.001, lambda: ticks.__setitem__("other", ticks["other"] + 1))
+    other.create_subscription(String, "/for_other", lambda m: heard.append(m.data), 2)
+    publisher = mine.create_publisher(String, "/for_other", 10)
+    executor = SingleThreadedExecutor()
+    executor.add_node(mine)
+    for n in range(5):
+        publisher.publish(String(data=str(n)))
+    wait_until(
+        lambda: executor.spin_once(0.01) or ticks["mine"] >= 3,
+        10,
+        what="the executor's own timer to tick",
+        interval_s=0,
+    )
+    assert ticks["other"] == 0 and heard == []  # parked on `other`, not run
+    rclpy.spin_once(other, timeout_sec=scaled(5))  # the global executor holds `other` now
+    wait_until(
+        lambda: rclpy.spin_once(other, timeout_sec=0.01) or len(heard) >= 2,
+        10,
+        what="the parked messages",
+        interval_s=0,
+    )
+    assert heard == ["3", "4"]  # the subscription's depth (2) of what waited: the newest
+    assert ticks["other"] >= 1
+
+
+def test_robomodel_s_own_classes_and_rosidl_s_meet_on_the_in_process_bus(
+    rclpy_inproc: None,
+) -> None:
+    from std_msgs.msg import String
+    from std_srvs.srv import SetBool
+
+    from robomodel.runtime.msg.types import std_msgs as native_msgs
+    from robomodel.runtime.msg.types import std_srvs as native_srvs
+
+    assert String is not native_msgs.String and SetBool is not native_srvs.SetBool
+    node = rclpy.create_node("mixed")
+    native = node.robomodel_node  # robomodel's own node API, robomodel's own classes
+    heard: list[Any] = []
+    native_heard: list[Any] = []
+    node.create_subscription(String, "/to_rclpy", heard.append, 10)
+    native.create_subscription(native_msgs.String, "/to_native", native_heard.append)
+    native.create_publisher(native_msgs.String, "/to_rclpy").publish(
+        native_msgs.String(data="from robomodel")
+    )
+    node.create_publisher(String, "/to_native", 10).publish(String(data="from rclpy"))
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    wait_until(
+        lambda: executor.spin_once(0.01) or (heard and native_heard),
+        10,
+        what="both messages",
+        interval_s=0,
+    )
+    assert type(heard[0]) is String and heard[0].data == "from robomodel"
+    assert type(native_heard[0]) is native_msgs.String and native_heard[0].data == "from rclpy"
+
+    # a native server answers an rclpy client, and an rclpy server a native caller
+    native.create_service(
+        native_srvs.SetBool,
+        "/native_server",
+        lambda req: native_srvs.SetBool.Response(success=req.data, message=type(req).__module__),
+    )
+    node.create_service(
+        SetBool,
+        "/rclpy_server",
+        lambda req, resp: SetBool.Response(success=not req.data, message=type(req).__module__),
+    )
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    answer = node.create_client(SetBool, "/native_server").call(
+        SetBool.Request(data=True), timeout_sec=scaled(10)
+    )
+    assert type(answer) is SetBool.Response and answer.success
+    assert answer.message == native_srvs.SetBool.Request.__module__  # the server's own class
+    native_answer = native.create_client(native_srvs.SetBool, "/rclpy_server").call(
+        native_srvs.SetBool.Request(data=True), timeout_s=scaled(10)
+    )
+    assert type(native_answer) is native_srvs.SetBool.Response and not native_answer.success
+    assert native_answer.message == SetBool.Request.__module__
+    executor.shutdown()
+    spinner.join(scaled(10))
+
+
+def test_ctrl_c_stops_the_context_and_raises_keyboard_interrupt(tutorial_interfaces: Path) -> None:
+    import os
+    import signal
+
+    from rclpy.signals import SignalHandlerOptions, get_current_signal_handlers_options
+
+    before = signal.getsignal(signal.SIGINT)
+    with rclpy.init(args=["test"], bus="inproc"):
+        assert get_current_signal_handlers_options() == SignalHandlerOptions.ALL
+        node = rclpy.create_node("interrupted")
+        node.create_timer(0.01, lambda: os.kill(os.getpid(), signal.SIGINT))
+        with pytest.raises(KeyboardInterrupt):
+            rclpy.spin(node)
+        assert not rclpy.ok()  # the handler stopped the context before Python's raised
+    assert signal.getsignal(signal.SIGINT) is before  # put back at shutdown
+    assert get_current_signal_handlers_options() == SignalHandlerOptions.NO

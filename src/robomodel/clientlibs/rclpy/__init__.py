@@ -69,17 +69,26 @@ def init(
     """Initialise ``context`` (the default one): parse ``args`` (``sys.argv``) and join the bus.
 
     ``bus`` is robomodel's: ``zenoh`` (default) or ``inproc`` (one process, for tests).
-    Ctrl-C raises KeyboardInterrupt in the spinning thread, as rclpy without its handlers.
+    ``signal_handler_options`` as rclpy's (None: ``ALL`` for the default context, else ``NO``):
+    Ctrl-C then stops the context (``ok()`` is False) and raises KeyboardInterrupt
+    (:mod:`~robomodel.clientlibs.rclpy.signals`).
     """
-    if signal_handler_options is not None and int(signal_handler_options) != 0:
-        from robomodel.clientlibs.rclpy._support import not_offered
+    from robomodel.clientlibs.rclpy import signals
 
-        not_offered(
-            "rclpy.init(signal_handler_options=...) other than SignalHandlerOptions.NO",
-            "Ctrl-C raises KeyboardInterrupt",
-        )
     chosen = context or get_default_context()
+    if signal_handler_options is None:
+        signal_handler_options = (
+            signals.SignalHandlerOptions.ALL
+            if chosen is get_default_context()
+            else signals.SignalHandlerOptions.NO
+        )
+    options = signals.SignalHandlerOptions(signal_handler_options)
+    if options == signals.SignalHandlerOptions.SIGTERM:
+        signals.install_signal_handlers(options)  # refused, naming it
     chosen.init(args, domain_id=domain_id, bus=bus)
+    if options != signals.SignalHandlerOptions.NO:
+        signals.install_signal_handlers(options)
+        signals._watch(chosen)
     return InitContextManager(chosen)
 
 

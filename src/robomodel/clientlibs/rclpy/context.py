@@ -36,6 +36,10 @@ def _choose_rosidl_flavour() -> None:
         choose("rosidl")
 
 
+def _noop() -> None:
+    """Posted to wake the spinning thread."""
+
+
 class Dispatcher(Protocol):
     """The executor spinning a context, as nodes hand it their callbacks
     (:class:`~robomodel.clientlibs.rclpy.executors.Executor`)."""
@@ -45,6 +49,8 @@ class Dispatcher(Protocol):
     def dispatch(self, group: Any, run: Callable[[], None]) -> None: ...
 
     def fail(self, exc: Exception) -> None: ...
+
+    def owns(self, node: Any) -> bool: ...
 
 
 class _Node(Protocol):
@@ -63,7 +69,20 @@ class Context:
         self._nodes: weakref.WeakSet[_Node] = weakref.WeakSet()
         self._domain_id: int | None = None
         self.arguments = RosArguments()
-        self.dispatcher: Dispatcher | None = None  # the multi-threaded executor spinning, if one
+        self._dispatcher: Dispatcher | None = None  # the executor that spun last, any thread
+        self._spinning = threading.local()  # .executor: the one spinning on this thread
+
+    @property
+    def dispatcher(self) -> Dispatcher | None:
+        """The executor spinning on this thread; on a thread that spins none (a pool thread of
+        a multi-threaded executor, a thread of the user's), the one that spun last."""
+        own: Dispatcher | None = getattr(self._spinning, "executor", None)
+        return own if own is not None else self._dispatcher
+
+    @dispatcher.setter
+    def dispatcher(self, executor: Dispatcher | None) -> None:
+        self._spinning.executor = executor
+        self._dispatcher = executor
 
     # -- lifetime -----------------------------------------------------------------------------
     def init(
@@ -98,6 +117,7 @@ class Context:
                 raise ValueError(f"rclpy bus must be 'zenoh' or 'inproc', got '{chosen}'")
             self._robomodel = RobomodelContext(chosen, domain_id=domain_id)
             self._domain_id = domain_id
+            self._dispatcher = None
             self._shutdown.clear()
 
     def ok(self) -> bool:
@@ -109,13 +129,26 @@ class Context:
             if self._robomodel is None:
                 raise RuntimeError("Context must be initialized before it can be shutdown")
             robomodel, self._robomodel = self._robomodel, None
+            self._dispatcher = None
             self._shutdown.set()
             callbacks, self._callbacks = self._callbacks, []
+        from robomodel.clientlibs.rclpy import signals
+
+        signals._forget(self)
         for callback in callbacks:
             callback()
         for node in list(self._nodes):
             node.destroy_node()
         robomodel.shutdown()
+
+    def interrupt(self) -> None:
+        """Ctrl-C (rclpy's SIGINT handler): no longer ``ok()``, and the spinning executor wakes
+        and returns; the nodes and the bus go at :meth:`shutdown` (``try_shutdown``, the end
+        of ``with rclpy.init()``), which is safe to call then."""
+        self._shutdown.set()
+        robomodel = self._robomodel
+        if robomodel is not None:
+            robomodel.executor.post(_noop)
 
     def try_shutdown(self) -> None:
         """Shut down if initialised; nothing otherwise."""

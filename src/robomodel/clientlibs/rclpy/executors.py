@@ -5,8 +5,10 @@ Every node of an rclpy context lives in the context's one robomodel context, who
 receives the bus's deliveries (:mod:`robomodel.runtime.executor`); an rclpy executor spins it.
 :class:`SingleThreadedExecutor` runs each callback on the spinning thread.
 :class:`MultiThreadedExecutor` hands them to a thread pool, a mutually exclusive callback group's
-one at a time and in order, a reentrant group's in parallel. Deliveries to the nodes of a
-context reach whichever executor spins it (rclpy runs only those of the nodes added to it).
+one at a time and in order, a reentrant group's in parallel. An executor runs only the
+callbacks of the nodes added to it, as rclpy's: a delivery to another node that reaches the
+spinning executor is parked on that node (a subscription keeps its QoS depth, a timer one tick)
+until an executor holding the node spins.
 """
 
 from __future__ import annotations
@@ -68,6 +70,8 @@ class Executor:
     def __init__(self, *, context: Context | None = None) -> None:
         self._context = context or get_default_context()
         self._nodes: list[Node] = []
+        self._node_ids: frozenset[int] = frozenset()  # id() of each node added, for owns()
+        self._held: tuple[Node, ...] = ()  # the nodes, read without the lock when spinning
         self._nodes_lock = threading.Lock()
         self._is_shutdown = False
         self._failure: BaseException | None = None
@@ -94,13 +98,23 @@ class Executor:
             if node in self._nodes:
                 return False
             self._nodes.append(node)
+            self._node_ids = frozenset(map(id, self._nodes))
+            self._held = tuple(self._nodes)
         node.executor = self
+        if self._context.ok():
+            self.wake()  # what was parked on the node runs at the next spin
         return True
 
     def remove_node(self, node: Node) -> None:
         with self._nodes_lock:
             if node in self._nodes:
                 self._nodes.remove(node)
+                self._node_ids = frozenset(map(id, self._nodes))
+                self._held = tuple(self._nodes)
+
+    def owns(self, node: Any) -> bool:
+        """Whether ``node`` was added to this executor (its callbacks are this executor's)."""
+        return id(node) in self._node_ids
 
     def get_nodes(self) -> list[Node]:
         with self._nodes_lock:
@@ -115,9 +129,33 @@ class Executor:
             self.wake()
         return True
 
+    def _run_parked(self) -> int:
+        """Run the deliveries parked on this executor's nodes while another spun."""
+        done = 0
+        for node in self._held:
+            parked = node._parked
+            while parked:
+                try:
+                    deliver = parked.popleft()
+                except IndexError:
+                    break
+                try:
+                    deliver()
+                except Exception as exc:  # a parked service's callback: out of spin
+                    self.fail(exc)
+                done += 1
+        return done
+
     def _spin_robomodel(self, timeout_s: float) -> int:
-        self._context.dispatcher = self
-        done = self._context.robomodel.executor.spin_once(timeout_s)
+        context = self._context
+        spinning = context._spinning
+        outer = getattr(spinning, "executor", None)  # an executor spun in a callback nests
+        context.dispatcher = self
+        try:
+            done = self._run_parked()
+            done += context.robomodel.executor.spin_once(0.0 if done else timeout_s)
+        finally:
+            spinning.executor = outer
         failure, self._failure = self._failure, None
         if failure is not None:  # as rclpy: a callback's exception comes out of spin
             raise failure

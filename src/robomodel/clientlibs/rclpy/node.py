@@ -3,12 +3,13 @@
 Publishers, subscriptions, services, clients, timers, parameters, the clock and ``/rosout``
 logging are the robomodel node's, so the node is on the graph as any robomodel node is
 (rmw_zenoh's tokens on the Zenoh bus): ``ros2 node list``, ``ros2 topic echo`` and
-``ros2 param`` of a real ROS 2 install see it. Callbacks reach the executor that spins the
-context, which runs them as their callback groups allow.
+``ros2 param`` of a real ROS 2 install see it. Callbacks run on an executor the node was added
+to, as their callback groups allow; one that reaches another executor waits on the node.
 """
 
 from __future__ import annotations
 
+import collections
 import functools
 import inspect
 import threading
@@ -29,6 +30,7 @@ from robomodel.clientlibs.rclpy.parameter import Parameter
 from robomodel.clientlibs.rclpy.parameter import _Type as ParameterType
 from robomodel.clientlibs.rclpy.publisher import Publisher
 from robomodel.clientlibs.rclpy.qos import (
+    HistoryPolicy,
     QoSProfile,
     as_robomodel_qos,
     qos_profile_services_default,
@@ -118,6 +120,8 @@ class Node:
         self.robomodel_node.parameters.add_post_set_callback(self._run_post_set_callbacks)
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self.executor: Any = None  # the rclpy Executor the node was last added to
+        # deliveries that reached an executor not holding this node, for one that does
+        self._parked: collections.deque[Callable[[], None]] = collections.deque()
         self._publishers: list[Publisher] = []
         self._subscriptions: list[Subscription] = []
         self._services: list[Service] = []
@@ -201,12 +205,20 @@ class Node:
         yield from self._waitables
 
     def _dispatcher(
-        self, group: CallbackGroup, callback: Callable[..., Any], *, coalesce: bool = False
+        self,
+        group: CallbackGroup,
+        callback: Callable[..., Any],
+        *,
+        coalesce: bool = False,
+        depth: int = 0,
     ) -> Callable[..., None]:
         """``callback`` as the bus calls it: handed to the spinning executor, which runs it as
         ``group`` allows; a coroutine function runs as a :class:`Task`. With ``coalesce`` (a
         timer) at most one call waits for its turn on another thread, as an rclpy timer is
-        ready once however many periods passed while its group was busy."""
+        ready once however many periods passed while its group was busy.
+
+        A call that reaches an executor this node was not added to is parked on the node
+        until one it was added to spins: the newest ``depth`` calls (0: all; a timer's one)."""
         context = self._context
         if inspect.iscoroutinefunction(callback):
             coroutine_function = callback
@@ -215,13 +227,29 @@ class Node:
                 Task(coroutine_function, args, executor=context)()
 
         waiting = threading.Lock()  # held while a call of a coalescing callback waits
+        kept: collections.deque[tuple[Any, ...]] = collections.deque(
+            maxlen=1 if coalesce else (depth or None)
+        )
+        node_parked = self._parked
 
         def run_waiting() -> None:
             waiting.release()
             callback()
 
+        def unpark() -> None:
+            try:
+                args = kept.popleft()
+            except IndexError:  # dropped: the depth was exceeded while parked
+                return
+            deliver(*args)
+
         def deliver(*args: Any) -> None:
             executor = context.dispatcher
+            if executor is not None and not executor.owns(self):
+                if kept.maxlen is None or len(kept) < kept.maxlen:
+                    node_parked.append(unpark)  # one unpark per call kept
+                kept.append(args)
+                return
             if executor is None or not executor.hands_over:
                 try:  # on the spinning thread, at once (no hand-over to pay for)
                     callback(*args)
@@ -276,7 +304,9 @@ class Node:
         if _required_arguments(callback) > 1:
             not_offered("a subscription callback taking (msg, message_info)")
         group = callback_group or self.default_callback_group
-        deliver = self._dispatcher(group, callback)
+        profile = _int_qos(qos_profile)
+        kept = profile.depth if profile.history != HistoryPolicy.KEEP_ALL else 0
+        deliver = self._dispatcher(group, callback, depth=kept)
         handle = self.robomodel_node.create_subscription(
             msg_type, topic, deliver, as_robomodel_qos(qos_profile)
         )
@@ -300,6 +330,8 @@ class Node:
 
         def handle(request: Any) -> Any:
             executor = context.dispatcher
+            if executor is not None and not executor.owns(self):
+                return park(request)  # answered when an executor holding this node spins
             if executor is None or not executor.hands_over:
                 return callback(request, srv_type.Response())
             from robomodel.runtime.transport.base import Deferred
@@ -311,6 +343,21 @@ class Node:
                 context._post(lambda: deferred.resolve(response))
 
             executor.dispatch(group, run)
+            return deferred
+
+        def park(request: Any) -> Any:
+            from robomodel.runtime.transport.base import Deferred
+
+            deferred = Deferred()
+
+            def answer() -> None:
+                response = handle(request)  # raising: the spin call raises it
+                if isinstance(response, Deferred):
+                    response.then(lambda result: context._post(lambda: deferred.resolve(result)))
+                else:
+                    context._post(lambda: deferred.resolve(response))
+
+            self._parked.append(answer)
             return deferred
 
         server = self.robomodel_node.create_service(srv_type, srv_name, handle)
@@ -408,6 +455,9 @@ class Node:
         if self._destroyed:
             return
         self._destroyed = True
+        if self.executor is not None:  # as rclpy: a destroyed node leaves its executor
+            self.executor.remove_node(self)
+        self._parked.clear()
         for client in self._clients:
             client.destroy()
         for timer in self._timers:

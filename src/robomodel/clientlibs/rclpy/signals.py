@@ -1,12 +1,29 @@
-"""``rclpy.signals``: which signal handlers ``rclpy.init`` installs. robomodel's rclpy installs
-none (Ctrl-C is Python's KeyboardInterrupt in the spinning thread), which is
-``SignalHandlerOptions.NO``; asking for handlers raises NotImplementedError."""
+"""``rclpy.signals``: the signal handlers ``rclpy.init`` installs.
+
+As rclpy's: on SIGINT every context initialised with handlers stops being ``ok()`` (spinning
+executors return), then the handler that was there before runs, Python's own raising
+``KeyboardInterrupt`` in the main thread. ``rclpy.init`` installs them for the default context
+(``SignalHandlerOptions.ALL``) and ``shutdown`` of the last such context restores the previous
+ones. SIGTERM keeps Python's handling (the process ends); asking for SIGTERM alone raises
+NotImplementedError. Python lets only the main thread install handlers: from another thread
+none are installed, as ``SignalHandlerOptions.NO``.
+"""
 
 from __future__ import annotations
 
 import enum
+import signal
+import threading
+import weakref
+from types import FrameType
+from typing import Any, Protocol
 
-__all__ = ["SignalHandlerOptions"]
+__all__ = [
+    "SignalHandlerOptions",
+    "get_current_signal_handlers_options",
+    "install_signal_handlers",
+    "uninstall_signal_handlers",
+]
 
 
 class SignalHandlerOptions(enum.IntEnum):
@@ -14,3 +31,69 @@ class SignalHandlerOptions(enum.IntEnum):
     SIGINT = 1
     SIGTERM = 2
     ALL = 3
+
+
+class _Interruptible(Protocol):
+    def interrupt(self) -> None: ...
+
+
+_previous: dict[int, Any] = {}  # signal number -> the handler installed before rclpy's
+_options = SignalHandlerOptions.NO
+_contexts: weakref.WeakSet[Any] = weakref.WeakSet()  # what SIGINT shuts down
+_lock = threading.Lock()
+
+
+def _on_sigint(signum: int, frame: FrameType | None) -> None:
+    for context in list(_contexts):
+        context.interrupt()
+    previous = _previous.get(signum)
+    if callable(previous):
+        previous(signum, frame)  # Python's default_int_handler: KeyboardInterrupt
+
+
+def install_signal_handlers(options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
+    """Install rclpy's handler for SIGINT (``SIGINT`` or ``ALL``); nothing with ``NO`` or off
+    the main thread."""
+    global _options
+    options = SignalHandlerOptions(options)
+    if options == SignalHandlerOptions.SIGTERM:
+        from robomodel.clientlibs.rclpy._support import not_offered
+
+        not_offered("rclpy signal handlers for SIGTERM alone", "SIGTERM ends the process")
+    if options == SignalHandlerOptions.NO:
+        return
+    if threading.current_thread() is not threading.main_thread():
+        return
+    with _lock:
+        if signal.SIGINT not in _previous:
+            _previous[signal.SIGINT] = signal.signal(signal.SIGINT, _on_sigint)
+        _options = options
+
+
+def get_current_signal_handlers_options() -> SignalHandlerOptions:
+    return _options if _previous else SignalHandlerOptions.NO
+
+
+def uninstall_signal_handlers() -> None:
+    """Put back the handlers that were there before rclpy's."""
+    global _options
+    if threading.current_thread() is not threading.main_thread():
+        return
+    with _lock:
+        for signum, previous in list(_previous.items()):
+            if signal.getsignal(signum) is _on_sigint:
+                signal.signal(signum, previous if previous is not None else signal.SIG_DFL)
+            del _previous[signum]
+        _options = SignalHandlerOptions.NO
+
+
+def _watch(context: _Interruptible) -> None:
+    """SIGINT interrupts ``context`` from now on."""
+    _contexts.add(context)
+
+
+def _forget(context: _Interruptible) -> None:
+    """``context`` shut down; the handlers go when no watched context is left."""
+    _contexts.discard(context)
+    if not _contexts and _previous:
+        uninstall_signal_handlers()

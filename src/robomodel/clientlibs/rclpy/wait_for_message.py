@@ -26,6 +26,8 @@ def wait_for_message(
     received: list[Any] = []
     subscription = node.create_subscription(msg_type, topic, received.append, qos_profile)
     executor = SingleThreadedExecutor(context=node.context)
+    owner = node.executor
+    executor.add_node(node)  # the subscription is the node's: its executor runs it
     deadline = None if time_to_wait < 0 else time.monotonic() + time_to_wait
     try:
         while not received and node.context.ok():
@@ -34,5 +36,7 @@ def wait_for_message(
                 break
             executor.spin_once(timeout_sec=min(remaining, 0.05))
     finally:
+        executor.remove_node(node)
+        node.executor = owner
         node.destroy_subscription(subscription)
     return (True, received[0]) if received else (False, None)

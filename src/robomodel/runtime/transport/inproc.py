@@ -9,6 +9,7 @@ import queue
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
@@ -31,6 +32,8 @@ from robomodel.runtime.transport.base import (
 __all__ = ["InprocTransport"]
 
 log = logging.getLogger("robomodel.runtime")
+
+_M = TypeVar("_M", bound=Message)
 
 
 @dataclass(eq=False)
@@ -89,7 +92,9 @@ class _Srv(ServiceHandle):
 
 
 class InprocTransport(Transport):
-    """Delivers the published object itself to every matching subscription (treat as read-only)."""
+    """Delivers the published object itself to every subscription of its class (treat as
+    read-only); a subscription of another class of the same type (a client library's flavour)
+    receives a copy of its own class, as a service's server and caller do."""
 
     name = "inproc"
 
@@ -121,7 +126,7 @@ class InprocTransport(Transport):
     def _dispatch(self, pub: _Pub, msg: Message) -> None:
         for sub in list(self._subs.get(pub.endpoint.topic, ())):
             if self._compatible(pub.msg_type, sub, pub.endpoint.topic):
-                self._executor.post(functools.partial(sub.deliver, msg))
+                self._executor.post(functools.partial(sub.deliver, _as(msg, sub.msg_type)))
 
     def create_publisher(
         self, node: str, topic: str, msg_type: type[Message], qos: QoSProfile
@@ -144,7 +149,7 @@ class InprocTransport(Transport):
             for pub in self._pubs.get(topic, ()):
                 if pub.history and self._compatible(pub.msg_type, sub, topic):
                     for msg in list(pub.history):
-                        self._executor.post(functools.partial(deliver, msg))
+                        self._executor.post(functools.partial(deliver, _as(msg, msg_type)))
         return sub
 
     def register_node(self, node: str) -> Callable[[], None]:
@@ -191,18 +196,22 @@ class InprocTransport(Transport):
         *,
         node: str | None = None,
     ) -> Message:
+        from robomodel.runtime.msg.typehash import same_type
+
         srv = self._services.get(name)
         if srv is None:
             offered = ", ".join(sorted(self._services)) or "(none)"
             raise ServiceCallError(f"service '{name}' not found; services: {offered}")
-        if srv.srv_type is not srv_type:
+        if srv.srv_type is not srv_type and not same_type(srv.srv_type, srv_type):
             raise ServiceCallError(
                 f"service '{name}' has type {srv.srv_type.__typename__}, "
                 f"called as {srv_type.__typename__}"
             )
+        request = _as(request, srv.srv_type.Request)  # the server's class, the caller's back
         spinner = self._executor.spinner
         if spinner is None or spinner == threading.get_ident():
-            return _resolved(name, _run_handler(name, srv.handler, request))
+            answer = _resolved(name, _run_handler(name, srv.handler, request))
+            return _as(answer, srv_type.Response)
         # Another thread (a spawner, as a separate process would be): the handler runs on the
         # spinning thread, as every other callback does, and this thread waits for it.
         box: queue.SimpleQueue[Message | ServiceCallError] = queue.SimpleQueue()
@@ -225,13 +234,23 @@ class InprocTransport(Transport):
             raise ServiceCallError(f"service '{name}' did not answer in {timeout_s:g} s") from None
         if isinstance(reply, ServiceCallError):
             raise reply
-        return reply
+        return _as(reply, srv_type.Response)
 
     def close(self) -> None:
         self._services.clear()
         self._subs.clear()
         self._pubs.clear()
         self._nodes.clear()
+
+
+def _as(msg: _M, cls: type[_M]) -> _M:
+    """``msg`` as a ``cls`` message: itself when it is one (no copy), else a copy through CDR
+    (another class of the same type: a flavoured face's, or one built again)."""
+    if isinstance(msg, cls):
+        return msg
+    from robomodel.runtime.msg import cdr
+
+    return cdr.deserialize(cdr.serialize(msg), cls)
 
 
 def _run_handler(name: str, handler: ServiceHandler, request: Message) -> Message | Deferred:
