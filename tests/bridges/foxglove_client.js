@@ -1,7 +1,7 @@
 // A Foxglove client for tests/bridges: @foxglove/ws-protocol's FoxgloveClient over `ws`, with
 // @foxglove/rosmsg2-serialization (cdr) or @foxglove/rosmsg-serialization (ros1) for messages.
 // Usage: node foxglove_client.js URL PLAN_JSON. It prints one JSON line per result:
-// serverInfo, the topics of advertised channels, the first message of plan.subscribe, a service response of plan.service,
+// serverInfo, the topics of advertised channels, the first message of plan.subscribe (each one with plan.every), a service response of plan.service,
 // plan.param's value, plan.assets' fetch results, a connection graph update; and it publishes
 // plan.publish.data on plan.publish.topic every 200 ms until it is ended.
 "use strict";
@@ -60,7 +60,7 @@ client.on("message", ({ subscriptionId, data }) => {
   const found = readers.get(subscriptionId);
   if (!found) return;
   readers.set(subscriptionId, { ...found, done: true });
-  if (found.done) return;
+  if (found.done && !plan.every) return; // plan.every: say each message, not the first only
   say("message", { topic: found.channel.topic, schemaName: found.channel.schemaName,
                    encoding: found.channel.encoding, msg: found.reader.readMessage(data) });
 });

@@ -24,7 +24,10 @@ versions Foxglove's business, at the cost of a 55 MB wheel.
 
 The graph is read once a second. Each client's queue holds at most ``send_buffer_limit / 100
 kB`` messages (the SDK bounds it by count, not bytes; between 8 and 1024): the oldest are
-dropped when a client reads too slowly.
+dropped when a client reads too slowly. A client's frame over 16 MiB closes its connection (the
+SDK's WebSocket bound, which it reports in one line); a client publishing more than
+``max_client_messages_per_s`` messages a second (over a burst of as many) has the excess
+dropped and counted, said in one line per client.
 """
 
 from __future__ import annotations
@@ -52,6 +55,17 @@ DEFAULT_ASSET_ALLOWLIST = (
 )
 _POLL_S = 1.0
 _TYPICAL_MESSAGE_BYTES = 100_000
+MAX_CLIENT_FRAME_BYTES = 16 * 1024 * 1024  # the SDK's WebSocket bound on a client's frame
+
+
+@dataclass
+class _ClientFlow:
+    """A client's published messages: a token bucket over them and what it let through."""
+
+    tokens: float
+    stamp_s: float
+    received: int = 0
+    dropped: int = 0
 
 
 @dataclass
@@ -87,6 +101,8 @@ class FoxgloveBridge:
         topic_whitelist: Regular expressions; a topic matching one is offered.
         send_buffer_limit: [bytes] sets the per-client message bound (module docstring).
         max_qos_depth: The bus subscriptions' queue depth at most.
+        max_client_messages_per_s: A client's published messages a second (as many in a
+            burst); the excess is dropped.
         capabilities: The protocol capabilities offered (:data:`CAPABILITIES`).
         log: Where the one-line reports go.
     """
@@ -105,6 +121,7 @@ class FoxgloveBridge:
         topic_whitelist: Sequence[str] = (".*",),
         send_buffer_limit: int = 10_000_000,
         max_qos_depth: int = 25,
+        max_client_messages_per_s: float = 5_000.0,
         capabilities: Sequence[str] = CAPABILITIES,
         log: Callable[[str], None] = print,
     ) -> None:
@@ -128,6 +145,13 @@ class FoxgloveBridge:
         self.package_index = package_index
         self.capabilities = tuple(capabilities)
         self.max_qos_depth = max_qos_depth
+        if not max_client_messages_per_s > 0:
+            raise BridgeError(
+                "foxglove_bridge: max_client_messages_per_s must be positive, "
+                f"got {max_client_messages_per_s!r}"
+            )
+        self.max_client_messages_per_s = float(max_client_messages_per_s)
+        self._flows: dict[int, _ClientFlow] = {}  # client id -> its published messages
         self.log = log
         self.node = context.create_node(name, namespace)
         self._topics: dict[str, _Topic] = {}
@@ -455,13 +479,43 @@ class FoxgloveBridge:
     def on_client_unadvertise(self, client: Any, client_channel_id: int) -> None:
         with self._lock:
             entry = self._client_channels.pop((client.id, client_channel_id), None)
+            if not any(key[0] == client.id for key in self._client_channels):
+                self._flows.pop(client.id, None)  # its last channel (or the client) went
         if entry is not None:
             self._on_bus(entry[0].destroy)
+
+    def client_flow(self, client_id: int) -> tuple[int, int]:
+        """(received, dropped) of the messages client ``client_id`` published."""
+        with self._lock:
+            flow = self._flows.get(client_id)
+            return (flow.received, flow.dropped) if flow else (0, 0)
+
+    def _admit(self, client_id: int) -> bool:
+        """A token of the client's bucket (``max_client_messages_per_s``), or False: the
+        message is dropped, said once per client."""
+        rate = self.max_client_messages_per_s
+        now = time.monotonic()
+        with self._lock:
+            flow = self._flows.get(client_id)
+            if flow is None:
+                flow = self._flows[client_id] = _ClientFlow(tokens=rate, stamp_s=now)
+            flow.received += 1
+            flow.tokens = min(rate, flow.tokens + (now - flow.stamp_s) * rate)
+            flow.stamp_s = now
+            if flow.tokens >= 1.0:
+                flow.tokens -= 1.0
+                return True
+            flow.dropped += 1
+            first = flow.dropped == 1
+        if first:
+            self.log(f"foxglove_bridge: client {client_id} publishes more than {rate:g} "
+                     "messages a second: the excess is dropped")  # fmt: skip
+        return False
 
     def on_message_data(self, client: Any, client_channel_id: int, data: bytes) -> None:
         with self._lock:
             entry = self._client_channels.get((client.id, client_channel_id))
-        if entry is None:
+        if entry is None or not self._admit(client.id):
             return
         publisher, decode = entry
         try:
