@@ -82,11 +82,8 @@ def canonical(name: str) -> str:
 
 def namespace_of(name: str) -> str:
     """The namespace of a node or topic name, with a trailing slash (``/a/b`` -> ``/a/``)."""
-    name = canonical(name)
-    if not name or name == "/":
-        return "/"
-    parent = name.rsplit("/", 1)[0]
-    return parent + "/" if parent else "/"
+    parent, slash, _ = canonical(name).rpartition("/")
+    return parent + slash or "/"  # "a" is in the global namespace, as rosgraph has it
 
 
 def resolve(name: str, caller_id: str) -> str:
