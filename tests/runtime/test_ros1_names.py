@@ -129,13 +129,16 @@ def test_master_uri_is_explicit_then_the_environment_then_the_default(
 
 
 def test_advertised_host_is_ros_ip_then_ros_hostname_then_loopback(
-    monkeypatch: pytest.MonkeyPatch,
+    monkeypatch: pytest.MonkeyPatch, resolver: dict[str, list[str]]
 ) -> None:
+    resolver.update({"robot.local": ["10.0.0.9"], "localhost": ["127.0.0.1"]})
     monkeypatch.delenv("ROS_IP", raising=False)
     monkeypatch.delenv("ROS_HOSTNAME", raising=False)
     assert advertised_host() == "127.0.0.1" and bind_host() == "127.0.0.1"
+    monkeypatch.setenv("ROS_HOSTNAME", "localhost")
+    assert advertised_host() == "localhost" and bind_host() == "127.0.0.1"
     monkeypatch.setenv("ROS_HOSTNAME", "robot.local")
-    assert advertised_host() == "robot.local"
+    assert advertised_host() == "robot.local" and bind_host() == "0.0.0.0"
     monkeypatch.setenv("ROS_IP", "10.0.0.7")
     assert advertised_host() == "10.0.0.7" and bind_host() == "0.0.0.0"
 
