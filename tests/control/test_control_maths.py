@@ -6,15 +6,23 @@ odometry against the pose of a drive whose path is known."""
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from robomodel.control import ControlSystem, load_controller_config
 from robomodel.control.controllers import Odometry, RollingMean, Trajectory, TrajectoryPoint
 from robomodel.control.controllers.trajectory import interpolate
 from robomodel.control.exceptions import ConfigError
 from robomodel.control.pid import AntiWindup, Gains, Pid, PidKilted
+from robomodel.loading import load
+from robomodel.runtime import Context
+from robomodel.runtime.clock import ManualClock
+from robomodel.runtime.msg import Odometry as OdometryMsg
+from robomodel.runtime.msg import TFMessage, Time, Twist, TwistStamped, Vector3
+from tests.control.helpers import WHEEL, WHEELS
 
 P = TrajectoryPoint
 value = st.floats(-10.0, 10.0)
@@ -339,3 +347,83 @@ def test_odometry_runge_kutta_on_a_nearly_straight_step() -> None:
     o = Odometry()
     o.integrate_exact(1.0, -math.pi)  # a half turn to the right, radius 1/π
     assert (o.x, o.y, o.heading) == pytest.approx((0.0, -2 / math.pi, -math.pi), abs=1e-12)
+
+
+def _driven(extra: str, steps: int, command: Any) -> tuple[list[Any], list[Any], Any]:
+    """A diff drive at 100 Hz over the in-process transport, ``command(publisher, time_s)``
+    called before each update; the odometry and tf messages it published, and itself."""
+    ctx = Context("inproc", clock=ManualClock())
+    robot = load(
+        WHEELS.format(joints=WHEEL.format(name="left_wheel") + WHEEL.format(name="right_wheel"))
+    )
+    cfg = load_controller_config(
+        "dd.yaml",
+        text="controller_manager:\n  ros__parameters:\n    update_rate: 100\n"
+        "    dd:\n      type: diff_drive_controller/DiffDriveController\n"
+        "dd:\n  ros__parameters:\n    left_wheel_names: [left_wheel]\n"
+        "    right_wheel_names: [right_wheel]\n    wheel_separation: 0.5\n"
+        "    wheel_radius: 0.1\n    publish_rate: 100.0\n" + extra,
+    )
+    system = ControlSystem.build(robot, cfg, context=ctx)
+    node = ctx.create_node("probe")
+    odoms: list[OdometryMsg] = []
+    tfs: list[TFMessage] = []
+    node.create_subscription(OdometryMsg, "/dd/odom", odoms.append)
+    node.create_subscription(TFMessage, "/tf", tfs.append)
+    stamped = "use_stamped_vel: false" not in extra
+    pub = node.create_publisher(
+        TwistStamped if stamped else Twist, "/dd/cmd_vel" if stamped else "/dd/cmd_vel_unstamped"
+    )
+    controller = system.manager.entries["dd"].controller
+    for _ in range(steps):
+        command(pub, system.manager.time_s)
+        ctx.spin_once()
+        ctx.advance(0.01)
+        system.manager.step(0.01)
+    ctx.spin_once()
+    ctx.shutdown()
+    return odoms, tfs, controller
+
+
+def test_diff_drive_odometry_carries_the_heading_and_the_update_time() -> None:
+    def turn(pub: Any, time_s: float) -> None:
+        msg = TwistStamped()
+        msg.header.stamp = Time(int(time_s), round((time_s % 1) * 1e9))
+        msg.twist.linear.x, msg.twist.angular.z = 0.1, 1.5
+        pub.publish(msg)
+
+    odoms, tfs, controller = _driven("", 130, turn)
+    last, tf = odoms[-1], tfs[-1].transforms[0]
+    heading = controller.odometry.heading
+    assert heading > 1.0  # turned left about 1.5 rad/s for 1.3 s
+    q = last.pose.pose.orientation
+    assert (q.x, q.y) == (0.0, 0.0) and q.z**2 + q.w**2 == pytest.approx(1.0)
+    assert math.atan2(2 * q.w * q.z, 1 - 2 * q.z * q.z) == pytest.approx(heading)
+    assert tf.transform.rotation == q
+    assert (tf.transform.translation.x, tf.transform.translation.y) == (
+        last.pose.pose.position.x, last.pose.pose.position.y
+    )  # fmt: skip
+    assert last.twist.twist.angular.z == pytest.approx(1.5, abs=0.05)
+    stamps = [(o.header.stamp.sec, o.header.stamp.nanosec) for o in odoms[-3:]]
+    assert stamps == [(1, 280_000_000), (1, 290_000_000), (1, 300_000_000)]
+    assert (tf.header.stamp.sec, tf.header.stamp.nanosec) == (1, 300_000_000)
+
+
+def test_diff_drive_takes_the_command_s_stamp_and_the_unstamped_twist() -> None:
+    def stale(pub: Any, time_s: float) -> None:
+        msg = TwistStamped()
+        msg.header.stamp = Time(0, 1)  # older than cmd_vel_timeout (0.5 s) after 0.5 s
+        msg.twist.linear.x = 0.3
+        pub.publish(msg)
+
+    odoms, _, _ = _driven("", 100, stale)
+    assert odoms[-1].twist.twist.linear.x == pytest.approx(0.0, abs=1e-9)
+    assert odoms[10].twist.twist.linear.x > 0.1  # taken while it was fresh
+
+    def unstamped(pub: Any, time_s: float) -> None:
+        pub.publish(Twist(Vector3(0.2, 0.0, 0.0), Vector3(0.0, 0.0, -0.5)))
+
+    odoms, _, controller = _driven("    use_stamped_vel: false\n", 60, unstamped)
+    assert odoms[-1].twist.twist.linear.x == pytest.approx(0.2, abs=1e-3)
+    assert odoms[-1].twist.twist.angular.z == pytest.approx(-0.5, abs=1e-3)
+    assert controller.odometry.heading < -0.2
