@@ -12,10 +12,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from robomodel.control import ControlSystem, load_controller_config
+from robomodel.control import ControllerManager, ControlSystem, load_controller_config
 from robomodel.control.controllers import Odometry, RollingMean, Trajectory, TrajectoryPoint
 from robomodel.control.controllers.trajectory import interpolate
 from robomodel.control.exceptions import ConfigError
+from robomodel.control.hardware import ResourceManager, hardware_from_robot
 from robomodel.control.pid import AntiWindup, Gains, Pid, PidKilted
 from robomodel.loading import load
 from robomodel.runtime import Context
@@ -118,6 +119,10 @@ def test_sampling_walks_the_waypoints_and_holds_the_last() -> None:
     assert [s.segment for _, s in segments if s is not None] == [0, 0, 1, 1, 2]
     at_waypoint = t.sample(101.0)
     assert at_waypoint is not None and at_waypoint.positions == pytest.approx((1.0,))
+    mid_first = t.sample(101.5)  # cubic (1, 0) -> (3, 2) over 1 s, halfway
+    assert mid_first is not None and mid_first.positions == pytest.approx((1.75,))
+    mid_second = t.sample(103.0)  # cubic (3, 2) -> (3, 0) over 2 s, halfway
+    assert mid_second is not None and mid_second.positions == pytest.approx((3.5,))
     at_second = t.sample(102.0)
     assert at_second is not None and at_second.positions == pytest.approx((3.0,))
     assert at_second.velocities == pytest.approx((2.0,)) and at_second.segment == 2
@@ -337,6 +342,12 @@ def test_odometry_follows_a_straight_line_then_an_arc() -> None:
     assert o.update(0.0, 0.0, 6.0) and o.x == 0.0  # the wheel positions were forgotten too
 
 
+def test_odometry_runge_kutta_heads_along_the_mean_heading() -> None:
+    o = Odometry()
+    o.integrate_runge_kutta2(2.0, 1.0)
+    assert (o.x, o.y, o.heading) == pytest.approx((2 * math.cos(0.5), 2 * math.sin(0.5), 1.0))
+
+
 def test_odometry_runge_kutta_on_a_nearly_straight_step() -> None:
     o = Odometry()
     o.set_wheel_params(1.0, 1.0, 1.0)
@@ -427,3 +438,48 @@ def test_diff_drive_takes_the_command_s_stamp_and_the_unstamped_twist() -> None:
     assert odoms[-1].twist.twist.linear.x == pytest.approx(0.2, abs=1e-3)
     assert odoms[-1].twist.twist.angular.z == pytest.approx(-0.5, abs=1e-3)
     assert controller.odometry.heading < -0.2
+
+
+DERIVED = """<robot name="base"><link name="base_link"/>
+<link name="l"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+<collision><geometry><cylinder radius="0.08" length="0.02"/></geometry></collision>
+<collision><geometry><sphere radius="0.5"/></geometry></collision></link>
+<link name="r"><collision><geometry><cylinder radius="0.3" length="0.02"/></geometry></collision></link>
+<joint name="left_wheel" type="continuous"><parent link="base_link"/><child link="l"/>
+<origin xyz="0.1 0.3 0.05"/></joint>
+<joint name="right_wheel" type="continuous"><parent link="base_link"/><child link="r"/>
+<origin xyz="-0.1 -0.2 0.07"/></joint>
+<ros2_control name="Base" type="system"><hardware><plugin>mock_components/GenericSystem</plugin>
+</hardware>{joints}</ros2_control></robot>"""
+
+
+@pytest.mark.parametrize(
+    ("given", "separation_m", "radius_m"),
+    [
+        ({}, math.hypot(0.2, 0.5), 0.08),  # the first collision with a radius, of the left wheel
+        ({"wheel_separation": 0.7}, 0.7, 0.08),
+        ({"wheel_radius": 0.5}, math.hypot(0.2, 0.5), 0.5),
+    ],
+)
+def test_diff_drive_derives_wheel_parameters_from_the_urdf(
+    given: dict[str, float], separation_m: float, radius_m: float
+) -> None:
+    """As RCS1's getWheelParams: the x-y distance of the wheel joints and the left wheel's
+    collision radius, each only where the parameters do not give it."""
+    robot = load(
+        DERIVED.format(joints=WHEEL.format(name="left_wheel") + WHEEL.format(name="right_wheel"))
+    )
+    manager = ControllerManager(ResourceManager(hardware_from_robot(robot)), robot=robot)
+    manager.load_controller(
+        "dd",
+        "diff_drive_controller/DiffDriveController",
+        {
+            "left_wheel_names": ["left_wheel"],
+            "right_wheel_names": ["right_wheel"],
+            "derive_wheel_params_from_urdf": True,
+            **given,
+        },
+    )
+    controller = manager.entries["dd"].controller
+    assert controller.wheel_separation == pytest.approx(separation_m)
+    assert controller.wheel_radius == pytest.approx(radius_m)
