@@ -222,6 +222,20 @@ def test_setting_the_root_tells_every_parameter_subscriber(
     ]
 
 
+def test_a_parameter_update_goes_to_the_subscribers_of_that_key_only(
+    api: tuple[MasterApi, list[Any]],
+) -> None:
+    master, sent = api
+    master.subscribeParam("/ear", EAR, "/a")
+    master.subscribeParam("/talker", TALKER, "/aX")
+    master.setParam("/x", "/aX", 2)
+    master.setParam("/x", "/a", 1)
+    assert sent == [
+        (TALKER, "paramUpdate", ("/master", "/aX/", 2)),
+        (EAR, "paramUpdate", ("/master", "/a/", 1)),
+    ]
+
+
 def test_stale_topic_types_are_dropped_past_the_bound_and_live_ones_kept(
     api: tuple[MasterApi, list[Any]], monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -320,3 +334,25 @@ def test_a_failing_notification_is_a_line_and_the_next_ones_are_sent(
         f"master: publisherUpdate to {EAR} failed: RuntimeError: peer sent nonsense",
         f"master: publisherUpdate to {EAR} failed: connection refused",
     ]
+
+
+def test_a_subscriber_that_never_answers_holds_the_others_up_2_s_at_most() -> None:
+    updates: list[Any] = []
+    good = XmlRpcServer(
+        "127.0.0.1", 0, {"publisherUpdate": lambda *a: updates.append(a) or [1, "", 0]}
+    )
+    with socket.socket() as silent:
+        silent.bind(("127.0.0.1", 0))
+        silent.listen()
+        m = Master(f"http://127.0.0.1:{_free_port()}/", "127.0.0.1")
+        try:
+            m.api.registerSubscriber("/mute", "/chatter", "std_msgs/String",
+                                     f"http://127.0.0.1:{silent.getsockname()[1]}/")  # fmt: skip
+            m.api.registerSubscriber("/ear", "/chatter", "std_msgs/String",
+                                     f"http://127.0.0.1:{good.port}/")  # fmt: skip
+            m.api.registerPublisher("/talker", "/chatter", "std_msgs/String", TALKER)
+            wait_until(lambda: updates, scaled(10), what="publisherUpdate past the silent one")
+        finally:
+            m.close()
+            good.close()
+    assert updates == [("/master", "/chatter", [TALKER])]

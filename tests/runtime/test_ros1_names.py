@@ -81,6 +81,11 @@ def test_check_name_takes_rosmaster_s_names_and_says_what_is_wrong() -> None:
     for bad in ("/a:b", "/a b", "/a\tb", "/a\x00", "/a\x7f", "/a\x9f"):
         with pytest.raises(Ros1NameError, match=r"^node '/a.*' is not a ROS name"):
             check_name(bad, "node")
+    with pytest.raises(Ros1NameError) as info:  # a long name is shown by its first 80
+        check_name("/" + "n" * 99 + ":", "node")
+    assert str(info.value) == (
+        f"node {'/' + 'n' * 79!r} is not a ROS name (no ':', whitespace or control characters)"
+    )
 
 
 def test_check_uri_takes_http_and_rosrpc_with_a_port() -> None:
@@ -93,6 +98,14 @@ def test_check_uri_takes_http_and_rosrpc_with_a_port() -> None:
     for bad in ("ftp://h:1/", "http://h/", "http://:1/"):
         with pytest.raises(Ros1NameError, match=rf"^caller_api '{bad}' is not an http://"):
             check_uri(bad, "caller_api")
+    longest = "http://h:1/" + "p" * (MAX_NAME_BYTES - 11)
+    assert check_uri(longest, "caller_api") == longest
+    with pytest.raises(Ros1NameError) as info:
+        check_uri("ftp://" + "h" * 100, "caller_api")
+    assert (
+        str(info.value)
+        == f"caller_api {('ftp://' + 'h' * 100)[:80]!r} is not an http:// or rosrpc:// URI"
+    )
 
 
 def test_split_uri_reads_bracketed_and_rospy_s_bare_ipv6() -> None:
@@ -101,9 +114,19 @@ def test_split_uri_reads_bracketed_and_rospy_s_bare_ipv6() -> None:
     assert split_uri("http://[::1]:11311/") == ("::1", 11311)
     assert split_uri("http://::1:11311/") == ("::1", 11311)  # rospy with ROS_IP=::1
     assert split_uri("http://fe80::1:2:80/x") == ("fe80::1:2", 80)
-    for bad in ("http://::1:port/", "http://host:99999/", "gopher://h:1/", "http://h/"):
+    assert split_uri("http://::1:11311/a/b:c/d") == ("::1", 11311)
+    for bad in (
+        "http://::1:port/", "http://host:99999/", "gopher://h:1/", "http://h/",
+        "http://[::1]:99999/", "http://a:b:c/",
+    ):  # fmt: skip
         with pytest.raises(RobomodelError, match="is not a ROS 1 URI; use http://HOST:PORT/"):
             split_uri(bad)
+    with pytest.raises(RobomodelError) as info:
+        split_uri("http://" + "h" * 300)
+    assert str(info.value) == (
+        f"'http://{'h' * 193}' is not a ROS 1 URI; use http://HOST:PORT/ (ROS_MASTER_URI), "
+        "http://[IPV6]:PORT/ or rosrpc://HOST:PORT"
+    )
 
 
 def test_http_uri_brackets_ipv6_and_ends_http_with_a_slash() -> None:

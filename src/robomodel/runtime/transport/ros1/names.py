@@ -3,6 +3,7 @@ node advertises and listens on."""
 
 from __future__ import annotations
 
+import contextlib
 import ipaddress
 import os
 import re
@@ -118,8 +119,9 @@ def split_uri(uri: str) -> tuple[str, int]:
         netloc = rest.split("/", 1)[0]
         if netloc.count(":") > 1 and "[" not in netloc:  # rospy's http://::1:port/
             bare, _, digits = netloc.rpartition(":")
-            parsed = urllib.parse.urlparse(f"{scheme}://[{bare}]:{digits}/")
-            host, port = parsed.hostname, int(digits) if digits.isdigit() else None
+            with contextlib.suppress(ValueError):  # not an IPv6 address either (http://a:b:c/)
+                parsed = urllib.parse.urlparse(f"{scheme}://[{bare}]:{digits}/")
+                host, port = parsed.hostname, int(digits) if digits.isdigit() else None
     if parsed.scheme not in ("http", "rosrpc") or not host or port is None:
         raise RobomodelError(
             f"'{uri[:200]}' is not a ROS 1 URI; use http://HOST:PORT/ (ROS_MASTER_URI), "
