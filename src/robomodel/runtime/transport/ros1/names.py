@@ -3,6 +3,7 @@ node advertises and listens on."""
 
 from __future__ import annotations
 
+import contextlib
 import ipaddress
 import os
 import re
@@ -82,11 +83,8 @@ def canonical(name: str) -> str:
 
 def namespace_of(name: str) -> str:
     """The namespace of a node or topic name, with a trailing slash (``/a/b`` -> ``/a/``)."""
-    name = canonical(name)
-    if not name or name == "/":
-        return "/"
-    parent = name.rsplit("/", 1)[0]
-    return parent + "/" if parent else "/"
+    parent, slash, _ = canonical(name).rpartition("/")
+    return parent + slash or "/"  # "a" is in the global namespace, as rosgraph has it
 
 
 def resolve(name: str, caller_id: str) -> str:
@@ -121,8 +119,9 @@ def split_uri(uri: str) -> tuple[str, int]:
         netloc = rest.split("/", 1)[0]
         if netloc.count(":") > 1 and "[" not in netloc:  # rospy's http://::1:port/
             bare, _, digits = netloc.rpartition(":")
-            parsed = urllib.parse.urlparse(f"{scheme}://[{bare}]:{digits}/")
-            host, port = parsed.hostname, int(digits) if digits.isdigit() else None
+            with contextlib.suppress(ValueError):  # not an IPv6 address either (http://a:b:c/)
+                parsed = urllib.parse.urlparse(f"{scheme}://[{bare}]:{digits}/")
+                host, port = parsed.hostname, int(digits) if digits.isdigit() else None
     if parsed.scheme not in ("http", "rosrpc") or not host or port is None:
         raise RobomodelError(
             f"'{uri[:200]}' is not a ROS 1 URI; use http://HOST:PORT/ (ROS_MASTER_URI), "
