@@ -247,7 +247,6 @@ SLOW: tuple[str, ...] = (
     "tests/kinematics/test_ur.py::test_every_solution_reproduces_the_target",
     "tests/launch/test_launch_bounds.py::test_a_doubling_roslaunch_arg_is_refused_at_the_step_that_passes_the_limit",
     "tests/launch/test_launch_bounds.py::test_every_example_launch_file_stays_under_the_work_bound",
-    "tests/launch/test_ros2_nodes.py::test_jazzy_spawner_gives_its_parameter_files_to_the_controllers",
     "tests/launch/test_spawner_wait.py::test_a_manager_answering_after_more_than_10_s_gets_its_controllers_spawned",
     "tests/runtime/test_cdr_strings.py::test_a_run_of_messages_matches_pycdr2_message_by_message",
     "tests/runtime/test_messages.py::test_mixed_alignment_bytes_match_pycdr2",
