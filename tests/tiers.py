@@ -52,6 +52,7 @@ FIXTURE_TIERS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tests/ros1wire", "ros1"): ("ros1", "process"),
     ("tests/seeds", "ros1_graph"): ("ros1", "process"),
     ("tests/seeds", "ros2_ws"): ("process",),
+    ("tests/seeds/test_seed_000_planar_3dof.py", "rrbot"): ("ros1", "process"),
     ("tests/bag", "talker"): ("process", "bus"),
     ("tests/control/test_cli.py", "rrbot_run"): ("process", "bus"),
     ("tests/launch/test_run_ros2.py", "bus"): ("process", "bus"),
