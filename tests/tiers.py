@@ -53,6 +53,8 @@ FIXTURE_TIERS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tests/seeds", "ros1_graph"): ("ros1", "process"),
     ("tests/seeds", "ros2_ws"): ("process",),
     ("tests/seeds/test_seed_000_planar_3dof.py", "rrbot"): ("ros1", "process"),
+    ("tests/seeds/test_seed_001_ur5_gazebo.py", "ur5"): ("ros1", "process"),
+    ("tests/seeds/test_seed_002_simplebot.py", "simplebot"): ("ros1", "process"),
     ("tests/bag", "talker"): ("process", "bus"),
     ("tests/control/test_cli.py", "rrbot_run"): ("process", "bus"),
     ("tests/launch/test_run_ros2.py", "bus"): ("process", "bus"),
