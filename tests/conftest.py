@@ -53,6 +53,25 @@ def _processes_tmpdir() -> None:
     os.environ["TMPDIR"] = _TMPDIR
 
 
+def _byte_code_cache() -> None:
+    """Let the run's processes keep byte code where the environment says to write none
+    (``PYTHONDONTWRITEBYTECODE``, set to keep ``__pycache__`` folders out of the checkout): in
+    ``build/pycache`` (``PYTHONPYCACHEPREFIX``), beside the run's screenshots. Without it every
+    ``robomodel`` process a test starts compiles each module it imports from source again, a
+    second or more for the viewer, launch or simulator, and each xdist worker rewrites every
+    test module's asserts again. A ``PYTHONPYCACHEPREFIX`` of the user's own is kept. The xdist
+    workers start after this and inherit it."""
+    if not os.environ.get("PYTHONDONTWRITEBYTECODE") or os.environ.get("PYTHONPYCACHEPREFIX"):
+        return
+    cache = ROOT / "build" / "pycache"
+    try:
+        cache.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return  # a read-only checkout: every process compiles, as the environment asks
+    del os.environ["PYTHONDONTWRITEBYTECODE"]
+    os.environ["PYTHONPYCACHEPREFIX"] = str(cache)
+
+
 def _listening(port: int) -> bool:
     import socket
 
@@ -82,6 +101,7 @@ def pytest_configure(config: pytest.Config) -> None:
     if hasattr(config, "workerinput"):
         return
     _processes_tmpdir()
+    _byte_code_cache()
     if _listening(7447):
         return
     _ROUTER = subprocess.Popen(

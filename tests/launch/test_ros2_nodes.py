@@ -18,6 +18,7 @@ from robomodel.launch.nodes.ros2_params import node_parameters
 from robomodel.launch.ros2.model import LaunchStep
 from robomodel.runtime.param_files import parameters_from_file
 from tests.conftest import EXAMPLES
+from tests.timing import scaled
 
 ARM = EXAMPLES / "two_link_arm"
 
@@ -166,14 +167,14 @@ def test_control_launch_runs_with_spawners_chained_by_on_process_exit() -> None:
     lines: list[str] = []
     runner = LaunchRunner(
         [s.node for s in steps if s.node is not None],
-        RunOptions(bus="inproc", headless=True, duration_s=4.0),
+        RunOptions(bus="inproc", headless=True, duration_s=scaled(30)),  # a bound
         steps=steps,
         log=lines.append,
     )
     runner.open_bus()
     try:
         runner.start_nodes()
-        runner.spin()
+        runner.spin(stopped=lambda: any("all spawned" in line for line in lines))
         manager = runner.started[0].handle.system.manager
         states = {c["name"]: c["state"] for c in manager.list_controllers()}
         assert states == {
@@ -218,7 +219,7 @@ def test_named_manager_unknown_plugin_and_unknown_controller_type(tmp_path: Path
     lines: list[str] = []
     runner = LaunchRunner(
         [cm, spawn],
-        RunOptions(bus="inproc", headless=True, duration_s=3.0),
+        RunOptions(bus="inproc", headless=True, duration_s=scaled(30)),  # a bound
         steps=(LaunchStep("node", cm), LaunchStep("node", spawn)),
         log=lines.append,
     )
@@ -226,7 +227,7 @@ def test_named_manager_unknown_plugin_and_unknown_controller_type(tmp_path: Path
     try:
         with pytest.warns(UserWarning, match="RRBotSystemPositionOnlyHardware.*mock_components"):
             runner.start_nodes()
-        runner.spin()
+        runner.spin(stopped=lambda: runner.started[1].handle.exit_code() is not None)
         manager = runner.started[0].handle.system.manager
         assert manager.service_prefix == "/my_ctrl_mgr" and manager.update_rate_hz == 50
         states = {c["name"]: c["state"] for c in manager.list_controllers()}
@@ -282,12 +283,14 @@ def test_jazzy_spawner_gives_its_parameter_files_to_the_controllers(
         )  # fmt: skip
     lines: list[str] = []
     runner = LaunchRunner(
-        [cm, spawner], RunOptions(bus="inproc", headless=True, duration_s=3.0), log=lines.append
+        [cm, spawner],
+        RunOptions(bus="inproc", headless=True, duration_s=scaled(30)),  # a bound
+        log=lines.append,
     )
     runner.open_bus()
     try:
         runner.start_nodes()
-        runner.spin()
+        runner.spin(stopped=lambda: runner.started[1].handle.exit_code() is not None)
         manager = runner.started[0].handle.system.manager
         states = {c["name"]: (c["state"], c["type"]) for c in manager.list_controllers()}
     finally:
@@ -309,12 +312,14 @@ def test_spawner_with_a_missing_parameter_file_fails_naming_it(tmp_path: Path) -
     )
     lines: list[str] = []
     runner = LaunchRunner(
-        [spawner], RunOptions(bus="inproc", headless=True, duration_s=1.0), log=lines.append
+        [spawner],
+        RunOptions(bus="inproc", headless=True, duration_s=scaled(30)),  # a bound
+        log=lines.append,
     )
     runner.open_bus()
     try:
         runner.start_nodes()
-        runner.spin()
+        runner.spin(stopped=lambda: runner.started[0].handle.exit_code() is not None)
         code = runner.started[0].handle.exit_code()
     finally:
         runner.shutdown()

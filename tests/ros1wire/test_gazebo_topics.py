@@ -7,9 +7,11 @@ topics (``/gazebo/model_states``, ``/gazebo/link_states``, ``/gazebo/set_*_state
 from __future__ import annotations
 
 import subprocess
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import pytest
 import yaml
 
 from tests.ros1wire.conftest import Ros1
@@ -76,13 +78,24 @@ def _launch_seed_001(ros1: Ros1, tmp_path: Path) -> Path:
     return log
 
 
+@pytest.fixture(scope="module")
+def seed_001(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Ros1, Path]]:
+    """Seed 001's UR5 launch hosting the master, for the module's tests that look at it (each
+    starting its own took most of their time): the graph and the launch's log."""
+    graph = Ros1(tmp_path_factory.mktemp("seed_001"))
+    try:
+        yield graph, _launch_seed_001(graph, graph.home)
+    finally:
+        graph.close()
+
+
 def _yaml(result: subprocess.CompletedProcess[str]) -> Any:
     assert result.returncode == 0, result.stderr
     return yaml.safe_load(result.stdout.split("\n---")[0])
 
 
-def test_seed_001_topics_services_and_rosout(ros1: Ros1, tmp_path: Path) -> None:
-    log = _launch_seed_001(ros1, tmp_path)
+def test_seed_001_topics_services_and_rosout(seed_001: tuple[Ros1, Path], tmp_path: Path) -> None:
+    ros1, log = seed_001
     topics = set(ros1.run("/usr/bin/rostopic", "list").stdout.split())
     assert topics >= SEED_001_TOPICS, sorted(SEED_001_TOPICS - topics)
     services = set(ros1.run("/usr/bin/rosservice", "list").stdout.split())
@@ -196,12 +209,14 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
     assert (line["level"], line["name"], line["msg"]) == (4, "/somebody", "careful")
 
 
-def test_seed_001_model_states_at_the_physics_rate(ros1: Ros1, tmp_path: Path) -> None:
+def test_seed_001_model_states_at_the_physics_rate(
+    seed_001: tuple[Ros1, Path], tmp_path: Path
+) -> None:
     """gazebo_ros publishes the states at every world update while subscribed (1 kHz with
     Gazebo's 1 ms steps): Debian's ``rostopic hz`` sees about the physics rate, far above the
     100 Hz of /clock. (That nothing is built while nobody subscribes is
     tests/sim/test_model_states.py's.)"""
-    _launch_seed_001(ros1, tmp_path)
+    ros1, _ = seed_001
     env = {**ros1.env, "PYTHONPATH": str(gazebo_msgs_python(tmp_path))}
     log = tmp_path / "hz.log"
     with log.open("w") as out:
@@ -219,3 +234,4 @@ def test_seed_001_model_states_at_the_physics_rate(ros1: Ros1, tmp_path: Path) -
     assert hz.poll() is None, log.read_text()
     # rostopic hz's first reports cover its start-up; the later ones the steady rate
     assert max(rates()[2:]) > 400.0, log.read_text()
+    ros1.stop(hz)

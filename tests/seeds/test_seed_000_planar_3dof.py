@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import shutil
 import signal
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -480,13 +480,37 @@ def _rrbot_two_terminals(graph: SeedRos1, tmp_path: Path) -> None:
     )  # fmt: skip
 
 
-@pytest.mark.parametrize("master", MASTERS)
-def test_rrbot_commands_move_the_joints(graph: SeedRos1, tmp_path: Path, master: str) -> None:
+@pytest.fixture(scope="module")
+def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
+    """One two-terminal RRBot, the first launch hosting the master, for the tests that look at
+    it and move its joints only (each starting its own took most of this module's time); the
+    tests that change its controllers or end it start their own."""
+    home = tmp_path_factory.mktemp("rrbot")
+    workspace = home / "catkin_ws" / "src"
+    workspace.mkdir(parents=True)
+    shared = SeedRos1(home, packages=str(workspace))
+    try:
+        _rrbot_two_terminals(shared, home)
+        yield shared
+    finally:
+        shared.close()
+
+
+def test_rrbot_commands_move_the_joints(rrbot: SeedRos1) -> None:
     """``rostopic pub -1 /rrbot/joint1_position_controller/command std_msgs/Float64 "data:
     1.5"`` (and joint2 to 1.0): the simulated joints go there. The seed's gains are a PD (its
     ``I`` is not ``i``), so gravity leaves joint1 short of, or beyond, 1.5 by a little."""
-    start_master(graph, master)
+    _commands_move_the_joints(rrbot)
+
+
+def test_rrbot_commands_move_the_joints_beside_a_roscore(graph: SeedRos1, tmp_path: Path) -> None:
+    """The same with ``roscore`` started first: the launches join it."""
+    start_master(graph, "roscore")
     _rrbot_two_terminals(graph, tmp_path)
+    _commands_move_the_joints(graph)
+
+
+def _commands_move_the_joints(graph: SeedRos1) -> None:
     assert (
         float(graph.tool(ROSPARAM, "get", "/rrbot/joint1_position_controller/pid/p").stdout) == 100
     )
@@ -529,10 +553,10 @@ def _list_controllers(graph: SeedRos1) -> dict[str, tuple[str, str]]:
     return {row[0]: (row[1], row[2]) for row in rows}
 
 
-def test_rrbot_controllers_are_loaded_and_running(graph: SeedRos1, tmp_path: Path) -> None:
+def test_rrbot_controllers_are_loaded_and_running(rrbot: SeedRos1) -> None:
     """The spawner's three controllers, all running, the position controllers with the
     YAML's type; the service the seed's rqt and ``controller_manager`` use is offered."""
-    _rrbot_two_terminals(graph, tmp_path)
+    graph = rrbot
     services = graph.tool(ROSSERVICE, "list").stdout.split()
     assert "/rrbot/controller_manager/list_controllers" in services
     controllers = _list_controllers(graph)
@@ -545,18 +569,16 @@ def test_rrbot_controllers_are_loaded_and_running(graph: SeedRos1, tmp_path: Pat
     assert {state for _, state in controllers.values()} == {"active"}
 
 
-def test_rrbot_list_controllers_shows_the_yaml_s_types(graph: SeedRos1, tmp_path: Path) -> None:
-    _rrbot_two_terminals(graph, tmp_path)
-    assert _list_controllers(graph)["joint_state_controller"][0] == (
+def test_rrbot_list_controllers_shows_the_yaml_s_types(rrbot: SeedRos1) -> None:
+    assert _list_controllers(rrbot)["joint_state_controller"][0] == (
         "joint_state_controller/JointStateController"
     )
 
 
-def test_service_call_without_a_type_on_ros1(graph: SeedRos1, tmp_path: Path) -> None:
+def test_service_call_without_a_type_on_ros1(rrbot: SeedRos1) -> None:
     """``rosservice call /rrbot/controller_manager/list_controllers`` → ``robomodel service call
     ...``: the type is looked up as rosservice does."""
-    _rrbot_two_terminals(graph, tmp_path)
-    run = graph.tool(*ROBOMODEL, "service", "call", "/rrbot/controller_manager/list_controllers")
+    run = rrbot.tool(*ROBOMODEL, "service", "call", "/rrbot/controller_manager/list_controllers")
     assert run.returncode == 0, run.stderr
     assert "joint1_position_controller" in run.stdout
 
@@ -607,10 +629,9 @@ def test_controller_manager_commands(graph: SeedRos1, tmp_path: Path) -> None:
     assert states() == {"joint_state_controller": "running", j1: "initialized", j2: "running"}
 
 
-def test_rrbot_graph_has_rosout(graph: SeedRos1, tmp_path: Path) -> None:
+def test_rrbot_graph_has_rosout(rrbot: SeedRos1) -> None:
     """What ``rostopic list`` shows on any ROS 1 graph: /rosout and /rosout_agg."""
-    _rrbot_two_terminals(graph, tmp_path)
-    topics = graph.tool(ROSTOPIC, "list").stdout.split()
+    topics = rrbot.tool(ROSTOPIC, "list").stdout.split()
     assert {"/rosout", "/rosout_agg"} <= set(topics)
 
 

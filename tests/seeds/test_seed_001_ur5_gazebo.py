@@ -11,6 +11,7 @@ package; example-robot-data brings those meshes).
 from __future__ import annotations
 
 import shutil
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -152,13 +153,29 @@ def _two_launches(graph: SeedRos1, tmp_path: Path) -> str:
     return log.read_text()
 
 
-def test_controllers_load_and_a_joint_follows_its_command(
-    graph_and_master: tuple[SeedRos1, str], tmp_path: Path
-) -> None:
+@pytest.fixture(scope="module", params=MASTERS)
+def ur5(
+    request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
+) -> Iterator[tuple[SeedRos1, str]]:
+    """The seed's two UR5 launches on a graph whose master the first launch hosts, or a
+    ``roscore`` started first (the parameter): the graph and the controller launch's log. One
+    of each per module, for the tests that look at them and move a joint (each starting its
+    own took most of this module's time)."""
+    home = tmp_path_factory.mktemp("ur5")
+    workspace = home / "catkin_ws" / "src"
+    workspace.mkdir(parents=True)
+    graph = SeedRos1(home, packages=str(workspace))
+    try:
+        start_master(graph, request.param)
+        yield graph, _two_launches(graph, home)
+    finally:
+        graph.close()
+
+
+def test_controllers_load_and_a_joint_follows_its_command(ur5: tuple[SeedRos1, str]) -> None:
     """The spawner's lines as the seed shows them, the robot description on the parameter
     server, and ``rostopic pub`` to /joint1_position_controller/command moves shoulder_pan."""
-    graph, _ = graph_and_master
-    log = _two_launches(graph, tmp_path)
+    graph, log = ur5
     names = ", ".join(CONTROLLERS)
     assert f"Controller Spawner: Loaded controllers: {names}" in log
     assert f"Started controllers: {names}" in log
@@ -177,26 +194,18 @@ def test_controllers_load_and_a_joint_follows_its_command(
     )
 
 
-@pytest.fixture(params=MASTERS)
-def graph_and_master(ros1_graph: SeedRos1, request: pytest.FixtureRequest) -> tuple[SeedRos1, str]:
-    start_master(ros1_graph, request.param)
-    return ros1_graph, request.param
-
-
-def test_rostopic_list_shows_the_controllers_topics(ros1_graph: SeedRos1, tmp_path: Path) -> None:
+@pytest.mark.parametrize("ur5", ["robomodel-master"], indirect=True)
+def test_rostopic_list_shows_the_controllers_topics(ur5: tuple[SeedRos1, str]) -> None:
     """``rostopic list``: the seed's topics that robomodel's simulator and controllers have."""
-    _two_launches(ros1_graph, tmp_path)
+    ros1_graph, _ = ur5
     topics = set(ros1_graph.tool(ROSTOPIC, "list").stdout.split())
     assert topics >= SEED_TOPICS - ITEM_5_TOPICS - RECONFIGURE_TOPICS
 
 
-def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(
-    graph_and_master: tuple[SeedRos1, str], tmp_path: Path
-) -> None:
+def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(ur5: tuple[SeedRos1, str]) -> None:
     """Gazebo's state topics and services and /rosout, /rosout_agg: from the launch's own
     master's /rosout node, or from a real roscore's."""
-    ros1_graph, _ = graph_and_master
-    _two_launches(ros1_graph, tmp_path)
+    ros1_graph, _ = ur5
     assert set(ros1_graph.tool(ROSTOPIC, "list").stdout.split()) >= ITEM_5_TOPICS
     services = set(ros1_graph.tool(ROSSERVICE, "list").stdout.split())
     assert {"/gazebo/get_model_state", "/gazebo/get_link_state", "/gazebo/set_link_state"} <= (
@@ -209,10 +218,9 @@ def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(
     reason="not offered: gazebo's dynamic_reconfigure topics /gazebo/parameter_descriptions "
     "and /gazebo/parameter_updates",
 )
-def test_rostopic_list_shows_gazebo_s_reconfigure_topics(
-    ros1_graph: SeedRos1, tmp_path: Path
-) -> None:
-    _two_launches(ros1_graph, tmp_path)
+@pytest.mark.parametrize("ur5", ["robomodel-master"], indirect=True)
+def test_rostopic_list_shows_gazebo_s_reconfigure_topics(ur5: tuple[SeedRos1, str]) -> None:
+    ros1_graph, _ = ur5
     assert set(ros1_graph.tool(ROSTOPIC, "list").stdout.split()) >= RECONFIGURE_TOPICS
 
 

@@ -11,6 +11,7 @@ The seed is a PDF's text: underscores became spaces, comments lost their ``-->``
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -430,17 +431,31 @@ def _controllers_launch(graph: SeedRos1, tmp_path: Path) -> Path:
     return log
 
 
-@pytest.mark.parametrize("master", MASTERS)
-def test_the_robot_drives_on_cmd_vel_and_odom_follows(
-    ros1_graph: SeedRos1, tmp_path: Path, master: str
-) -> None:
+@pytest.fixture(scope="module", params=MASTERS)
+def simplebot(
+    request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
+) -> Iterator[tuple[SeedRos1, Path]]:
+    """Step 7's controllers launch on a graph whose master it hosts, or a ``roscore`` started
+    first (the parameter): the graph and the launch's log. One of each per module, for the
+    tests that look at it and drive it (each starting its own took most of their time)."""
+    home = tmp_path_factory.mktemp("simplebot")
+    workspace = home / "catkin_ws" / "src"
+    workspace.mkdir(parents=True)
+    graph = SeedRos1(home, packages=str(workspace))
+    try:
+        start_master(graph, request.param)
+        yield graph, _controllers_launch(graph, home)
+    finally:
+        graph.close()
+
+
+def test_the_robot_drives_on_cmd_vel_and_odom_follows(simplebot: tuple[SeedRos1, Path]) -> None:
     """Steps 8-9: the odom frame appears; a Twist on /simplebot_controller/cmd_vel (what Robot
     Steering publishes, here Debian's ``rostopic pub -r 10``) drives the robot forward, the
     wheels turn and the odometry follows."""
-    start_master(ros1_graph, master)
-    log = _controllers_launch(ros1_graph, tmp_path)
+    ros1_graph, log = simplebot
     assert "Started controllers: joint_state_controller, simplebot_controller" in log.read_text()
-    ros1_graph.start(
+    steering = ros1_graph.start(
         [ROSTOPIC, "pub", "-r", "10", "/simplebot_controller/cmd_vel", "geometry_msgs/Twist",
          "linear: {x: 0.5}"]
     )  # fmt: skip
@@ -457,11 +472,13 @@ def test_the_robot_drives_on_cmd_vel_and_odom_follows(
         *ROBOMODEL, "tf", "odom", "base_link", "--once", "--timeout", f"{scaled(60):.1f}"
     )
     assert tf.returncode == 0 and "Translation" in tf.stdout, tf.stderr
+    ros1_graph.stop(steering)  # the module's other tests look at a robot that stands
 
 
-def test_joint_states_at_the_yaml_s_publish_rate(ros1_graph: SeedRos1, tmp_path: Path) -> None:
+@pytest.mark.parametrize("simplebot", ["robomodel-master"], indirect=True)
+def test_joint_states_at_the_yaml_s_publish_rate(simplebot: tuple[SeedRos1, Path]) -> None:
     """``publish_rate : 80``: /joint_states stamps 1/80 s apart (simulated time)."""
-    _controllers_launch(ros1_graph, tmp_path)
+    ros1_graph, _ = simplebot
     # 2 s of messages: one lost on the way moves the measured rate by only 0.5 Hz
     run = ros1_graph.tool(ROSTOPIC, "echo", "-n", "161", "/joint_states")
     stamps = [
@@ -473,8 +490,9 @@ def test_joint_states_at_the_yaml_s_publish_rate(ros1_graph: SeedRos1, tmp_path:
     assert rate_hz == pytest.approx(80, abs=1)
 
 
-def test_list_controllers_shows_the_yaml_s_types(ros1_graph: SeedRos1, tmp_path: Path) -> None:
-    _controllers_launch(ros1_graph, tmp_path)
+@pytest.mark.parametrize("simplebot", ["robomodel-master"], indirect=True)
+def test_list_controllers_shows_the_yaml_s_types(simplebot: tuple[SeedRos1, Path]) -> None:
+    ros1_graph, _ = simplebot
     run = ros1_graph.tool(*ROBOMODEL, "control", "list-controllers")
     assert run.returncode == 0, run.stderr
     types = {row.split()[0]: row.split()[1] for row in run.stdout.splitlines() if row.strip()}

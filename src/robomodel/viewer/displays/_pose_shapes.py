@@ -84,17 +84,18 @@ def draw_covariance(display: Display, key: str, T_fixed_frame: NDArray[np.float6
     frame, whose pose in the fixed frame is ``T_fixed_frame``; the covariance is in the message
     frame. Scene nodes ``key`` (the position ellipsoid) and ``key_orientation0..2`` (siblings: a
     child would move with the ellipsoid)."""
-    shown = bool(values["Covariance/Value"])
+    display.remove_node(key)
+    for i in range(3):
+        display.remove_node(f"{key}_orientation{i}")
+    if not values["Covariance/Value"]:
+        return  # nothing drawn: the shapes' eigen-decompositions are not worth making
     shapes = covariance_shapes(
         covariance,
         position_scale=float(values["Covariance/Position/Scale"]),
         orientation_scale=float(values["Covariance/Orientation/Scale"]),
         orientation_offset=float(values["Covariance/Orientation/Offset"]),
     )
-    display.remove_node(key)
-    for i in range(3):
-        display.remove_node(f"{key}_orientation{i}")
-    if shapes is None or not shown:
+    if shapes is None:
         return
     T_frame_at = np.eye(4)  # the message frame's axes at the pose's position
     T_frame_at[:3, 3] = T_frame_pose[:3, 3]
