@@ -24,7 +24,8 @@ import os
 import re
 import sys
 import threading
-from typing import Any, Literal
+from collections.abc import Callable
+from typing import Any, Literal, TypeVar, cast
 
 from robomodel.clientlibs.messages._genpy import (
     DeserializationError,
@@ -60,6 +61,7 @@ ENV = "ROBOMODEL_MESSAGE_FLAVOUR"
 
 _lock = threading.RLock()
 _faces: dict[tuple[str, type[Any]], type[Any]] = {}
+_T = TypeVar("_T", bound=type)
 
 
 class FlavourError(RobomodelError):
@@ -125,27 +127,35 @@ def flavoured(cls: type[Message], name: str | None = None) -> type[Message]:
     :class:`Message` class of it: robomodel's own, or another flavour's)."""
     chosen = _checked(name, repr(name)) if name is not None else flavour()
     base = _robomodel_class(cls)
-    key = (chosen, base)
-    found = _faces.get(key)
-    if found is not None:
-        return found
-    with _lock:
-        found = _faces.get(key)
-        if found is None:
-            from robomodel.runtime.msg._from_definition import make_message_class
+    return _face((chosen, base), lambda: _make_message(base, chosen))
 
-            specs = tuple((n, _flavoured_spec(s, chosen)) for n, s in base.__fields__)
-            found = make_message_class(
-                base.__typename__,
-                specs,
-                base.__constants__,
-                module=_module_of(base.__typename__),
-                flavour=_flavour_object(chosen),
-                defaults=_primitive_defaults(base),
-            )
-            found.__robomodel_class__ = base  # type: ignore[attr-defined]
-            _faces[key] = found
-        return found
+
+def _make_message(base: type[Message], chosen: Flavour) -> type[Message]:
+    from robomodel.runtime.msg._from_definition import make_message_class
+
+    specs = tuple((n, _flavoured_spec(s, chosen)) for n, s in base.__fields__)
+    found = make_message_class(
+        base.__typename__,
+        specs,
+        base.__constants__,
+        module=_module_of(base.__typename__),
+        flavour=_flavour_object(chosen),
+        defaults=_primitive_defaults(base),
+    )
+    found.__robomodel_class__ = base  # type: ignore[attr-defined]
+    return found
+
+
+def _face(key: tuple[Flavour, type], make: Callable[[], _T]) -> _T:
+    """The class cached under ``key``, made by ``make`` once (under the lock: nested types
+    are made while their parent is)."""
+    found = _faces.get(key)
+    if found is None:
+        with _lock:
+            found = _faces.get(key)
+            if found is None:
+                found = _faces[key] = make()
+    return cast("_T", found)
 
 
 def _primitive_defaults(base: type[Message]) -> dict[str, Any]:
@@ -188,14 +198,7 @@ def flavoured_service(cls: type[Service], name: str | None = None) -> type[Servi
     halves named ``NameRequest``/``NameResponse``."""
     chosen = _checked(name, repr(name)) if name is not None else flavour()
     base = cls.__dict__.get("__robomodel_class__", cls)
-    key = (chosen, base)
-    found = _faces.get(key)
-    if found is None:
-        with _lock:
-            found = _faces.get(key)
-            if found is None:
-                found = _faces[key] = _make_service(base, chosen)
-    return found
+    return _face((chosen, base), lambda: _make_service(base, chosen))
 
 
 def _make_service(base: type[Service], name: Flavour) -> type[Service]:
@@ -265,14 +268,7 @@ def flavoured_action(cls: type[Action], name: str | None = None) -> type[Action]
     ``GoalStatusMessage``), all of the flavour."""
     chosen = _checked(name, repr(name)) if name is not None else flavour()
     base = cls.__dict__.get("__robomodel_class__", cls)
-    key = (chosen, base)
-    found = _faces.get(key)
-    if found is None:
-        with _lock:
-            found = _faces.get(key)
-            if found is None:
-                found = _faces[key] = _make_action(base, chosen)
-    return found
+    return _face((chosen, base), lambda: _make_action(base, chosen))
 
 
 def _make_action(base: type[Action], name: Flavour) -> type[Action]:
