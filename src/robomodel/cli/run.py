@@ -180,14 +180,31 @@ def _quiet(text: str) -> None:
 def _run_user_node(args: argparse.Namespace, index: Any) -> int:
     """The user's own executable ``PKG EXECUTABLE``, in the foreground; its exit code."""
     from robomodel.errors import PackageNotFoundError
-    from robomodel.launch.executables import find_executable
+    from robomodel.launch.executables import ExecutableNotFoundError, find_executable
     from robomodel.launch.user_nodes import run_foreground
 
     try:
         package = index.get(args.package)
     except PackageNotFoundError:
         _refuse(args.package, args.executable, index)
-    found = find_executable(args.package, args.executable, package.path)
+    try:
+        found = find_executable(args.package, args.executable, package.path)
+    except ExecutableNotFoundError as exc:
+        from robomodel.launch.nodes import supported
+
+        # a package robomodel maps (tf2_ros) that is also on the package path (a ROS 1
+        # install's): robomodel's executables of it are among the names to suggest
+        mapped = {e for d in ("ros1", "ros2") for p, e, _ in supported(d) if p == args.package}
+        if not mapped:
+            raise
+        raise RobomodelError(
+            describe_unknown(
+                f"robomodel run: package '{args.package}' has no executable",
+                args.executable,
+                sorted(mapped | set(exc.available)),
+                f"{args.package}'s executables are",
+            )
+        ) from None
     if args.connect or args.listen:
         raise RobomodelError(
             f"robomodel run: --connect and --listen set up robomodel's own nodes' Zenoh session; "
