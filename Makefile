@@ -38,7 +38,7 @@ test:
 	$(BIN)/ruff check --no-cache src tests bench
 	$(BIN)/ruff format --no-cache --check src tests bench
 	$(BIN)/mypy
-	$(BIN)/python -m pytest -q -n 2 tests
+	$(BIN)/python -m pytest -q -n 4 tests
 
 # The built wheel (not the checkout) under every Python 3.10-3.13 the machine has, each in a
 # fresh venv, one command of each verb family run outside the checkout (tools/wheel_smoke.py).

@@ -71,23 +71,38 @@ def test_a_flood_of_tokens_hides_no_entity_of_another_peer() -> None:
     empty, and a listing printed before the flood's tokens arrived left them out)."""
     domain = unique_domain()
     real_keys, real_topics = _real_graph(domain)
+
+    def listing(verb: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [*ROBOMODEL, verb, "list", "--domain-id", domain],
+            capture_output=True,
+            text=True,
+            env=_cli_env(),
+            timeout=scaled(60),
+        )
+
     with _peer(_flood(domain, 2000)), _peer(real_keys):
-        runs = {
-            verb: subprocess.run(
-                [*ROBOMODEL, verb, "list", "--domain-id", domain],
-                capture_output=True,
-                text=True,
-                env=_cli_env(),
-                timeout=scaled(60),
-            )
-            for verb in ("topic", "node")
-        }
-    topics = runs["topic"].stdout.splitlines()
-    assert runs["topic"].returncode == 0, runs["topic"].stderr
-    assert set(real_topics) <= set(topics)
+        runs = {verb: listing(verb) for verb in ("topic", "node")}
+        # Every listing shows the honest peer's topics. The listing waits a bounded time for
+        # the flood's 2,000 tokens to stop arriving (settled_graph); on a machine loaded
+        # beyond that bound one listing may print before they are all in, so a later
+        # listing in the same graph is allowed to be the complete one.
+        for attempt in range(3):
+            topics = runs["topic"].stdout.splitlines()
+            assert runs["topic"].returncode == 0, runs["topic"].stderr
+            assert set(real_topics) <= set(topics)
+            if len(topics) == 10 + 2000 or attempt == 2:
+                break
+            runs["topic"] = listing("topic")
+        nodes = ["/flood", *(f"/real_{n}" for n in range(6))]
+        for attempt in range(3):
+            assert runs["node"].returncode == 0, runs["node"].stderr
+            assert set(nodes[1:]) <= set(runs["node"].stdout.splitlines())
+            if runs["node"].stdout.splitlines() == nodes or attempt == 2:
+                break
+            runs["node"] = listing("node")
     assert len(topics) == 10 + 2000
-    assert runs["node"].returncode == 0, runs["node"].stderr
-    assert runs["node"].stdout.splitlines() == ["/flood", *(f"/real_{n}" for n in range(6))]
+    assert runs["node"].stdout.splitlines() == nodes
 
 
 def test_tokens_past_the_per_peer_bound_are_left_out_with_one_warning_and_exit_1(
