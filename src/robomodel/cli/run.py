@@ -86,11 +86,16 @@ def _executables(rows: list[tuple[str, str, str]]) -> set[tuple[str, str]]:
     return {(package, executable) for package, executable, _ in rows}
 
 
-def _refuse(package: str, executable: str, index: Any) -> NoReturn:
-    """One line: the unknown package or executable, a did-you-mean, what there is."""
+def _mapped_executables() -> set[tuple[str, str]]:
+    """Every ``(package, executable)`` robomodel maps onto a component, in either dialect."""
     from robomodel.launch.nodes import supported
 
-    known = _executables(supported("ros1")) | _executables(supported("ros2"))
+    return _executables(supported("ros1")) | _executables(supported("ros2"))
+
+
+def _refuse(package: str, executable: str, index: Any) -> NoReturn:
+    """One line: the unknown package or executable, a did-you-mean, what there is."""
+    known = _mapped_executables()
     # example-robot-data's descriptions hold no nodes: they would drown the close names
     users = {n for n in index.names() if index.get(n).origin != "example-robot-data"}
     packages = sorted({p for p, _ in known} | users)
@@ -190,11 +195,9 @@ def _run_user_node(args: argparse.Namespace, index: Any) -> int:
     try:
         found = find_executable(args.package, args.executable, package.path)
     except ExecutableNotFoundError as exc:
-        from robomodel.launch.nodes import supported
-
         # a package robomodel maps (tf2_ros) that is also on the package path (a ROS 1
         # install's): robomodel's executables of it are among the names to suggest
-        mapped = {e for d in ("ros1", "ros2") for p, e, _ in supported(d) if p == args.package}
+        mapped = {e for p, e in _mapped_executables() if p == args.package}
         if not mapped:
             raise
         raise RobomodelError(
@@ -230,9 +233,7 @@ def run(args: argparse.Namespace) -> int:
 
     if not _mapped(args.package, args.executable):
         index = index_from_options(args.package_path, args.package_option)
-        from robomodel.launch.nodes import supported
-
-        mapped_packages = {p for d in ("ros1", "ros2") for p, _, _ in supported(d)}
+        mapped_packages = {p for p, _ in _mapped_executables()}
         if args.package in mapped_packages and args.package not in index.names():
             _refuse(args.package, args.executable, index)
         return _run_user_node(args, index)
