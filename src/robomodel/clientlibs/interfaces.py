@@ -45,10 +45,7 @@ def _type_names_of(generation: int) -> frozenset[str]:
     from robomodel.runtime.msg.schema import message_type_names, service_type_names
 
     names = {*message_type_names(), *service_type_names(), *_ACTIONS}
-    names.update(_resolver._package_files())
-    for store in (_resolver._distro_store(), _resolver._store("ROS1_NOETIC")):
-        names.update(store.fielddefs)
-    return frozenset(names)
+    return frozenset(names | _resolver.definition_names())
 
 
 _workspace_checked: list[str] = []

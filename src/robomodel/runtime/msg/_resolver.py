@@ -122,6 +122,15 @@ def generation() -> int:
     return _generation
 
 
+def definition_names() -> set[str]:
+    """Every ``pkg/kind/Name`` this resolver can build from a definition: the package path's
+    (and robomodel's copies'), rosbags' ROS 2 store of :func:`distro` and its ROS 1 store."""
+    names: set[str] = set(_package_files())
+    for store in (_distro_store(), _store("ROS1_NOETIC")):
+        names.update(store.fielddefs)
+    return names
+
+
 def distro() -> str:
     """The ROS 2 distribution whose common interfaces are used (``ROS_DISTRO``, else jazzy)."""
     name = (_distro or os.environ.get("ROS_DISTRO") or DEFAULT_DISTRO).strip().lower()
