@@ -229,7 +229,6 @@ def _run_user_node(args: argparse.Namespace, index: Any) -> int:
 
 def run(args: argparse.Namespace) -> int:
     from robomodel.description.packages import index_from_options
-    from robomodel.launch.runner import LaunchRunner, RunOptions
 
     if not _mapped(args.package, args.executable):
         index = index_from_options(args.package_path, args.package_option)
@@ -237,6 +236,8 @@ def run(args: argparse.Namespace) -> int:
         if args.package in mapped_packages and args.package not in index.names():
             _refuse(args.package, args.executable, index)
         return _run_user_node(args, index)
+    from robomodel.launch.runner import LaunchRunner, RunOptions
+
     ros1_bus = bus_from_args(args) == "ros1"
     dialect = _dialect(args.package, args.executable, ros1_bus)
     spec, private, master = _spec(args, dialect)
