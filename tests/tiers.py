@@ -142,6 +142,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/launch/test_process_groups.py::test_run_bounded_kills_the_tree_on_timeout": PROCESS,
     "tests/launch/test_process_groups.py::test_sigterm_during_a_param_command_ends_the_command_tree": PROCESS,
     "tests/launch/test_process_groups.py::test_the_command_line_exits_past_an_abandoned_session": PROCESS,
+    "tests/launch/test_process_groups.py::test_a_viewer_that_hangs_on_close_still_ends_on_ctrl_c": PROCESS,
     "tests/launch/test_ros2_e2e.py": PROCESS,
     "tests/launch/test_run_ros2.py": PROCESS,
     "tests/launch/test_symlink_install.py::test_the_ros2_control_demo_runs_from_a_symlink_install_prefix": PROCESS,

@@ -32,6 +32,7 @@ port 11311, a free port takes its place in every command of that page).
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import signal
@@ -153,6 +154,7 @@ class PageRun:
         self.env["ROS_DOMAIN_ID"] = self.domain
         self.env["ROBOMODEL_VIEWER_PORT"] = "0"
         self.env["PYTHONUNBUFFERED"] = "1"
+        self.env["PYTHONFAULTHANDLER"] = "1"  # a command stuck on Ctrl-C shows where (SIGABRT)
         self.env["BROWSER"] = "true"  # webbrowser.open runs `true URL`: no tab in the tests
         self.env.pop("ROS_MASTER_URI", None)
 
@@ -242,9 +244,18 @@ class PageRun:
             try:
                 proc.wait(timeout=timeout_s)
             except subprocess.TimeoutExpired:
+                os.kill(proc.pid, signal.SIGABRT)  # faulthandler prints every thread's stack
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    proc.wait(timeout=10)
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
-                problems.append(f"`{command}` did not end on Ctrl-C")
+                assert proc.stdout is not None
+                os.set_blocking(proc.stdout.fileno(), True)
+                stacks = proc.stdout.read()
+                problems.append(
+                    f"`{command}` did not end on Ctrl-C; its threads:\n{stacks[-6000:]}"
+                )
+                continue
             assert proc.stdout is not None
             os.set_blocking(proc.stdout.fileno(), True)
             rest = proc.stdout.read()

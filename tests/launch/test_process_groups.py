@@ -178,6 +178,47 @@ def test_a_zenoh_session_that_never_closes_is_left_behind() -> None:
     assert _zenoh_common.close_session(type("Fine", (), {"close": lambda self: None})())
 
 
+def test_an_undeclaration_that_never_returns_is_under_the_close_bound() -> None:
+    """The session's undeclarations wait on the same Zenoh runtime as its close: a stuck one
+    leaves the session behind within the same bound instead of hanging the caller."""
+    import threading as _threading
+
+    from robomodel.runtime.transport import _zenoh_common
+
+    closed: list[bool] = []
+    session = type("Session", (), {"close": lambda self: closed.append(True)})()
+    before = _zenoh_common.abandoned_sessions
+    stuck = _zenoh_common.close_session(
+        session, timeout_s=scaled(0.2), before=lambda: _threading.Event().wait(scaled(30))
+    )
+    assert not stuck and not closed
+    assert _zenoh_common.abandoned_sessions == before + 1
+    order: list[str] = []
+    session = type("Session", (), {"close": lambda self: order.append("close")})()
+    assert _zenoh_common.close_session(session, before=lambda: order.append("undeclare"))
+    assert order == ["undeclare", "close"]
+
+
+def test_a_viewer_that_hangs_on_close_still_ends_on_ctrl_c() -> None:
+    """Past its bound, the viewer's close shows where each thread waited and ends the process
+    (130, as Ctrl-C): the page and bus it held go with it."""
+    import sys
+
+    script = (
+        "import threading\n"
+        "from robomodel.cli import view\n"
+        "stuck = type('V', (), {'close': lambda self: threading.Event().wait(120)})()\n"
+        "view._close_within(stuck, 0.5)\n"
+        "print('returned')\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=scaled(60)
+    )
+    assert done.returncode == 130 and "returned" not in done.stdout
+    assert "robomodel view: did not stop within 0.5 s; ending now" in done.stderr
+    assert "_close_within" in done.stderr  # the main thread's stack, where it waited
+
+
 def test_the_command_line_exits_past_an_abandoned_session() -> None:
     """What keeps the interpreter from exiting (a thread blocked in a session's close) does
     not keep the command from ending once its verb has returned."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import os
 import sys
 import threading
 import time
@@ -256,5 +257,33 @@ def run(args: argparse.Namespace) -> int:
         with contextlib.suppress(KeyboardInterrupt):
             viewer.wait(args.duration)
     finally:
-        viewer.close()
+        _close_within(viewer, CLOSE_BOUND_S)
     return 0
+
+
+CLOSE_BOUND_S = 30.0
+"""How long Ctrl-C waits for the viewer to let go of its page, bus and threads."""
+
+
+def _close_within(viewer: Any, bound_s: float) -> None:
+    """``viewer.close()``, watched: past ``bound_s`` the threads' stacks go to stderr (where it
+    waited, for a bug report) and the process ends at once, so that Ctrl-C always ends the
+    viewer (it starts no processes, so nothing is left behind). A Zenoh runtime that panicked
+    while peers went away can block an undeclaration for good, as the launch's close knows."""
+    watchdog = threading.Timer(bound_s, _exit_after_hung_close, args=(bound_s,))
+    watchdog.daemon = True
+    watchdog.start()
+    try:
+        viewer.close()
+    finally:
+        watchdog.cancel()
+
+
+def _exit_after_hung_close(bound_s: float) -> None:
+    import faulthandler
+
+    print(f"robomodel view: did not stop within {bound_s:g} s; ending now. Its threads:",
+          file=sys.stderr, flush=True)  # fmt: skip
+    faulthandler.dump_traceback(file=sys.stderr, all_threads=True)
+    sys.stderr.flush()
+    os._exit(130)

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any, Protocol
 from robomodel.errors import MissingDependencyError
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from robomodel.runtime.executor import Executor
     from robomodel.runtime.msg import Message
     from robomodel.runtime.msg.schema import Service
@@ -207,19 +209,25 @@ CLOSE_TIMEOUT_S = 5.0
 abandoned_sessions = 0  # sessions whose close() did not return (robomodel.cli.main exits hard)
 
 
-def close_session(session: Any, timeout_s: float = CLOSE_TIMEOUT_S) -> bool:
-    """``session.close()``, waited for at most ``timeout_s``; False if it did not return.
+def close_session(
+    session: Any, timeout_s: float = CLOSE_TIMEOUT_S, before: Callable[[], None] | None = None
+) -> bool:
+    """``before()`` (the session's undeclarations) then ``session.close()``, waited for at most
+    ``timeout_s`` together; False if they did not return.
 
     Zenoh's runtime has been seen to panic in a routing task while peers go away (a
     ``PoisonError`` in its demultiplexer), and ``close()`` then never returns: the process
-    that is ending would hang on Ctrl-C. The close runs on a daemon thread, and a session left
-    behind is counted, so that the command line can exit without waiting for it.
+    that is ending would hang on Ctrl-C. An undeclaration waits on the same runtime, so it runs
+    on the same daemon thread, under the same bound. A session left behind is counted, so that
+    the command line can exit without waiting for it.
     """
     global abandoned_sessions
     done = threading.Event()
 
     def run() -> None:
         try:
+            if before is not None:
+                before()
             session.close()
         except Exception:
             log.debug("closing the Zenoh session failed", exc_info=True)

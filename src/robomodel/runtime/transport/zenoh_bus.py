@@ -327,6 +327,9 @@ class ZenohTransport(Transport):
         return bool(list(info.routers_zid()) or list(info.peers_zid()))
 
     def close(self) -> None:
+        close_session(self.session, before=self._undeclare_everything)
+
+    def _undeclare_everything(self) -> None:
         for service in [*self._services.values(), *self._variants]:
             service.destroy()
         for client in self._clients.values():
@@ -336,7 +339,6 @@ class ZenohTransport(Transport):
             undeclare_all(record.handle)
         self._nodes.clear()
         self._graph.close()
-        close_session(self.session)
 
 
 def _in_place(name: str, handler: ServiceHandler, request: Message) -> Message:
