@@ -1,11 +1,15 @@
-"""``robomodel run rosbridge_server rosbridge_websocket`` on Zenoh, driven by roslibpy (a real
-rosbridge client): it lists topics and nodes through rosapi, subscribes to a topic robomodel
-publishes, publishes one robomodel echoes, offers a service robomodel calls, calls one on the
-bus and reads a node's parameter; one bridge for the module."""
+"""``robomodel run rosbridge_server rosbridge_websocket`` on Zenoh, driven by real rosbridge
+clients, one bridge for the module: roslibpy lists topics and nodes through rosapi, subscribes to
+a topic robomodel publishes, publishes one robomodel echoes, offers a service robomodel calls,
+calls one on the bus, reads a node's parameter and sends an action goal; roslibjs (npm
+``roslib`` in Node.js) lists, subscribes plain and with each compression, publishes, calls a
+service, serves and sends an action goal, and reads a reply in fragments."""
 
 from __future__ import annotations
 
+import json
 import os
+import shutil
 import signal
 import subprocess
 import threading
@@ -18,7 +22,11 @@ import roslibpy
 
 from tests.bridges.started import wait_started
 from tests.conftest import ROBOMODEL, free_port, unique_domain
+from tests.docs.runner import ROOT
 from tests.timing import scaled, wait_until
+
+NODE_MODULES = ROOT / ".node" / "node_modules"
+ROSLIBJS = Path(__file__).with_name("roslib_client.mjs")
 
 
 class _Graph:
@@ -127,3 +135,58 @@ def test_roslibpy_publishes_and_serves_and_calls(graph: _Graph, ros: Any) -> Non
                            "rcl_interfaces/srv/GetParameters")  # fmt: skip
     reply = get.call(roslibpy.ServiceRequest({"names": ["port"]}), timeout=scaled(20))
     assert reply["values"][0]["integer_value"] == graph.port
+
+
+def test_roslibjs_lists_subscribes_publishes_calls_and_runs_an_action(graph: _Graph) -> None:
+    node = shutil.which("node")
+    if node is None or not (NODE_MODULES / "roslib").is_dir():
+        pytest.fail("the roslibjs test client is missing: tools/system-deps test installs it")
+    wait_until(lambda: "/counter" in graph.cli("topic", "list").stdout, 30, what="/counter")
+    echo = graph.start("echo_js", "topic", "echo", "--domain-id", graph.domain, "--once",
+                       "/from_roslibjs", "std_msgs/msg/String")  # fmt: skip
+    plan = {
+        "wait_ms": int(scaled(30) * 1000),
+        "topic": "/counter", "type": "std_msgs/msg/Int32",
+        "publish": {"topic": "/from_roslibjs", "data": "hello from roslibjs"},
+        "service": {"name": "/rosbridge_websocket/get_parameters",
+                    "type": "rcl_interfaces/srv/GetParameters", "request": {"names": ["port"]}},
+        "action": {"name": "/roslibjs_gripper", "type": "control_msgs/action/GripperCommand",
+                   "goal": {"command": {"position": 0.5, "max_effort": 2.0}}},
+        "fragment_size": 100,
+    }  # fmt: skip
+    log = graph.tmp / "roslibjs.log"
+    env = {**os.environ, "ROBOMODEL_NODE_MODULES": str(NODE_MODULES)}
+    client = subprocess.Popen(
+        [node, str(ROSLIBJS), f"ws://127.0.0.1:{graph.port}", json.dumps(plan)],
+        stdout=log.open("w"), stderr=subprocess.STDOUT, text=True, env=env,
+        start_new_session=True,
+    )  # fmt: skip
+    graph.procs.append(client)
+    found: dict[str, Any] = {}
+
+    def done() -> bool:
+        for line in log.read_text().splitlines():
+            if line.startswith("{"):
+                entry = json.loads(line)
+                found[entry["kind"]] = entry["value"]
+        if client.poll() is not None and "fragmented" not in found:
+            raise AssertionError(f"roslibjs ended: {log.read_text()}")
+        return "fragmented" in found
+
+    wait_until(done, 120, what=lambda: f"roslibjs's results: {log.read_text()}")
+    echo.wait(scaled(60))
+    assert "data: hello from roslibjs" in graph.log("echo_js")
+    topics = found["topics"]
+    assert topics["types"][topics["topics"].index("/counter")] == "std_msgs/msg/Int32"
+    assert found["none"] == found["cbor"] == found["png"] == {"data": 7}
+    # cbor-raw: the CDR bytes (4 of encapsulation, 4 of the int32)
+    assert found["cbor-raw"]["length"] == 8 and found["cbor-raw"]["secs"] > 0
+    assert found["service"]["values"][0]["integer_value"] == graph.port
+    action = found["action"]
+    assert action["feedback"] == [{"position": 0.25, "effort": 0.0, "stalled": False,
+                                   "reached_goal": False}]  # fmt: skip
+    assert action["result"] == {"position": 0.5, "effort": 0.0, "stalled": False,
+                                "reached_goal": True}  # fmt: skip
+    fragmented = found["fragmented"]
+    assert set(found["topics"]["topics"]) <= set(fragmented["topics"])
+    assert fragmented["frames"] >= len(json.dumps(fragmented["topics"])) // plan["fragment_size"]
