@@ -75,9 +75,10 @@ def test_time_capability_follows_clock(bridge: FoxgloveBridge) -> None:
     clock = get_message_type("rosgraph_msgs/msg/Clock")
     node = bridge.context.create_node("sim")
     publisher = bridge._on_bus(lambda: node.create_publisher(clock, "/clock"))
-    wait_until(lambda: publisher.get_subscription_count() == 1, 10, what="the /clock subscription")
+    wait_until(lambda: publisher.get_subscription_count() >= 1, 10, what="the /clock subscription")
     with _connected(bridge) as ws:
         assert "time" in _next(ws, "serverInfo")["capabilities"]
+        assert bridge.node.get_parameter("use_sim_time") is True
         stamp = clock()
         stamp.clock.sec, stamp.clock.nanosec = 42, 500_000_000
         bridge.context.executor.post(lambda: publisher.publish(stamp))

@@ -220,6 +220,7 @@ class FoxgloveBridge:
                            ("max_qos_depth", max_qos_depth)):  # fmt: skip
             self.node.declare_parameter(key, value, read_only=True)
         if use_sim_time:
+            self.node.set_parameters({"use_sim_time": True})  # its clock is /clock's, as ROS's
             self._clock_subscription = self._on_bus(self._follow_clock)
         self._poller = threading.Thread(
             target=self._poll, name="foxglove_bridge graph", daemon=True

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -58,8 +59,11 @@ class _Partial:
 class Reassembly:
     """One client's messages in fragments (module docstring)."""
 
-    def __init__(self, limits: BridgeLimits) -> None:
+    def __init__(
+        self, limits: BridgeLimits, *, clock_s: Callable[[], float] = time.monotonic
+    ) -> None:
         self.limits = limits
+        self._clock_s = clock_s
         self._partial: dict[str, _Partial] = {}
         self._bytes = 0
 
@@ -70,7 +74,7 @@ class Reassembly:
     def add(self, message: dict[str, Any]) -> str | None:
         """Take one ``fragment`` operation; the joined text once its message is complete."""
         key, num, total, data = _fields(message, self.limits.max_fragments)
-        now = time.monotonic()
+        now = self._clock_s()
         self._forget_stale(now)
         partial = self._partial.get(key)
         if partial is None:
