@@ -10,6 +10,7 @@ import io
 import json
 import struct
 import threading
+import time
 from collections.abc import Iterator
 from typing import Any
 
@@ -343,10 +344,12 @@ def test_call_service_timeout(bridge: _Bridge) -> None:
     server = bridge.server.on_bus(lambda: bridge.node.create_service(trigger, "/slow", never))
     try:
         with connect(bridge.url) as ws:
+            started_s = time.monotonic()
             ws.send(json.dumps({"op": "call_service", "id": "t1", "service": "/slow",
                                 "type": "std_srvs/srv/Trigger", "timeout": 0.3}))  # fmt: skip
             reply = _next(ws, "service_response")
             assert reply["id"] == "t1" and reply["result"] is False and waiting
+            assert time.monotonic() - started_s < 9.0  # not the 10 s of a call without one
             ws.send(json.dumps({"op": "call_service", "id": "t2", "service": "/slow",
                                 "type": "std_srvs/srv/Trigger", "timeout": "soon"}))  # fmt: skip
             assert "'timeout' must be a number of seconds, got 'soon'" in _next(ws, "status")["msg"]

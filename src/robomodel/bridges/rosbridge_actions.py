@@ -26,16 +26,26 @@ from __future__ import annotations
 import contextlib
 import threading
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from robomodel.bridges.exceptions import ClientError
 from robomodel.bridges.json_mapping import message_from_json, message_to_json
 from robomodel.errors import RobomodelError
 
-if TYPE_CHECKING:
-    from robomodel.bridges.rosbridge import _Session
+__all__ = ["ActionOps", "Client"]
 
-__all__ = ["ActionOps"]
+
+class Client(Protocol):
+    """What the action operations use of a rosbridge client's session."""
+
+    server: Any  # the RosbridgeServer: context, node, dialect, on_bus
+    closed: threading.Event
+
+    def send(self, message: dict[str, Any]) -> None: ...
+    def status(self, level: str, text: str, op_id: Any = None) -> None: ...
+    def name_of(self, message: dict[str, Any], key: str) -> str: ...
+    def count_endpoints(self) -> None: ...
+
 
 MAX_GOALS_IN_FLIGHT = 16  # per client: goals it sent that have not ended
 _SEND_GOAL_TIMEOUT_S = 5.0
@@ -110,7 +120,7 @@ class _Advertised:
 class ActionOps:
     """One client's action operations (module docstring)."""
 
-    def __init__(self, session: _Session) -> None:
+    def __init__(self, session: Client) -> None:
         self.session = session
         self.sent: dict[str, _SentGoal] = {}  # request id -> goal
         self.advertised: dict[str, _Advertised] = {}
