@@ -190,3 +190,58 @@ def test_roslibjs_lists_subscribes_publishes_calls_and_runs_an_action(graph: _Gr
     fragmented = found["fragmented"]
     assert set(found["topics"]["topics"]) <= set(fragmented["topics"])
     assert fragmented["frames"] >= len(json.dumps(fragmented["topics"])) // plan["fragment_size"]
+
+
+class _Gripper:
+    """A GripperCommand goal that succeeds once its feedback was sent a few times."""
+
+    def __init__(self, action: Any, position: float) -> None:
+        self.action, self.position, self.ticks = action, position, 0
+
+    def status(self) -> int:
+        return 4 if self.ticks >= 5 else 2  # succeeded after 5 feedbacks, executing before
+
+    def result(self) -> Any:
+        return self.action.Result(position=self.position, reached_goal=True)
+
+    def feedback(self) -> Any:
+        self.ticks += 1
+        return self.action.Feedback(position=self.position * self.ticks / 5)
+
+    def cancel(self) -> bool:
+        return False
+
+
+def test_roslibpy_action_client_on_a_bus_action_server(graph: _Graph, ros: Any) -> None:
+    from robomodel.runtime import Context
+    from robomodel.runtime.action_server import ActionServer
+    from robomodel.runtime.msg._resolver import resolve_action
+
+    action = resolve_action("control_msgs/action/GripperCommand", "control_msgs/GripperCommand")
+    with Context("zenoh", domain_id=int(graph.domain)) as ctx:
+        node = ctx.create_node("gripper")
+        server = ActionServer(node, action, "/bus_gripper", lambda g: _Gripper(action, 0.4))
+        stop = threading.Event()
+        spinner = threading.Thread(target=lambda: ctx.spin(until=stop.is_set), daemon=True)
+        spinner.start()
+        try:
+            wait_until(lambda: "/bus_gripper/_action/send_goal" in ros.get_services(), 30,
+                       what="the action's services through rosapi")  # fmt: skip
+            client = roslibpy.ActionClient(
+                ros, "/bus_gripper", "control_msgs/action/GripperCommand"
+            )
+            results: list[Any] = []
+            feedback: list[Any] = []
+            goal_id = client.send_goal(
+                roslibpy.Goal({"command": {"position": 0.4, "max_effort": 1.0}}),
+                results.append, feedback.append, results.append,
+            )  # fmt: skip
+            client.wait_goal(goal_id, timeout=scaled(30))
+        finally:
+            stop.set()
+            spinner.join(scaled(10))
+            server.destroy()
+    assert results[0]["status"] == roslibpy.core.GoalStatus.SUCCEEDED
+    assert results[0]["values"] == {"position": 0.4, "effort": 0.0, "stalled": False,
+                                    "reached_goal": True}  # fmt: skip
+    assert feedback and feedback[-1]["position"] <= 0.4
