@@ -19,6 +19,7 @@ bounded :class:`~.outbox.Outbox`; the bounds are :class:`~.limits.BridgeLimits`'
 from __future__ import annotations
 
 import contextlib
+import itertools
 import json
 import threading
 import time
@@ -220,7 +221,7 @@ class _Session:
         self.actions = ActionOps(self)
         self.reassembly = Reassembly(server.limits)
         self.fragment_size: int | None = None  # rosbridge's: set by any operation that gives it
-        self._next_fragmented = 0
+        self._fragmented_ids = itertools.count(1)  # next() is atomic: bus and client threads
         self._calls = threading.BoundedSemaphore(_MAX_CALLS_IN_FLIGHT)
         self._next_call = 0
         self._tokens = server.limits.max_ops_per_s
@@ -307,8 +308,7 @@ class _Session:
         if size is None or len(text) <= size:
             return text
         if message_id is None:
-            self._next_fragmented += 1
-            message_id = self._next_fragmented
+            message_id = next(self._fragmented_ids)
         return split(text, size, message_id)
 
     def status(self, level: str, text: str, op_id: Any = None) -> None:
