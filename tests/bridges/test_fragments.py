@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from robomodel.bridges import BridgeLimits
@@ -15,6 +15,7 @@ from robomodel.bridges.exceptions import ClientError
 from robomodel.bridges.fragments import Reassembly, split
 
 
+@settings(max_examples=50, deadline=None)
 @given(st.text(min_size=1, max_size=400), st.integers(1, 300), st.randoms())
 def test_split_then_joined_in_any_order_is_the_text(text: str, size: int, rng: object) -> None:
     fragments = [json.loads(f) for f in split(text, size, "m")]
