@@ -1,4 +1,5 @@
-"""The WebSocket bridges as nodes: rosbridge_server's ``rosbridge_websocket``.
+"""The WebSocket bridges as nodes: rosbridge_server's ``rosbridge_websocket`` and
+foxglove_bridge's ``foxglove_bridge``.
 
 Parameters as the real node takes them (ROS 1 ``~port``, ROS 2 ``port``): ``port`` (9090),
 ``address`` (loopback here, where rosbridge listens on every interface: say ``0.0.0.0`` to be
@@ -6,6 +7,11 @@ reached from other machines), ``max_message_size`` (the largest frame a client m
 [bytes]) and ``send_buffer_limit`` (the bytes waiting for one client before the oldest are
 dropped, foxglove_bridge's name). rosapi's services are the bridge's own
 (:mod:`robomodel.bridges.rosapi`).
+
+foxglove_bridge's node takes foxglove_bridge's parameters: ``port`` (8765), ``address``, the
+whitelists ``topic_whitelist``, ``param_whitelist``, ``service_whitelist``,
+``client_topic_whitelist`` and ``asset_uri_allowlist``, ``send_buffer_limit``,
+``max_qos_depth``, ``capabilities`` and ``use_sim_time`` (ROS 1: the global ``/use_sim_time``).
 """
 
 from __future__ import annotations
