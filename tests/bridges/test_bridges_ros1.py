@@ -1,19 +1,23 @@
 """The bridges on a ROS 1 master (robomodel's, one for the module), started as rosrun starts
 them (``_port:=P``). rosbridge_websocket, driven by roslibpy: ROS 1's JSON (times as
 ``secs``/``nsecs``, types as ``pkg/Name``), a publication robomodel's ROS 1 echo receives, the
-master's parameters through rosapi. foxglove_bridge, driven by @foxglove/ws-protocol with
+master's parameters through rosapi; with a raw client, ``cbor`` (ROS 1's times) and
+``cbor-raw`` (ROS 1's serialisation, read back with rosbags), and actions refused. foxglove_bridge, driven by @foxglove/ws-protocol with
 @foxglove/rosmsg-serialization: ``ros1`` messages with ``ros1msg`` schemas both ways."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import cbor2
 import pytest
 import roslibpy
+from websockets.sync.client import connect
 
 from tests.bridges.started import wait_started
 from tests.bridges.test_foxglove_clients import node_client, results
@@ -76,8 +80,20 @@ def test_roslibpy_on_a_ros1_master(master_env: dict[str, str], tmp_path: Path) -
         )  # fmt: skip
         try:
             wait_until(lambda: points, 30, what="a /point message")
+            compressed = _compressed(port)
         finally:
             end_process(point, timeout_s=10, group=True)
+        assert compressed["cbor"]["header"]["stamp"] == {"secs": 5, "nsecs": 6}
+        assert compressed["cbor"]["point"]["x"] == 1.5
+        from rosbags.typesys import Stores, get_typestore
+
+        raw = compressed["cbor-raw"]["bytes"]
+        decoded = get_typestore(Stores.ROS1_NOETIC).deserialize_ros1(
+            raw, "geometry_msgs/msg/PointStamped"
+        )
+        assert decoded.header.stamp.sec == 5 and decoded.header.frame_id == "base"
+        assert decoded.point.x == 1.5
+        assert "actions are ROS 2 rosbridge's" in compressed["action"]
         assert points[0]["header"]["stamp"] == {"secs": 5, "nsecs": 6}
         assert points[0]["header"]["frame_id"] == "base" and points[0]["point"]["x"] == 1.5
     finally:
@@ -85,6 +101,26 @@ def test_roslibpy_on_a_ros1_master(master_env: dict[str, str], tmp_path: Path) -
         if echo is not None:
             end_process(echo, timeout_s=10, group=True)
         end_process(bridge, timeout_s=20, group=True)
+
+
+def _compressed(port: int) -> dict[str, Any]:
+    """A /point message as cbor and cbor-raw, and the refusal of an action goal."""
+    found: dict[str, Any] = {}
+    with connect(f"ws://127.0.0.1:{port}") as ws:
+        for compression in ("cbor", "cbor-raw"):
+            ws.send(json.dumps({"op": "subscribe", "topic": "/point", "compression": compression,
+                                "type": "geometry_msgs/PointStamped"}))  # fmt: skip
+            key = "header" if compression == "cbor" else "bytes"
+            while key not in found.get(compression, {}):  # one sent before the unsubscribe
+                found[compression] = cbor2.loads(ws.recv(timeout=scaled(10)))["msg"]
+            ws.send(json.dumps({"op": "unsubscribe", "topic": "/point"}))
+        ws.send(json.dumps({"op": "send_action_goal", "action": "/fibonacci",
+                            "action_type": "actionlib_tutorials/Fibonacci"}))  # fmt: skip
+        while "action" not in found:
+            message = ws.recv(timeout=scaled(10))
+            if isinstance(message, str) and json.loads(message)["op"] == "status":
+                found["action"] = json.loads(message)["msg"]
+    return found
 
 
 def test_foxglove_client_on_a_ros1_master(master_env: dict[str, str], tmp_path: Path) -> None:

@@ -127,8 +127,10 @@ def test_throttle_rate_and_status_levels(bridge: _Bridge) -> None:
     with connect(bridge.url) as ws:
         ws.send(json.dumps({"op": "set_level", "level": "warning"}))
         ws.send(json.dumps({"op": "subscribe", "topic": "/tick", "type": "std_msgs/Int32",
-                            "throttle_rate": 200, "compression": "png"}))  # fmt: skip
-        assert "compression 'png' is not served" in _reply(ws, "status")["msg"]
+                            "compression": "zip"}))  # fmt: skip
+        assert "compression 'zip'; the compressions are: none, png" in _reply(ws, "status")["msg"]
+        ws.send(json.dumps({"op": "subscribe", "topic": "/tick", "type": "std_msgs/Int32",
+                            "throttle_rate": 200}))  # fmt: skip
         wait_until(lambda: publisher.get_subscription_count() == 1, 5, what="the subscription")
         timer = bridge.server.on_bus(lambda: node.create_timer(0.002, tick))
         first = _reply(ws, "publish")["msg"]["data"]

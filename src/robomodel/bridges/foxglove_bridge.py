@@ -6,21 +6,29 @@ what foxglove_bridge adds on top of it, on robomodel's bus. Using the SDK rather
 the protocol by hand keeps the framing, the subprotocol negotiation and the protocol's later
 versions Foxglove's business, at the cost of a 55 MB wheel.
 
-- One channel per topic of the graph (``topic_whitelist``: regular expressions, as
-  foxglove_bridge's), with its type's schema: ``cdr`` messages with a ``ros2msg`` schema on
+- One channel per topic of the graph (``topic_whitelist``), with its type's schema: ``cdr`` messages with a ``ros2msg`` schema on
   Zenoh, ``ros1`` messages with a ``ros1msg`` schema on ROS 1. A channel subscribes on the bus
   when its first client subscribes and unsubscribes after the last; on Zenoh the CDR payload
   goes to the clients as it came (no decoding).
-- Client publish (``clientPublish``): a client's channel becomes a publisher of its schema's
-  type; its messages are decoded and published.
-- Services (``services``): every service of the graph, called with the client's CDR/ROS 1
-  request.
+- Client publish (``clientPublish``): a client's channel on a topic of
+  ``client_topic_whitelist`` becomes a publisher of its schema's type; its messages are decoded
+  and published.
+- Services (``services``): every service of the graph on ``service_whitelist``, called with
+  the client's CDR/ROS 1 request.
 - Parameters (``parameters``): the ROS 1 parameter server, or the ROS 2 nodes' parameters
-  named ``/node.param`` as foxglove_bridge names them; get, set and subscribe (values that
-  change are sent).
+  named ``/node.param`` as foxglove_bridge names them, those on ``param_whitelist``; get, set
+  and subscribe. A subscription hears the nodes' ``/parameter_events`` on ROS 2 (every change,
+  as it happens); the ROS 1 parameter server has no events, so its values are read once a
+  second and the changed ones sent.
 - The connection graph (``connectionGraph``): the graph's publishers, subscribers and services.
-- Assets: ``fetchAsset`` for ``package://`` URIs of mesh, image and description files
-  (foxglove_bridge's default ``asset_uri_allowlist``), never outside their package.
+- Assets: ``fetchAsset`` for ``package://`` URIs on ``asset_uri_allowlist`` (by default
+  foxglove_bridge's: mesh, image and description files), never with ``..`` nor outside their
+  package.
+- Time (``time``, offered with ``use_sim_time``): the server's time is each ``/clock``
+  message's, as foxglove_bridge sends it.
+
+The whitelists are regular expressions a whole name must match, ignoring case (foxglove_bridge's
+``std::regex_match`` with ``icase``).
 
 The graph is read once a second. Each client's queue holds at most ``send_buffer_limit / 100
 kB`` messages (the SDK bounds it by count, not bytes; between 8 and 1024): the oldest are
@@ -41,13 +49,14 @@ from typing import Any
 
 from robomodel.bridges.exceptions import BridgeError, ClientError
 from robomodel.bridges.json_mapping import Dialect
-from robomodel.bridges.rosapi import RosapiParams
+from robomodel.bridges.rosapi import Ros2Params, RosapiParams
 from robomodel.errors import MissingDependencyError, RobomodelError
 
 __all__ = ["CAPABILITIES", "DEFAULT_ASSET_ALLOWLIST", "FoxgloveBridge"]
 
 CAPABILITIES = ("clientPublish", "parameters", "parametersSubscribe", "services",
                 "connectionGraph", "assets")  # fmt: skip
+# "time" is offered with use_sim_time, as foxglove_bridge does
 # foxglove_bridge's default asset_uri_allowlist
 DEFAULT_ASSET_ALLOWLIST = (
     r"^package://(?:[-\w%]+/)*[-\w%.]+\.(?:dae|fbx|glb|gltf|jpeg|jpg|mtl|obj|png|stl|tif|tiff|"
@@ -99,6 +108,10 @@ class FoxgloveBridge:
         address: The interface to listen on (loopback unless told otherwise).
         port: The TCP port (8765, foxglove_bridge's; 0 picks a free one).
         topic_whitelist: Regular expressions; a topic matching one is offered.
+        param_whitelist, service_whitelist, client_topic_whitelist: The same for parameters
+            (as clients name them), services and the topics clients may publish on.
+        asset_uri_allowlist: The same for the URIs ``fetchAsset`` serves.
+        use_sim_time: Offer the ``time`` capability with ``/clock``'s time.
         send_buffer_limit: [bytes] sets the per-client message bound (module docstring).
         max_qos_depth: The bus subscriptions' queue depth at most.
         max_client_messages_per_s: A client's published messages a second (as many in a
@@ -119,6 +132,11 @@ class FoxgloveBridge:
         address: str = "127.0.0.1",
         port: int = 8765,
         topic_whitelist: Sequence[str] = (".*",),
+        param_whitelist: Sequence[str] = (".*",),
+        service_whitelist: Sequence[str] = (".*",),
+        client_topic_whitelist: Sequence[str] = (".*",),
+        asset_uri_allowlist: Sequence[str] = DEFAULT_ASSET_ALLOWLIST,
+        use_sim_time: bool = False,
         send_buffer_limit: int = 10_000_000,
         max_qos_depth: int = 25,
         max_client_messages_per_s: float = 5_000.0,
@@ -134,11 +152,12 @@ class FoxgloveBridge:
                 f"foxglove_bridge: unknown capabilities {', '.join(unknown)}; "
                 f"they are: {', '.join(CAPABILITIES)}"
             )
-        try:
-            self._whitelist = [re.compile(p) for p in topic_whitelist]
-        except re.error as exc:
-            raise BridgeError(f"foxglove_bridge: topic_whitelist: {exc}") from None
-        self._assets = [re.compile(p) for p in DEFAULT_ASSET_ALLOWLIST]
+        self._whitelist = _patterns("topic_whitelist", topic_whitelist)
+        self._param_whitelist = _patterns("param_whitelist", param_whitelist)
+        self._service_whitelist = _patterns("service_whitelist", service_whitelist)
+        self._client_topics = _patterns("client_topic_whitelist", client_topic_whitelist)
+        self._assets = _patterns("asset_uri_allowlist", asset_uri_allowlist)
+        self.use_sim_time = use_sim_time
         self.context = context
         self.params = params
         self.dialect = dialect
@@ -160,6 +179,9 @@ class FoxgloveBridge:
         # (client, channel) -> (publisher, decoder of the wire format)
         self._client_channels: dict[tuple[int, int], tuple[Any, Callable[[bytes], Any]]] = {}
         self._watched_params: dict[str, Any] = {}
+        self._events = dialect == "ros2" and isinstance(params, Ros2Params)
+        self._events_subscription: Any = None
+        self._clock_subscription: Any = None
         self._graph_wanted = False
         self._lock = threading.RLock()
         self._stopping = threading.Event()
@@ -171,6 +193,8 @@ class FoxgloveBridge:
             "connectionGraph": Capability.ConnectionGraph,
         }
         offered = [wanted[c] for c in dict.fromkeys(capabilities) if c in wanted]
+        if use_sim_time:
+            offered.append(Capability.Time)
         encoding = "cdr" if dialect == "ros2" else "ros1"
         try:
             self.server = foxglove.start_server(
@@ -195,6 +219,9 @@ class FoxgloveBridge:
                            ("send_buffer_limit", send_buffer_limit),
                            ("max_qos_depth", max_qos_depth)):  # fmt: skip
             self.node.declare_parameter(key, value, read_only=True)
+        if use_sim_time:
+            self.node.set_parameters({"use_sim_time": True})  # its clock is /clock's, as ROS's
+            self._clock_subscription = self._on_bus(self._follow_clock)
         self._poller = threading.Thread(
             target=self._poll, name="foxglove_bridge graph", daemon=True
         )
@@ -209,6 +236,8 @@ class FoxgloveBridge:
         with self._lock:
             endpoints = [t.subscription for t in self._topics.values() if t.subscription]
             endpoints += [publisher for publisher, _ in self._client_channels.values()]
+            endpoints += [e for e in (self._events_subscription, self._clock_subscription) if e]
+            self._events_subscription = self._clock_subscription = None
             self._topics.clear()
             self._client_channels.clear()
         if endpoints:
@@ -266,13 +295,14 @@ class FoxgloveBridge:
                     self._update_services(graph)
                 if self._graph_wanted:
                     self.server.publish_connection_graph(self._connection_graph(graph))
-                self._publish_watched()
+                if not self._events:
+                    self._publish_watched()
             except RobomodelError as exc:
                 self.log(f"foxglove_bridge: reading the graph failed: {exc}")
             self._stopping.wait(_POLL_S)
 
     def _offered(self, topic: str) -> bool:
-        return any(p.match(topic) for p in self._whitelist)
+        return _listed(topic, self._whitelist)
 
     def _update_channels(self, graph: Any) -> None:
         foxglove = _import_foxglove()
@@ -340,6 +370,7 @@ class FoxgloveBridge:
         present = {
             name: next(iter(info.types)) for name, info in graph.services.items()
             if len(info.types) == 1 and any(e.node != own for e in info.servers)
+            and _listed(name, self._service_whitelist)
         }  # fmt: skip
         gone = [n for n in self._services if n not in present]
         if gone:
@@ -465,6 +496,8 @@ class FoxgloveBridge:
                     f"encoding {channel.encoding!r}; this bridge takes {self._encoding()!r}"
                 )
             topic = expand_topic_name(channel.topic, "foxglove_bridge", "/")
+            if not _listed(topic, self._client_topics):
+                raise ClientError("not on client_topic_whitelist")
             msg_type = get_message_type(channel.schema_name)
             decode, _ = self._codec(msg_type)
             publisher = self._on_bus(lambda: self.node.create_publisher(msg_type, topic, 10))
@@ -540,12 +573,16 @@ class FoxgloveBridge:
     def _parameter(self, name: str, value: Any) -> Any:
         return _import_foxglove().Parameter(self._client_name(name), value=value)
 
+    def _param_listed(self, name: str) -> bool:
+        """Whether ``name`` (robomodel's form) is on ``param_whitelist`` (the clients' form)."""
+        return _listed(self._client_name(name), self._param_whitelist)
+
     def on_get_parameters(
         self, client: Any, param_names: list[str], request_id: str | None = None
     ) -> list[Any]:
         names = [self._param_name(n) for n in param_names] or self.params.names()
         found = []
-        for name in names:
+        for name in filter(self._param_listed, names):
             try:
                 found.append(self._parameter(name, self.params.get(name)))
             except (KeyError, RobomodelError):
@@ -558,6 +595,10 @@ class FoxgloveBridge:
         result = []
         for parameter in parameters:
             name = self._param_name(parameter.name)
+            if not self._param_listed(name):
+                self.log(f"foxglove_bridge: client {client.id} may not set {parameter.name}: "
+                         "not on param_whitelist")  # fmt: skip
+                continue
             try:
                 self.params.set(name, parameter.get_value())
                 result.append(self._parameter(name, self.params.get(name)))
@@ -567,13 +608,57 @@ class FoxgloveBridge:
 
     def on_parameters_subscribe(self, param_names: list[str]) -> None:
         with self._lock:
-            for name in param_names:
-                self._watched_params.setdefault(self._param_name(name), object())
+            for name in filter(self._param_listed, map(self._param_name, param_names)):
+                self._watched_params.setdefault(name, object())
+            start = self._events and self._watched_params and self._events_subscription is None
+        if start:
+            subscription = self._on_bus(self._follow_parameter_events)
+            with self._lock:
+                self._events_subscription = subscription
 
     def on_parameters_unsubscribe(self, param_names: list[str]) -> None:
         with self._lock:
             for name in param_names:
                 self._watched_params.pop(self._param_name(name), None)
+            subscription = None
+            if not self._watched_params:
+                subscription, self._events_subscription = self._events_subscription, None
+        if subscription is not None:
+            self._on_bus(subscription.destroy)
+
+    def _follow_parameter_events(self) -> Any:
+        """On the bus's thread: a subscription to ``/parameter_events`` that sends the watched
+        parameters' changes (foxglove_bridge's ``on_parameter_event``, changed ones only)."""
+        from robomodel.runtime.msg.types.rcl_interfaces import ParameterEvent
+        from robomodel.runtime.param_services import PARAMETER_EVENTS_QOS
+        from robomodel.runtime.param_values import from_parameter_value
+
+        def heard(event: Any) -> None:
+            node = "/" + event.node.strip("/")
+            with self._lock:
+                watched = [p for p in event.changed_parameters
+                           if f"{node}:{p.name}" in self._watched_params]  # fmt: skip
+            if watched:
+                self.server.publish_parameter_values([
+                    self._parameter(f"{node}:{p.name}", from_parameter_value(p.value))
+                    for p in watched
+                ])  # fmt: skip
+
+        return self.node.create_subscription(
+            ParameterEvent, "/parameter_events", heard, PARAMETER_EVENTS_QOS
+        )
+
+    def _follow_clock(self) -> Any:
+        """On the bus's thread: a ``/clock`` subscription that sends each time to the clients
+        (foxglove_bridge's ``broadcastTime``)."""
+        from robomodel.runtime.msg import get_message_type
+
+        clock = get_message_type("rosgraph_msgs/msg/Clock")
+
+        def heard(msg: Any) -> None:
+            self.server.broadcast_time(int(msg.clock.sec) * 1_000_000_000 + int(msg.clock.nanosec))
+
+        return self.node.create_subscription(clock, "/clock", heard, 1)
 
     def _publish_watched(self) -> None:
         with self._lock:
@@ -604,10 +689,23 @@ class FoxgloveBridge:
 
     def _asset(self, uri: str) -> bytes | None:
         """A ``package://`` file the allowlist admits, inside its package; None otherwise."""
-        if not any(p.match(uri) for p in self._assets):
+        if ".." in uri or not _listed(uri, self._assets):
             return None
         try:
             path = self.package_index.resolve(uri)
             return bytes(path.read_bytes())
         except (RobomodelError, OSError):
             return None
+
+
+def _patterns(name: str, patterns: Sequence[str]) -> list[re.Pattern[str]]:
+    """A whitelist's regular expressions, ignoring case as foxglove_bridge's do."""
+    try:
+        return [re.compile(p, re.IGNORECASE) for p in patterns]
+    except re.error as exc:
+        raise BridgeError(f"foxglove_bridge: {name}: {exc}") from None
+
+
+def _listed(name: str, patterns: Sequence[re.Pattern[str]]) -> bool:
+    """Whether the whole of ``name`` matches one of ``patterns``."""
+    return any(p.fullmatch(name) for p in patterns)

@@ -5,6 +5,7 @@ would pass the bound, the oldest messages are dropped (a slow client sees the ne
 foxglove_bridge's ``send_buffer_limit`` and rosbridge's ``queue_length`` give it); a topic's
 ``queue_length`` (rosbridge's subscribe option) keeps at most that many of its messages waiting.
 Replies and status lines (key ``None``) are never dropped for a topic's sake, only for bytes.
+A message sent in fragments is one item (a tuple of frames), kept or dropped whole.
 """
 
 from __future__ import annotations
@@ -12,15 +13,22 @@ from __future__ import annotations
 import threading
 from collections import deque
 
-__all__ = ["Outbox"]
+__all__ = ["Frame", "Outbox"]
+
+Frame = str | bytes | tuple[str, ...]  # text, binary, or one message's fragments
+
+
+def _size(frame: Frame) -> int:
+    return sum(len(part) for part in frame) if isinstance(frame, tuple) else len(frame)
 
 
 class Outbox:
-    """Bounded FIFO of encoded frames (``str`` for text, ``bytes`` for binary)."""
+    """Bounded FIFO of encoded frames (``str`` for text, ``bytes`` for binary, a tuple of
+    texts for a message's fragments)."""
 
     def __init__(self, limit_bytes: int) -> None:
         self.limit_bytes = limit_bytes
-        self._items: deque[tuple[str | None, str | bytes]] = deque()
+        self._items: deque[tuple[str | None, Frame]] = deque()
         self._per_key: dict[str, int] = {}
         self._bytes = 0
         self._closed = False
@@ -32,10 +40,10 @@ class Outbox:
         with self._ready:
             return self._bytes
 
-    def put(self, frame: str | bytes, *, key: str | None = None, queue_length: int = 0) -> None:
+    def put(self, frame: Frame, *, key: str | None = None, queue_length: int = 0) -> None:
         """Queue ``frame``; ``key`` groups a topic's frames for its ``queue_length`` (0: no
         count bound). A frame larger than the whole bound is dropped at once."""
-        size = len(frame)
+        size = _size(frame)
         with self._ready:
             if self._closed:
                 return
@@ -62,8 +70,8 @@ class Outbox:
                 self.dropped += 1
                 return
 
-    def _forget(self, key: str | None, frame: str | bytes) -> None:
-        self._bytes -= len(frame)
+    def _forget(self, key: str | None, frame: Frame) -> None:
+        self._bytes -= _size(frame)
         if key is not None:
             left = self._per_key[key] - 1
             if left:
@@ -71,7 +79,7 @@ class Outbox:
             else:
                 del self._per_key[key]
 
-    def take(self, timeout_s: float) -> str | bytes | None:
+    def take(self, timeout_s: float) -> Frame | None:
         """The oldest frame, waiting up to ``timeout_s``; None if none came or it is closed."""
         with self._ready:
             if not self._items and not self._closed:

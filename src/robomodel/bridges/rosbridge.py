@@ -1,12 +1,14 @@
 """rosbridge's v2 protocol over a WebSocket: rosbridge_server's ``rosbridge_websocket``.
 
 Clients (roslibjs, roslibpy, browser dashboards) send JSON operations; the ones served are
-rosbridge's core set: ``advertise``/``unadvertise``, ``publish``, ``subscribe`` (with
-``throttle_rate`` [ms] and ``queue_length``)/``unsubscribe``, ``call_service``,
-``advertise_service``/``unadvertise_service``/``service_response`` and ``set_level``. Replies
-and messages go back as rosbridge sends them (``publish``, ``service_response``, ``status``),
-the messages as its JSON (:mod:`.json_mapping`). Calls to ``/rosapi/...`` are answered by the
-bridge (:mod:`.rosapi`).
+rosbridge's: ``advertise``/``unadvertise``, ``publish``, ``subscribe`` (with ``throttle_rate``
+[ms], ``queue_length`` and ``compression``)/``unsubscribe``, ``call_service`` (with
+``timeout`` [s]), ``advertise_service``/``unadvertise_service``/``service_response``,
+``set_level``, ``fragment`` (:mod:`.fragments`; ``fragment_size`` on any operation fragments
+what the client is sent) and, on ROS 2, the action operations (:mod:`.rosbridge_actions`).
+Replies and messages go back as rosbridge sends them (``publish``, ``service_response``,
+``status``), the messages as its JSON (:mod:`.json_mapping`) or compressed
+(:mod:`.compression`). Calls to ``/rosapi/...`` are answered by the bridge (:mod:`.rosapi`).
 
 Everything the bus does runs on the context's spinning thread (the launch's main loop): a
 client's thread hands its request over and waits, and bus callbacks only encode and queue. Each
@@ -17,6 +19,7 @@ bounded :class:`~.outbox.Outbox`; the bounds are :class:`~.limits.BridgeLimits`'
 from __future__ import annotations
 
 import contextlib
+import itertools
 import json
 import threading
 import time
@@ -24,11 +27,19 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from robomodel.bridges.compression import (
+    COMPRESSIONS,
+    cbor_frame,
+    cbor_raw_frame,
+    png_frame,
+)
 from robomodel.bridges.exceptions import BridgeError, ClientError
+from robomodel.bridges.fragments import Reassembly, split
 from robomodel.bridges.json_mapping import Dialect, message_from_json, message_to_json
 from robomodel.bridges.limits import BridgeLimits
-from robomodel.bridges.outbox import Outbox
+from robomodel.bridges.outbox import Frame, Outbox
 from robomodel.bridges.rosapi import PREFIX, Rosapi, RosapiParams
+from robomodel.bridges.rosbridge_actions import ActionOps
 from robomodel.errors import MissingDependencyError, RobomodelError
 
 __all__ = ["RosbridgeServer"]
@@ -37,6 +48,8 @@ __all__ = ["RosbridgeServer"]
 _LEVELS = ("info", "warning", "error", "none")
 _BUS_TIMEOUT_S = 5.0
 _MAX_CALLS_IN_FLIGHT = 16  # per client: service calls waiting for their answer
+_CALL_TIMEOUT_S = 10.0  # a call_service without a (positive) timeout
+_MAX_CALL_TIMEOUT_S = 600.0
 
 
 @dataclass
@@ -44,18 +57,26 @@ class _Subscription:
     """One client's subscription to a topic (the ids its ``subscribe`` operations gave)."""
 
     handle: Any  # robomodel.runtime.node.Subscription
-    options: dict[str, tuple[int, int]] = field(default_factory=dict)  # id -> (throttle, queue)
+    # id -> (throttle [ms], queue length, compression)
+    options: dict[str, tuple[int, int, str]] = field(default_factory=dict)
     last_sent_s: float = 0.0
+    png_refused: bool = False  # a message too large for png was said once
 
     @property
     def throttle_s(self) -> float:
         """rosbridge merges a client's subscriptions of one topic: the smallest throttle."""
-        return min((t for t, _ in self.options.values()), default=0) / 1000.0
+        return min((t for t, _, _ in self.options.values()), default=0) / 1000.0
 
     @property
     def queue_length(self) -> int:
         """... and the largest queue (0: bounded by the send buffer alone)."""
-        return max((q for _, q in self.options.values()), default=0)
+        return max((q for _, q, _ in self.options.values()), default=0)
+
+    @property
+    def compression(self) -> str:
+        """... and the last of none, png, cbor, cbor-raw that one of them asked for."""
+        asked = {c for _, _, c in self.options.values()}
+        return next(c for c in reversed(COMPRESSIONS) if c in asked or c == "none")
 
 
 class RosbridgeServer:
@@ -197,11 +218,15 @@ class _Session:
         self.publishers: dict[str, Any] = {}
         self.services: dict[str, Any] = {}
         self.pending: dict[str, tuple[Any, Any]] = {}  # call id -> (Deferred, service type)
+        self.actions = ActionOps(self)
+        self.reassembly = Reassembly(server.limits)
+        self.fragment_size: int | None = None  # rosbridge's: set by any operation that gives it
+        self._fragmented_ids = itertools.count(1)  # next() is atomic: bus and client threads
         self._calls = threading.BoundedSemaphore(_MAX_CALLS_IN_FLIGHT)
         self._next_call = 0
         self._tokens = server.limits.max_ops_per_s
         self._refilled_s = time.monotonic()
-        self._closed = False
+        self.closed = threading.Event()
         self._sender = threading.Thread(
             target=self._send_loop, name=f"rosbridge to {peer}", daemon=True
         )
@@ -217,6 +242,13 @@ class _Session:
             "unadvertise_service": self.unadvertise_service,
             "service_response": self.service_response,
             "set_level": self.set_level,
+            "fragment": self.fragment,
+            "send_action_goal": self.actions.send_action_goal,
+            "cancel_action_goal": self.actions.cancel_action_goal,
+            "advertise_action": self.actions.advertise_action,
+            "unadvertise_action": self.actions.unadvertise_action,
+            "action_feedback": self.actions.action_feedback,
+            "action_result": self.actions.action_result,
         }
 
     # -- the connection --------------------------------------------------------------------
@@ -252,19 +284,32 @@ class _Session:
         return True
 
     def _send_loop(self) -> None:
-        while not self._closed:
+        while not self.closed.is_set():
             frame = self.outbox.take(0.2)
             if frame is None:
                 continue
             try:
-                self.connection.send(frame)
+                for part in frame if isinstance(frame, tuple) else (frame,):
+                    self.connection.send(part)
             except Exception:  # the client went away: the receiving side ends the session
                 return
 
     def send(
         self, message: dict[str, Any], *, key: str | None = None, queue_length: int = 0
     ) -> None:
-        self.outbox.put(json.dumps(message, allow_nan=False), key=key, queue_length=queue_length)
+        text = json.dumps(message, allow_nan=False)
+        self.outbox.put(self.text_frame(text, message.get("id")), key=key,
+                        queue_length=queue_length)  # fmt: skip
+
+    def text_frame(self, text: str, message_id: Any) -> Frame:
+        """``text`` as it goes to the client: in fragments when it is longer than the
+        client's ``fragment_size``."""
+        size = self.fragment_size
+        if size is None or len(text) <= size:
+            return text
+        if message_id is None:
+            message_id = next(self._fragmented_ids)
+        return split(text, size, message_id)
 
     def status(self, level: str, text: str, op_id: Any = None) -> None:
         """A ``status`` line, if the client's level lets it through (rosbridge's default:
@@ -277,29 +322,34 @@ class _Session:
         self.send(message)
 
     def close(self) -> None:
-        if self._closed:
+        if self.closed.is_set():
             return
-        self._closed = True
+        self.closed.set()
         self.outbox.close()
-        endpoints = [s.handle for s in self.subscriptions.values()]
-        endpoints += list(self.publishers.values()) + list(self.services.values())
+        self.reassembly.clear()
+        work = [s.handle.destroy for s in self.subscriptions.values()]
+        work += [e.destroy for e in [*self.publishers.values(), *self.services.values()]]
+        work += self.actions.close()
         self.subscriptions.clear()
         self.publishers.clear()
         self.services.clear()
-        if endpoints:
+        if work:
             # a bus that is gone (shutdown) took its endpoints with it
             with contextlib.suppress(ClientError):
-                self.server.on_bus(lambda: [e.destroy() for e in endpoints])
+                self.server.on_bus(lambda: [w() for w in work])
         self.connection.close()
 
     # -- operations ------------------------------------------------------------------------
-    def handle(self, frame: str | bytes) -> None:
+    def handle(self, frame: str | bytes, *, joined: bool = False) -> None:
+        """One operation; ``joined``: the text of a message that came in fragments."""
         op_id = None
         try:
             try:
                 message = json.loads(frame)
             except ValueError:
                 raise ClientError(f"not JSON: {str(frame)[:60]!r}") from None
+            except RecursionError:
+                raise ClientError("JSON nested deeper than the bridge reads") from None
             if not isinstance(message, dict):
                 raise ClientError("an operation must be a JSON object")
             op_id = message.get("id")
@@ -307,11 +357,28 @@ class _Session:
             handler = self._ops.get(op) if isinstance(op, str) else None
             if handler is None:
                 raise ClientError(f"unknown op {op!r}; the ops are: {', '.join(sorted(self._ops))}")
+            if joined and op == "fragment":
+                raise ClientError("fragment: a message in fragments may not be a fragment")
+            if "fragment_size" in message:
+                self._set_fragment_size(message["fragment_size"])
             handler(message)
         except ClientError as exc:
             self.status("error", str(exc), op_id)
 
-    def _name(self, message: dict[str, Any], key: str) -> str:
+    def _set_fragment_size(self, value: Any) -> None:
+        low = self.server.limits.min_fragment_bytes
+        if value is not None and (
+            isinstance(value, bool) or not isinstance(value, int) or value < low
+        ):
+            raise ClientError(f"fragment_size must be a whole number >= {low}, got {value!r}")
+        self.fragment_size = value
+
+    def fragment(self, message: dict[str, Any]) -> None:
+        text = self.reassembly.add(message)
+        if text is not None:
+            self.handle(text, joined=True)
+
+    def name_of(self, message: dict[str, Any], key: str) -> str:
         """A topic or service name from the client, valid as a ROS name (``/`` prefixed)."""
         from robomodel.runtime.names import expand_topic_name
 
@@ -323,8 +390,9 @@ class _Session:
         except RobomodelError as exc:
             raise ClientError(f"{message.get('op')}: {exc}") from None
 
-    def _count_endpoints(self) -> None:
+    def count_endpoints(self) -> None:
         count = len(self.subscriptions) + len(self.publishers) + len(self.services)
+        count += self.actions.endpoints()
         if count >= self.server.limits.max_endpoints:
             raise ClientError(
                 f"this client has {count} topics and services already (the bridge's bound)"
@@ -355,7 +423,7 @@ class _Session:
             raise ClientError(f"{topic}: {exc}") from None
 
     def advertise(self, message: dict[str, Any]) -> None:
-        topic = self._name(message, "topic")
+        topic = self.name_of(message, "topic")
         msg_type = self._message_type(topic, message.get("type") or "")
         existing = self.publishers.get(topic)
         if existing is not None:
@@ -364,7 +432,7 @@ class _Session:
                     f"advertise: {topic} is advertised as {existing.msg_type.__typename__} already"
                 )
             return
-        self._count_endpoints()
+        self.count_endpoints()
         from robomodel.runtime.qos import Durability, QoSProfile
 
         depth = message.get("queue_size", 100)
@@ -377,14 +445,14 @@ class _Session:
         )
 
     def unadvertise(self, message: dict[str, Any]) -> None:
-        topic = self._name(message, "topic")
+        topic = self.name_of(message, "topic")
         publisher = self.publishers.pop(topic, None)
         if publisher is None:
             raise ClientError(f"unadvertise: {topic} is not advertised by this client")
         self.server.on_bus(publisher.destroy)
 
     def publish(self, message: dict[str, Any]) -> None:
-        topic = self._name(message, "topic")
+        topic = self.name_of(message, "topic")
         publisher = self.publishers.get(topic)
         if publisher is None:  # rosbridge advertises on a first publish, with the graph's type
             self.advertise({"op": "advertise", "topic": topic, "latch": message.get("latch")})
@@ -393,32 +461,32 @@ class _Session:
         self.server.context.executor.post(lambda: publisher.publish(msg))
 
     def subscribe(self, message: dict[str, Any]) -> None:
-        topic = self._name(message, "topic")
+        topic = self.name_of(message, "topic")
         throttle = _whole(message, "throttle_rate")
         queue_length = _whole(message, "queue_length")
         sub_id = str(message.get("id", f"subscribe:{topic}"))
-        compression = message.get("compression", "none")
-        if compression not in (None, "none"):
-            self.status("warning", f"subscribe {topic}: compression {compression!r} is not "
-                        "served; messages go as JSON", message.get("id"))  # fmt: skip
+        compression = message.get("compression") or "none"
+        if compression not in COMPRESSIONS:
+            raise ClientError(f"subscribe {topic}: compression {compression!r}; "
+                              f"the compressions are: {', '.join(COMPRESSIONS)}")  # fmt: skip
         found = self.subscriptions.get(topic)
         if found is not None:
-            found.options[sub_id] = (throttle, queue_length)
+            found.options[sub_id] = (throttle, queue_length, compression)
             return
-        self._count_endpoints()
+        self.count_endpoints()
         msg_type = self._message_type(topic, message.get("type"))
-        entry = _Subscription(handle=None, options={sub_id: (throttle, queue_length)})
-        dialect = self.server.dialect
+        entry = _Subscription(handle=None, options={sub_id: (throttle, queue_length, compression)})
+        encode = _bus_encoder(msg_type, self.server.dialect)
 
         def deliver(msg: Any) -> None:
             now = time.monotonic()
             if entry.throttle_s and now - entry.last_sent_s < entry.throttle_s:
                 return
             entry.last_sent_s = now
-            body = {"op": "publish", "topic": topic, "msg": message_to_json(msg, dialect)}
             self.outbox.put(
-                json.dumps(body, allow_nan=False), key=topic, queue_length=entry.queue_length
-            )
+                self._published(topic, msg, entry, encode), key=topic,
+                queue_length=entry.queue_length,
+            )  # fmt: skip
 
         from robomodel.runtime.qos import Durability, QoSProfile
 
@@ -433,8 +501,30 @@ class _Session:
             del self.subscriptions[topic]
             raise
 
+    def _published(
+        self, topic: str, msg: Any, entry: _Subscription, encode: Callable[[Any], bytes]
+    ) -> Frame:
+        """The ``publish`` operation of ``msg`` as the subscription's compression has it."""
+        dialect = self.server.dialect
+        compression = entry.compression
+        if compression == "cbor":
+            return cbor_frame(topic, msg, dialect)
+        if compression == "cbor-raw":
+            return cbor_raw_frame(topic, encode(msg), self.server.node.get_clock().now_ns())
+        body = {"op": "publish", "topic": topic, "msg": message_to_json(msg, dialect)}
+        text = json.dumps(body, allow_nan=False)
+        if compression == "png":
+            bound = self.server.limits.max_png_bytes
+            if len(text) <= bound:
+                text = png_frame(text)
+            elif not entry.png_refused:
+                entry.png_refused = True
+                self.status("warning", f"subscribe {topic}: a message of {len(text)} bytes is "
+                            f"over png's {bound}; such messages go as JSON")  # fmt: skip
+        return self.text_frame(text, None)
+
     def unsubscribe(self, message: dict[str, Any]) -> None:
-        topic = self._name(message, "topic")
+        topic = self.name_of(message, "topic")
         entry = self.subscriptions.get(topic)
         if entry is None:
             raise ClientError(f"unsubscribe: this client is not subscribed to {topic}")
@@ -446,19 +536,21 @@ class _Session:
         self.server.on_bus(entry.handle.destroy)
 
     def call_service(self, message: dict[str, Any]) -> None:
-        service = self._name(message, "service")
+        service = self.name_of(message, "service")
         args = message.get("args") or {}
         if isinstance(args, list):  # rosbridge takes the request's fields in order too
             args = {"__values__": args}
         if not isinstance(args, dict):
             raise ClientError(f"call_service {service}: 'args' must be a JSON object")
-        timeout_s = message.get("timeout", 10.0)
-        if (
-            isinstance(timeout_s, bool)
-            or not isinstance(timeout_s, int | float)
-            or not timeout_s > 0
+        timeout_s = message.get("timeout")
+        if timeout_s is not None and (
+            isinstance(timeout_s, bool) or not isinstance(timeout_s, int | float)
         ):
-            timeout_s = 10.0
+            raise ClientError(
+                f"call_service {service}: 'timeout' must be a number of seconds, got {timeout_s!r}"
+            )
+        if timeout_s is None or not timeout_s > 0:  # roslibjs: none or <= 0 is no timeout
+            timeout_s = _CALL_TIMEOUT_S if timeout_s is None else _MAX_CALL_TIMEOUT_S
         if not self._calls.acquire(blocking=False):
             raise ClientError(
                 f"call_service {service}: {_MAX_CALLS_IN_FLIGHT} calls of this client wait "
@@ -467,7 +559,8 @@ class _Session:
         op_id = message.get("id")
         given_type = message.get("type")
         threading.Thread(
-            target=self._call, args=(service, args, op_id, given_type, float(min(timeout_s, 60.0))),
+            target=self._call,
+            args=(service, args, op_id, given_type, float(min(timeout_s, _MAX_CALL_TIMEOUT_S))),
             name=f"rosbridge call {service}", daemon=True,
         ).start()  # fmt: skip
 
@@ -513,7 +606,7 @@ class _Session:
         from robomodel.runtime.msg.schema import get_service_type
         from robomodel.runtime.transport.base import Deferred
 
-        service = self._name(message, "service")
+        service = self.name_of(message, "service")
         type_name = message.get("type")
         if not isinstance(type_name, str) or not type_name:
             raise ClientError(f"advertise_service {service}: 'type' must name a service type")
@@ -523,7 +616,7 @@ class _Session:
             raise ClientError(f"advertise_service {service}: {exc}") from None
         if service in self.services:
             raise ClientError(f"advertise_service: {service} is advertised by this client already")
-        self._count_endpoints()
+        self.count_endpoints()
         dialect = self.server.dialect
 
         def handler(request: Any) -> Deferred:
@@ -541,7 +634,7 @@ class _Session:
         )
 
     def unadvertise_service(self, message: dict[str, Any]) -> None:
-        service = self._name(message, "service")
+        service = self.name_of(message, "service")
         server = self.services.pop(service, None)
         if server is None:
             raise ClientError(f"unadvertise_service: {service} is not advertised by this client")
@@ -567,6 +660,18 @@ class _Session:
         if level not in _LEVELS:
             raise ClientError(f"set_level: level {level!r}; the levels are: {', '.join(_LEVELS)}")
         self.level = level
+
+
+def _bus_encoder(msg_type: type[Any], dialect: Dialect) -> Callable[[Any], bytes]:
+    """The serialisation of ``msg_type`` on the bus (``cbor-raw``'s bytes): CDR on ROS 2,
+    ROS 1's on ROS 1."""
+    if dialect == "ros2":
+        from robomodel.runtime.msg.cdr import payload_encoder
+
+        return payload_encoder(msg_type)
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_type
+
+    return ros1_type(msg_type).encode
 
 
 def _whole(message: dict[str, Any], key: str) -> int:

@@ -1,4 +1,5 @@
-"""The WebSocket bridges as nodes: rosbridge_server's ``rosbridge_websocket``.
+"""The WebSocket bridges as nodes: rosbridge_server's ``rosbridge_websocket`` and
+foxglove_bridge's ``foxglove_bridge``.
 
 Parameters as the real node takes them (ROS 1 ``~port``, ROS 2 ``port``): ``port`` (9090),
 ``address`` (loopback here, where rosbridge listens on every interface: say ``0.0.0.0`` to be
@@ -6,6 +7,11 @@ reached from other machines), ``max_message_size`` (the largest frame a client m
 [bytes]) and ``send_buffer_limit`` (the bytes waiting for one client before the oldest are
 dropped, foxglove_bridge's name). rosapi's services are the bridge's own
 (:mod:`robomodel.bridges.rosapi`).
+
+foxglove_bridge's node takes foxglove_bridge's parameters: ``port`` (8765), ``address``, the
+whitelists ``topic_whitelist``, ``param_whitelist``, ``service_whitelist``,
+``client_topic_whitelist`` and ``asset_uri_allowlist``, ``send_buffer_limit``,
+``max_qos_depth``, ``capabilities`` and ``use_sim_time`` (ROS 1: the global ``/use_sim_time``).
 """
 
 from __future__ import annotations
@@ -97,8 +103,9 @@ def rosbridge_websocket_ros2(ctx: NodeContext) -> RunningNode:
     return _start(ctx, settings, params, name)
 
 
-_FOXGLOVE = ("port", "address", "topic_whitelist", "send_buffer_limit", "max_qos_depth",
-             "capabilities")  # fmt: skip
+_FOXGLOVE = ("port", "address", "topic_whitelist", "param_whitelist", "service_whitelist",
+             "client_topic_whitelist", "asset_uri_allowlist", "send_buffer_limit",
+             "max_qos_depth", "capabilities", "use_sim_time")  # fmt: skip
 
 
 def _strings(value: Any, name: str, fqn: str) -> tuple[str, ...]:
@@ -109,10 +116,22 @@ def _strings(value: Any, name: str, fqn: str) -> tuple[str, ...]:
     return tuple(value)
 
 
+def _flag(value: Any, name: str, fqn: str) -> bool:
+    if isinstance(value, str) and value.lower() in ("true", "false"):
+        return value.lower() == "true"
+    if not isinstance(value, bool):
+        raise RobomodelError(f"{fqn}: parameter {name} must be true or false, got {value!r}")
+    return value
+
+
 def _start_foxglove(
     ctx: NodeContext, settings: dict[str, Any], params: Any, name: str
 ) -> RunningNode:
-    from robomodel.bridges.foxglove_bridge import CAPABILITIES, FoxgloveBridge
+    from robomodel.bridges.foxglove_bridge import (
+        CAPABILITIES,
+        DEFAULT_ASSET_ALLOWLIST,
+        FoxgloveBridge,
+    )
 
     fqn = ctx.spec.fqn
     address = settings.get("address", "127.0.0.1")
@@ -128,6 +147,15 @@ def _start_foxglove(
         address=address or "127.0.0.1",
         port=_number(settings.get("port", 8765), "port", fqn, low=0, high=65535),
         topic_whitelist=_strings(settings.get("topic_whitelist", [".*"]), "topic_whitelist", fqn),
+        param_whitelist=_strings(settings.get("param_whitelist", [".*"]), "param_whitelist", fqn),
+        service_whitelist=_strings(settings.get("service_whitelist", [".*"]),
+                                   "service_whitelist", fqn),
+        client_topic_whitelist=_strings(settings.get("client_topic_whitelist", [".*"]),
+                                        "client_topic_whitelist", fqn),
+        asset_uri_allowlist=_strings(settings.get("asset_uri_allowlist",
+                                                  list(DEFAULT_ASSET_ALLOWLIST)),
+                                     "asset_uri_allowlist", fqn),
+        use_sim_time=_flag(settings.get("use_sim_time", False), "use_sim_time", fqn),
         send_buffer_limit=_number(settings.get("send_buffer_limit", 10_000_000),
                                   "send_buffer_limit", fqn, low=1024, high=2**31),
         max_qos_depth=_number(settings.get("max_qos_depth", 25), "max_qos_depth", fqn,
@@ -144,6 +172,7 @@ def foxglove_bridge_ros1(ctx: NodeContext) -> RunningNode:
     from robomodel.bridges.rosapi import Ros1Params
 
     settings = {k: ctx.param(f"~{k}") for k in _FOXGLOVE if ctx.param(f"~{k}") is not None}
+    settings["use_sim_time"] = ctx.use_sim_time  # ROS 1's is the global /use_sim_time
     return _start_foxglove(
         ctx, settings, Ros1Params(ctx.params), ctx.spec.name or "foxglove_bridge"
     )
