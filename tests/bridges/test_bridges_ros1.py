@@ -21,7 +21,7 @@ from websockets.sync.client import connect
 
 from tests.bridges.started import wait_started
 from tests.bridges.test_foxglove_clients import node_client, results
-from tests.conftest import ROBOMODEL, end_process, free_port
+from tests.conftest import ROBOMODEL, _listening, end_process, free_port
 from tests.timing import scaled, wait_until
 
 
@@ -35,6 +35,7 @@ def master_env(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, s
                               stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT,
                               start_new_session=True)]  # fmt: skip
     try:
+        wait_until(lambda: _listening(port), 30, what="the ROS 1 master")
         yield env
     finally:
         for proc in reversed(procs):
