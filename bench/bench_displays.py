@@ -38,6 +38,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parents[1]
 DOMAIN = int(os.environ.get("ROBOMODEL_BENCH_DOMAIN", "139"))  # another run at once: another domain
 
@@ -224,10 +226,37 @@ def codec_costs() -> None:
         )
 
 
+def panel_encoding_costs() -> None:
+    """The JPEG for the Image display's panel (quality 90, median of 21, ms): viser's
+    ``GuiImageHandle.image`` setter (imageio, or OpenCV where installed) against Pillow's
+    encoder as the display calls it."""
+    import io
+
+    from PIL import Image
+    from viser._scene_api import _encode_image_binary
+
+    sys.path.insert(0, str(ROOT / "bench"))
+    from _display_feed import image_data
+
+    for name, noise in (("camera-like", False), ("random pixels", True)):
+        frames = [np.frombuffer(f, np.uint8).reshape(480, 640, 3) for f in image_data(noise)[:3]]
+
+        def pillow(rgb: Any) -> bytes:
+            out = io.BytesIO()
+            Image.fromarray(rgb).save(out, format="JPEG", quality=90)
+            return out.getvalue()
+
+        viser_ms = _median_ms(lambda: [_encode_image_binary(f, "jpeg", 90) for f in frames], 21) / 3  # noqa: B023  # fmt: skip
+        pillow_ms = _median_ms(lambda: [pillow(f) for f in frames], 21) / 3  # noqa: B023
+        print(f"panel JPEG of a 640x480 {name} image ({len(pillow(frames[0])) / 1e3:.0f} kB): "
+              f"viser's image setter {viser_ms:.1f} ms, Pillow {pillow_ms:.1f} ms")  # fmt: skip
+
+
 def main() -> None:
     from playwright.sync_api import sync_playwright
 
     codec_costs()
+    panel_encoding_costs()
     seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 6.0
     feeds = sys.argv[2:] or ["cloud", "image", "noise"]
     frames: list[tuple[float, int, bytes]] = []
