@@ -15,7 +15,7 @@ from robomodel.runtime.msg import get_message_type
 from robomodel.viewer.displays import display_class
 from robomodel.viewer.displays.camera import camera_info_topic
 from robomodel.viewer.displays.image_sender import LatestImageSender
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 from tests.viewer.fake_scene import FakeClock, FakeScene, fake_context, lookup_from
 
 PointCloud2 = get_message_type("sensor_msgs/msg/PointCloud2")
@@ -370,3 +370,20 @@ def test_image_sender_keeps_only_the_newest_image_waiting() -> None:
     sender.close()
     sender.submit(_solid((0, 0, 255)))  # closed: ignored
     assert sender.flush(scaled(10)) and sender.sent == 3
+
+
+def test_image_sender_thread_ends_when_idle_and_restarts(monkeypatch: pytest.MonkeyPatch) -> None:
+    """No thread is left waiting for a camera that stopped: it ends when idle, and the next
+    image starts another."""
+    from robomodel.viewer.displays import image_sender
+
+    monkeypatch.setattr(image_sender, "IDLE_EXIT_S", 0.05)
+    area = _ImageArea()
+    sender = LatestImageSender(area, name="idle")
+    assert not sender.running
+    sender.submit(_solid((255, 0, 0)))
+    assert sender.flush(scaled(10))
+    wait_until(lambda: not sender.running, scaled(10), what="the idle thread to end")
+    sender.submit(_solid((0, 0, 255)))
+    assert sender.flush(scaled(10)) and sender.sent == 2 and _near(area.image[8, 8], (0, 0, 255))
+    sender.close()

@@ -24,10 +24,11 @@ from typing import Any
 
 from PIL.Image import Image
 
-__all__ = ["JPEG_QUALITY", "LatestImageSender", "encode_jpeg"]
+__all__ = ["IDLE_EXIT_S", "JPEG_QUALITY", "LatestImageSender", "encode_jpeg"]
 
 # image_transport's "compressed" default is 80; 90 keeps text and edges in a camera image crisp
 JPEG_QUALITY = 90
+IDLE_EXIT_S = 2.0  # the thread ends after this long without an image (the next one starts it)
 
 log = logging.getLogger("robomodel.viewer")
 
@@ -41,7 +42,8 @@ def encode_jpeg(image: Image, quality: int = JPEG_QUALITY) -> bytes:
 
 class LatestImageSender:
     """Encodes the newest image handed to :meth:`submit` and sets it on a viser GUI image
-    handle, on a daemon thread started at the first image; older images waiting are replaced.
+    handle, on a daemon thread that runs while images come (started by an image, ended after
+    :data:`IDLE_EXIT_S` without one); older images waiting are replaced.
 
     Attributes:
         sent: Images encoded and set on the handle.
@@ -60,6 +62,12 @@ class LatestImageSender:
         self._thread: threading.Thread | None = None
         self.sent = 0
         self.replaced = 0
+
+    @property
+    def running(self) -> bool:
+        """Whether the encoding thread is alive (images came within :data:`IDLE_EXIT_S`)."""
+        with self._cond:
+            return self._thread is not None
 
     def submit(self, image: Image) -> None:
         """Send ``image`` as soon as the encoder is free, instead of any image still waiting."""
@@ -99,12 +107,15 @@ class LatestImageSender:
     def _run(self) -> None:
         while True:
             with self._cond:
-                self._cond.wait_for(lambda: self._waiting is not None or self._closed)
-                if self._closed:
+                self._cond.wait_for(
+                    lambda: self._waiting is not None or self._closed, timeout=IDLE_EXIT_S
+                )
+                image = self._waiting
+                if self._closed or image is None:  # closed, or idle: submit() starts another
+                    self._thread = None
                     return
-                image, self._waiting, self._busy = self._waiting, None, True
+                self._waiting, self._busy = None, True
             try:
-                assert image is not None
                 data = encode_jpeg(image, self._quality)
                 with self._handle_lock:  # close() waits for this: no image on a removed handle
                     if not self._closed:
