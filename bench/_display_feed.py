@@ -2,9 +2,12 @@
 
 KIND ``cloud``: a 100,000-point PointCloud2 (x, y, z, intensity float32; 16-byte points) on
 /bench/cloud (seven different clouds in turn); ``image``: a 640x480 rgb8 Image on /bench/image (seven frames in turn); ``noise``: the
-same with random pixels. Messages are built once and
+same with random pixels; ``bgr8``, ``mono8``: the camera-like frames in that encoding (grey: their
+mean). Messages are built once and
 re-stamped; sends follow ``paced_sends`` (never accumulated). Prints ``ready`` when its
-publisher exists, then ``sent N`` at the end.
+publisher exists, then ``sent N`` at the end, and for images ``stamps T0 T1 ...``: the wall
+time [s] each image was published, image k carrying k in its top rows (:func:`mark_sequence`,
+read back by the page in bench_displays.py).
 """
 
 from __future__ import annotations
@@ -58,33 +61,72 @@ def image_data(noise: bool = False) -> list[bytes]:
     return [np.roll(base, 40 * k, axis=1).tobytes() for k in range(7)]
 
 
-def image_message() -> object:
+SEQUENCE_BITS, BIT_WIDTH_PX, MARK_ROWS = 16, 40, 16
+
+
+IMAGE_ENCODINGS = {"image": "rgb8", "noise": "rgb8", "bgr8": "bgr8", "mono8": "mono8"}  # by KIND
+
+
+def in_encoding(frame: bytes, encoding: str) -> bytes:
+    """An rgb8 640x480 ``frame`` as ``encoding`` (rgb8, bgr8 or mono8: the channels' mean)."""
+    rgb = np.frombuffer(frame, np.uint8).reshape(480, 640, 3)
+    if encoding == "bgr8":
+        return np.ascontiguousarray(rgb[..., ::-1]).tobytes()
+    if encoding == "mono8":
+        return rgb.mean(axis=2).astype(np.uint8).tobytes()
+    return frame
+
+
+def mark_sequence(frame: bytes, k: int, width: int = 640, channels: int = 3) -> bytes:
+    """A ``frame`` (``channels`` bytes a pixel) with ``k`` written in its top ``MARK_ROWS``
+    rows: bit b (LSB first) a white or black block ``BIT_WIDTH_PX`` wide from
+    x = b * BIT_WIDTH_PX, whole JPEG blocks that survive the viewer's encoding."""
+    pixels = np.frombuffer(frame, np.uint8).reshape(-1, width, channels).copy()
+    for b in range(SEQUENCE_BITS):
+        pixels[:MARK_ROWS, b * BIT_WIDTH_PX : (b + 1) * BIT_WIDTH_PX] = 255 if k >> b & 1 else 0
+    return pixels.tobytes()
+
+
+def image_message(encoding: str = "rgb8") -> object:
     Image = get_message_type("sensor_msgs/msg/Image")
-    msg = Image(height=480, width=640, encoding="rgb8", step=640 * 3, data=image_data()[0])
+    channels = 1 if encoding == "mono8" else 3
+    msg = Image(height=480, width=640, encoding=encoding, step=640 * channels,
+                data=in_encoding(image_data()[0], encoding))  # fmt: skip
     msg.header.frame_id = "map"
     return msg
 
 
 def main() -> None:
     kind, domain, rate_hz, seconds = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])  # fmt: skip
-    msg = cloud_message() if kind == "cloud" else image_message()
+    encoding = IMAGE_ENCODINGS.get(kind, "")
+    msg = cloud_message() if kind == "cloud" else image_message(encoding)
     # seven different clouds in turn, as a lidar's differ (the same one again would not be
     # sent to the page again: viser skips a node update that changes nothing)
-    frames = [cloud_data(k) for k in range(7)] if kind == "cloud" else image_data(kind == "noise")
+    if kind == "cloud":
+        frames = [cloud_data(k) for k in range(7)]
+    else:
+        frames = [in_encoding(f, encoding) for f in image_data(kind == "noise")]
+    channels = 1 if encoding == "mono8" else 3
     context = Context("zenoh", domain_id=domain)
     node = context.create_node("bench_feed")
     pub = node.create_publisher(type(msg), f"/bench/{'cloud' if kind == 'cloud' else 'image'}", 10)
     print("ready", flush=True)
     sys.stdin.readline()  # the bench says when the viewer listens
 
+    stamps: list[float] = []
+
     def send(k: int) -> None:
-        msg.data = frames[k % len(frames)]  # type: ignore[attr-defined]
+        frame = frames[k % len(frames)]
+        msg.data = frame if kind == "cloud" else mark_sequence(frame, k, channels=channels)  # type: ignore[attr-defined]
         ns = time.time_ns()
         msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(ns, 1_000_000_000)  # type: ignore[attr-defined]
         pub.publish(msg)
+        stamps.append(ns / 1e9)
 
     sent, _elapsed = paced_sends(seconds, rate_hz, send)
     print(f"sent {sent}", flush=True)
+    if kind != "cloud":
+        print("stamps " + " ".join(f"{t:.6f}" for t in stamps), flush=True)
     time.sleep(1.0)
     context.shutdown()
 

@@ -14,6 +14,7 @@ from robomodel.viewer.displays.image import (
     ImageError,
     RangeNormalizer,
     compressed_image_rgb,
+    image_pil,
     image_rgb,
 )
 
@@ -122,3 +123,24 @@ def test_compressed_depth_png_and_garbage() -> None:
     np.testing.assert_array_equal(out[..., 2], np.where(BOARD, 255, 0))
     with pytest.raises(ImageError, match="cannot decode compressed image"):
         compressed_image_rgb(CompressedImage(format="jpeg", data=list(b"not an image")))
+
+
+@pytest.mark.parametrize(
+    ("encoding", "pixels"),
+    [("rgb8", EXPECTED_RB), ("bgr8", EXPECTED_RB[..., ::-1]), ("8UC3", EXPECTED_RB[..., ::-1]),
+     ("mono8", np.where(BOARD, 200, 10).astype(np.uint8)), ("8UC1", np.where(BOARD, 200, 10).astype(np.uint8)),
+     ("bayer_rggb8", np.where(BOARD, 200, 10).astype(np.uint8)), ("rgba8", np.dstack([EXPECTED_RB, np.full((4, 4), 9, np.uint8)])),
+     ("mono16", np.where(BOARD, 3000, 1000).astype("<u2"))],
+)  # fmt: skip
+@pytest.mark.parametrize("pad", [0, 5])
+def test_pillow_image_has_image_rgb_s_pixels(encoding: str, pixels: np.ndarray, pad: int) -> None:
+    """The panel's Pillow image (unpacked by Pillow from the message's bytes for 8-bit RGB, BGR
+    and grey) holds exactly the pixels image_rgb gives, row padding skipped; upscaled, each
+    pixel repeated."""
+    msg = make_image(pixels, encoding, pad=pad)
+    image = image_pil(msg)
+    assert image.mode == ("L" if pixels.ndim == 2 and encoding != "mono16" else "RGB")
+    np.testing.assert_array_equal(np.asarray(image.convert("RGB")), image_rgb(msg))
+    big = np.asarray(image_pil(msg, min_side=320).convert("RGB"))
+    assert big.shape == (320, 320, 3)
+    np.testing.assert_array_equal(big[::80, ::80], image_rgb(msg))

@@ -3,15 +3,19 @@ draw, where, and their statuses."""
 
 from __future__ import annotations
 
+import io
 import struct
-from types import SimpleNamespace
+import threading
 
 import numpy as np
 import pytest
+from PIL import Image as PILImage
 
 from robomodel.runtime.msg import get_message_type
 from robomodel.viewer.displays import display_class
 from robomodel.viewer.displays.camera import camera_info_topic
+from robomodel.viewer.displays.image_sender import LatestImageSender
+from tests.timing import scaled, wait_until
 from tests.viewer.fake_scene import FakeClock, FakeScene, fake_context, lookup_from
 
 PointCloud2 = get_message_type("sensor_msgs/msg/PointCloud2")
@@ -222,20 +226,54 @@ class _Folder:
         self.removed = True
 
 
+class _ImageArea:
+    """A viser GUI image handle as far as the Image display sets it: the JPEGs it was given.
+    With ``gate``, setting an image waits for it (``entered`` says an image is being set)."""
+
+    def __init__(self, gate: threading.Event | None = None) -> None:
+        self.jpegs: list[bytes] = []
+        self._format = "jpeg"
+        self.gate, self.entered = gate, threading.Event()
+
+    @property
+    def _data(self) -> bytes:
+        return self.jpegs[-1]
+
+    @_data.setter
+    def _data(self, value: bytes) -> None:
+        self.entered.set()
+        if self.gate is not None:
+            assert self.gate.wait(scaled(10))
+        self.jpegs.append(value)
+
+    @property
+    def images(self) -> list[np.ndarray]:
+        return [np.asarray(PILImage.open(io.BytesIO(j)).convert("RGB")) for j in self.jpegs]
+
+    @property
+    def image(self) -> np.ndarray:
+        return self.images[-1]
+
+
 class _Gui:
     """The parts of viser's GUI API the Image display's image area uses, recorded."""
 
     def __init__(self) -> None:
         self.folders: list[_Folder] = []
-        self.images: list[SimpleNamespace] = []
+        self.images: list[_ImageArea] = []
 
     def add_folder(self, label: str, **kwargs: object) -> _Folder:
         self.folders.append(_Folder(label, **kwargs))
         return self.folders[-1]
 
-    def add_image(self, image: np.ndarray, **_kwargs: object) -> SimpleNamespace:
-        self.images.append(SimpleNamespace(image=image))
+    def add_image(self, image: np.ndarray, **_kwargs: object) -> _ImageArea:
+        self.images.append(_ImageArea())
         return self.images[-1]
+
+
+def _near(pixel: np.ndarray, rgb: tuple[int, int, int]) -> bool:
+    """A JPEG's pixel is the colour within its rounding (a cell's middle keeps its colour)."""
+    return int(np.abs(pixel.astype(int) - rgb).max()) <= 12
 
 
 def test_image_display_shows_each_image_on_arrival_at_the_frame_rate(monkeypatch: pytest.MonkeyPatch) -> None:  # fmt: skip
@@ -256,7 +294,10 @@ def test_image_display_shows_each_image_on_arrival_at_the_frame_rate(monkeypatch
     assert (dock.label, dock.kwargs["order"], dock.kwargs["expand_by_default"], dock.visible) == ("Camera feed", -1000.0, True, True)  # fmt: skip
     (panel,) = gui.images
     display.receive(checkerboard())  # no draw needed: shown when it arrives
-    assert display.shown == 1 and panel.image.shape == (320, 320, 3)
+    assert display.shown == 1 and display.sender.flush(scaled(10))
+    assert panel.image.shape == (320, 320, 3)  # 4x4 with each pixel repeated 80 times
+    assert _near(panel.image[40, 40], (255, 0, 0)) and _near(panel.image[40, 120], (0, 0, 255))
+    assert display.draw(lookup_from({})).text == "1 images received; showing 4x4"
 
     def camera(rate: float, seconds: float, jitter_s: float = 0.0) -> int:
         """Images shown of a camera at ``rate`` Hz, every other one ``jitter_s`` late."""
@@ -275,16 +316,74 @@ def test_image_display_shows_each_image_on_arrival_at_the_frame_rate(monkeypatch
     now[0] += 1.0  # the budget saved: BURST_FRAMES images at once
     for _ in range(int(image_display.BURST_FRAMES)):
         display.receive(checkerboard())
+    skipped = display.skipped
     display.receive(checkerboard("bgr8"))  # the budget spent: waits
-    assert tuple(panel.image[0, 0]) == (255, 0, 0)
+    display.receive(checkerboard("mono8"))  # replaces it: the newest wins
+    display.receive(checkerboard("bgr8"))
+    assert display.skipped == skipped + 2
+    assert display.sender.flush(scaled(10)) and _near(panel.image[40, 40], (255, 0, 0))
     now[0] += 0.11
     display.draw(lookup_from({}))  # the next draw shows the newest
-    assert tuple(panel.image[0, 0]) == (0, 0, 255)
+    assert display.sender.flush(scaled(10)) and _near(panel.image[40, 40], (0, 0, 255))
+    np.testing.assert_array_equal(display.rgb[0, 0], (0, 0, 255))  # the image shown, as RGB
     display.rename("Front")
     display.set_enabled(False)
     assert (dock.label, dock.visible) == ("Front", False)
     shown = display.shown
     display.receive(checkerboard())
     assert display.shown == shown  # a disabled display shows nothing
+    sender = display.sender
     display.close()
-    assert dock.removed
+    assert dock.removed and display.sender is None
+    sent = sender.sent
+    sender.submit(PILImage.new("RGB", (4, 4)))  # closed: nothing more reaches the handle
+    assert sender.flush(scaled(10)) and sender.sent == sent
+
+
+def _solid(rgb: tuple[int, int, int]) -> PILImage.Image:
+    return PILImage.new("RGB", (16, 16), rgb)
+
+
+def test_image_sender_keeps_only_the_newest_image_waiting() -> None:
+    """While one image is being encoded and set, those handed over meanwhile replace each
+    other: the page gets the newest next, never a queue of older ones."""
+    gate = threading.Event()
+    area = _ImageArea(gate)
+    sender = LatestImageSender(area, name="test")
+    sender.submit(_solid((255, 0, 0)))
+    assert area.entered.wait(scaled(10))  # red is being set; the sender waits for the page
+    for colour in ((0, 255, 0), (0, 0, 255), (255, 255, 255)):
+        sender.submit(_solid(colour))
+    assert sender.replaced == 2 and not sender.flush(0.0)
+    gate.set()
+    assert sender.flush(scaled(10))
+    assert [_near(image[8, 8], c) for image, c in zip(area.images, ((255, 0, 0), (255, 255, 255)), strict=True)] == [True, True]  # fmt: skip
+    assert sender.sent == 2
+    gate.clear()
+    area.entered.clear()
+    sender.submit(_solid((0, 255, 0)))
+    assert area.entered.wait(scaled(10))
+    sender.submit(_solid((0, 0, 255)))
+    sender.discard()  # a topic change: the one waiting is not sent
+    gate.set()
+    assert sender.flush(scaled(10)) and sender.sent == 3 and _near(area.image[8, 8], (0, 255, 0))
+    sender.close()
+    sender.submit(_solid((0, 0, 255)))  # closed: ignored
+    assert sender.flush(scaled(10)) and sender.sent == 3
+
+
+def test_image_sender_thread_ends_when_idle_and_restarts(monkeypatch: pytest.MonkeyPatch) -> None:
+    """No thread is left waiting for a camera that stopped: it ends when idle, and the next
+    image starts another."""
+    from robomodel.viewer.displays import image_sender
+
+    monkeypatch.setattr(image_sender, "IDLE_EXIT_S", 0.05)
+    area = _ImageArea()
+    sender = LatestImageSender(area, name="idle")
+    assert not sender.running
+    sender.submit(_solid((255, 0, 0)))
+    assert sender.flush(scaled(10))
+    wait_until(lambda: not sender.running, scaled(10), what="the idle thread to end")
+    sender.submit(_solid((0, 0, 255)))
+    assert sender.flush(scaled(10)) and sender.sent == 2 and _near(area.image[8, 8], (0, 0, 255))
+    sender.close()

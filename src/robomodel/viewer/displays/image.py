@@ -9,7 +9,9 @@ yuv422/UYVY and YUYV with RViz's integer YUV formula. Unlike RViz, the row ``ste
 ``is_bigendian`` are honoured (RViz assumes packed little-endian rows).
 
 CompressedImage (image_transport's compressed and compressedDepth) is decoded with Pillow,
-already a dependency of the viewer extra.
+already a dependency of the viewer extra. For the panel, :func:`image_pil` hands 8-bit RGB, BGR
+and grey images to Pillow straight from the message's bytes (Pillow's own unpacking makes the
+one copy and the channel order), so a camera image is not shuffled into an RGB array first.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from __future__ import annotations
 import collections
 import io
 import statistics
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,14 +28,20 @@ from robomodel.viewer.displays.cloud import message_bytes
 from robomodel.viewer.errors import ViewerError
 from robomodel.viewer.limits import MAX_IMAGE_PIXELS
 
+if TYPE_CHECKING:
+    from PIL.Image import Image as PILImage
+
 __all__ = [
     "ENCODINGS",
     "ImageError",
     "RangeNormalizer",
     "compressed_image_rgb",
+    "image_pil",
     "image_rgb",
     "nearest_upscale",
     "scale_to_mono8",
+    "upscale_factor",
+    "upscaled_pil",
 ]
 
 _COLOR = {"rgb8": (3, (0, 1, 2)), "rgba8": (4, (0, 1, 2)), "bgr8": (3, (2, 1, 0)),
@@ -44,6 +52,9 @@ _SCALED = {"mono16": "u2", "16UC1": "u2", "16SC1": "i2", "32FC1": "f4"}
 _YUV = {"yuv422": (1, 0, 3, 2), "uyvy": (1, 0, 3, 2), "UYVY": (1, 0, 3, 2),
         "yuv422_yuy2": (0, 1, 2, 3), "yuyv": (0, 1, 2, 3), "YUYV": (0, 1, 2, 3)}  # fmt: skip
 ENCODINGS = (*_COLOR, *_MONO8, *_SCALED, *_YUV, "bayer_*")
+# encodings Pillow unpacks as they are: encoding -> (Pillow mode, its raw mode, bytes a pixel)
+_PIL_RAW = {"rgb8": ("RGB", "RGB", 3), "bgr8": ("RGB", "BGR", 3), "8UC3": ("RGB", "BGR", 3),
+            "8SC3": ("RGB", "BGR", 3), **dict.fromkeys(_MONO8, ("L", "L", 1))}  # fmt: skip
 
 
 class ImageError(ViewerError):
@@ -71,12 +82,18 @@ class RangeNormalizer:
         return statistics.median_high(self._mins), statistics.median_high(self._maxs)
 
 
+def upscale_factor(longest: int, *, min_side: int = 256, max_side: int = 2048) -> int:
+    """How many times to repeat each pixel of an image whose longer side is ``longest`` so
+    that it reaches ``min_side`` (never past ``max_side``); 1 for an image large enough."""
+    return max(1, min(min_side // max(longest, 1), max_side // max(longest, 1)))
+
+
 def nearest_upscale(image: NDArray[np.uint8], *, min_side: int = 256, max_side: int = 2048) -> NDArray[np.uint8]:  # fmt: skip
     """``image`` with each pixel repeated so that its longer side reaches ``min_side`` (never
     past ``max_side``): the browser filters textures linearly, RViz's map texture is sampled
     nearest (TFO_NONE), so cells must stay sharp squares."""
     longest = max(image.shape[0], image.shape[1])
-    factor = max(1, min(min_side // max(longest, 1), max_side // max(longest, 1)))
+    factor = upscale_factor(longest, min_side=min_side, max_side=max_side)
     if factor == 1:
         return image
     return np.repeat(np.repeat(image, factor, axis=0), factor, axis=1)
@@ -191,6 +208,48 @@ def image_rgb(
             f"Unsupported image encoding [{enc}]; supported are: {', '.join(ENCODINGS)}"
         )
     return np.repeat(grey[:, :, None], 3, axis=2)
+
+
+def image_pil(
+    msg: Any,
+    *,
+    normalize: bool = True,
+    min_value: float = 0.0,
+    max_value: float = 1.0,
+    normalizer: RangeNormalizer | None = None,
+    min_side: int = 1,
+) -> PILImage:
+    """The image as a Pillow image (mode RGB, or L for grey encodings), the same pixels as
+    :func:`image_rgb`, upscaled (each pixel repeated) until its longer side reaches ``min_side``.
+
+    rgb8, bgr8 (8UC3), mono8 (8UC1) and bayer_* are unpacked by Pillow from the message's bytes
+    in one pass; the other encodings go through :func:`image_rgb`. Arguments and errors are
+    :func:`image_rgb`'s.
+    """
+    from PIL import Image
+
+    enc = str(msg.encoding)
+    raw = _PIL_RAW.get(enc) or (("L", "L", 1) if enc.startswith("bayer") else None)
+    if raw is None:
+        rgb = image_rgb(msg, normalize=normalize, min_value=min_value, max_value=max_value,
+                        normalizer=normalizer)  # fmt: skip
+        image = Image.fromarray(rgb)
+    else:
+        mode, raw_mode, channels = raw
+        rows = np.ascontiguousarray(_rows(msg, channels))  # padded rows: one copy of the rest
+        image = Image.frombuffer(mode, (int(msg.width), rows.shape[0]), rows, "raw", raw_mode, 0, 1)  # fmt: skip
+    return upscaled_pil(image, min_side=min_side)
+
+
+def upscaled_pil(image: PILImage, *, min_side: int) -> PILImage:
+    """``image`` with each pixel repeated so that its longer side reaches ``min_side`` (see
+    :func:`nearest_upscale`)."""
+    from PIL import Image
+
+    factor = upscale_factor(max(image.size), min_side=min_side)
+    if factor == 1:
+        return image
+    return image.resize((image.width * factor, image.height * factor), Image.Resampling.NEAREST)
 
 
 def _scaled(values: NDArray[Any], normalize: bool, lo: float, hi: float, normalizer: RangeNormalizer | None) -> NDArray[np.uint8]:  # fmt: skip

@@ -8,12 +8,14 @@ the panel is an image area at the top of the page's control panel, expanded, nam
 display, hidden while the display is disabled (its options stay in the Displays tree).
 
 RViz shows the newest image at each render, at its Frame Rate (Global Options, 30 by
-default): an image is converted and sent when it arrives if the Frame Rate allows one more
-(a budget of one image per frame, of which up to :data:`BURST_FRAMES` may be saved, so that
-images arriving bunched by the network's jitter are all shown while the rate over any second
-stays the Frame Rate); else it waits, and the next arrival or the next draw (10 Hz) shows the
-newest. Older ones are skipped, and viser replaces an image update the page has not taken yet
-by the next one, so a slow page never builds a backlog.
+default): an image is converted when it arrives if the Frame Rate allows one more (a budget of
+one image per frame, of which up to :data:`BURST_FRAMES` may be saved, so that images arriving
+bunched by the network's jitter are all shown while the rate over any second stays the Frame
+Rate); else it waits, and the next arrival or the next draw (10 Hz) shows the newest. Older
+ones are skipped (counted in ``skipped``). A converted image goes to a
+:class:`~robomodel.viewer.displays.image_sender.LatestImageSender`, which JPEG-encodes the
+newest on a thread of its own, and viser replaces an image update the page has not taken yet
+by the next one, so neither the encoder nor a slow page ever holds a backlog.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
+from PIL import Image
 
 from robomodel.viewer.displays.base import (
     Display,
@@ -37,14 +40,17 @@ from robomodel.viewer.displays.image import (
     ImageError,
     RangeNormalizer,
     compressed_image_rgb,
+    image_pil,
     image_rgb,
-    nearest_upscale,
+    upscaled_pil,
 )
+from robomodel.viewer.displays.image_sender import JPEG_QUALITY, LatestImageSender
 from robomodel.viewer.limits import MAX_IMAGE_PIXELS
 
-__all__ = ["BURST_FRAMES", "FramePacer", "ImageDisplay", "message_rgb"]
+__all__ = ["BURST_FRAMES", "FramePacer", "ImageDisplay", "message_pil", "message_rgb"]
 
 BURST_FRAMES = 3.0  # frames of unused budget kept (see the module docstring)
+PANEL_MIN_SIDE = 320  # a smaller image is shown with its pixels repeated to fill the panel
 _DOCK_ORDER = -1000.0  # viser orders the panel's folders by this: image areas come first
 
 IMAGE_OPTIONS = (
@@ -66,18 +72,30 @@ IMAGE_OPTIONS = (
 )
 
 
-def message_rgb(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -> NDArray[np.uint8]:
-    """An Image or CompressedImage as RGB with the display's normalisation options."""
+def _normalization(values: dict[str, Any], normalizer: RangeNormalizer) -> dict[str, Any]:
     normalizer.median_window = int(values["Median window"])
-    kwargs: dict[str, Any] = {
+    return {
         "normalize": bool(values["Normalize Range"]),
         "min_value": float(values["Min Value"]),
         "max_value": float(values["Max Value"]),
         "normalizer": normalizer,
     }
+
+
+def message_rgb(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -> NDArray[np.uint8]:
+    """An Image or CompressedImage as RGB with the display's normalisation options."""
+    kwargs = _normalization(values, normalizer)
     if hasattr(msg, "format"):  # sensor_msgs/CompressedImage
         return compressed_image_rgb(msg, **kwargs)
     return image_rgb(msg, **kwargs)
+
+
+def message_pil(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -> Image.Image:
+    """An Image or CompressedImage as a Pillow image (RGB, or L for grey encodings) with the
+    display's normalisation options."""
+    if hasattr(msg, "format"):  # sensor_msgs/CompressedImage
+        return Image.fromarray(message_rgb(msg, values, normalizer))
+    return image_pil(msg, **_normalization(values, normalizer))
 
 
 class FramePacer:
@@ -118,15 +136,32 @@ class ImageDisplay(Display):
         self._pending: Any = None
         self._normalizer = RangeNormalizer()
         self._error = ""
-        self._panel_image: Any = None
+        self.sender: LatestImageSender | None = None  # to the image area, once built
         self._dock: Any = None
         self._pacer = FramePacer()
-        self.rgb: NDArray[np.uint8] | None = None  # the image shown
+        self._shown: Image.Image | None = None  # the image shown, at its own size
+        self._rgb: NDArray[np.uint8] | None = None  # it as an RGB array, made when asked for
         self.header: Any = None  # the shown image's header
         self.shown = 0  # images converted and shown
+        self.skipped = 0  # images replaced by a newer one before they were converted
         self._full_rows = 0  # rows of the last image converted (more than shown: truncated)
 
+    @property
+    def rgb(self) -> NDArray[np.uint8] | None:
+        """The image shown as (height, width, 3) RGB, or None before the first."""
+        if self._rgb is None and self._shown is not None:
+            self._rgb = np.asarray(self._shown.convert("RGB"))
+        return self._rgb
+
+    @property
+    def sent(self) -> int:
+        """Images JPEG-encoded and handed to the page (fewer than shown: the encoder skipped
+        older ones while it was busy)."""
+        return self.sender.sent if self.sender is not None else 0
+
     def on_message(self, msg: Any) -> None:
+        if self._pending is not None:
+            self.skipped += 1
         self._pending = msg
         if self.enabled:
             self.show_pending()
@@ -138,7 +173,8 @@ class ImageDisplay(Display):
         with self._dock:
             # JPEG as RViz's image_transport "compressed" would: PNG of a 640x480 camera
             # image is ~10x larger and slower to encode
-            self._panel_image = gui.add_image(placeholder, format="jpeg", jpeg_quality=90)
+            handle = gui.add_image(placeholder, format="jpeg", jpeg_quality=JPEG_QUALITY)
+        self.sender = LatestImageSender(handle, name=self.name)
 
     def on_renamed(self) -> None:
         super().on_renamed()
@@ -153,43 +189,49 @@ class ImageDisplay(Display):
     def on_option_changed(self, name: str) -> None:
         if name == "Topic":
             self.messages_received = 0
-            self._pending, self.rgb = None, None
+            self._pending, self._shown, self._rgb = None, None, None
+            if self.sender is not None:
+                self.sender.discard()
         self._normalizer = RangeNormalizer(int(self.values["Median window"]))
 
     def close(self) -> None:
         super().close()
+        if self.sender is not None:
+            self.sender.close()  # before the handle goes: nothing is set on it after
+            self.sender = None
         if self._dock is not None:
             self._dock.remove()
-            self._dock, self._panel_image = None, None
+            self._dock = None
 
-    def convert_pending(self) -> bool:
-        """Convert the newest image if one came since the last draw; whether one did."""
+    def convert_pending(self) -> Image.Image | None:
+        """The newest image (RGB or L) if one came since the last one shown, else None."""
         msg, self._pending = self._pending, None
         if msg is None:
-            return False
+            return None
         try:
-            self.rgb = message_rgb(msg, self.values, self._normalizer)
+            image = message_pil(msg, self.values, self._normalizer)
         except ImageError as exc:
             self._error = str(exc)
-            return False
+            return None
         self._error = ""
         self.shown += 1
+        self._shown, self._rgb = image, None
         self.header = getattr(msg, "header", None)
-        self._full_rows = int(getattr(msg, "height", 0) or self.rgb.shape[0])
-        return True
+        self._full_rows = int(getattr(msg, "height", 0) or image.height)
+        return image
 
     def show_pending(self) -> bool:
-        """Convert the newest image and send it to the panel if the Frame Rate allows one
+        """Convert the newest image and hand it to the panel if the Frame Rate allows one
         more now; whether one was shown."""
         if self._pending is None:
             return False
         if not self._pacer.allow(time.monotonic(), float(self.context.frame_rate_hz())):
             return False
-        if not self.convert_pending() or self.rgb is None:
+        image = self.convert_pending()
+        if image is None:
             return False
-        if self._panel_image is not None:
-            # a small image is shown at its own size: repeat its pixels to fill the panel
-            self._panel_image.image = nearest_upscale(self.rgb, min_side=320)
+        if self.sender is not None:
+            self.sender.submit(upscaled_pil(image, min_side=PANEL_MIN_SIDE))
         return True
 
     def draw(self, lookup: FrameLookup) -> DisplayStatus:
@@ -197,9 +239,9 @@ class ImageDisplay(Display):
         if self._error:
             return DisplayStatus.error(self._error)
         waiting = self.topic_status()
-        if waiting is not None or self.rgb is None:
+        if waiting is not None or self._shown is None:
             return waiting or DisplayStatus.ok()
-        h, w = self.rgb.shape[:2]
+        w, h = self._shown.size
         text = f"{self.messages_received} images received; showing {w}x{h}"
         if self._full_rows > h:
             return DisplayStatus.warn(
