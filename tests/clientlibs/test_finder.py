@@ -23,3 +23,46 @@ def test_an_unknown_name_without_rosbags_installed_is_not_found_without_recursio
     monkeypatch.chdir("/")
     assert finder.ClientLibraryFinder().find_spec("no_such_module_here", None) is None
     assert finder._store_texts == []
+
+
+def test_a_name_found_to_be_no_interface_package_is_looked_for_once_per_place(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: object
+) -> None:
+    """A library that tries an optional import for every call (viser's ``import cv2`` for
+    every image) pays the file checks and the close-name search once, until the places
+    packages are looked for change or ``importlib.invalidate_caches()`` is called."""
+    import importlib
+
+    looks: list[str] = []
+    real_may_be, real_close = finder._may_be_interface_package, finder._close_names
+    monkeypatch.setattr(
+        finder, "_may_be_interface_package", lambda p: looks.append(p) or real_may_be(p)
+    )
+    monkeypatch.setattr(
+        finder, "_close_names", lambda p: looks.append(f"close {p}") or real_close(p)
+    )
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    monkeypatch.setattr(finder, "_misses", {})
+    found = finder.ClientLibraryFinder()
+    for _ in range(3):
+        assert found.find_spec("not_a_package_xyz", None) is None
+    assert looks == ["not_a_package_xyz", "close not_a_package_xyz"]
+    monkeypatch.chdir(str(tmp_path))  # another working folder: another workspace's src/
+    assert found.find_spec("not_a_package_xyz", None) is None
+    assert len(looks) == 4
+    importlib.invalidate_caches()  # asks every meta path finder, this one included
+    sys.meta_path.append(found)
+    try:
+        importlib.invalidate_caches()
+    finally:
+        sys.meta_path.remove(found)
+    assert found.find_spec("not_a_package_xyz", None) is None
+    assert len(looks) == 6
+
+
+def test_a_typo_is_still_named_the_second_time() -> None:
+    found = finder.ClientLibraryFinder()
+    for _ in range(2):
+        with pytest.raises(ModuleNotFoundError, match="std_msgs"):
+            found.find_spec("std_msg", None)

@@ -110,17 +110,56 @@ class ClientLibraryFinder:
                 _AliasLoader(real),
                 is_package=found.submodule_search_locations is not None,
             )
-        if _may_be_interface_package(top):
-            from robomodel.clientlibs import interfaces
-
-            return interfaces.find_spec(fullname)
-        if fullname == top and path is None:
-            close = _close_names(top)
-            if close:  # a typo of an interface package's name: say so, with what was meant
+        key = (fullname, path is None, *_where_packages_are())
+        close = _misses.get(key)
+        if close is None:
+            if _may_be_interface_package(top):
                 from robomodel.clientlibs import interfaces
 
-                raise ModuleNotFoundError(interfaces.not_found(top, close), name=top)
+                spec = interfaces.find_spec(fullname)  # raises for a typo, with close names
+                if spec is not None:
+                    return spec
+                close = ()
+            elif fullname == top and path is None:
+                close = tuple(_close_names(top))
+            else:
+                close = ()
+            if len(_misses) >= _MISSES_KEPT:
+                _misses.clear()
+            _misses[key] = close
+        if close:  # a typo of an interface package's name: say so, with what was meant
+            from robomodel.clientlibs import interfaces
+
+            raise ModuleNotFoundError(interfaces.not_found(top, list(close)), name=top)
         return None
+
+    def invalidate_caches(self) -> None:
+        """``importlib.invalidate_caches()``: packages made since are looked for again."""
+        _misses.clear()
+
+
+# Names found to be no interface package, with the close names a typo of them gets, per place
+# packages are looked for: a library that tries an optional import for every call (viser's
+# ``import cv2`` for every image) pays a dictionary look-up, not the file checks and the
+# difflib search each time.
+_misses: dict[tuple[object, ...], tuple[str, ...]] = {}
+_MISSES_KEPT = 4096
+
+
+def _where_packages_are() -> tuple[object, ...]:
+    """What decides whether a name is an interface package, besides the name: the working
+    folder (a workspace's ``src/``), the package path variables and ``--package-path``."""
+    resolver = sys.modules.get("robomodel.runtime.msg._resolver")
+    try:
+        here = os.getcwd()
+    except OSError:  # the working folder was removed: no workspace is there
+        here = ""
+    return (
+        here,
+        os.environ.get("ROS_PACKAGE_PATH"),
+        os.environ.get("AMENT_PREFIX_PATH"),
+        resolver.generation() if resolver is not None else None,
+    )
 
 
 _MSG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "runtime", "msg")
