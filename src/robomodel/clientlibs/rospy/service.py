@@ -15,6 +15,7 @@ from robomodel.clientlibs.rospy.exceptions import (
 )
 from robomodel.runtime.msg import Message
 from robomodel.runtime.msg.schema import Service as ServiceType
+from robomodel.runtime.transport.base import OnReceivingThread
 
 __all__ = ["Service", "ServiceProxy", "wait_for_service"]
 
@@ -69,7 +70,8 @@ def response_of(answer: Any, response_class: Any) -> Message:
 
 
 class Service:
-    """Answers ``name`` with ``handler(request)`` on the node's callback thread."""
+    """Answers ``name`` with ``handler(request)``, as rospy on the thread of the client's
+    connection: calls from several clients are answered at once."""
 
     def __init__(
         self,
@@ -87,7 +89,7 @@ class Service:
         self.handler = handler
         self._error_handler = error_handler
         self._server: Any = node_state.node.create_service(
-            self.service_class, self.resolved_name, self._answer
+            self.service_class, self.resolved_name, OnReceivingThread(self._answer)
         )
 
     def _answer(self, request: Any) -> Message:

@@ -25,6 +25,7 @@ from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
     Graph,
+    OnReceivingThread,
     PublisherHandle,
     ServiceCallError,
     ServiceHandle,
@@ -276,7 +277,8 @@ class Ros1Transport(Transport):
     def _call_local(
         self, name: str, handler: ServiceHandler, request: Message, timeout_s: float
     ) -> Message:
-        if self.executor.spinner in (None, threading.get_ident()):
+        in_place = isinstance(handler, OnReceivingThread)
+        if in_place or self.executor.spinner in (None, threading.get_ident()):
             answer = handler(request)
             if isinstance(answer, Deferred):
                 if answer.response is None:

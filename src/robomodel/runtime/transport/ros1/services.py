@@ -3,8 +3,9 @@
 Server: a connection's header names the service; the reply header carries the md5sums and
 types (a ``probe=1`` connection, as ``rosservice type`` makes, ends there); then each request
 frame is answered with an ok byte and the response (1), or the error text (0). The handler runs
-on the executor's thread, as every robomodel callback; a :class:`Deferred` answer is written
-when it resolves.
+on the executor's thread, as every robomodel callback (one wrapped in :class:`OnReceivingThread`
+runs on the connection's thread, as rospy runs its handlers); a :class:`Deferred` answer is
+written when it resolves.
 
 Bound: at most ``MAX_SERVICE_CONNECTIONS`` client connections at once in one process, across its
 nodes and services, each served on a thread of its own for its lifetime; past it a new one is
@@ -24,7 +25,12 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
 from robomodel.runtime.transport._failures import log_failure
-from robomodel.runtime.transport.base import Deferred, ServiceCallError, ServiceHandler
+from robomodel.runtime.transport.base import (
+    Deferred,
+    OnReceivingThread,
+    ServiceCallError,
+    ServiceHandler,
+)
 from robomodel.runtime.transport.ros1.budget import ByteBudget
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
@@ -172,7 +178,10 @@ class ServiceServer:
             else:
                 finish(answer)
 
-        self._executor.post(run)
+        if isinstance(self.handler, OnReceivingThread):
+            run()
+        else:
+            self._executor.post(run)
         if not done.wait(HANDLER_TIMEOUT_S):
             return False, f"service [{self.name}] did not answer in {HANDLER_TIMEOUT_S} s".encode()
         if "error" in box:

@@ -3,7 +3,9 @@
 (``requestTopic``), connects, exchanges headers and reads messages.
 
 Messages are decoded on the reader thread and handed to the executor through a queue of
-``depth`` messages (the oldest dropped when the node falls behind). A publisher that drops the
+``depth`` messages (the oldest dropped when the node falls behind); a callback wrapped in
+:class:`~robomodel.runtime.transport.base.OnReceivingThread` is called on the reader thread
+instead (rospy's, which queues and dispatches on threads of its own). A publisher that drops the
 connection while it is still registered is asked again after a growing pause (up to 2 s); a
 malformed message is dropped with a log line, and the connection closed.
 
@@ -27,6 +29,7 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel._escape import escape_name
 from robomodel.runtime.msg import Message
+from robomodel.runtime.transport.base import OnReceivingThread
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
     MAX_FRAME_BYTES,
@@ -171,6 +174,7 @@ class Subscription:
         self.kind = kind
         self._executor = executor
         self._deliver = deliver
+        self._in_place = isinstance(deliver, OnReceivingThread)
         self._pending: collections.deque[Message] = collections.deque(maxlen=max(1, depth))
         self._lock = threading.Lock()
         self._scheduled = False
@@ -224,6 +228,10 @@ class Subscription:
                 "%s: dropping a malformed message from %s: %s", self.topic, connection.peer, exc
             )
             raise TcprosError("malformed message") from None
+        if self._in_place:
+            if self._alive:
+                self._call(msg)
+            return
         with self._lock:
             if len(self._pending) == self._pending.maxlen:
                 self.dropped += 1
@@ -241,10 +249,13 @@ class Subscription:
         for msg in batch:
             if not self._alive:
                 return
-            try:
-                self._deliver(msg)
-            except Exception:
-                log.exception("error handling a message on %s", self.topic)
+            self._call(msg)
+
+    def _call(self, msg: Message) -> None:
+        try:
+            self._deliver(msg)
+        except Exception:
+            log.exception("error handling a message on %s", self.topic)
 
     def close(self) -> None:
         with self._lock:
