@@ -28,7 +28,6 @@ __all__ = ["MAX_TIMER_THREADS", "Rate", "Timer", "TimerEvent", "sleep", "timer_t
 _SIM_POLL_S = 0.001  # how often a sleep in sim time (or any clock but the wall's) looks at it
 # rospy's Timers are threads without bound; a node has a few. 256 threads cost a few MiB.
 MAX_TIMER_THREADS = 256
-_TIMERS = threading.BoundedSemaphore(MAX_TIMER_THREADS)
 _alive_timers = 0
 _count_lock = threading.Lock()
 
@@ -147,16 +146,11 @@ class Timer(threading.Thread):
         self._shutdown = False
         self._rate = Rate(1.0 / period_s, reset=reset)
         self._first_expected = self._rate.last_time + self._period
-        if not _TIMERS.acquire(blocking=False):
-            raise ROSException(
-                f"more than {MAX_TIMER_THREADS} rospy Timers alive at once in this process "
-                "(MAX_TIMER_THREADS): shut some down first"
-            )
-        _count(+1)
+        _take_timer()
         try:
             self.start()
         except BaseException:
-            _release_timer()
+            _give_timer()
             raise
 
     def shutdown(self) -> None:
@@ -167,7 +161,7 @@ class Timer(threading.Thread):
         try:
             self._loop()
         finally:
-            _release_timer()
+            _give_timer()
 
     def _loop(self) -> None:
         expected = self._first_expected
@@ -191,12 +185,18 @@ class Timer(threading.Thread):
             expected = expected + self._period
 
 
-def _count(step: int) -> None:
+def _take_timer() -> None:
     global _alive_timers
     with _count_lock:
-        _alive_timers += step
+        if _alive_timers >= MAX_TIMER_THREADS:
+            raise ROSException(
+                f"more than {MAX_TIMER_THREADS} rospy Timers alive at once in this process "
+                "(MAX_TIMER_THREADS): shut some down first"
+            )
+        _alive_timers += 1
 
 
-def _release_timer() -> None:
-    _count(-1)
-    _TIMERS.release()
+def _give_timer() -> None:
+    global _alive_timers
+    with _count_lock:
+        _alive_timers -= 1
