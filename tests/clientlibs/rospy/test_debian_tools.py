@@ -150,6 +150,20 @@ def test_add_two_ints_answers_rosservice_and_the_tutorial_client(
     )
 
 
+def test_ctrl_c_ends_the_sleeping_loop_and_the_goodbye_is_heard(
+    graph: Graph, tmp_path: Path
+) -> None:
+    log, heard = tmp_path / "goodbye.log", tmp_path / "echo.log"
+    echo = graph.start([ROSTOPIC, "echo", "-p", "/farewell"], log=heard)
+    talker = graph.node("goodbye_talker", log=log)
+    graph.until(lambda: "still here" in _lines(heard), "rostopic echo hearing the talker")
+    # rospy's wall-clock sleep is not cut short: the loop ends at is_shutdown(), no traceback
+    assert end_process(talker, signal.SIGINT, timeout_s=scaled(20)) == 0, _lines(log)
+    assert "Traceback" not in _lines(log), _lines(log)
+    graph.until(lambda: "goodbye" in _lines(heard), "the on_shutdown hook's message")
+    graph.stop(echo)
+
+
 def _results(log: Path) -> dict[str, object]:
     found: dict[str, object] = {}
     for line in _lines(log).splitlines():
