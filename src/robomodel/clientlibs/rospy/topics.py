@@ -19,7 +19,7 @@ from robomodel.runtime.msg import Message
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.runtime.transport.base import OnReceivingThread
 
-__all__ = ["Publisher", "Subscriber", "wait_for_message"]
+__all__ = ["Publisher", "SubscribeListener", "Subscriber", "wait_for_message"]
 
 # rospy publishes synchronously when queue_size is None; robomodel's queues are bounded: this
 # stands for "no bound" (a subscriber's is dispatch.UNBOUNDED).
@@ -68,9 +68,27 @@ def _ros1_name(data_class: type[Message]) -> str:
     return f"{package}/{name}"
 
 
+class SubscribeListener:
+    """Told of the subscribers of a Publisher made with ``subscriber_listener=`` (rospy's):
+    subclass it and override what you need. Both are called on the thread of the connection."""
+
+    def peer_subscribe(
+        self,
+        topic_name: str,
+        topic_publish: Callable[[Any], None],
+        peer_publish: Callable[[Any], None],
+    ) -> None:
+        """A subscriber connected to ``topic_name``: ``topic_publish(msg)`` publishes to every
+        subscriber, ``peer_publish(msg)`` to the new one only."""
+
+    def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
+        """A subscriber left ``topic_name``; ``num_peers`` remain."""
+
+
 class Publisher(_Topic):
     """Publishes ``data_class`` messages on ``name`` (``queue_size`` messages wait per
-    subscriber, the oldest dropped first; ``latch`` gives a new subscriber the last one)."""
+    subscriber, the oldest dropped first; ``latch`` gives a new subscriber the last one;
+    ``subscriber_listener``, a :class:`SubscribeListener`, is told of subscribers)."""
 
     def __init__(
         self,
@@ -82,7 +100,6 @@ class Publisher(_Topic):
         headers: Any = None,
         queue_size: int | None = None,
     ) -> None:
-        _unsupported("Publisher(subscriber_listener=...)", subscriber_listener)
         _unsupported("Publisher(headers=...)", headers)
         if queue_size is None:
             warnings.warn(
@@ -95,6 +112,8 @@ class Publisher(_Topic):
         self._qos = QoSProfile(depth, Durability.TRANSIENT_LOCAL if latch else Durability.VOLATILE)
         self._publisher: Any = None
         self._unregistered = False
+        self._listener = subscriber_listener
+        self._unwatch: Callable[[], None] | None = None
         super().__init__(name, data_class)
 
     def _create(self, node_state: core.NodeState) -> None:
@@ -103,6 +122,32 @@ class Publisher(_Topic):
                 self.data_class, self.resolved_name, self._qos
             )
             self._publish = self._publisher.publish
+            if self._listener is not None:
+                self._watch(node_state, self._listener)
+
+    def _watch(self, node_state: core.NodeState, listener: Any) -> None:
+        from robomodel.runtime.transport.ros1.publication import SubscriberWatch
+
+        watch = getattr(node_state.context.transport, "watch_subscribers", None)
+        if watch is None:
+            raise NotImplementedError(
+                "rospy Publisher(subscriber_listener=...) needs the ROS 1 bus"
+            )
+
+        def connected(to_peer: Callable[[Message], None]) -> None:
+            def peer_publish(*args: Any, **kwds: Any) -> None:
+                to_peer(self._message(args, kwds))
+
+            listener.peer_subscribe(self.resolved_name, self.publish, peer_publish)
+
+        def gone(remaining: int) -> None:
+            listener.peer_unsubscribe(self.resolved_name, remaining)
+
+        self._unwatch = watch(
+            node_state.node.fully_qualified_name,
+            self._publisher.topic,
+            SubscriberWatch(connected, gone),
+        )
 
     def publish(self, *args: Any, **kwds: Any) -> None:
         """Publish a message, or the message that ``data_class(*args, **kwds)`` makes. As
@@ -114,16 +159,19 @@ class Publisher(_Topic):
             raise ROSException(
                 "ROS node has not been initialized yet. Please call init_node() first"
             )
+        self._publish(self._message(args, kwds))
+
+    def _message(self, args: tuple[Any, ...], kwds: dict[str, Any]) -> Message:
         if len(args) == 1 and not kwds and _is_message_of(args[0], self.data_class):
-            msg = args[0]
-        else:
-            try:
-                msg = self.data_class(*args, **kwds)
-            except TypeError as exc:
-                raise ROSSerializationException(
-                    f"cannot make a {self.type} of the arguments given to publish(): {exc}"
-                ) from None
-        self._publish(msg)
+            found: Message = args[0]
+            return found
+        try:
+            made: Message = self.data_class(*args, **kwds)
+        except TypeError as exc:
+            raise ROSSerializationException(
+                f"cannot make a {self.type} of the arguments given to publish(): {exc}"
+            ) from None
+        return made
 
     def get_num_connections(self) -> int:
         """The subscribers connected now."""
@@ -132,6 +180,9 @@ class Publisher(_Topic):
     def unregister(self) -> None:
         """Stop publishing: the master and the subscribers forget this publisher."""
         self._unregistered = True
+        if self._unwatch is not None:
+            self._unwatch()
+            self._unwatch = None
         if self._publisher is not None:
             self._publisher.destroy()
             self._publisher = None

@@ -10,14 +10,20 @@ in one process, across its nodes and topics; past it a new subscriber is refused
 header and one throttled log line. A connection gives its slot back when it ends: when a write
 fails, or when its subscriber closes (a writer with nothing to write looks every
 ``PEER_CHECK_S`` whether its peer is gone, since a subscriber sends nothing after its header).
+
+A :class:`SubscriberWatch` (rospy's ``SubscribeListener``) is told of each subscriber that
+connects, with a way to publish to it alone, and of each that goes, with how many remain.
 """
 
 from __future__ import annotations
 
 import collections
+import functools
 import itertools
 import socket
 import threading
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
@@ -28,7 +34,12 @@ from robomodel.runtime.transport.ros1.xmlrpc_io import log, log_throttled
 if TYPE_CHECKING:
     from robomodel.runtime.transport.ros1.ros1_types import Ros1Type
 
-__all__ = ["MAX_SUBSCRIBER_CONNECTIONS", "Publication", "subscriber_connections"]
+__all__ = [
+    "MAX_SUBSCRIBER_CONNECTIONS",
+    "Publication",
+    "SubscriberWatch",
+    "subscriber_connections",
+]
 
 # A robomodel process publishes a few tens of topics (joint states, tf, tf_static, the robot
 # description, controller and simulation topics), each read by a handful of nodes (RViz,
@@ -115,6 +126,16 @@ class _Outbound:
             self._on_close(self)
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class SubscriberWatch:
+    """Calls about a publication's subscribers, on the thread that accepted or lost one:
+    ``connected(publish_to_it)`` once a subscriber's connection is made (before a latched
+    message goes to it), ``gone(remaining)`` once it ended."""
+
+    connected: Callable[[Callable[[Message], None]], None]
+    gone: Callable[[int], None]
+
+
 class Publication:
     """One topic a node publishes."""
 
@@ -131,6 +152,7 @@ class Publication:
         self._latched: bytes | None = None
         self._lock = threading.Lock()
         self.connections: list[_Outbound] = []
+        self.watches: list[SubscriberWatch] = []
 
     def subscriber_count(self) -> int:
         """Subscriber connections now (rospy's ``get_num_connections()``): updated as they
@@ -174,8 +196,23 @@ class Publication:
             if not connection.closed:  # a writer that failed at once has given its slot back
                 self.connections.append(connection)
             latched = self._latched
+        for watch in list(self.watches):
+            self._tell(watch.connected, functools.partial(self._publish_to, connection))
         if latched is not None:
             connection.push(latched)
+
+    def _publish_to(self, connection: _Outbound, msg: Message) -> None:
+        """Send ``msg`` to one subscriber (rospy's ``peer_publish``)."""
+        with self._lock:
+            data = self.kind.encode(msg, self._seq)
+            self._seq += 1
+        connection.push(data)
+
+    def _tell(self, call: Callable[[Any], None], value: Any) -> None:
+        try:
+            call(value)
+        except Exception:
+            log.exception("%s: a subscriber watch failed", self.topic)
 
     def _refuse_past_cap(self, sock: socket.socket, peer: str) -> None:
         log_throttled(
@@ -213,8 +250,12 @@ class Publication:
     def _forget(self, connection: _Outbound) -> None:
         _SLOTS.give(1)
         with self._lock:
-            if connection in self.connections:
-                self.connections.remove(connection)
+            if connection not in self.connections:
+                return
+            self.connections.remove(connection)
+            remaining = len(self.connections)
+        for watch in list(self.watches):
+            self._tell(watch.gone, remaining)
 
     def close(self) -> None:
         with self._lock:

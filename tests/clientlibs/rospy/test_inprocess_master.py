@@ -1,8 +1,10 @@
-"""Where rospy's callbacks run, checked on robomodel's master in this process: a rospy node's
-topics each have a callback thread (a slow callback on one topic does not delay another, a
-Timer ticks meanwhile), a topic's messages come in order to every Subscriber of it over one
-connection, ``queue_size`` drops the oldest, service handlers of concurrent calls run at once,
-and the threads are bounded and counted. Messages travel over TCPROS (loopback)."""
+"""A rospy node on robomodel's master in this process (messages over TCPROS on loopback).
+
+Where its callbacks run, as rospy's: each topic has a callback thread (a slow callback on one
+topic does not delay another, a Timer ticks meanwhile), a topic's messages come in order to
+every Subscriber of it over one connection, ``queue_size`` drops the oldest, service handlers
+of concurrent calls run at once, and the threads are bounded and counted. Also what
+ros_tutorials' programs needed: ``header.seq`` as sent, and ``SubscribeListener``."""
 
 from __future__ import annotations
 
@@ -237,3 +239,32 @@ def test_timers_are_bounded_and_counted(node: str, monkeypatch: pytest.MonkeyPat
         ticking.shutdown()
     ticking.join(scaled(5))
     assert timer.timer_threads() == before
+
+
+def test_a_subscribe_listener_greets_each_subscriber(node: str) -> None:
+    from std_msgs.msg import String
+
+    events: list[tuple[str, object]] = []
+
+    class Greeter(rospy.SubscribeListener):
+        def peer_subscribe(self, topic_name: str, topic_publish: Any, peer_publish: Any) -> None:
+            events.append(("subscribe", topic_name))
+            peer_publish(String("welcome"))  # a message
+            peer_publish("and hello")  # or its fields, as publish() takes them
+
+        def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
+            events.append(("unsubscribe", num_peers))
+
+    pub = rospy.Publisher("/greetings", String, subscriber_listener=Greeter(), queue_size=10)
+    heard: list[str] = []
+    sub = rospy.Subscriber("/greetings", String, lambda m: heard.append(m.data))
+    try:
+        wait_until(lambda: len(heard) == 2, scaled(10), what="the greetings")
+        assert heard == ["welcome", "and hello"]
+        assert events == [("subscribe", "/greetings")]
+        sub.unregister()
+        wait_until(lambda: len(events) == 2, scaled(10), what="the listener told of the end")
+        assert events[1] == ("unsubscribe", 0)
+    finally:
+        sub.unregister()
+        pub.unregister()
