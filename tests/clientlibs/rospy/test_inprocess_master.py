@@ -268,3 +268,32 @@ def test_a_subscribe_listener_greets_each_subscriber(node: str) -> None:
     finally:
         sub.unregister()
         pub.unregister()
+
+
+def test_connection_headers_travel_with_messages_requests_and_responses(node: str) -> None:
+    from std_msgs.msg import String
+    from std_srvs.srv import SetBool
+
+    headers: list[dict[str, str]] = []
+    pub = rospy.Publisher("/snacks", String, headers={"cookies": "oreo"}, queue_size=10)
+    sub = rospy.Subscriber("/snacks", String, lambda m: headers.append(m._connection_header))
+
+    def serve(req: Any) -> tuple[bool, str]:
+        return True, req._connection_header.get("cookies", "none")
+
+    service = rospy.Service("/snack_bar", SetBool, serve)
+    try:
+        _connected(pub)
+        pub.publish("crumbs")
+        wait_until(lambda: headers, scaled(10), what="a message with its connection header")
+        assert headers[0]["cookies"] == "oreo" and headers[0]["callerid"] == "/threads"
+        assert headers[0]["type"] == "std_msgs/String" and headers[0]["topic"] == "/snacks"
+        proxy = rospy.ServiceProxy("/snack_bar", SetBool, headers={"cookies": "peanut butter"})
+        response = proxy(True)
+        assert response.message == "peanut butter"
+        assert response._connection_header["callerid"] == "/threads"
+        assert response._connection_header["type"] == "std_srvs/SetBool"
+    finally:
+        service.shutdown()
+        sub.unregister()
+        pub.unregister()

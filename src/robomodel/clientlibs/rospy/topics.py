@@ -88,7 +88,8 @@ class SubscribeListener:
 class Publisher(_Topic):
     """Publishes ``data_class`` messages on ``name`` (``queue_size`` messages wait per
     subscriber, the oldest dropped first; ``latch`` gives a new subscriber the last one;
-    ``subscriber_listener``, a :class:`SubscribeListener`, is told of subscribers)."""
+    ``subscriber_listener``, a :class:`SubscribeListener`, is told of subscribers; the
+    ``headers`` dict goes into its connection header)."""
 
     def __init__(
         self,
@@ -100,7 +101,6 @@ class Publisher(_Topic):
         headers: Any = None,
         queue_size: int | None = None,
     ) -> None:
-        _unsupported("Publisher(headers=...)", headers)
         if queue_size is None:
             warnings.warn(
                 "The publisher should be created with an explicit keyword argument 'queue_size'.",
@@ -113,6 +113,7 @@ class Publisher(_Topic):
         self._publisher: Any = None
         self._unregistered = False
         self._listener = subscriber_listener
+        self._headers = {str(k): str(v) for k, v in (headers or {}).items()}
         self._unwatch: Callable[[], None] | None = None
         super().__init__(name, data_class)
 
@@ -122,17 +123,24 @@ class Publisher(_Topic):
                 self.data_class, self.resolved_name, self._qos
             )
             self._publish = self._publisher.publish
-            if self._listener is not None:
-                self._watch(node_state, self._listener)
+            if self._listener is not None or self._headers:
+                self._extend(node_state)
 
-    def _watch(self, node_state: core.NodeState, listener: Any) -> None:
+    def _extend(self, node_state: core.NodeState) -> None:
+        """The connection header's fields and the SubscribeListener, on the ROS 1
+        publication."""
         from robomodel.runtime.transport.ros1.publication import SubscriberWatch
 
-        watch = getattr(node_state.context.transport, "watch_subscribers", None)
-        if watch is None:
+        found = getattr(node_state.context.transport, "publication", None)
+        if found is None:
             raise NotImplementedError(
-                "rospy Publisher(subscriber_listener=...) needs the ROS 1 bus"
+                "rospy Publisher(subscriber_listener=..., headers=...) needs the ROS 1 bus"
             )
+        publication = found(node_state.node.fully_qualified_name, self._publisher.topic)
+        publication.header_fields.update(self._headers)
+        listener = self._listener
+        if listener is None:
+            return
 
         def connected(to_peer: Callable[[Message], None]) -> None:
             def peer_publish(*args: Any, **kwds: Any) -> None:
@@ -143,11 +151,14 @@ class Publisher(_Topic):
         def gone(remaining: int) -> None:
             listener.peer_unsubscribe(self.resolved_name, remaining)
 
-        self._unwatch = watch(
-            node_state.node.fully_qualified_name,
-            self._publisher.topic,
-            SubscriberWatch(connected, gone),
-        )
+        watch = SubscriberWatch(connected, gone)
+        publication.watches.append(watch)
+
+        def unwatch() -> None:
+            if watch in publication.watches:
+                publication.watches.remove(watch)
+
+        self._unwatch = unwatch
 
     def publish(self, *args: Any, **kwds: Any) -> None:
         """Publish a message, or the message that ``data_class(*args, **kwds)`` makes. As

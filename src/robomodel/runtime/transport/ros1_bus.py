@@ -36,7 +36,7 @@ from robomodel.runtime.transport.base import (
 from robomodel.runtime.transport.ros1.master import master_answers
 from robomodel.runtime.transport.ros1.names import bind_host, http_uri, master_uri
 from robomodel.runtime.transport.ros1.node_endpoint import NodeEndpoint
-from robomodel.runtime.transport.ros1.publication import Publication, SubscriberWatch
+from robomodel.runtime.transport.ros1.publication import Publication
 from robomodel.runtime.transport.ros1.ros1_types import (
     Ros1TypeError,
     robomodel_type_for,
@@ -199,21 +199,13 @@ class Ros1Transport(Transport):
 
         return _Handle(destroy)
 
-    def watch_subscribers(
-        self, node: str, topic: str, watch: SubscriberWatch
-    ) -> Callable[[], None]:
-        """Tell ``watch`` of the subscribers that connect to and leave ``node``'s publication
-        of ``topic`` (made already); returns the call that stops telling it."""
+    def publication(self, node: str, topic: str) -> Publication:
+        """``node``'s publication of ``topic`` (made already), for what rospy adds to it: the
+        fields of its connection header, a :class:`SubscriberWatch`."""
         publication = self._endpoint(node).publications.get(topic)
         if publication is None:
             raise Ros1TypeError(f"{node} publishes {topic} in this process only (no ROS 1 type)")
-        publication.watches.append(watch)
-
-        def unwatch() -> None:
-            if watch in publication.watches:
-                publication.watches.remove(watch)
-
-        return unwatch
+        return publication
 
     # -- types without a ROS 1 counterpart: this process only -----------------------------------
     def _local_publisher(self, topic: str, msg_type: type[Message]) -> PublisherHandle:

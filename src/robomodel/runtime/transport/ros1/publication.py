@@ -11,7 +11,8 @@ header and one throttled log line. A connection gives its slot back when it ends
 fails, or when its subscriber closes (a writer with nothing to write looks every
 ``PEER_CHECK_S`` whether its peer is gone, since a subscriber sends nothing after its header).
 
-A :class:`SubscriberWatch` (rospy's ``SubscribeListener``) is told of each subscriber that
+``header_fields`` go into the connection header (rospy's ``Publisher(headers=...)``), and a
+:class:`SubscriberWatch` (rospy's ``SubscribeListener``) is told of each subscriber that
 connects, with a way to publish to it alone, and of each that goes, with how many remain.
 """
 
@@ -153,6 +154,7 @@ class Publication:
         self._lock = threading.Lock()
         self.connections: list[_Outbound] = []
         self.watches: list[SubscriberWatch] = []
+        self.header_fields: dict[str, str] = {}  # rospy's Publisher(headers=...)
 
     def subscriber_count(self) -> int:
         """Subscriber connections now (rospy's ``get_num_connections()``): updated as they
@@ -232,17 +234,15 @@ class Publication:
     def _connect(self, sock: socket.socket, header: dict[str, str], peer: str) -> _Outbound:
         """The reply header written and the writer started (the slot taken is the caller's
         to give back if this fails)."""
-        write_header(
-            sock,
-            {
-                "callerid": self.caller_id,
-                "latching": "1" if self.latch else "0",
-                "md5sum": self.kind.md5sum,
-                "message_definition": self.kind.definition,
-                "topic": self.topic,
-                "type": self.kind.name,
-            },
-        )
+        fields = {
+            "callerid": self.caller_id,
+            "latching": "1" if self.latch else "0",
+            "md5sum": self.kind.md5sum,
+            "message_definition": self.kind.definition,
+            "topic": self.topic,
+            "type": self.kind.name,
+        }
+        write_header(sock, {**fields, **self.header_fields})  # as rospy: the user's win
         if header.get("tcp_nodelay") == "1":
             sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         return _Outbound(sock, peer, self.queue_size, self._forget)

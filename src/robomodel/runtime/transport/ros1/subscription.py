@@ -5,7 +5,8 @@
 Messages are decoded on the reader thread and handed to the executor through a queue of
 ``depth`` messages (the oldest dropped when the node falls behind); a callback wrapped in
 :class:`~robomodel.runtime.transport.base.OnReceivingThread` is called on the reader thread
-instead (rospy's, which queues and dispatches on threads of its own). A publisher that drops the
+instead (rospy's, which queues and dispatches on threads of its own), and a message whose class
+has genpy's ``_connection_header`` slot gets the publisher's connection header. A publisher that drops the
 connection while it is still registered is asked again after a growing pause (up to 2 s); a
 malformed message is dropped with a log line, and the connection closed.
 
@@ -61,6 +62,7 @@ class _Inbound:
         self.uri = uri
         self.peer = uri
         self.connected = False
+        self.header: dict[str, str] = {}  # the publisher's connection header
         self._alive = True
         self._warned = False
         self._sock: socket.socket | None = None
@@ -136,6 +138,7 @@ class _Inbound:
             sock.close()
             return None
         self.peer = header.get("callerid", self.uri)
+        self.header = header
         return sock
 
     def _read(self, sock: socket.socket) -> None:
@@ -175,6 +178,10 @@ class Subscription:
         self._executor = executor
         self._deliver = deliver
         self._in_place = isinstance(deliver, OnReceivingThread)
+        # rospy's messages carry the publisher's connection header (genpy's slot)
+        self._with_header = any(
+            "_connection_header" in getattr(c, "__slots__", ()) for c in type.mro(kind.cls)
+        )
         self._pending: collections.deque[Message] = collections.deque(maxlen=max(1, depth))
         self._lock = threading.Lock()
         self._scheduled = False
@@ -228,6 +235,8 @@ class Subscription:
                 "%s: dropping a malformed message from %s: %s", self.topic, connection.peer, exc
             )
             raise TcprosError("malformed message") from None
+        if self._with_header:
+            msg._connection_header = connection.header  # type: ignore[attr-defined]
         if self._in_place:
             if self._alive:
                 self._call(msg)
