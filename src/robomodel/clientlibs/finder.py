@@ -40,6 +40,10 @@ ALIASED = frozenset(
 )
 
 
+# Python modules of ROS 1 message packages that rospy programs import beside the messages.
+HELPERS = {"sensor_msgs.point_cloud2": f"{_HOME}.rospy.point_cloud2"}
+
+
 class _AliasLoader(_LoaderBase):
     """Gives the module ``target`` (imported once) under the alias being imported."""
 
@@ -110,6 +114,9 @@ class ClientLibraryFinder:
                 _AliasLoader(real),
                 is_package=found.submodule_search_locations is not None,
             )
+        helper = HELPERS.get(fullname)
+        if helper is not None:
+            return importlib.machinery.ModuleSpec(fullname, _AliasLoader(helper))
         if _may_be_interface_package(top):
             from robomodel.clientlibs import interfaces
 
