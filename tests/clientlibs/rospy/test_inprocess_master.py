@@ -297,3 +297,21 @@ def test_connection_headers_travel_with_messages_requests_and_responses(node: st
         service.shutdown()
         sub.unregister()
         pub.unregister()
+
+
+def test_what_is_published_before_unregister_is_delivered(node: str) -> None:
+    from std_msgs.msg import String
+
+    heard: list[int] = []
+    sub = rospy.Subscriber("/last_words", String, lambda m: heard.append(len(m.data)))
+    pub = rospy.Publisher("/last_words", String, queue_size=100)
+    try:
+        _connected(pub)
+        for n in range(20):  # 2 MB: more than the sockets hold, still queued at unregister
+            pub.publish("x" * (100_000 + n))
+        pub.unregister()  # as at shutdown, after on_shutdown hooks published
+        wait_until(lambda: len(heard) == 20, scaled(10), what="all 20 messages")
+        assert heard == [100_000 + n for n in range(20)]
+    finally:
+        sub.unregister()
+        pub.unregister()

@@ -23,6 +23,7 @@ import functools
 import itertools
 import socket
 import threading
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -48,6 +49,7 @@ __all__ = [
 # writer threads cost a few MiB.
 MAX_SUBSCRIBER_CONNECTIONS = 256
 PEER_CHECK_S = 1.0  # how soon an idle writer notices that its subscriber closed
+FLUSH_S = 1.0  # how long a closing publication lets its writers write what is queued
 _SLOTS = ByteBudget(MAX_SUBSCRIBER_CONNECTIONS)  # counts connections, one unit each
 _connection_ids = itertools.count(1)
 
@@ -78,6 +80,7 @@ class _Outbound:
         self._queue: collections.deque[bytes] = collections.deque(maxlen=max(1, queue_size))
         self._ready = threading.Condition()
         self._open = True
+        self._finishing = False  # write what is queued, then close
         self._closed = False
         self._on_close = on_close
         self.dropped = 0
@@ -99,11 +102,11 @@ class _Outbound:
         try:
             while True:
                 with self._ready:
-                    while self._open and not self._queue:
+                    while self._open and not self._queue and not self._finishing:
                         if not self._ready.wait(PEER_CHECK_S) and _peer_closed(self.sock):
                             log.debug("subscriber %r closed its connection", self.peer)
                             return
-                    if not self._open:
+                    if not self._open or not self._queue:
                         return
                     batch = list(self._queue)
                     self._queue.clear()
@@ -113,6 +116,16 @@ class _Outbound:
             log.debug("subscriber %s gone: %s", self.peer, exc)
         finally:
             self.close()
+
+    def finish(self, deadline: float) -> None:
+        """Write what is queued (until ``deadline``, ``time.monotonic()``), then close: the
+        last messages of a publisher that goes (rospy's ``on_shutdown`` hooks publish them)."""
+        with self._ready:
+            self._finishing = True
+            self._ready.notify()
+        if self._thread is not threading.current_thread():
+            self._thread.join(max(0.0, deadline - time.monotonic()))
+        self.close()
 
     def close(self) -> None:
         with self._ready:
@@ -258,7 +271,10 @@ class Publication:
             self._tell(watch.gone, remaining)
 
     def close(self) -> None:
+        """Close the connections, once each has written what is queued for it (within
+        ``FLUSH_S`` for them all)."""
         with self._lock:
             connections, self.connections = self.connections, []
+        deadline = time.monotonic() + FLUSH_S
         for connection in connections:
-            connection.close()
+            connection.finish(deadline)

@@ -8,7 +8,9 @@ Messages are decoded on the reader thread and handed to the executor through a q
 instead (rospy's, which queues and dispatches on threads of its own), and a message whose class
 has genpy's ``_connection_header`` slot gets the publisher's connection header. A publisher that drops the
 connection while it is still registered is asked again after a growing pause (up to 2 s); a
-malformed message is dropped with a log line, and the connection closed.
+malformed message is dropped with a log line, and the connection closed. A publisher no more
+listed (it unregistered) is read until it closes, at most ``RETIRE_S``: what it sent last
+arrives.
 
 Bounds: at most ``MAX_PUBLISHERS`` publishers per subscription (more are ignored, with one
 warning: a ``publisherUpdate`` listing 3,000 dead URIs made 3,000 threads); at most
@@ -49,6 +51,7 @@ if TYPE_CHECKING:
 __all__ = ["Subscription"]
 
 RETRY_MAX_S = 2.0
+RETIRE_S = 2.0  # how long a connection to a publisher no more listed reads what is on its way
 MAX_PUBLISHERS = 100  # per subscription; roscpp has no bound, a real graph has a handful
 MAX_CONNECTING = 16  # connection attempts of one subscription at once
 CONNECT_TIMEOUT_S = 5.0
@@ -64,6 +67,7 @@ class _Inbound:
         self.connected = False
         self.header: dict[str, str] = {}  # the publisher's connection header
         self._alive = True
+        self._retiring = False  # no more listed: read to the end, connect no more
         self._warned = False
         self._sock: socket.socket | None = None
         self._thread = threading.Thread(target=self._run, name="ros1-sub-reader", daemon=True)
@@ -82,7 +86,7 @@ class _Inbound:
                 if self._alive:
                     log.debug("%s from %s: %s", self.sub.topic, self.uri, exc)
             self.connected = False
-            if not self._alive:
+            if not self._alive or self._retiring:
                 return
             threading.Event().wait(pause_s)
             pause_s = min(RETRY_MAX_S, pause_s * 2)
@@ -153,6 +157,18 @@ class _Inbound:
         finally:
             sock.close()
 
+    def retire(self) -> None:
+        """The publisher is no more listed: read what it sent until it closes (as rospy, which
+        keeps a connection to its end; the last messages of a publisher that shuts down are
+        on their way), at most ``RETIRE_S``, and connect no more."""
+        self._retiring = True
+        if not self.connected:
+            self.close()
+            return
+        closer = threading.Timer(RETIRE_S, self.close)
+        closer.daemon = True
+        closer.start()
+
     def close(self) -> None:
         self._alive = False
         if self._sock is not None:
@@ -192,7 +208,7 @@ class Subscription:
         self.connecting = threading.BoundedSemaphore(MAX_CONNECTING)
 
     def update_publishers(self, uris: Sequence[str]) -> None:
-        """Connect to publishers newly listed, drop the ones no longer listed."""
+        """Connect to publishers newly listed; the ones no longer listed are retired."""
         wanted = []
         for uri in dict.fromkeys(uris):
             try:
@@ -209,7 +225,7 @@ class Subscription:
                 if uri not in self.inbound:
                     self.inbound[uri] = _Inbound(self, uri)
         for connection in gone:
-            connection.close()
+            connection.retire()
 
     def _within_bound(self, wanted: list[str]) -> list[str]:
         """At most MAX_PUBLISHERS of ``wanted``: those already connected first, then in the
