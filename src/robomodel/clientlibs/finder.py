@@ -36,7 +36,17 @@ _HOME = "robomodel.clientlibs"
 
 # Top-level names served from robomodel.clientlibs.<name>, when that sub-package exists.
 ALIASED = frozenset(
-    {"rclpy", "rospy", "genpy", "tf", "tf2_ros", "ament_index_python", "rospkg", "roslib"}
+    {
+        "rclpy",
+        "rospy",
+        "genpy",
+        "tf",
+        "tf2_ros",
+        "ament_index_python",
+        "rospkg",
+        "roslib",
+        "rostest",
+    }
 )
 
 
