@@ -7,10 +7,10 @@ Both variants run on robomodel's own master (``robomodel master``), one process 
 ``std_msgs/String`` at ``--rate`` Hz and another subscribing, over TCPROS. robomodel: a
 ``Context("ros1")`` node's ``create_publisher``/``create_subscription``, the subscriber spinning
 its context on the main thread. rospy: ``rospy.init_node``, ``rospy.Publisher(queue_size=100)``
-and ``rospy.Subscriber``, then ``rospy.spin()`` (callbacks on rospy's callback thread). Each
-message carries ``time.monotonic_ns()`` at publish in its text (one clock for every process of a
-Linux machine); the callback subtracts it. Rounds alternate the two, so the machine's load falls
-on both alike. Target: rospy's p50 and p99 within 1.2x robomodel's.
+and ``rospy.Subscriber``, then ``rospy.spin()`` (callbacks on the topic's callback thread, as
+rospy's). Each message carries ``time.monotonic_ns()`` at publish in its text (one clock for
+every process of a Linux machine); the callback subtracts it. Rounds alternate the two, so the
+machine's load falls on both alike. Target: rospy's p50 and p99 within 1.2x robomodel's.
 
 Node start-up: in a fresh process, ``import rospy; rospy.init_node('n')`` against ``from
 robomodel.runtime.context import Context; Context("ros1").create_node("n")``, from before the

@@ -36,8 +36,22 @@ _HOME = "robomodel.clientlibs"
 
 # Top-level names served from robomodel.clientlibs.<name>, when that sub-package exists.
 ALIASED = frozenset(
-    {"rclpy", "rospy", "genpy", "tf", "tf2_ros", "ament_index_python", "rospkg", "roslib"}
+    {
+        "rclpy",
+        "rospy",
+        "genpy",
+        "tf",
+        "tf2_ros",
+        "ament_index_python",
+        "rospkg",
+        "roslib",
+        "rostest",
+    }
 )
+
+
+# Python modules of ROS 1 message packages that rospy programs import beside the messages.
+HELPERS = {"sensor_msgs.point_cloud2": f"{_HOME}.rospy.point_cloud2"}
 
 
 class _AliasLoader(_LoaderBase):
@@ -110,6 +124,9 @@ class ClientLibraryFinder:
                 _AliasLoader(real),
                 is_package=found.submodule_search_locations is not None,
             )
+        helper = HELPERS.get(fullname)
+        if helper is not None:
+            return importlib.machinery.ModuleSpec(fullname, _AliasLoader(helper))
         key = (fullname, path is None, *_where_packages_are())
         close = _misses.get(key)
         if close is None:

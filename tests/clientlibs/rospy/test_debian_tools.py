@@ -150,6 +150,32 @@ def test_add_two_ints_answers_rosservice_and_the_tutorial_client(
     )
 
 
+def test_ctrl_c_ends_the_sleeping_loop_and_the_goodbye_is_heard(
+    graph: Graph, tmp_path: Path
+) -> None:
+    log, heard = tmp_path / "goodbye.log", tmp_path / "echo.log"
+    echo = graph.start([ROSTOPIC, "echo", "-p", "/farewell"], log=heard)
+    talker = graph.node("goodbye_talker", log=log)
+    graph.until(lambda: "still here" in _lines(heard), "rostopic echo hearing the talker")
+    # rospy's wall-clock sleep is not cut short: the loop ends at is_shutdown(), no traceback
+    assert end_process(talker, signal.SIGINT, timeout_s=scaled(20)) == 0, _lines(log)
+    assert "Traceback" not in _lines(log), _lines(log)
+    graph.until(lambda: "goodbye" in _lines(heard), "the on_shutdown hook's message")
+    graph.stop(echo)
+
+
+def test_a_rostest_node_passes_and_fails_by_its_exit_status(graph: Graph, tmp_path: Path) -> None:
+    talker = graph.node("talker", log=tmp_path / "talker.log")
+    passing = graph.node("hears_talker_test", str(scaled(30)), log=tmp_path / "pass.log")
+    assert passing.wait(scaled(60)) == 0, _lines(tmp_path / "pass.log")
+    assert "test_hears_hello" in _lines(tmp_path / "pass.log")
+    assert end_process(talker, signal.SIGINT, timeout_s=scaled(20)) == 0
+    graph.until(lambda: not any(n.startswith("/talker_") for n in _nodes(graph)), "no talker")
+    failing = graph.node("hears_talker_test", "1", log=tmp_path / "fail.log")
+    assert failing.wait(scaled(60)) == 1, _lines(tmp_path / "fail.log")
+    assert "FAILED (failures=1)" in _lines(tmp_path / "fail.log")
+
+
 def _results(log: Path) -> dict[str, object]:
     found: dict[str, object] = {}
     for line in _lines(log).splitlines():

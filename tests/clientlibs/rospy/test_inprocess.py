@@ -8,6 +8,7 @@ import importlib.util
 import itertools
 import math
 import operator
+import threading
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -20,6 +21,7 @@ from robomodel.clientlibs.rospy import core
 from robomodel.clientlibs.rospy.names import parse_command_line, resolve, resolve_remappings
 from robomodel.clientlibs.rospy.service import response_of
 from robomodel.runtime.msg.types.std_msgs import String
+from tests.timing import scaled, wait_until
 
 GENPY_ROSTIME = Path("/usr/lib/python3/dist-packages/genpy/rostime.py")
 
@@ -282,17 +284,28 @@ def test_rate_and_sleep_follow_ros_time(manual_node: Any) -> None:
 
 
 def test_timer_events_in_ros_time(manual_node: Any) -> None:
-    context, _ = manual_node
+    _, clock = manual_node
     events: list[Any] = []
     once: list[Any] = []
     timer = rospy.Timer(rospy.Duration(0.5), events.append)
-    rospy.Timer(rospy.Duration(0.25), once.append, oneshot=True)
-    context.advance(1.6)
+    oneshot = rospy.Timer(rospy.Duration(0.25), once.append, oneshot=True)
+    assert timer.is_alive() and timer is not threading.current_thread()  # a thread, as rospy's
+    for step in range(1, 17):  # to 101.6 in steps of 0.1 s, each tick waited for
+        clock.set(100.0 + 0.1 * step)
+        due = (int(0.1 * step / 0.5 + 1e-9), int(step >= 3))
+        wait_until(
+            lambda due=due: (len(events), len(once)) == due,  # type: ignore[misc]
+            scaled(5),
+            what=f"the timers' calls at {clock.now_s():.1f} s",
+        )
     assert [e.current_expected.to_sec() for e in events] == [100.5, 101.0, 101.5]
     assert events[0].last_expected is None and events[0].last_duration is None
     assert events[2].last_expected == events[1].current_expected
     assert events[2].last_real == events[1].current_real
-    assert len(once) == 1 and once[0].current_real.to_sec() == pytest.approx(100.25)
+    assert events[1].current_real.to_sec() == pytest.approx(101.0)
+    assert len(once) == 1 and once[0].current_real.to_sec() == pytest.approx(100.3)
+    wait_until(lambda: not oneshot.is_alive(), scaled(5), what="the oneshot timer's end")
     timer.shutdown()
-    context.advance(1.0)
-    assert len(events) == 3 and not timer.is_alive()
+    clock.set(102.1)  # the timer's next tick: it ends there without calling
+    wait_until(lambda: not timer.is_alive(), scaled(5), what="the timer's end")
+    assert len(events) == 3

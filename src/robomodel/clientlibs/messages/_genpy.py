@@ -282,10 +282,13 @@ class GenpyFlavour:
         g = SourceGen({"_new": object.__new__, "_cls": cls, "_MISSING": _MISSING})
         names = [n for n, _ in cls.__fields__]
         g.env.update({f"_d_{n}": d for n, d in cls.__defaults__.items()})  # type: ignore[attr-defined]
-        g.emit(0, f"def __from_fields__({', '.join(f'{n}=_MISSING' for n in names)}):")
+        # the ROS 1 only fields (a Header's seq) by keyword: the ROS 1 decoder gives them
+        keywords = [f"{n}=0" for n, _ in extra]
+        params = [f"{n}=_MISSING" for n in names] + (["*", *keywords] if keywords else [])
+        g.emit(0, f"def __from_fields__({', '.join(params)}):")
         g.emit(1, "_o = _new(_cls)")
         for name, _ in extra:
-            g.emit(1, f"_o.{name} = 0")
+            g.emit(1, f"_o.{name} = {name}")
         for name in names:
             g.emit(1, f"_o.{name} = _d_{name}() if {name} is _MISSING else {name}")
         g.emit(1, "return _o")

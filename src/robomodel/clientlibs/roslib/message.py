@@ -1,10 +1,30 @@
-"""``roslib.message``: message and service classes by name, of rospy's (genpy's) flavour."""
+"""``roslib.message``: message and service classes by name, of rospy's (genpy's) flavour,
+and genpy's names that roslib re-exports (``roslib.message.Message``: ROS 1's
+``sensor_msgs.point_cloud2`` checks its clouds against it)."""
 
 from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["get_message_class", "get_service_class"]
+from robomodel.clientlibs.genpy import (
+    DeserializationError,
+    Duration,
+    Message,
+    SerializationError,
+    Time,
+    TVal,
+)
+
+__all__ = [
+    "DeserializationError",
+    "Duration",
+    "Message",
+    "SerializationError",
+    "TVal",
+    "Time",
+    "get_message_class",
+    "get_service_class",
+]
 
 
 def get_message_class(message_type: str, reload_on_error: bool = False) -> Any:

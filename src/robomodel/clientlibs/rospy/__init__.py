@@ -78,7 +78,12 @@ from robomodel.clientlibs.rospy.exceptions import (
 from robomodel.clientlibs.rospy.rostime import Duration, Time, get_rostime, get_time
 from robomodel.clientlibs.rospy.service import Service, ServiceProxy, wait_for_service
 from robomodel.clientlibs.rospy.timer import Rate, Timer, TimerEvent, sleep
-from robomodel.clientlibs.rospy.topics import Publisher, Subscriber, wait_for_message
+from robomodel.clientlibs.rospy.topics import (
+    Publisher,
+    SubscribeListener,
+    Subscriber,
+    wait_for_message,
+)
 
 __all__ = [
     "DEBUG",
@@ -166,7 +171,6 @@ __all__ = [
 # rospy's names that robomodel does not offer: each raises NotImplementedError when used.
 UNSUPPORTED = {
     "AnyMsg": "rospy.AnyMsg (subscribing to any type without its class)",
-    "SubscribeListener": "rospy.SubscribeListener (publisher callbacks on connect)",
     "MasterProxy": "rospy.MasterProxy (rospy's dict-like parameter server proxy)",
     "get_master": "rospy.get_master() (the master's XML-RPC proxy)",
     "get_ros_root": "rospy.get_ros_root() (there is no ROS installation)",
@@ -189,7 +193,6 @@ class _Unsupported:
 
 
 AnyMsg = _Unsupported(UNSUPPORTED["AnyMsg"])
-SubscribeListener = _Unsupported(UNSUPPORTED["SubscribeListener"])
 MasterProxy = _Unsupported(UNSUPPORTED["MasterProxy"])
 get_master = _Unsupported(UNSUPPORTED["get_master"])
 get_ros_root = _Unsupported(UNSUPPORTED["get_ros_root"])

@@ -133,6 +133,15 @@ def on_shutdown(hook: Callable[[], Any]) -> None:
 
 
 _PENDING_HOOKS: list[Callable[[], Any]] = []
+_AFTER_TEARDOWN: list[Callable[[], None]] = []
+
+
+def after_teardown(close: Callable[[], None]) -> None:
+    """Call ``close()`` once the node's topics and services are gone (the callback threads
+    stop then)."""
+    _AFTER_TEARDOWN.append(close)
+
+
 _DEFERRED: list[Callable[[NodeState], None]] = []
 
 
@@ -186,6 +195,8 @@ def _teardown() -> None:
                 _emit(ERROR, f"on_shutdown hook {hook!r} failed: {exc}", None)
         if node_state is not None:
             node_state.context.shutdown()
+        for close in _AFTER_TEARDOWN:
+            close()
     finally:
         _tearing.on = False
         _LIFE.done.set()

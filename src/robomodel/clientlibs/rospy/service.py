@@ -15,6 +15,7 @@ from robomodel.clientlibs.rospy.exceptions import (
 )
 from robomodel.runtime.msg import Message
 from robomodel.runtime.msg.schema import Service as ServiceType
+from robomodel.runtime.transport.base import OnReceivingThread
 
 __all__ = ["Service", "ServiceProxy", "wait_for_service"]
 
@@ -69,7 +70,8 @@ def response_of(answer: Any, response_class: Any) -> Message:
 
 
 class Service:
-    """Answers ``name`` with ``handler(request)`` on the node's callback thread."""
+    """Answers ``name`` with ``handler(request)``, as rospy on the thread of the client's
+    connection: calls from several clients are answered at once."""
 
     def __init__(
         self,
@@ -87,7 +89,7 @@ class Service:
         self.handler = handler
         self._error_handler = error_handler
         self._server: Any = node_state.node.create_service(
-            self.service_class, self.resolved_name, self._answer
+            self.service_class, self.resolved_name, OnReceivingThread(self._answer)
         )
 
     def _answer(self, request: Any) -> Message:
@@ -116,7 +118,9 @@ class Service:
 
 class ServiceProxy:
     """Calls service ``name``: ``proxy(a, b)``, ``proxy(request)`` or ``proxy(a=1, b=2)``.
-    ServiceException when no provider answers or the provider answers an error."""
+    ServiceException when no provider answers or the provider answers an error. ``headers``
+    go into the connection header, which the provider's request carries as
+    ``_connection_header``; the response carries the provider's."""
 
     def __init__(
         self,
@@ -125,13 +129,12 @@ class ServiceProxy:
         persistent: bool = False,
         headers: Any = None,
     ) -> None:
-        if headers:
-            raise NotImplementedError("rospy ServiceProxy(headers=...) is not offered")
         self.service_class = _check_class(service_class, name)
         self.request_class = _request_class(self.service_class)
         self.response_class = _response_class(self.service_class)
         self.resolved_name = core.resolve_name(name)
         self.persistent = persistent  # every call opens its connection: the same answers
+        self.headers = {str(k): str(v) for k, v in (headers or {}).items()}
 
     def __call__(self, *args: Any, **kwds: Any) -> Any:
         return self.call(*args, **kwds)
@@ -153,6 +156,17 @@ class ServiceProxy:
 
         node_state = core.current()
         try:
+            if self.headers:  # over the wire, where the connection header travels
+                kind = ros1_service_type(self.service_class)
+                return call_service(
+                    _master_uri(),
+                    core.get_name(),
+                    self.resolved_name,
+                    kind,
+                    request,
+                    CALL_TIMEOUT_S,
+                    header_fields=self.headers,
+                )
             if node_state is not None:  # this process's own services are called in place
                 return node_state.context.transport.call_service(
                     self.resolved_name,

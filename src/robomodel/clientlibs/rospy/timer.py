@@ -1,24 +1,40 @@
-"""rospy's ``sleep``, ``Rate`` and ``Timer``, in ROS time: a sleep ends early, raising
-ROSInterruptException, when the node shuts down."""
+"""rospy's ``sleep``, ``Rate`` and ``Timer``, in ROS time. As rospy's: a sleep in wall-clock
+time sleeps its whole duration even when the node shuts down meanwhile (a loop
+``while not rospy.is_shutdown()`` then ends), a sleep in simulated time ends early at shutdown,
+raising ROSInterruptException; each Timer is a thread of its own.
+
+Bound: at most ``MAX_TIMER_THREADS`` Timers alive at once in a process; one more raises
+ROSException naming the bound (:func:`timer_threads` counts them)."""
 
 from __future__ import annotations
 
 import threading
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from robomodel.clientlibs.rospy import core
 from robomodel.clientlibs.rospy.exceptions import (
+    ROSException,
     ROSInterruptException,
     ROSTimeMovedBackwardsException,
 )
 from robomodel.clientlibs.rospy.rostime import Duration, Time
 from robomodel.runtime.clock import SystemClock
 
-__all__ = ["Rate", "Timer", "TimerEvent", "sleep"]
+__all__ = ["MAX_TIMER_THREADS", "Rate", "Timer", "TimerEvent", "sleep", "timer_threads"]
 
 _SIM_POLL_S = 0.001  # how often a sleep in sim time (or any clock but the wall's) looks at it
+# rospy's Timers are threads without bound; a node has a few. 256 threads cost a few MiB.
+MAX_TIMER_THREADS = 256
+_alive_timers = 0
+_count_lock = threading.Lock()
+
+
+def timer_threads() -> int:
+    """The Timer threads alive in this process now."""
+    return _alive_timers
 
 
 def _seconds(duration: Any) -> float:
@@ -33,9 +49,14 @@ def sleep(duration: Any) -> None:
 
 def _sleep_until(end_s: float) -> None:
     clock = core.state().node.get_clock()
+    if isinstance(clock, SystemClock):
+        remaining_s = end_s - clock.now_s()
+        while remaining_s > 0:  # as rospy's wall-clock sleep: shutdown does not end it
+            time.sleep(remaining_s)
+            remaining_s = end_s - clock.now_s()
+        return
     stop = core.shutdown_event()
     start_s = clock.now_s()
-    sim = not isinstance(clock, SystemClock)
     while True:
         now_s = clock.now_s()
         if stop.is_set():
@@ -44,7 +65,7 @@ def _sleep_until(end_s: float) -> None:
             raise ROSTimeMovedBackwardsException(start_s - now_s)
         if now_s >= end_s:
             return
-        stop.wait(_SIM_POLL_S if sim else end_s - now_s)
+        stop.wait(_SIM_POLL_S)
 
 
 class Rate:
@@ -103,9 +124,10 @@ class TimerEvent:
     last_duration: float | None
 
 
-class Timer:
-    """Calls ``callback(TimerEvent)`` every ``period`` (a Duration) of ROS time, on the node's
-    callback thread, until :meth:`shutdown` (or once, with ``oneshot``)."""
+class Timer(threading.Thread):
+    """Calls ``callback(TimerEvent)`` every ``period`` (a Duration) of ROS time, on a thread of
+    its own (rospy's Timer is a thread), until :meth:`shutdown` or the node's shutdown (or
+    once, with ``oneshot``). A Timer shut down ends at its next tick, without calling."""
 
     def __init__(
         self,
@@ -114,52 +136,67 @@ class Timer:
         oneshot: bool = False,
         reset: bool = False,
     ) -> None:
-        self._period = period
-        self._period_s = _seconds(period)
-        if not self._period_s > 0:
-            raise ValueError(f"Timer needs a period > 0 s, got {self._period_s}")
+        period_s = _seconds(period)
+        if not period_s > 0:
+            raise ValueError(f"Timer needs a period > 0 s, got {period_s}")
+        super().__init__(name="rospy-timer", daemon=True)
+        self._period = period if isinstance(period, Duration) else Duration.from_sec(period_s)
         self._callback = callback
         self._oneshot = oneshot
-        self._last_expected: Time | None = None
-        self._last_real: Time | None = None
-        self._last_duration: float | None = None
-        self._lock = threading.Lock()
-        node = core.state().node
-        self._clock = node.get_clock()
-        self._start_s = self._clock.now_s()
-        self._ticks = 0
-        self._timer = node.create_timer(self._period_s, self._fire)
-
-    def _fire(self) -> None:
-        if core.is_shutdown():
-            self.shutdown()
-            return
-        self._ticks += 1
-        expected = Time.from_sec(self._start_s + self._ticks * self._period_s)
-        real = Time.from_sec(self._clock.now_s())
-        event = TimerEvent(
-            self._last_expected, self._last_real, expected, real, self._last_duration
-        )
-        if self._oneshot:
-            self.shutdown()
-        started_s = self._clock.now_s()
-        self._callback(event)
-        self._last_duration = self._clock.now_s() - started_s
-        self._last_expected, self._last_real = expected, real
+        self._shutdown = False
+        self._rate = Rate(1.0 / period_s, reset=reset)
+        self._first_expected = self._rate.last_time + self._period
+        _take_timer()
+        try:
+            self.start()
+        except BaseException:
+            _give_timer()
+            raise
 
     def shutdown(self) -> None:
         """Stop calling the callback."""
-        self._timer.cancel()
+        self._shutdown = True
 
-    def is_alive(self) -> bool:
-        """Whether the timer still calls its callback (rospy's Timer is a thread)."""
-        return not self._timer.cancelled and not core.is_shutdown()
+    def run(self) -> None:
+        try:
+            self._loop()
+        finally:
+            _give_timer()
 
-    def join(self, timeout: float | None = None) -> None:
-        """Wait until the timer is shut down, at most ``timeout`` seconds (rospy's Timer is a
-        thread)."""
-        import time
+    def _loop(self) -> None:
+        expected = self._first_expected
+        last_expected: Time | None = None
+        last_real: Time | None = None
+        last_duration: float | None = None
+        while not (core.is_shutdown() or self._shutdown):
+            try:
+                self._rate.sleep()
+            except ROSInterruptException:
+                return
+            if core.is_shutdown() or self._shutdown:
+                return
+            real = Time(0, core.state().node.get_clock().now_ns())
+            started = time.monotonic()
+            self._callback(TimerEvent(last_expected, last_real, expected, real, last_duration))
+            if self._oneshot:
+                return
+            last_duration = time.monotonic() - started
+            last_expected, last_real = expected, real
+            expected = expected + self._period
 
-        end = None if timeout is None else time.monotonic() + timeout
-        while self.is_alive() and (end is None or time.monotonic() < end):
-            core.shutdown_event().wait(0.05)
+
+def _take_timer() -> None:
+    global _alive_timers
+    with _count_lock:
+        if _alive_timers >= MAX_TIMER_THREADS:
+            raise ROSException(
+                f"more than {MAX_TIMER_THREADS} rospy Timers alive at once in this process "
+                "(MAX_TIMER_THREADS): shut some down first"
+            )
+        _alive_timers += 1
+
+
+def _give_timer() -> None:
+    global _alive_timers
+    with _count_lock:
+        _alive_timers -= 1

@@ -41,6 +41,12 @@ ExtrapolationException = ExtrapolationError
 _DEFAULT_CACHE_S = 10.0
 
 
+def _frame(frame_id: str) -> str:
+    """A frame id as tf hands it to tf2: one leading ``/`` stripped (tf's
+    ``strip_leading_slash``; ROS 1 code names frames ``/turtle1``)."""
+    return frame_id[1:] if frame_id.startswith("/") else frame_id
+
+
 def _seconds(duration: Any) -> float:
     return float(duration.to_sec()) if hasattr(duration, "to_sec") else float(duration)
 
@@ -109,11 +115,13 @@ class Transformer:
         """``((x, y, z), (qx, qy, qz, qw))``: the pose of ``source_frame`` in
         ``target_frame`` at ``time`` (``rospy.Time(0)``: the latest). tf.LookupException,
         ConnectivityException or ExtrapolationException when it cannot be had."""
-        found = self.buffer.lookup_transform(target_frame, source_frame, stamp_ns(time))
+        found = self.buffer.lookup_transform(
+            _frame(target_frame), _frame(source_frame), stamp_ns(time)
+        )
         return found.translation_m, found.rotation_xyzw
 
     def canTransform(self, target_frame: str, source_frame: str, time: Any) -> bool:
-        return self.buffer.can_transform(target_frame, source_frame, stamp_ns(time))
+        return self.buffer.can_transform(_frame(target_frame), _frame(source_frame), stamp_ns(time))
 
     def waitForTransform(
         self,
@@ -140,7 +148,9 @@ class Transformer:
 
     def getLatestCommonTime(self, source_frame: str, target_frame: str) -> Any:
         """The latest time at which both frames are known (rospy.Time)."""
-        return _rospy_time(self.buffer.latest_common_time_ns(target_frame, source_frame))
+        return _rospy_time(
+            self.buffer.latest_common_time_ns(_frame(target_frame), _frame(source_frame))
+        )
 
     def frameExists(self, frame_id: str) -> bool:
         with self._lock:

@@ -4,7 +4,9 @@ ROS 1 (a master, XML-RPC and TCPROS).
 A transport moves messages between publishers and subscriptions, requests and replies between
 service clients and servers, and answers graph queries. It never calls user code on its own
 threads: deliveries and service requests are posted to the context's executor, so callbacks and
-handlers run on the spinning thread, one at a time.
+handlers run on the spinning thread, one at a time. The exception is a callback wrapped in
+:class:`OnReceivingThread`, which the ROS 1 transport calls on the thread that received the
+message or request (rospy's threading).
 
 Nodes are named by their fully qualified name (``/ns/name``); every endpoint belongs to one.
 Message and service types are the classes of :mod:`robomodel.runtime.msg`; how they travel (CDR,
@@ -28,6 +30,7 @@ __all__ = [
     "Endpoint",
     "Graph",
     "MessageInfo",
+    "OnReceivingThread",
     "PublisherHandle",
     "ServiceCallError",
     "ServiceHandle",
@@ -63,6 +66,23 @@ class Deferred:
             callback(self.response)
         else:
             self._callbacks.append(callback)
+
+
+class OnReceivingThread:
+    """A subscription callback or service handler that the ROS 1 transport calls on the thread
+    that received the message (a publisher connection's reader) or the request (a client
+    connection's thread, or the in-process caller's), not on the executor's: rospy's threading,
+    where handlers of concurrent calls run at once. It must be thread-safe, and a subscription's
+    must return quickly (its connection reads nothing meanwhile). Other transports call it on
+    the executor's thread, as any callback."""
+
+    __slots__ = ("callback",)
+
+    def __init__(self, callback: Callable[[Any], Any]) -> None:
+        self.callback = callback
+
+    def __call__(self, value: Any) -> Any:
+        return self.callback(value)
 
 
 ServiceHandler = Callable[[Any], Any]

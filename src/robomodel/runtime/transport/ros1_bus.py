@@ -25,6 +25,7 @@ from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
     Graph,
+    OnReceivingThread,
     PublisherHandle,
     ServiceCallError,
     ServiceHandle,
@@ -198,6 +199,14 @@ class Ros1Transport(Transport):
 
         return _Handle(destroy)
 
+    def publication(self, node: str, topic: str) -> Publication:
+        """``node``'s publication of ``topic`` (made already), for what rospy adds to it: the
+        fields of its connection header, a :class:`SubscriberWatch`."""
+        publication = self._endpoint(node).publications.get(topic)
+        if publication is None:
+            raise Ros1TypeError(f"{node} publishes {topic} in this process only (no ROS 1 type)")
+        return publication
+
     # -- types without a ROS 1 counterpart: this process only -----------------------------------
     def _local_publisher(self, topic: str, msg_type: type[Message]) -> PublisherHandle:
         log.debug(
@@ -276,7 +285,8 @@ class Ros1Transport(Transport):
     def _call_local(
         self, name: str, handler: ServiceHandler, request: Message, timeout_s: float
     ) -> Message:
-        if self.executor.spinner in (None, threading.get_ident()):
+        in_place = isinstance(handler, OnReceivingThread)
+        if in_place or self.executor.spinner in (None, threading.get_ident()):
             answer = handler(request)
             if isinstance(answer, Deferred):
                 if answer.response is None:

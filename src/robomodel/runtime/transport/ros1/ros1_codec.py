@@ -258,6 +258,7 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
     ours = g.classes(type_name)
     names = {n for n, _ in ours.__fields__} if ours is not None else None
     args = []
+    kept = []  # a face's fields that only ROS 1 has (genpy's Header.seq), given by keyword
     for field_name, desc in g.defs[type_name][1]:
         if field_name == PLACEHOLDER:
             continue
@@ -265,6 +266,8 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
         special = g.special(type_name, field_name)
         target = special.name if special is not None else field_name
         if names is not None and target not in names:
+            if target in getattr(ours, "__slots__", ()) and hasattr(ours, "__from_fields__"):
+                kept.append(f"{target}={value}")
             continue
         if special is not None and special.from_ros1 is not None:
             value = f"{g.ref(special.from_ros1, 'cv')}({value})"
@@ -278,7 +281,7 @@ def _dec_message(g: _Gen, d: int, type_name: str) -> str:
     cut = 0
     while cut < min(len(args), len(order)) and args[cut][0] == order[cut]:
         cut += 1
-    parts = [v for _, v in args[:cut]] + [f"{t}={v}" for t, v in args[cut:]]
+    parts = [v for _, v in args[:cut]] + [f"{t}={v}" for t, v in args[cut:]] + kept
     return f"{g.ref(_maker(ours), 'T')}({', '.join(parts)})"
 
 

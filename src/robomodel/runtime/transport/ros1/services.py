@@ -3,8 +3,9 @@
 Server: a connection's header names the service; the reply header carries the md5sums and
 types (a ``probe=1`` connection, as ``rosservice type`` makes, ends there); then each request
 frame is answered with an ok byte and the response (1), or the error text (0). The handler runs
-on the executor's thread, as every robomodel callback; a :class:`Deferred` answer is written
-when it resolves.
+on the executor's thread, as every robomodel callback (one wrapped in :class:`OnReceivingThread`
+runs on the connection's thread, as rospy runs its handlers); a :class:`Deferred` answer is
+written when it resolves.
 
 Bound: at most ``MAX_SERVICE_CONNECTIONS`` client connections at once in one process, across its
 nodes and services, each served on a thread of its own for its lifetime; past it a new one is
@@ -24,7 +25,12 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel.runtime.msg import Message
 from robomodel.runtime.transport._failures import log_failure
-from robomodel.runtime.transport.base import Deferred, ServiceCallError, ServiceHandler
+from robomodel.runtime.transport.base import (
+    Deferred,
+    OnReceivingThread,
+    ServiceCallError,
+    ServiceHandler,
+)
 from robomodel.runtime.transport.ros1.budget import ByteBudget
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
@@ -139,17 +145,17 @@ class ServiceServer:
                 return
             except TcprosError:
                 return  # the client is done
-            ok, body = self._answer(payload)
+            ok, body = self._answer(payload, header)
             sock.sendall(b"\x01" if ok else b"\x00")
             write_frame(sock, body)
             if not persistent:
                 return
 
-    def _answer(self, payload: bytes) -> tuple[bool, bytes]:
+    def _answer(self, payload: bytes, header: dict[str, str]) -> tuple[bool, bytes]:
         from robomodel.runtime.transport.ros1.ros1_types import Ros1CodecError
 
         try:
-            request = self.kind.request.decode(payload)
+            request = _with_header(self.kind.request.decode(payload), header)
         except Ros1CodecError as exc:
             return False, f"malformed request: {exc}".encode()
         done = threading.Event()
@@ -172,7 +178,10 @@ class ServiceServer:
             else:
                 finish(answer)
 
-        self._executor.post(run)
+        if isinstance(self.handler, OnReceivingThread):
+            run()
+        else:
+            self._executor.post(run)
         if not done.wait(HANDLER_TIMEOUT_S):
             return False, f"service [{self.name}] did not answer in {HANDLER_TIMEOUT_S} s".encode()
         if "error" in box:
@@ -218,8 +227,12 @@ def call_service(
     kind: Ros1ServiceType,
     request: Message,
     timeout_s: float,
+    *,
+    header_fields: dict[str, str] | None = None,
 ) -> Message:
-    """Call ``name`` through the master's registration; ServiceCallError if it fails."""
+    """Call ``name`` through the master's registration; ServiceCallError if it fails.
+    ``header_fields`` go into the connection header (rospy's ``ServiceProxy(headers=...)``);
+    a response whose class has genpy's ``_connection_header`` slot gets the provider's."""
     deadline = time.monotonic() + timeout_s
     host, port = _lookup(master, caller_id, name, timeout_s)
     try:
@@ -227,6 +240,7 @@ def call_service(
             write_header(
                 sock,
                 {
+                    **(header_fields or {}),
                     "callerid": caller_id,
                     "md5sum": kind.md5sum,
                     "persistent": "0",
@@ -245,4 +259,11 @@ def call_service(
         raise ServiceCallError(f"service '{name}' did not answer: {exc}") from None
     if ok != b"\x01":
         raise ServiceCallError(f"service '{name}' failed: {body.decode(errors='replace')}")
-    return kind.response.decode(body)
+    return _with_header(kind.response.decode(body), header)
+
+
+def _with_header(msg: Message, header: dict[str, str]) -> Message:
+    """``msg`` with the connection header, if its class keeps one (genpy's, for rospy)."""
+    if any("_connection_header" in getattr(c, "__slots__", ()) for c in type(msg).__mro__):
+        msg._connection_header = header  # type: ignore[attr-defined]
+    return msg

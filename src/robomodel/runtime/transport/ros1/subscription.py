@@ -3,9 +3,14 @@
 (``requestTopic``), connects, exchanges headers and reads messages.
 
 Messages are decoded on the reader thread and handed to the executor through a queue of
-``depth`` messages (the oldest dropped when the node falls behind). A publisher that drops the
+``depth`` messages (the oldest dropped when the node falls behind); a callback wrapped in
+:class:`~robomodel.runtime.transport.base.OnReceivingThread` is called on the reader thread
+instead (rospy's, which queues and dispatches on threads of its own), and a message whose class
+has genpy's ``_connection_header`` slot gets the publisher's connection header. A publisher that drops the
 connection while it is still registered is asked again after a growing pause (up to 2 s); a
-malformed message is dropped with a log line, and the connection closed.
+malformed message is dropped with a log line, and the connection closed. A publisher no more
+listed (it unregistered) is read until it closes, at most ``RETIRE_S``: what it sent last
+arrives.
 
 Bounds: at most ``MAX_PUBLISHERS`` publishers per subscription (more are ignored, with one
 warning: a ``publisherUpdate`` listing 3,000 dead URIs made 3,000 threads); at most
@@ -27,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 from robomodel._escape import escape_name
 from robomodel.runtime.msg import Message
+from robomodel.runtime.transport.base import OnReceivingThread
 from robomodel.runtime.transport.ros1.names import split_uri
 from robomodel.runtime.transport.ros1.tcpros import (
     MAX_FRAME_BYTES,
@@ -45,6 +51,7 @@ if TYPE_CHECKING:
 __all__ = ["Subscription"]
 
 RETRY_MAX_S = 2.0
+RETIRE_S = 2.0  # how long a connection to a publisher no more listed reads what is on its way
 MAX_PUBLISHERS = 100  # per subscription; roscpp has no bound, a real graph has a handful
 MAX_CONNECTING = 16  # connection attempts of one subscription at once
 CONNECT_TIMEOUT_S = 5.0
@@ -58,7 +65,9 @@ class _Inbound:
         self.uri = uri
         self.peer = uri
         self.connected = False
+        self.header: dict[str, str] = {}  # the publisher's connection header
         self._alive = True
+        self._retiring = False  # no more listed: read to the end, connect no more
         self._warned = False
         self._sock: socket.socket | None = None
         self._thread = threading.Thread(target=self._run, name="ros1-sub-reader", daemon=True)
@@ -77,7 +86,7 @@ class _Inbound:
                 if self._alive:
                     log.debug("%s from %s: %s", self.sub.topic, self.uri, exc)
             self.connected = False
-            if not self._alive:
+            if not self._alive or self._retiring:
                 return
             threading.Event().wait(pause_s)
             pause_s = min(RETRY_MAX_S, pause_s * 2)
@@ -133,6 +142,7 @@ class _Inbound:
             sock.close()
             return None
         self.peer = header.get("callerid", self.uri)
+        self.header = header
         return sock
 
     def _read(self, sock: socket.socket) -> None:
@@ -146,6 +156,18 @@ class _Inbound:
                     sub.receive(data, self)
         finally:
             sock.close()
+
+    def retire(self) -> None:
+        """The publisher is no more listed: read what it sent until it closes (as rospy, which
+        keeps a connection to its end; the last messages of a publisher that shuts down are
+        on their way), at most ``RETIRE_S``, and connect no more."""
+        self._retiring = True
+        if not self.connected:
+            self.close()
+            return
+        closer = threading.Timer(RETIRE_S, self.close)
+        closer.daemon = True
+        closer.start()
 
     def close(self) -> None:
         self._alive = False
@@ -171,6 +193,11 @@ class Subscription:
         self.kind = kind
         self._executor = executor
         self._deliver = deliver
+        self._in_place = isinstance(deliver, OnReceivingThread)
+        # rospy's messages carry the publisher's connection header (genpy's slot)
+        self._with_header = any(
+            "_connection_header" in getattr(c, "__slots__", ()) for c in type.mro(kind.cls)
+        )
         self._pending: collections.deque[Message] = collections.deque(maxlen=max(1, depth))
         self._lock = threading.Lock()
         self._scheduled = False
@@ -181,7 +208,7 @@ class Subscription:
         self.connecting = threading.BoundedSemaphore(MAX_CONNECTING)
 
     def update_publishers(self, uris: Sequence[str]) -> None:
-        """Connect to publishers newly listed, drop the ones no longer listed."""
+        """Connect to publishers newly listed; the ones no longer listed are retired."""
         wanted = []
         for uri in dict.fromkeys(uris):
             try:
@@ -198,7 +225,7 @@ class Subscription:
                 if uri not in self.inbound:
                     self.inbound[uri] = _Inbound(self, uri)
         for connection in gone:
-            connection.close()
+            connection.retire()
 
     def _within_bound(self, wanted: list[str]) -> list[str]:
         """At most MAX_PUBLISHERS of ``wanted``: those already connected first, then in the
@@ -224,6 +251,12 @@ class Subscription:
                 "%s: dropping a malformed message from %s: %s", self.topic, connection.peer, exc
             )
             raise TcprosError("malformed message") from None
+        if self._with_header:
+            msg._connection_header = connection.header  # type: ignore[attr-defined]
+        if self._in_place:
+            if self._alive:
+                self._call(msg)
+            return
         with self._lock:
             if len(self._pending) == self._pending.maxlen:
                 self.dropped += 1
@@ -241,10 +274,13 @@ class Subscription:
         for msg in batch:
             if not self._alive:
                 return
-            try:
-                self._deliver(msg)
-            except Exception:
-                log.exception("error handling a message on %s", self.topic)
+            self._call(msg)
+
+    def _call(self, msg: Message) -> None:
+        try:
+            self._deliver(msg)
+        except Exception:
+            log.exception("error handling a message on %s", self.topic)
 
     def close(self) -> None:
         with self._lock:
