@@ -66,3 +66,18 @@ def test_a_typo_is_still_named_the_second_time() -> None:
     for _ in range(2):
         with pytest.raises(ModuleNotFoundError, match="std_msgs"):
             found.find_spec("std_msg", None)
+
+
+def test_a_library_name_of_an_interface_package_says_what_robomodel_serves() -> None:
+    """``actionlib`` is an interface package (its .msg files) and, in ROS, a Python library:
+    its SimpleActionServer is not offered, and the error says so at the name."""
+    import importlib
+
+    actionlib = importlib.import_module("actionlib")
+    assert (
+        importlib.import_module("actionlib.msg").TestAction.__typename__
+        == "actionlib/msg/TestAction"
+    )
+    with pytest.raises(AttributeError, match="robomodel serves the actionlib interface package's"):
+        actionlib.SimpleActionServer  # noqa: B018
+    assert not hasattr(actionlib, "__wrapped__")

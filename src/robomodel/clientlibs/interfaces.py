@@ -171,11 +171,27 @@ class _InterfaceModule(ModuleType):
         return sorted({*super().__dir__(), *self.__all__})
 
 
+class _InterfacePackage(ModuleType):
+    """``import pkg`` of an interface package: its msg, srv and action modules. A ROS package
+    may also be a Python library of the same name (``actionlib``'s SimpleActionServer), which
+    robomodel does not offer: asking for one of its names says so instead of a bare
+    AttributeError far from the import."""
+
+    def __getattr__(self, name: str) -> object:
+        if name.startswith("__"):
+            raise AttributeError(name)
+        raise AttributeError(
+            f"module '{self.__name__}' has no attribute '{name}': robomodel serves the "
+            f"{self.__name__} interface package's msg, srv and action modules, not a Python "
+            f"library of that name (a ROS installation on the path provides it)"
+        )
+
+
 class _InterfaceLoader(_LoaderBase):
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
         package, _, kind = spec.name.partition(".")
         if not kind:
-            return ModuleType(spec.name, f"The {package} interface package (robomodel).")
+            return _InterfacePackage(spec.name, f"The {package} interface package (robomodel).")
         from robomodel.clientlibs.messages import flavour
 
         chosen = flavour()
