@@ -202,8 +202,12 @@ def _outcome(minor: str, python: Path, steps: _Steps, start: float) -> Outcome:
 
 
 def _imports(env_python: str, work: Path, venv: Path, env: dict[str, str]) -> None:
-    """robomodel imports from the venv, and robomodel-clientlibs.pth lets ROS's message
-    modules import there with no build step. It also writes the byte code the verbs share."""
+    """Every module of the installed package compiles under this Python (syntax newer than it
+    fails here, in modules no verb imports too; the verbs then share the byte code), robomodel
+    imports from the venv, and robomodel-clientlibs.pth lets ROS's message modules import
+    there with no build step."""
+    (package,) = venv.glob("lib/python*/site-packages/robomodel")
+    _run("compile", [env_python, "-m", "compileall", "-q", str(package)], cwd=work, env=env)
     where = _run("import", [env_python, "-c", "import robomodel; print(robomodel.__file__)"],
                  cwd=work, env=env)  # fmt: skip
     if not where.startswith(str(venv)):
