@@ -42,6 +42,7 @@ test:
 
 # The built wheel (not the checkout) under every Python 3.10-3.13 the machine has, each in a
 # fresh venv, one command of each verb family run outside the checkout (tools/wheel_smoke.py).
+# `make test` runs it too, beside the rest of the suite (tests/test_wheel_smoke.py).
 wheel-smoke:
 	PYTHON=$(PYTHON) tools/system-deps test
 	$(MAKE) --no-print-directory $(STAMP)

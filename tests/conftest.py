@@ -113,9 +113,16 @@ def pytest_configure(config: pytest.Config) -> None:
         time.sleep(0.05)
 
 
+# Tests run first: long ones that mostly wait on processes of their own, so that they run
+# beside the rest of the suite (xdist hands out tests in this order) rather than after it.
+STARTED_FIRST = ("tests/test_wheel_smoke.py",)
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark each test with the tiers it belongs to (tests/tiers.py): from the fixtures of its
-    closure, and from PATH_TIERS for one that starts its processes itself."""
+    closure, and from PATH_TIERS for one that starts its processes itself. The tests of
+    :data:`STARTED_FIRST` go to the front."""
+    items.sort(key=lambda item: not item.nodeid.startswith(STARTED_FIRST))
     for item in items:
         defs = getattr(item, "_fixtureinfo", None)
         fixtures = [

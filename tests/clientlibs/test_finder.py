@@ -81,3 +81,24 @@ def test_a_library_name_of_an_interface_package_says_what_robomodel_serves() -> 
     with pytest.raises(AttributeError, match="robomodel serves the actionlib interface package's"):
         actionlib.SimpleActionServer  # noqa: B018
     assert not hasattr(actionlib, "__wrapped__")
+
+
+def test_robomodels_own_types_are_known_without_rosbags(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The ``bus`` and ``sim`` extras bring no rosbags: the interface modules still list
+    robomodel's own types (``from std_msgs.msg import String`` in a venv of the wheel), and
+    leave out only the names of rosbags' stores."""
+    import functools
+
+    from robomodel.clientlibs import interfaces
+    from robomodel.runtime.msg import _resolver
+
+    for name in [n for n in sys.modules if n == "rosbags" or n.startswith("rosbags.")]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.setitem(sys.modules, "rosbags", None)  # `import rosbags...` raises ImportError
+    monkeypatch.setattr(_resolver, "_store", functools.cache(_resolver._store.__wrapped__))
+    names = interfaces._type_names_of.__wrapped__(-1)
+    assert {"std_msgs/msg/String", "sensor_msgs/msg/JointState"} <= names
+    # in rosbags' Noetic store only: known with rosbags, not without
+    assert "actionlib/msg/TestGoal" not in _resolver.definition_names()
+    monkeypatch.undo()
+    assert "actionlib/msg/TestGoal" in _resolver.definition_names()

@@ -110,3 +110,23 @@ def test_a_real_installation_wins(tmp_path: Path) -> None:
         str(tmp_path / "site" / "std_msgs" / "msg.py"),
         "True",
     ], real.stderr
+
+
+def test_the_finder_serves_imports_made_while_robomodel_s_resolver_loads() -> None:
+    """In a venv of the wheel nothing imports pathlib before robomodel's message resolver
+    does, and pathlib's ``from nt import ...`` reaches the finder while the resolver is only
+    partly loaded. Here without ``site`` (the editable install's hooks import pathlib first),
+    the finder installed as robomodel-clientlibs.pth installs it."""
+    code = (
+        f"import sys; sys.path.insert(0, {str(ROOT / 'src')!r})\n"
+        f"exec(open({str(ROOT / 'src' / 'robomodel-clientlibs.pth')!r}).read())\n"
+        "assert 'pathlib' not in sys.modules\n"
+        "import robomodel.runtime.msg\n"
+        "from std_msgs.msg import String\n"
+        "print(repr(String(data='x')))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "ROS_PACKAGE_PATH")}
+    done = subprocess.run(
+        [sys.executable, "-S", "-c", code], env=env, capture_output=True, text=True, cwd=ROOT
+    )
+    assert done.stdout.strip() == "std_msgs.msg.String(data='x')", done.stderr

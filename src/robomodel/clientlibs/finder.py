@@ -197,8 +197,12 @@ def _may_be_interface_package(package: str) -> bool:
         return True
     if os.environ.get("ROS_PACKAGE_PATH") or os.environ.get("AMENT_PREFIX_PATH"):
         return True  # the package path is crawled (once) by interfaces.package_names()
-    resolver = sys.modules.get("robomodel.runtime.msg._resolver")
-    if resolver is not None and resolver.package_paths():
+    # None while the resolver is still being imported: its own imports reach this finder
+    # (pathlib's ``from nt import ...`` on POSIX, where nothing imported pathlib before)
+    package_paths = getattr(
+        sys.modules.get("robomodel.runtime.msg._resolver"), "package_paths", None
+    )
+    if package_paths is not None and package_paths():
         return True  # robomodel run/launch --package-path
     if _in_workspace_src(package):
         return True

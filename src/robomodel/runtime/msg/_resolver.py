@@ -124,9 +124,15 @@ def generation() -> int:
 
 def definition_names() -> set[str]:
     """Every ``pkg/kind/Name`` this resolver can build from a definition: the package path's
-    (and robomodel's copies'), rosbags' ROS 2 store of :func:`distro` and its ROS 1 store."""
+    (and robomodel's copies'), rosbags' ROS 2 store of :func:`distro` and its ROS 1 store.
+    Without rosbags (only the ``ros1`` and ``bag`` extras bring it) the stores' are left out,
+    so that ``from std_msgs.msg import String`` still gives robomodel's own class."""
     names: set[str] = set(_package_files())
-    for store in (_distro_store(), _store("ROS1_NOETIC")):
+    try:
+        stores = (_distro_store(), _store("ROS1_NOETIC"))
+    except ImportError:
+        return names
+    for store in stores:
         names.update(store.fielddefs)
     return names
 
