@@ -102,3 +102,16 @@ def test_robomodels_own_types_are_known_without_rosbags(monkeypatch: pytest.Monk
     assert "actionlib/msg/TestGoal" not in _resolver.definition_names()
     monkeypatch.undo()
     assert "actionlib/msg/TestGoal" in _resolver.definition_names()
+
+
+def test_a_look_up_while_the_resolver_is_partly_loaded_does_not_fail(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The resolver's own imports reach the finder while its module has none of its names."""
+    import types
+
+    monkeypatch.setitem(
+        sys.modules, "robomodel.runtime.msg._resolver", types.ModuleType("partly loaded")
+    )
+    monkeypatch.setattr(finder, "_misses", {})
+    assert finder.ClientLibraryFinder().find_spec("nt_or_another_platform_module", None) is None

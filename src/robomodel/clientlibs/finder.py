@@ -166,7 +166,8 @@ _MISSES_KEPT = 4096
 def _where_packages_are() -> tuple[object, ...]:
     """What decides whether a name is an interface package, besides the name: the working
     folder (a workspace's ``src/``), the package path variables and ``--package-path``."""
-    resolver = sys.modules.get("robomodel.runtime.msg._resolver")
+    # None while the resolver is still being imported: its own imports reach this finder
+    generation = getattr(sys.modules.get("robomodel.runtime.msg._resolver"), "generation", None)
     try:
         here = os.getcwd()
     except OSError:  # the working folder was removed: no workspace is there
@@ -175,7 +176,7 @@ def _where_packages_are() -> tuple[object, ...]:
         here,
         os.environ.get("ROS_PACKAGE_PATH"),
         os.environ.get("AMENT_PREFIX_PATH"),
-        resolver.generation() if resolver is not None else None,
+        generation() if generation is not None else None,
     )
 
 
