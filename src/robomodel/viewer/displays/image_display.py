@@ -22,11 +22,10 @@ from __future__ import annotations
 
 import time
 from types import MappingProxyType
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
-from PIL import Image
 
 from robomodel.viewer.displays.base import (
     Display,
@@ -46,6 +45,9 @@ from robomodel.viewer.displays.image import (
 )
 from robomodel.viewer.displays.image_sender import JPEG_QUALITY, LatestImageSender
 from robomodel.viewer.limits import MAX_IMAGE_PIXELS
+
+if TYPE_CHECKING:  # Pillow comes with the viewer extra; a headless launch imports no image code
+    from PIL import Image
 
 __all__ = ["BURST_FRAMES", "FramePacer", "ImageDisplay", "message_pil", "message_rgb"]
 
@@ -94,6 +96,8 @@ def message_pil(msg: Any, values: dict[str, Any], normalizer: RangeNormalizer) -
     """An Image or CompressedImage as a Pillow image (RGB, or L for grey encodings) with the
     display's normalisation options."""
     if hasattr(msg, "format"):  # sensor_msgs/CompressedImage
+        from PIL import Image
+
         return Image.fromarray(message_rgb(msg, values, normalizer))
     return image_pil(msg, **_normalization(values, normalizer))
 

@@ -20,9 +20,10 @@ from __future__ import annotations
 import io
 import logging
 import threading
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from PIL.Image import Image
+if TYPE_CHECKING:  # Pillow comes with the viewer extra; a headless launch imports no image code
+    from PIL.Image import Image
 
 __all__ = ["IDLE_EXIT_S", "JPEG_QUALITY", "LatestImageSender", "encode_jpeg"]
 
