@@ -179,11 +179,6 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
             String, "t", 10
         ).assert_liveliness(),
     }
-    from rclpy.signals import SignalHandlerOptions
-
-    calls["rclpy signal handlers for SIGTERM alone"] = lambda: rclpy.init(
-        signal_handler_options=SignalHandlerOptions.SIGTERM
-    )
     for name, call in calls.items():
         with pytest.raises(
             NotImplementedError,

@@ -58,14 +58,11 @@ class ConditionReachedException(Exception):
     """The future waited for is done."""
 
 
-def _noop() -> None:
-    """Posted to wake the spinning thread."""
-
-
 class Executor:
     """The base of the executors (the interface is documented here)."""
 
     hands_over = False  # whether callbacks run on other threads than the spinning one
+    raises_external_shutdown = True  # spin raises ExternalShutdownException (rclpy's single)
 
     def __init__(self, *, context: Context | None = None) -> None:
         self._context = context or get_default_context()
@@ -75,6 +72,12 @@ class Executor:
         self._nodes_lock = threading.Lock()
         self._is_shutdown = False
         self._failure: BaseException | None = None
+        # The bell this executor's spinning thread waits on, held while silent: rung by every
+        # post to the context's executor while it waits, and by work parked on its own nodes
+        # by another executor's thread (which takes that work off the shared queue).
+        self._bell = threading.Lock()
+        self._bell.acquire()
+        self._ring = self.wake
 
     @property
     def context(self) -> Context:
@@ -85,11 +88,18 @@ class Executor:
         self._context.robomodel.executor.post(callback)
 
     def wake(self) -> None:
-        self._post(_noop)
+        """Make the spinning thread look again (work was parked on a node of this one)."""
+        bell = self._bell
+        if bell.locked():
+            try:  # noqa: SIM105 (as the context's executor rings: cheap)
+                bell.release()
+            except RuntimeError:  # rung by another thread in between
+                pass
 
     def create_task(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> Task:
         """Run ``callback(*args)`` (a function or a coroutine) at the next spin."""
         task = Task(callback, args, kwargs, executor=self)
+        task._fails_spin = True
         self._post(task)
         return task
 
@@ -147,13 +157,28 @@ class Executor:
         return done
 
     def _spin_robomodel(self, timeout_s: float) -> int:
+        """Run what is parked on this executor's nodes and what the context's executor holds;
+        if nothing, wait up to ``timeout_s`` for either on this executor's own bell (so that
+        two executors spinning on two threads each hear of their own work at once)."""
         context = self._context
         spinning = context._spinning
         outer = getattr(spinning, "executor", None)  # an executor spun in a callback nests
         context.dispatcher = self
+        shared = context.robomodel.executor
         try:
-            done = self._run_parked()
-            done += context.robomodel.executor.spin_once(0.0 if done else timeout_s)
+            done = self._run_parked() + shared.spin_once(0.0)
+            if not done and timeout_s > 0:
+                wait = shared.wait_s(timeout_s)
+                bell = self._bell
+                bell.acquire(blocking=False)  # silence, then look: a later ring is heard
+                shared.add_ring(self._ring)
+                try:
+                    done = self._run_parked() + shared.spin_once(0.0)
+                    if not done and wait > 0 and context.ok() and not self._is_shutdown:
+                        bell.acquire(timeout=wait)
+                        done = self._run_parked() + shared.spin_once(0.0)
+                finally:
+                    shared.remove_ring(self._ring)
         finally:
             spinning.executor = outer
         failure, self._failure = self._failure, None
@@ -166,14 +191,27 @@ class Executor:
         while self._context.ok() and not self._is_shutdown:
             self.spin_once(_SLICE_S)
 
+    def _external_shutdown(self) -> None:
+        """The wait ended because the context was shut down from outside (a signal, another
+        thread): rclpy's single-threaded executor raises that out of spin, its multi-threaded
+        one returns."""
+        if self.raises_external_shutdown and not self._is_shutdown:
+            raise ExternalShutdownException()
+
     def spin_once(self, timeout_sec: float | None = None) -> None:
         """Run what is ready; if nothing is, wait up to ``timeout_sec`` (None: for ever) for
-        something and run it."""
+        a callback and run it (a wake-up alone does not end the wait, as in rclpy)."""
+        if not self._context.ok():
+            self._external_shutdown()
+            return
         if timeout_sec is not None and timeout_sec <= 0:
             self._spin_robomodel(0.0)
             return
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
-        while self._context.ok() and not self._is_shutdown:
+        while not self._is_shutdown:
+            if not self._context.ok():
+                self._external_shutdown()
+                return
             remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
             if remaining <= 0:
                 return
@@ -187,7 +225,10 @@ class Executor:
         deadline = (
             None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
         )
-        while self._context.ok() and not self._is_shutdown and not future.done():
+        while not self._is_shutdown and not future.done():
+            if not self._context.ok():
+                self._external_shutdown()
+                return
             remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
             if remaining <= 0:
                 return
@@ -211,8 +252,9 @@ class Executor:
             self._failure = exc
 
     def fail(self, exc: Exception) -> None:
-        """A callback run on the spinning thread raised ``exc``: the spin call raises it."""
+        """A callback raised ``exc``: the spin call raises it."""
         self._failure = exc
+        self.wake()
 
     def __enter__(self) -> Executor:
         return self
@@ -230,6 +272,7 @@ class MultiThreadedExecutor(Executor):
     groups."""
 
     hands_over = True
+    raises_external_shutdown = False  # as rclpy's: spin returns when the context shuts down
 
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)

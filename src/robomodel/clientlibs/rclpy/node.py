@@ -224,7 +224,9 @@ class Node:
             coroutine_function = callback
 
             def callback(*args: Any) -> None:
-                Task(coroutine_function, args, executor=context)()
+                task = Task(coroutine_function, args, executor=context)
+                task._fails_spin = True
+                task()
 
         waiting = threading.Lock()  # held while a call of a coalescing callback waits
         kept: collections.deque[tuple[Any, ...]] = collections.deque(
@@ -249,6 +251,7 @@ class Node:
                 if kept.maxlen is None or len(kept) < kept.maxlen:
                     node_parked.append(unpark)  # one unpark per call kept
                 kept.append(args)
+                self._wake_owner()
                 return
             if executor is None or not executor.hands_over:
                 try:  # on the spinning thread, at once (no hand-over to pay for)
@@ -263,6 +266,13 @@ class Node:
                 executor.dispatch(group, run_waiting)
 
         return deliver
+
+    def _wake_owner(self) -> None:
+        """Work was parked on this node: the executor holding it (spinning on another thread)
+        runs it now rather than at the end of its wait."""
+        owner = self.executor
+        if owner is not None and owner.owns(self):
+            owner.wake()
 
     def create_publisher(
         self,
@@ -358,6 +368,7 @@ class Node:
                     context._post(lambda: deferred.resolve(response))
 
             self._parked.append(answer)
+            self._wake_owner()
             return deferred
 
         server = self.robomodel_node.create_service(srv_type, srv_name, handle)
