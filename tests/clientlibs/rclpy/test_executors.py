@@ -190,3 +190,28 @@ def test_an_rclpy_future_awaited_in_asyncio(rclpy_inproc: None) -> None:
     assert asyncio.run(asyncio.wait_for(ask(), scaled(10))) == "answered"
     executor.shutdown()
     spinner.join(scaled(10))
+
+
+def test_spin_once_returns_when_a_call_async_response_comes(rclpy_inproc: None) -> None:
+    """examples_rclpy_minimal_client's client_async: ``while not future.done():
+    rclpy.spin_once(node)`` ends once the response is in (no done callbacks at all)."""
+    from std_srvs.srv import Trigger
+
+    server = rclpy.create_node("server")
+    server.create_service(Trigger, "/ready", lambda req, res: Trigger.Response(success=True))
+    executor = SingleThreadedExecutor()
+    executor.add_node(server)
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    node = rclpy.create_node("client_async")
+    client = node.create_client(Trigger, "/ready")
+    assert client.wait_for_service(timeout_sec=scaled(10))
+    future = client.call_async(Trigger.Request())
+    started = time.monotonic()
+    while not future.done():
+        rclpy.spin_once(node, timeout_sec=scaled(20))
+    # it returned with the response, not at the end of its wait
+    assert time.monotonic() - started < scaled(10)
+    assert future.result().success
+    executor.shutdown()
+    spinner.join(scaled(10))

@@ -1,7 +1,8 @@
 """``rclpy.client.Client``: calls a service over robomodel's transport.
 
 ``call_async`` sends the request from a thread of its own (the transport's call blocks) and
-completes the returned future from there; its done callbacks run on the executor. ``call``
+completes the returned future from there; its done callbacks run on the executor, and a
+``spin_once`` waiting then returns, as rclpy's does after taking the response. ``call``
 waits on the calling thread, so it works whether or not another thread spins (rclpy needs one
 spinning; robomodel does not).
 """
@@ -25,6 +26,11 @@ __all__ = ["Client"]
 
 _FOREVER_S = 24 * 3600.0  # rclpy's call_async has no timeout
 _POLL_S = 0.02
+
+
+def _response_taken() -> None:
+    """Posted when a response came: the spinning executor counts it as a callback run, as
+    rclpy's runs the client's (a loop of ``spin_once`` until the future is done ends)."""
 
 
 class Client:
@@ -73,6 +79,7 @@ class Client:
                 future.set_result(response)
             finally:
                 self._pending.discard(future)
+                self.context._post(_response_taken)
 
         threading.Thread(target=work, name=f"rclpy call {self.srv_name}", daemon=True).start()
         return future

@@ -42,7 +42,9 @@ class Dispatcher(Protocol):
 
     hands_over: bool
 
-    def dispatch(self, group: Any, run: Callable[[], None]) -> None: ...
+    def dispatch(
+        self, group: Any, run: Callable[[], None], node: Any = None, entity: Any = None
+    ) -> None: ...
 
     def fail(self, exc: Exception) -> None: ...
 

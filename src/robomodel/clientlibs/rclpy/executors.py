@@ -19,7 +19,7 @@ import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.clientlibs.rclpy.task import Future, Task
 from robomodel.clientlibs.rclpy.utilities import get_default_context
@@ -27,7 +27,6 @@ from robomodel.clientlibs.rclpy.utilities import get_default_context
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
     from robomodel.clientlibs.rclpy.context import Context
-    from robomodel.clientlibs.rclpy.node import Node
 
 __all__ = [
     "ConditionReachedException",
@@ -40,6 +39,14 @@ __all__ = [
 ]
 
 _SLICE_S = 0.05  # how often a wait for ever looks at shutdown and at its future
+
+
+class Node(Protocol):
+    """What an executor uses of an rclpy node (:class:`~robomodel.clientlibs.rclpy.node.Node`;
+    the node module imports this one, which stays free of it)."""
+
+    executor: Any
+    _parked: collections.deque[Callable[[], None]]
 
 
 class ExternalShutdownException(Exception):
@@ -78,6 +85,12 @@ class Executor:
         self._bell = threading.Lock()
         self._bell.acquire()
         self._ring = self.wake
+        # An executor of the user's that overrides spin_once takes its callbacks through
+        # wait_for_ready_callbacks: they are kept here, (run, entity, node), until it does.
+        self._pulls = type(self).spin_once is not Executor.spin_once
+        self._ready: collections.deque[tuple[Callable[[], None], Any, Any]] = collections.deque()
+        if self._pulls:
+            self.hands_over = True
 
     @property
     def context(self) -> Context:
@@ -189,7 +202,7 @@ class Executor:
     def spin(self) -> None:
         """Run callbacks until the context or this executor shuts down."""
         while self._context.ok() and not self._is_shutdown:
-            self.spin_once(_SLICE_S)
+            self.spin_once()  # as rclpy: an executor of the user's may override it
 
     def _external_shutdown(self) -> None:
         """The wait ended because the context was shut down from outside (a signal, another
@@ -243,13 +256,52 @@ class Executor:
             self.spin_once(timeout_sec)
 
     # -- callbacks (called on the spinning thread) ----------------------------------------
-    def dispatch(self, group: CallbackGroup, run: Callable[[], None]) -> None:
-        """Run ``run`` (a callback of ``group``) now; a multi-threaded executor hands it over.
-        An exception leaves the spin call, with its traceback, as in rclpy."""
+    def dispatch(
+        self, group: CallbackGroup, run: Callable[[], None], node: Any = None, entity: Any = None
+    ) -> None:
+        """Run ``run`` (a callback of ``group``, of ``entity`` of ``node``) now; a multi-threaded
+        executor hands it over, an executor of the user's (overriding ``spin_once``) keeps it
+        for :meth:`wait_for_ready_callbacks`. An exception leaves the spin call, with its
+        traceback, as in rclpy."""
+        if self._pulls:
+            self._ready.append((run, entity, node))
+            self.wake()
+            return
         try:
             run()
         except Exception as exc:
             self._failure = exc
+
+    def wait_for_ready_callbacks(
+        self, timeout_sec: float | None = None, nodes: Any = None, condition: Any = None
+    ) -> tuple[Task, Any, Any]:
+        """The next callback ready, as ``(handler, entity, node)``: ``handler()`` runs it (a
+        :class:`Task`). For an executor of the user's whose ``spin_once`` hands callbacks to
+        threads of its own, as rclpy's custom executors do.
+
+        Raises:
+            ShutdownException: this executor was shut down.
+            ExternalShutdownException: the context was.
+            TimeoutException: nothing was ready within ``timeout_sec`` (None: wait for ever).
+        """
+        if not self._pulls:
+            raise RuntimeError(
+                "wait_for_ready_callbacks is for executors that override spin_once: "
+                f"{type(self).__name__} runs its callbacks itself"
+            )
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while True:
+            if self._ready:
+                run, entity, node = self._ready.popleft()
+                return Task(run, executor=self), entity, node
+            if self._is_shutdown:
+                raise ShutdownException()
+            if not self._context.ok():
+                raise ExternalShutdownException()
+            remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutException()
+            self._spin_robomodel(min(remaining, _SLICE_S))
 
     def fail(self, exc: Exception) -> None:
         """A callback raised ``exc``: the spin call raises it."""
@@ -290,7 +342,9 @@ class MultiThreadedExecutor(Executor):
     def num_threads(self) -> int:
         return self._num_threads
 
-    def dispatch(self, group: CallbackGroup, run: Callable[[], None]) -> None:
+    def dispatch(
+        self, group: CallbackGroup, run: Callable[[], None], node: Any = None, entity: Any = None
+    ) -> None:
         if group.reentrant:
             self._pool.submit(self._run, run)
             return
