@@ -171,7 +171,7 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
             String, "t", lambda m: None, 10, qos_overriding_options=object()
         ),
         "Node.undeclare_parameter()": lambda: node.undeclare_parameter("use_sim_time"),
-        "create_subscription(raw=True)": lambda: node.create_subscription(
+        "create_subscription(raw=True) on the in-process bus": lambda: node.create_subscription(
             String, "t", lambda m: None, 10, raw=True
         ),
         "a subscription callback taking (msg, message_info)": lambda: node.create_subscription(

@@ -334,9 +334,8 @@ class Node:
         qos_overriding_options: Any = None,
         raw: bool = False,
     ) -> Subscription:
-        """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here)."""
-        if raw:
-            not_offered("create_subscription(raw=True)")
+        """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here;
+        with ``raw``, the serialized message: its CDR bytes, as rmw hands them over)."""
         _refuse_events_and_overrides("create_subscription", event_callbacks, qos_overriding_options)
         if _required_arguments(callback) > 1:
             not_offered("a subscription callback taking (msg, message_info)")
@@ -345,14 +344,36 @@ class Node:
         kept = profile.depth if profile.history != HistoryPolicy.KEEP_ALL else 0
         made: list[Any] = []
         deliver = self._dispatcher(group, callback, depth=kept, entity=made)
-        handle = self.robomodel_node.create_subscription(
-            msg_type, topic, deliver, as_robomodel_qos(qos_profile)
-        )
+        if raw:
+            handle = self._raw_subscription(msg_type, topic, deliver, qos_profile)
+        else:
+            handle = self.robomodel_node.create_subscription(
+                msg_type, topic, deliver, as_robomodel_qos(qos_profile)
+            )
         subscription = Subscription(handle, callback, group, _int_qos(qos_profile))
+        subscription.raw = raw
         made.append(subscription)
         group.add_entity(subscription)
         self._subscriptions.append(subscription)
         return subscription
+
+    def _raw_subscription(
+        self, msg_type: Any, topic: str, deliver: Callable[..., None], qos_profile: Any
+    ) -> Any:
+        """A subscription handing over each sample's serialized bytes, on a bus that has them
+        (Zenoh's; the in-process bus passes objects, not bytes)."""
+        from robomodel.runtime.node import Subscription as RobomodelSubscription
+
+        node = self.robomodel_node
+        create_raw = getattr(node.context.transport, "create_raw_subscription", None)
+        if create_raw is None:
+            not_offered("create_subscription(raw=True) on the in-process bus", "use Zenoh's")
+        name = node.resolve_topic_name(topic)
+        qos = as_robomodel_qos(qos_profile)
+        handle = create_raw(
+            node.fully_qualified_name, name, msg_type, qos, lambda payload, info: deliver(payload)
+        )
+        return RobomodelSubscription(name, msg_type, qos, handle)
 
     def create_service(
         self,
@@ -523,6 +544,9 @@ class Node:
             client.destroy()
         for timer in self._timers:
             timer.destroy()
+        for subscription in self._subscriptions:
+            if subscription.raw:  # the robomodel node does not know it
+                subscription.destroy()
         self._publishers.clear()
         self._subscriptions.clear()
         self._services.clear()
