@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy._support import not_offered
@@ -28,11 +29,6 @@ _FOREVER_S = 24 * 3600.0  # rclpy's call_async has no timeout
 _POLL_S = 0.02
 
 
-def _response_taken() -> None:
-    """Posted when a response came: the spinning executor counts it as a callback run, as
-    rclpy's runs the client's (a loop of ``spin_once`` until the future is done ends)."""
-
-
 class Client:
     """A client of ``srv_name`` (made by ``Node.create_client``)."""
 
@@ -44,8 +40,13 @@ class Client:
         srv_name: str,
         callback_group: CallbackGroup,
         qos_profile: QoSProfile,
+        taken: Callable[[], None] | None = None,
     ) -> None:
         self.context = context
+        # Posted when a response came: the executor holding the client's node counts it as a
+        # callback run, as rclpy's runs the client's (a loop of spin_once until the future is
+        # done ends). None: nothing to tell.
+        self._taken = taken
         self.srv_type = srv_type
         self.srv_name = srv_name
         self.callback_group = callback_group
@@ -79,7 +80,8 @@ class Client:
                 future.set_result(response)
             finally:
                 self._pending.discard(future)
-                self.context._post(_response_taken)
+                if self._taken is not None:
+                    self.context._post(self._taken)
 
         threading.Thread(target=work, name=f"rclpy call {self.srv_name}", daemon=True).start()
         return future

@@ -445,6 +445,7 @@ class Node:
             node.resolve_topic_name(srv_name),
             group,
             qos_profile,
+            taken=self._dispatcher(group, _response_taken, coalesce=True),
         )
         group.add_entity(client)
         self._clients.append(client)
@@ -932,6 +933,11 @@ def _required_arguments(callback: Callable[..., Any]) -> int:
         for p in signature.parameters.values()
         if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) and p.default is p.empty
     )
+
+
+def _response_taken() -> None:
+    """A client's response came (its future is done already): run on the executor holding the
+    node, as rclpy's executor takes the response, so that a waiting ``spin_once`` returns."""
 
 
 def _first(made: list[Any]) -> Any:
