@@ -8,7 +8,11 @@ receives the bus's deliveries (:mod:`robomodel.runtime.executor`); an rclpy exec
 one at a time and in order, a reentrant group's in parallel. An executor runs only the
 callbacks of the nodes added to it, as rclpy's: a delivery to another node that reaches the
 spinning executor is parked on that node (a subscription keeps its QoS depth, a timer one tick)
-until an executor holding the node spins.
+until an executor holding the node spins. Each executor waits on a bell of its own, rung by
+every post to the context's executor and by work parked on its nodes, so executors spinning
+on several threads each hear of their work at once; a wake-up alone is no callback, so
+``spin_once`` goes on waiting for one, as rclpy's. An executor of the user's that overrides
+``spin_once`` takes its callbacks from :meth:`Executor.wait_for_ready_callbacks`.
 """
 
 from __future__ import annotations
@@ -148,8 +152,7 @@ class Executor:
         self._is_shutdown = True
         if self._context.dispatcher is self:
             self._context.dispatcher = None
-        if self._context.ok():
-            self.wake()
+        self.wake()  # its own bell: a spin waiting on it returns at once
         return True
 
     def _run_parked(self) -> int:
