@@ -100,6 +100,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/bag/test_split.py": PROCESS,
     "tests/bag/test_sqlite3.py::test_sqlite3_recording_reads_as_the_mcap_one": PROCESS,
     "tests/clientlibs/rclpy/test_real_rclpy_wins.py": PROCESS,
+    "tests/clientlibs/rclpy/test_signals_process.py": PROCESS,
     "tests/clientlibs/rclpy/test_zenoh.py": BUS_PROCESS,
     "tests/control/test_cli.py::test_seed_000_workflow_over_zenoh": PROCESS,
     "tests/control/test_cli.py::test_seed_003_load_with_set_state_start_over_zenoh": PROCESS,

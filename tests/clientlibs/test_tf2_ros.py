@@ -183,9 +183,84 @@ def test_ros1_form_uses_the_rospy_process_s_node(
     assert buffer.lookup_transform("odom", "base", Ros1Time(0)).transform.translation.x == 4.0
 
 
+def _stamped(type_name: str, frame: str) -> Any:
+    msg = getattr(importlib.import_module("geometry_msgs.msg"), type_name)()
+    msg.header.frame_id = frame
+    return msg
+
+
+def test_buffer_transform_moves_stamped_geometry_into_the_target_frame() -> None:
+    """As tf2_geometry_msgs' conversions: base is 1 m ahead of odom and turned 90 degrees, so
+    a point 2 m ahead of base is at (1, 2) in odom, a vector turns, a pose turns and moves."""
+    buffer = tf2_ros.Buffer()
+    buffer.set_transform(_transform("odom", "base", 1.0, yaw=np.pi / 2), "test")
+    point = _stamped("PointStamped", "base")
+    point.point.x = 2.0
+    moved = buffer.transform(point, "odom")
+    assert type(moved) is type(point) and moved.header.frame_id == "odom"
+    assert (moved.point.x, moved.point.y, moved.point.z) == pytest.approx((1.0, 2.0, 0.0))
+    assert point.point.x == 2.0 and point.header.frame_id == "base"  # the input is unchanged
+    vector = _stamped("Vector3Stamped", "base")
+    vector.vector.x = 3.0
+    turned = buffer.transform(vector, "odom").vector
+    assert (turned.x, turned.y, turned.z) == pytest.approx((0.0, 3.0, 0.0))  # no translation
+    pose = _stamped("PoseStamped", "base")
+    pose.pose.position.y = 1.0
+    pose.pose.orientation.w = 1.0
+    in_odom = buffer.transform(pose, "odom", timeout=Stamp(0)).pose
+    assert (in_odom.position.x, in_odom.position.y) == pytest.approx((0.0, 0.0))
+    q = in_odom.orientation
+    assert (q.x, q.y, q.z, q.w) == pytest.approx((0, 0, np.sin(np.pi / 4), np.cos(np.pi / 4)))
+    child = buffer.transform(_transform("base", "arm", 0.5), "odom").transform.translation
+    assert (child.x, child.y) == pytest.approx((1.0, 0.5))
+    full = buffer.transform_full(point, "odom", Stamp(0), "odom").point
+    assert (full.x, full.y) == pytest.approx((1.0, 2.0))
+
+
+def test_buffer_transform_uses_what_user_code_registers() -> None:
+    calls: list[str] = []
+
+    class Marker:
+        def __init__(self) -> None:
+            self.header = _stamped("PointStamped", "base").header
+
+    def do_transform_marker(marker: Marker, transform: Any) -> str:
+        calls.append(transform.header.frame_id)
+        return "moved"
+
+    buffer = tf2_ros.Buffer()
+    buffer.set_transform(_transform("odom", "base", 1.0), "test")
+    with pytest.raises(tf2_ros.TypeException, match="Marker is not loaded or supported"):
+        buffer.transform(Marker(), "odom")
+    tf2_ros.TransformRegistration().add(Marker, do_transform_marker)
+    assert buffer.transform(Marker(), "odom") == "moved" and calls == ["odom"]
+    with pytest.raises(tf2_ros.LookupException):
+        buffer.transform(_stamped("PointStamped", "nowhere"), "odom")
+
+
+def test_the_async_waits_complete_when_the_transform_arrives() -> None:
+    buffer = tf2_ros.Buffer()
+    future = buffer.wait_for_transform_async("odom", "base", Stamp(0))
+    full = buffer.wait_for_transform_full_async("odom", Stamp(0), "base", Stamp(0), "odom")
+    assert not future.done() and not full.done()
+    buffer.set_transform(_transform("odom", "elsewhere", 1.0), "test")
+    assert not future.done()  # another transform: still waiting
+    buffer.set_transform(_transform("odom", "base", 2.0), "test")
+    assert future.done() and future.result().transform.translation.x == 2.0
+    assert full.done() and full.result().child_frame_id == "base"
+    now = buffer.wait_for_transform_async("odom", "base", Stamp(0))
+    assert now.done()  # possible already: done at once
+    coroutine = buffer.lookup_transform_async("odom", "base", Stamp(0))
+    with pytest.raises(StopIteration) as stop:
+        coroutine.send(None)
+    assert stop.value.value.transform.translation.x == 2.0
+
+
 def test_what_robomodel_does_not_offer_says_so() -> None:
-    with pytest.raises(NotImplementedError, match=r"tf2_ros\.Buffer\.transform"):
-        tf2_ros.Buffer().transform(object(), "map")
+    buffer = tf2_ros.Buffer()
+    buffer.set_transform(_transform("odom", "base", 1.0), "test")
+    with pytest.raises(NotImplementedError, match=r"tf2_ros\.Buffer\.transform\(new_type"):
+        buffer.transform(_stamped("PointStamped", "base"), "odom", new_type=int)
     with pytest.raises(NotImplementedError, match="spin_thread"):
         tf2_ros.TransformListener(tf2_ros.Buffer(), FaceNode(None), spin_thread=True)
     with pytest.raises(TypeError, match="rclpy Node"):

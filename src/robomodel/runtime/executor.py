@@ -77,6 +77,10 @@ class Executor:
         self._bell = threading.Lock()
         self._bell.acquire()  # silent
         self._timers: list[Timer] = []
+        # Bells of others that wait for posts (rclpy's executors, each waiting on its own so
+        # that work parked for one wakes that one): rung by every post, set by add_ring.
+        self._rings: tuple[Callable[[], None], ...] = ()
+        self._rings_lock = threading.Lock()
         self._stopped = False
         self.spinner: int | None = None  # the ident of the thread that spins, once one did
 
@@ -88,6 +92,25 @@ class Executor:
                 self._bell.release()
             except RuntimeError:  # another producer rang it in between
                 pass
+        for ring in self._rings:
+            ring()
+
+    def add_ring(self, ring: Callable[[], None]) -> None:
+        """Call ``ring()`` (cheap, any thread) at every post from now on, until
+        :meth:`remove_ring`: how a waiter with a bell of its own hears of work."""
+        with self._rings_lock:
+            self._rings = (*self._rings, ring)
+
+    def remove_ring(self, ring: Callable[[], None]) -> None:
+        with self._rings_lock:
+            rings = list(self._rings)
+            if ring in rings:
+                rings.remove(ring)
+            self._rings = tuple(rings)
+
+    def wake(self) -> None:
+        """Wake whoever waits for work to look again; no work itself (not counted as run)."""
+        self.post(_noop)
 
     def answer(
         self,
@@ -111,20 +134,17 @@ class Executor:
         self.post(run)
         return box["reply"] if done.wait(timeout_s) else None
 
-    def _wake(self) -> None:
-        self.post(_noop)
-
     def add_timer(self, period_s: float, callback: Callable[[], None], clock: Clock) -> Timer:
         if not period_s > 0:
             raise ValueError(f"timer period must be > 0 s, got {period_s}")
         timer = Timer(period_s, callback, clock, clock.now_s())
         self._timers.append(timer)
-        self._wake()
+        self.wake()
         return timer
 
     def stop(self) -> None:
         self._stopped = True
-        self._wake()
+        self.wake()
 
     @property
     def stopped(self) -> bool:
@@ -138,7 +158,8 @@ class Executor:
             log.exception("callback failed; the node keeps running")
 
     def run_pending(self) -> int:
-        """Run every queued callback (including ones queued meanwhile); return the count."""
+        """Run every queued callback (including ones queued meanwhile); return how many were
+        work (not wake-ups)."""
         count = 0
         while True:
             try:
@@ -146,7 +167,7 @@ class Executor:
             except IndexError:
                 return count
             self._run(callback)
-            count += 1
+            count += callback is not _noop  # a wake-up is no work
 
     def run_due_timers(self) -> int:
         count = 0
@@ -161,19 +182,25 @@ class Executor:
         return count
 
     def spin_once(self, timeout_s: float = 0.0) -> int:
-        """Run what is ready; if nothing is, wait up to ``timeout_s`` for work."""
+        """Run what is ready; if nothing is, wait up to ``timeout_s`` for work. Returns how
+        many callbacks ran (a wake-up is none)."""
         self.spinner = threading.get_ident()
         done = self.run_pending() + self.run_due_timers()
-        if done or timeout_s <= 0:
+        if done or timeout_s <= 0 or self._stopped:
             return done
-        wait = timeout_s
-        live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
-        if live:
-            wait = min(wait, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
+        wait = self.wait_s(timeout_s)
         self._bell.acquire(blocking=False)  # silence, then look: a later post rings again
         if not self._queue and wait > 0:
             self._bell.acquire(timeout=wait)
         return self.run_pending() + self.run_due_timers()
+
+    def wait_s(self, timeout_s: float) -> float:
+        """``timeout_s``, or less when a timer on a running clock is due sooner: how long a
+        waiter for work may sleep."""
+        live = [t for t in self._timers if not t.cancelled and not isinstance(t.clock, ManualClock)]
+        if live:
+            return min(timeout_s, max(0.0, min(t.next_s - t.clock.now_s() for t in live)))
+        return timeout_s
 
     def spin(
         self, *, duration_s: float | None = None, until: Callable[[], bool] | None = None

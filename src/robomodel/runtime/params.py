@@ -116,6 +116,8 @@ class ParameterStore:
         self._allow_undeclared = allow_undeclared
         self._callbacks: list[SetCallback] = []
         self._post_callbacks: list[Callable[[Mapping[str, Any]], None]] = []
+        # change the changes before they are checked (``add_pre_set_parameters_callback``)
+        self._pre_callbacks: list[Callable[[Mapping[str, Any]], Mapping[str, Any]]] = []
         if allow_undeclared:
             for name, value in self._overrides.items():
                 self._values[name] = value
@@ -168,12 +170,25 @@ class ParameterStore:
         """Validate changes before they apply (``add_on_set_parameters_callback``)."""
         self._callbacks.append(callback)
 
+    def add_pre_set_callback(
+        self, callback: Callable[[Mapping[str, Any]], Mapping[str, Any]]
+    ) -> None:
+        """Change the changes before they are checked (``add_pre_set_parameters_callback``):
+        ``callback(changes)`` returns the changes to make instead (empty: the set fails)."""
+        self._pre_callbacks.append(callback)
+
     def add_post_set_callback(self, callback: Callable[[Mapping[str, Any]], None]) -> None:
         """Be told about changes after they apply (``add_post_set_parameters_callback``)."""
         self._post_callbacks.append(callback)
 
     def set(self, changes: Mapping[str, Any]) -> SetResult:
         """Set several parameters atomically; all or nothing."""
+        for pre in self._pre_callbacks:
+            changes = pre(changes)
+            if not changes:  # rclpy's words
+                return SetResult(False, "parameter list cannot be empty, this might be due to "
+                                 "pre_set_parameters_callback modifying the original parameters "
+                                 "list.")  # fmt: skip
         coerced: dict[str, Any] = {}
         for name, value in changes.items():
             if name in self._read_only:

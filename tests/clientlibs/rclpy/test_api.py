@@ -164,9 +164,14 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
     from std_msgs.msg import String
 
     calls = {
-        "Node.create_guard_condition()": lambda: node.create_guard_condition(lambda: None),
+        "create_publisher(event_callbacks=...) (QoS events)": lambda: node.create_publisher(
+            String, "t", 10, event_callbacks=object()
+        ),
+        "create_subscription(qos_overriding_options=...)": lambda: node.create_subscription(
+            String, "t", lambda m: None, 10, qos_overriding_options=object()
+        ),
         "Node.undeclare_parameter()": lambda: node.undeclare_parameter("use_sim_time"),
-        "create_subscription(raw=True)": lambda: node.create_subscription(
+        "create_subscription(raw=True) on the in-process bus": lambda: node.create_subscription(
             String, "t", lambda m: None, 10, raw=True
         ),
         "a subscription callback taking (msg, message_info)": lambda: node.create_subscription(
@@ -179,11 +184,6 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
             String, "t", 10
         ).assert_liveliness(),
     }
-    from rclpy.signals import SignalHandlerOptions
-
-    calls["rclpy signal handlers for SIGTERM alone"] = lambda: rclpy.init(
-        signal_handler_options=SignalHandlerOptions.SIGTERM
-    )
     for name, call in calls.items():
         with pytest.raises(
             NotImplementedError,

@@ -189,3 +189,31 @@ def test_zenoh_ros2_sdk_hears_the_talker_script(
     assert len(heard) == 3
     numbers = [int(m["data"].rsplit(" ", 1)[1]) for m in heard]
     assert numbers == list(range(numbers[0], numbers[0] + 3))
+
+
+def test_a_raw_subscription_hears_the_serialized_message(
+    zenoh_rclpy: MultiThreadedExecutor,
+) -> None:
+    """demo_nodes_py's listener_serialized: ``raw=True`` hands over the CDR bytes (with their
+    encapsulation header) as rmw serialized them."""
+    from std_msgs.msg import String
+
+    from robomodel.runtime.msg.cdr import deserialize
+
+    listener = rclpy.create_node("serialized_subscriber")
+    heard: list[Any] = []
+    subscription = listener.create_subscription(String, "raw_chatter", heard.append, 10, raw=True)
+    talker = rclpy.create_node("raw_talker")
+    publisher = talker.create_publisher(String, "raw_chatter", 10)
+    zenoh_rclpy.add_node(listener)
+    zenoh_rclpy.add_node(talker)
+    deadline = time.monotonic() + scaled(30)
+    while not heard:
+        assert time.monotonic() < deadline, "timed out waiting for a serialized message"
+        publisher.publish(String(data="Hello World: raw"))
+        zenoh_rclpy.spin_once(timeout_sec=0.05)
+    assert isinstance(heard[0], bytes) and heard[0][:2] == b"\x00\x01"  # CDR, little endian
+    assert deserialize(heard[0], String).data == "Hello World: raw"
+    assert subscription.raw and listener.count_publishers("raw_chatter") == 1
+    listener.destroy_node()
+    talker.destroy_node()

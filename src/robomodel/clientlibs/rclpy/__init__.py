@@ -70,7 +70,8 @@ def init(
 
     ``bus`` is robomodel's: ``zenoh`` (default) or ``inproc`` (one process, for tests).
     ``signal_handler_options`` as rclpy's (None: ``ALL`` for the default context, else ``NO``):
-    Ctrl-C then stops the context (``ok()`` is False) and raises KeyboardInterrupt
+    Ctrl-C then stops the context (``ok()`` is False) and raises KeyboardInterrupt, SIGTERM
+    stops it and ``spin`` raises ``ExternalShutdownException``
     (:mod:`~robomodel.clientlibs.rclpy.signals`).
     """
     from robomodel.clientlibs.rclpy import signals
@@ -83,8 +84,6 @@ def init(
             else signals.SignalHandlerOptions.NO
         )
     options = signals.SignalHandlerOptions(signal_handler_options)
-    if options == signals.SignalHandlerOptions.SIGTERM:
-        signals.install_signal_handlers(options)  # refused, naming it
     chosen.init(args, domain_id=domain_id, bus=bus)
     if options != signals.SignalHandlerOptions.NO:
         signals.install_signal_handlers(options)

@@ -1,7 +1,8 @@
 """``rclpy.client.Client``: calls a service over robomodel's transport.
 
 ``call_async`` sends the request from a thread of its own (the transport's call blocks) and
-completes the returned future from there; its done callbacks run on the executor. ``call``
+completes the returned future from there; its done callbacks run on the executor, and a
+``spin_once`` waiting then returns, as rclpy's does after taking the response. ``call``
 waits on the calling thread, so it works whether or not another thread spins (rclpy needs one
 spinning; robomodel does not).
 """
@@ -10,6 +11,7 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy._support import not_offered
@@ -38,8 +40,13 @@ class Client:
         srv_name: str,
         callback_group: CallbackGroup,
         qos_profile: QoSProfile,
+        taken: Callable[[], None] | None = None,
     ) -> None:
         self.context = context
+        # Posted when a response came: the executor holding the client's node counts it as a
+        # callback run, as rclpy's runs the client's (a loop of spin_once until the future is
+        # done ends). None: nothing to tell.
+        self._taken = taken
         self.srv_type = srv_type
         self.srv_name = srv_name
         self.callback_group = callback_group
@@ -73,6 +80,8 @@ class Client:
                 future.set_result(response)
             finally:
                 self._pending.discard(future)
+                if self._taken is not None:
+                    self.context._post(self._taken)
 
         threading.Thread(target=work, name=f"rclpy call {self.srv_name}", daemon=True).start()
         return future

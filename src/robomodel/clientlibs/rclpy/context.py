@@ -36,17 +36,15 @@ def _choose_rosidl_flavour() -> None:
         choose("rosidl")
 
 
-def _noop() -> None:
-    """Posted to wake the spinning thread."""
-
-
 class Dispatcher(Protocol):
     """The executor spinning a context, as nodes hand it their callbacks
     (:class:`~robomodel.clientlibs.rclpy.executors.Executor`)."""
 
     hands_over: bool
 
-    def dispatch(self, group: Any, run: Callable[[], None]) -> None: ...
+    def dispatch(
+        self, group: Any, run: Callable[[], None], node: Any = None, entity: Any = None
+    ) -> None: ...
 
     def fail(self, exc: Exception) -> None: ...
 
@@ -131,6 +129,7 @@ class Context:
             robomodel, self._robomodel = self._robomodel, None
             self._dispatcher = None
             self._shutdown.set()
+            robomodel.executor.wake()  # waiting executors see it at once
             callbacks, self._callbacks = self._callbacks, []
         from robomodel.clientlibs.rclpy import signals
 
@@ -146,9 +145,7 @@ class Context:
         and returns; the nodes and the bus go at :meth:`shutdown` (``try_shutdown``, the end
         of ``with rclpy.init()``), which is safe to call then."""
         self._shutdown.set()
-        robomodel = self._robomodel
-        if robomodel is not None:
-            robomodel.executor.post(_noop)
+        self.wake()
 
     def try_shutdown(self) -> None:
         """Shut down if initialised; nothing otherwise."""
@@ -172,6 +169,20 @@ class Context:
         robomodel = self._robomodel
         if robomodel is not None:
             robomodel.executor.post(callback)
+
+    def fail(self, exc: Exception) -> None:
+        """A task made with ``executor=context`` (a coroutine callback) raised ``exc``: the
+        spin call of the executor running it raises it."""
+        dispatcher = self.dispatcher
+        if dispatcher is None:
+            raise exc
+        dispatcher.fail(exc)
+
+    def wake(self) -> None:
+        """Make every executor waiting for this context's work look again."""
+        robomodel = self._robomodel
+        if robomodel is not None:
+            robomodel.executor.wake()
 
     def wait_shutdown(self, timeout_s: float) -> bool:
         """Wait up to ``timeout_s`` for shutdown; True once shut down."""

@@ -8,7 +8,11 @@ receives the bus's deliveries (:mod:`robomodel.runtime.executor`); an rclpy exec
 one at a time and in order, a reentrant group's in parallel. An executor runs only the
 callbacks of the nodes added to it, as rclpy's: a delivery to another node that reaches the
 spinning executor is parked on that node (a subscription keeps its QoS depth, a timer one tick)
-until an executor holding the node spins.
+until an executor holding the node spins. Each executor waits on a bell of its own, rung by
+every post to the context's executor and by work parked on its nodes, so executors spinning
+on several threads each hear of their work at once; a wake-up alone is no callback, so
+``spin_once`` goes on waiting for one, as rclpy's. An executor of the user's that overrides
+``spin_once`` takes its callbacks from :meth:`Executor.wait_for_ready_callbacks`.
 """
 
 from __future__ import annotations
@@ -19,7 +23,7 @@ import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from robomodel.clientlibs.rclpy.task import Future, Task
 from robomodel.clientlibs.rclpy.utilities import get_default_context
@@ -27,7 +31,6 @@ from robomodel.clientlibs.rclpy.utilities import get_default_context
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
     from robomodel.clientlibs.rclpy.context import Context
-    from robomodel.clientlibs.rclpy.node import Node
 
 __all__ = [
     "ConditionReachedException",
@@ -40,6 +43,14 @@ __all__ = [
 ]
 
 _SLICE_S = 0.05  # how often a wait for ever looks at shutdown and at its future
+
+
+class Node(Protocol):
+    """What an executor uses of an rclpy node (:class:`~robomodel.clientlibs.rclpy.node.Node`;
+    the node module imports this one, which stays free of it)."""
+
+    executor: Any
+    _parked: collections.deque[Callable[[], None]]
 
 
 class ExternalShutdownException(Exception):
@@ -58,14 +69,11 @@ class ConditionReachedException(Exception):
     """The future waited for is done."""
 
 
-def _noop() -> None:
-    """Posted to wake the spinning thread."""
-
-
 class Executor:
     """The base of the executors (the interface is documented here)."""
 
     hands_over = False  # whether callbacks run on other threads than the spinning one
+    raises_external_shutdown = True  # spin raises ExternalShutdownException (rclpy's single)
 
     def __init__(self, *, context: Context | None = None) -> None:
         self._context = context or get_default_context()
@@ -75,6 +83,18 @@ class Executor:
         self._nodes_lock = threading.Lock()
         self._is_shutdown = False
         self._failure: BaseException | None = None
+        # The bell this executor's spinning thread waits on, held while silent: rung by every
+        # post to the context's executor while it waits, and by work parked on its own nodes
+        # by another executor's thread (which takes that work off the shared queue).
+        self._bell = threading.Lock()
+        self._bell.acquire()
+        self._ring = self.wake
+        # An executor of the user's that overrides spin_once takes its callbacks through
+        # wait_for_ready_callbacks: they are kept here, (run, entity, node), until it does.
+        self._pulls = type(self).spin_once is not Executor.spin_once
+        self._ready: collections.deque[tuple[Callable[[], None], Any, Any]] = collections.deque()
+        if self._pulls:
+            self.hands_over = True
 
     @property
     def context(self) -> Context:
@@ -85,11 +105,18 @@ class Executor:
         self._context.robomodel.executor.post(callback)
 
     def wake(self) -> None:
-        self._post(_noop)
+        """Make the spinning thread look again (work was parked on a node of this one)."""
+        bell = self._bell
+        if bell.locked():
+            try:  # noqa: SIM105 (as the context's executor rings: cheap)
+                bell.release()
+            except RuntimeError:  # rung by another thread in between
+                pass
 
     def create_task(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> Task:
         """Run ``callback(*args)`` (a function or a coroutine) at the next spin."""
         task = Task(callback, args, kwargs, executor=self)
+        task._fails_spin = True
         self._post(task)
         return task
 
@@ -125,8 +152,7 @@ class Executor:
         self._is_shutdown = True
         if self._context.dispatcher is self:
             self._context.dispatcher = None
-        if self._context.ok():
-            self.wake()
+        self.wake()  # its own bell: a spin waiting on it returns at once
         return True
 
     def _run_parked(self) -> int:
@@ -147,13 +173,28 @@ class Executor:
         return done
 
     def _spin_robomodel(self, timeout_s: float) -> int:
+        """Run what is parked on this executor's nodes and what the context's executor holds;
+        if nothing, wait up to ``timeout_s`` for either on this executor's own bell (so that
+        two executors spinning on two threads each hear of their own work at once)."""
         context = self._context
         spinning = context._spinning
         outer = getattr(spinning, "executor", None)  # an executor spun in a callback nests
         context.dispatcher = self
+        shared = context.robomodel.executor
         try:
-            done = self._run_parked()
-            done += context.robomodel.executor.spin_once(0.0 if done else timeout_s)
+            done = self._run_parked() + shared.spin_once(0.0)
+            if not done and timeout_s > 0:
+                wait = shared.wait_s(timeout_s)
+                bell = self._bell
+                bell.acquire(blocking=False)  # silence, then look: a later ring is heard
+                shared.add_ring(self._ring)
+                try:
+                    done = self._run_parked() + shared.spin_once(0.0)
+                    if not done and wait > 0 and context.ok() and not self._is_shutdown:
+                        bell.acquire(timeout=wait)
+                        done = self._run_parked() + shared.spin_once(0.0)
+                finally:
+                    shared.remove_ring(self._ring)
         finally:
             spinning.executor = outer
         failure, self._failure = self._failure, None
@@ -164,16 +205,29 @@ class Executor:
     def spin(self) -> None:
         """Run callbacks until the context or this executor shuts down."""
         while self._context.ok() and not self._is_shutdown:
-            self.spin_once(_SLICE_S)
+            self.spin_once()  # as rclpy: an executor of the user's may override it
+
+    def _external_shutdown(self) -> None:
+        """The wait ended because the context was shut down from outside (a signal, another
+        thread): rclpy's single-threaded executor raises that out of spin, its multi-threaded
+        one returns."""
+        if self.raises_external_shutdown and not self._is_shutdown:
+            raise ExternalShutdownException()
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
         """Run what is ready; if nothing is, wait up to ``timeout_sec`` (None: for ever) for
-        something and run it."""
+        a callback and run it (a wake-up alone does not end the wait, as in rclpy)."""
+        if not self._context.ok():
+            self._external_shutdown()
+            return
         if timeout_sec is not None and timeout_sec <= 0:
             self._spin_robomodel(0.0)
             return
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
-        while self._context.ok() and not self._is_shutdown:
+        while not self._is_shutdown:
+            if not self._context.ok():
+                self._external_shutdown()
+                return
             remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
             if remaining <= 0:
                 return
@@ -187,7 +241,10 @@ class Executor:
         deadline = (
             None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
         )
-        while self._context.ok() and not self._is_shutdown and not future.done():
+        while not self._is_shutdown and not future.done():
+            if not self._context.ok():
+                self._external_shutdown()
+                return
             remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
             if remaining <= 0:
                 return
@@ -202,17 +259,57 @@ class Executor:
             self.spin_once(timeout_sec)
 
     # -- callbacks (called on the spinning thread) ----------------------------------------
-    def dispatch(self, group: CallbackGroup, run: Callable[[], None]) -> None:
-        """Run ``run`` (a callback of ``group``) now; a multi-threaded executor hands it over.
-        An exception leaves the spin call, with its traceback, as in rclpy."""
+    def dispatch(
+        self, group: CallbackGroup, run: Callable[[], None], node: Any = None, entity: Any = None
+    ) -> None:
+        """Run ``run`` (a callback of ``group``, of ``entity`` of ``node``) now; a multi-threaded
+        executor hands it over, an executor of the user's (overriding ``spin_once``) keeps it
+        for :meth:`wait_for_ready_callbacks`. An exception leaves the spin call, with its
+        traceback, as in rclpy."""
+        if self._pulls:
+            self._ready.append((run, entity, node))
+            self.wake()
+            return
         try:
             run()
         except Exception as exc:
             self._failure = exc
 
+    def wait_for_ready_callbacks(
+        self, timeout_sec: float | None = None, nodes: Any = None, condition: Any = None
+    ) -> tuple[Task, Any, Any]:
+        """The next callback ready, as ``(handler, entity, node)``: ``handler()`` runs it (a
+        :class:`Task`). For an executor of the user's whose ``spin_once`` hands callbacks to
+        threads of its own, as rclpy's custom executors do.
+
+        Raises:
+            ShutdownException: this executor was shut down.
+            ExternalShutdownException: the context was.
+            TimeoutException: nothing was ready within ``timeout_sec`` (None: wait for ever).
+        """
+        if not self._pulls:
+            raise RuntimeError(
+                "wait_for_ready_callbacks is for executors that override spin_once: "
+                f"{type(self).__name__} runs its callbacks itself"
+            )
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while True:
+            if self._ready:
+                run, entity, node = self._ready.popleft()
+                return Task(run, executor=self), entity, node
+            if self._is_shutdown:
+                raise ShutdownException()
+            if not self._context.ok():
+                raise ExternalShutdownException()
+            remaining = _SLICE_S if deadline is None else deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutException()
+            self._spin_robomodel(min(remaining, _SLICE_S))
+
     def fail(self, exc: Exception) -> None:
-        """A callback run on the spinning thread raised ``exc``: the spin call raises it."""
+        """A callback raised ``exc``: the spin call raises it."""
         self._failure = exc
+        self.wake()
 
     def __enter__(self) -> Executor:
         return self
@@ -230,6 +327,7 @@ class MultiThreadedExecutor(Executor):
     groups."""
 
     hands_over = True
+    raises_external_shutdown = False  # as rclpy's: spin returns when the context shuts down
 
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)
@@ -247,7 +345,9 @@ class MultiThreadedExecutor(Executor):
     def num_threads(self) -> int:
         return self._num_threads
 
-    def dispatch(self, group: CallbackGroup, run: Callable[[], None]) -> None:
+    def dispatch(
+        self, group: CallbackGroup, run: Callable[[], None], node: Any = None, entity: Any = None
+    ) -> None:
         if group.reentrant:
             self._pool.submit(self._run, run)
             return

@@ -17,6 +17,9 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy import exceptions as ex
+from robomodel.clientlibs.rclpy import executors as _executors  # noqa: F401 (as rclpy's node:
+
+# ``rclpy.executors`` is an attribute of the package once a node can be made)
 from robomodel.clientlibs.rclpy._arguments import parse_ros_arguments
 from robomodel.clientlibs.rclpy._support import interface, not_offered
 from robomodel.clientlibs.rclpy.callback_groups import (
@@ -25,6 +28,7 @@ from robomodel.clientlibs.rclpy.callback_groups import (
 )
 from robomodel.clientlibs.rclpy.client import Client
 from robomodel.clientlibs.rclpy.clock import Clock, ROSClock
+from robomodel.clientlibs.rclpy.guard_condition import GuardCondition
 from robomodel.clientlibs.rclpy.logging import RcutilsLogger
 from robomodel.clientlibs.rclpy.parameter import Parameter
 from robomodel.clientlibs.rclpy.parameter import _Type as ParameterType
@@ -118,6 +122,8 @@ class Node:
         self._post_set_callbacks: list[Callable[[list[Parameter]], None]] = []
         self.robomodel_node.parameters.add_set_callback(self._run_set_callbacks)
         self.robomodel_node.parameters.add_post_set_callback(self._run_post_set_callbacks)
+        self._pre_set_callbacks: list[Callable[[list[Parameter]], list[Parameter]]] = []
+        self.robomodel_node.parameters.add_pre_set_callback(self._run_pre_set_callbacks)
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self.executor: Any = None  # the rclpy Executor the node was last added to
         # deliveries that reached an executor not holding this node, for one that does
@@ -127,7 +133,7 @@ class Node:
         self._services: list[Service] = []
         self._clients: list[Client] = []
         self._timers: list[Timer] = []
-        self._guards: list[Any] = []
+        self._guards: list[GuardCondition] = []
         self._waitables: list[Any] = []
         self._clock = ROSClock(self.robomodel_node.get_clock)
         logger_name = fq_name.lstrip("/").replace("/", ".")
@@ -135,6 +141,9 @@ class Node:
         self._logger = RcutilsLogger(logger_name, rosout=lambda: robomodel_node.rosout)
         self._destroyed = False
         self._context.track_node(self)
+        # as rclpy, whose node module imports it: ``rclpy.executors`` is there once a node is
+        import robomodel.clientlibs.rclpy.executors  # noqa: F401
+
         if automatically_declare_parameters_from_overrides:
             for pname, value in overrides.items():
                 if not self.has_parameter(pname):
@@ -197,7 +206,7 @@ class Node:
         yield from self._timers
 
     @property
-    def guards(self) -> Iterator[Any]:
+    def guards(self) -> Iterator[GuardCondition]:
         yield from self._guards
 
     @property
@@ -211,6 +220,7 @@ class Node:
         *,
         coalesce: bool = False,
         depth: int = 0,
+        entity: list[Any] | None = None,
     ) -> Callable[..., None]:
         """``callback`` as the bus calls it: handed to the spinning executor, which runs it as
         ``group`` allows; a coroutine function runs as a :class:`Task`. With ``coalesce`` (a
@@ -218,13 +228,30 @@ class Node:
         ready once however many periods passed while its group was busy.
 
         A call that reaches an executor this node was not added to is parked on the node
-        until one it was added to spins: the newest ``depth`` calls (0: all; a timer's one)."""
+        until one it was added to spins: the newest ``depth`` calls (0: all; a timer's one).
+        A user's group that gates its callbacks is asked about ``entity[0]`` (filled in once
+        the entity is made) before each call and told after it."""
         context = self._context
         if inspect.iscoroutinefunction(callback):
             coroutine_function = callback
 
             def callback(*args: Any) -> None:
-                Task(coroutine_function, args, executor=context)()
+                task = Task(coroutine_function, args, executor=context)
+                task._fails_spin = True
+                task()
+
+        made = entity if entity is not None else []
+        if group.gates():
+            ungated = callback
+
+            def callback(*args: Any) -> None:
+                subject = made[0] if made else None
+                if not group.can_execute(subject) or not group.beginning_execution(subject):
+                    return  # refused: dropped (rclpy's would stay ready until allowed)
+                try:
+                    ungated(*args)
+                finally:
+                    group.ending_execution(subject)
 
         waiting = threading.Lock()  # held while a call of a coalescing callback waits
         kept: collections.deque[tuple[Any, ...]] = collections.deque(
@@ -249,6 +276,7 @@ class Node:
                 if kept.maxlen is None or len(kept) < kept.maxlen:
                     node_parked.append(unpark)  # one unpark per call kept
                 kept.append(args)
+                self._wake_owner()
                 return
             if executor is None or not executor.hands_over:
                 try:  # on the spinning thread, at once (no hand-over to pay for)
@@ -258,11 +286,18 @@ class Node:
                         raise
                     executor.fail(exc)
             elif not coalesce:
-                executor.dispatch(group, functools.partial(callback, *args))
+                executor.dispatch(group, functools.partial(callback, *args), self, _first(made))
             elif waiting.acquire(blocking=False):
-                executor.dispatch(group, run_waiting)
+                executor.dispatch(group, run_waiting, self, _first(made))
 
         return deliver
+
+    def _wake_owner(self) -> None:
+        """Work was parked on this node: the executor holding it (spinning on another thread)
+        runs it now rather than at the end of its wait."""
+        owner = self.executor
+        if owner is not None and owner.owns(self):
+            owner.wake()
 
     def create_publisher(
         self,
@@ -278,6 +313,7 @@ class Node:
         """Publish ``msg_type`` on ``topic`` (relative names go in the node's namespace)."""
         if publisher_class is not None:
             not_offered("create_publisher(publisher_class=...)")
+        _refuse_events_and_overrides("create_publisher", event_callbacks, qos_overriding_options)
         profile = _int_qos(qos_profile)
         publisher = Publisher(
             self.robomodel_node.create_publisher(msg_type, topic, as_robomodel_qos(qos_profile)),
@@ -298,22 +334,46 @@ class Node:
         qos_overriding_options: Any = None,
         raw: bool = False,
     ) -> Subscription:
-        """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here)."""
-        if raw:
-            not_offered("create_subscription(raw=True)")
+        """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here;
+        with ``raw``, the serialized message: its CDR bytes, as rmw hands them over)."""
+        _refuse_events_and_overrides("create_subscription", event_callbacks, qos_overriding_options)
         if _required_arguments(callback) > 1:
             not_offered("a subscription callback taking (msg, message_info)")
         group = callback_group or self.default_callback_group
         profile = _int_qos(qos_profile)
         kept = profile.depth if profile.history != HistoryPolicy.KEEP_ALL else 0
-        deliver = self._dispatcher(group, callback, depth=kept)
-        handle = self.robomodel_node.create_subscription(
-            msg_type, topic, deliver, as_robomodel_qos(qos_profile)
-        )
+        made: list[Any] = []
+        deliver = self._dispatcher(group, callback, depth=kept, entity=made)
+        if raw:
+            handle = self._raw_subscription(msg_type, topic, deliver, qos_profile)
+        else:
+            handle = self.robomodel_node.create_subscription(
+                msg_type, topic, deliver, as_robomodel_qos(qos_profile)
+            )
         subscription = Subscription(handle, callback, group, _int_qos(qos_profile))
+        subscription.raw = raw
+        made.append(subscription)
         group.add_entity(subscription)
         self._subscriptions.append(subscription)
         return subscription
+
+    def _raw_subscription(
+        self, msg_type: Any, topic: str, deliver: Callable[..., None], qos_profile: Any
+    ) -> Any:
+        """A subscription handing over each sample's serialized bytes, on a bus that has them
+        (Zenoh's; the in-process bus passes objects, not bytes)."""
+        from robomodel.runtime.node import Subscription as RobomodelSubscription
+
+        node = self.robomodel_node
+        create_raw = getattr(node.context.transport, "create_raw_subscription", None)
+        if create_raw is None:
+            not_offered("create_subscription(raw=True) on the in-process bus", "use Zenoh's")
+        name = node.resolve_topic_name(topic)
+        qos = as_robomodel_qos(qos_profile)
+        handle = create_raw(
+            node.fully_qualified_name, name, msg_type, qos, lambda payload, info: deliver(payload)
+        )
+        return RobomodelSubscription(name, msg_type, qos, handle)
 
     def create_service(
         self,
@@ -342,7 +402,7 @@ class Node:
                 response = callback(request, srv_type.Response())
                 context._post(lambda: deferred.resolve(response))
 
-            executor.dispatch(group, run)
+            executor.dispatch(group, run, self)
             return deferred
 
         def park(request: Any) -> Any:
@@ -358,6 +418,7 @@ class Node:
                     context._post(lambda: deferred.resolve(response))
 
             self._parked.append(answer)
+            self._wake_owner()
             return deferred
 
         server = self.robomodel_node.create_service(srv_type, srv_name, handle)
@@ -384,6 +445,7 @@ class Node:
             node.resolve_topic_name(srv_name),
             group,
             qos_profile,
+            taken=self._dispatcher(group, _response_taken, coalesce=True),
         )
         group.add_entity(client)
         self._clients.append(client)
@@ -401,15 +463,17 @@ class Node:
         if clock is not None and clock is not self._clock:
             not_offered("create_timer(clock=...) with a clock other than the node's")
         group = callback_group or self.default_callback_group
+        made: list[Any] = []
         timer = Timer(
             self.robomodel_node,
-            self._dispatcher(group, callback, coalesce=True),
+            self._dispatcher(group, callback, coalesce=True, entity=made),
             callback,
             group,
             round(timer_period_sec * 1e9),
             self._clock,
             autostart=autostart,
         )
+        made.append(timer)
         group.add_entity(timer)
         self._timers.append(timer)
         return timer
@@ -417,8 +481,27 @@ class Node:
     def create_rate(self, frequency: float, clock: Clock | None = None) -> Rate:
         return Rate(frequency, clock or self._clock, self._context)
 
-    def create_guard_condition(self, *args: Any, **kwargs: Any) -> Any:
-        not_offered("Node.create_guard_condition()")
+    def create_guard_condition(
+        self, callback: Callable[[], Any], callback_group: CallbackGroup | None = None
+    ) -> GuardCondition:
+        """A guard condition whose ``trigger()`` has this node's executor run ``callback()``."""
+        group = callback_group or self.default_callback_group
+        made: list[Any] = []
+        guard = GuardCondition(
+            callback,
+            group,
+            self._context,
+            fire=None
+            if callback is None
+            else self._dispatcher(group, callback, coalesce=True, entity=made),
+        )
+        made.append(guard)
+        group.add_entity(guard)
+        self._guards.append(guard)
+        return guard
+
+    def destroy_guard_condition(self, guard: GuardCondition) -> bool:
+        return self._destroy(self._guards, guard)
 
     def add_waitable(self, waitable: Any) -> None:
         not_offered("Node.add_waitable()")
@@ -462,11 +545,17 @@ class Node:
             client.destroy()
         for timer in self._timers:
             timer.destroy()
+        for subscription in self._subscriptions:
+            if subscription.raw:  # the robomodel node does not know it
+                subscription.destroy()
         self._publishers.clear()
         self._subscriptions.clear()
         self._services.clear()
         self._clients.clear()
         self._timers.clear()
+        for guard in self._guards:
+            guard.destroy()
+        self._guards.clear()
         self._context.untrack_node(self)
         if self._context.ok():
             context = self._context.robomodel
@@ -796,8 +885,28 @@ class Node:
     ) -> None:
         self._post_set_callbacks.remove(callback)
 
-    def add_pre_set_parameters_callback(self, callback: Any) -> None:
-        not_offered("Node.add_pre_set_parameters_callback()")
+    def add_pre_set_parameters_callback(
+        self, callback: Callable[[list[Parameter]], list[Parameter]]
+    ) -> None:
+        """``callback(list[Parameter]) -> list[Parameter]`` changes what a set (this node's or a
+        remote one: ``ros2 param set``) will set, before it is checked; the newest first."""
+        self._pre_set_callbacks.insert(0, callback)
+
+    def remove_pre_set_parameters_callback(
+        self, callback: Callable[[list[Parameter]], list[Parameter]]
+    ) -> None:
+        self._pre_set_callbacks.remove(callback)
+
+    def _run_pre_set_callbacks(self, changes: Any) -> dict[str, Any]:
+        """As rclpy: each callback sees the parameters asked for; what they return, together,
+        is set (a later entry of a name wins)."""
+        if not self._pre_set_callbacks:
+            return dict(changes)
+        parameters = [Parameter(name, value=value) for name, value in changes.items()]
+        modified: list[Parameter] = []
+        for callback in list(self._pre_set_callbacks):
+            modified.extend(callback(parameters))
+        return {parameter.name: parameter.value for parameter in modified}
 
     def _run_set_callbacks(self, changes: Any) -> SetResult:
         parameters = [Parameter(name, value=value) for name, value in changes.items()]
@@ -824,3 +933,22 @@ def _required_arguments(callback: Callable[..., Any]) -> int:
         for p in signature.parameters.values()
         if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) and p.default is p.empty
     )
+
+
+def _response_taken() -> None:
+    """A client's response came (its future is done already): run on the executor holding the
+    node, as rclpy's executor takes the response, so that a waiting ``spin_once`` returns."""
+
+
+def _first(made: list[Any]) -> Any:
+    """The entity a callback belongs to, once made (None before)."""
+    return made[0] if made else None
+
+
+def _refuse_events_and_overrides(call: str, event_callbacks: Any, qos_overriding: Any) -> None:
+    """QoS event callbacks (rclpy.event_handler) and QoS overriding parameters are not offered:
+    refused rather than ignored."""
+    if event_callbacks is not None:
+        not_offered(f"{call}(event_callbacks=...) (QoS events)")
+    if qos_overriding is not None:
+        not_offered(f"{call}(qos_overriding_options=...)")

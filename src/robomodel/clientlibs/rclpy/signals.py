@@ -1,12 +1,14 @@
 """``rclpy.signals``: the signal handlers ``rclpy.init`` installs.
 
-As rclpy's: on SIGINT every context initialised with handlers stops being ``ok()`` (spinning
-executors return), then the handler that was there before runs, Python's own raising
-``KeyboardInterrupt`` in the main thread. ``rclpy.init`` installs them for the default context
-(``SignalHandlerOptions.ALL``) and ``shutdown`` of the last such context restores the previous
-ones. SIGTERM keeps Python's handling (the process ends); asking for SIGTERM alone raises
-NotImplementedError. Python lets only the main thread install handlers: from another thread
-none are installed, as ``SignalHandlerOptions.NO``.
+As rclpy's (Jazzy's signal_handler.cpp): on SIGINT or SIGTERM every context initialised with
+handlers stops being ``ok()``, then the handler that was there before runs if it is a Python
+function: for SIGINT Python's own, raising ``KeyboardInterrupt`` in the main thread; for SIGTERM
+usually none (the default action, ending the process, is not taken), so a single-threaded
+executor's spin raises ``ExternalShutdownException`` and a multi-threaded one's returns.
+``rclpy.init`` installs both for the default context (``SignalHandlerOptions.ALL``; ``SIGINT``
+or ``SIGTERM`` alone as asked) and ``shutdown`` of the last such context restores the previous
+ones. Python lets only the main thread install handlers: from another thread none are
+installed, as ``SignalHandlerOptions.NO``.
 """
 
 from __future__ import annotations
@@ -43,31 +45,38 @@ _contexts: weakref.WeakSet[Any] = weakref.WeakSet()  # what SIGINT shuts down
 _lock = threading.Lock()
 
 
-def _on_sigint(signum: int, frame: FrameType | None) -> None:
+def _on_signal(signum: int, frame: FrameType | None) -> None:
     for context in list(_contexts):
         context.interrupt()
     previous = _previous.get(signum)
-    if callable(previous):
-        previous(signum, frame)  # Python's default_int_handler: KeyboardInterrupt
+    if callable(previous):  # SIG_DFL and SIG_IGN are not: rclpy does not chain to them
+        previous(signum, frame)  # for SIGINT Python's default_int_handler: KeyboardInterrupt
+
+
+_HANDLED: dict[SignalHandlerOptions, tuple[signal.Signals, ...]] = {
+    SignalHandlerOptions.SIGINT: (signal.SIGINT,),
+    SignalHandlerOptions.SIGTERM: (signal.SIGTERM,),
+    SignalHandlerOptions.ALL: (signal.SIGINT, signal.SIGTERM),
+}
 
 
 def install_signal_handlers(options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
-    """Install rclpy's handler for SIGINT (``SIGINT`` or ``ALL``); nothing with ``NO`` or off
-    the main thread."""
+    """Install rclpy's handler for SIGINT and SIGTERM (``ALL``), or one of them; nothing with
+    ``NO`` or off the main thread."""
     global _options
     options = SignalHandlerOptions(options)
-    if options == SignalHandlerOptions.SIGTERM:
-        from robomodel.clientlibs.rclpy._support import not_offered
-
-        not_offered("rclpy signal handlers for SIGTERM alone", "SIGTERM ends the process")
     if options == SignalHandlerOptions.NO:
         return
     if threading.current_thread() is not threading.main_thread():
         return
     with _lock:
-        if signal.SIGINT not in _previous:
-            _previous[signal.SIGINT] = signal.signal(signal.SIGINT, _on_sigint)
-        _options = options
+        for signum in _HANDLED[options]:
+            if signum not in _previous:
+                _previous[signum] = signal.signal(signum, _on_signal)
+        _options = SignalHandlerOptions(
+            SignalHandlerOptions.SIGINT * (signal.SIGINT in _previous)
+            + SignalHandlerOptions.SIGTERM * (signal.SIGTERM in _previous)
+        )
 
 
 def get_current_signal_handlers_options() -> SignalHandlerOptions:
@@ -81,14 +90,14 @@ def uninstall_signal_handlers() -> None:
         return
     with _lock:
         for signum, previous in list(_previous.items()):
-            if signal.getsignal(signum) is _on_sigint:
+            if signal.getsignal(signum) is _on_signal:
                 signal.signal(signum, previous if previous is not None else signal.SIG_DFL)
             del _previous[signum]
         _options = SignalHandlerOptions.NO
 
 
 def _watch(context: _Interruptible) -> None:
-    """SIGINT interrupts ``context`` from now on."""
+    """SIGINT and SIGTERM interrupt ``context`` from now on."""
     _contexts.add(context)
 
 

@@ -16,6 +16,9 @@ __all__ = ["Future", "Task"]
 
 _PENDING, _DONE, _CANCELLED = "pending", "done", "cancelled"
 
+# The future a coroutine stepped on this thread awaits (set by Future.__await__).
+_awaiting = threading.local()
+
 
 class Future:
     """The outcome of an asynchronous operation; ``await future`` in a coroutine callback."""
@@ -27,15 +30,21 @@ class Future:
         self._callbacks: list[Callable[[Future], None]] = []
         self._lock = threading.Lock()
         self._post: Callable[[Callable[[], None]], None] | None = None
+        self._wake: Callable[[], None] | None = None
         if executor is not None:
             self._set_executor(executor)
 
     def _set_executor(self, executor: Any) -> None:
         self._post = executor._post  # an rclpy Executor's way onto its context's executor
+        self._wake = executor.wake  # makes the executor (a context's: all) look again
 
-    def __await__(self) -> Generator[Future, None, Any]:
+    def __await__(self) -> Generator[None, None, Any]:
+        # A bare yield, as rclpy's: asyncio's event loop accepts it too (an rclpy future
+        # awaited in an asyncio coroutine). The Task running the coroutine learns which future
+        # it waits for from _awaiting and goes on when that one is done.
         while not self.done():
-            yield self
+            _awaiting.future = self
+            yield
         return self.result()
 
     def cancel(self) -> None:
@@ -69,14 +78,14 @@ class Future:
                 return
             self._result, self._exception, self._state = result, exception, state
             callbacks, self._callbacks = self._callbacks, []
-        post = self._post
+        post, wake = self._post, self._wake
         for callback in callbacks:
             if post is None:
                 callback(self)
             else:
                 post(_bind(callback, self))
-        if post is not None:
-            post(_wake)  # a spin_until_future_complete waiting on the bell looks again
+        if wake is not None:
+            wake()  # a spin_until_future_complete waiting for work looks again
 
     def add_done_callback(self, callback: Callable[[Future], None]) -> None:
         """Call ``callback(future)`` when done (at once if it is)."""
@@ -95,10 +104,6 @@ class Future:
                 self._callbacks.remove(callback)
                 return True
         return False
-
-
-def _wake() -> None:
-    """Posted to wake a spinning thread."""
 
 
 def _bind(callback: Callable[[Future], None], future: Future) -> Callable[[], None]:
@@ -121,6 +126,11 @@ class Task(Future):
         self._args = args
         self._kwargs = kwargs or {}
         self._coroutine: Coroutine[Any, Any, Any] | None = None
+        # A callback's or create_task's task: its exception leaves the executor's spin call,
+        # as rclpy's executor raises a handler's exception (an action server's execute task
+        # handles its own).
+        self._fails_spin = False
+        self._fail: Callable[[Exception], None] | None = getattr(executor, "fail", None)
         self._turn = threading.Lock()  # guards the two flags below
         self._running = False
         self._again = False  # asked to run while running: run once more when done
@@ -151,6 +161,13 @@ class Task(Future):
                 self._running = False
             raise
 
+    def _failed(self, exc: BaseException) -> None:
+        self.set_exception(exc)
+        if not isinstance(exc, Exception):  # KeyboardInterrupt, SystemExit: on, at once
+            raise exc
+        if self._fails_spin and self._fail is not None:
+            self._fail(exc)
+
     def _step(self) -> None:
         if self._coroutine is None:
             if isinstance(self._handler, Coroutine):
@@ -159,20 +176,22 @@ class Task(Future):
                 try:
                     result = self._handler(*self._args, **self._kwargs)
                 except BaseException as exc:
-                    self.set_exception(exc)
+                    self._failed(exc)
                     return
                 if not isinstance(result, Coroutine):
                     self.set_result(result)
                     return
                 self._coroutine = result
+        _awaiting.future = None
         try:
-            awaited = self._coroutine.send(None)
+            self._coroutine.send(None)
         except StopIteration as stop:
             self.set_result(stop.value)
             return
         except BaseException as exc:
-            self.set_exception(exc)
+            self._failed(exc)
             return
+        awaited, _awaiting.future = _awaiting.future, None
         post = self._post
         if isinstance(awaited, Future) and post is not None:
             awaited.add_done_callback(lambda _f: post(self))

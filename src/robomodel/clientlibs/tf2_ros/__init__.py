@@ -1,5 +1,5 @@
 """tf2_ros on robomodel: ``Buffer``, ``TransformListener``, ``TransformBroadcaster``,
-``StaticTransformBroadcaster`` and tf2's exceptions, in ROS 2's form (a node passed: an rclpy
+``StaticTransformBroadcaster``, ``TransformRegistration`` and tf2's exceptions, in ROS 2's form (a node passed: an rclpy
 ``Node``) and ROS 1's (no node: the rospy process's)."""
 
 from robomodel.clientlibs.tf2_ros._exceptions import (
@@ -9,7 +9,9 @@ from robomodel.clientlibs.tf2_ros._exceptions import (
     LookupException,
     TimeoutException,
     TransformException,
+    TypeException,
 )
+from robomodel.clientlibs.tf2_ros._transform_types import TransformRegistration
 from robomodel.clientlibs.tf2_ros.buffer import Buffer
 from robomodel.clientlibs.tf2_ros.static_transform_broadcaster import StaticTransformBroadcaster
 from robomodel.clientlibs.tf2_ros.transform_broadcaster import TransformBroadcaster
@@ -29,4 +31,6 @@ __all__ = [
     "TransformBroadcaster",
     "TransformException",
     "TransformListener",
+    "TransformRegistration",
+    "TypeException",
 ]

@@ -21,6 +21,7 @@ __all__ = [
     "LookupException",
     "TimeoutException",
     "TransformException",
+    "TypeException",
 ]
 
 TransformException = TransformError
@@ -32,3 +33,7 @@ InvalidArgumentException = InvalidArgumentError
 
 class TimeoutException(TransformError):
     """tf2's ``TimeoutException``."""
+
+
+class TypeException(TransformError):
+    """tf2's ``TypeException``: ``Buffer.transform`` of a type it has no conversion for."""

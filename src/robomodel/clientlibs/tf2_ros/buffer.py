@@ -2,13 +2,17 @@
 
 Built on robomodel's :class:`robomodel.tf.BufferCore`; a lookup with a timeout waits until the
 transform can be answered (a listener's callbacks fill the buffer from another thread: rospy's
-or the rclpy executor's), then raises tf2's exception for it, as tf2_ros does.
+or the rclpy executor's), then raises tf2's exception for it, as tf2_ros does. The async forms
+return an rclpy future completed by the transform that made the lookup possible (``await`` it in
+a coroutine callback), and ``transform`` moves a stamped message with tf2_geometry_msgs'
+conversions.
 """
 
 from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from typing import Any
 
 from robomodel.clientlibs.tf2_ros._convert import (
@@ -17,6 +21,7 @@ from robomodel.clientlibs.tf2_ros._convert import (
     time_ns,
     to_message,
 )
+from robomodel.clientlibs.tf2_ros._transform_types import TransformRegistration
 from robomodel.tf import DEFAULT_CACHE_TIME_NS, BufferCore, TransformError
 from robomodel.tf import TransformStamped as _Transform
 
@@ -34,6 +39,8 @@ class Buffer:
             cache_ns = round(duration_s(cache_time) * 1e9)
         self._core = BufferCore(cache_ns)
         self._changed = threading.Condition()
+        self._on_new_data: list[Callable[[], None]] = []  # the async waits, tried on each insert
+        self.registration = TransformRegistration()
         self.node = node  # ROS 2's optional node (tf2_ros serves tf2_frames on it)
 
     # -- filling -----------------------------------------------------------------------
@@ -49,6 +56,9 @@ class Buffer:
         with self._changed:
             accepted = self._core.set_transform(transform, authority, is_static)
             self._changed.notify_all()
+            waiting = list(self._on_new_data)
+        for try_again in waiting:  # outside the lock: a done future runs callbacks
+            try_again()
         return accepted
 
     def clear(self) -> None:
@@ -166,22 +176,114 @@ class Buffer:
         with self._changed:
             return frame_id in self._core.frames
 
-    # -- what robomodel does not offer -------------------------------------------------
-    def transform(self, *args: Any, **kwargs: Any) -> Any:
-        """tf2_ros's ``Buffer.transform`` needs tf2_geometry_msgs' registered conversions."""
-        raise NotImplementedError(
-            "tf2_ros.Buffer.transform (tf2_geometry_msgs' conversions) is not offered by "
-            "robomodel: look the transform up with lookup_transform and apply it"
+    # -- asynchronous (rclpy futures) ---------------------------------------------------
+    def wait_for_transform_async(self, target_frame: str, source_frame: str, time: Any) -> Any:
+        """An ``rclpy.task.Future`` done with the transform once it can be looked up (at once
+        if it can now)."""
+        stamp = time_ns(time)
+        return self._when(
+            lambda: self._core.can_transform(target_frame, source_frame, stamp),
+            lambda: self.lookup_transform(target_frame, source_frame, time),
         )
 
-    def lookup_transform_async(self, *args: Any, **kwargs: Any) -> Any:
-        raise NotImplementedError(
-            "tf2_ros.Buffer.lookup_transform_async is not offered by robomodel: use "
-            "lookup_transform with a timeout"
+    def wait_for_transform_full_async(
+        self,
+        target_frame: str,
+        target_time: Any,
+        source_frame: str,
+        source_time: Any,
+        fixed_frame: str,
+    ) -> Any:
+        """:meth:`wait_for_transform_async` for :meth:`lookup_transform_full`."""
+        target_ns, source_ns = time_ns(target_time), time_ns(source_time)
+        return self._when(
+            lambda: (
+                self._core.can_transform(target_frame, fixed_frame, target_ns)
+                and self._core.can_transform(fixed_frame, source_frame, source_ns)
+            ),
+            lambda: self.lookup_transform_full(
+                target_frame, target_time, source_frame, source_time, fixed_frame
+            ),
         )
 
-    def wait_for_transform_async(self, *args: Any, **kwargs: Any) -> Any:
+    async def lookup_transform_async(self, target_frame: str, source_frame: str, time: Any) -> Any:
+        """``await`` it in a coroutine callback: the transform, once it can be looked up."""
+        return await self.wait_for_transform_async(target_frame, source_frame, time)
+
+    async def lookup_transform_full_async(
+        self,
+        target_frame: str,
+        target_time: Any,
+        source_frame: str,
+        source_time: Any,
+        fixed_frame: str,
+    ) -> Any:
+        return await self.wait_for_transform_full_async(
+            target_frame, target_time, source_frame, source_time, fixed_frame
+        )
+
+    def _when(self, ready: Callable[[], bool], lookup: Callable[[], Any]) -> Any:
+        """A future completed by ``lookup()`` the first time ``ready()`` holds (now or after
+        an insert); an error of ``lookup`` completes it with that exception."""
+        from robomodel.clientlibs.rclpy.task import Future
+
+        future = Future()
+
+        def try_now() -> None:
+            if future.done():
+                return
+            try:
+                with self._changed:
+                    if not ready():
+                        return
+                result = lookup()
+            except Exception as exc:
+                future.set_exception(exc)
+            else:
+                future.set_result(result)
+            with self._changed:
+                if try_now in self._on_new_data:
+                    self._on_new_data.remove(try_now)
+
+        with self._changed:
+            self._on_new_data.append(try_now)
+        try_now()
+        return future
+
+    # -- moving messages ------------------------------------------------------------------
+    def transform(
+        self, object_stamped: Any, target_frame: str, timeout: Any = None, new_type: Any = None
+    ) -> Any:
+        """``object_stamped`` (a stamped point, vector, pose, pose with covariance or
+        transform, or a type registered with ``TransformRegistration``) in ``target_frame``,
+        looked up at its header's stamp, waiting up to ``timeout``."""
+        header = object_stamped.header
+        found = self.lookup_transform(target_frame, header.frame_id, header.stamp, timeout)
+        return self._converted(self.registration.get(type(object_stamped))(object_stamped, found),
+                               new_type)  # fmt: skip
+
+    def transform_full(
+        self,
+        object_stamped: Any,
+        target_frame: str,
+        target_time: Any,
+        fixed_frame: str,
+        timeout: Any = None,
+        new_type: Any = None,
+    ) -> Any:
+        """:meth:`transform` through ``fixed_frame`` to ``target_frame`` at ``target_time``."""
+        header = object_stamped.header
+        found = self.lookup_transform_full(
+            target_frame, target_time, header.frame_id, header.stamp, fixed_frame, timeout
+        )
+        return self._converted(self.registration.get(type(object_stamped))(object_stamped, found),
+                               new_type)  # fmt: skip
+
+    @staticmethod
+    def _converted(result: Any, new_type: Any) -> Any:
+        if new_type is None or isinstance(result, new_type):
+            return result
         raise NotImplementedError(
-            "tf2_ros.Buffer.wait_for_transform_async is not offered by robomodel: use "
-            "can_transform with a timeout"
+            "tf2_ros.Buffer.transform(new_type=...) (tf2's convert between types) is not "
+            "offered by robomodel: convert the transformed message yourself"
         )

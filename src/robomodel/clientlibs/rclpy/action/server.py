@@ -232,7 +232,7 @@ class ActionServer:
         if dispatcher is None:
             context._post(run)
         else:
-            dispatcher.dispatch(self.callback_group, run)
+            dispatcher.dispatch(self.callback_group, run, self._node)
 
     def _finish(self, handle: ServerGoalHandle, task: Future) -> None:
         failure = task.exception()
