@@ -1,7 +1,7 @@
-"""A keyboard teleop node of the user's own package (in the style of teleop_twist_keyboard),
-started with ``robomodel run`` in a terminal (tmux), drives the simplebot of ``robomodel sim``:
-the keys reach the node through the terminal robomodel hands it, and its Twist reaches the
-diff-drive controller over Zenoh."""
+"""A keyboard teleop node of the user's own package, written against rclpy in the style of
+teleop_twist_keyboard and started with ``robomodel run`` in a terminal (tmux), drives the
+simplebot of ``robomodel sim``: the keys reach the node through the terminal robomodel hands
+it, and its Twist reaches the diff-drive controller over Zenoh."""
 
 from __future__ import annotations
 

@@ -3,19 +3,20 @@ the terminal (raw mode), a geometry_msgs/Twist on ``cmd_vel`` (remap it with ``-
 cmd_vel:=...``), repeated at 10 Hz so a diff-drive controller's command timeout does not stop
 the robot between keys.
 
-Written against robomodel's own node API (robomodel.runtime), with its ``--ros-args`` parser.
+Written against rclpy, as teleop_twist_keyboard's ROS 2 node is: parameters ``speed`` and
+``turn``, ``rclpy.spin`` on a thread of its own while the main thread reads the keys.
 """
 
 import os
 import select
 import sys
 import termios
+import threading
 import time
 import tty
 
-from robomodel.launch.node_args import parse_ros2_args
-from robomodel.runtime import Context
-from robomodel.runtime.msg.types.geometry_msgs import Twist, Vector3
+import rclpy
+from geometry_msgs.msg import Twist
 
 HELP = """Reading from the keyboard and Publishing to Twist!
 ---------------------------
@@ -37,17 +38,17 @@ def read_key(fd, timeout_s):
 
 
 def main():
-    parsed = parse_ros2_args(sys.argv[1:], default_name="teleop_twist_keyboard")
-    speed = float(parsed.params.get("speed", 0.5))
-    turn = float(parsed.params.get("turn", 1.0))
-    context = Context("zenoh")
-    node = context.create_node(
-        parsed.name or "teleop_twist_keyboard", remappings=dict(parsed.remaps)
-    )
+    rclpy.init()
+    node = rclpy.create_node("teleop_twist_keyboard")
+    speed = node.declare_parameter("speed", 0.5).value
+    turn = node.declare_parameter("turn", 1.0).value
     publisher = node.create_publisher(Twist, "cmd_vel", 10)
+    spinner = threading.Thread(target=rclpy.spin, args=(node,), daemon=True)
+    spinner.start()
     fd = sys.stdin.fileno()
     saved = termios.tcgetattr(fd)
     x = th = 0
+    twist = Twist()
     try:
         tty.setraw(fd)
         sys.stdout.write(HELP.replace("\n", "\r\n") + "\r\n")
@@ -60,12 +61,13 @@ def main():
                 x, th = MOVES[key]
                 sys.stdout.write(f"currently:\tx {x * speed:.2f}\tyaw {th * turn:.2f}\r\n")
                 sys.stdout.flush()
-            publisher.publish(Twist(linear=Vector3(x * speed, 0.0, 0.0),
-                                    angular=Vector3(0.0, 0.0, th * turn)))  # fmt: skip
-            context.spin_once(0.0)
+            twist.linear.x = x * speed
+            twist.angular.z = th * turn
+            publisher.publish(twist)
     finally:
         publisher.publish(Twist())
         termios.tcsetattr(fd, termios.TCSADRAIN, saved)
         time.sleep(0.1)  # the last (stop) command leaves before the session closes
-        context.shutdown()
+        rclpy.shutdown()
+        spinner.join()
     return 0
