@@ -81,28 +81,31 @@ def test_a_flood_of_tokens_hides_no_entity_of_another_peer() -> None:
             timeout=scaled(60),
         )
 
+    nodes = ["/flood", *(f"/real_{n}" for n in range(6))]
+    seen: dict[str, list[str]] = {}
+
+    def complete(verb: str, count: int, honest: list[str]) -> bool:
+        run = listing(verb)
+        assert run.returncode == 0, run.stderr
+        seen[verb] = run.stdout.splitlines()
+        assert set(honest) <= set(seen[verb])  # in every listing, complete or not
+        return len(seen[verb]) == count
+
     with _peer(_flood(domain, 2000)), _peer(real_keys):
-        runs = {verb: listing(verb) for verb in ("topic", "node")}
-        # Every listing shows the honest peer's topics. The listing waits a bounded time for
-        # the flood's 2,000 tokens to stop arriving (settled_graph); on a machine loaded
-        # beyond that bound one listing may print before they are all in, so a later
-        # listing in the same graph is allowed to be the complete one.
-        for attempt in range(3):
-            topics = runs["topic"].stdout.splitlines()
-            assert runs["topic"].returncode == 0, runs["topic"].stderr
-            assert set(real_topics) <= set(topics)
-            if len(topics) == 10 + 2000 or attempt == 2:
-                break
-            runs["topic"] = listing("topic")
-        nodes = ["/flood", *(f"/real_{n}" for n in range(6))]
-        for attempt in range(3):
-            assert runs["node"].returncode == 0, runs["node"].stderr
-            assert set(nodes[1:]) <= set(runs["node"].stdout.splitlines())
-            if runs["node"].stdout.splitlines() == nodes or attempt == 2:
-                break
-            runs["node"] = listing("node")
-    assert len(topics) == 10 + 2000
-    assert runs["node"].stdout.splitlines() == nodes
+        # Every listing shows the honest peer's topics and nodes. A listing waits a bounded
+        # time for the flood's 2,000 tokens to stop arriving (settled_graph); on a machine
+        # loaded beyond that bound a listing may print before they are all in, so a later
+        # listing in the same graph may be the complete one.
+        wait_until(lambda: complete("topic", 10 + 2000, real_topics), 180,
+                   what=lambda: f"a complete topic list ({len(seen['topic'])} of 2010 shown)",
+                   interval_s=0.5)  # fmt: skip
+        wait_until(
+            lambda: complete("node", len(nodes), nodes[1:]),
+            180,
+            what=lambda: f"a complete node list: {seen['node']}",
+            interval_s=0.5,
+        )
+    assert seen["node"] == nodes  # in order
 
 
 def test_tokens_past_the_per_peer_bound_are_left_out_with_one_warning_and_exit_1(

@@ -62,7 +62,11 @@ def test_a_command_line_caller_has_an_sc_token_and_its_gid() -> None:
             assert parts[9:11] == ["%probe%check", "std_srvs::srv::dds_::SetBool_"]
             assert parts[12] == "::,10:,:,:,,"  # rmw_qos_profile_services_default
             zid = parts[2]  # the node's token is the same session's
-            node_tokens = [k for k in _tokens(session, domain) if f"/NN/%/%/{client_node}" in k]
+            node_tokens = wait_until(  # a liveliness query may answer before every token is in
+                lambda: [k for k in _tokens(session, domain) if f"/NN/%/%/{client_node}" in k],
+                30,
+                what="the caller's node token",
+            )
             assert [k.split("/")[2] for k in node_tokens] == [zid]
             attachment = parse_attachment(requests.get(timeout=scaled(30)))
             assert attachment is not None and attachment.sequence_number == 1
