@@ -114,8 +114,10 @@ class Ros1:
         return {node for name, nodes in publishers + subscribers + services for node in nodes}
 
     def roscore(self) -> subprocess.Popen[str]:
+        """A real roscore, once its master answers and its /rosout node is registered (roslaunch
+        sets /run_id before it starts rosout)."""
         proc = self.start([ROSCORE, "-p", str(self.port)])
-        self.wait_for_master("roscore")
+        self.until(lambda: self.master_answers() and "/rosout" in self.names("nodes"), "roscore")
         return proc
 
     def stop(self, proc: subprocess.Popen[str], timeout_s: float | None = None) -> int:
