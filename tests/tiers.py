@@ -52,6 +52,8 @@ FIXTURE_TIERS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tests/ros1wire", "ros1"): ("ros1", "process"),
     ("tests/seeds", "ros1_graph"): ("ros1", "process"),
     ("tests/ros1wire/test_hostile_definitions_ros1.py", "evil_graph"): ("ros1", "process"),
+    ("tests/ros1wire/test_rosparam_cli.py", "roscore_graph"): ("ros1", "process"),
+    ("tests/ros1wire/test_rosparam_cli.py", "graph"): ("ros1", "process"),
     ("tests/seeds", "ros2_ws"): ("process",),
     ("tests/seeds/test_seed_000_planar_3dof.py", "rrbot"): ("ros1", "process"),
     ("tests/seeds/test_seed_001_ur5_gazebo.py", "ur5"): ("ros1", "process"),

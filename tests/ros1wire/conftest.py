@@ -5,12 +5,15 @@ is ended (SIGINT, then SIGKILL) when the test ends."""
 
 from __future__ import annotations
 
+import http.client
 import os
 import shutil
 import subprocess
+import xmlrpc.client
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -79,11 +82,42 @@ class Ros1:
         """``wait_until`` at the pace of a ROS 1 tool's call (``timeout_s`` is scaled)."""
         wait_until(check, timeout_s, what=what, interval_s=0.3)
 
+    def master(self) -> xmlrpc.client.ServerProxy:
+        """An XML-RPC client of this graph's master whose calls give up after a scaled 10 s."""
+        return xmlrpc.client.ServerProxy(self.uri, transport=_TimedTransport(scaled(10)))
+
+    def master_answers(self) -> bool:
+        """Whether the master answers and has ``/run_id`` (set by roscore's roslaunch and by
+        ``robomodel master`` once it serves): what ``rosparam get /run_id`` asks, as one call
+        from this process instead of a Python start of Debian's tool at each try of a wait."""
+        try:
+            with self.master() as master:
+                code, _, _ = master.getParam("/test", "/run_id")
+        except (OSError, http.client.HTTPException, xmlrpc.client.Error):
+            return False
+        return bool(code == 1)
+
+    def wait_for_master(self, what: str = "master") -> None:
+        self.until(self.master_answers, what)
+
+    def names(self, kind: str) -> set[str]:
+        """What ``rostopic list``, ``rosservice list`` or ``rosnode list`` would list (``kind``
+        ``"topics"``, ``"services"`` or ``"nodes"``), from the master's ``getSystemState`` in
+        this process: for waits that need a name to appear, not the tool's output."""
+        with self.master() as master:
+            code, message, (publishers, subscribers, services) = master.getSystemState("/test")
+        assert code == 1, message
+        entries = {"topics": publishers + subscribers, "services": services}.get(kind)
+        if entries is not None:
+            return {name for name, _nodes in entries}
+        assert kind == "nodes", kind
+        return {node for name, nodes in publishers + subscribers + services for node in nodes}
+
     def roscore(self) -> subprocess.Popen[str]:
+        """A real roscore, once its master answers and its /rosout node is registered (roslaunch
+        sets /run_id before it starts rosout)."""
         proc = self.start([ROSCORE, "-p", str(self.port)])
-        self.until(
-            lambda: self.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "roscore"
-        )
+        self.until(lambda: self.master_answers() and "/rosout" in self.names("nodes"), "roscore")
         return proc
 
     def stop(self, proc: subprocess.Popen[str], timeout_s: float | None = None) -> int:
@@ -92,6 +126,19 @@ class Ros1:
     def close(self) -> None:
         for proc in reversed(self.procs):
             self.stop(proc)
+
+
+class _TimedTransport(xmlrpc.client.Transport):
+    """xmlrpc.client's transport with a timeout on its connection (it has none)."""
+
+    def __init__(self, timeout_s: float) -> None:
+        super().__init__()
+        self._timeout_s = timeout_s
+
+    def make_connection(self, host: Any) -> http.client.HTTPConnection:
+        connection = super().make_connection(host)
+        connection.timeout = self._timeout_s
+        return connection
 
 
 @pytest.fixture

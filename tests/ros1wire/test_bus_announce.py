@@ -33,7 +33,7 @@ def test_publish_state_names_its_zenoh_domain_and_router() -> None:
 
 def test_publish_state_names_its_ros1_master(ros1: Ros1) -> None:
     ros1.robomodel("master", "-p", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
     done = ros1.run(*ROBOMODEL, "publish-state", ARM, "--duration", "0.5", timeout=scaled(60))
     assert done.returncode == 0, done.stderr
     assert f"bus: ros1, master {ros1.uri}" in done.stderr.splitlines()[0]

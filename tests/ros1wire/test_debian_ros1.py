@@ -183,7 +183,7 @@ def test_rosbag_records_robomodel_topics_and_its_playback_drives_a_viewer(
     from tests.viewer.conftest import wait_for
 
     ros1.robomodel("master", "--port", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
     robot = ros1.robomodel("publish-state", str(PLANAR), "--delta", "0.02", "--bus", "ros1")
     bag = tmp_path / "states.bag"
     record = ros1.start(["/usr/bin/rosbag", "record", "-O", str(bag), "/joint_states"])

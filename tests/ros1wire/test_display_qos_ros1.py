@@ -19,7 +19,7 @@ def test_a_volatile_display_hears_a_latched_ros_1_topic_with_its_queue_size(ros1
     marker = ("{header: {frame_id: base_link}, type: 1, scale: {x: 1, y: 1, z: 1}, "
               "color: {a: 1}, pose: {orientation: {w: 1}}}")  # fmt: skip
     ros1.start(["/usr/bin/rostopic", "pub", "-l", "/latched", "visualization_msgs/Marker", marker])
-    ros1.until(lambda: "/latched" in ros1.run("/usr/bin/rostopic", "list").stdout, "the publisher")
+    ros1.until(lambda: "/latched" in ros1.names("topics"), "the publisher")
     os.environ["ROS_IP"] = "127.0.0.1"
     try:
         _hear_it(ros1)

@@ -170,10 +170,10 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
     """As on a real roscore: the /rosout node, subscribed to /rosout with no publisher of its
     own there, republishing every line on /rosout_agg."""
     ros1.robomodel("master", "--port", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
     # /run_id is set before the /rosout node registers (roslaunch sets it before it starts
     # rosout too): wait for the node, then nothing but it is there
-    ros1.until(lambda: "/rosout" in ros1.run("/usr/bin/rosnode", "list").stdout, "/rosout")
+    ros1.until(lambda: "/rosout" in ros1.names("nodes"), "/rosout")
     assert ros1.run("/usr/bin/rosnode", "list").stdout.split() == ["/rosout"]
     info = ros1.run("/usr/bin/rostopic", "info", "/rosout").stdout
     assert "Publishers: None" in info and " * /rosout (" in info

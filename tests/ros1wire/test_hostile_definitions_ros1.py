@@ -127,9 +127,7 @@ def evil_graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Ros1]:
                      "data: hello"])  # fmt: skip
         hostile = HostilePublisher(graph.uri)
         graph.until(
-            lambda: (
-                {"/chatter", "/evil"} <= set(graph.run("/usr/bin/rostopic", "list").stdout.split())
-            ),
+            lambda: {"/chatter", "/evil"} <= graph.names("topics"),
             "/chatter and /evil",
         )
         yield graph

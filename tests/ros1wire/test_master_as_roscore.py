@@ -77,7 +77,7 @@ def _sequence(ros1: Ros1, tmp_path: Path) -> list[dict[str, list[str]]]:
     script = tmp_path / "provider.py"
     script.write_text(PROVIDER)
     provider = ros1.start(["/usr/bin/python3", str(script)])
-    ros1.until(lambda: "/trigger" in ros1.run("/usr/bin/rosservice", "list").stdout, "/trigger")
+    ros1.until(lambda: "/trigger" in ros1.names("services"), "/trigger")
     seen.append(_graph(ros1))
     call = ros1.run("/usr/bin/rosservice", "call", "/trigger")
     assert call.returncode == 0 and "ok" in call.stdout, call.stderr
@@ -120,10 +120,7 @@ def test_debian_tools_leave_the_same_graph_on_robomodel_s_master_as_on_roscore(
     ours_graph = Ros1(tmp_path / "ours")
     try:
         master = ours_graph.robomodel("master", "-p", str(ours_graph.port))
-        ours_graph.until(
-            lambda: ours_graph.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0,
-            "robomodel master",
-        )
+        ours_graph.wait_for_master("robomodel master")
         ours = _sequence(ours_graph, tmp_path / "ours")
         assert master.poll() is None
     finally:
@@ -154,7 +151,10 @@ def test_29_1_a_garbage_registration_leaves_rospy_subscribers_receiving(
     ros1.until(lambda: "nodes running" in log.read_text() or launch.poll() is not None, "launch")
     echo_log = tmp_path / "echo.log"
     ros1.start(["/usr/bin/rostopic", "echo", "/t"], log=echo_log)
-    ros1.until(lambda: "/t" in ros1.run("/usr/bin/rostopic", "list").stdout, "the subscriber")
+    # rostopic echo subscribes once /t has a publisher of a type: its node is on the graph
+    ros1.until(
+        lambda: any(n.startswith("/rostopic_") for n in ros1.names("nodes")), "rostopic echo"
+    )
     master = xmlrpc.client.ServerProxy(ros1.uri)
     for api in ("garbage", "rosrpc://127.0.0.1:1"):
         master.registerSubscriber("/evil", "/t", "std_msgs/String", api)

@@ -28,16 +28,13 @@ def test_debian_rosbag_plays_a_robomodel_bag_to_robomodel(ros1: Ros1, tmp_path: 
     bag = tmp_path / "ours.bag"
     _write_bag(bag, 80)  # 4 s of /joint_states
     ros1.robomodel("master", "-p", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
     echo = ros1.robomodel(
         "topic", "echo", "/joint_states", "sensor_msgs/msg/JointState", "--count", "3",
         "--bus", "ros1", log=tmp_path / "echo.log",
     )  # fmt: skip
     ros1.until(
-        lambda: (
-            "/joint_states" in ros1.run("/usr/bin/rostopic", "list").stdout
-            or echo.poll() is not None
-        ),
+        lambda: "/joint_states" in ros1.names("topics") or echo.poll() is not None,
         "the echo's subscription",
         timeout_s=scaled(30),
     )

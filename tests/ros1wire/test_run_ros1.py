@@ -27,15 +27,16 @@ DEFINITIONS = Path(__file__).parents[2] / "src/robomodel/runtime/transport/ros1/
 
 def _master(ros1: Ros1) -> None:
     ros1.robomodel("master", "--port", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
 
 
 def _node_up(ros1: Ros1, name: str, proc: subprocess.Popen[str]) -> None:
     def up() -> bool:
         assert proc.poll() is None, f"{name} ended with {proc.returncode}"
-        return name in ros1.run("/usr/bin/rosnode", "list").stdout.split()
+        return name in ros1.names("nodes")
 
-    ros1.until(up, f"rosnode list shows {name}")
+    ros1.until(up, f"the master lists {name}")
+    assert name in ros1.run("/usr/bin/rosnode", "list").stdout.split()
 
 
 def _terminate(proc: subprocess.Popen[str]) -> int:
@@ -175,8 +176,7 @@ def _generated_messages(work: Path) -> Path:
             str(package / kind),
         ]
         include = [f"-Icontroller_manager_msgs:{source / 'msg'}"]
-        for file in files:
-            subprocess.run([*base, *include, file], check=True, capture_output=True)
+        subprocess.run([*base, *include, *files], check=True, capture_output=True)
         subprocess.run([*base, "--initpy"], check=True, capture_output=True)
     (package / "__init__.py").write_text("")
     return work

@@ -56,7 +56,7 @@ IMAGE = (
 
 def _master(ros1: Ros1) -> None:
     ros1.robomodel("master", "-p", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
 
 
 def _first(text: str) -> Any:
@@ -167,9 +167,7 @@ def test_a_type_only_the_publisher_knows_is_learned_from_its_definition(
     script = tmp_path / "unknown.py"
     script.write_text(_UNKNOWN)
     ros1.start(["/usr/bin/python3", str(script)])
-    ros1.until(
-        lambda: "/sample" in ros1.run("/usr/bin/rostopic", "list").stdout.split(), "publisher"
-    )
+    ros1.until(lambda: "/sample" in ros1.names("topics"), "publisher")
     echo = ros1.robomodel_run("topic", "echo", "/sample", "--once", timeout=scaled(90))
     assert echo.returncode == 0, echo.stderr
     got = _first(echo.stdout)
@@ -215,10 +213,7 @@ def test_bag_record_of_rostopic_pub_s_image_and_marker(ros1: Ros1, tmp_path: Pat
     ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/img", "sensor_msgs/Image", IMAGE])
     ros1.start(["/usr/bin/rostopic", "pub", "-r", "5", "/mk", "visualization_msgs/Marker",
                 MARKER])  # fmt: skip
-    ros1.until(
-        lambda: {"/img", "/mk"} <= set(ros1.run("/usr/bin/rostopic", "list").stdout.split()),
-        "publishers",
-    )
+    ros1.until(lambda: {"/img", "/mk"} <= ros1.names("topics"), "publishers")
     folder = tmp_path / "bag"
     rec = ros1.robomodel_run("bag", "record", "/img", "/mk", "-o", str(folder), "--duration", "4")
     assert rec.returncode == 0, rec.stderr
@@ -244,9 +239,7 @@ def test_bag_record_of_a_learned_type(ros1: Ros1, tmp_path: Path) -> None:
     script = tmp_path / "unknown.py"
     script.write_text(_UNKNOWN)
     ros1.start(["/usr/bin/python3", str(script)])
-    ros1.until(
-        lambda: "/sample" in ros1.run("/usr/bin/rostopic", "list").stdout.split(), "publisher"
-    )
+    ros1.until(lambda: "/sample" in ros1.names("topics"), "publisher")
     folder = tmp_path / "bag"
     rec = ros1.robomodel_run("bag", "record", "-a", "-o", str(folder), "--duration", "3")
     assert rec.returncode == 0, rec.stderr

@@ -29,7 +29,7 @@ def test_tf_view_frames_writes_what_debian_s_writes(ros1: Ros1, tmp_path: Path) 
     if not VIEW_FRAMES.exists():
         pytest.fail("Debian's tf view_frames is missing: tools/system-deps test installs tf-tools")
     ros1.robomodel("master", "--port", str(ros1.port))
-    ros1.until(lambda: ros1.run("/usr/bin/rosparam", "get", "/run_id").returncode == 0, "master")
+    ros1.wait_for_master()
     for argv in (("1", "0", "0", "world", "base"), ("0", "0", "0.5", "base", "tool")):
         x, y, z, parent, child = argv
         ros1.robomodel("run", "tf", "static_transform_publisher", x, y, z, "0", "0", "0",

@@ -3,6 +3,7 @@ roslaunch as the reference, and the fake ``xacro`` package that runs the PyPI xa
 
 from __future__ import annotations
 
+import json
 import shutil
 import subprocess
 import sys
@@ -37,6 +38,28 @@ def roslaunch(args: list[str], env: dict[str, str], cwd: Path) -> subprocess.Com
     return subprocess.run(
         [ROSLAUNCH, *args], capture_output=True, text=True, env=env, cwd=cwd, timeout=scaled(120)
     )
+
+
+def roslaunch_many(
+    calls: list[list[str]], env: dict[str, str], cwd: Path
+) -> list[subprocess.CompletedProcess[str]]:
+    """What :func:`roslaunch` gives for each of ``calls`` (query modes: ``--dump-params``,
+    ``--nodes``, ``--args``, ``--files``, ``--ros-args``), run by ``roslaunch.main`` in one
+    process of Debian's Python (roslaunch_batch.py) instead of one ``/usr/bin/roslaunch`` each."""
+    if not Path(ROSLAUNCH).exists():
+        pytest.fail(
+            "Debian's roslaunch is missing: apt-get install python3-roslaunch (make test does)"
+        )
+    batch = subprocess.run(
+        ["/usr/bin/python3", str(Path(__file__).with_name("roslaunch_batch.py"))],
+        input=json.dumps(calls), capture_output=True, text=True, env=env, cwd=cwd,
+        timeout=scaled(60 + 60 * len(calls)),
+    )  # fmt: skip
+    assert batch.returncode == 0, batch.stderr
+    return [
+        subprocess.CompletedProcess([ROSLAUNCH, *argv], code, out, err)
+        for argv, (code, out, err) in zip(calls, json.loads(batch.stdout), strict=True)
+    ]
 
 
 # xacro 2.1.1 resolves $(find pkg) with ament_index_python, which ROS 1 does not have: the

@@ -30,7 +30,7 @@ from robomodel.launch.ros1 import (
     load_launch,
 )
 from tests.conftest import EXAMPLES
-from tests.launch.ros1.conftest import CORPUS, reference_env, roslaunch
+from tests.launch.ros1.conftest import CORPUS, reference_env, roslaunch, roslaunch_many
 
 CASES: list[tuple[str, dict[str, str]]] = [
     ("params.launch", {}),
@@ -67,17 +67,18 @@ def _compare(path: Path, args: dict[str, str], package_paths: list[Path], home: 
     env = reference_env(package_paths, home)
     argv = [f"{k}:={v}" for k, v in args.items()]
     launch, index, env = _ours(path, args, package_paths, home)
-    ref = roslaunch(["--dump-params", str(path), *argv], env, path.parent)
-    assert ref.returncode == 0 and "Unable to load" not in ref.stdout + ref.stderr, ref.stderr
-    assert _params(format_dump_params(launch)) == _params(ref.stdout)
-    ref = roslaunch(["--nodes", str(path), *argv], env, path.parent)
-    assert format_nodes(launch).split() == ref.stdout.split()
-    ref = roslaunch(["--files", str(path), *argv], env, path.parent)
-    assert sorted(format_files(launch).split()) == sorted(ref.stdout.split())
-    ref = roslaunch(["--ros-args", str(path), *argv], env, path.parent)
-    assert format_ros_args(launch) == ref.stdout
-    for spec in (*launch.nodes, *launch.tests):
-        ref = roslaunch(["--args", spec.fqn, str(path), *argv], env, path.parent)
+    specs = (*launch.nodes, *launch.tests)
+    modes = [["--dump-params"], ["--nodes"], ["--files"], ["--ros-args"]]
+    modes += [["--args", spec.fqn] for spec in specs]
+    dump, nodes, files, ros_args, *node_args = roslaunch_many(
+        [[*mode, str(path), *argv] for mode in modes], env, path.parent
+    )
+    assert dump.returncode == 0 and "Unable to load" not in dump.stdout + dump.stderr, dump.stderr
+    assert _params(format_dump_params(launch)) == _params(dump.stdout)
+    assert format_nodes(launch).split() == nodes.stdout.split()
+    assert sorted(format_files(launch).split()) == sorted(files.stdout.split())
+    assert format_ros_args(launch) == ros_args.stdout
+    for spec, ref in zip(specs, node_args, strict=True):
         found = _rospack_find(spec.package, env)
         if ref.returncode != 0 or found is None:  # the reference cannot find the node either
             assert found is None or "Cannot locate node" in ref.stdout + ref.stderr
