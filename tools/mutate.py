@@ -97,7 +97,12 @@ GROUPS = (
     Group(
         "bag_readers",
         ("bag/_mcap_reader.py", "bag/reader.py"),
-        ("bag/test_bad_input.py", "bag/test_sqlite3.py", "bag/test_typedefs.py"),
+        (
+            "bag/test_bad_input.py",
+            "bag/test_readers.py",
+            "bag/test_sqlite3.py",
+            "bag/test_typedefs.py",
+        ),
         sample=5,
     ),
     Group(

@@ -1,0 +1,216 @@
+"""Reading bags that rosbags wrote (rosbag2 with MCAP or SQLite 3, ROS 1 ``.bag``): the
+summary and the messages are what the writer put in, in-process.
+
+rosbags is an independent writer here: it names its files, numbers its connections and writes
+its metadata its own way, and the reader must find the topics, types, counts, formats,
+definitions, times and bytes all the same.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from robomodel.bag import McapFolderWriter, open_bag
+from robomodel.bag.exceptions import BagFormatError
+from robomodel.bag.model import Storage
+from robomodel.runtime.msg import String, serialize
+from robomodel.runtime.qos import Durability, QoSProfile
+
+rosbag2 = pytest.importorskip("rosbags.rosbag2")
+rosbag1 = pytest.importorskip("rosbags.rosbag1")
+typesys = pytest.importorskip("rosbags.typesys")
+HUMBLE = typesys.get_typestore(typesys.Stores.ROS2_HUMBLE)
+NOETIC = typesys.get_typestore(typesys.Stores.ROS1_NOETIC)
+STRING, INT32 = "std_msgs/msg/String", "std_msgs/msg/Int32"
+
+# (topic, type, value, log time [ns]) in the order written: the times are not sorted by topic
+WRITTEN = [
+    ("/chatter", STRING, "hello", 1_000_000_000),
+    ("/count", INT32, 7, 1_500_000_000),
+    ("/chatter", STRING, "wörld", 2_000_000_000),
+    ("/count", INT32, -8, 2_250_000_000),
+    ("/chatter", STRING, "", 3_000_000_000),
+]
+
+
+def _rosbag2(folder: Path, plugin: Any) -> list[bytes]:
+    """The bag rosbags writes; the payloads in written order."""
+    payloads = []
+    with rosbag2.Writer(folder, version=9, storage_plugin=plugin) as writer:
+        connections = {
+            STRING: writer.add_connection("/chatter", STRING, typestore=HUMBLE),
+            INT32: writer.add_connection("/count", INT32, typestore=HUMBLE),
+        }
+        for _, type_name, value, stamp in WRITTEN:
+            data = bytes(HUMBLE.serialize_cdr(HUMBLE.types[type_name](data=value), type_name))
+            writer.write(connections[type_name], stamp, data)
+            payloads.append(data)
+    return payloads
+
+
+def _rosbag1(path: Path) -> list[bytes]:
+    payloads = []
+    with rosbag1.Writer(path) as writer:
+        connections = {
+            STRING: writer.add_connection("/chatter", STRING, typestore=NOETIC),
+            INT32: writer.add_connection("/count", INT32, typestore=NOETIC),
+        }
+        for _, type_name, value, stamp in WRITTEN:
+            data = bytes(NOETIC.serialize_ros1(NOETIC.types[type_name](data=value), type_name))
+            writer.write(connections[type_name], stamp, data)
+            payloads.append(data)
+    return payloads
+
+
+@pytest.mark.parametrize(
+    ("plugin", "storage", "suffix", "store"),
+    [
+        ("MCAP", Storage.MCAP, ".mcap", HUMBLE),
+        ("SQLITE3", Storage.SQLITE3, ".db3", HUMBLE),
+        ("ROS1", Storage.ROS1, ".bag", NOETIC),
+    ],
+)
+def test_summary_and_messages_are_what_rosbags_wrote(
+    tmp_path: Path, plugin: str, storage: Storage, suffix: str, store: Any
+) -> None:
+    if plugin == "ROS1":
+        path = tmp_path / "run.bag"
+        payloads = _rosbag1(path)
+        files = (path,)
+    else:
+        path = tmp_path / "run"
+        payloads = _rosbag2(path, getattr(rosbag2.StoragePlugin, plugin))
+        files = tuple(sorted(path.glob(f"*{suffix}")))
+        assert len(files) == 1
+    bag = open_bag(path)
+    assert (bag.path, bag.storage, bag.files) == (path, storage, files)
+    summary = bag.summary()
+    assert summary.path == str(path) and summary.storage is storage
+    assert summary.files == tuple(str(f) for f in files)
+    assert summary.size_bytes == sum(f.stat().st_size for f in files) > 0
+    assert (summary.start_ns, summary.end_ns) == (1_000_000_000, 3_000_000_000)
+    assert summary.duration_ns == 2_000_000_000
+    assert summary.message_count == 5
+    assert summary.damage == ()
+    topics = {t.name: t for t in summary.topics}
+    assert set(topics) == {"/chatter", "/count"}
+    assert (topics["/chatter"].type, topics["/chatter"].count) == (STRING, 3)
+    assert (topics["/count"].type, topics["/count"].count) == (INT32, 2)
+    fmt = "ros1" if plugin == "ROS1" else "cdr"
+    assert {t.serialization_format for t in topics.values()} == {fmt}
+    version = 1 if plugin == "ROS1" else 2
+    for name, type_name in (("/chatter", STRING), ("/count", INT32)):
+        expected = store.generate_msgdef(type_name, ros_version=version)[0]
+        assert topics[name].definition.strip() == expected.strip(), name
+    assert not any(t.latched for t in topics.values())
+
+    messages = list(bag.messages())
+    assert [(m.topic, m.type, m.log_time_ns) for m in messages] == [
+        (topic, type_name, stamp) for topic, type_name, _, stamp in WRITTEN
+    ]
+    assert [m.data for m in messages] == payloads
+    if plugin != "MCAP":  # one time per message in rosbags' readers
+        assert all(m.publish_time_ns == m.log_time_ns for m in messages)
+    counts = [(m.topic, m.log_time_ns) for m in bag.messages(["/count"])]
+    assert counts == [("/count", 1_500_000_000), ("/count", 2_250_000_000)]
+    assert list(bag.messages(["/nothing"])) == []
+    assert list(bag.messages([])) == []
+    assert bag.damage == []
+
+
+def test_an_mcap_file_alone_and_a_folder_without_metadata(tmp_path: Path) -> None:
+    folder = tmp_path / "run"
+    _rosbag2(folder, rosbag2.StoragePlugin.MCAP)
+    (file,) = folder.glob("*.mcap")
+    alone = open_bag(file)
+    assert (alone.storage, alone.files) == (Storage.MCAP, (file,))
+    summary = alone.summary()
+    assert (summary.message_count, summary.ros_distro, summary.path) == (5, "", str(file))
+    assert summary.size_bytes == file.stat().st_size
+    (folder / "metadata.yaml").unlink()
+    second = folder / "z_second.mcap"
+    second.write_bytes(file.read_bytes())
+    bag = open_bag(folder)
+    assert (bag.storage, bag.files) == (Storage.MCAP, (file, second))  # sorted by name
+    assert bag.summary().message_count == 10
+    assert len(list(bag.messages(["/chatter"]))) == 6
+
+
+def test_a_missing_piece_is_damage_and_the_rest_is_read(tmp_path: Path) -> None:
+    folder = tmp_path / "run"
+    _rosbag2(folder, rosbag2.StoragePlugin.MCAP)
+    metadata = folder / "metadata.yaml"
+    (file,) = folder.glob("*.mcap")
+    text = metadata.read_text()
+    assert f"- {file.name}" in text
+    metadata.write_text(text.replace(f"- {file.name}", f"- {file.name}\n  - gone.mcap"))
+    bag = open_bag(folder)
+    assert bag.files == (file, folder / "gone.mcap")
+    summary = bag.summary()
+    assert summary.message_count == 5
+    assert summary.size_bytes == file.stat().st_size
+    assert [str(d) for d in summary.damage] == [
+        f"{folder / 'gone.mcap'}: listed in metadata.yaml but missing"
+    ]
+    assert [str(d) for d in bag.damage] == [str(d) for d in summary.damage]
+    assert len(list(bag.messages())) == 5
+
+
+def test_an_empty_ros1_bag_has_no_time_span(tmp_path: Path) -> None:
+    path = tmp_path / "empty.bag"
+    with rosbag1.Writer(path) as writer:
+        writer.add_connection("/chatter", STRING, typestore=NOETIC)
+    summary = open_bag(path).summary()
+    assert (summary.start_ns, summary.end_ns, summary.message_count) == (0, 0, 0)
+    assert [(t.name, t.count) for t in summary.topics] == [("/chatter", 0)]
+
+
+def test_offered_qos_from_the_recording(tmp_path: Path) -> None:
+    folder = tmp_path / "latched"
+    writer = McapFolderWriter(folder)
+    latched = QoSProfile(depth=1, durability=Durability.TRANSIENT_LOCAL)
+    writer.add_topic("/robot_description", String, (latched,))
+    writer.add_topic("/chatter", String, (QoSProfile(),))
+    writer.write("/robot_description", serialize(String("<robot/>")), 5, 5)
+    writer.write("/chatter", serialize(String("hi")), 6, 6)
+    writer.close()
+    topics = {t.name: t for t in open_bag(folder).summary().topics}
+    assert topics["/robot_description"].latched and not topics["/chatter"].latched
+    assert topics["/robot_description"].offered_qos[0].durability is Durability.TRANSIENT_LOCAL
+    # the single file keeps the QoS in its channel's metadata
+    (file,) = folder.glob("*.mcap")
+    alone = {t.name: t for t in open_bag(file).summary().topics}
+    assert alone["/robot_description"].latched and not alone["/chatter"].latched
+
+
+def _refusal(path: Path) -> str:
+    with pytest.raises(BagFormatError) as refused:
+        open_bag(path).summary()
+    return str(refused.value)
+
+
+def test_what_is_not_a_bag_is_refused_in_one_line(tmp_path: Path) -> None:
+    assert _refusal(tmp_path / "nothing") == f"{tmp_path / 'nothing'}: no such file or directory"
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert _refusal(empty) == f"{empty}: not a bag: no metadata.yaml, .mcap or .db3 file"
+    text = tmp_path / "notes.txt"
+    text.write_text("#ROSBAG V1.2\nnot a bag at all\n")
+    assert _refusal(text) == (
+        f"{text}: at byte 0: not a bag (neither an MCAP file, a ROS 1 bag nor a rosbag2 folder)"
+    )
+    folder = tmp_path / "sqlite"
+    _rosbag2(folder, rosbag2.StoragePlugin.SQLITE3)
+    (db3,) = folder.glob("*.db3")
+    assert _refusal(db3) == f"{db3}: a SQLite 3 bag is read as its folder (metadata.yaml)"
+    (folder / "metadata.yaml").unlink()
+    assert open_bag(folder).storage is Storage.SQLITE3  # found by its .db3 file
+    broken = tmp_path / "broken.bag"
+    broken.write_bytes(b"#ROSBAG V2.0\n" + b"\x00" * 64)
+    refusal = _refusal(broken)
+    assert refusal.startswith(f"{broken}: cannot be read: ")
+    with pytest.raises(BagFormatError, match="cannot be read"):
+        list(open_bag(broken).messages())
