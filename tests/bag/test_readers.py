@@ -214,3 +214,150 @@ def test_what_is_not_a_bag_is_refused_in_one_line(tmp_path: Path) -> None:
     assert refusal.startswith(f"{broken}: cannot be read: ")
     with pytest.raises(BagFormatError, match="cannot be read"):
         list(open_bag(broken).messages())
+
+
+# -- damaged MCAP files, read record by record (bag._mcap_reader) ---------------------------
+
+PER_CHUNK, CHUNKS = 3, 3
+
+
+def _chunked(folder: Path) -> tuple[Path, list[int]]:
+    """An MCAP file of CHUNKS chunks of PER_CHUNK /chatter messages; the chunks' offsets."""
+    from mcap.reader import make_reader
+
+    writer = McapFolderWriter(folder, flush_period_s=1e9)
+    writer.add_topic("/chatter", String, ())
+    for k in range(CHUNKS * PER_CHUNK):
+        writer.write("/chatter", serialize(String(f"m{k}")), 1_000 + k, 2_000 + k)
+        if (k + 1) % PER_CHUNK == 0:
+            writer.flush()
+    writer.close()
+    (path,) = folder.glob("*.mcap")
+    with path.open("rb") as handle:
+        summary = make_reader(handle).get_summary()
+    assert summary is not None
+    return path, sorted(c.chunk_start_offset for c in summary.chunk_indexes)
+
+
+def _scan(path: Path) -> tuple[list[str], list[str], list[Any]]:
+    """The messages' texts, the damage notes (with offsets) and the channels seen."""
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.bag.model import Damage
+    from robomodel.runtime.msg import deserialize
+
+    damage: list[Damage] = []
+    channels: list[Any] = []
+    texts = [deserialize(m.data, String).data for m in scan_mcap(path, damage, channels.append)]
+    return texts, [str(d) for d in damage], channels
+
+
+def _edit(path: Path, offset: int, new: bytes) -> None:
+    data = bytearray(path.read_bytes())
+    data[offset : offset + len(new)] = new
+    path.write_bytes(bytes(data))
+
+
+def test_a_sound_mcap_file_gives_its_messages_times_and_schema(tmp_path: Path) -> None:
+    from robomodel.bag._mcap_reader import scan_mcap
+
+    path, offsets = _chunked(tmp_path / "b")
+    assert len(offsets) == CHUNKS
+    texts, damage, channels = _scan(path)
+    assert texts == [f"m{k}" for k in range(CHUNKS * PER_CHUNK)] and damage == []
+    (channel,) = channels  # the summary repeats it: given once
+    assert (channel.topic, channel.type, channel.message_encoding) == ("/chatter", STRING, "cdr")
+    assert channel.definition == "string data\n" or channel.definition.startswith("string data")
+    assert "offered_qos_profiles" in channel.metadata
+    first = next(scan_mcap(path, []))
+    assert (first.topic, first.type, first.log_time_ns, first.publish_time_ns) == (
+        "/chatter", STRING, 1_000, 2_000,
+    )  # fmt: skip
+
+
+def test_a_cut_file_is_read_up_to_the_cut_and_says_where(tmp_path: Path) -> None:
+    path, offsets = _chunked(tmp_path / "b")
+    whole = path.read_bytes()
+    last = offsets[-1]
+    path.write_bytes(whole[: last + 40])  # inside the last chunk
+    texts, damage, _ = _scan(path)
+    assert texts == [f"m{k}" for k in range((CHUNKS - 1) * PER_CHUNK)]
+    length = int.from_bytes(whole[last + 1 : last + 9], "little")
+    assert damage == [
+        f"{path}: at byte {last}: truncated chunk: {length} bytes declared, 31 present"
+    ]
+    path.write_bytes(whole[: last + 5])  # inside the record's header
+    assert _scan(path)[1] == [f"{path}: at byte {last}: truncated record header (5 of 9 bytes)"]
+    path.write_bytes(whole[:last])  # between records: the footer never came
+    assert _scan(path)[1] == [
+        f"{path}: at byte {last}: file ends without the MCAP footer (the recording was not closed)"
+    ]
+    end_of_chunks = last + 9 + int.from_bytes(whole[last + 1 : last + 9], "little")
+    opcode = whole[end_of_chunks]
+    path.write_bytes(whole[: end_of_chunks + 12])  # a record after the chunks, cut
+    declared = int.from_bytes(whole[end_of_chunks + 1 : end_of_chunks + 9], "little")
+    assert _scan(path)[1] == [
+        f"{path}: at byte {end_of_chunks}: truncated record (opcode 0x{opcode:02x}): "
+        f"{declared} bytes declared, 3 present"
+    ]
+
+
+def test_a_chunk_failing_its_crc_is_skipped_and_the_rest_read(tmp_path: Path) -> None:
+    path, offsets = _chunked(tmp_path / "b")
+    data = path.read_bytes()
+    second = offsets[1]
+    _edit(path, second + 100, bytes([data[second + 100] ^ 0xFF]))
+    texts, damage, _ = _scan(path)
+    assert texts == [f"m{k}" for k in range(CHUNKS * PER_CHUNK) if k // PER_CHUNK != 1]
+    assert len(damage) == 1
+    assert damage[0].startswith(f"{path}: at byte {second}: chunk fails its CRC (")
+    assert damage[0].endswith("); its messages are skipped")
+
+
+# a chunk record: opcode, length, start and end time, then the uncompressed size (the second
+# chunk: the first holds the schema and the channel, without which nothing after it is read)
+_SIZE_AT = 1 + 8 + 8 + 8
+
+
+def test_a_chunk_declaring_too_much_is_refused_before_it_is_read(tmp_path: Path) -> None:
+    from robomodel.bag._mcap_reader import MAX_CHUNK_RATIO
+
+    path, offsets = _chunked(tmp_path / "b")
+    size = path.stat().st_size
+    _edit(path, offsets[1] + _SIZE_AT, (size * MAX_CHUNK_RATIO + 1).to_bytes(8, "little"))
+    with pytest.raises(BagFormatError) as refused:
+        _scan(path)
+    assert str(refused.value) == (
+        f"{path}: at byte {offsets[1]}: a chunk declares {size * MAX_CHUNK_RATIO + 1} bytes "
+        f"uncompressed; at most {size * MAX_CHUNK_RATIO} are read (256 MiB, and 1000 times the "
+        "file's size): a decompression bomb or a damaged file"
+    )
+    # exactly the limit is read (and found to be short)
+    _edit(path, offsets[1] + _SIZE_AT, (size * MAX_CHUNK_RATIO).to_bytes(8, "little"))
+    texts, damage, _ = _scan(path)
+    assert texts == [f"m{k}" for k in range(CHUNKS * PER_CHUNK) if k // PER_CHUNK != 1]
+    assert damage[0].startswith(f"{path}: at byte {offsets[1]}: chunk expands to only ")
+
+
+def test_a_chunk_shorter_or_longer_than_it_declares_is_skipped(tmp_path: Path) -> None:
+    path, offsets = _chunked(tmp_path / "b")
+    declared = int.from_bytes(path.read_bytes()[offsets[1] + _SIZE_AT :][:8], "little")
+    _edit(path, offsets[1] + _SIZE_AT, (declared + 10).to_bytes(8, "little"))
+    texts, damage, _ = _scan(path)
+    assert texts == [f"m{k}" for k in range(CHUNKS * PER_CHUNK) if k // PER_CHUNK != 1]
+    assert damage == [
+        f"{path}: at byte {offsets[1]}: chunk expands to only {declared} of the "
+        f"{declared + 10} bytes it declares; its messages are skipped"
+    ]
+    _edit(path, offsets[1] + _SIZE_AT, (declared - 1).to_bytes(8, "little"))
+    assert _scan(path)[1] == [
+        f"{path}: at byte {offsets[1]}: chunk expands beyond the {declared - 1} bytes it "
+        "declares; its messages are skipped"
+    ]
+
+
+def test_not_an_mcap_file_is_refused_at_byte_0(tmp_path: Path) -> None:
+    path = tmp_path / "x.mcap"
+    path.write_bytes(b"\x89MCAP1\r\n" + bytes(100))
+    with pytest.raises(BagFormatError) as refused:
+        _scan(path)
+    assert str(refused.value) == f"{path}: at byte 0: not an MCAP file (bad magic)"
