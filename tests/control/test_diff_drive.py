@@ -298,7 +298,8 @@ def test_topics_queue_depths_and_the_limited_velocity() -> None:
     assert first.twist.linear.x == pytest.approx(0.01)
     assert first.twist.angular.z == 0.5
     assert last.twist.linear.x == pytest.approx(0.5)
-    assert (first.twist.linear.y, first.twist.linear.z, first.twist.angular.x) == (0, 0, 0)
+    assert (first.twist.linear.y, first.twist.linear.z) == (0.0, 0.0)
+    assert (first.twist.angular.x, first.twist.angular.y) == (0.0, 0.0)
     stamp = last.header.stamp
     assert (stamp.sec, stamp.nanosec) == (0, 500_000_000)
     assert len(odoms) == 4  # 10 Hz over 0.5 s: the first at 0.11 s, then each 0.1 s
@@ -313,7 +314,7 @@ def test_unstamped_commands_on_the_named_topic_and_no_tf_when_disabled() -> None
     )
     graph = ctx.graph()
     assert "/tf" not in graph.topics and "/dd/cmd_vel_out" not in graph.topics
-    assert [e.node for e in graph.topics["/teleop"].subscribers] == ["/dd"]
+    assert [(e.node, e.qos.depth) for e in graph.topics["/teleop"].subscribers] == [("/dd", 10)]
     node = ctx.create_node("probe")
     odoms: list[OdometryMsg] = []
     node.create_subscription(OdometryMsg, "/dd/odom", odoms.append)
@@ -432,3 +433,59 @@ def test_the_stamped_command_s_own_stamp_is_kept() -> None:
     ctx.spin_once()
     assert controller.command == (0.4, -0.1, 3.5)
     ctx.shutdown()
+
+
+def test_a_command_times_out_only_once_older_than_the_timeout() -> None:
+    """humble: ``age_of_last_command > cmd_vel_timeout``; the held command is then zero."""
+    cm, ctrl, wheels = diff_drive_system(SIZES)
+    cm.step(0.001)
+    ctrl.set_command(0.5, 0.0, 1.0)
+    ctrl.update(1.5, 0.001)  # exactly 0.5 s old: still driving
+    assert ctrl.command == (0.5, 0.0, 1.0) and wheels[0].get() == pytest.approx(5.0)
+    ctrl.update(1.5005, 0.0005)
+    assert ctrl.command == (0.0, 0.0, 1.0) and wheels[0].get() == 0.0
+
+
+def test_a_refusal_before_configuring_is_the_first() -> None:
+    c = _controller()
+    assert c._rejected == 0
+    c.set_command(math.nan, 0.0)
+    assert c._rejected == 1
+
+
+def test_skid_steer_odometry_is_the_mean_of_each_side() -> None:
+    cm, ctrl, wheels = diff_drive_system({**SIZES, "cmd_vel_timeout": 0.0}, wheels_per_side=2)
+    ctrl.set_command(0.3, 0.0, 0.001)
+    for _ in range(300):
+        cm.step(0.001)
+    assert ctrl.odometry.linear == pytest.approx(0.3, rel=1e-3)
+    assert ctrl.odometry.heading == pytest.approx(0.0, abs=1e-9)
+
+
+def test_a_publish_rate_below_one_hertz_is_kept() -> None:
+    ctx, system, _ = _system("    publish_rate: 0.5\n    cmd_vel_timeout: 0.0\n", update_hz=10)
+    node = ctx.create_node("probe")
+    odoms: list[OdometryMsg] = []
+    node.create_subscription(OdometryMsg, "/dd/odom", odoms.append)
+    for _ in range(45):  # 4.5 s: every 2 s after the first update
+        ctx.advance(0.1)
+        system.manager.step(0.1)
+    ctx.spin_once()
+    assert len(odoms) == 2
+    ctx.shutdown()
+
+
+def test_angular_jerk_limits_use_the_two_commands_before() -> None:
+    cm, ctrl, _ = diff_drive_system(
+        {**SIZES, "cmd_vel_timeout": 0.0, "angular.z.has_jerk_limits": True,
+         "angular.z.max_jerk": 10.0}
+    )  # fmt: skip
+    ctrl.set_command(0.0, 1.0, 0.001)
+    expected = SpeedLimiter(has_jerk_limits=True, max_jerk=10.0)
+    older, previous = 0.0, 0.0
+    for _ in range(5):
+        cm.step(0.001)
+        want = expected.limit(1.0, previous, older, 0.001)
+        older, previous = previous, want
+        assert ctrl.previous_commands[1][1] == pytest.approx(want)
+    assert 0.0 < previous < 1.0
