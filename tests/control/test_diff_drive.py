@@ -454,7 +454,7 @@ def test_a_refusal_before_configuring_is_the_first() -> None:
 
 
 def test_skid_steer_odometry_is_the_mean_of_each_side() -> None:
-    cm, ctrl, wheels = diff_drive_system({**SIZES, "cmd_vel_timeout": 0.0}, wheels_per_side=2)
+    cm, ctrl, _wheels = diff_drive_system({**SIZES, "cmd_vel_timeout": 0.0}, wheels_per_side=2)
     ctrl.set_command(0.3, 0.0, 0.001)
     for _ in range(300):
         cm.step(0.001)
