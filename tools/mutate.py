@@ -153,6 +153,7 @@ GROUPS = (
             "runtime/test_type_descriptions.py",
             "runtime/test_types_rebuilt.py",
         ),
+        sample=2,
     ),
     Group(
         "control_maths",
@@ -213,6 +214,13 @@ def prepare(group: Group) -> Path:
             f"pytest_add_cli_args = {_toml_list(PYTEST_ARGS)}",
             'also_copy = ["examples", "docs"]',
             "use_git_change_detection = false",
+            # mutmut's default ("fork") runs the clean tests in its own process and forks each
+            # mutant's from it: what those tests memoized (the generated CDR and ROS 1 codecs,
+            # type hashes, cached specs) is inherited, made by the unmutated code, and no
+            # mutant of the code that made it could fail a test. The fork server runs the
+            # clean tests in a child of its own and forks the mutants' from a process that has
+            # only collected the tests.
+            'process_isolation = "forkserver"',
             # a mutant that makes a test wait (a queue, a thread) uses no CPU time: mutmut
             # ends it after this many times the tests' own duration
             "timeout_multiplier = 5.0",
