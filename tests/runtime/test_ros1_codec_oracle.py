@@ -7,6 +7,7 @@ own (tests/runtime/test_ros1_messages.py)."""
 
 from __future__ import annotations
 
+import struct
 from typing import Any
 
 import numpy as np
@@ -154,3 +155,35 @@ def test_refusals_name_the_type_and_the_place() -> None:
     with pytest.raises(Ros1CodecError) as fixed:
         covariance.encode(msg)
     assert str(fixed.value) == "a fixed array needs 36 values, got 35"
+
+
+def test_fields_robomodel_s_class_lacks_are_written_as_ros_1_s_defaults() -> None:
+    """A ROS 1 type with fields robomodel's class of it does not have (a package's newer or
+    older definition): they go out as zeros, empty strings and sequences, and fixed arrays of
+    zeros, and are dropped when read."""
+    from robomodel.runtime.msg._from_definition import make_message_class
+    from robomodel.runtime.transport.ros1.ros1_codec import make_codec
+
+    base, name, array, seq = 1, 2, 3, 4
+    defs = {
+        "pkg/msg/Outer": ([], [
+            ("x", (base, ("float64", 0))), ("label", (base, ("string", 0))),
+            ("flag", (base, ("bool", 0))), ("n", (base, ("int32", 0))),
+            ("pair", (array, ((base, ("int16", 0)), 2))), ("values", (seq, ((base, ("float32", 0)), 0))),
+            ("when", (name, "builtin_interfaces/msg/Time")), ("inner", (name, "pkg/msg/Inner")),
+            ("inners", (array, ((name, "pkg/msg/Inner"), 2))), ("y", (base, ("float64", 0))),
+        ]),
+        "pkg/msg/Inner": ([], [("a", (base, ("uint8", 0))), ("b", (base, ("string", 0)))]),
+    }  # fmt: skip
+    outer = make_message_class("pkg/msg/Outer", (("x", "float64"), ("y", "float64")))
+    encode, decode = make_codec(
+        "pkg/msg/Outer", defs, lambda key: outer if key == "pkg/msg/Outer" else None,
+        lambda type_name, field: None,
+    )  # fmt: skip
+    data = encode(outer(x=1.5, y=-2.0), 0)  # type: ignore[call-arg]
+    zeros = 4 + 1 + 4 + 2 * 2 + 4 + 8 + (1 + 4) + 2 * (1 + 4)
+    assert data == struct.pack("<d", 1.5) + bytes(zeros) + struct.pack("<d", -2.0)
+    assert decode(data) == outer(x=1.5, y=-2.0)  # type: ignore[call-arg]
+    label_and_flag = struct.pack("<I", 2) + b"hi" + b"\x01"
+    sent = struct.pack("<d", 1.5) + label_and_flag + bytes(zeros - 5) + struct.pack("<d", -2.0)
+    assert decode(sent) == outer(x=1.5, y=-2.0)  # type: ignore[call-arg]
