@@ -187,3 +187,15 @@ def test_fields_robomodel_s_class_lacks_are_written_as_ros_1_s_defaults() -> Non
     label_and_flag = struct.pack("<I", 2) + b"hi" + b"\x01"
     sent = struct.pack("<d", 1.5) + label_and_flag + bytes(zeros - 5) + struct.pack("<d", -2.0)
     assert decode(sent) == outer(x=1.5, y=-2.0)  # type: ignore[call-arg]
+
+
+def test_fields_in_another_order_than_the_class_s_are_read_by_name() -> None:
+    from robomodel.runtime.msg._from_definition import make_message_class
+    from robomodel.runtime.transport.ros1.ros1_codec import make_codec
+
+    defs = {"pkg/msg/Swapped": ([], [("y", (1, ("float64", 0))), ("x", (1, ("float64", 0)))])}
+    cls = make_message_class("pkg/msg/Swapped", (("x", "float64"), ("y", "float64")))
+    encode, decode = make_codec("pkg/msg/Swapped", defs, lambda key: cls, lambda t, f: None)
+    data = struct.pack("<dd", 1.0, 2.0)  # y, then x
+    assert decode(data) == cls(x=2.0, y=1.0)  # type: ignore[call-arg]
+    assert encode(cls(x=2.0, y=1.0), 0) == data  # type: ignore[call-arg]
