@@ -240,6 +240,7 @@ def test_dds_type_names_both_ways() -> None:
 
     assert dds_type_name("std_msgs/msg/String") == "std_msgs::msg::dds_::String_"
     assert ros_type_name("std_msgs::msg::dds_::String_") == "std_msgs/msg/String"
+    assert ros_type_name("pkg::msg::dds_::A_") == "pkg/msg/A"  # a one-letter name
     assert ros_type_name("example_interfaces::srv::dds_::AddTwoInts_Request_") == (
         "example_interfaces/srv/AddTwoInts_Request"
     )

@@ -68,6 +68,8 @@ def test_type_names_in_either_form_are_one_key() -> None:
     assert canonical_type_name(" /std_msgs/Float64/ ") == "std_msgs/msg/Float64"
     assert canonical_type_name("std_msgs/msg/Float64") == "std_msgs/msg/Float64"
     assert canonical_type_name("Float64") == "Float64"
+    assert canonical_type_name("X_msgs/PoseX") == "X_msgs/msg/PoseX"  # only "/" is stripped
+    assert canonical_service_name("X_srvs/SetX") == "X_srvs/srv/SetX"
     assert canonical_service_name(" /std_srvs/Empty/ ") == "std_srvs/srv/Empty"
     assert canonical_service_name("std_srvs/srv/Empty") == "std_srvs/srv/Empty"
     assert get_message_type("std_msgs/Float64") is get_message_type("/std_msgs/msg/Float64")
@@ -216,7 +218,7 @@ def test_a_flavoured_class_is_made_by_its_flavour() -> None:
             return "Flavoured" + name.rsplit("/", 1)[-1]
 
         def class_body(self, name: str, specs: Any, constants: Any) -> Any:
-            return (Base,), {"__slots__": ("x",), "made_for": name}
+            return (Base,), {"__slots__": ("x",), "made_for": (name, specs, constants)}
 
         def finish(self, cls: type) -> None:
             finished.append(cls)
@@ -227,7 +229,7 @@ def test_a_flavoured_class_is_made_by_its_flavour() -> None:
         defaults=defaults,
     )  # fmt: skip
     assert cls.__name__ == "FlavouredF" and cls.__mro__[1:3] == (Base, schema.Message)
-    assert cls.made_for == "test_pkg/msg/F"  # type: ignore[attr-defined]
+    assert cls.made_for == ("test_pkg/msg/F", (("x", "float64"),), (("K", "int8", 1),))  # type: ignore[attr-defined]
     assert cls.__field_defaults__ == {"x": 1.0} and cls.__field_defaults__ is not defaults  # type: ignore[attr-defined]
     assert cls.K == 1 and cls.__typename__ == "test_pkg/msg/F"  # type: ignore[attr-defined]
     assert finished == [cls]
@@ -244,3 +246,38 @@ def test_a_class_built_from_a_definition_keeps_its_constants_as_text_names() -> 
     assert cls.__constants__ == (("A", "int8", 1), ("B", "string", "hi"))
     assert [n for n, _ in cls.__fields__] == ["value"]
     assert cls.__typename__ == "pkg/msg/C" and cls.__name__ == "C"
+
+
+def test_a_package_s_module_is_imported_when_one_of_its_types_is_asked_for(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import sys
+
+    from robomodel.runtime.msg import schema
+
+    module = "robomodel.runtime.msg.types.gazebo_msgs"
+    saved = dict(schema._REGISTRY)
+    try:
+        monkeypatch.delitem(sys.modules, module, raising=False)
+        schema.import_package("not a package/msg/X")  # not a name: nothing to import
+        schema.import_package("no_such_pkg/msg/X")  # robomodel has no module of it
+        assert module not in sys.modules
+        schema.import_package("gazebo_msgs/msg/ModelStates")
+        assert module in sys.modules
+        assert schema._REGISTRY["gazebo_msgs/msg/ModelStates"] is sys.modules[module].ModelStates
+    finally:
+        schema._REGISTRY.clear()
+        schema._REGISTRY.update(saved)
+
+
+def test_a_ros1_definition_s_byte_is_int8() -> None:
+    """genmsg: ROS 1's ``byte`` is a deprecated ``int8``; rosidl's is an ``octet``."""
+    from robomodel.runtime.msg._from_definition import build_message_class
+    from robomodel.runtime.msg.definition import parse_message
+
+    text = "byte b\nchar c\n"
+    definition = parse_message(text, "pkg/msg/B", where="test")["pkg/msg/B"]
+    ros1 = build_message_class("pkg/msg/B", definition, get_message_type, ros1=True)
+    ros2 = build_message_class("pkg/msg/B", definition, get_message_type)
+    assert ros1.__fields__ == (("b", "int8"), ("c", "char"))
+    assert ros2.__fields__ == (("b", "byte"), ("c", "char"))
