@@ -8,6 +8,7 @@ definitions, times and bytes all the same.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -361,3 +362,140 @@ def test_not_an_mcap_file_is_refused_at_byte_0(tmp_path: Path) -> None:
     with pytest.raises(BagFormatError) as refused:
         _scan(path)
     assert str(refused.value) == f"{path}: at byte 0: not an MCAP file (bad magic)"
+
+
+def _foreign_mcap(path: Path, compression: str, *, schema_data: bytes = b"string data\n") -> None:
+    """An MCAP file as a writer other than ROS 2's makes it: compressed chunks, channels
+    without metadata, one without a schema and one without messages."""
+    from mcap.writer import CompressionType, Writer
+
+    with path.open("wb") as handle:
+        writer = Writer(handle, compression=CompressionType[compression], chunk_size=64)
+        writer.start()
+        schema = writer.register_schema(STRING, "ros2msg", schema_data)
+        chatter = writer.register_channel("/chatter", "cdr", schema, {})
+        raw = writer.register_channel("/raw", "cdr", 0, {})
+        writer.register_channel("/quiet", "cdr", schema, {})
+        for k in range(6):
+            data = serialize(String(f"z{k}"))
+            writer.add_message(chatter, 10 + k, data, 20 + k)
+        writer.add_message(raw, 99, serialize(String("raw")), 99)
+        writer.finish()
+
+
+@pytest.mark.parametrize("compression", ["ZSTD", "LZ4", "NONE"])
+def test_compressed_chunks_and_foreign_channels(tmp_path: Path, compression: str) -> None:
+    path = tmp_path / "foreign.mcap"
+    _foreign_mcap(path, compression)
+    from robomodel.bag._mcap_reader import scan_mcap
+    from robomodel.bag.model import Damage
+    from robomodel.runtime.msg import deserialize
+
+    found: list[Damage] = []
+    seen: list[Any] = []
+    messages = list(scan_mcap(path, found, seen.append))
+    assert [deserialize(m.data, String).data for m in messages if m.topic == "/chatter"] == [
+        f"z{k}" for k in range(6)
+    ]
+    assert found == []
+    by_topic = {c.topic: c for c in seen}
+    assert (by_topic["/chatter"].type, by_topic["/chatter"].definition) == (STRING, "string data\n")
+    assert (by_topic["/raw"].type, by_topic["/raw"].definition) == ("", "")
+    summary = open_bag(path).summary()
+    topics = {t.name: t for t in summary.topics}
+    assert (topics["/quiet"].count, topics["/raw"].count, topics["/chatter"].count) == (0, 1, 6)
+    assert all(t.offered_qos == () for t in topics.values())
+
+
+def test_damaged_compressed_chunks_are_skipped_and_named(tmp_path: Path) -> None:
+    from mcap.reader import make_reader
+
+    path = tmp_path / "z.mcap"
+    _foreign_mcap(path, "ZSTD")
+    with path.open("rb") as handle:
+        summary = make_reader(handle).get_summary()
+    assert summary is not None
+    chunk = sorted(summary.chunk_indexes, key=lambda c: c.chunk_start_offset)[1]
+    data = bytearray(path.read_bytes())
+    at = chunk.chunk_start_offset + chunk.chunk_length - 4  # the zstd frame's checksum
+    data[at : at + 4] = bytes(4)
+    path.write_bytes(bytes(data))
+    texts, damage, _ = _scan(path)
+    assert len(damage) == 1
+    assert damage[0].startswith(f"{path}: at byte {chunk.chunk_start_offset}: chunk does not ")
+    assert damage[0].endswith("; its messages are skipped")
+    assert 0 < len(texts) < 7
+
+
+def test_schema_text_that_is_not_utf8_is_kept_readable(tmp_path: Path) -> None:
+    path = tmp_path / "s.mcap"
+    _foreign_mcap(path, "NONE", schema_data=b"string data # \xff\n")
+    _, damage, channels = _scan(path)
+    assert damage == []
+    assert channels[0].definition == "string data # \ufffd\n"
+
+
+def test_a_file_of_the_magic_alone_is_named_at_its_first_record(tmp_path: Path) -> None:
+    from robomodel.bag._mcap_reader import MAGIC
+
+    path = tmp_path / "m.mcap"
+    path.write_bytes(MAGIC)
+    assert _scan(path)[1] == [f"{path}: at byte 8: unreadable record (EndOfFile: )"]
+
+
+def test_bag_metadata_s_distribution_and_a_missing_reader(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import sys
+
+    import yaml as pyyaml
+
+    from robomodel.errors import MissingDependencyError
+
+    for plugin in (rosbag2.StoragePlugin.MCAP, rosbag2.StoragePlugin.SQLITE3):
+        folder = tmp_path / plugin.name
+        _rosbag2(folder, plugin)
+        metadata = folder / "metadata.yaml"
+        info = pyyaml.safe_load(metadata.read_text())
+        info["rosbag2_bagfile_information"]["ros_distro"] = "jazzy"
+        metadata.write_text(pyyaml.safe_dump(info))
+        assert open_bag(folder).summary().ros_distro == "jazzy", plugin
+    fifo = tmp_path / "pipe.bag"
+    os.mkfifo(fifo)
+    with pytest.raises(BagFormatError) as refused:
+        open_bag(fifo)
+    assert "cannot read bag file: it is a named pipe" in str(refused.value)
+    monkeypatch.setitem(sys.modules, "mcap.stream_reader", None)
+    with pytest.raises(MissingDependencyError, match="reading MCAP bags"):
+        open_bag(tmp_path / "MCAP").summary()
+
+
+def test_each_decompressor_and_a_missing_one(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """zstd through whichever module is there (Python 3.14's, the backport, mcap's
+    ``zstandard``), lz4 through ``lz4.frame``; a missing one is named with what it is for."""
+    import sys
+
+    from robomodel.errors import MissingDependencyError
+
+    zstd, lz4 = tmp_path / "z.mcap", tmp_path / "l.mcap"
+    _foreign_mcap(zstd, "ZSTD")
+    _foreign_mcap(lz4, "LZ4")
+    for name in ("compression.zstd", "backports.zstd"):
+        monkeypatch.setitem(sys.modules, name, None)
+    texts, damage, _ = _scan(zstd)  # through zstandard's stream reader
+    assert damage == [] and texts[:6] == [f"z{k}" for k in range(6)]
+    monkeypatch.setitem(sys.modules, "zstandard", None)
+    with pytest.raises(MissingDependencyError) as missing:
+        _scan(zstd)
+    assert "zstandard" in str(missing.value) and "reading zstd-compressed MCAP chunks" in str(
+        missing.value
+    )
+    assert "robomodel[bag]" in str(missing.value)
+    monkeypatch.setitem(sys.modules, "lz4.frame", None)
+    with pytest.raises(MissingDependencyError, match="reading lz4-compressed MCAP chunks"):
+        _scan(lz4)
+    monkeypatch.setitem(sys.modules, "mcap.records", None)
+    with pytest.raises(MissingDependencyError, match="reading MCAP bags"):
+        _scan(lz4)
