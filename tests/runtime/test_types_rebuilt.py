@@ -255,7 +255,12 @@ def test_a_package_s_module_is_imported_when_one_of_its_types_is_asked_for(
 
     from robomodel.runtime.msg import schema
 
+    import robomodel.runtime.msg.types as types_package
+
     module = "robomodel.runtime.msg.types.gazebo_msgs"
+    # the package's attribute and sys.modules get the module imported anew: both are restored
+    before = getattr(types_package, "gazebo_msgs", None)
+    monkeypatch.setattr(types_package, "gazebo_msgs", before, raising=False)
     saved = dict(schema._REGISTRY)
     try:
         monkeypatch.delitem(sys.modules, module, raising=False)
