@@ -253,9 +253,8 @@ def test_a_package_s_module_is_imported_when_one_of_its_types_is_asked_for(
 ) -> None:
     import sys
 
-    from robomodel.runtime.msg import schema
-
     import robomodel.runtime.msg.types as types_package
+    from robomodel.runtime.msg import schema
 
     module = "robomodel.runtime.msg.types.gazebo_msgs"
     # the package's attribute and sys.modules get the module imported anew: both are restored
