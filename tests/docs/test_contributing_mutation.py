@@ -23,7 +23,7 @@ def _groups() -> dict[str, tuple[tuple[str, ...], tuple[str, ...]]]:
     groups = {}
     for head, tests in zip(*[iter(done.stdout.splitlines())] * 2, strict=True):
         name, sources = head.split(": ", 1)
-        groups[name] = (
+        groups[name.split(" (")[0]] = (  # "cdr (1 mutant in 10)": a sampled group
             tuple(sources.split(", ")),
             tuple(tests.strip().removeprefix("tests: ").split(", ")),
         )
@@ -52,3 +52,17 @@ def test_an_unknown_group_is_one_line_and_exit_code_2() -> None:
     assert done.returncode == 2
     assert done.stderr.strip().startswith("mutate: unknown group nosuch; groups are: inproc, ")
     assert "\n" not in done.stderr.strip()
+
+
+def test_sampled_groups_say_so_and_a_sample_must_divide_ten() -> None:
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "tools" / "mutate.py"), "--list"],
+        capture_output=True, text=True, timeout=scaled(60), check=True,
+    )  # fmt: skip
+    assert "\ncdr (1 mutant in 10): " in "\n" + done.stdout
+    assert "\ninproc: " in "\n" + done.stdout
+    refused = subprocess.run(
+        [sys.executable, str(ROOT / "tools" / "mutate.py"), "cdr", "--sample", "3"],
+        capture_output=True, text=True, timeout=scaled(60), check=False,
+    )  # fmt: skip
+    assert refused.returncode == 2 and "invalid choice: 3" in refused.stderr

@@ -80,3 +80,49 @@ def test_message_text_round_trips_through_the_parser() -> None:
     assert parsed["sensor_msgs/msg/BatteryState"][0] == list(cls.__constants__)
     names = [name for name, _ in parsed["sensor_msgs/msg/BatteryState"][1]]
     assert names == list(cls.field_names())
+
+
+def test_a_definition_rosbags_cannot_parse_is_one_line_with_its_reason() -> None:
+    from robomodel.runtime.msg.definition import parse_interface, parse_message
+
+    for parse in (parse_message, parse_interface):
+        with pytest.raises(MessageTypeError) as refused:
+            parse("int32 !bad\n", "pkg/msg/A", where="a.msg")
+        message = str(refused.value)
+        assert message.startswith("a.msg: not a valid message definition: Could not parse: ")
+        assert "int32 !bad" in message and "\n" not in message
+
+
+def test_the_field_bound_counts_each_type_s_section_alone() -> None:
+    """A ``message_definition`` with ``MSG:`` sections: each type's lines are counted apart,
+    and the refusal names the section past the bound."""
+    from robomodel.runtime.msg.definition import LIMITS, parse_message
+
+    main = "pkg/Sub a\n" + "".join(f"int8 m{k}\n" for k in range(LIMITS.max_fields - 1))
+    sub = "".join(f"int8 f{k}\n" for k in range(LIMITS.max_fields))
+    text = f"{main}{'=' * 80}\nMSG: pkg/Sub\n{sub}"
+    assert "pkg/msg/Sub" in parse_message(text, "pkg/msg/Main", where="bag")
+    with pytest.raises(MessageTypeError) as refused:
+        parse_message(text + "int8 one_more\n", "pkg/msg/Main", where="bag")
+    assert str(refused.value) == (
+        f"bag: pkg/Sub has more than {LIMITS.max_fields} fields and constants "
+        "(robomodel's bound, docs/reference/limits.md)"
+    )
+
+
+def test_types_the_definitions_do_not_define_count_as_one_level() -> None:
+    from robomodel.runtime.msg.definition import LIMITS, check_limits
+
+    base, name = 1, 2
+    found = {
+        f"pkg/msg/T{k}": ([], [("next", (name, f"pkg/msg/T{k + 1}")), ("x", (base, ("int8", 0)))])
+        for k in range(LIMITS.max_depth - 2)
+    }
+    # the last one holds a type from elsewhere (a Header): one more level, at the bound
+    found[f"pkg/msg/T{LIMITS.max_depth - 2}"] = (
+        [], [("header", (name, "std_msgs/msg/Header"))]
+    )  # fmt: skip
+    check_limits(found)
+    found["pkg/msg/Top"] = ([], [("t", (name, "pkg/msg/T0"))])
+    with pytest.raises(MessageTypeError, match=f"nested more than {LIMITS.max_depth} deep"):
+        check_limits(found)

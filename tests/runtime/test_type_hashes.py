@@ -233,3 +233,51 @@ def test_action_types_derived_as_rosidl_does() -> None:
     assert type_hash(action.FeedbackMessage) == (
         "RIHS01_10cb89922dcb103e95c185d43e8a5efa3d38db996f733151a2f3e2ac133f4839"
     )
+
+
+def test_dds_type_names_both_ways() -> None:
+    from robomodel.runtime.msg.typehash import ros_type_name
+
+    assert dds_type_name("std_msgs/msg/String") == "std_msgs::msg::dds_::String_"
+    assert ros_type_name("std_msgs::msg::dds_::String_") == "std_msgs/msg/String"
+    assert ros_type_name("pkg::msg::dds_::A_") == "pkg/msg/A"  # a one-letter name
+    assert ros_type_name("example_interfaces::srv::dds_::AddTwoInts_Request_") == (
+        "example_interfaces/srv/AddTwoInts_Request"
+    )
+    for not_dds in (
+        "std_msgs::msg::String_",  # three parts
+        "a::b::c::d::e_",  # five
+        "std_msgs::msg::rti_::String_",  # not dds_
+        "std_msgs::msg::dds_::String",  # no trailing underscore
+        "std_msgs::msg::dds_::_",  # nothing before it
+        "::msg::dds_::String_",  # no package
+        "std_msgs::::dds_::String_",  # no kind
+    ):
+        assert ros_type_name(not_dds) is None, not_dds
+
+
+def test_service_hashes_are_rosidl_s_and_kept() -> None:
+    """RIHS01 of a service as rosidl computes it (the cited hash), its description's event
+    part, and the same string object the second time (it is computed once per class)."""
+    from robomodel.runtime.msg.schema import get_service_type
+    from robomodel.runtime.msg.typehash import same_type, type_description
+
+    srv = get_service_type("std_srvs/srv/SetBool")
+    first = type_hash(srv)
+    assert first == dict(CITED)["std_srvs/srv/SetBool"]
+    assert type_hash(srv) is first
+    description = type_description(srv)
+    fields = description["type_description"]["fields"]
+    assert [f["name"] for f in fields] == ["request_message", "response_message", "event_message"]
+    assert fields[2]["type"]["nested_type_name"] == "std_srvs/srv/SetBool_Event"
+    assert fields[2]["type"]["string_capacity"] == 0 and fields[2]["type"]["capacity"] == 0
+    event = next(
+        d
+        for d in description["referenced_type_descriptions"]
+        if d["type_name"] == "std_srvs/srv/SetBool_Event"
+    )
+    assert [f["type"]["capacity"] for f in event["fields"]] == [0, 1, 1]
+    assert [f["type"]["type_id"] for f in event["fields"]] == [1, 97, 97]
+    trigger = get_service_type("std_srvs/srv/Trigger")
+    assert type_hash(trigger) != first
+    assert same_type(srv, srv) and not same_type(srv, trigger)

@@ -210,3 +210,55 @@ def test_keep_last_keeps_the_newest_depth_messages_and_keep_all_every_one(
     _until(lambda: handle.dropped - dropped + len(handle._pending) == 12, "the twelve samples")
     _until(lambda: seen[-1:] == [12], "the newest marker", viewer)
     assert seen == list(range(13 - expected, 13))
+
+
+def test_option_values_read_per_dialect_and_refused_in_one_line() -> None:
+    robot = display_class("RobotModel")
+    # RViz 1 has no Description File: a ROS 1 config's key of that name is not read
+    assert display_values(robot, {"Description File": "/r.urdf"}, RvizDialect.ROS1) == ({}, [])
+    assert display_values(robot, {"Description File": "/r.urdf"}, RvizDialect.ROS2) == (
+        {"Description File": "/r.urdf"}, [],
+    )  # fmt: skip
+    # a topic map's Depth is a Queue Size only for displays that have one
+    values, skipped = display_values(
+        robot, {"Description Topic": {"Value": "/robot_description", "Depth": 5}},
+        RvizDialect.ROS2,
+    )  # fmt: skip
+    assert values == {"Description Topic": "/robot_description"} and skipped == []
+    values, skipped = display_values(
+        display_class("LaserScan"), {"Topic": {"Value": "/s", "Depth": "many"}}, RvizDialect.ROS2
+    )
+    assert values == {"Topic": "/s"}
+    assert skipped == ["option 'Queue Size' takes a int value, not 'many'"]
+
+
+def test_new_displays_are_written_with_each_dialect_s_class_and_nested_keys() -> None:
+    wrench = display_class("Wrench")("w", fake_context(FakeScene()), {"Topic": "/wrench"})
+    assert display_entry(wrench, RvizDialect.ROS1).class_name == "rviz/WrenchStamped"
+    assert display_entry(wrench, RvizDialect.ROS2).class_name == "rviz_default_plugins/Wrench"
+    pose = display_class("PoseWithCovariance")("p", fake_context(FakeScene()), {})
+    for dialect in (RvizDialect.ROS1, RvizDialect.ROS2):
+        covariance = display_entry(pose, dialect).settings["Covariance"]
+        assert covariance["Value"] is True
+        assert covariance["Position"]["Color"] == "204; 51; 204"
+        assert covariance["Position"]["Alpha"] == 0.3
+
+
+def test_a_read_display_is_written_back_as_read_and_changed_by_its_dialect_s_keys() -> None:
+    from robomodel.viewer.rviz_model import RvizDisplay
+
+    # a ROS 2 topic map without a Depth stays without one when nothing changed
+    cls = display_class("LaserScan")
+    settings = MappingProxyType({"Topic": MappingProxyType({"Value": "/scan"})})
+    base = RvizDisplay("rviz_default_plugins/LaserScan", "scan", True, settings)
+    display = cls("scan", fake_context(FakeScene()), display_values(cls, settings, RvizDialect.ROS2)[0])  # fmt: skip
+    assert display_entry(display, RvizDialect.ROS2, base).settings == settings
+    # RViz 1's Marker Topic, set back to the default, is written under RViz 1's key
+    marker = display_class("Marker")
+    ros1 = MappingProxyType({"Marker Topic": "/my_markers"})
+    base = RvizDisplay("rviz/Marker", "m", True, ros1)
+    shown = marker("m", fake_context(FakeScene()), display_values(marker, ros1, RvizDialect.ROS1)[0])  # fmt: skip
+    assert shown.option("Topic") == "/my_markers"
+    shown.set_option("Topic", "/visualization_marker")
+    written = display_entry(shown, RvizDialect.ROS1, base).settings
+    assert written["Marker Topic"] == "/visualization_marker" and "Topic" not in written

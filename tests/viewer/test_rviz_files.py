@@ -306,3 +306,64 @@ def test_a_setting_that_is_not_a_number_keeps_the_default() -> None:
     (robot,) = _displays(document)
     assert robot.option("Alpha") == 1.0
     assert rviz_text(_saved(document, [robot])).count("Alpha: half") == 1  # kept as written
+
+
+def test_yaml_scalars_as_rviz_writes_them() -> None:
+    from robomodel.viewer.rviz_yaml import dump_rviz_yaml
+
+    text = dump_rviz_yaml(
+        {"Small": 1e-05, "Big": -math.inf, "Spaced": "a b ", "Break": "a\u2028b",
+         "Astral": "a\U0001f916\u0085", "Nested": [[], {}, [1]]}
+    )  # fmt: skip
+    assert 'Astral: "a\U0001f916\\x85"' in text
+    assert "Small: 1.0e-05" in text and 'Spaced: "a b "' in text
+    assert 'Break: "a\\u2028b"' in text and "Big: -.inf" in text
+    assert "  - []\n  - {}\n" in text
+    assert yaml.safe_load(text) == {
+        "Small": 1e-05, "Big": -math.inf, "Spaced": "a b ", "Break": "a\u2028b",
+        "Astral": "a\U0001f916\u0085", "Nested": [[], {}, [1]],
+    }  # fmt: skip
+
+
+def test_config_details_rviz_reads() -> None:
+    text = """Visualization Manager:
+  Class: ""
+  Displays:
+    - Class: rviz_default_plugins/Grid
+      Enabled: true
+    - Class: rviz_default_plugins/RobotModel
+      Name: Robot
+      Description Topic:
+        Value: /my_robot_description
+  Global Options:
+    Background Color: 10,20,30
+    Fixed Frame: base_link
+"""
+    config = parse_rviz_text(text, "v.rviz")
+    assert [d.name for d in config.displays] == ["Grid", "Robot"]  # a missing Name: the class's
+    assert config.background_rgb == (10, 20, 30)  # RViz 2 separates by ";", old files by ","
+    from robomodel.viewer.rviz_config import settings_of
+
+    assert settings_of(config).robot_description == "my_robot_description"
+    ros1 = text.replace("Description Topic:\n        Value: /my_robot_description",
+                        "Robot Description: arm_description")  # fmt: skip
+    assert settings_of(parse_rviz_text(ros1, "v.rviz")).robot_description == "arm_description"
+    changed = config.displays[1].with_settings({"Alpha": 0.5}, enabled=False)
+    assert (changed.class_name, changed.name, changed.enabled) == (
+        "rviz_default_plugins/RobotModel", "Robot", False,
+    )  # fmt: skip
+    assert changed.settings["Alpha"] == 0.5 and "Description Topic" in changed.settings
+    assert config.displays[1].with_settings({}).enabled is True
+
+
+def test_invalid_yaml_is_named_with_its_line_and_column() -> None:
+    with pytest.raises(RvizConfigError) as refused:
+        parse_rviz_text("Visualization Manager:\n  Displays: [\n", "bad.rviz")
+    message = str(refused.value)
+    assert message.startswith("bad.rviz:3:1: invalid RViz config: ")
+    assert "\n" not in message
+    with pytest.raises(RvizConfigError) as deep:
+        parse_rviz_text("a: " + "[" * 300 + "]" * 300 + "\n", "deep.rviz")
+    assert (
+        str(deep.value) == "deep.rviz:1:103: invalid RViz config: nested more than 100 levels deep"
+    )

@@ -181,7 +181,8 @@ class Bag:
                 for t in types
             )
             total = reader.message_count
-            start, end = (reader.start_time, reader.end_time) if total else (0, 0)
+            # rosbags' end_time is just after the last message; an MCAP's end is that message's
+            start, end = (reader.start_time, reader.end_time - 1) if total else (0, 0)
         return BagSummary(
             str(self.path), self.storage, tuple(str(f) for f in self.files), self._size(),
             start, end, total, topics, self._metadata.ros_distro if self._metadata else "",

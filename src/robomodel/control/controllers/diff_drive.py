@@ -45,8 +45,8 @@ MAX_TWIST = 1e6  # [m/s] or [rad/s]: a bigger command is refused (see set_comman
 
 
 def _time(t: float) -> Time:
-    sec = math.floor(t)
-    return Time(int(sec), round((t - sec) * 1e9) % 1_000_000_000)
+    sec, nanosec = divmod(round(t * 1e9), 1_000_000_000)
+    return Time(sec, nanosec)
 
 
 def _yaw_quaternion(yaw_rad: float) -> Quaternion:

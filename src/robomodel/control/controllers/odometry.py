@@ -87,12 +87,16 @@ class Odometry:
         return self.update_from_velocity(left_dist, right_dist, time_s)
 
     def update_from_velocity(self, left_m: float, right_m: float, time_s: float) -> bool:
-        """From the distances [m] the wheels travelled since the last update."""
+        """From the distances [m] the wheels travelled since the last update. An update at
+        the time of the last one (the first after :meth:`init`) moves the pose but gives no
+        velocity (odometry.cpp would divide by zero and keep NaN in its rolling means)."""
         dt = time_s - self.timestamp_s
         linear = (left_m + right_m) * 0.5
         angular = (right_m - left_m) / self.wheel_separation
         self.integrate_exact(linear, angular)
         self.timestamp_s = time_s
+        if dt <= 0.0:
+            return True
         self._linear_acc.accumulate(linear / dt)
         self._angular_acc.accumulate(angular / dt)
         self.linear = self._linear_acc.mean()

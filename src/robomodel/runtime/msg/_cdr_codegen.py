@@ -8,7 +8,7 @@ import sys
 from array import array
 from typing import Any
 
-from robomodel.runtime.msg._cdr_strings import CDRError, decode_strings, encode_strings
+from robomodel.runtime.msg._cdr_strings import CDRError, encode_strings
 from robomodel.runtime.msg._source_gen import SourceGen
 from robomodel.runtime.msg.schema import Spec
 
@@ -52,7 +52,6 @@ class Gen(SourceGen):
                 "struct": struct,
                 "CDRError": CDRError,
                 "_encode_strings": encode_strings,
-                "_decode_strings": decode_strings,
                 "_fixed": _fixed,
                 "_array": array,
                 "_u32": struct.Struct("<I").unpack_from,

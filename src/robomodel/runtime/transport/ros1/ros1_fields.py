@@ -17,6 +17,7 @@ message count; ``time``/``duration`` are builtin_interfaces' Time/Duration).
 - control_msgs/JointTrajectoryControllerState: ROS 1's ``desired``/``actual``/``error`` are
   Jazzy's ``reference``/``feedback``/``error``.
 - sensor_msgs/CameraInfo: ROS 1's ``D``/``K``/``R``/``P`` are ROS 2's ``d``/``k``/``r``/``p``.
+- stereo_msgs/DisparityImage: ROS 1's baseline ``T`` is ROS 2's ``t``.
 """
 
 from __future__ import annotations
@@ -99,6 +100,7 @@ _SPECIAL = {
     ("control_msgs/msg/JointTrajectoryControllerState", "desired"): Field("reference"),
     ("control_msgs/msg/JointTrajectoryControllerState", "actual"): Field("feedback"),
     **{("sensor_msgs/msg/CameraInfo", name): Field(name.lower()) for name in "DKRP"},
+    ("stereo_msgs/msg/DisparityImage", "T"): Field("t"),
 }
 
 
