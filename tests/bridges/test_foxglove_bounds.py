@@ -137,7 +137,7 @@ def test_a_client_that_stops_reading_costs_bounded_memory(bridge: FoxgloveBridge
             found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/big"]
             channel = found[0]["id"] if found else None
         ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": channel}]}))
-        wait_until(lambda: talker.publisher.get_subscription_count() == 1, 10, what="subscribed")
+        wait_until(lambda: talker.publisher.get_subscription_count() == 1, 60, what="subscribed")
         talker.start()
         first = talker.sent
         # a second for the socket buffers to fill, then 25 MB more to a client reading nothing
