@@ -161,6 +161,7 @@ def test_a_bus_that_hangs_on_close_does_not_keep_the_launch_alive() -> None:
     )
     assert done.returncode == 0
     assert "closing the viewer and the bus took over 0.5 s" in done.stderr
+    assert "in shutdown" in done.stderr  # the runner's stack, where the close waited
 
 
 def test_a_zenoh_session_that_never_closes_is_left_behind() -> None:

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import os
 import sys
 import threading
 import time
 import webbrowser
 from typing import TYPE_CHECKING, Any
 
+from robomodel._watchdog import ends_process_after
 from robomodel.cli._bus import add_bus_arguments
 from robomodel.cli._common import (
     add_frame_rate_argument,
@@ -266,24 +266,10 @@ CLOSE_BOUND_S = 30.0
 
 
 def _close_within(viewer: Any, bound_s: float) -> None:
-    """``viewer.close()``, watched: past ``bound_s`` the threads' stacks go to stderr (where it
-    waited, for a bug report) and the process ends at once, so that Ctrl-C always ends the
-    viewer (it starts no processes, so nothing is left behind). A Zenoh runtime that panicked
-    while peers went away can block an undeclaration for good, as the launch's close knows."""
-    watchdog = threading.Timer(bound_s, _exit_after_hung_close, args=(bound_s,))
-    watchdog.daemon = True
-    watchdog.start()
-    try:
+    """``viewer.close()``, bounded: past ``bound_s`` the threads' stacks go to stderr and the
+    process ends with 130, so that Ctrl-C always ends the viewer (it starts no processes, so
+    nothing is left behind)."""
+    with ends_process_after(
+        bound_s, f"robomodel view: did not stop within {bound_s:g} s; ending now", exit_code=130
+    ):
         viewer.close()
-    finally:
-        watchdog.cancel()
-
-
-def _exit_after_hung_close(bound_s: float) -> None:
-    import faulthandler
-
-    print(f"robomodel view: did not stop within {bound_s:g} s; ending now. Its threads:",
-          file=sys.stderr, flush=True)  # fmt: skip
-    faulthandler.dump_traceback(file=sys.stderr, all_threads=True)
-    sys.stderr.flush()
-    os._exit(130)

@@ -21,6 +21,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from robomodel._watchdog import ends_process_after
 from robomodel.description.packages import PackageIndex
 from robomodel.errors import RobomodelError
 from robomodel.launch.gui import GuiOptions, LaunchGui
@@ -415,36 +416,25 @@ class LaunchRunner:
         # Every node is stopped: closing the viewer and the bus is all that is left. A Zenoh
         # session whose runtime panicked while peers went away can block in close() for good;
         # the launch then ends anyway, after saying so.
-        watchdog = threading.Timer(_CLOSE_TIMEOUT_S, _exit_after_hung_close)
-        watchdog.daemon = True
-        watchdog.start()
+        line = (
+            f"[launch] closing the viewer and the bus took over {_CLOSE_TIMEOUT_S:g} s; every "
+            "node had stopped: exiting"
+        )
         try:
-            if self.gui is not None:
-                self.gui.close()
-            if self.context is not None:
-                self.context.shutdown()
-            if self._ros1 is not None:
-                self._ros1.close()
+            with ends_process_after(_CLOSE_TIMEOUT_S, line, exit_code=0):
+                if self.gui is not None:
+                    self.gui.close()
+                if self.context is not None:
+                    self.context.shutdown()
+                if self._ros1 is not None:
+                    self._ros1.close()
         finally:
-            watchdog.cancel()
             if self._node_log is not None:
                 self._node_log.detach()
 
 
 _STOP_TIMEOUT_S = 5.0
 _CLOSE_TIMEOUT_S = 10.0
-
-
-def _exit_after_hung_close() -> None:
-    import os
-
-    print(
-        f"[launch] closing the viewer and the bus took over {_CLOSE_TIMEOUT_S:g} s; every node "
-        "had stopped: exiting",
-        file=sys.stderr,
-        flush=True,
-    )
-    os._exit(0)
 
 
 _OUTPUT_LOCK = threading.Lock()
