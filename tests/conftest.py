@@ -121,8 +121,9 @@ STARTED_FIRST = ("tests/test_wheel_smoke.py",)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark each test with the tiers it belongs to (tests/tiers.py): from the fixtures of its
     closure, and from PATH_TIERS for one that starts its processes itself. The tests of
-    :data:`STARTED_FIRST` go to the front."""
-    items.sort(key=lambda item: not item.nodeid.startswith(STARTED_FIRST))
+    :data:`STARTED_FIRST` go to the front and the in-process tier to the back: its many short
+    tests fill the workers while the last long ones finish, instead of a long one starting
+    last (xdist hands tests out in this order)."""
     for item in items:
         defs = getattr(item, "_fixtureinfo", None)
         fixtures = [
@@ -132,6 +133,13 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         ]
         for marker in sorted(tiers_of(item.nodeid, fixtures)):
             item.add_marker(marker)
+    items.sort(key=_start_order)
+
+
+def _start_order(item: pytest.Item) -> int:
+    if item.nodeid.startswith(STARTED_FIRST):
+        return 0
+    return 1 if any(item.get_closest_marker(name) for name in MARKERS) else 2
 
 
 @pytest.fixture(autouse=True)

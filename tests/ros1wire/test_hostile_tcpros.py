@@ -77,9 +77,7 @@ def _sigterm_ends(proc: subprocess.Popen[str], log: Path) -> None:
     assert "Traceback" not in log.read_text(), log.read_text()
 
 
-def test_29_2_publisher_update_with_3000_dead_uris(
-    ros1: Ros1, master: Master, tmp_path: Path
-) -> None:
+def test_publisher_update_with_3000_dead_uris(ros1: Ros1, master: Master, tmp_path: Path) -> None:
     """Finding 2: 3,000 dead publisher URIs gave 2,370 threads, the node's XML-RPC server
     stopped answering and SIGTERM did not end it. The URIs lead to a listener that never
     answers, so every connection attempt waits for its timeout."""
@@ -157,7 +155,7 @@ def _register(master_uri: str, topic: str, kind: str, fake: _FakePublisher, name
     assert proxy.registerPublisher(name, topic, kind, fake.uri)[0] == 1
 
 
-def test_29_9_large_frames_are_bounded_per_connection_and_in_total(
+def test_large_frames_are_bounded_per_connection_and_in_total(
     ros1: Ros1, master: Master, tmp_path: Path
 ) -> None:
     """Finding 9: 200 MB frames from fake publishers cost 200 MiB per connection while read,
@@ -229,7 +227,7 @@ def _stall(port: int, count: int, stop: threading.Event, opened: list[int]) -> N
     selector.close()
 
 
-def test_29_12_stalled_handshakes_do_not_keep_a_real_subscriber_out(
+def test_stalled_handshakes_do_not_keep_a_real_subscriber_out(
     ros1: Ros1, master: Master, tmp_path: Path
 ) -> None:
     """Finding 12: 100 connections that send 2 bytes and stall kept a real subscriber out
@@ -301,7 +299,7 @@ def test_29_subscriber_connections_past_the_cap_are_refused_and_rostopic_echo_st
     _sigterm_ends(proc, log)
 
 
-def test_29_9_the_frame_budget_is_given_back_whatever_happens() -> None:
+def test_the_frame_budget_is_given_back_whatever_happens() -> None:
     """The budget charged by a frame being read returns to 0 after a decoded frame, a refused
     one and a peer that closes mid-frame; a frame that does not fit is refused before its
     bytes are read."""
@@ -351,7 +349,7 @@ def test_29_9_the_frame_budget_is_given_back_whatever_happens() -> None:
         assert frame_budget_in_use() == 0
 
 
-def test_29_12_past_the_bound_the_oldest_stalled_handshake_makes_room(
+def test_past_the_bound_the_oldest_stalled_handshake_makes_room(
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     """More stalled connections than handshakes may be in progress: the oldest are dropped

@@ -137,7 +137,7 @@ def test_debian_tools_leave_the_same_graph_on_robomodel_s_master_as_on_roscore(
     assert after_cleanup == ROSOUT
 
 
-def test_29_1_a_garbage_registration_leaves_rospy_subscribers_receiving(
+def test_a_garbage_registration_leaves_rospy_subscribers_receiving(
     ros1: Ros1, tmp_path: Path
 ) -> None:
     """Finding 1 with a launch-hosted master and Debian's rospy: a subscriber started first
@@ -169,7 +169,7 @@ def test_29_1_a_garbage_registration_leaves_rospy_subscribers_receiving(
     ("variable", "host"),
     [("ROS_IP", "127.0.0.2"), ("ROS_IP", "::1"), ("ROS_HOSTNAME", "ip6-localhost")],
 )
-def test_29_10_loopback_addresses_bind_loopback_only(
+def test_loopback_addresses_bind_loopback_only(
     variable: str, host: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     from robomodel.runtime.transport.ros1.names import bind_host, listen_host, master_bind_host
@@ -186,7 +186,7 @@ def test_29_10_loopback_addresses_bind_loopback_only(
     assert master_bind_host("http://localhost:11311/") == "0.0.0.0"
 
 
-def test_29_10_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> None:
+def test_robomodel_master_and_nodes_on_ipv6_loopback(tmp_path: Path) -> None:
     """``ROS_IP=::1``: ``robomodel master -p`` starts (it did not), listens on ::1 only, and
     robomodel's nodes talk over it (node XML-RPC and TCPROS on ::1; Debian's rospy would need
     ROS_IPV6=on)."""

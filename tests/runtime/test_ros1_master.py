@@ -296,7 +296,7 @@ def _evil_publisher(proxy: Any) -> tuple[XmlRpcServer, threading.Event]:
     return node, dropped
 
 
-def test_27_6_unregistering_forgets_a_node_as_rosmaster_does(master: tuple[Master, Any]) -> None:
+def test_unregistering_forgets_a_node_as_rosmaster_does(master: tuple[Master, Any]) -> None:
     """rosmaster/registrations.py: unregister* removes exactly the registration named (a
     service by its rosrpc URI), a node is forgotten with its last registration, and rospy's
     system.multicall of unregister calls (how a rospy node ends) is served."""

@@ -93,7 +93,7 @@ def master(tmp_path: Path) -> Iterator[MasterProcess]:
 
 
 # -- 29.1: one bad registration silences the master --------------------------------------------
-def test_29_1_a_garbage_subscriber_api_is_refused_and_notifications_go_on(
+def test_a_garbage_subscriber_api_is_refused_and_notifications_go_on(
     master: MasterProcess,
 ) -> None:
     """The attack of finding 1 against robomodel's own API (Debian's rospy receiving after it
@@ -118,7 +118,7 @@ def test_29_1_a_garbage_subscriber_api_is_refused_and_notifications_go_on(
 
 
 # -- 29.4: deep parameter keys ---------------------------------------------------------------------
-def test_29_4_a_deep_parameter_key_is_refused_and_the_tree_stays_readable(
+def test_a_deep_parameter_key_is_refused_and_the_tree_stays_readable(
     master: MasterProcess,
 ) -> None:
     proxy = master.proxy()
@@ -141,7 +141,7 @@ def test_29_4_a_deep_parameter_key_is_refused_and_the_tree_stays_readable(
     assert len(master.log()) <= 2  # one line per refusal
 
 
-def test_29_4_key_bytes_count_in_the_servers_limit_and_walks_are_loops() -> None:
+def test_key_bytes_count_in_the_servers_limit_and_walks_are_loops() -> None:
     from robomodel.runtime.transport.ros1.param_tree import ParamServerError, ParamTree
 
     tree = ParamTree(max_tree_bytes=40_000)
@@ -176,7 +176,7 @@ def _own_rss() -> int:
     raise AssertionError("no VmRSS")
 
 
-def test_29_4_deep_names_fill_the_server_to_its_limit_in_memory_too() -> None:
+def test_deep_names_fill_the_server_to_its_limit_in_memory_too() -> None:
     """Names of 100 levels, set until the server is full: its memory (RSS) stays near its
     limit; counted as 8 bytes per namespace they took 20 times the limit."""
     from robomodel.runtime.transport.ros1.param_tree import ParamServerError, ParamTree
@@ -208,7 +208,7 @@ def _status(sock: socket.socket) -> bytes:
         return b""
 
 
-def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
+def test_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
     master: MasterProcess,
 ) -> None:
     size = MAX_BODY_BYTES - MIB
@@ -255,7 +255,7 @@ def test_29_6_request_bodies_in_flight_have_one_budget_and_requests_a_cap(
 
 
 # -- 29.11: tracebacks and slowloris --------------------------------------------------------------
-def test_29_11_peers_that_leave_mid_request_cost_a_line_not_a_traceback(
+def test_peers_that_leave_mid_request_cost_a_line_not_a_traceback(
     master: MasterProcess,
 ) -> None:
     proxy = master.proxy()
@@ -275,7 +275,7 @@ def test_29_11_peers_that_leave_mid_request_cost_a_line_not_a_traceback(
     assert 1 <= len(lines) <= 6 and all("ended early" in line for line in lines), lines
 
 
-def test_29_11_a_slowloris_is_dropped_at_the_request_deadline(
+def test_a_slowloris_is_dropped_at_the_request_deadline(
     caplog: pytest.LogCaptureFixture, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     from robomodel.runtime.transport.ros1 import xmlrpc_io
@@ -307,7 +307,7 @@ def _readable(sock: socket.socket) -> bool:
 
 
 # -- 29.13: names ------------------------------------------------------------------------------------
-def test_29_13_names_are_bounded_and_validated_and_registrations_bounded(
+def test_names_are_bounded_and_validated_and_registrations_bounded(
     master: MasterProcess,
 ) -> None:
     proxy = master.proxy()
@@ -332,7 +332,7 @@ def test_29_13_names_are_bounded_and_validated_and_registrations_bounded(
     assert 1 <= len(master.log()) <= 8, master.log()  # one line per 5 s (throttled)
 
 
-def test_29_13_registrations_are_bounded_per_node_and_in_total() -> None:
+def test_registrations_are_bounded_per_node_and_in_total() -> None:
     from robomodel.runtime.transport.ros1.registrations import (
         Kind,
         RegistrationBoundError,
@@ -356,7 +356,7 @@ def test_29_13_registrations_are_bounded_per_node_and_in_total() -> None:
 
 # -- 29.14: exit codes -----------------------------------------------------------------------------
 @pytest.mark.parametrize("verb", ["topic", "node", "service"])
-def test_29_14_a_master_answering_garbage_makes_list_exit_2(verb: str) -> None:
+def test_a_master_answering_garbage_makes_list_exit_2(verb: str) -> None:
     fake = XmlRpcServer(
         "127.0.0.1",
         0,

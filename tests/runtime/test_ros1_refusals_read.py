@@ -66,7 +66,7 @@ def _post(port: int, body: bytes) -> socket.socket:
     return sock
 
 
-def test_29_6_a_burst_past_the_request_cap_waits_in_the_backlog_and_is_refused_at_once(
+def test_a_burst_past_the_request_cap_waits_in_the_backlog_and_is_refused_at_once(
     monkeypatch: pytest.MonkeyPatch,
     caplog: pytest.LogCaptureFixture,
     server_factory: Callable[[dict[str, Any]], xmlrpc_io.XmlRpcServer],
@@ -120,7 +120,7 @@ def test_29_6_a_burst_past_the_request_cap_waits_in_the_backlog_and_is_refused_a
     assert len(lines) == 1 and f"more than {MAX_CONCURRENT} requests" in lines[0], lines
 
 
-def test_29_6_a_request_past_the_cap_that_sends_its_body_reads_its_503(
+def test_a_request_past_the_cap_that_sends_its_body_reads_its_503(
     server_factory: Callable[[dict[str, Any]], xmlrpc_io.XmlRpcServer],
 ) -> None:
     """The cap is full of requests being served; one more, which sends its request whole (as
@@ -160,7 +160,7 @@ def test_29_6_a_request_past_the_cap_that_sends_its_body_reads_its_503(
     ],
     ids=["too-large-413", "budget-503"],
 )
-def test_29_6_a_refused_body_is_drained_and_its_refusal_read(
+def test_a_refused_body_is_drained_and_its_refusal_read(
     monkeypatch: pytest.MonkeyPatch,
     caplog: pytest.LogCaptureFixture,
     server_factory: Callable[[dict[str, Any]], xmlrpc_io.XmlRpcServer],
@@ -220,7 +220,7 @@ WRONG_MD5 = "0" * 32
     ],
     ids=["no-topic-or-service", "unknown-topic", "topic-md5", "unknown-service", "service-md5"],
 )
-def test_29_6_a_refused_tcpros_connection_reads_its_error_header(
+def test_a_refused_tcpros_connection_reads_its_error_header(
     endpoint: NodeEndpoint, header: dict[str, str], error: str
 ) -> None:
     """A TCPROS peer that sends frames right after its header (a pipelining client, or a
