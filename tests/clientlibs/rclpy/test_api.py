@@ -164,12 +164,6 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
     from std_msgs.msg import String
 
     calls = {
-        "create_publisher(event_callbacks=...) (QoS events)": lambda: node.create_publisher(
-            String, "t", 10, event_callbacks=object()
-        ),
-        "create_subscription(qos_overriding_options=...)": lambda: node.create_subscription(
-            String, "t", lambda m: None, 10, qos_overriding_options=object()
-        ),
         "Node.undeclare_parameter()": lambda: node.undeclare_parameter("use_sim_time"),
         "create_subscription(raw=True) on the in-process bus": lambda: node.create_subscription(
             String, "t", lambda m: None, 10, raw=True

@@ -10,6 +10,7 @@ to, as their callback groups allow; one that reaches another executor waits on t
 from __future__ import annotations
 
 import collections
+import copy
 import functools
 import inspect
 import threading
@@ -28,6 +29,7 @@ from robomodel.clientlibs.rclpy.callback_groups import (
 )
 from robomodel.clientlibs.rclpy.client import Client
 from robomodel.clientlibs.rclpy.clock import Clock, ROSClock
+from robomodel.clientlibs.rclpy.event_handler import EventHandler, EventWatch
 from robomodel.clientlibs.rclpy.guard_condition import GuardCondition
 from robomodel.clientlibs.rclpy.logging import RcutilsLogger
 from robomodel.clientlibs.rclpy.parameter import Parameter
@@ -313,12 +315,22 @@ class Node:
         """Publish ``msg_type`` on ``topic`` (relative names go in the node's namespace)."""
         if publisher_class is not None:
             not_offered("create_publisher(publisher_class=...)")
-        _refuse_events_and_overrides("create_publisher", event_callbacks, qos_overriding_options)
-        profile = _int_qos(qos_profile)
+        group = callback_group or self.default_callback_group
+        profile = self._overridden_qos(Publisher, topic, qos_profile, qos_overriding_options)
+        handlers = event_callbacks.create_event_handlers(group) if event_callbacks else []
         publisher = Publisher(
-            self.robomodel_node.create_publisher(msg_type, topic, as_robomodel_qos(qos_profile)),
+            self.robomodel_node.create_publisher(msg_type, topic, profile.to_robomodel()),
             profile,
         )
+        if handlers:
+            watch = self._watch_events(
+                group,
+                handlers,
+                matched_count=publisher.get_subscription_count,
+                lost_count=lambda: 0,
+                deadline_ns=profile.deadline_ns(),
+            )
+            publisher._watch(watch)
         self._publishers.append(publisher)
         return publisher
 
@@ -336,26 +348,86 @@ class Node:
     ) -> Subscription:
         """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here;
         with ``raw``, the serialized message: its CDR bytes, as rmw hands them over)."""
-        _refuse_events_and_overrides("create_subscription", event_callbacks, qos_overriding_options)
         if _required_arguments(callback) > 1:
             not_offered("a subscription callback taking (msg, message_info)")
         group = callback_group or self.default_callback_group
-        profile = _int_qos(qos_profile)
+        profile = self._overridden_qos(Subscription, topic, qos_profile, qos_overriding_options)
+        handlers = event_callbacks.create_event_handlers(group) if event_callbacks else []
         kept = profile.depth if profile.history != HistoryPolicy.KEEP_ALL else 0
         made: list[Any] = []
         deliver = self._dispatcher(group, callback, depth=kept, entity=made)
+        watch = None
+        if handlers:
+            watch = self._watch_events(
+                group,
+                handlers,
+                matched_count=lambda: self._publisher_count(made[0]) if made else 0,
+                lost_count=lambda: (
+                    made[0].robomodel_subscription.get_messages_lost() if made else 0
+                ),
+                deadline_ns=profile.deadline_ns(),
+            )
+            if watch.deadline_ns:
+                deliver = _noting_activity(deliver, watch)
         if raw:
-            handle = self._raw_subscription(msg_type, topic, deliver, qos_profile)
+            handle = self._raw_subscription(msg_type, topic, deliver, profile)
         else:
             handle = self.robomodel_node.create_subscription(
-                msg_type, topic, deliver, as_robomodel_qos(qos_profile)
+                msg_type, topic, deliver, profile.to_robomodel()
             )
-        subscription = Subscription(handle, callback, group, _int_qos(qos_profile))
+        subscription = Subscription(handle, callback, group, profile)
         subscription.raw = raw
+        if watch is not None:
+            subscription._watch(watch)
         made.append(subscription)
         group.add_entity(subscription)
         self._subscriptions.append(subscription)
         return subscription
+
+    def _publisher_count(self, subscription: Subscription) -> int:
+        """The graph's publishers of the subscription's topic and type (its matches)."""
+        info = self._graph().topics.get(subscription.topic_name)
+        typename = subscription.msg_type.__typename__
+        return sum(1 for e in info.publishers if e.type_name == typename) if info else 0
+
+    def _watch_events(
+        self,
+        group: CallbackGroup,
+        handlers: list[EventHandler],
+        *,
+        matched_count: Callable[[], int],
+        lost_count: Callable[[], int],
+        deadline_ns: int,
+    ) -> EventWatch:
+        """Poll an entity's events on the node's timer; their callbacks run in ``group``."""
+        watch = EventWatch(
+            handlers, matched_count=matched_count, lost_count=lost_count, deadline_ns=deadline_ns
+        )
+
+        def poll() -> None:
+            for handler, status in watch.poll():
+                handler.callback(status)
+
+        timer = self.robomodel_node.create_timer(
+            watch.period_s, self._dispatcher(group, poll, coalesce=True)
+        )
+        watch.on_stop(timer.cancel)
+        return watch
+
+    def _overridden_qos(
+        self, entity_type: type, topic: str, qos_profile: QoSProfile | int, options: Any
+    ) -> QoSProfile:
+        """A copy of the profile, with the ``qos_overrides.<topic>.<entity>.<policy>``
+        parameters that ``options`` (QoSOverridingOptions) asks for applied."""
+        as_robomodel_qos(qos_profile)  # TypeError or ValueError for what is not a profile
+        profile = copy.copy(_int_qos(qos_profile))
+        if options is not None and options.policy_kinds:
+            from robomodel.clientlibs.rclpy.qos_overriding_options import declare_qos_parameters
+
+            declare_qos_parameters(
+                entity_type, self, self.resolve_topic_name(topic), profile, options
+            )
+        return profile
 
     def _raw_subscription(
         self, msg_type: Any, topic: str, deliver: Callable[..., None], qos_profile: Any
@@ -935,6 +1007,16 @@ def _required_arguments(callback: Callable[..., Any]) -> int:
     )
 
 
+def _noting_activity(deliver: Callable[..., None], watch: EventWatch) -> Callable[..., None]:
+    """``deliver`` telling the watch of each message (for its deadline)."""
+
+    def noted(*args: Any) -> None:
+        watch.activity()
+        deliver(*args)
+
+    return noted
+
+
 def _response_taken() -> None:
     """A client's response came (its future is done already): run on the executor holding the
     node, as rclpy's executor takes the response, so that a waiting ``spin_once`` returns."""
@@ -943,12 +1025,3 @@ def _response_taken() -> None:
 def _first(made: list[Any]) -> Any:
     """The entity a callback belongs to, once made (None before)."""
     return made[0] if made else None
-
-
-def _refuse_events_and_overrides(call: str, event_callbacks: Any, qos_overriding: Any) -> None:
-    """QoS event callbacks (rclpy.event_handler) and QoS overriding parameters are not offered:
-    refused rather than ignored."""
-    if event_callbacks is not None:
-        not_offered(f"{call}(event_callbacks=...) (QoS events)")
-    if qos_overriding is not None:
-        not_offered(f"{call}(qos_overriding_options=...)")

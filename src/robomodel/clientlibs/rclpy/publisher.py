@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 from robomodel.clientlibs.rclpy._support import not_offered
 
 if TYPE_CHECKING:
+    from robomodel.clientlibs.rclpy.event_handler import EventHandler, EventWatch
     from robomodel.clientlibs.rclpy.qos import QoSProfile
     from robomodel.runtime.node import Publisher as RobomodelPublisher
 
@@ -22,6 +23,8 @@ class Publisher:
         self.qos_profile = qos_profile
         self._typename = publisher.msg_type.__typename__
         self._publish = publisher.publish
+        self.event_handlers: list[EventHandler] = []
+        self._event_watch: EventWatch | None = None
 
     @property
     def topic_name(self) -> str:
@@ -54,7 +57,22 @@ class Publisher:
     def handle(self) -> Any:
         not_offered("Publisher.handle (rcl's handle)")
 
+    def _watch(self, watch: EventWatch) -> None:
+        """Events of this publisher are watched (their handlers listed in ``event_handlers``)."""
+        self._event_watch = watch
+        self.event_handlers = watch.handlers
+        if watch.deadline_ns:  # each publish restarts the deadline
+            publish = self._publish
+
+            def noted(msg: Any) -> None:
+                publish(msg)
+                watch.activity()
+
+            self._publish = noted
+
     def destroy(self) -> None:
+        if self._event_watch is not None:
+            self._event_watch.stop()
         self.robomodel_publisher.destroy()
 
     def __enter__(self) -> Publisher:

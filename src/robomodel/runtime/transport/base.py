@@ -182,6 +182,11 @@ class SubscriptionHandle(ABC):
     @abstractmethod
     def destroy(self) -> None: ...
 
+    def messages_lost(self) -> int:
+        """Messages lost so far between the publishers and this subscription, by their
+        sequence numbers (rmw_zenoh's MESSAGE_LOST); 0 on a bus that does not number them."""
+        return 0
+
 
 class ServiceHandle(ABC):
     @abstractmethod
