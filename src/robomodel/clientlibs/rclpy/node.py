@@ -65,7 +65,7 @@ class Node:
     """A node (``Node("talker")``, or a subclass as the ROS 2 tutorials write them).
 
     Args mirror rclpy's; ``cli_args`` are this node's ``--ros-args`` besides the context's.
-    ``start_parameter_services=False`` and ``enable_logger_service=True`` are not offered.
+    ``start_parameter_services=False`` is not offered.
     """
 
     PARAM_REL_TOL = 1e-6
@@ -88,8 +88,6 @@ class Node:
     ) -> None:
         if not start_parameter_services:
             not_offered("Node(start_parameter_services=False)")
-        if enable_logger_service:
-            not_offered("Node(enable_logger_service=True)")
         self._context = context or get_default_context()
         robomodel_context = self._context.robomodel  # NotInitializedException before init
         arguments = self._context.arguments if use_global_arguments else parse_ros_arguments([])
@@ -146,6 +144,10 @@ class Node:
         # as rclpy, whose node module imports it: ``rclpy.executors`` is there once a node is
         import robomodel.clientlibs.rclpy.executors  # noqa: F401
 
+        if enable_logger_service:
+            from robomodel.clientlibs.rclpy.logging_service import LoggingService
+
+            self._logger_service = LoggingService(self)
         if automatically_declare_parameters_from_overrides:
             for pname, value in overrides.items():
                 if not self.has_parameter(pname):
