@@ -459,44 +459,56 @@ class Node:
         callback_group: CallbackGroup | None = None,
     ) -> Service:
         """Answer ``srv_name`` with ``callback(request, response) -> response``."""
+        from robomodel.clientlibs.rclpy.service_introspection import Introspection
+        from robomodel.runtime.transport.base import Deferred, request_being_served
+
         group = callback_group or self.default_callback_group
         context = self._context
+        introspection = Introspection(
+            self.robomodel_node, srv_type, self.robomodel_node.resolve_topic_name(srv_name)
+        )
 
-        def handle(request: Any) -> Any:
+        def answer(request: Any, request_id: Any) -> Any:
+            response = callback(request, srv_type.Response())
+            introspection.publish(Introspection.RESPONSE_SENT, request_id, response)
+            return response
+
+        def serve(request: Any) -> Any:
+            request_id = request_being_served.get()  # read now: the transport is calling
+            introspection.publish(Introspection.REQUEST_RECEIVED, request_id, request)
+            return handle(request, request_id)
+
+        def handle(request: Any, request_id: Any) -> Any:
             executor = context.dispatcher
             if executor is not None and not executor.owns(self):
-                return park(request)  # answered when an executor holding this node spins
+                return park(request, request_id)  # answered when an executor holding it spins
             if executor is None or not executor.hands_over:
-                return callback(request, srv_type.Response())
-            from robomodel.runtime.transport.base import Deferred
-
+                return answer(request, request_id)
             deferred = Deferred()
 
             def run() -> None:
-                response = callback(request, srv_type.Response())
+                response = answer(request, request_id)
                 context._post(lambda: deferred.resolve(response))
 
             executor.dispatch(group, run, self)
             return deferred
 
-        def park(request: Any) -> Any:
-            from robomodel.runtime.transport.base import Deferred
-
+        def park(request: Any, request_id: Any) -> Any:
             deferred = Deferred()
 
-            def answer() -> None:
-                response = handle(request)  # raising: the spin call raises it
+            def unpark() -> None:
+                response = handle(request, request_id)  # raising: the spin call raises it
                 if isinstance(response, Deferred):
                     response.then(lambda result: context._post(lambda: deferred.resolve(result)))
                 else:
                     context._post(lambda: deferred.resolve(response))
 
-            self._parked.append(answer)
+            self._parked.append(unpark)
             self._wake_owner()
             return deferred
 
-        server = self.robomodel_node.create_service(srv_type, srv_name, handle)
-        service = Service(server, callback, group, qos_profile)
+        server = self.robomodel_node.create_service(srv_type, srv_name, serve)
+        service = Service(server, callback, group, qos_profile, introspection)
         group.add_entity(service)
         self._services.append(service)
         return service
@@ -512,14 +524,18 @@ class Node:
         group = callback_group or self.default_callback_group
         node = self.robomodel_node
         node.create_client(srv_type, srv_name)  # enters the type in the node's type cache
+        from robomodel.clientlibs.rclpy.service_introspection import Introspection
+
+        name = node.resolve_topic_name(srv_name)
         client = Client(
             self._context,
             node.fully_qualified_name,
             srv_type,
-            node.resolve_topic_name(srv_name),
+            name,
             group,
             qos_profile,
             taken=self._dispatcher(group, _response_taken, coalesce=True),
+            introspection=Introspection(node, srv_type, name),
         )
         group.add_entity(client)
         self._clients.append(client)
