@@ -19,6 +19,10 @@ MODULES = [
     "rclpy.executors", "rclpy.logging", "rclpy.node", "rclpy.parameter", "rclpy.publisher",
     "rclpy.qos", "rclpy.service", "rclpy.signals", "rclpy.subscription", "rclpy.task", "rclpy.time",
     "rclpy.timer", "rclpy.topic_endpoint_info", "rclpy.utilities", "rclpy.wait_for_message",
+    "rclpy.event_handler", "rclpy.qos_overriding_options", "rclpy.parameter_client",
+    "rclpy.service_introspection", "rclpy.logging_service", "rclpy.impl",
+    "rclpy.impl.logging_severity", "rclpy.impl.rcutils_logger", "sensor_msgs_py",
+    "sensor_msgs_py.point_cloud2",
 ]  # fmt: skip
 
 
