@@ -178,9 +178,6 @@ def test_what_is_not_offered_raises_naming_it(rclpy_inproc: None) -> None:
         "Node(start_parameter_services=False)": lambda: rclpy.create_node(
             "x", start_parameter_services=False
         ),
-        "Publisher.assert_liveliness()": lambda: node.create_publisher(
-            String, "t", 10
-        ).assert_liveliness(),
     }
     for name, call in calls.items():
         with pytest.raises(

@@ -19,7 +19,7 @@ from rclpy.event_handler import (
     SubscriptionEventCallbacks,
     UnsupportedEventTypeError,
 )
-from rclpy.exceptions import ParameterImmutableException
+from rclpy.exceptions import InvalidHandle, ParameterImmutableException
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
@@ -197,6 +197,10 @@ def test_liveliness_events_are_unsupported_as_on_rmw_zenoh(rclpy_inproc: None) -
     assert [h.event_type for h in pub.event_handlers] == [
         QoSPublisherEventType.RCL_PUBLISHER_OFFERED_INCOMPATIBLE_QOS
     ]
+    pub.assert_liveliness()  # as rmw_zenoh's: the token is its liveliness, alive with it
+    node.destroy_publisher(pub)
+    with pytest.raises(InvalidHandle, match="destroyed"):
+        pub.assert_liveliness()
 
 
 class OverridableTalker(Node):

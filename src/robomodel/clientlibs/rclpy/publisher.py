@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy._support import not_offered
+from robomodel.clientlibs.rclpy.exceptions import InvalidHandle
 
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.event_handler import EventHandler, EventWatch
@@ -25,6 +26,7 @@ class Publisher:
         self._publish = publisher.publish
         self.event_handlers: list[EventHandler] = []
         self._event_watch: EventWatch | None = None
+        self._destroyed = False
 
     @property
     def topic_name(self) -> str:
@@ -48,7 +50,10 @@ class Publisher:
         return self.robomodel_publisher.get_subscription_count()
 
     def assert_liveliness(self) -> None:
-        not_offered("Publisher.assert_liveliness()")
+        """As rmw_zenoh's: the publisher's liveliness is its graph token, alive as long as the
+        publisher is, so there is nothing more to assert; a destroyed one raises."""
+        if self._destroyed:
+            raise InvalidHandle(f"publisher on {self.topic_name} was destroyed")
 
     def wait_for_all_acked(self, timeout: Any = None) -> bool:
         not_offered("Publisher.wait_for_all_acked()")
@@ -71,6 +76,7 @@ class Publisher:
             self._publish = noted
 
     def destroy(self) -> None:
+        self._destroyed = True
         if self._event_watch is not None:
             self._event_watch.stop()
         self.robomodel_publisher.destroy()
