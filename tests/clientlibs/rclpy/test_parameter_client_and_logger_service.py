@@ -9,8 +9,6 @@ from typing import Any
 
 import pytest
 import rclpy
-from rcl_interfaces.msg import LoggerLevel
-from rcl_interfaces.srv import GetLoggerLevels, SetLoggerLevels
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.impl.logging_severity import LoggingSeverity
 from rclpy.impl.rcutils_logger import RcutilsLogger
@@ -103,6 +101,9 @@ class Chatty(Node):
 
 
 def test_the_logger_service_reads_and_sets_the_node_s_level(rclpy_inproc: None) -> None:
+    from rcl_interfaces.msg import LoggerLevel
+    from rcl_interfaces.srv import GetLoggerLevels, SetLoggerLevels
+
     chatty = Chatty()
     asker = rclpy.create_node("asker")
     executor = SingleThreadedExecutor()

@@ -1,6 +1,9 @@
 """QoS event callbacks (``rclpy.event_handler``) and QoS overriding parameters
 (``rclpy.qos_overriding_options``), written as demo_nodes_py's matched_event_detect and
-quality_of_service_demo_py's nodes use them, on the in-process bus."""
+quality_of_service_demo_py's nodes use them, on the in-process bus.
+
+Message modules are imported in the tests, not at collection: the first import of a message
+module decides its flavour for the process, and the rospy tests want genpy's."""
 
 from __future__ import annotations
 
@@ -24,12 +27,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from rclpy.qos_overriding_options import (
-    InvalidQosOverridesError,
-    QosCallbackResult,
-    QoSOverridingOptions,
-)
-from std_msgs.msg import Int32, String
+from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
 
 from tests.timing import scaled
 
@@ -39,6 +37,8 @@ class MatchWatcher(Node):
 
     def __init__(self) -> None:
         super().__init__("match_watcher")
+        from std_msgs.msg import String
+
         self.pub_events: list[QoSPublisherMatchedInfo] = []
         self.sub_events: list[QoSSubscriptionMatchedInfo] = []
         self.pub = self.create_publisher(
@@ -65,6 +65,8 @@ def _spin_until(executor: SingleThreadedExecutor, events: list[Any], count: int)
 
 
 def test_matched_events_follow_the_counterparts_coming_and_going(rclpy_inproc: None) -> None:
+    from std_msgs.msg import Int32, String
+
     watcher = MatchWatcher()
     other = rclpy.create_node("counterparts")
     executor = SingleThreadedExecutor()
@@ -100,6 +102,8 @@ def test_matched_events_follow_the_counterparts_coming_and_going(rclpy_inproc: N
 def test_deadline_misses_are_counted_on_both_sides_from_the_first_message(
     rclpy_inproc: None,
 ) -> None:
+    from std_msgs.msg import String
+
     node = rclpy.create_node("deadlined")
     missed: dict[str, list[Any]] = {"pub": [], "sub": []}
     qos = QoSProfile(depth=10, deadline=Duration(seconds=0.05))
@@ -177,6 +181,8 @@ def test_message_lost_reports_the_change_of_the_lost_count() -> None:
 
 
 def test_liveliness_events_are_unsupported_as_on_rmw_zenoh(rclpy_inproc: None) -> None:
+    from std_msgs.msg import String
+
     node = rclpy.create_node("lively")
     with pytest.raises(UnsupportedEventTypeError, match=r"LIVELINESS_CHANGED.*rmw_zenoh_cpp"):
         node.create_subscription(
@@ -208,6 +214,8 @@ class OverridableTalker(Node):
 
     def __init__(self, **kwargs: Any) -> None:
         super().__init__("overridable", **kwargs)
+        from std_msgs.msg import String
+
         self.pub = self.create_publisher(
             String,
             "chatter",
@@ -216,6 +224,8 @@ class OverridableTalker(Node):
         )
 
     def check(self, qos: QoSProfile) -> Any:
+        from rclpy.qos_overriding_options import QosCallbackResult
+
         result = QosCallbackResult()
         result.successful = qos.depth <= 10
         result.reason = "" if result.successful else "depth must be at most 10"
@@ -247,6 +257,8 @@ def test_the_overriding_callback_refuses_a_profile(rclpy_inproc: None) -> None:
 
 
 def test_an_entity_id_and_a_subscription_get_their_own_parameters(rclpy_inproc: None) -> None:
+    from std_msgs.msg import String
+
     node = rclpy.create_node("ids")
     options = QoSOverridingOptions(
         [rclpy.qos.QoSPolicyKind.DEPTH, rclpy.qos.QoSPolicyKind.LIFESPAN], entity_id="fast"

@@ -15,8 +15,6 @@ import enum
 import threading
 from typing import TYPE_CHECKING, Any
 
-from robomodel.clientlibs.rclpy._support import interface
-
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.clock import Clock
     from robomodel.clientlibs.rclpy.qos import QoSProfile
@@ -68,8 +66,10 @@ class Introspection:
                 event_type = getattr(self._srv_type, "Event", None)
                 if event_type is None:
                     raise RuntimeError(
-                        f"service introspection of {self._srv_type.__typename__} needs "
-                        "service_msgs/msg/ServiceEventInfo, which robomodel's types lack"
+                        f"service introspection of {self._srv_type.__typename__} needs its "
+                        "rosidl-shaped class (with Event, made when robomodel's types have "
+                        "service_msgs/msg/ServiceEventInfo); this one has none, as genpy's "
+                        "(in a process that imported rospy too) have not"
                     )
                 self._publisher = self._node.create_publisher(
                     event_type, self._topic, qos_profile.to_robomodel()
@@ -83,9 +83,12 @@ class Introspection:
             publisher, state, clock = self._publisher, self._state, self._clock
         if publisher is None or clock is None:
             return
-        info = interface("service_msgs.msg", "ServiceEventInfo")(
+        # the Event's own nested classes (rosidl's, whatever flavour this process imports)
+        info_class = dict(publisher.msg_type.__fields__)["info"]
+        sec, nanosec = divmod(clock.now().nanoseconds, 1_000_000_000)
+        info = info_class(
             event_type=event_type,
-            stamp=clock.now().to_msg(),
+            stamp=dict(info_class.__fields__)["stamp"](sec=sec, nanosec=nanosec),
             client_gid=request_id.client_gid if request_id is not None else bytes(16),
             sequence_number=request_id.sequence_number if request_id is not None else 0,
         )
