@@ -4,14 +4,11 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from robomodel.clientlibs.rclpy import logging
 from robomodel.clientlibs.rclpy._support import interface
 from robomodel.clientlibs.rclpy.qos import qos_profile_services_default
-
-if TYPE_CHECKING:
-    from robomodel.clientlibs.rclpy.node import Node
 
 __all__ = ["LoggingService"]
 
@@ -19,7 +16,7 @@ __all__ = ["LoggingService"]
 class LoggingService:
     """Serves the logger levels of this process on ``node``'s two services."""
 
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: Any) -> None:  # an rclpy Node (which makes this service)
         name = node.get_name()
         node.create_service(
             interface("rcl_interfaces.srv", "GetLoggerLevels"),

@@ -10,7 +10,7 @@ optional callback then accepts or refuses it (:class:`InvalidQosOverridesError`)
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from robomodel.clientlibs.rclpy._support import interface
 from robomodel.clientlibs.rclpy.duration import Duration
@@ -23,9 +23,6 @@ from robomodel.clientlibs.rclpy.qos import (
     QoSProfile,
     ReliabilityPolicy,
 )
-
-if TYPE_CHECKING:
-    from robomodel.clientlibs.rclpy.node import Node
 
 __all__ = [
     "InvalidQosOverridesError",
@@ -101,10 +98,11 @@ class QoSOverridingOptions:
 
 
 def declare_qos_parameters(
-    entity_type: type, node: Node, topic_name: str, qos: QoSProfile, options: QoSOverridingOptions
+    entity_type: type, node: Any, topic_name: str, qos: QoSProfile, options: QoSOverridingOptions
 ) -> None:
     """Declare the parameters ``options`` asks for on ``node`` and apply them to ``qos`` (the
-    entity's own copy): ``entity_type`` is rclpy's Publisher or Subscription class."""
+    entity's own copy): ``entity_type`` is rclpy's Publisher or Subscription class, ``node`` the
+    rclpy Node making the entity."""
     from robomodel.clientlibs.rclpy.publisher import Publisher
 
     entity = "publisher" if issubclass(entity_type, Publisher) else "subscription"
