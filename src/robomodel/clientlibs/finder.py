@@ -46,6 +46,7 @@ ALIASED = frozenset(
         "rospkg",
         "roslib",
         "rostest",
+        "sensor_msgs_py",
     }
 )
 

@@ -71,6 +71,11 @@ class Subscription(Generic[M]):
     _handle: SubscriptionHandle
     _release: Callable[[], None] | None = None  # the node's type cache no longer counts it
 
+    def get_messages_lost(self) -> int:
+        """Messages lost so far, by the publishers' sequence numbers (rmw_zenoh's
+        MESSAGE_LOST event counts these); 0 on a bus that does not number them."""
+        return self._handle.messages_lost()
+
     def destroy(self) -> None:
         self._handle.destroy()
         if self._release is not None:

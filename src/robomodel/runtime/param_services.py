@@ -88,8 +88,16 @@ class ParameterServices:
     def publish_event(
         self, *, new: Mapping[str, Any] | None = None, changed: Mapping[str, Any] | None = None
     ) -> None:
+        """Publish a ParameterEvent; a ``changed`` value of None is a deleted parameter."""
+        changed = changed or {}
+        deleted = [rcl.Parameter(n, rcl.ParameterValue()) for n, v in changed.items() if v is None]
+
         def params(values: Mapping[str, Any] | None) -> list[rcl.Parameter]:
-            return [rcl.Parameter(n, to_parameter_value(v)) for n, v in (values or {}).items()]
+            return [
+                rcl.Parameter(n, to_parameter_value(v))
+                for n, v in (values or {}).items()
+                if v is not None
+            ]
 
         self._events.publish(
             rcl.ParameterEvent(
@@ -97,6 +105,7 @@ class ParameterServices:
                 node=self._node.fully_qualified_name,
                 new_parameters=params(new),
                 changed_parameters=params(changed),
+                deleted_parameters=deleted,
             )
         )
 
@@ -140,11 +149,14 @@ class ParameterServices:
     ) -> dict[str, Any] | rcl.SetParametersResult:
         values: dict[str, Any] = {}
         for parameter in parameters:
+            if parameter.value.type == 0:  # PARAMETER_NOT_SET: unset it (ParameterStore.set)
+                values[parameter.name] = None
+                continue
             try:
                 values[parameter.name] = from_parameter_value(parameter.value)
             except ParameterError:
                 return rcl.SetParametersResult(
-                    False, f"parameter '{parameter.name}' cannot be unset on this node"
+                    False, f"parameter '{parameter.name}' has an unknown type"
                 )
         return values
 

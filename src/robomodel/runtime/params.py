@@ -182,7 +182,9 @@ class ParameterStore:
         self._post_callbacks.append(callback)
 
     def set(self, changes: Mapping[str, Any]) -> SetResult:
-        """Set several parameters atomically; all or nothing."""
+        """Set several parameters atomically; all or nothing. A value of None unsets the
+        parameter (rclpy's NOT_SET): a node that takes undeclared parameters lets it go (its
+        parameters are dynamically typed), others refuse."""
         for pre in self._pre_callbacks:
             changes = pre(changes)
             if not changes:  # rclpy's words
@@ -193,6 +195,12 @@ class ParameterStore:
         for name, value in changes.items():
             if name in self._read_only:
                 return SetResult(False, f"parameter '{name}' is read-only")
+            if value is None:
+                if not self._allow_undeclared:
+                    return SetResult(False, f"parameter '{name}' cannot be unset: node "
+                                     f"'{self._node}' does not allow undeclared parameters")  # fmt: skip
+                coerced[name] = None
+                continue
             if name not in self._values:
                 if not self._allow_undeclared:
                     return SetResult(False, f"parameter '{name}' is not declared")
@@ -207,7 +215,12 @@ class ParameterStore:
             result = callback(coerced)
             if not result.successful:
                 return result
-        self._values.update(coerced)
+        for name, value in coerced.items():
+            if value is None:
+                self._values.pop(name, None)
+                self._descriptions.pop(name, None)
+            else:
+                self._values[name] = value
         for post in self._post_callbacks:
             post(coerced)
         return SetResult(True)

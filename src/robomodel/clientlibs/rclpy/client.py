@@ -19,8 +19,13 @@ from robomodel.clientlibs.rclpy.task import Future
 
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
+    from robomodel.clientlibs.rclpy.clock import Clock
     from robomodel.clientlibs.rclpy.context import Context
     from robomodel.clientlibs.rclpy.qos import QoSProfile
+    from robomodel.clientlibs.rclpy.service_introspection import (
+        Introspection,
+        ServiceIntrospectionState,
+    )
     from robomodel.runtime.msg.schema import Service as ServiceType
 
 __all__ = ["Client"]
@@ -41,6 +46,8 @@ class Client:
         callback_group: CallbackGroup,
         qos_profile: QoSProfile,
         taken: Callable[[], None] | None = None,
+        *,
+        introspection: Introspection,
     ) -> None:
         self.context = context
         # Posted when a response came: the executor holding the client's node counts it as a
@@ -54,17 +61,37 @@ class Client:
         self._node_name = node_name
         self._pending: set[Future] = set()
         self._destroyed = False
+        self._introspection = introspection
 
     @property
     def service_name(self) -> str:
         return self.srv_name
 
     def _call(self, request: Any, timeout_s: float) -> Any:
+        """The response, with the introspection events of the call: REQUEST_SENT as the
+        transport numbers the request (or, on a bus without request ids, once it returned)."""
+        from robomodel.runtime.transport.base import request_sent
+
         if self._destroyed:
             raise RuntimeError(f"client of '{self.srv_name}' was destroyed")
-        return self.context.robomodel.transport.call_service(
-            self.srv_name, self.srv_type, request, timeout_s, node=self._node_name
-        )
+        introspection = self._introspection
+        sent: list[Any] = []
+
+        def told(request_id: Any) -> None:
+            sent.append(request_id)
+            introspection.publish(introspection.REQUEST_SENT, request_id, request)
+
+        token = request_sent.set(told)
+        try:
+            response = self.context.robomodel.transport.call_service(
+                self.srv_name, self.srv_type, request, timeout_s, node=self._node_name
+            )
+        finally:
+            request_sent.reset(token)
+        if not sent:
+            told(None)
+        introspection.publish(introspection.RESPONSE_RECEIVED, sent[0], response)
+        return response
 
     def call_async(self, request: Any) -> Future:
         """Send ``request``; the future's result is the response (or the error it got)."""
@@ -120,14 +147,22 @@ class Client:
             self.context.wait_shutdown(_POLL_S)
         return False
 
-    def configure_introspection(self, *args: Any, **kwargs: Any) -> None:
-        not_offered("Client.configure_introspection()")
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Publish this client's events on ``<service>/_service_event`` as the state says
+        (stamped by ``clock``)."""
+        self._introspection.configure(clock, service_event_qos_profile, introspection_state)
 
     @property
     def handle(self) -> Any:
         not_offered("Client.handle (rcl's handle)")
 
     def destroy(self) -> None:
+        self._introspection.destroy()
         self._destroyed = True
         for future in list(self._pending):
             future.cancel()

@@ -27,6 +27,7 @@ __all__ = [
     "clear_config",
     "get_logger",
     "get_logger_effective_level",
+    "get_logger_level",
     "get_logging_directory",
     "get_logging_severity_from_string",
     "initialize",
@@ -83,6 +84,11 @@ def get_logger_effective_level(name: str) -> LoggingSeverity:
             return level
         name = name.rpartition(".")[0]
     return _default_level[0]
+
+
+def get_logger_level(name: str) -> LoggingSeverity:
+    """The level set on logger ``name`` itself (UNSET when none was)."""
+    return _levels.get(name, LoggingSeverity.UNSET)
 
 
 def set_default_level(level: Any) -> None:

@@ -10,6 +10,7 @@ to, as their callback groups allow; one that reaches another executor waits on t
 from __future__ import annotations
 
 import collections
+import copy
 import functools
 import inspect
 import threading
@@ -28,6 +29,7 @@ from robomodel.clientlibs.rclpy.callback_groups import (
 )
 from robomodel.clientlibs.rclpy.client import Client
 from robomodel.clientlibs.rclpy.clock import Clock, ROSClock
+from robomodel.clientlibs.rclpy.event_handler import EventHandler, EventWatch
 from robomodel.clientlibs.rclpy.guard_condition import GuardCondition
 from robomodel.clientlibs.rclpy.logging import RcutilsLogger
 from robomodel.clientlibs.rclpy.parameter import Parameter
@@ -63,7 +65,7 @@ class Node:
     """A node (``Node("talker")``, or a subclass as the ROS 2 tutorials write them).
 
     Args mirror rclpy's; ``cli_args`` are this node's ``--ros-args`` besides the context's.
-    ``start_parameter_services=False`` and ``enable_logger_service=True`` are not offered.
+    ``start_parameter_services=False`` is not offered.
     """
 
     PARAM_REL_TOL = 1e-6
@@ -86,8 +88,6 @@ class Node:
     ) -> None:
         if not start_parameter_services:
             not_offered("Node(start_parameter_services=False)")
-        if enable_logger_service:
-            not_offered("Node(enable_logger_service=True)")
         self._context = context or get_default_context()
         robomodel_context = self._context.robomodel  # NotInitializedException before init
         arguments = self._context.arguments if use_global_arguments else parse_ros_arguments([])
@@ -144,6 +144,10 @@ class Node:
         # as rclpy, whose node module imports it: ``rclpy.executors`` is there once a node is
         import robomodel.clientlibs.rclpy.executors  # noqa: F401
 
+        if enable_logger_service:
+            from robomodel.clientlibs.rclpy.logging_service import LoggingService
+
+            self._logger_service = LoggingService(self)
         if automatically_declare_parameters_from_overrides:
             for pname, value in overrides.items():
                 if not self.has_parameter(pname):
@@ -313,12 +317,22 @@ class Node:
         """Publish ``msg_type`` on ``topic`` (relative names go in the node's namespace)."""
         if publisher_class is not None:
             not_offered("create_publisher(publisher_class=...)")
-        _refuse_events_and_overrides("create_publisher", event_callbacks, qos_overriding_options)
-        profile = _int_qos(qos_profile)
+        group = callback_group or self.default_callback_group
+        profile = self._overridden_qos(Publisher, topic, qos_profile, qos_overriding_options)
+        handlers = event_callbacks.create_event_handlers(group) if event_callbacks else []
         publisher = Publisher(
-            self.robomodel_node.create_publisher(msg_type, topic, as_robomodel_qos(qos_profile)),
+            self.robomodel_node.create_publisher(msg_type, topic, profile.to_robomodel()),
             profile,
         )
+        if handlers:
+            watch = self._watch_events(
+                group,
+                handlers,
+                matched_count=publisher.get_subscription_count,
+                lost_count=lambda: 0,
+                deadline_ns=profile.deadline_ns(),
+            )
+            publisher._watch(watch)
         self._publishers.append(publisher)
         return publisher
 
@@ -336,26 +350,86 @@ class Node:
     ) -> Subscription:
         """Call ``callback(msg)`` with each message (of ``msg_type``, the class passed here;
         with ``raw``, the serialized message: its CDR bytes, as rmw hands them over)."""
-        _refuse_events_and_overrides("create_subscription", event_callbacks, qos_overriding_options)
         if _required_arguments(callback) > 1:
             not_offered("a subscription callback taking (msg, message_info)")
         group = callback_group or self.default_callback_group
-        profile = _int_qos(qos_profile)
+        profile = self._overridden_qos(Subscription, topic, qos_profile, qos_overriding_options)
+        handlers = event_callbacks.create_event_handlers(group) if event_callbacks else []
         kept = profile.depth if profile.history != HistoryPolicy.KEEP_ALL else 0
         made: list[Any] = []
         deliver = self._dispatcher(group, callback, depth=kept, entity=made)
+        watch = None
+        if handlers:
+            watch = self._watch_events(
+                group,
+                handlers,
+                matched_count=lambda: self._publisher_count(made[0]) if made else 0,
+                lost_count=lambda: (
+                    made[0].robomodel_subscription.get_messages_lost() if made else 0
+                ),
+                deadline_ns=profile.deadline_ns(),
+            )
+            if watch.deadline_ns:
+                deliver = _noting_activity(deliver, watch)
         if raw:
-            handle = self._raw_subscription(msg_type, topic, deliver, qos_profile)
+            handle = self._raw_subscription(msg_type, topic, deliver, profile)
         else:
             handle = self.robomodel_node.create_subscription(
-                msg_type, topic, deliver, as_robomodel_qos(qos_profile)
+                msg_type, topic, deliver, profile.to_robomodel()
             )
-        subscription = Subscription(handle, callback, group, _int_qos(qos_profile))
+        subscription = Subscription(handle, callback, group, profile)
         subscription.raw = raw
+        if watch is not None:
+            subscription._watch(watch)
         made.append(subscription)
         group.add_entity(subscription)
         self._subscriptions.append(subscription)
         return subscription
+
+    def _publisher_count(self, subscription: Subscription) -> int:
+        """The graph's publishers of the subscription's topic and type (its matches)."""
+        info = self._graph().topics.get(subscription.topic_name)
+        typename = subscription.msg_type.__typename__
+        return sum(1 for e in info.publishers if e.type_name == typename) if info else 0
+
+    def _watch_events(
+        self,
+        group: CallbackGroup,
+        handlers: list[EventHandler],
+        *,
+        matched_count: Callable[[], int],
+        lost_count: Callable[[], int],
+        deadline_ns: int,
+    ) -> EventWatch:
+        """Poll an entity's events on the node's timer; their callbacks run in ``group``."""
+        watch = EventWatch(
+            handlers, matched_count=matched_count, lost_count=lost_count, deadline_ns=deadline_ns
+        )
+
+        def poll() -> None:
+            for handler, status in watch.poll():
+                handler.callback(status)
+
+        timer = self.robomodel_node.create_timer(
+            watch.period_s, self._dispatcher(group, poll, coalesce=True)
+        )
+        watch.on_stop(timer.cancel)
+        return watch
+
+    def _overridden_qos(
+        self, entity_type: type, topic: str, qos_profile: QoSProfile | int, options: Any
+    ) -> QoSProfile:
+        """A copy of the profile, with the ``qos_overrides.<topic>.<entity>.<policy>``
+        parameters that ``options`` (QoSOverridingOptions) asks for applied."""
+        as_robomodel_qos(qos_profile)  # TypeError or ValueError for what is not a profile
+        profile = copy.copy(_int_qos(qos_profile))
+        if options is not None and options.policy_kinds:
+            from robomodel.clientlibs.rclpy.qos_overriding_options import declare_qos_parameters
+
+            declare_qos_parameters(
+                entity_type, self, self.resolve_topic_name(topic), profile, options
+            )
+        return profile
 
     def _raw_subscription(
         self, msg_type: Any, topic: str, deliver: Callable[..., None], qos_profile: Any
@@ -385,44 +459,56 @@ class Node:
         callback_group: CallbackGroup | None = None,
     ) -> Service:
         """Answer ``srv_name`` with ``callback(request, response) -> response``."""
+        from robomodel.clientlibs.rclpy.service_introspection import Introspection
+        from robomodel.runtime.transport.base import Deferred, request_being_served
+
         group = callback_group or self.default_callback_group
         context = self._context
+        introspection = Introspection(
+            self.robomodel_node, srv_type, self.robomodel_node.resolve_topic_name(srv_name)
+        )
 
-        def handle(request: Any) -> Any:
+        def answer(request: Any, request_id: Any) -> Any:
+            response = callback(request, srv_type.Response())
+            introspection.publish(Introspection.RESPONSE_SENT, request_id, response)
+            return response
+
+        def serve(request: Any) -> Any:
+            request_id = request_being_served.get()  # read now: the transport is calling
+            introspection.publish(Introspection.REQUEST_RECEIVED, request_id, request)
+            return handle(request, request_id)
+
+        def handle(request: Any, request_id: Any) -> Any:
             executor = context.dispatcher
             if executor is not None and not executor.owns(self):
-                return park(request)  # answered when an executor holding this node spins
+                return park(request, request_id)  # answered when an executor holding it spins
             if executor is None or not executor.hands_over:
-                return callback(request, srv_type.Response())
-            from robomodel.runtime.transport.base import Deferred
-
+                return answer(request, request_id)
             deferred = Deferred()
 
             def run() -> None:
-                response = callback(request, srv_type.Response())
+                response = answer(request, request_id)
                 context._post(lambda: deferred.resolve(response))
 
             executor.dispatch(group, run, self)
             return deferred
 
-        def park(request: Any) -> Any:
-            from robomodel.runtime.transport.base import Deferred
-
+        def park(request: Any, request_id: Any) -> Any:
             deferred = Deferred()
 
-            def answer() -> None:
-                response = handle(request)  # raising: the spin call raises it
+            def unpark() -> None:
+                response = handle(request, request_id)  # raising: the spin call raises it
                 if isinstance(response, Deferred):
                     response.then(lambda result: context._post(lambda: deferred.resolve(result)))
                 else:
                     context._post(lambda: deferred.resolve(response))
 
-            self._parked.append(answer)
+            self._parked.append(unpark)
             self._wake_owner()
             return deferred
 
-        server = self.robomodel_node.create_service(srv_type, srv_name, handle)
-        service = Service(server, callback, group, qos_profile)
+        server = self.robomodel_node.create_service(srv_type, srv_name, serve)
+        service = Service(server, callback, group, qos_profile, introspection)
         group.add_entity(service)
         self._services.append(service)
         return service
@@ -438,14 +524,18 @@ class Node:
         group = callback_group or self.default_callback_group
         node = self.robomodel_node
         node.create_client(srv_type, srv_name)  # enters the type in the node's type cache
+        from robomodel.clientlibs.rclpy.service_introspection import Introspection
+
+        name = node.resolve_topic_name(srv_name)
         client = Client(
             self._context,
             node.fully_qualified_name,
             srv_type,
-            node.resolve_topic_name(srv_name),
+            name,
             group,
             qos_profile,
             taken=self._dispatcher(group, _response_taken, coalesce=True),
+            introspection=Introspection(node, srv_type, name),
         )
         group.add_entity(client)
         self._clients.append(client)
@@ -935,6 +1025,16 @@ def _required_arguments(callback: Callable[..., Any]) -> int:
     )
 
 
+def _noting_activity(deliver: Callable[..., None], watch: EventWatch) -> Callable[..., None]:
+    """``deliver`` telling the watch of each message (for its deadline)."""
+
+    def noted(*args: Any) -> None:
+        watch.activity()
+        deliver(*args)
+
+    return noted
+
+
 def _response_taken() -> None:
     """A client's response came (its future is done already): run on the executor holding the
     node, as rclpy's executor takes the response, so that a waiting ``spin_once`` returns."""
@@ -943,12 +1043,3 @@ def _response_taken() -> None:
 def _first(made: list[Any]) -> Any:
     """The entity a callback belongs to, once made (None before)."""
     return made[0] if made else None
-
-
-def _refuse_events_and_overrides(call: str, event_callbacks: Any, qos_overriding: Any) -> None:
-    """QoS event callbacks (rclpy.event_handler) and QoS overriding parameters are not offered:
-    refused rather than ignored."""
-    if event_callbacks is not None:
-        not_offered(f"{call}(event_callbacks=...) (QoS events)")
-    if qos_overriding is not None:
-        not_offered(f"{call}(qos_overriding_options=...)")

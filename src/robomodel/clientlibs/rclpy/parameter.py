@@ -152,8 +152,45 @@ def parameter_value_to_python(parameter_value: Any) -> Any:
     return _plain(getattr(parameter_value, _VALUE_FIELDS[kind]))
 
 
-def parameter_dict_from_yaml_file(*args: Any, **kwargs: Any) -> dict[str, Any]:
-    """Not offered: a node gets its file's parameters with ``--ros-args --params-file``."""
-    from robomodel.clientlibs.rclpy._support import not_offered
+def parameter_dict_from_yaml_file(
+    parameter_file: str,
+    use_wildcard: bool = False,
+    target_nodes: list[str] | None = None,
+    namespace: str = "",
+) -> dict[str, Any]:
+    """The parameters of a ROS 2 parameter file as ``rcl_interfaces/Parameter`` messages by
+    name, as rclpy reads them: the sections of ``target_nodes`` (every section but ``/**``
+    when none are named; ``/**`` first with ``use_wildcard``), nested names dotted, each
+    prefixed with ``namespace``.
 
-    not_offered("rclpy.parameter.parameter_dict_from_yaml_file()", "use --params-file")
+    Raises:
+        RuntimeError: a target node has no section, or a section has no ``ros__parameters``
+            (rclpy's errors); FileNotFoundError for a file that is not there.
+    """
+    from robomodel._yaml_bounded import load_yaml_file
+    from robomodel.runtime.param_files import flatten
+
+    with open(parameter_file, encoding="utf-8") as stream:
+        data = load_yaml_file(stream.read(), where=str(parameter_file))
+    if not isinstance(data, dict):
+        raise RuntimeError(f"{parameter_file}: a parameter file is a mapping of node names")
+    keys: list[str] = ["/**"] if use_wildcard and "/**" in data else []
+    if target_nodes:
+        for name in target_nodes:
+            if name not in data:
+                raise RuntimeError(
+                    f"Param file does not contain parameters for {name}, "
+                    f"only for nodes: {list(data)}"
+                )
+            keys.append(name)
+    else:
+        keys.extend(key for key in data if key != "/**")
+    if not keys:
+        raise RuntimeError("Param file does not contain selected parameters")
+    values: dict[str, Any] = {}
+    for key in keys:
+        section = data[key]
+        if not isinstance(section, dict) or "ros__parameters" not in section:
+            raise RuntimeError(f"YAML file is not a valid ROS parameter file for node {key}")
+        values.update(flatten(section["ros__parameters"], namespace))
+    return {name: Parameter(name, value=value).to_parameter_msg() for name, value in values.items()}

@@ -5,8 +5,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from robomodel.clientlibs.rclpy._support import not_offered
+from robomodel.clientlibs.rclpy.exceptions import InvalidHandle
 
 if TYPE_CHECKING:
+    from robomodel.clientlibs.rclpy.event_handler import EventHandler, EventWatch
     from robomodel.clientlibs.rclpy.qos import QoSProfile
     from robomodel.runtime.node import Publisher as RobomodelPublisher
 
@@ -22,6 +24,9 @@ class Publisher:
         self.qos_profile = qos_profile
         self._typename = publisher.msg_type.__typename__
         self._publish = publisher.publish
+        self.event_handlers: list[EventHandler] = []
+        self._event_watch: EventWatch | None = None
+        self._destroyed = False
 
     @property
     def topic_name(self) -> str:
@@ -45,7 +50,10 @@ class Publisher:
         return self.robomodel_publisher.get_subscription_count()
 
     def assert_liveliness(self) -> None:
-        not_offered("Publisher.assert_liveliness()")
+        """As rmw_zenoh's: the publisher's liveliness is its graph token, alive as long as the
+        publisher is, so there is nothing more to assert; a destroyed one raises."""
+        if self._destroyed:
+            raise InvalidHandle(f"publisher on {self.topic_name} was destroyed")
 
     def wait_for_all_acked(self, timeout: Any = None) -> bool:
         not_offered("Publisher.wait_for_all_acked()")
@@ -54,7 +62,23 @@ class Publisher:
     def handle(self) -> Any:
         not_offered("Publisher.handle (rcl's handle)")
 
+    def _watch(self, watch: EventWatch) -> None:
+        """Events of this publisher are watched (their handlers listed in ``event_handlers``)."""
+        self._event_watch = watch
+        self.event_handlers = watch.handlers
+        if watch.deadline_ns:  # each publish restarts the deadline
+            publish = self._publish
+
+            def noted(msg: Any) -> None:
+                publish(msg)
+                watch.activity()
+
+            self._publish = noted
+
     def destroy(self) -> None:
+        self._destroyed = True
+        if self._event_watch is not None:
+            self._event_watch.stop()
         self.robomodel_publisher.destroy()
 
     def __enter__(self) -> Publisher:

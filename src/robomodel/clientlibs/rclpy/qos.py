@@ -20,10 +20,12 @@ __all__ = [
     "QoSDurabilityPolicy",
     "QoSHistoryPolicy",
     "QoSLivelinessPolicy",
+    "QoSPolicyKind",
     "QoSPresetProfiles",
     "QoSProfile",
     "QoSReliabilityPolicy",
     "ReliabilityPolicy",
+    "qos_policy_name_from_kind",
     "qos_profile_action_status_default",
     "qos_profile_parameter_events",
     "qos_profile_parameters",
@@ -65,6 +67,27 @@ class LivelinessPolicy(enum.IntEnum):
     MANUAL_BY_TOPIC = 3
     UNKNOWN = 4
     BEST_AVAILABLE = 5
+
+
+class QoSPolicyKind(enum.IntEnum):
+    """The QoS policies by kind, with rmw's values (``rmw/incompatible_qos_events_statuses.h``):
+    an incompatible-QoS event's ``last_policy_kind`` and the QoS overriding parameters."""
+
+    INVALID = 1 << 0
+    DURABILITY = 1 << 1
+    DEADLINE = 1 << 2
+    LIVELINESS = 1 << 3
+    RELIABILITY = 1 << 4
+    HISTORY = 1 << 5
+    LIFESPAN = 1 << 6
+    DEPTH = 1 << 7
+    LIVELINESS_LEASE_DURATION = 1 << 8
+    AVOID_ROS_NAMESPACE_CONVENTIONS = 1 << 9
+
+
+def qos_policy_name_from_kind(policy_kind: QoSPolicyKind | int) -> str:
+    """The policy's name (``"DURABILITY"``) from its kind."""
+    return QoSPolicyKind(policy_kind).name
 
 
 # The older names rclpy keeps.
@@ -195,6 +218,10 @@ class QoSProfile:
             f"QoSProfile(history={self._history.name}, depth={self._depth}, "
             f"reliability={self._reliability.name}, durability={self._durability.name})"
         )
+
+    def deadline_ns(self) -> int:
+        """The deadline in nanoseconds; 0 for none (rmw's 0 or infinite)."""
+        return _ns_or_none(self._deadline) or 0
 
     def to_robomodel(self) -> rm.QoSProfile:
         """The profile as robomodel's (what the bus declares and applies)."""

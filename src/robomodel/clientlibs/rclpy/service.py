@@ -10,7 +10,12 @@ from robomodel.clientlibs.rclpy._support import not_offered
 
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
+    from robomodel.clientlibs.rclpy.clock import Clock
     from robomodel.clientlibs.rclpy.qos import QoSProfile
+    from robomodel.clientlibs.rclpy.service_introspection import (
+        Introspection,
+        ServiceIntrospectionState,
+    )
     from robomodel.runtime.node import ServiceServer
 
 __all__ = ["Service"]
@@ -25,8 +30,10 @@ class Service:
         callback: Callable[[Any, Any], Any],
         callback_group: CallbackGroup,
         qos_profile: QoSProfile,
+        introspection: Introspection,
     ) -> None:
         self.robomodel_service = server
+        self._introspection = introspection
         self.srv_type = server.srv_type
         self.callback = callback
         self.callback_group = callback_group
@@ -47,10 +54,18 @@ class Service:
     def send_response(self, response: Any, header: Any) -> None:
         not_offered("Service.send_response()", "return the response from the callback")
 
-    def configure_introspection(self, *args: Any, **kwargs: Any) -> None:
-        not_offered("Service.configure_introspection()")
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Publish this service's events on ``<service>/_service_event`` as the state says
+        (stamped by ``clock``)."""
+        self._introspection.configure(clock, service_event_qos_profile, introspection_state)
 
     def destroy(self) -> None:
+        self._introspection.destroy()
         self.robomodel_service.destroy()
 
     def __enter__(self) -> Service:

@@ -9,6 +9,7 @@ from robomodel.clientlibs.rclpy._support import not_offered
 
 if TYPE_CHECKING:
     from robomodel.clientlibs.rclpy.callback_groups import CallbackGroup
+    from robomodel.clientlibs.rclpy.event_handler import EventHandler, EventWatch
     from robomodel.clientlibs.rclpy.qos import QoSProfile
     from robomodel.runtime.node import Subscription as RobomodelSubscription
 
@@ -32,6 +33,8 @@ class Subscription:
         self.callback_group = callback_group
         self.qos_profile = qos_profile
         self.raw = False
+        self.event_handlers: list[EventHandler] = []
+        self._event_watch: EventWatch | None = None
 
     @property
     def topic_name(self) -> str:
@@ -45,7 +48,14 @@ class Subscription:
     def handle(self) -> Any:
         not_offered("Subscription.handle (rcl's handle)")
 
+    def _watch(self, watch: EventWatch) -> None:
+        """Events of this subscription are watched (their handlers listed in ``event_handlers``)."""
+        self._event_watch = watch
+        self.event_handlers = watch.handlers
+
     def destroy(self) -> None:
+        if self._event_watch is not None:
+            self._event_watch.stop()
         self.robomodel_subscription.destroy()
 
     def __enter__(self) -> Subscription:

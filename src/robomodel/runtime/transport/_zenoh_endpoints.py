@@ -194,6 +194,9 @@ class ZenohSubscription(SubscriptionHandle):
         """Messages lost, by the publishers' sequence numbers (rmw_zenoh's MESSAGE_LOST)."""
         return self._sequences.lost
 
+    def messages_lost(self) -> int:
+        return self._sequences.lost
+
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
         # Only queue the sample and ring: the executor's thread wakes meanwhile, and takes the
         # GIL as soon as this returns. Reading the payload and attachment here would hold it

@@ -34,9 +34,12 @@ from robomodel.runtime.transport._zenoh_common import (
 from robomodel.runtime.transport.base import (
     Deferred,
     Endpoint,
+    RequestId,
     ServiceCallError,
     ServiceHandle,
     ServiceHandler,
+    request_being_served,
+    request_sent,
 )
 from robomodel.runtime.transport.rmw_zenoh import (
     EntityKind,
@@ -98,12 +101,15 @@ class ZenohService(ServiceHandle):
 
     def _serve(self, query: Any, request: Message, attachment: Any) -> None:
         """On the executor: run the handler; reply now, or when a Deferred resolves."""
+        served = request_being_served.set(RequestId(attachment.gid, attachment.sequence_number))
         try:
             answer = self.handler(request)
         except Exception as exc:  # the server goes on; the caller learns why
             log_failure(log, "service %s failed", self.endpoint.topic)
             self._refuse(query, f"service '{self.endpoint.topic}' failed: {exc}")
             return
+        finally:
+            request_being_served.reset(served)
         if isinstance(answer, Deferred):
             answer.then(lambda response: self._reply(query, response, attachment))
         else:
@@ -159,6 +165,9 @@ class ServiceClient:
         is sent again, backing off, until one answers or the time is up."""
         with self._lock:
             number = next(self._numbers)
+        told = request_sent.get()
+        if told is not None:
+            told(RequestId(self.gid, number))
         payload = serialize(request)
         deadline = time.monotonic() + timeout_s
         pause_s = 0.02

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Callable
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -32,6 +33,7 @@ __all__ = [
     "MessageInfo",
     "OnReceivingThread",
     "PublisherHandle",
+    "RequestId",
     "ServiceCallError",
     "ServiceHandle",
     "ServiceHandler",
@@ -39,7 +41,30 @@ __all__ = [
     "SubscriptionHandle",
     "TopicInfo",
     "Transport",
+    "request_being_served",
+    "request_sent",
 ]
+
+
+@dataclass(frozen=True, slots=True)
+class RequestId:
+    """A service request as rmw names it: the client's GID and the client's sequence number
+    (what service introspection's ``ServiceEventInfo`` carries)."""
+
+    client_gid: bytes
+    sequence_number: int
+
+
+request_being_served: ContextVar[RequestId | None] = ContextVar(
+    "request_being_served", default=None
+)
+"""While a transport calls a service handler: the request's id, on a bus that has ids."""
+
+request_sent: ContextVar[Callable[[RequestId], None] | None] = ContextVar(
+    "request_sent", default=None
+)
+"""Set by a caller of ``call_service``: told the id of its request as it is sent, on a bus
+that has ids (the call runs on the caller's thread, so the caller's context sees it)."""
 
 
 class Deferred:
@@ -181,6 +206,11 @@ class PublisherHandle(ABC):
 class SubscriptionHandle(ABC):
     @abstractmethod
     def destroy(self) -> None: ...
+
+    def messages_lost(self) -> int:
+        """Messages lost so far between the publishers and this subscription, by their
+        sequence numbers (rmw_zenoh's MESSAGE_LOST); 0 on a bus that does not number them."""
+        return 0
 
 
 class ServiceHandle(ABC):
