@@ -4,19 +4,31 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import Any, Protocol
 
 from robomodel.clientlibs.rclpy import logging
 from robomodel.clientlibs.rclpy._support import interface
-from robomodel.clientlibs.rclpy.qos import qos_profile_services_default
+from robomodel.clientlibs.rclpy.qos import QoSProfile, qos_profile_services_default
 
-__all__ = ["LoggingService"]
+__all__ = ["LoggingService", "ServiceMaker"]
+
+
+class ServiceMaker(Protocol):
+    """What the logger service needs of its rclpy Node: its name and ``create_service``."""
+
+    def get_name(self) -> str: ...
+
+    def create_service(
+        self, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any], *,
+        qos_profile: QoSProfile = ...,
+    ) -> object: ...  # fmt: skip
 
 
 class LoggingService:
     """Serves the logger levels of this process on ``node``'s two services."""
 
-    def __init__(self, node: Any) -> None:  # an rclpy Node (which makes this service)
+    def __init__(self, node: ServiceMaker) -> None:
         name = node.get_name()
         node.create_service(
             interface("rcl_interfaces.srv", "GetLoggerLevels"),

@@ -10,11 +10,12 @@ optional callback then accepts or refuses it (:class:`InvalidQosOverridesError`)
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from typing import Any
+from typing import Any, Protocol
 
 from robomodel.clientlibs.rclpy._support import interface
 from robomodel.clientlibs.rclpy.duration import Duration
 from robomodel.clientlibs.rclpy.exceptions import ParameterAlreadyDeclaredException
+from robomodel.clientlibs.rclpy.parameter import Parameter
 from robomodel.clientlibs.rclpy.qos import (
     DurabilityPolicy,
     HistoryPolicy,
@@ -97,8 +98,22 @@ class QoSOverridingOptions:
         )
 
 
+class ParameterHolder(Protocol):
+    """What the QoS parameters need of the rclpy Node making the entity."""
+
+    def declare_parameter(
+        self, name: str, value: Any = None, descriptor: Any = None, ignore_override: bool = False
+    ) -> Parameter: ...
+
+    def get_parameter(self, name: str) -> Parameter: ...
+
+
 def declare_qos_parameters(
-    entity_type: type, node: Any, topic_name: str, qos: QoSProfile, options: QoSOverridingOptions
+    entity_type: type,
+    node: ParameterHolder,
+    topic_name: str,
+    qos: QoSProfile,
+    options: QoSOverridingOptions,
 ) -> None:
     """Declare the parameters ``options`` asks for on ``node`` and apply them to ``qos`` (the
     entity's own copy): ``entity_type`` is rclpy's Publisher or Subscription class, ``node`` the
