@@ -14,16 +14,18 @@ SDK_STAMP := $(SDK_VENV)/.installed
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
 
+# uv (PyPI, by Astral) resolves and installs the same packages as pip, several times faster
+# (on 2 cores: 104 s against 828 s for every extra, one run each while the machine was busy)
 $(STAMP): $(BIN)/python pyproject.toml
-	$(BIN)/python -m pip install --quiet -e '.[all,test,docs]'
+	$(BIN)/python -m pip install --quiet --upgrade pip uv
+	$(BIN)/uv pip install --quiet --python $(BIN)/python -e '.[all,test,docs]'
 	$(BIN)/python tools/install_clientlibs_pth.py
 	touch $(STAMP)
 
-$(SDK_STAMP):
+$(SDK_STAMP): $(STAMP)
 	$(PYTHON) -m venv $(SDK_VENV)
-	$(SDK_VENV)/bin/python -m pip install --quiet 'zenoh-ros2-sdk==0.1.8'
+	$(BIN)/uv pip install --quiet --python $(SDK_VENV)/bin/python 'zenoh-ros2-sdk==0.1.8'
 	touch $(SDK_STAMP)
 
 # System packages first: a fresh Ubuntu cannot create .venv before python3-venv is installed.
