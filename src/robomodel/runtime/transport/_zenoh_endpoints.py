@@ -14,7 +14,9 @@ SubscriptionData declare them (rmw_publisher_data.cpp, rmw_subscription_data.cpp
   as rmw_zenoh drops it ("Unable to obtain attachment").
 - a raw subscription (``raw_deliver``, what a recorder uses) gets the CDR payload as it came
   and a :class:`MessageInfo` (source and receive timestamps, sequence number, GID) instead of
-  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do.
+  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do. With
+  ``on_arrival`` it gets them on Zenoh's receiving thread, without the executor's queue and
+  its thread switch (what a bridge forwarding the payload to a thread-safe sink wants).
 """
 
 from __future__ import annotations
@@ -148,6 +150,7 @@ class ZenohSubscription(SubscriptionHandle):
         deliver: Callable[[Message], None] | None,
         *,
         raw_deliver: Callable[[bytes, MessageInfo], None] | None = None,
+        on_arrival: bool = False,
     ) -> None:
         zenoh = import_zenoh()
         self._bus = bus
@@ -156,6 +159,8 @@ class ZenohSubscription(SubscriptionHandle):
         self._deliver = deliver
         self._raw_deliver = raw_deliver
         self._sequences = SequenceTracker()
+        # Zenoh may call from one receiving thread per link: the tracker's update is guarded
+        self._sequences_lock = threading.Lock()
         self._alive = True
         self._decode = payload_decoder(msg_type)  # generated now, not on the first message
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
@@ -170,6 +175,7 @@ class ZenohSubscription(SubscriptionHandle):
         self.dropped = 0
         token = bus.entity_token(endpoint, EntityKind.SUBSCRIPTION, msg_type)
         key = bus.data_key(endpoint.topic, msg_type)
+        on_sample = self._on_arrival if on_arrival and raw_deliver else self._on_sample
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
             ext = zenoh.ext
             recovery = None
@@ -178,7 +184,7 @@ class ZenohSubscription(SubscriptionHandle):
             self._sub = ext.declare_advanced_subscriber(
                 bus.session,
                 key,
-                direct(self._on_sample),
+                direct(on_sample),
                 history=ext.HistoryConfig(
                     detect_late_publishers=True, max_samples=max(1, endpoint.qos.depth)
                 ),
@@ -186,7 +192,7 @@ class ZenohSubscription(SubscriptionHandle):
                 subscriber_detection=True,
             )
         else:
-            self._sub = bus.session.declare_subscriber(key, direct(self._on_sample))
+            self._sub = bus.session.declare_subscriber(key, direct(on_sample))
         self._token = bus.session.liveliness().declare_token(token.key())
 
     @property
@@ -205,6 +211,12 @@ class ZenohSubscription(SubscriptionHandle):
         if not self._scheduled:
             self._scheduled = True
             self._bus.executor.post(self._drain)
+
+    def _on_arrival(self, sample: Any) -> None:  # a Zenoh thread
+        try:
+            self._handle(sample, time.time_ns())
+        except Exception:  # one bad sample (or callback) never costs the others
+            log.exception("error handling a sample on %s", self._endpoint.topic)
 
     def _drain(self) -> None:
         """On the executor: handle what is pending now; later arrivals get their own turn.
@@ -231,7 +243,8 @@ class ZenohSubscription(SubscriptionHandle):
             self._no_attachment(attachment)
             return
         sequence, stamp_ns, gid = parsed
-        self._sequences.record(gid, sequence)
+        with self._sequences_lock:
+            self._sequences.record(gid, sequence)
         payload = sample.payload.to_bytes()
         if self._raw_deliver is not None:
             self._raw_deliver(payload, MessageInfo(stamp_ns, received_ns, sequence, gid))
