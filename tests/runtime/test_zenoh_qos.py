@@ -147,16 +147,17 @@ def test_keep_all_keeps_every_message_and_a_reliable_one_blocks() -> None:
         assert got_last[-1] == 199 and len(got_last) < 200
 
 
-def test_an_on_arrival_raw_subscription_delivers_on_zenoh_s_thread_with_no_queue() -> None:
-    """With the executor not spinning, a raw subscription ``on_arrival`` gets all 200
-    payloads from another session, in order, with their sequence numbers, on a thread other
-    than this one; its KEEP_LAST(5) depth bounds nothing (there is no queue). One that is not
-    on arrival gets nothing until the executor spins, then at most its depth."""
+def test_a_raw_subscription_on_the_receiving_thread_has_no_queue() -> None:
+    """With the executor not spinning, a raw subscription whose callback is wrapped in
+    ``OnReceivingThread`` gets all 200 payloads from another session, in order, with their
+    sequence numbers, on a thread other than this one; its KEEP_LAST(5) depth bounds nothing
+    (there is no queue). One not so wrapped gets nothing until the executor spins, then at
+    most its depth."""
     import threading
 
     from robomodel.runtime import Context
     from robomodel.runtime.msg import serialize
-    from robomodel.runtime.transport.base import MessageInfo
+    from robomodel.runtime.transport.base import MessageInfo, OnReceivingThread
     from tests.timing import wait_until
 
     domain = int(unique_domain())
@@ -171,7 +172,7 @@ def test_an_on_arrival_raw_subscription_delivers_on_zenoh_s_thread_with_no_queue
         def on_arrival(payload: bytes, info: MessageInfo) -> None:
             arrived.append((payload, info.publication_sequence_number, threading.get_ident()))
 
-        raw(node.fully_qualified_name, "/raw", Int32, qos, on_arrival, on_arrival=True)
+        raw(node.fully_qualified_name, "/raw", Int32, qos, OnReceivingThread(on_arrival))
         raw(node.fully_qualified_name, "/raw", Int32, qos, lambda p, _: queued.append(p))
         publisher = other.create_node("pub").create_publisher(Int32, "/raw", keep_all)
         wait_until(lambda: publisher.get_subscription_count() == 2, 20.0,

@@ -463,14 +463,14 @@ class FoxgloveBridge:
         raw = getattr(self.context.transport, "create_raw_subscription", None)
         node = self.node.fully_qualified_name
         if self.dialect == "ros2" and raw is not None:
+            from robomodel.runtime.transport.base import OnReceivingThread
 
             def forward_raw(payload: bytes, info: Any) -> None:
                 channel.log(payload, log_time=info.received_timestamp_ns)
 
             # on Zenoh's thread: the SDK's queues are thread-safe and bounded per client
-            return self._on_bus(
-                lambda: raw(node, name, topic.msg_type, qos, forward_raw, on_arrival=True)
-            )
+            on_arrival = OnReceivingThread(forward_raw)
+            return self._on_bus(lambda: raw(node, name, topic.msg_type, qos, on_arrival))
         _, encode = self._codec(topic.msg_type)
 
         def forward(msg: Any) -> None:

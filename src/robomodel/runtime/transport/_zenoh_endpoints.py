@@ -14,9 +14,10 @@ SubscriptionData declare them (rmw_publisher_data.cpp, rmw_subscription_data.cpp
   as rmw_zenoh drops it ("Unable to obtain attachment").
 - a raw subscription (``raw_deliver``, what a recorder uses) gets the CDR payload as it came
   and a :class:`MessageInfo` (source and receive timestamps, sequence number, GID) instead of
-  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do. With
-  ``on_arrival`` it gets them on Zenoh's receiving thread, without the executor's queue and
-  its thread switch (what a bridge forwarding the payload to a thread-safe sink wants).
+  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do. One whose
+  callback is wrapped in :class:`OnReceivingThread` gets them on Zenoh's receiving thread,
+  without the executor's queue and its thread switch (a bridge forwarding payloads to a
+  thread-safe sink).
 """
 
 from __future__ import annotations
@@ -42,6 +43,7 @@ from robomodel.runtime.transport._zenoh_common import (
 from robomodel.runtime.transport.base import (
     Endpoint,
     MessageInfo,
+    OnReceivingThread,
     PublisherHandle,
     SubscriptionHandle,
 )
@@ -150,7 +152,6 @@ class ZenohSubscription(SubscriptionHandle):
         deliver: Callable[[Message], None] | None,
         *,
         raw_deliver: Callable[[bytes, MessageInfo], None] | None = None,
-        on_arrival: bool = False,
     ) -> None:
         zenoh = import_zenoh()
         self._bus = bus
@@ -175,7 +176,8 @@ class ZenohSubscription(SubscriptionHandle):
         self.dropped = 0
         token = bus.entity_token(endpoint, EntityKind.SUBSCRIPTION, msg_type)
         key = bus.data_key(endpoint.topic, msg_type)
-        on_sample = self._on_arrival if on_arrival and raw_deliver else self._on_sample
+        on_arrival = isinstance(raw_deliver, OnReceivingThread)
+        on_sample = self._on_arrival if on_arrival else self._on_sample
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
             ext = zenoh.ext
             recovery = None
