@@ -24,7 +24,7 @@ client.on("message", ({ subscriptionId, data }) => {
   latencies[bySubscription.get(subscriptionId)].push(Number(now - stampNs) / 1e6);
 });
 setTimeout(() => {
-  process.stdout.write(JSON.stringify(latencies) + "\n");
   client.close();
-  process.exit(0);
+  // a pipe's write completes later: exit once it has, or the output is cut at 64 KiB
+  process.stdout.write(JSON.stringify(latencies) + "\n", () => process.exit(0));
 }, Number(seconds) * 1000);
