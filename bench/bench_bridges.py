@@ -1,16 +1,19 @@
 """foxglove_bridge's latency against robomodel's own subscriber: 1 kHz /joint_states and a
 640x480 rgb8 image at 30 Hz, published in one process, received by a robomodel subscription in
 another and, through ``robomodel run foxglove_bridge foxglove_bridge``, by a Foxglove client in a
-third (the ``foxglove.sdk.v1`` protocol over ``websockets``: each binary ``messageData`` frame's
-CDR payload as it came off the bus).
+third: ``node`` is ``@foxglove/ws-protocol``'s FoxgloveClient (what Foxglove Studio uses,
+bench/bench_bridges_client.js), ``python`` speaks ``foxglove.sdk.v1`` over ``websockets``. Each
+client gets a run of the publisher of its own, beside robomodel's subscriber.
 
-Run: ``.venv/bin/python bench/bench_bridges.py [--seconds 5] [--domain-id 120]``.
+Run: ``.venv/bin/python bench/bench_bridges.py [--seconds 5] [--clients node,python]``.
 
-Every message carries ``time.monotonic_ns()`` (one clock for every process of a Linux machine)
-in ``header.stamp``; each receiver subtracts it on arrival. Printed per topic: the messages
-published, received by each side, and each side's p50 and p90 latency [ms].
+Every message carries ``time.monotonic_ns()`` (CLOCK_MONOTONIC, one clock for every process of
+a Linux machine) in ``header.stamp``; each receiver subtracts it on arrival. Printed per topic:
+the messages published, received by each side, each side's p50 and p90 latency [ms], and the
+client's p50 over robomodel's; and per client, the bridge process's CPU time (user + system,
+every thread) while the publisher ran, per message it forwarded.
 
-``--quickack`` makes the Foxglove client acknowledge every TCP segment at once (Linux
+``--quickack`` makes the Python client acknowledge every TCP segment at once (Linux
 ``TCP_QUICKACK``): if the latency then drops, the rest was the server's small writes waiting
 for the client's delayed acknowledgements (Nagle's algorithm), not the bridge's own time.
 """
@@ -20,6 +23,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import signal
 import statistics
 import struct
@@ -30,6 +34,7 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
+NODE_MODULES = ROOT / ".node" / "node_modules"
 TOPICS = {"/joint_states": 1000.0, "/camera/image": 30.0}
 _STAMP = struct.Struct("<iI")  # CDR: 4-byte encapsulation header, then header.stamp
 
@@ -58,6 +63,7 @@ def publish(domain: int, seconds: float) -> dict[str, int]:
             "/camera/image": (node.create_publisher(image_type, "/camera/image"), image),
         }
         context.spin(duration_s=3.0)  # the receivers find the publishers
+        print("publishing", flush=True)  # the bridge's CPU is read from here ...
         start = time.monotonic()
         next_s = dict.fromkeys(TOPICS, start)
         while time.monotonic() - start < seconds:
@@ -70,6 +76,7 @@ def publish(domain: int, seconds: float) -> dict[str, int]:
                     sent[topic] += 1
                     next_s[topic] += 1.0 / rate_hz
             time.sleep(max(0.0, min(next_s.values()) - time.monotonic()))
+        print("published", flush=True)  # ... to here
         context.spin(duration_s=0.5)
     return sent
 
@@ -96,7 +103,7 @@ def receive_robomodel(domain: int, seconds: float) -> dict[str, list[float]]:
     return latencies
 
 
-def receive_foxglove(port: int, seconds: float, *, quickack: bool) -> dict[str, list[float]]:
+def receive_python(port: int, seconds: float, *, quickack: bool) -> dict[str, list[float]]:
     import socket
 
     from websockets.sync.client import connect
@@ -141,7 +148,7 @@ def _role(args: argparse.Namespace) -> None:
     elif args.role == "robomodel":
         result = receive_robomodel(args.domain_id, args.seconds + 15.0)
     else:
-        result = receive_foxglove(args.port, args.seconds + 15.0, quickack=args.quickack)
+        result = receive_python(args.port, args.seconds + 15.0, quickack=args.quickack)
     print(json.dumps(result))
 
 
@@ -149,57 +156,115 @@ def _percentile(values: list[float], q: float) -> float:
     return statistics.quantiles(values, n=100)[int(q) - 1] if len(values) > 1 else float("nan")
 
 
+def _cpu_s(pid: int) -> float:
+    """CPU time [s] (user + system, every thread) that process ``pid`` has used (Linux)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _node_client(port: int, seconds: float) -> list[str]:
+    node = shutil.which("node")
+    if node is None or not (NODE_MODULES / "@foxglove" / "ws-protocol").is_dir():
+        sys.exit("bench_bridges: the node client needs node and @foxglove/ws-protocol in "
+                 f"{NODE_MODULES} (tools/system-deps test installs them); or --clients python")  # fmt: skip
+    return [node, str(ROOT / "bench" / "bench_bridges_client.js"), f"ws://127.0.0.1:{port}",
+            str(seconds), *TOPICS]  # fmt: skip
+
+
+def _phase(args: argparse.Namespace, client: str, bridge_pid: int, env: dict[str, str]) -> Any:
+    """One run of the publisher with robomodel's subscriber and ``client`` receiving."""
+    me = [sys.executable, __file__, "--seconds", str(args.seconds), "--domain-id",
+          str(args.domain_id), "--port", str(args.port)]  # fmt: skip
+    if args.quickack:
+        me.append("--quickack")
+    listen_s = args.seconds + 15.0
+    commands = {
+        "robomodel": [*me, "--role", "robomodel"],
+        client: _node_client(args.port, listen_s) if client == "node" else [*me, "--role", client],
+    }
+    receivers = {
+        side: subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True)
+        for side, command in commands.items()
+    }
+    time.sleep(1.0)  # the receivers subscribe before the publisher's first message
+    publisher = subprocess.Popen([*me, "--role", "publish"], env=env, stdout=subprocess.PIPE,
+                                 text=True)  # fmt: skip
+    assert publisher.stdout is not None
+    cpu_s = 0.0
+    for line in publisher.stdout:
+        if line.strip() in ("publishing", "published"):
+            cpu_s = _cpu_s(bridge_pid) - cpu_s
+        else:
+            sent = json.loads(line)
+    if publisher.wait() != 0:
+        sys.exit("bench_bridges: the publisher failed")
+    got = {side: json.loads(proc.communicate()[0]) for side, proc in receivers.items()}
+    return sent, got, cpu_s
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seconds", type=float, default=5.0)
     parser.add_argument("--domain-id", type=int, default=120)
     parser.add_argument("--port", type=int, default=18765)
-    parser.add_argument("--role", choices=("publish", "robomodel", "foxglove"))
+    parser.add_argument("--role", choices=("publish", "robomodel", "python"))
+    parser.add_argument(
+        "--clients",
+        default="node,python",
+        help="the Foxglove clients measured, one run of the publisher each: node "
+        "(@foxglove/ws-protocol's FoxgloveClient) and python (websockets)",
+    )
     parser.add_argument(
         "--quickack",
         action="store_true",
-        help="the Foxglove client acknowledges every TCP segment at once",
+        help="the Python Foxglove client acknowledges every TCP segment at once",
     )
     args = parser.parse_args()
     if args.role:
         _role(args)
         return
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
-    me = [sys.executable, __file__, "--seconds", str(args.seconds), "--domain-id",
-          str(args.domain_id), "--port", str(args.port)]  # fmt: skip
-    if args.quickack:
-        me.append("--quickack")
+    clients = [c for c in args.clients.split(",") if c]
+    unknown = sorted(set(clients) - {"node", "python"})
+    if unknown or not clients:
+        parser.error(f"--clients: unknown {', '.join(unknown) or 'none'}; they are node, python")
+    load = os.getloadavg()
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src"),
+           "ROBOMODEL_NODE_MODULES": str(NODE_MODULES)}  # fmt: skip
     bridge = subprocess.Popen(
         [sys.executable, "-m", "robomodel.cli.main", "run", "--domain-id", str(args.domain_id),
          "foxglove_bridge", "foxglove_bridge", "--ros-args", "-p", f"port:={args.port}"],
         env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
         start_new_session=True,
     )  # fmt: skip
+    phases = {}
     try:
         assert bridge.stdout is not None
         for line in bridge.stdout:
             if "listening at" in line:
                 break
-        receivers = {
-            side: subprocess.Popen(
-                [*me, "--role", side], env=env, stdout=subprocess.PIPE, text=True
-            )
-            for side in ("robomodel", "foxglove")
-        }
-        time.sleep(1.0)  # the receivers subscribe before the publisher's first message
-        sent = json.loads(subprocess.run([*me, "--role", "publish"], env=env, check=True,
-                                         capture_output=True, text=True).stdout)  # fmt: skip
-        got = {side: json.loads(proc.communicate()[0]) for side, proc in receivers.items()}
+        for client in clients:
+            phases[client] = _phase(args, client, bridge.pid, env)
     finally:
         os.killpg(bridge.pid, signal.SIGINT)
         bridge.wait(30)
-    print(f"foxglove_bridge vs robomodel's subscriber, {args.seconds:g} s (latency [ms])")
-    print(f"{'topic':<16}{'sent':>7}{'side':>11}{'received':>10}{'p50':>9}{'p90':>9}")
-    for topic in TOPICS:
-        for side in ("robomodel", "foxglove"):
-            values = got[side][topic]
-            print(f"{topic:<16}{sent[topic]:>7}{side:>11}{len(values):>10}"
-                  f"{_percentile(values, 50):>9.2f}{_percentile(values, 90):>9.2f}")  # fmt: skip
+    print(f"foxglove_bridge vs robomodel's subscriber, {args.seconds:g} s a client (latency [ms]); "
+          f"load average before {load[0]:.2f} (1 min), {load[1]:.2f} (5 min)")  # fmt: skip
+    print(f"{'topic':<16}{'sent':>7}{'side':>11}{'received':>10}{'p50':>9}{'p90':>9}{'ratio':>8}")
+    for client, (sent, got, cpu_s) in phases.items():
+        for topic in TOPICS:
+            own = _percentile(got["robomodel"][topic], 50)
+            for side in ("robomodel", client):
+                values = got[side][topic]
+                p50 = _percentile(values, 50)
+                ratio = f"{p50 / own:>8.2f}" if side == client else ""
+                print(f"{topic:<16}{sent[topic]:>7}{side:>11}{len(values):>10}"
+                      f"{p50:>9.2f}{_percentile(values, 90):>9.2f}{ratio}")  # fmt: skip
+        forwarded = sum(len(got[client][t]) for t in TOPICS)
+        print(
+            f"bridge CPU while publishing to the {client} client: {cpu_s * 1e3:.0f} ms for "
+            f"{forwarded} messages, {cpu_s / max(1, forwarded) * 1e6:.0f} us a message "
+            f"({cpu_s / args.seconds * 100:.0f}% of a core)"
+        )
 
 
 if __name__ == "__main__":

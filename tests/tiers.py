@@ -188,6 +188,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/runtime/test_zenoh_processes.py": BUS_PROCESS,
     "tests/runtime/test_zenoh_qos.py::test_a_publisher_s_token_carries_its_full_qos": BUS,
     "tests/runtime/test_zenoh_qos.py::test_keep_all_keeps_every_message_and_a_reliable_one_blocks": BUS,
+    "tests/runtime/test_zenoh_qos.py::test_a_raw_subscription_on_the_receiving_thread_has_no_queue": BUS,
     "tests/runtime/test_zenoh_router.py::test_a_session_starts_a_router_that_outlives_it": BUS,
     "tests/runtime/test_zenoh_router.py::test_bad_configuration_is_a_clear_error": PROCESS,
     "tests/runtime/test_zenoh_router.py::test_check_attempts_below_zero_skip_the_router": BUS,

@@ -145,3 +145,45 @@ def test_keep_all_keeps_every_message_and_a_reliable_one_blocks() -> None:
         ctx.spin(duration_s=scaled(30.0), until=lambda: len(got_all) == 200 and 199 in got_last)
         assert got_all == list(range(200))
         assert got_last[-1] == 199 and len(got_last) < 200
+
+
+def test_a_raw_subscription_on_the_receiving_thread_has_no_queue() -> None:
+    """With the executor not spinning, a raw subscription whose callback is wrapped in
+    ``OnReceivingThread`` gets all 200 payloads from another session, in order, with their
+    sequence numbers, on a thread other than this one; its KEEP_LAST(5) depth bounds nothing
+    (there is no queue). One not so wrapped gets nothing until the executor spins, then at
+    most its depth."""
+    import threading
+
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import serialize
+    from robomodel.runtime.transport.base import MessageInfo, OnReceivingThread
+    from tests.timing import wait_until
+
+    domain = int(unique_domain())
+    keep_all = QoSProfile(depth=5, history=History.KEEP_ALL)  # a reliable publisher that blocks
+    with Context("zenoh", domain_id=domain) as ctx, Context("zenoh", domain_id=domain) as other:
+        node = ctx.create_node("raw")
+        arrived: list[tuple[bytes, int, int]] = []
+        queued: list[bytes] = []
+        raw = ctx.transport.create_raw_subscription  # type: ignore[attr-defined]
+        qos = QoSProfile(depth=5, history=History.KEEP_LAST)
+
+        def on_arrival(payload: bytes, info: MessageInfo) -> None:
+            arrived.append((payload, info.publication_sequence_number, threading.get_ident()))
+
+        raw(node.fully_qualified_name, "/raw", Int32, qos, OnReceivingThread(on_arrival))
+        raw(node.fully_qualified_name, "/raw", Int32, qos, lambda p, _: queued.append(p))
+        publisher = other.create_node("pub").create_publisher(Int32, "/raw", keep_all)
+        wait_until(lambda: publisher.get_subscription_count() == 2, 20.0,
+                   what="the publisher matching both subscriptions")  # fmt: skip
+        for n in range(200):
+            publisher.publish(Int32(n))
+        wait_until(lambda: len(arrived) >= 200, 30.0,
+                   what=lambda: f"200 payloads unspun, {len(arrived)} came")  # fmt: skip
+        assert [p for p, _, _ in arrived] == [serialize(Int32(n)) for n in range(200)]
+        assert [s for _, s, _ in arrived] == list(range(1, 201))
+        assert threading.get_ident() not in {t for _, _, t in arrived}
+        assert queued == []
+        ctx.spin(duration_s=scaled(10.0), until=lambda: bool(queued))
+        assert 0 < len(queued) <= 5

@@ -14,7 +14,10 @@ SubscriptionData declare them (rmw_publisher_data.cpp, rmw_subscription_data.cpp
   as rmw_zenoh drops it ("Unable to obtain attachment").
 - a raw subscription (``raw_deliver``, what a recorder uses) gets the CDR payload as it came
   and a :class:`MessageInfo` (source and receive timestamps, sequence number, GID) instead of
-  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do.
+  a decoded message, as rclpy's ``raw=True`` subscriptions with message info do. One whose
+  callback is wrapped in :class:`OnReceivingThread` gets them on Zenoh's receiving thread,
+  without the executor's queue and its thread switch (a bridge forwarding payloads to a
+  thread-safe sink).
 """
 
 from __future__ import annotations
@@ -40,6 +43,7 @@ from robomodel.runtime.transport._zenoh_common import (
 from robomodel.runtime.transport.base import (
     Endpoint,
     MessageInfo,
+    OnReceivingThread,
     PublisherHandle,
     SubscriptionHandle,
 )
@@ -156,6 +160,8 @@ class ZenohSubscription(SubscriptionHandle):
         self._deliver = deliver
         self._raw_deliver = raw_deliver
         self._sequences = SequenceTracker()
+        # Zenoh may call from one receiving thread per link: the tracker's update is guarded
+        self._sequences_lock = threading.Lock()
         self._alive = True
         self._decode = payload_decoder(msg_type)  # generated now, not on the first message
         # KEEP_LAST: at most `depth` samples wait for the executor; a slow subscriber drops
@@ -170,6 +176,8 @@ class ZenohSubscription(SubscriptionHandle):
         self.dropped = 0
         token = bus.entity_token(endpoint, EntityKind.SUBSCRIPTION, msg_type)
         key = bus.data_key(endpoint.topic, msg_type)
+        on_arrival = isinstance(raw_deliver, OnReceivingThread)
+        on_sample = self._on_arrival if on_arrival else self._on_sample
         if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
             ext = zenoh.ext
             recovery = None
@@ -178,7 +186,7 @@ class ZenohSubscription(SubscriptionHandle):
             self._sub = ext.declare_advanced_subscriber(
                 bus.session,
                 key,
-                direct(self._on_sample),
+                direct(on_sample),
                 history=ext.HistoryConfig(
                     detect_late_publishers=True, max_samples=max(1, endpoint.qos.depth)
                 ),
@@ -186,7 +194,7 @@ class ZenohSubscription(SubscriptionHandle):
                 subscriber_detection=True,
             )
         else:
-            self._sub = bus.session.declare_subscriber(key, direct(self._on_sample))
+            self._sub = bus.session.declare_subscriber(key, direct(on_sample))
         self._token = bus.session.liveliness().declare_token(token.key())
 
     @property
@@ -208,6 +216,12 @@ class ZenohSubscription(SubscriptionHandle):
         if not self._scheduled:
             self._scheduled = True
             self._bus.executor.post(self._drain)
+
+    def _on_arrival(self, sample: Any) -> None:  # a Zenoh thread
+        try:
+            self._handle(sample, time.time_ns())
+        except Exception:  # one bad sample (or callback) never costs the others
+            log.exception("error handling a sample on %s", self._endpoint.topic)
 
     def _drain(self) -> None:
         """On the executor: handle what is pending now; later arrivals get their own turn.
@@ -234,7 +248,8 @@ class ZenohSubscription(SubscriptionHandle):
             self._no_attachment(attachment)
             return
         sequence, stamp_ns, gid = parsed
-        self._sequences.record(gid, sequence)
+        with self._sequences_lock:
+            self._sequences.record(gid, sequence)
         payload = sample.payload.to_bytes()
         if self._raw_deliver is not None:
             self._raw_deliver(payload, MessageInfo(stamp_ns, received_ns, sequence, gid))

@@ -6,7 +6,8 @@ service clients and servers, and answers graph queries. It never calls user code
 threads: deliveries and service requests are posted to the context's executor, so callbacks and
 handlers run on the spinning thread, one at a time. The exception is a callback wrapped in
 :class:`OnReceivingThread`, which the ROS 1 transport calls on the thread that received the
-message or request (rospy's threading).
+message or request (rospy's threading), and the Zenoh transport's raw subscriptions on Zenoh's
+receiving thread (a bridge's hand-off of payloads).
 
 Nodes are named by their fully qualified name (``/ns/name``); every endpoint belongs to one.
 Message and service types are the classes of :mod:`robomodel.runtime.msg`; how they travel (CDR,
@@ -97,17 +98,19 @@ class OnReceivingThread:
     """A subscription callback or service handler that the ROS 1 transport calls on the thread
     that received the message (a publisher connection's reader) or the request (a client
     connection's thread, or the in-process caller's), not on the executor's: rospy's threading,
-    where handlers of concurrent calls run at once. It must be thread-safe, and a subscription's
-    must return quickly (its connection reads nothing meanwhile). Other transports call it on
-    the executor's thread, as any callback."""
+    where handlers of concurrent calls run at once. A Zenoh raw subscription's callback so
+    wrapped runs on Zenoh's receiving thread as each sample arrives, with no queue between (the
+    subscription's depth bounds nothing) and no thread switch. It must be thread-safe, and a
+    subscription's must return quickly (its connection reads nothing meanwhile). Other
+    transports call it on the executor's thread, as any callback."""
 
     __slots__ = ("callback",)
 
-    def __init__(self, callback: Callable[[Any], Any]) -> None:
+    def __init__(self, callback: Callable[..., Any]) -> None:
         self.callback = callback
 
-    def __call__(self, value: Any) -> Any:
-        return self.callback(value)
+    def __call__(self, *args: Any) -> Any:
+        return self.callback(*args)
 
 
 ServiceHandler = Callable[[Any], Any]

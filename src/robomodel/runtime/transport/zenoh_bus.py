@@ -211,7 +211,10 @@ class ZenohTransport(Transport):
     ) -> SubscriptionHandle:
         """A subscription that hands over each sample's CDR payload undecoded, with its
         :class:`MessageInfo` (publish and receive time), on the executor's thread. The
-        payload is not checked against ``msg_type``, which only names the topic's key."""
+        payload is not checked against ``msg_type``, which only names the topic's key.
+        A ``deliver`` wrapped in :class:`OnReceivingThread` runs on Zenoh's receiving thread
+        as each sample arrives, with no queue (``qos.depth`` bounds nothing): for a quick,
+        thread-safe one, such as a bridge's hand-off to its clients' queues."""
         endpoint = Endpoint(node, topic, msg_type.__typename__, qos)
         return ZenohSubscription(self, endpoint, msg_type, None, raw_deliver=deliver)
 
