@@ -526,14 +526,14 @@ def _rrbot_two_terminals(graph: SeedRos1, tmp_path: Path) -> None:
 
 
 RRBOT = pytest.mark.xdist_group("seed_000_rrbot")
-"""The tests of the shared RRBot: one worker, in this file's order, starts it once."""
+"""The tests that look at the shared RRBot and move its joints: one worker starts it once."""
+
+RRBOT_TO_CHANGE = pytest.mark.xdist_group("seed_000_rrbot_to_change")
+"""The tests that change the controllers of a second RRBot, then end it: one worker, in this
+file's order, starts it once (apart from the first, so that each group stays short)."""
 
 
-@pytest.fixture(scope="module")
-def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
-    """One two-terminal RRBot, the first launch hosting the master, for every test of it (each
-    starting its own took most of this module's time). A test that changes its controllers puts
-    them back; the Ctrl-C test, last in this file, ends it."""
+def _shared_rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
     home = tmp_path_factory.mktemp("rrbot")
     workspace = home / "catkin_ws" / "src"
     workspace.mkdir(parents=True)
@@ -543,6 +543,20 @@ def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
         yield shared
     finally:
         shared.close()
+
+
+@pytest.fixture(scope="module")
+def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
+    """One two-terminal RRBot, the first launch hosting the master, for the tests that look at
+    it and move its joints (each starting its own took most of this module's time)."""
+    yield from _shared_rrbot(tmp_path_factory)
+
+
+@pytest.fixture(scope="module")
+def rrbot_to_change(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
+    """Another, for the controller manager's commands (which put the controllers back as they
+    found them) and then the Ctrl-C test, last in this file, which ends it."""
+    yield from _shared_rrbot(tmp_path_factory)
 
 
 @RRBOT
@@ -636,15 +650,15 @@ def test_service_call_without_a_type_on_ros1(rrbot: SeedRos1) -> None:
     assert "joint1_position_controller" in run.stdout
 
 
-@RRBOT
-def test_controller_manager_commands(rrbot: SeedRos1) -> None:
+@RRBOT_TO_CHANGE
+def test_controller_manager_commands(rrbot_to_change: SeedRos1) -> None:
     """``controller_manager <command> <controller_name>`` (the seed's ``roslaunch`` is rosrun's
     job: ``rosrun controller_manager controller_manager``) → ``robomodel run controller_manager
     controller_manager``, in /rrbot: the seed's load, unload, start, stop, spawn and kill, with
     ROS 1's printed words and states (a loaded controller is ``initialized`` until started),
     then list-types (ROS 1's type names) and reload-libraries --restore; last the stopped
-    controller is started again, as the shared RRBot's other tests expect it."""
-    graph = rrbot
+    controller is started again: the controllers are left as they were found."""
+    graph = rrbot_to_change
     j1, j2 = "joint1_position_controller", "joint2_position_controller"
 
     def cm(*argv: str) -> str:
@@ -693,11 +707,12 @@ def test_rrbot_graph_has_rosout(rrbot: SeedRos1) -> None:
     assert {"/rosout", "/rosout_agg"} <= set(topics)
 
 
-@RRBOT
-def test_ctrl_c_ends_the_launches(rrbot: SeedRos1) -> None:
+@RRBOT_TO_CHANGE
+def test_ctrl_c_ends_the_launches(rrbot_to_change: SeedRos1) -> None:
     """Ctrl-C in each terminal ends its launch (the shared RRBot's: this test is the last of
     this file's that use it)."""
-    assert len(rrbot.procs) == 2 and all(proc.poll() is None for proc in rrbot.procs)
-    for proc in reversed(rrbot.procs):
+    procs = rrbot_to_change.procs
+    assert len(procs) == 2 and all(proc.poll() is None for proc in procs)
+    for proc in reversed(procs):
         proc.send_signal(signal.SIGINT)
         assert proc.wait(scaled(60)) is not None
