@@ -149,7 +149,7 @@ def _xdist_group_in_node_id(item: pytest.Item) -> None:
         from _pytest.nodeid import NodeId
 
         path, _, tail = given.partition("::")
-        item._id = NodeId(path=path, names=tuple(tail.split("::")))  # type: ignore[attr-defined]
+        item._id = NodeId(path=path, names=tuple(tail.split("::")))
 
 
 def _start_order(item: pytest.Item) -> int:
