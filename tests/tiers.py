@@ -56,6 +56,8 @@ FIXTURE_TIERS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tests/ros1wire/test_rosparam_cli.py", "graph"): ("ros1", "process"),
     ("tests/seeds", "ros2_ws"): ("process",),
     ("tests/seeds/test_seed_000_planar_3dof.py", "rrbot"): ("ros1", "process"),
+    ("tests/seeds/test_seed_000_planar_3dof.py", "rrbot_to_change"): ("ros1", "process"),
+    ("tests/seeds/test_seed_000_planar_3dof.py", "display_launch"): ("ros1", "process"),
     ("tests/seeds/test_seed_001_ur5_gazebo.py", "ur5"): ("ros1", "process"),
     ("tests/seeds/test_seed_002_simplebot.py", "simplebot"): ("ros1", "process"),
     ("tests/bag", "talker"): ("process", "bus"),

@@ -63,6 +63,12 @@ def gazebo_msgs_python(tmp_path: Path) -> Path:
     return out.parent
 
 
+@pytest.fixture(scope="module")
+def gazebo_msgs(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """:func:`gazebo_msgs_python` once for the module's tests (read only: they import it)."""
+    return gazebo_msgs_python(tmp_path_factory.mktemp("gazebo_msgs"))
+
+
 def _launch_seed_001(ros1: Ros1, tmp_path: Path) -> Path:
     log = tmp_path / "launch.log"
     proc = ros1.robomodel(
@@ -76,6 +82,10 @@ def _launch_seed_001(ros1: Ros1, tmp_path: Path) -> Path:
     )
     assert proc.poll() is None, log.read_text()
     return log
+
+
+SEED_001 = pytest.mark.xdist_group("gazebo_topics_seed_001")
+"""The tests of the shared seed 001 launch: one worker starts it once."""
 
 
 @pytest.fixture(scope="module")
@@ -94,7 +104,10 @@ def _yaml(result: subprocess.CompletedProcess[str]) -> Any:
     return yaml.safe_load(result.stdout.split("\n---")[0])
 
 
-def test_seed_001_topics_services_and_rosout(seed_001: tuple[Ros1, Path], tmp_path: Path) -> None:
+@SEED_001
+def test_seed_001_topics_services_and_rosout(
+    seed_001: tuple[Ros1, Path], gazebo_msgs: Path, tmp_path: Path
+) -> None:
     ros1, log = seed_001
     topics = set(ros1.run("/usr/bin/rostopic", "list").stdout.split())
     assert topics >= SEED_001_TOPICS, sorted(SEED_001_TOPICS - topics)
@@ -108,7 +121,7 @@ def test_seed_001_topics_services_and_rosout(seed_001: tuple[Ros1, Path], tmp_pa
     assert kind == "gazebo_msgs/ModelStates"
 
     # spawn_model -model robot -z 0.1: the model's pose, as gazebo_ros answers it
-    python = gazebo_msgs_python(tmp_path)
+    python = gazebo_msgs
 
     def rosservice(*argv: str) -> subprocess.CompletedProcess[str]:
         env = {**ros1.env, "PYTHONPATH": str(python)}
@@ -209,15 +222,16 @@ def test_robomodel_master_has_roscores_rosout_node(ros1: Ros1, tmp_path: Path) -
     assert (line["level"], line["name"], line["msg"]) == (4, "/somebody", "careful")
 
 
+@SEED_001
 def test_seed_001_model_states_at_the_physics_rate(
-    seed_001: tuple[Ros1, Path], tmp_path: Path
+    seed_001: tuple[Ros1, Path], gazebo_msgs: Path, tmp_path: Path
 ) -> None:
     """gazebo_ros publishes the states at every world update while subscribed (1 kHz with
     Gazebo's 1 ms steps): Debian's ``rostopic hz`` sees about the physics rate, far above the
     100 Hz of /clock. (That nothing is built while nobody subscribes is
     tests/sim/test_model_states.py's.)"""
     ros1, _ = seed_001
-    env = {**ros1.env, "PYTHONPATH": str(gazebo_msgs_python(tmp_path))}
+    env = {**ros1.env, "PYTHONPATH": str(gazebo_msgs)}
     log = tmp_path / "hz.log"
     with log.open("w") as out:
         hz = subprocess.Popen(

@@ -25,6 +25,9 @@ from tests.timing import scaled
 
 pytest.importorskip("rosbags.rosbag2")
 
+# Both tests look at one started hostile graph: one worker starts it once
+pytestmark = pytest.mark.xdist_group("hostile_definitions_ros1")
+
 SELF_REC = "int32 a\nSelfRec child\n"
 
 

@@ -25,6 +25,9 @@ from tests.ros1wire.conftest import Ros1
 
 Run = Callable[[list[str]], "subprocess.CompletedProcess[str]"]
 
+# The module's roscore and master serve every test: one worker starts them once
+pytestmark = pytest.mark.xdist_group("rosparam_cli")
+
 ROSPARAM = "/usr/bin/rosparam"
 
 URDF = """<?xml version="1.0"?>

@@ -145,6 +145,17 @@ class SeedRos1(Ros1):
 MASTERS = ["robomodel-master", "roscore"]
 
 
+def grouped_by_master(group: str, *, only: str | None = None) -> list[Any]:
+    """:data:`MASTERS` (or ``only`` of them) as the params of a module-scoped graph fixture,
+    each marked with an xdist group of its own (``GROUP-MASTER``): the tests of one started
+    graph go to one worker, which starts it once; the two graphs may still run on two workers."""
+    return [
+        pytest.param(m, id=m, marks=pytest.mark.xdist_group(f"{group}-{m}"))
+        for m in MASTERS
+        if only in (None, m)
+    ]
+
+
 @pytest.fixture
 def ros1_graph(tmp_path: Path) -> Iterator[SeedRos1]:
     """A ROS 1 graph for a seed test, its workspace at ``tmp_path/catkin_ws/src``."""

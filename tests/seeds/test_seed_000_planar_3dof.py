@@ -14,6 +14,7 @@ import shutil
 import signal
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 import yaml
@@ -328,16 +329,64 @@ def test_display_launch_publishes_state_and_tf(
     assert "[1.000, 0.000, 0.000]" in tf.stdout
 
 
-def test_view_frames_draws_the_tree(graph: SeedRos1, tmp_path: Path) -> None:
+DISPLAY = pytest.mark.xdist_group("seed_000_display")
+"""The tests of the shared display.launch: one worker starts it once."""
+
+
+@pytest.fixture(scope="module")
+def display_launch(
+    tmp_path_factory: pytest.TempPathFactory,
+) -> Iterator[tuple[SeedRos1, Path, dict[str, Any]]]:
+    """One display.launch (urdf.rviz saved) hosting the master, for the tests that look at it
+    or work on its parameter server (each starting its own took most of their time): the
+    graph, the package's urdf folder and the parameter tree the launch left."""
+    home = tmp_path_factory.mktemp("display")
+    workspace = home / "catkin_ws" / "src"
+    workspace.mkdir(parents=True)
+    shared = SeedRos1(home, packages=str(workspace))
+    try:
+        urdf_dir = gripper_description(workspace, with_rviz=True) / "urdf"
+        shared.launch(
+            home / "display.log", "gripper_description", "display.launch", "--ros1-master",
+            wait_for="nodes running",
+        )  # fmt: skip
+        with shared.master() as master:
+            code, message, tree = master.getParam("/test", "/")
+        assert code == 1, message
+        yield shared, urdf_dir, tree
+    finally:
+        shared.close()
+
+
+@pytest.fixture
+def display(
+    display_launch: tuple[SeedRos1, Path, dict[str, Any]],
+) -> Iterator[tuple[SeedRos1, Path]]:
+    """The shared display.launch and its urdf folder; the parameters a test set, deleted or
+    changed are put back as the launch left them, and the files it wrote there removed."""
+    graph, urdf_dir, tree = display_launch
+    files = set(urdf_dir.iterdir())
+    yield graph, urdf_dir
+    with graph.master() as master:
+        code, message, now = master.getParam("/test", "/")
+        assert code == 1, message
+        for name in now.keys() - tree.keys():
+            master.deleteParam("/test", f"/{name}")
+        for name, value in tree.items():
+            master.setParam("/test", f"/{name}", value)
+        code, message, now = master.getParam("/test", "/")
+    assert now == tree, "the parameter server is not as the launch left it"
+    for path in set(urdf_dir.iterdir()) - files:
+        path.unlink()
+
+
+@DISPLAY
+def test_view_frames_draws_the_tree(display: tuple[SeedRos1, Path], tmp_path: Path) -> None:
     """ "Tree of tf: ``roslaunch tf view_frames``" (rosrun's job) → ``robomodel run tf
     view_frames``: tf's lines, frames.gv with robot_state_publisher's three edges, frames.pdf."""
     if shutil.which("dot") is None:
         pytest.skip("Graphviz's dot renders the pdf")
-    gripper_description(_src(graph), with_rviz=True)
-    graph.launch(
-        tmp_path / "display.log", "gripper_description", "display.launch", "--ros1-master",
-        wait_for="nodes running",
-    )  # fmt: skip
+    graph, _ = display
     graph.echo("/tf")  # robot_state_publisher is publishing
     folder = tmp_path / "frames"
     folder.mkdir()
@@ -409,28 +458,24 @@ _PARAM_STEPS = [
 ]
 
 
+@DISPLAY
 @pytest.mark.parametrize(("steps", "tool"), _PARAM_STEPS)
 def test_rosparam_steps_on_the_launch_s_master(
-    graph: SeedRos1, tmp_path: Path, steps: Callable[[SeedRos1, Path, list[str]], None], tool: str
+    display: tuple[SeedRos1, Path],
+    steps: Callable[[SeedRos1, Path, list[str]], None],
+    tool: str,
 ) -> None:
     """The seed's parameter-server lines against the master ``robomodel launch`` hosts, with
     Debian's rosparam and with ``robomodel param`` (checked by Debian's rosparam)."""
-    urdf_dir = gripper_description(_src(graph), with_rviz=True) / "urdf"
-    graph.launch(
-        tmp_path / "display.log", "gripper_description", "display.launch", "--ros1-master",
-        wait_for="nodes running",
-    )  # fmt: skip
+    graph, urdf_dir = display
     argv = [ROSPARAM] if tool == "rosparam" else [*ROBOMODEL, "param"]
     steps(graph, urdf_dir, argv)
 
 
-def test_use_gui_set_by_hand(graph: SeedRos1, tmp_path: Path) -> None:
+@DISPLAY
+def test_use_gui_set_by_hand(display: tuple[SeedRos1, Path]) -> None:
     """``rosparam set /use_gui true`` ("Set manually param if GUI is missing")."""
-    gripper_description(_src(graph), with_rviz=True)
-    graph.launch(
-        tmp_path / "display.log", "gripper_description", "display.launch", "--ros1-master",
-        wait_for="nodes running",
-    )  # fmt: skip
+    graph, _ = display
     assert graph.tool(ROSPARAM, "set", "/use_gui", "true").returncode == 0
     assert graph.tool(ROSPARAM, "get", "/use_gui").stdout.strip() == "true"
 
@@ -480,11 +525,15 @@ def _rrbot_two_terminals(graph: SeedRos1, tmp_path: Path) -> None:
     )  # fmt: skip
 
 
-@pytest.fixture(scope="module")
-def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
-    """One two-terminal RRBot, the first launch hosting the master, for the tests that look at
-    it and move its joints only (each starting its own took most of this module's time); the
-    tests that change its controllers or end it start their own."""
+RRBOT = pytest.mark.xdist_group("seed_000_rrbot")
+"""The tests that look at the shared RRBot and move its joints: one worker starts it once."""
+
+RRBOT_TO_CHANGE = pytest.mark.xdist_group("seed_000_rrbot_to_change")
+"""The tests that change the controllers of a second RRBot, then end it: one worker, in this
+file's order, starts it once (apart from the first, so that each group stays short)."""
+
+
+def _shared_rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
     home = tmp_path_factory.mktemp("rrbot")
     workspace = home / "catkin_ws" / "src"
     workspace.mkdir(parents=True)
@@ -496,6 +545,21 @@ def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
         shared.close()
 
 
+@pytest.fixture(scope="module")
+def rrbot(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
+    """One two-terminal RRBot, the first launch hosting the master, for the tests that look at
+    it and move its joints (each starting its own took most of this module's time)."""
+    yield from _shared_rrbot(tmp_path_factory)
+
+
+@pytest.fixture(scope="module")
+def rrbot_to_change(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SeedRos1]:
+    """Another, for the controller manager's commands (which put the controllers back as they
+    found them) and then the Ctrl-C test, last in this file, which ends it."""
+    yield from _shared_rrbot(tmp_path_factory)
+
+
+@RRBOT
 def test_rrbot_commands_move_the_joints(rrbot: SeedRos1) -> None:
     """``rostopic pub -1 /rrbot/joint1_position_controller/command std_msgs/Float64 "data:
     1.5"`` (and joint2 to 1.0): the simulated joints go there. The seed's gains are a PD (its
@@ -553,6 +617,7 @@ def _list_controllers(graph: SeedRos1) -> dict[str, tuple[str, str]]:
     return {row[0]: (row[1], row[2]) for row in rows}
 
 
+@RRBOT
 def test_rrbot_controllers_are_loaded_and_running(rrbot: SeedRos1) -> None:
     """The spawner's three controllers, all running, the position controllers with the
     YAML's type; the service the seed's rqt and ``controller_manager`` use is offered."""
@@ -569,12 +634,14 @@ def test_rrbot_controllers_are_loaded_and_running(rrbot: SeedRos1) -> None:
     assert {state for _, state in controllers.values()} == {"active"}
 
 
+@RRBOT
 def test_rrbot_list_controllers_shows_the_yaml_s_types(rrbot: SeedRos1) -> None:
     assert _list_controllers(rrbot)["joint_state_controller"][0] == (
         "joint_state_controller/JointStateController"
     )
 
 
+@RRBOT
 def test_service_call_without_a_type_on_ros1(rrbot: SeedRos1) -> None:
     """``rosservice call /rrbot/controller_manager/list_controllers`` → ``robomodel service call
     ...``: the type is looked up as rosservice does."""
@@ -583,13 +650,15 @@ def test_service_call_without_a_type_on_ros1(rrbot: SeedRos1) -> None:
     assert "joint1_position_controller" in run.stdout
 
 
-def test_controller_manager_commands(graph: SeedRos1, tmp_path: Path) -> None:
+@RRBOT_TO_CHANGE
+def test_controller_manager_commands(rrbot_to_change: SeedRos1) -> None:
     """``controller_manager <command> <controller_name>`` (the seed's ``roslaunch`` is rosrun's
     job: ``rosrun controller_manager controller_manager``) → ``robomodel run controller_manager
     controller_manager``, in /rrbot: the seed's load, unload, start, stop, spawn and kill, with
     ROS 1's printed words and states (a loaded controller is ``initialized`` until started),
-    then list-types (ROS 1's type names) and reload-libraries --restore."""
-    _rrbot_two_terminals(graph, tmp_path)
+    then list-types (ROS 1's type names) and reload-libraries --restore; last the stopped
+    controller is started again: the controllers are left as they were found."""
+    graph = rrbot_to_change
     j1, j2 = "joint1_position_controller", "joint2_position_controller"
 
     def cm(*argv: str) -> str:
@@ -627,17 +696,23 @@ def test_controller_manager_commands(graph: SeedRos1, tmp_path: Path) -> None:
     ]  # fmt: skip
     # as ros_control's script restores: every controller loaded again, the running ones started
     assert states() == {"joint_state_controller": "running", j1: "initialized", j2: "running"}
+    assert cm("start", j1) == f"Started ['{j1}'] successfully\n"
+    assert states() == dict.fromkeys(("joint_state_controller", j1, j2), "running")
 
 
+@RRBOT
 def test_rrbot_graph_has_rosout(rrbot: SeedRos1) -> None:
     """What ``rostopic list`` shows on any ROS 1 graph: /rosout and /rosout_agg."""
     topics = rrbot.tool(ROSTOPIC, "list").stdout.split()
     assert {"/rosout", "/rosout_agg"} <= set(topics)
 
 
-def test_ctrl_c_ends_the_launches(graph: SeedRos1, tmp_path: Path) -> None:
-    """Ctrl-C in each terminal ends its launch."""
-    _rrbot_two_terminals(graph, tmp_path)
-    for proc in reversed(graph.procs):
+@RRBOT_TO_CHANGE
+def test_ctrl_c_ends_the_launches(rrbot_to_change: SeedRos1) -> None:
+    """Ctrl-C in each terminal ends its launch (the shared RRBot's: this test is the last of
+    this file's that use it)."""
+    procs = rrbot_to_change.procs
+    assert len(procs) == 2 and all(proc.poll() is None for proc in procs)
+    for proc in reversed(procs):
         proc.send_signal(signal.SIGINT)
         assert proc.wait(scaled(60)) is not None

@@ -18,11 +18,11 @@ import pytest
 
 from tests.conftest import EXAMPLES, ROBOMODEL
 from tests.seeds.conftest import (
-    MASTERS,
     ROSPARAM,
     ROSSERVICE,
     ROSTOPIC,
     SeedRos1,
+    grouped_by_master,
     joint_position,
     package_xml,
     start_master,
@@ -153,7 +153,7 @@ def _two_launches(graph: SeedRos1, tmp_path: Path) -> str:
     return log.read_text()
 
 
-@pytest.fixture(scope="module", params=MASTERS)
+@pytest.fixture(scope="module", params=grouped_by_master("seed_ur5"))
 def ur5(
     request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[tuple[SeedRos1, str]]:
@@ -194,7 +194,9 @@ def test_controllers_load_and_a_joint_follows_its_command(ur5: tuple[SeedRos1, s
     )
 
 
-@pytest.mark.parametrize("ur5", ["robomodel-master"], indirect=True)
+@pytest.mark.parametrize(
+    "ur5", grouped_by_master("seed_ur5", only="robomodel-master"), indirect=True
+)
 def test_rostopic_list_shows_the_controllers_topics(ur5: tuple[SeedRos1, str]) -> None:
     """``rostopic list``: the seed's topics that robomodel's simulator and controllers have."""
     ros1_graph, _ = ur5
@@ -218,7 +220,9 @@ def test_rostopic_list_shows_gazebo_s_state_topics_and_rosout(ur5: tuple[SeedRos
     reason="not offered: gazebo's dynamic_reconfigure topics /gazebo/parameter_descriptions "
     "and /gazebo/parameter_updates",
 )
-@pytest.mark.parametrize("ur5", ["robomodel-master"], indirect=True)
+@pytest.mark.parametrize(
+    "ur5", grouped_by_master("seed_ur5", only="robomodel-master"), indirect=True
+)
 def test_rostopic_list_shows_gazebo_s_reconfigure_topics(ur5: tuple[SeedRos1, str]) -> None:
     ros1_graph, _ = ur5
     assert set(ros1_graph.tool(ROSTOPIC, "list").stdout.split()) >= RECONFIGURE_TOPICS

@@ -23,6 +23,7 @@ from tests.seeds.conftest import (
     ROSNODE,
     ROSTOPIC,
     SeedRos1,
+    grouped_by_master,
     joint_position,
     package_xml,
     start_master,
@@ -431,7 +432,7 @@ def _controllers_launch(graph: SeedRos1, tmp_path: Path) -> Path:
     return log
 
 
-@pytest.fixture(scope="module", params=MASTERS)
+@pytest.fixture(scope="module", params=grouped_by_master("seed_simplebot"))
 def simplebot(
     request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[tuple[SeedRos1, Path]]:
@@ -475,7 +476,9 @@ def test_the_robot_drives_on_cmd_vel_and_odom_follows(simplebot: tuple[SeedRos1,
     ros1_graph.stop(steering)  # the module's other tests look at a robot that stands
 
 
-@pytest.mark.parametrize("simplebot", ["robomodel-master"], indirect=True)
+@pytest.mark.parametrize(
+    "simplebot", grouped_by_master("seed_simplebot", only="robomodel-master"), indirect=True
+)
 def test_joint_states_at_the_yaml_s_publish_rate(simplebot: tuple[SeedRos1, Path]) -> None:
     """``publish_rate : 80``: /joint_states stamps 1/80 s apart (simulated time)."""
     ros1_graph, _ = simplebot
@@ -490,7 +493,9 @@ def test_joint_states_at_the_yaml_s_publish_rate(simplebot: tuple[SeedRos1, Path
     assert rate_hz == pytest.approx(80, abs=1)
 
 
-@pytest.mark.parametrize("simplebot", ["robomodel-master"], indirect=True)
+@pytest.mark.parametrize(
+    "simplebot", grouped_by_master("seed_simplebot", only="robomodel-master"), indirect=True
+)
 def test_list_controllers_shows_the_yaml_s_types(simplebot: tuple[SeedRos1, Path]) -> None:
     ros1_graph, _ = simplebot
     run = ros1_graph.tool(*ROBOMODEL, "control", "list-controllers")

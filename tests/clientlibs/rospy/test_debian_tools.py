@@ -18,6 +18,9 @@ from tests.conftest import end_process
 from tests.ros1wire.conftest import ROSCORE, Ros1
 from tests.timing import scaled
 
+# Every test runs on the module's roscore: one worker starts it once
+pytestmark = pytest.mark.xdist_group("rospy_debian_tools")
+
 HERE = Path(__file__).parent
 NODES = HERE / "nodes"
 PACKAGES = HERE / "packages"
