@@ -352,17 +352,23 @@ def _render(mod: Module, doc: str) -> str:
     return "\n".join(head + mod.lines) + "\n"
 
 
-def _ruff(text: str, path: Path) -> str:
-    """``text`` as ruff fixes and formats it under the project's settings."""
-    for argv in (["check", "--fix-only", "--quiet"], ["format", "--quiet"]):
-        done = subprocess.run(
-            [sys.executable, "-m", "ruff", *argv, "--stdin-filename", str(path), "-"],
-            input=text, capture_output=True, text=True, cwd=ROOT, check=False,
-        )  # fmt: skip
-        if done.returncode not in (0, 1) or not done.stdout:
-            raise SystemExit(f"ruff {argv[0]} failed on {path.name}: {done.stderr.strip()}")
-        text = done.stdout
-    return text
+def _ruff(texts: Mapping[str, str]) -> dict[str, str]:
+    """``texts`` (by path relative to OUT) as ruff fixes and formats them under the project's
+    settings: written to a folder inside the project (so its pyproject.toml applies) and given
+    to one ``ruff check`` and one ``ruff format``, rather than two ruff processes per module."""
+    with tempfile.TemporaryDirectory(dir=ROOT, prefix=".gen_msgs-") as folder:
+        paths = {relative: Path(folder) / relative for relative in texts}
+        for relative, path in paths.items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(texts[relative])
+        for argv in (["check", "--fix-only", "--quiet"], ["format", "--quiet"]):
+            done = subprocess.run(
+                [sys.executable, "-m", "ruff", *argv, *map(str, paths.values())],
+                capture_output=True, text=True, cwd=ROOT, check=False,
+            )  # fmt: skip
+            if done.returncode not in (0, 1):
+                raise SystemExit(f"ruff {argv[0]} failed: {done.stderr.strip()}")
+        return {relative: path.read_text() for relative, path in paths.items()}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -373,9 +379,8 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     stale = []
-    for relative, text in generate().items():
+    for relative, text in _ruff(generate()).items():
         path = args.out.resolve() / relative
-        text = _ruff(text, OUT / relative)
         if path.is_file() and path.read_text() == text:
             continue
         stale.append(path)

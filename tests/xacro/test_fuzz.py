@@ -3,6 +3,8 @@ never another exception (no tracebacks for bad input)."""
 
 from __future__ import annotations
 
+import functools
+
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -31,14 +33,25 @@ def _escape(value: str) -> str:
     return value.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
 
 
-@st.composite
-def _element(draw: st.DrawFn, depth: int) -> str:
-    tag = draw(st.sampled_from(TAGS))
-    names = draw(st.lists(st.sampled_from(ATTRS), max_size=3, unique=True))
-    attrs = "".join(f' {n}="{_escape(draw(VALUES))}"' for n in names)
-    children = "".join(draw(st.lists(_element(depth - 1), max_size=3))) if depth > 0 else ""
-    text = _escape(draw(VALUES)) if draw(st.booleans()) else ""
-    return f"<{tag}{attrs}>{text}{children}</{tag}>"
+_TAG = st.sampled_from(TAGS)
+_NAMES = st.lists(st.sampled_from(ATTRS), max_size=3, unique=True)
+
+
+@functools.cache
+def _element(depth: int) -> st.SearchStrategy[str]:
+    """Elements nested ``depth`` deep; one strategy object per depth, since building strategies
+    during every draw costs hypothesis more than running the example."""
+    children = st.lists(_element(depth - 1), max_size=3) if depth > 0 else st.just([])
+
+    @st.composite
+    def element(draw: st.DrawFn) -> str:
+        tag = draw(_TAG)
+        attrs = "".join(f' {n}="{_escape(draw(VALUES))}"' for n in draw(_NAMES))
+        inner = "".join(draw(children))
+        text = _escape(draw(VALUES)) if draw(st.booleans()) else ""
+        return f"<{tag}{attrs}>{text}{inner}</{tag}>"
+
+    return element()
 
 
 @settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -3,6 +3,7 @@ and where the reference fails we fail too (with an InputError, never a crash).""
 
 from __future__ import annotations
 
+import functools
 import tempfile
 from pathlib import Path
 
@@ -21,6 +22,7 @@ WORDS = st.sampled_from(
 )
 
 
+@functools.cache
 def _expr(names: tuple[str, ...]) -> st.SearchStrategy[str]:
     atoms = st.one_of(NUMBERS, st.sampled_from(names) if names else NUMBERS, st.just("'s'"))
     return st.recursive(
@@ -37,6 +39,7 @@ def _expr(names: tuple[str, ...]) -> st.SearchStrategy[str]:
     )
 
 
+@functools.cache
 def _value(names: tuple[str, ...]) -> st.SearchStrategy[str]:
     expr = _expr(names).map(lambda e: "${" + e + "}")
     return st.one_of(
@@ -45,6 +48,7 @@ def _value(names: tuple[str, ...]) -> st.SearchStrategy[str]:
     )  # fmt: skip
 
 
+@functools.cache
 def _text() -> st.SearchStrategy[str]:
     return st.one_of(
         st.sampled_from(["\n  ", "\n\n  ", " ", "\n"]),
@@ -54,6 +58,9 @@ def _text() -> st.SearchStrategy[str]:
     )
 
 
+# One strategy object per argument tuple: building strategies during every draw costs
+# hypothesis more than running the example.
+@functools.cache
 @st.composite
 def _content(
     draw: st.DrawFn, names: tuple[str, ...], macros: tuple[str, ...], depth: int, blocks: bool
