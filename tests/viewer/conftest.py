@@ -131,13 +131,6 @@ def page(browser: Any) -> Iterator[Any]:
         yield opened
 
 
-def wait_for_clients(viewer: Any, count: int) -> None:
-    """Wait until the in-process viewer ``viewer`` serves ``count`` pages: a page closed by one
-    test still counts until its websocket's end reaches the server, and the next test's page
-    must be the one it talks to."""
-    wait_for(lambda: len(viewer.server.get_clients()) == count, what=f"{count} page(s) connected")
-
-
 def open_viewer(page: Any, url: str) -> None:
     """Load the page and wait until the GUI arrived over the websocket."""
     page.goto(url)
