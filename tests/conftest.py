@@ -134,6 +134,24 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         for marker in sorted(tiers_of(item.nodeid, fixtures)):
             item.add_marker(marker)
     items.sort(key=_start_order)
+    _name_xdist_groups(config, items)
+
+
+def _name_xdist_groups(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """In an xdist worker under ``--dist loadgroup``, end each grouped test's id with
+    ``@GROUP``, which is what the controller groups by. pytest-xdist 3.8 does this by setting
+    ``item._nodeid``, which pytest 9 no longer reads (an item's id is ``item._id``): its
+    groups were silently spread over the workers, and a group's module-scoped fixture started
+    once per worker and test."""
+    from _pytest.nodeid import coerce_node_id
+
+    if not (hasattr(config, "workerinput") and config.getvalue("loadgroup")):
+        return
+    for item in items:
+        names = {str(m.args[0] if m.args else m.kwargs.get("name", "default"))
+                 for m in item.iter_markers("xdist_group")}  # fmt: skip
+        if names and "@" not in item.nodeid and hasattr(item, "_id"):
+            item._id = coerce_node_id(f"{item.nodeid}@{'_'.join(sorted(names))}")
 
 
 def _start_order(item: pytest.Item) -> int:
