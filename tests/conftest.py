@@ -118,13 +118,13 @@ def pytest_configure(config: pytest.Config) -> None:
 STARTED_FIRST = ("tests/test_wheel_smoke.py",)
 
 
-@pytest.hookimpl(trylast=True)  # after xdist's, whose group names it makes take effect
+@pytest.hookimpl(trylast=True)  # after xdist's own, which names the groups its way
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark each test with the tiers it belongs to (tests/tiers.py): from the fixtures of its
     closure, and from PATH_TIERS for one that starts its processes itself. The tests of
     :data:`STARTED_FIRST` go to the front and the in-process tier to the back: its many short
     tests fill the workers while the last long ones finish, instead of a long one starting
-    last (xdist hands tests out in this order). Then :func:`_xdist_group_in_node_id`."""
+    last (xdist hands tests out in this order). Then :func:`_name_xdist_groups`."""
     for item in items:
         defs = getattr(item, "_fixtureinfo", None)
         fixtures = [
@@ -135,21 +135,24 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         for marker in sorted(tiers_of(item.nodeid, fixtures)):
             item.add_marker(marker)
     items.sort(key=_start_order)
+    _name_xdist_groups(config, items)
+
+
+def _name_xdist_groups(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """In an xdist worker under ``--dist loadgroup``, end each grouped test's id with
+    ``@GROUP``, which is what the controller groups by. pytest-xdist 3.8 does this by setting
+    ``item._nodeid``, which pytest 9 no longer reads (an item's id is ``item._id``): its
+    groups were silently spread over the workers, and a group's module-scoped fixture started
+    once per worker and test."""
+    from _pytest.nodeid import coerce_node_id
+
+    if not (hasattr(config, "workerinput") and config.getvalue("loadgroup")):
+        return
     for item in items:
-        _xdist_group_in_node_id(item)
-
-
-def _xdist_group_in_node_id(item: pytest.Item) -> None:
-    """``--dist loadgroup`` sends the tests whose node ids end in the same ``@GROUP`` to one
-    worker; xdist 3.8 writes that suffix to ``item._nodeid``, which pytest 9 no longer reads
-    (``nodeid`` is ``str(item._id)``), so every ``xdist_group`` mark was without effect and a
-    module-scoped launch started on each worker. The suffix goes into the id pytest reads."""
-    given = item.__dict__.get("_nodeid")
-    if isinstance(given, str) and given != item.nodeid:
-        from _pytest.nodeid import NodeId
-
-        path, _, tail = given.partition("::")
-        item._id = NodeId(path=path, names=tuple(tail.split("::")))
+        names = {str(m.args[0] if m.args else m.kwargs.get("name", "default"))
+                 for m in item.iter_markers("xdist_group")}  # fmt: skip
+        if names and "@" not in item.nodeid and hasattr(item, "_id"):
+            item._id = coerce_node_id(f"{item.nodeid}@{'_'.join(sorted(names))}")
 
 
 def _start_order(item: pytest.Item) -> int:

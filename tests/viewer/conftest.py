@@ -7,6 +7,7 @@ needed). WebGL renders in software.
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
 import re
@@ -106,8 +107,9 @@ def browser() -> Iterator[Any]:
         instance.close()
 
 
-@pytest.fixture
-def page(browser: Any) -> Iterator[Any]:
+@contextlib.contextmanager
+def new_page(browser: Any) -> Iterator[Any]:
+    """A page in a browser context of its own, closed at the end."""
     context = browser.new_context(viewport=VIEWPORT)
     # playwright's 30 s default (clicks, wait_for, screenshots), scaled with the machine: a
     # loaded one ran out of it on folder clicks and screenshots (tests/timing.py)
@@ -116,9 +118,17 @@ def page(browser: Any) -> Iterator[Any]:
     said: list[str] = []  # the page's console and crashes, printed with a failure's report
     page.on("console", lambda message: said.append(f"console {message.type}: {message.text}"))
     page.on("crash", lambda _page: said.append("the page crashed"))
-    yield page
-    context.close()
-    print("\n".join(said))
+    try:
+        yield page
+    finally:
+        context.close()
+        print("\n".join(said))
+
+
+@pytest.fixture
+def page(browser: Any) -> Iterator[Any]:
+    with new_page(browser) as opened:
+        yield opened
 
 
 def open_viewer(page: Any, url: str) -> None:

@@ -20,9 +20,10 @@ import pytest
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 from tests.timing import scaled
-from tests.viewer.conftest import gui_row, open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.conftest import gui_row, new_page, open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.test_tools_inprocess import on_loop
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.xdist_group("displays_browser")]
 
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
 RED_CUBE = (
@@ -32,17 +33,21 @@ RED_CUBE = (
 )
 
 
-@pytest.fixture
+@pytest.fixture(scope="module")
 def zenoh_viewer() -> Iterator[tuple[Viewer, str]]:
     domain = unique_domain()
     source = RobotSource(str(PLANAR))
     viewer = Viewer(ViewerOptions(sources=(source,), port=0, bus="zenoh", domain_id=int(domain)))
     viewer.start()
+    # The camera looks along +y from 4 m: base_link's +x is to the right of the centre.
+    viewer.fixed_dropdown.value = "base_link"
+    viewer.server.initial_camera.look_at = (0.0, 0.0, 0.0)
+    viewer.server.initial_camera.position = (0.0, -4.0, 1.0)
     yield viewer, domain
     viewer.close()
 
 
-@pytest.fixture
+@pytest.fixture(scope="module")
 def red_cube_publisher(zenoh_viewer: tuple[Viewer, str]) -> Iterator[subprocess.Popen[str]]:
     _viewer, domain = zenoh_viewer
     argv = ["topic", "pub", "-r", "5", "/visualization_marker", "visualization_msgs/msg/Marker"]
@@ -53,6 +58,37 @@ def red_cube_publisher(zenoh_viewer: tuple[Viewer, str]) -> Iterator[subprocess.
     yield proc
     proc.terminate()
     proc.wait(scaled(10))
+
+
+@pytest.fixture(scope="module")
+def shared_page(browser: Any, zenoh_viewer: tuple[Viewer, str]) -> Iterator[Any]:
+    """One page on the module's viewer for both tests: a page's first frames (software WebGL
+    compiling its shaders, the scene's first load) cost more CPU than a test's own work."""
+    viewer, _domain = zenoh_viewer
+    with new_page(browser) as page:
+        open_viewer(page, viewer.url)
+        yield page
+
+
+@pytest.fixture
+def page(shared_page: Any, zenoh_viewer: tuple[Viewer, str]) -> Iterator[Any]:
+    """The module's page; the displays a test adds are removed after it (the defaults kept)."""
+    viewer, _domain = zenoh_viewer
+    yield shared_page
+    panel = viewer.displays_panel
+
+    def remove_added() -> None:
+        for row in list(panel.rows[3:]):  # after Grid, RobotModel, TF
+            panel.remove(row)
+
+    on_loop(viewer, remove_added)
+    wait_for(lambda: len(viewer.displays.displays) == 3, what="the test's displays removed")
+
+
+def _open_add_display(page: Any) -> None:
+    """Open the Add display folder (a click on an open one would close it)."""
+    if not gui_row(page, "Display type").filter(visible=True).count():
+        page.get_by_text("Add display", exact=True).click()
 
 
 def project(camera: Any, point: np.ndarray, width: float, height: float) -> tuple[float, float]:
@@ -79,12 +115,7 @@ def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_i
     zenoh_viewer: tuple[Viewer, str], red_cube_publisher: subprocess.Popen[str], page: Any
 ) -> None:
     viewer, _domain = zenoh_viewer
-    viewer.fixed_dropdown.value = "base_link"
-    # The camera looks along +y from 4 m: base_link's +x is to the right of the centre.
-    viewer.server.initial_camera.look_at = (0.0, 0.0, 0.0)
-    viewer.server.initial_camera.position = (0.0, -4.0, 1.0)
-    open_viewer(page, viewer.url)
-    page.get_by_text("Add display", exact=True).click()
+    _open_add_display(page)
     entry = "/visualization_marker (Marker)"
     wait_for(lambda: entry in viewer.displays_panel.topic_dropdown.options, what="the topic")
     gui_row(page, "Topic").locator("input:not([type=hidden])").first.click()
@@ -130,11 +161,7 @@ def test_a_display_is_disabled_renamed_retargeted_and_removed_in_the_page(
     zenoh_viewer: tuple[Viewer, str], red_cube_publisher: subprocess.Popen[str], page: Any
 ) -> None:
     viewer, _domain = zenoh_viewer
-    viewer.fixed_dropdown.value = "base_link"
-    viewer.server.initial_camera.look_at = (0.0, 0.0, 0.0)
-    viewer.server.initial_camera.position = (0.0, -4.0, 1.0)
-    open_viewer(page, viewer.url)
-    page.get_by_text("Add display", exact=True).click()
+    _open_add_display(page)
     gui_row(page, "Display type").locator("input:not([type=hidden])").first.click()
     page.get_by_role("option", name="Marker", exact=True).click()
     page.get_by_role("button", name="Add by type", exact=True).click()

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 import subprocess
-import time
 from pathlib import Path
 from typing import Any
 
@@ -24,7 +23,7 @@ from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, has, ros1  # noqa: F401  (the fixture)
 from tests.ros1wire.test_debian_ros1 import _xvfb
-from tests.timing import scaled
+from tests.timing import wait_until
 from tests.viewer.conftest import gui_row, open_viewer, save_shot, wait_for
 
 pytestmark = pytest.mark.browser
@@ -103,18 +102,20 @@ def test_rviz_opens_the_displays_saved_from_the_page(ros1: Ros1, tmp_path: Path,
         )  # fmt: skip
     ros1.procs.append(rviz)  # type: ignore[arg-type]
     shot = tmp_path / "rviz.png"
-    deadline = time.monotonic() + scaled(90)
-    while True:
+    kept = Path(os.environ.get("ROBOMODEL_SCREENSHOTS", str(tmp_path))) / "rviz_markers.png"
+
+    def cube_drawn() -> bool:
         assert rviz.poll() is None, f"rviz ended: {log.read_text()}"
         assert publisher.poll() is None, "rostopic pub ended"
         ImageGrab.grab(xdisplay=display).save(shot)
-        if _red_pixels(shot) > 200 or time.monotonic() > deadline:
-            break
-        time.sleep(1.0)
-    kept = Path(os.environ.get("ROBOMODEL_SCREENSHOTS", str(tmp_path))) / "rviz_markers.png"
-    kept.parent.mkdir(parents=True, exist_ok=True)
-    kept.write_bytes(shot.read_bytes())
-    assert _red_pixels(shot) > 200, f"no red cube in rviz's window ({kept})"
+        return _red_pixels(shot) > 200
+
+    try:
+        wait_until(cube_drawn, 90, what=lambda: f"a red cube in rviz's window ({kept})", interval_s=0.5)  # fmt: skip
+    finally:
+        if shot.exists():  # for the reader: rviz's window as the test saw it last
+            kept.parent.mkdir(parents=True, exist_ok=True)
+            kept.write_bytes(shot.read_bytes())
     text = log.read_text()
     for complaint in ("failed to load", "PluginlibFactory", "does not exist"):
         assert complaint not in text, text

@@ -11,7 +11,6 @@ pixels where the page's camera sees each one.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -19,18 +18,42 @@ import pytest
 
 from robomodel.viewer import Viewer
 from tests.viewer import marker_publisher as published
-from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.conftest import new_page, open_viewer, save_shot, screenshot, wait_for
 from tests.viewer.fed_viewer import viewer_fed_by
 from tests.viewer.test_sensor_displays_browser import _look_at_origin, _project
 from tests.viewer.test_tools_inprocess import on_loop
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.xdist_group("marker_text_mesh_browser")]
+
+
+@pytest.fixture(scope="module")
+def fed_page(browser: Any, tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Viewer, Any]]:  # fmt: skip
+    """One viewer fed by the marker publisher and one page on it, for the module's tests: a
+    page's first frames (software WebGL compiling its shaders, the scene's first load) cost
+    more CPU than a test's own work. Each test adds its display and sets the camera it looks
+    through; :func:`marker_viewer` removes the display after it."""
+    tmp_path = tmp_path_factory.mktemp("markers")
+    with (
+        viewer_fed_by("tests.viewer.marker_publisher", tmp_path, str(tmp_path)) as viewer,
+        new_page(browser) as page,
+    ):
+        open_viewer(page, viewer.url)
+        yield viewer, page
 
 
 @pytest.fixture
-def marker_viewer(tmp_path: Path) -> Iterator[Viewer]:
-    with viewer_fed_by("tests.viewer.marker_publisher", tmp_path, str(tmp_path)) as viewer:
-        yield viewer
+def marker_viewer(fed_page: tuple[Viewer, Any]) -> Iterator[tuple[Viewer, Any]]:
+    """The module's viewer and page; the displays a test adds are removed after it."""
+    viewer, _page = fed_page
+    panel = viewer.displays_panel
+    before = on_loop(viewer, lambda: len(panel.rows))
+    yield fed_page
+
+    def remove_added() -> None:
+        for row in list(panel.rows[before:]):
+            panel.remove(row)
+
+    on_loop(viewer, remove_added)
 
 
 def _statuses(viewer: Viewer) -> dict[str, str]:
@@ -62,10 +85,9 @@ def _text_ink(shot: np.ndarray, camera: Any, canvas: dict[str, float], xyz: tupl
 
 
 def test_text_markers_are_drawn_in_their_colour_alpha_and_height_facing_the_camera(
-    marker_viewer: Viewer, page: Any
+    marker_viewer: tuple[Viewer, Any],
 ) -> None:
-    viewer = marker_viewer
-    open_viewer(page, viewer.url)
+    viewer, page = marker_viewer
     on_loop(viewer, lambda: viewer.displays_panel.add("Marker", name="Text", values={"Topic": "/text"}))  # fmt: skip
     wait_for(lambda: "messages received" in _statuses(viewer).get("Text", ""), what="text status")
 
@@ -114,10 +136,9 @@ def test_text_markers_are_drawn_in_their_colour_alpha_and_height_facing_the_came
 
 
 def test_a_mesh_resource_marker_shows_its_texture_tinted_or_the_marker_colour(
-    marker_viewer: Viewer, page: Any
+    marker_viewer: tuple[Viewer, Any],
 ) -> None:
-    viewer = marker_viewer
-    open_viewer(page, viewer.url)
+    viewer, page = marker_viewer
     on_loop(viewer, lambda: viewer.displays_panel.add("MarkerArray", name="Meshes", values={"Topic": "/meshes"}))  # fmt: skip
     camera = _look_at_origin(viewer, (0.0, -6.0, 0.0))
     canvas = page.locator("canvas").first.bounding_box()
@@ -157,12 +178,11 @@ def test_a_mesh_resource_marker_shows_its_texture_tinted_or_the_marker_colour(
 
 
 def test_pose_with_covariance_draws_the_position_ellipsoid_and_orientation_discs(
-    marker_viewer: Viewer, page: Any
+    marker_viewer: tuple[Viewer, Any],
 ) -> None:
     """RGB colour style: the roll disc (1.6 m along x) red, pitch (y) green, yaw (z) blue;
     the position ellipsoid (1 m along x) purple; Orientation off hides the discs."""
-    viewer = marker_viewer
-    open_viewer(page, viewer.url)
+    viewer, page = marker_viewer
     values = {"Topic": "/pose_cov", "Covariance/Position/Alpha": 1.0,
               "Covariance/Orientation/Color Style": "RGB", "Covariance/Orientation/Alpha": 1.0,
               "Covariance/Orientation/Offset": 1.6}  # fmt: skip

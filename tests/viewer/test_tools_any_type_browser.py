@@ -18,7 +18,7 @@ from robomodel.runtime.msg import _resolver, get_message_type
 from robomodel.runtime.node import Node
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES, ROBOMODEL, end_process, free_port, unique_domain
-from tests.viewer.conftest import gui_row, open_viewer, save_shot, type_into, wait_for
+from tests.viewer.conftest import gui_row, new_page, open_viewer, save_shot, type_into, wait_for
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = pytest.mark.browser
@@ -44,9 +44,14 @@ def _answers(uri: str) -> bool:
         return False
 
 
-@pytest.fixture(params=["zenoh", "ros1"])
-def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
-    _resolver.configure(package_paths=(_package(tmp_path / "ws"),))
+# the ROS 1 viewer and its page serve two tests: one worker for both
+_ON_ROS1 = pytest.mark.xdist_group("tools_any_type_browser_ros1")
+_ROS1 = pytest.param("ros1", marks=_ON_ROS1)
+
+
+@pytest.fixture(scope="module", params=["zenoh", _ROS1])
+def viewer(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Iterator[Viewer]:  # fmt: skip
+    _resolver.configure(package_paths=(_package(tmp_path_factory.mktemp("ws")),))
     master: subprocess.Popen[str] | None = None
     bus: dict[str, Any] = {"bus": request.param}
     if request.param == "zenoh":
@@ -70,6 +75,28 @@ def viewer(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Viewer]:
         _resolver.configure(package_paths=())
         if master is not None:
             end_process(master, group=True)
+
+
+@pytest.fixture(scope="module")
+def shared_page(browser: Any, viewer: Viewer) -> Iterator[Any]:
+    """One page per bus's viewer for the tests on it: a page's first frames (software WebGL
+    compiling its shaders, the scene's first load) cost more CPU than a test's own work."""
+    with new_page(browser) as page:
+        open_viewer(page, viewer.url)
+        yield page
+
+
+@pytest.fixture
+def page(shared_page: Any, viewer: Viewer) -> Iterator[Any]:
+    """The bus's page; the plot's series are cleared after each test (rqt_plot's Clear)."""
+    yield shared_page
+    on_loop(viewer, viewer.tools.plot.clear)
+
+
+def _open(page: Any, folder: str, row: str) -> None:
+    """Open ``folder`` unless its control ``row`` shows already (a click would close it)."""
+    if not gui_row(page, row).filter(visible=True).count():
+        page.get_by_text(folder, exact=True).click()
 
 
 def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, page: Any) -> None:
@@ -103,8 +130,7 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
         timeout_s=30,
         what="both topics in the graph, with their types",
     )
-    open_viewer(page, viewer.url)
-    page.get_by_text("Plot", exact=True).click()
+    _open(page, "Plot", "Field")
     for path in ("/reading/raw[1]", "/cam/data[0]"):
         type_into(page, "Field", path, viewer.server)
         page.get_by_text("Add series", exact=True).click()
@@ -116,7 +142,7 @@ def test_plot_and_publisher_take_types_built_from_definitions(viewer: Viewer, pa
     assert all(v < 0 for v in raw.values) and all(0 <= v < 200 for v in data.values)
     page.locator(".uplot canvas").first.wait_for()
     # The publisher: a field of the package's type, from an expression.
-    page.get_by_text("Topic Publisher", exact=True).click()
+    _open(page, "Topic Publisher", "Pub topic")
     type_into(page, "Pub topic", "/out", viewer.server)
     type_into(page, "Pub type", "my_msgs/msg/Reading", viewer.server)
     type_into(page, "Pub field", "raw[2]", viewer.server)
@@ -148,6 +174,7 @@ while not rospy.is_shutdown():
 """
 
 
+@_ON_ROS1
 @pytest.mark.parametrize("viewer", ["ros1"], indirect=True)
 def test_plot_takes_a_type_only_its_ros1_publisher_knows(
     viewer: Viewer, page: Any, tmp_path: Path
@@ -166,8 +193,7 @@ def test_plot_takes_a_type_only_its_ros1_publisher_knows(
         tools = viewer.tools.tools
         wait_for(lambda: "/sample" in tools.topic_types(), timeout_s=60,
                  what="plot_msgs/Sample learned from its publisher")  # fmt: skip
-        open_viewer(page, viewer.url)
-        page.get_by_text("Plot", exact=True).click()
+        _open(page, "Plot", "Field")
         type_into(page, "Field", "/sample/where/y", viewer.server)
         page.get_by_text("Add series", exact=True).click()
         page.get_by_text("/sample/where/y").first.wait_for()

@@ -25,6 +25,7 @@ from tests.viewer.conftest import (
     changed_fraction,
     changed_view,
     gui_row,
+    new_page,
     open_viewer,
     save_shot,
     settle,
@@ -35,22 +36,34 @@ from tests.viewer.conftest import (
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = pytest.mark.browser
+shares_the_page = pytest.mark.xdist_group("tools_browser_simplebot")  # one worker: one page
 
 
-@pytest.fixture
-def simplebot() -> Iterator[Viewer]:
+@pytest.fixture(scope="module")
+def simplebot_page(browser: Any) -> Iterator[tuple[Viewer, Any]]:
+    """The simplebot's viewer and one page on it, for the tests of its tools: a page's first
+    frames (software WebGL compiling its shaders, the scene's first load) cost more CPU than a
+    test's own work. Each test opens its own tool's folder and makes nodes of its own names."""
     source = RobotSource(str(EXAMPLES / "simplebot_description/urdf/simplebot.urdf.xacro"))
     viewer = Viewer(ViewerOptions(sources=(source,), port=0))
     viewer.start()
-    yield viewer
-    viewer.close()
+    try:
+        with new_page(browser) as page:
+            open_viewer(page, viewer.url)
+            yield viewer, page
+    finally:
+        viewer.close()
 
 
 def _open(page: Any, folder: str) -> None:
     page.get_by_text(folder, exact=True).click()
 
 
-def test_steering_pad_publishes_and_plot_draws_the_series(simplebot: Viewer, page: Any) -> None:
+@shares_the_page
+def test_steering_pad_publishes_and_plot_draws_the_series(
+    simplebot_page: tuple[Viewer, Any],
+) -> None:
+    simplebot, page = simplebot_page
     assert simplebot.context is not None
     context = simplebot.context
     twists: list[Twist] = []
@@ -60,7 +73,6 @@ def test_steering_pad_publishes_and_plot_draws_the_series(simplebot: Viewer, pag
             Twist, "/diff_drive_controller/cmd_vel_unstamped", twists.append
         ),
     )
-    open_viewer(page, simplebot.url)
     _open(page, "Robot Steering")
     type_into(page, "Steering topic", "/diff_drive_controller/cmd_vel_unstamped", simplebot.server)
     box = slider_input(page, "Linear x [m/s]")
@@ -68,6 +80,12 @@ def test_steering_pad_publishes_and_plot_draws_the_series(simplebot: Viewer, pag
     box.press("Enter")
     wait_for(lambda: twists and twists[-1].linear.x == 0.5, what="a Twist from the page")
     _open(page, "Plot")
+    # the chart shows the last Window [s]: 10 s passed between Stop's last sample and the
+    # chart's screenshot on a loaded machine, leaving the chart empty
+    window = gui_row(page, "Window [s]").locator("input:not([type=hidden])").first
+    window.fill("300")
+    window.press("Enter")
+    wait_for(lambda: simplebot.tools.plot.window_s.value == 300, what="the chart's window 300 s")
     wait_for(
         lambda: "/diff_drive_controller/cmd_vel_unstamped" in simplebot.tools.tools.topics,
         what="the topic in the graph",
@@ -88,7 +106,11 @@ def test_steering_pad_publishes_and_plot_draws_the_series(simplebot: Viewer, pag
     assert blue.sum() > 50
 
 
-def test_parameter_editor_and_laser_scan_in_the_scene(simplebot: Viewer, page: Any) -> None:
+@shares_the_page
+def test_parameter_editor_and_laser_scan_in_the_scene(
+    simplebot_page: tuple[Viewer, Any],
+) -> None:
+    simplebot, page = simplebot_page
     assert simplebot.context is not None
     context = simplebot.context
 
@@ -98,7 +120,6 @@ def test_parameter_editor_and_laser_scan_in_the_scene(simplebot: Viewer, page: A
         return node, node.create_publisher(LaserScan, "/scan", 10)
 
     node, scan_pub = on_loop(simplebot, make_node)
-    open_viewer(page, simplebot.url)
     _open(page, "Parameters")
     wait_for(lambda: "/tuned" in simplebot.tools.parameters.node_dropdown.options)
     page.locator("input[value='(choose a node)']:not([type=hidden])").click()
