@@ -36,6 +36,7 @@ _DOMAINS = itertools.count()
 
 
 _ROUTER: subprocess.Popen[bytes] | None = None
+_ROUTER_LINK: Any = None  # a zenoh.Session, when the run found a router running
 _TMPDIR: str | None = None  # the processes' TMPDIR, removed at the end of the run
 
 
@@ -103,6 +104,7 @@ def pytest_configure(config: pytest.Config) -> None:
     _processes_tmpdir()
     _byte_code_cache()
     if _listening(7447):
+        _keep_router_alive()
         return
     _ROUTER = subprocess.Popen(
         [*ROBOMODEL, "router"], stderr=subprocess.DEVNULL, start_new_session=True
@@ -179,7 +181,25 @@ def pytest_report_header(config: pytest.Config) -> str:
     return f"robomodel test timeout scale: {scale():.2f} ({scale_source()})"
 
 
+def _keep_router_alive() -> None:
+    """A router already on 7447 may be one that ``robomodel`` started for an earlier command
+    (``--idle-exit 60``): it would stop once no session is linked, possibly in the middle of a
+    test whose processes then meet on a new router while the test's own session stays with the
+    old one. A session of the run's own, linked for the whole run, keeps it up."""
+    global _ROUTER_LINK
+    import zenoh
+
+    config = zenoh.Config()  # a peer, as robomodel's sessions are: the router counts peers
+    config.insert_json5("mode", '"peer"')
+    config.insert_json5("connect/endpoints", '["tcp/localhost:7447"]')
+    config.insert_json5("listen/endpoints", '["tcp/localhost:0"]')
+    config.insert_json5("scouting/multicast/enabled", "false")
+    _ROUTER_LINK = zenoh.open(config)
+
+
 def pytest_unconfigure(config: pytest.Config) -> None:
+    if _ROUTER_LINK is not None:
+        _ROUTER_LINK.close()
     if _ROUTER is not None:
         _ROUTER.terminate()
         try:

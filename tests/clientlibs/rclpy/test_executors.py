@@ -7,6 +7,7 @@ awaited in asyncio (examples_rclpy_minimal_action_client's client_asyncio)."""
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import os
 import signal
 import statistics
@@ -187,7 +188,11 @@ def test_an_rclpy_future_awaited_in_asyncio(rclpy_inproc: None) -> None:
         response = await client.call_async(Trigger.Request())
         return str(response.message)
 
-    assert asyncio.run(asyncio.wait_for(ask(), scaled(10))) == "answered"
+    # asyncio.run on a thread of its own, as the user's program would own its thread: this
+    # worker's main thread may hold the running loop of the browser tests' playwright
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        answer = pool.submit(asyncio.run, asyncio.wait_for(ask(), scaled(10))).result()
+    assert answer == "answered"
     executor.shutdown()
     spinner.join(scaled(10))
 
