@@ -164,10 +164,10 @@ class EventHandler:
         self.callback_group = callback_group
         self.callback = callback
         self.event_type = event_type
-        self._destroyed = False
+        self.destroyed = False
 
     def destroy(self) -> None:
-        self._destroyed = True
+        self.destroyed = True
 
 
 def _unsupported(event_type: enum.IntEnum) -> UnsupportedEventTypeError:
@@ -175,6 +175,17 @@ def _unsupported(event_type: enum.IntEnum) -> UnsupportedEventTypeError:
         f"Failed to initialize event: provided event_type {int(event_type)} "
         f"({event_type.name}) is not supported by rmw_zenoh_cpp"
     )
+
+
+def _handlers(
+    callback_group: CallbackGroup, wanted: tuple[tuple[Callable[[Any], Any] | None, Any], ...]
+) -> list[EventHandler]:
+    """A handler for each callback given, of its event type."""
+    return [
+        EventHandler(callback_group=callback_group, callback=callback, event_type=kind)
+        for callback, kind in wanted
+        if callback is not None
+    ]
 
 
 class SubscriptionEventCallbacks:
@@ -211,11 +222,7 @@ class SubscriptionEventCallbacks:
             (self.incompatible_type, kinds.RCL_SUBSCRIPTION_INCOMPATIBLE_TYPE),
             (self.matched, kinds.RCL_SUBSCRIPTION_MATCHED),
         )
-        return [
-            EventHandler(callback_group=callback_group, callback=callback, event_type=kind)
-            for callback, kind in wanted
-            if callback is not None
-        ]
+        return _handlers(callback_group, wanted)
 
 
 class PublisherEventCallbacks:
@@ -249,11 +256,7 @@ class PublisherEventCallbacks:
             (self.incompatible_type, kinds.RCL_PUBLISHER_INCOMPATIBLE_TYPE),
             (self.matched, kinds.RCL_PUBLISHER_MATCHED),
         )
-        return [
-            EventHandler(callback_group=callback_group, callback=callback, event_type=kind)
-            for callback, kind in wanted
-            if callback is not None
-        ]
+        return _handlers(callback_group, wanted)
 
 
 def _kind(event_type: enum.IntEnum) -> tuple[type, int]:
@@ -329,6 +332,16 @@ class EventWatch:
                 self._unreported += (now - due) // self.deadline_ns + 1
             self._next_deadline_ns = now + self.deadline_ns
 
+    def noting(self, call: Callable[..., Any]) -> Callable[..., Any]:
+        """``call`` (a publish, or a subscription's delivery) restarting the deadline each
+        time it runs."""
+
+        def noted(*args: Any) -> Any:
+            self.activity()
+            return call(*args)
+
+        return noted
+
     def poll(self) -> list[tuple[EventHandler, Any]]:
         """The (handler, status) calls due now."""
         if self.stopped:
@@ -339,7 +352,7 @@ class EventWatch:
         missed = self._poll_deadline()
         for handler in self.handlers:
             kind = _kind(handler.event_type)
-            if handler._destroyed:
+            if handler.destroyed:
                 continue
             for statuses, counts in ((_MATCHED, matched), (_LOST, lost), (_DEADLINE, missed)):
                 if counts is not None and kind in statuses:

@@ -370,7 +370,7 @@ class Node:
                 deadline_ns=profile.deadline_ns(),
             )
             if watch.deadline_ns:
-                deliver = _noting_activity(deliver, watch)
+                deliver = watch.noting(deliver)
         if raw:
             handle = self._raw_subscription(msg_type, topic, deliver, profile)
         else:
@@ -1023,16 +1023,6 @@ def _required_arguments(callback: Callable[..., Any]) -> int:
         for p in signature.parameters.values()
         if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) and p.default is p.empty
     )
-
-
-def _noting_activity(deliver: Callable[..., None], watch: EventWatch) -> Callable[..., None]:
-    """``deliver`` telling the watch of each message (for its deadline)."""
-
-    def noted(*args: Any) -> None:
-        watch.activity()
-        deliver(*args)
-
-    return noted
 
 
 def _response_taken() -> None:

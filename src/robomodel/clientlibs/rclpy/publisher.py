@@ -67,13 +67,7 @@ class Publisher:
         self._event_watch = watch
         self.event_handlers = watch.handlers
         if watch.deadline_ns:  # each publish restarts the deadline
-            publish = self._publish
-
-            def noted(msg: Any) -> None:
-                publish(msg)
-                watch.activity()
-
-            self._publish = noted
+            self._publish = watch.noting(self._publish)
 
     def destroy(self) -> None:
         self._destroyed = True
