@@ -187,14 +187,10 @@ def _keep_router_alive() -> None:
     test whose processes then meet on a new router while the test's own session stays with the
     old one. A session of the run's own, linked for the whole run, keeps it up."""
     global _ROUTER_LINK
-    import zenoh
+    from robomodel.runtime.transport._zenoh_session import open_session
 
-    config = zenoh.Config()  # a peer, as robomodel's sessions are: the router counts peers
-    config.insert_json5("mode", '"peer"')
-    config.insert_json5("connect/endpoints", '["tcp/localhost:7447"]')
-    config.insert_json5("listen/endpoints", '["tcp/localhost:0"]')
-    config.insert_json5("scouting/multicast/enabled", "false")
-    _ROUTER_LINK = zenoh.open(config)
+    # a session as robomodel's processes open one: a peer, which the router counts
+    _ROUTER_LINK = open_session().session
 
 
 def pytest_unconfigure(config: pytest.Config) -> None:

@@ -298,4 +298,4 @@ def test_a_publisher_restarting_with_the_same_gid_loses_none_of_8_messages() -> 
             session.put(key, serialize(Float64(float(value))), attachment=attachment)
         ctx.spin(duration_s=scaled(10.0), until=lambda: len(got) >= 8)
     assert got == [float(v) for v in range(8)]
-    assert sub._handle.lost == 3  # type: ignore[attr-defined]  # |1 - 5| - 1, as rmw_zenoh
+    assert sub.get_messages_lost() == 3  # |1 - 5| - 1, as rmw_zenoh

@@ -197,12 +197,8 @@ class ZenohSubscription(SubscriptionHandle):
             self._sub = bus.session.declare_subscriber(key, direct(on_sample))
         self._token = bus.session.liveliness().declare_token(token.key())
 
-    @property
-    def lost(self) -> int:
-        """Messages lost, by the publishers' sequence numbers (rmw_zenoh's MESSAGE_LOST)."""
-        return self._sequences.lost
-
     def messages_lost(self) -> int:
+        """Messages lost, by the publishers' sequence numbers (rmw_zenoh's MESSAGE_LOST)."""
         return self._sequences.lost
 
     def _on_sample(self, sample: Any) -> None:  # a Zenoh thread
