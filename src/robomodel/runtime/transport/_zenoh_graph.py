@@ -145,7 +145,10 @@ class GraphCache:
             self._left_out_untracked -= 1
 
     def _add(self, key: str, token: EntityToken) -> None:
-        if key in self._tokens:
+        # A token already kept, or already left out, is declared again when it reaches this
+        # session by a second route (a direct link to its peer opening after the router's); a
+        # left-out one admitted then, once room is made, would be counted twice.
+        if key in self._tokens or hash(key) in self._left_out:
             return
         full = len(self._tokens) >= self._max_tokens
         if full or self._per_peer[token.zid] >= self._max_per_peer:
