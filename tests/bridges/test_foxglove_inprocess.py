@@ -174,3 +174,42 @@ def test_frames_the_size_of_an_image_reuse_the_heap(bridge: FoxgloveBridge) -> N
     for _ in range(20):
         pair()
     assert resource.getrusage(resource.RUSAGE_THREAD).ru_minflt - before < 20
+
+
+def test_a_graph_read_in_part_or_not_at_all_closes_no_channel(
+    bridge: FoxgloveBridge, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A master that does not answer in time, or a graph a bound cut short, leaves every
+    channel open (with a client's subscription on it); one line says the read failed."""
+    from robomodel.runtime.transport.base import Graph
+
+    vector = get_message_type("geometry_msgs/msg/Vector3Stamped")
+    node = bridge.context.create_node("gusty")
+    bridge._on_bus(lambda: node.create_publisher(vector, "/gust"))
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        channel = None
+        while channel is None:
+            found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/gust"]
+            channel = found[0] if found else None
+        reads: list[Graph] = []
+        bad = [Graph(unreadable="the master did not answer", complete=False)] * 3
+        bad += [Graph(complete=False)] * 2  # an empty listing that says it is incomplete
+
+        def failing_graph(timeout_s: float = 1.0) -> Graph:
+            reads.append(bad[min(len(reads), len(bad) - 1)])
+            return reads[-1]
+
+        said = len(LINES)
+        monkeypatch.setattr(bridge.context, "graph", failing_graph)
+        wait_until(lambda: len(reads) >= len(bad) + 1, 20, what="the bridge's graph reads")
+        monkeypatch.undo()
+        seen: list[Any] = []
+        try:
+            while True:
+                seen.append(ws.recv(timeout=0.2))
+        except TimeoutError:
+            pass
+        gone = [json.loads(f) for f in seen if isinstance(f, str) and '"unadvertise"' in f]
+        assert all(channel["id"] not in g["channelIds"] for g in gone)
+        failures = [line for line in LINES[said:] if "reading the graph failed" in line]
+        assert failures == ["foxglove_bridge: reading the graph failed: the master did not answer"]

@@ -290,9 +290,12 @@ class FoxgloveBridge:
 
     # -- the graph -------------------------------------------------------------------------
     def _poll(self) -> None:
+        trouble = ""  # the last failure said, so that a master down is said once, not per poll
         while not self._stopping.is_set():
             try:
                 graph = self.context.graph(timeout_s=0.3)
+                if graph.unreadable:  # a master that did not answer in time: nothing went
+                    raise RobomodelError(graph.unreadable)
                 self._update_channels(graph)
                 if "services" in self.capabilities:
                     self._update_services(graph)
@@ -300,8 +303,11 @@ class FoxgloveBridge:
                     self.server.publish_connection_graph(self._connection_graph(graph))
                 if not self._events:
                     self._publish_watched()
+                trouble = ""
             except RobomodelError as exc:
-                self.log(f"foxglove_bridge: reading the graph failed: {exc}")
+                if str(exc) != trouble:
+                    trouble = str(exc)
+                    self.log(f"foxglove_bridge: reading the graph failed: {exc}")
             self._stopping.wait(_POLL_S)
 
     def _offered(self, topic: str) -> bool:
@@ -316,7 +322,11 @@ class FoxgloveBridge:
             and any(e.node != own for e in info.publishers)
         }  # fmt: skip
         with self._lock:
-            for name in [n for n in self._topics if n not in present]:
+            # A channel goes when its topic left a complete graph; a graph read in part (a
+            # bound left entities out) only adds, or a client's subscription would be dropped
+            # while its topic is still published.
+            gone_names = [n for n in self._topics if n not in present] if graph.complete else []
+            for name in gone_names:
                 gone = self._topics.pop(name)
                 gone.channel.close()
                 if gone.subscription is not None:
@@ -375,7 +385,7 @@ class FoxgloveBridge:
             if len(info.types) == 1 and any(e.node != own for e in info.servers)
             and _listed(name, self._service_whitelist)
         }  # fmt: skip
-        gone = [n for n in self._services if n not in present]
+        gone = [n for n in self._services if n not in present] if graph.complete else []
         if gone:
             self.server.remove_services(gone)
             for name in gone:
