@@ -116,6 +116,47 @@ GENMSG = textwrap.dedent(
 )
 
 
+def test_ros1_types_follow_the_package_folders_set_now(tmp_path: Path) -> None:
+    """A package's type as ROS 1 sees it (md5sum, definition, service md5sum) is the one of
+    the folders set now, not of folders set before: two workspaces with a ``Reading`` and a
+    ``Scale`` of their own, one after the other in one process."""
+    import hashlib
+
+    from robomodel.runtime.transport.ros1.ros1_types import (
+        ros1_service_type,
+        ros1_type,
+        ros1_type_named,
+    )
+
+    def workspace(name: str, reading: str, scale: str) -> Path:
+        package = tmp_path / name / "md5_msgs"
+        (package / "msg").mkdir(parents=True)
+        (package / "srv").mkdir()
+        (package / "package.xml").write_text(
+            '<package format="3"><name>md5_msgs</name><version>0.0.0</version></package>'
+        )
+        (package / "msg" / "Reading.msg").write_text(reading + "\n")
+        (package / "srv" / "Scale.srv").write_text(scale)
+        return tmp_path / name
+
+    def md5(text: str) -> str:
+        return hashlib.md5(text.encode()).hexdigest()
+
+    first = workspace("first", "float64 value", "float64 value\n---\nfloat64 result\n")
+    second = workspace("second", "string unit", "int32 a\n---\nint32 b\n")
+    try:
+        for root, reading, scale in ((first, "float64 value", ("float64 value", "float64 result")),
+                                     (second, "string unit", ("int32 a", "int32 b"))):  # fmt: skip
+            _resolver.configure(package_paths=(root,))
+            found = ros1_type(get_message_type("md5_msgs/msg/Reading"))
+            assert (found.md5sum, found.definition.strip()) == (md5(reading), reading)
+            assert ros1_type_named("md5_msgs/Reading").md5sum == md5(reading)
+            service = ros1_service_type(get_service_type("md5_msgs/srv/Scale"))
+            assert service.md5sum == md5("".join(scale))  # genmsg: request's then response's
+    finally:
+        _resolver.configure(package_paths=())
+
+
 def test_ros1_md5sums_of_package_types_equal_genmsg(packages: Path, tmp_path: Path) -> None:
     """ROS 1's md5sums of a package's message and service, as Debian's genmsg computes them."""
     import json

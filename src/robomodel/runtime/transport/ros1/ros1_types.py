@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from robomodel.errors import RobomodelError
-from robomodel.runtime.msg import Message, get_message_type
+from robomodel.runtime.msg import Message, _resolver, get_message_type
 from robomodel.runtime.msg.schema import Array, MessageTypeError, Seq, Service
 from robomodel.runtime.msg.spec import MessageSpec, spec_from_definitions
 from robomodel.runtime.msg.typehash import same_type
@@ -88,10 +88,34 @@ class Ros1ServiceType:
     cls: type[Service]
 
 
-@functools.cache
+_tables_generation = -1  # the package-path generation the tables below were filled in
+
+
+def _fresh_tables() -> None:
+    """Empty the tables of ROS 1 types when the package folders changed since they were
+    filled (``_resolver.configure``: a launch's or a command's ``--package-path``): the types
+    entered from the old folders go, with the md5sums, codecs and types built of them. A
+    package's ``Reading`` from the folders set now is not the ``Reading`` of other folders."""
+    global _tables_generation
+    now = _resolver.generation()
+    if now != _tables_generation:
+        _stored_fielddefs.cache_clear()
+        _SPECS.clear()
+        _type_named.cache_clear()
+        _TYPES.clear()
+        _SERVICES.clear()
+        _tables_generation = now
+
+
 def _fielddefs() -> dict[str, Any]:
     """ROS 1's types by name (``pkg/msg/Name``): rosbags' Noetic store's, the vendored files'
     and (:func:`_add`) those of the user's packages and learned definitions."""
+    _fresh_tables()
+    return _stored_fielddefs()
+
+
+@functools.cache
+def _stored_fielddefs() -> dict[str, Any]:
     from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
     found: dict[str, Any] = dict(get_typestore(Stores.ROS1_NOETIC).fielddefs)
@@ -193,9 +217,14 @@ def _fixed_field_size(fielddefs: Any, desc: Any) -> int | None:
     return None
 
 
-@functools.cache
 def ros1_type_named(ros1_name: str) -> Ros1Type:
     """The ROS 1 type ``ros1_name`` (``tf/tfMessage``), decoding into its robomodel class."""
+    _fresh_tables()
+    return _type_named(ros1_name)
+
+
+@functools.cache
+def _type_named(ros1_name: str) -> Ros1Type:
     key = _ros1_key(ros1_name)
     return _make_type(key, key.replace("/msg/", "/"))
 
@@ -223,6 +252,7 @@ _SERVICES: dict[type[Service], Ros1ServiceType] = {}
 
 def ros1_type(cls: type[Message]) -> Ros1Type:
     """The ROS 1 type of robomodel message class ``cls``; Ros1TypeError if ROS 1 has none."""
+    _fresh_tables()
     found = _TYPES.get(cls)
     if found is None:
         key = _ros1_name_of(cls)
@@ -263,6 +293,7 @@ def _collect(cls: Any, family: dict[str, Any]) -> None:
 
 def ros1_service_type(cls: type[Service]) -> Ros1ServiceType:
     """The ROS 1 service of robomodel service class ``cls``; Ros1TypeError if none."""
+    _fresh_tables()
     found = _SERVICES.get(cls)
     if found is None:
         found = _SERVICES[cls] = _make_service(cls)
