@@ -278,6 +278,17 @@ def past_the_bus_line(stream: Any) -> str:
     return str(line)
 
 
+def importorskip_mujoco() -> Any:
+    """``mujoco``, imported as robomodel imports it (without GLFW's version probe, which
+    starts a Python process: an in-process test may not), or the test skipped without it."""
+    from robomodel._mujoco_import import import_mujoco
+
+    try:
+        return import_mujoco()
+    except ImportError:
+        pytest.skip("mujoco is not installed (the sim extra)")
+
+
 def example_robot_data_dir() -> Path:
     """The robots of the example-robot-data wheel (installed by the test extra)."""
     prefix = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix"

@@ -10,13 +10,11 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-import pytest
-
 from robomodel.control import ControlSystem
 from robomodel.control.config import load_controller_config
 from robomodel.runtime import Context
 from robomodel.xacro import process_file
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, importorskip_mujoco
 
 ARM = EXAMPLES / "two_link_arm"
 LOAD = "/controller_manager/load_controller"
@@ -47,7 +45,7 @@ def test_services_are_offered_after_the_configuration_and_prepare() -> None:
 
 
 def test_a_simulated_robot_s_manager_serves_after_prepare() -> None:
-    pytest.importorskip("mujoco")
+    importorskip_mujoco()
     from robomodel.loading import load
     from robomodel.sim import Simulation
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import unique_domain
+from tests.conftest import importorskip_mujoco, unique_domain
 from tests.timing import scaled
 
 
@@ -77,7 +77,7 @@ def test_diff_drive_refuses_non_finite_and_huge_commands(caplog: pytest.LogCaptu
 
 
 def test_simulated_hardware_clamps_huge_velocity_before_mujoco(tmp_path: Path) -> None:
-    pytest.importorskip("mujoco")
+    importorskip_mujoco()
     from robomodel.description.urdf.reader import read_urdf
     from robomodel.runtime import Context, ManualClock
     from robomodel.runtime.msg.types.std_msgs import Float64MultiArray

@@ -21,7 +21,7 @@ from robomodel.runtime.transport._domain_id import (
     parse_domain_id,
 )
 from tests.conftest import ROBOMODEL
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 
 @pytest.mark.parametrize(
@@ -104,8 +104,14 @@ def test_a_transport_keys_its_graph_by_ros_domain_id(monkeypatch: pytest.MonkeyP
         transport = ctx.transport
         assert transport.domain_id == 501  # type: ignore[attr-defined]
         session = transport.session  # type: ignore[attr-defined]
-        keys = [str(r.ok.key_expr) for r in session.liveliness().get("@ros2_lv/501/**") if r.ok]
-        assert any(k.endswith("/NN/%/%/domain_probe") for k in keys), keys
+        keys: list[str] = []
+
+        def declared() -> bool:  # the router may answer before the new token reached it
+            keys[:] = [str(r.ok.key_expr) for r in session.liveliness().get("@ros2_lv/501/**")
+                       if r.ok]  # fmt: skip
+            return any(k.endswith("/NN/%/%/domain_probe") for k in keys)
+
+        wait_until(declared, 10, what=lambda: f"the node's token under domain 501: {keys}")
         # nothing may answer under domain 3 (a window expected to pass empty: not scaled)
         assert not list(session.liveliness().get("@ros2_lv/3/**", timeout=0.5))
 
