@@ -120,22 +120,26 @@ def pytest_configure(config: pytest.Config) -> None:
 STARTED_FIRST = ("tests/test_wheel_smoke.py",)
 
 
+def pytest_itemcollected(item: pytest.Item) -> None:
+    """Mark the test with the tiers it belongs to (tests/tiers.py): from the fixtures of its
+    closure, and from PATH_TIERS for one that starts its processes itself. Marked as it is
+    collected, so that ``-m`` (``make test-fast``) selects by these marks."""
+    defs = getattr(item, "_fixtureinfo", None)
+    fixtures = [
+        (definitions[-1].baseid, name)
+        for name, definitions in (defs.name2fixturedefs.items() if defs else ())
+        if definitions
+    ]
+    for marker in sorted(tiers_of(item.nodeid, fixtures)):
+        item.add_marker(marker)
+
+
 @pytest.hookimpl(trylast=True)  # after xdist's own, which names the groups its way
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Mark each test with the tiers it belongs to (tests/tiers.py): from the fixtures of its
-    closure, and from PATH_TIERS for one that starts its processes itself. The tests of
-    :data:`STARTED_FIRST` go to the front and the in-process tier to the back: its many short
-    tests fill the workers while the last long ones finish, instead of a long one starting
-    last (xdist hands tests out in this order). Then :func:`_name_xdist_groups`."""
-    for item in items:
-        defs = getattr(item, "_fixtureinfo", None)
-        fixtures = [
-            (definitions[-1].baseid, name)
-            for name, definitions in (defs.name2fixturedefs.items() if defs else ())
-            if definitions
-        ]
-        for marker in sorted(tiers_of(item.nodeid, fixtures)):
-            item.add_marker(marker)
+    """The tests of :data:`STARTED_FIRST` go to the front and the in-process tier to the
+    back: its many short tests fill the workers while the last long ones finish, instead of a
+    long one starting last (xdist hands tests out in this order). Then
+    :func:`_name_xdist_groups`."""
     items.sort(key=_start_order)
     _name_xdist_groups(config, items)
 

@@ -135,3 +135,22 @@ def test_wait_until_returns_the_value_and_names_what_it_waited_for() -> None:
     assert wait_until(lambda: next(calls), 5, what="x", interval_s=0) == "ready"
     with pytest.raises(AssertionError, match=r"timed out after .* s waiting for the door \(3\)"):
         wait_until(lambda: False, 0.01, what=lambda: "the door (3)", interval_s=0.001)
+
+
+def test_make_test_fast_s_selection_leaves_the_other_tiers_out() -> None:
+    """``-m`` selects by the tier marks (they are set as each test is collected, before
+    pytest's selection): the fast tier's expression leaves out a module of the ROS 1 tier
+    and keeps an in-process one."""
+    from tests.conftest import ROOT
+
+    makefile = (ROOT / "Makefile").read_text()
+    fast = next(line for line in makefile.splitlines() if line.startswith("FAST_TIER :="))
+    expression = fast.split(":=", 1)[1].strip()
+    listed = subprocess.run(
+        [sys.executable, "-m", "pytest", "--collect-only", "-q", "-n", "0",
+         "-m", expression, "tests/ros1wire/test_debian_ros1.py", "tests/test_tiers.py"],
+        capture_output=True, text=True, cwd=ROOT, timeout=120,
+    )  # fmt: skip
+    ids = [line for line in listed.stdout.splitlines() if "::" in line]
+    assert ids and all(i.startswith("tests/test_tiers.py::") for i in ids), listed.stdout
+    assert "test_make_test_fast_s_selection" not in listed.stdout  # a process test itself

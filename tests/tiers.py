@@ -212,6 +212,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/docs/test_cli_reference.py": PROCESS,
     "tests/test_cli_args.py::test_hostile_run_arguments_are_one_line_and_exit_2": PROCESS,
     "tests/test_system_deps.py": PROCESS,
+    "tests/test_tiers.py::test_make_test_fast_s_selection_leaves_the_other_tiers_out": PROCESS,
     "tests/test_wheel_smoke.py": BUS_PROCESS,
     "tests/test_yaml_file_bounds.py::test_robomodel_view_refuses_a_hostile_rviz_file_with_one_line": PROCESS,
     "tests/tf/test_view_frames_names.py::test_dot_runs_with_a_timeout_and_a_size_bound": PROCESS,
