@@ -7,7 +7,9 @@ not only in the test's own process."""
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
+import sys
 import tempfile
 import threading
 from dataclasses import dataclass
@@ -29,23 +31,45 @@ class Measured:
     peak_rss_bytes: int
 
 
+# Linux keeps a process's peak RSS across execve (the exec records the replaced image's peak),
+# and a child that subprocess starts is vforked from the pytest worker: its ru_maxrss was never
+# below the worker's own peak (422 MiB after a long run), whatever robomodel used. A small
+# Python process in between starts the command and reports the command's wait4, so the image
+# the command replaces is this one's (about 10 MiB), not the worker's.
+_MEASURER = """
+import os, sys
+pid = os.posix_spawn(sys.argv[2], sys.argv[2:], os.environ)
+_, status, usage = os.wait4(pid, 0)
+with open(sys.argv[1], "w") as report:
+    report.write(f"{os.waitstatus_to_exitcode(status)} {usage.ru_maxrss}")
+"""
+
+
 def run_measured(*argv: str, env: dict[str, str] | None = None, timeout_s: float = 120) -> Measured:
     """Run ``robomodel *argv`` to its end; killed (and the test failed) after ``timeout_s``
     (scaled with the machine: :func:`tests.timing.scaled`)."""
     timeout_s = scaled(timeout_s)
-    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
-        proc = subprocess.Popen([*ROBOMODEL, *argv], stdout=out, stderr=err, env=env, text=True)
-        timer = threading.Timer(timeout_s, proc.kill)
+    with (
+        tempfile.TemporaryFile("w+") as out,
+        tempfile.TemporaryFile("w+") as err,
+        tempfile.TemporaryDirectory() as folder,
+    ):
+        report = Path(folder) / "report"
+        command = [sys.executable, "-I", "-S", "-c", _MEASURER, str(report), *ROBOMODEL, *argv]
+        proc = subprocess.Popen(
+            command, stdout=out, stderr=err, env=env, text=True, start_new_session=True
+        )
+        timer = threading.Timer(timeout_s, lambda: os.killpg(proc.pid, signal.SIGKILL))
         timer.start()
         try:
-            _, status, usage = os.wait4(proc.pid, 0)
+            proc.wait()
         finally:
             timer.cancel()
-        proc.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
-        assert proc.returncode != -9, f"robomodel {' '.join(argv)}: not done in {timeout_s} s"
-        return Measured(proc.returncode, out.read(), err.read(), usage.ru_maxrss * 1024)
+        assert report.exists(), f"robomodel {' '.join(argv)}: not done in {timeout_s} s"
+        code, max_rss_kib = (int(field) for field in report.read_text().split())
+        return Measured(code, out.read(), err.read(), max_rss_kib * 1024)
 
 
 def _status(pid: int, field: str) -> int:
