@@ -65,6 +65,7 @@ FIXTURE_TIERS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tests/launch/test_run_ros2.py", "bus"): ("process", "bus"),
     ("tests/runtime/test_hostile_names.py", "ros1_master"): ("process", "ros1"),
     ("tests/clientlibs/rospy/test_inprocess_master.py", "node"): ("ros1",),
+    ("tests/clientlibs/rospy/test_actionlib.py", "node"): ("ros1",),
     ("tests/runtime/test_ros1_connection_caps.py", "endpoint"): ("ros1",),
     ("tests/runtime/test_ros1_master.py", "master"): ("ros1",),
     ("tests/runtime/test_ros1_messages.py", "reference"): ("process",),
