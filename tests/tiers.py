@@ -87,6 +87,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/netns": ("process", "bus", "ros1"),
     "tests/ros1wire": ROS1_PROCESS,
     "tests/clientlibs/rospy/test_debian_tools.py": ROS1_PROCESS,
+    "tests/clientlibs/rospy/test_actionlib_debian.py": ROS1_PROCESS,
     "tests/ros2wire": BUS_PROCESS,
     "tests/seeds": PROCESS,
     "tests/sim/test_teleop_keyboard.py": ("sim", "process", "bus"),
