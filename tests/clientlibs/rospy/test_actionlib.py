@@ -172,7 +172,10 @@ def test_a_new_goal_preempts_the_running_one(
     first = actionlib.ActionClient("fibonacci", _classes()[0])
     try:
         assert first.wait_for_server(rospy.Duration(scaled(20)))
-        handle = first.send_goal(goal_class(order=20))
+        transitions: list[int] = []
+        handle = first.send_goal(
+            goal_class(order=20), transition_cb=lambda gh: transitions.append(gh.get_comm_state())
+        )
         wait_until(fibonacci.started.is_set, scaled(20), what="the first goal running")
         wait_until(
             lambda: handle.get_comm_state() == actionlib.CommState.ACTIVE,
@@ -188,6 +191,11 @@ def test_a_new_goal_preempts_the_running_one(
         )
         assert handle.get_goal_status() == actionlib.GoalStatus.PREEMPTED
         assert handle.get_terminal_state() == actionlib.TerminalState.PREEMPTED
+        # PENDING is heard only if a status came before the goal was accepted
+        C = actionlib.CommState
+        assert [t for t in transitions if t != C.PENDING] == [
+            C.ACTIVE, C.PREEMPTING, C.WAITING_FOR_RESULT, C.DONE
+        ]  # fmt: skip
         assert fibonacci.preempts_seen == [20]
         fibonacci.gate.set()
         assert client.wait_for_result(rospy.Duration(scaled(30)))
@@ -295,9 +303,10 @@ def test_action_server_reject_cancel_by_stamp_and_all_and_the_status_list(node: 
             scaled(20),
             what="the rejected goal gone from the status list",
         )
-        # two accepted goals, then a cancel of those stamped at or before the first
-        handles = [client.send_goal(goal_class(order=n)) for n in (2, 3)]
-        wait_until(lambda: len(recorder.handles) == 3, scaled(20), what="two more goals")
+        # three accepted goals: a cancel of the last by its id, then of those stamped at or
+        # before the first, then of all
+        handles = [client.send_goal(goal_class(order=n)) for n in (2, 3, 4)]
+        wait_until(lambda: len(recorder.handles) == 4, scaled(20), what="three more goals")
         for handle in recorder.handles[1:]:
             handle.set_accepted()
         wait_until(
@@ -305,22 +314,28 @@ def test_action_server_reject_cancel_by_stamp_and_all_and_the_status_list(node: 
             scaled(20),
             what="both goals active",
         )
+        ids = [h.get_goal_id().id for h in recorder.handles]
+        handles[2].cancel()
+        wait_until(lambda: len(recorder.cancels) == 1, scaled(20), what="the cancel by id")
+        assert recorder.cancels == [ids[3]]
+        recorder.handles[3].set_canceled()
         first_stamp = recorder.handles[1].get_goal_id().stamp
         client.cancel_goals_at_and_before_time(first_stamp)
-        wait_until(lambda: len(recorder.cancels) == 1, scaled(20), what="one cancel callback")
-        assert recorder.cancels == [recorder.handles[1].get_goal_id().id]
+        wait_until(lambda: len(recorder.cancels) == 2, scaled(20), what="the cancel by stamp")
+        assert recorder.cancels[1:] == [ids[1]]
         assert recorder.handles[1].get_goal_status().status == actionlib.GoalStatus.PREEMPTING
         assert recorder.handles[2].get_goal_status().status == actionlib.GoalStatus.ACTIVE
         recorder.handles[1].set_canceled()
         client.cancel_all_goals()
-        wait_until(lambda: len(recorder.cancels) == 2, scaled(20), what="the cancel of all")
+        wait_until(lambda: len(recorder.cancels) == 3, scaled(20), what="the cancel of all")
+        assert recorder.cancels[2:] == [ids[2]]  # the others are done: no callback
         recorder.handles[2].set_succeeded(text="finished anyway")
         wait_until(
             lambda: all(h.get_comm_state() == actionlib.CommState.DONE for h in handles),
             scaled(20),
-            what="both goals done",
+            what="the three goals done",
         )
-        assert [h.get_goal_status() for h in handles] == [2, 3]  # PREEMPTED, SUCCEEDED
+        assert [h.get_goal_status() for h in handles] == [2, 3, 2]  # PREEMPTED, SUCCEEDED
         assert handles[1].get_goal_status_text() == "finished anyway"
         assert all(GOAL_ID.match(h.get_goal_id().id) for h in recorder.handles)
     finally:
@@ -377,3 +392,60 @@ def test_every_exported_name_resolves() -> None:
     assert actionlib.SimpleGoalState.to_string(1) == "ACTIVE"
     with pytest.raises(actionlib.ActionException, match="not an action spec"):
         actionlib.ActionClient("x", _classes()[1])  # a goal class, not the action's
+
+
+def test_wait_for_server_needs_all_five_topics_of_one_server(node: str) -> None:
+    """A node with the status, goal, cancel and feedback topics of an action but no result
+    publisher is no server yet; it is once that comes (actionlib's check of the
+    connections)."""
+    from actionlib_msgs.msg import GoalID, GoalStatusArray  # type: ignore[import-not-found]
+
+    action = _classes()[0]()
+    status = rospy.Publisher("/half/status", GoalStatusArray, latch=True, queue_size=1)
+    status.publish(GoalStatusArray())
+    parts: list[Any] = [
+        status,
+        rospy.Subscriber("/half/goal", type(action.action_goal)),
+        rospy.Subscriber("/half/cancel", GoalID),
+        rospy.Publisher("/half/feedback", type(action.action_feedback), queue_size=1),
+    ]
+    client = actionlib.SimpleActionClient("half", _classes()[0])
+    try:
+        wait_until(
+            lambda: client.action_client.last_status_msg is not None,
+            scaled(20),
+            what="the status heard",
+        )
+        assert client.wait_for_server(rospy.Duration(0.5)) is False
+        parts.append(rospy.Publisher("/half/result", type(action.action_result), queue_size=1))
+        assert client.wait_for_server(rospy.Duration(scaled(20))) is True
+    finally:
+        client.action_client.stop()
+        for part in parts:
+            part.unregister()
+
+
+def test_status_is_published_at_actionlib_status_frequency(node: str) -> None:
+    """5 Hz by default; the ``actionlib_status_frequency`` parameter (found up the node's
+    namespaces) sets it. Lower bounds only: a loaded machine may be late, never early."""
+    import time as clock
+
+    heard_default, default_sub = _status_lists("/fibonacci")
+    try:
+        wait_until(lambda: len(heard_default) >= 7, scaled(20), what="status at 5 Hz")
+    finally:
+        default_sub.unregister()
+    rospy.set_param("/actionlib_status_frequency", 1.0)
+    slow = Recorder("slow_status")
+    heard, sub = _status_lists("/slow_status")
+    try:
+        wait_until(lambda: heard, scaled(20), what="the latched status")
+        start = clock.monotonic()
+        wait_until(lambda: len(heard) >= 4, scaled(20), what="three periodic status messages")
+        # the first may follow the latched one closely, the next two are 1 s apart at least
+        assert clock.monotonic() - start >= 1.5  # at 5 Hz all three would take 0.6 s
+        assert slow.server.status_frequency == 1.0
+    finally:
+        sub.unregister()
+        slow.server.stop()
+        rospy.delete_param("/actionlib_status_frequency")
