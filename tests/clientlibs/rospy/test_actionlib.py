@@ -449,3 +449,15 @@ def test_status_is_published_at_actionlib_status_frequency(node: str) -> None:
         sub.unregister()
         slow.server.stop()
         rospy.delete_param("/actionlib_status_frequency")
+
+
+def test_search_param_finds_none_as_rospy(node: str) -> None:
+    """actionlib looks for ``actionlib_status_frequency`` with ``search_param``: a parameter
+    set nowhere is None (the master's code -1), as rospy's, not an error."""
+    assert rospy.search_param("no_such_parameter_anywhere") is None
+    rospy.set_param("/upper/found_here", 1)
+    try:
+        assert rospy.search_param("found_here") is None  # the node is /actiontest, in /
+        assert rospy.search_param("upper") == "/upper"
+    finally:
+        rospy.delete_param("/upper/found_here")
