@@ -50,7 +50,26 @@ def action_types(spec: Any) -> ActionTypes:
             f"Type is not an action spec: {spec!r} (give the action's class, as "
             f"from actionlib_tutorials.msg import FibonacciAction)"
         ) from None
-    return ActionTypes(spec, *(type(m) for m in wrappers), *(type(m) for m in parts))
+    found = ActionTypes(spec, *(type(m) for m in wrappers), *(type(m) for m in parts))
+    _check_ros1(found)
+    return found
+
+
+def _check_ros1(types: ActionTypes) -> None:
+    """ActionException unless the action's messages have ROS 1 definitions: without, robomodel
+    would keep its topics in the process, and no ROS 1 peer would ever be found."""
+    from robomodel.runtime.transport.ros1.ros1_types import Ros1TypeError, ros1_type
+
+    for cls in (types.action_goal, types.action_result, types.action_feedback):
+        try:
+            ros1_type(cls)
+        except Ros1TypeError as exc:
+            raise ActionException(
+                f"{getattr(types.spec, '__typename__', types.spec)!s} cannot go over ROS 1: "
+                f"{exc} (robomodel's copies of an interface package may be ROS 2's, as "
+                f"control_msgs'); put the ROS 1 package's folder, with its action/ files, on "
+                f"ROS_PACKAGE_PATH"
+            ) from None
 
 
 def _genpy(typename: str) -> Any:
