@@ -86,6 +86,10 @@ class Fibonacci:
 
     def execute_cb(self, goal: Any) -> None:
         self.goal_ids.append(self.server.current_goal.get_goal_id().id)
+        if goal.order == -2:
+            raise ValueError("no sequence of order -2")
+        if goal.order == -3:
+            return  # no terminal state set: the server aborts the goal
         if goal.order < 0:
             self.server.set_aborted(text=f"order {goal.order} is below 0")
             return
@@ -227,6 +231,19 @@ def test_abort_with_its_text(client: actionlib.SimpleActionClient) -> None:
     assert state == actionlib.GoalStatus.ABORTED == 4
     assert client.get_goal_status_text() == "order -1 is below 0"
     assert list(client.get_result().sequence) == []
+
+
+def test_an_execute_callback_that_raises_or_sets_no_end_aborts(
+    client: actionlib.SimpleActionClient,
+) -> None:
+    goal_class = _classes()[1]
+    state = client.send_goal_and_wait(goal_class(order=-2), rospy.Duration(scaled(30)))
+    assert state == actionlib.GoalStatus.ABORTED
+    text = "Exception in execute callback: no sequence of order -2"
+    assert client.get_goal_status_text() == text
+    state = client.send_goal_and_wait(goal_class(order=-3), rospy.Duration(scaled(30)))
+    assert state == actionlib.GoalStatus.ABORTED
+    assert client.get_goal_status_text() == "No terminal state was set."
 
 
 def test_wait_for_server_without_a_server_times_out(node: str) -> None:
