@@ -69,18 +69,35 @@ def test_a_typo_is_still_named_the_second_time() -> None:
 
 
 def test_a_library_name_of_an_interface_package_says_what_robomodel_serves() -> None:
-    """``actionlib`` is an interface package (its .msg files) and, in ROS, a Python library:
-    its SimpleActionServer is not offered, and the error says so at the name."""
+    """``dynamic_reconfigure`` is an interface package (its .msg files) and, in ROS, a Python
+    library: its ``client`` is not offered, and the error says so at the name."""
+    import importlib
+
+    package = importlib.import_module("dynamic_reconfigure")
+    assert (
+        importlib.import_module("dynamic_reconfigure.msg").Config.__typename__
+        == "dynamic_reconfigure/msg/Config"
+    )
+    with pytest.raises(
+        AttributeError, match="robomodel serves the dynamic_reconfigure interface package's"
+    ):
+        package.client  # noqa: B018
+    assert not hasattr(package, "__wrapped__")
+
+
+def test_actionlib_is_robomodels_library_and_its_interface_package() -> None:
+    """``actionlib`` is robomodel's library (SimpleActionServer...) and still serves the
+    actionlib interface package's messages as ``actionlib.msg``."""
     import importlib
 
     actionlib = importlib.import_module("actionlib")
-    assert (
-        importlib.import_module("actionlib.msg").TestAction.__typename__
-        == "actionlib/msg/TestAction"
-    )
-    with pytest.raises(AttributeError, match="robomodel serves the actionlib interface package's"):
-        actionlib.SimpleActionServer  # noqa: B018
-    assert not hasattr(actionlib, "__wrapped__")
+    assert actionlib.__name__ == "robomodel.clientlibs.actionlib"
+    assert actionlib.SimpleActionServer.__module__.endswith("simple_action_server")
+    message = importlib.import_module("actionlib.msg")
+    assert message.TestAction.__typename__ == "actionlib/msg/TestAction"
+    assert actionlib.msg is message
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module("actionlib.no_such_module")
 
 
 def test_robomodels_own_types_are_known_without_rosbags(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -47,9 +47,13 @@ ALIASED = frozenset(
         "roslib",
         "rostest",
         "sensor_msgs_py",
+        "actionlib",
     }
 )
 
+
+# The interface modules of a package (interfaces.KINDS, without importing it at every start).
+_KINDS = ("msg", "srv", "action")
 
 # Python modules of ROS 1 message packages that rospy programs import beside the messages.
 HELPERS = {"sensor_msgs.point_cloud2": f"{_HOME}.rospy.point_cloud2"}
@@ -118,13 +122,18 @@ class ClientLibraryFinder:
                 found = importlib.util.find_spec(real)
             except ModuleNotFoundError:  # the alias's parent is not a robomodel package
                 return None
-            if found is None:
+            if found is not None:
+                return importlib.machinery.ModuleSpec(
+                    fullname,
+                    _AliasLoader(real),
+                    is_package=found.submodule_search_locations is not None,
+                )
+            if fullname.count(".") != 1 or fullname.rpartition(".")[2] not in _KINDS:
                 return None
-            return importlib.machinery.ModuleSpec(
-                fullname,
-                _AliasLoader(real),
-                is_package=found.submodule_search_locations is not None,
-            )
+            # a library that is also an interface package (actionlib): its msg module
+            from robomodel.clientlibs import interfaces
+
+            return interfaces.find_spec(fullname)
         helper = HELPERS.get(fullname)
         if helper is not None:
             return importlib.machinery.ModuleSpec(fullname, _AliasLoader(helper))

@@ -173,8 +173,8 @@ class _InterfaceModule(ModuleType):
 
 class _InterfacePackage(ModuleType):
     """``import pkg`` of an interface package: its msg, srv and action modules. A ROS package
-    may also be a Python library of the same name (``actionlib``'s SimpleActionServer), which
-    robomodel does not offer: asking for one of its names says so instead of a bare
+    may also be a Python library of the same name (``dynamic_reconfigure``'s client), which
+    robomodel does not offer (``actionlib`` it does: :mod:`robomodel.clientlibs.actionlib`): asking for one of its names says so instead of a bare
     AttributeError far from the import."""
 
     def __getattr__(self, name: str) -> object:

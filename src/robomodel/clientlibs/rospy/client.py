@@ -251,9 +251,19 @@ def delete_param(param_name: str) -> None:
 
 def search_param(param_name: str) -> str | None:
     """The closest parameter ``param_name`` up the node's namespaces, or None."""
+    from robomodel.runtime.transport.ros1.xmlrpc_io import Ros1WireError, call_raw
+
     node_state = core.state()
-    found = _master(node_state, "searchParam", param_name)
-    return str(found) if found else None
+    master = node_state.context.transport.master_uri  # type: ignore[attr-defined]
+    try:
+        answer = call_raw(master, "searchParam", node_state.caller_id, param_name, timeout_s=10.0)
+    except Ros1WireError as exc:
+        raise ROSException(f"searchParam: {exc}") from None
+    if isinstance(answer, list) and len(answer) == 3 and answer[0] == -1:
+        return None  # as rospy: the master found none (code -1)
+    if not (isinstance(answer, list) and len(answer) == 3 and answer[0] == 1):
+        raise ROSException(f"searchParam: the master answered {answer!r:.80}")
+    return str(answer[2]) if answer[2] else None
 
 
 def get_param_names() -> list[str]:

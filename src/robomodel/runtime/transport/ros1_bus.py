@@ -207,6 +207,23 @@ class Ros1Transport(Transport):
             raise Ros1TypeError(f"{node} publishes {topic} in this process only (no ROS 1 type)")
         return publication
 
+    def subscriber_ids(self, node: str, topic: str) -> list[str]:
+        """The caller ids of the subscribers connected now to ``node``'s publication of
+        ``topic`` (actionlib's ``wait_for_server`` checks its server is among them)."""
+        publication = self._endpoint(node).publications.get(topic)
+        return [] if publication is None else [c.peer for c in list(publication.connections)]
+
+    def publisher_ids(self, node: str, topic: str) -> list[str]:
+        """The caller ids of the publishers that ``node``'s subscriptions of ``topic`` read
+        now (connected, their headers exchanged)."""
+        subscriptions = list(self._endpoint(node).subscriptions.get(topic, ()))
+        return [
+            inbound.peer
+            for subscription in subscriptions
+            for inbound in list(subscription.inbound.values())
+            if inbound.connected
+        ]
+
     # -- types without a ROS 1 counterpart: this process only -----------------------------------
     def _local_publisher(self, topic: str, msg_type: type[Message]) -> PublisherHandle:
         log.debug(
