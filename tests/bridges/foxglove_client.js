@@ -56,6 +56,20 @@ client.on("advertise", (channels) => {
     readers.set(subscription, { reader: codec(channel.encoding, channel.schema).reader, channel });
   }
 });
+// The Foxglove SDK's server (foxglove-sdk 0.30.3) sends a channel's advertisement before it
+// registers the channel: a subscription sent at once can meet "Unknown channel ID: N" on a
+// loaded machine (reproduced with the SDK alone, a client subscribing to every channel it is
+// advertised). The subscription is sent again, as a user re-opens the panel.
+client.on("status", ({ message }) => {
+  const unknown = /Unknown channel ID: (\d+)/.exec(message);
+  if (!unknown) return;
+  for (const [subscription, found] of readers) {
+    if (found.channel.id !== Number(unknown[1]) || found.done) continue;
+    say("resubscribed", found.channel.topic);
+    readers.delete(subscription);
+    readers.set(client.subscribe(found.channel.id), found);
+  }
+});
 client.on("message", ({ subscriptionId, data }) => {
   const found = readers.get(subscriptionId);
   if (!found) return;
