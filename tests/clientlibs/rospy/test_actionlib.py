@@ -180,17 +180,17 @@ def test_a_new_goal_preempts_the_running_one(
         handle = first.send_goal(
             goal_class(order=20), transition_cb=lambda gh: transitions.append(gh.get_comm_state())
         )
-        wait_until(fibonacci.started.is_set, scaled(20), what="the first goal running")
+        wait_until(fibonacci.started.is_set, 20, what="the first goal running")
         wait_until(
             lambda: handle.get_comm_state() == actionlib.CommState.ACTIVE,
-            scaled(20),
+            20,
             what="the first goal active at its client",
         )
         fibonacci.started.clear()
         client.send_goal(goal_class(order=3))
         wait_until(
             lambda: handle.get_comm_state() == actionlib.CommState.DONE,
-            scaled(20),
+            20,
             what="the first goal's end",
         )
         assert handle.get_goal_status() == actionlib.GoalStatus.PREEMPTED
@@ -213,10 +213,10 @@ def test_a_new_goal_preempts_the_running_one(
 def test_cancel_goal_preempts(fibonacci: Fibonacci, client: actionlib.SimpleActionClient) -> None:
     fibonacci.gate.clear()
     client.send_goal(_classes()[1](order=10))
-    wait_until(fibonacci.started.is_set, scaled(20), what="the goal running")
+    wait_until(fibonacci.started.is_set, 20, what="the goal running")
     wait_until(
         lambda: client.get_state() == actionlib.GoalStatus.ACTIVE,
-        scaled(20),
+        20,
         what="the goal active at the client",
     )
     client.cancel_goal()
@@ -297,11 +297,11 @@ def test_action_server_reject_cancel_by_stamp_and_all_and_the_status_list(node: 
         rejected = client.send_goal(
             goal_class(order=1), transition_cb=lambda gh: transitions.append(gh.get_comm_state())
         )
-        wait_until(lambda: len(recorder.handles) == 1, scaled(20), what="the first goal")
+        wait_until(lambda: len(recorder.handles) == 1, 20, what="the first goal")
         recorder.handles[0].set_rejected(text="not today")
         wait_until(
             lambda: rejected.get_comm_state() == actionlib.CommState.DONE,
-            scaled(20),
+            20,
             what="the rejection at the client",
         )
         assert rejected.get_goal_status() == actionlib.GoalStatus.REJECTED
@@ -312,44 +312,44 @@ def test_action_server_reject_cancel_by_stamp_and_all_and_the_status_list(node: 
         rejected_id = recorder.handles[0].get_goal_id().id
         wait_until(
             lambda: bool(heard) and _states(heard[-1]).get(rejected_id) == 5,
-            scaled(20),
+            20,
             what="the rejected goal in the status list",
         )
         wait_until(
             lambda: rejected_id not in _states(heard[-1]),
-            scaled(20),
+            20,
             what="the rejected goal gone from the status list",
         )
         # three accepted goals: a cancel of the last by its id, then of those stamped at or
         # before the first, then of all
         handles = [client.send_goal(goal_class(order=n)) for n in (2, 3, 4)]
-        wait_until(lambda: len(recorder.handles) == 4, scaled(20), what="three more goals")
+        wait_until(lambda: len(recorder.handles) == 4, 20, what="three more goals")
         for handle in recorder.handles[1:]:
             handle.set_accepted()
         wait_until(
             lambda: all(h.get_comm_state() == actionlib.CommState.ACTIVE for h in handles),
-            scaled(20),
+            20,
             what="both goals active",
         )
         ids = [h.get_goal_id().id for h in recorder.handles]
         handles[2].cancel()
-        wait_until(lambda: len(recorder.cancels) == 1, scaled(20), what="the cancel by id")
+        wait_until(lambda: len(recorder.cancels) == 1, 20, what="the cancel by id")
         assert recorder.cancels == [ids[3]]
         recorder.handles[3].set_canceled()
         first_stamp = recorder.handles[1].get_goal_id().stamp
         client.cancel_goals_at_and_before_time(first_stamp)
-        wait_until(lambda: len(recorder.cancels) == 2, scaled(20), what="the cancel by stamp")
+        wait_until(lambda: len(recorder.cancels) == 2, 20, what="the cancel by stamp")
         assert recorder.cancels[1:] == [ids[1]]
         assert recorder.handles[1].get_goal_status().status == actionlib.GoalStatus.PREEMPTING
         assert recorder.handles[2].get_goal_status().status == actionlib.GoalStatus.ACTIVE
         recorder.handles[1].set_canceled()
         client.cancel_all_goals()
-        wait_until(lambda: len(recorder.cancels) == 3, scaled(20), what="the cancel of all")
+        wait_until(lambda: len(recorder.cancels) == 3, 20, what="the cancel of all")
         assert recorder.cancels[2:] == [ids[2]]  # the others are done: no callback
         recorder.handles[2].set_succeeded(text="finished anyway")
         wait_until(
             lambda: all(h.get_comm_state() == actionlib.CommState.DONE for h in handles),
-            scaled(20),
+            20,
             what="the three goals done",
         )
         assert [h.get_goal_status() for h in handles] == [2, 3, 2]  # PREEMPTED, SUCCEEDED
@@ -375,7 +375,7 @@ def test_a_cancel_before_its_goal_recalls_the_goal(node: str) -> None:
     watcher = rospy.Subscriber("/early_cancel/result", client.ActionResult, results.append)
     try:
         assert client.wait_for_server(rospy.Duration(scaled(20)))
-        wait_until(lambda: watcher.get_num_connections() == 1, scaled(20), what="result link")
+        wait_until(lambda: watcher.get_num_connections() == 1, 20, what="result link")
         client.pub_cancel.publish(GoalID(id="/elsewhere-1-0.000"))
         wait_until(
             lambda: any(
@@ -388,7 +388,7 @@ def test_a_cancel_before_its_goal_recalls_the_goal(node: str) -> None:
         client.pub_goal.publish(
             action_goal_class(goal_id=GoalID(id="/elsewhere-1-0.000"), goal=goal_class(order=4))
         )
-        wait_until(lambda: results, scaled(20), what="the recalled goal's result")
+        wait_until(lambda: results, 20, what="the recalled goal's result")
         assert results[0].status.goal_id.id == "/elsewhere-1-0.000"
         assert results[0].status.status == actionlib.GoalStatus.RECALLED
         assert recorder.handles == []
@@ -430,7 +430,7 @@ def test_wait_for_server_needs_all_five_topics_of_one_server(node: str) -> None:
     try:
         wait_until(
             lambda: client.action_client.last_status_msg is not None,
-            scaled(20),
+            20,
             what="the status heard",
         )
         assert client.wait_for_server(rospy.Duration(0.5)) is False
@@ -442,23 +442,24 @@ def test_wait_for_server_needs_all_five_topics_of_one_server(node: str) -> None:
             part.unregister()
 
 
-def test_status_is_published_at_actionlib_status_frequency(node: str) -> None:
-    """5 Hz by default; the ``actionlib_status_frequency`` parameter (found up the node's
-    namespaces) sets it. Lower bounds only: a loaded machine may be late, never early."""
+def test_status_is_published_at_actionlib_status_frequency(fibonacci: Fibonacci) -> None:
+    """5 Hz by default (the Fibonacci server's); the ``actionlib_status_frequency`` parameter
+    (found up the node's namespaces) sets it. Lower bounds only: a loaded machine may be late,
+    never early."""
     import time as clock
 
     heard_default, default_sub = _status_lists("/fibonacci")
     try:
-        wait_until(lambda: len(heard_default) >= 7, scaled(20), what="status at 5 Hz")
+        wait_until(lambda: len(heard_default) >= 7, 20, what="status at 5 Hz")
     finally:
         default_sub.unregister()
     rospy.set_param("/actionlib_status_frequency", 1.0)
     slow = Recorder("slow_status")
     heard, sub = _status_lists("/slow_status")
     try:
-        wait_until(lambda: heard, scaled(20), what="the latched status")
+        wait_until(lambda: heard, 20, what="the latched status")
         start = clock.monotonic()
-        wait_until(lambda: len(heard) >= 4, scaled(20), what="three periodic status messages")
+        wait_until(lambda: len(heard) >= 4, 20, what="three periodic status messages")
         # the first may follow the latched one closely, the next two are 1 s apart at least
         assert clock.monotonic() - start >= 1.5  # at 5 Hz all three would take 0.6 s
         assert slow.server.status_frequency == 1.0
