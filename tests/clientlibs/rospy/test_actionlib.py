@@ -17,12 +17,7 @@ import pytest
 
 import robomodel.clientlibs.actionlib as actionlib
 import robomodel.clientlibs.rospy as rospy
-from robomodel.clientlibs.rospy import core, dispatch
-from robomodel.clientlibs.rospy.topics import _SubscriberImpl
-from robomodel.runtime.context import Context
-from robomodel.runtime.msg import _resolver
-from robomodel.runtime.transport.ros1.master import Master
-from tests.ros1wire.conftest import free_port
+from tests.clientlibs.rospy.inprocess_node import rospy_node
 from tests.timing import scaled, wait_until
 
 PACKAGES = Path(__file__).parent / "packages"
@@ -35,24 +30,8 @@ GOAL_ID = re.compile(rf"^{NODE}-\d+-\d+\.\d{{3}}$")
 def node() -> Iterator[str]:
     """A rospy node of this process on a master of its own, actionlib_tutorials' package on
     the resolver's path; yields the master's URI."""
-    _resolver.configure(package_paths=(PACKAGES,))
-    uri = f"http://127.0.0.1:{free_port()}/"
-    master = Master(uri, "127.0.0.1")
-    context = Context("ros1", master=uri)
-    ros_node = context.create_node(NODE.lstrip("/"), enable_rosout=False)
-    core.set_state(core.NodeState(NODE, {}, context, ros_node))
-    spinner = threading.Thread(target=context.spin, daemon=True)  # as init_node starts it
-    spinner.start()
-    try:
+    with rospy_node(NODE, (PACKAGES,)) as uri:
         yield uri
-    finally:
-        core._LIFE.state = None
-        context.shutdown()
-        spinner.join(scaled(5))
-        _SubscriberImpl.forget_all()
-        dispatch.close_all()
-        master.close()
-        _resolver.configure(package_paths=())
 
 
 def _classes() -> Any:

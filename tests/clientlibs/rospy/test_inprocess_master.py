@@ -15,13 +15,10 @@ from typing import Any
 import pytest
 
 import robomodel.clientlibs.rospy as rospy
-from robomodel.clientlibs.rospy import core, dispatch, timer
-from robomodel.clientlibs.rospy.topics import _SubscriberImpl
-from robomodel.runtime.context import Context
-from robomodel.runtime.transport.ros1.master import Master
+from robomodel.clientlibs.rospy import dispatch, timer
 from robomodel.runtime.transport.ros1.ros1_types import ros1_service_type
 from robomodel.runtime.transport.ros1.services import call_service
-from tests.ros1wire.conftest import free_port
+from tests.clientlibs.rospy.inprocess_node import rospy_node
 from tests.timing import scaled, wait_until
 
 
@@ -30,22 +27,8 @@ def node() -> Iterator[str]:
     """A rospy node of this process on a master of its own; yields the master's URI."""
     from std_msgs.msg import Int32  # noqa: F401  (the genpy faces, as a rospy script has them)
 
-    uri = f"http://127.0.0.1:{free_port()}/"
-    master = Master(uri, "127.0.0.1")
-    context = Context("ros1", master=uri)
-    ros_node = context.create_node("threads", enable_rosout=False)
-    core.set_state(core.NodeState("/threads", {}, context, ros_node))
-    spinner = threading.Thread(target=context.spin, daemon=True)  # as init_node starts it
-    spinner.start()
-    try:
+    with rospy_node("threads") as uri:
         yield uri
-    finally:
-        core._LIFE.state = None
-        context.shutdown()
-        spinner.join(scaled(5))
-        _SubscriberImpl.forget_all()
-        dispatch.close_all()
-        master.close()
 
 
 def _connected(publisher: Any, count: int = 1) -> None:
