@@ -244,10 +244,14 @@ class PageRun:
             try:
                 proc.wait(timeout=timeout_s)
             except subprocess.TimeoutExpired:
-                os.kill(proc.pid, signal.SIGABRT)  # faulthandler prints every thread's stack
+                # it may end between the timeout and these signals (it did not end in time all
+                # the same): a process already gone is no error here
+                with contextlib.suppress(ProcessLookupError):
+                    os.kill(proc.pid, signal.SIGABRT)  # faulthandler prints every thread's stack
                 with contextlib.suppress(subprocess.TimeoutExpired):
                     proc.wait(timeout=10)
-                os.killpg(proc.pid, signal.SIGKILL)
+                with contextlib.suppress(ProcessLookupError):
+                    os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
                 assert proc.stdout is not None
                 os.set_blocking(proc.stdout.fileno(), True)
