@@ -461,10 +461,10 @@ def test_search_param_finds_none_as_rospy(node: str) -> None:
 
 
 def test_an_action_without_ros1_definitions_is_refused_with_what_to_do() -> None:
-    """robomodel's control_msgs are ROS 2's: FollowJointTrajectory has no ROS 1 type there, so
-    the client says so instead of waiting for a server it could never reach."""
+    """ParallelGripperCommand is a ROS 2 action of control_msgs, with no ROS 1 definition: the
+    client says so instead of waiting for a server it could never reach."""
     from robomodel.clientlibs.messages import message_class
 
-    action = message_class("control_msgs/msg/FollowJointTrajectoryAction", "genpy")
+    action = message_class("control_msgs/msg/ParallelGripperCommandAction", "genpy")
     with pytest.raises(actionlib.ActionException, match=r"cannot go over ROS 1.*ROS_PACKAGE_PATH"):
         actionlib.SimpleActionClient("/arm_controller/follow_joint_trajectory", action)

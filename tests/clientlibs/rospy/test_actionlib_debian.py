@@ -30,42 +30,61 @@ _SEPARATOR = "\n" + "=" * 80 + "\nMSG: "
 TOPICS = {f"/fibonacci/{name}" for name in ("goal", "cancel", "status", "feedback", "result")}
 
 
-def _actionlib_tutorials_python(work: Path) -> Path:
-    """actionlib_tutorials' Python messages for Debian's Python, as catkin builds them:
-    genaction's seven messages of Fibonacci.action, then genpy's generator, with the
-    definitions they depend on (Debian ships std_msgs' and actionlib_msgs' Python modules but
-    not their .msg files) written out from robomodel's Noetic definitions. The folder to put
-    on PYTHONPATH."""
-    from robomodel.runtime.transport.ros1.ros1_types import ros1_type_named
+def _debian_messages(work: Path) -> Path:
+    """The Python messages of actionlib_tutorials and of ROS 1's control_msgs (the ROS 1 files
+    robomodel vendors) for Debian's Python, as catkin builds them: genaction's seven messages
+    of each ``.action`` file, then genpy's generator. Debian ships std_msgs' and
+    actionlib_msgs' Python modules but neither their .msg files nor trajectory_msgs: those
+    definitions are written out from robomodel's Noetic ones (rosbags' store), and
+    trajectory_msgs is generated too. The folder to put on PYTHONPATH."""
+    from robomodel.runtime.transport.ros1.ros1_types import DEFINITIONS, ros1_type_named
 
     include = work / "include"
-    for name in ("std_msgs/Header", "actionlib_msgs/GoalID", "actionlib_msgs/GoalStatus"):
+    for name in ("std_msgs/Header", "actionlib_msgs/GoalID", "actionlib_msgs/GoalStatus",
+                 "trajectory_msgs/JointTrajectory"):  # fmt: skip
         first, *others = ros1_type_named(name).definition.split(_SEPARATOR)
         for dep_name, text in [(name, first), *(o.split("\n", 1) for o in others)]:
             package, stem = dep_name.split("/")
             path = include / package / "msg" / f"{stem}.msg"
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(text)
-    source = PACKAGES / "actionlib_tutorials"
-    msg = work / "msg"
-    subprocess.run(
-        [DEBIAN_PYTHON, str(GENACTION), str(source / "action" / "Fibonacci.action"),
-         "-o", str(msg)],
-        check=True, capture_output=True,
-    )  # fmt: skip
-    out = work / "python" / "actionlib_tutorials"
-    flags = [f"-Iactionlib_tutorials:{msg}", f"-Istd_msgs:{include / 'std_msgs/msg'}",
-             f"-Iactionlib_msgs:{include / 'actionlib_msgs/msg'}"]  # fmt: skip
-    files = [str(f) for f in sorted(msg.glob("*.msg"))]
+    python = work / "python"
+    tutorials = _genaction(PACKAGES / "actionlib_tutorials" / "action" / "Fibonacci.action",
+                           work / "actionlib_tutorials")  # fmt: skip
+    _genpy(python, "actionlib_tutorials", tutorials, [tutorials[0].parent], include)
+    trajectory = sorted((include / "trajectory_msgs" / "msg").glob("*.msg"))
+    _genpy(python, "trajectory_msgs", trajectory, [], include)
+    control = DEFINITIONS / "control_msgs"
+    actions = _genaction(control / "action" / "FollowJointTrajectory.action", work / "control")
+    tolerance = control / "msg" / "JointTolerance.msg"
+    own = [actions[0].parent, tolerance.parent]
+    _genpy(python, "control_msgs", [*actions, tolerance], own, include)
+    return python
+
+
+def _genaction(action: Path, out: Path) -> list[Path]:
+    """actionlib_msgs' genaction.py on ``action``: its seven .msg files."""
+    subprocess.run([DEBIAN_PYTHON, str(GENACTION), str(action), "-o", str(out)],
+                   check=True, capture_output=True)  # fmt: skip
+    files = sorted(out.glob("*.msg"))
     assert len(files) == 7, files
-    for argv in (flags + files, ["--initpy"]):
+    return files
+
+
+def _genpy(python: Path, package: str, files: list[Path], own: list[Path], include: Path) -> None:
+    """genpy's generator: ``package``'s Python messages of ``files`` under ``python``; ``own``
+    the folders of the package's own definitions, ``include`` the other packages' (one folder
+    per package)."""
+    flags = [f"-I{package}:{folder}" for folder in own]
+    flags += [f"-I{folder.name}:{folder / 'msg'}" for folder in sorted(include.iterdir())]
+    out = python / package
+    for argv in (flags + [str(f) for f in files], ["--initpy"]):
         subprocess.run(
-            [DEBIAN_PYTHON, str(GENPY / "genmsg_py.py"), "-p", "actionlib_tutorials",
+            [DEBIAN_PYTHON, str(GENPY / "genmsg_py.py"), "-p", package,
              "-o", str(out / "msg"), *argv],
             check=True, capture_output=True,
         )  # fmt: skip
     (out / "__init__.py").write_text("")
-    return out.parent
 
 
 class Graph(Ros1):
@@ -87,9 +106,13 @@ class Graph(Ros1):
     def _python(self, ours: bool) -> str:
         return sys.executable if ours else DEBIAN_PYTHON
 
-    def server(self, *, ours: bool, log: Path) -> subprocess.Popen[str]:
+    def start_node(
+        self, script: str, *argv: str, ours: bool, log: Path, ready: str
+    ) -> subprocess.Popen[str]:
+        """Start the node program ``script`` of tests/clientlibs/rospy/nodes on robomodel's
+        Python (``ours``) or Debian's; return once it printed ``ready``."""
         proc = subprocess.Popen(
-            [self._python(ours), "-u", str(NODES / "fibonacci_server"), "_rate:=20"],
+            [self._python(ours), "-u", str(NODES / script), *argv],
             stdout=log.open("w"),
             stderr=subprocess.STDOUT,
             text=True,
@@ -97,18 +120,27 @@ class Graph(Ros1):
             start_new_session=True,
         )
         self.procs.append(proc)
-        self.until(lambda: "Ready to compute" in _text(log) or proc.poll() is not None, "server")
+        self.until(lambda: ready in _text(log) or proc.poll() is not None, script)
         assert proc.poll() is None, _text(log)
         return proc
 
-    def client(self, *argv: str, ours: bool) -> subprocess.CompletedProcess[str]:
+    def node(self, script: str, *argv: str, ours: bool) -> subprocess.CompletedProcess[str]:
+        """Run the node program ``script`` to its end."""
         return subprocess.run(
-            [self._python(ours), "-u", str(NODES / "fibonacci_client"), *argv],
+            [self._python(ours), "-u", str(NODES / script), *argv],
             capture_output=True,
             text=True,
             env=self._env(ours),
             timeout=scaled(90),
         )
+
+    def server(self, *, ours: bool, log: Path) -> subprocess.Popen[str]:
+        return self.start_node(
+            "fibonacci_server", "_rate:=20", ours=ours, log=log, ready="Ready to compute"
+        )
+
+    def client(self, *argv: str, ours: bool) -> subprocess.CompletedProcess[str]:
+        return self.node("fibonacci_client", *argv, ours=ours)
 
     def tool(self, *argv: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
@@ -131,7 +163,7 @@ def graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Graph]:
             pytest.fail(f"Debian's ROS 1 is missing ({tool}): tools/system-deps test installs it")
     home = tmp_path_factory.mktemp("actionlib")
     found = Graph(home)
-    found.generated = _actionlib_tutorials_python(home / "generated")
+    found.generated = _debian_messages(home / "generated")
     found.roscore()
     try:
         yield found
@@ -200,3 +232,36 @@ def test_our_client_on_the_debian_server(graph: Graph, tmp_path: Path) -> None:
     assert _lines(aborted, "Text: ") == ["order -1 is below 0"]
     assert "Traceback" not in _text(log), _text(log)
     _server_down(graph, server)
+
+
+TRAJECTORY_TOPICS = {f"/arm_controller/follow_joint_trajectory/{name}"
+                     for name in ("goal", "cancel", "status", "feedback", "result")}  # fmt: skip
+TRAJECTORY_FEEDBACK = ["shoulder,elbow desired 0.5,-0.25 at 0.20 s, actual 0.5,-0.25",
+                       "shoulder,elbow desired 1,-0.5 at 0.40 s, actual 1,-0.5"]  # fmt: skip
+
+
+@pytest.mark.parametrize("server_ours", [True, False], ids=["our_server", "debian_server"])
+def test_follow_joint_trajectory_across_robomodel_and_debian(
+    graph: Graph, tmp_path: Path, server_ours: bool
+) -> None:
+    """control_msgs' ROS 1 FollowJointTrajectory action (genaction's messages of the vendored
+    ROS 1 file: md5sums, durations, nested arrays) between robomodel's actionlib and Debian's,
+    the server on one side and the client on the other."""
+    log = tmp_path / "server.log"
+    server = graph.start_node("trajectory_server", ours=server_ours, log=log,
+                              ready="Ready to follow")  # fmt: skip
+    info = graph.tool(ROSTOPIC, "info", "/arm_controller/follow_joint_trajectory/goal")
+    assert "control_msgs/FollowJointTrajectoryActionGoal" in info.stdout, info.stdout
+    done = graph.node("trajectory_client", ours=not server_ours)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert _lines(done, "Feedback: ") == TRAJECTORY_FEEDBACK, done.stdout + done.stderr
+    assert _lines(done, "State: ") == ["3"]
+    assert _lines(done, "Result: ") == [
+        "0 2 points of shoulder,elbow, path tolerance shoulder:0.1, goal time tolerance 0.25 s"
+    ]
+    empty = graph.node("trajectory_client", "empty", ours=not server_ours)
+    assert _lines(empty, "State: ") == ["4"], empty.stdout + empty.stderr  # ABORTED
+    assert _lines(empty, "Result: ") == ["-1 the trajectory has no points"]  # INVALID_GOAL
+    assert "Traceback" not in _text(log), _text(log)
+    graph.stop(server)
+    graph.until(lambda: not (TRAJECTORY_TOPICS & graph.names("topics")), "the server's topics gone")

@@ -66,9 +66,8 @@ def _check_ros1(types: ActionTypes) -> None:
         except Ros1TypeError as exc:
             raise ActionException(
                 f"{getattr(types.spec, '__typename__', types.spec)!s} cannot go over ROS 1: "
-                f"{exc} (robomodel's copies of an interface package may be ROS 2's, as "
-                f"control_msgs'); put the ROS 1 package's folder, with its action/ files, on "
-                f"ROS_PACKAGE_PATH"
+                f"{exc} (robomodel knows this action from a ROS 2 package only); put the ROS 1 "
+                f"package's folder, with its action/ files, on ROS_PACKAGE_PATH"
             ) from None
 
 

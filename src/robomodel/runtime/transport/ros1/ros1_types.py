@@ -28,6 +28,8 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.msg import Message, _resolver, get_message_type
+from robomodel.runtime.msg._actions import ros1_wrapper_text
+from robomodel.runtime.msg.definition import split_parts
 from robomodel.runtime.msg.schema import Array, MessageTypeError, Seq, Service
 from robomodel.runtime.msg.spec import MessageSpec, spec_from_definitions
 from robomodel.runtime.msg.typehash import same_type
@@ -125,9 +127,21 @@ def _stored_fielddefs() -> dict[str, Any]:
         if kind == "msg":
             _add(found, get_types_from_msg(text, f"{package}/msg/{stem}"))
             continue
-        request, response = re.split(r"^---[ \t]*$", text, maxsplit=1, flags=re.MULTILINE)
-        _add(found, get_types_from_msg(request, f"{package}/msg/{stem}Request"))
-        _add(found, get_types_from_msg(response, f"{package}/msg/{stem}Response"))
+        if kind == "srv":
+            request, response = split_parts(text, "srv", where=str(path))
+            _add(found, get_types_from_msg(request, f"{package}/msg/{stem}Request"))
+            _add(found, get_types_from_msg(response, f"{package}/msg/{stem}Response"))
+            continue
+        # an action: genaction's seven messages, its three parts and their four wrappers
+        for part, part_text in zip(
+            ("Goal", "Result", "Feedback"),
+            split_parts(text, "action", where=str(path)),
+            strict=True,
+        ):
+            _add(found, get_types_from_msg(part_text, f"{package}/msg/{stem}{part}"))
+        for suffix in ("ActionGoal", "ActionResult", "ActionFeedback", "Action"):
+            name = f"{package}/msg/{stem}{suffix}"
+            _add(found, get_types_from_msg(ros1_wrapper_text(name, "", suffix), name))
     return found
 
 
