@@ -46,7 +46,8 @@ def test_play_reproduces_the_joint_states_seen_by_echo(tmp_path: Path) -> None:
     domain = unique_domain()  # a bus where the talker is not
     echo = subprocess.Popen(
         [*ROBOMODEL, "topic", "echo", "/joint_states", "sensor_msgs/msg/JointState",
-         "--count", str(len(expected)), "--timeout", f"{scaled(30):.1f}", "--domain-id", domain],
+         "--count", str(len(expected)), "--timeout", f"{scaled(30):.1f}", "--domain-id", domain,
+         "--qos-history", "keep_all"],  # a busy machine may hold the printer back
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
     )  # fmt: skip
     try:

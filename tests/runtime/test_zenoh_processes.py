@@ -191,6 +191,14 @@ def _read_until(stream: Any, text: str, found: list[str]) -> None:
             return
 
 
+def _lines_until(stream: Any, text: str, lines: list[str]) -> None:
+    """Every line of ``stream`` up to and including the first that holds ``text``."""
+    for line in iter(stream.readline, ""):
+        lines.append(line)
+        if text in line:
+            return
+
+
 def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None:
     proc, domain = talker
     echo = subprocess.Popen(
@@ -415,3 +423,53 @@ def test_latched_history_reaches_a_subscriber_after_the_first_process_left() -> 
             while not got and time.monotonic() < deadline:
                 sub_ctx.spin_once(0.05)
             assert got == ["world -> odom"]
+
+
+def test_echo_keeps_all_with_qos_history_keep_all_and_reports_what_depth_1_lost() -> None:
+    """``topic echo`` with ros2 topic echo's QoS options: two echoes whose output nobody reads
+    while 400 messages of 1 KB arrive (their pipes fill, so they stop printing): with
+    ``--qos-history keep_all`` every message is printed once read, in order; with
+    ``--qos-depth 1`` the oldest waiting ones were dropped, and the echo reports them as
+    ros2 topic echo reports a MESSAGE_LOST event."""
+    from robomodel.runtime import Context
+    from robomodel.runtime.msg import String
+    from robomodel.runtime.qos import History, QoSProfile
+
+    domain = _domain()
+    common = ["topic", "echo", "/burst", "std_msgs/msg/String", "--domain-id", domain]
+    keep_all = subprocess.Popen(
+        [*ROBOMODEL, *common, "--qos-history", "keep_all", "--count", "400"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    depth_1 = subprocess.Popen(
+        [*ROBOMODEL, *common, "--qos-depth", "1"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        with Context("zenoh", domain_id=int(domain)) as ctx:
+            publisher = ctx.create_node("burst").create_publisher(
+                String, "/burst", QoSProfile(10, history=History.KEEP_ALL)
+            )
+            wait_until(lambda: publisher.get_subscription_count() == 2, 30, what="two echoes")
+            for i in range(1, 401):
+                publisher.publish(String(f"{i:03d} " + "x" * 1000))
+            ctx.spin(duration_s=0.2)  # the last messages leave before the session closes
+        out, err = keep_all.communicate(timeout=scaled(60))
+        assert keep_all.returncode == 0, err
+        numbers = [int(doc.split()[1]) for doc in out.split("---\n") if doc.strip()]
+        assert numbers == list(range(1, 401))
+        assert "lost" not in out
+        assert depth_1.stdout is not None
+        seen: list[str] = []
+        reader = threading.Thread(target=_lines_until, args=(depth_1.stdout, "400 x", seen))
+        reader.start()
+        reader.join(scaled(60))
+        text = "".join(seen)
+        assert "400 x" in text, text[-2000:]
+        assert "A message was lost!!!\n\ttotal count change:" in text
+        printed = [doc for doc in text.split("---\n") if doc.startswith("data: ")]
+        assert len(printed) < 400
+    finally:
+        for proc in (keep_all, depth_1):
+            proc.kill()
+            proc.wait()

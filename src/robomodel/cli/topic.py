@@ -31,7 +31,7 @@ from robomodel.runtime.msg import (
     message_to_yaml,
 )
 from robomodel.runtime.msg.schema import canonical_type_name
-from robomodel.runtime.qos import Durability, QoSProfile
+from robomodel.runtime.qos import Durability, History, QoSProfile, Reliability
 
 __all__ = ["register"]
 
@@ -69,6 +69,29 @@ def _add_echo_verb(verbs: Any) -> None:
     p.add_argument(
         "--timeout", type=float, default=None, metavar="S", help="give up after S seconds"
     )
+    q = p.add_argument_group("quality of service (as ros2 topic echo's)")
+    q.add_argument(
+        "--qos-depth", type=int, default=10, metavar="N",
+        help="messages kept waiting to be printed (default 10): a printer that falls "
+        "further behind drops the oldest",
+    )  # fmt: skip
+    q.add_argument(
+        "--qos-history", choices=[h.value for h in History], default=History.KEEP_LAST.value,
+        help="keep_all keeps every message until it is printed (default keep_last)",
+    )  # fmt: skip
+    q.add_argument(
+        "--qos-reliability", choices=[r.value for r in Reliability],
+        default=Reliability.RELIABLE.value, help="default reliable",
+    )  # fmt: skip
+    q.add_argument(
+        "--qos-durability", choices=[d.value for d in Durability],
+        default=Durability.TRANSIENT_LOCAL.value,
+        help="default transient_local: a latched topic's last messages come too",
+    )  # fmt: skip
+    q.add_argument(
+        "--no-lost-messages", action="store_true",
+        help="do not report messages lost between the publishers and this echo",
+    )  # fmt: skip
     add_bus_arguments(p)
     add_type_arguments(p)
     p.set_defaults(func=run_echo)
@@ -191,17 +214,23 @@ def run_echo(args: argparse.Namespace) -> int:
         node = context.create_node("robomodel_topic_echo")
         msg_type = _topic_type(context, node.resolve_topic_name(args.topic), args.type, 5.0)
         printed = [0]
+        lost = [0]
 
         def show(msg: Message) -> None:
             if limit is not None and printed[0] >= limit:
                 return
+            now_lost = 0 if args.no_lost_messages else subscription.get_messages_lost()
+            if now_lost > lost[0]:  # ros2 topic echo's report of a MESSAGE_LOST event
+                sys.stdout.write(
+                    f"A message was lost!!!\n\ttotal count change:{now_lost - lost[0]}\n"
+                    f"\ttotal count: {now_lost}---\n"
+                )
+                lost[0] = now_lost
             sys.stdout.write(message_to_yaml(msg) + "---\n")
             sys.stdout.flush()
             printed[0] += 1
 
-        # Subscribing transient-local also gets latched topics (/robot_description, /tf_static).
-        qos = QoSProfile(10, Durability.TRANSIENT_LOCAL)
-        node.create_subscription(msg_type, args.topic, show, qos)
+        subscription = node.create_subscription(msg_type, args.topic, show, _echo_qos(args))
         try:
             context.spin(
                 duration_s=args.timeout,
@@ -210,6 +239,18 @@ def run_echo(args: argparse.Namespace) -> int:
         except KeyboardInterrupt:
             return 0
     return 0 if limit is None or printed[0] >= limit else 1
+
+
+def _echo_qos(args: argparse.Namespace) -> QoSProfile:
+    """The echo's subscription QoS from its ``--qos-*`` options."""
+    if args.qos_depth < 1:
+        raise RobomodelError(f"--qos-depth must be 1 or more, got {args.qos_depth}")
+    return QoSProfile(
+        depth=args.qos_depth,
+        durability=Durability(args.qos_durability),
+        reliability=Reliability(args.qos_reliability),
+        history=History(args.qos_history),
+    )
 
 
 def _wait_subscribers(context: Context, topic: str, count: int, timeout_s: float = 5.0) -> None:
