@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import shutil
 import socket
 import subprocess
@@ -227,8 +228,20 @@ def prepare(group: Group) -> Path:
             "",
         ]
     )
-    (folder / "pyproject.toml").write_text((ROOT / "pyproject.toml").read_text() + table)
+    (folder / "pyproject.toml").write_text(_without_xdist_options(ROOT / "pyproject.toml") + table)
     return folder
+
+
+def _without_xdist_options(pyproject: Path) -> str:
+    """The project's pyproject.toml with xdist's options (``--dist``, ``-n``) taken out of
+    pytest's ``addopts``: the group's tests run with xdist off (``-p no:xdist``), and pytest
+    refuses an option whose plugin is not loaded."""
+    text = pyproject.read_text()
+    line = re.search(r'^addopts = "(.*)"$', text, flags=re.M)
+    if line is None:
+        return text
+    kept = re.sub(r"\s*(--dist|--numprocesses|-n)(=|\s+)\S+", "", line[1]).strip()
+    return text[: line.start(1)] + kept + text[line.end(1) :]
 
 
 def _router_listening() -> bool:

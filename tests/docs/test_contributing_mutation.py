@@ -66,3 +66,24 @@ def test_sampled_groups_say_so_and_a_sample_must_divide_ten() -> None:
         capture_output=True, text=True, timeout=scaled(60), check=False,
     )  # fmt: skip
     assert refused.returncode == 2 and "invalid choice: 3" in refused.stderr
+
+
+def test_a_group_s_folder_runs_its_tests_with_xdist_off(tmp_path: Path) -> None:
+    """A group's pyproject.toml is the project's without xdist's options in pytest's addopts
+    (``--dist loadgroup``): mutmut runs the tests with ``-p no:xdist``, and pytest refuses an
+    option of a plugin it did not load, so no mutant would run."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    try:
+        import mutate
+    finally:
+        sys.path.remove(str(ROOT / "tools"))
+    text = mutate._without_xdist_options(ROOT / "pyproject.toml")
+    (tmp_path / "pyproject.toml").write_text(text)
+    (tmp_path / "test_one.py").write_text("def test_one():\n    pass\n")
+    done = subprocess.run(
+        [sys.executable, "-m", "pytest", "-q", "-p", "no:xdist", "test_one.py"],
+        capture_output=True, text=True, timeout=scaled(60), check=False, cwd=tmp_path,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "--dist" in (ROOT / "pyproject.toml").read_text()  # what the function takes out
+    assert "--strict-markers" in text
