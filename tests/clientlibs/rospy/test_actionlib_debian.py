@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.clientlibs.rospy.debian_messages import DEBIAN_PYTHON, GENACTION, GENPY, debian_messages
+from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import ROSCORE, Ros1
 from tests.timing import scaled
 
@@ -22,69 +24,8 @@ pytestmark = pytest.mark.xdist_group("rospy_actionlib_debian")
 HERE = Path(__file__).parent
 NODES = HERE / "nodes"
 PACKAGES = HERE / "packages"
-DEBIAN_PYTHON = "/usr/bin/python3"
 ROSTOPIC = "/usr/bin/rostopic"
-GENPY = Path("/usr/lib/genpy")
-GENACTION = Path("/usr/lib/actionlib_msgs/genaction.py")
-_SEPARATOR = "\n" + "=" * 80 + "\nMSG: "
 TOPICS = {f"/fibonacci/{name}" for name in ("goal", "cancel", "status", "feedback", "result")}
-
-
-def _debian_messages(work: Path) -> Path:
-    """The Python messages of actionlib_tutorials and of ROS 1's control_msgs (the ROS 1 files
-    robomodel vendors) for Debian's Python, as catkin builds them: genaction's seven messages
-    of each ``.action`` file, then genpy's generator. Debian ships std_msgs' and
-    actionlib_msgs' Python modules but neither their .msg files nor trajectory_msgs: those
-    definitions are written out from robomodel's Noetic ones (rosbags' store), and
-    trajectory_msgs is generated too. The folder to put on PYTHONPATH."""
-    from robomodel.runtime.transport.ros1.ros1_types import DEFINITIONS, ros1_type_named
-
-    include = work / "include"
-    for name in ("std_msgs/Header", "actionlib_msgs/GoalID", "actionlib_msgs/GoalStatus",
-                 "trajectory_msgs/JointTrajectory"):  # fmt: skip
-        first, *others = ros1_type_named(name).definition.split(_SEPARATOR)
-        for dep_name, text in [(name, first), *(o.split("\n", 1) for o in others)]:
-            package, stem = dep_name.split("/")
-            path = include / package / "msg" / f"{stem}.msg"
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text)
-    python = work / "python"
-    tutorials = _genaction(PACKAGES / "actionlib_tutorials" / "action" / "Fibonacci.action",
-                           work / "actionlib_tutorials")  # fmt: skip
-    _genpy(python, "actionlib_tutorials", tutorials, [tutorials[0].parent], include)
-    trajectory = sorted((include / "trajectory_msgs" / "msg").glob("*.msg"))
-    _genpy(python, "trajectory_msgs", trajectory, [], include)
-    control = DEFINITIONS / "control_msgs"
-    actions = _genaction(control / "action" / "FollowJointTrajectory.action", work / "control")
-    tolerance = control / "msg" / "JointTolerance.msg"
-    own = [actions[0].parent, tolerance.parent]
-    _genpy(python, "control_msgs", [*actions, tolerance], own, include)
-    return python
-
-
-def _genaction(action: Path, out: Path) -> list[Path]:
-    """actionlib_msgs' genaction.py on ``action``: its seven .msg files."""
-    subprocess.run([DEBIAN_PYTHON, str(GENACTION), str(action), "-o", str(out)],
-                   check=True, capture_output=True)  # fmt: skip
-    files = sorted(out.glob("*.msg"))
-    assert len(files) == 7, files
-    return files
-
-
-def _genpy(python: Path, package: str, files: list[Path], own: list[Path], include: Path) -> None:
-    """genpy's generator: ``package``'s Python messages of ``files`` under ``python``; ``own``
-    the folders of the package's own definitions, ``include`` the other packages' (one folder
-    per package)."""
-    flags = [f"-I{package}:{folder}" for folder in own]
-    flags += [f"-I{folder.name}:{folder / 'msg'}" for folder in sorted(include.iterdir())]
-    out = python / package
-    for argv in (flags + [str(f) for f in files], ["--initpy"]):
-        subprocess.run(
-            [DEBIAN_PYTHON, str(GENPY / "genmsg_py.py"), "-p", package,
-             "-o", str(out / "msg"), *argv],
-            check=True, capture_output=True,
-        )  # fmt: skip
-    (out / "__init__.py").write_text("")
 
 
 class Graph(Ros1):
@@ -163,7 +104,7 @@ def graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Graph]:
             pytest.fail(f"Debian's ROS 1 is missing ({tool}): tools/system-deps test installs it")
     home = tmp_path_factory.mktemp("actionlib")
     found = Graph(home)
-    found.generated = _debian_messages(home / "generated")
+    found.generated = debian_messages(home / "generated")
     found.roscore()
     try:
         yield found
@@ -265,3 +206,49 @@ def test_follow_joint_trajectory_across_robomodel_and_debian(
     assert "Traceback" not in _text(log), _text(log)
     graph.stop(server)
     graph.until(lambda: not (TRAJECTORY_TOPICS & graph.names("topics")), "the server's topics gone")
+
+
+ARM_CONTROLLERS = """\
+arm_controller:
+  type: position_controllers/JointTrajectoryController
+  joints: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint,
+           wrist_3_joint]
+joint_state_controller:
+  type: joint_state_controller/JointStateController
+  publish_rate: 50
+"""
+ARM_TOPICS = {f"/arm_controller/follow_joint_trajectory/{name}"
+              for name in ("goal", "cancel", "status", "feedback", "result")}  # fmt: skip
+
+
+def test_debian_client_drives_the_simulated_arm_s_trajectory_controller(
+    graph: Graph, tmp_path: Path
+) -> None:
+    """A ROS 1 controller file's JointTrajectoryController serves actionlib's
+    follow_joint_trajectory on a ROS 1 graph, as ros_control's does: Debian's actionlib client
+    moves the simulated UR5 (SUCCEEDED, feedback on the way), a goal for a joint the arm lacks
+    is REJECTED with INVALID_GOAL and the reason, and a cancel preempts a running goal."""
+    config = tmp_path / "controllers.yaml"
+    config.write_text(ARM_CONTROLLERS)
+    log = tmp_path / "sim.log"
+    sim = graph.robomodel("sim", str(EXAMPLES / "ur5_description" / "urdf" / "ur5.urdf.xacro"),
+                          "--controllers", str(config), "--headless", "--bus", "ros1", log=log)  # fmt: skip
+    graph.until(lambda: "Ctrl-C stops" in _text(log) or sim.poll() is not None, "the simulation")
+    assert sim.poll() is None, _text(log)
+    assert graph.names("topics") >= ARM_TOPICS, graph.names("topics")
+    moved = graph.node("ur5_follow_trajectory", ours=False)
+    assert _lines(moved, "State: ") == ["3"], moved.stdout + moved.stderr  # SUCCEEDED
+    assert _lines(moved, "Result: ") == ["0 "]
+    assert int(_lines(moved, "Feedback: ")[0]) > 0
+    (positions,) = _lines(moved, "Positions: ")
+    assert [float(q) for q in positions.split(",")] == pytest.approx(
+        [0.5, -1.0, 1.0, 0.0, 0.5, 0.0], abs=0.02
+    )
+    bad = graph.node("ur5_follow_trajectory", "bad", ours=False)
+    assert _lines(bad, "State: ") == ["5"], bad.stdout + bad.stderr  # REJECTED
+    (rejected,) = _lines(bad, "Result: ")
+    assert rejected.startswith("-1 ") and "no_such_joint" in rejected  # INVALID_GOAL
+    cancelled = graph.node("ur5_follow_trajectory", "cancel", ours=False)
+    assert _lines(cancelled, "State: ") == ["2"], cancelled.stdout + cancelled.stderr  # PREEMPTED
+    assert "Traceback" not in _text(log), _text(log)
+    graph.stop(sim)

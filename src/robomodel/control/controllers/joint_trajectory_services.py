@@ -4,7 +4,10 @@ service and its state topics.
 ``~/follow_joint_trajectory`` is a real ROS 2 action (control_msgs/action/FollowJointTrajectory,
 rcl_action's services and topics: see :mod:`robomodel.runtime.action_server`): a goal that
 fails validation is rejected, as Humble's ``goal_received_callback`` rejects it; a new goal
-preempts the running one; feedback (desired, actual, error) is published while it runs.
+preempts the running one; feedback (desired, actual, error) is published while it runs. On a
+ROS 1 graph the same goals also come through actionlib's ``~/follow_joint_trajectory``
+(:mod:`robomodel.runtime.ros1_action_server`), as ROS 1's controller serves them; a refused
+goal is rejected there with INVALID_GOAL and the reason (:func:`rejection`).
 ``~/query_state`` is control_msgs/srv/QueryTrajectoryState; ``~/controller_state`` carries
 what Jazzy's ``publish_state`` publishes (no speed scaling here, so its factor is 1).
 
@@ -41,6 +44,7 @@ from robomodel.runtime.msg.types.control_msgs import (
 if TYPE_CHECKING:
     from robomodel.control.controllers.trajectory import Sample
     from robomodel.runtime.node import Node
+    from robomodel.runtime.ros1_action_server import Ros1ActionServer
 
 __all__ = [
     "TrajectoryControllerBus",
@@ -134,6 +138,17 @@ def accept_goal(controller: TrajectoryGoalTarget, goal: FollowJointTrajectory_Go
     return _Goal(controller, handle)
 
 
+def rejection(
+    controller: TrajectoryGoalTarget, goal: FollowJointTrajectory_Goal
+) -> FollowJointTrajectory_Result:
+    """The result of a goal ``accept_goal`` refused, as ROS 1's joint_trajectory_controller
+    sets it: INVALID_GOAL with the reason."""
+    why = "the controller is not active"
+    if controller.snapshot().active:
+        why = controller.validate(goal.trajectory)
+    return FollowJointTrajectory_Result(FollowJointTrajectory_Result.INVALID_GOAL, why)
+
+
 def query_state(
     state: TrajectoryControllerSnapshot, request: QueryTrajectoryState_Request
 ) -> QueryTrajectoryState_Response:
@@ -205,6 +220,7 @@ class TrajectoryControllerBus:
 
     def __init__(self, node: Node, controller: TrajectoryGoalTarget) -> None:
         from robomodel.runtime.action_server import ActionServer
+        from robomodel.runtime.ros1_action_server import Ros1ActionServer
 
         self._action = ActionServer(
             node,
@@ -212,6 +228,15 @@ class TrajectoryControllerBus:
             "~/follow_joint_trajectory",
             lambda g: accept_goal(controller, g),
         )
+        self._ros1_action: Ros1ActionServer | None = None
+        if node.context.transport.name == "ros1":  # and actionlib's, as ROS 1's controller
+            self._ros1_action = Ros1ActionServer(
+                node,
+                "control_msgs/FollowJointTrajectory",
+                "~/follow_joint_trajectory",
+                lambda g: accept_goal(controller, g),
+                rejected=lambda g: rejection(controller, g),
+            )
         self._query = node.create_service(
             QueryTrajectoryState,
             "~/query_state",
@@ -226,5 +251,6 @@ class TrajectoryControllerBus:
         self._state.publish(state_message(state, sample, errors))
 
     def destroy(self) -> None:
-        for part in (self._action, self._query, self._state):
-            part.destroy()
+        for part in (self._action, self._ros1_action, self._query, self._state):
+            if part is not None:
+                part.destroy()
