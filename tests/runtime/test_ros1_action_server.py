@@ -204,3 +204,18 @@ def test_a_goal_without_an_id_gets_one_from_the_server(bench: Bench) -> None:
     bench.tick()
     ids = [e.goal_id.id for e in bench.statuses[-1].status_list]
     assert len(ids) == 1 and ids[0].startswith("/controller-1-")
+
+
+def test_a_flood_of_goals_keeps_a_bounded_status_list(bench: Bench) -> None:
+    """Goals that end at once (refused ones) stay in the status list for its timeout, but no
+    more than MAX_ENDED_GOALS of them: a flood is not kept for seconds."""
+    from robomodel.runtime.ros1_action_server import MAX_ENDED_GOALS
+
+    bench.accept_next = False
+    for n in range(MAX_ENDED_GOALS + 50):
+        bench.send(f"g{n}", n + 1)
+    bench.tick()
+    listed = [e.goal_id.id for e in bench.statuses[-1].status_list]
+    assert len(listed) == MAX_ENDED_GOALS
+    assert listed[-1] == f"g{MAX_ENDED_GOALS + 49}"  # the newest kept, the oldest gone
+    assert len(bench.results) == MAX_ENDED_GOALS + 50

@@ -37,6 +37,7 @@ __all__ = ["STATUS_HZ", "STATUS_LIST_TIMEOUT_S", "Ros1ActionServer", "converted"
 STATUS_HZ = 5.0  # actionlib's actionlib_status_frequency default
 STATUS_LIST_TIMEOUT_S = 5.0  # actionlib's status_list_timeout default
 MAX_EARLY_CANCELS = 100  # ids cancelled before their goal came, kept to recall it
+MAX_ENDED_GOALS = 100  # ended goals in the status list at most, as the ROS 2 server keeps
 
 # actionlib_msgs/GoalStatus
 PENDING, ACTIVE, PREEMPTED, SUCCEEDED, ABORTED, REJECTED = 0, 1, 2, 3, 4, 5
@@ -201,6 +202,7 @@ class Ros1ActionServer:
             entry.status = status
         entry.ended_ns = self._node.now().to_nanoseconds()
         self._goals[entry.goal_id.id] = entry
+        self._forget_ended()
         self._result.publish(
             self._types["ActionResult"](
                 self._header(), self._status_of(entry, entry.status),
@@ -210,10 +212,15 @@ class Ros1ActionServer:
         self._publish_status()
 
     def _forget_ended(self) -> None:
+        """Ended goals leave the status list after ``STATUS_LIST_TIMEOUT_S``, and the oldest
+        first past ``MAX_ENDED_GOALS`` (a flood of goals is not kept for seconds)."""
         oldest = self._node.now().to_nanoseconds() - int(STATUS_LIST_TIMEOUT_S * 1e9)
-        for key in [k for k, g in self._goals.items() if g.ended_ns is not None]:
+        ended = [k for k, g in self._goals.items() if g.ended_ns is not None]
+        for number, key in enumerate(ended):
             ended_ns = self._goals[key].ended_ns
-            if ended_ns is not None and ended_ns < oldest:
+            if len(ended) - number > MAX_ENDED_GOALS or (
+                ended_ns is not None and ended_ns < oldest
+            ):
                 del self._goals[key]
 
     def _publish_status(self) -> None:
