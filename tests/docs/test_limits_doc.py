@@ -29,6 +29,8 @@ STATED = [
     ("robomodel.viewer.limits", "MAX_IMAGE_PIXELS", 4096 * 4096, "4096 x 4096 (`MAX_IMAGE_PIXELS`)"),
     ("robomodel.viewer.limits", "MAX_PARAMETERS_SHOWN", 1000, "1,000 (`MAX_PARAMETERS_SHOWN`)"),
     ("robomodel.viewer.limits", "MAX_ODOMETRY_PENDING", 1000, "1,000 (`MAX_ODOMETRY_PENDING`)"),
+    ("robomodel.runtime.ros1_action_server", "MAX_ENDED_GOALS", 100, "100 at most (`MAX_ENDED_GOALS`)"),
+    ("robomodel.runtime.ros1_action_server", "MAX_EARLY_CANCELS", 100, "100 ids cancelled before their goal came are kept to recall it (`MAX_EARLY_CANCELS`)"),
     ("robomodel.cli.graph", "DOT_TIMEOUT_S", 60.0, "60 s (`DOT_TIMEOUT_S`)"),
     ("robomodel.cli.graph", "MAX_DOT_BYTES", 8 * 2**20, "8 MiB of Graphviz text (`MAX_DOT_BYTES`)"),
     ("robomodel.cli.graph", "DOT_MEMORY_BYTES", 2 * 2**30, "2 GiB of address space (`DOT_MEMORY_BYTES`)"),
