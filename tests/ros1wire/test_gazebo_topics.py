@@ -14,6 +14,7 @@ from typing import Any
 import pytest
 import yaml
 
+from tests.clientlibs.rospy.debian_messages import GENPY, write_definitions
 from tests.ros1wire.conftest import Ros1
 from tests.timing import scaled
 
@@ -27,26 +28,16 @@ SEED_001_TOPICS = {
 }  # fmt: skip
 
 
-_SEPARATOR = "\n" + "=" * 80 + "\nMSG: "
-GENPY = Path("/usr/lib/genpy")
-
-
 def gazebo_msgs_python(tmp_path: Path) -> Path:
     """gazebo_msgs for Debian's rosservice, as ``catkin_make`` would build it: genpy's own
     generators on the vendored noetic definitions, with the definitions they depend on
     (geometry_msgs, std_msgs; Debian ships their Python modules but not their .msg files)
     written out from the Noetic type store. The folder to put on PYTHONPATH."""
-    from robomodel.runtime.transport.ros1.ros1_types import DEFINITIONS, ros1_type_named
+    from robomodel.runtime.transport.ros1.ros1_types import DEFINITIONS
 
     include = tmp_path / "include"
-    for name in ("geometry_msgs/Pose", "geometry_msgs/Twist", "geometry_msgs/Wrench",
-                 "std_msgs/Header"):  # fmt: skip
-        first, *others = ros1_type_named(name).definition.split(_SEPARATOR)
-        for dep_name, text in [(name, first), *(o.split("\n", 1) for o in others)]:
-            package, stem = dep_name.split("/")
-            path = include / package / "msg" / f"{stem}.msg"
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text)
+    write_definitions(include, ("geometry_msgs/Pose", "geometry_msgs/Twist",
+                                "geometry_msgs/Wrench", "std_msgs/Header"))  # fmt: skip
     out = tmp_path / "python" / "gazebo_msgs"
     source = DEFINITIONS / "gazebo_msgs"
     flags = [f"-Igazebo_msgs:{source / 'msg'}", f"-Igeometry_msgs:{include / 'geometry_msgs/msg'}",

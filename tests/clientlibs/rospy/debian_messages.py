@@ -6,13 +6,29 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
-__all__ = ["DEBIAN_PYTHON", "GENACTION", "GENPY", "debian_messages"]
+__all__ = ["DEBIAN_PYTHON", "GENACTION", "GENPY", "debian_messages", "write_definitions"]
 
 DEBIAN_PYTHON = "/usr/bin/python3"
 GENPY = Path("/usr/lib/genpy")
 GENACTION = Path("/usr/lib/actionlib_msgs/genaction.py")
 PACKAGES = Path(__file__).parent / "packages"
 _SEPARATOR = "\n" + "=" * 80 + "\nMSG: "
+
+
+def write_definitions(include: Path, names: tuple[str, ...]) -> None:
+    """The ``.msg`` files of ROS 1 types ``names`` and of every type they hold, written from
+    robomodel's Noetic definitions to ``include/<package>/msg/``, for genpy's ``-I`` flags
+    (Debian ships the Python modules of std_msgs, geometry_msgs and actionlib_msgs but not
+    their .msg files)."""
+    from robomodel.runtime.transport.ros1.ros1_types import ros1_type_named
+
+    for name in names:
+        first, *others = ros1_type_named(name).definition.split(_SEPARATOR)
+        for dep_name, text in [(name, first), *(o.split("\n", 1) for o in others)]:
+            package, stem = dep_name.split("/")
+            path = include / package / "msg" / f"{stem}.msg"
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(text)
 
 
 def debian_messages(work: Path) -> Path:
@@ -22,17 +38,11 @@ def debian_messages(work: Path) -> Path:
     actionlib_msgs' Python modules but neither their .msg files nor trajectory_msgs: those
     definitions are written out from robomodel's Noetic ones (rosbags' store), and
     trajectory_msgs is generated too. The folder to put on PYTHONPATH."""
-    from robomodel.runtime.transport.ros1.ros1_types import DEFINITIONS, ros1_type_named
+    from robomodel.runtime.transport.ros1.ros1_types import DEFINITIONS
 
     include = work / "include"
-    for name in ("std_msgs/Header", "actionlib_msgs/GoalID", "actionlib_msgs/GoalStatus",
-                 "trajectory_msgs/JointTrajectory"):  # fmt: skip
-        first, *others = ros1_type_named(name).definition.split(_SEPARATOR)
-        for dep_name, text in [(name, first), *(o.split("\n", 1) for o in others)]:
-            package, stem = dep_name.split("/")
-            path = include / package / "msg" / f"{stem}.msg"
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text)
+    write_definitions(include, ("std_msgs/Header", "actionlib_msgs/GoalID",
+                                "actionlib_msgs/GoalStatus", "trajectory_msgs/JointTrajectory"))  # fmt: skip
     python = work / "python"
     tutorials = _genaction(PACKAGES / "actionlib_tutorials" / "action" / "Fibonacci.action",
                            work / "actionlib_tutorials")  # fmt: skip
