@@ -220,6 +220,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/tf/test_view_frames_names.py::test_dot_runs_with_a_timeout_and_a_size_bound": PROCESS,
     "tests/tf/test_view_frames_names.py::test_graphviz_reads_the_tree_that_was_heard": PROCESS,
     "tests/viewer/test_empty_start.py::test_run_rviz2_without_a_robot_description_serves_an_empty_viewer": PROCESS,
+    "tests/viewer/test_view_signals.py": PROCESS,
     "tests/test_import_cycles.py::test_the_script_prints_one_circle_a_line": PROCESS,
     "tests/test_startup_imports.py::test_client_library_finder_loads_only_itself_at_start": PROCESS,
     "tests/test_startup_imports.py::test_a_control_verb_without_a_robot_loads_no_description": PROCESS,

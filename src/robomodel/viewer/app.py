@@ -50,6 +50,8 @@ __all__ = ["Viewer", "ViewerOptions"]
 
 log = logging.getLogger("robomodel.viewer")
 
+WAIT_SLICE_S = 0.2  # how soon the main thread looks at a signal another thread received
+
 
 class Viewer:
     """``robomodel view``: serve the robots on a web page until :meth:`close`."""
@@ -173,8 +175,16 @@ class Viewer:
         thread.start()
 
     def wait(self, timeout_s: float | None = None) -> None:
-        """Block until :meth:`close` (or ``timeout_s``)."""
-        self._stop.wait(timeout_s)
+        """Block until :meth:`close` (or ``timeout_s``), in slices of ``WAIT_SLICE_S``: the
+        kernel may hand Ctrl-C's SIGINT to any thread of the process (a Zenoh or viser one),
+        and Python raises KeyboardInterrupt only when its main thread next runs, which an
+        endless wait never would."""
+        deadline = None if timeout_s is None else time.monotonic() + timeout_s
+        while not self._stop.is_set():
+            remaining = WAIT_SLICE_S if deadline is None else deadline - time.monotonic()
+            if remaining <= 0:
+                return
+            self._stop.wait(min(remaining, WAIT_SLICE_S))
 
     def close(self) -> None:
         if self.tools is not None:
