@@ -103,6 +103,8 @@ def pytest_configure(config: pytest.Config) -> None:
         return
     _processes_tmpdir()
     _byte_code_cache()
+    if os.environ.get("ROBOMODEL_TEST_ROUTER") == "0":  # tools/mutate.py: in-process tests only
+        return
     if _listening(7447):
         _keep_router_alive()
         return

@@ -25,7 +25,6 @@ import json
 import os
 import re
 import shutil
-import socket
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -244,12 +243,6 @@ def _without_xdist_options(pyproject: Path) -> str:
     return text[: line.start(1)] + kept + text[line.end(1) :]
 
 
-def _router_listening() -> bool:
-    with socket.socket() as probe:
-        probe.settimeout(0.2)
-        return probe.connect_ex(("127.0.0.1", 7447)) == 0
-
-
 def run(group: Group, *, children: int, again: bool = False, sample: int | None = None) -> int:
     """mutmut run in the group's folder; its exit code. ``again``: test the survivors and the
     mutants without tests anew (mutmut keeps a mutant's verdict until its function changes,
@@ -262,6 +255,10 @@ def run(group: Group, *, children: int, again: bool = False, sample: int | None 
     # robomodel-clientlibs.pth looks robomodel up at interpreter start, which would import the
     # unmutated tree before mutmut puts mutants/src first: no test would reach a mutant
     env["ROBOMODEL_CLIENTLIBS"] = "0"
+    # no Zenoh router for the run, and no session linked to one (tests/conftest.py): the
+    # groups' tests are in-process, and a session's threads in mutmut's fork server would not
+    # survive its fork (every mutant's process hung until its timeout)
+    env["ROBOMODEL_TEST_ROUTER"] = "0"
     command = [sys.executable, "-m", "mutmut", "run", "--max-children", str(children)]
     digits = SAMPLE_DIGITS[group.sample if sample is None else sample]
     if again:
@@ -347,27 +344,13 @@ def main(argv: list[str] | None = None) -> int:
             sampled = f" (1 mutant in {g.sample})" if g.sample > 1 else ""
             print(f"{g.name}{sampled}: {', '.join(g.sources)}\n    tests: {', '.join(g.tests)}")
         return 0
-    router = None
-    if not args.report and not _router_listening():
-        # tests/conftest.py starts a Zenoh router for every pytest run that finds none, which
-        # mutmut's one-run-per-mutant would pay for each time: one for the whole run instead
-        router = subprocess.Popen(
-            [sys.executable, "-m", "robomodel.cli.main", "router"],
-            stderr=subprocess.DEVNULL, start_new_session=True,
-            env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
-        )  # fmt: skip
     failed = []
-    try:
-        for g in chosen:
-            if not args.report:
-                if args.fresh:
-                    shutil.rmtree(WORK / g.name / "mutants", ignore_errors=True)
-                if run(g, children=args.children, again=args.again, sample=args.sample) != 0:
-                    failed.append(g.name)
-    finally:
-        if router is not None:
-            router.terminate()
-            router.wait()
+    for g in chosen:
+        if not args.report:
+            if args.fresh:
+                shutil.rmtree(WORK / g.name / "mutants", ignore_errors=True)
+            if run(g, children=args.children, again=args.again, sample=args.sample) != 0:
+                failed.append(g.name)
     print("\n| group | module | mutants | tested | killed | survived | no tests | score |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     for g in chosen:
