@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+from typing import Any
 
 import pytest
 
@@ -423,4 +424,31 @@ def test_a_failing_handler_is_one_warning_and_the_caller_learns_why(
     finally:
         stop.set()
         spinner.join(scaled(5))
+    ctx.shutdown()
+
+
+def test_a_message_of_another_class_of_its_type_arrives_as_the_subscriber_s_class() -> None:
+    """A publisher's message of another class of the same type (a client library's face, as
+    rospy's genpy-shaped JointState) reaches a subscriber as an instance of the subscriber's
+    own class, with the same fields; one of the subscriber's own class arrives as it is."""
+    from robomodel.clientlibs.messages import message_class
+    from robomodel.runtime.msg import JointState
+
+    face = message_class("sensor_msgs/msg/JointState", "genpy")
+    ctx = Context()
+    node = ctx.create_node("faces")
+    got: list[Any] = []
+    node.create_subscription(JointState, "/faces", got.append, 10)
+    by_face = node.create_publisher(face, "/faces", 10)
+    by_own = node.create_publisher(JointState, "/faces", 10)
+    sent = face()
+    sent.name, sent.position = ["a"], [1.5]
+    by_face.publish(sent)
+    own = JointState(name=["b"], position=[2.5])
+    by_own.publish(own)
+    ctx.spin_once(0.1)
+    ctx.spin_once(0.1)
+    assert [type(m) for m in got] == [JointState, JointState]
+    assert (list(got[0].name), list(got[0].position)) == (["a"], [1.5])
+    assert got[1] is own
     ctx.shutdown()

@@ -95,6 +95,19 @@ def test_inproc_service_call_and_errors() -> None:
             ctx.call_service("/check", SetBool)
 
 
+def test_an_inproc_service_answers_a_call_with_another_class_of_its_type() -> None:
+    """A client's service class of the same type as the server's, not the same class (a
+    client library's face, as rclpy's rosidl-shaped SetBool), is served, not refused."""
+    from robomodel.clientlibs.messages import service_class
+
+    face = service_class("std_srvs/srv/SetBool", "rosidl")
+    assert face is not SetBool
+    with Context("inproc") as ctx:
+        ctx.create_node("calc").create_service(SetBool, "check", _check)
+        reply = ctx.call_service("/check", face, face.Request(data=True))
+        assert (reply.success, reply.message) == (True, "checked")
+
+
 def test_zenoh_service_across_processes(tmp_path: Path) -> None:
     script = tmp_path / "server.py"
     script.write_text(SERVER)
