@@ -122,9 +122,16 @@ class _Goal:
         return True
 
 
+def refusal(controller: TrajectoryGoalTarget, goal: FollowJointTrajectory_Goal) -> str:
+    """Why ``goal`` is refused (inactive controller, invalid trajectory), or ``""``."""
+    if not controller.snapshot().active:
+        return "the controller is not active"
+    return controller.validate(goal.trajectory)
+
+
 def accept_goal(controller: TrajectoryGoalTarget, goal: FollowJointTrajectory_Goal) -> _Goal | None:
     """``goal_received_callback``: reject when inactive or invalid, else start it."""
-    if not controller.snapshot().active or controller.validate(goal.trajectory):
+    if refusal(controller, goal):
         return None
     tolerance = goal.goal_time_tolerance
     handle = controller.send_goal(
@@ -143,10 +150,9 @@ def rejection(
 ) -> FollowJointTrajectory_Result:
     """The result of a goal ``accept_goal`` refused, as ROS 1's joint_trajectory_controller
     sets it: INVALID_GOAL with the reason."""
-    why = "the controller is not active"
-    if controller.snapshot().active:
-        why = controller.validate(goal.trajectory)
-    return FollowJointTrajectory_Result(FollowJointTrajectory_Result.INVALID_GOAL, why)
+    return FollowJointTrajectory_Result(
+        FollowJointTrajectory_Result.INVALID_GOAL, refusal(controller, goal)
+    )
 
 
 def query_state(
