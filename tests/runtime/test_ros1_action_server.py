@@ -22,6 +22,7 @@ from robomodel.runtime.ros1_action_server import (
     SUCCEEDED,
     Ros1ActionServer,
 )
+from tests.timing import wait_until
 
 ACTION_GOAL = get_message_type("control_msgs/msg/FollowJointTrajectoryActionGoal")
 RESULT = get_message_type("control_msgs/msg/FollowJointTrajectoryResult")
@@ -219,3 +220,17 @@ def test_a_flood_of_goals_keeps_a_bounded_status_list(bench: Bench) -> None:
     assert len(listed) == MAX_ENDED_GOALS
     assert listed[-1] == f"g{MAX_ENDED_GOALS + 49}"  # the newest kept, the oldest gone
     assert len(bench.results) == MAX_ENDED_GOALS + 50
+
+
+def test_the_status_list_also_goes_out_periodically(bench: Bench) -> None:
+    """actionlib's clients learn of a server from its status topic: the list is published at
+    STATUS_HZ even when nothing changes (the fixture's monitor never runs on its own)."""
+    bench.send("g1", 1)
+    before = len(bench.statuses)
+
+    def two_more() -> bool:
+        bench.ctx.spin_once(0.05)
+        return len(bench.statuses) >= before + 2
+
+    wait_until(two_more, 10, what="two status lists with no change")
+    assert bench.last_status("g1") == ACTIVE

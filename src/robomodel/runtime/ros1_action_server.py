@@ -110,7 +110,6 @@ class Ros1ActionServer:
         self._last_cancel_ns = 0
         self._ids = itertools.count(1)
         base = node.resolve_topic_name(name).rstrip("/")
-        self.name = base
         self._status = node.create_publisher(self._status_array, f"{base}/status", 50)
         self._feedback = node.create_publisher(types["ActionFeedback"], f"{base}/feedback", 50)
         self._result = node.create_publisher(types["ActionResult"], f"{base}/result", 50)
@@ -118,9 +117,10 @@ class Ros1ActionServer:
             node.create_subscription(types["ActionGoal"], f"{base}/goal", self._on_goal, 50),
             node.create_subscription(self._goal_id, f"{base}/cancel", self._on_cancel, 50),
         ]
-        self._ticks = itertools.count()
-        self._status_every = max(1, round(monitor_rate_hz / STATUS_HZ))
-        self._timer = node.create_timer(1.0 / monitor_rate_hz, self._monitor)
+        self._timers = [
+            node.create_timer(1.0 / monitor_rate_hz, self._monitor),
+            node.create_timer(1.0 / STATUS_HZ, self._publish_status),
+        ]
 
     # -- goals and cancels ---------------------------------------------------------------------
     def _on_goal(self, msg: Any) -> None:
@@ -167,8 +167,8 @@ class Ros1ActionServer:
 
     # -- monitoring ----------------------------------------------------------------------------
     def _monitor(self) -> None:
-        """Publish feedback of active goals and the result of goals that ended; the status
-        list on a change and at ``STATUS_HZ``."""
+        """Publish feedback of active goals, the result of goals that ended, and the status
+        list on a change (its own timer publishes it at ``STATUS_HZ`` too)."""
         changed = False
         for entry in list(self._goals.values()):
             if entry.goal is None or entry.status in _ENDED:
@@ -192,7 +192,7 @@ class Ros1ActionServer:
                 else:
                     entry.status = status
         self._forget_ended()
-        if changed or next(self._ticks) % self._status_every == 0:
+        if changed:
             self._publish_status()
 
     def _end(self, entry: _Goal, result: Message, status: int | None = None) -> None:
@@ -215,12 +215,9 @@ class Ros1ActionServer:
         """Ended goals leave the status list after ``STATUS_LIST_TIMEOUT_S``, and the oldest
         first past ``MAX_ENDED_GOALS`` (a flood of goals is not kept for seconds)."""
         oldest = self._node.now().to_nanoseconds() - int(STATUS_LIST_TIMEOUT_S * 1e9)
-        ended = [k for k, g in self._goals.items() if g.ended_ns is not None]
-        for number, key in enumerate(ended):
-            ended_ns = self._goals[key].ended_ns
-            if len(ended) - number > MAX_ENDED_GOALS or (
-                ended_ns is not None and ended_ns < oldest
-            ):
+        ended = [(k, g.ended_ns) for k, g in self._goals.items() if g.ended_ns is not None]
+        for number, (key, ended_ns) in enumerate(ended):
+            if len(ended) - number > MAX_ENDED_GOALS or ended_ns < oldest:
                 del self._goals[key]
 
     def _publish_status(self) -> None:
@@ -237,7 +234,8 @@ class Ros1ActionServer:
         return Header(stamp=self._node.now())
 
     def destroy(self) -> None:
-        self._timer.cancel()
+        for timer in self._timers:
+            timer.cancel()
         for subscription in self._subscriptions:
             subscription.destroy()
         for publisher in (self._status, self._feedback, self._result):
