@@ -226,7 +226,6 @@ class TrajectoryControllerBus:
 
     def __init__(self, node: Node, controller: TrajectoryGoalTarget) -> None:
         from robomodel.runtime.action_server import ActionServer
-        from robomodel.runtime.ros1_action_server import Ros1ActionServer
 
         self._action = ActionServer(
             node,
@@ -236,6 +235,8 @@ class TrajectoryControllerBus:
         )
         self._ros1_action: Ros1ActionServer | None = None
         if node.context.transport.name == "ros1":  # and actionlib's, as ROS 1's controller
+            from robomodel.runtime.ros1_action_server import Ros1ActionServer
+
             self._ros1_action = Ros1ActionServer(
                 node,
                 "control_msgs/FollowJointTrajectory",
