@@ -115,7 +115,13 @@ def test_29_subscriber_connections_past_the_cap_read_an_error_header(
         assert all("already (its process's limit)" in e for e in refused), refused
         assert all(a["topic"] == "/chatter" for a in answers[:MAX_SUBSCRIBER_CONNECTIONS])
         assert subscriber_connections() == MAX_SUBSCRIBER_CONNECTIONS
-        assert _threads("ros1-pub-writer") == MAX_SUBSCRIBER_CONNECTIONS
+        # a subscriber reads its reply header just before its writer thread starts
+        wait_until(
+            lambda: _threads("ros1-pub-writer") == MAX_SUBSCRIBER_CONNECTIONS,
+            30,
+            what="a writer thread per subscriber",
+            interval_s=0.02,
+        )
         assert threading.active_count() <= before + MAX_SUBSCRIBER_CONNECTIONS + FEW_THREADS
         lines = [r.getMessage() for r in caplog.records if "MAX_SUBSCRIBER" in r.getMessage()]
         assert len(lines) == 1 and f"more than {MAX_SUBSCRIBER_CONNECTIONS}" in lines[0], lines
