@@ -52,11 +52,12 @@ wheel-smoke:
 
 # The in-process tier: the tests that start no process, browser, ROS 1 graph, Zenoh session or
 # simulator (their markers are set by tests/conftest.py, see tests/tiers.py), and are not slow
-# (the long property-based and corpus tests). About a minute on 2 cores.
+# (the long property-based and corpus tests). Under a minute on 2 cores: four workers, as some
+# of its tests wait on sockets and threads rather than compute.
 FAST_TIER := not (browser or ros1 or bus or process or sim or slow)
 
 test-fast: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2 -m "$(FAST_TIER)" tests
+	$(BIN)/python -m pytest -q -n 4 -m "$(FAST_TIER)" tests
 
 # Mutation testing of the core modules with mutmut, one module group at a time, each against
 # its fast in-process tests (tools/mutate.py; scores in CONTRIBUTING.md). Not part of `test`:

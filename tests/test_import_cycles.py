@@ -54,12 +54,14 @@ def _bullets(text: str) -> set[frozenset[str]]:
 
 @functools.cache
 def _circles() -> tuple[tuple[frozenset[str], bool], ...]:
-    """The circles of src/robomodel (found once: both tests below read them)."""
+    """The circles of src/robomodel (found once: the tests below read them)."""
     return tuple(
         (frozenset(c.modules), c.type_checking_only) for c in _tool().find_circles(ROOT / "src")
     )
 
 
+# the tests that read the circles of src run on one worker, which finds them once
+@pytest.mark.xdist_group("import_circles")
 @pytest.mark.parametrize("type_only", [False, True], ids=["running", "type-only"])
 def test_every_circle_is_documented_and_every_documented_one_exists(type_only: bool) -> None:
     found = {modules for modules, marked in _circles() if marked is type_only}
@@ -73,6 +75,21 @@ def test_every_circle_is_documented_and_every_documented_one_exists(type_only: b
     assert not gone, "architecture.md names import circles that no longer exist:\n" + "\n".join(
         gone
     )
+
+
+@pytest.mark.xdist_group("import_circles")
+def test_the_ros2_shim_the_ros1_loader_and_xacro_are_in_no_circle() -> None:
+    """The launch and xacro packages import in layers: no module of theirs is in a circle,
+    function-level and ``TYPE_CHECKING`` imports counted."""
+    ours = (
+        "robomodel.launch.ros2",
+        "robomodel.launch.ros1",
+        "robomodel.xacro",
+        "robomodel.launch.gui",
+    )
+    assert [
+        module for modules, _ in _circles() for module in modules if module.startswith(ours)
+    ] == []
 
 
 def test_the_tool_finds_circles_through_functions_and_marks_type_checking(tmp_path: Path) -> None:

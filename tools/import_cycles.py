@@ -59,6 +59,10 @@ def module_names(src: Path) -> dict[str, Path]:
     return names
 
 
+# the fields of modules, statements, except clauses and match cases that list statements
+_STATEMENT_FIELDS = ("body", "orelse", "finalbody", "handlers", "cases")
+
+
 def _is_type_checking(test: ast.expr) -> bool:
     if isinstance(test, ast.Name):
         return test.id == "TYPE_CHECKING"
@@ -78,8 +82,10 @@ def _imports(tree: ast.AST) -> Iterator[tuple[ast.Import | ast.ImportFrom, bool]
             for child in node.orelse:
                 yield from walk(child, guarded)
             return
-        for child in ast.iter_child_nodes(node):
-            yield from walk(child, guarded)
+        # imports are statements: only the statement lists of a node can hold one
+        for field in _STATEMENT_FIELDS:
+            for child in getattr(node, field, ()):
+                yield from walk(child, guarded)
 
     yield from walk(tree, False)
 

@@ -36,6 +36,9 @@ STRING = get_message_type("std_msgs/msg/String")
 SAID = {"id": 2, "topic": "/said", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
         "schema": "string data", "schemaEncoding": "ros2msg"}  # fmt: skip
 
+# the graph read ten times a second: a test that waits for reads waits less
+GRAPH_PERIOD_S = 0.1
+
 
 @pytest.fixture(scope="module")
 def bridge() -> Iterator[FoxgloveBridge]:
@@ -45,6 +48,7 @@ def bridge() -> Iterator[FoxgloveBridge]:
     spinner.start()
     found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
                            package_index=PackageIndex(), port=0, log=LINES.append,
+                           graph_period_s=GRAPH_PERIOD_S,
                            send_buffer_limit=SEND_BUFFER_LIMIT,
                            max_client_messages_per_s=RATE)  # fmt: skip
     try:
@@ -133,7 +137,7 @@ def test_a_client_that_stops_reading_costs_bounded_memory(bridge: FoxgloveBridge
     # max_queue=1: the client library stops reading the socket once it holds a frame
     with _client(bridge, max_queue=1) as ws:
         channel = None
-        while channel is None:  # the graph is read once a second
+        while channel is None:  # the graph is read every GRAPH_PERIOD_S
             found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/big"]
             channel = found[0]["id"] if found else None
         ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": channel}]}))

@@ -32,6 +32,9 @@ from tests.timing import scaled, wait_until
 LINES: list[str] = []
 PARAMS = ParamServer()
 
+# the graph read ten times a second: a test that waits for reads waits less
+GRAPH_PERIOD_S = 0.1
+
 
 @pytest.fixture(scope="module")
 def bridge() -> Iterator[FoxgloveBridge]:
@@ -40,7 +43,8 @@ def bridge() -> Iterator[FoxgloveBridge]:
     spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
     spinner.start()
     found = FoxgloveBridge(context, Ros1Params(PARAMS), dialect="ros2",
-                           package_index=PackageIndex(), port=0, log=LINES.append)  # fmt: skip
+                           package_index=PackageIndex(), port=0, log=LINES.append,
+                           graph_period_s=GRAPH_PERIOD_S)  # fmt: skip
     try:
         yield found
     finally:
@@ -84,7 +88,7 @@ def test_channel_schema_and_cdr_messages(bridge: FoxgloveBridge) -> None:
         assert _next(ws, "serverInfo")["supportedEncodings"] == ["cdr"]
         assert len(_server_sockets(bridge.port)) == 2 and all(_server_sockets(bridge.port))
         channel = None
-        while channel is None:  # the graph is read once a second
+        while channel is None:  # the graph is read every GRAPH_PERIOD_S
             found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/wind"]
             channel = found[0] if found else None
         assert channel["encoding"] == "cdr" and channel["schemaEncoding"] == "ros2msg"

@@ -30,7 +30,7 @@ versions Foxglove's business, at the cost of a 55 MB wheel.
 The whitelists are regular expressions a whole name must match, ignoring case (foxglove_bridge's
 ``std::regex_match`` with ``icase``).
 
-The graph is read once a second. Each client's queue holds at most ``send_buffer_limit / 100
+The graph is read once a second (``graph_period_s``). Each client's queue holds at most ``send_buffer_limit / 100
 kB`` messages (the SDK bounds it by count, not bytes; between 8 and 1024): the oldest are
 dropped when a client reads too slowly. A client's frame over 16 MiB closes its connection (the
 SDK's WebSocket bound, which it reports in one line); a client publishing more than
@@ -62,7 +62,6 @@ DEFAULT_ASSET_ALLOWLIST = (
     r"^package://(?:[-\w%]+/)*[-\w%.]+\.(?:dae|fbx|glb|gltf|jpeg|jpg|mtl|obj|png|stl|tif|tiff|"
     r"urdf|webp|xacro)$",
 )
-_POLL_S = 1.0
 _TYPICAL_MESSAGE_BYTES = 100_000
 MAX_CLIENT_FRAME_BYTES = 16 * 1024 * 1024  # the SDK's WebSocket bound on a client's frame
 _MMAP_THRESHOLD_BYTES = 32 * 1024 * 1024  # glibc's largest (DEFAULT_MMAP_THRESHOLD_MAX)
@@ -119,6 +118,7 @@ class FoxgloveBridge:
         max_client_messages_per_s: A client's published messages a second (as many in a
             burst); the excess is dropped.
         capabilities: The protocol capabilities offered (:data:`CAPABILITIES`).
+        graph_period_s: [s] How often the graph (and the ROS 1 parameters watched) are read.
         log: Where the one-line reports go.
     """
 
@@ -143,6 +143,7 @@ class FoxgloveBridge:
         max_qos_depth: int = 25,
         max_client_messages_per_s: float = 5_000.0,
         capabilities: Sequence[str] = CAPABILITIES,
+        graph_period_s: float = 1.0,
         log: Callable[[str], None] = print,
     ) -> None:
         foxglove = _import_foxglove()
@@ -166,6 +167,7 @@ class FoxgloveBridge:
         self.package_index = package_index
         self.capabilities = tuple(capabilities)
         self.max_qos_depth = max_qos_depth
+        self.graph_period_s = graph_period_s
         if not max_client_messages_per_s > 0:
             raise BridgeError(
                 "foxglove_bridge: max_client_messages_per_s must be positive, "
@@ -308,7 +310,7 @@ class FoxgloveBridge:
                 if str(exc) != trouble:
                     trouble = str(exc)
                     self.log(f"foxglove_bridge: reading the graph failed: {exc}")
-            self._stopping.wait(_POLL_S)
+            self._stopping.wait(self.graph_period_s)
 
     def _offered(self, topic: str) -> bool:
         return _listed(topic, self._whitelist)
