@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 from robomodel.clientlibs import finder
+from tests.timing import scaled
 
 
 def test_an_unknown_name_without_rosbags_installed_is_not_found_without_recursion(
@@ -132,3 +136,60 @@ def test_a_look_up_while_the_resolver_is_partly_loaded_does_not_fail(
     )
     monkeypatch.setattr(finder, "_misses", {})
     assert finder.ClientLibraryFinder().find_spec("nt_or_another_platform_module", None) is None
+
+
+def _gadget_msgs(src: Path) -> None:
+    """An interface package of one message, ``gadget_msgs/msg/Gadget``, under ``src``."""
+    package = src / "gadget_msgs"
+    (package / "msg").mkdir(parents=True)
+    (package / "msg" / "Gadget.msg").write_text("int32 size\n")
+    (package / "package.xml").write_text(
+        "<package format='2'><name>gadget_msgs</name><version>0.0.1</version>"
+        "<description>d</description><maintainer email='a@b.c'>a</maintainer>"
+        "<license>BSD</license></package>"
+    )
+
+
+def test_a_failed_import_with_a_package_path_crawls_it_and_loads_no_type_store(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """With ``ROS_PACKAGE_PATH`` set (every ROS user's shell), the standard library's own
+    failed imports (copy.py's ``org``, subprocess's ``msvcrt``) are answered from the package
+    path's crawl, not from the type stores; an interface package on that path is found."""
+    from robomodel.clientlibs import interfaces
+
+    _gadget_msgs(tmp_path / "src")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "src"))
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(finder, "_misses", {})
+    monkeypatch.setattr(finder, "_interface_packages", {})
+    asked: list[str] = []
+    monkeypatch.setattr(interfaces, "package_names", lambda: asked.append("stores") or {})
+    found = finder.ClientLibraryFinder()
+    for name in ("org", "msvcrt", "winreg", "not_a_package_xyz"):
+        assert found.find_spec(name, None) is None
+    assert asked == []
+    assert finder._package_path_interfaces() == {"gadget_msgs"}
+    assert finder._may_be_interface_package("gadget_msgs")
+
+
+@pytest.mark.process
+def test_python_with_a_package_path_imports_copy_without_the_type_stores(tmp_path: Path) -> None:
+    """A fresh Python of this environment (robomodel's .pth finder installed), with
+    ``ROS_PACKAGE_PATH`` set: importing the standard library loads none of robomodel's type
+    machinery; an interface package on the path still imports."""
+    code = (
+        "import copy, subprocess, mimetypes, sys\n"
+        "print(sorted(m for m in sys.modules if m.startswith(('rosbags', 'robomodel.runtime'))))\n"
+        "from gadget_msgs.msg import Gadget\n"
+        "print(Gadget(size=3).size)\n"
+    )
+    _gadget_msgs(tmp_path / "src")
+    env = {**os.environ, "ROS_PACKAGE_PATH": str(tmp_path / "src")}
+    env.pop("ROBOMODEL_CLIENTLIBS", None)
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, cwd="/", capture_output=True, text=True,
+        timeout=scaled(60), check=False,
+    )  # fmt: skip
+    assert out.stdout.splitlines() == ["[]", "3"], out.stdout + out.stderr

@@ -14,6 +14,7 @@ installation on ``sys.path`` (a sourced ``setup.bash``) or a real message packag
 
 from __future__ import annotations
 
+import _thread
 import importlib
 import importlib.machinery
 import importlib.util
@@ -196,29 +197,82 @@ _STARTUP_HOOKS = frozenset({"sitecustomize", "usercustomize"})
 _store_texts: list[str] = []  # stays empty when rosbags is not installed (looked for each time)
 
 
+def _never_a_package(name: str) -> bool:
+    """Names no interface package has: not identifiers, private, Python's start-up hooks, and
+    Python's own modules of other platforms, which the standard library tries at import
+    (subprocess's ``msvcrt``, mimetypes' ``winreg``): a ROS package so named would not import."""
+    return (
+        not name.isidentifier()
+        or name.startswith("_")
+        or name in _STARTUP_HOOKS
+        or name in sys.stdlib_module_names
+    )
+
+
 def _may_be_interface_package(package: str) -> bool:
     """A quick look, with no import, whether ``package`` can be an interface package robomodel
     knows. Every failed ``import`` in the process reaches this finder: it should cost a few
     file checks, not the loading of the type stores."""
-    if not package.isidentifier() or package.startswith("_") or package in _STARTUP_HOOKS:
+    if _never_a_package(package):
         return False
     if os.path.isfile(os.path.join(_MSG, "types", f"{package}.py")):
         return True
     if os.path.isdir(os.path.join(_MSG, "interfaces", package)):
         return True
-    if os.environ.get("ROS_PACKAGE_PATH") or os.environ.get("AMENT_PREFIX_PATH"):
-        return True  # the package path is crawled (once) by interfaces.package_names()
+    if package in _package_path_interfaces():
+        return True
+    if _in_workspace_src(package):
+        return True
+    needle = f"'{package}/"
+    return any(needle in text for text in _rosbags_store_texts())
+
+
+# The interface packages on the package path, per package path: each crawl (rospack's, by
+# robomodel's package index) costs milliseconds, where interfaces.package_names() would load the
+# type stores at the first failed import of every Python process (copy.py's
+# ``from org.python.core import PyStringMap``).
+_interface_packages: dict[tuple[object, ...], frozenset[str]] = {}
+_crawl_lock = _thread.RLock()
+_crawling = _thread._local()  # the crawl's own imports reach this finder: they find nothing
+_KINDS_DIRS = ("msg", "srv", "action")
+
+
+def _package_path_interfaces() -> frozenset[str]:
+    """The packages with ``msg/``, ``srv/`` or ``action/`` folders on ``ROS_PACKAGE_PATH``,
+    ``AMENT_PREFIX_PATH`` and ``--package-path`` (``robomodel run``/``launch``)."""
     # None while the resolver is still being imported: its own imports reach this finder
     # (pathlib's ``from nt import ...`` on POSIX, where nothing imported pathlib before)
     package_paths = getattr(
         sys.modules.get("robomodel.runtime.msg._resolver"), "package_paths", None
     )
-    if package_paths is not None and package_paths():
-        return True  # robomodel run/launch --package-path
-    if _in_workspace_src(package):
-        return True
-    needle = f"'{package}/"
-    return any(needle in text for text in _rosbags_store_texts())
+    extra = tuple(package_paths()) if package_paths is not None else ()
+    variables = (os.environ.get("ROS_PACKAGE_PATH"), os.environ.get("AMENT_PREFIX_PATH"))
+    if not any(variables) and not extra:
+        return frozenset()
+    key = (*variables, extra)
+    found = _interface_packages.get(key)
+    if found is not None or getattr(_crawling, "on", False):
+        return found or frozenset()
+    with _crawl_lock:
+        found = _interface_packages.get(key)
+        if found is not None:
+            return found
+        _crawling.on = True
+        try:
+            from robomodel.description.packages import PackageIndex
+
+            index = PackageIndex(package_paths=extra)
+            found = frozenset(
+                name
+                for name in index.names()
+                if any(os.path.isdir(os.path.join(index.find(name), k)) for k in _KINDS_DIRS)
+            )
+        finally:
+            _crawling.on = False
+        if len(_interface_packages) >= 16:
+            _interface_packages.clear()
+        _interface_packages[key] = found
+    return found
 
 
 def _in_workspace_src(package: str) -> bool:
@@ -238,7 +292,7 @@ _cheap_names: list[str] = []
 def _close_names(package: str) -> list[str]:
     """Names of interface packages robomodel ships or rosbags' stores hold that look like
     ``package`` (a typo), found with no import of robomodel's type machinery."""
-    if not package.isidentifier() or package.startswith("_") or package in _STARTUP_HOOKS:
+    if _never_a_package(package):
         return []
     if not _cheap_names:
         import re
