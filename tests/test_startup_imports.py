@@ -110,6 +110,7 @@ def test_version_loads_only_the_entry_point(tmp_path: Path) -> None:
     ours = {m for m in loaded if m.startswith("robomodel")}
     assert ours == {
         "robomodel",
+        "robomodel._lazy",
         "robomodel._version",
         "robomodel.cli",
         "robomodel.cli._verbs",
@@ -182,6 +183,20 @@ def test_nodes_and_messages_load_no_yaml_until_yaml_is_read_or_written() -> None
     assert out.stdout.split() == ["False", "True"], out.stderr
 
 
+@pytest.mark.process
+def test_a_controller_manager_client_loads_no_controller() -> None:
+    """The spawner and the ``controller_manager`` script only call a manager's services:
+    ``robomodel.control.client`` loads no controller, hardware, manager or their config."""
+    probe = (
+        "import sys; from robomodel.control.client import ManagerClient; "
+        "print('\\n'.join(m for m in sys.modules if m.startswith('robomodel.control')))"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    assert set(out.stdout.split()) == {"robomodel.control", "robomodel.control.client"}, (
+        out.stdout + out.stderr
+    )
+
+
 def test_help_imports_no_verb_module(tmp_path: Path) -> None:
     loaded = modules_loaded_by(tmp_path, "--help")
     assert _verb_modules(loaded) == set()
@@ -200,6 +215,7 @@ def test_packages_load_no_sub_package_until_used(code: str) -> None:
     loaded = set(out.stdout.split())
     allowed = {
         "robomodel",
+        "robomodel._lazy",
         "robomodel._version",
         "robomodel.description",
         "robomodel.cli",
@@ -218,6 +234,7 @@ def test_client_library_finder_loads_only_itself_at_start() -> None:
     loaded = set(site_start.stdout.split())
     hook = {
         "robomodel",
+        "robomodel._lazy",
         "robomodel._version",
         "robomodel.clientlibs",
         "robomodel.clientlibs.hook",
@@ -250,6 +267,11 @@ def test_lazy_names_are_the_defining_modules_objects() -> None:
         _ = robomodel.nope  # type: ignore[attr-defined]
     with pytest.raises(AttributeError, match="no attribute 'nope'"):
         _ = description.nope  # type: ignore[attr-defined]
+    from robomodel import control
+    from robomodel.control.manager import ControllerManager
+
+    assert control.ControllerManager is ControllerManager
+    assert set(control.__all__) <= set(dir(control))
 
 
 def _help(parser: argparse.ArgumentParser, argv: list[str]) -> str:
