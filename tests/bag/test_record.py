@@ -121,10 +121,10 @@ def _rosbag_info(path: Path) -> dict[str, object]:
 def test_ros1_recording_accepted_by_debian_rosbag(tmp_path: Path) -> None:
     talker = Talker(tmp_path, period_s=0.02)
     out = tmp_path / "run.bag"
-    try:
+    try:  # longer on a busy machine, where the talker and the recorder start late
         rec = run_cli(
             "bag", "record", "/joint_states", "/robot_description", "--ros1", str(out),
-            "--duration", "2.5", "--domain-id", talker.domain,
+            "--duration", f"{scaled(2.5):.1f}", "--domain-id", talker.domain,
         )  # fmt: skip
     finally:
         stop(talker.proc)
