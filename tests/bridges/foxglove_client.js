@@ -56,6 +56,14 @@ client.on("advertise", (channels) => {
     readers.set(subscription, { reader: codec(channel.encoding, channel.schema).reader, channel });
   }
 });
+// A channel the server takes back (its topic left the graph) is said, and its subscription
+// dropped: the topic's next channel is subscribed to when it is advertised, as Foxglove does.
+client.on("unadvertise", (channelIds) => {
+  say("unadvertised", channelIds);
+  for (const [subscription, found] of readers) {
+    if (channelIds.includes(found.channel.id)) readers.delete(subscription);
+  }
+});
 // The Foxglove SDK's server (foxglove-sdk 0.30.3) sends a channel's advertisement before it
 // registers the channel: a subscription sent at once can meet "Unknown channel ID: N" on a
 // loaded machine (reproduced with the SDK alone, a client subscribing to every channel it is

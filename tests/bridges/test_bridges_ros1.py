@@ -146,7 +146,8 @@ def test_foxglove_client_on_a_ros1_master(master_env: dict[str, str], tmp_path: 
                             "schema": "string data", "data": "hello from foxglove"}}  # fmt: skip
         procs.append(node_client(f"ws://127.0.0.1:{port}", plan, tmp_path / "client.log"))
         wait_until(lambda: "message" in results(tmp_path / "client.log") and echo.poll() is not None,
-                   60, what=lambda: (tmp_path / "client.log").read_text())  # fmt: skip
+                   60, what=lambda: (tmp_path / "client.log").read_text()
+                   + "\nbridge:\n" + (tmp_path / "bridge.log").read_text()[-3000:])  # fmt: skip
         found = results(tmp_path / "client.log")
         assert found["serverInfo"][0]["encodings"] == ["ros1"]
         message = found["message"][0]
