@@ -15,6 +15,11 @@ Groups:
   * ``robomodel check FILE`` vs ``python -c "import lxml.etree"`` (target: <= 3) and urdfdom's
     ``check_urdf`` (Debian's liburdfdom-tools, given the expanded URDF for a .xacro).
   * ``robomodel --version`` vs ``python -c pass`` (target: <= 1.5).
+  * Any Python of the environment, with ``ROS_PACKAGE_PATH`` set as in a ROS user's shell:
+    ``python -c "import copy, subprocess, mimetypes"`` with robomodel's client-library finder
+    (installed at start by its ``.pth`` file; the standard library's failed imports of other
+    platforms' modules reach it) against the same with it switched off
+    (``ROBOMODEL_CLIENTLIBS=0``). What installing robomodel costs every Python start.
 
 ``robomodel`` is run as pip's generated console script runs it (``from robomodel.cli.main
 import main; sys.exit(main())``), written to a temporary directory with this interpreter and
@@ -22,7 +27,7 @@ import main; sys.exit(main())``), written to a temporary directory with this int
 drops ``PYTHONDONTWRITEBYTECODE`` and byte-compiles ``src/robomodel`` first.
 
 Usage:
-    python bench/bench_startup.py [--rounds N] [--pr2 DIR] [--only xacro|check|version]
+    python bench/bench_startup.py [--rounds N] [--pr2 DIR] [--only xacro|check|version|python]
 
 ``--pr2 DIR`` is the unpacked ``xacro-2.1.1`` sdist; without it the sdist is fetched with
 ``pip download --no-deps --no-binary :all: xacro==2.1.1`` (the PR2 is skipped if that fails).
@@ -189,13 +194,30 @@ def bench_version(setup: Setup, rounds: int) -> None:
     race("--version", baseline, [version], setup, rounds)
 
 
+def bench_python(setup: Setup, rounds: int) -> None:
+    print("python with ROS_PACKAGE_PATH set: robomodel's import finder on vs off")
+    code = "import copy, subprocess, mimetypes"
+    path = f"ROS_PACKAGE_PATH={EXAMPLES}"
+
+    def python(finder: str) -> tuple[str, ...]:  # env(1) on both sides, so both pay its exec
+        return ("env", path, f"ROBOMODEL_CLIENTLIBS={finder}", sys.executable, "-c", code)
+
+    race(
+        f"python -c '{code}'",
+        Command("finder off (ROBOMODEL_CLIENTLIBS=0)", python("0")),
+        [Command("finder on (as installed)", python("1"))],
+        setup,
+        rounds,
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--rounds", type=int, default=20)
     parser.add_argument("--pr2", type=Path, help="the unpacked xacro-2.1.1 sdist directory")
-    parser.add_argument("--only", choices=("xacro", "check", "version"))
+    parser.add_argument("--only", choices=("xacro", "check", "version", "python"))
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="bench_startup_") as tmp_name:
         tmp = Path(tmp_name)
@@ -210,6 +232,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"rounds: {args.rounds}; medians of whole-process wall time\n")
         if args.only in (None, "version"):
             bench_version(setup, args.rounds)
+        if args.only in (None, "python"):
+            bench_python(setup, args.rounds)
         if args.only in (None, "check"):
             bench_check(setup, args.rounds)
         if args.only in (None, "xacro"):
