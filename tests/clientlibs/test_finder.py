@@ -161,7 +161,8 @@ def test_a_failed_import_with_a_package_path_crawls_it_and_loads_no_type_store(
     _gadget_msgs(tmp_path / "src")
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "src"))
     monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
-    monkeypatch.chdir(tmp_path)
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")  # not the workspace: the package path only
     monkeypatch.setattr(finder, "_misses", {})
     monkeypatch.setattr(finder, "_interface_packages", {})
     asked: list[str] = []
@@ -172,6 +173,10 @@ def test_a_failed_import_with_a_package_path_crawls_it_and_loads_no_type_store(
     assert asked == []
     assert finder._package_path_interfaces() == {"gadget_msgs"}
     assert finder._may_be_interface_package("gadget_msgs")
+    # a typo of a package on the path is still named, with the package meant
+    with pytest.raises(ModuleNotFoundError, match="did you mean gadget_msgs"):
+        found.find_spec("gadget_msg", None)
+    assert asked == []
 
 
 @pytest.mark.process

@@ -30,12 +30,12 @@ versions Foxglove's business, at the cost of a 55 MB wheel.
 The whitelists are regular expressions a whole name must match, ignoring case (foxglove_bridge's
 ``std::regex_match`` with ``icase``).
 
-The graph is read once a second (``graph_period_s``). Each client's queue holds at most ``send_buffer_limit / 100
-kB`` messages (the SDK bounds it by count, not bytes; between 8 and 1024): the oldest are
-dropped when a client reads too slowly. A client's frame over 16 MiB closes its connection (the
-SDK's WebSocket bound, which it reports in one line); a client publishing more than
-``max_client_messages_per_s`` messages a second (over a burst of as many) has the excess
-dropped and counted, said in one line per client.
+The graph is read once a second (``graph_period_s``). Each client's queue holds at most
+``send_buffer_limit / 100 kB`` messages (the SDK bounds it by count, not bytes; between 8 and
+1024): the oldest are dropped when a client reads too slowly. A client's frame over 16 MiB
+closes its connection (the SDK's WebSocket bound, which it reports in one line); a client
+publishing more than ``max_client_messages_per_s`` messages a second (over a burst of as many)
+has the excess dropped and counted, said in one line per client.
 """
 
 from __future__ import annotations

@@ -290,8 +290,9 @@ _cheap_names: list[str] = []
 
 
 def _close_names(package: str) -> list[str]:
-    """Names of interface packages robomodel ships or rosbags' stores hold that look like
-    ``package`` (a typo), found with no import of robomodel's type machinery."""
+    """Names of interface packages robomodel ships, rosbags' stores hold or the package path and
+    the workspace have that look like ``package`` (a typo), found with no import of robomodel's
+    type machinery."""
     if _never_a_package(package):
         return []
     if not _cheap_names:
@@ -306,7 +307,7 @@ def _close_names(package: str) -> list[str]:
         _cheap_names.extend(sorted(n for n in names if n.isidentifier() and n[0] != "_"))
     import difflib
 
-    candidates = [*_cheap_names, *_workspace_src_packages()]
+    candidates = [*_cheap_names, *_workspace_src_packages(), *_package_path_interfaces()]
     return difflib.get_close_matches(package, candidates, n=3, cutoff=0.8)
 
 
