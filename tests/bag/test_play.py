@@ -32,7 +32,7 @@ def test_play_reproduces_the_joint_states_seen_by_echo(tmp_path: Path) -> None:
     try:
         rec = run_cli(
             "bag", "record", "/joint_states", "/robot_description", "-o", str(out),
-            "--duration", "2", "--domain-id", talker.domain,
+            "--duration", f"{scaled(2):.1f}", "--domain-id", talker.domain,
         )  # fmt: skip
     finally:
         stop(talker.proc)

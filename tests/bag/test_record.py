@@ -77,8 +77,9 @@ def test_simulation_run_read_back_by_mcap_and_rosbags(tmp_path: Path) -> None:
     try:
         assert sim.stderr is not None and "robomodel sim: world" in past_the_bus_line(sim.stderr)
         rec = run_cli(
-            "bag", "record", "-a", "-o", str(out), "--duration", "3", "--domain-id", domain
-        )
+            "bag", "record", "-a", "-o", str(out), "--duration", f"{scaled(3):.1f}",
+            "--domain-id", domain,
+        )  # fmt: skip
         recorded_ns = time.time_ns()
     finally:
         stop(sim)

@@ -215,7 +215,9 @@ def test_bag_record_of_rostopic_pub_s_image_and_marker(ros1: Ros1, tmp_path: Pat
                 MARKER])  # fmt: skip
     ros1.until(lambda: {"/img", "/mk"} <= ros1.names("topics"), "publishers")
     folder = tmp_path / "bag"
-    rec = ros1.robomodel_run("bag", "record", "/img", "/mk", "-o", str(folder), "--duration", "4")
+    rec = ros1.robomodel_run(
+        "bag", "record", "/img", "/mk", "-o", str(folder), "--duration", f"{scaled(4):.1f}"
+    )
     assert rec.returncode == 0, rec.stderr
     got: dict[str, Any] = {}
     with AnyReader([folder]) as reader:
@@ -241,7 +243,9 @@ def test_bag_record_of_a_learned_type(ros1: Ros1, tmp_path: Path) -> None:
     ros1.start(["/usr/bin/python3", str(script)])
     ros1.until(lambda: "/sample" in ros1.names("topics"), "publisher")
     folder = tmp_path / "bag"
-    rec = ros1.robomodel_run("bag", "record", "-a", "-o", str(folder), "--duration", "3")
+    rec = ros1.robomodel_run(
+        "bag", "record", "-a", "-o", str(folder), "--duration", f"{scaled(3):.1f}"
+    )
     assert rec.returncode == 0, rec.stderr
     store = get_typestore(Stores.EMPTY)
     samples = []
