@@ -184,19 +184,21 @@ def test_domains_are_isolated(talker: tuple[subprocess.Popen[str], str]) -> None
     assert echo.returncode == 1 and echo.stdout == ""
 
 
-def _read_until(stream: Any, text: str, found: list[str]) -> None:
-    for line in iter(stream.readline, ""):
-        if text in line:
-            found.append(line)
-            return
+def _lines_until(stream: Any, text: str, timeout_s: float) -> list[str]:
+    """The lines of ``stream`` up to and including the first that holds ``text``, read on a
+    thread of their own for at most ``scaled(timeout_s)``: what was read by then."""
+    lines: list[str] = []
 
+    def read() -> None:
+        for line in iter(stream.readline, ""):
+            lines.append(line)
+            if text in line:
+                return
 
-def _lines_until(stream: Any, text: str, lines: list[str]) -> None:
-    """Every line of ``stream`` up to and including the first that holds ``text``."""
-    for line in iter(stream.readline, ""):
-        lines.append(line)
-        if text in line:
-            return
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(scaled(timeout_s))
+    return list(lines)
 
 
 def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None:
@@ -210,11 +212,8 @@ def test_sigint_exits_cleanly(talker: tuple[subprocess.Popen[str], str]) -> None
     # Interrupt once echo is running (its first message printed): a process still importing
     # when Ctrl-C comes ends as Python does before any handler exists, on a loaded machine too.
     assert echo.stdout is not None
-    first: list[str] = []
-    reader = threading.Thread(target=_read_until, args=(echo.stdout, "data:", first), daemon=True)
-    reader.start()
-    reader.join(scaled(60))
-    assert first, "topic echo printed no message in 60 s"
+    first = _lines_until(echo.stdout, "data:", 60)
+    assert any("data:" in line for line in first), "topic echo printed no message in 60 s"
     for p in (echo, proc):
         p.send_signal(signal.SIGINT)
     _out, err = echo.communicate(timeout=scaled(10))
@@ -456,10 +455,7 @@ def test_echo_keeps_all_with_qos_history_keep_all_and_reports_what_depth_1_lost(
             # before the burst's end (a starved process) would print 400 and report nothing
             publisher.publish(String("001 " + "x" * 1000))
             assert depth_1.stdout is not None
-            first: list[str] = []
-            reader = threading.Thread(target=_lines_until, args=(depth_1.stdout, "001 x", first))
-            reader.start()
-            reader.join(scaled(60))
+            first = _lines_until(depth_1.stdout, "001 x", 60)
             assert "001 x" in "".join(first), first
             for i in range(2, 401):
                 publisher.publish(String(f"{i:03d} " + "x" * 1000))
@@ -469,11 +465,7 @@ def test_echo_keeps_all_with_qos_history_keep_all_and_reports_what_depth_1_lost(
         numbers = [int(doc.split()[1]) for doc in out.split("---\n") if doc.strip()]
         assert numbers == list(range(1, 401))
         assert "lost" not in out
-        seen: list[str] = []
-        reader = threading.Thread(target=_lines_until, args=(depth_1.stdout, "400 x", seen))
-        reader.start()
-        reader.join(scaled(60))
-        text = "".join(seen)
+        text = "".join(_lines_until(depth_1.stdout, "400 x", 60))
         assert "400 x" in text, text[-2000:]
         assert "A message was lost!!!\n\ttotal count change:" in text
         printed = [doc for doc in text.split("---\n") if doc.startswith("data: ")]

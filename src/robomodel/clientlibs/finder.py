@@ -232,9 +232,8 @@ def _may_be_interface_package(package: str) -> bool:
 # type stores at the first failed import of every Python process (copy.py's
 # ``from org.python.core import PyStringMap``).
 _interface_packages: dict[tuple[object, ...], frozenset[str]] = {}
-_crawl_lock = _thread.RLock()
+_crawl_lock = _thread.allocate_lock()  # the crawl's own imports return before it (_crawling)
 _crawling = _thread._local()  # the crawl's own imports reach this finder: they find nothing
-_KINDS_DIRS = ("msg", "srv", "action")
 
 
 def _package_path_interfaces() -> frozenset[str]:
@@ -265,7 +264,7 @@ def _package_path_interfaces() -> frozenset[str]:
             found = frozenset(
                 name
                 for name in index.names()
-                if any(os.path.isdir(os.path.join(index.find(name), k)) for k in _KINDS_DIRS)
+                if any(os.path.isdir(os.path.join(index.find(name), k)) for k in _KINDS)
             )
         finally:
             _crawling.on = False
