@@ -43,6 +43,8 @@ class BusWorker:
         while (job := self._jobs.get()) is not None:
             try:
                 job()
+            except RobomodelError as exc:  # the bus or the loop did not answer: one line
+                log.warning("robomodel view: a bus query failed: %s", exc)
             except Exception:  # a failed query must not end the worker
                 log.exception("bus query failed")
 
