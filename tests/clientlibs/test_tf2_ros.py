@@ -102,6 +102,25 @@ def test_a_broadcast_transform_is_looked_up_through_a_listener(context: Context)
         buffer.lookup_transform("world", "arm", Stamp(9_000_000_000))
 
 
+def test_the_listener_clears_the_buffer_when_the_clock_goes_back(context: Context) -> None:
+    """tf2_ros's listener on a node with ``use_sim_time``: a simulation reset (/clock back)
+    forgets the transforms stamped before it."""
+    from robomodel.runtime.msg import Clock, Time
+
+    clock = context.create_node("sim").create_publisher(Clock, "/clock")
+    node = context.create_node("listener", parameters={"use_sim_time": True})
+    buffer = tf2_ros.Buffer()
+    tf2_ros.TransformListener(buffer, FaceNode(node))
+    broadcaster = tf2_ros.TransformBroadcaster(FaceNode(context.create_node("talker")))
+    for t_s, parent, child in ((10.0, "world", "base"), (1.0, "world", "arm")):
+        clock.publish(Clock(Time.from_seconds(t_s)))
+        context.spin_once(0.05)
+        broadcaster.sendTransform(_transform(parent, child, 1.0, int(t_s * 1e9)))
+        context.spin_once(0.05)
+    assert buffer.can_transform("world", "arm", Stamp(0))
+    assert not buffer.can_transform("world", "base", Stamp(0))  # stamped before the reset
+
+
 def test_a_lookup_waits_up_to_its_timeout_for_the_transform(context: Context) -> None:
     buffer = tf2_ros.Buffer()
     tf2_ros.TransformListener(buffer, FaceNode(context.create_node("listener")))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from typing import Any
 
 import pytest
@@ -112,6 +113,71 @@ def test_use_sim_time_follows_clock_topic() -> None:
     assert ctx.create_node("wall").get_clock().now_s() == 100.0
     assert node.set_parameters({"use_sim_time": False}).successful
     assert node.get_clock().now_s() == 100.0
+
+
+def _sim_clock_publisher(ctx: Context) -> Callable[[float], None]:
+    """A function that publishes /clock at ``t_s`` and spins once."""
+    clock_pub = ctx.create_node("sim").create_publisher(Clock, "/clock")
+
+    def at(t_s: float) -> None:
+        clock_pub.publish(Clock(Time.from_seconds(t_s)))
+        ctx.spin_once()
+
+    return at
+
+
+def test_a_sim_time_timer_goes_on_after_the_clock_went_back() -> None:
+    """A simulation reset sends /clock back: the timer's next tick is a period after the jump,
+    as rcl's timers do, not once the clock is back where it was."""
+    ctx = Context(clock=ManualClock(100.0))
+    at = _sim_clock_publisher(ctx)
+    node = ctx.create_node("ctrl", parameters={"use_sim_time": True})
+    ticks: list[float] = []
+    node.create_timer(0.5, lambda: ticks.append(node.get_clock().now_s()))
+    for t_s in (4.0, 10.0, 0.2, 0.6, 0.75, 1.25):  # back to 0.2 s: a reset
+        at(t_s)
+    assert ticks == [4.0, 10.0, 0.75, 1.25]
+
+
+def test_the_tf_listener_forgets_dynamic_transforms_when_time_goes_back(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """As tf2_ros's listener: a /tf after the clock went back clears the buffer's dynamic
+    transforms (their stamps are of a time that is no more), with tf2_ros's warning; static
+    transforms stay."""
+    from robomodel.runtime.msg import TFMessage, TransformStamped
+    from robomodel.runtime.qos import Durability, QoSProfile
+    from robomodel.runtime.tf_listener import TransformListener
+
+    ctx = Context(clock=ManualClock(100.0))
+    at = _sim_clock_publisher(ctx)
+    listener = TransformListener(ctx.create_node("viewer", parameters={"use_sim_time": True}))
+    talker = ctx.create_node("talker")
+    tf_pub = talker.create_publisher(TFMessage, "/tf", 10)
+    static_qos = QoSProfile(10, Durability.TRANSIENT_LOCAL)
+    static_pub = talker.create_publisher(TFMessage, "/tf_static", static_qos)
+
+    def transform(parent: str, child: str, t_s: float) -> TFMessage:
+        tf = TransformStamped()
+        tf.header.frame_id, tf.child_frame_id = parent, child
+        tf.header.stamp = Time.from_seconds(t_s)
+        tf.transform.rotation.w = 1.0
+        return TFMessage(transforms=[tf])
+
+    static_pub.publish(transform("base", "laser", 0.0))
+    at(10.0)
+    tf_pub.publish(transform("map", "odom", 10.0))
+    ctx.spin_once()
+    assert listener.buffer.can_transform("map", "odom")
+    at(1.0)  # a simulation reset
+    with caplog.at_level(logging.WARNING):
+        tf_pub.publish(transform("map", "base", 1.0))
+        ctx.spin_once()
+    assert not listener.buffer.can_transform("map", "odom")
+    assert listener.buffer.can_transform("map", "laser")  # the new /tf and the static one
+    assert [r.getMessage() for r in caplog.records] == [
+        "Detected jump back in time of 9s. Clearing TF buffer."
+    ]
 
 
 def test_graph_and_parameter_service() -> None:

@@ -56,6 +56,11 @@ class Timer:
             self.ticks = int((now_s - self.start_s) // self.period_s) + 1
 
 
+# How far back a clock must go to count as a jump [s]: more than the rounding of a tick's time
+# (a float near the epoch's 1.7e9 s is exact to about 2e-7 s)
+_JUMP_TOLERANCE_S = 1e-4
+
+
 def _next_s(timer: Timer) -> float:
     return timer.next_s
 
@@ -174,6 +179,12 @@ class Executor:
         self._timers = [t for t in self._timers if not t.cancelled]
         for timer in list(self._timers):
             now = timer.clock.now_s()
+            if now < timer.start_s + (timer.ticks - 1) * timer.period_s - _JUMP_TOLERANCE_S:
+                # The clock went back past the timer's last tick (/clock of a simulation that
+                # was reset, of a bag played again): its next tick is a period from now, as
+                # rcl's timers do after a backward jump (and roscpp's), not when the clock
+                # is back where it was.
+                timer.reset()
             if timer.cancelled or timer.next_s > now + 1e-12:
                 continue
             timer.consume(now)

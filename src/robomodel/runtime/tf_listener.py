@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from robomodel.runtime.msg import TFMessage
 from robomodel.runtime.msg import TransformStamped as TransformStampedMsg
 from robomodel.runtime.node import Node
 from robomodel.runtime.qos import Durability, QoSProfile
 from robomodel.tf import BufferCore, TransformStamped
 
-__all__ = ["TransformListener", "from_msg", "to_msg"]
+__all__ = ["ClockJumps", "TransformListener", "from_msg", "to_msg"]
 
 AUTHORITY = "default_authority"  # what rclpy's listener records
 
@@ -42,15 +44,38 @@ class TransformListener:
 
     def __init__(self, node: Node, buffer: BufferCore | None = None) -> None:
         self.buffer = buffer if buffer is not None else BufferCore()
+        self._jumps = ClockJumps(node, self.buffer.clear)
         node.create_subscription(TFMessage, "/tf", self._dynamic, 100)
         node.create_subscription(
             TFMessage, "/tf_static", self._static, QoSProfile(100, Durability.TRANSIENT_LOCAL)
         )
 
     def _dynamic(self, msg: TFMessage) -> None:
+        self._jumps.check()
         for transform in msg.transforms:
             self.buffer.set_transform(from_msg(transform), AUTHORITY, False)
 
     def _static(self, msg: TFMessage) -> None:
+        self._jumps.check()
         for transform in msg.transforms:
             self.buffer.set_transform(from_msg(transform), AUTHORITY, True)
+
+
+class ClockJumps:
+    """tf2_ros's listeners' check, made at each message: when the node's clock went back since
+    the last one (a simulation reset, a bag played again, ``use_sim_time`` switched on), the
+    buffer's dynamic transforms are forgotten (``clear``), their stamps being of a time that is
+    no more; with tf2_ros's warning."""
+
+    def __init__(self, node: Node, clear: Callable[[], None]) -> None:
+        self._node = node
+        self._clear = clear
+        self._last_update_ns = node.get_clock().now_ns()
+
+    def check(self) -> None:
+        now_ns = self._node.get_clock().now_ns()
+        if now_ns < self._last_update_ns:
+            back_s = (self._last_update_ns - now_ns) / 1e9
+            self._node.logger.warning("Detected jump back in time of %gs. Clearing TF buffer.", back_s)  # fmt: skip
+            self._clear()
+        self._last_update_ns = now_ns

@@ -13,7 +13,7 @@ from robomodel.clientlibs.tf2_ros._node import robomodel_node
 from robomodel.clientlibs.tf2_ros.buffer import Buffer
 from robomodel.runtime.msg import TFMessage
 from robomodel.runtime.qos import Durability, QoSProfile
-from robomodel.runtime.tf_listener import AUTHORITY, from_msg
+from robomodel.runtime.tf_listener import AUTHORITY, ClockJumps, from_msg
 
 __all__ = ["TransformListener"]
 
@@ -39,6 +39,7 @@ class TransformListener:
         ros1 = node is None or isinstance(node, int)  # ROS 1's second argument: queue_size
         self.buffer = buffer
         self._node = robomodel_node(None if ros1 else node, user="tf2_ros.TransformListener")
+        self._jumps = ClockJumps(self._node, buffer.clear)
         depth = 100
         self._subscriptions = [
             self._node.create_subscription(TFMessage, "/tf", self._dynamic, depth),
@@ -51,10 +52,12 @@ class TransformListener:
         ]
 
     def _dynamic(self, msg: TFMessage) -> None:
+        self._jumps.check()
         for transform in msg.transforms:
             self.buffer._insert(from_msg(transform), AUTHORITY, False)
 
     def _static(self, msg: TFMessage) -> None:
+        self._jumps.check()
         for transform in msg.transforms:
             self.buffer._insert(from_msg(transform), AUTHORITY, True)
 
