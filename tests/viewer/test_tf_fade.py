@@ -103,3 +103,38 @@ def test_the_display_draws_a_frame_half_a_timeout_old_greyed_and_one_past_it_not
     show()
     assert tf.shown == frames  # its age counts from when the stamp changed, as RViz's
     assert _instance_colors(scene, "x")[1].tolist()[2] == [255, 0, 0]
+
+
+def test_a_clock_that_goes_back_starts_the_tf_display_over() -> None:
+    """ROS time going back (a simulation reset, a bag played again, use_sim_time switched on)
+    resets every display, as RViz's resetTime does: the TF display draws again at once, and
+    a frame seen before the jump counts its age from the new clock, not from the old one."""
+    from robomodel.runtime import Context
+    from robomodel.viewer.displays.manager import DisplayManager
+
+    now = [1000 * S]
+    scene = FakeScene()
+    buffer = BufferCore()
+    context = Context()
+    manager = DisplayManager(fake_context(scene, clock=lambda: now[0]), context.create_node("viewer"), buffer)  # fmt: skip
+    tf = manager.add("TF", values={"Frame Timeout": 6.0})
+    frames = ("map", "moving")
+    xyz = np.array([[0.0, 0, 0], [0, 1, 0]])
+
+    def show() -> None:
+        manager.update()
+        tf.show_frames(frames, np.tile([1.0, 0, 0, 0], (2, 1)), xyz, np.ones(2, bool), buffer)
+
+    buffer.set_transform(TransformStamped("map", "moving", (0, 1.0, 0), stamp_ns=now[0]), "test")
+    show()
+    now[0] += 5 * S  # five sixths of the timeout: fading out
+    show()
+    assert _instance_colors(scene, "x")[1].tolist()[1] == [179, 179, 179]
+    now[0] = 10 * S  # the clock went back; "moving" is not published again
+    show()
+    assert tf.shown == frames
+    assert _instance_colors(scene, "x")[1].tolist() == [[255, 0, 0], [255, 0, 0]]  # fresh
+    now[0] += 5 * S  # and it ages on the new clock (not fresh until the old one is back)
+    show()
+    assert _instance_colors(scene, "x")[1].tolist()[1] == [179, 179, 179]
+    context.shutdown()

@@ -259,6 +259,10 @@ class Display:
         """RViz's Reset: forget what was drawn (the scene nodes go)."""
         self.remove_nodes()
 
+    def on_time_jump(self) -> None:
+        """ROS time went back: start over (RViz resets every display)."""
+        self.reset()
+
     def build_panel(self, gui: Any) -> None:
         """Hook: add page controls inside the display's folder."""
 

@@ -84,6 +84,7 @@ class DisplayManager:
         self._failed: dict[tuple[int, str], tuple[SubscriptionSpec, DisplayStatus]] = {}
         self.listeners: list[Callable[[], None]] = []  # told after each update
         self.updates = 0
+        self._clock_ns: int | None = None  # ROS time at the last update [ns]
 
     # -- the list ------------------------------------------------------------------------------
     def unique_name(self, name: str) -> str:
@@ -142,6 +143,14 @@ class DisplayManager:
     # -- the loop ------------------------------------------------------------------------------
     def update(self) -> None:
         """Subscribe, draw and collect statuses (loop thread, ~10 Hz)."""
+        now_ns = self.context.now_ns()
+        if self._clock_ns is not None and now_ns < self._clock_ns:
+            # ROS time went back (a simulation reset, a bag played again, use_sim_time
+            # switched on): every display starts over, as RViz's VisualizationManager does
+            # on its clock's jump callback (resetTime)
+            for display in self.displays:
+                display.on_time_jump()
+        self._clock_ns = now_ns
         lookup = tf_lookup(self.buffer, self.context.fixed_frame())
         for display in self.displays:
             problem = self._subscribe(display)

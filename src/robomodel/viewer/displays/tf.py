@@ -114,6 +114,10 @@ class TFDisplay(Display):
     def on_renamed(self) -> None:
         self.reset()
 
+    def on_time_jump(self) -> None:
+        self.reset()
+        self._last_update.clear()  # ages on the clock before the jump mean nothing after it
+
     def close(self) -> None:
         super().close()
         self.markers.remove()  # drawn below root, not through add_node
