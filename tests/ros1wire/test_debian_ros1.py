@@ -205,7 +205,10 @@ def test_rosbag_records_robomodel_topics_and_its_playback_drives_a_viewer(
     )
     viewer.start()
     try:
-        ros1.start(["/usr/bin/rosbag", "play", "-l", str(bag)])
+        # Played once the viewer subscribed, at half speed: the stamps of a second loop are
+        # the first's, older than the buffer's newest, so only the first loop moves the robot
+        # (as in RViz), and a loaded machine may take a while to look five times
+        ros1.start(["/usr/bin/rosbag", "play", "-l", "--wait-for-subscribers", "-r", "0.5", str(bag)])  # fmt: skip
         wait_for(lambda: viewer.buffer.can_transform("base_link", "gripper"), what="/tf")
         seen = set()
         deadline = time.monotonic() + scaled(20)
