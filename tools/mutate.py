@@ -27,6 +27,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -268,7 +269,12 @@ def run(group: Group, *, children: int, again: bool = False, sample: int | None 
             return 0
     else:
         names = [f"*__mutmut_*{digit}" for digit in digits]
-    return subprocess.run(command + names, cwd=folder, env=env, check=False).returncode
+    # mutmut's forked processes end without pytest's unconfigure, which removes the folder
+    # tests/conftest.py makes for the tests' processes: it is made in a folder of this run's
+    # own (TMPDIR), removed when mutmut ends
+    with tempfile.TemporaryDirectory(prefix="robomodel-mutate-") as scratch:
+        env["TMPDIR"] = scratch
+        return subprocess.run(command + names, cwd=folder, env=env, check=False).returncode
 
 
 def scores(group: Group) -> dict[str, dict[str, int]]:
