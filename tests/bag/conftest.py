@@ -59,6 +59,21 @@ def flushed_count(folder: Path) -> int:
     return int(meta["rosbag2_bagfile_information"]["message_count"])
 
 
+def flushed_counts(folder: Path) -> dict[str, int]:
+    """Each topic's message count metadata.yaml says is flushed so far (none before the first
+    flush)."""
+    import yaml
+
+    try:
+        meta = yaml.safe_load((folder / "metadata.yaml").read_text())
+    except (OSError, yaml.YAMLError):
+        return {}
+    return {
+        entry["topic_metadata"]["name"]: int(entry["message_count"])
+        for entry in meta["rosbag2_bagfile_information"]["topics_with_message_count"]
+    }
+
+
 def run_cli(*args: str, timeout: float | None = None) -> subprocess.CompletedProcess[str]:
     timeout = scaled(30) if timeout is None else timeout
     return subprocess.run([*ROBOMODEL, *args], capture_output=True, text=True, timeout=timeout)

@@ -13,7 +13,7 @@ from pathlib import Path
 from tests.conftest import ROBOMODEL, unique_domain
 from tests.timing import scaled
 
-from .conftest import flushed_count, stop
+from .conftest import flushed_counts, stop
 
 IMAGE = (
     "{height: 2, width: 2, encoding: rgb8, step: 6, data: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]}"
@@ -53,7 +53,8 @@ def test_record_all_stores_definitions_rosbags_reads_back(tmp_path: Path) -> Non
     record = start("bag", "record", "-a", "-o", str(folder))
     try:
         deadline = time.monotonic() + scaled(120)
-        while flushed_count(folder) < 10:  # until messages of both topics are in the bag
+        # until messages of both topics are in the bag (a busy machine may connect one late)
+        while min(flushed_counts(folder).get(t, 0) for t in ("/img", "/reading")) < 5:
             assert record.poll() is None, record.communicate()[1]
             assert time.monotonic() < deadline, f"no messages recorded in {scaled(120):.0f} s"
             time.sleep(0.3)
