@@ -255,7 +255,7 @@ def free_port() -> int:
 
     A port from ``bind(0)`` comes from the kernel's ephemeral range (32768-60999), which every
     client socket and every node's XML-RPC server draws from too: between the probe and the
-    server's own bind, a ROS node of the other xdist worker took one (run 15 under load: the
+    server's own bind, a ROS node of the other xdist worker took one (seen under load: the
     test's launch found a node where its master should start, "setParam is not supported").
     These ports lie below that range, in a lane per xdist worker and per domain block (so two
     runs with different ``ROBOMODEL_TEST_DOMAIN_BASE`` differ too), and are checked free."""

@@ -68,11 +68,19 @@ client.on("unadvertise", (channelIds) => {
 // registers the channel: a subscription sent at once can meet "Unknown channel ID: N" on a
 // loaded machine (reproduced with the SDK alone, a client subscribing to every channel it is
 // advertised). The subscription is sent again, as a user re-opens the panel.
+// At most 50 times a channel: a server that never registers it is said once, not flooded.
+const resubscribed = new Map();
 client.on("status", ({ message }) => {
   const unknown = /Unknown channel ID: (\d+)/.exec(message);
   if (!unknown) return;
   for (const [subscription, found] of readers) {
     if (found.channel.id !== Number(unknown[1]) || found.done) continue;
+    const times = (resubscribed.get(found.channel.id) || 0) + 1;
+    resubscribed.set(found.channel.id, times);
+    if (times > 50) {
+      if (times === 51) say("stillUnknown", { topic: found.channel.topic, id: found.channel.id });
+      continue;
+    }
     say("resubscribed", found.channel.topic);
     readers.delete(subscription);
     readers.set(client.subscribe(found.channel.id), found);

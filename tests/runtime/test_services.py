@@ -46,7 +46,7 @@ def test_a_zenoh_call_waits_for_a_server_that_comes_up_late(
 ) -> None:
     """A query that no queryable matched is asked again until the call's timeout, as rclpy's
     ``wait_for_service`` before ros2controlcli's calls: a ``control load`` typed right after
-    ``control run`` started must not be told that nobody serves it (run 20's failure)."""
+    ``control run`` started must not be told that nobody serves it."""
     from robomodel.runtime.transport._zenoh_services import ServiceClient
 
     asked_nobody = threading.Event()
