@@ -290,7 +290,8 @@ def scores(group: Group) -> dict[str, dict[str, int]]:
                 status = status_by_exit_code[code]
                 counts[status] = counts.get(status, 0) + 1
         out[source] = counts
-    (WORK / group.name / "scores.json").write_text(json.dumps(out, indent=2, sort_keys=True))
+    if (WORK / group.name).is_dir():  # a group never run here has no folder: nothing to keep
+        (WORK / group.name / "scores.json").write_text(json.dumps(out, indent=2, sort_keys=True))
     return out
 
 
