@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 
-__all__ = ["Clock", "ManualClock", "SimClock", "SystemClock"]
+__all__ = ["BackwardJumps", "Clock", "ManualClock", "SimClock", "SystemClock"]
 
 
 class Clock:
@@ -54,3 +55,20 @@ class SimClock(Clock):
 
     def update(self, t_s: float) -> None:
         self._now_s = t_s
+
+
+class BackwardJumps:
+    """Whether a clock went back since it was last looked at (a simulation reset, a bag played
+    again, ``use_sim_time`` switched on): what tf2_ros's listener and RViz check at each
+    message or update. ``now_ns`` is read again at each look (a node's clock may change)."""
+
+    def __init__(self, now_ns: Callable[[], int]) -> None:
+        self._now_ns = now_ns
+        self._last_ns = now_ns()
+
+    def back_ns(self) -> int:
+        """How far the clock went back since the last look [ns]; 0 when it did not."""
+        now_ns = self._now_ns()
+        back_ns = max(0, self._last_ns - now_ns)
+        self._last_ns = now_ns
+        return back_ns

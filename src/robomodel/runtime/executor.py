@@ -42,6 +42,11 @@ class Timer:
         # start + k * period, never accumulated, so the 1000th tick is still exact.
         return self.start_s + self.ticks * self.period_s
 
+    @property
+    def last_s(self) -> float:
+        """When the timer last ticked (its start before the first tick) [s]."""
+        return self.start_s + (self.ticks - 1) * self.period_s
+
     def cancel(self) -> None:
         self.cancelled = True
 
@@ -179,7 +184,7 @@ class Executor:
         self._timers = [t for t in self._timers if not t.cancelled]
         for timer in list(self._timers):
             now = timer.clock.now_s()
-            if now < timer.start_s + (timer.ticks - 1) * timer.period_s - _JUMP_TOLERANCE_S:
+            if now < timer.last_s - _JUMP_TOLERANCE_S:
                 # The clock went back past the timer's last tick (/clock of a simulation that
                 # was reset, of a bag played again): its next tick is a period from now, as
                 # rcl's timers do after a backward jump (and roscpp's), not when the clock

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from robomodel.runtime.clock import BackwardJumps
 from robomodel.runtime.msg import TFMessage
 from robomodel.runtime.msg import TransformStamped as TransformStampedMsg
 from robomodel.runtime.node import Node
@@ -70,12 +71,9 @@ class ClockJumps:
     def __init__(self, node: Node, clear: Callable[[], None]) -> None:
         self._node = node
         self._clear = clear
-        self._last_update_ns = node.get_clock().now_ns()
+        self._jumps = BackwardJumps(lambda: node.get_clock().now_ns())
 
     def check(self) -> None:
-        now_ns = self._node.get_clock().now_ns()
-        if now_ns < self._last_update_ns:
-            back_s = (self._last_update_ns - now_ns) / 1e9
-            self._node.logger.warning("Detected jump back in time of %gs. Clearing TF buffer.", back_s)  # fmt: skip
+        if back_ns := self._jumps.back_ns():
+            self._node.logger.warning("Detected jump back in time of %gs. Clearing TF buffer.", back_ns / 1e9)  # fmt: skip
             self._clear()
-        self._last_update_ns = now_ns

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from robomodel.errors import RobomodelError
+from robomodel.runtime.clock import BackwardJumps
 from robomodel.runtime.msg import MessageTypeError, get_message_type
 from robomodel.tf.exceptions import ExtrapolationError, TransformError
 from robomodel.viewer.displays.base import (
@@ -84,7 +85,7 @@ class DisplayManager:
         self._failed: dict[tuple[int, str], tuple[SubscriptionSpec, DisplayStatus]] = {}
         self.listeners: list[Callable[[], None]] = []  # told after each update
         self.updates = 0
-        self._clock_ns: int | None = None  # ROS time at the last update [ns]
+        self._jumps = BackwardJumps(context.now_ns)  # ROS time, looked at each update
 
     # -- the list ------------------------------------------------------------------------------
     def unique_name(self, name: str) -> str:
@@ -143,14 +144,12 @@ class DisplayManager:
     # -- the loop ------------------------------------------------------------------------------
     def update(self) -> None:
         """Subscribe, draw and collect statuses (loop thread, ~10 Hz)."""
-        now_ns = self.context.now_ns()
-        if self._clock_ns is not None and now_ns < self._clock_ns:
+        if self._jumps.back_ns():
             # ROS time went back (a simulation reset, a bag played again, use_sim_time
             # switched on): every display starts over, as RViz's VisualizationManager does
             # on its clock's jump callback (resetTime)
             for display in self.displays:
                 display.on_time_jump()
-        self._clock_ns = now_ns
         lookup = tf_lookup(self.buffer, self.context.fixed_frame())
         for display in self.displays:
             problem = self._subscribe(display)
