@@ -1,4 +1,4 @@
-"""Simulated camera benchmark (issue 31): a 320x240 camera at 30 Hz against MuJoCo's bare render.
+"""Simulated camera benchmark: a 320x240 camera at 30 Hz against MuJoCo's bare render.
 
 Run: ``PYTHONPATH=src .venv/bin/python bench/bench_camera.py [--seconds 2] [--rounds 5]``.
 

@@ -1,4 +1,4 @@
-"""The floor of the executor's hand-over (issue 30): one thread wake-up at 1 kHz, no robomodel.
+"""The floor of the executor's hand-over: one thread wake-up at 1 kHz, no robomodel.
 
 A producer thread stamps ``time.monotonic_ns()``, appends it to a deque and releases a bare lock
 every 1 ms (what robomodel's Zenoh callback does with a sample); the main thread, parked in

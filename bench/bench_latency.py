@@ -1,4 +1,4 @@
-"""Latency against the floor (issue 30): robomodel publish -> subscription callback between two
+"""Latency against the floor: robomodel publish -> subscription callback between two
 processes, beside raw zenoh-python put -> callback with the same payload, in the same run.
 
 Run: ``.venv/bin/python bench/bench_latency.py [--seconds 5] [--rate 1000] [--rounds 2]``.

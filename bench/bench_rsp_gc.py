@@ -1,5 +1,5 @@
 """robot_state_publisher in one process: latency per /joint_states message and the garbage
-collector's pauses meanwhile (issue 14 target 6: is the collector on the hot path?).
+collector's pauses meanwhile (is the collector on the hot path?).
 
 Run: ``.venv/bin/python bench/bench_rsp_gc.py [--messages 20000]``.
 

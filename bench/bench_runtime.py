@@ -5,7 +5,7 @@ robomodel's ROS 1 master) on loopback, for a 60-link robot.
 Run: ``.venv/bin/python bench/bench_runtime.py [--seconds 10] [--rate 1000] [--rounds 3]
 [--reference] [--bus zenoh|ros1]``.
 
-With ``--reference``, each round is followed by the same pipeline in ROS 1 (issue 14 target 6):
+With ``--reference``, each round is followed by the same pipeline in ROS 1:
 a rospy publisher (A), Debian's C++ ``/usr/lib/robot_state_publisher/robot_state_publisher``
 with ``_ignore_timestamp:=true`` (B) and a rospy /tf subscriber (C) under their own roscore;
 the master's CPU is counted with B's, since ROS 1's robot_state_publisher looks its
@@ -305,7 +305,7 @@ def main() -> None:
                 f"robot_state_publisher + master CPU per message "
                 f"{med((r['cpu_b'] + r['cpu_master']) / r['sent'] for r in runs) * 1e6:.0f} us"
             )
-    if ours and ref:  # issue 30: the target is a p99 below ROS 1's C++ pipeline's
+    if ours and ref:  # the target is a p99 below ROS 1's C++ pipeline's
         for q, label in ((0.5, "p50"), (0.99, "p99")):
             mine = statistics.median(_percentile(r["latencies"], q) for r in ours)
             theirs = statistics.median(_percentile(r["latencies"], q) for r in ref)

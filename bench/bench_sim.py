@@ -14,8 +14,8 @@ Run: ``.venv/bin/python bench/bench_sim.py [--seconds 5] [--rounds 5]``.
 
 Each of 1 and 2 is followed by raw ``mj_step`` (``nstep``) on the same compiled model from the
 same initial state (the UR5 held against gravity by a constant generalised force, simplebot with
-the wheels' final servo commands); the ratio raw/ours is the Python overhead (issue 14 target 5:
-<= 2 for the UR5, <= 1.5 for simplebot). The scenes run interleaved, round after round.
+the wheels' final servo commands); the ratio raw/ours is the Python overhead (the
+target: <= 2 for the UR5, <= 1.5 for simplebot). The scenes run interleaved, round after round.
 
 Each round builds the scene anew and runs ``--seconds`` of sim time as fast as possible;
 the median over the rounds is printed (the machine is shared; take medians).

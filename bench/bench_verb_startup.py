@@ -7,7 +7,7 @@ its parser, which is what every run of the verb pays before it does its work), p
 commands (``--version``, ``check`` of a URDF, ``xacro`` of rrbot), run as pip's console script
 runs robomodel, with byte-compiled modules, old and new interleaved round by round (the order
 alternates). Prints the median wall time of each side and the ratio new / old as a markdown
-table. Used for issue 21's "start-up of every verb stays as it is".
+table: whether a change kept every verb's start-up as it was.
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ Run: ``.venv/bin/python bench/bench_viewer.py`` (needs Debian's chromium for the
    the viewer's TF buffer -> poses in the fixed frame -> viser), and the websocket frames that
    carry link poses are counted as Chromium receives them (playwright ``framereceived``).
    Target: >= 60 updates/s.
-3. Scaling (issue 14.4): the same measurement at Frame Rate 240 on synthetic chains of 10, 100
+3. Scaling: the same measurement at Frame Rate 240 on synthetic chains of 10, 100
    and 1,000 links (a box per link, a revolute joint between each two) and on talos. Target:
    the rate falls no faster than linearly with the links; >= 30 updates/s at 1,000 links and
    >= 100/s on talos.
@@ -169,7 +169,7 @@ def updates_per_second(
     frame_rate_hz: float | None = None, duration_s: float = 5.0, urdf: Path = URDF
 ) -> tuple[float, float, float]:
     """(scene updates/s received by Chromium, pushes/s sent by the viewer, websocket frames/s
-    carrying poses: the measure before issue 14, which counts a split update several times).
+    carrying poses: an older measure, which counts a split update several times).
 
     ``frame_rate_hz`` None: the viewer's default Frame Rate (the cap on scene updates).
     """

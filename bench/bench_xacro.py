@@ -12,7 +12,7 @@ Inputs:
     ``xacro-2.1.1`` directory, whose ``test/robots/pr2`` uses ``$(find xacro)``).
 
 With ``--scaling`` only serial chains of 10, 100 and 1,000 links (one macro call per link) are
-run, for issue 14's scaling table.
+run, for BENCHMARKS.md's scaling table.
 
 Usage:
     python bench/bench_xacro.py [--runs N] [--pr2 DIR] [--scaling]
@@ -275,7 +275,7 @@ FILES = {
 
 
 def chain_xacro(n_links: int) -> str:
-    """A serial chain of ``n_links`` links (issue 14's scaling table): one macro call per link,
+    """A serial chain of ``n_links`` links (BENCHMARKS.md's scaling table): one macro call per link,
     each with an inertial, a box visual and a cylinder collision, computed from properties."""
     calls = "\n".join(
         f'  <xacro:segment i="{i}" parent="link_{i - 1}"/>' for i in range(1, n_links)
@@ -389,7 +389,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--scaling",
         action="store_true",
-        help="only the synthetic chains of 10, 100 and 1,000 links (issue 14's scaling table)",
+        help="only the synthetic chains of 10, 100 and 1,000 links (BENCHMARKS.md's scaling table)",
     )
     args = parser.parse_args(argv)
     print(f"Python {sys.version.split()[0]}, median of {args.runs} runs, in one process")
