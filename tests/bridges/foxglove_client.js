@@ -67,14 +67,18 @@ client.on("unadvertise", (channelIds) => {
 // The Foxglove SDK's server (foxglove-sdk 0.30.3) sends a channel's advertisement before it
 // registers the channel: a subscription sent at once can meet "Unknown channel ID: N" on a
 // loaded machine (reproduced with the SDK alone, a client subscribing to every channel it is
-// advertised). The subscription is sent again, as a user re-opens the panel.
-// At most 50 times a channel: a server that never registers it is said once, not flooded.
+// advertised). The subscription is sent again, once per refusal, as a user re-opens the panel:
+// the refused subscriptions are listed before any is sent again, as a Map's iteration visits
+// the entries added while it runs. At most 50 times a channel: a server that never registers
+// it is said once, not flooded.
 const resubscribed = new Map();
 client.on("status", ({ message }) => {
   const unknown = /Unknown channel ID: (\d+)/.exec(message);
   if (!unknown) return;
-  for (const [subscription, found] of readers) {
-    if (found.channel.id !== Number(unknown[1]) || found.done) continue;
+  const refused = [...readers].filter(
+    ([, found]) => found.channel.id === Number(unknown[1]) && !found.done,
+  );
+  for (const [subscription, found] of refused) {
     const times = (resubscribed.get(found.channel.id) || 0) + 1;
     resubscribed.set(found.channel.id, times);
     if (times > 50) {
