@@ -6,6 +6,7 @@ refused with one line while a valid one publishes, bad settings are one-line err
 from __future__ import annotations
 
 import json
+import logging
 import os
 import platform
 import resource
@@ -20,7 +21,7 @@ from websockets.sync.client import connect
 
 from robomodel.bag.typedefs import ros2msg_definition
 from robomodel.bridges import BridgeError
-from robomodel.bridges.foxglove_bridge import FoxgloveBridge
+from robomodel.bridges.foxglove_bridge import FoxgloveBridge, _RefusedSubscriptions
 from robomodel.bridges.rosapi import Ros1Params
 from robomodel.description.packages import PackageIndex
 from robomodel.launch.param_server import ParamServer
@@ -105,6 +106,71 @@ def test_channel_schema_and_cdr_messages(bridge: FoxgloveBridge) -> None:
             frame = ws.recv(timeout=scaled(10))
         assert frame[0] == 1 and struct.unpack_from("<I", frame, 1)[0] == 7
         assert frame[13:] == serialize(msg)
+
+
+def _subscribe(ws: Any, subscription: int, channel: int) -> None:
+    ws.send(
+        json.dumps(
+            {"op": "subscribe", "subscriptions": [{"id": subscription, "channelId": channel}]}
+        )
+    )
+
+
+def _advertised(ws: Any, topic: str) -> dict[str, Any]:
+    while True:  # the graph is read every GRAPH_PERIOD_S
+        found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == topic]
+        if found:
+            return found[0]  # type: ignore[no-any-return]
+
+
+def test_a_subscription_the_sdk_refused_gets_the_topic_advertised_again(
+    bridge: FoxgloveBridge,
+) -> None:
+    """The Foxglove SDK sends a new channel's advertisement before it registers the channel, and
+    refuses a subscription that comes in between with a line in its log. The bridge reads that
+    line (its text checked here against the SDK's own, for a channel that does not exist),
+    advertises the topic anew, and the client's subscription to the new channel gets data."""
+    string = get_message_type("std_msgs/msg/String")
+    node = bridge.context.create_node("again_talker")
+    publisher = bridge._on_bus(lambda: node.create_publisher(string, "/again"))
+    sdk_lines: list[str] = []
+    capture = logging.Handler(logging.ERROR)
+    capture.emit = lambda record: sdk_lines.append(record.getMessage())  # type: ignore[method-assign]
+    logging.getLogger("foxglove").addHandler(capture)
+    try:
+        with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+            _next(ws, "serverInfo")
+            first = _advertised(ws, "/again")
+            _subscribe(ws, 1, 2**31)
+            assert "Unknown channel ID: 2147483648" in _next(ws, "status")["message"]
+            said = wait_until(
+                lambda: [m for m in sdk_lines if _RefusedSubscriptions.PATTERN.search(m)],
+                10,
+                what="the SDK's line for a subscription to a channel it does not know",
+            )
+            assert said[0].endswith(f"unknown channel: {2**31}")
+            # the same line for the channel of /again, as the SDK writes it in the race
+            logging.getLogger("foxglove.websocket.connected_client").error(
+                "Client %s attempted to subscribe to unknown channel: %d",
+                "127.0.0.1:1",
+                first["id"],
+            )
+            assert _next(ws, "unadvertise")["channelIds"] == [first["id"]]
+            again = _advertised(ws, "/again")
+            assert again["id"] != first["id"] and again["schema"] == first["schema"]
+            _subscribe(ws, 2, again["id"])
+            wait_until(
+                lambda: publisher.get_subscription_count() == 1, 10, what="the bus subscription"
+            )
+            bridge.context.executor.post(lambda: publisher.publish(string(data="here")))
+            frame = ws.recv(timeout=scaled(10))
+            while isinstance(frame, str):
+                frame = ws.recv(timeout=scaled(10))
+            assert struct.unpack_from("<I", frame, 1)[0] == 2
+            assert frame[13:] == serialize(string(data="here"))
+    finally:
+        logging.getLogger("foxglove").removeHandler(capture)
+    assert any(line.startswith("foxglove_bridge: advertising /again again") for line in LINES)
 
 
 def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:

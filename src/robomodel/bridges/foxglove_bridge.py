@@ -10,6 +10,8 @@ versions Foxglove's business, at the cost of a 55 MB wheel.
   Zenoh, ``ros1`` messages with a ``ros1msg`` schema on ROS 1. A channel subscribes on the bus
   when its first client subscribes and unsubscribes after the last; on Zenoh the CDR payload
   goes to the clients as it came (no decoding), handed to the SDK on Zenoh's receiving thread.
+  A subscription the SDK refused because it came before the SDK registered a new channel
+  gets the topic advertised anew (``_RefusedSubscriptions``).
 - Client publish (``clientPublish``): a client's channel on a topic of
   ``client_topic_whitelist`` becomes a publisher of its schema's type; its messages are decoded
   and published.
@@ -40,6 +42,7 @@ has the excess dropped and counted, said in one line per client.
 
 from __future__ import annotations
 
+import logging
 import re
 import threading
 import time
@@ -63,6 +66,8 @@ DEFAULT_ASSET_ALLOWLIST = (
     r"urdf|webp|xacro)$",
 )
 _TYPICAL_MESSAGE_BYTES = 100_000
+# how many times a topic is advertised anew after the SDK refused a subscription to its channel
+_READVERTISE_LIMIT = 5
 MAX_CLIENT_FRAME_BYTES = 16 * 1024 * 1024  # the SDK's WebSocket bound on a client's frame
 _MMAP_THRESHOLD_BYTES = 32 * 1024 * 1024  # glibc's largest (DEFAULT_MMAP_THRESHOLD_MAX)
 _TRIM_THRESHOLD_BYTES = 64 * 1024 * 1024
@@ -86,6 +91,40 @@ class _Topic:
     msg_type: type[Any]
     subscribers: set[int] = field(default_factory=set)
     subscription: Any = None
+
+
+class _RefusedSubscriptions(logging.Handler):
+    """Subscriptions the SDK refused to a channel it had advertised but not yet registered.
+
+    The Foxglove SDK's server (0.30.3) sends a new channel's advertisement to a client before it
+    enters the channel in that client's table: a client that subscribes at once (Foxglove does,
+    for an open panel) can be answered ``Unknown channel ID: N`` and gets no data, as the SDK
+    says in its log (through Python's ``logging``, logger ``foxglove``). This handler notes such
+    a channel when it is one of the bridge's (:attr:`watched`); the bridge then advertises its
+    topic anew (:meth:`FoxgloveBridge._update_channels`), and the client subscribes to the new
+    channel as it does to any. It runs on the SDK's thread, which holds the client's table
+    then: it only notes the id."""
+
+    PATTERN = re.compile(r"attempted to subscribe to unknown channel: (\d+)")
+
+    def __init__(self) -> None:
+        super().__init__(logging.ERROR)
+        self.watched: frozenset[int] = frozenset()  # replaced whole, read without a lock
+        self._noted: set[int] = set()
+        self._noted_lock = threading.Lock()
+
+    def emit(self, record: logging.LogRecord) -> None:
+        found = self.PATTERN.search(record.getMessage())
+        if found is None or int(found.group(1)) not in self.watched:
+            return
+        with self._noted_lock:
+            self._noted.add(int(found.group(1)))
+
+    def take(self) -> set[int]:
+        """The channel ids noted since the last call."""
+        with self._noted_lock:
+            taken, self._noted = self._noted, set()
+        return taken
 
 
 def _import_foxglove() -> Any:
@@ -178,6 +217,8 @@ class FoxgloveBridge:
         self.log = log
         self.node = context.create_node(name, namespace)
         self._topics: dict[str, _Topic] = {}
+        self._refusals = _RefusedSubscriptions()
+        self._readvertised: dict[str, int] = {}  # topic -> times advertised anew
         self._refused: set[tuple[str, str]] = set()  # (topic, type) that cannot be offered
         self._services: dict[str, str] = {}  # name -> type offered to clients
         # (client, channel) -> (publisher, decoder of the wire format)
@@ -220,6 +261,7 @@ class FoxgloveBridge:
         self.port = int(self.server.port)
         self._no_delay()
         _large_frames_from_the_heap()
+        logging.getLogger("foxglove").addHandler(self._refusals)
         for key, value in (("port", self.port), ("address", address),
                            ("send_buffer_limit", send_buffer_limit),
                            ("max_qos_depth", max_qos_depth)):  # fmt: skip
@@ -238,6 +280,7 @@ class FoxgloveBridge:
         self._stopping.set()
         self._poller.join(timeout=5.0)
         self.server.stop()
+        logging.getLogger("foxglove").removeHandler(self._refusals)
         with self._lock:
             endpoints = [t.subscription for t in self._topics.values() if t.subscription]
             endpoints += [publisher for publisher, _ in self._client_channels.values()]
@@ -328,6 +371,7 @@ class FoxgloveBridge:
             # bound left entities out) only adds, or a client's subscription would be dropped
             # while its topic is still published.
             gone_names = [n for n in self._topics if n not in present] if graph.complete else []
+            gone_names += self._to_advertise_again(present)
             for name in gone_names:
                 gone = self._topics.pop(name)
                 gone.channel.close()
@@ -348,6 +392,23 @@ class FoxgloveBridge:
                     name, schema=schema, message_encoding=self._encoding(), context=self._fox
                 )
                 self._topics[name] = _Topic(channel, msg_type)
+            self._refusals.watched = frozenset(t.channel.id() for t in self._topics.values())
+
+    def _to_advertise_again(self, present: dict[str, Any]) -> list[str]:
+        """The topics whose channel a client could not subscribe to (:class:`_RefusedSubscriptions`)
+        and that are still published: closed here, they are advertised anew in the same pass."""
+        refused = self._refusals.take()
+        again = []
+        for name, topic in self._topics.items():
+            times = self._readvertised.get(name, 0)
+            if topic.channel.id() in refused and name in present and times < _READVERTISE_LIMIT:
+                self._readvertised[name] = times + 1
+                again.append(name)
+                self.log(
+                    f"foxglove_bridge: advertising {name} again: a client subscribed to it "
+                    "before the Foxglove SDK had registered its channel"
+                )
+        return again
 
     def _message_type(self, topic: str, type_name: str, info: Any) -> type[Any]:
         from robomodel.runtime.msg import MessageTypeError, get_message_type
