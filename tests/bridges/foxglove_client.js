@@ -64,31 +64,13 @@ client.on("unadvertise", (channelIds) => {
     if (channelIds.includes(found.channel.id)) readers.delete(subscription);
   }
 });
-// The Foxglove SDK's server (foxglove-sdk 0.30.3) sends a channel's advertisement before it
-// registers the channel: a subscription sent at once can meet "Unknown channel ID: N" on a
-// loaded machine (reproduced with the SDK alone, a client subscribing to every channel it is
-// advertised). The subscription is sent again, once per refusal, as a user re-opens the panel:
-// the refused subscriptions are listed before any is sent again, as a Map's iteration visits
-// the entries added while it runs. At most 50 times a channel: a server that never registers
-// it is said once, not flooded.
-const resubscribed = new Map();
+// A subscription the server refused is said, and not sent again, as Foxglove does not: the
+// Foxglove SDK (0.30.3) refuses one that comes between a new channel's advertisement and its
+// registration, and the bridge then advertises the topic again (tests/bridges/
+// test_foxglove_inprocess.py), which the "advertise" handler above subscribes to.
 client.on("status", ({ message }) => {
   const unknown = /Unknown channel ID: (\d+)/.exec(message);
-  if (!unknown) return;
-  const refused = [...readers].filter(
-    ([, found]) => found.channel.id === Number(unknown[1]) && !found.done,
-  );
-  for (const [subscription, found] of refused) {
-    const times = (resubscribed.get(found.channel.id) || 0) + 1;
-    resubscribed.set(found.channel.id, times);
-    if (times > 50) {
-      if (times === 51) say("stillUnknown", { topic: found.channel.topic, id: found.channel.id });
-      continue;
-    }
-    say("resubscribed", found.channel.topic);
-    readers.delete(subscription);
-    readers.set(client.subscribe(found.channel.id), found);
-  }
+  if (unknown) say("refused", Number(unknown[1]));
 });
 client.on("message", ({ subscriptionId, data }) => {
   const found = readers.get(subscriptionId);

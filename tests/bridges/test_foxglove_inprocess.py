@@ -21,6 +21,7 @@ from websockets.sync.client import connect
 
 from robomodel.bag.typedefs import ros2msg_definition
 from robomodel.bridges import BridgeError
+from robomodel.bridges.exceptions import ClientError
 from robomodel.bridges.foxglove_bridge import FoxgloveBridge, _RefusedSubscriptions
 from robomodel.bridges.rosapi import Ros1Params
 from robomodel.description.packages import PackageIndex
@@ -171,6 +172,62 @@ def test_a_subscription_the_sdk_refused_gets_the_topic_advertised_again(
     finally:
         logging.getLogger("foxglove").removeHandler(capture)
     assert any(line.startswith("foxglove_bridge: advertising /again again") for line in LINES)
+
+
+def test_refused_subscriptions_note_the_bridge_s_channels_and_newer_ones_only() -> None:
+    """The SDK's line comes while a new channel is being made, before the bridge knows its id:
+    ids above the newest of the bridge's are noted, older ones not its own are not, and no
+    more than MAX_NOTED are kept between two reads."""
+    refusals = _RefusedSubscriptions()
+    refusals.watch(frozenset({3, 7}))
+    log = logging.getLogger("test.refusals")
+    log.propagate = False
+    log.addHandler(refusals)
+    try:
+        for channel_id in (2, 3, 5, 8, 9):
+            log.error("Client %s attempted to subscribe to unknown channel: %d", "c:1", channel_id)
+        log.error("Client c:1 sent something else about channel: 11")
+        assert refusals.take() == {3, 8, 9}
+        assert refusals.take() == set()
+        for channel_id in range(100, 100 + 2 * _RefusedSubscriptions.MAX_NOTED):
+            log.error("Client c:1 attempted to subscribe to unknown channel: %d", channel_id)
+        assert len(refusals.take()) == _RefusedSubscriptions.MAX_NOTED
+    finally:
+        log.removeHandler(refusals)
+
+
+def test_a_bus_subscription_not_made_in_time_is_made_at_the_next_graph_read(
+    bridge: FoxgloveBridge, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A busy bus that does not make a topic's subscription when the first client subscribes
+    costs one line: the next read of the graph makes it, and the client gets its data."""
+    string = get_message_type("std_msgs/msg/String")
+    node = bridge.context.create_node("busy_talker")
+    publisher = bridge._on_bus(lambda: node.create_publisher(string, "/busy"))
+    subscribe = bridge._subscribe
+    calls: list[str] = []
+
+    def busy_once(name: str, topic: Any) -> Any:
+        calls.append(name)
+        if len(calls) == 1:
+            raise ClientError("the bus did not answer in time")
+        return subscribe(name, topic)
+
+    monkeypatch.setattr(bridge, "_subscribe", busy_once)
+    with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
+        _next(ws, "serverInfo")
+        _subscribe(ws, 3, _advertised(ws, "/busy")["id"])
+        wait_until(lambda: publisher.get_subscription_count() == 1, 10, what="the bus subscription")
+        bridge.context.executor.post(lambda: publisher.publish(string(data="late")))
+        frame = ws.recv(timeout=scaled(10))
+        while isinstance(frame, str):
+            frame = ws.recv(timeout=scaled(10))
+        assert frame[13:] == serialize(string(data="late"))
+    assert calls == ["/busy", "/busy"]
+    assert (
+        "foxglove_bridge: subscribing to /busy on the bus failed: the bus did not answer in "
+        "time; trying again at the next read of the graph" in LINES
+    )
 
 
 def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:

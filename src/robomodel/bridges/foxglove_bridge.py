@@ -99,26 +99,39 @@ class _RefusedSubscriptions(logging.Handler):
     The Foxglove SDK's server (0.30.3) sends a new channel's advertisement to a client before it
     enters the channel in that client's table: a client that subscribes at once (Foxglove does,
     for an open panel) can be answered ``Unknown channel ID: N`` and gets no data, as the SDK
-    says in its log (through Python's ``logging``, logger ``foxglove``). This handler notes such
-    a channel when it is one of the bridge's (:attr:`watched`); the bridge then advertises its
-    topic anew (:meth:`FoxgloveBridge._update_channels`), and the client subscribes to the new
-    channel as it does to any. It runs on the SDK's thread, which holds the client's table
-    then: it only notes the id."""
+    says in its log (through Python's ``logging``, logger ``foxglove``). This handler notes the
+    channel ids of such lines; the bridge then advertises the topic of each one of its own anew
+    (:meth:`FoxgloveBridge._update_channels`), and the client subscribes to the new channel as
+    it does to any. The line comes while the channel is being made, before the bridge knows its
+    id: so ids above the newest the bridge had (the SDK numbers channels upwards, one count per
+    process) are noted too, at most :attr:`MAX_NOTED` between two reads of the graph. It runs
+    on the SDK's thread, which holds the client's table then: it only notes the id."""
 
     PATTERN = re.compile(r"attempted to subscribe to unknown channel: (\d+)")
+    MAX_NOTED = 1024
 
     def __init__(self) -> None:
         super().__init__(logging.ERROR)
-        self.watched: frozenset[int] = frozenset()  # replaced whole, read without a lock
+        self._watched: frozenset[int] = frozenset()  # replaced whole, read without a lock
+        self._newest = 0
         self._noted: set[int] = set()
         self._noted_lock = threading.Lock()
 
+    def watch(self, channel_ids: frozenset[int]) -> None:
+        """The bridge's channels now."""
+        self._watched = channel_ids
+        self._newest = max(channel_ids, default=self._newest)
+
     def emit(self, record: logging.LogRecord) -> None:
         found = self.PATTERN.search(record.getMessage())
-        if found is None or int(found.group(1)) not in self.watched:
+        if found is None:
+            return
+        channel_id = int(found.group(1))
+        if channel_id not in self._watched and channel_id <= self._newest:
             return
         with self._noted_lock:
-            self._noted.add(int(found.group(1)))
+            if len(self._noted) < self.MAX_NOTED:
+                self._noted.add(channel_id)
 
     def take(self) -> set[int]:
         """The channel ids noted since the last call."""
@@ -392,7 +405,21 @@ class FoxgloveBridge:
                     name, schema=schema, message_encoding=self._encoding(), context=self._fox
                 )
                 self._topics[name] = _Topic(channel, msg_type)
-            self._refusals.watched = frozenset(t.channel.id() for t in self._topics.values())
+            self._refusals.watch(frozenset(t.channel.id() for t in self._topics.values()))
+            for name, topic in self._topics.items():  # those the bus did not make in time
+                if topic.subscribers and topic.subscription is None:
+                    self._subscribe_on_bus(name, topic)
+
+    def _subscribe_on_bus(self, name: str, topic: _Topic) -> None:
+        """The bus subscription of a topic with clients; when the bus does not make it in time
+        (it is busy), one line, and it is tried again at the next read of the graph."""
+        try:
+            topic.subscription = self._subscribe(name, topic)
+        except ClientError as exc:
+            self.log(
+                f"foxglove_bridge: subscribing to {name} on the bus failed: {exc}; "
+                "trying again at the next read of the graph"
+            )
 
     def _to_advertise_again(self, present: dict[str, Any]) -> list[str]:
         """The topics whose channel a client could not subscribe to (:class:`_RefusedSubscriptions`)
@@ -525,7 +552,7 @@ class FoxgloveBridge:
             topic.subscribers.add(client.id)
             if topic.subscription is not None:
                 return
-            topic.subscription = self._subscribe(channel.topic, topic)
+            self._subscribe_on_bus(channel.topic, topic)
 
     def _subscribe(self, name: str, topic: _Topic) -> Any:
         from robomodel.runtime.qos import Durability, QoSProfile
