@@ -11,10 +11,7 @@
 from __future__ import annotations
 
 import os
-import signal
-import subprocess
 import time
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +21,7 @@ import yaml
 from robomodel.runtime.msg import JointState
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, has
+from tests.ros1wire.rviz_window import rviz_until, xvfb
 from tests.timing import scaled
 
 PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
@@ -261,71 +259,16 @@ Window Geometry:
 """
 
 
-def _xvfb(ros1: Ros1, size: str) -> str:
-    """A virtual screen on a display number Xvfb chooses itself (``-displayfd``): a number of
-    our own choosing could be one another test's Xvfb already holds."""
-    read, write = os.pipe()
-    proc = subprocess.Popen(
-        ["Xvfb", "-displayfd", str(write), "-screen", "0", size, "-nolisten", "tcp"],
-        pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )  # fmt: skip
-    os.close(write)
-    ros1.procs.append(proc)
-    with os.fdopen(read) as numbers:
-        number = numbers.readline().strip()  # written once the screen accepts clients
-    assert number.isdigit(), "Xvfb did not start"
-    return f":{number}"
-
-
-def _rviz_until(
-    ros1: Ros1,
-    config: Path,
-    display: str,
-    log: Path,
-    drawn: Callable[[Path], bool],
-    timeout_s: float,
-) -> Path:
-    """Start Debian's ``rviz -d config`` on ``display`` and grab its screen until ``drawn``
-    says yes or ``timeout_s`` (scaled) passed; the last screenshot.
-
-    Debian's rviz 1.14 has been seen to abort at start on a loaded machine with glibc's
-    ``free(): invalid next size`` (SIGABRT), before it read the config or drew a frame; such a
-    start is tried once more. Any other end of rviz fails the test with its log."""
-    from PIL import ImageGrab
-
-    shot = log.with_suffix(".png")
-    for attempt in range(2):
-        with log.open("w") as out:
-            rviz = subprocess.Popen(
-                ["/usr/bin/rviz", "-d", str(config)],
-                env={**ros1.env, "DISPLAY": display, "LIBGL_ALWAYS_SOFTWARE": "1"},
-                stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
-            )  # fmt: skip
-        ros1.procs.append(rviz)  # type: ignore[arg-type]
-        deadline = time.monotonic() + scaled(timeout_s)
-        while rviz.poll() is None:
-            ImageGrab.grab(xdisplay=display).save(shot)
-            if drawn(shot) or time.monotonic() > deadline:
-                return shot
-            time.sleep(1.0)
-        text = log.read_text()
-        glibc_abort = rviz.returncode == -signal.SIGABRT and "free(): " in text
-        assert glibc_abort and attempt == 0, f"rviz ended ({rviz.returncode}): {text}"
-        print(f"rviz aborted in glibc's heap check at start; started again:\n{text}")
-    raise AssertionError("unreachable")
-
-
 def test_rviz_under_xvfb_draws_the_robot_robomodel_publishes(ros1: Ros1, tmp_path: Path) -> None:
     if not (has("Xvfb") and Path("/usr/bin/rviz").exists()):
         pytest.fail("rviz and Xvfb are missing: tools/system-deps test installs them")
 
-    display = _xvfb(ros1, "1024x768x24")
+    display = xvfb(ros1, "1024x768x24")
     log = tmp_path / "launch.log"
     _launch(ros1, log, "gripper_description", "display.launch", "--ros1-master", ros1.uri)
     config = tmp_path / "robot.rviz"
     config.write_text(RVIZ_CONFIG)
-    shot = _rviz_until(ros1, config, display, tmp_path / "rviz.log",
+    shot = rviz_until(ros1, config, display, tmp_path / "rviz.log",
                        lambda shot: _orange_pixels(shot) > 500, 60)  # fmt: skip
     kept = Path(os.environ.get("ROBOMODEL_SCREENSHOTS", str(tmp_path))) / "rviz_ros1.png"
     kept.parent.mkdir(parents=True, exist_ok=True)
@@ -385,9 +328,9 @@ def test_rviz_opens_a_config_robomodel_saved_with_its_displays_and_fixed_frame(
     saved = read_rviz_file(config)
     assert saved.fixed_frame == "base_link"
     assert [d.class_name for d in saved.displays] == ["rviz/Grid", "rviz/RobotModel", "rviz/TF"]
-    display = _xvfb(ros1, "1280x900x24")
+    display = xvfb(ros1, "1280x900x24")
     log = tmp_path / "rviz.log"
-    shot = _rviz_until(
+    shot = rviz_until(
         ros1, config, display, log,
         lambda shot: _orange_pixels(shot) > 500 and _axis_green_pixels(shot) > 50, 90,
     )  # fmt: skip

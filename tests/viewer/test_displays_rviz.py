@@ -9,7 +9,6 @@ robomodel reads the file back with the same displays and options.
 from __future__ import annotations
 
 import os
-import subprocess
 from pathlib import Path
 from typing import Any
 
@@ -22,8 +21,7 @@ from robomodel.viewer.rviz_document import open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, has, ros1  # noqa: F401  (the fixture)
-from tests.ros1wire.test_debian_ros1 import _xvfb
-from tests.timing import wait_until
+from tests.ros1wire.rviz_window import rviz_until, xvfb
 from tests.viewer.conftest import gui_row, open_viewer, save_shot, wait_for
 
 pytestmark = pytest.mark.browser
@@ -82,7 +80,6 @@ def _save_from_the_page(ros1: Ros1, config: Path, page: Any) -> list[dict[str, A
 def test_rviz_opens_the_displays_saved_from_the_page(ros1: Ros1, tmp_path: Path, page: Any) -> None:  # noqa: F811
     if not (has("Xvfb") and Path("/usr/bin/rviz").exists()):
         pytest.fail("rviz and Xvfb are missing: tools/system-deps test installs them")
-    from PIL import ImageGrab
 
     ros1.roscore()
     pub = ["/usr/bin/rostopic", "pub", "-r", "5", "/visualization_marker"]
@@ -92,30 +89,18 @@ def test_rviz_opens_the_displays_saved_from_the_page(ros1: Ros1, tmp_path: Path,
     saved = read_rviz_file(config)
     assert [d.class_name for d in saved.displays][-2:] == ["rviz/Marker", "rviz/MarkerArray"]
     assert saved.displays[-2].settings["Marker Topic"] == "/visualization_marker"
-    display = _xvfb(ros1, "1280x900x24")
+    display = xvfb(ros1, "1280x900x24")
     log = tmp_path / "rviz.log"
-    with log.open("w") as out:
-        rviz = subprocess.Popen(
-            ["/usr/bin/rviz", "-d", str(config)],
-            env={**ros1.env, "DISPLAY": display, "LIBGL_ALWAYS_SOFTWARE": "1"},
-            stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
-        )  # fmt: skip
-    ros1.procs.append(rviz)  # type: ignore[arg-type]
-    shot = tmp_path / "rviz.png"
     kept = Path(os.environ.get("ROBOMODEL_SCREENSHOTS", str(tmp_path))) / "rviz_markers.png"
 
-    def cube_drawn() -> bool:
-        assert rviz.poll() is None, f"rviz ended: {log.read_text()}"
+    def cube_drawn(shot: Path) -> bool:
         assert publisher.poll() is None, "rostopic pub ended"
-        ImageGrab.grab(xdisplay=display).save(shot)
         return _red_pixels(shot) > 200
 
-    try:
-        wait_until(cube_drawn, 90, what=lambda: f"a red cube in rviz's window ({kept})", interval_s=0.5)  # fmt: skip
-    finally:
-        if shot.exists():  # for the reader: rviz's window as the test saw it last
-            kept.parent.mkdir(parents=True, exist_ok=True)
-            kept.write_bytes(shot.read_bytes())
+    shot = rviz_until(ros1, config, display, log, cube_drawn, 90)
+    kept.parent.mkdir(parents=True, exist_ok=True)  # for the reader: rviz's window as seen last
+    kept.write_bytes(shot.read_bytes())
+    assert _red_pixels(shot) > 200, f"no red cube in rviz's window ({kept})"
     text = log.read_text()
     for complaint in ("failed to load", "PluginlibFactory", "does not exist"):
         assert complaint not in text, text

@@ -9,8 +9,6 @@ reads the file back with the same displays and options.
 
 from __future__ import annotations
 
-import subprocess
-import time
 from pathlib import Path
 
 import pytest
@@ -21,8 +19,7 @@ from robomodel.viewer.rviz_document import open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import EXAMPLES
 from tests.ros1wire.conftest import Ros1, has, ros1  # noqa: F401  (the fixture)
-from tests.ros1wire.test_debian_ros1 import _xvfb
-from tests.timing import scaled
+from tests.ros1wire.rviz_window import rviz_until, xvfb
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = pytest.mark.browser
@@ -74,20 +71,11 @@ def test_rviz_opens_the_sensor_displays_saved_by_robomodel(ros1: Ros1, tmp_path:
     with_control.write_text(yaml.safe_dump(tree, sort_keys=False))
 
     ros1.roscore()
-    display = _xvfb(ros1, "1024x768x24")
+    display = xvfb(ros1, "1024x768x24")
     log = tmp_path / "rviz.log"
-    with log.open("w") as out:
-        rviz = subprocess.Popen(
-            ["/usr/bin/rviz", "-d", str(with_control)],
-            env={**ros1.env, "DISPLAY": display, "LIBGL_ALWAYS_SOFTWARE": "1"},
-            stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
-        )  # fmt: skip
-    ros1.procs.append(rviz)  # type: ignore[arg-type]
-    deadline = time.monotonic() + scaled(90)
-    while CONTROL not in log.read_text():  # rviz got to the last display
-        assert rviz.poll() is None, f"rviz ended: {log.read_text()}"
-        assert time.monotonic() < deadline, f"rviz never reached the last display: {log.read_text()}"  # fmt: skip
-        time.sleep(0.5)
+    # rviz got to the last display
+    rviz_until(ros1, with_control, display, log, lambda _shot: CONTROL in log.read_text(), 90)
+    assert CONTROL in log.read_text(), f"rviz never reached the last display: {log.read_text()}"
     complaints = [line for line in log.read_text().splitlines() if "rviz/" in line and CONTROL not in line]  # fmt: skip
     assert not complaints, "\n".join(complaints)
 
