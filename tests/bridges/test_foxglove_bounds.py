@@ -26,6 +26,7 @@ from robomodel.launch.param_server import ParamServer
 from robomodel.runtime import Context
 from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
+from tests.bridges.foxglove_ws import next_op, registered, subscribe
 from tests.timing import scaled, wait_until
 
 LINES: list[str] = []
@@ -63,15 +64,8 @@ def bridge() -> Iterator[FoxgloveBridge]:
 
 def _client(bridge: FoxgloveBridge, **options: Any) -> ClientConnection:
     ws = connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"], **options)
-    _next(ws, "serverInfo")
+    next_op(ws, "serverInfo")
     return ws
-
-
-def _next(ws: ClientConnection, op: str) -> dict[str, Any]:
-    while True:
-        frame = ws.recv(timeout=scaled(10))
-        if isinstance(frame, str) and json.loads(frame)["op"] == op:
-            return json.loads(frame)  # type: ignore[no-any-return]
 
 
 def _advertised(bridge: FoxgloveBridge, channel_id: int) -> list[int]:
@@ -136,11 +130,7 @@ def test_a_client_that_stops_reading_costs_bounded_memory(bridge: FoxgloveBridge
     talker = _Talker(bridge)
     # max_queue=1: the client library stops reading the socket once it holds a frame
     with _client(bridge, max_queue=1) as ws:
-        channel = None
-        while channel is None:  # the graph is read every GRAPH_PERIOD_S
-            found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/big"]
-            channel = found[0]["id"] if found else None
-        ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": channel}]}))
+        subscribe(ws, 1, registered(ws, bridge, "/big")["id"])
         wait_until(lambda: talker.publisher.get_subscription_count() == 1, 60, what="subscribed")
         talker.start()
         first = talker.sent

@@ -29,7 +29,8 @@ from robomodel.launch.param_server import ParamServer
 from robomodel.runtime import Context
 from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
-from tests.timing import scaled, wait_until
+from tests.bridges.foxglove_ws import advertised, next_binary, next_op, registered, subscribe
+from tests.timing import wait_until
 
 LINES: list[str] = []
 PARAMS = ParamServer()
@@ -74,54 +75,23 @@ def _server_sockets(port: int) -> list[int]:
     return found
 
 
-def _next(ws: Any, op: str) -> dict[str, Any]:
-    while True:
-        frame = ws.recv(timeout=scaled(10))
-        if isinstance(frame, str) and json.loads(frame)["op"] == op:
-            return json.loads(frame)  # type: ignore[no-any-return]
-
-
 def test_channel_schema_and_cdr_messages(bridge: FoxgloveBridge) -> None:
     vector = get_message_type("geometry_msgs/msg/Vector3Stamped")
     node = bridge.context.create_node("talker")
     publisher = bridge._on_bus(lambda: node.create_publisher(vector, "/wind"))
     msg = vector(vector=get_message_type("geometry_msgs/msg/Vector3")(x=1.5, y=-2.0, z=0.25))
     with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
-        assert _next(ws, "serverInfo")["supportedEncodings"] == ["cdr"]
+        assert next_op(ws, "serverInfo")["supportedEncodings"] == ["cdr"]
         assert len(_server_sockets(bridge.port)) == 2 and all(_server_sockets(bridge.port))
-        channel = None
-        while channel is None:  # the graph is read every GRAPH_PERIOD_S
-            found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/wind"]
-            channel = found[0] if found else None
+        channel = registered(ws, bridge, "/wind")
         assert channel["encoding"] == "cdr" and channel["schemaEncoding"] == "ros2msg"
         assert channel["schema"] == ros2msg_definition(vector)
-        ws.send(
-            json.dumps(
-                {"op": "subscribe", "subscriptions": [{"id": 7, "channelId": channel["id"]}]}
-            )
-        )
+        subscribe(ws, 7, channel["id"])
         wait_until(lambda: publisher.get_subscription_count() == 1, 10, what="the bus subscription")
         bridge.context.executor.post(lambda: publisher.publish(msg))
-        frame = ws.recv(timeout=scaled(10))
-        while isinstance(frame, str):
-            frame = ws.recv(timeout=scaled(10))
+        frame = next_binary(ws)
         assert frame[0] == 1 and struct.unpack_from("<I", frame, 1)[0] == 7
         assert frame[13:] == serialize(msg)
-
-
-def _subscribe(ws: Any, subscription: int, channel: int) -> None:
-    ws.send(
-        json.dumps(
-            {"op": "subscribe", "subscriptions": [{"id": subscription, "channelId": channel}]}
-        )
-    )
-
-
-def _advertised(ws: Any, topic: str) -> dict[str, Any]:
-    while True:  # the graph is read every GRAPH_PERIOD_S
-        found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == topic]
-        if found:
-            return found[0]  # type: ignore[no-any-return]
 
 
 def test_a_subscription_the_sdk_refused_gets_the_topic_advertised_again(
@@ -140,10 +110,10 @@ def test_a_subscription_the_sdk_refused_gets_the_topic_advertised_again(
     logging.getLogger("foxglove").addHandler(capture)
     try:
         with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
-            _next(ws, "serverInfo")
-            first = _advertised(ws, "/again")
-            _subscribe(ws, 1, 2**31)
-            assert "Unknown channel ID: 2147483648" in _next(ws, "status")["message"]
+            next_op(ws, "serverInfo")
+            first = advertised(ws, "/again")
+            subscribe(ws, 1, 2**31)
+            assert "Unknown channel ID: 2147483648" in next_op(ws, "status")["message"]
             said = wait_until(
                 lambda: [m for m in sdk_lines if _RefusedSubscriptions.PATTERN.search(m)],
                 10,
@@ -156,17 +126,15 @@ def test_a_subscription_the_sdk_refused_gets_the_topic_advertised_again(
                 "127.0.0.1:1",
                 first["id"],
             )
-            assert _next(ws, "unadvertise")["channelIds"] == [first["id"]]
-            again = _advertised(ws, "/again")
+            assert next_op(ws, "unadvertise")["channelIds"] == [first["id"]]
+            again = registered(ws, bridge, "/again")
             assert again["id"] != first["id"] and again["schema"] == first["schema"]
-            _subscribe(ws, 2, again["id"])
+            subscribe(ws, 2, again["id"])
             wait_until(
                 lambda: publisher.get_subscription_count() == 1, 10, what="the bus subscription"
             )
             bridge.context.executor.post(lambda: publisher.publish(string(data="here")))
-            frame = ws.recv(timeout=scaled(10))
-            while isinstance(frame, str):
-                frame = ws.recv(timeout=scaled(10))
+            frame = next_binary(ws)
             assert struct.unpack_from("<I", frame, 1)[0] == 2
             assert frame[13:] == serialize(string(data="here"))
     finally:
@@ -204,24 +172,22 @@ def test_a_bus_subscription_not_made_in_time_is_made_at_the_next_graph_read(
     string = get_message_type("std_msgs/msg/String")
     node = bridge.context.create_node("busy_talker")
     publisher = bridge._on_bus(lambda: node.create_publisher(string, "/busy"))
-    subscribe = bridge._subscribe
+    subscribe_on_bus = bridge._subscribe
     calls: list[str] = []
 
     def busy_once(name: str, topic: Any) -> Any:
         calls.append(name)
         if len(calls) == 1:
             raise ClientError("the bus did not answer in time")
-        return subscribe(name, topic)
+        return subscribe_on_bus(name, topic)
 
     monkeypatch.setattr(bridge, "_subscribe", busy_once)
     with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
-        _next(ws, "serverInfo")
-        _subscribe(ws, 3, _advertised(ws, "/busy")["id"])
+        next_op(ws, "serverInfo")
+        subscribe(ws, 3, registered(ws, bridge, "/busy")["id"])
         wait_until(lambda: publisher.get_subscription_count() == 1, 10, what="the bus subscription")
         bridge.context.executor.post(lambda: publisher.publish(string(data="late")))
-        frame = ws.recv(timeout=scaled(10))
-        while isinstance(frame, str):
-            frame = ws.recv(timeout=scaled(10))
+        frame = next_binary(ws)
         assert frame[13:] == serialize(string(data="late"))
     assert calls == ["/busy", "/busy"]
     assert (
@@ -238,7 +204,7 @@ def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:
         lambda: node.create_subscription(string, "/said", lambda m: heard.append(m.data))
     )
     with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
-        _next(ws, "serverInfo")
+        next_op(ws, "serverInfo")
         channels = [
             {"id": 1, "topic": "/bad name", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
              "schema": "string data", "schemaEncoding": "ros2msg"},
@@ -258,18 +224,18 @@ def test_client_publish_takes_valid_names_only(bridge: FoxgloveBridge) -> None:
 def test_parameters_get_set_and_subscribe(bridge: FoxgloveBridge) -> None:
     PARAMS.set("/gain", 1.5)
     with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
-        _next(ws, "serverInfo")
+        next_op(ws, "serverInfo")
         ws.send(json.dumps({"op": "getParameters", "parameterNames": ["/gain"], "id": "g"}))
-        assert _next(ws, "parameterValues")["parameters"] == [
+        assert next_op(ws, "parameterValues")["parameters"] == [
             {"name": "/gain", "type": "float64", "value": 1.5}
         ]
         ws.send(json.dumps({"op": "subscribeParameterUpdates", "parameterNames": ["/gain"]}))
         ws.send(json.dumps({"op": "setParameters", "id": "s",
                             "parameters": [{"name": "/gain", "value": 2.5}]}))  # fmt: skip
-        assert _next(ws, "parameterValues")["parameters"][0]["value"] == 2.5
+        assert next_op(ws, "parameterValues")["parameters"][0]["value"] == 2.5
         assert PARAMS.get("/gain") == 2.5
         PARAMS.set("/gain", 3.5)  # changed by someone else: the subscriber hears it
-        while (update := _next(ws, "parameterValues"))["parameters"][0]["value"] != 3.5:
+        while (update := next_op(ws, "parameterValues"))["parameters"][0]["value"] != 3.5:
             assert update["parameters"][0]["value"] == 2.5, update
 
 
@@ -314,10 +280,7 @@ def test_a_graph_read_in_part_or_not_at_all_closes_no_channel(
     node = bridge.context.create_node("gusty")
     bridge._on_bus(lambda: node.create_publisher(vector, "/gust"))
     with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
-        channel = None
-        while channel is None:
-            found = [c for c in _next(ws, "advertise")["channels"] if c["topic"] == "/gust"]
-            channel = found[0] if found else None
+        channel = advertised(ws, "/gust")
         reads: list[Graph] = []
         bad = [Graph(unreadable="the master did not answer", complete=False)] * 3
         bad += [Graph(complete=False)] * 2  # an empty listing that says it is incomplete

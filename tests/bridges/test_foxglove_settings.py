@@ -22,6 +22,7 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
 from robomodel.runtime.msg.schema import get_service_type
+from tests.bridges.foxglove_ws import next_op
 from tests.conftest import EXAMPLES
 from tests.timing import scaled, wait_until
 
@@ -60,13 +61,6 @@ def _connected(bridge: FoxgloveBridge) -> Any:
     return connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"])
 
 
-def _next(ws: Any, op: str) -> dict[str, Any]:
-    while True:
-        frame = ws.recv(timeout=scaled(10))
-        if isinstance(frame, str) and json.loads(frame)["op"] == op:
-            return json.loads(frame)  # type: ignore[no-any-return]
-
-
 def _binary(ws: Any, opcode: int) -> bytes:
     while True:
         frame = ws.recv(timeout=scaled(10))
@@ -80,7 +74,7 @@ def test_time_capability_follows_clock(bridge: FoxgloveBridge) -> None:
     publisher = bridge._on_bus(lambda: node.create_publisher(clock, "/clock"))
     wait_until(lambda: publisher.get_subscription_count() >= 1, 10, what="the /clock subscription")
     with _connected(bridge) as ws:
-        assert "time" in _next(ws, "serverInfo")["capabilities"]
+        assert "time" in next_op(ws, "serverInfo")["capabilities"]
         assert bridge.node.get_parameter("use_sim_time") is True
         stamp = clock()
         stamp.clock.sec, stamp.clock.nanosec = 42, 500_000_000
@@ -97,10 +91,10 @@ def test_service_whitelist(bridge: FoxgloveBridge) -> None:
             lambda name=name: node.create_service(trigger, name, lambda _: trigger.Response())
         )
     with _connected(bridge) as ws:
-        _next(ws, "serverInfo")
+        next_op(ws, "serverInfo")
         offered: set[str] = set()
         while "/allowed/reset" not in offered:  # the graph is read every GRAPH_PERIOD_S
-            offered |= {s["name"] for s in _next(ws, "advertiseServices")["services"]}
+            offered |= {s["name"] for s in next_op(ws, "advertiseServices")["services"]}
     assert "/hidden/reset" not in offered and not any("parameter" in s for s in offered)
 
 
@@ -112,7 +106,7 @@ def test_client_topic_whitelist(bridge: FoxgloveBridge) -> None:
         lambda: node.create_subscription(string, "/said", lambda m: heard.append(m.data))
     )
     with _connected(bridge) as ws:
-        _next(ws, "serverInfo")
+        next_op(ws, "serverInfo")
         channels = [
             {"id": 1, "topic": "/other", "encoding": "cdr", "schemaName": "std_msgs/msg/String",
              "schema": "string data", "schemaEncoding": "ros2msg"},
@@ -134,13 +128,13 @@ def test_param_whitelist_and_parameter_events(bridge: FoxgloveBridge) -> None:
     bridge._on_bus(lambda: (tuned.declare_parameter("gain", 1.0),
                             secret.declare_parameter("key", "hunter2")))  # fmt: skip
     with _connected(bridge) as ws:
-        _next(ws, "serverInfo")
+        next_op(ws, "serverInfo")
         ws.send(json.dumps({"op": "getParameters", "parameterNames": [], "id": "all"}))
-        names = {p["name"] for p in _next(ws, "parameterValues")["parameters"]}
+        names = {p["name"] for p in next_op(ws, "parameterValues")["parameters"]}
         assert "/tuned.gain" in names and not any(n.startswith("/secret") for n in names)
         ws.send(json.dumps({"op": "setParameters", "id": "s",
                             "parameters": [{"name": "/secret.key", "value": "x"}]}))  # fmt: skip
-        refused = _next(ws, "parameterValues")
+        refused = next_op(ws, "parameterValues")
         assert refused["id"] == "s" and refused["parameters"] == []
         assert any("may not set /secret.key: not on param_whitelist" in x for x in LINES)
         assert secret.get_parameter("key") == "hunter2"
@@ -152,7 +146,7 @@ def test_param_whitelist_and_parameter_events(bridge: FoxgloveBridge) -> None:
         bridge._on_bus(lambda: (tuned.set_parameters({"gain": 2.0}),
                                 tuned.set_parameters({"gain": 1.0}),
                                 secret.set_parameters({"key": "y"})))  # fmt: skip
-        values = [_next(ws, "parameterValues")["parameters"] for _ in range(2)]
+        values = [next_op(ws, "parameterValues")["parameters"] for _ in range(2)]
     assert values == [[{"name": "/tuned.gain", "type": "float64", "value": 2.0}],
                       [{"name": "/tuned.gain", "type": "float64", "value": 1.0}]]  # fmt: skip
 
@@ -167,7 +161,7 @@ def test_asset_uri_allowlist(bridge: FoxgloveBridge) -> None:
 
     urdf = (EXAMPLES / "two_link_arm" / "urdf" / "two_link_arm.urdf").read_bytes()
     with _connected(bridge) as ws:
-        _next(ws, "serverInfo")
+        next_op(ws, "serverInfo")
         assert fetch(ws, "package://two_link_arm/urdf/two_link_arm.urdf", 1) == (0, urdf)
         assert fetch(ws, "package://two_link_arm/urdf/two_link_arm.urdf.xacro", 2)[0] == 1
         assert fetch(ws, "package://two_link_arm/urdf/../urdf/two_link_arm.urdf", 3)[0] == 1
