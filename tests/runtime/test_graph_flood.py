@@ -50,7 +50,7 @@ def _peer(keys: list[str]) -> Iterator[tuple[Any, list[Any]]]:
 
 
 def _real_graph(domain: str) -> tuple[list[str], list[str]]:
-    """6 nodes and 10 topics of an honest peer (as the issue's reproducer had)."""
+    """6 nodes and 10 topics of an honest peer, beside the flood."""
     keys: list[str] = []
     for n in range(6):
         topics = [f"real_topic_{t}" for t in range(10) if t % 6 == n]

@@ -115,7 +115,7 @@ def test_examples_match_roslaunch(workspace: Path, tmp_path: Path, path: Path) -
 
 
 def test_corpus_is_complete() -> None:
-    """Every element and substitution the issue names appears in the corpus."""
+    """Every element, attribute and substitution of roslaunch's XML format appears in the corpus."""
     launches = sorted((CORPUS / "demo_pkg" / "launch").glob("*.launch"))
     text = "".join(p.read_text() for p in launches)
     for needle in (

@@ -103,8 +103,9 @@ def _line(block: GazeboBlock, el: etree._Element) -> str:
 def read_gazebo(robot: Robot) -> GazeboExtensions:
     """Collect the ``<gazebo>`` extensions of ``robot``.
 
-    Unknown sensor types are warned about and skipped (as the issue asks); a reference to a
-    link or joint that does not exist is warned about too (Gazebo ignores it silently).
+    Unknown sensor types are warned about and skipped, so the rest of the robot loads; a
+    reference to a link or joint that does not exist is warned about too (Gazebo ignores it
+    silently).
     """
     links: dict[str, LinkSurface] = {}
     sensors: list[SensorSpec] = []
