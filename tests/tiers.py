@@ -245,6 +245,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/viewer/test_rviz_save.py::test_a_ros2_launch_s_rviz2_with_a_missing_config_warns_once_and_runs": PROCESS,
     "tests/viewer/test_rviz_save.py::test_the_readme_command_opens_a_missing_config_with_one_warning": PROCESS,
     "tests/viewer/test_units.py::test_importing_the_viewer_loads_neither_viser_nor_trimesh": PROCESS,
+    "tests/viewer/test_units.py::test_a_viewer_of_a_robot_without_mesh_files_loads_no_trimesh": PROCESS,
     "tests/viewer/test_viewer_inprocess.py::test_a_description_from_a_topic_is_drawn_with_the_robot_s_tf": PROCESS,
     "tests/xacro/test_examples.py::test_example_passes_check_urdf": PROCESS,
     "tests/xacro/test_work_bound.py::test_cli_refuses_with_exit_2_and_the_stack": PROCESS,

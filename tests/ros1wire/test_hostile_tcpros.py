@@ -26,6 +26,7 @@ from robomodel.runtime.transport.ros1.publication import MAX_SUBSCRIBER_CONNECTI
 from robomodel.runtime.transport.ros1.subscription import MAX_PUBLISHERS
 from robomodel.runtime.transport.ros1.tcpros import (
     FRAME_BUDGET_BYTES,
+    TcprosError,
     encode_header,
     read_header,
 )
@@ -131,6 +132,9 @@ class _FakePublisher:
         with sock:
             try:
                 read_header(sock)
+            except (OSError, TcprosError):
+                return  # closed before its header: no frame was refused on it
+            try:
                 sock.sendall(encode_header({"md5sum": self.md5, "callerid": "/fake"}))
                 size = self.frame_bytes  # a String: its byte count, then its bytes
                 sock.sendall(struct.pack("<II", size, size - 4) + b"\x00" * self.lead)

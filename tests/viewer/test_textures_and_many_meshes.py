@@ -7,6 +7,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 from robomodel.description import Mesh
@@ -52,14 +53,23 @@ def test_textured_dae_is_drawn_with_its_texture_in_the_browser(
     view = viewer(_textured_robot(tmp_path))
     open_viewer(page, view.url)
     wait_for(lambda: page.get_by_text("OK").count(), what="the model to load")
-    shot = settle(page).astype(int)
+
+    def shares(shot: np.ndarray) -> tuple[float, float, float]:
+        """The shares of reddish, bluish and greenish pixels."""
+        r, g, b = (shot[..., k].astype(int) for k in range(3))
+        red = (r > 120) & (g < 80) & (b < 80)
+        blue = (b > 120) & (r < 80) & (g < 80)
+        green = (g > 120) & (r < 80) & (b < 80)
+        return float(red.mean()), float(blue.mean()), float(green.mean())
+
+    # The texture is decoded by the page after the mesh is drawn: on a busy machine two shots
+    # of the untextured cube can agree (settled) before it is applied.
+    _red, _blue, greenish = wait_for(
+        lambda: s if min((s := shares(settle(page, 5)))[:2]) > 0.002 else None,
+        what="the checker texture to be drawn",
+    )
     save_shot(page, "textured_dae")
-    r, g, b = shot[..., 0], shot[..., 1], shot[..., 2]
-    reddish = (r > 120) & (g < 80) & (b < 80)
-    bluish = (b > 120) & (r < 80) & (g < 80)
-    greenish = (g > 120) & (r < 80) & (b < 80)
-    assert reddish.mean() > 0.002 and bluish.mean() > 0.002, "the checker texture is not drawn"
-    assert greenish.mean() < 0.0005, "the URDF colour replaced the mesh's own texture"
+    assert greenish < 0.0005, "the URDF colour replaced the mesh's own texture"
 
 
 @pytest.fixture

@@ -25,6 +25,9 @@ from robomodel.viewer.meshes import MeshCache, load_mesh_file, resolve_mesh_uri
 from robomodel.viewer.ports import ensure_port_free
 from robomodel.viewer.reload import FileWatcher
 from tests.conftest import EXAMPLES, ToolResult, example_robot_data_dir
+from tests.timing import scaled
+
+PLANAR = EXAMPLES / "gripper_description/urdf/planar_3dof.urdf"
 
 
 def test_port_in_use_names_a_free_one() -> None:
@@ -233,6 +236,30 @@ def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
     code += "print('viser' in sys.modules, 'trimesh' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+def test_a_viewer_of_a_robot_without_mesh_files_loads_no_trimesh() -> None:
+    """trimesh (with scipy, networkx and shapely) is most of a viewer's start-up: a robot of
+    boxes, cylinders and spheres, with its TF axes drawn, is shown without it."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, time\n"
+        "from robomodel.viewer import RobotSource, Viewer, ViewerOptions\n"
+        f"viewer = Viewer(ViewerOptions(sources=(RobotSource({str(PLANAR)!r}),), port=0))\n"
+        "viewer.start()\n"
+        "try:\n"
+        "    nodes = viewer.server.scene._handle_from_node_name\n"
+        f"    deadline = time.monotonic() + {scaled(30)}\n"
+        "    while '/displays/TF/axes/x' not in nodes and time.monotonic() < deadline:\n"
+        "        time.sleep(0.05)\n"
+        "    print('/displays/TF/axes/x' in nodes, 'trimesh' in sys.modules)\n"
+        "finally:\n"
+        "    viewer.close()\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["True", "False"], out.stderr
 
 
 def test_set_poses_sends_only_the_changed_orientation_or_position() -> None:

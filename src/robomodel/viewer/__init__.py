@@ -1,8 +1,8 @@
 """``robomodel view``: RViz's RobotModel and TF displays and joint_state_publisher_gui in a browser.
 
-Importing this package is cheap: viser and trimesh are imported when a viewer starts (a
-missing one raises :class:`~robomodel.errors.MissingDependencyError` naming the ``viewer``
-extra).
+Importing this package is cheap: viser is imported when a viewer starts, trimesh when it first
+loads a mesh file or draws a marker's shape (a missing one raises
+:class:`~robomodel.errors.MissingDependencyError` naming the ``viewer`` extra).
 """
 
 from robomodel.viewer.app import Viewer, ViewerOptions

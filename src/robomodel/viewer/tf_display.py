@@ -23,14 +23,26 @@ _AXIS_NAMES = ("x", "y", "z")
 _FRESH_AXES_RGBA = np.array([[1.0, 0, 0, 1], [0, 1.0, 0, 1], [0, 0, 1.0, 1]])
 
 
-def _axis_mesh(axis: int, length_m: float, radius_m: float) -> tuple[NDArray[np.float64], NDArray[np.int64]]:  # fmt: skip
-    """A cylinder from the origin along ``axis`` (0, 1, 2: x, y, z): vertices and faces."""
-    import trimesh
-
-    cylinder = trimesh.creation.cylinder(radius=radius_m, height=length_m, sections=12)
-    vertices = np.asarray(cylinder.vertices) + np.array([0.0, 0.0, length_m / 2])  # base at 0
-    vertices = np.roll(vertices, axis + 1, axis=1)  # z -> x (roll 1), z -> y (roll 2)
-    return vertices, np.asarray(cylinder.faces)
+def _axis_mesh(axis: int, length_m: float, radius_m: float, sections: int = 12) -> tuple[NDArray[np.float64], NDArray[np.int64]]:  # fmt: skip
+    """A closed cylinder from the origin along ``axis`` (0, 1, 2: x, y, z): vertices and faces,
+    wound outwards. Built here rather than with trimesh, whose import (scipy, networkx, shapely)
+    would double the start-up of a viewer that draws no mesh file."""
+    angles = np.linspace(0.0, 2.0 * np.pi, sections, endpoint=False)
+    ring = np.column_stack([radius_m * np.cos(angles), radius_m * np.sin(angles)])
+    n = sections
+    vertices = np.vstack([
+        np.column_stack([ring, np.zeros(n)]),  # 0..n-1: the base ring, at 0
+        np.column_stack([ring, np.full(n, length_m)]),  # n..2n-1: the top ring
+        [[0.0, 0.0, 0.0], [0.0, 0.0, length_m]],  # 2n, 2n+1: the caps' centres
+    ])  # fmt: skip
+    i = np.arange(n)
+    j = (i + 1) % n
+    faces = np.vstack([
+        np.column_stack([i, j, j + n]), np.column_stack([i, j + n, i + n]),  # the side
+        np.column_stack([np.full(n, 2 * n), j, i]),  # the base, facing -z
+        np.column_stack([np.full(n, 2 * n + 1), i + n, j + n]),  # the top, facing +z
+    ]).astype(np.int64)  # fmt: skip
+    return np.roll(vertices, axis + 1, axis=1), faces  # z -> x (roll 1), z -> y (roll 2)
 
 
 class TFDisplay:
