@@ -239,7 +239,7 @@ def test_importing_the_viewer_loads_neither_viser_nor_trimesh() -> None:
 
 
 def test_a_viewer_of_a_robot_without_mesh_files_loads_no_trimesh() -> None:
-    """trimesh (with scipy, networkx and shapely) is most of a viewer's start-up: a robot of
+    """trimesh (with scipy, networkx and shapely) is about half of a viewer's start-up: a robot of
     boxes, cylinders and spheres, with its TF axes drawn, is shown without it."""
     import subprocess
     import sys
