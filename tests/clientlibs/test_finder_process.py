@@ -71,6 +71,36 @@ def test_workspace_interfaces_import_in_each_flavour(workspace: Path) -> None:
     ], genpy.stderr
 
 
+def test_a_source_folder_on_the_path_does_not_hide_the_interfaces(workspace: Path) -> None:
+    """A script in the workspace's ``src/`` has that folder first on ``sys.path``, where the
+    package's folders (no ``__init__.py``) import as empty namespace packages."""
+    script = workspace / "src" / "uses_interfaces.py"
+    script.write_text(
+        "import my_interfaces\n"
+        "from my_interfaces.srv import AddThree\n"
+        "from my_interfaces.msg import Num\n"
+        "print(AddThree.Request(a=2).a, Num(num=4).num, my_interfaces.__path__ is not None)\n"
+    )
+    ran = _run(
+        f"import runpy; runpy.run_path({str(script)!r}, run_name='__main__')",
+        workspace,
+        PYTHONPATH=str(workspace / "src"),
+    )
+    assert ran.stdout.split() == ["2", "4", "True"], ran.stderr
+    # a real module in the folder still wins over robomodel's
+    real = workspace / "src" / "my_interfaces" / "msg" / "__init__.py"
+    real.write_text("class Num:\n    REAL = True\n")
+    try:
+        won = _run(
+            "from my_interfaces.msg import Num; print(Num.REAL)",
+            workspace,
+            PYTHONPATH=str(workspace / "src"),
+        )
+    finally:
+        real.unlink()
+    assert won.stdout.strip() == "True", won.stderr
+
+
 def test_a_typo_names_the_close_package_and_where_robomodel_looked(workspace: Path) -> None:
     typo = _run("import my_interfacs.msg", workspace)
     assert typo.returncode == 1

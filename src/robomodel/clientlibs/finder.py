@@ -10,6 +10,10 @@ Two kinds of names:
 
 The finder is appended to ``sys.meta_path``: Python's own path finder asks first, so a real ROS
 installation on ``sys.path`` (a sourced ``setup.bash``) or a real message package always wins.
+One thing Python's finder would find first is not a message package: a package's source folder
+on ``sys.path`` (``python3 -c`` in a workspace's ``src/``), whose ``msg/`` and ``srv/`` folders
+have no ``__init__.py`` and would import as empty namespace packages. A second finder, first on
+``sys.meta_path``, serves those names when the path finder finds nothing but such a folder.
 """
 
 from __future__ import annotations
@@ -103,6 +107,43 @@ class _SubmoduleAliasFinder:
         return importlib.machinery.ModuleSpec(
             fullname, _AliasLoader(real), is_package=found.submodule_search_locations is not None
         )
+
+
+class _OverNamespaceFinder:
+    """First on ``sys.meta_path``: ``<pkg>.msg``, ``<pkg>.srv`` and ``<pkg>.action`` of an
+    interface package robomodel knows, when ``<pkg>`` imported as a namespace package (a folder
+    without ``__init__.py`` on ``sys.path``, such as the package's own source folder) and
+    Python's path finder finds no module of that name but a folder of ``.msg`` files. A real
+    module (a ``msg/__init__.py``, a ``msg.py``) still wins."""
+
+    def find_spec(
+        self,
+        fullname: str,
+        path: Sequence[str] | None,
+        target: ModuleType | None = None,
+    ) -> importlib.machinery.ModuleSpec | None:
+        package, _, kind = fullname.rpartition(".")
+        if kind not in _KINDS or not package or "." in package:
+            return None
+        parent = getattr(sys.modules.get(package), "__spec__", None)
+        if parent is None or not _is_namespace(parent):
+            return None
+        found = importlib.machinery.PathFinder.find_spec(fullname, path)
+        if found is not None and not _is_namespace(found):
+            return None
+        if not _may_be_interface_package(package):
+            return None
+        from robomodel.clientlibs import interfaces
+
+        try:
+            return interfaces.find_spec(fullname)
+        except ModuleNotFoundError:  # not a package robomodel knows: the folder stays
+            return None
+
+
+def _is_namespace(spec: importlib.machinery.ModuleSpec) -> bool:
+    """Whether ``spec`` is a namespace package's: folders, no file, nothing to run."""
+    return spec.origin is None and spec.submodule_search_locations is not None
 
 
 class ClientLibraryFinder:
@@ -334,9 +375,12 @@ def installed() -> ClientLibraryFinder | None:
 
 
 def install() -> ClientLibraryFinder:
-    """Append the finder to ``sys.meta_path`` (once), after Python's own finders."""
+    """Append the finder to ``sys.meta_path`` (once), after Python's own finders, and put the
+    one for interface modules under namespace packages first."""
     finder = installed()
     if finder is None:
         finder = ClientLibraryFinder()
         sys.meta_path.append(finder)
+    if not any(isinstance(f, _OverNamespaceFinder) for f in sys.meta_path):
+        sys.meta_path.insert(0, _OverNamespaceFinder())
     return finder
