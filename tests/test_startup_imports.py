@@ -253,6 +253,28 @@ def test_client_library_finder_loads_only_itself_at_start() -> None:
     assert set(after_miss.stdout.split()) == hook  # a failed import of another name costs no more
 
 
+@pytest.mark.process
+def test_the_message_package_loads_the_other_packages_types_on_first_use() -> None:
+    """``robomodel.runtime.msg`` imports builtin_interfaces, std_msgs, geometry_msgs and
+    rosgraph_msgs (every node's clock); the
+    other classes it names come from their package's module when first used, and the listing
+    of robomodel's types names them all the same."""
+    probe = (
+        "import sys; import robomodel.runtime.msg as msg\n"
+        "types = 'robomodel.runtime.msg.types.'\n"
+        "print(sorted(m[len(types):] for m in sys.modules if m.startswith(types)))\n"
+        "from robomodel.runtime.msg.types.control_msgs import DynamicJointState\n"
+        "print(msg.DynamicJointState is DynamicJointState, 'Odometry' in dir(msg))\n"
+        "print('nav_msgs/msg/Odometry' in msg.message_type_names())\n"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    assert out.stdout.splitlines() == [
+        "['builtin_interfaces', 'geometry_msgs', 'rosgraph_msgs', 'std_msgs']",
+        "True True",
+        "True",
+    ], out.stderr
+
+
 def test_lazy_names_are_the_defining_modules_objects() -> None:
     assert set(model.__all__) <= set(description.__all__)
     for name in model.__all__:

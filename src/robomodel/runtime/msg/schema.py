@@ -240,7 +240,21 @@ def get_message_type(name: str) -> type[Message]:
 
 
 def message_type_names() -> tuple[str, ...]:
+    """Every message type robomodel has a class of its own for (its packages' modules are
+    imported for this: a listing, not a look-up)."""
+    _import_every_package()
     return tuple(sorted(_REGISTRY))
+
+
+def _import_every_package() -> None:
+    """Import every module of ``robomodel.runtime.msg.types``, whose classes register."""
+    import importlib
+    import pkgutil
+
+    from robomodel.runtime.msg import types
+
+    for module in pkgutil.iter_modules(types.__path__):
+        importlib.import_module(f"{types.__name__}.{module.name}")
 
 
 def canonical_service_name(name: str) -> str:
@@ -263,4 +277,6 @@ def get_service_type(name: str) -> type[Service]:
 
 
 def service_type_names() -> tuple[str, ...]:
+    """Every service type robomodel has a class of its own for (see message_type_names)."""
+    _import_every_package()
     return tuple(sorted(_SERVICES))
