@@ -74,6 +74,15 @@ def test_a_segment_meets_its_ends_and_its_rates_are_derivatives(
     assert at(t1 + 1.0)[0] == pytest.approx(p[1], abs=1e-9)
 
 
+def test_a_segment_is_linear_unless_both_ends_have_velocities() -> None:
+    """interpolate_between_points: a cubic needs velocities at both ends, else a line."""
+    a, b = P(0.0, (0.0,), (4.0,)), P(1.0, (2.0,))
+    for first, second in ((a, b), (b, a)):
+        p, v, acc = interpolate(0.0, first, 1.0, second, 0.25)
+        start, end = first.positions[0], second.positions[0]
+        assert (p, v, acc) == ((start + 0.25 * (end - start),), (end - start,), (0.0,))
+
+
 def test_a_segment_of_no_duration_is_its_end_at_rest() -> None:
     start, end = P(0.0, (1.0,), (2.0,), (3.0,)), P(0.0, (5.0,), (6.0,), (7.0,))
     for t0 in (1.0, 2.0):  # zero and negative durations
@@ -216,6 +225,15 @@ def test_classic_antiwindup_bounds_the_integral_state(i: float) -> None:
         assert out == pytest.approx(i * (1.0 / i + (-0.1 if i > 0 else 0.1)))
 
 
+def test_classic_antiwindup_holds_the_integral_at_its_lower_bound() -> None:
+    """The lower bound of the integral state is i_min / i, as the upper one is i_max / i."""
+    pid = Pid(Gains(p=0.0, i=2.0, i_max=1.0, i_min=-0.5, antiwindup=True))
+    for _ in range(10):
+        out = pid.compute_with_rate(-5.0, 0.0, 0.1)
+    assert out == pytest.approx(-0.5)
+    assert pid.i_error == pytest.approx(-0.25)
+
+
 def test_new_gains_keep_the_integral_and_their_bounds_apply() -> None:
     pid = Pid(Gains(p=0.0, i=1.0, i_max=10.0, i_min=-10.0, antiwindup=True))
     for _ in range(5):
@@ -256,6 +274,9 @@ def test_kilted_deadband_stops_the_integral() -> None:
     k.compute(0.6, 1.0)
     k.compute(0.6, 1.0)
     assert k.i_term == pytest.approx(1.2)  # integrates without a clamp
+    at_edge = PidKilted(0.0, 1.0, error_deadband=0.25)
+    at_edge.compute(0.25, 1.0)  # |error| <= deadband is in it (control_toolbox's is_zero)
+    assert at_edge.i_term == 0.0
 
 
 def test_kilted_back_calculation_unwinds_by_the_saturation() -> None:
@@ -299,6 +320,9 @@ def test_kilted_conditional_integration_only_when_it_does_not_wind_up() -> None:
     k.i_term = 5.0  # saturated by the integral, the error pulling back: integrates
     k.compute(-1.0, 0.5)
     assert k.i_term == pytest.approx(4.5)
+    k = PidKilted(1.0, 1.0, u_clamp_max=0.1, antiwindup=AntiWindup.CONDITIONAL_INTEGRATION)
+    k.compute(0.5, 0.5)  # saturated (0.5 to 0.1), error and command of one sign: holds
+    assert k.i_term == 0.0
 
 
 def test_rolling_mean_over_the_last_window_values() -> None:
@@ -340,6 +364,16 @@ def test_odometry_follows_a_straight_line_then_an_arc() -> None:
     o.reset_odometry()
     assert (o.x, o.y, o.heading, o.linear, o.angular) == (0.0, 0.0, 0.0, 0.0, 0.0)
     assert o.update(0.0, 0.0, 6.0) and o.x == 0.0  # the wheel positions were forgotten too
+
+
+def test_odometry_at_the_time_of_the_last_update_moves_but_gives_no_velocity() -> None:
+    o = Odometry(2)
+    o.set_wheel_params(0.5, 0.1, 0.1)
+    o.init(0.0)
+    assert o.update_from_velocity(0.2, 0.2, 0.0)  # the first update after init, dt 0
+    assert (o.x, o.linear, o.angular) == (pytest.approx(0.2), 0.0, 0.0)
+    assert o.update(1.0, 1.0, 0.0001)  # 1e-4 s is enough (odometry.cpp: dt < 0.0001 is not)
+    assert o.timestamp_s == 0.0001
 
 
 def test_odometry_runge_kutta_heads_along_the_mean_heading() -> None:

@@ -27,9 +27,13 @@ def test_humble_constructor_refuses_i_min_above_i_max() -> None:
 
 def test_humble_set_gains_keeps_the_old_gains() -> None:
     pid = Pid(Gains(p=1.0, i=1.0, d=1.0, i_max=1.0, i_min=-1.0))
-    with pytest.warns(RuntimeWarning, match="skip new gains"):
+    with pytest.warns(RuntimeWarning) as warned:
         taken = pid.set_gains(Gains(p=2.0, i=2.0, d=2.0, i_max=-1.0, i_min=1.0))
     assert taken is False
+    assert [str(w.message) for w in warned] == [
+        "received i_min > i_max (i_min=1, i_max=-1), skip new gains"
+    ]
+    assert not warned[0].filename.endswith("pid.py")  # the caller's line, not the library's
     assert pid.gains == Gains(p=1.0, i=1.0, d=1.0, i_max=1.0, i_min=-1.0)
     assert pid.set_gains(Gains(p=2.0, i_max=1.0, i_min=1.0)) is True  # equal bounds are valid
     assert pid.gains.p == 2.0
