@@ -65,6 +65,32 @@ def test_a_name_found_to_be_no_interface_package_is_looked_for_once_per_place(
     assert len(looks) == 6
 
 
+def test_a_name_that_library_code_misses_is_not_searched_for_close_names(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The standard library and installed packages try optional imports (copy.py's
+    ``from org.python.core import ...``, in nearly every process): such a miss is no typo of
+    the user's and costs no search for close names; the same import in a user's file names
+    the close package."""
+    searched: list[str] = []
+    real_close = finder._close_names
+    monkeypatch.setattr(finder, "_close_names", lambda p: searched.append(p) or real_close(p))
+    monkeypatch.setattr(finder, "_misses", {})
+    monkeypatch.setattr(sys, "meta_path", [*sys.meta_path, finder.ClientLibraryFinder()])
+
+    def import_in(folder: str) -> str:
+        code = compile("import std_msg", os.path.join(folder, "optional_imports.py"), "exec")
+        with pytest.raises(ModuleNotFoundError) as failed:
+            exec(code, {})
+        return str(failed.value)
+
+    library = os.path.join(sys.base_prefix, "lib", f"python{sys.version_info[0]}")
+    assert import_in(library) == "No module named 'std_msg'"
+    assert searched == []
+    assert "did you mean std_msgs?" in import_in(os.path.join(os.sep, "home", "me", "ws"))
+    assert searched == ["std_msg"]
+
+
 def test_a_typo_is_still_named_the_second_time() -> None:
     found = finder.ClientLibraryFinder()
     for _ in range(2):

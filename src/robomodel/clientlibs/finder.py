@@ -24,7 +24,7 @@ import importlib.machinery
 import importlib.util
 import os
 import sys
-from types import ModuleType
+from types import FrameType, ModuleType
 
 from robomodel.clientlibs import _workspace
 
@@ -179,7 +179,8 @@ class ClientLibraryFinder:
         helper = HELPERS.get(fullname)
         if helper is not None:
             return importlib.machinery.ModuleSpec(fullname, _AliasLoader(helper))
-        key = (fullname, path is None, *_where_packages_are())
+        by_library = _imported_by_library()
+        key = (fullname, path is None, by_library, *_where_packages_are())
         close = _misses.get(key)
         if close is None:
             if _may_be_interface_package(top):
@@ -189,7 +190,7 @@ class ClientLibraryFinder:
                 if spec is not None:
                     return spec
                 close = ()
-            elif fullname == top and path is None:
+            elif fullname == top and path is None and not by_library:
                 close = tuple(_close_names(top))
             else:
                 close = ()
@@ -205,6 +206,32 @@ class ClientLibraryFinder:
     def invalidate_caches(self) -> None:
         """``importlib.invalidate_caches()``: packages made since are looked for again."""
         _misses.clear()
+
+
+# Where the standard library and installed packages are: an import they make of a name that is
+# no interface package is an optional one (copy.py's ``from org.python.core import ...`` in
+# every process), not a user's typo, and is not searched for close names (a few milliseconds).
+_LIBRARY_FOLDERS = tuple(
+    {
+        os.path.join(p, "")
+        for p in (sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix)
+    }
+)
+_IMPORT_MACHINERY = ("<frozen importlib", os.path.join("importlib", "__init__.py"))
+
+
+def _imported_by_library() -> bool:
+    """Whether the import being looked up was written in code of the Python installation or of
+    an installed package (under ``sys.prefix`` or ``sys.base_prefix``), rather than in the
+    user's program (a script, ``python -c``, a workspace's package)."""
+    # the import machinery's frame that called find_spec (or a test's that called it directly)
+    frame: FrameType | None = sys._getframe(2)
+    while frame is not None and (
+        frame.f_code.co_filename.startswith(_IMPORT_MACHINERY[0])
+        or frame.f_code.co_filename.endswith(_IMPORT_MACHINERY[1])
+    ):
+        frame = frame.f_back
+    return frame is not None and frame.f_code.co_filename.startswith(_LIBRARY_FOLDERS)
 
 
 # Names found to be no interface package, with the close names a typo of them gets, per place
