@@ -15,11 +15,11 @@ Groups:
   * ``robomodel check FILE`` vs ``python -c "import lxml.etree"`` (target: <= 3) and urdfdom's
     ``check_urdf`` (Debian's liburdfdom-tools, given the expanded URDF for a .xacro).
   * ``robomodel --version`` vs ``python -c pass`` (target: <= 1.5).
-  * Any Python of the environment, with ``ROS_PACKAGE_PATH`` set as in a ROS user's shell:
-    ``python -c "import copy, subprocess, mimetypes"`` with robomodel's client-library finder
-    (installed at start by its ``.pth`` file; the standard library's failed imports of other
-    platforms' modules reach it) against the same with it switched off
-    (``ROBOMODEL_CLIENTLIBS=0``). What installing robomodel costs every Python start.
+  * Any Python of the environment, with ``ROS_PACKAGE_PATH`` set as in a ROS user's shell and
+    with it empty: ``python -c "import copy, subprocess, mimetypes"`` with robomodel's
+    client-library finder (installed at start by its ``.pth`` file; the standard library's
+    failed imports of other platforms' modules reach it) against the same with it switched
+    off (``ROBOMODEL_CLIENTLIBS=0``). What installing robomodel costs every Python start.
 
 ``robomodel`` is run as pip's generated console script runs it (``from robomodel.cli.main
 import main; sys.exit(main())``), written to a temporary directory with this interpreter and
@@ -195,20 +195,25 @@ def bench_version(setup: Setup, rounds: int) -> None:
 
 
 def bench_python(setup: Setup, rounds: int) -> None:
-    print("python with ROS_PACKAGE_PATH set: robomodel's import finder on vs off")
     code = "import copy, subprocess, mimetypes"
-    path = f"ROS_PACKAGE_PATH={EXAMPLES}"
+    unset = ("-u", "ROS_PACKAGE_PATH", "-u", "AMENT_PREFIX_PATH")
+    for what, paths in (
+        ("ROS_PACKAGE_PATH set", (*unset, f"ROS_PACKAGE_PATH={EXAMPLES}")),
+        ("no package path", unset),
+    ):
+        print(f"python with {what}: robomodel's import finder on vs off")
 
-    def python(finder: str) -> tuple[str, ...]:  # env(1) on both sides, so both pay its exec
-        return ("env", path, f"ROBOMODEL_CLIENTLIBS={finder}", sys.executable, "-c", code)
+        def python(finder: str, paths: tuple[str, ...] = paths) -> tuple[str, ...]:
+            # env(1) on both sides, so that both pay its exec
+            return ("env", *paths, f"ROBOMODEL_CLIENTLIBS={finder}", sys.executable, "-c", code)
 
-    race(
-        f"python -c '{code}'",
-        Command("finder off (ROBOMODEL_CLIENTLIBS=0)", python("0")),
-        [Command("finder on (as installed)", python("1"))],
-        setup,
-        rounds,
-    )
+        race(
+            f"python -c '{code}'",
+            Command("finder off (ROBOMODEL_CLIENTLIBS=0)", python("0")),
+            [Command("finder on (as installed)", python("1"))],
+            setup,
+            rounds,
+        )
 
 
 def main(argv: list[str] | None = None) -> int:
