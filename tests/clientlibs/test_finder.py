@@ -209,10 +209,12 @@ def test_a_failed_import_with_a_package_path_crawls_it_and_loads_no_type_store(
 def test_python_with_a_package_path_imports_copy_without_the_type_stores(tmp_path: Path) -> None:
     """A fresh Python of this environment (robomodel's .pth finder installed), with
     ``ROS_PACKAGE_PATH`` set: importing the standard library loads none of robomodel's type
-    machinery; an interface package on the path still imports."""
+    machinery, nor its package index (the crawl of the path is ``os`` alone); an interface
+    package on the path still imports."""
+    heavy = ("rosbags", "robomodel.runtime", "robomodel.description.packages")
     code = (
         "import copy, subprocess, mimetypes, sys\n"
-        "print(sorted(m for m in sys.modules if m.startswith(('rosbags', 'robomodel.runtime'))))\n"
+        f"print(sorted(m for m in sys.modules if m.startswith({heavy!r})))\n"
         "from gadget_msgs.msg import Gadget\n"
         "print(Gadget(size=3).size)\n"
     )

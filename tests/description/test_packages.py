@@ -2,12 +2,35 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
+from robomodel.description import _crawl
 from robomodel.description.packages import PackageIndex, index_from_options, parse_package_option
 from robomodel.errors import PackageNotFoundError, PathEscapeError, RobomodelError
+
+# rospack's reading of a manifest's name, as a regular expression (what the crawl computes
+# without importing ``re``, which would cost every Python start whose import the finder sees)
+_NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_PIECES = st.sampled_from(
+    [b"<name>", b"</name>", b"<", b">", b" ", b"\n", b"\t", b"a", b"b_c", b"<x/>", b"\xc3\xa9"]
+)
+
+
+@given(st.lists(_PIECES, max_size=14).map(b"".join))
+def test_the_manifest_name_is_read_as_rospack_s_expression_reads_it(head: bytes) -> None:
+    match = _NAME_RE.search(head)
+    assert _crawl._name_in(head) == (match.group(1).decode("utf-8", "replace") if match else None)
+
+
+def test_a_manifest_s_name_is_its_first_well_formed_name() -> None:
+    assert _crawl._name_in(b"<name>a b</name><name>\n pkg \n</name>") == "pkg"
+    assert _crawl._name_in(b"<name><x/></name>") is None
+    assert _crawl._name_in(b"<name></name>") is None
 
 
 def _package(root: Path, name: str, directory: str | None = None) -> Path:

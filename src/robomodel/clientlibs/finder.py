@@ -326,19 +326,38 @@ def _package_path_interfaces() -> frozenset[str]:
             return found
         _crawling.on = True
         try:
-            from robomodel.description.packages import PackageIndex
-
-            index = PackageIndex(package_paths=extra)
             found = frozenset(
                 name
-                for name in index.names()
-                if any(os.path.isdir(os.path.join(index.find(name), k)) for k in _KINDS)
+                for name, folder in _crawl_package_path(extra, *variables).items()
+                if any(os.path.isdir(os.path.join(folder, k)) for k in _KINDS)
             )
         finally:
             _crawling.on = False
         if len(_interface_packages) >= 16:
             _interface_packages.clear()
         _interface_packages[key] = found
+    return found
+
+
+def _crawl_package_path(
+    package_paths: Sequence[str | os.PathLike[str]],
+    ros_package_path: str | None,
+    ament_prefix_path: str | None,
+) -> dict[str, str]:
+    """The packages (name -> folder; the first of a name wins) of ``--package-path``,
+    ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``, found as the package index finds them
+    (:mod:`robomodel.description._crawl`), without its imports."""
+    from robomodel.description import _crawl
+
+    found: dict[str, str] = {}
+    for root in (*package_paths, *_crawl.split_paths(ros_package_path)):
+        crawled: dict[str, str] = {}
+        _crawl.scan_tree(os.path.abspath(root), crawled)
+        for name, folder in crawled.items():
+            found.setdefault(name, folder)
+    for prefix in map(os.path.abspath, _crawl.split_paths(ament_prefix_path)):
+        for name in _crawl.ament_packages(prefix):
+            found.setdefault(name, os.path.join(prefix, "share", name))
     return found
 
 

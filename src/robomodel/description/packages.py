@@ -32,12 +32,12 @@ from __future__ import annotations
 import copy
 import functools
 import os
-import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import unquote, urlparse
 
+from robomodel.description import _crawl
 from robomodel.errors import PackageNotFoundError, PathEscapeError, RobomodelError
 
 __all__ = [
@@ -47,10 +47,6 @@ __all__ = [
     "index_from_options",
     "parse_package_option",
 ]
-
-_IGNORE_MARKERS = ("CATKIN_IGNORE", "COLCON_IGNORE", "AMENT_IGNORE")
-_NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
-_MAX_SCAN_DEPTH = 12
 
 
 @dataclass(frozen=True, slots=True)
@@ -70,37 +66,12 @@ def parse_package_option(text: str) -> tuple[str, Path]:
     return name.strip(), Path(directory.strip()).expanduser()
 
 
-def _manifest_name(manifest: Path) -> str | None:
-    if not manifest.is_file():  # a device or a FIFO named package.xml is not read
-        return None
-    try:
-        with open(manifest, "rb") as handle:  # only the head: <name> comes first
-            head = handle.read(65536)
-    except OSError:
-        return None
-    match = _NAME_RE.search(head)
-    return match.group(1).decode("utf-8", "replace") if match else None
-
-
-def _scan_tree(root: Path, found: dict[str, Path], depth: int = 0) -> None:
-    """Recursively collect packages below ``root`` (rospack's crawl)."""
-    if depth > _MAX_SCAN_DEPTH:
-        return
-    manifest = root / "package.xml"
-    if manifest.is_file():
-        name = _manifest_name(manifest) or root.name
-        found.setdefault(name, root)
-        return
-    try:
-        entries = sorted(os.scandir(root), key=lambda e: e.name)
-    except OSError:
-        return
-    if any(e.name in _IGNORE_MARKERS for e in entries):
-        return
-    for entry in entries:
-        if entry.name.startswith(".") or not entry.is_dir():
-            continue
-        _scan_tree(Path(entry.path), found, depth + 1)
+def _scan_tree(root: Path, found: dict[str, Path]) -> None:
+    """Collect the packages below ``root`` (rospack's crawl, :mod:`._crawl`)."""
+    crawled: dict[str, str] = {}
+    _crawl.scan_tree(str(root), crawled)
+    for name, folder in crawled.items():
+        found.setdefault(name, Path(folder))
 
 
 _ERD_SWITCH = "ROBOMODEL_EXAMPLE_ROBOT_DATA"
@@ -143,41 +114,7 @@ def _absolute(path: Path) -> Path:
 
 
 def _split_env_paths(value: str | None) -> list[Path]:
-    if not value:
-        return []
-    return [Path(p) for p in value.split(os.pathsep) if p]
-
-
-_AMENT_MARKERS = Path("share", "ament_index", "resource_index", "packages")
-
-
-def _ament_packages(prefix: Path) -> list[str]:
-    """Packages installed in an ament prefix, as ament_index_python finds them.
-
-    ament_index_python (``get_packages_with_prefixes``, ``get_package_prefix``) knows a package
-    by its marker file ``<prefix>/share/ament_index/resource_index/packages/<name>`` (hidden
-    names skipped) and returns ``<prefix>/share/<name>`` as its share directory, whether or not
-    a package.xml is installed there. A ``share/<name>/package.xml`` without a marker (a
-    hand-made prefix) is accepted too, after the marked ones.
-    """
-    names: list[str] = []
-    try:
-        markers = sorted(os.scandir(prefix / _AMENT_MARKERS), key=lambda e: e.name)
-    except OSError:
-        markers = []
-    names += [e.name for e in markers if not e.name.startswith(".") and e.is_file()]
-    try:
-        entries = sorted(os.scandir(prefix / "share"), key=lambda e: e.name)
-    except OSError:
-        entries = []
-    names += [
-        e.name
-        for e in entries
-        if e.is_dir()
-        and e.name not in names
-        and os.path.isfile(os.path.join(e.path, "package.xml"))
-    ]
-    return names
+    return [Path(p) for p in _crawl.split_paths(value)]
 
 
 class PackageIndex:
@@ -250,7 +187,7 @@ class PackageIndex:
                 for name, path in found.items():
                     index.setdefault(name, Package(name, path, origin))
         for prefix in map(_absolute, self._ament_prefixes):
-            for name in _ament_packages(prefix):
+            for name in _crawl.ament_packages(str(prefix)):
                 index.setdefault(name, Package(name, prefix / "share" / name, "AMENT_PREFIX_PATH"))
         for package in self._own:  # only where the search paths know no such name, as ROS's search
             index.setdefault(package.name, package)
@@ -275,7 +212,7 @@ class PackageIndex:
         enclosing = find_enclosing_package(path)
         if enclosing is None:
             return self
-        name = _manifest_name(enclosing / "package.xml") or enclosing.name
+        name = _crawl.manifest_name(str(enclosing / "package.xml")) or enclosing.name
         clone = self.with_fallback(
             enclosing.parent, label=f"the folders beside the input's package ({enclosing.parent})"
         )
