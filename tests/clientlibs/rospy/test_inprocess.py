@@ -248,18 +248,30 @@ def manual_node() -> Any:
         context.shutdown()
 
 
-def _advance_in_background(clock: Any, step_s: float, steps: int) -> Any:
+def _advance_in_background(
+    clock: Any, step_s: float, until_s: float | None = None
+) -> tuple[Any, Any]:
+    """A thread moving ``clock`` on by ``step_s`` every 2 ms of wall time, to exactly
+    ``until_s`` (then it stops), or until the event returned with it is set. A sleeper
+    waiting for a time up to ``until_s`` wakes at it however late it is scheduled: the clock
+    waits there."""
     import threading
     import time
 
+    stop = threading.Event()
+
     def run() -> None:
-        for _ in range(steps):
+        while not stop.is_set():
             time.sleep(0.002)
-            clock.set(clock.now_s() + step_s)
+            now_s = clock.now_s()
+            if until_s is not None and now_s + step_s >= until_s - 1e-9:
+                clock.set(until_s)
+                return
+            clock.set(now_s + step_s)
 
     thread = threading.Thread(target=run, daemon=True)
     thread.start()
-    return thread
+    return thread, stop
 
 
 def test_rate_and_sleep_follow_ros_time(manual_node: Any) -> None:
@@ -267,20 +279,25 @@ def test_rate_and_sleep_follow_ros_time(manual_node: Any) -> None:
     rate = rospy.Rate(10)
     assert rate.last_time == rospy.Time(100)
     assert rate.remaining() == rospy.Duration(0, 100_000_000)
-    mover = _advance_in_background(clock, 0.01, 400)
     for tick in range(1, 4):
+        mover, _ = _advance_in_background(clock, 0.01, until_s=100.0 + 0.1 * tick)
         rate.sleep()
-        assert clock.now_s() >= 100.0 + 0.1 * tick - 1e-9
+        mover.join()
+        assert clock.now_s() == pytest.approx(100.0 + 0.1 * tick)
         assert rate.last_time.to_sec() == pytest.approx(100.0 + 0.1 * tick)
     clock.set(clock.now_s() + 5.0)  # a loop far behind starts its schedule afresh
     late_s = clock.now_s()
     rate.sleep()
     assert rate.last_time.to_sec() == pytest.approx(late_s)
     start_s = clock.now_s()
-    rospy.sleep(0.05)
-    assert clock.now_s() >= start_s + 0.05 - 1e-9
+    mover, stop = _advance_in_background(clock, 0.01)
+    try:
+        rospy.sleep(0.05)
+        assert clock.now_s() >= start_s + 0.05 - 1e-9
+    finally:
+        stop.set()
+        mover.join()
     rospy.sleep(rospy.Duration(-1))  # a negative sleep returns at once
-    mover.join()
 
 
 def test_timer_events_in_ros_time(manual_node: Any) -> None:
