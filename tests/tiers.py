@@ -255,6 +255,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
 # In-process tests that take more than a few seconds (long property-based, corpus and
 # real-time tests): marked ``slow``, so that ``make test-fast`` leaves them to ``make test``.
 SLOW: tuple[str, ...] = (
+    "tests/bridges/test_foxglove_bounds.py::test_a_client_that_stops_reading_costs_bounded_memory",
     "tests/control/test_controllers.py::test_gravity_compensation_holds_the_arm",
     "tests/control/test_controllers.py::test_jtc_effort_pid_mode_moves_rrbot_on_mock_dynamics",
     "tests/control/test_controllers.py::test_rrbot_ros1_pid_over_topics_moves_joint1",
@@ -272,6 +273,7 @@ SLOW: tuple[str, ...] = (
     "tests/kinematics/test_fk_pinocchio.py::test_fk_matches_pinocchio",
     "tests/kinematics/test_ik.py::test_ik_batch",
     "tests/kinematics/test_ik.py::test_ik_reaches_random_targets",
+    "tests/kinematics/test_ik_options.py::test_one_default_budget_for_ik_and_ik_batch",
     "tests/kinematics/test_readme_example.py::test_the_readme_kinematics_example_runs",
     "tests/kinematics/test_se3.py::test_log_inverts_axis_angle",
     "tests/kinematics/test_ur.py::test_every_solution_reproduces_the_target",
@@ -279,6 +281,7 @@ SLOW: tuple[str, ...] = (
     "tests/launch/test_launch_bounds.py::test_every_example_launch_file_stays_under_the_work_bound",
     "tests/launch/test_spawner_wait.py::test_a_manager_answering_after_more_than_10_s_gets_its_controllers_spawned",
     "tests/runtime/test_cdr_strings.py::test_a_run_of_messages_matches_pycdr2_message_by_message",
+    "tests/runtime/test_definition_build_cost.py::test_building_a_wide_class_compiles_nothing_quadratic",
     "tests/runtime/test_messages.py::test_mixed_alignment_bytes_match_pycdr2",
     "tests/runtime/test_param_bounds.py::test_deep_yaml_is_a_clear_error",
     "tests/runtime/test_ros1_connection_caps.py::test_29_subscriber_connections_past_the_cap_read_an_error_header",
