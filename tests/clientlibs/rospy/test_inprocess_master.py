@@ -211,6 +211,8 @@ def test_topic_threads_are_bounded_and_counted(node: str, monkeypatch: pytest.Mo
 
 
 def test_timers_are_bounded_and_counted(node: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    # a Timer an earlier test shut down may still be ending: counted now, gone at the end
+    wait_until(lambda: timer.timer_threads() == 0, 10, what="the earlier tests' Timers to end")
     before = timer.timer_threads()
     monkeypatch.setattr(timer, "MAX_TIMER_THREADS", before + 1)
     ticking = rospy.Timer(rospy.Duration(0.01), lambda event: None)
