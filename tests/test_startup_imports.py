@@ -256,9 +256,8 @@ def test_client_library_finder_loads_only_itself_at_start() -> None:
 @pytest.mark.process
 def test_the_message_package_loads_the_other_packages_types_on_first_use() -> None:
     """``robomodel.runtime.msg`` imports builtin_interfaces, std_msgs, geometry_msgs and
-    rosgraph_msgs (every node's clock); the
-    other classes it names come from their package's module when first used, and the listing
-    of robomodel's types names them all the same."""
+    rosgraph_msgs (every node's clock); the other classes it names come from their package's
+    module when first used, and the listing of robomodel's types names them all the same."""
     probe = (
         "import sys; import robomodel.runtime.msg as msg\n"
         "types = 'robomodel.runtime.msg.types.'\n"

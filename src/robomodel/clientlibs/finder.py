@@ -217,7 +217,8 @@ _LIBRARY_FOLDERS = tuple(
         for p in (sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix)
     }
 )
-_IMPORT_MACHINERY = ("<frozen importlib", os.path.join("importlib", "__init__.py"))
+_FROZEN_IMPORTLIB = "<frozen importlib"
+_IMPORTLIB_INIT = os.path.join("importlib", "__init__.py")  # import_module's frame
 
 
 def _imported_by_library() -> bool:
@@ -227,8 +228,8 @@ def _imported_by_library() -> bool:
     # the import machinery's frame that called find_spec (or a test's that called it directly)
     frame: FrameType | None = sys._getframe(2)
     while frame is not None and (
-        frame.f_code.co_filename.startswith(_IMPORT_MACHINERY[0])
-        or frame.f_code.co_filename.endswith(_IMPORT_MACHINERY[1])
+        frame.f_code.co_filename.startswith(_FROZEN_IMPORTLIB)
+        or frame.f_code.co_filename.endswith(_IMPORTLIB_INIT)
     ):
         frame = frame.f_back
     return frame is not None and frame.f_code.co_filename.startswith(_LIBRARY_FOLDERS)
@@ -351,10 +352,7 @@ def _crawl_package_path(
 
     found: dict[str, str] = {}
     for root in (*package_paths, *_crawl.split_paths(ros_package_path)):
-        crawled: dict[str, str] = {}
-        _crawl.scan_tree(os.path.abspath(root), crawled)
-        for name, folder in crawled.items():
-            found.setdefault(name, folder)
+        _crawl.scan_tree(os.path.abspath(root), found)  # keeps the first folder of a name
     for prefix in map(os.path.abspath, _crawl.split_paths(ament_prefix_path)):
         for name in _crawl.ament_packages(prefix):
             found.setdefault(name, os.path.join(prefix, "share", name))

@@ -1,8 +1,9 @@
 """ROS 2 message types as Python dataclasses, their CDR encoding and YAML conversion.
 
 The types of ``builtin_interfaces``, ``std_msgs``, ``geometry_msgs`` and ``rosgraph_msgs`` are
-imported with the package; the others named here are imported when first used (``from robomodel.runtime.msg
-import JointState``), so that a process that never uses control_msgs does not pay for it.
+imported with the package; the others named here are imported when first used
+(``from robomodel.runtime.msg import JointState``), so that a process that never uses
+control_msgs does not pay for it.
 """
 
 from robomodel._lazy import lazy_exports

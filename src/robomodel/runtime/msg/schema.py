@@ -10,6 +10,7 @@ halves.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, TypeAlias
@@ -246,8 +247,10 @@ def message_type_names() -> tuple[str, ...]:
     return tuple(sorted(_REGISTRY))
 
 
+@functools.cache
 def _import_every_package() -> None:
-    """Import every module of ``robomodel.runtime.msg.types``, whose classes register."""
+    """Import every module of ``robomodel.runtime.msg.types``, whose classes register (once:
+    the folder is robomodel's own, fixed at install)."""
     import importlib
     import pkgutil
 
