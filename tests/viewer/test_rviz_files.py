@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 import yaml
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from robomodel.viewer.displays import display_class
@@ -102,6 +102,8 @@ _names = st.text(st.characters(exclude_categories=("Cs",)), min_size=1, max_size
     enabled=st.booleans(),
     dialect=st.sampled_from(list(RvizDialect)),
 )
+@example(None, None, ["Grid"], {"Class": None}, False, RvizDialect.ROS1)
+@example(None, None, ["TF"], {"Value": "x"}, True, RvizDialect.ROS2)
 def test_generated_configs_round_trip(
     fixed: str | None,
     rate: float | None,
@@ -111,7 +113,7 @@ def test_generated_configs_round_trip(
     dialect: RvizDialect,
 ) -> None:
     displays = [
-        {"Class": dialect.display_class(k), "Name": k, "Enabled": enabled, **values} for k in kinds
+        {**values, "Class": dialect.display_class(k), "Name": k, "Enabled": enabled} for k in kinds
     ]
     tree = {
         "Panels": [],

@@ -74,6 +74,10 @@ def _bool(value: Any) -> bool:
     return value if isinstance(value, bool) else str(value).strip().lower() == "true"
 
 
+def _is_boolean(value: Any) -> bool:
+    return isinstance(value, bool) or str(value).strip().lower() in ("true", "false")
+
+
 def _number(value: Any, what: str, where: str) -> float:
     try:
         return float(value)
@@ -87,8 +91,10 @@ def _display(raw: Any, number: int, where: str) -> RvizDisplay:
     settings = dict(raw)
     class_name = str(settings.pop("Class", "") or "")
     name = str(settings.pop("Name", "") or class_name.rsplit("/", 1)[-1])
-    value = settings.pop("Value") if isinstance(settings.get("Value"), bool) else None
-    # rviz::Display::load: "Value" is the enable property, "Enabled" (when given) overrides it
+    # rviz::Display::load: "Value" is the enable property, "Enabled" (when given) overrides it.
+    # A Value that is no boolean is dropped, as RViz writes the display's state there on save.
+    raw_value = settings.pop("Value", None)
+    value = _bool(raw_value) if _is_boolean(raw_value) else None
     enabled = _bool(settings.pop("Enabled")) if "Enabled" in settings else value
     return RvizDisplay(class_name, name, True if enabled is None else enabled, freeze(settings))
 
