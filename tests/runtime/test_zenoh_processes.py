@@ -91,6 +91,27 @@ def test_echo_info_list_across_processes(talker: tuple[subprocess.Popen[str], st
     assert info.stdout.startswith("Type: std_msgs/msg/Float64\nPublisher count: 1\n")
 
 
+def test_echo_s_timeout_bounds_the_wait_for_the_topic_s_type() -> None:
+    # without a type, echo waits up to 5 s for a publisher to name it; --timeout ends it sooner
+    domain = unique_domain()
+    try:
+        echo = _cli(
+            "topic",
+            "echo",
+            "/nobody",
+            "--once",
+            "--timeout",
+            "0.5",
+            "--domain-id",
+            domain,
+            timeout=4,
+        )
+    except subprocess.TimeoutExpired:
+        pytest.fail("topic echo --timeout 0.5 was still waiting for a publisher after 4 s")
+    assert echo.returncode == 2
+    assert "could not determine the type of /nobody: no publisher found" in echo.stderr
+
+
 def test_parameters_across_processes(
     talker: tuple[subprocess.Popen[str], str], tmp_path: Path
 ) -> None:

@@ -67,7 +67,11 @@ def _add_echo_verb(verbs: Any) -> None:
     p.add_argument("--once", action="store_true", help="print one message and exit")
     p.add_argument("--count", type=int, default=None, metavar="N", help="exit after N messages")
     p.add_argument(
-        "--timeout", type=float, default=None, metavar="S", help="give up after S seconds"
+        "--timeout",
+        type=float,
+        default=None,
+        metavar="S",
+        help="give up after S seconds (the wait for a publisher to learn the type from included)",
     )
     q = p.add_argument_group("quality of service (as ros2 topic echo's)")
     q.add_argument(
@@ -209,10 +213,13 @@ def run_echo(args: argparse.Namespace) -> int:
     limit = 1 if args.once else args.count
     # until Ctrl-C: say which graph it listens to; a counted echo prints only messages
     announce = "robomodel topic echo" if limit is None else None
+    # --timeout bounds the whole wait: for the topic's type too, when it is not given
+    deadline = None if args.timeout is None else time.monotonic() + args.timeout
     with context_from_args(args, announce=announce) as context:
-        wait_for_peers(context)
+        wait_for_peers(context, 1.0 if args.timeout is None else min(1.0, args.timeout))
         node = context.create_node("robomodel_topic_echo")
-        msg_type = _topic_type(context, node.resolve_topic_name(args.topic), args.type, 5.0)
+        type_wait_s = 5.0 if deadline is None else min(5.0, deadline - time.monotonic())
+        msg_type = _topic_type(context, node.resolve_topic_name(args.topic), args.type, type_wait_s)
         printed = [0]
         lost = [0]
 
@@ -233,7 +240,7 @@ def run_echo(args: argparse.Namespace) -> int:
         subscription = node.create_subscription(msg_type, args.topic, show, _echo_qos(args))
         try:
             context.spin(
-                duration_s=args.timeout,
+                duration_s=None if deadline is None else max(0.0, deadline - time.monotonic()),
                 until=lambda: limit is not None and printed[0] >= limit,
             )
         except KeyboardInterrupt:
