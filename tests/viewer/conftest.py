@@ -176,6 +176,19 @@ def open_viewer(page: Any, url: str) -> None:
     page.get_by_text("Fixed Frame", exact=True).first.wait_for(timeout=scaled(30_000))
 
 
+def page_client(viewer: Any) -> Any:
+    """The viser client of the one page open on ``viewer`` (an in-process Viewer), once it is
+    connected: the GUI can arrive over a websocket that then closes, and the page connects
+    again (seen on a loaded machine), so for a moment there is none."""
+    (client,) = wait_for(
+        lambda: (
+            clients if len(clients := tuple(viewer.server.get_clients().values())) == 1 else None
+        ),
+        what="the page connected to the viewer",
+    )
+    return client
+
+
 def screenshot(page: Any) -> np.ndarray:
     """The page as an (H, W, 3) uint8 array."""
     from PIL import Image

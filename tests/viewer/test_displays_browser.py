@@ -20,7 +20,15 @@ import pytest
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from tests.conftest import EXAMPLES, ROBOMODEL, unique_domain
 from tests.timing import scaled
-from tests.viewer.conftest import gui_row, new_page, open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.conftest import (
+    gui_row,
+    new_page,
+    open_viewer,
+    page_client,
+    save_shot,
+    screenshot,
+    wait_for,
+)
 from tests.viewer.test_tools_inprocess import on_loop
 
 pytestmark = [pytest.mark.browser, pytest.mark.xdist_group("displays_browser")]
@@ -127,7 +135,7 @@ def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_i
     )
     display = viewer.displays.displays[3]
     assert (display.class_name, display.name, display.topic) == ("Marker", "/visualization_marker", "/visualization_marker")  # fmt: skip
-    client = next(iter(viewer.server.get_clients().values()))
+    client = page_client(viewer)
     canvas = page.locator("canvas").first.bounding_box()
     wait_for(lambda: np.allclose(client.camera.position, (0, -4, 1), atol=1e-3), what="camera")
     x, y = project(client.camera, np.array([1.0, 0.0, 0.0]), canvas["width"], canvas["height"])
@@ -150,7 +158,7 @@ def test_a_red_cube_marker_from_another_process_is_drawn_where_the_camera_sees_i
 
 def _cube_seen(page: Any, viewer: Viewer) -> tuple[float, float]:
     """Where the red cube must be on the page (the page's camera as set by the fixture)."""
-    client = next(iter(viewer.server.get_clients().values()))
+    client = page_client(viewer)
     canvas = page.locator("canvas").first.bounding_box()
     wait_for(lambda: np.allclose(client.camera.position, (0, -4, 1), atol=1e-3), what="camera")
     x, y = project(client.camera, np.array([1.0, 0.0, 0.0]), canvas["width"], canvas["height"])

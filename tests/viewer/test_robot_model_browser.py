@@ -16,7 +16,7 @@ from robomodel.viewer import RobotSource, Viewer, ViewerOptions
 from robomodel.viewer.rviz_document import open_rviz_document
 from robomodel.viewer.rviz_model import RvizDialect
 from tests.conftest import EXAMPLES
-from tests.viewer.conftest import gui_row, open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.conftest import gui_row, open_viewer, page_client, save_shot, screenshot, wait_for
 from tests.viewer.test_displays_browser import project
 
 pytestmark = pytest.mark.browser
@@ -63,7 +63,7 @@ def _grey(r: Any, g: Any, b: Any) -> Any:  # the links' 0.7 grey, shaded (not th
 
 
 def _seen(page: Any, viewer: Viewer, point: tuple[float, float, float]) -> tuple[float, float]:
-    client = next(iter(viewer.server.get_clients().values()))
+    client = page_client(viewer)
     canvas = page.locator("canvas").first.bounding_box()
     wait_for(
         lambda: np.allclose(client.camera.position, (1.1, -1.5, 0.3), atol=1e-3), what="camera"

@@ -20,7 +20,7 @@ from PIL import Image
 
 from robomodel.viewer import Viewer
 from tests.viewer import display_publisher as published
-from tests.viewer.conftest import open_viewer, save_shot, screenshot, wait_for
+from tests.viewer.conftest import open_viewer, page_client, save_shot, screenshot, wait_for
 from tests.viewer.fed_viewer import viewer_fed_by
 from tests.viewer.test_tools_inprocess import on_loop
 
@@ -47,8 +47,7 @@ def _look_at_origin(viewer: Viewer, position: tuple[float, float, float] = (0.0,
     every older one has arrived (one websocket, in order) and the page has taken it."""
     from scipy.spatial.transform import Rotation
 
-    (client,) = viewer.server.get_clients().values()
-    camera = client.camera
+    camera = page_client(viewer).camera
     forward = -np.asarray(position) / np.linalg.norm(position)
     reports: list[tuple[np.ndarray, np.ndarray]] = []
 
