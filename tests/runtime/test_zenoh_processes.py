@@ -190,7 +190,7 @@ def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
 
 def test_domains_are_isolated(talker: tuple[subprocess.Popen[str], str]) -> None:
     _, domain = talker
-    other = str(int(domain) + 50)
+    other = unique_domain()  # not domain + k: that id may be another worker's, in use
     echo = _cli(
         "topic",
         "echo",
