@@ -22,7 +22,11 @@ from websockets.sync.client import connect
 from robomodel.bag.typedefs import ros2msg_definition
 from robomodel.bridges import BridgeError
 from robomodel.bridges.exceptions import ClientError
-from robomodel.bridges.foxglove_bridge import FoxgloveBridge, _RefusedSubscriptions
+from robomodel.bridges.foxglove_bridge import (
+    SEND_BUFFER_BYTES,
+    FoxgloveBridge,
+    _RefusedSubscriptions,
+)
 from robomodel.bridges.rosapi import Ros1Params
 from robomodel.description.packages import PackageIndex
 from robomodel.launch.param_server import ParamServer
@@ -58,8 +62,9 @@ def bridge() -> Iterator[FoxgloveBridge]:
         context.shutdown()
 
 
-def _server_sockets(port: int) -> list[int]:
-    """TCP_NODELAY of each of this process's TCP sockets on ``port`` (listener, connections)."""
+def _server_sockets(port: int) -> list[tuple[int, int]]:
+    """TCP_NODELAY and SO_SNDBUF of each of this process's TCP sockets on ``port`` (listener,
+    connections)."""
     found = []
     for name in os.listdir("/proc/self/fd"):
         try:
@@ -71,7 +76,12 @@ def _server_sockets(port: int) -> list[int]:
         with sock:
             inet = sock.family == socket.AF_INET and sock.type == socket.SOCK_STREAM
             if inet and sock.getsockname()[1] == port:
-                found.append(sock.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY))
+                found.append(
+                    (
+                        sock.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY),
+                        sock.getsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF),
+                    )
+                )
     return found
 
 
@@ -82,7 +92,11 @@ def test_channel_schema_and_cdr_messages(bridge: FoxgloveBridge) -> None:
     msg = vector(vector=get_message_type("geometry_msgs/msg/Vector3")(x=1.5, y=-2.0, z=0.25))
     with connect(f"ws://127.0.0.1:{bridge.port}", subprotocols=["foxglove.sdk.v1"]) as ws:
         assert next_op(ws, "serverInfo")["supportedEncodings"] == ["cdr"]
-        assert len(_server_sockets(bridge.port)) == 2 and all(_server_sockets(bridge.port))
+        asked = socket.socket()  # the kernel's answer to the bridge's request, on this machine
+        asked.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
+        with asked:
+            send_buffer = asked.getsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF)
+        assert _server_sockets(bridge.port) == [(1, send_buffer)] * 2  # listener, connection
         channel = registered(ws, bridge, "/wind")
         assert channel["encoding"] == "cdr" and channel["schemaEncoding"] == "ros2msg"
         assert channel["schema"] == ros2msg_definition(vector)
