@@ -189,8 +189,8 @@ def test_pub_reaches_a_subscriber_in_another_process(tmp_path: Path) -> None:
 
 
 def test_domains_are_isolated(talker: tuple[subprocess.Popen[str], str]) -> None:
-    _, domain = talker
-    other = unique_domain()  # not domain + k: that id may be another worker's, in use
+    assert talker[0].poll() is None  # publishing /chatter on its own domain
+    other = unique_domain()  # not the talker's id + k: that may be another worker's, in use
     echo = _cli(
         "topic",
         "echo",
