@@ -315,9 +315,9 @@ class FoxgloveBridge:
         socket, whose connections inherit both (Linux). Nagle's algorithm off, as
         foxglove_bridge 0.x set it on every client socket: the SDK's server leaves it on, and its
         small frames then wait for the client's delayed acknowledgements (16 ms more p50 at
-        1 kHz, bench/bench_bridges.py). The send buffer: with the kernel's autotuned one, a
-        0.92 MB image frame took the SDK's writer several writes and wake-ups; with a buffer
-        that holds it, one (the image's hop through the bridge 1.2 ms p50 against 1.65). Linux
+        1 kHz, bench/bench_bridges.py). The send buffer: with one that holds a whole 0.92 MB
+        image frame, the image's hop through the bridge measured 1.2 ms p50, against 1.65 with
+        the kernel's autotuned one, which starts at 16 KiB (bench/bench_bridges.py). Linux
         only (``/proc/self/fd``); elsewhere nothing is done."""
         import os
         import socket
