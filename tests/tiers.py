@@ -178,6 +178,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/runtime/test_ros1_master_hostile.py::test_request_bodies_in_flight_have_one_budget_and_requests_a_cap": ROS1_PROCESS,
     "tests/runtime/test_ros1_messages.py::test_bytes_equal_genpy_both_ways": PROCESS,
     "tests/runtime/test_services.py::test_a_zenoh_call_waits_for_a_server_that_comes_up_late": BUS,
+    "tests/runtime/test_services.py::test_a_zenoh_server_that_does_not_answer_in_time_is_said_so": BUS,
     "tests/runtime/test_services.py::test_zenoh_service_across_processes": PROCESS,
     "tests/runtime/test_shipped_interfaces.py::test_ros1_gets_the_shipped_services_ros1_has_with_genmsg_s_md5sums": ROS1_PROCESS,
     "tests/runtime/test_subscription_count.py::test_zenoh_counts_the_graph_s_subscription_tokens": BUS,

@@ -76,6 +76,21 @@ def test_a_zenoh_call_waits_for_a_server_that_comes_up_late(
     assert answers == [SetBool_Response(True, "checked")]
 
 
+def test_a_zenoh_server_that_does_not_answer_in_time_is_said_so() -> None:
+    """A server that holds the request past the call's timeout (here: nobody spins its
+    executor) makes Zenoh end the query with an error reply of its own, "Timeout", from no
+    replier: the caller is told the service did not answer, not "service '...': Timeout"."""
+    domain = int(unique_domain())
+    with Context("zenoh", domain_id=domain) as caller, Context("zenoh", domain_id=domain) as slow:
+        slow.create_node("slow").create_service(SetBool, "/slow/check", _check)
+        from robomodel.cli._bus import wait_for_peers
+
+        wait_for_peers(caller)
+        with pytest.raises(ServiceCallError) as raised:
+            caller.call_service("/slow/check", SetBool, SetBool_Request(True), timeout_s=0.5)
+        assert "did not answer within 0.5 s" in str(raised.value), raised.value
+
+
 def test_inproc_service_call_and_errors() -> None:
     with Context("inproc") as ctx:
         node = ctx.create_node("calc")

@@ -207,8 +207,10 @@ class ServiceClient:
         errors: list[str] = []
         replied = False
         for reply in replies:
-            replied = True
             sample = reply.ok
+            if sample is None and reply.replier_id is None:
+                continue  # Zenoh's own "Timeout" error at the query's end: nobody replied
+            replied = True
             if sample is None:
                 error = reply.err
                 errors.append(error.payload.to_string() if error is not None else "error reply")
