@@ -208,8 +208,8 @@ class ServiceClient:
         replied = False
         for reply in replies:
             sample = reply.ok
-            if sample is None and reply.replier_id is None:
-                continue  # Zenoh's own "Timeout" error at the query's end: nobody replied
+            if sample is None and _zenoh_s_own_timeout(reply):
+                continue  # nobody replied before the query's end
             replied = True
             if sample is None:
                 error = reply.err
@@ -230,3 +230,11 @@ class ServiceClient:
 
     def destroy(self) -> None:
         undeclare_all(self._token)
+
+
+def _zenoh_s_own_timeout(reply: Any) -> bool:
+    """Whether ``reply`` is the error Zenoh itself gives a query that outlived its timeout:
+    "Timeout", from no replier (zenoh-python 1.10; ``replier_id`` read defensively)."""
+    error = reply.err
+    text = error.payload.to_string() if error is not None else ""
+    return text == "Timeout" and getattr(reply, "replier_id", None) is None
