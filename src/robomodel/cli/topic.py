@@ -214,12 +214,16 @@ def run_echo(args: argparse.Namespace) -> int:
     # until Ctrl-C: say which graph it listens to; a counted echo prints only messages
     announce = "robomodel topic echo" if limit is None else None
     # --timeout bounds the whole wait: for the topic's type too, when it is not given
-    deadline = None if args.timeout is None else time.monotonic() + args.timeout
+    deadline = math.inf if args.timeout is None else time.monotonic() + args.timeout
+
+    def left_s() -> float:
+        return max(0.0, deadline - time.monotonic())
+
     with context_from_args(args, announce=announce) as context:
-        wait_for_peers(context, 1.0 if args.timeout is None else min(1.0, args.timeout))
+        wait_for_peers(context, min(1.0, left_s()))
         node = context.create_node("robomodel_topic_echo")
-        type_wait_s = 5.0 if deadline is None else min(5.0, deadline - time.monotonic())
-        msg_type = _topic_type(context, node.resolve_topic_name(args.topic), args.type, type_wait_s)
+        topic = node.resolve_topic_name(args.topic)
+        msg_type = _topic_type(context, topic, args.type, min(5.0, left_s()))
         printed = [0]
         lost = [0]
 
@@ -240,7 +244,7 @@ def run_echo(args: argparse.Namespace) -> int:
         subscription = node.create_subscription(msg_type, args.topic, show, _echo_qos(args))
         try:
             context.spin(
-                duration_s=None if deadline is None else max(0.0, deadline - time.monotonic()),
+                duration_s=None if args.timeout is None else left_s(),
                 until=lambda: limit is not None and printed[0] >= limit,
             )
         except KeyboardInterrupt:

@@ -50,6 +50,11 @@ from robomodel.runtime.transport.rmw_zenoh import (
 
 __all__ = ["ServiceClient", "ServiceOwner", "ZenohService"]
 
+ZENOH_QUERY_TIMEOUT = "Timeout"
+"""The error Zenoh itself gives a query that outlived its timeout (seen from no replier, and on a
+loaded machine with a replier id too, source not traced). robomodel's servers' errors name the
+service and the cause; rmw_zenoh's servers send none: an error of this bare text is no answer."""
+
 
 class ServiceOwner(ZenohSessionOwner, Protocol):
     """The transport as its services see it: also told when a service is destroyed."""
@@ -208,13 +213,15 @@ class ServiceClient:
         replied = False
         for reply in replies:
             sample = reply.ok
-            if sample is None and _zenoh_s_own_timeout(reply):
-                continue  # nobody replied before the query's end
-            replied = True
             if sample is None:
                 error = reply.err
-                errors.append(error.payload.to_string() if error is not None else "error reply")
+                text = error.payload.to_string() if error is not None else "error reply"
+                if text == ZENOH_QUERY_TIMEOUT:
+                    continue  # nobody replied before the query's end
+                replied = True
+                errors.append(text)
                 continue
+            replied = True
             attachment = parse_attachment(
                 sample.attachment.to_bytes() if sample.attachment else b""
             )
@@ -230,12 +237,3 @@ class ServiceClient:
 
     def destroy(self) -> None:
         undeclare_all(self._token)
-
-
-def _zenoh_s_own_timeout(reply: Any) -> bool:
-    """Whether ``reply`` is the error Zenoh gives a query that outlived its timeout: the bare
-    text "Timeout" (seen from no replier, and on a loaded machine with a replier id too, source
-    not traced). robomodel's servers say which service failed and why; rmw_zenoh's send no
-    error replies."""
-    error = reply.err
-    return error is not None and error.payload.to_string() == "Timeout"
