@@ -179,9 +179,9 @@ def _gadget_msgs(src: Path) -> None:
 def test_a_failed_import_with_a_package_path_crawls_it_and_loads_no_type_store(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
-    """With ``ROS_PACKAGE_PATH`` set (every ROS user's shell), the standard library's own
-    failed imports (copy.py's ``org``, subprocess's ``msvcrt``) are answered from the package
-    path's crawl, not from the type stores; an interface package on that path is found."""
+    """With ``ROS_PACKAGE_PATH`` set (every ROS user's shell), a failed import of a name that
+    no package has is answered from the package path's crawl, not from the type stores; an
+    interface package on that path is found."""
     from robomodel.clientlibs import interfaces
 
     _gadget_msgs(tmp_path / "src")
@@ -203,6 +203,78 @@ def test_a_failed_import_with_a_package_path_crawls_it_and_loads_no_type_store(
     with pytest.raises(ModuleNotFoundError, match="did you mean gadget_msgs"):
         found.find_spec("gadget_msg", None)
     assert asked == []
+
+
+def test_the_standard_library_s_optional_imports_do_not_crawl_the_package_path(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """copy.py's ``from org.python.core import PyStringMap`` fails in every Python process: a
+    name written in the standard library's own import statements is no interface package, and
+    the package path (``/usr/share`` on Debian's ROS) is not crawled for it. A name that the
+    standard library imports as data (``importlib.import_module(name)`` in its code, as runpy
+    and multiprocessing do) is still looked for on the package path."""
+    _gadget_msgs(tmp_path / "src")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "src"))
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(finder, "_misses", {})
+    monkeypatch.setattr(finder, "_interface_packages", {})
+    crawled: list[str | None] = []
+    real_crawl = finder._crawl_package_path
+    monkeypatch.setattr(
+        finder,
+        "_crawl_package_path",
+        lambda *paths: crawled.append(paths[1]) or real_crawl(*paths),
+    )
+    monkeypatch.setattr(sys, "meta_path", [*sys.meta_path, finder.ClientLibraryFinder()])
+    monkeypatch.delitem(sys.modules, "gadget_msgs", raising=False)
+    monkeypatch.delitem(sys.modules, "gadget_msgs.msg", raising=False)
+    standard_library = os.path.dirname(os.__file__)
+
+    def run_in(folder: str, source: str) -> dict[str, object]:
+        scope: dict[str, object] = {}
+        exec(compile(source, os.path.join(folder, "lib_module.py"), "exec"), scope)
+        return scope
+
+    optional = "try:\n    from org.python.core import PyStringMap\nexcept ImportError:\n    pass\n"
+    run_in(standard_library, optional)
+    assert crawled == []
+    as_data = "import importlib\nGadget = importlib.import_module(NAME).Gadget\n"
+    scope = run_in(standard_library, as_data.replace("NAME", repr("gadget_msgs.msg")))
+    assert crawled and set(crawled) == {str(tmp_path / "src")}
+    assert getattr(scope["Gadget"], "__typename__", None) == "gadget_msgs/msg/Gadget"
+    # the same optional import in a user's program is looked for on the (crawled) path
+    monkeypatch.setattr(finder, "_misses", {})
+    monkeypatch.setattr(finder, "_interface_packages", {})
+    crawled.clear()
+    run_in(str(tmp_path), optional)
+    assert crawled == [str(tmp_path / "src")]
+
+
+def test_a_missing_module_of_a_package_loaded_from_a_file_does_not_crawl_the_package_path(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """numpy's ``from . import _distributor_init_local`` fails at every numpy import: a module
+    of a package that Python loaded from a file is that package's business (no crawl of the
+    package path), while one of robomodel's interface packages says which modules it has."""
+    import importlib
+
+    _gadget_msgs(tmp_path / "src")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "src"))
+    monkeypatch.setattr(finder, "_misses", {})
+    monkeypatch.setattr(finder, "_interface_packages", {})
+    crawled: list[object] = []
+    real_crawl = finder._crawl_package_path
+    monkeypatch.setattr(
+        finder, "_crawl_package_path", lambda *paths: crawled.append(paths) or real_crawl(*paths)
+    )
+    monkeypatch.setattr(sys, "meta_path", [*sys.meta_path, finder.ClientLibraryFinder()])
+    for name in ("yaml._no_such_module", "numpy.linalg._no_such_module"):
+        with pytest.raises(ModuleNotFoundError, match=f"^No module named '{name}'$"):
+            importlib.import_module(name)
+    assert crawled == []
+    with pytest.raises(ModuleNotFoundError, match="std_msgs has the modules msg, srv, action"):
+        importlib.import_module("std_msgs.no_such_module")
 
 
 @pytest.mark.process

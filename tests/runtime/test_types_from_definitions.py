@@ -195,6 +195,39 @@ def test_unknown_type_is_one_line_naming_where_robomodel_looked(
     assert "std_msgs/msg/String" not in text  # not the list of every known type
 
 
+def test_an_unknown_type_that_is_caught_costs_no_search_for_close_names(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The ROS 1 codec asks whether robomodel has a class for each nested type and catches the
+    error: the close names (every shipped type module imported, the package path crawled) are
+    looked for when the message is read, once, not when the error is raised."""
+    searches: list[str] = []
+    real_hint = _resolver._hint
+    monkeypatch.setattr(_resolver, "_hint", lambda key: searches.append(key) or real_hint(key))
+    with pytest.raises(MessageTypeError) as info:
+        get_message_type("sensor_msgs/msg/Imag")
+    assert searches == []
+    assert "did you mean sensor_msgs/msg/Image" in str(info.value)
+    assert str(info.value) == str(info.value)
+    assert searches == ["sensor_msgs/msg/Imag"]
+
+
+def test_the_package_path_is_crawled_once_for_its_files_and_robomodel_s_copies(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    indexes: list[object] = []
+    real_index = _resolver._index
+    monkeypatch.setattr(_resolver, "_index", lambda: indexes.append(1) or real_index())
+    _resolver._package_files.cache_clear()
+    try:
+        with_copies, package_path_only = _resolver._package_files(), _resolver._package_files(False)
+    finally:
+        _resolver._package_files.cache_clear()
+    assert len(indexes) == 1
+    assert "control_msgs/action/FollowJointTrajectory" in with_copies
+    assert "control_msgs/action/FollowJointTrajectory" not in package_path_only
+
+
 def test_distro_from_ros_distro(monkeypatch: pytest.MonkeyPatch) -> None:
     """Jazzy's sensor_msgs/msg/Range has a ``variance`` field that Humble's lacks: ROS_DISTRO
     picks the store, and a ROS 1 distribution name falls back to Jazzy."""

@@ -24,7 +24,7 @@ import importlib.machinery
 import importlib.util
 import os
 import sys
-from types import FrameType, ModuleType
+from types import CodeType, FrameType, ModuleType
 
 from robomodel.clientlibs import _workspace
 
@@ -179,7 +179,12 @@ class ClientLibraryFinder:
         helper = HELPERS.get(fullname)
         if helper is not None:
             return importlib.machinery.ModuleSpec(fullname, _AliasLoader(helper))
-        by_library = _imported_by_library()
+        if not _may_be_interface_module(fullname, top):
+            return None
+        importer = _importing_code()
+        if importer is not None and _standard_library_names(importer, top):
+            return None
+        by_library = importer is not None and importer.co_filename.startswith(_LIBRARY_FOLDERS)
         key = (fullname, path is None, by_library, *_where_packages_are())
         close = _misses.get(key)
         if close is None:
@@ -221,10 +226,27 @@ _FROZEN_IMPORTLIB = "<frozen importlib"
 _IMPORTLIB_INIT = os.path.join("importlib", "__init__.py")  # import_module's frame
 
 
-def _imported_by_library() -> bool:
-    """Whether the import being looked up was written in code of the Python installation or of
-    an installed package (under ``sys.prefix`` or ``sys.base_prefix``), rather than in the
-    user's program (a script, ``python -c``, a workspace's package)."""
+def _may_be_interface_module(fullname: str, top: str) -> bool:
+    """Whether ``fullname`` has the shape of a module this finder serves: ``pkg``, or
+    ``pkg.msg``/``.srv``/``.action``, or another module of ``pkg`` when ``pkg`` is robomodel's
+    interface package (whose error then names the modules it has). A module of a package that
+    Python loaded from a file (numpy's optional ``numpy._distributor_init_local``) is that
+    package's own business, and costs no crawl of the package path."""
+    depth = fullname.count(".")
+    if depth == 0:
+        return True
+    if depth > 1:
+        return False
+    return (
+        fullname.rpartition(".")[2] in _KINDS
+        or getattr(sys.modules.get(top), "__file__", None) is None
+    )
+
+
+def _importing_code() -> CodeType | None:
+    """The code that wrote the import being looked up: a script, ``python -c``, a library's
+    module (a test's, when it calls ``find_spec`` itself), past the import machinery's own
+    frames (``importlib.import_module``'s included)."""
     # the import machinery's frame that called find_spec (or a test's that called it directly)
     frame: FrameType | None = sys._getframe(2)
     while frame is not None and (
@@ -232,7 +254,31 @@ def _imported_by_library() -> bool:
         or frame.f_code.co_filename.endswith(_IMPORTLIB_INIT)
     ):
         frame = frame.f_back
-    return frame is not None and frame.f_code.co_filename.startswith(_LIBRARY_FOLDERS)
+    return frame.f_code if frame is not None else None
+
+
+# The standard library's own folder (os.py's), without the installed packages that a Python
+# with no venv keeps below it.
+_STANDARD_LIBRARY = os.path.join(os.path.dirname(os.__file__), "")
+_INSTALLED = (f"{os.sep}site-packages{os.sep}", f"{os.sep}dist-packages{os.sep}")
+
+
+def _standard_library_names(importer: CodeType, top: str) -> bool:
+    """Whether the standard library's own code imports ``top`` by a name written in it (the
+    module names of an import statement are among its code's names): its optional imports of
+    other platforms' modules (copy.py's and pickle.py's ``from org.python.core import ...``,
+    platform.py's ``java.lang``), which no ROS package serves. Without this, the first of them
+    in every Python process crawled the whole package path (with ``ROS_PACKAGE_PATH`` holding
+    ``/usr/share``, as on Debian's ROS, 180 ms). A name the standard library imports as data
+    (runpy's ``-m``, pickle's classes in multiprocessing's spawned children) is no name of its
+    code and is looked for as any other."""
+    file = importer.co_filename
+    if not (file.startswith(_STANDARD_LIBRARY) or file.startswith("<frozen ")):
+        return False
+    if any(folder in file for folder in _INSTALLED):
+        return False
+    prefix = f"{top}."
+    return any(name == top or name.startswith(prefix) for name in importer.co_names)
 
 
 # Names found to be no interface package, with the close names a typo of them gets, per place

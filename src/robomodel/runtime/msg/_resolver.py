@@ -166,14 +166,23 @@ def _index() -> Any:
 @functools.cache
 def _package_files(shipped: bool = True) -> dict[str, Path]:
     """``pkg/msg/Name``, ``pkg/srv/Name`` and ``pkg/action/Name`` -> the ``.msg``/``.srv``/
-    ``.action`` file on the package path."""
+    ``.action`` file on the package path (``shipped``: then robomodel's copies of the common
+    interfaces that rosbags' stores lack, services, actions, control_msgs...; a workspace's own
+    package of the same name wins)."""
+    if not shipped:
+        index = _index()  # the package path's crawl, once for both
+        return _interface_files([(package, index.find(package)) for package in index.names()])
+    files = dict(_package_files(False))
+    shipped_files = _interface_files([(r.name, r) for r in sorted(SHIPPED.iterdir()) if r.is_dir()])
+    for key, path in shipped_files.items():
+        files.setdefault(key, path)
+    return files
+
+
+def _interface_files(roots: list[tuple[str, Path]]) -> dict[str, Path]:
+    """The ``.msg``/``.srv``/``.action`` files of packages ``(name, folder)`` by their keys (the
+    first package of a name wins)."""
     files: dict[str, Path] = {}
-    index = _index()
-    roots = [(package, index.find(package)) for package in index.names()]
-    # Then robomodel's copies of the common interfaces rosbags' stores lack (services, actions,
-    # control_msgs, ...): a workspace's own package of the same name wins.
-    if shipped:
-        roots += [(root.name, root) for root in sorted(SHIPPED.iterdir()) if root.is_dir()]
     for package, root in roots:
         for kind in ("msg", "srv", "action"):
             for path in sorted((root / kind).glob(f"*.{kind}")):
@@ -313,6 +322,25 @@ def searched() -> str:
     )
 
 
+class UnknownMessageTypeError(MessageTypeError):
+    """No source has message type ``key`` (``name`` as the user wrote it). The close names it
+    suggests are looked for when the message is first read, as Python's own "Did you mean"
+    is, because they cost every class robomodel ships (their modules imported) and the package
+    path's crawl: a caller that asks whether a type exists and catches this pays for neither."""
+
+    def __init__(self, key: str, name: str) -> None:
+        super().__init__(key, name)
+        self.key, self.name = key, name
+        self._searched = searched()
+        self._text: str | None = None
+
+    def __str__(self) -> str:
+        if self._text is None:
+            self._text = f"unknown message type '{self.name}'{_hint(self.key)}: looked in "
+            self._text += self._searched
+        return self._text
+
+
 def _hint(key: str) -> str:
     from robomodel.errors import close_matches
     from robomodel.runtime.msg.schema import message_type_names
@@ -341,7 +369,7 @@ def resolve_message(key: str, name: str) -> type[Message]:
         definition = _definition(key)
         generation = _generation
     if definition is None:
-        raise MessageTypeError(f"unknown message type '{name}'{_hint(key)}: looked in {searched()}")
+        raise UnknownMessageTypeError(key, name)
     # Built with no lock held, so that a large type does not hold up every other lookup; the
     # nested types it asks for take the lock for their own look-up only.
     building = _building_stack()
