@@ -132,6 +132,28 @@ def test_scene_updates_are_capped_at_the_frame_rate(started: list[Viewer], tmp_p
     assert 1 <= flood(1.0) <= 2 + 2
 
 
+def test_an_idle_viewer_wakes_for_what_is_due_not_every_few_milliseconds(
+    started: list[Viewer], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With nothing moving, the update loop sleeps until its next deadline or one frame (the
+    10 Hz joint states and TF of its own publishers, the status and reload polls), rather than
+    waking every 5 ms: an idle viewer beside a user's other work costs little CPU."""
+    viewer = _start(started, RobotSource(str(write_arm(tmp_path))), frame_rate_hz=30.0)
+    assert viewer.context is not None
+    wait_for(lambda: viewer.updates_sent > 0, what="a first update")
+    turns: list[float] = []
+    real_spin = viewer.context.spin_once
+    monkeypatch.setattr(viewer.context, "spin_once", lambda t=0.0: turns.append(t) or real_spin(t))
+    wait_for(lambda: len(turns) >= 20, what="twenty turns of the loop")
+    started_s = time.monotonic()
+    counted = len(turns)
+    time.sleep(1.0)
+    per_s = (len(turns) - counted) / (time.monotonic() - started_s)
+    # the frame (30 Hz) and its own 10 Hz publishers bound it; a 5 ms loop turns 200 times a second
+    assert per_s < 100, f"{per_s:.0f} turns a second"
+    assert max(turns) <= 1 / 30 + 1e-9
+
+
 BROKEN_MACRO = """<?xml version="1.0"?>
 <robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="bad">
   <xacro:macro name="leg" params="n">

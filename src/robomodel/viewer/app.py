@@ -49,6 +49,8 @@ from robomodel.viewer.topic_robots import TopicRobots
 __all__ = ["Viewer", "ViewerOptions"]
 
 log = logging.getLogger("robomodel.viewer")
+# How often the loop looks whether a page that was behind has taken the last update.
+_PAGE_POLL_S = 0.005
 
 WAIT_SLICE_S = 0.2  # how soon the main thread looks at a signal another thread received
 
@@ -280,8 +282,18 @@ class Viewer:
     def _run_loop(self) -> None:
         assert self.context is not None
         next_reload = next_status = next_bodies = next_push = 0.0
+        behind = False
         while not self._stop.is_set():
-            self.context.spin_once(0.005)
+            # Wait for a message (spin_once returns when one is handled) or the first thing due:
+            # an idle scene costs a wake-up per deadline, not one every few milliseconds.
+            now = time.monotonic()
+            push_s = max(next_push, now if self._dirty else self.placement.due_s)
+            due_s = min(next_reload, next_status, next_bodies, push_s)
+            # A slider's value (queued by viser's thread, which does not wake this loop) is
+            # applied within one frame, as when it waited for the next update.
+            longest_s = 1.0 / self.frame_rate_hz
+            wait_s = _PAGE_POLL_S if behind else min(max(0.0, due_s - now), longest_s)
+            self.context.spin_once(wait_s)
             now = time.monotonic()
             if now >= next_push:
                 # Slider values are applied when a scene update is due, not at every turn: a
@@ -296,7 +308,8 @@ class Viewer:
             due = (
                 self._dirty or now >= self.placement.due_s
             )  # TF moved, or an Update Interval passed
-            if due and now >= next_push and not self._page_behind(now):
+            behind = due and now >= next_push and self._page_behind(now)
+            if due and now >= next_push and not behind:
                 # On the schedule, not from now: the loop's own latency does not lower the rate.
                 next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
                 self._dirty = False
