@@ -278,6 +278,32 @@ def test_a_missing_module_of_a_package_loaded_from_a_file_does_not_crawl_the_pac
 
 
 @pytest.mark.process
+def test_an_extension_module_s_own_optional_import_does_not_crawl_the_package_path(
+    tmp_path: Path,
+) -> None:
+    """lxml.etree, a compiled module, tries ``import rnc2rng`` as it initialises: no Python
+    code of its own writes that import, and the package path is not crawled for it."""
+    code = (
+        "import sys\n"
+        "from robomodel.clientlibs import finder\n"
+        "asked, crawled = [], []\n"
+        "real_shape, real_crawl = finder._may_be_interface_module, finder._crawl_package_path\n"
+        "finder._may_be_interface_module = (\n"
+        "    lambda name, top: asked.append(name) or real_shape(name, top))\n"
+        "finder._crawl_package_path = lambda *paths: crawled.append(paths) or real_crawl(*paths)\n"
+        "import lxml.etree\n"
+        "print('rnc2rng' in asked, len(crawled))\n"
+    )
+    _gadget_msgs(tmp_path / "src")
+    env = {**os.environ, "ROS_PACKAGE_PATH": str(tmp_path / "src")}
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, cwd=tmp_path, capture_output=True, text=True,
+        timeout=scaled(60), check=False,
+    )  # fmt: skip
+    assert out.stdout.split() == ["True", "0"], out.stdout + out.stderr
+
+
+@pytest.mark.process
 def test_python_with_a_package_path_imports_copy_without_the_type_stores(tmp_path: Path) -> None:
     """A fresh Python of this environment (robomodel's .pth finder installed), with
     ``ROS_PACKAGE_PATH`` set: importing the standard library loads none of robomodel's type

@@ -18,6 +18,7 @@ have no ``__init__.py`` and would import as empty namespace packages. A second f
 
 from __future__ import annotations
 
+import _imp
 import _thread
 import importlib
 import importlib.machinery
@@ -182,6 +183,8 @@ class ClientLibraryFinder:
         if not _may_be_interface_module(fullname, top):
             return None
         importer = _importing_code()
+        if importer is _EXTENSION_INIT:
+            return None
         if importer is not None and _standard_library_names(importer, top):
             return None
         by_library = importer is not None and importer.co_filename.startswith(_LIBRARY_FOLDERS)
@@ -246,15 +249,27 @@ def _may_be_interface_module(fullname: str, top: str) -> bool:
 def _importing_code() -> CodeType | None:
     """The code that wrote the import being looked up: a script, ``python -c``, a library's
     module (a test's, when it calls ``find_spec`` itself), past the import machinery's own
-    frames (``importlib.import_module``'s included)."""
+    frames (``importlib.import_module``'s included); :data:`_EXTENSION_INIT` when a compiled
+    extension module imports as it initialises (lxml.etree's optional ``rnc2rng``), which has
+    no Python code of its own."""
     # the import machinery's frame that called find_spec (or a test's that called it directly)
     frame: FrameType | None = sys._getframe(2)
     while frame is not None and (
         frame.f_code.co_filename.startswith(_FROZEN_IMPORTLIB)
         or frame.f_code.co_filename.endswith(_IMPORTLIB_INIT)
     ):
+        # ExtensionFileLoader.exec_module: _call_with_frames_removed(_imp.exec_dynamic, module)
+        if frame.f_code.co_name == "_call_with_frames_removed" and (
+            frame.f_locals.get("f") is _imp.exec_dynamic
+        ):
+            return _EXTENSION_INIT
         frame = frame.f_back
     return frame.f_code if frame is not None else None
+
+
+# The importer of an import that a compiled extension module makes as it initialises: its
+# optional dependencies (lxml's rnc2rng), never a ROS interface package.
+_EXTENSION_INIT = compile("", "<an extension module's initialisation>", "exec")
 
 
 # The standard library's own folder (os.py's), without the installed packages that a Python
