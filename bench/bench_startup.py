@@ -199,6 +199,11 @@ def bench_python(setup: Setup, rounds: int) -> None:
     unset = ("-u", "ROS_PACKAGE_PATH", "-u", "AMENT_PREFIX_PATH")
     for what, paths in (
         ("ROS_PACKAGE_PATH set", (*unset, f"ROS_PACKAGE_PATH={EXAMPLES}")),
+        # Debian's ROS packages install to /usr/share, among every other package's data
+        (
+            "ROS_PACKAGE_PATH holding /usr/share",
+            (*unset, f"ROS_PACKAGE_PATH={EXAMPLES}:/usr/share"),
+        ),
         ("no package path", unset),
     ):
         print(f"python with {what}: robomodel's import finder on vs off")
