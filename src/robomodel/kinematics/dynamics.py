@@ -30,6 +30,14 @@ def _skew(v: F64) -> F64:
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
+def _cross(a: F64, b: F64) -> F64:
+    """``a × b`` of two 3-vectors: ``np.cross``, which handles stacks of vectors of any axis,
+    took two thirds of the inverse dynamics' time on these (38 us a call against 1.5)."""
+    a0, a1, a2 = a.tolist()
+    b0, b1, b2 = b.tolist()
+    return np.array((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0))
+
+
 def _rotation(axis: F64, angle_rad: float) -> F64:
     """Rodrigues' formula for a unit ``axis``."""
     c, s = math.cos(angle_rad), math.sin(angle_rad)
@@ -160,14 +168,14 @@ class Dynamics:
     def _motion_to_child(R: F64, p: F64, v: F64) -> F64:
         """Transform a motion vector from the parent's frame to the child's."""
         w = R.T @ v[:3]
-        lin = R.T @ (v[3:] - np.cross(p, v[:3]))
+        lin = R.T @ (v[3:] - _cross(p, v[:3]))
         return np.concatenate((w, lin))
 
     @staticmethod
     def _force_to_parent(R: F64, p: F64, f: F64) -> F64:
         """Transform a force vector from the child's frame to the parent's."""
         lin = R @ f[3:]
-        ang = R @ f[:3] + np.cross(p, lin)
+        ang = R @ f[:3] + _cross(p, lin)
         return np.concatenate((ang, lin))
 
     def rnea(self, q: ArrayLike, v: ArrayLike, a: ArrayLike, *, gravity: bool = True) -> F64:
