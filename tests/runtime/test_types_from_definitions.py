@@ -218,11 +218,15 @@ def test_the_package_path_is_crawled_once_for_its_files_and_robomodel_s_copies(
     indexes: list[object] = []
     real_index = _resolver._index
     monkeypatch.setattr(_resolver, "_index", lambda: indexes.append(1) or real_index())
-    _resolver._package_files.cache_clear()
+    caches = (_resolver._package_path_files, _resolver._package_files)
+    for cache in caches:
+        cache.cache_clear()
     try:
-        with_copies, package_path_only = _resolver._package_files(), _resolver._package_files(False)
+        with_copies = _resolver._package_files()
+        package_path_only = _resolver._package_files(shipped=False)
     finally:
-        _resolver._package_files.cache_clear()
+        for cache in caches:
+            cache.cache_clear()
     assert len(indexes) == 1
     assert "control_msgs/action/FollowJointTrajectory" in with_copies
     assert "control_msgs/action/FollowJointTrajectory" not in package_path_only

@@ -108,6 +108,7 @@ def configure(
         _messages.clear()
         _services.clear()
         _actions.clear()
+        _package_path_files.cache_clear()
         _package_files.cache_clear()
 
 
@@ -164,15 +165,21 @@ def _index() -> Any:
 
 
 @functools.cache
-def _package_files(shipped: bool = True) -> dict[str, Path]:
+def _package_path_files() -> dict[str, Path]:
     """``pkg/msg/Name``, ``pkg/srv/Name`` and ``pkg/action/Name`` -> the ``.msg``/``.srv``/
-    ``.action`` file on the package path (``shipped``: then robomodel's copies of the common
-    interfaces that rosbags' stores lack, services, actions, control_msgs...; a workspace's own
-    package of the same name wins)."""
+    ``.action`` file on the package path (the package index's crawl, once a configuration)."""
+    index = _index()
+    return _interface_files([(package, index.find(package)) for package in index.names()])
+
+
+@functools.cache
+def _package_files(shipped: bool = True) -> dict[str, Path]:
+    """:func:`_package_path_files`, then (``shipped``) robomodel's copies of the common
+    interfaces that rosbags' stores lack, services, actions, control_msgs...: a workspace's own
+    package of the same name wins."""
     if not shipped:
-        index = _index()  # the package path's crawl, once for both
-        return _interface_files([(package, index.find(package)) for package in index.names()])
-    files = dict(_package_files(False))
+        return _package_path_files()
+    files = dict(_package_path_files())
     shipped_files = _interface_files([(r.name, r) for r in sorted(SHIPPED.iterdir()) if r.is_dir()])
     for key, path in shipped_files.items():
         files.setdefault(key, path)
