@@ -308,8 +308,9 @@ class Viewer:
             due = (
                 self._dirty or now >= self.placement.due_s
             )  # TF moved, or an Update Interval passed
-            behind = due and now >= next_push and self._page_behind(now)
-            if due and now >= next_push and not behind:
+            on_time = due and now >= next_push
+            behind = on_time and self._page_behind(now)
+            if on_time and not behind:
                 # On the schedule, not from now: the loop's own latency does not lower the rate.
                 next_push = max(next_push + 1.0 / self.frame_rate_hz, now)
                 self._dirty = False
