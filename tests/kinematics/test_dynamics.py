@@ -110,3 +110,78 @@ def test_forward_and_inverse_dynamics_round_trip(
     np.testing.assert_allclose(
         float(np.dot(v, M @ a + dyn.nonlinear_effects(q, v))), float(np.dot(v, tau)), atol=1e-7
     )
+
+
+def _link(name: str, mass: float, com: str, inertia: str = "0.01 0.002 0.0 0.02 0.001 0.03") -> str:
+    ixx, ixy, ixz, iyy, iyz, izz = inertia.split()
+    return (
+        f'<link name="{name}"><inertial><origin xyz="{com}" rpy="0.1 -0.2 0.3"/>'
+        f'<mass value="{mass}"/><inertia ixx="{ixx}" ixy="{ixy}" ixz="{ixz}" iyy="{iyy}" '
+        f'iyz="{iyz}" izz="{izz}"/></inertial></link>'
+    )
+
+
+def _joint(name: str, kind: str, parent: str, child: str, extra: str = "") -> str:
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+        f'<origin xyz="0.1 0.2 0.3" rpy="0.3 0.2 -0.1"/><axis xyz="0.6 0 0.8"/>'
+        f'<limit lower="-2" upper="2" effort="1" velocity="1"/>{extra}</joint>'
+    )
+
+
+# Fixed links with mass between and after the moving joints (merged into the moving bodies), a
+# prismatic joint, and a base fixed to the root: the parts of a model that are not revolute arms.
+PRISMATIC_AND_FIXED = (
+    '<robot name="mixed"><link name="world"/>'
+    + _link("base", 3.0, "0 0 0.1")
+    + _link("a", 1.0, "0.2 0 0")
+    + _link("bracket", 0.7, "0 0.1 0")
+    + _link("slider", 0.5, "0 0 0.15")
+    + _link("sensor", 0.2, "0.05 0.05 0")
+    + _link("b", 0.8, "0.1 0.1 0")
+    + _joint("mount", "fixed", "world", "base")
+    + _joint("j1", "revolute", "base", "a")
+    + _joint("bolt", "fixed", "a", "bracket")
+    + _joint("j2", "prismatic", "bracket", "slider")
+    + _joint("cam", "fixed", "slider", "sensor")
+    + _joint("j3", "revolute", "sensor", "b")
+    + "</robot>"
+)
+
+
+def test_fixed_links_and_a_prismatic_joint_match_pinocchio(tmp_path: Path) -> None:
+    path = tmp_path / "mixed.urdf"
+    path.write_text(PRISMATIC_AND_FIXED)
+    dyn = Kinematics.load(path).dynamics()
+    model, data = _pin(path)
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        q, v, a = (rng.uniform(-1.5, 1.5, 3) for _ in range(3))
+        np.testing.assert_allclose(dyn.rnea(q, v, a), pin.rnea(model, data, q, v, a), atol=1e-9)
+        M = pin.crba(model, data, q)
+        np.testing.assert_allclose(dyn.mass_matrix(q), np.triu(M) + np.triu(M, 1).T, atol=1e-9)
+
+
+def test_a_mimic_joint_s_torque_is_folded_onto_its_source() -> None:
+    """With ``j3`` mimicking ``j1`` (q3 = 1.5 q1 + 0.2), the torques on ``q = (q1, q2)`` are those
+    of the model where j3 moves freely, at the mimicked values, mapped back: tau1 + 1.5 tau3."""
+    free = Kinematics.load(PRISMATIC_AND_FIXED).dynamics()
+    mimic = Kinematics.load(
+        PRISMATIC_AND_FIXED.replace(
+            '<axis xyz="0.6 0 0.8"/><limit lower="-2" upper="2" effort="1" velocity="1"/>'
+            "</joint></robot>",
+            '<axis xyz="0.6 0 0.8"/><limit lower="-2" upper="2" effort="1" velocity="1"/>'
+            '<mimic joint="j1" multiplier="1.5" offset="0.2"/></joint></robot>',
+        )
+    ).dynamics()
+    assert mimic.n_v == 2
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q, v, a = (rng.uniform(-1.5, 1.5, 2) for _ in range(3))
+        full = [np.array([x[0], x[1], 1.5 * x[0] + off]) for x, off in ((q, 0.2), (v, 0), (a, 0))]
+        tau = free.rnea(*full)
+        np.testing.assert_allclose(mimic.rnea(q, v, a), [tau[0] + 1.5 * tau[2], tau[1]], atol=1e-9)
+        J = np.array([[1.0, 0.0], [0.0, 1.0], [1.5, 0.0]])
+        np.testing.assert_allclose(
+            mimic.mass_matrix(q), J.T @ free.mass_matrix(full[0]) @ J, atol=1e-9
+        )
