@@ -1,6 +1,8 @@
 """Start-up of every verb, this tree against an older one (a ``git worktree`` of a commit).
 
 Run: ``.venv/bin/python bench/bench_verb_startup.py --old /tmp/oldtree [--rounds 15]``.
+``--command "ARGS"`` (repeatable) times ``robomodel ARGS`` too, such as a command against a
+graph you started; ``--commands-only`` leaves out the verbs' ``--help`` and the three commands.
 
 For every verb both trees have, ``robomodel VERB --help`` (imports the verb's module and builds
 its parser, which is what every run of the verb pays before it does its work), plus three real
@@ -15,6 +17,7 @@ from __future__ import annotations
 import argparse
 import compileall
 import os
+import shlex
 import statistics
 import subprocess
 import sys
@@ -56,15 +59,19 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--old", type=Path, required=True, help="the older tree (a worktree)")
     parser.add_argument("--rounds", type=int, default=15)
+    parser.add_argument("--command", action="append", default=[], help="more ARGS to time")
+    parser.add_argument("--commands-only", action="store_true", help="time --command only")
     args = parser.parse_args()
     old: Path = args.old.resolve()
     for tree in (REPO, old):
         compileall.compile_dir(tree / "src" / "robomodel", quiet=1)
     common = [v for v in _verbs(REPO) if v in set(_verbs(old))]
-    commands = [["--version"]]
-    commands += [["check", "examples/gripper_description/urdf/planar_3dof.urdf"]]
-    commands += [["xacro", "examples/rrbot_description/urdf/rrbot.xacro"]]
-    commands += [[verb, "--help"] for verb in common]
+    commands = [shlex.split(command) for command in args.command]
+    if not args.commands_only:
+        commands += [["--version"]]
+        commands += [["check", "examples/gripper_description/urdf/planar_3dof.urdf"]]
+        commands += [["xacro", "examples/rrbot_description/urdf/rrbot.xacro"]]
+        commands += [[verb, "--help"] for verb in common]
     print(f"| command | before ({old.name}) | after | after / before |")
     print("|---|---|---|---|")
     ratios: list[float] = []

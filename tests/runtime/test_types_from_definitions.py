@@ -212,6 +212,32 @@ def test_an_unknown_type_that_is_caught_costs_no_search_for_close_names(
     assert searches == ["sensor_msgs/msg/Imag"]
 
 
+def test_a_type_missing_from_a_package_robomodel_ships_is_not_looked_for_in_the_ros2_store(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """ROS 1's controller_manager_msgs/HardwareInterfaceResources (which ROS 2's package lacks)
+    is asked for by the ROS 1 codec of every list_controllers call: the ROS 2 store, whose
+    import is most of such a command's start, has no controller_manager_msgs at all."""
+    asked: list[int] = []
+    real_store = _resolver._distro_store
+    monkeypatch.setattr(_resolver, "_distro_store", lambda: asked.append(1) or real_store())
+    with pytest.raises(MessageTypeError):
+        get_message_type("controller_manager_msgs/msg/HardwareInterfaceResources")
+    assert asked == []
+    with pytest.raises(MessageTypeError):  # a package robomodel does not ship: the store is asked
+        get_message_type("shape_msgs/msg/NoSuchShape")
+    assert asked == [1]
+
+
+def test_no_ros2_store_has_messages_of_a_package_whose_messages_robomodel_ships() -> None:
+    shipped = {p.parent.name for p in _resolver.SHIPPED.glob("*/msg")}
+    assert {"controller_manager_msgs", "control_msgs", "gazebo_msgs"} <= shipped
+    for store in typesys.Stores:
+        if store.name.startswith("ROS2"):
+            packages = {key.split("/")[0] for key in typesys.get_typestore(store).fielddefs}
+            assert not packages & shipped, store.name
+
+
 def test_the_package_path_is_crawled_once_for_its_files_and_robomodel_s_copies(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
