@@ -54,6 +54,20 @@ def test_recursive_scan_uses_manifest_name_and_stops_at_packages(tmp_path: Path)
     assert index.find("alpha_description") == a
 
 
+def test_only_a_file_is_a_manifest_and_a_package_s_own_ignore_marker_does_not_hide_it(
+    tmp_path: Path,
+) -> None:
+    """As rospack: a folder that holds a package.xml *file* is a package even with an ignore
+    marker beside it (the marker hides the folders below), and a folder named package.xml is
+    crawled into like any other."""
+    kept = _package(tmp_path / "src", "epsilon")
+    (kept / "CATKIN_IGNORE").write_text("")
+    inside = _package(tmp_path / "src" / "odd" / "package.xml", "zeta")
+    found: dict[str, str] = {}
+    _crawl.scan_tree(str(tmp_path / "src"), found)
+    assert found == {"epsilon": str(kept), "zeta": str(inside)}
+
+
 def test_priority_explicit_then_paths_then_environment(tmp_path: Path) -> None:
     first = _package(tmp_path / "one", "pkg")
     second = _package(tmp_path / "two", "pkg")
