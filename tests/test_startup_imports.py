@@ -197,6 +197,24 @@ def test_a_controller_manager_client_loads_no_controller() -> None:
     )
 
 
+@pytest.mark.process
+def test_the_parameter_server_loads_no_launch_file_loader() -> None:
+    """``robomodel run``, ``service`` and ``param`` on ROS 1 take the parameter server, which
+    takes ``robomodel.launch.ros1.params`` alone: not the launch-file loader and its tags,
+    whose names the package re-exports lazily (and gives the defining module's objects)."""
+    probe = (
+        "import sys, robomodel.launch.param_server, robomodel.launch.ros1 as ros1; "
+        "print(sorted(m for m in sys.modules if m.startswith('robomodel.launch.ros1.'))); "
+        "from robomodel.launch.ros1.loader import load_launch; "
+        "print(ros1.load_launch is load_launch, 'load_launch' in dir(ros1))"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    assert out.stdout.splitlines() == [
+        "['robomodel.launch.ros1.params']",
+        "True True",
+    ], out.stdout + out.stderr
+
+
 def test_help_imports_no_verb_module(tmp_path: Path) -> None:
     loaded = modules_loaded_by(tmp_path, "--help")
     assert _verb_modules(loaded) == set()
