@@ -215,6 +215,18 @@ def test_the_parameter_server_loads_no_launch_file_loader() -> None:
     ], out.stdout + out.stderr
 
 
+@pytest.mark.process
+def test_the_node_mappings_load_no_message_module_of_gazebo() -> None:
+    """Every launch and ``robomodel run`` registers the node mappings; gazebo's services'
+    types are loaded by the nodes that call them, when they run."""
+    probe = (
+        "import sys, robomodel.launch.nodes; "
+        "print('robomodel.runtime.msg.types.gazebo_msgs' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    assert out.stdout.split() == ["False"], out.stdout + out.stderr
+
+
 def test_help_imports_no_verb_module(tmp_path: Path) -> None:
     loaded = modules_loaded_by(tmp_path, "--help")
     assert _verb_modules(loaded) == set()

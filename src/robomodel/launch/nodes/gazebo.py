@@ -22,7 +22,6 @@ from typing import Any
 from robomodel._files import UserFileError, read_user_text
 from robomodel.errors import RobomodelError
 from robomodel.launch.nodes.base import NodeContext, RunningNode, ThreadNode, register
-from robomodel.runtime.msg.types.gazebo_msgs import SpawnModel, SpawnModel_Request
 
 __all__ = [
     "SpawnArgs",
@@ -278,6 +277,9 @@ def _number(option: str, text: str) -> float:
     purpose="spawns the URDF of -param/-file into robomodel's simulator",
 )
 def spawn_model(ctx: NodeContext) -> RunningNode:
+    # imported here: every launch and `robomodel run` registers this module's nodes
+    from robomodel.runtime.msg.types.gazebo_msgs import SpawnModel, SpawnModel_Request
+
     options = parse_spawn_args(ctx.spec.args)
     if options.param is not None:
         key = ctx.resolve(options.param)
