@@ -73,10 +73,13 @@ def _env() -> dict[str, str]:
     return env
 
 
+def _probe(code: str) -> subprocess.CompletedProcess[str]:
+    """Run ``python -c code`` in the tests' environment, its output captured."""
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=_env())
+
+
 def _baseline() -> set[str]:
-    code = "import sys; print('\\n'.join(sys.modules))"
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=_env())
-    return set(out.stdout.split())
+    return set(_probe("import sys; print('\\n'.join(sys.modules))").stdout.split())
 
 
 def modules_loaded_by(tmp_path: Path, *argv: str) -> set[str]:
@@ -179,7 +182,7 @@ def test_nodes_and_messages_load_no_yaml_until_yaml_is_read_or_written() -> None
         "node.create_publisher(JointState, '/js', 10).publish(JointState()); "
         "print('yaml' in sys.modules); message_to_yaml(JointState()); print('yaml' in sys.modules)"
     )
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    out = _probe(probe)
     assert out.stdout.split() == ["False", "True"], out.stderr
 
 
@@ -191,7 +194,7 @@ def test_a_controller_manager_client_loads_no_controller() -> None:
         "import sys; from robomodel.control.client import ManagerClient; "
         "print('\\n'.join(m for m in sys.modules if m.startswith('robomodel.control')))"
     )
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    out = _probe(probe)
     assert set(out.stdout.split()) == {"robomodel.control", "robomodel.control.client"}, (
         out.stdout + out.stderr
     )
@@ -208,7 +211,7 @@ def test_the_parameter_server_loads_no_launch_file_loader() -> None:
         "from robomodel.launch.ros1.loader import load_launch; "
         "print(ros1.load_launch is load_launch, 'load_launch' in dir(ros1))"
     )
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    out = _probe(probe)
     assert out.stdout.splitlines() == [
         "['robomodel.launch.ros1.params']",
         "True True",
@@ -223,7 +226,7 @@ def test_the_node_mappings_load_no_message_module_of_gazebo() -> None:
         "import sys, robomodel.launch.nodes; "
         "print('robomodel.runtime.msg.types.gazebo_msgs' in sys.modules)"
     )
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    out = _probe(probe)
     assert out.stdout.split() == ["False"], out.stdout + out.stderr
 
 
@@ -241,7 +244,7 @@ def test_packages_load_no_sub_package_until_used(code: str) -> None:
         code
         + "; import sys; print('\\n'.join(m for m in sys.modules if m.startswith('robomodel')))"
     )
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    out = _probe(probe)
     loaded = set(out.stdout.split())
     allowed = {
         "robomodel",
@@ -296,7 +299,7 @@ def test_the_message_package_loads_the_other_packages_types_on_first_use() -> No
         "print(msg.DynamicJointState is DynamicJointState, 'Odometry' in dir(msg))\n"
         "print('nav_msgs/msg/Odometry' in msg.message_type_names())\n"
     )
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=_env())
+    out = _probe(probe)
     assert out.stdout.splitlines() == [
         "['builtin_interfaces', 'geometry_msgs', 'rosgraph_msgs', 'std_msgs']",
         "True True",
