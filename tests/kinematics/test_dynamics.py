@@ -129,8 +129,8 @@ def _joint(name: str, kind: str, parent: str, child: str, extra: str = "") -> st
     )
 
 
-# Fixed links with mass between and after the moving joints (merged into the moving bodies), a
-# prismatic joint, and a base fixed to the root: the parts of a model that are not revolute arms.
+# Fixed links with mass between and after the moving joints, a prismatic joint, and a base fixed
+# to the root: the parts of a model that are not revolute arms.
 PRISMATIC_AND_FIXED = (
     '<robot name="mixed"><link name="world"/>'
     + _link("base", 3.0, "0 0 0.1")
