@@ -19,7 +19,7 @@ import pytest
 from PIL import Image
 
 from robomodel.viewer import RobotSource, Viewer, ViewerOptions
-from tests.viewer.conftest import open_viewer, save_shot, wait_for
+from tests.viewer.conftest import VIEWPORT, open_viewer, save_shot, wait_for
 from tests.viewer.fed_viewer import EMPTY_ROBOT
 from tests.viewer.test_sensor_displays_browser import _look_at_origin, _project
 from tests.viewer.test_tools_inprocess import on_loop
@@ -103,10 +103,19 @@ def test_a_frame_no_longer_published_turns_grey_then_goes(viewer: Viewer, page: 
     (tf,) = (d for d in viewer.displays.displays if d.class_name == "TF")
     on_loop(viewer, lambda: tf.set_option("Marker Scale", SCALE))
     camera = _look_at_origin(viewer, (0.0, -6.0, 0.0))
-    canvas = page.locator("canvas").first.bounding_box()
-    # the middle of the probe's x axis
-    (uv,) = _project(camera, canvas, np.array([PROBE_XYZ]) + np.array([[0.05 * SCALE, 0.0, 0.0]]))
-    u, v = round(float(uv[0])), round(float(uv[1]))
+    probed: list[Any] = []
+
+    def probe_pixel() -> tuple[int, int] | None:
+        """The page pixel of the middle of the probe's x axis, once it is inside the page."""
+        canvas = page.locator("canvas").first.bounding_box()
+        middle = np.array([PROBE_XYZ]) + np.array([[0.05 * SCALE, 0.0, 0.0]])
+        (uv,) = _project(camera, canvas, middle)
+        u, v = round(float(uv[0])), round(float(uv[1]))
+        probed[:] = [(u, v), canvas, camera.position, camera.wxyz, camera.fov]
+        inside = 1 <= u <= VIEWPORT["width"] - 2 and 1 <= v <= VIEWPORT["height"] - 2
+        return (u, v) if inside else None
+
+    u, v = wait_for(probe_pixel, what=lambda: f"the probe's pixel inside the page: {probed}")
     set_time = _simulated_clock(viewer)
     now_s = [100.0]  # simulated time [s]
     set_time(now_s[0])
