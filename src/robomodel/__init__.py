@@ -30,7 +30,7 @@ __all__ = [
     "read_urdf",
 ]
 
-_LAZY: dict[str, str] = {
+_MODULE_OF: dict[str, str] = {
     "InputError": "robomodel.errors",
     "Kinematics": "robomodel.kinematics",
     "PackageIndex": "robomodel.description",
@@ -42,4 +42,4 @@ _LAZY: dict[str, str] = {
 }
 
 
-__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals(), __all__)
+__getattr__, __dir__ = lazy_exports(__name__, _MODULE_OF, globals(), __all__)
