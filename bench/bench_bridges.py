@@ -45,22 +45,29 @@ def _stamp(ns: int) -> Any:
     return Time(ns // 1_000_000_000, ns % 1_000_000_000)
 
 
-def publish(domain: int, seconds: float) -> dict[str, int]:
-    from robomodel.runtime import Context
+def messages() -> dict[str, Any]:
+    """Topic -> the message published on it: a 32-joint JointState, a 640x480 rgb8 Image."""
     from robomodel.runtime.msg import get_message_type
 
     joint_state = get_message_type("sensor_msgs/msg/JointState")
     image_type = get_message_type("sensor_msgs/msg/Image")
     names = [f"joint_{i}" for i in range(32)]
-    states = joint_state(name=names, position=[0.1] * 32, velocity=[0.0] * 32)
-    image = image_type(height=480, width=640, encoding="rgb8", step=640 * 3,
-                       data=bytes(640 * 480 * 3))  # fmt: skip
+    return {
+        "/joint_states": joint_state(name=names, position=[0.1] * 32, velocity=[0.0] * 32),
+        "/camera/image": image_type(height=480, width=640, encoding="rgb8", step=640 * 3,
+                                    data=bytes(640 * 480 * 3)),
+    }  # fmt: skip
+
+
+def publish(domain: int, seconds: float) -> dict[str, int]:
+    from robomodel.runtime import Context
+
     sent = dict.fromkeys(TOPICS, 0)
     with Context("zenoh", domain_id=domain) as context:
         node = context.create_node("bench_bridges_pub")
         publishers = {
-            "/joint_states": (node.create_publisher(joint_state, "/joint_states"), states),
-            "/camera/image": (node.create_publisher(image_type, "/camera/image"), image),
+            topic: (node.create_publisher(type(msg), topic), msg)
+            for topic, msg in messages().items()
         }
         context.spin(duration_s=3.0)  # the receivers find the publishers
         print("publishing", flush=True)  # the bridge's CPU is read from here ...
