@@ -3,13 +3,17 @@
 The pictures in docs/ are the browser tests' own (``save_shot(page, "NAME")`` in tests/viewer/
 keeps them in build/viewer-screenshots/), never drawn by hand, and committed under docs/assets/
 (tests/docs/test_images.py fails when a page names a missing image). For each ``assets/NAME.png``
-a page names that docs/assets/ lacks, this copies build/viewer-screenshots/NAME.png, first
-running the test that saves it when that is missing too. ``--retake`` takes them all anew.
+a page names that docs/assets/ lacks, this runs the test that saves it and copies
+build/viewer-screenshots/NAME.png. ``--retake`` takes them all anew. The tests run with
+``ROBOMODEL_TEST_ANTIALIAS=1``: the browser draws with multisampling, as a reader's does, where
+the test suite's browser saves its CPU by drawing without it (tests/viewer/conftest.py), so a
+picture a ``make test`` left in build/viewer-screenshots/ is not reused.
 """
 
 from __future__ import annotations
 
 import ast
+import os
 import re
 import shutil
 import subprocess
@@ -55,21 +59,18 @@ def main() -> int:
     if not needed:
         return 0
     known = takers()
-    missing = [n for n in needed if retake or not (SHOTS / f"{n}.png").exists()]
-    unknown = [name for name in missing if name not in known]
+    unknown = [name for name in needed if name not in known]
     if unknown:
         print(f"docs: no browser test saves {', '.join(unknown)} (save_shot)", file=sys.stderr)
         return 2
-    if missing:
-        tests = sorted({known[name] for name in missing})
-        print(
-            f"docs: taking {len(missing)} screenshots with {len(tests)} browser tests", flush=True
-        )
-        code = subprocess.call(
-            [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *tests]
-        )
-        if code != 0:
-            return code
+    tests = sorted({known[name] for name in needed})
+    print(f"docs: taking {len(needed)} screenshots with {len(tests)} browser tests", flush=True)
+    code = subprocess.call(
+        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *tests],
+        env={**os.environ, "ROBOMODEL_TEST_ANTIALIAS": "1"},
+    )
+    if code != 0:
+        return code
     for name in needed:
         shutil.copyfile(SHOTS / f"{name}.png", ASSETS / f"{name}.png")
         print(f"docs: docs/assets/{name}.png (commit it)")
