@@ -30,6 +30,7 @@ import struct
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -59,10 +60,26 @@ def messages() -> dict[str, Any]:
     }  # fmt: skip
 
 
+def paced(seconds: float, send: Callable[[str], None]) -> dict[str, int]:
+    """Call ``send(topic)`` at each topic's rate (``TOPICS``) for ``seconds``; the calls made per
+    topic."""
+    sent = dict.fromkeys(TOPICS, 0)
+    start = time.monotonic()
+    next_s = dict.fromkeys(TOPICS, start)
+    while time.monotonic() - start < seconds:
+        now = time.monotonic()
+        for topic, rate_hz in TOPICS.items():
+            if now >= next_s[topic]:
+                send(topic)
+                sent[topic] += 1
+                next_s[topic] += 1.0 / rate_hz
+        time.sleep(max(0.0, min(next_s.values()) - time.monotonic()))
+    return sent
+
+
 def publish(domain: int, seconds: float) -> dict[str, int]:
     from robomodel.runtime import Context
 
-    sent = dict.fromkeys(TOPICS, 0)
     with Context("zenoh", domain_id=domain) as context:
         node = context.create_node("bench_bridges_pub")
         publishers = {
@@ -71,18 +88,13 @@ def publish(domain: int, seconds: float) -> dict[str, int]:
         }
         context.spin(duration_s=3.0)  # the receivers find the publishers
         print("publishing", flush=True)  # the bridge's CPU is read from here ...
-        start = time.monotonic()
-        next_s = dict.fromkeys(TOPICS, start)
-        while time.monotonic() - start < seconds:
-            now = time.monotonic()
-            for topic, rate_hz in TOPICS.items():
-                if now >= next_s[topic]:
-                    publisher, msg = publishers[topic]
-                    msg.header.stamp = _stamp(time.monotonic_ns())
-                    publisher.publish(msg)
-                    sent[topic] += 1
-                    next_s[topic] += 1.0 / rate_hz
-            time.sleep(max(0.0, min(next_s.values()) - time.monotonic()))
+
+        def send(topic: str) -> None:
+            publisher, msg = publishers[topic]
+            msg.header.stamp = _stamp(time.monotonic_ns())
+            publisher.publish(msg)
+
+        sent = paced(seconds, send)
         print("published", flush=True)  # ... to here
         context.spin(duration_s=0.5)
     return sent

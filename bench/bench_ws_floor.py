@@ -30,7 +30,16 @@ import threading
 import time
 from typing import Any
 
-from bench_bridges import NODE_MODULES, ROOT, TOPICS, _node_client, _percentile, messages
+from bench_bridges import (
+    _STAMP,
+    NODE_MODULES,
+    ROOT,
+    TOPICS,
+    _node_client,
+    _percentile,
+    messages,
+    paced,
+)
 
 _WS_GUID = b"258EAFA5-E914-47DA-95CA-C5AB0DC85B11"  # RFC 6455
 _SEND_BUFFER_BYTES = 4 << 20
@@ -94,23 +103,16 @@ def serve(server: socket.socket, payloads: dict[str, bytearray], seconds: float)
     while len(subscription_of) < len(TOPICS):
         for sub in _read_text_frame(conn)["subscriptions"]:
             subscription_of[channels[sub["channelId"] - 1]["topic"]] = sub["id"]
-    sent = dict.fromkeys(TOPICS, 0)
-    start = time.monotonic()
-    next_s = dict.fromkeys(TOPICS, start)
-    while time.monotonic() - start < seconds:
-        for topic, rate_hz in TOPICS.items():
-            if time.monotonic() < next_s[topic]:
-                continue
-            payload = payloads[topic]
-            stamp_ns = time.monotonic_ns()
-            struct.pack_into("<iI", payload, 4, stamp_ns // 10**9, stamp_ns % 10**9)
-            body = struct.pack("<BIQ", 1, subscription_of[topic], stamp_ns)
-            head = _frame_header(2, len(body) + len(payload)) + body
-            _send_all(conn, [memoryview(head), memoryview(payload)])
-            sent[topic] += 1
-            next_s[topic] += 1.0 / rate_hz
-        time.sleep(max(0.0, min(next_s.values()) - time.monotonic()))
-    return sent
+
+    def send(topic: str) -> None:
+        payload = payloads[topic]
+        stamp_ns = time.monotonic_ns()
+        _STAMP.pack_into(payload, 4, stamp_ns // 10**9, stamp_ns % 10**9)
+        body = struct.pack("<BIQ", 1, subscription_of[topic], stamp_ns)  # messageData
+        head = _frame_header(2, len(body) + len(payload)) + body
+        _send_all(conn, [memoryview(head), memoryview(payload)])
+
+    return paced(seconds, send)
 
 
 def main() -> None:
