@@ -25,7 +25,12 @@ from typing import Any
 
 from robomodel.errors import RobomodelError
 from robomodel.runtime.transport._zenoh_common import import_zenoh, log
-from robomodel.runtime.transport._zenoh_router import check_attempts, start_router, wait_for_router
+from robomodel.runtime.transport._zenoh_router import (
+    check_attempts,
+    read_record,
+    start_router,
+    wait_for_router,
+)
 
 __all__ = [
     "DEFAULT_ROUTER",
@@ -173,11 +178,19 @@ def open_session(connect: Sequence[str] = (), listen: Sequence[str] = ()) -> Ope
             ", ".join(connect_to) or "(no connect endpoint)",
         )
         return OpenedSession(session, False)
-    start_router(local[0])
-    # The session's connect retry (250 ms to 1 s) links it to the new router; a session used
-    # before then sees an empty graph (a second launch would host a parameter server of its own).
+    router = start_router(local[0])
+
+    def started() -> bool:
+        # The session's connect retry (250 ms to 1 s) links it to the new router; a session
+        # used before then sees an empty graph (a second launch would host a parameter server
+        # of its own). The router writes its record just after it listens, so a session can
+        # link before the record is there: wait for both, so that `robomodel router --stop`
+        # finds the router as soon as this returns (unless the router ended, e.g. lost its port).
+        linked = bool(list(session.info.routers_zid()))
+        return linked and (router.poll() is not None or read_record(local[0]) is not None)
+
     deadline = time.monotonic() + ROUTER_START_WAIT_S
-    while not list(session.info.routers_zid()) and time.monotonic() < deadline:
+    while not started() and time.monotonic() < deadline:
         time.sleep(0.01)
     if not list(session.info.routers_zid()):
         log.warning("the Zenoh router started on %s did not answer; see its log", local[0])
