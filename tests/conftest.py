@@ -52,6 +52,11 @@ def _processes_tmpdir() -> None:
 
     _TMPDIR = tempfile.mkdtemp(prefix="robomodel-tests-")
     os.environ["TMPDIR"] = _TMPDIR
+    # The record and log of a router a robomodel process starts go to XDG_RUNTIME_DIR (else
+    # /tmp/robomodel-UID): this run's, removed with it.
+    runtime = Path(_TMPDIR) / "run"
+    runtime.mkdir(mode=0o700)
+    os.environ["XDG_RUNTIME_DIR"] = str(runtime)
 
 
 def _byte_code_cache() -> None:
@@ -111,9 +116,16 @@ def pytest_configure(config: pytest.Config) -> None:
     _ROUTER = subprocess.Popen(
         [*ROBOMODEL, "router"], stderr=subprocess.DEVNULL, start_new_session=True
     )
-    for _ in range(100):
-        if _listening(7447):
-            return
+    # On a cold start (no byte code yet, a busy machine) the router takes seconds to listen:
+    # a worker's session that found none would start a router of its own on 7447, which
+    # stops once idle (in the middle of the run) and takes the port from this one.
+    deadline = time.monotonic() + scaled(60)
+    while not _listening(7447):
+        if _ROUTER.poll() is not None or time.monotonic() > deadline:
+            raise pytest.UsageError(
+                "the run's Zenoh router did not start on tcp/localhost:7447 "
+                f"(`robomodel router` exit code {_ROUTER.poll()})"
+            )
         time.sleep(0.05)
 
 
