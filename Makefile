@@ -16,16 +16,19 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 
 # uv (PyPI, by Astral) resolves and installs the same packages as pip, several times faster
-# (on 2 cores: 104 s against 828 s for every extra, one run each while the machine was busy)
+# (on 2 cores: 104 s against 828 s for every extra, one run each while the machine was busy).
+# It keeps the lock files of its builds in TMPDIR for good: this venv's own, not /tmp.
+UV := TMPDIR=$(CURDIR)/$(VENV)/tmp $(BIN)/uv
 $(STAMP): $(BIN)/python pyproject.toml
 	$(BIN)/python -m pip install --quiet --upgrade pip uv
-	$(BIN)/uv pip install --quiet --python $(BIN)/python -e '.[all,test,docs]'
+	mkdir -p $(VENV)/tmp
+	$(UV) pip install --quiet --python $(BIN)/python -e '.[all,test,docs]'
 	$(BIN)/python tools/install_clientlibs_pth.py
 	touch $(STAMP)
 
 $(SDK_STAMP): $(STAMP)
 	$(PYTHON) -m venv $(SDK_VENV)
-	$(BIN)/uv pip install --quiet --python $(SDK_VENV)/bin/python 'zenoh-ros2-sdk==0.1.8'
+	$(UV) pip install --quiet --python $(SDK_VENV)/bin/python 'zenoh-ros2-sdk==0.1.8'
 	touch $(SDK_STAMP)
 
 # System packages first: a fresh Ubuntu cannot create .venv before python3-venv is installed.
