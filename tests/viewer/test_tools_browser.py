@@ -101,11 +101,15 @@ def test_steering_pad_publishes_and_plot_draws_the_series(
     page.get_by_text("Stop", exact=True).click()
     wait_for(lambda: twists[-1].linear.x == 0.0, what="Stop to send zero")
     chart.scroll_into_view_if_needed()
+
+    def blue_pixels() -> int:
+        # the series' colour (#1f77b4) where the line is drawn, once the page has drawn the
+        # chart's data (a page on a loaded machine is seconds behind the server's 10 Hz redraw)
+        image = np.asarray(Image.open(io.BytesIO(chart.screenshot())).convert("RGB")).astype(int)
+        return int((np.abs(image - np.array([0x1F, 0x77, 0xB4])).max(axis=2) < 40).sum())
+
+    wait_for(lambda: blue_pixels() > 50, what=lambda: f"the line drawn: {blue_pixels()} pixels")
     save_shot(page, "tools_steering_plot")
-    # The chart's canvas has the series' colour (#1f77b4) where the line is drawn.
-    image = np.asarray(Image.open(io.BytesIO(chart.screenshot())).convert("RGB")).astype(int)
-    blue = np.abs(image - np.array([0x1F, 0x77, 0xB4])).max(axis=2) < 40
-    assert blue.sum() > 50
 
 
 @shares_the_page
