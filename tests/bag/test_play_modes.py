@@ -155,8 +155,9 @@ def test_latched_topics_reach_a_subscriber_that_joins_late(tmp_path: Path) -> No
             assert play.poll() is None
             for topic, cls in {**late, "/chatter": String}.items():
                 probe.listen(topic, cls, latched(10))
+            # the player is the only publisher: what arrives came from it while it played (on
+            # a loaded machine the late subscription's discovery can outlast the bag's 3 s)
             probe.wait(lambda: all(probe.seen[t] for t in late))
-            assert play.poll() is None  # received from the player while it plays
             probe.wait(lambda: play.poll() is not None)
         finally:
             stop(play)
