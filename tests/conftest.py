@@ -21,7 +21,7 @@ from hypothesis import settings
 
 from robomodel.cli.main import main
 from tests.tiers import MARKERS, child_pids, in_process_only, tiers_of
-from tests.timing import scaled
+from tests.timing import scaled, wait_until
 
 # No per-example deadline: timing belongs in bench/, and a loaded CI machine must not fail tests.
 settings.register_profile("robomodel", deadline=None)
@@ -119,14 +119,21 @@ def pytest_configure(config: pytest.Config) -> None:
     # On a cold start (no byte code yet, a busy machine) the router takes seconds to listen:
     # a worker's session that found none would start a router of its own on 7447, which
     # stops once idle (in the middle of the run) and takes the port from this one.
-    deadline = time.monotonic() + scaled(60)
-    while not _listening(7447):
-        if _ROUTER.poll() is not None or time.monotonic() > deadline:
+    router = _ROUTER
+
+    def listens() -> bool:
+        if _listening(7447):
+            return True
+        if router.poll() is not None:
             raise pytest.UsageError(
-                "the run's Zenoh router did not start on tcp/localhost:7447 "
-                f"(`robomodel router` exit code {_ROUTER.poll()})"
+                f"the run's Zenoh router ended (`robomodel router` exit code {router.poll()})"
             )
-        time.sleep(0.05)
+        return False
+
+    try:
+        wait_until(listens, 60, what="the run's Zenoh router on tcp/localhost:7447")
+    except AssertionError as exc:
+        raise pytest.UsageError(str(exc)) from None
 
 
 # Tests run first: long ones that mostly wait on processes of their own, so that they run
