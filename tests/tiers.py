@@ -99,6 +99,7 @@ PATH_TIERS: dict[str, tuple[str, ...]] = {
     "tests/bridges/test_bridges_ros1.py": ROS1_PROCESS,
     "tests/viewer/test_foxglove_beside.py": BUS_PROCESS,
     "tests/bag/test_play.py": PROCESS,
+    "tests/runtime/test_large_messages_heap.py": ("bus", "process", "ros1"),
     "tests/bag/test_play_modes.py": BUS,
     "tests/bag/test_play_stored_definitions.py": PROCESS,
     "tests/bag/test_record.py": PROCESS,

@@ -50,6 +50,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from robomodel._heap import large_buffers_from_the_heap
 from robomodel.bridges.exceptions import BridgeError, ClientError
 from robomodel.bridges.json_mapping import Dialect
 from robomodel.bridges.rosapi import Ros2Params, RosapiParams
@@ -74,8 +75,6 @@ _TYPICAL_MESSAGE_BYTES = 100_000
 # how many times a topic is advertised anew after the SDK refused a subscription to its channel
 _READVERTISE_LIMIT = 5
 MAX_CLIENT_FRAME_BYTES = 16 * 1024 * 1024  # the SDK's WebSocket bound on a client's frame
-_MMAP_THRESHOLD_BYTES = 32 * 1024 * 1024  # glibc's largest (DEFAULT_MMAP_THRESHOLD_MAX)
-_TRIM_THRESHOLD_BYTES = 64 * 1024 * 1024
 
 
 @dataclass
@@ -278,7 +277,7 @@ class FoxgloveBridge:
             ) from None
         self.port = int(self.server.port)
         self._tune_sockets()
-        _large_frames_from_the_heap()
+        large_buffers_from_the_heap()  # the SDK's frames, as the transport's payloads
         logging.getLogger("foxglove").addHandler(self._refusals)
         for key, value in (("port", self.port), ("address", address),
                            ("send_buffer_limit", send_buffer_limit),
@@ -811,29 +810,6 @@ class FoxgloveBridge:
             return bytes(path.read_bytes())
         except (RobomodelError, OSError):
             return None
-
-
-def _large_frames_from_the_heap() -> None:
-    """Serve the allocations of large messages from glibc's heap instead of fresh pages.
-
-    Each image the bridge forwards takes two buffers of its size: the payload's ``bytes`` and
-    the SDK's ``messageData`` frame. glibc's malloc maps fresh pages for such sizes, or gives
-    the heap's freed top back to the system once it passes twice the last one, so every 0.92 MB
-    640x480 rgb8 image cost ~450 page faults (perf stat), and taking its payload and handing it
-    to the SDK 1.8 ms instead of 0.3 ms (p50 at load average 5). With a 32 MiB mapping threshold
-    (glibc's largest) and a 64 MiB trim threshold the buffers are reused: the process keeps up
-    to 64 MiB freed for later. For the whole process (``robomodel run``'s or a launch's); a
-    no-op off glibc.
-    """
-    import ctypes
-
-    try:
-        mallopt = ctypes.CDLL("libc.so.6").mallopt
-    except (OSError, AttributeError):
-        return
-    m_trim_threshold, m_mmap_threshold = -1, -3  # <malloc.h>
-    mallopt(m_mmap_threshold, _MMAP_THRESHOLD_BYTES)
-    mallopt(m_trim_threshold, _TRIM_THRESHOLD_BYTES)
 
 
 def _patterns(name: str, patterns: Sequence[str]) -> list[re.Pattern[str]]:

@@ -17,6 +17,7 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
+from robomodel._heap import large_buffers_from_the_heap
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
 from robomodel.runtime.msg.schema import Service
@@ -87,6 +88,7 @@ class Ros1Transport(Transport):
                 "master`), or set ROS_MASTER_URI to where it runs"
             )
         self._bind = bind_host()
+        large_buffers_from_the_heap()  # each message is copied into and out of its connections
         self._lock = threading.Lock()
         self._nodes: dict[str, NodeEndpoint] = {}
         self._local: dict[str, tuple[type[Service], ServiceHandler]] = {}

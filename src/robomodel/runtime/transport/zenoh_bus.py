@@ -23,6 +23,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from robomodel._escape import escape_name
+from robomodel._heap import large_buffers_from_the_heap
 from robomodel.errors import RobomodelError
 from robomodel.runtime.executor import Executor
 from robomodel.runtime.msg import Message
@@ -88,6 +89,7 @@ class ZenohTransport(Transport):
     ) -> None:
         self.executor = executor
         self.domain_id = domain_id_from_env() if domain_id is None else domain_id
+        large_buffers_from_the_heap()  # each payload is copied into and out of Zenoh
         opened = open_session(connect, listen)
         self.session = opened.session
         self.is_router = opened.is_router
