@@ -98,6 +98,9 @@ bench:
 	$(BIN)/python bench/bench_bag.py
 	$(BIN)/python bench/bench_definitions.py
 	$(BIN)/python bench/bench_bridges.py --seconds 5
+	$(BIN)/python bench/bench_bridges.py --seconds 5 --clients node --bridge in-publisher
+	$(BIN)/python bench/bench_ws_floor.py --seconds 5
+	$(BIN)/python bench/bench_image_publish.py --seconds 5 --rounds 3
 
 clean:
 	rm -rf $(VENV) $(SDK_VENV) build .pytest_cache .mypy_cache .ruff_cache

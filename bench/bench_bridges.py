@@ -5,7 +5,13 @@ third: ``node`` is ``@foxglove/ws-protocol``'s FoxgloveClient (what Foxglove Stu
 bench/bench_bridges_client.js), ``python`` speaks ``foxglove.sdk.v1`` over ``websockets``. Each
 client gets a run of the publisher of its own, beside robomodel's subscriber.
 
-Run: ``.venv/bin/python bench/bench_bridges.py [--seconds 5] [--clients node,python]``.
+Run: ``.venv/bin/python bench/bench_bridges.py [--seconds 5] [--clients node,python]
+[--bridge process|in-publisher]``.
+
+``--bridge in-publisher`` runs the bridge in the publisher's process, on its bus, as ``robomodel
+launch`` runs its built-in nodes (the simulation with its cameras, foxglove_bridge) in one
+process: the bridge then has each message from the publisher's own Zenoh session rather than
+over the loopback, and the CPU printed is that process's, publisher and bridge together.
 
 Every message carries ``time.monotonic_ns()`` (CLOCK_MONOTONIC, one clock for every process of
 a Linux machine) in ``header.stamp``; each receiver subtracts it on arrival. Printed per topic:
@@ -29,6 +35,7 @@ import statistics
 import struct
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -77,16 +84,42 @@ def paced(seconds: float, send: Callable[[str], None]) -> dict[str, int]:
     return sent
 
 
-def publish(domain: int, seconds: float) -> dict[str, int]:
+def _bridge_beside(context: Any, port: int) -> Any:
+    """foxglove_bridge on ``context``: in the publisher's process, as ``robomodel launch`` runs
+    it beside the launch's simulation and other built-in nodes."""
+    from robomodel.bridges.foxglove_bridge import FoxgloveBridge
+    from robomodel.bridges.rosapi import Ros2Params
+    from robomodel.description.packages import PackageIndex
+
+    params = Ros2Params(context, lambda: sorted(context.graph(timeout_s=0.3).nodes), 1.0)
+    return FoxgloveBridge(context, params, dialect="ros2", package_index=PackageIndex(),
+                          port=port, log=lambda line: print(line, file=sys.stderr))  # fmt: skip
+
+
+def publish(domain: int, seconds: float, bridge_port: int | None = None) -> dict[str, int]:
     from robomodel.runtime import Context
 
     with Context("zenoh", domain_id=domain) as context:
+        bridge = None if bridge_port is None else _bridge_beside(context, bridge_port)
+        done = threading.Event()  # with a bridge here, a thread spins for it, as launch does
+        spinner = threading.Thread(target=context.spin, kwargs={"until": done.is_set})
+
+        def wait(seconds: float) -> None:
+            if bridge is None:
+                context.spin(duration_s=seconds)
+            else:
+                time.sleep(seconds)
+
         node = context.create_node("bench_bridges_pub")
         publishers = {
             topic: (node.create_publisher(type(msg), topic), msg)
             for topic, msg in messages().items()
         }
-        context.spin(duration_s=3.0)  # the receivers find the publishers
+        if bridge is not None:
+            spinner.start()
+            print("bridge listening", flush=True)  # the receivers start now ...
+            sys.stdin.readline()  # ... and have had a second when this comes
+        wait(3.0)  # the receivers find the publishers
         print("publishing", flush=True)  # the bridge's CPU is read from here ...
 
         def send(topic: str) -> None:
@@ -96,7 +129,11 @@ def publish(domain: int, seconds: float) -> dict[str, int]:
 
         sent = paced(seconds, send)
         print("published", flush=True)  # ... to here
-        context.spin(duration_s=0.5)
+        wait(0.5)
+        if bridge is not None:
+            bridge.stop()
+            done.set()
+            spinner.join()
     return sent
 
 
@@ -125,6 +162,7 @@ def receive_robomodel(domain: int, seconds: float) -> dict[str, list[float]]:
 def receive_python(port: int, seconds: float, *, quickack: bool) -> dict[str, list[float]]:
     import socket
 
+    from websockets.exceptions import ConnectionClosed
     from websockets.sync.client import connect
 
     latencies: dict[str, list[float]] = {t: [] for t in TOPICS}
@@ -139,6 +177,8 @@ def receive_python(port: int, seconds: float, *, quickack: bool) -> dict[str, li
                 frame = ws.recv(timeout=0.5)
             except TimeoutError:
                 continue
+            except ConnectionClosed:  # the bridge ended (with its publisher, --bridge in-publisher)
+                break
             if isinstance(frame, str):
                 message = json.loads(frame)
                 if message["op"] == "advertise":
@@ -163,7 +203,8 @@ def receive_python(port: int, seconds: float, *, quickack: bool) -> dict[str, li
 
 def _role(args: argparse.Namespace) -> None:
     if args.role == "publish":
-        result: Any = publish(args.domain_id, args.seconds)
+        result: Any = publish(args.domain_id, args.seconds,
+                              args.port if args.bridge == "in-publisher" else None)  # fmt: skip
     elif args.role == "robomodel":
         result = receive_robomodel(args.domain_id, args.seconds + 15.0)
     else:
@@ -201,13 +242,27 @@ def _phase(args: argparse.Namespace, client: str, bridge_pid: int, env: dict[str
         "robomodel": [*me, "--role", "robomodel"],
         client: _node_client(args.port, listen_s) if client == "node" else [*me, "--role", client],
     }
+    beside = args.bridge == "in-publisher"
+    publisher = None
+    if beside:  # the bridge is in the publisher: it listens before the receivers start
+        publisher = subprocess.Popen([*me, "--bridge", args.bridge, "--role", "publish"], env=env,
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)  # fmt: skip
+        assert publisher.stdout is not None and publisher.stdin is not None
+        if publisher.stdout.readline().strip() != "bridge listening":
+            sys.exit("bench_bridges: the publisher's bridge did not start")
+        bridge_pid = publisher.pid
     receivers = {
         side: subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True)
         for side, command in commands.items()
     }
     time.sleep(1.0)  # the receivers subscribe before the publisher's first message
-    publisher = subprocess.Popen([*me, "--role", "publish"], env=env, stdout=subprocess.PIPE,
-                                 text=True)  # fmt: skip
+    if publisher is None:
+        publisher = subprocess.Popen([*me, "--role", "publish"], env=env,
+                                     stdout=subprocess.PIPE, text=True)  # fmt: skip
+    else:
+        assert publisher.stdin is not None
+        publisher.stdin.write("go\n")
+        publisher.stdin.flush()
     assert publisher.stdout is not None
     cpu_s = 0.0
     for line in publisher.stdout:
@@ -227,6 +282,14 @@ def main() -> None:
     parser.add_argument("--domain-id", type=int, default=120)
     parser.add_argument("--port", type=int, default=18765)
     parser.add_argument("--role", choices=("publish", "robomodel", "python"))
+    parser.add_argument(
+        "--bridge",
+        choices=("process", "in-publisher"),
+        default="process",
+        help="where foxglove_bridge runs: a process of its own (robomodel run foxglove_bridge "
+        "foxglove_bridge), or in the publisher's, as robomodel launch runs it beside the "
+        "launch's simulation",
+    )
     parser.add_argument(
         "--clients",
         default="node,python",
@@ -249,24 +312,30 @@ def main() -> None:
     load = os.getloadavg()
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src"),
            "ROBOMODEL_NODE_MODULES": str(NODE_MODULES)}  # fmt: skip
-    bridge = subprocess.Popen(
-        [sys.executable, "-m", "robomodel.cli.main", "run", "--domain-id", str(args.domain_id),
-         "foxglove_bridge", "foxglove_bridge", "--ros-args", "-p", f"port:={args.port}"],
-        env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-        start_new_session=True,
-    )  # fmt: skip
     phases = {}
-    try:
-        assert bridge.stdout is not None
-        for line in bridge.stdout:
-            if "listening at" in line:
-                break
+    if args.bridge == "in-publisher":
         for client in clients:
-            phases[client] = _phase(args, client, bridge.pid, env)
-    finally:
-        os.killpg(bridge.pid, signal.SIGINT)
-        bridge.wait(30)
-    print(f"foxglove_bridge vs robomodel's subscriber, {args.seconds:g} s a client (latency [ms]); "
+            phases[client] = _phase(args, client, 0, env)
+    else:
+        bridge = subprocess.Popen(
+            [sys.executable, "-m", "robomodel.cli.main", "run", "--domain-id",
+             str(args.domain_id), "foxglove_bridge", "foxglove_bridge", "--ros-args", "-p",
+             f"port:={args.port}"],
+            env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+            start_new_session=True,
+        )  # fmt: skip
+        try:
+            assert bridge.stdout is not None
+            for line in bridge.stdout:
+                if "listening at" in line:
+                    break
+            for client in clients:
+                phases[client] = _phase(args, client, bridge.pid, env)
+        finally:
+            os.killpg(bridge.pid, signal.SIGINT)
+            bridge.wait(30)
+    print(f"foxglove_bridge ({args.bridge}) vs robomodel's subscriber, {args.seconds:g} s a client "
+          f"(latency [ms]); "
           f"load average before {load[0]:.2f} (1 min), {load[1]:.2f} (5 min)")  # fmt: skip
     print(f"{'topic':<16}{'sent':>7}{'side':>11}{'received':>10}{'p50':>9}{'p90':>9}{'ratio':>8}")
     for client, (sent, got, cpu_s) in phases.items():
@@ -279,8 +348,9 @@ def main() -> None:
                 print(f"{topic:<16}{sent[topic]:>7}{side:>11}{len(values):>10}"
                       f"{p50:>9.2f}{_percentile(values, 90):>9.2f}{ratio}")  # fmt: skip
         forwarded = sum(len(got[client][t]) for t in TOPICS)
+        whose = "bridge" if args.bridge == "process" else "publisher's process with the bridge"
         print(
-            f"bridge CPU while publishing to the {client} client: {cpu_s * 1e3:.0f} ms for "
+            f"{whose} CPU while publishing to the {client} client: {cpu_s * 1e3:.0f} ms for "
             f"{forwarded} messages, {cpu_s / max(1, forwarded) * 1e6:.0f} us a message "
             f"({cpu_s / args.seconds * 100:.0f}% of a core)"
         )
