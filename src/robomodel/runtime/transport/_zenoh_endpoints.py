@@ -17,7 +17,8 @@ SubscriptionData declare them (rmw_publisher_data.cpp, rmw_subscription_data.cpp
   a decoded message, as rclpy's ``raw=True`` subscriptions with message info do. One whose
   callback is wrapped in :class:`OnReceivingThread` gets them on Zenoh's receiving thread,
   without the executor's queue and its thread switch (a bridge forwarding payloads to a
-  thread-safe sink).
+  thread-safe sink); the samples of its own session's publishers come from them directly
+  (:mod:`._zenoh_local`), Zenoh brings the others.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ from robomodel.runtime.transport._zenoh_common import (
     log,
     undeclare_all,
 )
+from robomodel.runtime.transport._zenoh_local import KeptSample, LocalDelivery
 from robomodel.runtime.transport.base import (
     Endpoint,
     MessageInfo,
@@ -68,6 +70,9 @@ class EndpointOwner(ZenohSessionOwner, Protocol):
     @property
     def graph_cache(self) -> GraphCache: ...
 
+    @property
+    def local(self) -> LocalDelivery: ...
+
 
 def _reliability(zenoh: Any, endpoint: Endpoint) -> Any:
     reliable = endpoint.qos.reliability is Reliability.RELIABLE
@@ -80,14 +85,18 @@ class ZenohPublisher(PublisherHandle):
         self._type = msg_type
         self._endpoint = endpoint
         self._seq = 0
-        self._lock = threading.Lock()
+        self.lock = threading.Lock()  # numbers, sends and keeps a sample at a time
         self._destroyed = False
         self._encode = payload_encoder(msg_type)  # generated now, not on the first message
         token = bus.entity_token(endpoint, EntityKind.PUBLISHER, msg_type)
         self._gid = entity_gid(token.key())
         self._graph = bus.graph_cache
         self._match = (token.name, token.dds_type)
-        key = bus.data_key(endpoint.topic, msg_type)
+        key = self._key = bus.data_key(endpoint.topic, msg_type)
+        self._local = bus.local
+        # what a transient-local subscription of this session is replayed (Zenoh's cache
+        # serves those of other processes)
+        self._kept: collections.deque[KeptSample] | None = None
         # rmw_publisher_data.cpp (PublisherData::make): BLOCK for RELIABLE + KEEP_ALL, so a
         # slow link holds the publisher back rather than lose messages; DROP otherwise.
         keep_all = endpoint.qos.history is History.KEEP_ALL
@@ -104,6 +113,7 @@ class ZenohPublisher(PublisherHandle):
                 miss = ext.MissDetectionConfig(
                     heartbeat=None, sporadic_heartbeat=HEARTBEAT_PERIOD_S
                 )
+            self._kept = collections.deque(maxlen=max(1, endpoint.qos.depth))
             self._pub = ext.declare_advanced_publisher(
                 bus.session,
                 key,
@@ -115,6 +125,7 @@ class ZenohPublisher(PublisherHandle):
         else:
             self._pub = bus.session.declare_publisher(key, **options)
         self._token = bus.session.liveliness().declare_token(token.key())
+        self._local.add_publisher(key, self)
 
     @property
     def gid(self) -> bytes:
@@ -127,19 +138,32 @@ class ZenohPublisher(PublisherHandle):
                 f"got {type(msg).__name__}"
             )
         payload = self._encode(msg)
-        with self._lock:
+        with self.lock:
             if self._destroyed:  # a message of a node torn down by another callback: dropped
                 return
             self._seq += 1
-            attachment = encode_attachment(self._seq, time.time_ns(), self._gid)
-            self._pub.put(payload, attachment=attachment)
+            stamp_ns = time.time_ns()
+            self._pub.put(payload, attachment=encode_attachment(self._seq, stamp_ns, self._gid))
+            local = self._local.subscriptions(self._key)
+            if self._kept is None and not local:
+                return
+            sample = (payload, self._seq, stamp_ns, self._gid)
+            if self._kept is not None:
+                self._kept.append(sample)
+        for subscription in local:  # after other processes have it, outside the lock
+            subscription.deliver_local(sample)
+
+    def kept(self) -> list[KeptSample]:
+        """What a transient-local subscription of this session is replayed, oldest first."""
+        return [] if self._kept is None else list(self._kept)
 
     def subscription_count(self) -> int:
         return 0 if self._destroyed else self._graph.subscription_count(*self._match)
 
     def destroy(self) -> None:
-        with self._lock:
+        with self.lock:
             self._destroyed = True
+        self._local.remove_publisher(self._key, self)
         undeclare_all(self._token, self._pub)
 
 
@@ -175,10 +199,14 @@ class ZenohSubscription(SubscriptionHandle):
         self._scheduled = False
         self.dropped = 0
         token = bus.entity_token(endpoint, EntityKind.SUBSCRIPTION, msg_type)
-        key = bus.data_key(endpoint.topic, msg_type)
+        key = self._key = bus.data_key(endpoint.topic, msg_type)
         on_arrival = isinstance(raw_deliver, OnReceivingThread)
         on_sample = self._on_arrival if on_arrival else self._on_sample
-        if endpoint.qos.durability is Durability.TRANSIENT_LOCAL:
+        # on arrival, this session's samples come from its publishers (._zenoh_local)
+        self._local = bus.local if on_arrival else None
+        origin = {"allowed_origin": zenoh.Locality.REMOTE} if on_arrival else {}
+        transient_local = endpoint.qos.durability is Durability.TRANSIENT_LOCAL
+        if transient_local:
             ext = zenoh.ext
             recovery = None
             if endpoint.qos.reliability is Reliability.RELIABLE:
@@ -192,10 +220,14 @@ class ZenohSubscription(SubscriptionHandle):
                 ),
                 recovery=recovery,
                 subscriber_detection=True,
+                **origin,
             )
         else:
-            self._sub = bus.session.declare_subscriber(key, direct(on_sample))
+            self._sub = bus.session.declare_subscriber(key, direct(on_sample), **origin)
         self._token = bus.session.liveliness().declare_token(token.key())
+        if self._local is not None:
+            depth = max(1, endpoint.qos.depth) if transient_local else 0
+            self._local.add_subscription(key, self, replay_depth=depth)
 
     def messages_lost(self) -> int:
         """Messages lost, by the publishers' sequence numbers (rmw_zenoh's MESSAGE_LOST)."""
@@ -212,6 +244,17 @@ class ZenohSubscription(SubscriptionHandle):
         if not self._scheduled:
             self._scheduled = True
             self._bus.executor.post(self._drain)
+
+    def deliver_local(self, sample: KeptSample) -> None:  # the publishing thread
+        payload, sequence, stamp_ns, gid = sample
+        if not self._alive or self._raw_deliver is None:
+            return
+        with self._sequences_lock:
+            self._sequences.record(gid, sequence)
+        try:
+            self._raw_deliver(payload, MessageInfo(stamp_ns, time.time_ns(), sequence, gid))
+        except Exception:  # a bad callback never costs the publisher
+            log.exception("error handling a sample on %s", self._endpoint.topic)
 
     def _on_arrival(self, sample: Any) -> None:  # a Zenoh thread
         try:
@@ -244,6 +287,8 @@ class ZenohSubscription(SubscriptionHandle):
             self._no_attachment(attachment)
             return
         sequence, stamp_ns, gid = parsed
+        if self._local is not None and self._local.is_local(gid):
+            return  # the publisher delivered it itself
         with self._sequences_lock:
             self._sequences.record(gid, sequence)
         payload = sample.payload.to_bytes()
@@ -276,4 +321,6 @@ class ZenohSubscription(SubscriptionHandle):
 
     def destroy(self) -> None:
         self._alive = False
+        if self._local is not None:
+            self._local.remove_subscription(self._key, self)
         undeclare_all(self._token, self._sub)

@@ -35,6 +35,7 @@ from robomodel.runtime.transport._failures import log_failure
 from robomodel.runtime.transport._zenoh_common import close_session, log, undeclare_all
 from robomodel.runtime.transport._zenoh_endpoints import ZenohPublisher, ZenohSubscription
 from robomodel.runtime.transport._zenoh_graph import GraphCache
+from robomodel.runtime.transport._zenoh_local import LocalDelivery
 from robomodel.runtime.transport._zenoh_services import ServiceClient, ZenohService
 from robomodel.runtime.transport._zenoh_session import open_session
 from robomodel.runtime.transport.base import (
@@ -106,6 +107,7 @@ class ZenohTransport(Transport):
         self._warned: set[tuple[str, ...]] = set()
         self._warnings_capped = False
         self._graph = GraphCache(self.session, self.domain_id)
+        self.local = LocalDelivery()  # this session's samples to its on-arrival subscriptions
 
     # -- naming ---------------------------------------------------------------------------------
     def type_hash(self, kind: type[Message] | type[Service]) -> str:
@@ -216,7 +218,9 @@ class ZenohTransport(Transport):
         payload is not checked against ``msg_type``, which only names the topic's key.
         A ``deliver`` wrapped in :class:`OnReceivingThread` runs on Zenoh's receiving thread
         as each sample arrives, with no queue (``qos.depth`` bounds nothing): for a quick,
-        thread-safe one, such as a bridge's hand-off to its clients' queues."""
+        thread-safe one, such as a bridge's hand-off to its clients' queues. Such a one gets
+        the samples of this session's publishers from them, on the publishing thread, once
+        other processes have them (:mod:`._zenoh_local`)."""
         endpoint = Endpoint(node, topic, msg_type.__typename__, qos)
         return ZenohSubscription(self, endpoint, msg_type, None, raw_deliver=deliver)
 
