@@ -6,10 +6,13 @@ Zenoh session from the publisher itself, right after ``put`` sent them to other 
 the CDR payload that was just encoded, with no trip through Zenoh's routing and no copy out
 of a Zenoh buffer. Its Zenoh subscriber then takes remote samples only (``allowed_origin``
 remote), and drops what Zenoh still brings of the session's own publishers (the history a
-transient-local subscriber queries), so each sample comes once. This is rclcpp's intra-process communication for the case
-robomodel has: nodes of one process on one bus, such as ``robomodel launch``'s simulation and
-foxglove_bridge; unlike rclcpp's, the sample goes to other processes first, so a subscription
-in the publisher's process never delays them.
+transient-local subscriber queries), so each sample comes once. This is rclcpp's
+intra-process communication for the case robomodel has: nodes of one process on one bus, such
+as ``robomodel launch``'s simulation and foxglove_bridge; unlike rclcpp's, the sample goes to
+other processes first, so a subscription in the publisher's process never delays them.
+
+A transient-local publisher keeps its last ``depth`` payloads for this, besides Zenoh's cache
+of them.
 
 A transient-local subscription also gets, once, what each transient-local publisher of its
 session keeps (its last ``depth`` samples, the subscription's depth at most), as Zenoh's
