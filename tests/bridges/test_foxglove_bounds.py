@@ -26,6 +26,7 @@ from robomodel.launch.param_server import ParamServer
 from robomodel.runtime import Context
 from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
+from tests.bridges.bus_thread import spun
 from tests.bridges.foxglove_ws import next_op, registered, subscribe
 from tests.timing import scaled, wait_until
 
@@ -43,23 +44,16 @@ GRAPH_PERIOD_S = 0.1
 
 @pytest.fixture(scope="module")
 def bridge() -> Iterator[FoxgloveBridge]:
-    context = Context("inproc")
-    stop = threading.Event()
-    spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
-    spinner.start()
-    found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
-                           package_index=PackageIndex(), port=0, log=LINES.append,
-                           graph_period_s=GRAPH_PERIOD_S,
-                           send_buffer_limit=SEND_BUFFER_LIMIT,
-                           max_client_messages_per_s=RATE)  # fmt: skip
-    try:
-        yield found
-    finally:
-        found.stop()
-        stop.set()
-        context.executor.post(lambda: None)
-        spinner.join(timeout=5)
-        context.shutdown()
+    with spun(Context("inproc")) as context:
+        found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
+                               package_index=PackageIndex(), port=0, log=LINES.append,
+                               graph_period_s=GRAPH_PERIOD_S,
+                               send_buffer_limit=SEND_BUFFER_LIMIT,
+                               max_client_messages_per_s=RATE)  # fmt: skip
+        try:
+            yield found
+        finally:
+            found.stop()
 
 
 def _client(bridge: FoxgloveBridge, **options: Any) -> ClientConnection:

@@ -8,11 +8,8 @@ from __future__ import annotations
 import json
 import logging
 import os
-import platform
-import resource
 import socket
 import struct
-import threading
 from collections.abc import Iterator
 from typing import Any
 
@@ -33,6 +30,7 @@ from robomodel.launch.param_server import ParamServer
 from robomodel.runtime import Context
 from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
+from tests.bridges.bus_thread import spun
 from tests.bridges.foxglove_ws import advertised, next_binary, next_op, registered, subscribe
 from tests.timing import wait_until
 
@@ -45,21 +43,14 @@ GRAPH_PERIOD_S = 0.1
 
 @pytest.fixture(scope="module")
 def bridge() -> Iterator[FoxgloveBridge]:
-    context = Context("inproc")
-    stop = threading.Event()
-    spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
-    spinner.start()
-    found = FoxgloveBridge(context, Ros1Params(PARAMS), dialect="ros2",
-                           package_index=PackageIndex(), port=0, log=LINES.append,
-                           graph_period_s=GRAPH_PERIOD_S)  # fmt: skip
-    try:
-        yield found
-    finally:
-        found.stop()
-        stop.set()
-        context.executor.post(lambda: None)
-        spinner.join(timeout=5)
-        context.shutdown()
+    with spun(Context("inproc")) as context:
+        found = FoxgloveBridge(context, Ros1Params(PARAMS), dialect="ros2",
+                               package_index=PackageIndex(), port=0, log=LINES.append,
+                               graph_period_s=GRAPH_PERIOD_S)  # fmt: skip
+        try:
+            yield found
+        finally:
+            found.stop()
 
 
 def _server_sockets(port: int) -> list[tuple[int, int]]:
@@ -263,24 +254,6 @@ def test_bad_settings_are_one_line_errors(bridge: FoxgloveBridge) -> None:
     with pytest.raises(BridgeError, match=f"cannot listen on 127.0.0.1:{bridge.port}"):
         FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
                        package_index=PackageIndex(), port=bridge.port, name="second")  # fmt: skip
-
-
-@pytest.mark.skipif(platform.libc_ver()[0] != "glibc", reason="glibc's malloc settings")
-def test_frames_the_size_of_an_image_reuse_the_heap(bridge: FoxgloveBridge) -> None:
-    """Once a bridge runs, its process allocates and frees the two 0.92 MB buffers an image
-    takes (the payload, the SDK's frame) without page faults; glibc's defaults, which map or
-    trim them afresh, cost ~450 page faults a pair (measured)."""
-    size = 640 * 480 * 3
-
-    def pair() -> None:
-        payload, frame = bytearray(size), bytearray(size)
-        del payload, frame
-
-    pair()
-    before = resource.getrusage(resource.RUSAGE_THREAD).ru_minflt
-    for _ in range(20):
-        pair()
-    assert resource.getrusage(resource.RUSAGE_THREAD).ru_minflt - before < 20
 
 
 def test_a_graph_read_in_part_or_not_at_all_closes_no_channel(

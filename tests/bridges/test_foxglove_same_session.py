@@ -5,7 +5,6 @@ client subscribed arrives once, and each later message once, from the publishers
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Iterator
 
 import pytest
@@ -18,27 +17,21 @@ from robomodel.launch.param_server import ParamServer
 from robomodel.runtime import Context, latched
 from robomodel.runtime.msg import Int32, String
 from robomodel.runtime.msg.cdr import serialize
+from tests.bridges.bus_thread import spun
 from tests.bridges.foxglove_ws import next_binary, registered, subscribe
 from tests.conftest import unique_domain
-from tests.timing import scaled, wait_until
+from tests.timing import wait_until
 
 
 @pytest.fixture
 def bridge() -> Iterator[FoxgloveBridge]:
-    context = Context("zenoh", domain_id=int(unique_domain()))
-    stop = threading.Event()
-    spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
-    spinner.start()
-    found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
-                           package_index=PackageIndex(), port=0, graph_period_s=0.1)  # fmt: skip
-    try:
-        yield found
-    finally:
-        found.stop()
-        stop.set()
-        context.executor.post(lambda: None)
-        spinner.join(scaled(10))
-        context.shutdown()
+    with spun(Context("zenoh", domain_id=int(unique_domain()))) as context:
+        found = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
+                               package_index=PackageIndex(), port=0, graph_period_s=0.1)  # fmt: skip
+        try:
+            yield found
+        finally:
+            found.stop()
 
 
 def test_latched_and_live_messages_of_the_bridges_own_process_arrive_once(

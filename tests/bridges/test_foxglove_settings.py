@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import json
 import struct
-import threading
 from collections.abc import Iterator
 from typing import Any
 
@@ -22,6 +21,7 @@ from robomodel.runtime import Context
 from robomodel.runtime.msg import get_message_type
 from robomodel.runtime.msg.cdr import serialize
 from robomodel.runtime.msg.schema import get_service_type
+from tests.bridges.bus_thread import spun
 from tests.bridges.foxglove_ws import next_op
 from tests.conftest import EXAMPLES
 from tests.timing import scaled, wait_until
@@ -33,28 +33,21 @@ GRAPH_PERIOD_S = 0.1
 
 @pytest.fixture(scope="module")
 def bridge() -> Iterator[FoxgloveBridge]:
-    context = Context("inproc")
-    stop = threading.Event()
-    spinner = threading.Thread(target=lambda: context.spin(until=stop.is_set), daemon=True)
-    spinner.start()
-    params = Ros2Params(context, lambda: sorted(context.graph(timeout_s=0.3).nodes), 2.0)
-    found = FoxgloveBridge(
-        context, params, dialect="ros2",
-        package_index=PackageIndex(package_paths=[EXAMPLES], use_environment=False),
-        port=0, log=LINES.append, use_sim_time=True,
-        service_whitelist=["/ALLOWED/.*"], param_whitelist=[r"/tuned\..*"],
-        client_topic_whitelist=["/said"],
-        asset_uri_allowlist=[r"^PACKAGE://two_link_arm/.*\.urdf$"],
-        graph_period_s=GRAPH_PERIOD_S,
-    )  # fmt: skip
-    try:
-        yield found
-    finally:
-        found.stop()
-        stop.set()
-        context.executor.post(lambda: None)
-        spinner.join(timeout=5)
-        context.shutdown()
+    with spun(Context("inproc")) as context:
+        params = Ros2Params(context, lambda: sorted(context.graph(timeout_s=0.3).nodes), 2.0)
+        found = FoxgloveBridge(
+            context, params, dialect="ros2",
+            package_index=PackageIndex(package_paths=[EXAMPLES], use_environment=False),
+            port=0, log=LINES.append, use_sim_time=True,
+            service_whitelist=["/ALLOWED/.*"], param_whitelist=[r"/tuned\..*"],
+            client_topic_whitelist=["/said"],
+            asset_uri_allowlist=[r"^PACKAGE://two_link_arm/.*\.urdf$"],
+            graph_period_s=GRAPH_PERIOD_S,
+        )  # fmt: skip
+        try:
+            yield found
+        finally:
+            found.stop()
 
 
 def _connected(bridge: FoxgloveBridge) -> Any:

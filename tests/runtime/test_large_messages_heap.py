@@ -1,5 +1,5 @@
-"""A process that opens a bus between processes (Zenoh, ROS 1) takes its large message
-buffers from glibc's heap: allocating and freeing image-sized buffers costs no page faults,
+"""A process that opens a bus between processes (Zenoh, ROS 1), or runs a Foxglove bridge,
+takes its large message buffers from glibc's heap: allocating and freeing image-sized buffers costs no page faults,
 where glibc's defaults map or trim them afresh each time (``robomodel._heap``)."""
 
 from __future__ import annotations
@@ -28,6 +28,13 @@ FAULTS = textwrap.dedent(
         context = Context("zenoh", domain_id=int(sys.argv[2]))
     else:
         context = Context()
+    if bus == "bridge":  # foxglove_bridge on the in-process bus: the SDK's frames
+        from robomodel.bridges.foxglove_bridge import FoxgloveBridge
+        from robomodel.bridges.rosapi import Ros1Params
+        from robomodel.description.packages import PackageIndex
+        from robomodel.launch.param_server import ParamServer
+        bridge = FoxgloveBridge(context, Ros1Params(ParamServer()), dialect="ros2",
+                                package_index=PackageIndex(), port=0, log=lambda line: None)
     size = 640 * 480 * 3  # a 640x480 rgb8 image
 
     def pair():  # its CDR and the transport's copy of it
@@ -39,6 +46,8 @@ FAULTS = textwrap.dedent(
     for _ in range(20):
         pair()
     print(resource.getrusage(resource.RUSAGE_THREAD).ru_minflt - before)
+    if bus == "bridge":
+        bridge.stop()
     context.shutdown()
     """
 )
@@ -52,9 +61,10 @@ def _faults(bus: str, arg: str) -> int:
 
 
 @pytest.mark.skipif(platform.libc_ver()[0] != "glibc", reason="glibc's malloc settings")
-@pytest.mark.parametrize("bus", ["zenoh", "ros1"])
-def test_image_sized_buffers_reuse_the_heap_once_a_bus_opens(bus: str) -> None:
-    arg = unique_domain() if bus == "zenoh" else str(free_port())
+@pytest.mark.parametrize("bus", ["zenoh", "ros1", "bridge"])
+def test_image_sized_buffers_reuse_the_heap(bus: str) -> None:
+    """On the Zenoh and ROS 1 buses, and in a process with a Foxglove bridge whatever its bus."""
+    arg = {"zenoh": unique_domain, "ros1": lambda: str(free_port())}.get(bus, str)()
     assert _faults(bus, arg) < 20
     # the same process on the in-process bus keeps glibc's defaults: ~450 faults a pair
     assert _faults("inproc", "") > 20 * 100
