@@ -518,3 +518,44 @@ def test_a_message_of_another_class_of_its_type_arrives_as_the_subscriber_s_clas
     assert (list(got[0].name), list(got[0].position)) == (["a"], [1.5])
     assert got[1] is own
     ctx.shutdown()
+
+
+def test_the_graph_reads_from_another_thread_while_endpoints_come_and_go() -> None:
+    """A bridge's poller reads the graph on a thread of its own while the executor's thread
+    makes and destroys nodes, publishers, subscriptions and services: no read fails (iterating
+    a table as it changed size did, at once with a 1 us switch interval)."""
+    import sys
+    import threading
+
+    from robomodel.runtime.msg.types.std_srvs import Trigger
+
+    ctx = Context()
+    failures: list[BaseException] = []
+    done = threading.Event()
+
+    def read() -> None:
+        while not done.is_set():
+            try:
+                ctx.graph()
+            except RuntimeError as exc:
+                failures.append(exc)
+                return
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # the threads take turns as often as CPython lets them
+    reader = threading.Thread(target=read)
+    reader.start()
+    try:
+        for i in range(300):
+            node = ctx.create_node(f"node_{i}")
+            node.create_publisher(Float64, f"/topic_{i}")
+            node.create_subscription(Float64, f"/topic_{i}", lambda _: None)
+            node.create_service(Trigger, f"service_{i}", lambda _: Trigger.Response())
+            node.destroy()
+            if failures:
+                break
+    finally:
+        done.set()
+        reader.join(scaled(10))
+        sys.setswitchinterval(interval)
+    assert failures == []

@@ -167,14 +167,17 @@ class InprocTransport(Transport):
         return unregister
 
     def graph(self, timeout_s: float = 1.0) -> Graph:
+        """The graph now. Any thread may ask (a bridge's poller does) while the executor's
+        adds and removes endpoints: each table is copied before it is read, a copy that
+        runs whole under the GIL."""
         graph = Graph(nodes=set(self._nodes))
-        for pubs in self._pubs.values():
-            for pub in pubs:
+        for pubs in list(self._pubs.values()):
+            for pub in list(pubs):
                 graph.add("pub", pub.endpoint)
-        for subs in self._subs.values():
-            for sub in subs:
+        for subs in list(self._subs.values()):
+            for sub in list(subs):
                 graph.add("sub", sub.endpoint)
-        for srv in self._services.values():
+        for srv in list(self._services.values()):
             graph.add("srv", srv.endpoint)
         return graph
 
