@@ -231,8 +231,11 @@ def _node_client(port: int, seconds: float) -> list[str]:
             str(seconds), *TOPICS]  # fmt: skip
 
 
-def _phase(args: argparse.Namespace, client: str, bridge_pid: int, env: dict[str, str]) -> Any:
-    """One run of the publisher with robomodel's subscriber and ``client`` receiving."""
+def _phase(
+    args: argparse.Namespace, client: str, bridge_pid: int | None, env: dict[str, str]
+) -> Any:
+    """One run of the publisher with robomodel's subscriber and ``client`` receiving; the CPU
+    is read of ``bridge_pid``, or of the publisher's process when the bridge is in it (None)."""
     me = [sys.executable, __file__, "--seconds", str(args.seconds), "--domain-id",
           str(args.domain_id), "--port", str(args.port)]  # fmt: skip
     if args.quickack:
@@ -250,7 +253,6 @@ def _phase(args: argparse.Namespace, client: str, bridge_pid: int, env: dict[str
         assert publisher.stdout is not None and publisher.stdin is not None
         if publisher.stdout.readline().strip() != "bridge listening":
             sys.exit("bench_bridges: the publisher's bridge did not start")
-        bridge_pid = publisher.pid
     receivers = {
         side: subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True)
         for side, command in commands.items()
@@ -267,7 +269,7 @@ def _phase(args: argparse.Namespace, client: str, bridge_pid: int, env: dict[str
     cpu_s = 0.0
     for line in publisher.stdout:
         if line.strip() in ("publishing", "published"):
-            cpu_s = _cpu_s(bridge_pid) - cpu_s
+            cpu_s = _cpu_s(bridge_pid or publisher.pid) - cpu_s
         else:
             sent = json.loads(line)
     if publisher.wait() != 0:
@@ -315,7 +317,7 @@ def main() -> None:
     phases = {}
     if args.bridge == "in-publisher":
         for client in clients:
-            phases[client] = _phase(args, client, 0, env)
+            phases[client] = _phase(args, client, None, env)
     else:
         bridge = subprocess.Popen(
             [sys.executable, "-m", "robomodel.cli.main", "run", "--domain-id",

@@ -11,12 +11,10 @@ intra-process communication for the case robomodel has: nodes of one process on 
 as ``robomodel launch``'s simulation and foxglove_bridge; unlike rclcpp's, the sample goes to
 other processes first, so a subscription in the publisher's process never delays them.
 
-A transient-local publisher keeps its last ``depth`` payloads for this, besides Zenoh's cache
-of them.
-
 A transient-local subscription also gets, once, what each transient-local publisher of its
 session keeps (its last ``depth`` samples, the subscription's depth at most), as Zenoh's
-advanced subscriber queries a remote publisher's cache. A sample published while the
+advanced subscriber queries a remote publisher's cache; for this such a publisher keeps its
+last ``depth`` payloads, besides Zenoh's cache of them. A sample published while the
 subscription is made goes either into what is replayed or to the subscription live, never
 both and never neither (the registry changes under the publishers' locks).
 """
