@@ -52,6 +52,9 @@ def _processes_tmpdir() -> None:
 
     _TMPDIR = tempfile.mkdtemp(prefix="robomodel-tests-")
     os.environ["TMPDIR"] = _TMPDIR
+    # pytest's own folders (tmp_path, xdist's per-worker ones) too: its basetemp is made in
+    # the temporary folder Python found first, which it keeps (tempfile.tempdir)
+    tempfile.tempdir = _TMPDIR
     # The record and log of a router a robomodel process starts go to XDG_RUNTIME_DIR (else
     # /tmp/robomodel-UID): this run's, removed with it.
     runtime = Path(_TMPDIR) / "run"
@@ -505,7 +508,8 @@ def _temporary_files_in_pytest_s_basetemp(
 ) -> None:
     """What code run in the test process writes with ``tempfile`` (the ``launch_params_*.yaml``
     files the ROS 2 ``load_launch`` API leaves for the caller's nodes) goes to a folder of
-    pytest's, which pytest cleans up, not to /tmp."""
+    pytest's basetemp, inside the run's temporary folder that is removed at its end, not to
+    /tmp."""
     import tempfile
 
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path_factory.mktemp("tempfile")))
